@@ -1,0 +1,22 @@
+/* sim_area.c - gate-equivalent area of each element from its widths.
+ * The models are the textbook structures (ripple-carry adder, array
+ * multiplier, mux tree, D flip-flops); docs/area.md says what they leave
+ * out (carry-lookahead, Booth recoding, wiring, rounding incrementers). */
+#include "sim/sim_area.h"
+
+double sim_area_reg(int w, int has_en, int has_rst)
+{
+    double ff = has_rst ? SIM_GE_DFFR : SIM_GE_DFF;
+    return w * (ff + (has_en ? SIM_GE_MUX2 : 0.0));
+}
+
+double sim_area_mux(int w, int n) { return n > 1 ? (double)w * (n - 1) * SIM_GE_MUX2 : 0.0; }
+double sim_area_bk(int w) { return w * SIM_GE_AND2; }
+double sim_area_add(int w) { return w * SIM_GE_FA; }
+double sim_area_sub(int w) { return w * (SIM_GE_FA + SIM_GE_INV); }
+
+double sim_area_mul(int wa, int wb)
+{
+    /* wa*wb partial-product ANDs, reduced by (wa-1) rows of wb full adders. */
+    return (double)wa * wb * SIM_GE_AND2 + (double)(wa - 1) * wb * SIM_GE_FA;
+}

@@ -1,0 +1,27 @@
+/* sim_area.h - area estimates in gate equivalents (GE).
+ *
+ * One GE is the area of a 2-input NAND. The cell areas are those of the
+ * NanGate 45 nm Open Cell Library (X1 drive strength) divided by NAND2_X1's
+ * 0.798 um^2; see docs/area.md for the table and what the model leaves out.
+ */
+#ifndef SIM_AREA_H
+#define SIM_AREA_H
+
+#define SIM_GE_NAND2 1.00   /* NAND2_X1  0.798 um^2 */
+#define SIM_GE_INV   0.67   /* INV_X1    0.532 um^2 */
+#define SIM_GE_AND2  1.33   /* AND2_X1   1.064 um^2 */
+#define SIM_GE_XOR2  2.00   /* XOR2_X1   1.596 um^2 */
+#define SIM_GE_MUX2  2.33   /* MUX2_X1   1.862 um^2 */
+#define SIM_GE_HA    3.33   /* HA_X1     2.660 um^2 */
+#define SIM_GE_FA    5.33   /* FA_X1     4.256 um^2 */
+#define SIM_GE_DFF   5.67   /* DFF_X1    4.522 um^2 */
+#define SIM_GE_DFFR  6.67   /* DFFR_X1   5.320 um^2 (with reset) */
+
+/* Element models, by bit widths. */
+double sim_area_reg(int w, int has_en, int has_rst);   /* w flip-flops (+ a 2:1 mux per bit for enable) */
+double sim_area_mux(int w, int n);                     /* (n-1) 2:1 muxes per bit */
+double sim_area_bk(int w);                             /* an AND gate per bit */
+double sim_area_add(int w);                            /* ripple-carry: w full adders */
+double sim_area_sub(int w);                            /* w full adders + w inverters */
+double sim_area_mul(int wa, int wb);                   /* array: wa*wb AND2 + (wa-1)*wb FA */
+#endif

@@ -1,0 +1,68 @@
+/* sim_fixed.h - fixed-point formats and quantization.
+ *
+ * A format sI.F / uI.F is signed/unsigned with I integer bits (for signed,
+ * including the sign bit) and F fraction bits: width W = I+F, 1..64, as
+ * SystemC's sc_fixed<W,I> / sc_ufixed<W,I>. A value is held as its raw
+ * two's-complement integer (sign-extended to 64 bits for signed formats,
+ * zero-extended for unsigned); its real value is raw * 2^-F.
+ *
+ * Quantization takes an exact value (a double, or a wide raw integer with
+ * its own fraction bits) to a format: first rounding (drop fraction bits),
+ * then overflow handling (fit the integer range), as sc_fixed does.
+ */
+#ifndef SIM_FIXED_H
+#define SIM_FIXED_H
+#include <stdint.h>
+#include <stddef.h>
+
+#define SIM_FX_MAX_WIDTH 64
+
+typedef enum { SIM_RND_TRUNC, SIM_RND_HALF_UP, SIM_RND_EVEN } sim_round;
+typedef enum { SIM_OVF_WRAP, SIM_OVF_SAT } sim_ovf;
+
+typedef struct sim_fmt {
+    uint8_t is_signed;   /* 1: sI.F, 0: uI.F */
+    int8_t  ibits;       /* I, 0..64 */
+    int8_t  fbits;       /* F, 0..64 */
+    uint8_t width;       /* I+F, 1..64 */
+} sim_fmt;
+
+/* Wide exact intermediate (sums and products before quantization). */
+typedef __int128 sim_wide;
+
+/* Build a format; returns 0, or -1 (with a message in err) when invalid. */
+int sim_fmt_make(int is_signed, int ibits, int fbits, sim_fmt *out,
+                 char *err, size_t errlen);
+/* Parse "s2.14" / "u1.15"; 0 on success, -1 with a one-line message. */
+int sim_fmt_parse(const char *s, sim_fmt *out, char *err, size_t errlen);
+/* "s2.14"; buf of at least SIM_FMT_STRLEN bytes. Returns buf. */
+#define SIM_FMT_STRLEN 12
+char *sim_fmt_str(sim_fmt f, char *buf);
+
+/* Names of modes as on the command line: "trunc" "half-up" "even",
+ * "wrap" "sat". Parse returns 0 or -1. */
+const char *sim_round_name(sim_round r);
+const char *sim_ovf_name(sim_ovf o);
+int sim_round_parse(const char *s, sim_round *out);
+int sim_ovf_parse(const char *s, sim_ovf *out);
+
+/* Range of raw values and of reals. */
+int64_t sim_fmt_raw_min(sim_fmt f);
+int64_t sim_fmt_raw_max(sim_fmt f);
+double  sim_fmt_lsb(sim_fmt f);                  /* 2^-F */
+double  sim_fmt_real_min(sim_fmt f);
+double  sim_fmt_real_max(sim_fmt f);
+
+/* Quantize a finite real. *ovf (may be NULL) is set to 1 when the rounded
+ * value was outside the format's range (then wrapped or saturated). */
+int64_t sim_fx_from_real(double x, sim_fmt f, sim_round r, sim_ovf o, int *ovf);
+/* Quantize an exact wide raw value with src_fbits fraction bits. */
+int64_t sim_fx_requant(sim_wide raw, int src_fbits, sim_fmt f,
+                       sim_round r, sim_ovf o, int *ovf);
+/* Real value of a raw (exact for widths <= 53; nearest double beyond). */
+double  sim_fx_to_real(int64_t raw, sim_fmt f);
+/* Bring a raw into canonical form for its format (sign-/zero-extend from W
+ * bits); used when a raw arrives from outside (e.g. a VCD or a file). */
+int64_t sim_fx_canon(int64_t raw, sim_fmt f);
+
+#endif

@@ -1,0 +1,419 @@
+/* sim_kernel.c - signals, processes, the delta-cycle loop and timed events.
+ *
+ * One time step runs:   timers due now -> [evaluate -> update]* -> VCD.
+ * Evaluate runs each runnable process once; processes only write signals'
+ * next values (sim_write). Update copies next to current for every written
+ * signal, and each signal that really changed wakes its sensitive processes
+ * for the next delta. Because no process sees a write before the update,
+ * the order in which processes run never changes the result.
+ */
+#include "sim/sim.h"
+#include "sim/sim_vcd.h"
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A timed event: at time `at`, fn(data). Clocks are the only users so far;
+ * a binary heap keeps them ordered (seq breaks ties first-come first). */
+typedef struct sim_timer {
+    sim_time at;
+    uint64_t seq;
+    void   (*fn)(sim_ctx *c, void *data);
+    void    *data;
+} sim_timer;
+
+typedef struct sim_clockgen {
+    sim_signal *clk;
+    sim_time half;
+} sim_clockgen;
+
+struct sim_chunk { struct sim_chunk *next; };
+
+struct sim_ctx {
+    sim_signal **sigs;   uint32_t nsig, capsig;
+    sim_proc   **procs;  uint32_t nproc, capproc;
+    sim_signal **upd;    uint32_t nupd;      /* written this delta; capacity capsig */
+    sim_proc   **run;    uint32_t nrun;      /* runnable this delta; capacity capproc */
+    sim_proc   **run2;   uint32_t nrun2;     /* woken for the next delta */
+    sim_signal **vdirty; uint32_t nvdirty;   /* changed since the last VCD stamp */
+    sim_timer   *heap;   uint32_t nheap, capheap;
+    uint64_t     timer_seq;
+    sim_time     now;
+    sim_stats    stats;
+    sim_round    rnd;
+    sim_ovf      ovf;
+    uint32_t     max_deltas;
+    int          started, stop;
+    sim_vcd     *vcd;
+    sim_scope    root;
+    struct sim_chunk *mem;
+    char         err[512];
+};
+
+/* ---------------------------------------------------------------- memory */
+
+void *sim_alloc(sim_ctx *c, size_t n)
+{
+    /* Each allocation carries a link so sim_free can release them all;
+     * the header is padded to max_align_t so the payload stays aligned. */
+    size_t hdr = (sizeof(struct sim_chunk) + _Alignof(max_align_t) - 1)
+                 / _Alignof(max_align_t) * _Alignof(max_align_t);
+    struct sim_chunk *ch = calloc(1, hdr + n);
+    if (!ch) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+    ch->next = c->mem;
+    c->mem = ch;
+    return (char *)ch + hdr;
+}
+
+char *sim_strdup(sim_ctx *c, const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *d = sim_alloc(c, n);
+    memcpy(d, s, n);
+    return d;
+}
+
+static void *grow(void *p, uint32_t *cap, size_t elem, uint32_t need)
+{
+    if (need <= *cap) return p;
+    uint32_t n = *cap ? *cap : 16;
+    while (n < need) n *= 2;
+    void *q = realloc(p, (size_t)n * elem);
+    if (!q) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+    *cap = n;
+    return q;
+}
+
+/* ------------------------------------------------------------- elaboration */
+
+sim_ctx *sim_new(void)
+{
+    sim_ctx *c = calloc(1, sizeof *c);
+    if (!c) return NULL;
+    c->rnd = SIM_RND_TRUNC;
+    c->ovf = SIM_OVF_WRAP;
+    c->max_deltas = 1000;
+    c->root.name = "top";
+    return c;
+}
+
+static void free_fanouts(sim_ctx *c);
+
+void sim_free(sim_ctx *c)
+{
+    if (!c) return;
+    free_fanouts(c);
+    while (c->mem) { struct sim_chunk *n = c->mem->next; free(c->mem); c->mem = n; }
+    free(c->sigs); free(c->procs); free(c->upd); free(c->run); free(c->run2);
+    free(c->vdirty); free(c->heap);
+    free(c);
+}
+
+void sim_set_quant(sim_ctx *c, sim_round r, sim_ovf o) { c->rnd = r; c->ovf = o; }
+sim_round sim_get_round(const sim_ctx *c) { return c->rnd; }
+sim_ovf sim_get_ovf(const sim_ctx *c) { return c->ovf; }
+void sim_set_max_deltas(sim_ctx *c, uint32_t n) { c->max_deltas = n ? n : 1; }
+sim_scope *sim_root(sim_ctx *c) { return &c->root; }
+sim_time sim_now(const sim_ctx *c) { return c->now; }
+const sim_stats *sim_get_stats(const sim_ctx *c) { return &c->stats; }
+const char *sim_error(const sim_ctx *c) { return c->err; }
+void sim_stop(sim_ctx *c) { c->stop = 1; }
+void sim_attach_vcd(sim_ctx *c, sim_vcd *v) { c->vcd = v; }
+uint32_t sim_signal_count(const sim_ctx *c) { return c->nsig; }
+sim_signal *sim_signal_at(const sim_ctx *c, uint32_t i) { return i < c->nsig ? c->sigs[i] : NULL; }
+
+sim_scope *sim_scope_new(sim_ctx *c, sim_scope *parent, const char *name)
+{
+    sim_scope *s = sim_alloc(c, sizeof *s);
+    s->name = sim_strdup(c, name);
+    s->parent = parent ? parent : &c->root;
+    /* Append so that children keep creation order in the VCD. */
+    sim_scope **pp = &s->parent->first_child;
+    while (*pp) pp = &(*pp)->next_sibling;
+    *pp = s;
+    return s;
+}
+
+sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,
+                           sim_fmt fmt, sim_kind kind)
+{
+    sim_signal *s = sim_alloc(c, sizeof *s);
+    s->ctx = c;
+    s->fmt = fmt;
+    s->kind = (uint8_t)kind;
+    s->name = sim_strdup(c, name);
+    s->scope = sc ? sc : &c->root;
+    if (s->scope->last_sig) s->scope->last_sig->next_in_scope = s;
+    else s->scope->first_sig = s;
+    s->scope->last_sig = s;
+    s->index = c->nsig;
+    /* The update and VCD lists can hold every signal at most once. */
+    uint32_t cap = c->capsig;
+    c->sigs = grow(c->sigs, &c->capsig, sizeof *c->sigs, c->nsig + 1);
+    if (c->capsig != cap) {
+        c->upd = realloc(c->upd, (size_t)c->capsig * sizeof *c->upd);
+        c->vdirty = realloc(c->vdirty, (size_t)c->capsig * sizeof *c->vdirty);
+        if (!c->upd || !c->vdirty) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+    }
+    c->sigs[c->nsig++] = s;
+    return s;
+}
+
+sim_signal *sim_bit_new(sim_ctx *c, sim_scope *sc, const char *name, sim_kind kind)
+{
+    sim_fmt f = { 0, 1, 0, 1 };
+    return sim_signal_new(c, sc, name, f, kind);
+}
+
+sim_proc *sim_proc_new(sim_ctx *c, const char *name, sim_proc_fn fn, void *data)
+{
+    sim_proc *p = sim_alloc(c, sizeof *p);
+    p->fn = fn;
+    p->data = data;
+    p->ctx = c;
+    p->name = sim_strdup(c, name);
+    uint32_t cap = c->capproc;
+    c->procs = grow(c->procs, &c->capproc, sizeof *c->procs, c->nproc + 1);
+    if (c->capproc != cap) {
+        c->run = realloc(c->run, (size_t)c->capproc * sizeof *c->run);
+        c->run2 = realloc(c->run2, (size_t)c->capproc * sizeof *c->run2);
+        if (!c->run || !c->run2) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+    }
+    c->procs[c->nproc++] = p;
+    return p;
+}
+
+void sim_sensitive(sim_proc *p, sim_signal *s, sim_edge e)
+{
+    s->fan = grow(s->fan, &s->capfan, sizeof *s->fan, s->nfan + 1);
+    s->fan[s->nfan].proc = p;
+    s->fan[s->nfan].edge = (uint8_t)e;
+    s->nfan++;
+}
+
+/* Fanout arrays grow with realloc, so they are not arena memory: sim_free
+ * releases them through the signal list. */
+static void free_fanouts(sim_ctx *c)
+{
+    for (uint32_t i = 0; i < c->nsig; i++) { free(c->sigs[i]->fan); c->sigs[i]->fan = NULL; }
+}
+
+const char *sim_signal_path(const sim_signal *s, char *buf, size_t len)
+{
+    /* Collect scope names leaf to root, then print root first. */
+    const char *parts[64];
+    int n = 0;
+    parts[n++] = s->name;
+    for (const sim_scope *sc = s->scope; sc && n < 64; sc = sc->parent) parts[n++] = sc->name;
+    size_t off = 0;
+    buf[0] = 0;
+    for (int i = n - 1; i >= 0 && off < len; i--) {
+        int k = snprintf(buf + off, len - off, "%s%s", parts[i], i ? "." : "");
+        if (k < 0) break;
+        off += (size_t)k;
+    }
+    return buf;
+}
+
+sim_signal *sim_find(const sim_ctx *c, const sim_scope *sc, const char *path)
+{
+    const sim_scope *cur = sc ? sc : &c->root;
+    const char *p = path;
+    for (;;) {
+        const char *dot = strchr(p, '.');
+        size_t n = dot ? (size_t)(dot - p) : strlen(p);
+        if (!dot) {
+            for (sim_signal *s = cur->first_sig; s; s = s->next_in_scope)
+                if (strlen(s->name) == n && !strncmp(s->name, p, n)) return s;
+            return NULL;
+        }
+        const sim_scope *ch = cur->first_child;
+        while (ch && !(strlen(ch->name) == n && !strncmp(ch->name, p, n))) ch = ch->next_sibling;
+        if (!ch) return NULL;
+        cur = ch;
+        p = dot + 1;
+    }
+}
+
+double sim_scope_area(const sim_scope *sc)
+{
+    double a = 0;
+    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope) a += s->area_ge;
+    for (const sim_scope *ch = sc->first_child; ch; ch = ch->next_sibling) a += sim_scope_area(ch);
+    return a;
+}
+
+/* ------------------------------------------------------------------ timers */
+
+static int timer_before(const sim_timer *a, const sim_timer *b)
+{
+    return a->at < b->at || (a->at == b->at && a->seq < b->seq);
+}
+
+static void timer_push(sim_ctx *c, sim_time at, void (*fn)(sim_ctx *, void *), void *data)
+{
+    c->heap = grow(c->heap, &c->capheap, sizeof *c->heap, c->nheap + 1);
+    uint32_t i = c->nheap++;
+    sim_timer t = { at, c->timer_seq++, fn, data };
+    while (i > 0) {
+        uint32_t up = (i - 1) / 2;
+        if (!timer_before(&t, &c->heap[up])) break;
+        c->heap[i] = c->heap[up];
+        i = up;
+    }
+    c->heap[i] = t;
+}
+
+static sim_timer timer_pop(sim_ctx *c)
+{
+    sim_timer top = c->heap[0], last = c->heap[--c->nheap];
+    uint32_t i = 0, n = c->nheap;
+    for (;;) {
+        uint32_t l = 2 * i + 1, r = l + 1, m = i;
+        const sim_timer *best = &last;
+        if (l < n && timer_before(&c->heap[l], best)) { m = l; best = &c->heap[l]; }
+        if (r < n && timer_before(&c->heap[r], best)) { m = r; }
+        if (m == i) break;
+        c->heap[i] = c->heap[m];
+        i = m;
+    }
+    if (n) c->heap[i] = last;
+    return top;
+}
+
+static void clock_tick(sim_ctx *c, void *data)
+{
+    sim_clockgen *g = data;
+    int64_t v = !g->clk->cur;
+    sim_write(g->clk, v);
+    if (v) c->stats.clocks++;
+    timer_push(c, c->now + g->half, clock_tick, g);
+}
+
+void sim_clock(sim_ctx *c, sim_signal *clk, sim_time half_period, sim_time first_rise)
+{
+    sim_clockgen *g = sim_alloc(c, sizeof *g);
+    g->clk = clk;
+    g->half = half_period ? half_period : 1;
+    clk->kind = SIM_KIND_CLOCK;
+    /* The clock idles low; its first tick raises it. */
+    timer_push(c, first_rise, clock_tick, g);
+}
+
+/* ------------------------------------------------------------- the loop */
+
+void sim__queue_update(sim_ctx *c, sim_signal *s)
+{
+    s->queued = 1;
+    c->upd[c->nupd++] = s;
+}
+
+void sim_force(sim_signal *s, int64_t v) { sim_write(s, v); }
+
+/* Name the signals still changing when the delta bound was hit: after the
+ * settled part of the design has stopped, only the loop keeps toggling.
+ * A loop changes one signal per delta, so watch a few more deltas. */
+static uint32_t delta(sim_ctx *c);
+static void report_loop(sim_ctx *c)
+{
+    sim_signal *seen[16];
+    uint32_t n = 0;
+    for (int d = 0; d < 16 && (c->nrun || c->nupd); d++) {
+        uint32_t k = delta(c);
+        for (uint32_t i = 0; i < k && n < 16; i++) {
+            uint32_t j = 0;
+            while (j < n && seen[j] != c->upd[i]) j++;
+            if (j == n) seen[n++] = c->upd[i];
+        }
+    }
+    int off = snprintf(c->err, sizeof c->err,
+                       "combinational loop at time %llu: no stable value after %u delta cycles; still changing:",
+                       (unsigned long long)c->now, c->max_deltas);
+    char path[256];
+    for (uint32_t i = 0; i < n && off > 0 && (size_t)off < sizeof c->err - 1; i++)
+        off += snprintf(c->err + off, sizeof c->err - (size_t)off, "%s %s",
+                        i ? " ->" : "", sim_signal_path(seen[i], path, sizeof path));
+}
+
+/* Evaluate every runnable process, then apply writes. Returns the number of
+ * signals that changed. The changed signals are left at the front of upd
+ * (for the loop report). */
+static uint32_t delta(sim_ctx *c)
+{
+    sim_proc **run = c->run;
+    uint32_t nrun = c->nrun;
+    c->run = c->run2; c->nrun = 0;
+    c->run2 = run;
+    for (uint32_t i = 0; i < nrun; i++) {
+        sim_proc *p = run[i];
+        p->queued = 0;
+        p->runs++;
+        p->fn(p);
+    }
+    c->stats.proc_runs += nrun;
+    c->stats.deltas++;
+
+    uint32_t nupd = c->nupd, nchanged = 0;
+    sim_signal **upd = c->upd;
+    c->nupd = 0;
+    for (uint32_t i = 0; i < nupd; i++) {
+        sim_signal *s = upd[i];
+        s->queued = 0;
+        int64_t old = s->cur, v = s->nxt;
+        if (v == old) continue;
+        s->cur = v;
+        s->changes++;
+        upd[nchanged++] = s;
+        if (c->vcd && !s->vcd_dirty) { s->vcd_dirty = 1; c->vdirty[c->nvdirty++] = s; }
+        struct sim_fanout *f = s->fan, *end = f + s->nfan;
+        for (; f < end; f++) {
+            if (f->edge != SIM_EDGE_ANY && (f->edge == SIM_EDGE_POS) != (v != 0)) continue;
+            sim_proc *p = f->proc;
+            if (!p->queued) { p->queued = 1; c->run[c->nrun++] = p; }
+        }
+    }
+    c->stats.events += nchanged;
+    return nchanged;
+}
+
+sim_signal **sim__vcd_take_dirty(sim_ctx *c, uint32_t *n)
+{
+    *n = c->nvdirty;
+    c->nvdirty = 0;
+    return c->vdirty;
+}
+
+sim_status sim_run(sim_ctx *c, sim_time until)
+{
+    if (!c->started) {
+        /* Initialization: every process runs once, as in SystemC, so that
+         * combinational outputs agree with their inputs before time moves. */
+        c->started = 1;
+        for (uint32_t i = 0; i < c->nproc; i++)
+            if (!c->procs[i]->queued && !c->procs[i]->no_init) { c->procs[i]->queued = 1; c->run[c->nrun++] = c->procs[i]; }
+    }
+    c->stop = 0;
+    for (;;) {
+        while (c->nheap && c->heap[0].at <= c->now) {
+            sim_timer t = timer_pop(c);
+            t.fn(c, t.data);
+        }
+        uint32_t deltas = 0;
+        while (c->nrun || c->nupd) {
+            delta(c);
+            if (++deltas >= c->max_deltas && (c->nrun || c->nupd)) {
+                report_loop(c);
+                if (c->vcd) sim_vcd_step(c->vcd, c->now);
+                return SIM_ERR_LOOP;
+            }
+        }
+        c->stats.time_steps++;
+        if (c->vcd) sim_vcd_step(c->vcd, c->now);
+        if (c->stop) return SIM_OK;
+        if (!c->nheap || c->heap[0].at > until) {
+            if (until > c->now && until != (sim_time)-1) c->now = until;
+            return SIM_OK;
+        }
+        c->now = c->heap[0].at;
+    }
+}

@@ -1,0 +1,76 @@
+/* sim_prim.h - datapath primitives built on the kernel.
+ *
+ * Each constructor creates the element's output signal (in scope sc, with
+ * format fmt), a process that computes it, and the element's area in gate
+ * equivalents (sim_area.h), and returns the output signal.
+ *
+ * Arithmetic is exact before quantization: operands are aligned to a common
+ * fraction point in 128-bit integers, summed or multiplied exactly, then
+ * quantized once into the output format with the rounding and overflow
+ * modes the context had when the element was built (sim_set_quant).
+ * A multiplier's output is quantized to its own format, as a W-bit hardware
+ * multiplier's output would be, before anything else sees it.
+ *
+ * Overflows are counted on the output signal (sim_signal.overflows).
+ */
+#ifndef SIM_PRIM_H
+#define SIM_PRIM_H
+#include "sim/sim.h"
+
+/* A constant of format fmt holding the quantized value of x. */
+sim_signal *sim_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt, double x);
+/* A constant holding a raw value (for control words, selects). */
+sim_signal *sim_const_raw(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt, int64_t raw);
+
+/* Register: on clk's rising edge, q <= quant(d) when en (NULL: always);
+ * when rst (NULL: none) is 1 at the edge, q <= rst_raw (synchronous reset). */
+sim_signal *sim_reg(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
+                    sim_signal *clk, sim_signal *d, sim_signal *en,
+                    sim_signal *rst, int64_t rst_raw);
+
+/* A register's D input may be given later (d NULL at creation), for the
+ * feedback paths every datapath has (RG -> BK -> Sm -> RG). Connect it
+ * before the simulation starts; returns -1 if q is not a register. */
+int sim_reg_connect(sim_signal *q, sim_signal *d);
+
+/* Continuous assignment into an existing wire (Verilog `assign dst = src`):
+ * declare a wire with sim_signal_new, use it as an input, drive it later.
+ * Costs one process and one delta cycle; registers prefer sim_reg_connect. */
+void sim_assign(sim_ctx *c, sim_signal *dst, sim_signal *src);
+
+/* N:1 multiplexer: y = quant(in[sel]); sel out of range gives 0. */
+sim_signal *sim_mux(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
+                    sim_signal *sel, int n, sim_signal *const *in);
+
+/* Block key (the seed's BK): y = pass ? quant(x) : 0. */
+sim_signal *sim_bk(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
+                   sim_signal *pass, sim_signal *x);
+
+/* Adder / subtractor: y = quant(a + b) or quant(a - b). */
+sim_signal *sim_add(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
+                    sim_signal *a, sim_signal *b);
+sim_signal *sim_sub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
+                    sim_signal *a, sim_signal *b);
+
+/* Multiplier: y = quant(a * b), the product exact before quantization. */
+sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
+                    sim_signal *a, sim_signal *b);
+
+/* Constant shift (wiring): y = quant(x * 2^sh); sh < 0 shifts right. */
+sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
+                      sim_signal *x, int sh);
+
+/* Combinational logic with a user function over up to 8 inputs' raw values,
+ * for small controllers (decoders of a step counter, comparators).
+ * area_ge is the caller's estimate of the logic's gates. */
+typedef int64_t (*sim_logic_fn)(const int64_t *in, void *user);
+sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
+                      int n, sim_signal *const *in, sim_logic_fn fn, void *user,
+                      double area_ge);
+
+/* Quantize an exact wide value with src_fbits into s's format using the
+ * element's modes, count an overflow on s; used by the primitives and by
+ * units that model an element the primitives do not cover. */
+int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits,
+                       sim_round r, sim_ovf o);
+#endif

@@ -1,0 +1,295 @@
+/* test_kernel.c - kernel semantics: non-blocking register updates, delta
+ * cycles, loop detection, clocks, and the datapath primitives' arithmetic
+ * against independent double-precision computations. */
+#include "tests/tst.h"
+#include "sim/sim.h"
+#include "sim/sim_prim.h"
+#include "sim/sim_area.h"
+
+static sim_fmt F(const char *s)
+{
+    sim_fmt f;
+    char err[128];
+    if (sim_fmt_parse(s, &f, err, sizeof err)) { printf("  bad test format %s\n", s); abort(); }
+    return f;
+}
+
+/* Clock with period 10: rising edges at 5, 15, 25, ... */
+static sim_signal *clock(sim_ctx *c)
+{
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_clock(c, clk, 5, 5);
+    return clk;
+}
+
+static void t_shift_register(void)
+{
+    /* in -> r0 -> r1 -> r2 -> r3: after k edges r_i holds in's value of
+     * edge k-i, in either creation order of the registers. */
+    for (int order = 0; order < 2; order++) {
+        sim_ctx *c = sim_new();
+        sim_signal *clk = clock(c);
+        sim_signal *in = sim_signal_new(c, NULL, "in", F("u8.0"), SIM_KIND_INPUT);
+        sim_signal *r[4];
+        for (int j = 0; j < 4; j++) {
+            int i = order ? 3 - j : j;
+            char n[8];
+            snprintf(n, sizeof n, "r%d", i);
+            r[i] = sim_reg(c, NULL, n, F("u8.0"), clk, NULL, NULL, NULL, 0);
+        }
+        for (int i = 0; i < 4; i++) sim_reg_connect(r[i], i ? r[i - 1] : in);
+        int64_t hist[16] = { 0 };
+        for (int k = 1; k <= 10; k++) {
+            hist[k] = 10 + 7 * k;
+            sim_force(in, hist[k]);
+            TST_EQ_INT(sim_run(c, (sim_time)(10 * k - 5)), SIM_OK);   /* through edge k */
+            for (int i = 0; i < 4; i++) TST_EQ_INT(r[i]->cur, k - i >= 1 ? hist[k - i] : 0);
+        }
+        TST_EQ_INT(sim_get_stats(c)->clocks, 10);
+        sim_free(c);
+    }
+}
+
+static void t_swap(void)
+{
+    /* a <= b; b <= a on one edge exchanges them, in either creation order. */
+    for (int order = 0; order < 2; order++) {
+        sim_ctx *c = sim_new();
+        sim_signal *clk = clock(c);
+        sim_signal *a, *b;
+        if (!order) {
+            a = sim_reg(c, NULL, "a", F("s8.0"), clk, NULL, NULL, NULL, 3);
+            b = sim_reg(c, NULL, "b", F("s8.0"), clk, NULL, NULL, NULL, -5);
+        } else {
+            b = sim_reg(c, NULL, "b", F("s8.0"), clk, NULL, NULL, NULL, -5);
+            a = sim_reg(c, NULL, "a", F("s8.0"), clk, NULL, NULL, NULL, 3);
+        }
+        sim_reg_connect(a, b);
+        sim_reg_connect(b, a);
+        sim_run(c, 5);
+        TST_EQ_INT(a->cur, -5);
+        TST_EQ_INT(b->cur, 3);
+        sim_run(c, 15);
+        TST_EQ_INT(a->cur, 3);
+        TST_EQ_INT(b->cur, -5);
+        sim_free(c);
+    }
+}
+
+static void t_enable_reset(void)
+{
+    sim_ctx *c = sim_new();
+    sim_signal *clk = clock(c);
+    sim_signal *d = sim_signal_new(c, NULL, "d", F("u4.0"), SIM_KIND_INPUT);
+    sim_signal *en = sim_bit_new(c, NULL, "en", SIM_KIND_INPUT);
+    sim_signal *rst = sim_bit_new(c, NULL, "rst", SIM_KIND_INPUT);
+    sim_signal *q = sim_reg(c, NULL, "q", F("u4.0"), clk, d, en, rst, 9);
+    TST_EQ_INT(q->cur, 9);                 /* reset value from the start */
+    sim_force(d, 5); sim_force(en, 0);
+    sim_run(c, 5);
+    TST_EQ_INT(q->cur, 9);                 /* disabled: holds */
+    sim_force(en, 1);
+    sim_run(c, 15);
+    TST_EQ_INT(q->cur, 5);
+    sim_force(rst, 1); sim_force(d, 2);
+    sim_run(c, 25);
+    TST_EQ_INT(q->cur, 9);                 /* synchronous reset wins */
+    TST_CHECK(q->area_ge > 4 * SIM_GE_DFF, "enable mux and reset flop add area");
+    sim_free(c);
+}
+
+static void t_delta_chain(void)
+{
+    /* x -> +1 -> +1 -> ... (n adders): a change at x settles after exactly
+     * n+1 delta cycles (one to update x, one per adder). */
+    enum { N = 7 };
+    sim_ctx *c = sim_new();
+    sim_signal *x = sim_signal_new(c, NULL, "x", F("s16.0"), SIM_KIND_INPUT);
+    sim_signal *one = sim_const(c, NULL, "one", F("s16.0"), 1.0);
+    sim_signal *y = x;
+    for (int i = 0; i < N; i++) y = sim_add(c, NULL, "add", F("s16.0"), y, one);
+    sim_run(c, 0);
+    TST_EQ_INT(y->cur, N);
+    uint64_t d0 = sim_get_stats(c)->deltas, e0 = sim_get_stats(c)->events;
+    sim_force(x, 100);
+    sim_run(c, 1);
+    TST_EQ_INT(y->cur, 100 + N);
+    TST_EQ_INT(sim_get_stats(c)->deltas - d0, N + 1);
+    TST_EQ_INT(sim_get_stats(c)->events - e0, N + 1);
+    /* Writing the same value again changes nothing and wakes nobody. */
+    uint64_t r0 = sim_get_stats(c)->proc_runs;
+    sim_force(x, 100);
+    sim_run(c, 2);
+    TST_EQ_INT(sim_get_stats(c)->proc_runs - r0, 0);
+    sim_free(c);
+}
+
+static int64_t inv_fn(const int64_t *in, void *u) { (void)u; return !in[0]; }
+static int64_t buf_fn(const int64_t *in, void *u) { (void)u; return in[0]; }
+
+static void t_loop_detected(void)
+{
+    /* w -> inv -> y -> w oscillates: reported by name, not hung. */
+    sim_ctx *c = sim_new();
+    sim_set_max_deltas(c, 50);
+    sim_scope *u = sim_scope_new(c, NULL, "ring");
+    sim_signal *w = sim_bit_new(c, u, "w", SIM_KIND_WIRE);
+    sim_signal *y = sim_logic(c, u, "y", w->fmt, 1, &w, inv_fn, NULL, 1.0);
+    sim_assign(c, w, y);
+    TST_EQ_INT(sim_run(c, 100), SIM_ERR_LOOP);
+    const char *e = sim_error(c);
+    TST_CHECK(strstr(e, "combinational loop") != NULL, "%s", e);
+    TST_CHECK(strstr(e, "top.ring.w") != NULL && strstr(e, "top.ring.y") != NULL, "%s", e);
+    TST_CHECK(strchr(e, '\n') == NULL, "one line: %s", e);
+    sim_free(c);
+
+    /* A chain that settles is not a loop, even a long one. */
+    c = sim_new();
+    sim_set_max_deltas(c, 50);
+    sim_signal *x = sim_bit_new(c, NULL, "x", SIM_KIND_INPUT);
+    sim_signal *z = x;
+    for (int i = 0; i < 40; i++) z = sim_logic(c, NULL, "b", x->fmt, 1, &z, buf_fn, NULL, 1.0);
+    sim_force(x, 1);
+    TST_EQ_INT(sim_run(c, 10), SIM_OK);
+    TST_EQ_INT(z->cur, 1);
+    sim_free(c);
+}
+
+/* Independent reference for a quantized result: round a double the way the
+ * format asks (the formats here are small enough that doubles are exact). */
+static int ref_ovf;
+static double ref_q(double v, sim_fmt f, int rnd, int sat)
+{
+    double s = ldexp(v, f.fbits), r;
+    if (rnd == 0) r = floor(s);
+    else if (rnd == 1) r = floor(s + 0.5);
+    else { r = floor(s); double fr = s - r; if (fr > 0.5 || (fr == 0.5 && fmod(r, 2) != 0)) r += 1; }
+    double lo = f.is_signed ? -ldexp(1, f.width - 1) : 0, hi = f.is_signed ? ldexp(1, f.width - 1) - 1 : ldexp(1, f.width) - 1;
+    ref_ovf += r < lo || r > hi;
+    if (sat) r = r < lo ? lo : r > hi ? hi : r;
+    else { double m = ldexp(1, f.width); r = fmod(r - lo, m); if (r < 0) r += m; r += lo; }
+    return ldexp(r, -f.fbits);
+}
+
+static void t_primitives_arith(void)
+{
+    /* add, sub, mul, shift, mux, bk over a grid of operands in mixed
+     * formats, every rounding and overflow mode, against ref_q. */
+    const char *fa = "s3.5", *fb = "s2.7", *fy = "s3.4";
+    for (int rnd = 0; rnd < 3; rnd++) for (int sat = 0; sat < 2; sat++) {
+        sim_ctx *c = sim_new();
+        sim_set_quant(c, (sim_round)rnd, sat ? SIM_OVF_SAT : SIM_OVF_WRAP);
+        sim_signal *a = sim_signal_new(c, NULL, "a", F(fa), SIM_KIND_INPUT);
+        sim_signal *b = sim_signal_new(c, NULL, "b", F(fb), SIM_KIND_INPUT);
+        sim_signal *sel = sim_bit_new(c, NULL, "sel", SIM_KIND_INPUT);
+        sim_signal *ab[2] = { a, b };
+        sim_signal *add = sim_add(c, NULL, "add", F(fy), a, b);
+        sim_signal *sub = sim_sub(c, NULL, "sub", F(fy), a, b);
+        sim_signal *mul = sim_mul(c, NULL, "mul", F(fy), a, b);
+        sim_signal *shr = sim_shift(c, NULL, "shr", F(fy), a, -3);
+        sim_signal *shl = sim_shift(c, NULL, "shl", F(fy), b, 2);
+        sim_signal *mux = sim_mux(c, NULL, "mux", F(fy), sel, 2, ab);
+        sim_signal *bk = sim_bk(c, NULL, "bk", F(fy), sel, b);
+        sim_time t = 0;
+        int n = 0, add_ovf = 0, mul_ovf = 0;
+        for (int64_t ra = -128; ra < 128; ra += 7) for (int64_t rb = -256; rb < 256; rb += 13) {
+            int s = (int)((ra + rb) & 1);
+            sim_force(a, ra); sim_force(b, rb); sim_force(sel, s);
+            sim_run(c, t++);
+            double va = ldexp((double)ra, -5), vb = ldexp((double)rb, -7);
+            sim_fmt Y = F(fy);
+            ref_ovf = 0;
+            TST_NEAR(sim_fx_to_real(add->cur, Y), ref_q(va + vb, Y, rnd, sat), 0);
+            add_ovf += ref_ovf; ref_ovf = 0;
+            TST_NEAR(sim_fx_to_real(sub->cur, Y), ref_q(va - vb, Y, rnd, sat), 0);
+            ref_ovf = 0;
+            TST_NEAR(sim_fx_to_real(mul->cur, Y), ref_q(va * vb, Y, rnd, sat), 0);
+            mul_ovf += ref_ovf;
+            TST_NEAR(sim_fx_to_real(shr->cur, Y), ref_q(va / 8, Y, rnd, sat), 0);
+            TST_NEAR(sim_fx_to_real(shl->cur, Y), ref_q(vb * 4, Y, rnd, sat), 0);
+            TST_NEAR(sim_fx_to_real(mux->cur, Y), ref_q(s ? vb : va, Y, rnd, sat), 0);
+            TST_NEAR(sim_fx_to_real(bk->cur, Y), s ? ref_q(vb, Y, rnd, sat) : 0.0, 0);
+            n++;
+        }
+        TST_CHECK(n > 500, "grid too small");
+        /* s3.4 holds [-4, 4): sums up to 6 and products up to 8 overflow;
+         * the counters agree with the reference's count. */
+        TST_CHECK(add_ovf > 0 && mul_ovf > 0, "grid reaches overflow");
+        TST_EQ_INT(add->overflows, add_ovf);
+        TST_EQ_INT(mul->overflows, mul_ovf);
+        sim_free(c);
+    }
+}
+
+static void t_wide_mul(void)
+{
+    /* 32x32 and 63x63-bit products are exact before quantization. */
+    sim_ctx *c = sim_new();
+    sim_signal *a = sim_signal_new(c, NULL, "a", F("s32.0"), SIM_KIND_INPUT);
+    sim_signal *b = sim_signal_new(c, NULL, "b", F("s32.0"), SIM_KIND_INPUT);
+    sim_signal *p = sim_mul(c, NULL, "p", F("s64.0"), a, b);
+    sim_signal *hi = sim_mul(c, NULL, "hi", F("s33.0"), a, b);   /* keeps the top bits only... */
+    (void)hi;
+    sim_force(a, -2147483647LL); sim_force(b, 2147483647LL);
+    sim_run(c, 0);
+    TST_EQ_INT(p->cur, -(2147483647LL * 2147483647LL));
+    sim_free(c);
+
+    c = sim_new();
+    a = sim_signal_new(c, NULL, "a", F("s1.63"), SIM_KIND_INPUT);
+    b = sim_signal_new(c, NULL, "b", F("s1.63"), SIM_KIND_INPUT);
+    p = sim_mul(c, NULL, "p", F("s2.62"), a, b);
+    /* (1 - 2^-63)^2 = 1 - 2^-62 + 2^-126: truncated to 62 fraction bits
+     * gives 1 - 2^-62 exactly (raw 2^62 - 1). */
+    sim_force(a, INT64_MAX); sim_force(b, INT64_MAX);
+    sim_run(c, 0);
+    TST_EQ_INT(p->cur, (int64_t)((((uint64_t)1) << 62) - 1));
+    sim_free(c);
+}
+
+static void t_area_model(void)
+{
+    /* Element areas scale as the structures they model. */
+    TST_NEAR(sim_area_add(16), 16 * SIM_GE_FA, 1e-9);
+    TST_NEAR(sim_area_mul(8, 8) / sim_area_mul(4, 4), (64 * SIM_GE_AND2 + 56 * SIM_GE_FA) / (16 * SIM_GE_AND2 + 12 * SIM_GE_FA), 1e-9);
+    TST_NEAR(sim_area_mux(10, 4), 30 * SIM_GE_MUX2, 1e-9);
+    TST_NEAR(sim_area_reg(8, 1, 0), 8 * (SIM_GE_DFF + SIM_GE_MUX2), 1e-9);
+    sim_ctx *c = sim_new();
+    sim_scope *u = sim_scope_new(c, NULL, "u");
+    sim_signal *a = sim_signal_new(c, u, "a", F("s4.4"), SIM_KIND_INPUT);
+    sim_signal *b = sim_signal_new(c, u, "b", F("s4.4"), SIM_KIND_INPUT);
+    sim_add(c, u, "s", F("s5.4"), a, b);
+    sim_mul(c, u, "m", F("s8.8"), a, b);
+    TST_NEAR(sim_scope_area(u), sim_area_add(9) + sim_area_mul(8, 8), 1e-9);
+    TST_NEAR(sim_scope_area(sim_root(c)), sim_scope_area(u), 1e-9);
+    sim_free(c);
+}
+
+static void t_find_and_paths(void)
+{
+    sim_ctx *c = sim_new();
+    sim_scope *u = sim_scope_new(c, NULL, "u");
+    sim_scope *v = sim_scope_new(c, u, "v");
+    sim_signal *s = sim_signal_new(c, v, "sig", F("u3.0"), SIM_KIND_WIRE);
+    char buf[64];
+    TST_EQ_STR(sim_signal_path(s, buf, sizeof buf), "top.u.v.sig");
+    TST_CHECK(sim_find(c, NULL, "u.v.sig") == s, "find by path");
+    TST_CHECK(sim_find(c, u, "v.sig") == s, "find relative");
+    TST_CHECK(sim_find(c, NULL, "u.x.sig") == NULL, "missing scope");
+    TST_CHECK(sim_find(c, NULL, "u.v.nope") == NULL, "missing signal");
+    sim_free(c);
+}
+
+int main(void)
+{
+    TST_RUN(t_shift_register);
+    TST_RUN(t_swap);
+    TST_RUN(t_enable_reset);
+    TST_RUN(t_delta_chain);
+    TST_RUN(t_loop_detected);
+    TST_RUN(t_primitives_arith);
+    TST_RUN(t_wide_mul);
+    TST_RUN(t_area_model);
+    TST_RUN(t_find_and_paths);
+    TST_EXIT();
+}

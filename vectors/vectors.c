@@ -1,0 +1,71 @@
+/* vectors.c - the registry of reference models and vector-set helpers. */
+#include "vectors/vectors.h"
+#include <stdlib.h>
+#include <string.h>
+#include <stdio.h>
+
+/* Each module exports a NULL-terminated table of its models. */
+extern const vec_model *const vec_models_seed000[];   /* ref_seed000.c */
+extern const vec_model *const vec_models_brdf[];      /* ref_brdf_models.c */
+
+static const vec_model *const *const tables[] = { vec_models_seed000, vec_models_brdf };
+
+size_t vec_model_count(void)
+{
+    size_t n = 0;
+    for (size_t t = 0; t < sizeof tables / sizeof tables[0]; t++)
+        for (const vec_model *const *m = tables[t]; *m; m++) n++;
+    return n;
+}
+
+const vec_model *vec_model_at(size_t i)
+{
+    for (size_t t = 0; t < sizeof tables / sizeof tables[0]; t++)
+        for (const vec_model *const *m = tables[t]; *m; m++)
+            if (i-- == 0) return *m;
+    return NULL;
+}
+
+const vec_model *vec_model_find(const char *name)
+{
+    for (size_t i = 0, n = vec_model_count(); i < n; i++)
+        if (!strcmp(vec_model_at(i)->name, name)) return vec_model_at(i);
+    return NULL;
+}
+
+void vec_params_default(vec_params *p)
+{
+    p->L = 8; p->g = 16; p->n = 32; p->m = 0.2; p->alpha = 0.2;
+}
+
+void vec_set_init(vec_set *s) { memset(s, 0, sizeof *s); }
+void vec_set_free(vec_set *s) { free(s->rows); vec_set_init(s); }
+
+int vec_set_push(vec_set *s, const double *v)
+{
+    if (s->n_rows == s->cap_rows) {
+        size_t cap = s->cap_rows ? 2 * s->cap_rows : 256;
+        vec_row *r = realloc(s->rows, cap * sizeof *r);
+        if (!r) return -1;
+        s->rows = r; s->cap_rows = cap;
+    }
+    memcpy(s->rows[s->n_rows].v, v, (size_t)(s->n_in + s->n_out) * sizeof(double));
+    s->n_rows++;
+    return 0;
+}
+
+void vec_set_header(vec_set *s, const vec_model *m, const vec_params *p)
+{
+    snprintf(s->unit, sizeof s->unit, "%s", m->name);
+    m->ports(p, &s->n_in, s->in_names, &s->n_out, s->out_names);
+}
+
+uint64_t vec_rng_next(vec_rng *r)
+{
+    uint64_t z = (r->s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+double vec_rng_unit(vec_rng *r) { return (double)(vec_rng_next(r) >> 11) * 0x1p-53; }
+double vec_rng_range(vec_rng *r, double lo, double hi) { return lo + (hi - lo) * vec_rng_unit(r); }

@@ -1,0 +1,77 @@
+/* vectors.h - the double-precision float reference and golden vectors.
+ *
+ * Each hardware unit has a reference model here with the same name and the
+ * same port names. A model knows its input and output names, computes the
+ * exact outputs for given inputs (eval), and generates a deterministic set of
+ * golden input vectors (gen) that exercise the unit: real intensity
+ * profiles, hard cases, range edges.
+ *
+ * This layer knows nothing of the hardware: testbench/ joins a unit and its
+ * model by name. Files (the SPEC's vector format) are read and written by
+ * vec_file.h.
+ */
+#ifndef VECTORS_H
+#define VECTORS_H
+#include <stdint.h>
+#include <stddef.h>
+
+#define VEC_MAX_PORTS 40    /* inputs or outputs of one vector */
+
+/* Parameters a model may take (same names as the unit's parameters);
+ * a model ignores those it does not use. */
+typedef struct vec_params {
+    int L;          /* pixels per interval (interp2/interp3), power of two */
+    int g;          /* power for powg/d_approx (4, 8, 16) */
+    int n;          /* exponent for pow_n; refractive-like n for schlick */
+    double m;       /* Beckmann roughness for d_approx */
+    double alpha;   /* Ward roughness */
+} vec_params;
+void vec_params_default(vec_params *p);
+
+/* One golden vector: inputs then expected outputs. */
+typedef struct vec_row { double v[2 * VEC_MAX_PORTS]; } vec_row;
+
+typedef struct vec_set {
+    char unit[32];
+    int n_in, n_out;
+    char in_names[VEC_MAX_PORTS][16];
+    char out_names[VEC_MAX_PORTS][16];
+    size_t n_rows, cap_rows;
+    vec_row *rows;          /* row i: v[0..n_in-1] inputs, v[n_in..] outputs */
+} vec_set;
+
+void vec_set_init(vec_set *s);
+void vec_set_free(vec_set *s);
+/* Append a row (copies n_in + n_out doubles); 0, or -1 when out of memory. */
+int  vec_set_push(vec_set *s, const double *v);
+
+/* A reference model. */
+typedef struct vec_model {
+    const char *name;
+    const char *summary;                 /* one line, for `shadesim list` */
+    /* Port names; for multi-output models these may depend on params (e.g.
+     * y0..y{L-1}), so they come from a function. Returns counts. */
+    void (*ports)(const vec_params *p, int *n_in, char in[][16],
+                  int *n_out, char out[][16]);
+    /* Exact outputs for inputs. */
+    void (*eval)(const vec_params *p, const double *in, double *out);
+    /* Append n golden input vectors (with expected outputs) from the seed;
+     * n = 0 means the model's default count. Deterministic for (n, seed). */
+    int  (*gen)(const vec_params *p, size_t n, uint64_t seed, vec_set *out);
+} vec_model;
+
+/* All models; the lists are assembled in vectors.c from each module's
+ * table so that modules stay independent. */
+const vec_model *vec_model_find(const char *name);
+size_t           vec_model_count(void);
+const vec_model *vec_model_at(size_t i);
+
+/* Fill a set's header (unit name, port names) for a model and params. */
+void vec_set_header(vec_set *s, const vec_model *m, const vec_params *p);
+
+/* A small deterministic PRNG (splitmix64) for generators. */
+typedef struct vec_rng { uint64_t s; } vec_rng;
+uint64_t vec_rng_next(vec_rng *r);
+double   vec_rng_unit(vec_rng *r);            /* [0, 1) with 53 bits */
+double   vec_rng_range(vec_rng *r, double lo, double hi);
+#endif
