@@ -5,6 +5,7 @@
  * SystemC's sc_fixed<W,I> / sc_ufixed<W,I>. A value is held as its raw
  * two's-complement integer (sign-extended to 64 bits for signed formats,
  * zero-extended for unsigned); its real value is raw * 2^-F.
+ * Unsigned formats are limited to 63 bits, so that every raw fits int64_t.
  *
  * Quantization takes an exact value (a double, or a wide raw integer with
  * its own fraction bits) to a format: first rounding (drop fraction bits),

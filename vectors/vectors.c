@@ -39,17 +39,18 @@ void vec_params_default(vec_params *p)
 }
 
 void vec_set_init(vec_set *s) { memset(s, 0, sizeof *s); }
-void vec_set_free(vec_set *s) { free(s->rows); vec_set_init(s); }
+void vec_set_free(vec_set *s) { free(s->data); vec_set_init(s); }
 
 int vec_set_push(vec_set *s, const double *v)
 {
     if (s->n_rows == s->cap_rows) {
         size_t cap = s->cap_rows ? 2 * s->cap_rows : 256;
-        vec_row *r = realloc(s->rows, cap * sizeof *r);
-        if (!r) return -1;
-        s->rows = r; s->cap_rows = cap;
+        size_t stride = (size_t)(s->n_in + s->n_out);
+        double *d = realloc(s->data, cap * (stride ? stride : 1) * sizeof *d);
+        if (!d) return -1;
+        s->data = d; s->cap_rows = cap;
     }
-    memcpy(s->rows[s->n_rows].v, v, (size_t)(s->n_in + s->n_out) * sizeof(double));
+    memcpy(vec_row(s, s->n_rows), v, (size_t)(s->n_in + s->n_out) * sizeof(double));
     s->n_rows++;
     return 0;
 }

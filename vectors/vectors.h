@@ -28,8 +28,6 @@ typedef struct vec_params {
 } vec_params;
 void vec_params_default(vec_params *p);
 
-/* One golden vector: inputs then expected outputs. */
-typedef struct vec_row { double v[2 * VEC_MAX_PORTS]; } vec_row;
 
 typedef struct vec_set {
     char unit[32];
@@ -37,8 +35,14 @@ typedef struct vec_set {
     char in_names[VEC_MAX_PORTS][16];
     char out_names[VEC_MAX_PORTS][16];
     size_t n_rows, cap_rows;
-    vec_row *rows;          /* row i: v[0..n_in-1] inputs, v[n_in..] outputs */
+    double *data;           /* rows of n_in + n_out values, packed */
 } vec_set;
+
+/* Row i: its n_in inputs, then its n_out expected outputs. */
+static inline double *vec_row(const vec_set *s, size_t i)
+{
+    return s->data + i * (size_t)(s->n_in + s->n_out);
+}
 
 void vec_set_init(vec_set *s);
 void vec_set_free(vec_set *s);

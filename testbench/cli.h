@@ -1,0 +1,57 @@
+/* cli.h - the command line: one function per verb, and the options that
+ * several verbs share (unit, width, formats, modes, parameters, vectors).
+ *
+ * Exit status (SPEC 4): 0 success, 1 a testbench's error bound exceeded or
+ * the simulation failed, 2 bad usage or bad input (one line on stderr).
+ */
+#ifndef CLI_H
+#define CLI_H
+#include <stdio.h>
+#include "testbench/tb.h"
+
+enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2 };
+
+typedef struct cli_verb {
+    const char *name;
+    int (*fn)(int argc, char **argv);   /* argv[0] is the verb */
+    const char *summary;
+} cli_verb;
+extern const cli_verb cli_verbs[];
+
+int cli_list(int argc, char **argv);
+int cli_vectors(int argc, char **argv);
+int cli_run(int argc, char **argv);
+
+/* Print "shadesim: " + message + newline to stderr; returns CLI_USAGE. */
+int cli_usage_error(const char *fmt, ...);
+/* True if stderr is a terminal (progress displays only then). */
+int cli_stderr_tty(void);
+
+/* Options shared by run and sweep. */
+#define CLI_MAX_FMT 64
+typedef struct cli_unit_opts {
+    const unit_desc *u;
+    unit_cfg    cfg;
+    const char *fmt[CLI_MAX_FMT];   /* --fmt NAME=sI.F, in order */
+    int         nfmt;
+    const char *vectors;            /* --vectors FILE, or NULL */
+} cli_unit_opts;
+
+/* Select the unit (and its defaults) by name; CLI_USAGE with a message. */
+int cli_unit_select(cli_unit_opts *o, const char *name);
+/* If argv[*i] is a shared option, consume it (and its value) and return 1;
+ * return 0 if not ours; CLI_USAGE-negated (-1) after printing an error. */
+int cli_unit_option(cli_unit_opts *o, int argc, char **argv, int *i);
+/* The vectors: --vectors FILE, else the unit's checked-in default file
+ * (vectors/UNIT.vec beside the binary's tree) when the parameters are the
+ * defaults, else generated from the float reference. 0 or CLI_USAGE. */
+int cli_load_vectors(const cli_unit_opts *o, vec_set *vs);
+/* Path of the checked-in default vectors of a unit. */
+const char *cli_default_vectors_path(const char *unit, char *buf, size_t len);
+/* Generate a unit's golden vectors from its reference model. */
+int cli_make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, uint64_t seed,
+                     vec_set *vs, char *err, size_t errlen);
+
+/* Help text of the shared options. */
+extern const char cli_unit_opts_help[];
+#endif

@@ -1,0 +1,171 @@
+/* cli_common.c - options shared by the verbs, and where vectors come from. */
+#include "testbench/cli.h"
+#include "vectors/vec_file.h"
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+int cli_usage_error(const char *fmt, ...)
+{
+    va_list ap;
+    fputs("shadesim: ", stderr);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    return CLI_USAGE;
+}
+
+int cli_stderr_tty(void) { return isatty(2); }
+
+const char cli_unit_opts_help[] =
+    "  --width W            default-format rule width (see `shadesim list UNIT`); default 16\n"
+    "  --fmt NAME=sI.F      override one signal's format; --fmt all=sI.F sets every signal;\n"
+    "                       later --fmt arguments override earlier ones (repeatable)\n"
+    "  --round MODE         trunc (default), half-up, even\n"
+    "  --overflow MODE      wrap (default), sat\n"
+    "  --schedule NAME      the unit's schedule (default: its first)\n"
+    "  --param NAME=VALUE   a unit parameter, e.g. --param terms=5 (repeatable)\n"
+    "  --vectors FILE       golden vectors (default: the unit's file in vectors/)\n";
+
+int cli_unit_select(cli_unit_opts *o, const char *name)
+{
+    memset(o, 0, sizeof *o);
+    unit_cfg_default(&o->cfg);
+    o->u = unit_find(name);
+    if (!o->u) return cli_usage_error("unknown unit '%s' (shadesim list shows the units)", name);
+    return CLI_OK;
+}
+
+/* The value of an option written "--opt VALUE" or "--opt=VALUE". */
+static const char *opt_value(const char *opt, int argc, char **argv, int *i, int *matched)
+{
+    size_t n = strlen(opt);
+    *matched = 0;
+    if (strncmp(argv[*i], opt, n)) return NULL;
+    if (argv[*i][n] == '=') { *matched = 1; return argv[*i] + n + 1; }
+    if (argv[*i][n]) return NULL;
+    *matched = 1;
+    if (*i + 1 >= argc) return NULL;
+    return argv[++*i];
+}
+
+int cli_unit_option(cli_unit_opts *o, int argc, char **argv, int *i)
+{
+    static const char *const names[] = { "--width", "--fmt", "--round", "--overflow", "--schedule", "--param", "--vectors" };
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+        int matched;
+        const char *v = opt_value(names[k], argc, argv, i, &matched);
+        if (!matched) continue;
+        if (!v) { cli_usage_error("%s needs a value", names[k]); return -1; }
+        char err[300];
+        switch (k) {
+        case 0: {
+            char *end;
+            long w = strtol(v, &end, 10);
+            if (*v == 0 || *end || w < 1 || w > 64) { cli_usage_error("--width %s: expected a whole number 1..64", v); return -1; }
+            o->cfg.width = (int)w;
+            break;
+        }
+        case 1:
+            if (o->nfmt == CLI_MAX_FMT) { cli_usage_error("too many --fmt options (at most %d)", CLI_MAX_FMT); return -1; }
+            o->fmt[o->nfmt++] = v;
+            break;
+        case 2:
+            if (sim_round_parse(v, &o->cfg.rnd)) { cli_usage_error("--round %s: expected trunc, half-up or even", v); return -1; }
+            break;
+        case 3:
+            if (sim_ovf_parse(v, &o->cfg.ovf)) { cli_usage_error("--overflow %s: expected wrap or sat", v); return -1; }
+            break;
+        case 4: {
+            int s = unit_sched_find(o->u, v);
+            if (s < 0) {
+                char list[200] = "";
+                for (int j = 0; j < o->u->nsched; j++) {
+                    strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
+                    strncat(list, o->u->sched[j].name, sizeof list - strlen(list) - 1);
+                }
+                cli_usage_error("--schedule %s: unit %s has schedules: %s", v, o->u->name, list);
+                return -1;
+            }
+            o->cfg.schedule = s;
+            break;
+        }
+        case 5: {
+            const char *eq = strchr(v, '=');
+            if (!eq) { cli_usage_error("--param %s: expected NAME=VALUE", v); return -1; }
+            char name[64];
+            snprintf(name, sizeof name, "%.*s", (int)(eq - v), v);
+            if (unit_param_set(o->u, &o->cfg, name, eq + 1, err, sizeof err)) { cli_usage_error("--param %s: %s", v, err); return -1; }
+            break;
+        }
+        case 6:
+            o->vectors = v;
+            break;
+        }
+        return 1;
+    }
+    return 0;
+}
+
+const char *cli_default_vectors_path(const char *unit, char *buf, size_t len)
+{
+    /* The tree the binary was built in: bin/shadesim or build/shadesim,
+     * so vectors/ is one folder up from the executable's folder. */
+    char exe[4096];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    const char *home = getenv("SHADESIM_HOME");
+    if (home) snprintf(buf, len, "%s/vectors/%s.vec", home, unit);
+    else if (n > 0) {
+        exe[n] = 0;
+        char *s = strrchr(exe, '/');
+        if (s) *s = 0;
+        snprintf(buf, len, "%s/../vectors/%s.vec", exe, unit);
+    } else snprintf(buf, len, "vectors/%s.vec", unit);
+    return buf;
+}
+
+int cli_make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, uint64_t seed,
+                     vec_set *vs, char *err, size_t errlen)
+{
+    const vec_model *m = vec_model_find(u->name);
+    if (!m) { snprintf(err, errlen, "unit %s has no float reference model", u->name); return -1; }
+    vec_params p;
+    tb_vec_params(cfg, &p);
+    vec_set_init(vs);
+    vec_set_header(vs, m, &p);
+    if (m->gen(&p, n, seed, vs)) { snprintf(err, errlen, "cannot generate vectors for %s", u->name); return -1; }
+    return 0;
+}
+
+/* True if every parameter of the unit has its default value, so the
+ * checked-in file (made with the defaults) applies. */
+static int params_default(const unit_desc *u, const unit_cfg *cfg)
+{
+    unit_cfg d;
+    unit_cfg_default(&d);
+    for (int i = 0; i < u->nparams; i++) {
+        char a[64], b[64];
+        unit_param_get(&u->params[i], cfg, a, sizeof a);
+        unit_param_get(&u->params[i], &d, b, sizeof b);
+        if (strcmp(a, b)) return 0;
+    }
+    return 1;
+}
+
+int cli_load_vectors(const cli_unit_opts *o, vec_set *vs)
+{
+    char err[600], path[4200];
+    vec_set hdr;
+    vec_set_init(&hdr);
+    tb_expected_header(o->u, &o->cfg, &hdr);
+    vec_set_init(vs);
+    if (!o->vectors && !params_default(o->u, &o->cfg)) {
+        if (cli_make_vectors(o->u, &o->cfg, 0, 1, vs, err, sizeof err)) return cli_usage_error("%s", err);
+        return CLI_OK;
+    }
+    const char *p = o->vectors ? o->vectors : cli_default_vectors_path(o->u->name, path, sizeof path);
+    if (vec_file_read(p, vs, &hdr, err, sizeof err)) { vec_set_free(vs); return cli_usage_error("%s", err); }
+    return CLI_OK;
+}

@@ -1,0 +1,208 @@
+/* cli_run.c - the verbs that read the unit descriptors: list, vectors, run. */
+#include "testbench/cli.h"
+#include "vectors/vec_file.h"
+#include <stdlib.h>
+#include <string.h>
+
+static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
+
+/* ------------------------------------------------------------------- list */
+
+static void list_unit(FILE *f, const unit_desc *u, int width)
+{
+    unit_cfg cfg;
+    unit_cfg_default(&cfg);
+    cfg.width = width;
+    unit_fmts fm;
+    u->formats(&cfg, &fm);
+    char fb[SIM_FMT_STRLEN];
+    fprintf(f, "%s — %s\n  from seed %s\n  schedules:", u->name, u->summary, u->seed);
+    for (int i = 0; i < u->nsched; i++) fprintf(f, "%s %s (%s)", i ? "," : "", u->sched[i].name, u->sched[i].what);
+    fputs("\n  parameters:", f);
+    if (!u->nparams) fputs(" none", f);
+    for (int i = 0; i < u->nparams; i++) {
+        char v[64];
+        unit_param_get(&u->params[i], &cfg, v, sizeof v);
+        fprintf(f, "\n    %-8s default %-8s %s", u->params[i].name, v, u->params[i].help);
+        if (u->params[i].type == UNIT_P_ENUM) fprintf(f, " (%s)", u->params[i].choices);
+        else fprintf(f, " (%g..%g)", u->params[i].min, u->params[i].max);
+    }
+    fprintf(f, "\n  default formats for --width %d: %s\n  signals:\n", width, u->fmt_rule);
+    static const char *const role[] = { "in", "out", "" };
+    for (int i = 0; i < u->nsigs; i++)
+        fprintf(f, "    %-4s %-10s %-8s %s\n", role[u->sigs[i].role], u->sigs[i].name,
+                sim_fmt_str(fm.f[i], fb), u->sigs[i].what);
+}
+
+int cli_list(int argc, char **argv)
+{
+    int width = 16;
+    const char *only = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (is_help(argv[i])) {
+            puts("usage: shadesim list [UNIT] [--width W]\n\n"
+                 "Lists every unit (or one) with its schedules, parameters, signals and\n"
+                 "their default formats at width W (default 16).");
+            return CLI_OK;
+        }
+        if (!strcmp(argv[i], "--width") && i + 1 < argc) {
+            char *end;
+            long w = strtol(argv[++i], &end, 10);
+            if (*end || w < 1 || w > 64) return cli_usage_error("--width %s: expected 1..64", argv[i]);
+            width = (int)w;
+        } else if (argv[i][0] == '-') return cli_usage_error("list: unknown option '%s'", argv[i]);
+        else if (!only) only = argv[i];
+        else return cli_usage_error("list: one unit at most");
+    }
+    if (only && !unit_find(only)) return cli_usage_error("unknown unit '%s'", only);
+    for (size_t i = 0, n = unit_count(); i < n; i++) {
+        const unit_desc *u = unit_at(i);
+        if (only && strcmp(only, u->name)) continue;
+        list_unit(stdout, u, width);
+        if (!only && i + 1 < n) putchar('\n');
+    }
+    return CLI_OK;
+}
+
+/* ---------------------------------------------------------------- vectors */
+
+int cli_vectors(int argc, char **argv)
+{
+    const char *unit = NULL, *out = NULL;
+    long long n = 0;
+    unsigned long long seed = 1;
+    cli_unit_opts o;
+    memset(&o, 0, sizeof o);
+    for (int i = 1; i < argc; i++) {
+        if (is_help(argv[i])) {
+            puts("usage: shadesim vectors UNIT [-n N] [--seed S] [--param NAME=VALUE ...] [-o FILE]\n\n"
+                 "Golden vectors for UNIT from the double-precision float reference, in the\n"
+                 "SPEC's text format (stdout, or FILE written atomically). With the default\n"
+                 "N (0: the unit's default set) and seed 1 this is the checked-in\n"
+                 "vectors/UNIT.vec.");
+            return CLI_OK;
+        }
+        char *end;
+        if ((!strcmp(argv[i], "-n")) && i + 1 < argc) {
+            n = strtoll(argv[++i], &end, 10);
+            if (*end || n < 0 || n > 10000000) return cli_usage_error("-n %s: expected 0..10000000", argv[i]);
+        } else if (!strcmp(argv[i], "--seed") && i + 1 < argc) {
+            seed = strtoull(argv[++i], &end, 10);
+            if (*end || !*argv[i] || argv[i][0] == '-') return cli_usage_error("--seed %s: expected a whole number", argv[i]);
+        } else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
+            out = argv[++i];
+        } else if (!unit && argv[i][0] != '-') {
+            unit = argv[i];
+            if (cli_unit_select(&o, unit)) return CLI_USAGE;
+        } else if (unit && !strncmp(argv[i], "--param", 7)) {
+            int r = cli_unit_option(&o, argc, argv, &i);
+            if (r < 0) return CLI_USAGE;
+        } else return cli_usage_error("vectors: unexpected argument '%s' (see shadesim vectors --help)", argv[i]);
+    }
+    if (!unit) return cli_usage_error("vectors: which unit? (shadesim list)");
+    vec_set vs;
+    char err[600];
+    if (cli_make_vectors(o.u, &o.cfg, (size_t)n, seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
+    int rc = CLI_OK;
+    if (out) {
+        if (vec_file_write(out, &vs, err, sizeof err)) rc = cli_usage_error("%s", err);
+    } else if (vec_file_print(stdout, &vs) || fflush(stdout)) {
+        rc = cli_usage_error("writing vectors to stdout failed");
+    }
+    vec_set_free(&vs);
+    return rc;
+}
+
+/* -------------------------------------------------------------------- run */
+
+static const char run_help[] =
+    "usage: shadesim run UNIT [options]\n"
+    "       shadesim run all          every unit on its default vectors, one summary table\n\n"
+    "Drives UNIT clock by clock with golden vectors (inputs quantized to the unit's\n"
+    "input formats with --round), reports cycles, area and quantization error, and\n"
+    "exits 1 when an output exceeds the error bound derived from the formats\n"
+    "(docs/bounds.md).\n\noptions:\n";
+
+static const char run_help2[] =
+    "  --json               print the result as one JSON object\n"
+    "  --out FILE.csv       one row per vector: index, cycle, NAME_raw/_real/_expected/_err\n"
+    "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD),\n"
+    "                       with FILE.gtkw, a GTKWave save file grouping the unit's signals\n";
+
+static int run_all(void)
+{
+    printf("%-10s %-9s %6s %12s %12s %12s %10s %6s\n", "unit", "schedule", "width", "clocks/item",
+           "max|e|", "nmse", "area GE", "bound");
+    int rc = CLI_OK;
+    for (size_t i = 0, n = unit_count(); i < n; i++) {
+        cli_unit_opts o;
+        cli_unit_select(&o, unit_at(i)->name);
+        vec_set vs;
+        if (cli_load_vectors(&o, &vs)) { rc = CLI_USAGE; continue; }
+        unit_fmts fm;
+        char err[600];
+        tb_result r;
+        tb_formats(o.u, &o.cfg, NULL, 0, &fm, err, sizeof err);
+        int t = tb_run(o.u, &o.cfg, &fm, &vs, NULL, &r, err, sizeof err);
+        if (t != TB_OK) {
+            fprintf(stderr, "shadesim: %s: %s\n", o.u->name, err);
+            rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
+        } else {
+            printf("%-10s %-9s %6d %12.4g %12.4g %12.4g %10.1f %6s\n", o.u->name, o.u->sched[o.cfg.schedule].name,
+                   o.cfg.width, r.cycles_per_item, r.max_abs_err, r.nmse, r.area_ge, r.within_bound ? "ok" : "EXCEED");
+            if (!r.within_bound && rc == CLI_OK) rc = CLI_FAIL;
+        }
+        tb_result_free(&r);
+        vec_set_free(&vs);
+    }
+    return rc;
+}
+
+int cli_run(int argc, char **argv)
+{
+    cli_unit_opts o;
+    const char *unit = NULL, *vcd = NULL, *csv = NULL;
+    int json = 0;
+    for (int i = 1; i < argc; i++) {
+        if (is_help(argv[i])) { fputs(run_help, stdout); fputs(cli_unit_opts_help, stdout); fputs(run_help2, stdout); return CLI_OK; }
+    }
+    if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, or run all)");
+    unit = argv[1];
+    if (!strcmp(unit, "all")) {
+        if (argc > 2) return cli_usage_error("run all takes no options");
+        return run_all();
+    }
+    if (cli_unit_select(&o, unit)) return CLI_USAGE;
+    for (int i = 2; i < argc; i++) {
+        int r = cli_unit_option(&o, argc, argv, &i);
+        if (r < 0) return CLI_USAGE;
+        if (r) continue;
+        if (!strcmp(argv[i], "--json")) json = 1;
+        else if (!strcmp(argv[i], "--vcd") && i + 1 < argc) vcd = argv[++i];
+        else if (!strcmp(argv[i], "--out") && i + 1 < argc) csv = argv[++i];
+        else if (!strcmp(argv[i], "--vcd") || !strcmp(argv[i], "--out")) return cli_usage_error("%s needs a file name", argv[i]);
+        else return cli_usage_error("run: unknown option '%s' (see shadesim run --help)", argv[i]);
+    }
+    unit_fmts fm;
+    char err[600];
+    if (tb_formats(o.u, &o.cfg, o.fmt, o.nfmt, &fm, err, sizeof err)) return cli_usage_error("%s", err);
+    vec_set vs;
+    if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
+    tb_opts opts = { vcd, 1 };
+    tb_result r;
+    int t = tb_run(o.u, &o.cfg, &fm, &vs, &opts, &r, err, sizeof err);
+    int rc = CLI_OK;
+    if (t != TB_OK) {
+        rc = cli_usage_error("%s%s%s", o.vectors && t == TB_BADINPUT ? o.vectors : "",
+                             o.vectors && t == TB_BADINPUT ? ": " : "", err);
+        if (t == TB_FAIL) rc = CLI_FAIL;
+    } else {
+        if (csv && tb_write_csv(csv, &r, &vs, err, sizeof err)) rc = cli_usage_error("%s", err);
+        if (json) tb_write_json(stdout, &r);
+        else tb_print_table(stdout, &r);
+        if (rc == CLI_OK && !r.within_bound) rc = CLI_FAIL;
+    }
+    tb_result_free(&r);
+    vec_set_free(&vs);
+    return rc;
+}

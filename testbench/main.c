@@ -1,0 +1,27 @@
+/* main.c - bin/shadesim: dispatch to a verb. */
+#include "testbench/cli.h"
+#include <string.h>
+
+const cli_verb cli_verbs[] = {
+    { "list",    cli_list,    "units, schedules, signals, parameters and default formats" },
+    { "vectors", cli_vectors, "golden vectors of a unit from the float reference" },
+    { "run",     cli_run,     "run a unit's testbench: cycles, area, quantization error" },
+    { NULL, NULL, NULL }
+};
+
+static void usage(FILE *f)
+{
+    fputs("usage: shadesim VERB [options]   (shadesim VERB --help for each)\n\n"
+          "A cycle-accurate fixed-point simulator of the shading hardware in shared/seeds.\n\nverbs:\n", f);
+    for (const cli_verb *v = cli_verbs; v->name; v++) fprintf(f, "  %-9s %s\n", v->name, v->summary);
+    fputs("\nexit status: 0 success, 1 error bound exceeded or simulation failed, 2 bad usage or input\n", f);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) { usage(stderr); return CLI_USAGE; }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) { usage(stdout); return CLI_OK; }
+    for (const cli_verb *v = cli_verbs; v->name; v++)
+        if (!strcmp(argv[1], v->name)) return v->fn(argc - 1, argv + 1);
+    return cli_usage_error("unknown verb '%s' (try shadesim --help)", argv[1]);
+}

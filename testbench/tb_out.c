@@ -1,0 +1,141 @@
+/* tb_out.c - a testbench result as JSON, CSV and a readable table. */
+#include "testbench/tb.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* JSON has no inf or NaN: such a figure is null. */
+static void jnum(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, "%.17g", v);
+    else fputs("null", f);
+}
+
+static void jmetrics(FILE *f, const tb_metrics *m, const char *ind)
+{
+    char fb[SIM_FMT_STRLEN];
+    fprintf(f, "{\n%s  \"format\": \"%s\",\n%s  \"max_abs_err\": ", ind, sim_fmt_str(m->fmt, fb), ind);
+    jnum(f, m->max_abs_err);
+    fprintf(f, ",\n%s  \"mean_err\": ", ind); jnum(f, m->mean_err);
+    fprintf(f, ",\n%s  \"rms_err\": ", ind); jnum(f, m->rms_err);
+    fprintf(f, ",\n%s  \"nmse\": ", ind); jnum(f, m->nmse);
+    fprintf(f, ",\n%s  \"max_err_lsb\": ", ind); jnum(f, m->max_err_lsb);
+    fprintf(f, ",\n%s  \"bound\": ", ind); jnum(f, m->bound);
+    fprintf(f, ",\n%s  \"max_err_vs_ideal\": ", ind); jnum(f, m->max_err_ideal);
+    fprintf(f, "\n%s}", ind);
+}
+
+int tb_write_json(FILE *f, const tb_result *r)
+{
+    const unit_desc *u = r->unit;
+    char fb[SIM_FMT_STRLEN];
+    fprintf(f, "{\n  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"width\": %d,\n", u->name,
+            u->sched[r->cfg.schedule].name, r->cfg.width);
+    fputs("  \"params\": {", f);
+    for (int i = 0; i < u->nparams; i++) {
+        char v[64];
+        unit_param_get(&u->params[i], &r->cfg, v, sizeof v);
+        if (u->params[i].type == UNIT_P_ENUM) fprintf(f, "%s\"%s\": \"%s\"", i ? ", " : "", u->params[i].name, v);
+        else fprintf(f, "%s\"%s\": %s", i ? ", " : "", u->params[i].name, v);
+    }
+    fputs("},\n  \"formats\": {", f);
+    for (int i = 0; i < u->nsigs; i++)
+        fprintf(f, "%s\"%s\": \"%s\"", i ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
+    fprintf(f, "},\n  \"round\": \"%s\",\n  \"overflow\": \"%s\",\n", sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
+    fprintf(f, "  \"vectors\": %zu,\n  \"beats_per_item\": %d,\n  \"cycles\": %llu,\n", r->vectors, r->beats,
+            (unsigned long long)r->cycles);
+    fputs("  \"cycles_per_item\": ", f); jnum(f, r->cycles_per_item);
+    fputs(",\n  \"cycles_per_beat\": ", f); jnum(f, r->cycles_per_beat);
+    fprintf(f, ",\n  \"latency\": %llu,\n  \"max_abs_err\": ", (unsigned long long)r->latency);
+    jnum(f, r->max_abs_err);
+    fputs(",\n  \"mean_err\": ", f); jnum(f, r->mean_err);
+    fputs(",\n  \"rms_err\": ", f); jnum(f, r->rms_err);
+    fputs(",\n  \"nmse\": ", f); jnum(f, r->nmse);
+    fputs(",\n  \"max_err_lsb\": ", f); jnum(f, r->max_err_lsb);
+    fprintf(f, ",\n  \"overflows\": %llu,\n  \"area_ge\": ", (unsigned long long)r->overflows);
+    jnum(f, r->area_ge);
+    fprintf(f, ",\n  \"within_bound\": %s,\n  \"outputs\": {", r->within_bound ? "true" : "false");
+    for (int o = 0; o < r->n_out; o++) {
+        fprintf(f, "%s\n    \"%s\": ", o ? "," : "", r->out[o].name);
+        jmetrics(f, &r->out[o], "    ");
+    }
+    fprintf(f, "\n  },\n  \"sim\": {\"clocks\": %llu, \"events\": %llu, \"delta_cycles\": %llu, \"process_runs\": %llu}\n}\n",
+            (unsigned long long)r->stats.clocks, (unsigned long long)r->stats.events,
+            (unsigned long long)r->stats.deltas, (unsigned long long)r->stats.proc_runs);
+    return ferror(f) ? -1 : 0;
+}
+
+int tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *err, size_t errlen)
+{
+    size_t n = strlen(path);
+    char *tmp = malloc(n + 8);
+    if (!tmp) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
+    snprintf(tmp, n + 8, "%s.XXXXXX", path);
+    int fd = mkstemp(tmp);
+    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
+        if (fd >= 0) { close(fd); unlink(tmp); }
+        free(tmp);
+        return -1;
+    }
+    int nb = r->beats, no = r->n_out;
+    fputs("index,cycle", f);
+    for (int k = 0; k < vs->n_out; k++) {
+        const char *nm = vs->out_names[k];
+        fprintf(f, ",%s_raw,%s_real,%s_expected,%s_err", nm, nm, nm, nm);
+    }
+    fputc('\n', f);
+    for (size_t it = 0; it < r->vectors; it++) {
+        /* The item's output appeared with its first beat. */
+        fprintf(f, "%zu,%llu", it, (unsigned long long)r->beat_cycle[it * (size_t)nb]);
+        for (int b = 0; b < nb; b++)
+            for (int o = 0; o < no; o++) {
+                size_t k = (it * (size_t)nb + (size_t)b) * (size_t)no + (size_t)o;
+                double hw = sim_fx_to_real(r->raw[k], r->out[o].fmt);
+                double ref = vec_row(vs, it)[r->n_in + b * no + o];
+                fprintf(f, ",%lld,%.17g,%.17g,%.17g", (long long)r->raw[k], hw, ref, hw - ref);
+            }
+        fputc('\n', f);
+    }
+    int bad = ferror(f);
+    bad |= fclose(f);
+    if (bad || rename(tmp, path)) {
+        snprintf(err, errlen, "%s: write failed: %s", path, strerror(errno));
+        unlink(tmp);
+        free(tmp);
+        return -1;
+    }
+    free(tmp);
+    return 0;
+}
+
+void tb_print_table(FILE *f, const tb_result *r)
+{
+    const unit_desc *u = r->unit;
+    char fb[SIM_FMT_STRLEN];
+    fprintf(f, "unit %s, schedule %s, width %d, round %s, overflow %s\n", u->name,
+            u->sched[r->cfg.schedule].name, r->cfg.width, sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
+    for (int i = 0; i < u->nparams; i++) {
+        char v[64];
+        unit_param_get(&u->params[i], &r->cfg, v, sizeof v);
+        fprintf(f, "%s%s=%s", i ? " " : "params: ", u->params[i].name, v);
+        if (i == u->nparams - 1) fputc('\n', f);
+    }
+    fputs("formats:", f);
+    for (int i = 0; i < u->nsigs; i++) fprintf(f, " %s=%s", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
+    fprintf(f, "\nvectors %zu, cycles %llu, cycles/item %.3g, cycles/beat %.3g, latency %llu, area %.1f GE, overflows %llu\n",
+            r->vectors, (unsigned long long)r->cycles, r->cycles_per_item, r->cycles_per_beat,
+            (unsigned long long)r->latency, r->area_ge, (unsigned long long)r->overflows);
+    fprintf(f, "%-8s %-8s %12s %12s %12s %12s %10s %12s %12s\n", "output", "format", "max|e|", "mean e",
+            "rms e", "nmse", "max LSB", "bound", "max|e-ideal|");
+    for (int o = 0; o < r->n_out; o++) {
+        const tb_metrics *m = &r->out[o];
+        fprintf(f, "%-8s %-8s %12.4g %12.4g %12.4g %12.4g %10.3g %12.4g %12.4g\n", m->name, sim_fmt_str(m->fmt, fb),
+                m->max_abs_err, m->mean_err, m->rms_err, m->nmse, m->max_err_lsb, m->bound, m->max_err_ideal);
+    }
+    if (r->within_bound) fputs("bound: every output within its bound\n", f);
+    else fprintf(f, "bound: EXCEEDED, first at vector %zu\n", r->first_violation);
+}

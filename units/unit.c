@@ -1,0 +1,162 @@
+/* unit.c - the unit registry, parameters and format/bound helpers. */
+#include "units/unit.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Each module exports a NULL-terminated table of its units. */
+extern const unit_desc *const units_seed000[];   /* horner, div3, coef, interp */
+extern const unit_desc *const units_brdf[];      /* BRDF approximation units */
+
+static const unit_desc *const *const tables[] = { units_seed000, units_brdf };
+#define NTABLES (sizeof tables / sizeof tables[0])
+
+size_t unit_count(void)
+{
+    size_t n = 0;
+    for (size_t t = 0; t < NTABLES; t++)
+        for (const unit_desc *const *u = tables[t]; *u; u++) n++;
+    return n;
+}
+
+const unit_desc *unit_at(size_t i)
+{
+    for (size_t t = 0; t < NTABLES; t++)
+        for (const unit_desc *const *u = tables[t]; *u; u++)
+            if (i-- == 0) return *u;
+    return NULL;
+}
+
+const unit_desc *unit_find(const char *name)
+{
+    for (size_t i = 0, n = unit_count(); i < n; i++)
+        if (!strcmp(unit_at(i)->name, name)) return unit_at(i);
+    return NULL;
+}
+
+void unit_cfg_default(unit_cfg *c)
+{
+    memset(c, 0, sizeof *c);
+    c->width = 16;
+    c->terms = 3;
+    c->series = 0;
+    c->L = 8;
+    c->g = 16;
+    c->n = 32;
+    c->m = 0.2;
+    c->alpha = 0.2;
+    c->rnd = SIM_RND_TRUNC;
+    c->ovf = SIM_OVF_WRAP;
+}
+
+static int count_role(const unit_desc *u, unit_role r)
+{
+    int n = 0;
+    for (int i = 0; i < u->nsigs; i++) n += u->sigs[i].role == r;
+    return n;
+}
+int unit_n_in(const unit_desc *u) { return count_role(u, UNIT_SIG_IN); }
+int unit_n_out(const unit_desc *u) { return count_role(u, UNIT_SIG_OUT); }
+
+int unit_sig_index(const unit_desc *u, const char *name)
+{
+    for (int i = 0; i < u->nsigs; i++)
+        if (!strcmp(u->sigs[i].name, name)) return i;
+    return -1;
+}
+
+int unit_sched_find(const unit_desc *u, const char *name)
+{
+    for (int i = 0; i < u->nsched; i++)
+        if (!strcmp(u->sched[i].name, name)) return i;
+    return -1;
+}
+
+/* Index of word `w` in a space-separated list, or -1. */
+static int choice_index(const char *list, const char *w)
+{
+    size_t n = strlen(w);
+    int i = 0;
+    for (const char *p = list; *p; i++) {
+        size_t k = strcspn(p, " ");
+        if (k == n && !strncmp(p, w, n)) return i;
+        p += k;
+        while (*p == ' ') p++;
+    }
+    return -1;
+}
+
+int unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
+                   const char *value, char *err, size_t errlen)
+{
+    const unit_param *p = NULL;
+    for (int i = 0; i < u->nparams; i++)
+        if (!strcmp(u->params[i].name, name)) p = &u->params[i];
+    if (!p) {
+        char list[256] = "";
+        for (int i = 0; i < u->nparams; i++) {
+            strncat(list, i ? ", " : "", sizeof list - strlen(list) - 1);
+            strncat(list, u->params[i].name, sizeof list - strlen(list) - 1);
+        }
+        snprintf(err, errlen, "unit %s has no parameter '%s' (it has: %s)", u->name, name,
+                 u->nparams ? list : "none");
+        return -1;
+    }
+    char *base = (char *)cfg + p->offset;
+    if (p->type == UNIT_P_ENUM) {
+        int k = choice_index(p->choices, value);
+        if (k < 0) { snprintf(err, errlen, "parameter %s: '%s' is not one of: %s", name, value, p->choices); return -1; }
+        *(int *)base = k;
+        return 0;
+    }
+    char *end;
+    errno = 0;
+    double v = strtod(value, &end);
+    if (end == value || *end || errno || !isfinite(v)) {
+        snprintf(err, errlen, "parameter %s: '%s' is not a number", name, value);
+        return -1;
+    }
+    if (p->type == UNIT_P_INT && v != floor(v)) {
+        snprintf(err, errlen, "parameter %s: '%s' is not a whole number", name, value);
+        return -1;
+    }
+    if (v < p->min || v > p->max) {
+        snprintf(err, errlen, "parameter %s: %s is outside %g..%g", name, value, p->min, p->max);
+        return -1;
+    }
+    if (p->type == UNIT_P_INT) *(int *)base = (int)v;
+    else *(double *)base = v;
+    return 0;
+}
+
+void unit_param_get(const unit_param *p, const unit_cfg *cfg, char *buf, size_t len)
+{
+    const char *base = (const char *)cfg + p->offset;
+    if (p->type == UNIT_P_INT) { snprintf(buf, len, "%d", *(const int *)base); return; }
+    if (p->type == UNIT_P_REAL) { snprintf(buf, len, "%g", *(const double *)base); return; }
+    int k = *(const int *)base;
+    const char *s = p->choices;
+    while (k-- > 0 && *s) { s += strcspn(s, " "); while (*s == ' ') s++; }
+    snprintf(buf, len, "%.*s", (int)strcspn(s, " "), s);
+}
+
+sim_fmt unit_fmt(int is_signed, int ibits, int fbits)
+{
+    sim_fmt f;
+    if (fbits < 0) fbits = 0;
+    int maxw = is_signed ? 64 : 63;
+    if (ibits + fbits > maxw) fbits = maxw - ibits;
+    if (ibits + fbits < 1) fbits = 1 - ibits;
+    f.is_signed = (uint8_t)(is_signed != 0);
+    f.ibits = (int8_t)ibits;
+    f.fbits = (int8_t)fbits;
+    f.width = (uint8_t)(ibits + fbits);
+    return f;
+}
+
+double unit_qerr(sim_fmt f, int src_f, sim_round r)
+{
+    if (src_f <= f.fbits) return 0.0;
+    return ldexp(r == SIM_RND_TRUNC ? 1.0 : 0.5, -f.fbits);
+}

@@ -1,0 +1,132 @@
+/* unit.h - what a hardware unit is, described once.
+ *
+ * A unit_desc says everything the command line, the docs and the tests need:
+ * its ports and internal signals with a default-format rule from one width
+ * W, its schedules, its parameters, how to build it into a simulation, the
+ * function it computes in exact arithmetic (ideal), and its error bound.
+ *
+ * Handshake of every unit (testbench/ drives it):
+ *  - inputs in[] are written by the source; the unit may read them during
+ *    every clock of an item, so the source holds them until accepted;
+ *  - the item is accepted at a rising edge where in_valid && in_ready;
+ *  - results appear on out[] in the clock cycles where out_valid is 1, one
+ *    "beat" per cycle, `beats` beats per item (interp units: L pixels).
+ * Combinational units tie in_ready to 1 and out_valid to in_valid.
+ *
+ * This layer knows nothing of files or testbenches.
+ */
+#ifndef UNIT_H
+#define UNIT_H
+#include "sim/sim.h"
+#include "sim/sim_prim.h"
+
+#define UNIT_MAX_SIGS   48
+#define UNIT_MAX_IO     8
+#define UNIT_MAX_SCHED  6
+#define UNIT_MAX_PARAMS 6
+
+/* Parameters of every unit, one struct; a unit reads the fields it lists in
+ * its params[] table. Defaults come from unit_cfg_default. */
+typedef struct unit_cfg {
+    int    width;       /* W of the default-format rule */
+    int    schedule;    /* index into the unit's schedules */
+    int    terms;       /* div3: subtracted (paper) or added (quarter) terms */
+    int    series;      /* div3: 0 = paper x/2 - x/8 - ..., 1 = quarter x/4 + x/16 + ... */
+    int    L;           /* interp: pixels per interval (power of two) */
+    int    g;           /* powg, d_approx: power (power of two) */
+    int    n;           /* pow_n exponent; schlick's n */
+    double m;           /* d_approx roughness */
+    double alpha;       /* ward_approx roughness */
+    sim_round rnd;
+    sim_ovf   ovf;
+} unit_cfg;
+
+typedef enum { UNIT_P_INT, UNIT_P_REAL, UNIT_P_ENUM } unit_ptype;
+
+typedef struct unit_param {
+    const char *name;       /* as on the command line: --param terms=3 */
+    unit_ptype  type;
+    size_t      offset;     /* offsetof(unit_cfg, field) */
+    double      min, max;   /* allowed range (ints: inclusive) */
+    const char *choices;    /* UNIT_P_ENUM: "paper quarter" (index stored) */
+    const char *help;
+} unit_param;
+
+typedef enum { UNIT_SIG_IN, UNIT_SIG_OUT, UNIT_SIG_INTERNAL } unit_role;
+
+typedef struct unit_sig {
+    const char *name;       /* lower case; also the --fmt NAME and VCD name */
+    unit_role   role;
+    const char *what;       /* one line: "multiplier MUL = MX1 * t" */
+} unit_sig;
+
+typedef struct unit_sched {
+    const char *name;       /* "paper" */
+    const char *what;       /* one line */
+} unit_sched;
+
+/* Formats of a unit's signals, indexed like unit_desc.sigs. */
+typedef struct unit_fmts { sim_fmt f[UNIT_MAX_SIGS]; } unit_fmts;
+
+/* A built unit's handshake and data signals. */
+typedef struct unit_io {
+    sim_signal *in[UNIT_MAX_IO];    /* in desc input order */
+    sim_signal *out[UNIT_MAX_IO];   /* in desc output order */
+    sim_signal *in_valid;           /* created by the unit, driven by the source */
+    sim_signal *in_ready;
+    sim_signal *out_valid;
+    sim_scope  *scope;
+} unit_io;
+
+typedef struct unit_desc unit_desc;
+struct unit_desc {
+    const char *name;
+    const char *summary;            /* one line for `shadesim list` */
+    const char *seed;               /* where it comes from: "000 Fig. 9" */
+    int nsigs;
+    unit_sig sigs[UNIT_MAX_SIGS];   /* inputs first, then outputs, then internals */
+    int nsched;
+    unit_sched sched[UNIT_MAX_SCHED];
+    int nparams;
+    unit_param params[UNIT_MAX_PARAMS];
+    const char *fmt_rule;           /* the default-format rule in words */
+
+    /* Default format of every signal for cfg->width. */
+    void (*formats)(const unit_cfg *cfg, unit_fmts *out);
+    /* Beats (outputs per item), usually 1. */
+    int  (*beats)(const unit_cfg *cfg);
+    /* Build into scope sc, clocked by clk, with the context's quantization
+     * modes already set from cfg. 0, or -1 with a message (bad formats). */
+    int  (*build)(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *cfg,
+                  const unit_fmts *f, unit_io *io, char *err, size_t errlen);
+    /* The unit's function in exact arithmetic, for inputs as the hardware
+     * holds them (already quantized): e.g. coefficients with the network's
+     * 1/3, a clamped D_g. out has n_out * beats values, beat-major. */
+    void (*ideal)(const unit_cfg *cfg, const double *in, double *out);
+    /* Bound on |hardware - ideal| per output port, from the formats and
+     * modes alone; docs/bounds.md derives each. */
+    void (*bound)(const unit_cfg *cfg, const unit_fmts *f, double *per_out);
+};
+
+/* The registry. */
+size_t           unit_count(void);
+const unit_desc *unit_at(size_t i);
+const unit_desc *unit_find(const char *name);
+
+void unit_cfg_default(unit_cfg *cfg);
+int  unit_n_in(const unit_desc *u);
+int  unit_n_out(const unit_desc *u);
+int  unit_sig_index(const unit_desc *u, const char *name);   /* -1 if none */
+/* Set a parameter from "value" text; 0, or -1 with a message. */
+int  unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
+                    const char *value, char *err, size_t errlen);
+/* Value of a parameter as text (enum: its choice name). */
+void unit_param_get(const unit_param *p, const unit_cfg *cfg, char *buf, size_t len);
+int  unit_sched_find(const unit_desc *u, const char *name);  /* -1 if none */
+
+/* Helpers for format rules and bounds. */
+sim_fmt unit_fmt(int is_signed, int ibits, int fbits);   /* clamps F >= 0, W <= 64 */
+/* Largest error one quantization from src_f fraction bits into f adds:
+ * 0 if no bits are dropped, an LSB for trunc, half an LSB when rounding. */
+double  unit_qerr(sim_fmt f, int src_f, sim_round r);
+#endif

@@ -1,0 +1,45 @@
+/* ref_seed000.h - exact float reference of the seed-000 hardware (SPEC 2).
+ *
+ * Plain functions for testbenches and tests; the vec_model table
+ * vec_models_seed000 (horner3, horner2, div3, coef3_n1, coef3_n2, coef2,
+ * interp3, interp2) is built on them in ref_seed000.c.
+ *
+ * Node numbering is the paper's: I1 = I(0), I2 = I(1), I3 = I(1/2) and
+ * I4 = I(1/4) (node set N1) or I(3/4) (node set N2). Arrays are indexed
+ * from 0, so I[0] is I1.
+ */
+#ifndef REF_SEED000_H
+#define REF_SEED000_H
+
+/* Node positions t of I1..I4 (N1, N2) and I1..I3 (quadratic). */
+extern const double ref_nodes_n1[4], ref_nodes_n2[4], ref_nodes_q[3];
+
+/* Cubic coefficients abcd = {A, B, C, D} of I(t) = A t^3 + B t^2 + C t + D
+ * through the nodes, by the SPEC 2.1 formulas (exact /3). */
+void ref_coef3_n1(const double I[4], double abcd[4]);
+void ref_coef3_n2(const double I[4], double abcd[4]);
+/* Quadratic abc = {A, B, C} of I(t) = A t^2 + B t + C through I(0), I(1),
+ * I(1/2). */
+void ref_coef2(const double I[3], double abc[3]);
+
+/* Horner evaluation: ((a t + b) t + c) t + d and (a t + b) t + c. */
+double ref_horner3(double a, double b, double c, double d, double t);
+double ref_horner2(double a, double b, double c, double t);
+
+/* The exact cubic through the N1 nodes (or the quadratic through I1..I3) at
+ * the L pixels t = k/L, k = 0..L-1, into y[0..L-1]; L >= 1. */
+void ref_interp3(const double I[4], int L, double *y);
+void ref_interp2(const double I[3], int L, double *y);
+
+/* The divide-by-3 shift network (Fig. 7) in exact arithmetic.
+ * REF_DIV3_PAPER:   x/2 - x/8 - x/32 - ...  (`terms` subtracted terms
+ *                   after x/2; terms = 3 is the paper's 0.3359375 x).
+ * REF_DIV3_QUARTER: x/4 + x/16 + x/64 + ... (`terms` terms).
+ * Both converge to x/3 as terms grows (from above and below). terms < 0
+ * counts as 0; terms beyond ~26 no longer change a double. An unknown
+ * series gives NaN. */
+enum { REF_DIV3_PAPER = 0, REF_DIV3_QUARTER = 1 };
+double ref_div3_factor(int terms, int series);
+double ref_div3_network(double x, int terms, int series);
+
+#endif
