@@ -1,0 +1,10 @@
+/* units_seed000.c - the units of seed 000, in the order `shadesim list`
+ * shows them. */
+#include "units/unit.h"
+
+extern const unit_desc unit_horner3, unit_horner2;
+
+const unit_desc *const units_seed000[] = {
+    &unit_horner3, &unit_horner2,
+    NULL
+};
