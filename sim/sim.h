@@ -49,6 +49,7 @@ struct sim_signal {
     uint8_t     vcd_dirty;  /* changed since the last VCD time stamp */
     uint8_t     kind;       /* sim_kind */
     sim_fmt     fmt;        /* width and meaning of the raw value */
+    int64_t     raw_min, raw_max;  /* range of fmt, cached for quantization */
     uint64_t    overflows;  /* quantizations into this signal that overflowed */
     uint64_t    changes;    /* value changes (events) */
     double      area_ge;    /* area of the element driving it, NAND2 eq. */
@@ -149,11 +150,17 @@ void sim_attach_vcd(sim_ctx *c, sim_vcd *v);
 /* The signals changed since the last call (each once); resets the list. */
 sim_signal **sim__vcd_take_dirty(sim_ctx *c, uint32_t *n);
 
-/* ---- inline fast path ---- */
-void sim__queue_update(sim_ctx *c, sim_signal *s);
+/* ---- inline fast path ----
+ * The update list is the first member of every sim_ctx, so that a write,
+ * the most frequent operation of all, costs no call. */
+typedef struct sim_updq { sim_signal **upd; uint32_t nupd; } sim_updq;
 static inline void sim_write(sim_signal *s, int64_t v)
 {
     s->nxt = v;
-    if (!s->queued) sim__queue_update(s->ctx, s);
+    if (!s->queued) {
+        sim_updq *q = (sim_updq *)(void *)s->ctx;
+        s->queued = 1;
+        q->upd[q->nupd++] = s;
+    }
 }
 #endif

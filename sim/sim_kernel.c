@@ -30,9 +30,9 @@ typedef struct sim_clockgen {
 struct sim_chunk { struct sim_chunk *next; };
 
 struct sim_ctx {
+    sim_updq     q;                          /* written this delta (first: see sim_write) */
     sim_signal **sigs;   uint32_t nsig, capsig;
     sim_proc   **procs;  uint32_t nproc, capproc;
-    sim_signal **upd;    uint32_t nupd;      /* written this delta; capacity capsig */
     sim_proc   **run;    uint32_t nrun;      /* runnable this delta; capacity capproc */
     sim_proc   **run2;   uint32_t nrun2;     /* woken for the next delta */
     sim_signal **vdirty; uint32_t nvdirty;   /* changed since the last VCD stamp */
@@ -104,7 +104,7 @@ void sim_free(sim_ctx *c)
     if (!c) return;
     free_fanouts(c);
     while (c->mem) { struct sim_chunk *n = c->mem->next; free(c->mem); c->mem = n; }
-    free(c->sigs); free(c->procs); free(c->upd); free(c->run); free(c->run2);
+    free(c->sigs); free(c->procs); free(c->q.upd); free(c->run); free(c->run2);
     free(c->vdirty); free(c->heap);
     free(c);
 }
@@ -140,6 +140,8 @@ sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,
     sim_signal *s = sim_alloc(c, sizeof *s);
     s->ctx = c;
     s->fmt = fmt;
+    s->raw_min = sim_fmt_raw_min(fmt);
+    s->raw_max = sim_fmt_raw_max(fmt);
     s->kind = (uint8_t)kind;
     s->name = sim_strdup(c, name);
     s->scope = sc ? sc : &c->root;
@@ -151,9 +153,9 @@ sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,
     uint32_t cap = c->capsig;
     c->sigs = grow(c->sigs, &c->capsig, sizeof *c->sigs, c->nsig + 1);
     if (c->capsig != cap) {
-        c->upd = realloc(c->upd, (size_t)c->capsig * sizeof *c->upd);
+        c->q.upd = realloc(c->q.upd, (size_t)c->capsig * sizeof *c->q.upd);
         c->vdirty = realloc(c->vdirty, (size_t)c->capsig * sizeof *c->vdirty);
-        if (!c->upd || !c->vdirty) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+        if (!c->q.upd || !c->vdirty) { fputs("shadesim: out of memory\n", stderr); exit(3); }
     }
     c->sigs[c->nsig++] = s;
     return s;
@@ -302,12 +304,6 @@ void sim_clock(sim_ctx *c, sim_signal *clk, sim_time half_period, sim_time first
 
 /* ------------------------------------------------------------- the loop */
 
-void sim__queue_update(sim_ctx *c, sim_signal *s)
-{
-    s->queued = 1;
-    c->upd[c->nupd++] = s;
-}
-
 void sim_force(sim_signal *s, int64_t v) { sim_write(s, v); }
 
 /* Name the signals still changing when the delta bound was hit: after the
@@ -318,12 +314,12 @@ static void report_loop(sim_ctx *c)
 {
     sim_signal *seen[16];
     uint32_t n = 0;
-    for (int d = 0; d < 16 && (c->nrun || c->nupd); d++) {
+    for (int d = 0; d < 16 && (c->nrun || c->q.nupd); d++) {
         uint32_t k = delta(c);
         for (uint32_t i = 0; i < k && n < 16; i++) {
             uint32_t j = 0;
-            while (j < n && seen[j] != c->upd[i]) j++;
-            if (j == n) seen[n++] = c->upd[i];
+            while (j < n && seen[j] != c->q.upd[i]) j++;
+            if (j == n) seen[n++] = c->q.upd[i];
         }
     }
     int off = snprintf(c->err, sizeof c->err,
@@ -353,9 +349,9 @@ static uint32_t delta(sim_ctx *c)
     c->stats.proc_runs += nrun;
     c->stats.deltas++;
 
-    uint32_t nupd = c->nupd, nchanged = 0;
-    sim_signal **upd = c->upd;
-    c->nupd = 0;
+    uint32_t nupd = c->q.nupd, nchanged = 0;
+    sim_signal **upd = c->q.upd;
+    c->q.nupd = 0;
     for (uint32_t i = 0; i < nupd; i++) {
         sim_signal *s = upd[i];
         s->queued = 0;
@@ -399,9 +395,9 @@ sim_status sim_run(sim_ctx *c, sim_time until)
             t.fn(c, t.data);
         }
         uint32_t deltas = 0;
-        while (c->nrun || c->nupd) {
+        while (c->nrun || c->q.nupd) {
             delta(c);
-            if (++deltas >= c->max_deltas && (c->nrun || c->nupd)) {
+            if (++deltas >= c->max_deltas && (c->nrun || c->q.nupd)) {
                 report_loop(c);
                 if (c->vcd) sim_vcd_step(c->vcd, c->now);
                 return SIM_ERR_LOOP;

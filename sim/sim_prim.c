@@ -24,6 +24,17 @@ typedef struct prim {
 
 int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, sim_ovf o)
 {
+    /* Fast path for what datapaths do on almost every clock: drop k < 63
+     * low bits of a value that fits 63 bits by truncation or half-up, and
+     * land in range. Anything else takes the general path, which is the
+     * definition (tests compare both through the primitives). */
+    int k = src_fbits - s->fmt.fbits;
+    if ((unsigned)k < 63 && raw >= -((sim_wide)1 << 62) && raw < ((sim_wide)1 << 62) && r != SIM_RND_EVEN) {
+        int64_t x = (int64_t)raw;
+        if (k && r == SIM_RND_HALF_UP) x += (int64_t)1 << (k - 1);
+        x >>= k;   /* arithmetic shift: floor division by 2^k (gcc, clang) */
+        if (x >= s->raw_min && x <= s->raw_max) return x;
+    }
     int ovf = 0;
     int64_t v = sim_fx_requant(raw, src_fbits, s->fmt, r, o, &ovf);
     s->overflows += (uint64_t)ovf;
