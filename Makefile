@@ -62,7 +62,13 @@ bench: $(BENCHBIN) bin/shadesim
 	@for b in $(BENCHBIN); do $$b || exit 1; done
 
 run: bin/shadesim
-	@./bin/shadesim demo
+	@./bin/shadesim run all
+
+# Regenerate the checked-in default vectors of every unit (tests compare
+# them byte for byte with what the float reference gives).
+vectors: bin/shadesim
+	@for u in $$(./bin/shadesim list | sed -n 's/^\([a-z0-9_]*\) — .*/\1/p'); do \
+	    ./bin/shadesim vectors $$u -o vectors/$$u.vec || exit 1; echo "vectors/$$u.vec"; done
 
 clean:
 	rm -rf build build-asan bin

@@ -121,7 +121,9 @@ const char *cli_default_vectors_path(const char *unit, char *buf, size_t len)
         exe[n] = 0;
         char *s = strrchr(exe, '/');
         if (s) *s = 0;
-        snprintf(buf, len, "%s/../vectors/%s.vec", exe, unit);
+        s = strrchr(exe, '/');          /* up from bin/ or build/ */
+        if (s) *s = 0;
+        snprintf(buf, len, "%s/vectors/%s.vec", exe, unit);
     } else snprintf(buf, len, "vectors/%s.vec", unit);
     return buf;
 }

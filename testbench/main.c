@@ -19,7 +19,7 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
-    if (argc < 2) { usage(stderr); return CLI_USAGE; }
+    if (argc < 2) return cli_usage_error("no verb given (shadesim --help lists them)");
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) { usage(stdout); return CLI_OK; }
     for (const cli_verb *v = cli_verbs; v->name; v++)
         if (!strcmp(argv[1], v->name)) return v->fn(argc - 1, argv + 1);
