@@ -1,0 +1,96 @@
+/* tb_svg.h - shadesim's own chart writer: small, self-contained SVG.
+ *
+ * shadesim draws its charts itself (error vs bit width, area vs error with
+ * the Pareto front, clocks/item vs error, error vs angle with the failure
+ * regions shaded) so that it needs no plotting package. The files must read
+ * well at a glance in a browser and in rsvg-convert, so the writer does what
+ * a plotting package would: 1-2-5 ticks on linear axes, decades with minor
+ * ticks on log axes, light grey grid, a legend outside the plot on the
+ * right, a colour-blind-safe palette (Okabe & Ito) with a distinct marker
+ * shape per series.
+ *
+ * The file is one fixed 800x500 viewBox, font-family sans-serif, no scripts
+ * and no external resources. Every coordinate is printed with at most two
+ * decimals by a locale-independent formatter, so the same chart gives the
+ * same bytes on every run, and on every platform short of a libm that
+ * rounds log10/pow differently right at a printed digit.
+ *
+ * What is not drawn is said: points that are NaN/inf, or <= 0 on a log
+ * axis, are skipped and counted in a footnote ("3 points <= 0 not shown");
+ * a chart with nothing to draw still writes a valid SVG saying "no data".
+ *
+ * Errors while building (out of memory, a bad series index) are sticky:
+ * the building calls return nothing, and tb_chart_write reports the first
+ * one. A chart holds no global state; separate charts may be used from
+ * separate threads.
+ */
+#ifndef TB_SVG_H
+#define TB_SVG_H
+#include <stddef.h>
+
+typedef struct tb_chart tb_chart;
+
+/* Series styles, combinable: TB_LINE|TB_POINTS. TB_STEP draws the line as
+ * a staircase (horizontal, then vertical: "steps-post"), which is how a
+ * Pareto front reads; it implies a line. Lines join points in the order
+ * they were added and break where a point is skipped. */
+enum { TB_LINE = 1, TB_POINTS = 2, TB_STEP = 4 };
+
+/* A new empty chart; any text may be NULL (none). NULL when out of memory.
+ * Labels should carry units, e.g. "error (ulp)". */
+tb_chart *tb_chart_new(const char *title, const char *xlabel, const char *ylabel);
+void      tb_chart_free(tb_chart *c);
+
+/* Logarithmic axes: ticks at decades labelled 10^k, minor ticks between
+ * (on an axis of one or two decades, 2 and 5 x 10^k are labelled too). */
+void tb_chart_log_x(tb_chart *c, int on);
+void tb_chart_log_y(tb_chart *c, int on);
+
+/* Add a series; returns its index (0, 1, ...), -1 when out of memory.
+ * Series i gets palette colour i mod 7 and marker shape i mod 5, and from
+ * the 8th on a dashed line. A NULL or empty label keeps the series out of
+ * the legend. A style without any bit means TB_POINTS. */
+int  tb_chart_series(tb_chart *c, const char *label, int style);
+void tb_chart_point(tb_chart *c, int series, double x, double y);
+/* A point with a small text beside it (e.g. "w=12"); the text is placed
+ * where it overlaps no other point label or marker, if such a place exists. */
+void tb_chart_point_label(tb_chart *c, int series, double x, double y,
+                          const char *label);
+
+/* A shaded band across the whole plot height over x in [x0, x1] (e.g. a
+ * failure region); its label is written above the plot. The band does not
+ * widen the x axis: it is cut to the plot area (x0/x1 may be +-inf). */
+void tb_chart_hband(tb_chart *c, double x0, double x1, const char *label);
+/* A dashed horizontal line at y (e.g. a target error), labelled at its
+ * right end. Its y is included in the y axis range. */
+void tb_chart_hline(tb_chart *c, double y, const char *label);
+
+/* Write the SVG to path atomically (a temporary file in the same directory,
+ * then rename). 0 on success; -1 with a one-line message in err (no
+ * newline) on failure, leaving no temporary file behind. err may be NULL. */
+int  tb_chart_write(const tb_chart *c, const char *path, char *err, size_t errlen);
+
+/* Pareto front for minimisation of both x (cost) and y (error).
+ * on_front[i] = 1 when no other point is at least as good in both and
+ * strictly better in one, else 0. Ties: exact duplicates do not dominate
+ * each other, so all copies of a front point are on the front; of two
+ * points with equal x, only the smaller y can be on it (and likewise for
+ * equal y). Points with a NaN coordinate are never on the front and never
+ * dominate. Returns the number of points on the front. O(n log n). */
+size_t tb_pareto(const double *x, const double *y, size_t n, unsigned char *on_front);
+
+/* The axis ticks the charts use, exposed for tests and for callers that
+ * want the same scale elsewhere. For the data range [dmin, dmax]:
+ * linear: steps of 1, 2 or 5 x 10^k, at most 8 intervals, the first tick
+ * <= dmin and the last >= dmax; log (dmin > 0): decades 10^k (every
+ * second, third... decade when there are more than 8), covering the data.
+ * Writes up to cap ascending major ticks to ticks and the axis limits to
+ * lo and hi (either may be NULL); returns the number of ticks (0 when the
+ * range is unusable: NaN, inf, or dmin <= 0 on a log axis). At the ends
+ * of double: linear data within a step of +-DBL_MAX gets the data's own
+ * limit there, as the covering tick would overflow; log data reaching past
+ * 1e+-300 may get outer decades past the double range, which come back as
+ * 0 or inf (the charts label decades by exponent and are not affected). */
+size_t tb_svg_ticks(double dmin, double dmax, int log_scale,
+                    double *ticks, size_t cap, double *lo, double *hi);
+#endif
