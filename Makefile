@@ -21,7 +21,7 @@ LIBOBJ  := $(patsubst %.c,$(B)/%.o,$(LIBSRC))
 TESTBIN := $(patsubst tests/%.c,$(B)/tests/%,$(TESTSRC))
 BENCHBIN:= $(patsubst bench/%.c,$(B)/bench/%,$(BENCHSRC))
 
-.PHONY: all test test-plain test-asan bench run clean vectors
+.PHONY: all test bench run clean vectors docs
 all: bin/shadesim
 
 bin/shadesim: $(B)/shadesim
@@ -69,6 +69,10 @@ run: bin/shadesim
 vectors: bin/shadesim
 	@for u in $$(./bin/shadesim list | sed -n 's/^\([a-z0-9_]*\) — .*/\1/p'); do \
 	    ./bin/shadesim vectors $$u -o vectors/$$u.vec || exit 1; echo "vectors/$$u.vec"; done
+
+# Regenerate docs made from the unit descriptors.
+docs: bin/shadesim
+	./bin/shadesim list --markdown > docs/units.md.tmp && mv docs/units.md.tmp docs/units.md
 
 clean:
 	rm -rf build build-asan bin

@@ -130,3 +130,7 @@ done
 expect vectors_bad_n 2 "$S" vectors horner3 -n -5
 expect vectors_no_unit 2 "$S" vectors
 "$S" vectors horner3 -n 10 --seed 3 -o "$T/v10.vec" && [ "$(grep -vc '^#' "$T/v10.vec")" -eq 10 ] && ok vectors_n || fail vectors_n "-n 10 did not give 10 rows"
+
+# docs/units.md is generated from the same descriptors (make docs).
+"$S" list --markdown >"$T/units.md" 2>&1 && cmp -s "$T/units.md" docs/units.md && ok docs_units_current \
+    || fail docs_units_current "docs/units.md differs from shadesim list --markdown (make docs regenerates)"
