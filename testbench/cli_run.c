@@ -8,13 +8,19 @@ static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-
 
 /* ------------------------------------------------------------------- list */
 
+/* A unit's default configuration and formats at a width. */
+static void defaults_at(const unit_desc *u, int width, unit_cfg *cfg, unit_fmts *fm)
+{
+    unit_cfg_default(cfg);
+    cfg->width = width;
+    u->formats(cfg, fm);
+}
+
 static void list_unit(FILE *f, const unit_desc *u, int width)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
-    cfg.width = width;
     unit_fmts fm;
-    u->formats(&cfg, &fm);
+    defaults_at(u, width, &cfg, &fm);
     char fb[SIM_FMT_STRLEN];
     fprintf(f, "%s — %s\n  from seed %s\n  schedules:", u->name, u->summary, u->seed);
     for (int i = 0; i < u->nsched; i++) fprintf(f, "%s %s (%s)", i ? "," : "", u->sched[i].name, u->sched[i].what);
@@ -38,10 +44,8 @@ static void list_unit(FILE *f, const unit_desc *u, int width)
 static void list_unit_md(FILE *f, const unit_desc *u, int width)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
-    cfg.width = width;
     unit_fmts fm;
-    u->formats(&cfg, &fm);
+    defaults_at(u, width, &cfg, &fm);
     char fb[SIM_FMT_STRLEN];
     fprintf(f, "## %s\n\n%s. From seed %s.\n\n", u->name, u->summary, u->seed);
     fputs("| schedule | what |\n| --- | --- |\n", f);
