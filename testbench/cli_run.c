@@ -234,8 +234,9 @@ int cli_run(int argc, char **argv)
     int t = tb_run(o.u, &o.cfg, &fm, &vs, &opts, &r, err, sizeof err);
     int rc = CLI_OK;
     if (t != TB_OK) {
-        rc = cli_usage_error("%s%s%s", o.vectors && t == TB_BADINPUT ? o.vectors : "",
-                             o.vectors && t == TB_BADINPUT ? ": " : "", err);
+        /* The vectors' header was checked when they were read, so this is
+         * about the unit (formats it cannot build with) or an output file. */
+        rc = cli_usage_error("%s", err);
         if (t == TB_FAIL) rc = CLI_FAIL;
     } else {
         if (csv && tb_write_csv(csv, &r, &vs, err, sizeof err)) rc = cli_usage_error("%s", err);

@@ -117,7 +117,8 @@ int unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
         snprintf(err, errlen, "parameter %s: '%s' is not a number", name, value);
         return -1;
     }
-    if (p->type == UNIT_P_INT && v != floor(v)) {
+    int whole = p->type == UNIT_P_INT || p->type == UNIT_P_POW2;
+    if (whole && v != floor(v)) {
         snprintf(err, errlen, "parameter %s: '%s' is not a whole number", name, value);
         return -1;
     }
@@ -125,7 +126,11 @@ int unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
         snprintf(err, errlen, "parameter %s: %s is outside %g..%g", name, value, p->min, p->max);
         return -1;
     }
-    if (p->type == UNIT_P_INT) *(int *)base = (int)v;
+    if (p->type == UNIT_P_POW2 && ((long)v & ((long)v - 1))) {
+        snprintf(err, errlen, "parameter %s: %s is not a power of two", name, value);
+        return -1;
+    }
+    if (whole) *(int *)base = (int)v;
     else *(double *)base = v;
     return 0;
 }
@@ -133,7 +138,7 @@ int unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
 void unit_param_get(const unit_param *p, const unit_cfg *cfg, char *buf, size_t len)
 {
     const char *base = (const char *)cfg + p->offset;
-    if (p->type == UNIT_P_INT) { snprintf(buf, len, "%d", *(const int *)base); return; }
+    if (p->type == UNIT_P_INT || p->type == UNIT_P_POW2) { snprintf(buf, len, "%d", *(const int *)base); return; }
     if (p->type == UNIT_P_REAL) { snprintf(buf, len, "%g", *(const double *)base); return; }
     int k = *(const int *)base;
     const char *s = p->choices;

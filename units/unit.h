@@ -41,7 +41,8 @@ typedef struct unit_cfg {
     sim_ovf   ovf;
 } unit_cfg;
 
-typedef enum { UNIT_P_INT, UNIT_P_REAL, UNIT_P_ENUM } unit_ptype;
+/* UNIT_P_POW2: a whole number that must be a power of two (L, g). */
+typedef enum { UNIT_P_INT, UNIT_P_REAL, UNIT_P_ENUM, UNIT_P_POW2 } unit_ptype;
 
 typedef struct unit_param {
     const char *name;       /* as on the command line: --param terms=3 */

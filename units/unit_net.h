@@ -1,0 +1,92 @@
+/* unit_net.h - shift-and-add networks, written once, walked three ways.
+ *
+ * The divide-by-3 network (Fig. 7), the coefficient units (Fig. 8) and the
+ * coefficient part of the interpolators are constant shifts, adders and
+ * subtractors. A unit's construction code is written once against this API
+ * and walked
+ *  - to build: the elements go into a simulation (unet_hw);
+ *  - to bound: no simulation; every value carries its worst-case error
+ *    |hardware - ideal| for the formats given (an element's error is its
+ *    operands' errors times their gains plus its own unit_qerr);
+ *  - to choose formats (unet_rule): the default rule picks each signal's
+ *    format as the walk reaches it, from the value's exact range over the
+ *    inputs' ranges and its worst-case error.
+ * So the bound and the default formats come from the same structure as the
+ * hardware, for any --fmt override, with no hand formula per output.
+ *
+ * A value's ideal (exact) meaning is a linear form of the unit's inputs,
+ * with /3 replaced by the network's own factor. Its range over a box of
+ * input ranges is exact: the max of sum c_i x_i is sum max(c_i lo_i, c_i hi_i).
+ */
+#ifndef UNIT_NET_H
+#define UNIT_NET_H
+#include "units/unit.h"
+
+#define UNET_MAXIN 4    /* inputs a network's values are linear forms of */
+
+typedef struct unet_val {
+    sim_signal *s;                  /* the element's output; NULL unless building */
+    sim_fmt     f;                  /* its format */
+    double      lin[UNET_MAXIN];    /* ideal value = sum lin[i] * input i */
+    double      err;                /* worst-case |hardware - ideal| */
+} unet_val;
+
+typedef struct unet {
+    sim_ctx         *c;             /* NULL: walk without building */
+    sim_scope       *sc;            /* where elements are built (callers may switch it) */
+    const unit_desc *u;             /* signal name -> index into fm */
+    unit_fmts        fm;            /* formats by signal index (chosen ones land here) */
+    sim_round        r;
+    /* The default rule, when choose is 1: */
+    int              choose;
+    int              width;         /* W: outputs get sI.(W-I) */
+    int              fcap;          /* fraction bits a right shift may keep at most */
+    double           lo[UNET_MAXIN], hi[UNET_MAXIN];   /* input ranges */
+    unsigned char    chosen[UNIT_MAX_SIGS];
+    char             why[160];      /* first construction error ("" if none) */
+} unet;
+
+/* A walk of unit u with formats fm (NULL: all zero, for unet_rule) and
+ * rounding r; it builds nothing until unet_hw. */
+void unet_init(unet *n, const unit_desc *u, const unit_fmts *fm, sim_round r);
+/* Build elements into c, scope sc, as the walk goes. */
+void unet_hw(unet *n, sim_ctx *c, sim_scope *sc);
+/* Choose formats by the default rule: inputs i range over [lo, hi]; an
+ * output gets W bits, sI.(W-I); an internal keeps every fraction bit its
+ * operation produces (lossless: a left shift by k needs k fewer, an adder
+ * the larger of its operands'), right shifts at most fcap; I is the
+ * fewest integer bits that hold the range widened by the value's
+ * worst-case error, unsigned where the value cannot go negative (shifts
+ * and sums of unsigned values, not differences). Input formats are set in
+ * n->fm by the caller before the walk. */
+void unet_rule(unet *n, int width, const double *lo, const double *hi, int nin);
+
+/* Index of signal name in the unit (-1 and n->why set if none). */
+int unet_sig(unet *n, const char *name);
+
+/* Input k of the unit: signal name, format from n->fm, exact (err 0). */
+unet_val unet_input(unet *n, const char *name, int k);
+/* Wrap an existing signal (built elsewhere) as input k. */
+unet_val unet_wrap(sim_signal *s, sim_fmt f, int k);
+/* Elements; `sig` indexes the format (several elements may share one, e.g.
+ * a sub-network), `name` is the element's signal name in n->sc. */
+unet_val unet_shift(unet *n, int sig, const char *name, unet_val x, int k);   /* x * 2^k */
+unet_val unet_add(unet *n, int sig, const char *name, unet_val a, unet_val b);
+unet_val unet_sub(unet *n, int sig, const char *name, unet_val a, unet_val b);
+
+/* ---- the divide-by-3 network (unit_div3.c) ---- */
+
+enum { DIV3_PAPER = 0, DIV3_QUARTER = 1 };
+#define DIV3_MAX_TERMS 20
+
+/* Fraction bits the network's terms keep beyond x's: enough that the
+ * truncations of its terms add up to at most one LSB of x. */
+int div3_guard_bits(int terms);
+
+/* x/3 by the network, built in n->sc: terms t0 (x/2, paper only),
+ * t1..tN, partial sums s1..sN (quarter: s2..sN) and a view y of the last.
+ * group >= 0: every element takes the format of signal `group` (a
+ * sub-network inside a larger unit); group < 0: each takes the format of
+ * the unit's signal of the same name (the div3 unit). */
+unet_val div3_walk(unet *n, unet_val x, int terms, int series, int group);
+#endif
