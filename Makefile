@@ -24,9 +24,10 @@ BENCHBIN:= $(patsubst bench/%.c,$(B)/bench/%,$(BENCHSRC))
 .PHONY: all test bench run clean vectors docs
 all: bin/shadesim
 
+# Copy then rename: a running bin/shadesim is replaced, not overwritten.
 bin/shadesim: $(B)/shadesim
 	@mkdir -p bin
-	cp $< $@
+	cp $< $@.tmp && mv -f $@.tmp $@
 
 $(B)/shadesim: $(B)/testbench/main.o $(B)/libshadesim.a
 	$(CC) $(ALLCFLAGS) -o $@ $^ $(LDLIBS)

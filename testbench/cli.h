@@ -21,6 +21,8 @@ extern const cli_verb cli_verbs[];
 int cli_list(int argc, char **argv);
 int cli_vectors(int argc, char **argv);
 int cli_run(int argc, char **argv);
+int cli_sweep(int argc, char **argv);
+int cli_merge(int argc, char **argv);
 
 /* Print "shadesim: " + message + newline to stderr; returns CLI_USAGE. */
 int cli_usage_error(const char *fmt, ...);

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* JSON has no inf or NaN: such a figure is null. */
@@ -74,6 +75,8 @@ int tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *
     if (!tmp) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
     snprintf(tmp, n + 8, "%s.XXXXXX", path);
     int fd = mkstemp(tmp);
+    /* mkstemp makes the file private (0600); a result file is not. */
+    if (fd >= 0) fchmod(fd, 0644);
     FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
     if (!f) {
         snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));

@@ -9,6 +9,7 @@
 #include "vectors/claims.h"
 #include "vectors/ref_brdf.h"
 #include "vectors/vectors.h"
+#include "vectors/ref_shading.h"
 #include <stdint.h>
 
 #ifndef M_PI
@@ -496,6 +497,43 @@ static void test_claims_table(void)
     TST_EQ_STR(claims_kernel_name(CLAIMS_CPU_D16), "d16");
 }
 
+/* The interpolation claim, recomputed with Lagrange's form through the
+ * four N1 nodes (not the coefficient formulas the code uses). */
+static void test_claim_interp_nmse(void)
+{
+    claim_result rows[CLAIMS_MAX];
+    size_t n = claims_compute(rows, CLAIMS_MAX);
+    const claim_result *r = NULL;
+    for (size_t i = 0; i < n; i++) if (!strcmp(rows[i].id, "interp_nmse")) r = &rows[i];
+    TST_CHECK(r != NULL, "no interp_nmse row");
+    if (!r) return;
+    static const double node[4] = { 0, 1, 0.5, 0.25 };
+    double worst = 0;
+    for (size_t i = 0; i < shade_span_count(); i++) {
+        const shade_span *s = shade_span_at(i);
+        double se = 0, sr = 0;
+        for (int j = 0; j < 8; j++) {
+            double x0 = j / 8.0, I[4];
+            for (int q = 0; q < 4; q++) I[q] = shade_span_eval(s, x0 + node[q] / 8);
+            for (int k = 0; k < 8; k++) {
+                double t = k / 8.0, y = 0;
+                for (int a = 0; a < 4; a++) {
+                    double l = 1;
+                    for (int b = 0; b < 4; b++) if (b != a) l *= (t - node[b]) / (node[a] - node[b]);
+                    y += l * I[a];
+                }
+                double e = shade_span_eval(s, x0 + t / 8);
+                se += (y - e) * (y - e);
+                sr += e * e;
+            }
+        }
+        if (sr > 0 && se / sr > worst) worst = se / sr;
+    }
+    TST_NEAR(r->measured, worst, 1e-9 * worst);
+    TST_CHECK(worst > 1e-4, "the narrow highlight must break the 1e-4 claim (worst %g)", worst);
+    TST_CHECK(claims_verdict_kind(r->verdict) == 0, "verdict '%s'", r->verdict);
+}
+
 int main(void)
 {
     TST_RUN(test_div3_network);
@@ -512,5 +550,6 @@ int main(void)
     TST_RUN(test_models_gen);
     TST_RUN(test_models_eval_and_params);
     TST_RUN(test_claims_table);
+    TST_RUN(test_claim_interp_nmse);
     TST_EXIT();
 }

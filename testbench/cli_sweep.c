@@ -1,0 +1,882 @@
+/* cli_sweep.c - the verbs sweep and merge: arguments, output folder,
+ * charts, the summary and target.json around the engine in tb_sweep.c. */
+#include "testbench/cli.h"
+#include "testbench/tb_svg.h"
+#include "testbench/tb_sweep.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+static const char sweep_help[] =
+    "usage: shadesim sweep UNIT --widths LO:HI [options]\n\n"
+    "Runs UNIT's testbench at every width LO..HI (the unit's default-format rule,\n"
+    "`shadesim list UNIT`), crossed with the listed settings, and writes into DIR:\n"
+    "  sweep.csv            one row per configuration, every figure of run --json\n"
+    "  error_vs_width.svg   max and RMS error against width (log scale)\n"
+    "  area_vs_error.svg    area against max error, the Pareto front marked\n"
+    "  cycles_vs_error.svg  clocks per item against max error (when they vary)\n"
+    "  summary.txt          what is printed on stdout\n"
+    "  target.json          with --target-error/--target-nmse: the chosen formats\n"
+    "Order of the rows: width-major, then schedule, each --param in the order\n"
+    "given, round, overflow (the last varies fastest). docs/sweeps.md has more.\n\n"
+    "options:\n"
+    "  --widths LO:HI       widths to sweep, within 1..64 (or one width W)\n"
+    "  --round LIST         rounding modes, e.g. trunc,half-up,even (default trunc)\n"
+    "  --overflow LIST      overflow modes, e.g. wrap,sat (default wrap)\n"
+    "  --schedule LIST      the unit's schedules, e.g. paper,... (default its first)\n"
+    "  --param NAME=LIST    a unit parameter's values, e.g. terms=2,3,4 (repeatable)\n"
+    "  --fmt NAME=sI.F      pin a signal's format in every configuration (repeatable)\n"
+    "  --vectors FILE       golden vectors (default: the unit's file in vectors/)\n"
+    "  -n N [--seed S]      instead, N vectors made by the float reference (seed 1)\n"
+    "  --target-error E     cheapest per-signal formats with max |error| <= E\n"
+    "  --target-nmse E      ... with NMSE <= E\n"
+    "  -j N                 run on N threads (default 1); the output is the same\n"
+    "  --shard K/N          run only configurations i with i mod N = K-1 and write\n"
+    "                       DIR/sweep-K-of-N.csv; join them with shadesim merge\n"
+    "  -o DIR               output folder (default out/sweep-UNIT), made if missing\n\n"
+    "exit status: 0 done (a width over its error bound is data: within_bound),\n"
+    "1 some configuration's simulation failed, 2 bad usage or input\n";
+
+static const char merge_help[] =
+    "usage: shadesim merge SHARD.csv ... -o OUT.csv\n\n"
+    "Joins the CSVs of a sweep's shards (shadesim sweep --shard K/N) into exactly\n"
+    "the sweep.csv that the whole sweep writes: rows back in configuration order.\n"
+    "The headers must be identical and the rows of one sweep (same sweep_id);\n"
+    "a configuration given twice or missing is an error (exit status 2).\n";
+
+static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
+
+/* "--opt VALUE" or "--opt=VALUE": 1 and the value (NULL if missing), or 0. */
+static int opt(const char *name, int argc, char **argv, int *i, const char **val)
+{
+    size_t n = strlen(name);
+    if (strncmp(argv[*i], name, n)) return 0;
+    if (argv[*i][n] == '=') { *val = argv[*i] + n + 1; return 1; }
+    if (argv[*i][n]) return 0;
+    *val = *i + 1 < argc ? argv[++*i] : NULL;
+    return 1;
+}
+
+static int parse_long(const char *s, long lo, long hi, long *v)
+{
+    char *end;
+    errno = 0;
+    long x = strtol(s, &end, 10);
+    if (!*s || *end || errno || x < lo || x > hi || !strchr("0123456789", *s)) return -1;
+    *v = x;
+    return 0;
+}
+
+static int parse_widths(const char *v, int *lo, int *hi)
+{
+    char a[32], b[32];
+    const char *colon = strchr(v, ':');
+    if (colon) {
+        snprintf(a, sizeof a, "%.*s", (int)(colon - v), v);
+        snprintf(b, sizeof b, "%s", colon + 1);
+    } else {
+        snprintf(a, sizeof a, "%s", v);
+        snprintf(b, sizeof b, "%s", v);
+    }
+    long x, y;
+    if (parse_long(a, 0, 1000000, &x) || parse_long(b, 0, 1000000, &y))
+        return cli_usage_error("--widths %s: expected LO:HI with whole numbers, e.g. 8:24", v);
+    if (x < 1 || y > 64 || y < 1 || x > 64)
+        return cli_usage_error("--widths %s: widths must be within 1..64", v);
+    if (x > y) return cli_usage_error("--widths %s: LO is greater than HI", v);
+    *lo = (int)x;
+    *hi = (int)y;
+    return 0;
+}
+
+/* Split a comma list into at most cap distinct items of up to 31
+ * characters; messages quote the option as given: "OPT SHOWN: ...". */
+static int split_list(const char *opt_name, const char *shown, const char *list, char items[][32], int cap, int *n)
+{
+    *n = 0;
+    for (const char *p = list;;) {
+        size_t k = strcspn(p, ",");
+        if (k == 0 || k > 31) return cli_usage_error("%s %s: expected a comma-separated list of values", opt_name, shown);
+        if (*n == cap) return cli_usage_error("%s %s: at most %d values", opt_name, shown, cap);
+        snprintf(items[*n], 32, "%.*s", (int)k, p);
+        for (int j = 0; j < *n; j++)
+            if (!strcmp(items[j], items[*n])) return cli_usage_error("%s %s: '%s' is listed twice", opt_name, shown, items[j]);
+        ++*n;
+        if (!p[k]) return 0;
+        p += k + 1;
+    }
+}
+
+static int parse_real(const char *s, double *v)
+{
+    char *end;
+    errno = 0;
+    *v = strtod(s, &end);
+    return !*s || *end || errno || !isfinite(*v) || *v < 0 ? -1 : 0;
+}
+
+/* mkdir -p, then make sure a file can be created in it. */
+static int make_dir(const char *dir)
+{
+    char p[4096];
+    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) return cli_usage_error("%s: path too long", dir);
+    for (char *s = p + 1;; s++) {
+        if (*s == '/' || !*s) {
+            char c = *s;
+            *s = 0;
+            if (mkdir(p, 0777) && errno != EEXIST) return cli_usage_error("%s: cannot create folder %s: %s", dir, p, strerror(errno));
+            *s = c;
+            if (!c) break;
+        }
+    }
+    struct stat st;
+    if (stat(dir, &st) || !S_ISDIR(st.st_mode)) return cli_usage_error("%s: not a folder", dir);
+    char probe[4200];
+    snprintf(probe, sizeof probe, "%s/.shadesim-probe-%ld", dir, (long)getpid());
+    FILE *f = fopen(probe, "w");
+    if (!f) return cli_usage_error("%s: cannot write in the output folder: %s", dir, strerror(errno));
+    fclose(f);
+    unlink(probe);
+    return 0;
+}
+
+/* ------------------------------------------------------------- progress */
+
+typedef struct progress { const char *unit; double t0, last; int shown; } progress;
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void on_progress(void *arg, size_t done, size_t total)
+{
+    progress *p = arg;
+    double t = now_s();
+    if (done < total && t - p->last < 0.1) return;
+    p->last = t;
+    p->shown = 1;
+    fprintf(stderr, "\rshadesim sweep %s: %zu/%zu configurations, %.1f s ", p->unit, done, total, t - p->t0);
+    fflush(stderr);
+}
+
+static void progress_clear(progress *p)
+{
+    if (p->shown) fputs("\r\033[K", stderr);
+    p->shown = 0;
+}
+
+/* --------------------------------------------------------------- charts */
+
+static int row_ok(const tb_sweep *s, size_t i) { return s->row[i].status == TB_OK; }
+
+/* Pareto front of the successful rows: area (cost) against max error. */
+static unsigned char *front_of(const tb_sweep *s, size_t *nfront)
+{
+    double *x = malloc(s->n * sizeof *x), *y = malloc(s->n * sizeof *y);
+    unsigned char *on = calloc(s->n ? s->n : 1, 1);
+    *nfront = 0;
+    if (!x || !y || !on) { free(x); free(y); free(on); return NULL; }
+    for (size_t i = 0; i < s->n; i++) {
+        x[i] = row_ok(s, i) ? s->row[i].r.area_ge : NAN;
+        y[i] = row_ok(s, i) ? s->row[i].r.max_abs_err : NAN;
+    }
+    *nfront = tb_pareto(x, y, s->n, on);
+    free(x);
+    free(y);
+    return on;
+}
+
+typedef struct fpt { double x, y; size_t i; } fpt;
+static int fpt_cmp(const void *a, const void *b)
+{
+    const fpt *p = a, *q = b;
+    if (p->x != q->x) return p->x < q->x ? -1 : 1;
+    if (p->y != q->y) return p->y < q->y ? -1 : 1;
+    return p->i < q->i ? -1 : p->i > q->i;
+}
+
+static int write_chart(tb_chart *c, const char *dir, const char *name, char *files, size_t flen)
+{
+    char path[4200], err[600];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    if (!c) return cli_usage_error("%s: out of memory", path);
+    int rc = tb_chart_write(c, path, err, sizeof err);
+    tb_chart_free(c);
+    if (rc) return cli_usage_error("%s", err);
+    strncat(files, ", ", flen - strlen(files) - 1);
+    strncat(files, name, flen - strlen(files) - 1);
+    return 0;
+}
+
+typedef struct target_info {
+    int on;
+    tb_target_kind kind;
+    double value;
+    tb_target_res *res;     /* [ngroups] */
+} target_info;
+
+/* True when some group label would not fit a legend line (26 characters)
+ * after a short prefix; then every legend shortens "terms=3" to "t=3". */
+static int labels_long(const tb_sweep *s)
+{
+    for (size_t g = 0; g < s->ngroups; g++) {
+        char gl[200];
+        tb_sweep_group_label(s, g, gl, sizeof gl);
+        if (strlen(gl) > 21) return 1;
+    }
+    return 0;
+}
+
+static void legend_label(const tb_sweep *s, size_t g, int shorten, const char *prefix, char *buf, size_t len)
+{
+    char gl[200], *w = gl;
+    tb_sweep_group_label(s, g, gl, sizeof gl);
+    if (shorten)
+        for (const char *r = gl; *r;) {
+            size_t k = strcspn(r, " ");
+            const char *eq = memchr(r, '=', k);
+            if (eq && eq > r + 1) {       /* keep the name's first letter */
+                *w++ = *r;
+                r = eq;
+                k = strcspn(r, " ");
+            }
+            memmove(w, r, k);
+            w += k;
+            r += k;
+            if (*r) *w++ = *r++;
+        }
+    else w += strlen(gl);
+    *w = 0;
+    snprintf(buf, len, "%s%s%s", prefix, *prefix && *gl ? " " : "", *gl || *prefix ? gl : "uniform widths");
+}
+
+static int chart_error_width(const tb_sweep *s, const target_info *t, const char *dir, char *files, size_t flen)
+{
+    int sh = labels_long(s);
+    char title[200];
+    snprintf(title, sizeof title, "%s: error against width", s->spec.u->name);
+    tb_chart *c = tb_chart_new(title, "width W (bits, the unit's format rule)",
+                               "max |e| and RMS e vs float reference (output units)");
+    tb_chart_log_y(c, 1);
+    for (size_t g = 0; g < s->ngroups; g++) {
+        char lab[260];
+        legend_label(s, g, sh, s->ngroups > 1 ? "max" : "max |e|", lab, sizeof lab);
+        int smax = tb_chart_series(c, lab, TB_LINE | TB_POINTS);
+        legend_label(s, g, sh, s->ngroups > 1 ? "RMS" : "RMS e", lab, sizeof lab);
+        int srms = tb_chart_series(c, lab, TB_LINE | TB_POINTS);
+        for (size_t i = g; i < s->n; i += s->ngroups) {
+            double w = s->cfg[i].cfg.width;
+            tb_chart_point(c, smax, w, row_ok(s, i) ? s->row[i].r.max_abs_err : NAN);
+            tb_chart_point(c, srms, w, row_ok(s, i) ? s->row[i].r.rms_err : NAN);
+        }
+    }
+    if (t->on && t->kind == TB_TARGET_MAX_ABS_ERR) {
+        char lab[64];
+        snprintf(lab, sizeof lab, "target %g", t->value);
+        tb_chart_hline(c, t->value, lab);
+    }
+    return write_chart(c, dir, "error_vs_width.svg", files, flen);
+}
+
+/* The front as a staircase through its points in order of x, each
+ * labelled with its width; the points' own markers (their group's series,
+ * drawn before) show under the line which setting each one is. */
+static void add_front(tb_chart *c, const tb_sweep *s, const unsigned char *on, double (*x)(const tb_result *),
+                      double (*y)(const tb_result *), const char *label)
+{
+    fpt *p = malloc(s->n * sizeof *p);
+    size_t n = 0;
+    if (!p) return;
+    for (size_t i = 0; i < s->n; i++)
+        if (on[i]) p[n++] = (fpt){ x(&s->row[i].r), y(&s->row[i].r), i };
+    qsort(p, n, sizeof *p, fpt_cmp);
+    int sf = tb_chart_series(c, label, TB_STEP);
+    for (size_t k = 0; k < n; k++) {
+        char lab[32];
+        snprintf(lab, sizeof lab, "w=%d", s->cfg[p[k].i].cfg.width);
+        /* Labels on every point of a long front would only collide. */
+        tb_chart_point_label(c, sf, p[k].x, p[k].y, n <= 24 || k % ((n + 23) / 24) == 0 ? lab : NULL);
+    }
+    free(p);
+}
+
+static double f_area(const tb_result *r) { return r->area_ge; }
+static double f_err(const tb_result *r) { return r->max_abs_err; }
+static double f_cpi(const tb_result *r) { return r->cycles_per_item; }
+
+static int chart_area_error(const tb_sweep *s, const unsigned char *on, const target_info *t,
+                            const char *dir, char *files, size_t flen)
+{
+    int sh = labels_long(s);
+    char title[200];
+    snprintf(title, sizeof title, "%s: area against max error", s->spec.u->name);
+    tb_chart *c = tb_chart_new(title, "area (GE, NAND2 gate equivalents)", "max |e| vs float reference (output units)");
+    tb_chart_log_y(c, 1);
+    double amin = INFINITY, amax = 0;
+    for (size_t i = 0; i < s->n; i++)
+        if (row_ok(s, i)) {
+            if (s->row[i].r.area_ge < amin) amin = s->row[i].r.area_ge;
+            if (s->row[i].r.area_ge > amax) amax = s->row[i].r.area_ge;
+        }
+    tb_chart_log_x(c, amin > 0 && amax > 10 * amin);
+    for (size_t g = 0; g < s->ngroups; g++) {
+        char gl[200];
+        legend_label(s, g, sh, "", gl, sizeof gl);
+        int sg = tb_chart_series(c, gl, TB_POINTS);
+        for (size_t i = g; i < s->n; i += s->ngroups)
+            if (row_ok(s, i)) tb_chart_point(c, sg, s->row[i].r.area_ge, s->row[i].r.max_abs_err);
+    }
+    add_front(c, s, on, f_area, f_err, "Pareto front");
+    if (t->on) {
+        int st = tb_chart_series(c, "target search", TB_POINTS);
+        for (size_t g = 0; g < s->ngroups; g++)
+            if (t->res[g].met) tb_chart_point_label(c, st, t->res[g].r.area_ge, t->res[g].r.max_abs_err, "target search");
+        if (t->kind == TB_TARGET_MAX_ABS_ERR) {
+            char lab[64];
+            snprintf(lab, sizeof lab, "target %g", t->value);
+            tb_chart_hline(c, t->value, lab);
+        }
+    }
+    return write_chart(c, dir, "area_vs_error.svg", files, flen);
+}
+
+/* Only drawn when clocks per item differ between configurations (several
+ * schedules or parameters that change the timing): otherwise it is one
+ * horizontal row of points and says nothing. */
+static int chart_cycles_error(const tb_sweep *s, const char *dir, char *files, size_t flen, int *drawn)
+{
+    int sh = labels_long(s);
+    double c0 = NAN;
+    int varies = 0;
+    *drawn = 0;
+    for (size_t i = 0; i < s->n; i++)
+        if (row_ok(s, i)) {
+            if (isnan(c0)) c0 = s->row[i].r.cycles_per_item;
+            else if (s->row[i].r.cycles_per_item != c0) varies = 1;
+        }
+    if (!varies) return 0;
+    char title[200];
+    snprintf(title, sizeof title, "%s: clocks per item against max error", s->spec.u->name);
+    tb_chart *c = tb_chart_new(title, "max |e| vs float reference (output units)", "clocks per item (steady state)");
+    tb_chart_log_x(c, 1);
+    for (size_t g = 0; g < s->ngroups; g++) {
+        char gl[200];
+        legend_label(s, g, sh, "", gl, sizeof gl);
+        int sg = tb_chart_series(c, gl, TB_POINTS);
+        for (size_t i = g; i < s->n; i += s->ngroups)
+            if (row_ok(s, i)) tb_chart_point(c, sg, s->row[i].r.max_abs_err, s->row[i].r.cycles_per_item);
+    }
+    double *x = malloc(s->n * sizeof *x), *y = malloc(s->n * sizeof *y);
+    unsigned char *on = calloc(s->n, 1);
+    if (x && y && on) {
+        for (size_t i = 0; i < s->n; i++) {
+            x[i] = row_ok(s, i) ? s->row[i].r.max_abs_err : NAN;
+            y[i] = row_ok(s, i) ? s->row[i].r.cycles_per_item : NAN;
+        }
+        tb_pareto(x, y, s->n, on);
+        add_front(c, s, on, f_err, f_cpi, "Pareto front");
+    }
+    free(x); free(y); free(on);
+    *drawn = 1;
+    return write_chart(c, dir, "cycles_vs_error.svg", files, flen);
+}
+
+/* -------------------------------------------------------------- summary */
+
+static void print_table(FILE *f, const tb_sweep *s, const unsigned char *on)
+{
+    fprintf(f, "%5s  %-22s %11s %11s %11s %9s %10s %8s %5s %-6s %s\n", "width", "settings", "max|e|", "rms e",
+            "nmse", "max LSB", "area GE", "clk/item", "ovf", "bound", "front");
+    for (size_t i = 0; i < s->n; i++) {
+        char gl[200];
+        const tb_result *r = &s->row[i].r;
+        tb_sweep_group_label(s, s->cfg[i].group, gl, sizeof gl);
+        if (!*gl) snprintf(gl, sizeof gl, "-");
+        if (!row_ok(s, i)) {
+            fprintf(f, "%5d  %-22s failed: %s\n", s->cfg[i].cfg.width, gl, s->row[i].err);
+            continue;
+        }
+        fprintf(f, "%5d  %-22s %11.4g %11.4g %11.4g %9.3g %10.1f %8.3g %5llu %-6s %s\n", s->cfg[i].cfg.width, gl,
+                r->max_abs_err, r->rms_err, r->nmse, r->max_err_lsb, r->area_ge, r->cycles_per_item,
+                (unsigned long long)r->overflows, r->within_bound ? "ok" : "EXCEED", on && on[i] ? "*" : "");
+    }
+}
+
+/* The widths of each group whose rows pass `want` (1: on the front, 0:
+ * successful but off it), as ranges: "w=8..12, 14" per group. */
+static void print_ranges(FILE *f, const tb_sweep *s, const unsigned char *on, int want)
+{
+    int any = 0;
+    for (size_t g = 0; g < s->ngroups; g++) {
+        int run_lo = -1, prev = -2, first = 1;
+        for (size_t i = g;; i += s->ngroups) {
+            int w = i < s->n ? s->cfg[i].cfg.width : -1;
+            int in = i < s->n && row_ok(s, i) && on[i] == want;
+            if (in && w == prev + 1 && run_lo >= 0) { prev = w; continue; }
+            if (run_lo >= 0) {
+                if (first) {
+                    char gl[200];
+                    tb_sweep_group_label(s, g, gl, sizeof gl);
+                    fprintf(f, "%s%s%sw=", any ? "; " : " ", gl, *gl ? " " : "");
+                    first = 0;
+                    any = 1;
+                } else fputs(", ", f);
+                if (prev > run_lo) fprintf(f, "%d..%d", run_lo, prev);
+                else fprintf(f, "%d", run_lo);
+                run_lo = -1;
+            }
+            if (i >= s->n) break;
+            if (in) run_lo = prev = w;
+        }
+    }
+    if (!any) fputs(" none", f);
+}
+
+/* What the front says: which configurations are on it, which buy nothing
+ * (dominated), and what a halving of the error costs along it. */
+static void print_front(FILE *f, const tb_sweep *s, const unsigned char *on, size_t nfront)
+{
+    size_t nok = 0;
+    for (size_t i = 0; i < s->n; i++) nok += row_ok(s, i);
+    fprintf(f, "Pareto front (area vs max |e|), %zu of %zu configurations:", nfront, nok);
+    print_ranges(f, s, on, 1);
+    fputc('\n', f);
+    if (nfront < nok) {
+        fputs("  dominated (no less error for no less area):", f);
+        print_ranges(f, s, on, 0);
+        fputc('\n', f);
+    }
+    fpt *p = malloc((nfront ? nfront : 1) * sizeof *p);
+    if (!p) return;
+    size_t n = 0;
+    for (size_t i = 0; i < s->n; i++)
+        if (on[i]) p[n++] = (fpt){ s->row[i].r.area_ge, s->row[i].r.max_abs_err, i };
+    qsort(p, n, sizeof *p, fpt_cmp);
+    /* Area per halving of the error between neighbours on the front, over
+     * the cheap half of the steps and the accurate half: the price of
+     * accuracy at either end (sums, so that one step that buys almost
+     * nothing does not swamp the figure). */
+    double sa[2] = { 0, 0 }, sh[2] = { 0, 0 };
+    size_t nsteps = 0, k2 = 0;
+    for (size_t k = 1; k < n; k++) nsteps += p[k].y > 0 && p[k - 1].y > p[k].y;
+    for (size_t k = 1; k < n; k++) {
+        double e0 = p[k - 1].y, e1 = p[k].y;
+        if (!(e1 > 0 && e0 > e1)) continue;
+        int half = 2 * k2++ >= nsteps;
+        sa[half] += p[k].x - p[k - 1].x;
+        sh[half] += log2(e0 / e1);
+    }
+    if (sh[0] + sh[1] > 0) {
+        fprintf(f, "  along it, halving max |e| costs %.0f GE on average", (sa[0] + sa[1]) / (sh[0] + sh[1]));
+        if (sh[0] > 0 && sh[1] > 0)
+            fprintf(f, " (%.0f GE in its cheaper half, %.0f GE in its more accurate half)", sa[0] / sh[0], sa[1] / sh[1]);
+        fputc('\n', f);
+    }
+    free(p);
+}
+
+static void fmt_list(FILE *f, const unit_desc *u, const unit_fmts *fm, const char *pre, const char *sep)
+{
+    char fb[SIM_FMT_STRLEN];
+    for (int i = 0; i < u->nsigs; i++) fprintf(f, "%s%s%s=%s", i ? sep : "", pre, u->sigs[i].name, sim_fmt_str(fm->f[i], fb));
+}
+
+static const char *metric_name(tb_target_kind k) { return k == TB_TARGET_NMSE ? "NMSE" : "max |e|"; }
+static double metric_of(tb_target_kind k, const tb_result *r) { return k == TB_TARGET_NMSE ? r->nmse : r->max_abs_err; }
+
+static void print_target(FILE *f, const tb_sweep *s, const target_info *t)
+{
+    for (size_t g = 0; g < s->ngroups; g++) {
+        const tb_target_res *x = &t->res[g];
+        char gl[200];
+        tb_sweep_group_label(s, g, gl, sizeof gl);
+        fprintf(f, "target %s <= %g%s%s%s: ", metric_name(t->kind), t->value, *gl ? " (" : "", gl, *gl ? ")" : "");
+        if (!x->met) {
+            fprintf(f, "no width in %d..%d meets it within the error bound\n", s->spec.wlo, s->spec.whi);
+            continue;
+        }
+        const tb_result *ru = &s->row[x->uniform].r;
+        double saved = ru->area_ge - x->r.area_ge;
+        fprintf(f, "uniform width %d: %.1f GE, %s %.4g; per-signal formats: %.1f GE, %s %.4g, saving %.1f GE (%.1f%%), %zu runs\n",
+                s->cfg[x->uniform].cfg.width, ru->area_ge, metric_name(t->kind), metric_of(t->kind, ru), x->r.area_ge,
+                metric_name(t->kind), metric_of(t->kind, &x->r), saved, ru->area_ge > 0 ? 100 * saved / ru->area_ge : 0.0,
+                x->runs);
+        fputs("  formats:", f);
+        fmt_list(f, s->spec.u, &x->fmts, " ", "");
+        fputc('\n', f);
+    }
+}
+
+static void jstr_fmts(FILE *f, const unit_desc *u, const unit_fmts *fm)
+{
+    char fb[SIM_FMT_STRLEN];
+    fputc('{', f);
+    for (int i = 0; i < u->nsigs; i++) fprintf(f, "%s\"%s\": \"%s\"", i ? ", " : "", u->sigs[i].name, sim_fmt_str(fm->f[i], fb));
+    fputc('}', f);
+}
+
+static void jnum(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, "%.17g", v);
+    else fputs("null", f);
+}
+
+static void jdesign(FILE *f, const unit_desc *u, const unit_fmts *fm, const tb_result *r)
+{
+    fputs("{\"formats\": ", f);
+    jstr_fmts(f, u, fm);
+    fputs(", \"max_abs_err\": ", f); jnum(f, r->max_abs_err);
+    fputs(", \"rms_err\": ", f); jnum(f, r->rms_err);
+    fputs(", \"nmse\": ", f); jnum(f, r->nmse);
+    fputs(", \"area_ge\": ", f); jnum(f, r->area_ge);
+    fprintf(f, ", \"overflows\": %llu, \"within_bound\": %s}", (unsigned long long)r->overflows,
+            r->within_bound ? "true" : "false");
+}
+
+static int write_target_json(const tb_sweep *s, const target_info *t, const char *path)
+{
+    const unit_desc *u = s->spec.u;
+    tb_afile a;
+    char err[600];
+    if (tb_afile_open(&a, path, err, sizeof err)) return cli_usage_error("%s", err);
+    FILE *f = a.f;
+    fprintf(f, "{\n  \"unit\": \"%s\",\n  \"target\": {\"metric\": \"%s\", \"value\": ", u->name,
+            t->kind == TB_TARGET_NMSE ? "nmse" : "max_abs_err");
+    jnum(f, t->value);
+    fputs("},\n  \"rule\": \"metric <= target, every output within its bound, no more overflows than the uniform design\",\n"
+          "  \"groups\": [", f);
+    for (size_t g = 0; g < s->ngroups; g++) {
+        const tb_target_res *x = &t->res[g];
+        const unit_cfg *c = &s->cfg[g].cfg;
+        fprintf(f, "%s\n    {\"schedule\": \"%s\", \"params\": {", g ? "," : "", u->sched[c->schedule].name);
+        for (int i = 0; i < u->nparams; i++) {
+            char v[64];
+            unit_param_get(&u->params[i], c, v, sizeof v);
+            fprintf(f, "%s\"%s\": \"%s\"", i ? ", " : "", u->params[i].name, v);
+        }
+        fprintf(f, "}, \"round\": \"%s\", \"overflow\": \"%s\",\n     \"met\": %s", sim_round_name(c->rnd),
+                sim_ovf_name(c->ovf), x->met ? "true" : "false");
+        if (x->met) {
+            const tb_result *ru = &s->row[x->uniform].r;
+            fprintf(f, ",\n     \"uniform\": {\"width\": %d, \"design\": ", s->cfg[x->uniform].cfg.width);
+            jdesign(f, u, &s->cfg[x->uniform].fmts, ru);
+            fputs("},\n     \"chosen\": ", f);
+            jdesign(f, u, &x->fmts, &x->r);
+            fputs(",\n     \"area_saved_ge\": ", f); jnum(f, ru->area_ge - x->r.area_ge);
+            fputs(", \"area_saved_pct\": ", f);
+            jnum(f, ru->area_ge > 0 ? 100 * (ru->area_ge - x->r.area_ge) / ru->area_ge : 0);
+            fprintf(f, ", \"runs\": %zu,\n     \"run_args\": \"--round %s --overflow %s", x->runs, sim_round_name(c->rnd),
+                    sim_ovf_name(c->ovf));
+            fmt_list(f, u, &x->fmts, " --fmt ", "");
+            fputc('"', f);
+        }
+        fputc('}', f);
+    }
+    fputs("\n  ]\n}\n", f);
+    if (tb_afile_commit(&a, err, sizeof err)) return cli_usage_error("%s", err);
+    return 0;
+}
+
+/* ---------------------------------------------------------------- sweep */
+
+typedef struct sweep_args {
+    cli_unit_opts o;
+    tb_sweep_spec sp;
+    const char *dir;
+    int threads, shard_k, shard_n;
+    long long nvec;
+    unsigned long long seed;
+    target_info t;
+} sweep_args;
+
+static int parse_sweep(int argc, char **argv, sweep_args *a)
+{
+    memset(a, 0, sizeof *a);
+    a->threads = 1;
+    a->nvec = -1;
+    a->seed = 1;
+    if (argc < 2 || argv[1][0] == '-') return cli_usage_error("sweep: which unit? (shadesim list)");
+    if (cli_unit_select(&a->o, argv[1])) return CLI_USAGE;
+    const unit_desc *u = a->o.u;
+    tb_sweep_spec *sp = &a->sp;
+    sp->u = u;
+    int have_w = 0;
+    for (int i = 2; i < argc; i++) {
+        const char *v = NULL, *name = argv[i];
+        char items[TB_SWEEP_MAX_VALUES][32];
+        int n;
+        long x;
+        if (opt("--widths", argc, argv, &i, &v)) {
+            if (!v) return cli_usage_error("--widths needs LO:HI");
+            if (parse_widths(v, &sp->wlo, &sp->whi)) return CLI_USAGE;
+            have_w = 1;
+        } else if (opt("--width", argc, argv, &i, &v)) {
+            return cli_usage_error("sweep: use --widths LO:HI (or --widths W for one width)");
+        } else if (opt("--round", argc, argv, &i, &v)) {
+            if (!v || split_list("--round", v, v, items, 3, &n)) return v ? CLI_USAGE : cli_usage_error("--round needs a value");
+            for (int k = 0; k < n; k++)
+                if (sim_round_parse(items[k], &sp->rnd[k])) return cli_usage_error("--round %s: '%s' is not trunc, half-up or even", v, items[k]);
+            sp->nrnd = n;
+        } else if (opt("--overflow", argc, argv, &i, &v)) {
+            if (!v || split_list("--overflow", v, v, items, 2, &n)) return v ? CLI_USAGE : cli_usage_error("--overflow needs a value");
+            for (int k = 0; k < n; k++)
+                if (sim_ovf_parse(items[k], &sp->ovf[k])) return cli_usage_error("--overflow %s: '%s' is not wrap or sat", v, items[k]);
+            sp->novf = n;
+        } else if (opt("--schedule", argc, argv, &i, &v)) {
+            if (!v || split_list("--schedule", v, v, items, UNIT_MAX_SCHED, &n)) return v ? CLI_USAGE : cli_usage_error("--schedule needs a value");
+            for (int k = 0; k < n; k++)
+                if ((sp->sched[k] = unit_sched_find(u, items[k])) < 0) {
+                    char list[200] = "";
+                    for (int j = 0; j < u->nsched; j++) {
+                        strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
+                        strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
+                    }
+                    return cli_usage_error("--schedule %s: unit %s has schedules: %s", items[k], u->name, list);
+                }
+            sp->nsched = n;
+        } else if (opt("--param", argc, argv, &i, &v)) {
+            if (!v) return cli_usage_error("--param needs NAME=VALUES");
+            const char *eq = strchr(v, '=');
+            if (!eq) return cli_usage_error("--param %s: expected NAME=V1,V2,...", v);
+            char pname[64], err[300];
+            snprintf(pname, sizeof pname, "%.*s", (int)(eq - v), v);
+            int pi = -1;
+            for (int k = 0; k < u->nparams; k++)
+                if (!strcmp(u->params[k].name, pname)) pi = k;
+            unit_cfg scratch = a->o.cfg;
+            if (pi < 0 && unit_param_set(u, &scratch, pname, eq + 1, err, sizeof err)) return cli_usage_error("--param %s: %s", v, err);
+            for (int k = 0; k < sp->npax; k++)
+                if (sp->pax[k].param == pi) return cli_usage_error("--param %s: %s is given twice", v, pname);
+            tb_sweep_paxis *ax = &sp->pax[sp->npax];
+            if (split_list("--param", v, eq + 1, items, TB_SWEEP_MAX_VALUES, &n)) return CLI_USAGE;
+            for (int k = 0; k < n; k++) {
+                if (unit_param_set(u, &scratch, pname, items[k], err, sizeof err)) return cli_usage_error("--param %s: %s", v, err);
+                memcpy(ax->val[k], items[k], sizeof ax->val[k]);
+            }
+            ax->param = pi;
+            ax->n = n;
+            sp->npax++;
+        } else if (opt("-j", argc, argv, &i, &v)) {
+            if (!v || parse_long(v, 1, 256, &x)) return cli_usage_error("-j %s: expected 1..256 threads", v ? v : "");
+            a->threads = (int)x;
+        } else if (opt("--shard", argc, argv, &i, &v)) {
+            long k, m;
+            const char *sl = v ? strchr(v, '/') : NULL;
+            char kb[32];
+            if (!sl) return cli_usage_error("--shard %s: expected K/N, e.g. 1/4", v ? v : "");
+            snprintf(kb, sizeof kb, "%.*s", (int)(sl - v < 31 ? sl - v : 31), v);
+            if (parse_long(kb, 0, 1000000, &k) || parse_long(sl + 1, 0, 1000000, &m))
+                return cli_usage_error("--shard %s: expected K/N with whole numbers, e.g. 1/4", v);
+            if (m < 1 || k < 1 || k > m) return cli_usage_error("--shard %s: K must be 1..N (shards are numbered from 1)", v);
+            a->shard_k = (int)k;
+            a->shard_n = (int)m;
+        } else if (opt("-o", argc, argv, &i, &v)) {
+            if (!v || !*v) return cli_usage_error("-o needs a folder");
+            a->dir = v;
+        } else if (opt("-n", argc, argv, &i, &v)) {
+            if (!v || parse_long(v, 1, 10000000, &x)) return cli_usage_error("-n %s: expected 1..10000000 vectors", v ? v : "");
+            a->nvec = x;
+        } else if (opt("--seed", argc, argv, &i, &v)) {
+            char *end;
+            if (!v || !*v || *v == '-') return cli_usage_error("--seed needs a whole number");
+            a->seed = strtoull(v, &end, 10);
+            if (*end) return cli_usage_error("--seed %s: expected a whole number", v);
+        } else if (opt("--target-error", argc, argv, &i, &v) || opt("--target-nmse", argc, argv, &i, &v)) {
+            int nmse = strstr(name, "nmse") != NULL;
+            if (a->t.on) return cli_usage_error("sweep: one target at a time (--target-error or --target-nmse)");
+            if (!v || parse_real(v, &a->t.value)) return cli_usage_error("%s %s: expected a number >= 0, e.g. 1e-3", nmse ? "--target-nmse" : "--target-error", v ? v : "");
+            a->t.on = 1;
+            a->t.kind = nmse ? TB_TARGET_NMSE : TB_TARGET_MAX_ABS_ERR;
+        } else {
+            int r = cli_unit_option(&a->o, argc, argv, &i);
+            if (r < 0) return CLI_USAGE;
+            if (!r) return cli_usage_error("sweep: unknown option '%s' (see shadesim sweep --help)", argv[i]);
+        }
+    }
+    if (!have_w) return cli_usage_error("sweep: --widths LO:HI is required, e.g. --widths 8:24");
+    if (a->nvec > 0 && a->o.vectors) return cli_usage_error("sweep: -n makes vectors; --vectors reads them: give one");
+    if (a->shard_n && a->t.on) return cli_usage_error("sweep: the target search needs the whole sweep, not a shard");
+    sp->base = a->o.cfg;
+    if (!sp->nsched) { sp->nsched = 1; sp->sched[0] = a->o.cfg.schedule; }
+    if (!sp->nrnd) { sp->nrnd = 1; sp->rnd[0] = a->o.cfg.rnd; }
+    if (!sp->novf) { sp->novf = 1; sp->ovf[0] = a->o.cfg.ovf; }
+    sp->fmt = a->o.fmt;
+    sp->nfmt = a->o.nfmt;
+    return 0;
+}
+
+/* Vectors per parameter set: each set's own (a parameter like L changes
+ * the outputs), loaded once and shared read-only by the threads. */
+static int load_vectors(sweep_args *a, tb_sweep *s, vec_set *sets)
+{
+    for (size_t p = 0; p < s->npsets; p++) {
+        cli_unit_opts o = a->o;
+        o.cfg = *tb_sweep_pset_cfg(s, p);
+        if (a->nvec > 0) {
+            char err[600];
+            if (cli_make_vectors(o.u, &o.cfg, (size_t)a->nvec, a->seed, &sets[p], err, sizeof err)) return cli_usage_error("%s", err);
+        } else if (cli_load_vectors(&o, &sets[p])) {
+            return CLI_USAGE;
+        }
+        s->vs[p] = &sets[p];
+    }
+    return 0;
+}
+
+/* Files of an earlier sweep in DIR that this one does not write would
+ * contradict its sweep.csv: they go. */
+static void remove_stale(const char *dir, const char *name)
+{
+    char p[4200];
+    snprintf(p, sizeof p, "%s/%s", dir, name);
+    unlink(p);
+}
+
+static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
+{
+    char path[4200], err[600], files[600] = "sweep.csv";
+    snprintf(path, sizeof path, "%s/sweep.csv", a->dir);
+    if (tb_sweep_write_csv(s, path, 0, 0, err, sizeof err)) return cli_usage_error("%s", err);
+    if (a->t.on) {
+        a->t.res = calloc(s->ngroups, sizeof *a->t.res);
+        if (!a->t.res) return cli_usage_error("target search: out of memory");
+        for (size_t g = 0; g < s->ngroups; g++) {
+            if (tty) fprintf(stderr, "\rshadesim sweep %s: target search, settings %zu/%zu \033[K", s->spec.u->name, g + 1, s->ngroups);
+            int bad = tb_sweep_target(s, g, a->t.kind, a->t.value, a->threads, &a->t.res[g], err, sizeof err);
+            if (tty) fputs("\r\033[K", stderr);
+            if (bad) return cli_usage_error("%s", err);
+        }
+    }
+    size_t nfront = 0;
+    unsigned char *on = front_of(s, &nfront);
+    int drawn = 0, rc = 0;
+    if (!on) return cli_usage_error("sweep: out of memory");
+    if (chart_error_width(s, &a->t, a->dir, files, sizeof files) ||
+        chart_area_error(s, on, &a->t, a->dir, files, sizeof files) ||
+        chart_cycles_error(s, a->dir, files, sizeof files, &drawn)) {
+        free(on);
+        return CLI_USAGE;
+    }
+    if (!drawn) remove_stale(a->dir, "cycles_vs_error.svg");
+    if (a->t.on) {
+        snprintf(path, sizeof path, "%s/target.json", a->dir);
+        if (write_target_json(s, &a->t, path)) { free(on); return CLI_USAGE; }
+        strncat(files, ", target.json", sizeof files - strlen(files) - 1);
+    } else {
+        remove_stale(a->dir, "target.json");
+    }
+    strncat(files, ", summary.txt", sizeof files - strlen(files) - 1);
+
+    /* The summary, printed and saved: the same text. */
+    char *text = NULL;
+    size_t tlen = 0;
+    FILE *m = open_memstream(&text, &tlen);
+    if (!m) { free(on); return cli_usage_error("sweep: out of memory"); }
+    fprintf(m, "sweep %s: %zu configurations (widths %d..%d", s->spec.u->name, s->n, s->spec.wlo, s->spec.whi);
+    if (s->ngroups > 1) fprintf(m, " x %zu settings", s->ngroups);
+    fprintf(m, "), %zu vectors", s->vs[0]->n_rows);
+    if (s->npsets > 1) fputs(" per parameter set", m);
+    fprintf(m, ", sweep_id %016llx\n", (unsigned long long)s->id);
+    print_table(m, s, on);
+    print_front(m, s, on, nfront);
+    if (a->t.on) print_target(m, s, &a->t);
+    fclose(m);
+    free(on);
+    fputs(text, stdout);
+    printf("wrote %s/: %s (%.2f s on %d thread%s)\n", a->dir, files, now_s() - t0, a->threads, a->threads > 1 ? "s" : "");
+    snprintf(path, sizeof path, "%s/summary.txt", a->dir);
+    tb_afile af;
+    if (tb_afile_open(&af, path, err, sizeof err)) rc = cli_usage_error("%s", err);
+    else {
+        fputs(text, af.f);
+        if (tb_afile_commit(&af, err, sizeof err)) rc = cli_usage_error("%s", err);
+    }
+    free(text);
+    return rc;
+}
+
+int cli_sweep(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (is_help(argv[i])) { fputs(sweep_help, stdout); return CLI_OK; }
+    sweep_args a;
+    if (parse_sweep(argc, argv, &a)) return CLI_USAGE;
+    char defdir[300];
+    if (!a.dir) {
+        snprintf(defdir, sizeof defdir, "out/sweep-%s", a.o.u->name);
+        a.dir = defdir;
+    }
+    tb_sweep s;
+    char err[600];
+    if (tb_sweep_init(&s, &a.sp, err, sizeof err)) return cli_usage_error("%s", err);
+    vec_set *sets = calloc(s.npsets, sizeof *sets);
+    int rc = CLI_OK;
+    if (!sets) { tb_sweep_free(&s); return cli_usage_error("sweep: out of memory"); }
+    /* Everything that can be refused is refused before the long part. */
+    if (load_vectors(&a, &s, sets) || make_dir(a.dir)) { rc = CLI_USAGE; goto done; }
+    tb_sweep_fingerprint(&s);
+
+    progress pr = { a.o.u->name, now_s(), 0, 0 };
+    int tty = cli_stderr_tty();
+    size_t failed = tb_sweep_run(&s, a.threads, a.shard_k, a.shard_n, tty ? on_progress : NULL, &pr);
+    progress_clear(&pr);
+    double secs = now_s() - pr.t0;
+    for (size_t i = 0; i < s.n; i++)
+        if (s.row[i].status != TB_OK && s.row[i].status != TB_SWEEP_NOT_RUN)
+            fprintf(stderr, "shadesim: %s width %d (configuration %zu): %s\n", a.o.u->name, s.cfg[i].cfg.width, i, s.row[i].err);
+    if (a.shard_n) {
+        char path[4200];
+        snprintf(path, sizeof path, "%s/sweep-%d-of-%d.csv", a.dir, a.shard_k, a.shard_n);
+        if (tb_sweep_write_csv(&s, path, a.shard_k, a.shard_n, err, sizeof err)) rc = cli_usage_error("%s", err);
+        else {
+            size_t mine = 0;
+            for (size_t i = 0; i < s.n; i++) mine += (size_t)tb_sweep_in_shard(i, a.shard_k, a.shard_n);
+            printf("sweep %s shard %d/%d: %zu of %zu configurations, sweep_id %016llx\nwrote %s (%.2f s)\n", a.o.u->name,
+                   a.shard_k, a.shard_n, mine, s.n, (unsigned long long)s.id, path, secs);
+        }
+    } else {
+        rc = outputs(&a, &s, pr.t0, tty);
+    }
+    if (rc == CLI_OK && failed) rc = CLI_FAIL;
+done:
+    for (size_t p = 0; p < s.npsets; p++) vec_set_free(&sets[p]);
+    free(sets);
+    free(a.t.res);
+    tb_sweep_free(&s);
+    return rc;
+}
+
+/* ---------------------------------------------------------------- merge */
+
+int cli_merge(int argc, char **argv)
+{
+    const char *out = NULL;
+    const char **in = calloc((size_t)argc, sizeof *in);
+    int n = 0;
+    if (!in) return cli_usage_error("merge: out of memory");
+    for (int i = 1; i < argc; i++) {
+        const char *v;
+        if (is_help(argv[i])) { free(in); fputs(merge_help, stdout); return CLI_OK; }
+        if (opt("-o", argc, argv, &i, &v)) {
+            if (!v || !*v) { free(in); return cli_usage_error("-o needs a file name"); }
+            out = v;
+        } else if (argv[i][0] == '-' && argv[i][1]) {
+            free(in);
+            return cli_usage_error("merge: unknown option '%s' (see shadesim merge --help)", argv[i]);
+        } else in[n++] = argv[i];
+    }
+    int rc = CLI_OK;
+    char err[800];
+    if (!n) rc = cli_usage_error("merge: which CSV files? (shadesim merge A.csv B.csv -o OUT.csv)");
+    else if (!out) rc = cli_usage_error("merge: -o OUT.csv is required");
+    else if (tb_sweep_merge(in, n, out, err, sizeof err)) rc = cli_usage_error("%s", err);
+    free(in);
+    return rc;
+}

@@ -1,0 +1,682 @@
+/* tb_sweep.c - the sweep engine: configurations, threads, shards, the CSV,
+ * merging shards, and the per-signal format search. */
+#include "testbench/tb_sweep.h"
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* ------------------------------------------------------------- utilities */
+
+int tb_afile_open(tb_afile *a, const char *path, char *err, size_t errlen)
+{
+    size_t n = strlen(path) + 48;
+    int fd = -1;
+    a->f = NULL;
+    a->path = path;
+    a->tmp = malloc(n);
+    if (!a->tmp) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
+    /* Not mkstemp: its files are 0600, and an output file should get the
+     * umask's permissions like any other. */
+    for (int i = 0; i < 100 && fd < 0; i++) {
+        snprintf(a->tmp, n, "%s.%ld.%d.tmp", path, (long)getpid(), i);
+        fd = open(a->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        if (fd < 0 && errno != EEXIST) break;
+    }
+    if (fd >= 0) a->f = fdopen(fd, "w");
+    if (!a->f) {
+        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
+        if (fd >= 0) { close(fd); unlink(a->tmp); }
+        free(a->tmp);
+        a->tmp = NULL;
+        return -1;
+    }
+    return 0;
+}
+
+int tb_afile_commit(tb_afile *a, char *err, size_t errlen)
+{
+    int e = ferror(a->f) ? EIO : 0;
+    if (!e && fflush(a->f)) e = errno;
+    /* Flushed to disk before the rename: after a crash the path holds the
+     * old file or the new one, never a short one. */
+    if (!e && fsync(fileno(a->f)) && errno != EINVAL) e = errno;
+    if (fclose(a->f) && !e) e = errno;
+    a->f = NULL;
+    if (!e && rename(a->tmp, a->path)) e = errno;
+    if (e) {
+        snprintf(err, errlen, "%s: write failed: %s", a->path, strerror(e));
+        unlink(a->tmp);
+    }
+    free(a->tmp);
+    a->tmp = NULL;
+    return e ? -1 : 0;
+}
+
+void tb_afile_abort(tb_afile *a)
+{
+    if (a->f) fclose(a->f);
+    if (a->tmp) { unlink(a->tmp); free(a->tmp); }
+    a->f = NULL;
+    a->tmp = NULL;
+}
+
+typedef struct par_ctx {
+    size_t n, next;
+    pthread_mutex_t mu;
+    void (*fn)(void *, size_t);
+    void *ctx;
+} par_ctx;
+
+static void *par_worker(void *arg)
+{
+    par_ctx *p = arg;
+    for (;;) {
+        pthread_mutex_lock(&p->mu);
+        size_t i = p->next < p->n ? p->next++ : p->n;
+        pthread_mutex_unlock(&p->mu);
+        if (i >= p->n) return NULL;
+        p->fn(p->ctx, i);
+    }
+}
+
+void tb_par_for(size_t n, int threads, void (*fn)(void *ctx, size_t i), void *ctx)
+{
+    if (threads < 1) threads = 1;
+    if ((size_t)threads > n) threads = (int)n;
+    if (threads <= 1) {
+        for (size_t i = 0; i < n; i++) fn(ctx, i);
+        return;
+    }
+    par_ctx p = { n, 0, PTHREAD_MUTEX_INITIALIZER, fn, ctx };
+    pthread_t *th = malloc((size_t)(threads - 1) * sizeof *th);
+    int started = 0;
+    /* If threads cannot be made, fewer (down to this one) do the work. */
+    while (th && started < threads - 1 && !pthread_create(&th[started], NULL, par_worker, &p)) started++;
+    par_worker(&p);
+    for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
+    free(th);
+    pthread_mutex_destroy(&p.mu);
+}
+
+/* ------------------------------------------------------- configurations */
+
+int tb_sweep_in_shard(size_t i, int k, int n)
+{
+    return n <= 0 || i % (size_t)n == (size_t)(k - 1);
+}
+
+int tb_sweep_init(tb_sweep *s, const tb_sweep_spec *sp, char *err, size_t errlen)
+{
+    memset(s, 0, sizeof *s);
+    s->spec = *sp;
+    const unit_desc *u = sp->u;
+    size_t ng = (size_t)sp->nsched * (size_t)sp->nrnd * (size_t)sp->novf, np = 1;
+    for (int a = 0; a < sp->npax; a++) np *= (size_t)sp->pax[a].n;
+    ng *= np;
+    size_t nw = (size_t)(sp->whi - sp->wlo + 1);
+    if (ng == 0 || sp->whi < sp->wlo) { snprintf(err, errlen, "sweep: nothing to run"); return -1; }
+    if (ng > TB_SWEEP_MAX_CONFIGS / nw) {
+        snprintf(err, errlen, "sweep: %zu widths x %zu settings is more than %d configurations",
+                 nw, ng, TB_SWEEP_MAX_CONFIGS);
+        return -1;
+    }
+    s->ngroups = ng;
+    s->npsets = np;
+    s->n = nw * ng;
+    s->cfg = calloc(s->n, sizeof *s->cfg);
+    s->row = calloc(s->n, sizeof *s->row);
+    s->vs = calloc(np, sizeof *s->vs);
+    if (!s->cfg || !s->row || !s->vs) {
+        snprintf(err, errlen, "sweep: out of memory for %zu configurations", s->n);
+        tb_sweep_free(s);
+        return -1;
+    }
+    for (size_t i = 0; i < s->n; i++) {
+        tb_sweep_cfg *c = &s->cfg[i];
+        size_t g = i % ng, pset = 0, mul = 1;
+        c->group = g;
+        c->cfg = sp->base;
+        c->cfg.width = sp->wlo + (int)(i / ng);
+        /* Mixed radix, the last axis fastest: overflow, round, params
+         * (last given fastest), schedule. */
+        c->cfg.ovf = sp->ovf[g % (size_t)sp->novf]; g /= (size_t)sp->novf;
+        c->cfg.rnd = sp->rnd[g % (size_t)sp->nrnd]; g /= (size_t)sp->nrnd;
+        for (int a = sp->npax - 1; a >= 0; a--) {
+            const tb_sweep_paxis *ax = &sp->pax[a];
+            size_t v = g % (size_t)ax->n;
+            g /= (size_t)ax->n;
+            pset += v * mul;
+            mul *= (size_t)ax->n;
+            if (unit_param_set(u, &c->cfg, u->params[ax->param].name, ax->val[v], err, errlen)) {
+                tb_sweep_free(s);
+                return -1;
+            }
+        }
+        c->cfg.schedule = sp->sched[g];
+        c->pset = pset;
+        if (tb_formats(u, &c->cfg, sp->fmt, sp->nfmt, &c->fmts, err, errlen)) { tb_sweep_free(s); return -1; }
+        s->row[i].status = TB_SWEEP_NOT_RUN;
+    }
+    return 0;
+}
+
+void tb_sweep_free(tb_sweep *s)
+{
+    free(s->cfg);
+    free(s->row);
+    free(s->vs);
+    s->cfg = NULL;
+    s->row = NULL;
+    s->vs = NULL;
+}
+
+const unit_cfg *tb_sweep_pset_cfg(const tb_sweep *s, size_t p)
+{
+    /* The parameter sets all occur within the first width's groups. */
+    for (size_t i = 0; i < s->ngroups; i++)
+        if (s->cfg[i].pset == p) return &s->cfg[i].cfg;
+    return NULL;
+}
+
+void tb_sweep_group_label(const tb_sweep *s, size_t group, char *buf, size_t len)
+{
+    const tb_sweep_spec *sp = &s->spec;
+    const unit_cfg *c = &s->cfg[group].cfg;
+    size_t k = 0;
+    buf[0] = 0;
+#define ADD(...) do { if (k < len) k += (size_t)snprintf(buf + k, len - k, __VA_ARGS__); } while (0)
+    if (sp->nsched > 1) ADD("%s%s", k ? " " : "", sp->u->sched[c->schedule].name);
+    for (int a = 0; a < sp->npax; a++) {
+        if (sp->pax[a].n < 2) continue;
+        char v[64];
+        const unit_param *p = &sp->u->params[sp->pax[a].param];
+        unit_param_get(p, c, v, sizeof v);
+        ADD("%s%s=%s", k ? " " : "", p->name, v);
+    }
+    if (sp->nrnd > 1) ADD("%s%s", k ? " " : "", sim_round_name(c->rnd));
+    if (sp->novf > 1) ADD("%s%s", k ? " " : "", sim_ovf_name(c->ovf));
+#undef ADD
+}
+
+/* ---------------------------------------------------------------- running */
+
+typedef struct run_job {
+    tb_sweep *s;
+    size_t *idx, total, done, failed;
+    pthread_mutex_t mu;
+    tb_sweep_progress_fn progress;
+    void *arg;
+} run_job;
+
+static void run_one(void *ctx, size_t k)
+{
+    run_job *j = ctx;
+    size_t i = j->idx[k];
+    const tb_sweep_cfg *c = &j->s->cfg[i];
+    tb_sweep_row *row = &j->s->row[i];
+    row->status = tb_run(j->s->spec.u, &c->cfg, &c->fmts, j->s->vs[c->pset], NULL, &row->r,
+                         row->err, sizeof row->err);
+    tb_result_free(&row->r);
+    pthread_mutex_lock(&j->mu);
+    j->done++;
+    if (row->status != TB_OK) j->failed++;
+    if (j->progress) j->progress(j->arg, j->done, j->total);
+    pthread_mutex_unlock(&j->mu);
+}
+
+size_t tb_sweep_run(tb_sweep *s, int threads, int shard_k, int shard_n,
+                    tb_sweep_progress_fn progress, void *arg)
+{
+    run_job j = { s, NULL, 0, 0, 0, PTHREAD_MUTEX_INITIALIZER, progress, arg };
+    j.idx = malloc(s->n * sizeof *j.idx);
+    if (!j.idx) {
+        for (size_t i = 0; i < s->n; i++)
+            if (tb_sweep_in_shard(i, shard_k, shard_n)) {
+                s->row[i].status = TB_FAIL;
+                snprintf(s->row[i].err, sizeof s->row[i].err, "out of memory");
+            }
+        return s->n;
+    }
+    for (size_t i = 0; i < s->n; i++)
+        if (tb_sweep_in_shard(i, shard_k, shard_n)) j.idx[j.total++] = i;
+    tb_par_for(j.total, threads, run_one, &j);
+    free(j.idx);
+    pthread_mutex_destroy(&j.mu);
+    return j.failed;
+}
+
+/* ----------------------------------------------------------- fingerprint */
+
+static uint64_t fnv(uint64_t h, const void *p, size_t n)
+{
+    const unsigned char *b = p;
+    for (size_t i = 0; i < n; i++) { h ^= b[i]; h *= 1099511628211ull; }
+    return h;
+}
+static uint64_t fnv_s(uint64_t h, const char *s) { return fnv(h, s, strlen(s) + 1); }
+
+/* The identity columns of configuration i: unit..overflow. */
+static void ident(FILE *f, const tb_sweep *s, size_t i)
+{
+    const unit_desc *u = s->spec.u;
+    const unit_cfg *c = &s->cfg[i].cfg;
+    fprintf(f, "%s,%s,%d", u->name, u->sched[c->schedule].name, c->width);
+    for (int p = 0; p < u->nparams; p++) {
+        char v[64];
+        unit_param_get(&u->params[p], c, v, sizeof v);
+        fprintf(f, ",%s", v);
+    }
+    fprintf(f, ",%s,%s", sim_round_name(c->rnd), sim_ovf_name(c->ovf));
+}
+
+void tb_sweep_fingerprint(tb_sweep *s)
+{
+    uint64_t h = 14695981039346656037ull;
+    char buf[2048], fb[SIM_FMT_STRLEN];
+    for (size_t i = 0; i < s->n; i++) {
+        FILE *m = fmemopen(buf, sizeof buf, "w");
+        if (m) { ident(m, s, i); fputc(0, m); fclose(m); }
+        buf[sizeof buf - 1] = 0;
+        h = fnv_s(h, buf);
+        for (int k = 0; k < s->spec.u->nsigs; k++) h = fnv_s(h, sim_fmt_str(s->cfg[i].fmts.f[k], fb));
+    }
+    for (size_t p = 0; p < s->npsets; p++) {
+        const vec_set *v = s->vs[p];
+        if (!v) continue;
+        h = fnv_s(h, v->unit);
+        for (int k = 0; k < v->n_in; k++) h = fnv_s(h, v->in_names[k]);
+        for (int k = 0; k < v->n_out; k++) h = fnv_s(h, v->out_names[k]);
+        h = fnv(h, &v->n_rows, sizeof v->n_rows);
+        h = fnv(h, v->data, v->n_rows * (size_t)(v->n_in + v->n_out) * sizeof *v->data);
+    }
+    s->id = h;
+}
+
+/* -------------------------------------------------------------------- CSV */
+
+/* Numbers as run --json prints them (%.17g reads back exactly), but a CSV
+ * can say inf and nan, which pandas and R read. */
+static void cnum(FILE *f, double v)
+{
+    if (isnan(v)) fputs(",nan", f);
+    else if (isinf(v)) fputs(v > 0 ? ",inf" : ",-inf", f);
+    else fprintf(f, ",%.17g", v);
+}
+
+static const char *const out_fields[] = { "max_abs_err", "mean_err", "rms_err", "nmse", "max_err_lsb",
+                                          "bound", "max_err_vs_ideal" };
+#define N_OUT_FIELDS 7
+#define N_FIGURES 14   /* vectors .. within_bound */
+
+static void csv_header(FILE *f, const unit_desc *u)
+{
+    fputs("config,n_configs,sweep_id,unit,schedule,width", f);
+    for (int p = 0; p < u->nparams; p++) fprintf(f, ",%s", u->params[p].name);
+    fputs(",round,overflow,status,vectors,beats_per_item,cycles,cycles_per_item,cycles_per_beat,latency,"
+          "max_abs_err,mean_err,rms_err,nmse,max_err_lsb,overflows,area_ge,within_bound", f);
+    for (int i = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_OUT)
+            for (int k = 0; k < N_OUT_FIELDS; k++) fprintf(f, ",%s_%s", u->sigs[i].name, out_fields[k]);
+    for (int i = 0; i < u->nsigs; i++) fprintf(f, ",fmt_%s", u->sigs[i].name);
+    fputs(",sim_clocks,sim_events,sim_delta_cycles,sim_process_runs\n", f);
+}
+
+static void csv_row(FILE *f, const tb_sweep *s, size_t i)
+{
+    const unit_desc *u = s->spec.u;
+    const tb_sweep_row *row = &s->row[i];
+    const tb_result *r = &row->r;
+    int ok = row->status == TB_OK, nout = unit_n_out(u);
+    char fb[SIM_FMT_STRLEN];
+    fprintf(f, "%zu,%zu,%016llx,", i, s->n, (unsigned long long)s->id);
+    ident(f, s, i);
+    fputs(ok ? ",ok" : ",failed", f);
+    if (ok) {
+        fprintf(f, ",%zu,%d,%llu", r->vectors, r->beats, (unsigned long long)r->cycles);
+        cnum(f, r->cycles_per_item);
+        cnum(f, r->cycles_per_beat);
+        fprintf(f, ",%llu", (unsigned long long)r->latency);
+        cnum(f, r->max_abs_err); cnum(f, r->mean_err); cnum(f, r->rms_err);
+        cnum(f, r->nmse); cnum(f, r->max_err_lsb);
+        fprintf(f, ",%llu", (unsigned long long)r->overflows);
+        cnum(f, r->area_ge);
+        fputs(r->within_bound ? ",true" : ",false", f);
+        for (int o = 0; o < nout; o++) {
+            const tb_metrics *m = &r->out[o];
+            cnum(f, m->max_abs_err); cnum(f, m->mean_err); cnum(f, m->rms_err); cnum(f, m->nmse);
+            cnum(f, m->max_err_lsb); cnum(f, m->bound); cnum(f, m->max_err_ideal);
+        }
+    } else {
+        /* A failed simulation has no figures: empty cells, not zeros. */
+        for (int k = 0; k < N_FIGURES + nout * N_OUT_FIELDS; k++) fputc(',', f);
+    }
+    for (int k = 0; k < u->nsigs; k++) fprintf(f, ",%s", sim_fmt_str(s->cfg[i].fmts.f[k], fb));
+    if (ok) fprintf(f, ",%llu,%llu,%llu,%llu\n", (unsigned long long)r->stats.clocks,
+                    (unsigned long long)r->stats.events, (unsigned long long)r->stats.deltas,
+                    (unsigned long long)r->stats.proc_runs);
+    else fputs(",,,,\n", f);
+}
+
+int tb_sweep_write_csv(const tb_sweep *s, const char *path, int shard_k, int shard_n,
+                       char *err, size_t errlen)
+{
+    tb_afile a;
+    if (tb_afile_open(&a, path, err, errlen)) return -1;
+    csv_header(a.f, s->spec.u);
+    for (size_t i = 0; i < s->n; i++)
+        if (tb_sweep_in_shard(i, shard_k, shard_n)) csv_row(a.f, s, i);
+    return tb_afile_commit(&a, err, errlen);
+}
+
+/* ------------------------------------------------------------------ merge */
+
+typedef struct mrow {
+    size_t idx;
+    int file, line;
+    const char *text;   /* the line, without its newline */
+} mrow;
+
+static int mrow_cmp(const void *a, const void *b)
+{
+    const mrow *x = a, *y = b;
+    if (x->idx != y->idx) return x->idx < y->idx ? -1 : 1;
+    if (x->file != y->file) return x->file - y->file;
+    return x->line - y->line;
+}
+
+/* The whole file, NUL-terminated; NULL with a message. */
+static char *slurp(const char *path, size_t *len, char *err, size_t errlen)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) { snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno)); return NULL; }
+    size_t cap = 1 << 16, n = 0;
+    char *b = malloc(cap);
+    for (;;) {
+        if (!b) { fclose(f); snprintf(err, errlen, "%s: out of memory", path); return NULL; }
+        n += fread(b + n, 1, cap - n - 1, f);
+        if (n < cap - 1) break;
+        char *nb = realloc(b, cap * 2);
+        if (!nb) free(b);
+        b = nb;
+        cap *= 2;
+    }
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) { free(b); snprintf(err, errlen, "%s: read error", path); return NULL; }
+    b[n] = 0;
+    if (strlen(b) != n) { free(b); snprintf(err, errlen, "%s: not a text file (NUL byte)", path); return NULL; }
+    *len = n;
+    return b;
+}
+
+static size_t count_commas(const char *s)
+{
+    size_t n = 0;
+    for (; *s; s++) n += *s == ',';
+    return n;
+}
+
+/* Field k (0-based) of a line into buf. */
+static void field(const char *line, int k, char *buf, size_t len)
+{
+    while (k-- > 0 && (line = strchr(line, ','))) line++;
+    if (!line) { buf[0] = 0; return; }
+    size_t n = strcspn(line, ",");
+    snprintf(buf, len, "%.*s", (int)(n < len ? n : len - 1), line);
+}
+
+static int parse_index(const char *s, size_t *v)
+{
+    if (!*s || strspn(s, "0123456789") != strlen(s) || strlen(s) > 15) return -1;
+    *v = (size_t)strtoull(s, NULL, 10);
+    return 0;
+}
+
+int tb_sweep_merge(const char *const *paths, int n, const char *out, char *err, size_t errlen)
+{
+    char **text = calloc((size_t)n, sizeof *text);
+    mrow *rows = NULL;
+    size_t nrows = 0, cap = 0, total = 0;
+    const char *header = NULL;
+    char id[64] = "";
+    int rc = -1;
+    if (!text) { snprintf(err, errlen, "merge: out of memory"); return -1; }
+    for (int fi = 0; fi < n; fi++) {
+        size_t len;
+        const char *p = paths[fi];
+        if (!(text[fi] = slurp(p, &len, err, errlen))) goto done;
+        char *line = text[fi];
+        for (int ln = 1; *line; ln++) {
+            char *nl = strchr(line, '\n');
+            if (nl) *nl = 0;
+            char *next = nl ? nl + 1 : line + strlen(line);
+            if (ln == 1) {
+                if (strncmp(line, "config,n_configs,sweep_id,", 26)) {
+                    snprintf(err, errlen, "%s:1: not a shadesim sweep CSV (header should start config,n_configs,sweep_id)", p);
+                    goto done;
+                }
+                if (!header) header = line;
+                else if (strcmp(header, line)) {
+                    snprintf(err, errlen, "%s:1: header differs from %s's (another unit or version?)", p, paths[0]);
+                    goto done;
+                }
+                line = next;
+                continue;
+            }
+            if (count_commas(line) != count_commas(header)) {
+                snprintf(err, errlen, "%s:%d: %zu fields, the header has %zu", p, ln, count_commas(line) + 1,
+                         count_commas(header) + 1);
+                goto done;
+            }
+            char f0[32], f1[32], f2[64];
+            size_t idx, tot;
+            field(line, 0, f0, sizeof f0);
+            field(line, 1, f1, sizeof f1);
+            field(line, 2, f2, sizeof f2);
+            if (parse_index(f0, &idx) || parse_index(f1, &tot) || idx >= tot) {
+                snprintf(err, errlen, "%s:%d: bad configuration index '%s' of '%s'", p, ln, f0, f1);
+                goto done;
+            }
+            if (!nrows && !total) { total = tot; snprintf(id, sizeof id, "%s", f2); }
+            if (tot != total || strcmp(id, f2)) {
+                snprintf(err, errlen, "%s:%d: row of another sweep (%s of %s configurations; expected %s of %zu)",
+                         p, ln, f2, f1, id, total);
+                goto done;
+            }
+            if (nrows == cap) {
+                cap = cap ? cap * 2 : 256;
+                mrow *nr = realloc(rows, cap * sizeof *rows);
+                if (!nr) { snprintf(err, errlen, "merge: out of memory"); goto done; }
+                rows = nr;
+            }
+            rows[nrows++] = (mrow){ idx, fi, ln, line };
+            line = next;
+        }
+        if (!header || text[fi][0] == 0) { snprintf(err, errlen, "%s: empty file", p); goto done; }
+    }
+    if (!nrows) { snprintf(err, errlen, "merge: the files hold no rows"); goto done; }
+    qsort(rows, nrows, sizeof *rows, mrow_cmp);
+    for (size_t k = 1; k < nrows; k++)
+        if (rows[k].idx == rows[k - 1].idx) {
+            snprintf(err, errlen, "configuration %zu twice: %s:%d and %s:%d", rows[k].idx,
+                     paths[rows[k - 1].file], rows[k - 1].line, paths[rows[k].file], rows[k].line);
+            goto done;
+        }
+    if (nrows != total) {
+        size_t miss = 0, k = 0;
+        while (k < nrows && rows[k].idx == miss) { k++; miss++; }
+        snprintf(err, errlen, "%zu of %zu configurations missing (the first is configuration %zu): a shard not given?",
+                 total - nrows, total, miss);
+        goto done;
+    }
+    tb_afile a;
+    if (tb_afile_open(&a, out, err, errlen)) goto done;
+    fprintf(a.f, "%s\n", header);
+    for (size_t k = 0; k < nrows; k++) fprintf(a.f, "%s\n", rows[k].text);
+    rc = tb_afile_commit(&a, err, errlen);
+done:
+    for (int fi = 0; fi < n; fi++) free(text[fi]);
+    free(text);
+    free(rows);
+    return rc;
+}
+
+/* ---------------------------------------------------------- target search */
+
+int tb_target_holds(const tb_result *r, int status, tb_target_kind k, double target, uint64_t max_ovf)
+{
+    if (status != TB_OK || !r->within_bound || r->overflows > max_ovf) return 0;
+    double v = k == TB_TARGET_NMSE ? r->nmse : r->max_abs_err;
+    return v <= target;
+}
+
+typedef struct cand_job {
+    const tb_sweep *s;
+    const tb_sweep_cfg *c;
+    unit_fmts f;
+    tb_result r;
+    int status;
+    char err[240];
+} cand_job;
+
+static void cand_run(void *ctx, size_t i)
+{
+    cand_job *j = (cand_job *)ctx + i;
+    if (!j->c) return;     /* nothing to remove */
+    j->status = tb_run(j->s->spec.u, &j->c->cfg, &j->f, j->s->vs[j->c->pset], NULL, &j->r, j->err, sizeof j->err);
+    tb_result_free(&j->r);
+}
+
+typedef struct cand_t {
+    int sig, kind;          /* kind 0: a fraction bit, 1: an integer bit */
+    double saving;          /* GE saved from the start design; -1: none */
+    int order;
+} cand_t;
+
+static int cand_cmp(const void *a, const void *b)
+{
+    const cand_t *x = a, *y = b;
+    if (x->saving != y->saving) return x->saving > y->saving ? -1 : 1;
+    return x->order - y->order;
+}
+
+/* Signal sig's format one bit shorter: kind 0 a fraction bit, 1 an integer
+ * bit. 0, or -1 if it has none to give (a signed format keeps its sign
+ * bit, and every format at least one bit). */
+static int shorter(sim_fmt f, int kind, sim_fmt *out)
+{
+    if (f.width < 2) return -1;
+    if (kind == 0) {
+        if (f.fbits < 1) return -1;
+        f.fbits--;
+    } else {
+        if (f.ibits <= (f.is_signed ? 1 : 0)) return -1;
+        f.ibits--;
+    }
+    f.width--;
+    *out = f;
+    return 0;
+}
+
+/* A signal the user fixed with --fmt NAME=... (or all=...) keeps its
+ * format: an interface format is a given, not a choice. */
+static int pinned(const tb_sweep *s, int sig)
+{
+    const char *name = s->spec.u->sigs[sig].name;
+    for (int k = 0; k < s->spec.nfmt; k++) {
+        const char *o = s->spec.fmt[k];
+        size_t n = strcspn(o, "=");
+        if ((n == 3 && !strncmp(o, "all", 3)) || (n == strlen(name) && !strncmp(o, name, n))) return 1;
+    }
+    return 0;
+}
+
+int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double target,
+                    int threads, tb_target_res *out, char *err, size_t errlen)
+{
+    const unit_desc *u = s->spec.u;
+    memset(out, 0, sizeof *out);
+    out->group = group;
+    for (size_t i = group; i < s->n; i += s->ngroups)
+        if (tb_target_holds(&s->row[i].r, s->row[i].status, k, target, UINT64_MAX)) {
+            out->met = 1;
+            out->uniform = i;
+            break;
+        }
+    if (!out->met) return 0;
+    const tb_sweep_cfg *c = &s->cfg[out->uniform];
+    uint64_t max_ovf = s->row[out->uniform].r.overflows;
+    out->fmts = c->fmts;
+    out->r = s->row[out->uniform].r;
+    if (threads < 1) threads = 1;
+    if (threads > 64) threads = 64;
+    int nc = 2 * u->nsigs;
+    /* nc jobs for the first round, `threads` for each batch after it. */
+    cand_job *jobs = calloc((size_t)(nc > threads ? nc : threads), sizeof *jobs);
+    cand_t *cand = malloc((size_t)nc * sizeof *cand);
+    if (!jobs || !cand) {
+        free(jobs); free(cand);
+        snprintf(err, errlen, "target search: out of memory");
+        return -1;
+    }
+    /* Every single-bit removal from the start, all at once: the area each
+     * saves orders the passes, dearest bits first, so that the error
+     * budget goes where it buys the most area (ties: fraction before
+     * integer bit, signals as the unit lists them). */
+    for (int q = 0; q < nc; q++) {
+        cand[q] = (cand_t){ q / 2, q % 2, -1.0, q };
+        jobs[q].s = s;
+        jobs[q].c = c;
+        jobs[q].f = out->fmts;
+        jobs[q].status = TB_SWEEP_NOT_RUN;
+        if (pinned(s, q / 2)) cand[q].sig = -1;
+        if (cand[q].sig < 0 || shorter(out->fmts.f[q / 2], q % 2, &jobs[q].f.f[q / 2])) jobs[q].c = NULL;
+    }
+    tb_par_for((size_t)nc, threads, cand_run, jobs);
+    for (int q = 0; q < nc; q++) {
+        if (jobs[q].status == TB_SWEEP_NOT_RUN) continue;
+        out->runs++;
+        if (jobs[q].status == TB_OK) cand[q].saving = out->r.area_ge - jobs[q].r.area_ge;
+    }
+    qsort(cand, (size_t)nc, sizeof *cand, cand_cmp);
+    for (int changed = 1; changed;) {
+        changed = 0;
+        for (int next = 0; next < nc;) {
+            /* Up to `threads` applicable candidates from the current
+             * formats, run together; the first that holds is taken and
+             * the pass goes on after it, so the outcome is the same as
+             * trying them one by one. */
+            int nb = 0, pos[64];
+            while (next < nc && nb < threads) {
+                sim_fmt f;
+                if (cand[next].sig >= 0 && !shorter(out->fmts.f[cand[next].sig], cand[next].kind, &f)) {
+                    jobs[nb].s = s;
+                    jobs[nb].c = c;
+                    jobs[nb].f = out->fmts;
+                    jobs[nb].f.f[cand[next].sig] = f;
+                    pos[nb++] = next;
+                }
+                next++;
+            }
+            if (!nb) break;
+            tb_par_for((size_t)nb, threads, cand_run, jobs);
+            for (int b = 0; b < nb; b++) {
+                out->runs++;
+                if (tb_target_holds(&jobs[b].r, jobs[b].status, k, target, max_ovf)) {
+                    out->fmts = jobs[b].f;
+                    out->r = jobs[b].r;
+                    next = pos[b] + 1;
+                    changed = 1;
+                    break;
+                }
+            }
+        }
+    }
+    free(jobs);
+    free(cand);
+    return 0;
+}

@@ -1,0 +1,144 @@
+/* tb_sweep.h - the sweep engine: a unit's testbench over a grid of widths
+ * and other settings, on several threads or in deterministic shards, with
+ * the results as one CSV, and the search for the cheapest per-signal
+ * formats that meet an error target.
+ *
+ * Configuration order (contract, docs/sweeps.md): width-major, then
+ * schedule, then each swept --param in the order given, then round, then
+ * overflow; the last axis varies fastest. Configuration i therefore has
+ * width lo + i / ngroups, and "group" i % ngroups: the combination of
+ * everything but the width. A shard K/N (K = 1..N) holds the configurations
+ * with i % N == K - 1.
+ *
+ * tb_run builds a fresh simulation per call and the run path keeps no
+ * global mutable state, so configurations run on separate threads with no
+ * locking beyond handing out indices; every result lands in its own slot,
+ * and the CSV is written in configuration order, so it is the same bytes
+ * whatever the thread count or shard split.
+ */
+#ifndef TB_SWEEP_H
+#define TB_SWEEP_H
+#include <stdio.h>
+#include "testbench/tb.h"
+
+#define TB_SWEEP_MAX_VALUES  64        /* values of one axis */
+#define TB_SWEEP_MAX_CONFIGS 1000000   /* a bigger grid is a usage error */
+
+/* One swept unit parameter: --param NAME=V1,V2,... */
+typedef struct tb_sweep_paxis {
+    int  param;                           /* index into u->params */
+    int  n;
+    char val[TB_SWEEP_MAX_VALUES][32];    /* as given */
+} tb_sweep_paxis;
+
+typedef struct tb_sweep_spec {
+    const unit_desc *u;
+    unit_cfg   base;                      /* defaults; axes overwrite their fields */
+    int        wlo, whi;                  /* widths, inclusive */
+    int        nsched, sched[UNIT_MAX_SCHED];
+    int        nrnd;  sim_round rnd[3];
+    int        novf;  sim_ovf   ovf[2];
+    int        npax;  tb_sweep_paxis pax[UNIT_MAX_PARAMS];
+    const char *const *fmt;               /* --fmt overrides, applied to every configuration */
+    int        nfmt;
+} tb_sweep_spec;
+
+typedef struct tb_sweep_cfg {
+    unit_cfg  cfg;
+    unit_fmts fmts;
+    size_t    group;                      /* i % ngroups */
+    size_t    pset;                       /* index of its parameter values (its vectors) */
+} tb_sweep_cfg;
+
+enum { TB_SWEEP_NOT_RUN = -1 };           /* row status besides TB_OK/TB_FAIL/TB_BADINPUT */
+
+typedef struct tb_sweep_row {
+    int        status;
+    char       err[240];                  /* the message when status is not TB_OK */
+    tb_result  r;                         /* raw and beat_cycle already freed */
+} tb_sweep_row;
+
+typedef struct tb_sweep {
+    tb_sweep_spec   spec;
+    size_t          n, ngroups, npsets;
+    tb_sweep_cfg   *cfg;                  /* [n] */
+    tb_sweep_row   *row;                  /* [n] */
+    const vec_set **vs;                   /* [npsets]: the caller loads them (tb_sweep_pset_cfg) */
+    uint64_t        id;                   /* fingerprint of configurations and vectors */
+} tb_sweep;
+
+/* Enumerate the configurations; 0, or -1 with a message (bad --fmt, too
+ * many configurations, out of memory). */
+int  tb_sweep_init(tb_sweep *s, const tb_sweep_spec *spec, char *err, size_t errlen);
+void tb_sweep_free(tb_sweep *s);
+/* A configuration with parameter set p, to load or make its vectors. */
+const unit_cfg *tb_sweep_pset_cfg(const tb_sweep *s, size_t p);
+/* After the vectors are in place: the sweep's fingerprint (s->id), which
+ * the CSV carries so that merge refuses shards of different sweeps. */
+void tb_sweep_fingerprint(tb_sweep *s);
+
+/* Shard K of N (1-based) holds configuration i? N = 0: no sharding. */
+int  tb_sweep_in_shard(size_t i, int k, int n);
+/* Called after each configuration, serialised; done counts this run's. */
+typedef void (*tb_sweep_progress_fn)(void *arg, size_t done, size_t total);
+/* Run the configurations of shard k/n (n = 0: all) on `threads` threads.
+ * Returns the number of configurations whose simulation failed (their
+ * rows say why); the others are TB_OK rows, within bound or not. */
+size_t tb_sweep_run(tb_sweep *s, int threads, int shard_k, int shard_n,
+                    tb_sweep_progress_fn progress, void *arg);
+
+/* One configuration's group described for people: "half-up sat", "paper
+ * terms=3"; only the axes with more than one value; "" if none. */
+void tb_sweep_group_label(const tb_sweep *s, size_t group, char *buf, size_t len);
+
+/* The CSV of the run rows (shard k/n, or all with n = 0), atomically. */
+int  tb_sweep_write_csv(const tb_sweep *s, const char *path, int shard_k, int shard_n,
+                        char *err, size_t errlen);
+/* merge: shards' CSVs into the whole run's CSV; 0, or -1 with a message. */
+int  tb_sweep_merge(const char *const *paths, int n, const char *out, char *err, size_t errlen);
+
+/* ---------------------------------------------------------- target search */
+
+typedef enum { TB_TARGET_MAX_ABS_ERR, TB_TARGET_NMSE } tb_target_kind;
+
+typedef struct tb_target_res {
+    size_t    group;
+    int       met;            /* some uniform width of the sweep met the target */
+    size_t    uniform;        /* its row index: the smallest such width */
+    unit_fmts fmts;           /* the chosen per-signal formats */
+    tb_result r;              /* their result (raw freed) */
+    size_t    runs;           /* tb_run calls of a one-at-a-time search */
+} tb_target_res;
+
+/* The acceptance rule of the search (docs/sweeps.md): the run succeeded,
+ * every output is within its bound, the metric meets the target, and there
+ * are no more overflows than max_ovf (those of the uniform design). */
+int  tb_target_holds(const tb_result *r, int status, tb_target_kind k, double target, uint64_t max_ovf);
+/* Cheapest formats for one group: start from the smallest uniform width of
+ * the (already run) sweep that holds, then greedy passes, each trying to
+ * drop one fraction bit and one integer bit of every signal in turn
+ * (keeping a drop when the rule still holds), until a pass changes
+ * nothing; so at the end no single-bit removal holds. A pass takes the
+ * removals in order of the area each saves from the start (tried once,
+ * all at once), dearest first. Signals pinned with --fmt are left alone.
+ * Deterministic for any thread count: candidates are tried speculatively
+ * in batches of `threads`, and the first that holds in order wins, as a
+ * one-at-a-time search would; `runs` counts what that search would run.
+ * out->met = 0 (and 0 returned) when no width of the sweep holds. 0, or
+ * -1 with a message (out of memory). */
+int  tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double target,
+                     int threads, tb_target_res *out, char *err, size_t errlen);
+
+/* ------------------------------------------------------------- utilities */
+
+/* A file written atomically: a temporary in the same directory, renamed
+ * over path by tb_afile_commit; nothing is left behind on failure. */
+typedef struct tb_afile { FILE *f; char *tmp; const char *path; } tb_afile;
+int  tb_afile_open(tb_afile *a, const char *path, char *err, size_t errlen);
+int  tb_afile_commit(tb_afile *a, char *err, size_t errlen);
+void tb_afile_abort(tb_afile *a);
+
+/* Run fn(ctx, i) for i in [0, n) on up to `threads` threads (the caller's
+ * thread among them); returns when all are done. */
+void tb_par_for(size_t n, int threads, void (*fn)(void *ctx, size_t i), void *ctx);
+#endif
