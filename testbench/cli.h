@@ -21,6 +21,7 @@ extern const cli_verb cli_verbs[];
 int cli_list(int argc, char **argv);
 int cli_vectors(int argc, char **argv);
 int cli_run(int argc, char **argv);
+int cli_claims(int argc, char **argv);
 int cli_sweep(int argc, char **argv);
 int cli_merge(int argc, char **argv);
 

@@ -8,19 +8,40 @@ static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-
 
 /* ------------------------------------------------------------------- list */
 
-/* A unit's default configuration and formats at a width. */
-static void defaults_at(const unit_desc *u, int width, unit_cfg *cfg, unit_fmts *fm)
+/* A unit's default configuration and formats at a width and schedule. */
+static void defaults_at(const unit_desc *u, int width, int sched, unit_cfg *cfg, unit_fmts *fm)
 {
     unit_cfg_default(cfg);
     cfg->width = width;
+    cfg->schedule = sched;
     u->formats(cfg, fm);
 }
 
-static void list_unit(FILE *f, const unit_desc *u, int width)
+/* 1 if the unit's schedules are different datapaths (masked signals). */
+static int has_masks(const unit_desc *u)
+{
+    for (int i = 0; i < u->nsigs; i++) if (u->sigs[i].scheds) return 1;
+    return 0;
+}
+
+/* The schedules that build signal i, "a, b" (all: "all"). */
+static void sched_names(const unit_desc *u, int i, char *buf, size_t len)
+{
+    buf[0] = 0;
+    if (!u->sigs[i].scheds) { snprintf(buf, len, "all"); return; }
+    for (int s = 0, n = 0; s < u->nsched; s++)
+        if (unit_sig_used(u, i, s)) {
+            strncat(buf, n++ ? ", " : "", len - strlen(buf) - 1);
+            strncat(buf, u->sched[s].name, len - strlen(buf) - 1);
+        }
+}
+
+/* Signals of schedule sched (its datapath's). */
+static void list_unit(FILE *f, const unit_desc *u, int width, int sched)
 {
     unit_cfg cfg;
     unit_fmts fm;
-    defaults_at(u, width, &cfg, &fm);
+    defaults_at(u, width, sched, &cfg, &fm);
     char fb[SIM_FMT_STRLEN];
     fprintf(f, "%s — %s\n  from seed %s\n  schedules:", u->name, u->summary, u->seed);
     for (int i = 0; i < u->nsched; i++) fprintf(f, "%s %s (%s)", i ? "," : "", u->sched[i].name, u->sched[i].what);
@@ -33,19 +54,26 @@ static void list_unit(FILE *f, const unit_desc *u, int width)
         if (u->params[i].type == UNIT_P_ENUM) fprintf(f, " (%s)", u->params[i].choices);
         else fprintf(f, " (%g..%g)", u->params[i].min, u->params[i].max);
     }
-    fprintf(f, "\n  default formats for --width %d: %s\n  signals:\n", width, u->fmt_rule);
+    fprintf(f, "\n  default formats for --width %d: %s\n", width, u->fmt_rule);
+    if (has_masks(u))
+        fprintf(f, "  signals of schedule %s (list %s --schedule NAME shows another's):\n", u->sched[sched].name, u->name);
+    else
+        fputs("  signals:\n", f);
     static const char *const role[] = { "in", "out", "" };
     for (int i = 0; i < u->nsigs; i++)
-        fprintf(f, "    %-4s %-10s %-8s %s\n", role[u->sigs[i].role], u->sigs[i].name,
-                sim_fmt_str(fm.f[i], fb), u->sigs[i].what);
+        if (unit_sig_used(u, i, sched))
+            fprintf(f, "    %-4s %-10s %-8s %s\n", role[u->sigs[i].role], u->sigs[i].name,
+                    sim_fmt_str(fm.f[i], fb), u->sigs[i].what);
 }
 
-/* The same facts as list_unit, as the Markdown of docs/units.md. */
-static void list_unit_md(FILE *f, const unit_desc *u, int width)
+/* The same facts as list_unit, as the Markdown of docs/units.md. sched < 0:
+ * every schedule's signals, with a column naming the schedules of each
+ * where they differ. */
+static void list_unit_md(FILE *f, const unit_desc *u, int width, int sched)
 {
     unit_cfg cfg;
     unit_fmts fm;
-    defaults_at(u, width, &cfg, &fm);
+    defaults_at(u, width, sched < 0 ? 0 : sched, &cfg, &fm);
     char fb[SIM_FMT_STRLEN];
     fprintf(f, "## %s\n\n%s. From seed %s.\n\n", u->name, u->summary, u->seed);
     fputs("| schedule | what |\n| --- | --- |\n", f);
@@ -61,24 +89,38 @@ static void list_unit_md(FILE *f, const unit_desc *u, int width)
                 fprintf(f, "| `%s` | %s | %g..%g | %s |\n", u->params[i].name, v, u->params[i].min, u->params[i].max, u->params[i].help);
         }
     }
-    fprintf(f, "\nDefault formats from `--width W`: %s.\n\n| signal | role | format at W = %d | what |\n| --- | --- | --- | --- |\n",
-            u->fmt_rule, width);
+    int col = sched < 0 && has_masks(u);
+    fprintf(f, "\nDefault formats from `--width W`: %s.\n\n", u->fmt_rule);
+    if (sched >= 0 && has_masks(u)) fprintf(f, "Signals of schedule `%s`.\n\n", u->sched[sched].name);
+    fprintf(f, "| signal | role | format at W = %d | what |%s\n| --- | --- | --- | --- |%s\n",
+            width, col ? " schedules |" : "", col ? " --- |" : "");
     static const char *const role[] = { "input", "output", "internal" };
-    for (int i = 0; i < u->nsigs; i++)
-        fprintf(f, "| `%s` | %s | `%s` | %s |\n", u->sigs[i].name, role[u->sigs[i].role], sim_fmt_str(fm.f[i], fb), u->sigs[i].what);
+    for (int i = 0; i < u->nsigs; i++) {
+        if (sched >= 0 && !unit_sig_used(u, i, sched)) continue;
+        fprintf(f, "| `%s` | %s | `%s` | %s |", u->sigs[i].name, role[u->sigs[i].role], sim_fmt_str(fm.f[i], fb), u->sigs[i].what);
+        if (col) {
+            char sn[120];
+            sched_names(u, i, sn, sizeof sn);
+            fprintf(f, " %s |", sn);
+        }
+        fputc('\n', f);
+    }
     fputc('\n', f);
 }
 
 int cli_list(int argc, char **argv)
 {
     int width = 16, md = 0;
-    const char *only = NULL;
+    const char *only = NULL, *sched = NULL;
     for (int i = 1; i < argc; i++) {
         if (is_help(argv[i])) {
-            puts("usage: shadesim list [UNIT] [--width W] [--markdown]\n\n"
+            puts("usage: shadesim list [UNIT [--schedule NAME]] [--width W] [--markdown]\n\n"
                  "Lists every unit (or one) with its schedules, parameters, signals and\n"
-                 "their default formats at width W (default 16). --markdown prints the\n"
-                 "same as docs/units.md is made of.");
+                 "their default formats at width W (default 16). Where a unit's schedules\n"
+                 "are different datapaths, the signals are those of schedule NAME (default\n"
+                 "the unit's first; --markdown without --schedule: all, with a column\n"
+                 "naming each one's schedules). --markdown prints the same as\n"
+                 "docs/units.md is made of.");
             return CLI_OK;
         }
         if (!strcmp(argv[i], "--width") && i + 1 < argc) {
@@ -86,20 +128,36 @@ int cli_list(int argc, char **argv)
             long w = strtol(argv[++i], &end, 10);
             if (*end || w < 1 || w > 64) return cli_usage_error("--width %s: expected 1..64", argv[i]);
             width = (int)w;
+        } else if (!strcmp(argv[i], "--schedule") && i + 1 < argc) {
+            sched = argv[++i];
         } else if (!strcmp(argv[i], "--markdown")) md = 1;
         else if (argv[i][0] == '-') return cli_usage_error("list: unknown option '%s'", argv[i]);
         else if (!only) only = argv[i];
         else return cli_usage_error("list: one unit at most");
     }
     if (only && !unit_find(only)) return cli_usage_error("unknown unit '%s'", only);
+    int si = -1;
+    if (sched) {
+        if (!only) return cli_usage_error("list: --schedule %s needs a unit (shadesim list UNIT --schedule NAME)", sched);
+        si = unit_sched_find(unit_find(only), sched);
+        if (si < 0) {
+            const unit_desc *u = unit_find(only);
+            char list[200] = "";
+            for (int j = 0; j < u->nsched; j++) {
+                strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
+                strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
+            }
+            return cli_usage_error("--schedule %s: unit %s has schedules: %s", sched, only, list);
+        }
+    }
     if (md && !only)
         printf("# Units\n\nGenerated by `shadesim list --markdown` (`make docs`) from the unit\n"
                "descriptors the simulator itself uses; `make test` checks it is current.\n\n");
     for (size_t i = 0, n = unit_count(); i < n; i++) {
         const unit_desc *u = unit_at(i);
         if (only && strcmp(only, u->name)) continue;
-        if (md) { list_unit_md(stdout, u, width); continue; }
-        list_unit(stdout, u, width);
+        if (md) { list_unit_md(stdout, u, width, si); continue; }
+        list_unit(stdout, u, width, si < 0 ? 0 : si);
         if (!only && i + 1 < n) putchar('\n');
     }
     return CLI_OK;

@@ -6,6 +6,7 @@ const cli_verb cli_verbs[] = {
     { "list",    cli_list,    "units, schedules, signals, parameters and default formats" },
     { "vectors", cli_vectors, "golden vectors of a unit from the float reference" },
     { "run",     cli_run,     "run a unit's testbench: cycles, area, quantization error" },
+    { "claims",  cli_claims,  "each numerical claim of the seeds next to what we measure" },
     { "sweep",   cli_sweep,   "a unit over bit widths and settings: CSV, charts, Pareto front, target search" },
     { "merge",   cli_merge,   "join the CSVs of a sharded sweep into the whole sweep's CSV" },
     { NULL, NULL, NULL }

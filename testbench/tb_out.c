@@ -42,8 +42,10 @@ int tb_write_json(FILE *f, const tb_result *r)
         else fprintf(f, "%s\"%s\": %s", i ? ", " : "", u->params[i].name, v);
     }
     fputs("},\n  \"formats\": {", f);
-    for (int i = 0; i < u->nsigs; i++)
-        fprintf(f, "%s\"%s\": \"%s\"", i ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
+    /* the signals of the schedule that ran */
+    for (int i = 0, n = 0; i < u->nsigs; i++)
+        if (unit_sig_used(u, i, r->cfg.schedule))
+            fprintf(f, "%s\"%s\": \"%s\"", n++ ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
     fprintf(f, "},\n  \"round\": \"%s\",\n  \"overflow\": \"%s\",\n", sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
     fprintf(f, "  \"vectors\": %zu,\n  \"beats_per_item\": %d,\n  \"cycles\": %llu,\n", r->vectors, r->beats,
             (unsigned long long)r->cycles);
@@ -128,7 +130,8 @@ void tb_print_table(FILE *f, const tb_result *r)
         if (i == u->nparams - 1) fputc('\n', f);
     }
     fputs("formats:", f);
-    for (int i = 0; i < u->nsigs; i++) fprintf(f, " %s=%s", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
+    for (int i = 0; i < u->nsigs; i++)
+        if (unit_sig_used(u, i, r->cfg.schedule)) fprintf(f, " %s=%s", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
     fprintf(f, "\nvectors %zu, cycles %llu, cycles/item %.3g, cycles/beat %.3g, latency %llu, area %.1f GE, overflows %llu\n",
             r->vectors, (unsigned long long)r->cycles, r->cycles_per_item, r->cycles_per_beat,
             (unsigned long long)r->latency, r->area_ge, (unsigned long long)r->overflows);

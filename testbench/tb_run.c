@@ -88,13 +88,29 @@ int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, i
             continue;
         }
         int i = unit_sig_index(u, name);
-        if (i < 0) {
-            char list[400] = "";
-            for (int j = 0; j < u->nsigs; j++) {
-                strncat(list, j ? " " : "", sizeof list - strlen(list) - 1);
-                strncat(list, u->sigs[j].name, sizeof list - strlen(list) - 1);
+        if (i < 0 || !unit_sig_used(u, i, cfg->schedule)) {
+            /* A signal of another schedule's datapath: say whose. */
+            const char *sn = u->sched[cfg->schedule].name;
+            char list[600] = "";
+            if (i >= 0) {       /* the schedules that have it */
+                for (int j = 0, m = 0; j < u->nsched; j++)
+                    if (unit_sig_used(u, i, j)) {
+                        strncat(list, m++ ? ", " : "", sizeof list - strlen(list) - 1);
+                        strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
+                    }
+            } else {            /* the signals this schedule has */
+                for (int j = 0, m = 0; j < u->nsigs; j++)
+                    if (unit_sig_used(u, j, cfg->schedule)) {
+                        strncat(list, m++ ? " " : "", sizeof list - strlen(list) - 1);
+                        strncat(list, u->sigs[j].name, sizeof list - strlen(list) - 1);
+                    }
             }
-            snprintf(err, errlen, "--fmt %s: unit %s has no signal '%s' (signals: %s)", ov[k], u->name, name, list);
+            if (i >= 0)
+                snprintf(err, errlen, "--fmt %s: schedule %s of unit %s has no signal '%s' (it is in %s %s; "
+                         "shadesim list %s --schedule %s shows %s's)", ov[k], sn, u->name, name,
+                         strchr(list, ',') ? "schedules" : "schedule", list, u->name, sn, sn);
+            else
+                snprintf(err, errlen, "--fmt %s: unit %s has no signal '%s' (signals: %s)", ov[k], u->name, name, list);
             return -1;
         }
         out->f[i] = f;

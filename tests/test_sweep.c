@@ -242,7 +242,7 @@ static void check_target(tb_target_kind kind, double target, int also_threads)
         for (int kindbit = 0; kindbit < 2; kindbit++) {
             unit_fmts f = t1.fmts;
             sim_fmt *g = &f.f[i];
-            if (g->width < 2) continue;
+            if (g->width < 2 || !unit_sig_used(u, i, s.cfg[t1.uniform].cfg.schedule)) continue;
             if (kindbit == 0 && g->fbits < 1) continue;
             if (kindbit == 1 && g->ibits <= (g->is_signed ? 1 : 0)) continue;
             if (kindbit == 0) g->fbits--;

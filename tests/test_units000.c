@@ -248,7 +248,7 @@ static void t_bound_follows_overrides(void)
         double b0[UNIT_MAX_IO], b1[UNIT_MAX_IO];
         u->bound(&cfg, &def, b0);
         for (int i = 0; i < u->nsigs; i++) {
-            if (u->sigs[i].role != UNIT_SIG_INTERNAL || !strcmp(u->sigs[i].name, "t")) continue;
+            if (u->sigs[i].role != UNIT_SIG_INTERNAL || !strcmp(u->sigs[i].name, "t") || !unit_sig_used(u, i, cfg.schedule)) continue;
             sim_fmt f = def.f[i];
             char ov[64], fs[SIM_FMT_STRLEN];
             sim_fmt g = unit_fmt(f.is_signed, f.ibits, f.fbits - 5);

@@ -66,6 +66,12 @@ int unit_sig_index(const unit_desc *u, const char *name)
     return -1;
 }
 
+int unit_sig_used(const unit_desc *u, int i, int sched)
+{
+    unsigned m = u->sigs[i].scheds;
+    return !m || (sched >= 0 && sched < 32 && (m >> sched & 1u));
+}
+
 int unit_sched_find(const unit_desc *u, const char *name)
 {
     for (int i = 0; i < u->nsched; i++)

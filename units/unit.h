@@ -20,7 +20,7 @@
 #include "sim/sim.h"
 #include "sim/sim_prim.h"
 
-#define UNIT_MAX_SIGS   48
+#define UNIT_MAX_SIGS   80    /* interp3: paper's 38 + the pipe's and fwd's own */
 #define UNIT_MAX_IO     8
 #define UNIT_MAX_SCHED  6
 #define UNIT_MAX_PARAMS 6
@@ -55,10 +55,18 @@ typedef struct unit_param {
 
 typedef enum { UNIT_SIG_IN, UNIT_SIG_OUT, UNIT_SIG_INTERNAL } unit_role;
 
+/* A unit whose schedules are different datapaths lists the union of their
+ * signals; scheds says which schedules build a signal (bit i: schedule i,
+ * UNIT_SCHED(i)), 0 for all of them. list, run --json, --fmt and the VCD
+ * show only the selected schedule's signals. Inputs and outputs are the
+ * unit's ports and belong to every schedule. */
+#define UNIT_SCHED(i) (1u << (i))
+
 typedef struct unit_sig {
     const char *name;       /* lower case; also the --fmt NAME and VCD name */
     unit_role   role;
     const char *what;       /* one line: "multiplier MUL = MX1 * t" */
+    unsigned    scheds;     /* schedules that have it (0: all) */
 } unit_sig;
 
 typedef struct unit_sched {
@@ -107,6 +115,11 @@ struct unit_desc {
     /* Bound on |hardware - ideal| per output port, from the formats and
      * modes alone; docs/bounds.md derives each. */
     void (*bound)(const unit_cfg *cfg, const unit_fmts *f, double *per_out);
+    /* Optional (NULL: every beat has the port's bound): the bound of each
+     * beat, n_out * beats values beat-major like ideal, where it differs
+     * by beat (interp's forward differencing accumulates its errors over
+     * the pixels); bound is their maximum per port. */
+    void (*bound_beats)(const unit_cfg *cfg, const unit_fmts *f, double *per_beat);
 };
 
 /* The registry. */
@@ -118,6 +131,8 @@ void unit_cfg_default(unit_cfg *cfg);
 int  unit_n_in(const unit_desc *u);
 int  unit_n_out(const unit_desc *u);
 int  unit_sig_index(const unit_desc *u, const char *name);   /* -1 if none */
+/* 1 if schedule sched builds signal i (its scheds mask). */
+int  unit_sig_used(const unit_desc *u, int i, int sched);
 /* Set a parameter from "value" text; 0, or -1 with a message. */
 int  unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
                     const char *value, char *err, size_t errlen);

@@ -1,11 +1,25 @@
-/* unit_horner.h - the Horner datapath of seed 000 (Fig. 9) as a builder
- * other units compose (interp3/interp2 put it behind a coefficient unit).
+/* unit_horner.h - the Horner datapath of seed 000 (Fig. 9) and its faster
+ * schedules, as a builder other units compose (interp3/interp2 put it
+ * behind a coefficient unit).
  *
- * The datapath reads its coefficients and t from signals the caller owns
- * and runs its paper schedule, one step a clock, whenever `run` is 1 at
- * step 0; once started, a pixel runs to its end. The caller makes the
- * output port (a view of RG) and out_valid (RG holds the result in the
- * cycle after `last`).
+ * Schedules (their index is the same in every unit that contains the
+ * datapath; interp adds fwd after them):
+ *  - paper: Fig. 9, MUL = MX1 * t, Sm = MX2 + BK(RG), one step a clock,
+ *    2 deg clocks per pixel (6 for the cubic);
+ *  - mac:   one multiply-add a clock, RG <= MX1 * t + MX2, MX1 in {A, RG},
+ *    MX2 in {B, C, D}: deg clocks per pixel, no BK;
+ *  - pipe:  the deg multiply-adds unrolled into deg stages with pipeline
+ *    registers carrying t and the coefficients still to come: a pixel per
+ *    clock, the result deg clocks after it entered.
+ * Each is its own datapath; the unit lists the union of their signals
+ * (HORNER_SIGS3 / HORNER_SIGS2), each masked with the schedules that
+ * build it, and the builders take every format by signal name.
+ *
+ * The datapath reads its coefficients and t from signals the caller owns.
+ * paper and mac run whenever `run` is 1 at step 0; once started, a pixel
+ * runs to its end. pipe takes a pixel in every clock (run marks the valid
+ * ones). The caller makes the output port (a view of the result) and
+ * out_valid = a register of hw->done.
  */
 #ifndef UNIT_HORNER_H
 #define UNIT_HORNER_H
@@ -14,44 +28,84 @@
 /* Integer bits of the datapath's default rule (unit_horner.c says why). */
 #define HORNER_IBITS 7
 
-/* Internal signals, in this order, in every unit that contains the
- * datapath: their formats are passed as fi[HORNER_NINT]. */
-enum { HORNER_MX1 = 0, HORNER_MUL, HORNER_MX2, HORNER_BK, HORNER_SM, HORNER_RG, HORNER_NINT };
+enum { HORNER_PAPER = 0, HORNER_MAC = 1, HORNER_PIPE = 2, HORNER_NSCHED = 3 };
 
-#define HORNER_SIGS \
-    { "mx1", UNIT_SIG_INTERNAL, "multiplexer MX1: A or RG into the multiplier" }, \
-    { "mul", UNIT_SIG_INTERNAL, "multiplier MUL = MX1 * t, quantized to its own format" }, \
-    { "mx2", UNIT_SIG_INTERNAL, "multiplexer MX2: MUL or a coefficient into the adder" }, \
-    { "bk",  UNIT_SIG_INTERNAL, "block key BK: passes RG or forces zero" }, \
-    { "sm",  UNIT_SIG_INTERNAL, "adder Sm = MX2 + BK" }, \
-    { "rg",  UNIT_SIG_INTERNAL, "register RG <= Sm every clock" }
+#define H_P  UNIT_SCHED(HORNER_PAPER)
+#define H_M  UNIT_SCHED(HORNER_MAC)
+#define H_PP UNIT_SCHED(HORNER_PIPE)
+
+/* The sequential datapaths (paper: all six; mac: no BK, and Sm adds MUL
+ * and a coefficient). The order is the paper's, as the VCD shows it. */
+#define HORNER_SIGS_SEQ \
+    { "mx1", UNIT_SIG_INTERNAL, "multiplexer MX1: A or RG into the multiplier", H_P | H_M }, \
+    { "mul", UNIT_SIG_INTERNAL, "multiplier MUL = MX1 * t, quantized to its own format", H_P | H_M }, \
+    { "mx2", UNIT_SIG_INTERNAL, "multiplexer MX2: paper MUL or a coefficient into the adder; mac a coefficient", H_P | H_M }, \
+    { "bk",  UNIT_SIG_INTERNAL, "block key BK: passes RG or forces zero", H_P }, \
+    { "sm",  UNIT_SIG_INTERNAL, "adder Sm: paper MX2 + BK, mac MUL + MX2", H_P | H_M }, \
+    { "rg",  UNIT_SIG_INTERNAL, "register RG <= Sm every clock", H_P | H_M }
+
+/* Stage j of the pipe: mulJ = (A or rgJ-1) * t, smJ = mulJ + coefficient J,
+ * rgJ <= smJ; tJ and cJ, dJ carry t and the later coefficients along. */
+#define H_STAGE(j, what) \
+    { "mul" #j, UNIT_SIG_INTERNAL, "pipe stage " #j ": multiplier " what, H_PP }, \
+    { "sm" #j,  UNIT_SIG_INTERNAL, "pipe stage " #j ": adder", H_PP }, \
+    { "rg" #j,  UNIT_SIG_INTERNAL, "pipe stage " #j ": its result register", H_PP }
+#define H_DELAY(name, what) { name, UNIT_SIG_INTERNAL, "pipe register: " what, H_PP }
+
+#define HORNER_SIGS3 HORNER_SIGS_SEQ, \
+    H_STAGE(1, "A * t"), H_DELAY("t1", "t for stage 2"), H_DELAY("c1", "C for stage 2"), \
+    H_DELAY("d1", "D for stage 2"), \
+    H_STAGE(2, "rg1 * t1"), H_DELAY("t2", "t for stage 3"), H_DELAY("d2", "D for stage 3"), \
+    H_STAGE(3, "rg2 * t2")
+#define HORNER_SIGS2 HORNER_SIGS_SEQ, \
+    H_STAGE(1, "A * t"), H_DELAY("t1", "t for stage 2"), H_DELAY("c1", "C for stage 2"), \
+    H_STAGE(2, "rg1 * t1")
+#define HORNER_NSIGS3 20
+#define HORNER_NSIGS2 14
+
+typedef struct h_sched h_sched;
 
 typedef struct horner_hw {
-    int         deg;
-    sim_signal *mx1_sel, *mx2_sel, *bk_pass;   /* the controller's decoders */
-    sim_signal *last;   /* 1 during the last step of a pixel */
-    sim_signal *rg;     /* register RG: the result after the last step */
+    int deg, sched;
+    const h_sched *s;
+    sim_signal *mx1_sel, *mx2_sel, *bk_pass;   /* the controller's decoders (paper, mac) */
+    sim_signal *last;   /* 1 in the clock where a pixel's last step runs: the
+                         * inputs may change at the edge that ends it */
+    sim_signal *done;   /* 1 in the clock before the result holds a finished
+                         * pixel: out_valid is a register of it */
+    sim_signal *rg;     /* the result register */
 } horner_hw;
 
-/* Clocks per pixel of the paper schedule of degree deg (3: 6, 2: 4). */
-int horner_steps(int deg);
+/* Clocks per pixel of schedule sched of degree deg (paper 6/4, mac 3/2,
+ * pipe 1), and clocks from a pixel's start to its result (paper and mac
+ * the same, pipe deg); -1 for a bad deg or sched. */
+int horner_steps(int deg, int sched);
+int horner_latency(int deg, int sched);
 
-/* The controller of degree deg (3 or 2) in sc: a step counter that waits
- * at step 0 while run is 0, and its decoders; the one that is 1 in the
- * last step is named last_name (horner3 calls it in_ready). Built first so
- * that a caller can derive its own control from hw->last before it has the
- * coefficient signals. 0, or -1 for a bad deg. */
-int horner_ctl_on(sim_ctx *c, sim_scope *sc, sim_signal *clk, int deg, sim_signal *run,
+/* The controller of schedule sched, degree deg (3 or 2), in sc: paper and
+ * mac a step counter that waits at step 0 while run is 0, and its
+ * decoders; the one that is 1 in the last step is named last_name (horner3
+ * calls it in_ready). pipe has none: every clock is a pixel's last, so
+ * last is run itself. Built first so that a caller can derive its own
+ * control from hw->last before it has the coefficient signals. 0, or -1
+ * for a bad deg or sched. */
+int horner_ctl_on(sim_ctx *c, sim_scope *sc, sim_signal *clk, int deg, int sched, sim_signal *run,
                   const char *last_name, horner_hw *hw);
 /* The datapath in sc, driven by hw's controller: coef[0..deg] are A, B, ...
- * (highest degree first), t the position, fi the formats of the
- * HORNER_NINT internals. Sets hw->rg. */
-void horner_dp_on(sim_ctx *c, sim_scope *sc, sim_signal *clk, horner_hw *hw,
-                  sim_signal *const *coef, sim_signal *t, const sim_fmt *fi);
+ * (highest degree first), t the position; formats are u's signals of the
+ * same names in f. Sets hw->rg and hw->done. */
+void horner_dp_on(sim_ctx *c, sim_scope *sc, sim_signal *clk, horner_hw *hw, sim_signal *run,
+                  sim_signal *const *coef, sim_signal *t, const unit_desc *u, const unit_fmts *f);
 
-/* Worst-case |RG - exact polynomial| after one pixel, for coefficients
- * held exactly in formats coef_f[0..deg] and t exact in format t_f with
- * |t| <= 1, then seen through format y_f: the datapath's own error. */
-double horner_bound_on(int deg, const sim_fmt *coef_f, sim_fmt t_f, const sim_fmt *fi,
-                       sim_fmt y_f, sim_round r);
+/* The default rule of the datapath's signals that u has: s7.(W-7), and
+ * u1.(W-1) for the pipe's copies of t. */
+void horner_default_fmts(const unit_desc *u, int width, unit_fmts *out);
+
+/* Worst-case |result - exact polynomial| after one pixel of schedule
+ * sched, for coefficients held exactly in formats coef_f[0..deg] and t
+ * exact in format t_f with |t| <= 1, with the datapath's formats u's
+ * signals in f, then seen through format y_f: the datapath's own error
+ * (docs/schedules.md). */
+double horner_bound_on(int deg, int sched, const sim_fmt *coef_f, sim_fmt t_f, const unit_desc *u,
+                       const unit_fmts *f, sim_fmt y_f, sim_round r);
 #endif

@@ -1,6 +1,188 @@
-/* units_brdf.c - the BRDF approximation units of seeds 000/001/004. */
+/* units_brdf.c - the BRDF approximation units of seeds 000/001/004, and the
+ * few pieces of hardware and arithmetic they share (prefix brdf_).
+ *
+ *   powg, pow_n, d_approx, ward_approx   one-multiplier power engine (unit_powg.c)
+ *   div, schlick, mschlick               restoring divider (unit_div.c)
+ *
+ * There is no units_brdf.h (units/ keeps one header, unit.h): each file
+ * that uses a helper repeats its prototype under "shared with
+ * units_brdf.c"; the definitions below are the reference.
+ */
 #include "units/unit.h"
+#include "sim/sim_area.h"
+#include <math.h>
+#include <stdlib.h>
+
+extern const unit_desc unit_powg, unit_pow_n, unit_d_approx, unit_ward_approx,
+                       unit_div, unit_schlick, unit_mschlick;
 
 const unit_desc *const units_brdf[] = {
+    &unit_powg, &unit_pow_n, &unit_d_approx, &unit_ward_approx,
+    &unit_div, &unit_schlick, &unit_mschlick,
     NULL
 };
+
+/* ------------------------------------------------------------- sequencer */
+
+/* Step counter of a multi-clock unit, Horner's convention (unit_horner.c):
+ * it waits at step 0 until an item is offered, runs steps 0..n-1 reading
+ * the held inputs, and raises in_ready in the last step, so the item is
+ * accepted at the edge that ends its computation; out_valid follows one
+ * clock later, while the result registers hold it.
+ *
+ * Control signals that steer data (mux selects, "first step") are
+ * registered: decoded from the next step and clocked, they change in the
+ * same delta cycle as the data registers, so no mux ever passes a new
+ * register value under an old select (a one-delta glitch in which, e.g.,
+ * the power engine would square its final result and count an overflow).
+ * *next_out is the next-step signal to decode from (brdf_decode). */
+static int64_t seq_next(const int64_t *in, void *u)
+{
+    int64_t n = (int64_t)(intptr_t)u;
+    if (in[0] == 0 && !in[1]) return 0;
+    return in[0] >= n - 1 ? 0 : in[0] + 1;
+}
+static int64_t seq_is0(const int64_t *in, void *u) { (void)u; return in[0] == 0; }
+static int64_t seq_last(const int64_t *in, void *u) { return in[0] == (int64_t)(intptr_t)u - 1; }
+static int64_t seq_and(const int64_t *in, void *u) { (void)u; return in[0] && in[1]; }
+
+int brdf_bitlen(uint64_t v)
+{
+    int n = 0;
+    while (v) { n++; v >>= 1; }
+    return n;
+}
+
+void brdf_seq(sim_ctx *c, sim_scope *sc, sim_signal *clk, int nsteps, unit_io *io,
+              sim_signal **next_out, sim_signal **first_out)
+{
+    sim_fmt u1 = unit_fmt(0, 1, 0);
+    io->in_valid = sim_bit_new(c, sc, "in_valid", SIM_KIND_INPUT);
+    if (nsteps <= 1) {
+        /* One clock per item: nothing to count. */
+        *next_out = sim_const_raw(c, sc, "step_next", u1, 0);
+        *first_out = sim_const_raw(c, sc, "first", u1, 1);
+        io->in_ready = sim_const_raw(c, sc, "in_ready", u1, 1);
+    } else {
+        int bits = brdf_bitlen((uint64_t)(nsteps - 1));
+        sim_fmt fs = unit_fmt(0, bits, 0);
+        void *n = (void *)(intptr_t)nsteps;
+        sim_signal *step = sim_reg(c, sc, "step", fs, clk, NULL, NULL, NULL, 0);
+        sim_signal *nx_in[2] = { step, io->in_valid };
+        /* An incrementer (a half adder a bit), the wrap compare, a hold gate. */
+        sim_signal *next = sim_logic(c, sc, "step_next", fs, 2, nx_in, seq_next, n,
+                                     bits * (SIM_GE_HA + SIM_GE_NAND2) + 2);
+        sim_reg_connect(step, next);
+        *next_out = next;
+        sim_signal *is0 = sim_logic(c, sc, "first_next", u1, 1, &next, seq_is0, NULL, bits * SIM_GE_NAND2);
+        *first_out = sim_reg(c, sc, "first", u1, clk, is0, NULL, NULL, 1);
+        io->in_ready = sim_logic(c, sc, "in_ready", u1, 1, &step, seq_last, n, bits * SIM_GE_NAND2);
+    }
+    sim_signal *ov_in[2] = { io->in_ready, io->in_valid };
+    sim_signal *ov = sim_logic(c, sc, "done", u1, 2, ov_in, seq_and, NULL, SIM_GE_AND2);
+    io->out_valid = sim_reg(c, sc, "out_valid", u1, clk, ov, NULL, NULL, 0);
+}
+
+/* A registered decoder of a step-indexed control table (a small ROM of n
+ * words): name <= table[next step] at every edge, so it holds table[step]. */
+static int64_t table_at(const int64_t *in, void *u) { return ((const uint8_t *)u)[in[0]]; }
+
+sim_signal *brdf_decode(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *name,
+                        sim_signal *next, const uint8_t *table, int n)
+{
+    uint8_t *t = sim_alloc(c, (size_t)n);
+    int maxv = 0;
+    for (int i = 0; i < n; i++) { t[i] = table[i]; if (t[i] > maxv) maxv = t[i]; }
+    int bits = brdf_bitlen((uint64_t)maxv);
+    sim_fmt f = unit_fmt(0, bits ? bits : 1, 0);
+    char dname[64];
+    snprintf(dname, sizeof dname, "%s_next", name);
+    /* About two gates per step decoded, per output bit (as unit_horner.c). */
+    sim_signal *d = sim_logic(c, sc, dname, f, 1, &next, table_at, t, 2.0 * n * f.width);
+    return sim_reg(c, sc, name, f, clk, d, NULL, NULL, t[0]);
+}
+
+/* ------------------------------------------------------ constant multiply */
+
+/* Non-zero digits of v in canonical signed-digit form, and the distance
+ * from its lowest to its highest digit. */
+static int csd_digits(uint64_t v, int *span)
+{
+    int n = 0, lo = -1, hi = 0;
+    for (int pos = 0; v; pos++, v >>= 1) {
+        if (v & 1) {
+            if ((v & 3) == 3) v += 1;      /* digit -1: ...11 -> ...(1)0(-1) */
+            else v -= 1;                   /* digit +1 */
+            n++;
+            if (lo < 0) lo = pos;
+            hi = pos;
+        }
+    }
+    *span = lo < 0 ? 0 : hi - lo + 1;
+    return n;
+}
+
+/* y = x * k for a constant k: the product is exact before y's quantization,
+ * as sim_mul's, but the element is a shift-and-add network, one adder per
+ * CSD digit of k after the first (a power of two is wiring), each as wide
+ * as x plus the digits' span. */
+sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
+                      sim_signal *x, sim_signal *k)
+{
+    sim_signal *y = sim_mul(c, sc, name, fy, x, k);
+    int64_t kr = k->cur;
+    uint64_t mag = kr < 0 ? (uint64_t)0 - (uint64_t)kr : (uint64_t)kr;
+    int span, digits = csd_digits(mag, &span);
+    int w = x->fmt.width + span, adders = digits - 1;
+    /* A negative k makes one of the adders a subtractor (or, for a power
+     * of two, adds a negator). */
+    if (kr < 0) y->area_ge = sim_area_sub(w) + (adders > 1 ? (adders - 1) * sim_area_add(w) : 0.0);
+    else y->area_ge = adders > 0 ? adders * sim_area_add(w) : 0.0;
+    return y;
+}
+
+/* -------------------------------------------------- formats and bounds */
+
+/* Integer bits of an unsigned format holding every value up to x (with a
+ * little room so that a rounded-up constant still fits). */
+int brdf_ibits(double x)
+{
+    int i = 0;
+    while (i < 63 && ldexp(1.0, i) <= x * (1 + 0x1p-20)) i++;
+    return i;
+}
+
+/* Whether format f holds every real in [lo, hi]. */
+int brdf_holds(sim_fmt f, double lo, double hi)
+{
+    return lo >= sim_fmt_real_min(f) && hi <= sim_fmt_real_max(f);
+}
+
+/* The bound when some format cannot hold its signal's range (a user's
+ * --fmt override): the output may then wrap anywhere in its format. */
+double brdf_range_bound(sim_fmt out, double ideal_max)
+{
+    return fmax(fabs(sim_fmt_real_min(out)), fabs(sim_fmt_real_max(out))) + fabs(ideal_max);
+}
+
+/* A hard-wired constant: x truncated (toward minus infinity) to f, so
+ * that a scale like c0 = 1/(4m^2) never makes an output exceed the exact
+ * peak; but x within 2^-30 LSB of a representable value is that value,
+ * whatever the double arithmetic that made it: 2/0.2^2 - 4 comes out as
+ * 45.99999999999999, and truncating it would cost a CSD digit and an adder
+ * for nothing. */
+static int64_t const_raw(double x, sim_fmt f)
+{
+    double y = ldexp(x, f.fbits), r = nearbyint(y);
+    if (fabs(y - r) <= 0x1p-30 * fmax(1.0, fabs(y))) x = ldexp(r, -f.fbits);
+    return sim_fx_from_real(x, f, SIM_RND_TRUNC, SIM_OVF_SAT, NULL);
+}
+sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x)
+{
+    return sim_const_raw(c, sc, name, f, const_raw(x, f));
+}
+/* |x - the constant brdf_const stores|. */
+double brdf_const_err(double x, sim_fmt f)
+{
+    return fabs(sim_fx_to_real(const_raw(x, f), f) - x);
+}

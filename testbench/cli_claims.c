@@ -1,0 +1,639 @@
+/* cli_claims.c - the verb claims: every numerical claim of the seeds next
+ * to what we measure, with a verdict (vectors/claims.c computes them), the
+ * seeds' speed claims measured as hardware clocks and area of our units
+ * against a cost model of the exact functions and as CPU time of float
+ * code, the failure region of each approximation, and with -o DIR the
+ * charts (docs/brdf.md). */
+#include "testbench/cli.h"
+#include "testbench/tb_svg.h"
+#include "vectors/claims.h"
+#include "vectors/ref_brdf.h"
+#include <errno.h>
+#include <stdarg.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+#define DEG (M_PI / 180.0)
+
+static const char claims_help[] =
+    "usage: shadesim claims [--json] [-o DIR] [--width W] [--cpu-seconds S]\n\n"
+    "Prints each numerical claim of the seeds (000, 001, 004) beside what the\n"
+    "double-precision references measure, and a verdict: holds, holds only for\n"
+    "<condition>, or does not hold. Then the seeds' speed claims (D16 4.34x faster\n"
+    "than D, the Ward approximation more than 2x), measured twice: as clocks and\n"
+    "area of our hardware units against a cost model of the exact functions, and\n"
+    "as CPU time of float code on this machine (machine-dependent). Last, where\n"
+    "each approximation fails: relative error above 10% where the exact value is\n"
+    "above 1% of its peak.\n\noptions:\n"
+    "  --json               one JSON object instead of text\n"
+    "  -o DIR               also write the charts into DIR (made if missing):\n"
+    "                       claims_d16.svg, claims_ward.svg, claims_schlick.svg\n"
+    "                       (error against angle, failure regions shaded),\n"
+    "                       claims_d16_clamp.svg (why d_approx clamps its base) and\n"
+    "                       claims_cost.svg (clocks x area against error, our units)\n"
+    "  --width W            width of the hardware units for the speed and cost\n"
+    "                       figures (default 16)\n"
+    "  --cpu-seconds S      time each float kernel for at least S seconds, best of\n"
+    "                       three (default 0.05; 0 skips the CPU timing)\n\n"
+    "exit status: 0 done (a claim that does not hold is a finding, not an error),\n"
+    "2 bad usage or an unwritable DIR\n";
+
+#define FAIL_REL 0.10          /* a failure: relative error above 10% ... */
+#define FAIL_FLOOR 0.01        /* ... where the exact value is above 1% of its peak */
+
+/* ----------------------------------------------------------- JSON output */
+
+static void jstr(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
+        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
+        else if (*p == '\n') fputs("\\n", f);
+        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
+        else fputc(*p, f);
+    }
+    fputc('"', f);
+}
+static void jnum(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, "%.10g", v);
+    else fputs("null", f);
+}
+
+/* Text into a claim_result field (fixed size): formatted in full, then cut. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+static void settext(char *dst, size_t size, const char *fmt, ...)
+{
+    char tmp[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    size_t n = strlen(tmp);
+    if (n >= size) n = size - 1;
+    memcpy(dst, tmp, n);
+    dst[n] = 0;
+}
+
+/* ------------------------------------------------- hardware cost figures */
+
+/* One unit run on vectors from its reference model at a width. */
+typedef struct hw_point {
+    const char *unit;
+    char label[64];
+    double clocks, area, max_err_peak;   /* max |hw - physical model| / its peak */
+    int ok;
+} hw_point;
+
+typedef double (*phys_fn)(double c, const unit_cfg *cfg);
+static double phys_beckmann(double c, const unit_cfg *cfg) { return ref_brdf_beckmann(c, cfg->m); }
+static double phys_ward(double c, const unit_cfg *cfg) { return ref_brdf_ward_exp(c, cfg->alpha); }
+static double phys_blinn(double c, const unit_cfg *cfg) { return ref_brdf_cos_pow(c, cfg->n); }
+
+static int run_unit(const char *name, const unit_cfg *base, size_t nvec, phys_fn phys, double peak,
+                    hw_point *pt)
+{
+    const unit_desc *u = unit_find(name);
+    memset(pt, 0, sizeof *pt);
+    pt->unit = name;
+    if (!u) return -1;
+    unit_fmts fm;
+    vec_set vs;
+    tb_result r;
+    char err[600];
+    if (tb_formats(u, base, NULL, 0, &fm, err, sizeof err)) return -1;
+    if (cli_make_vectors(u, base, nvec, 1, &vs, err, sizeof err)) return -1;
+    int rc = tb_run(u, base, &fm, &vs, NULL, &r, err, sizeof err);
+    if (rc == TB_OK) {
+        pt->clocks = r.cycles_per_item;
+        pt->area = r.area_ge;
+        pt->max_err_peak = 0;
+        if (phys)
+            for (size_t i = 0; i < vs.n_rows; i++) {
+                double hw = sim_fx_to_real(r.raw[i * (size_t)r.n_out], r.out[0].fmt);
+                double e = fabs(hw - phys(vec_row(&vs, i)[0], base)) / peak;
+                if (e > pt->max_err_peak) pt->max_err_peak = e;
+            }
+        pt->ok = 1;
+    }
+    tb_result_free(&r);
+    vec_set_free(&vs);
+    return pt->ok ? 0 : -1;
+}
+
+/* The seeds' speed claims in hardware. The exact functions are not units
+ * of ours; their cost is a lower-bound model built from units we measure
+ * (docs/brdf.md, "speed claims"):
+ *   exact D  = c^2 (one clock of the powg g=2 squarer), (1 - c^2)/c^2 (the
+ *              divider, W clocks), exp(-x/m^2) by a shift-and-add
+ *              exponential (W clocks, one bit a clock, range reduction free;
+ *              area: two divider datapaths, its ROM and shifter not
+ *              counted), c^4 (one more squaring), the division by c^4 (the
+ *              divider again, W clocks): 3W + 2 clocks;
+ *   Ward exp = the same without c^4 and the second division: 2W + 1 clocks.
+ * Also measured: the seeds' intermediate cos-power form, cos^(2/m^2 - 4)
+ * and cos^(2/a^2), exactly, on pow_n. */
+typedef struct hw_cost {
+    int width, n_d, n_w;          /* pow_n's exponents: 2/m^2 - 4 and 2/a^2 */
+    hw_point d16, ward16, sq, div, pow_d, pow_w;
+    double exact_d_clocks, exact_d_area, exact_w_clocks, exact_w_area;
+    int ok;
+} hw_cost;
+
+static void measure_cost(int width, hw_cost *hc)
+{
+    memset(hc, 0, sizeof *hc);
+    hc->width = width;
+    unit_cfg cfg;
+    unit_cfg_default(&cfg);
+    cfg.width = width;
+    const size_t nv = 64;
+    int bad = 0;
+    bad |= run_unit("d_approx", &cfg, nv, NULL, 1, &hc->d16);
+    bad |= run_unit("ward_approx", &cfg, nv, NULL, 1, &hc->ward16);
+    unit_cfg sq = cfg;
+    sq.g = 2;
+    bad |= run_unit("powg", &sq, nv, NULL, 1, &hc->sq);
+    bad |= run_unit("div", &cfg, nv, NULL, 1, &hc->div);
+    unit_cfg pd = cfg, pw = cfg;
+    pd.n = (int)lround(2.0 / (cfg.m * cfg.m) - 4.0);
+    pw.n = (int)lround(2.0 / (cfg.alpha * cfg.alpha));
+    bad |= run_unit("pow_n", &pd, nv, NULL, 1, &hc->pow_d);
+    bad |= run_unit("pow_n", &pw, nv, NULL, 1, &hc->pow_w);
+    hc->n_d = pd.n;
+    hc->n_w = pw.n;
+    snprintf(hc->pow_d.label, sizeof hc->pow_d.label, "pow_n n=%d", pd.n);
+    snprintf(hc->pow_w.label, sizeof hc->pow_w.label, "pow_n n=%d", pw.n);
+    double exp_area = 2 * hc->div.area;
+    hc->exact_d_clocks = 2 * hc->sq.clocks + 3 * width;
+    hc->exact_d_area = hc->sq.area + hc->div.area + exp_area;
+    hc->exact_w_clocks = hc->sq.clocks + 2 * width;
+    hc->exact_w_area = hc->sq.area + hc->div.area + exp_area;
+    hc->ok = !bad;
+}
+
+/* The two hardware speed claims as rows of the claims table. */
+static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
+{
+    claim_result *r = &out[0];
+    memset(out, 0, 2 * sizeof *out);
+    r->id = "d16_speed_hw";
+    r->seed = "000 sec. III results; 001 sec. 4";
+    r->claim = "computing D16 instead of D raises the speed 4.34 times (here: in clocks of our hardware)";
+    r->claimed = 4.34;
+    r->measured = hc->exact_d_clocks / hc->d16.clocks;
+    settext(r->measured_text, sizeof r->measured_text,
+             "%.3gx fewer clocks: d_approx %.0f, exact-D model %.0f (width %d); clocks x area %.3gx less; "
+             "%s: %.0f clocks", r->measured, hc->d16.clocks, hc->exact_d_clocks, hc->width,
+             hc->exact_d_clocks * hc->exact_d_area / (hc->d16.clocks * hc->d16.area), hc->pow_d.label,
+             hc->pow_d.clocks);
+    r->verdict = r->measured >= r->claimed ? CLAIM_HOLDS
+               : r->measured > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up in hardware" : CLAIM_FAILS;
+    settext(r->note, sizeof r->note,
+             "exact D modelled as a lower bound: squarer + divider + shift-and-add exp (W clocks, two "
+             "divider datapaths) + squarer + divider = 3W+2 clocks; m = 0.2, g = 16");
+    r = &out[1];
+    r->id = "ward_speed_hw";
+    r->seed = "000 sec. III results; 001 sec. 4";
+    r->claim = "for the Ward model the speed gain of the approximation is more than twice (here: in clocks)";
+    r->claimed = 2.0;
+    r->measured = hc->exact_w_clocks / hc->ward16.clocks;
+    settext(r->measured_text, sizeof r->measured_text,
+             "%.3gx fewer clocks: ward_approx %.0f, exact-exp model %.0f (width %d); clocks x area %.3gx "
+             "less; %s: %.0f clocks", r->measured, hc->ward16.clocks, hc->exact_w_clocks, hc->width,
+             hc->exact_w_clocks * hc->exact_w_area / (hc->ward16.clocks * hc->ward16.area), hc->pow_w.label,
+             hc->pow_w.clocks);
+    r->verdict = r->measured > r->claimed ? CLAIM_HOLDS
+               : r->measured > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up in hardware" : CLAIM_FAILS;
+    settext(r->note, sizeof r->note,
+             "exp(-tan^2/a^2) modelled as squarer + divider + shift-and-add exp = 2W+1 clocks (a lower "
+             "bound); only the exponential factor, as the seeds approximate it; a = 0.2");
+    return 2;
+}
+
+/* ----------------------------------------------------- failure regions */
+
+typedef double (*fn_cp)(double c, double p);
+static double d16c(double c, double m) { return ref_brdf_dg_clamped(c, m, 16); }
+static double d16u(double c, double m) { return ref_brdf_dg(c, m, 16); }
+static double beck(double c, double m) { return ref_brdf_beckmann(c, m); }
+static double wpoly(double c, double a) { return ref_brdf_ward_exp_approx_clamped(c, a); }
+static double wexp(double c, double a) { return ref_brdf_ward_exp(c, a); }
+static double fsh(double c, double n) { return ref_brdf_schlick(c, n); }
+static double fmsh(double c, double n) { return ref_brdf_mschlick(c, n); }
+static double blinn(double c, double n) { return ref_brdf_cos_pow(c, n); }
+
+/* An approximation at one parameter value against its exact function. */
+typedef struct approx {
+    const char *name;      /* "D16" */
+    const char *pname;     /* "m" */
+    double p;
+    fn_cp f, exact;
+    double peak;           /* of the exact function (at 0 deg) */
+} approx;
+
+#define N_ANG 1800             /* 0.05 deg steps over [0, 90] */
+#define MAX_BANDS 8
+
+typedef struct bands { int n; double lo[MAX_BANDS], hi[MAX_BANDS]; double worst; } bands;
+
+static double ang_at(int i) { return 90.0 * i / N_ANG; }
+
+static int failing(const approx *a, int i)
+{
+    double c = cos(ang_at(i) * DEG), e = a->exact(c, a->p);
+    return e > FAIL_FLOOR * a->peak && fabs(a->f(c, a->p) / e - 1) > FAIL_REL;
+}
+
+/* Contiguous runs of failing angles, and the worst relative error where the
+ * exact value is above 1% of its peak. */
+static void failure_bands(const approx *a, bands *b)
+{
+    memset(b, 0, sizeof *b);
+    int start = -1;
+    for (int i = 0; i <= N_ANG + 1; i++) {
+        int fl = i <= N_ANG && failing(a, i);
+        if (i <= N_ANG) {
+            double c = cos(ang_at(i) * DEG), e = a->exact(c, a->p);
+            if (e > FAIL_FLOOR * a->peak) b->worst = fmax(b->worst, fabs(a->f(c, a->p) / e - 1));
+        }
+        if (fl && start < 0) start = i;
+        if (!fl && start >= 0) {
+            if (b->n < MAX_BANDS) {
+                b->lo[b->n] = ang_at(start);
+                b->hi[b->n] = ang_at(i - 1);
+                b->n++;
+            }
+            start = -1;
+        }
+    }
+}
+
+static const approx APPROX[] = {
+    { "D16", "m", 0.2, d16c, beck, 1 / (4 * 0.04) },
+    { "D16", "m", 0.3, d16c, beck, 1 / (4 * 0.09) },
+    { "D16", "m", 0.4, d16c, beck, 1 / (4 * 0.16) },
+    { "D16", "m", 0.6, d16c, beck, 1 / (4 * 0.36) },
+    { "Ward poly16", "a", 0.1, wpoly, wexp, 1 },
+    { "Ward poly16", "a", 0.2, wpoly, wexp, 1 },
+    { "Ward poly16", "a", 0.3, wpoly, wexp, 1 },
+    { "Ward poly16", "a", 0.4, wpoly, wexp, 1 },
+    { "F_SH", "n", 60, fsh, blinn, 1 },
+    { "F_MSH", "n", 60, fmsh, blinn, 1 },
+    { "F_SH", "n", 500, fsh, blinn, 1 },
+    { "F_MSH", "n", 500, fmsh, blinn, 1 },
+};
+#define N_APPROX (sizeof APPROX / sizeof APPROX[0])
+
+/* --------------------------------------------------------------- charts */
+
+static int write_chart(tb_chart *c, const char *dir, const char *file, char paths[][600], int *np)
+{
+    char path[600], err[700];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    int rc = c ? tb_chart_write(c, path, err, sizeof err) : -1;
+    if (!c) snprintf(err, sizeof err, "%s: out of memory", path);
+    tb_chart_free(c);
+    if (rc) return cli_usage_error("%s", err);
+    snprintf(paths[(*np)++], 600, "%s", path);
+    return CLI_OK;
+}
+
+/* |relative error| in percent against angle, where the exact value is
+ * above 0.1% of its peak; failure bands shaded. first..last index APPROX. */
+static tb_chart *error_chart(const char *title, size_t first, size_t last)
+{
+    tb_chart *c = tb_chart_new(title, "angle between N and H (deg)", "|relative error| (%)");
+    if (!c) return NULL;
+    tb_chart_log_y(c, 1);
+    for (size_t k = first; k <= last; k++) {
+        const approx *a = &APPROX[k];
+        char label[64];
+        snprintf(label, sizeof label, "%s, %s = %g", a->name, a->pname, a->p);
+        int s = tb_chart_series(c, label, TB_LINE);
+        for (int i = 0; i <= N_ANG; i += 4) {
+            double cc = cos(ang_at(i) * DEG), e = a->exact(cc, a->p);
+            if (e > 1e-3 * a->peak) tb_chart_point(c, s, ang_at(i), 100 * fabs(a->f(cc, a->p) / e - 1));
+        }
+        bands b;
+        failure_bands(a, &b);
+        for (int j = 0; j < b.n; j++) {
+            snprintf(label, sizeof label, "%s=%g fails", a->pname, a->p);
+            tb_chart_hband(c, b.lo[j], b.hi[j], label);
+        }
+    }
+    tb_chart_hline(c, 100 * FAIL_REL, "10%");
+    return c;
+}
+
+/* Why d_approx clamps: D, D16 clamped and D16 as the seeds print it, as
+ * fractions of D's peak, m = 0.2; past the cosine where the base turns
+ * negative the printed even power rises again, to 2.3e4 x the peak. */
+static tb_chart *clamp_chart(void)
+{
+    const double m = 0.2, peak = 1 / (4 * m * m);
+    tb_chart *c = tb_chart_new("D16 with and without the clamp, m = 0.2", "angle between N and H (deg)",
+                               "value / peak of D");
+    if (!c) return NULL;
+    tb_chart_log_y(c, 1);
+    int s_d = tb_chart_series(c, "Beckmann D", TB_LINE);
+    int s_u = tb_chart_series(c, "D16 as printed", TB_LINE);
+    int s_c = tb_chart_series(c, "D16 clamped (d_approx)", TB_LINE);   /* drawn over the printed */
+    /* Values below 1e-12 of the peak are left out (D reaches 1e-300), as
+     * NaN so that the lines break there. */
+    for (int i = 0; i <= N_ANG; i += 4) {
+        double a = ang_at(i), cc = cos(a * DEG);
+        double v[3] = { beck(cc, m) / peak, d16c(cc, m) / peak, d16u(cc, m) / peak };
+        int s[3] = { s_d, s_c, s_u };
+        for (int k = 0; k < 3; k++)
+            tb_chart_point(c, s[k], a, v[k] >= 1e-12 ? v[k] : NAN);
+    }
+    double c0 = ref_brdf_dg_base_zero_cos(m, 16);
+    char lab[64];
+    snprintf(lab, sizeof lab, "base < 0 from %.1f deg", acos(c0) / DEG);
+    if (c0 > 0) tb_chart_hband(c, acos(c0) / DEG, 90, lab);
+    tb_chart_hline(c, 1, "peak");
+    return c;
+}
+
+/* Clocks x area against error for the specular units at several widths. */
+typedef struct cost_unit { const char *unit, *label; phys_fn phys; } cost_unit;
+static const cost_unit COST_UNITS[] = {
+    { "d_approx", "d_approx vs D, m=0.2", phys_beckmann },
+    { "ward_approx", "ward_approx vs exp, a=0.2", phys_ward },
+    { "pow_n", "pow_n vs cos^32", phys_blinn },
+    { "schlick", "schlick vs cos^32", phys_blinn },
+    { "mschlick", "mschlick vs cos^32", phys_blinn },
+};
+#define N_COST_UNITS (sizeof COST_UNITS / sizeof COST_UNITS[0])
+static const int COST_WIDTHS[] = { 8, 12, 16, 20, 24 };
+#define N_COST_WIDTHS (sizeof COST_WIDTHS / sizeof COST_WIDTHS[0])
+
+static tb_chart *cost_chart(void)
+{
+    tb_chart *c = tb_chart_new("Which specular model buys the most accuracy per clock",
+                               "clocks per item x area (GE x clocks)", "max |error| / peak of the exact function");
+    if (!c) return NULL;
+    tb_chart_log_x(c, 1);
+    tb_chart_log_y(c, 1);
+    for (size_t k = 0; k < N_COST_UNITS; k++) {
+        int s = tb_chart_series(c, COST_UNITS[k].label, TB_LINE | TB_POINTS);
+        for (size_t w = 0; w < N_COST_WIDTHS; w++) {
+            unit_cfg cfg;
+            unit_cfg_default(&cfg);
+            cfg.width = COST_WIDTHS[w];
+            double peak = !strcmp(COST_UNITS[k].unit, "d_approx") ? 1 / (4 * cfg.m * cfg.m) : 1;
+            hw_point pt;
+            if (run_unit(COST_UNITS[k].unit, &cfg, 0, COST_UNITS[k].phys, peak, &pt)) continue;
+            char lab[16];
+            snprintf(lab, sizeof lab, "w=%d", COST_WIDTHS[w]);
+            if (w == 0 || w == N_COST_WIDTHS - 1) tb_chart_point_label(c, s, pt.clocks * pt.area, pt.max_err_peak, lab);
+            else tb_chart_point(c, s, pt.clocks * pt.area, pt.max_err_peak);
+        }
+    }
+    return c;
+}
+
+static int make_dir(const char *dir)
+{
+    char p[600];
+    snprintf(p, sizeof p, "%s", dir);
+    for (char *s = p + 1; ; s++) {
+        char ch = *s;
+        if (ch == '/' || ch == 0) {
+            *s = 0;
+            if (mkdir(p, 0777) && errno != EEXIST)
+                return cli_usage_error("-o %s: cannot create folder %s: %s", dir, p, strerror(errno));
+            *s = ch;
+        }
+        if (!ch) break;
+    }
+    return CLI_OK;
+}
+
+static int write_charts(const char *dir, char paths[][600], int *np)
+{
+    if (make_dir(dir)) return CLI_USAGE;
+    if (write_chart(error_chart("D16 (clamped) against Beckmann D", 0, 3), dir, "claims_d16.svg", paths, np) ||
+        write_chart(error_chart("Ward's exponential as a 16th power", 4, 7), dir, "claims_ward.svg", paths, np) ||
+        write_chart(error_chart("Schlick and modified Schlick against Blinn cos^n", 8, 11), dir,
+                    "claims_schlick.svg", paths, np) ||
+        write_chart(clamp_chart(), dir, "claims_d16_clamp.svg", paths, np) ||
+        write_chart(cost_chart(), dir, "claims_cost.svg", paths, np))
+        return CLI_USAGE;
+    return CLI_OK;
+}
+
+/* ---------------------------------------------------------------- output */
+
+typedef struct report {
+    claim_result rows[CLAIMS_MAX];
+    const char *kind[CLAIMS_MAX];     /* "accuracy", "speed_hw", "speed_cpu" */
+    size_t n;
+    hw_cost hc;
+    bands fb[N_APPROX];
+    int cpu;
+} report;
+
+static void print_row(FILE *f, const claim_result *r)
+{
+    fprintf(f, "%s (%s): %s\n", r->id, r->seed, r->verdict);
+    fprintf(f, "  claim:    %s\n", r->claim);
+    if (isfinite(r->claimed)) fprintf(f, "  seed:     %g    measured: %.4g\n", r->claimed, r->measured);
+    else fprintf(f, "  seed:     (no number)    measured: %.4g\n", r->measured);
+    fprintf(f, "  ours:     %s\n", r->measured_text);
+    fprintf(f, "  note:     %s\n\n", r->note);
+}
+
+static void print_text(FILE *f, const report *rp, char paths[][600], int np)
+{
+    fputs("The seeds' numerical claims next to what the double-precision references measure.\n"
+          "Verdicts: holds / holds only for <condition> / does not hold.\n\n", f);
+    for (size_t i = 0; i < rp->n; i++)
+        if (!strcmp(rp->kind[i], "accuracy")) print_row(f, &rp->rows[i]);
+
+    const hw_cost *h = &rp->hc;
+    fprintf(f, "Speed claims in hardware: our units at width %d (clocks per item, area in GE)\n", h->width);
+    if (!h->ok) fputs("  (some unit failed to run; figures may be missing)\n", f);
+    fprintf(f, "  %-36s %8s %10s %14s\n", "", "clocks", "area", "clocks x area");
+    struct { const char *name; double cl, ar; } t[] = {
+        { "d_approx (D16, m=0.2)", h->d16.clocks, h->d16.area },
+        { "exact D, cost model (lower bound)", h->exact_d_clocks, h->exact_d_area },
+        { h->pow_d.label, h->pow_d.clocks, h->pow_d.area },
+        { "ward_approx (a=0.2)", h->ward16.clocks, h->ward16.area },
+        { "exact Ward exp, cost model", h->exact_w_clocks, h->exact_w_area },
+        { h->pow_w.label, h->pow_w.clocks, h->pow_w.area },
+        { "  parts: powg g=2 (squarer)", h->sq.clocks, h->sq.area },
+        { "  parts: div (restoring divider)", h->div.clocks, h->div.area },
+    };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++)
+        fprintf(f, "  %-36s %8.0f %10.0f %14.0f\n", t[i].name, t[i].cl, t[i].ar, t[i].cl * t[i].ar);
+    fputs("  cost model: exact D = c^2 (squarer, 1 clock) + (1-c^2)/c^2 (divider, W clocks)\n"
+          "  + exp by shift and add (W clocks, area of two divider datapaths; ROM, shifter and\n"
+          "  range reduction not counted) + c^4 (1 clock) + division by c^4 (W clocks) = 3W+2;\n"
+          "  Ward's exp term stops after the exp: 2W+1 clocks. pow_n rows: the seeds'\n"
+          "  intermediate cos^(2/m^2-4) and cos^(2/a^2) forms computed exactly.\n\n", f);
+    for (size_t i = 0; i < rp->n; i++)
+        if (!strcmp(rp->kind[i], "speed_hw")) print_row(f, &rp->rows[i]);
+
+    if (rp->cpu) {
+        fputs("Speed claims on this CPU (float code; machine-, compiler- and libm-dependent)\n\n", f);
+        for (size_t i = 0; i < rp->n; i++)
+            if (!strcmp(rp->kind[i], "speed_cpu")) print_row(f, &rp->rows[i]);
+    } else {
+        fputs("Speed claims on this CPU: not timed (--cpu-seconds 0)\n\n", f);
+    }
+
+    fputs("Failure regions: relative error above 10% where the exact value is above 1% of its peak\n", f);
+    for (size_t k = 0; k < N_APPROX; k++) {
+        const approx *a = &APPROX[k];
+        const bands *b = &rp->fb[k];
+        fprintf(f, "  %-12s %s = %-4g worst %7.3g%%  ", a->name, a->pname, a->p, 100 * b->worst);
+        if (!b->n) fputs("no failure", f);
+        for (int j = 0; j < b->n; j++) fprintf(f, "%s%.2f..%.2f deg", j ? ", " : "fails at ", b->lo[j], b->hi[j]);
+        fputc('\n', f);
+    }
+
+    int nh = 0, no = 0, nf = 0;
+    for (size_t i = 0; i < rp->n; i++) {
+        int k = claims_verdict_kind(rp->rows[i].verdict);
+        nh += k == 1; no += k == 0; nf += k == -1;
+    }
+    fprintf(f, "\n%zu claims: %d hold, %d hold only under a condition, %d do not hold%s\n", rp->n, nh, no, nf,
+            rp->cpu ? " (the CPU rows are machine-dependent)" : "");
+    for (int i = 0; i < np; i++) fprintf(f, "wrote %s\n", paths[i]);
+}
+
+static void json_row(FILE *f, const claim_result *r, const char *kind)
+{
+    fputs("    {\"id\": ", f); jstr(f, r->id);
+    fputs(", \"kind\": ", f); jstr(f, kind);
+    fputs(", \"seed\": ", f); jstr(f, r->seed);
+    fputs(",\n     \"claim\": ", f); jstr(f, r->claim);
+    fputs(",\n     \"claimed\": ", f); jnum(f, r->claimed);
+    fputs(", \"measured\": ", f); jnum(f, r->measured);
+    fputs(", \"verdict\": ", f); jstr(f, r->verdict);
+    fputs(",\n     \"measured_text\": ", f); jstr(f, r->measured_text);
+    fputs(",\n     \"note\": ", f); jstr(f, r->note);
+    fputs("}", f);
+}
+
+static void json_hw(FILE *f, const char *name, double cl, double ar, int n, int last)
+{
+    fputs("      ", f); jstr(f, name);
+    fputs(": {\"clocks_per_item\": ", f); jnum(f, cl);
+    fputs(", \"area_ge\": ", f); jnum(f, ar);
+    if (n) fprintf(f, ", \"n\": %d", n);
+    fprintf(f, "}%s\n", last ? "" : ",");
+}
+
+static void print_json(FILE *f, const report *rp, char paths[][600], int np)
+{
+    fputs("{\n  \"claims\": [\n", f);
+    for (size_t i = 0; i < rp->n; i++) {
+        json_row(f, &rp->rows[i], rp->kind[i]);
+        fputs(i + 1 < rp->n ? ",\n" : "\n", f);
+    }
+    const hw_cost *h = &rp->hc;
+    fprintf(f, "  ],\n  \"hardware\": {\n    \"width\": %d,\n    \"units\": {\n", h->width);
+    json_hw(f, "d_approx", h->d16.clocks, h->d16.area, 0, 0);
+    json_hw(f, "ward_approx", h->ward16.clocks, h->ward16.area, 0, 0);
+    json_hw(f, "powg_g2", h->sq.clocks, h->sq.area, 0, 0);
+    json_hw(f, "div", h->div.clocks, h->div.area, 0, 0);
+    json_hw(f, "pow_n_cos_power_d", h->pow_d.clocks, h->pow_d.area, h->n_d, 0);
+    json_hw(f, "pow_n_cos_power_ward", h->pow_w.clocks, h->pow_w.area, h->n_w, 0);
+    json_hw(f, "exact_d_model", h->exact_d_clocks, h->exact_d_area, 0, 0);
+    json_hw(f, "exact_ward_exp_model", h->exact_w_clocks, h->exact_w_area, 0, 1);
+    fputs("    },\n    \"model\": ", f);
+    jstr(f, "exact D = squarer + divider + shift-and-add exp (W clocks, two divider datapaths) + squarer + "
+            "divider = 3W+2 clocks; Ward exp = squarer + divider + exp = 2W+1 clocks; lower bounds");
+    fputs("\n  },\n  \"cpu_timed\": ", f);
+    fputs(rp->cpu ? "true" : "false", f);
+    fputs(",\n  \"failure_regions\": [\n", f);
+    for (size_t k = 0; k < N_APPROX; k++) {
+        const approx *a = &APPROX[k];
+        const bands *b = &rp->fb[k];
+        fputs("    {\"approximation\": ", f); jstr(f, a->name);
+        fputs(", \"param\": ", f); jstr(f, a->pname);
+        fputs(", \"value\": ", f); jnum(f, a->p);
+        fputs(", \"worst_rel_err\": ", f); jnum(f, b->worst);
+        fputs(", \"fails_deg\": [", f);
+        for (int j = 0; j < b->n; j++) {
+            fprintf(f, "%s[", j ? ", " : "");
+            jnum(f, b->lo[j]); fputs(", ", f); jnum(f, b->hi[j]);
+            fputs("]", f);
+        }
+        fprintf(f, "]}%s\n", k + 1 < N_APPROX ? "," : "");
+    }
+    fputs("  ],\n  \"charts\": [", f);
+    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); jstr(f, paths[i]); }
+    fputs("]\n}\n", f);
+}
+
+/* ------------------------------------------------------------------ verb */
+
+int cli_claims(int argc, char **argv)
+{
+    int json = 0, width = 16;
+    double cpu_s = 0.05;
+    const char *dir = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(claims_help, stdout); return CLI_OK; }
+        if (!strcmp(a, "--json")) json = 1;
+        else if (!strcmp(a, "-o")) {
+            if (i + 1 >= argc || !*argv[i + 1]) return cli_usage_error("claims: -o needs a folder");
+            dir = argv[++i];
+        } else if (!strcmp(a, "--width")) {
+            char *end;
+            long w = i + 1 < argc ? strtol(argv[i + 1], &end, 10) : 0;
+            if (i + 1 >= argc || *end || !*argv[i + 1] || w < 4 || w > 48)
+                return cli_usage_error("claims: --width needs a whole number 4..48");
+            width = (int)w;
+            i++;
+        } else if (!strcmp(a, "--cpu-seconds")) {
+            char *end;
+            double s = i + 1 < argc ? strtod(argv[i + 1], &end) : -1;
+            if (i + 1 >= argc || *end || !*argv[i + 1] || !(s >= 0 && s <= 10))
+                return cli_usage_error("claims: --cpu-seconds needs a number of seconds 0..10");
+            cpu_s = s;
+            i++;
+        } else return cli_usage_error("claims: unknown argument '%s' (see shadesim claims --help)", a);
+    }
+
+    report *rp = calloc(1, sizeof *rp);
+    if (!rp) return cli_usage_error("claims: out of memory");
+    rp->n = claims_compute(rp->rows, CLAIMS_MAX);
+    for (size_t i = 0; i < rp->n; i++) rp->kind[i] = "accuracy";
+    measure_cost(width, &rp->hc);
+    if (rp->n + 2 <= CLAIMS_MAX) {
+        size_t k = speed_hw_rows(&rp->hc, &rp->rows[rp->n]);
+        for (size_t i = 0; i < k; i++) rp->kind[rp->n + i] = "speed_hw";
+        rp->n += k;
+    }
+    if (cpu_s > 0 && rp->n < CLAIMS_MAX) {
+        size_t k = claims_speed(&rp->rows[rp->n], CLAIMS_MAX - rp->n, cpu_s);
+        for (size_t i = 0; i < k; i++) rp->kind[rp->n + i] = "speed_cpu";
+        rp->n += k;
+        rp->cpu = 1;
+    }
+    for (size_t k = 0; k < N_APPROX; k++) failure_bands(&APPROX[k], &rp->fb[k]);
+
+    char paths[8][600];
+    int np = 0, rc = CLI_OK;
+    if (dir) rc = write_charts(dir, paths, &np);
+    if (rc == CLI_OK) {
+        if (json) print_json(stdout, rp, paths, np);
+        else print_text(stdout, rp, paths, np);
+        if (fflush(stdout)) rc = cli_usage_error("claims: writing to stdout failed");
+    }
+    free(rp);
+    return rc;
+}

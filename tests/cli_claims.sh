@@ -1,0 +1,89 @@
+#!/bin/sh
+# cli_claims.sh - the claims verb from the outside: exit status, every
+# claim in the text and the JSON, the JSON parses, -o DIR writes the
+# charts, bad arguments exit 2 with one line on stderr.
+# One line per check: "ok NAME", "FAIL NAME" or "skip NAME: why".
+S=${SHADESIM:-bin/shadesim}
+T=$(mktemp -d /tmp/shadesim_cli_claims.XXXXXX) || exit 1
+trap 'rm -rf "$T"' EXIT
+export SHADESIM_HOME=${SHADESIM_HOME:-$(pwd)}
+
+ok() { echo "ok $1"; }
+fail() { echo "FAIL $1"; [ -n "$2" ] && echo "  $2"; }
+check() { name=$1; shift; if "$@"; then ok "$name"; else fail "$name"; fi; }
+# bad_args NAME ARGS...: exit 2, one line on stderr, nothing on stdout.
+bad_args() {
+    name=$1; shift
+    "$S" claims "$@" >"$T/bad.out" 2>"$T/bad.err"
+    rc=$?
+    if [ $rc -eq 2 ] && [ "$(wc -l <"$T/bad.err")" -eq 1 ] && [ ! -s "$T/bad.out" ]; then ok "$name"
+    else fail "$name" "exit $rc, stderr: $(cat "$T/bad.err")"; fi
+}
+
+# Text, without CPU timing (fast), then JSON.
+"$S" claims --cpu-seconds 0 >"$T/text" 2>"$T/text.err"
+check claims_exit_0 [ $? -eq 0 -a -s "$T/text" ]
+check claims_quiet_stderr [ ! -s "$T/text.err" ]
+"$S" claims --cpu-seconds 0 --json >"$T/json" 2>"$T/json.err"
+check claims_json_exit_0 [ $? -eq 0 -a -s "$T/json" ]
+
+# Every claim id of the JSON (which is claims_compute's table plus the
+# speed rows; test_units_brdf checks it against claims_compute itself)
+# appears in the text with its verdict line.
+ids=$(sed -n 's/^ *{"id": "\([^"]*\)".*/\1/p' "$T/json")
+n=0; missing=""
+for id in $ids; do
+    n=$((n + 1))
+    grep -q "^$id (" "$T/text" || missing="$missing $id"
+done
+check claims_every_id_in_text [ "$n" -ge 20 -a -z "$missing" ]
+[ -n "$missing" ] && echo "  missing:$missing"
+check claims_hardware_speed_rows grep -q '^d16_speed_hw (' "$T/text"
+check claims_verdict_words [ "$(grep -c -E '^[a-z0-9_.]+ \(.*\): (holds|holds only for .+|does not hold)$' "$T/text")" -eq "$n" ]
+check claims_failure_regions grep -q '^Failure regions' "$T/text"
+
+if command -v python3 >/dev/null 2>&1; then
+    if python3 -c 'import json,sys; d=json.load(sys.stdin); assert len(d["claims"]) >= 20
+ok = ("holds", "does not hold")
+assert all(c["verdict"] in ok or c["verdict"].startswith("holds only for ") for c in d["claims"])
+assert d["hardware"]["units"]["d_approx"]["clocks_per_item"] == 4' <"$T/json" 2>"$T/py.err"; then
+        ok claims_json_parses
+    else
+        fail claims_json_parses "$(tail -1 "$T/py.err")"
+    fi
+else
+    echo "skip claims_json_parses: no python3"
+fi
+
+# CPU timing rows appear when timed (briefly here).
+"$S" claims --cpu-seconds 0.002 >"$T/cpu" 2>&1
+rc=$?
+check claims_cpu_rows [ $rc -eq 0 -a "$(grep -c -E '^(d16|ward)_speed \(' "$T/cpu")" -eq 2 ]
+
+# Charts.
+"$S" claims --cpu-seconds 0 -o "$T/charts/sub" >"$T/o.out" 2>&1
+check claims_o_exit_0 [ $? -eq 0 ]
+nsvg=0
+for f in claims_d16.svg claims_ward.svg claims_schlick.svg claims_d16_clamp.svg claims_cost.svg; do
+    if [ -s "$T/charts/sub/$f" ] && head -c 200 "$T/charts/sub/$f" | grep -q '<svg' && tail -c 20 "$T/charts/sub/$f" | grep -q '</svg>'; then
+        nsvg=$((nsvg + 1))
+    fi
+done
+check claims_o_writes_svgs [ "$nsvg" -eq 5 ]
+check claims_o_no_temporaries [ "$(ls "$T/charts/sub" | grep -v -c '\.svg$')" -eq 0 ]
+check claims_o_lists_files grep -q "wrote $T/charts/sub/claims_cost.svg" "$T/o.out"
+
+"$S" claims --help >"$T/help" 2>&1
+rc=$?
+check claims_help [ $rc -eq 0 -a "$(grep -c '^usage: shadesim claims' "$T/help")" -eq 1 ]
+
+bad_args claims_bad_option --bogus
+bad_args claims_bad_width --width 0
+bad_args claims_bad_width_text --width abc
+bad_args claims_width_missing --width
+bad_args claims_o_missing -o
+bad_args claims_bad_cpu_seconds --cpu-seconds -1
+bad_args claims_stray_argument extra
+touch "$T/afile"
+bad_args claims_o_not_a_folder -o "$T/afile/x" --cpu-seconds 0
+exit 0

@@ -1,0 +1,280 @@
+/* unit_dapprox.c - d_approx and ward_approx: a clamped linear base raised
+ * to a power of two on the power engine of unit_powg.c, one builder for
+ * both (they differ only in constants, which a table supplies).
+ *
+ *   d_approx     D_g = c0 max(0, 1 - k (1 - c))^g,  k = (2/m^2 - 4)/g, c0 = 1/(4m^2)
+ *   ward_approx  e   =    max(0, 1 - k (1 - c))^16, k = 1/(8 alpha^2)
+ *
+ * Datapath (combinational in front of the engine, then the engine's
+ * squarings, then a constant scale for d_approx):
+ *
+ *   OM    = 1 - c                    subtractor
+ *   P     = k * OM                   constant multiplier (shift-and-add)
+ *   BASE  = 1 - P                    subtractor
+ *   CLAMP = BASE >= 0 ? BASE : 0     block key on BASE's sign bit
+ *   RG    <= CLAMP^2, then RG^2 ...  powg's program, log2(g) clocks
+ *   d     = c0 * RG                  constant multiplier (d_approx only)
+ *
+ * The base is formed as 1 - k (1 - c), not (1 - k) + k c: at the peak,
+ * c = 1, it is exactly 1 whatever the rounding of k, so the output's peak
+ * is exactly quant(c0) <= c0. The clamp is what the seeds' printed form
+ * lacks: beyond the cosine 1 - 1/k (about 49 deg for m = 0.2) their even
+ * power of a negative base rises again.
+ */
+#include "units/unit.h"
+#include "vectors/ref_brdf.h"
+#include <math.h>
+#include <stddef.h>
+
+/* shared with unit_powg.c */
+sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
+                     const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog);
+double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
+                double e_in, double m_in, const char *prog, double *m_out);
+/* shared with units_brdf.c */
+sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
+                      sim_signal *x, sim_signal *k);
+int    brdf_ibits(double x);
+int    brdf_holds(sim_fmt f, double lo, double hi);
+double brdf_range_bound(sim_fmt out, double ideal_max);
+double brdf_const_err(double x, sim_fmt f);
+sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x);
+
+/* Signal indices, shared by both descriptors (d_approx adds c0 at the end). */
+enum { S_C, S_OUT, S_OM, S_K, S_P, S_BASE, S_CLAMP, S_MX, S_MUL, S_RG, S_C0, S_NSIGS };
+
+/* What distinguishes the two units. */
+typedef struct da_kind {
+    const unit_desc *u;
+    int has_c0;                       /* d_approx: the output is c0 * RG */
+    void (*consts)(const unit_cfg *cfg, double *k, double *c0, int *g);
+    double (*ref)(const unit_cfg *cfg, double c);
+} da_kind;
+
+static void d_consts(const unit_cfg *cfg, double *k, double *c0, int *g)
+{
+    double m2 = cfg->m * cfg->m;
+    *g = cfg->g;
+    *k = (2.0 / m2 - 4.0) / cfg->g;
+    *c0 = 1.0 / (4.0 * m2);
+}
+static void w_consts(const unit_cfg *cfg, double *k, double *c0, int *g)
+{
+    *g = 16;
+    *k = 1.0 / (8.0 * cfg->alpha * cfg->alpha);
+    *c0 = 1.0;
+}
+static double d_ref(const unit_cfg *cfg, double c) { return ref_brdf_dg_clamped(c, cfg->m, cfg->g); }
+static double w_ref(const unit_cfg *cfg, double c) { return ref_brdf_ward_exp_approx_clamped(c, cfg->alpha); }
+
+extern const unit_desc unit_d_approx, unit_ward_approx;
+static const da_kind K_D = { &unit_d_approx, 1, d_consts, d_ref };
+static const da_kind K_W = { &unit_ward_approx, 0, w_consts, w_ref };
+
+/* Largest base and largest power: for k < 0 (m > 1/sqrt 2) the base
+ * exceeds 1 away from the peak, up to 1 - k at c = 0. */
+static double base_max(double k) { return k < 0 ? 1.0 - k : 1.0; }
+static double chain_max(double k, int g) { return pow(base_max(k), g); }
+
+/* "II" then "RR": powg's program for g = 2^k; NULL if g is not one. */
+static const char *da_prog(int g, char *buf, size_t len)
+{
+    if (g < 2 || (g & (g - 1)) || len < 2 * 7 + 1) return NULL;
+    size_t n = 0;
+    for (int p = 1; p < g; p *= 2, n += 2) { buf[n] = n ? 'R' : 'I'; buf[n + 1] = n ? 'R' : 'I'; }
+    buf[n] = 0;
+    return buf;
+}
+
+/* ---------------------------------------------------------------- formats */
+
+static void da_formats(const da_kind *kd, const unit_cfg *cfg, unit_fmts *out)
+{
+    int W = cfg->width, g;
+    double k, c0;
+    kd->consts(cfg, &k, &c0, &g);
+    int neg = k < 0, ik = brdf_ibits(fabs(k));
+    int ic = brdf_ibits(chain_max(k, g)), ib = brdf_ibits(fmax(1.0, fabs(1.0 - k))) + 1;
+    sim_fmt frac = unit_fmt(0, 1, W - 1), core = unit_fmt(0, ic, W - ic);
+    out->f[S_C] = frac;
+    out->f[S_OM] = frac;
+    out->f[S_K] = unit_fmt(neg, ik + neg, W - ik);          /* W significant bits */
+    out->f[S_P] = unit_fmt(neg, ik + neg, W - 1);           /* the base's precision */
+    out->f[S_BASE] = unit_fmt(1, ib, W - 1);
+    out->f[S_CLAMP] = out->f[S_MX] = out->f[S_MUL] = out->f[S_RG] = core;
+    if (kd->has_c0) {
+        int i0 = brdf_ibits(c0), id = brdf_ibits(c0 * chain_max(k, g));
+        out->f[S_C0] = unit_fmt(0, i0, W - i0);
+        out->f[S_OUT] = unit_fmt(0, id, W - id);
+    } else {
+        out->f[S_OUT] = core;
+    }
+}
+static void d_formats(const unit_cfg *cfg, unit_fmts *out) { da_formats(&K_D, cfg, out); }
+static void w_formats(const unit_cfg *cfg, unit_fmts *out) { da_formats(&K_W, cfg, out); }
+
+static int beats1(const unit_cfg *cfg) { (void)cfg; return 1; }
+
+/* ------------------------------------------------------------------ build */
+
+/* BASE >= 0, i.e. P <= 1 (P's raw against 1 in P's format): the
+ * subtractor's borrow. Taken from P rather than from BASE so that the
+ * block key sees BASE and its sign change in the same delta cycle (a sign
+ * computed from BASE arrives a delta later, and the key would pass a
+ * negative BASE for one delta: a glitch the overflow counters would
+ * count). */
+static int64_t f_base_pos(const int64_t *in, void *u) { return in[0] <= *(const int64_t *)u; }
+
+static int da_build(const da_kind *kd, sim_ctx *c, sim_scope *sc, sim_signal *clk,
+                    const unit_cfg *cfg, const unit_fmts *f, unit_io *io, char *err, size_t errlen)
+{
+    int g;
+    double k, c0;
+    char prog[16];
+    kd->consts(cfg, &k, &c0, &g);
+    if (!da_prog(g, prog, sizeof prog)) {
+        snprintf(err, errlen, "%s: g = %d is not a power of two (2, 4, ..., 64)", kd->u->name, g);
+        return -1;
+    }
+    const unit_desc *u = kd->u;
+    sim_signal *cin = io->in[0] = sim_signal_new(c, sc, u->sigs[S_C].name, f->f[S_C], SIM_KIND_INPUT);
+    sim_signal *one = sim_const_raw(c, sc, "one", unit_fmt(0, 1, 0), 1);
+    sim_signal *om = sim_sub(c, sc, "om", f->f[S_OM], one, cin);
+    sim_signal *kc = brdf_const(c, sc, "k", f->f[S_K], k);
+    sim_signal *p = brdf_cmul(c, sc, "p", f->f[S_P], om, kc);
+    sim_signal *base = sim_sub(c, sc, "base", f->f[S_BASE], one, p);
+    int64_t *one_p = sim_alloc(c, sizeof *one_p);
+    *one_p = f->f[S_P].fbits < 62 ? (int64_t)1 << f->f[S_P].fbits : INT64_MAX;
+    sim_signal *pos = sim_logic(c, sc, "base_pos", unit_fmt(0, 1, 0), 1, &p, f_base_pos, one_p, 0.67);
+    sim_signal *clamp = sim_bk(c, sc, "clamp", f->f[S_CLAMP], pos, base);
+    sim_signal *rg = pw_build(u, c, sc, clk, f, io, clamp, prog);
+    if (!rg) { snprintf(err, errlen, "%s: internal: bad engine program", u->name); return -1; }
+    if (kd->has_c0) {
+        sim_signal *c0c = brdf_const(c, sc, "c0", f->f[S_C0], c0);
+        io->out[0] = brdf_cmul(c, sc, u->sigs[S_OUT].name, f->f[S_OUT], rg, c0c);
+    } else {
+        io->out[0] = sim_shift(c, sc, u->sigs[S_OUT].name, f->f[S_OUT], rg, 0);
+    }
+    io->scope = sc;
+    return 0;
+}
+static int d_build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *cfg,
+                   const unit_fmts *f, unit_io *io, char *err, size_t errlen)
+{ return da_build(&K_D, c, sc, clk, cfg, f, io, err, errlen); }
+static int w_build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *cfg,
+                   const unit_fmts *f, unit_io *io, char *err, size_t errlen)
+{ return da_build(&K_W, c, sc, clk, cfg, f, io, err, errlen); }
+
+/* ------------------------------------------------------------ ideal, bound */
+
+static void d_ideal(const unit_cfg *cfg, const double *in, double *out) { out[0] = d_ref(cfg, in[0]); }
+static void w_ideal(const unit_cfg *cfg, const double *in, double *out) { out[0] = w_ref(cfg, in[0]); }
+
+/* docs/brdf.md, "d_approx and ward_approx": the base's error (constant k,
+ * quantized products), through the 1-Lipschitz clamp, into the power
+ * engine's bound, then the output scale. INFINITY when a format cannot
+ * hold its range. */
+static double da_bound_core(const da_kind *kd, const unit_cfg *cfg, const unit_fmts *f, double *ideal_max)
+{
+    int g;
+    double k, c0;
+    char prog[16];
+    kd->consts(cfg, &k, &c0, &g);
+    *ideal_max = c0 * chain_max(k, g);
+    if (!da_prog(g, prog, sizeof prog) || !brdf_holds(f->f[S_C], 0, 1)) return INFINITY;
+    sim_round r = cfg->rnd;
+    const sim_fmt *F = f->f;
+    double e_om = unit_qerr(F[S_OM], F[S_C].fbits, r);
+    if (!brdf_holds(F[S_OM], 0, 1 + e_om)) return INFINITY;
+    if (!brdf_holds(F[S_K], fmin(k, 0), fmax(k, 0))) return INFINITY;
+    double ek = brdf_const_err(k, F[S_K]);
+    double kh = fabs(k) + ek;                                        /* bounds |k_h| */
+    double q_p = unit_qerr(F[S_P], F[S_OM].fbits + F[S_K].fbits, r);
+    double q_b = unit_qerr(F[S_BASE], F[S_P].fbits, r);
+    double p_hi = kh * (1 + e_om) + q_p;
+    if (!brdf_holds(F[S_P], k < 0 ? -p_hi : 0, k < 0 ? 0 : p_hi)) return INFINITY;
+    if (!brdf_holds(F[S_BASE], k < 0 ? 1 - q_b : 1 - p_hi - q_b, k < 0 ? 1 + p_hi + q_b : 1)) return INFINITY;
+    /* Error of the base away from the k term, and the largest 1 - c where
+     * either base can still be positive (beyond it both clamp to 0). */
+    double e0 = kh * e_om + q_p + q_b, t_max = 1.0;
+    if (k > ek) t_max = fmin(1.0, (1.0 + e0) / (k - ek));
+    double e_clamp = ek * t_max + e0 + unit_qerr(F[S_CLAMP], F[S_BASE].fbits, r);
+    double bm = base_max(k);
+    if (!brdf_holds(F[S_CLAMP], 0, bm + e_clamp)) return INFINITY;
+    double m_rg;
+    double e_rg = pw_bound(kd->u, f, r, F[S_CLAMP], e_clamp, bm, prog, &m_rg);
+    if (!isfinite(e_rg)) return INFINITY;
+    double e_out;
+    if (kd->has_c0) {
+        if (!brdf_holds(F[S_C0], 0, c0)) return INFINITY;
+        double e_c0 = brdf_const_err(c0, F[S_C0]);
+        e_out = (c0 + e_c0) * e_rg + e_c0 * m_rg + unit_qerr(F[S_OUT], F[S_RG].fbits + F[S_C0].fbits, r);
+    } else {
+        e_out = e_rg + unit_qerr(F[S_OUT], F[S_RG].fbits, r);
+    }
+    if (!brdf_holds(F[S_OUT], 0, c0 * m_rg + e_out)) return INFINITY;
+    return e_out;
+}
+
+static void da_bound(const da_kind *kd, const unit_cfg *cfg, const unit_fmts *f, double *per_out)
+{
+    double imax, e = da_bound_core(kd, cfg, f, &imax);
+    per_out[0] = isfinite(e) ? e : brdf_range_bound(f->f[S_OUT], imax);
+    /* An input format that cannot hold [0, 1] wraps inputs anywhere: no bound. */
+    if (!brdf_holds(f->f[S_C], 0, 1)) per_out[0] = INFINITY;
+}
+static void d_bound(const unit_cfg *cfg, const unit_fmts *f, double *o) { da_bound(&K_D, cfg, f, o); }
+static void w_bound(const unit_cfg *cfg, const unit_fmts *f, double *o) { da_bound(&K_W, cfg, f, o); }
+
+/* ------------------------------------------------------------- descriptors */
+
+#define DA_INTERNALS \
+    { "om", UNIT_SIG_INTERNAL, "subtractor OM = 1 - c" }, \
+    { "k", UNIT_SIG_INTERNAL, "constant k (slope of the base)" }, \
+    { "p", UNIT_SIG_INTERNAL, "constant multiplier P = k * OM (shift-and-add)" }, \
+    { "base", UNIT_SIG_INTERNAL, "subtractor BASE = 1 - P" }, \
+    { "clamp", UNIT_SIG_INTERNAL, "block key: BASE, or 0 when BASE < 0" }, \
+    { "mx", UNIT_SIG_INTERNAL, "operand mux: CLAMP in the first clock, then RG (drives both inputs)" }, \
+    { "mul", UNIT_SIG_INTERNAL, "multiplier MUL = MX * MX (a squarer)" }, \
+    { "rg", UNIT_SIG_INTERNAL, "register RG <= MUL every clock" }
+
+const unit_desc unit_d_approx = {
+    .name = "d_approx",
+    .summary = "D_g = (1/(4m^2)) max(0, ((2/m^2-4)/g)(c-1)+1)^g: Beckmann D as one clamped power",
+    .seed = "000 sec. III, 001 sec. 3 (D4, D8, D16)",
+    .nsigs = S_NSIGS,
+    .sigs = {
+        { "c", UNIT_SIG_IN, "cos g = N.H, in [0, 1]" },
+        { "d", UNIT_SIG_OUT, "D_g, in [0, 1/(4m^2)]" },
+        DA_INTERNALS,
+        { "c0", UNIT_SIG_INTERNAL, "constant c0 = 1/(4m^2); d = c0 * RG by a constant multiplier" } },
+    .nsched = 1,
+    .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: log2(g) clocks" } },
+    .nparams = 2,
+    .params = {
+        { "m", UNIT_P_REAL, offsetof(unit_cfg, m), 0.05, 1.0, NULL, "Beckmann roughness" },
+        { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, NULL, "power, a power of two" } },
+    .fmt_rule = "c, om u1.(W-1); k uI.(W-I) and p uI.(W-1) with I = integer bits of k (signed "
+                "when m > 1/sqrt 2); base s(I+1).(W-1); clamp, mx, mul, rg uJ.(W-J), J = integer "
+                "bits of the largest power (1 for m <= 1/sqrt 2); c0 and d the same rule for c0 and "
+                "its peak",
+    .formats = d_formats, .beats = beats1, .build = d_build, .ideal = d_ideal, .bound = d_bound,
+};
+
+const unit_desc unit_ward_approx = {
+    .name = "ward_approx",
+    .summary = "e = max(0, (c-1)/(8 alpha^2)+1)^16 ~ exp(-tan^2/alpha^2), Ward's exponential as a power",
+    .seed = "000 sec. III, 001 sec. 3 (Ward)",
+    .nsigs = S_NSIGS - 1,
+    .sigs = {
+        { "c", UNIT_SIG_IN, "cos g = N.H, in [0, 1]" },
+        { "e", UNIT_SIG_OUT, "the 16th power, in [0, 1]" },
+        DA_INTERNALS },
+    .nsched = 1,
+    .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: 4 clocks" } },
+    .nparams = 1,
+    .params = { { "alpha", UNIT_P_REAL, offsetof(unit_cfg, alpha), 0.05, 1.0, NULL, "Ward roughness" } },
+    .fmt_rule = "c, om u1.(W-1); k uI.(W-I) and p uI.(W-1) with I = integer bits of 1/(8 alpha^2); "
+                "base s(I+1).(W-1); clamp, mx, mul, rg, e u1.(W-1)",
+    .formats = w_formats, .beats = beats1, .build = w_build, .ideal = w_ideal, .bound = w_bound,
+};
