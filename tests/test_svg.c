@@ -30,21 +30,6 @@ static const char *tpath(const char *name)
     return p[k];
 }
 
-static void tdir_clean(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d) return;
-    struct dirent *e;
-    char p[1024];
-    while ((e = readdir(d))) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
-        struct stat st;
-        if (!lstat(p, &st) && S_ISDIR(st.st_mode)) { tdir_clean(p); rmdir(p); }
-        else unlink(p);
-    }
-    closedir(d);
-}
 
 /* Names in dir, sorted into one string "a b c" for comparisons. */
 static void dir_list(const char *dir, char *out, size_t cap)
@@ -782,6 +767,6 @@ int main(void)
     TST_RUN(test_svg_extremes);
     TST_RUN(test_svg_deterministic);
     TST_RUN(test_svg_write_errors);
-    if (!(keep && *keep)) { tdir_clean(tdir); rmdir(tdir); }
+    if (!(keep && *keep)) { tst_rmtree(tdir); rmdir(tdir); }
     TST_EXIT();
 }

@@ -19,21 +19,6 @@
 
 static char tdir[256];
 
-static void tdir_clean(const char *dir)
-{
-    DIR *d = opendir(dir);
-    if (!d) return;
-    struct dirent *e;
-    char p[1024];
-    while ((e = readdir(d))) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
-        struct stat st;
-        if (!lstat(p, &st) && S_ISDIR(st.st_mode)) { tdir_clean(p); rmdir(p); }
-        else unlink(p);
-    }
-    closedir(d);
-}
 
 /* A unit's default vectors: the checked-in file when there is one, else
  * the float reference's default set (which is what the file holds). */
@@ -430,7 +415,7 @@ int main(void)
     TST_RUN(test_sweep_charts_are_xml);
     TST_RUN(test_sweep_charts_render);
     TST_RUN(test_sweep_merge_refuses);
-    tdir_clean(tdir);
+    tst_rmtree(tdir);
     rmdir(tdir);
     TST_EXIT();
 }

@@ -7,6 +7,7 @@
  * Vandermonde solve, the interpolants by Lagrange's formula, the monomials'
  * coefficient vectors by definition. */
 #include "tests/tst.h"
+#include "tests/tst_ref.h"
 #include "testbench/tb.h"
 #include "testbench/cli.h"
 #include <stdint.h>
@@ -27,38 +28,7 @@ static double factor(int terms, int quarter)
     return quarter ? (1 - q) / 3 : 1.0 / 3 + q / 6;
 }
 
-/* Coefficients of the polynomial through (t_i, I_i), highest degree first,
- * by Gaussian elimination on the Vandermonde matrix. */
-static void vander(const double *t, const double *I, int k, double *c)
-{
-    double m[4][5];
-    for (int i = 0; i < k; i++) {
-        for (int j = 0; j < k; j++) m[i][j] = pow(t[i], k - 1 - j);
-        m[i][k] = I[i];
-    }
-    for (int col = 0; col < k; col++) {
-        int piv = col;
-        for (int i = col + 1; i < k; i++) if (fabs(m[i][col]) > fabs(m[piv][col])) piv = i;
-        for (int j = 0; j <= k; j++) { double x = m[col][j]; m[col][j] = m[piv][j]; m[piv][j] = x; }
-        for (int i = 0; i < k; i++) {
-            if (i == col) continue;
-            double f = m[i][col] / m[col][col];
-            for (int j = col; j <= k; j++) m[i][j] -= f * m[col][j];
-        }
-    }
-    for (int i = 0; i < k; i++) c[i] = m[i][k] / m[i][i];
-}
 
-static double lagrange(const double *t, const double *I, int k, double x)
-{
-    double s = 0;
-    for (int i = 0; i < k; i++) {
-        double w = 1;
-        for (int j = 0; j < k; j++) if (j != i) w *= (x - t[j]) / (t[i] - t[j]);
-        s += w * I[i];
-    }
-    return s;
-}
 
 static const double T_N1[4] = { 0, 1, 0.5, 0.25 }, T_N2[4] = { 0, 1, 0.5, 0.75 }, T_Q[3] = { 0, 1, 0.5 };
 
@@ -83,7 +53,7 @@ static void coef_expect(const char *unit, const double *I, double f, double *c)
     int cubic = strcmp(unit, "coef2") && strcmp(unit, "interp2");
     const double *tn = !strcmp(unit, "coef3_n2") ? T_N2 : cubic ? T_N1 : T_Q;
     double dev[4];
-    vander(tn, I, cubic ? 4 : 3, c);
+    tst_vander(tn, I, cubic ? 4 : 3, c);
     network_dev(unit, I, f, dev);
     for (int i = 0; i < 4; i++) c[i] += dev[i];
 }
@@ -543,7 +513,7 @@ static void check_interp(const char *name, int L, int terms, int width)
         network_dev(name, I, f, dev);
         for (int b = 0; b < L; b++) {
             double t = (double)b / L;
-            double want = lagrange(cubic ? T_N1 : T_Q, I, cubic ? 4 : 3, t);
+            double want = tst_lagrange(cubic ? T_N1 : T_Q, I, cubic ? 4 : 3, t);
             double net = cubic ? dev[0] * t * t * t + dev[2] * t : 0;
             TST_NEAR(out_real(&r, it, b, 0), want + net, r.out[0].bound + 1e-9);
         }

@@ -5,6 +5,7 @@
  * (round trips, every class of bad input, failed writes). The references
  * here are written independently of the code under test. */
 #include "tests/tst.h"
+#include "tests/tst_ref.h"
 #include "vectors/vectors.h"
 #include "vectors/vec_file.h"
 #include "vectors/ref_seed000.h"
@@ -17,43 +18,7 @@
 
 /* ---- independent references ------------------------------------------ */
 
-/* Solve sum_j c_j t_i^(k-1-j) = I_i (coefficients highest degree first) by
- * Gaussian elimination with partial pivoting on the Vandermonde matrix. */
-static void solve_vander(const double *t, const double *I, int k, double *c)
-{
-    double m[4][5];
-    for (int i = 0; i < k; i++) {
-        for (int j = 0; j < k; j++) m[i][j] = pow(t[i], k - 1 - j);
-        m[i][k] = I[i];
-    }
-    for (int col = 0; col < k; col++) {
-        int piv = col;
-        for (int i = col + 1; i < k; i++)
-            if (fabs(m[i][col]) > fabs(m[piv][col])) piv = i;
-        for (int j = 0; j <= k; j++) {
-            double x = m[col][j]; m[col][j] = m[piv][j]; m[piv][j] = x;
-        }
-        for (int i = 0; i < k; i++) {
-            if (i == col) continue;
-            double f = m[i][col] / m[col][col];
-            for (int j = col; j <= k; j++) m[i][j] -= f * m[col][j];
-        }
-    }
-    for (int i = 0; i < k; i++) c[i] = m[i][k] / m[i][i];
-}
 
-/* Lagrange interpolation through (t_i, I_i) at x. */
-static double lagrange(const double *t, const double *I, int k, double x)
-{
-    double s = 0;
-    for (int i = 0; i < k; i++) {
-        double w = 1;
-        for (int j = 0; j < k; j++)
-            if (j != i) w *= (x - t[j]) / (t[i] - t[j]);
-        s += w * I[i];
-    }
-    return s;
-}
 
 static const double T_N1[4] = { 0, 1, 0.5, 0.25 };
 static const double T_N2[4] = { 0, 1, 0.5, 0.75 };
@@ -83,7 +48,7 @@ static void check_coef(coef_fn fn, const double *tn, int k, const char *what)
     for (int p = 0; p < k; p++) {
         for (int i = 0; i < k; i++) I[i] = pow(tn[i], p);
         fn(I, c);
-        solve_vander(tn, I, k, want);
+        tst_vander(tn, I, k, want);
         for (int j = 0; j < k; j++) {
             double e = j == k - 1 - p ? 1.0 : 0.0;
             TST_CHECK(fabs(c[j] - e) <= 1e-12, "%s t^%d coef %d = %.17g", what, p, j, c[j]);
@@ -102,7 +67,7 @@ static void check_coef(coef_fn fn, const double *tn, int k, const char *what)
                       what, j, c[j], truth[j]);
         for (int i = 0; i < k; i++) I[i] = urand(&s);
         fn(I, c);
-        solve_vander(tn, I, k, want);
+        tst_vander(tn, I, k, want);
         for (int j = 0; j < k; j++)
             TST_CHECK(fabs(c[j] - want[j]) <= 1e-12, "%s random nodes coef %d: %.17g vs %.17g",
                       what, j, c[j], want[j]);
@@ -205,7 +170,7 @@ static void t_interp_lagrange(void)
             for (int i = 0; i < 4; i++) I[i] = urand(&s);
             m3->eval(&p, I, y);
             for (int k = 0; k < L; k++)
-                TST_NEAR(y[k], lagrange(T_N1, I, 4, (double)k / L), 1e-12);
+                TST_NEAR(y[k], tst_lagrange(T_N1, I, 4, (double)k / L), 1e-12);
             /* At the nodes the interpolant is the node intensity, exactly:
              * no rounding residue such as -2e-16 for an intensity of 0. */
             if (L >= 4) TST_CHECK(y[0] == I[0] && y[L / 4] == I[3] && y[L / 2] == I[2],
@@ -216,7 +181,7 @@ static void t_interp_lagrange(void)
                 TST_NEAR(y[k], ref_horner3(c[0], c[1], c[2], c[3], (double)k / L), 1e-12);
             m2->eval(&p, I, y);
             for (int k = 0; k < L; k++)
-                TST_NEAR(y[k], lagrange(T_Q, I, 3, (double)k / L), 1e-12);
+                TST_NEAR(y[k], tst_lagrange(T_Q, I, 3, (double)k / L), 1e-12);
             if (L >= 2) TST_CHECK(y[0] == I[0] && y[L / 2] == I[2], "quadratic at nodes, L = %d", L);
         }
     }

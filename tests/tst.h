@@ -59,6 +59,26 @@ static void tst_run(const char *name, void (*fn)(void))
 #define TST_RUN(fn) tst_run(#fn, fn)
 #define TST_EXIT() return tst_any_failed ? 1 : 0
 
+/* Remove everything below dir (not dir itself): test scratch folders. */
+#include <dirent.h>
+#include <sys/stat.h>
+#include <unistd.h>
+static inline void tst_rmtree(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return;
+    struct dirent *e;
+    char p[1024];
+    while ((e = readdir(d))) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        if (snprintf(p, sizeof p, "%s/%s", dir, e->d_name) >= (int)sizeof p) continue;
+        struct stat st;
+        if (!lstat(p, &st) && S_ISDIR(st.st_mode)) { tst_rmtree(p); rmdir(p); }
+        else unlink(p);
+    }
+    closedir(d);
+}
+
 /* Path of the bin/shadesim under test (set by tests/run.sh). */
 static inline const char *tst_shadesim(void)
 {
