@@ -1,7 +1,8 @@
 /* bench_horner3.c - horner3 over 200,000 pixels (1.2M clocks), VCD off:
  * clocks per second inside the simulation, and the whole process
  * (`shadesim run horner3 --vectors FILE`, parsing included) timed from
- * outside. The vectors are the float reference's, written to /tmp once. */
+ * outside; also the vector file's reading alone (vec_file_read). The
+ * vectors are the float reference's, written to /tmp once. */
 #include "testbench/cli.h"
 #include "vectors/vec_file.h"
 #include <stdio.h>
@@ -11,6 +12,16 @@
 #include <unistd.h>
 
 #define PIXELS 200000
+
+static long file_size(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fclose(f);
+    return n;
+}
 
 static double now_s(void)
 {
@@ -29,6 +40,19 @@ int main(void)
     if (cli_make_vectors(u, &cfg, PIXELS, 7, &vs, err, sizeof err)) { fprintf(stderr, "%s\n", err); return 1; }
     const char *path = "/tmp/shadesim_bench_horner3.vec";
     if (vec_file_write(path, &vs, err, sizeof err)) { fprintf(stderr, "%s\n", err); return 1; }
+
+    /* Reading the file back (vectors/vec_file.c): strtod on every number. */
+    double best_read = 1e9;
+    for (int k = 0; k < 3; k++) {
+        vec_set back;
+        double t0 = now_s();
+        if (vec_file_read(path, &back, NULL, err, sizeof err)) { fprintf(stderr, "%s\n", err); return 1; }
+        double dt = now_s() - t0;
+        if (dt < best_read) best_read = dt;
+        vec_set_free(&back);
+    }
+    printf("horner3 %d pixels, vector file read (%.1f MB, %d numbers): %.3f s (best of 3)\n", PIXELS,
+           (double)file_size(path) / 1e6, PIXELS * 6, best_read);
 
     unit_fmts fm;
     tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err);

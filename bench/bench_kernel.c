@@ -2,6 +2,7 @@
  *   in -> r0 -> (+1) -> r1 -> (+1) -> ... -> r5
  * with the input changing every clock, VCD off and on. Prints clocks/s and
  * events/s (signal value changes per second). Not a test: figures vary. */
+#define _DEFAULT_SOURCE   /* mkstemps */
 #include "sim/sim.h"
 #include "sim/sim_prim.h"
 #include "sim/sim_vcd.h"

@@ -39,19 +39,31 @@ typedef enum {
 
 struct sim_fanout { sim_proc *proc; uint8_t edge; };
 
+/* The fields a delta cycle touches come first, in one 64-byte line (the
+ * kernel allocates signals on a cache-line boundary). */
 struct sim_signal {
     int64_t     cur;        /* value now */
     int64_t     nxt;        /* value written this delta */
     sim_ctx    *ctx;
+    /* Processes a change wakes, in the order they were made sensitive:
+     * wake[0] when the new value is 0 (edges ANY and NEG), wake[1] when it
+     * is nonzero (ANY and POS). Built by sim_sensitive from fan. */
+    sim_proc  **wake[2];
+    uint32_t    nwake[2];
+    /* Flags the kernel writes are not char: a store through a
+     * char type may alias anything, which would make the compiler reload
+     * every other pointer and count around it. */
+    uint32_t    queued;     /* in the update list */
+    uint16_t    vcd_dirty;  /* changed since the last VCD time stamp */
+    uint8_t     kind;       /* sim_kind */
+    uint64_t    changes;    /* value changes (events) */
+    /* cold */
+    sim_fmt     fmt;        /* width and meaning of the raw value */
     struct sim_fanout *fan; /* processes sensitive to this signal */
     uint32_t    nfan, capfan;
-    uint8_t     queued;     /* in the update list */
-    uint8_t     vcd_dirty;  /* changed since the last VCD time stamp */
-    uint8_t     kind;       /* sim_kind */
-    sim_fmt     fmt;        /* width and meaning of the raw value */
+    uint32_t    capwake[2];
     int64_t     raw_min, raw_max;  /* range of fmt, cached for quantization */
     uint64_t    overflows;  /* quantizations into this signal that overflowed */
-    uint64_t    changes;    /* value changes (events) */
     double      area_ge;    /* area of the element driving it, NAND2 eq. */
     sim_proc   *driver;     /* process computing it (NULL: input, constant) */
     int64_t     vcd_last;   /* last value written to the VCD */
@@ -63,14 +75,30 @@ struct sim_signal {
 };
 
 struct sim_proc {
+    uint32_t    queued;     /* runnable in the next delta (not char: see sim_signal) */
+    uint8_t     no_init;    /* clocked: not run at initialization (SystemC dont_initialize) */
+    /* Internal: a primitive the kernel evaluates itself (sim_prim.c sets
+     * this up; op 0 = SIM__OP_FN: call fn). For arithmetic the kernel
+     * computes v = op(a, b, c), then y <= (v + op_radd) >> op_k when that
+     * lands in [op_lo, op_hi], and otherwise calls fn, the general
+     * evaluation. Logic: y <= low 64 - op_k bits of op_logic(inputs),
+     * sign-extended (LOGIC_S) or masked with op_radd (LOGIC_U). */
+    uint8_t     op;
+    int8_t      op_k;
+    uint32_t    op_n;       /* mux inputs */
+    sim_signal *op_y, *op_a, *op_b, *op_c;
+    int64_t     op_lo, op_hi, op_radd;
+    sim_signal *const *op_in;
+    int64_t   (*op_logic)(const int64_t *in, void *user);   /* sim_logic_fn */
+    void       *op_user;
     sim_proc_fn fn;
     void       *data;       /* the process's own state */
+    uint64_t    runs;
     sim_ctx    *ctx;
     const char *name;
-    uint8_t     queued;
-    uint8_t     no_init;    /* clocked: not run at initialization (SystemC dont_initialize) */
-    uint64_t    runs;
 };
+enum { SIM__OP_FN = 0, SIM__OP_COPY, SIM__OP_ADD, SIM__OP_SUB, SIM__OP_MUL,
+       SIM__OP_MUX, SIM__OP_BK, SIM__OP_LOGIC_S, SIM__OP_LOGIC_U };
 
 struct sim_scope {
     const char *name;
@@ -152,12 +180,14 @@ sim_signal **sim__vcd_take_dirty(sim_ctx *c, uint32_t *n);
 
 /* ---- inline fast path ----
  * The update list is the first member of every sim_ctx, so that a write,
- * the most frequent operation of all, costs no call. */
+ * the most frequent operation of all, costs no call. A write of the value
+ * a signal already has, when nothing else is pending for it, changes
+ * nothing in the update phase, so it is not queued at all. */
 typedef struct sim_updq { sim_signal **upd; uint32_t nupd; } sim_updq;
 static inline void sim_write(sim_signal *s, int64_t v)
 {
     s->nxt = v;
-    if (!s->queued) {
+    if (!s->queued && v != s->cur) {
         sim_updq *q = (sim_updq *)(void *)s->ctx;
         s->queued = 1;
         q->upd[q->nupd++] = s;

@@ -6,6 +6,23 @@
  * signal, and each signal that really changed wakes its sensitive processes
  * for the next delta. Because no process sees a write before the update,
  * the order in which processes run never changes the result.
+ *
+ * Where the time goes, and what keeps it short (every counter in
+ * sim_stats and every signal's `changes` is what the plain algorithm
+ * counts; tests/test_kernel.c pins them):
+ *  - A primitive (sim_prim.c) whose exact result fits 62 bits is evaluated
+ *    by the kernel itself (sim_proc.op): operands, one add or multiply,
+ *    one shift, a range check, the write. Anything else, or a result out
+ *    of range (an overflow to count), calls the process's own function.
+ *  - A write of the value a signal already has is not queued (sim.h).
+ *  - A signal keeps the processes to wake per new value (zero / nonzero),
+ *    so an edge-sensitive process is never looked at on the other edge.
+ *  - A time step that is just a clock edge (clock_step) toggles the clock
+ *    and runs the first delta's update without the timer and update
+ *    machinery; a falling edge nobody waits for costs a few stores.
+ *  - The delta loop keeps the context's lists in locals, and the flags it
+ *    writes are not char-typed (a char store may alias anything and would
+ *    make the compiler reload every pointer after it).
  */
 #include "sim/sim.h"
 #include "sim/sim_vcd.h"
@@ -43,6 +60,7 @@ struct sim_ctx {
     sim_round    rnd;
     sim_ovf      ovf;
     uint32_t     max_deltas;
+    uint32_t     changed;                    /* signals the last update changed */
     int          started, stop;
     sim_vcd     *vcd;
     sim_scope    root;
@@ -134,10 +152,18 @@ sim_scope *sim_scope_new(sim_ctx *c, sim_scope *parent, const char *name)
     return s;
 }
 
+/* Arena memory starting on a 64-byte boundary (a signal's hot fields then
+ * share one cache line). */
+static void *alloc_line(sim_ctx *c, size_t n)
+{
+    char *p = sim_alloc(c, n + 63);
+    return p + ((64 - (uintptr_t)p % 64) % 64);
+}
+
 sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,
                            sim_fmt fmt, sim_kind kind)
 {
-    sim_signal *s = sim_alloc(c, sizeof *s);
+    sim_signal *s = alloc_line(c, sizeof *s);
     s->ctx = c;
     s->fmt = fmt;
     s->raw_min = sim_fmt_raw_min(fmt);
@@ -169,7 +195,7 @@ sim_signal *sim_bit_new(sim_ctx *c, sim_scope *sc, const char *name, sim_kind ki
 
 sim_proc *sim_proc_new(sim_ctx *c, const char *name, sim_proc_fn fn, void *data)
 {
-    sim_proc *p = sim_alloc(c, sizeof *p);
+    sim_proc *p = alloc_line(c, sizeof *p);
     p->fn = fn;
     p->data = data;
     p->ctx = c;
@@ -191,13 +217,25 @@ void sim_sensitive(sim_proc *p, sim_signal *s, sim_edge e)
     s->fan[s->nfan].proc = p;
     s->fan[s->nfan].edge = (uint8_t)e;
     s->nfan++;
+    /* The wake lists split fan by the value a change goes to, each in
+     * registration order (which fixes the order of the next delta's run
+     * list, hence of writes, hence of a VCD's lines). */
+    for (int v = 0; v < 2; v++) {
+        if (e != SIM_EDGE_ANY && (e == SIM_EDGE_POS) != (v != 0)) continue;
+        s->wake[v] = grow(s->wake[v], &s->capwake[v], sizeof *s->wake[v], s->nwake[v] + 1);
+        s->wake[v][s->nwake[v]++] = p;
+    }
 }
 
 /* Fanout arrays grow with realloc, so they are not arena memory: sim_free
  * releases them through the signal list. */
 static void free_fanouts(sim_ctx *c)
 {
-    for (uint32_t i = 0; i < c->nsig; i++) { free(c->sigs[i]->fan); c->sigs[i]->fan = NULL; }
+    for (uint32_t i = 0; i < c->nsig; i++) {
+        sim_signal *s = c->sigs[i];
+        free(s->fan); free(s->wake[0]); free(s->wake[1]);
+        s->fan = NULL; s->wake[0] = s->wake[1] = NULL;
+    }
 }
 
 const char *sim_signal_path(const sim_signal *s, char *buf, size_t len)
@@ -266,20 +304,28 @@ static void timer_push(sim_ctx *c, sim_time at, void (*fn)(sim_ctx *, void *), v
     c->heap[i] = t;
 }
 
-static sim_timer timer_pop(sim_ctx *c)
+/* Put t at the root's place and sift it down: replaces the earliest timer
+ * (a pop followed by a push of t, without the second walk). */
+static void timer_sift_root(sim_ctx *c, sim_timer t)
 {
-    sim_timer top = c->heap[0], last = c->heap[--c->nheap];
     uint32_t i = 0, n = c->nheap;
     for (;;) {
         uint32_t l = 2 * i + 1, r = l + 1, m = i;
-        const sim_timer *best = &last;
+        const sim_timer *best = &t;
         if (l < n && timer_before(&c->heap[l], best)) { m = l; best = &c->heap[l]; }
         if (r < n && timer_before(&c->heap[r], best)) { m = r; }
         if (m == i) break;
         c->heap[i] = c->heap[m];
         i = m;
     }
-    if (n) c->heap[i] = last;
+    c->heap[i] = t;
+}
+
+static sim_timer timer_pop(sim_ctx *c)
+{
+    sim_timer top = c->heap[0];
+    c->nheap--;
+    if (c->nheap) timer_sift_root(c, c->heap[c->nheap]);
     return top;
 }
 
@@ -287,7 +333,7 @@ static void clock_tick(sim_ctx *c, void *data)
 {
     sim_clockgen *g = data;
     int64_t v = !g->clk->cur;
-    sim_write(g->clk, v);
+    sim_force(g->clk, v);
     if (v) c->stats.clocks++;
     timer_push(c, c->now + g->half, clock_tick, g);
 }
@@ -304,7 +350,17 @@ void sim_clock(sim_ctx *c, sim_signal *clk, sim_time half_period, sim_time first
 
 /* ------------------------------------------------------------- the loop */
 
-void sim_force(sim_signal *s, int64_t v) { sim_write(s, v); }
+void sim_force(sim_signal *s, int64_t v)
+{
+    /* Queued even when unchanged: a forced value is a write the update
+     * phase sees (one delta cycle), as it always was. */
+    s->nxt = v;
+    if (!s->queued) {
+        sim_ctx *c = s->ctx;
+        s->queued = 1;
+        c->q.upd[c->q.nupd++] = s;
+    }
+}
 
 /* Name the signals still changing when the delta bound was hit: after the
  * settled part of the design has stopped, only the loop keeps toggling.
@@ -331,45 +387,152 @@ static void report_loop(sim_ctx *c)
                         i ? " ->" : "", sim_signal_path(seen[i], path, sizeof path));
 }
 
-/* Evaluate every runnable process, then apply writes. Returns the number of
- * signals that changed. The changed signals are left at the front of upd
- * (for the loop report). */
-static uint32_t delta(sim_ctx *c)
+/* A signal's value changed to v in the update phase: count it, note it for
+ * the VCD, and wake the processes waiting for such a change. */
+static inline void changed(sim_ctx *c, sim_signal *s, int64_t v)
 {
+    s->changes++;
+    if (c->vcd && !s->vcd_dirty) { s->vcd_dirty = 1; c->vdirty[c->nvdirty++] = s; }
+    uint32_t n = s->nwake[v != 0];
+    if (n) {
+        sim_proc **w = s->wake[v != 0], **run = c->run;
+        uint32_t nrun = c->nrun;
+        for (uint32_t i = 0; i < n; i++) {
+            sim_proc *p = w[i];
+            if (!p->queued) { p->queued = 1; run[nrun++] = p; }
+        }
+        c->nrun = nrun;
+    }
+}
+
+/* A logic element's user function on its inputs' values (one input: read
+ * in place). */
+static inline int64_t logic_call(const sim_proc *p)
+{
+    if (p->op_n == 1) return p->op_logic(&p->op_a->cur, p->op_user);
+    int64_t in[8];
+    for (uint32_t i = 0; i < p->op_n; i++) in[i] = p->op_in[i]->cur;
+    return p->op_logic(in, p->op_user);
+}
+
+/* Update phase: apply the writes; each signal that changes wakes its
+ * processes for the next delta. Returns the number of signals that
+ * changed, left at the front of upd (for the loop report). The context's
+ * lists are kept in locals: stores through signal and process pointers
+ * would otherwise make the compiler reload them. */
+static inline __attribute__((always_inline)) uint32_t update(sim_ctx *c, sim_signal **upd, uint32_t nupd)
+{
+    uint32_t nchanged = 0;
+    c->q.nupd = 0;
+    sim_proc **next = c->run;
+    uint32_t nnext = 0;
+    sim_signal **vdirty = c->vcd ? c->vdirty : NULL;
+    uint32_t nvdirty = c->nvdirty;
+    for (uint32_t i = 0; i < nupd; i++) {
+        sim_signal *s = upd[i];
+        s->queued = 0;
+        int64_t v = s->nxt;
+        if (v == s->cur) continue;
+        s->cur = v;
+        upd[nchanged++] = s;
+        s->changes++;
+        if (vdirty && !s->vcd_dirty) { s->vcd_dirty = 1; vdirty[nvdirty++] = s; }
+        sim_proc **w = s->wake[v != 0];
+        uint32_t n = s->nwake[v != 0];
+        for (uint32_t j = 0; j < n; j++) {
+            sim_proc *q = w[j];
+            if (!q->queued) { q->queued = 1; next[nnext++] = q; }
+        }
+    }
+    c->nrun = nnext;
+    c->nvdirty = nvdirty;
+    c->stats.events += nchanged;
+    return nchanged;
+}
+
+/* Delta cycles, evaluate then update, while anything is runnable (one
+ * only, if once). *deltas counts them within the time step; returns 1 when
+ * the bound was reached with work left (a loop), else 0. c->changed is the
+ * number of signals the last update changed. */
+static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
+{
+    uint32_t nd = *deltas;
+    int hit = 0;
+next_delta:;
     sim_proc **run = c->run;
     uint32_t nrun = c->nrun;
     c->run = c->run2; c->nrun = 0;
     c->run2 = run;
+    sim_signal **upd = c->q.upd;
+    uint32_t nupd = c->q.nupd;
+    /* Evaluate: the primitives the kernel knows inline, anything else (and
+     * a primitive whose fast result is out of range) through fn. */
     for (uint32_t i = 0; i < nrun; i++) {
         sim_proc *p = run[i];
         p->queued = 0;
         p->runs++;
+        int64_t v;
+        switch (p->op) {
+        /* Operands' widths bound the exact result below 2^62 (sim_prim.c
+         * checks); the arithmetic is done unsigned, so that even a raw
+         * forced outside its format cannot overflow. */
+        case SIM__OP_COPY: v = p->op_a->cur; goto quant;
+        case SIM__OP_ADD:  v = (int64_t)((uint64_t)p->op_a->cur + (uint64_t)p->op_b->cur); goto quant;
+        case SIM__OP_SUB:  v = (int64_t)((uint64_t)p->op_a->cur - (uint64_t)p->op_b->cur); goto quant;
+        case SIM__OP_MUL:  v = (int64_t)((uint64_t)p->op_a->cur * (uint64_t)p->op_b->cur); goto quant;
+        case SIM__OP_MUX: {
+            uint64_t sel = (uint64_t)p->op_c->cur;
+            if (sel >= p->op_n) { v = 0; goto write; }
+            v = p->op_in[sel]->cur;
+            goto quant;
+        }
+        case SIM__OP_BK:
+            if (!p->op_c->cur) { v = 0; goto write; }
+            v = p->op_a->cur;
+            goto quant;
+        case SIM__OP_LOGIC_S:
+            v = (int64_t)((uint64_t)logic_call(p) << p->op_k) >> p->op_k;
+            goto write;
+        case SIM__OP_LOGIC_U:
+            v = (int64_t)((uint64_t)logic_call(p) & (uint64_t)p->op_radd);
+            goto write;
+        default:
+            break;
+        }
+    general:
+        c->q.nupd = nupd;
         p->fn(p);
+        nupd = c->q.nupd;
+        continue;
+    quant:
+        /* y <= (v + radd) >> k (arithmetic: floor) when in range; out of
+         * range, the general evaluation counts the overflow. */
+        v = (int64_t)((uint64_t)v + (uint64_t)p->op_radd) >> p->op_k;
+        if (__builtin_expect(v < p->op_lo || v > p->op_hi, 0)) goto general;
+    write: {
+            sim_signal *y = p->op_y;
+            y->nxt = v;
+            if (!y->queued && v != y->cur) { y->queued = 1; upd[nupd++] = y; }
+        }
     }
     c->stats.proc_runs += nrun;
     c->stats.deltas++;
-
-    uint32_t nupd = c->q.nupd, nchanged = 0;
-    sim_signal **upd = c->q.upd;
-    c->q.nupd = 0;
-    for (uint32_t i = 0; i < nupd; i++) {
-        sim_signal *s = upd[i];
-        s->queued = 0;
-        int64_t old = s->cur, v = s->nxt;
-        if (v == old) continue;
-        s->cur = v;
-        s->changes++;
-        upd[nchanged++] = s;
-        if (c->vcd && !s->vcd_dirty) { s->vcd_dirty = 1; c->vdirty[c->nvdirty++] = s; }
-        struct sim_fanout *f = s->fan, *end = f + s->nfan;
-        for (; f < end; f++) {
-            if (f->edge != SIM_EDGE_ANY && (f->edge == SIM_EDGE_POS) != (v != 0)) continue;
-            sim_proc *p = f->proc;
-            if (!p->queued) { p->queued = 1; c->run[c->nrun++] = p; }
-        }
+    c->changed = update(c, upd, nupd);
+    nd++;
+    if (!once && (c->nrun || c->q.nupd)) {
+        if (nd < c->max_deltas) goto next_delta;
+        hit = 1;
     }
-    c->stats.events += nchanged;
-    return nchanged;
+    *deltas = nd;
+    return hit;
+}
+
+/* One delta cycle (for the loop report). */
+static uint32_t delta(sim_ctx *c)
+{
+    uint32_t d = 0;
+    run_deltas(c, &d, 1);
+    return c->changed;
 }
 
 sim_signal **sim__vcd_take_dirty(sim_ctx *c, uint32_t *n)
@@ -377,6 +540,30 @@ sim_signal **sim__vcd_take_dirty(sim_ctx *c, uint32_t *n)
     *n = c->nvdirty;
     c->nvdirty = 0;
     return c->vdirty;
+}
+
+/* The start of a time step whose only business is one clock edge (the
+ * earliest timer is a clock tick, no other timer is due at the same time
+ * and nothing is pending): the tick and the first delta cycle, which only
+ * updates the clock, done without the general machinery. Counts exactly
+ * what the general path counts. Returns 0 if the step is not of this kind. */
+static int clock_step(sim_ctx *c)
+{
+    sim_timer *t = &c->heap[0];
+    if (t->fn != clock_tick || c->nrun || c->q.nupd) return 0;
+    if ((c->nheap > 1 && c->heap[1].at <= c->now) || (c->nheap > 2 && c->heap[2].at <= c->now)) return 0;
+    sim_clockgen *g = t->data;
+    sim_signal *clk = g->clk;
+    int64_t v = !clk->cur;
+    t->at = c->now + g->half;   /* the next tick replaces this one */
+    t->seq = c->timer_seq++;
+    if (c->nheap > 1) timer_sift_root(c, *t);
+    if (v) c->stats.clocks++;
+    clk->nxt = clk->cur = v;
+    c->stats.deltas++;
+    c->stats.events++;
+    changed(c, clk, v);
+    return 1;
 }
 
 sim_status sim_run(sim_ctx *c, sim_time until)
@@ -390,19 +577,16 @@ sim_status sim_run(sim_ctx *c, sim_time until)
     }
     c->stop = 0;
     for (;;) {
+        uint32_t deltas = 0;
+        if (c->nheap && c->heap[0].at <= c->now && clock_step(c)) {
+            deltas = 1;
+            if (deltas >= c->max_deltas && c->nrun) goto loop;
+        }
         while (c->nheap && c->heap[0].at <= c->now) {
             sim_timer t = timer_pop(c);
             t.fn(c, t.data);
         }
-        uint32_t deltas = 0;
-        while (c->nrun || c->q.nupd) {
-            delta(c);
-            if (++deltas >= c->max_deltas && (c->nrun || c->q.nupd)) {
-                report_loop(c);
-                if (c->vcd) sim_vcd_step(c->vcd, c->now);
-                return SIM_ERR_LOOP;
-            }
-        }
+        if ((c->nrun || c->q.nupd) && run_deltas(c, &deltas, 0)) goto loop;
         c->stats.time_steps++;
         if (c->vcd) sim_vcd_step(c->vcd, c->now);
         if (c->stop) return SIM_OK;
@@ -412,4 +596,8 @@ sim_status sim_run(sim_ctx *c, sim_time until)
         }
         c->now = c->heap[0].at;
     }
+loop:
+    report_loop(c);
+    if (c->vcd) sim_vcd_step(c->vcd, c->now);
+    return SIM_ERR_LOOP;
 }

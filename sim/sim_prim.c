@@ -9,13 +9,17 @@
 #include "sim/sim_area.h"
 
 typedef struct prim {
+    /* what every evaluation reads first */
     sim_signal *y, *a, *b, *c;   /* output; operands (c: enable / select) */
-    sim_signal *rst;
-    int64_t     rst_raw;
-    int         sa, sb;          /* left shifts aligning a, b to fy_src */
+    int64_t     lo, hi;          /* y's raw range */
+    int64_t     radd;            /* fast path: added before the shift (half-up) */
+    int         k;               /* fast path: right shift from src_f to y */
+    int         sa, sb;          /* left shifts aligning a, b to src_f */
     int         src_f;           /* fraction bits of the exact result */
     sim_round   r;
     sim_ovf     o;
+    sim_signal *rst;
+    int64_t     rst_raw;
     int         n;               /* mux inputs */
     sim_signal *const *in;
     sim_logic_fn fn;
@@ -41,12 +45,70 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, 
     return v;
 }
 
+/* ---- specialized quantization ----
+ * An element whose exact result provably fits 62 bits (operand widths and
+ * alignment shifts known when it is built) computes it in int64_t and, for
+ * trunc and half-up into fewer or equal fraction bits, quantizes with one
+ * add, one shift and a range check; the result is the general path's
+ * (floor((s + 2^(k-1)) / 2^k) is half-up rounding, and in range nothing
+ * else applies). Out of range, or any other case, takes sim_quant_into. */
+
+/* Exact value s (int64_t, |s| < 2^62) with p->src_f fraction bits into y. */
+static inline int64_t q64(prim *p, int64_t s)
+{
+    int64_t x = (int64_t)((uint64_t)s + (uint64_t)p->radd) >> p->k;
+    if (__builtin_expect(x >= p->lo && x <= p->hi, 1)) return x;
+    return sim_quant_into(p->y, s, p->src_f, p->r, p->o);
+}
+
+/* Bits bounding a signal's raw: |raw| <= 2^bits. */
+static int raw_bits(const sim_signal *s) { return s->fmt.width; }
+/* A value passed through unchanged (register, mux, block key) must stay
+ * below 2^62 too, so that adding the rounding constant cannot overflow. */
+static int copy_fits(const sim_signal *s) { return raw_bits(s) <= 62; }
+
+/* Set the fast-path constants for an exact result with src_f fraction
+ * bits; 1 if the fast path applies (trunc or half-up, 0 <= k < 62). */
+static int fast_quant_setup(prim *p, int src_f)
+{
+    p->src_f = src_f;
+    p->k = src_f - p->y->fmt.fbits;
+    p->lo = p->y->raw_min;
+    p->hi = p->y->raw_max;
+    if (p->k < 0 || p->k > 61 || p->r == SIM_RND_EVEN) return 0;
+    p->radd = (p->r == SIM_RND_HALF_UP && p->k) ? (int64_t)1 << (p->k - 1) : 0;
+    return 1;
+}
+
+/* Let the kernel evaluate the element itself (sim.h, SIM__OP_*); fn stays
+ * the general evaluation, which the kernel calls when the fast result
+ * would be out of range. p's fast-path constants must be set. */
+static void set_native(sim_proc *pr, int op, const prim *p)
+{
+    pr->op = (uint8_t)op;
+    pr->op_y = p->y; pr->op_a = p->a; pr->op_b = p->b; pr->op_c = p->c;
+    pr->op_lo = p->lo; pr->op_hi = p->hi; pr->op_radd = p->radd;
+    pr->op_k = (int8_t)p->k;
+    pr->op_n = (uint32_t)p->n;
+    pr->op_in = p->in;
+}
+
+/* Low W bits of v, sign-/zero-extended: sim_fx_canon without the call. */
+static inline int64_t canon(int64_t v, sim_fmt f)
+{
+    int sh = 64 - f.width;
+    if (f.is_signed) return (int64_t)((uint64_t)v << sh) >> sh;
+    return (int64_t)((uint64_t)v & (UINT64_MAX >> sh));
+}
+
 static prim *prim_new(sim_ctx *c, sim_signal *y)
 {
     prim *p = sim_alloc(c, sizeof *p);
     p->y = y;
     p->r = sim_get_round(c);
     p->o = sim_get_ovf(c);
+    p->lo = y->raw_min;
+    p->hi = y->raw_max;
     return p;
 }
 
@@ -91,6 +153,21 @@ static void reg_eval(sim_proc *pr)
     sim_write(p->y, sim_quant_into(p->y, p->a->cur, p->a->fmt.fbits, p->r, p->o));
 }
 
+static void copy_slow(sim_proc *pr)
+{
+    prim *p = pr->data;
+    sim_write(p->y, sim_quant_into(p->y, p->a->cur, p->a->fmt.fbits, p->r, p->o));
+}
+
+/* Choose a register's evaluation for its current D input. */
+static void reg_setup(sim_proc *pr)
+{
+    prim *p = pr->data;
+    pr->op = SIM__OP_FN;
+    if (!p->rst && !p->c && p->a && copy_fits(p->a) && fast_quant_setup(p, p->a->fmt.fbits))
+        set_native(pr, SIM__OP_COPY, p);
+}
+
 sim_signal *sim_reg(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                     sim_signal *clk, sim_signal *d, sim_signal *en,
                     sim_signal *rst, int64_t rst_raw)
@@ -101,6 +178,7 @@ sim_signal *sim_reg(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     p->rst_raw = sim_fx_canon(rst_raw, fmt);
     y->cur = y->nxt = p->rst_raw;
     sim_proc *pr = prim_proc(c, y, reg_eval, p);
+    reg_setup(pr);
     sim_sensitive(pr, clk, SIM_EDGE_POS);
     pr->no_init = 1;   /* a register changes on edges only */
     y->area_ge = sim_area_reg(fmt.width, en != NULL, rst != NULL);
@@ -111,20 +189,16 @@ int sim_reg_connect(sim_signal *q, sim_signal *d)
 {
     if (q->kind != SIM_KIND_REG || !q->driver) return -1;
     ((prim *)q->driver->data)->a = d;
+    reg_setup(q->driver);
     return 0;
-}
-
-static void assign_eval(sim_proc *pr)
-{
-    prim *p = pr->data;
-    sim_write(p->y, sim_quant_into(p->y, p->a->cur, p->a->fmt.fbits, p->r, p->o));
 }
 
 void sim_assign(sim_ctx *c, sim_signal *dst, sim_signal *src)
 {
     prim *p = prim_new(c, dst);
     p->a = src;
-    sim_proc *pr = prim_proc(c, dst, assign_eval, p);
+    sim_proc *pr = prim_proc(c, dst, copy_slow, p);
+    if (copy_fits(src) && fast_quant_setup(p, src->fmt.fbits)) set_native(pr, SIM__OP_COPY, p);
     sim_sensitive(pr, src, SIM_EDGE_ANY);
 }
 
@@ -147,7 +221,11 @@ sim_signal *sim_mux(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     sim_signal **copy = sim_alloc(c, (size_t)n * sizeof *copy);
     for (int i = 0; i < n; i++) copy[i] = in[i];
     p->c = sel; p->n = n; p->in = copy;
+    int same = n > 0 && copy_fits(in[0]);
+    for (int i = 1; i < n; i++) same &= in[i]->fmt.fbits == in[0]->fmt.fbits && copy_fits(in[i]);
     sim_proc *pr = prim_proc(c, y, mux_eval, p);
+    /* Every input with the same fraction bits: one quantization for all. */
+    if (same && fast_quant_setup(p, in[0]->fmt.fbits)) set_native(pr, SIM__OP_MUX, p);
     sim_sensitive(pr, sel, SIM_EDGE_ANY);
     for (int i = 0; i < n; i++) sim_sensitive(pr, copy[i], SIM_EDGE_ANY);
     y->area_ge = sim_area_mux(fmt.width, n);
@@ -169,6 +247,7 @@ sim_signal *sim_bk(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     prim *p = prim_new(c, y);
     p->a = x; p->c = pass;
     sim_proc *pr = prim_proc(c, y, bk_eval, p);
+    if (copy_fits(x) && fast_quant_setup(p, x->fmt.fbits)) set_native(pr, SIM__OP_BK, p);
     sim_sensitive(pr, pass, SIM_EDGE_ANY);
     sim_sensitive(pr, x, SIM_EDGE_ANY);
     y->area_ge = sim_area_bk(fmt.width);
@@ -189,6 +268,20 @@ static void sub_eval(sim_proc *pr)
     prim *p = pr->data;
     sim_wide s = align(p->a->cur, p->sa) - align(p->b->cur, p->sb);
     sim_write(p->y, sim_quant_into(p->y, s, p->src_f, p->r, p->o));
+}
+
+/* Aligned operands each under 2^61: shifting left by s is exact (done
+ * unsigned: defined for negative raws). */
+static void add_fast_al(sim_proc *pr)
+{
+    prim *p = pr->data;
+    sim_write(p->y, q64(p, (int64_t)(((uint64_t)p->a->cur << p->sa) + ((uint64_t)p->b->cur << p->sb))));
+}
+
+static void sub_fast_al(sim_proc *pr)
+{
+    prim *p = pr->data;
+    sim_write(p->y, q64(p, (int64_t)(((uint64_t)p->a->cur << p->sa) - ((uint64_t)p->b->cur << p->sb))));
 }
 
 /* Bits an adder really has: the operands' integer part (plus a carry, but
@@ -213,7 +306,12 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
     p->src_f = imax(a->fmt.fbits, b->fmt.fbits);
     p->sa = p->src_f - a->fmt.fbits;
     p->sb = p->src_f - b->fmt.fbits;
-    sim_proc *pr = prim_proc(c, y, sub ? sub_eval : add_eval, p);
+    sim_proc_fn fn = sub ? sub_eval : add_eval;
+    /* |a 2^sa| and |b 2^sb| below 2^61: the sum is below 2^62. */
+    int fast = raw_bits(a) + p->sa <= 61 && raw_bits(b) + p->sb <= 61 && fast_quant_setup(p, p->src_f);
+    if (fast && (p->sa || p->sb)) fn = sub ? sub_fast_al : add_fast_al;
+    sim_proc *pr = prim_proc(c, y, fn, p);
+    if (fast && !p->sa && !p->sb) set_native(pr, sub ? SIM__OP_SUB : SIM__OP_ADD, p);
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     int w = adder_width(a->fmt, b->fmt, fmt);
@@ -250,6 +348,8 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     p->a = a; p->b = b;
     p->src_f = a->fmt.fbits + b->fmt.fbits;
     sim_proc *pr = prim_proc(c, y, mul_eval, p);
+    /* Operand widths summing to at most 62 bits: the product fits int64_t. */
+    if (raw_bits(a) + raw_bits(b) <= 62 && fast_quant_setup(p, p->src_f)) set_native(pr, SIM__OP_MUL, p);
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     y->area_ge = sim_area_mul(a->fmt.width, b->fmt.width);
@@ -266,6 +366,12 @@ static void shift_eval(sim_proc *pr)
     sim_write(p->y, sim_quant_into(p->y, align(p->a->cur, p->sa), p->src_f, p->r, p->o));
 }
 
+static void shift_fast(sim_proc *pr)
+{
+    prim *p = pr->data;
+    sim_write(p->y, q64(p, (int64_t)((uint64_t)p->a->cur << p->sa)));
+}
+
 sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                       sim_signal *x, int sh)
 {
@@ -275,7 +381,9 @@ sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     int f = x->fmt.fbits - sh;
     p->sa = f < 0 ? -f : 0;
     p->src_f = f < 0 ? 0 : f;
-    sim_proc *pr = prim_proc(c, y, shift_eval, p);
+    int fast = raw_bits(x) + p->sa <= 61 && fast_quant_setup(p, p->src_f);
+    sim_proc *pr = prim_proc(c, y, fast && p->sa ? shift_fast : shift_eval, p);
+    if (fast && !p->sa) set_native(pr, SIM__OP_COPY, p);
     sim_sensitive(pr, x, SIM_EDGE_ANY);
     y->area_ge = 0;   /* wires */
     return y;
@@ -288,7 +396,7 @@ static void logic_eval(sim_proc *pr)
     prim *p = pr->data;
     int64_t v[8];
     for (int i = 0; i < p->n; i++) v[i] = p->in[i]->cur;
-    sim_write(p->y, sim_fx_canon(p->fn(v, p->user), p->y->fmt));
+    sim_write(p->y, canon(p->fn(v, p->user), p->y->fmt));
 }
 
 sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
@@ -302,6 +410,14 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     for (int i = 0; i < n; i++) copy[i] = in[i];
     p->n = n; p->in = copy; p->fn = fn; p->user = user;
     sim_proc *pr = prim_proc(c, y, logic_eval, p);
+    if (n >= 1) {
+        set_native(pr, fmt.is_signed ? SIM__OP_LOGIC_S : SIM__OP_LOGIC_U, p);
+        pr->op_a = copy[0];
+        pr->op_k = (int8_t)(64 - fmt.width);
+        pr->op_radd = (int64_t)(UINT64_MAX >> (64 - fmt.width));
+        pr->op_logic = fn;
+        pr->op_user = user;
+    }
     for (int i = 0; i < n; i++) sim_sensitive(pr, copy[i], SIM_EDGE_ANY);
     y->area_ge = area_ge;
     return y;

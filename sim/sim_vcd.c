@@ -12,13 +12,40 @@
 #include <string.h>
 #include <unistd.h>
 
+/* Value changes are formatted by hand into buf and handed to stdio in
+ * large pieces (a printf per value was most of a dump's cost). */
+#define VCD_BUF  (1 << 16)
+#define VCD_LINE 96             /* longest line: 'b', 64 digits, ' ', id, '\n' */
+
 struct sim_vcd {
     sim_ctx *ctx;
     FILE    *f;
     char    *path, *tmp;
     int      started;     /* $dumpvars written */
     int      io_error;
+    size_t   n;           /* bytes in buf */
+    char     buf[VCD_BUF];
 };
+
+static void flush_buf(sim_vcd *v)
+{
+    if (v->n && fwrite(v->buf, 1, v->n, v->f) != v->n) v->io_error = 1;
+    v->n = 0;
+}
+
+/* Binary digits of each byte value, most significant first, eight bytes
+ * per value (and eight of padding, so that 8-byte copies stay inside). */
+#define B1(b, i) (char)('0' + (((b) >> (7 - (i))) & 1))
+#define B8(b) B1(b, 0), B1(b, 1), B1(b, 2), B1(b, 3), B1(b, 4), B1(b, 5), B1(b, 6), B1(b, 7)
+#define B8x4(b) B8(b), B8((b) + 1), B8((b) + 2), B8((b) + 3)
+#define B8x16(b) B8x4(b), B8x4((b) + 4), B8x4((b) + 8), B8x4((b) + 12)
+#define B8x64(b) B8x16(b), B8x16((b) + 16), B8x16((b) + 32), B8x16((b) + 48)
+static const char bin8[256 * 8 + 8] = { B8x64(0), B8x64(64), B8x64(128), B8x64(192) };
+#undef B1
+#undef B8
+#undef B8x4
+#undef B8x16
+#undef B8x64
 
 /* Identifier codes: printable ASCII '!'..'~' in base 94, shortest first. */
 static void make_id(uint32_t n, char *out)
@@ -75,16 +102,60 @@ fail:
     return NULL;
 }
 
-static void write_value(FILE *f, const sim_signal *s, int64_t raw)
+/* "1!" / "b1010 #" and a newline at p; returns the end. */
+static char *put_value(char *p, const sim_signal *s, int64_t raw)
 {
-    if (s->fmt.width == 1) { fprintf(f, "%c%s\n", raw & 1 ? '1' : '0', s->vcd_id); return; }
-    uint64_t u = (uint64_t)raw;
-    if (s->fmt.width < 64) u &= ((uint64_t)1 << s->fmt.width) - 1;
-    char bits[66];
-    int i = 65;
-    bits[i] = 0;
-    do { bits[--i] = (char)('0' + (u & 1)); u >>= 1; } while (u);
-    fprintf(f, "b%s %s\n", bits + i, s->vcd_id);
+    int w = s->fmt.width;
+    if (w == 1) {
+        *p++ = raw & 1 ? '1' : '0';
+    } else {
+        uint64_t u = (uint64_t)raw;
+        if (w < 64) u &= ((uint64_t)1 << w) - 1;
+        *p++ = 'b';
+        /* Digits without leading zeros (at least one): the top byte's
+         * significant digits, then eight per byte. */
+        int nd = u ? 64 - __builtin_clzll(u) : 1;
+        int top = (nd - 1) / 8;                 /* index of the top byte */
+        int k = nd - 8 * top;                   /* its digits, 1..8 */
+        memcpy(p, bin8 + 8 * ((u >> (8 * top)) & 0xff) + 8 - k, 8);
+        p += k;
+        for (int b = top - 1; b >= 0; b--) {
+            memcpy(p, bin8 + 8 * ((u >> (8 * b)) & 0xff), 8);
+            p += 8;
+        }
+        *p++ = ' ';
+    }
+    const char *id = s->vcd_id;
+    do *p++ = *id++; while (*id);
+    *p++ = '\n';
+    return p;
+}
+
+static void write_value(sim_vcd *v, const sim_signal *s, int64_t raw)
+{
+    if (v->n > VCD_BUF - VCD_LINE) flush_buf(v);
+    v->n = (size_t)(put_value(v->buf + v->n, s, raw) - v->buf);
+}
+
+static void write_time(sim_vcd *v, sim_time t)
+{
+    if (v->n > VCD_BUF - VCD_LINE) flush_buf(v);
+    char d[24];
+    int k = 0;
+    do { d[k++] = (char)('0' + t % 10); t /= 10; } while (t);
+    char *p = v->buf + v->n;
+    *p++ = '#';
+    while (k) *p++ = d[--k];
+    *p++ = '\n';
+    v->n = (size_t)(p - v->buf);
+}
+
+static void write_text(sim_vcd *v, const char *text)
+{
+    size_t k = strlen(text);
+    if (v->n + k > VCD_BUF) flush_buf(v);
+    memcpy(v->buf + v->n, text, k);
+    v->n += k;
 }
 
 void sim_vcd_step(sim_vcd *v, sim_time t)
@@ -94,14 +165,15 @@ void sim_vcd_step(sim_vcd *v, sim_time t)
     int stamped = 0;
     if (!v->started) {
         v->started = 1;
-        fprintf(v->f, "#%llu\n$dumpvars\n", (unsigned long long)t);
+        write_time(v, t);
+        write_text(v, "$dumpvars\n");
         for (uint32_t i = 0, ns = sim_signal_count(v->ctx); i < ns; i++) {
             sim_signal *s = sim_signal_at(v->ctx, i);
             s->vcd_dirty = 0;
             s->vcd_last = s->cur;
-            write_value(v->f, s, s->cur);
+            write_value(v, s, s->cur);
         }
-        fputs("$end\n", v->f);
+        write_text(v, "$end\n");
         return;
     }
     for (uint32_t i = 0; i < n; i++) {
@@ -110,9 +182,9 @@ void sim_vcd_step(sim_vcd *v, sim_time t)
         /* A value that changed and changed back within the step is no
          * change at all to a waveform viewer. */
         if (s->cur == s->vcd_last) continue;
-        if (!stamped) { fprintf(v->f, "#%llu\n", (unsigned long long)t); stamped = 1; }
+        if (!stamped) { write_time(v, t); stamped = 1; }
         s->vcd_last = s->cur;
-        write_value(v->f, s, s->cur);
+        write_value(v, s, s->cur);
     }
 }
 
@@ -120,7 +192,8 @@ int sim_vcd_close(sim_vcd *v)
 {
     if (!v) return 0;
     int rc = 0;
-    if (ferror(v->f)) rc = -1;
+    flush_buf(v);
+    if (v->io_error || ferror(v->f)) rc = -1;
     if (fclose(v->f) != 0) rc = -1;
     if (rc == 0 && rename(v->tmp, v->path) != 0) rc = -1;
     if (rc) unlink(v->tmp);

@@ -12,6 +12,7 @@
 #include "vectors/vec_file.h"
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -139,23 +140,39 @@ int vec_file_write(const char *path, const vec_set *s, char *err, size_t errlen)
     return bad ? -1 : 0;
 }
 
-/* ---- reading --------------------------------------------------------- */
+/* ---- reading ---------------------------------------------------------
+ *
+ * The file is read in large blocks (no per-character stdio call). One
+ * pass over a line, eight bytes at a time, finds its end and any byte
+ * that is not allowed; the line is cut out of the block in place and its
+ * numbers parsed by strtod straight from it (a token is only copied out
+ * for an error message). Once the first row has been read, the rows of a
+ * large block are parsed by two threads, each taking half of the block,
+ * joined in order. Every check, its message and the line it names are
+ * those of a line-by-line, character-by-character reading: the first
+ * problem in file order is the one reported. */
 
 typedef struct reader {
-    FILE *f;
     const char *path;
-    long line;              /* number of the line in buf */
-    char *buf;              /* VEC_LINE_MAX + 1 bytes */
+    long line;              /* number of the line being parsed */
     char *err;
     size_t errlen;
+    char why[512];          /* second thread: message without "PATH:LINE: " */
+    int defer;              /* 1: fail() fills why only */
 } reader;
 
 static int fail(reader *r, const char *fmt, ...)
 {
+    va_list ap;
+    if (r->defer) {
+        va_start(ap, fmt);
+        vsnprintf(r->why, sizeof r->why, fmt, ap);
+        va_end(ap);
+        return -1;
+    }
     if (!r->err || !r->errlen) return -1;
     int n = snprintf(r->err, r->errlen, "%s:%ld: ", r->path, r->line);
     if (n >= 0 && (size_t)n < r->errlen) {
-        va_list ap;
         va_start(ap, fmt);
         vsnprintf(r->err + n, r->errlen - (size_t)n, fmt, ap);
         va_end(ap);
@@ -163,36 +180,57 @@ static int fail(reader *r, const char *fmt, ...)
     return -1;
 }
 
-/* Next line into r->buf without its end (LF or CRLF). 1 for a line, 0 at
- * the end of the file, -1 on error (message set). */
-static int next_line(reader *r)
+/* The bytes of one line (without its LF) as a line-by-line reader takes
+ * them, character by character: a CR must end the line (CRLF, or CR at
+ * the end of the file), no other control byte but tab, at most
+ * VEC_LINE_MAX bytes. The first offence in the line is reported. On
+ * success the line is NUL-terminated in place (over its CR or LF, or on
+ * the byte after the data, which the buffer keeps free). The common clean
+ * line never comes here (do_lines). */
+static int check_line(reader *r, char *s, size_t n)
 {
-    int c;
-    size_t n = 0;
-    c = getc_unlocked(r->f);
-    if (c == EOF) {
-        if (ferror(r->f)) {
-            r->line++;
-            return fail(r, "read error: %s", strerror(errno));
-        }
-        return 0;
-    }
-    r->line++;
-    for (; c != EOF && c != '\n'; c = getc_unlocked(r->f)) {
-        if (c == '\r') {            /* CRLF, or a CR at the very end */
-            int d = getc_unlocked(r->f);
-            if (d == '\n' || d == EOF) { c = d; break; }
+    size_t kept = 0;
+    for (size_t i = 0; i < n; i++) {
+        unsigned char c = (unsigned char)s[i];
+        if (c == '\r') {
+            if (i + 1 == n) break;     /* CRLF, or a CR at the very end */
             return fail(r, "binary data (carriage return inside a line)");
         }
         if (c == 0 || c == 0x7f || (c < 0x20 && c != '\t'))
             return fail(r, "binary data (byte 0x%02x)", c);
-        if (n == VEC_LINE_MAX)
+        if (kept == VEC_LINE_MAX)
             return fail(r, "line longer than %d bytes", VEC_LINE_MAX);
-        r->buf[n++] = (char)c;
+        kept++;
     }
-    if (c == EOF && ferror(r->f)) return fail(r, "read error: %s", strerror(errno));
-    r->buf[n] = 0;
-    return 1;
+    s[kept] = 0;
+    return 0;
+}
+
+/* The first byte of [p, e) below 0x20 other than tab, or 0x7f (a line's
+ * end or a bad byte); e if none. Eight bytes at a time: a byte b < 0x20
+ * sets the top bit of (b - 0x20) & ~b, a byte 0x7f makes a zero of
+ * b ^ 0x7f; a borrow can only mark bytes above a true one, so the lowest
+ * mark is exact. */
+static char *first_control(char *p, char *e)
+{
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+    const uint64_t ones = 0x0101010101010101u, high = 0x8080808080808080u;
+    while (e - p >= 8) {
+        uint64_t x, y;
+        memcpy(&x, p, 8);
+        y = x ^ (0x7f * ones);
+        uint64_t m = (((x - 0x20 * ones) & ~x) | ((y - ones) & ~y)) & high;
+        if (!m) { p += 8; continue; }
+        char *q = p + __builtin_ctzll(m) / 8;   /* little-endian: lowest address */
+        if (*q != '\t') return q;
+        p = q + 1;
+    }
+#endif
+    for (; p < e; p++) {
+        unsigned char c = (unsigned char)*p;
+        if ((c < 0x20 && c != '\t') || c == 0x7f) return p;
+    }
+    return e;
 }
 
 static int is_space(char c) { return c == ' ' || c == '\t'; }
@@ -313,27 +351,40 @@ static int parse_comment(reader *r, char *p, vec_set *s, const vec_set *expect,
     return 0;
 }
 
-/* One number; the whole token must be a finite real. */
-static int parse_num(reader *r, const char *tok, double *out)
+/* One number at *pp, a token ending at a space, a tab or the end: the
+ * whole token must be a finite real. strtod reads it in place; only a
+ * token it refuses is cut out, for the message. */
+static int parse_num(reader *r, char **pp, double *out)
 {
-    char cut[32], *end;
+    char cut[32], *tok = *pp, *end;
     errno = 0;
     double v = strtod(tok, &end);
-    if (end == tok || *end)
+    if (end == tok || (*end && !is_space(*end))) {
+        char *e = tok;
+        while (*e && !is_space(*e)) e++;
+        *e = 0;
         return fail(r, "not a number: '%s'", shorten(tok, cut));
-    if (isnan(v)) return fail(r, "NaN is not a valid value: '%s'", shorten(tok, cut));
-    if (!isfinite(v)) return fail(r, "infinite value: '%s'", shorten(tok, cut));
+    }
+    if (!isfinite(v)) {
+        *end = 0;
+        if (isnan(v)) return fail(r, "NaN is not a valid value: '%s'", shorten(tok, cut));
+        return fail(r, "infinite value: '%s'", shorten(tok, cut));
+    }
     *out = v;
+    *pp = end;
     return 0;
 }
 
 /* Numbers of one side of a row into v; found vs want counted in full. */
 static int parse_side(reader *r, char *p, const char *side, int want, double *v)
 {
-    char *tok;
     int found = 0;
-    while ((tok = token(&p))) {
-        if (found < want && parse_num(r, tok, &v[found])) return -1;
+    for (p = skip_space(p); *p; p = skip_space(p)) {
+        if (found < want) {
+            if (parse_num(r, &p, &v[found])) return -1;
+        } else {
+            while (*p && !is_space(*p)) p++;
+        }
         found++;
     }
     if (found != want)
@@ -358,36 +409,209 @@ static int parse_row(reader *r, char *p, vec_set *s, unsigned seen)
     return 0;
 }
 
-static int read_all(reader *r, vec_set *s, const vec_set *expect)
+/* State of a file being read, line by line in file order. */
+typedef struct rstate {
+    int magic, rows_started;
+    unsigned seen;
+} rstate;
+
+/* One line (already checked and NUL-terminated) of the file. */
+static int do_line(reader *r, char *line, vec_set *s, const vec_set *expect, rstate *st)
 {
-    int got, magic = 0, rows_started = 0;
-    unsigned seen = 0;
-    while ((got = next_line(r)) > 0) {
-        char *p = skip_space(r->buf);
-        if (!*p) continue;
-        if (!magic) {
-            /* The first non-blank line says what this file is. */
-            char *q = p;
-            char *t1 = *q == '#' ? (q++, token(&q)) : NULL;
-            char *t2 = t1 ? token(&q) : NULL;
-            char *t3 = t2 ? token(&q) : NULL;
-            if (!t1 || strcmp(t1, "shadesim") || !t2 || strcmp(t2, "vectors") || !t3)
-                return fail(r, "not a shadesim vector file (the first line must be '# " VEC_MAGIC "')");
-            if (strcmp(t3, "1") || token(&q))
-                return fail(r, "unsupported vector file version (expected '# " VEC_MAGIC "')");
-            magic = 1;
-            continue;
-        }
-        if (*p == '#') {
-            if (parse_comment(r, p, s, expect, &seen, rows_started)) return -1;
-            continue;
-        }
-        rows_started = 1;
-        if (parse_row(r, p, s, seen)) return -1;
+    char *p = skip_space(line);
+    if (!*p) return 0;
+    if (!st->magic) {
+        /* The first non-blank line says what this file is. */
+        char *q = p;
+        char *t1 = *q == '#' ? (q++, token(&q)) : NULL;
+        char *t2 = t1 ? token(&q) : NULL;
+        char *t3 = t2 ? token(&q) : NULL;
+        if (!t1 || strcmp(t1, "shadesim") || !t2 || strcmp(t2, "vectors") || !t3)
+            return fail(r, "not a shadesim vector file (the first line must be '# " VEC_MAGIC "')");
+        if (strcmp(t3, "1") || token(&q))
+            return fail(r, "unsupported vector file version (expected '# " VEC_MAGIC "')");
+        st->magic = 1;
+        return 0;
     }
-    if (got < 0) return -1;
+    if (*p == '#') return parse_comment(r, p, s, expect, &st->seen, st->rows_started);
+    st->rows_started = 1;
+    return parse_row(r, p, s, st->seen);
+}
+
+/* Lines [b, e) of a block, each ending in LF (the last may end at e only
+ * when it is the end of the file). r->line counts them. */
+static int do_lines(reader *r, char *b, char *e, vec_set *s, const vec_set *expect, rstate *st)
+{
+    while (b < e) {
+        /* One pass finds the line's end and its bad bytes: a clean line
+         * ends at the first control byte, its LF (or the end of the data,
+         * where the buffer has room for the NUL). */
+        char *q = first_control(b, e);
+        r->line++;
+        if ((q == e || *q == '\n') && q - b <= VEC_LINE_MAX) {
+            *q = 0;
+            if (do_line(r, b, s, expect, st)) return -1;
+            b = q + 1;
+            continue;
+        }
+        /* CR, bad bytes or too long: the exact per-character rules. */
+        char *nl = memchr(q, '\n', (size_t)(e - q));
+        char *end = nl ? nl : e;
+        if (check_line(r, b, (size_t)(end - b))) return -1;
+        if (do_line(r, b, s, expect, st)) return -1;
+        b = end + 1;
+    }
+    return 0;
+}
+
+/* ---- two threads for the rows of a large block ---- */
+
+#define VEC_PAR_MIN (1u << 18)   /* bytes of rows worth a second thread */
+
+typedef struct half {
+    reader r;                   /* line counts from 0 at the half's start */
+    char *b, *e;
+    vec_set *rows;
+    rstate st;
+    int rc;
+} half;
+
+/* What the reading of one file shares between blocks. */
+typedef struct par {
+    int ncpu;
+    vec_set rows;               /* the second thread's rows of a block */
+} par;
+
+static void *half_main(void *arg)
+{
+    half *h = arg;
+    h->rc = do_lines(&h->r, h->b, h->e, h->rows, NULL, &h->st);
+    return NULL;
+}
+
+/* Append t's rows to s, growing s as vec_set_push does (doubling). */
+static int append_rows(vec_set *s, const vec_set *t)
+{
+    size_t need = s->n_rows + t->n_rows, stride = (size_t)(s->n_in + s->n_out);
+    if (!t->n_rows) return 0;
+    if (need > s->cap_rows) {
+        size_t cap = s->cap_rows ? s->cap_rows : 256;
+        while (cap < need) cap *= 2;
+        double *d = realloc(s->data, cap * stride * sizeof *d);
+        if (!d) return -1;
+        s->data = d;
+        s->cap_rows = cap;
+    }
+    memcpy(vec_row(s, s->n_rows), t->data, t->n_rows * stride * sizeof *t->data);
+    s->n_rows = need;
+    return 0;
+}
+
+/* Rows region [b, e): once the first row has been read, every later line
+ * is a row, a blank or a comment, each understood on its own, so the
+ * region splits at a line boundary into halves parsed at once. */
+static int do_rows(reader *r, char *b, char *e, vec_set *s, const vec_set *expect, rstate *st,
+                   par *pp)
+{
+    size_t n = (size_t)(e - b);
+    char *mid = n >= VEC_PAR_MIN && pp->ncpu > 1 ? memchr(b + n / 2, '\n', (size_t)(e - (b + n / 2))) : NULL;
+    if (!mid || mid + 1 >= e) return do_lines(r, b, e, s, expect, st);
+    mid++;
+    half h;
+    memset(&h, 0, sizeof h);
+    h.r.path = r->path;
+    h.r.defer = 1;
+    h.b = mid; h.e = e;
+    pp->rows.n_in = s->n_in;
+    pp->rows.n_out = s->n_out;
+    pp->rows.n_rows = 0;
+    h.rows = &pp->rows;
+    h.st = *st;
+    pthread_t th;
+    if (pthread_create(&th, NULL, half_main, &h)) return do_lines(r, b, e, s, expect, st);
+    int rc = do_lines(r, b, mid, s, expect, st);
+    pthread_join(th, NULL);
+    if (rc) return rc;
+    /* The second half's lines follow the first's. (Out of memory while
+     * appending is reported on the half's last line.) */
+    r->line += h.r.line;
+    if (h.rc) return fail(r, "%s", h.r.why);
+    if (append_rows(s, &pp->rows)) return fail(r, "out of memory");
+    return 0;
+}
+
+/* Lines of a block: one by one until the first row, then as rows. */
+static int do_block(reader *r, char *b, char *e, vec_set *s, const vec_set *expect, rstate *st,
+                    par *pp)
+{
+    while (b < e && !st->rows_started) {
+        char *nl = memchr(b, '\n', (size_t)(e - b));
+        char *end = nl ? nl : e;
+        if (do_lines(r, b, end == e ? e : end + 1, s, expect, st)) return -1;
+        b = end == e ? e : end + 1;
+    }
+    return b < e ? do_rows(r, b, e, s, expect, st, pp) : 0;
+}
+
+#define VEC_BLOCK (4u << 20)     /* bytes read at a time */
+
+static int read_all(reader *r, FILE *f, vec_set *s, const vec_set *expect)
+{
+    rstate st = { 0, 0, 0 };
+    /* buf holds the unfinished line carried over plus one block. A line
+     * that needs more than VEC_LINE_MAX + 2 bytes (CR, LF) is too long,
+     * or has bad bytes before that: check_line finds which. */
+    size_t cap = VEC_BLOCK + VEC_LINE_MAX + 8, len = 0;
+    char *buf = malloc(cap + 1);
+    if (!buf) return fail(r, "out of memory");
+    int rc = 0, eof = 0, rerr = 0;
+    par pp;
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    pp.ncpu = ncpu > 1 ? 2 : 1;
+    vec_set_init(&pp.rows);
+    while (!eof) {
+        size_t k = fread(buf + len, 1, cap - len, f);
+        len += k;
+        if (len < cap) {               /* short read: end of file or error */
+            eof = 1;
+            if (ferror(f)) rerr = errno ? errno : EIO;
+        }
+        char *cut = eof ? buf + len : NULL;
+        if (!eof) {
+            /* Up to the last LF of the block; the rest waits for more. */
+            char *q = buf + len;
+            while (q > buf && q[-1] != '\n') q--;
+            cut = q;
+            if (cut == buf) {
+                /* No LF in a full buffer: a line too long (or bad bytes
+                 * before its end). */
+                r->line++;
+                if (check_line(r, buf, len) == 0) rc = fail(r, "line longer than %d bytes", VEC_LINE_MAX);
+                rc = -1;
+                break;
+            }
+        }
+        if (rerr) {
+            /* Complete lines first, as a line-by-line reader would meet
+             * them; then the characters of the unfinished line; then the
+             * error, on the line it hit. */
+            char *q = buf + len;
+            while (q > buf && q[-1] != '\n') q--;
+            if ((rc = do_block(r, buf, q, s, expect, &st, &pp))) break;
+            r->line++;
+            if (q < buf + len && (rc = check_line(r, q, (size_t)(buf + len - q)))) break;
+            rc = fail(r, "read error: %s", strerror(rerr));
+            break;
+        }
+        if ((rc = do_block(r, buf, cut, s, expect, &st, &pp))) break;
+        len = (size_t)(buf + len - cut);
+        memmove(buf, cut, len);
+    }
+    free(buf);
+    vec_set_free(&pp.rows);
+    if (rc) return -1;
     if (r->line == 0) r->line = 1;
-    if (!magic) return fail(r, "empty file (expected '# " VEC_MAGIC "')");
+    if (!st.magic) return fail(r, "empty file (expected '# " VEC_MAGIC "')");
     if (!s->n_rows) return fail(r, "no vector rows");
     return 0;
 }
@@ -397,16 +621,19 @@ int vec_file_read(const char *path, vec_set *s, const vec_set *expect,
 {
     vec_set_init(s);
     int is_stdin = !strcmp(path, "-");
-    reader r = { NULL, is_stdin ? "<stdin>" : path, 0, NULL, err, errlen };
-    r.f = is_stdin ? stdin : fopen(path, "rb");
-    if (!r.f) {
+    reader r;
+    memset(&r, 0, sizeof r);
+    r.path = is_stdin ? "<stdin>" : path;
+    r.err = err;
+    r.errlen = errlen;
+    FILE *f = is_stdin ? stdin : fopen(path, "rb");
+    if (!f) {
         msg(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return -1;
     }
-    r.buf = malloc(VEC_LINE_MAX + 1);
-    int rc = r.buf ? read_all(&r, s, expect) : (msg(err, errlen, "%s: out of memory", path), -1);
-    free(r.buf);
-    if (!is_stdin) fclose(r.f);
+    errno = 0;
+    int rc = read_all(&r, f, s, expect);
+    if (!is_stdin) fclose(f);
     if (rc) vec_set_free(s);
     return rc;
 }

@@ -1,0 +1,15 @@
+/* bench_verilog.c - `make bench` entry for bench/verilog/run.sh: shadesim
+ * against Verilator (and Icarus) on the same horner3 design and vectors.
+ * The script says "skipped" when verilator is not installed. */
+#include <stdio.h>
+#include <stdlib.h>
+
+int main(void)
+{
+    int rc = system("sh bench/verilog/run.sh");
+    if (rc != 0) {
+        fprintf(stderr, "bench: bench/verilog/run.sh failed\n");
+        return 1;
+    }
+    return 0;
+}
