@@ -63,7 +63,9 @@ struct sim_signal {
     uint32_t    nfan, capfan;
     uint32_t    capwake[2];
     int64_t     raw_min, raw_max;  /* range of fmt, cached for quantization */
-    uint64_t    overflows;  /* quantizations into this signal that overflowed */
+    uint64_t    overflows;  /* time steps that settled on an overflowed quantization */
+    int64_t     ovf_raw;    /* the last overflowed result this time step */
+    uint32_t    ovf_pending;/* in the kernel's list of overflows to settle */
     double      area_ge;    /* area of the element driving it, NAND2 eq. */
     sim_proc   *driver;     /* process computing it (NULL: input, constant) */
     int64_t     vcd_last;   /* last value written to the VCD */
@@ -177,6 +179,11 @@ typedef struct sim_vcd sim_vcd;
 void sim_attach_vcd(sim_ctx *c, sim_vcd *v);
 /* The signals changed since the last call (each once); resets the list. */
 sim_signal **sim__vcd_take_dirty(sim_ctx *c, uint32_t *n);
+/* A quantization into s overflowed and gave raw. It is counted in
+ * s->overflows only if s still holds raw when the time step settles: a
+ * glitch while a combinational network settles (an operand updated one
+ * delta before the other) is not an overflow of the hardware. */
+void sim__overflow(sim_signal *s, int64_t raw);
 
 /* ---- inline fast path ----
  * The update list is the first member of every sim_ctx, so that a write,

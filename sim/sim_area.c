@@ -20,3 +20,6 @@ double sim_area_mul(int wa, int wb)
     /* wa*wb partial-product ANDs, reduced by (wa-1) rows of wb full adders. */
     return (double)wa * wb * SIM_GE_AND2 + (double)(wa - 1) * wb * SIM_GE_FA;
 }
+
+double sim_area_round(int w) { return w * SIM_GE_HA; }
+double sim_area_sat(int w, int extra) { return extra > 0 ? w * SIM_GE_MUX2 + extra * SIM_GE_XOR2 : 0.0; }

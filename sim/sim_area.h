@@ -24,4 +24,10 @@ double sim_area_bk(int w);                             /* an AND gate per bit */
 double sim_area_add(int w);                            /* ripple-carry: w full adders */
 double sim_area_sub(int w);                            /* w full adders + w inverters */
 double sim_area_mul(int wa, int wb);                   /* array: wa*wb AND2 + (wa-1)*wb FA */
+/* Quantization logic at an element's output of w bits: rounding to nearest
+ * where it drops fraction bits (an incrementer: w half adders), saturation
+ * where its exact result has `extra` integer bits more than the output
+ * (extra XOR2 to detect, a MUX2 per bit to clamp). */
+double sim_area_round(int w);
+double sim_area_sat(int w, int extra);
 #endif

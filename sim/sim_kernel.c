@@ -53,6 +53,7 @@ struct sim_ctx {
     sim_proc   **run;    uint32_t nrun;      /* runnable this delta; capacity capproc */
     sim_proc   **run2;   uint32_t nrun2;     /* woken for the next delta */
     sim_signal **vdirty; uint32_t nvdirty;   /* changed since the last VCD stamp */
+    sim_signal **ovfq;   uint32_t novfq;     /* overflowed this time step (sim__overflow) */
     sim_timer   *heap;   uint32_t nheap, capheap;
     uint64_t     timer_seq;
     sim_time     now;
@@ -123,7 +124,7 @@ void sim_free(sim_ctx *c)
     free_fanouts(c);
     while (c->mem) { struct sim_chunk *n = c->mem->next; free(c->mem); c->mem = n; }
     free(c->sigs); free(c->procs); free(c->q.upd); free(c->run); free(c->run2);
-    free(c->vdirty); free(c->heap);
+    free(c->vdirty); free(c->ovfq); free(c->heap);
     free(c);
 }
 
@@ -181,7 +182,8 @@ sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,
     if (c->capsig != cap) {
         c->q.upd = realloc(c->q.upd, (size_t)c->capsig * sizeof *c->q.upd);
         c->vdirty = realloc(c->vdirty, (size_t)c->capsig * sizeof *c->vdirty);
-        if (!c->q.upd || !c->vdirty) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+        c->ovfq = realloc(c->ovfq, (size_t)c->capsig * sizeof *c->ovfq);
+        if (!c->q.upd || !c->vdirty || !c->ovfq) { fputs("shadesim: out of memory\n", stderr); exit(3); }
     }
     c->sigs[c->nsig++] = s;
     return s;
@@ -566,6 +568,24 @@ static int clock_step(sim_ctx *c)
     return 1;
 }
 
+void sim__overflow(sim_signal *s, int64_t raw)
+{
+    sim_ctx *c = s->ctx;
+    s->ovf_raw = raw;
+    if (!s->ovf_pending) { s->ovf_pending = 1; c->ovfq[c->novfq++] = s; }
+}
+
+/* End of a time step: count the overflows the settled values carry. */
+static void settle_overflows(sim_ctx *c)
+{
+    for (uint32_t i = 0; i < c->novfq; i++) {
+        sim_signal *s = c->ovfq[i];
+        s->ovf_pending = 0;
+        s->overflows += s->cur == s->ovf_raw;
+    }
+    c->novfq = 0;
+}
+
 sim_status sim_run(sim_ctx *c, sim_time until)
 {
     if (!c->started) {
@@ -588,6 +608,7 @@ sim_status sim_run(sim_ctx *c, sim_time until)
         }
         if ((c->nrun || c->q.nupd) && run_deltas(c, &deltas, 0)) goto loop;
         c->stats.time_steps++;
+        if (c->novfq) settle_overflows(c);
         if (c->vcd) sim_vcd_step(c->vcd, c->now);
         if (c->stop) return SIM_OK;
         if (!c->nheap || c->heap[0].at > until) {
@@ -598,6 +619,7 @@ sim_status sim_run(sim_ctx *c, sim_time until)
     }
 loop:
     report_loop(c);
+    if (c->novfq) settle_overflows(c);
     if (c->vcd) sim_vcd_step(c->vcd, c->now);
     return SIM_ERR_LOOP;
 }

@@ -41,7 +41,7 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, 
     }
     int ovf = 0;
     int64_t v = sim_fx_requant(raw, src_fbits, s->fmt, r, o, &ovf);
-    s->overflows += (uint64_t)ovf;
+    if (ovf) sim__overflow(s, v);
     return v;
 }
 
@@ -124,6 +124,16 @@ static sim_proc *prim_proc(sim_ctx *c, sim_signal *y, sim_proc_fn fn, prim *p)
 static inline sim_wide align(int64_t raw, int k) { return (sim_wide)raw * ((sim_wide)1 << k); }
 
 static int imax(int a, int b) { return a > b ? a : b; }
+
+/* The logic an element's quantization needs besides truncation and wrap,
+ * for an exact result with src_f fraction and src_i integer bits. */
+static double quant_area(const prim *p, sim_fmt y, int src_f, int src_i)
+{
+    double a = 0;
+    if (src_f > y.fbits && p->r != SIM_RND_TRUNC) a += sim_area_round(y.width);
+    if (src_i > y.ibits && p->o == SIM_OVF_SAT) a += sim_area_sat(y.width, src_i - y.ibits);
+    return a;
+}
 
 /* ---------------------------------------------------------------- constant */
 
@@ -228,7 +238,9 @@ sim_signal *sim_mux(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     if (same && fast_quant_setup(p, in[0]->fmt.fbits)) set_native(pr, SIM__OP_MUX, p);
     sim_sensitive(pr, sel, SIM_EDGE_ANY);
     for (int i = 0; i < n; i++) sim_sensitive(pr, copy[i], SIM_EDGE_ANY);
-    y->area_ge = sim_area_mux(fmt.width, n);
+    int mf = 0, mi = 0;
+    for (int i = 0; i < n; i++) { mf = imax(mf, in[i]->fmt.fbits); mi = imax(mi, in[i]->fmt.ibits); }
+    y->area_ge = sim_area_mux(fmt.width, n) + quant_area(p, fmt, mf, mi);
     return y;
 }
 
@@ -250,7 +262,7 @@ sim_signal *sim_bk(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     if (copy_fits(x) && fast_quant_setup(p, x->fmt.fbits)) set_native(pr, SIM__OP_BK, p);
     sim_sensitive(pr, pass, SIM_EDGE_ANY);
     sim_sensitive(pr, x, SIM_EDGE_ANY);
-    y->area_ge = sim_area_bk(fmt.width);
+    y->area_ge = sim_area_bk(fmt.width) + quant_area(p, fmt, x->fmt.fbits, x->fmt.ibits);
     return y;
 }
 
@@ -315,7 +327,8 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     int w = adder_width(a->fmt, b->fmt, fmt);
-    y->area_ge = sub ? sim_area_sub(w) : sim_area_add(w);
+    y->area_ge = (sub ? sim_area_sub(w) : sim_area_add(w))
+                 + quant_area(p, fmt, p->src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
     return y;
 }
 
@@ -352,7 +365,8 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     if (raw_bits(a) + raw_bits(b) <= 62 && fast_quant_setup(p, p->src_f)) set_native(pr, SIM__OP_MUL, p);
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
-    y->area_ge = sim_area_mul(a->fmt.width, b->fmt.width);
+    y->area_ge = sim_area_mul(a->fmt.width, b->fmt.width)
+                 + quant_area(p, fmt, p->src_f, a->fmt.ibits + b->fmt.ibits);
     return y;
 }
 
@@ -385,7 +399,7 @@ sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     sim_proc *pr = prim_proc(c, y, fast && p->sa ? shift_fast : shift_eval, p);
     if (fast && !p->sa) set_native(pr, SIM__OP_COPY, p);
     sim_sensitive(pr, x, SIM_EDGE_ANY);
-    y->area_ge = 0;   /* wires */
+    y->area_ge = quant_area(p, fmt, f, x->fmt.ibits + sh);   /* the shift itself is wires */
     return y;
 }
 
