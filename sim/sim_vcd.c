@@ -10,6 +10,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* Value changes are formatted by hand into buf and handed to stdio in
@@ -81,6 +82,7 @@ sim_vcd *sim_vcd_open(sim_ctx *c, const char *path, const char *timescale,
     memcpy(v->path, path, n + 1);
     snprintf(v->tmp, n + 8, "%s.XXXXXX", path);
     int fd = mkstemp(v->tmp);
+    if (fd >= 0) fchmod(fd, 0644);   /* mkstemp's 0600 is for secrets, not dumps */
     if (fd < 0 || !(v->f = fdopen(fd, "w"))) {
         snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
         if (fd >= 0) { close(fd); unlink(v->tmp); }
@@ -239,6 +241,7 @@ int sim_vcd_write_gtkw(sim_ctx *c, const char *vcd_path, const char *gtkw_path)
     if (!tmp) return -1;
     snprintf(tmp, n + 8, "%s.XXXXXX", gtkw_path);
     int fd = mkstemp(tmp);
+    if (fd >= 0) fchmod(fd, 0644);
     FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
     if (!f) { if (fd >= 0) { close(fd); unlink(tmp); } free(tmp); return -1; }
     /* GTKWave resolves a relative dumpfile against the save file's folder. */
