@@ -230,7 +230,7 @@ static const char run_help2[] =
 
 static int run_all(void)
 {
-    printf("%-10s %-9s %6s %12s %12s %12s %10s %6s\n", "unit", "schedule", "width", "clocks/item",
+    printf("%-11s %-9s %6s %12s %12s %12s %10s %6s\n", "unit", "schedule", "width", "clocks/item",
            "max|e|", "nmse", "area GE", "bound");
     int rc = CLI_OK;
     for (size_t i = 0, n = unit_count(); i < n; i++) {
@@ -247,7 +247,7 @@ static int run_all(void)
             fprintf(stderr, "shadesim: %s: %s\n", o.u->name, err);
             rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
         } else {
-            printf("%-10s %-9s %6d %12.4g %12.4g %12.4g %10.1f %6s\n", o.u->name, o.u->sched[o.cfg.schedule].name,
+            printf("%-11s %-9s %6d %12.4g %12.4g %12.4g %10.1f %6s\n", o.u->name, o.u->sched[o.cfg.schedule].name,
                    o.cfg.width, r.cycles_per_item, r.max_abs_err, r.nmse, r.area_ge, r.within_bound ? "ok" : "EXCEED");
             if (!r.within_bound && rc == CLI_OK) rc = CLI_FAIL;
         }
