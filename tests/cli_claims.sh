@@ -3,14 +3,7 @@
 # claim in the text and the JSON, the JSON parses, -o DIR writes the
 # charts, bad arguments exit 2 with one line on stderr.
 # One line per check: "ok NAME", "FAIL NAME" or "skip NAME: why".
-S=${SHADESIM:-bin/shadesim}
-T=$(mktemp -d /tmp/shadesim_cli_claims.XXXXXX) || exit 1
-trap 'rm -rf "$T"' EXIT
-export SHADESIM_HOME=${SHADESIM_HOME:-$(pwd)}
-
-ok() { echo "ok $1"; }
-fail() { echo "FAIL $1"; [ -n "$2" ] && echo "  $2"; }
-check() { name=$1; shift; if "$@"; then ok "$name"; else fail "$name"; fi; }
+. tests/lib_cli.sh
 # bad_args NAME ARGS...: exit 2, one line on stderr, nothing on stdout.
 bad_args() {
     name=$1; shift

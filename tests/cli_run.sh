@@ -2,12 +2,8 @@
 # Command-line contract of list, vectors and run (SPEC 4): exit statuses,
 # one-line errors naming file and line, no output left behind on bad input,
 # the JSON fields and the CSV columns. One "ok/FAIL NAME" line per check.
-S=${SHADESIM:-bin/shadesim}
-T=$(mktemp -d)
-trap 'rm -rf "$T"' EXIT
-
-ok()   { echo "ok cli_run.$1"; }
-fail() { echo "FAIL cli_run.$1: $2"; }
+PREFIX=cli_run.
+. tests/lib_cli.sh
 
 # expect NAME STATUS CMD...: exit status, and for status 2 exactly one
 # stderr line starting "shadesim: ".

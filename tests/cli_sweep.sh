@@ -3,14 +3,7 @@
 # same bytes for -j 1, -j 2 and merged shards; bad arguments exit 2 with
 # one line; the files are there and no temporaries are left.
 # One line per check: "ok NAME", "FAIL NAME" or "skip NAME: why".
-S=${SHADESIM:-bin/shadesim}
-T=$(mktemp -d /tmp/shadesim_cli_sweep.XXXXXX) || exit 1
-trap 'rm -rf "$T"' EXIT
-export SHADESIM_HOME=${SHADESIM_HOME:-$(pwd)}
-
-ok() { echo "ok $1"; }
-fail() { echo "FAIL $1"; [ -n "$2" ] && echo "  $2"; }
-check() { name=$1; shift; if "$@"; then ok "$name"; else fail "$name"; fi; }
+. tests/lib_cli.sh
 
 # Small and quick, but with two axes so that order and shards matter.
 ARGS="horner3 --widths 8:20 --round trunc,half-up --overflow wrap,sat"

@@ -1,0 +1,12 @@
+# lib_cli.sh - what the command-line tests share; sourced, not run.
+# Sets S (the shadesim under test) and T (a scratch folder removed on exit),
+# and the helpers that print the one line per check tests/run.sh counts:
+# "ok NAME", "FAIL NAME: why". PREFIX (e.g. "cli_run.") goes before names.
+S=${SHADESIM:-bin/shadesim}
+T=$(mktemp -d /tmp/shadesim_cli.XXXXXX) || exit 1
+trap 'rm -rf "$T"' EXIT
+export SHADESIM_HOME=${SHADESIM_HOME:-$(pwd)}
+
+ok()    { echo "ok ${PREFIX}$1"; }
+fail()  { if [ -n "$2" ]; then echo "FAIL ${PREFIX}$1: $2"; else echo "FAIL ${PREFIX}$1"; fi; }
+check() { name=$1; shift; if "$@"; then ok "$name"; else fail "$name"; fi; }
