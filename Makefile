@@ -1,4 +1,4 @@
-# shadesim build. One library of every layer (sim/ units/ vectors/ testbench/)
+# shadesim build. One library of every layer (sim/ units/ vectors/ scene/ testbench/)
 # linked into bin/shadesim, each tests/test_*.c and each bench/*.c.
 # `make test` runs the suite twice: plain (-O2) and under ASan+UBSan.
 
@@ -10,7 +10,7 @@ CFLAGS  ?=
 ALLCFLAGS = $(CSTD) $(WARN) $(OPT) -I. $(CFLAGS)
 LDLIBS  := -lm -lpthread
 
-LAYERS  := sim units vectors testbench
+LAYERS  := sim units vectors scene testbench
 LIBSRC  := $(filter-out testbench/main.c,$(foreach d,$(LAYERS),$(wildcard $(d)/*.c)))
 HDRS    := $(foreach d,$(LAYERS),$(wildcard $(d)/*.h)) $(wildcard tests/*.h)
 TESTSRC := $(wildcard tests/test_*.c)

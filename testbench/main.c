@@ -8,6 +8,7 @@ const cli_verb cli_verbs[] = {
     { "run",     cli_run,     "run a unit's testbench: cycles, area, quantization error" },
     { "claims",  cli_claims,  "each numerical claim of the seeds next to what we measure" },
     { "sweep",   cli_sweep,   "a unit over bit widths and settings: CSV, charts, Pareto front, target search" },
+    { "scene",   cli_scene,   "render a scene through the simulated interpolation hardware: images, NMSE, clocks, area" },
     { "merge",   cli_merge,   "join the CSVs of a sharded sweep into the whole sweep's CSV" },
     { NULL, NULL, NULL }
 };

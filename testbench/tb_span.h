@@ -1,0 +1,40 @@
+/* tb_span.h - the span interpolation units (units/unit_span.c) driven
+ * with a stream of intervals of varying length, as a scene's spans give
+ * them: the scene testbench hands over every interval of every span, in
+ * order, and gets every pixel back, with the clocks, overflows and area of
+ * the simulated hardware.
+ *
+ * An interval of n pixels (1 <= n <= L) is one item: node intensities
+ * I(0), I(1), I(1/2) and I(1/4) (node set N1) or I(3/4) (N2) -- the linear
+ * unit reads I(0), I(1) only, the quadratic I(0), I(1), I(1/2) -- its
+ * divisor dv (pixel k has t = k/dv; the scene uses dv = L for a full
+ * interval and n - 1 for a span's last one, so that its t = 1 node is the
+ * span's last pixel) and, for the adaptive unit, its degree (2 or 3).
+ */
+#ifndef TB_SPAN_H
+#define TB_SPAN_H
+#include "units/unit.h"
+
+typedef struct tb_span_item {
+    double node[4];     /* exact (double) node intensities, quantized by the testbench */
+    int    n;           /* pixels, 1..L */
+    int    dv;          /* divisor: t = k/dv, 1..L */
+    int    deg;         /* span23 only: 2 or 3 */
+} tb_span_item;
+
+typedef struct tb_span_stats {
+    uint64_t clocks;         /* clock cycles from the first accept to the last pixel */
+    uint64_t pixels;
+    uint64_t items, items_deg2;
+    uint64_t overflows;      /* input quantization + every signal of the unit */
+    double   area_ge;
+} tb_span_stats;
+
+/* Simulate items[0..nitems-1] back to back through unit u (one of the
+ * span units) at formats f; pix[] receives sum(items[i].n) pixel values
+ * (the output's real value), in order. vcd_path: NULL or a VCD to write.
+ * TB_OK, TB_FAIL or TB_BADINPUT (tb.h) with a message. */
+int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                const tb_span_item *items, size_t nitems, double *pix,
+                tb_span_stats *st, const char *vcd_path, char *err, size_t errlen);
+#endif
