@@ -104,6 +104,11 @@ typedef enum { SCN_POL_LINEAR, SCN_POL_QUADRATIC, SCN_POL_CUBIC_N1, SCN_POL_CUBI
 
 #define SCN_MAX_FMT 64
 
+/* Operations counted per pixel for the reference and for the method, and
+ * their cost weights (scene key "cost", e.g. "cost div=8"). */
+typedef enum { SCN_OP_ADD, SCN_OP_MUL, SCN_OP_DIV, SCN_OP_SQRT, SCN_OP_POW, SCN_OP__COUNT } scn_op;
+extern const char *const scn_op_name[SCN_OP__COUNT];     /* "add" "mul" "div" "sqrt" "pow" */
+
 /* Everything a scene file says. Every field has a default
  * (scn_desc_default: the face scene). Strings are owned by the struct. */
 typedef struct scn_desc {
@@ -125,6 +130,7 @@ typedef struct scn_desc {
     char         fmt[SCN_MAX_FMT][48];   /* NAME=sI.F overrides, in order */
     int          rnd, ovf;       /* sim_round / sim_ovf values */
     char         schedule[16];   /* "paper", "mac", "pipe" */
+    double       cost[SCN_OP__COUNT];           /* weights of the operation count */
 } scn_desc;
 
 void scn_desc_default(scn_desc *d);

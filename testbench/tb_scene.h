@@ -1,0 +1,62 @@
+/* tb_scene.h - a scene shaded through the simulated hardware.
+ *
+ * tb_scene_render composes the layers: the scene (scene/) is rasterized
+ * into a surface buffer and shaded per pixel in double precision (the
+ * reference image); each span is cut into intervals of L pixels whose node
+ * intensities are shaded exactly (counted, not simulated) and shared
+ * between neighbouring intervals; the span unit of the scene's policy
+ * (units/unit_span.c, driven by tb_span_run) then interpolates every pixel
+ * cycle-accurately at the scene's formats. The result holds both images,
+ * the error metrics, the clocks and area of the instantiated hardware and
+ * the operation counts of the reference and of the method.
+ */
+#ifndef TB_SCENE_H
+#define TB_SCENE_H
+#include "scene/scene.h"
+#include "testbench/tb_span.h"
+
+typedef struct tb_scene_opts {
+    int         jobs;        /* threads (rows split into bands); output identical for any value */
+    int         heldout;     /* 1: render the description's held-out view instead of its view */
+    const char *vcd_path;    /* NULL, or a VCD of the hardware (first band only) */
+    const unit_fmts *fmts;   /* NULL: the scene's formats (width rule + fmt overrides) */
+} tb_scene_opts;
+
+typedef struct tb_scene_result {
+    int       w, h;
+    size_t    covered;                /* pixels covered by the mesh */
+    double   *ref, *hw;               /* [w*h] intensities in [0, 1]; 0 where uncovered */
+    uint8_t  *deg;                    /* [w*h] degree used (1, 2, 3; 0 uncovered) */
+    uint8_t  *region;                 /* [w*h] region label */
+    /* Metrics over covered pixels (docs/scenes.md defines them). */
+    double    nmse;                   /* sum (hw - ref)^2 / sum ref^2 */
+    double    psnr;                   /* on 8 bits, dB */
+    double    max_abs_err;
+    int       max_err8;               /* max |hw8 - ref8|, 8-bit values */
+    double    diff8_share;            /* share of pixels whose 8-bit value differs */
+    /* The hardware. */
+    const unit_desc *unit;
+    unit_cfg  cfg;
+    unit_fmts fmts;
+    tb_span_stats hwst;
+    double    clocks_per_pixel;
+    size_t    spans, intervals, intervals_deg2;
+    double    deg2_share;
+    /* Operations per covered pixel, and their weighted costs. */
+    double    ops_ref[SCN_OP__COUNT], ops_hw[SCN_OP__COUNT];
+    double    cost_ref, cost_hw, speedup;   /* speedup = cost_ref / cost_hw */
+    size_t    nodes_shaded;
+} tb_scene_result;
+
+/* The span unit, configuration and formats a description's policy needs.
+ * 0, or -1 with a message. */
+int  tb_scene_unit(const scn_desc *d, const unit_desc **u, unit_cfg *cfg, unit_fmts *f,
+                   char *err, size_t errlen);
+/* Render. m is the description's mesh (already loaded). TB_OK, TB_FAIL or
+ * TB_BADINPUT with a message. */
+int  tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,
+                     tb_scene_result *r, char *err, size_t errlen);
+void tb_scene_free(tb_scene_result *r);
+/* One JSON object: the description's settings and every figure above. */
+int  tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r);
+#endif
