@@ -155,6 +155,10 @@ typedef struct scn_gbuf {
     double  (*pos)[3];           /* world position */
     double  (*nrm)[3];           /* interpolated vertex normal, not normalized */
     uint32_t *frags;             /* fragments that passed the coverage test (before z) */
+    /* World size of one pixel at depth z: foot0 + foot1 * z (orthographic:
+     * foot1 = 0; perspective: foot0 = 0). scn_spans uses it to tell a
+     * depth jump; a gbuf built by hand may leave both 0 (scene_span.c). */
+    double    foot0, foot1;
 } scn_gbuf;
 
 /* Rasterize with a z-buffer, back faces culled, the top-left fill rule
