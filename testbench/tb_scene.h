@@ -25,7 +25,8 @@ typedef struct tb_scene_opts {
 typedef struct tb_scene_result {
     int       w, h;
     size_t    covered;                /* pixels covered by the mesh */
-    double   *ref, *hw;               /* [w*h] intensities in [0, 1]; 0 where uncovered */
+    double   *ref, *hw;               /* [w*h] intensities, 0 where uncovered: ref in [0, 1],
+                                       * hw as the hardware gave it (not clamped) */
     uint8_t  *deg;                    /* [w*h] degree used (1, 2, 3; 0 uncovered) */
     uint8_t  *region;                 /* [w*h] region label */
     /* Metrics over covered pixels (docs/scenes.md defines them). */
@@ -46,6 +47,7 @@ typedef struct tb_scene_result {
     double    ops_ref[SCN_OP__COUNT], ops_hw[SCN_OP__COUNT];
     double    cost_ref, cost_hw, speedup;   /* speedup = cost_ref / cost_hw */
     size_t    nodes_shaded;
+    int       heldout;                /* 1: the held-out view was rendered */
 } tb_scene_result;
 
 /* The span unit, configuration and formats a description's policy needs.
@@ -57,6 +59,25 @@ int  tb_scene_unit(const scn_desc *d, const unit_desc **u, unit_cfg *cfg, unit_f
 int  tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,
                      tb_scene_result *r, char *err, size_t errlen);
 void tb_scene_free(tb_scene_result *r);
+
+/* The hardware path on a surface buffer made elsewhere, with a shading
+ * function in place of the scene's lighting (tests drive it with a
+ * synthetic intensity; fn NULL: scn_shade with the description's material
+ * and the chosen view). Reference and nodes both come from fn; the
+ * operation counts still describe d's lighting model. */
+typedef double (*tb_scene_shader)(void *ctx, const double pos[3], const double nrm[3]);
+int  tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
+                          const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen);
+/* Operations of one evaluation of d's lighting model at a point of view v
+ * (the per-pixel cost of the reference; each shaded node costs the same). */
+void tb_scene_point_ops(const scn_desc *d, const scn_view *v, double ops[SCN_OP__COUNT]);
+/* Scale K of the error heat map: full white is an error of 1/K, K from
+ * the ladder 1, 4, 16, ..., 4096 (the largest that shows the maximum). */
+int  tb_scene_err_scale(const tb_scene_result *r);
+/* Write ref.png, hw.png, err-xK.png, degree.png, region.png and
+ * scene.json into dir (created if needed), each atomically. 0 or -1. */
+int  tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir,
+                    char *err, size_t errlen);
 /* One JSON object: the description's settings and every figure above. */
 int  tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r);
 #endif

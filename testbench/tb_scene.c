@@ -1,0 +1,699 @@
+/* tb_scene.c - a scene shaded through the simulated span hardware.
+ *
+ * The hardware path, row band by row band:
+ *   1. every covered pixel is shaded in double precision: the reference;
+ *   2. each span of n pixels is cut into intervals of L pixels from its
+ *      left end, the last one shorter (n mod L, or L). Interval j starts
+ *      at x0 + jL; its divisor dv is L, except the span's last interval
+ *      where dv = max(len - 1, 1), so that its t = 1 node is the span's
+ *      last pixel. Pixel k of an interval has t = k/dv;
+ *   3. the nodes x = start + dv * {0, 1, 1/2, 1/4 (N1) or 3/4 (N2)} are
+ *      shaded exactly (scn_span_at, then the lighting). The t = 1 node of
+ *      an interval is the t = 0 node of the next one: it is shaded once.
+ *      A last interval of one pixel needs only its t = 0 node (the other
+ *      node inputs repeat it: a constant). Only the nodes the interval's
+ *      degree reads are shaded, and counted;
+ *   4. the degree: fixed by the policy; adaptive-region: the table of the
+ *      description (region -> 2 or 3); adaptive-auto: from the nodes the
+ *      hardware has anyway, the second difference
+ *          c = |I(0) + I(1) - 2 I(1/2)|
+ *      (4 times the deviation of the midpoint from the chord, zero for a
+ *      straight profile): degree 3 when c > auto_threshold, else 2; the
+ *      I(1/4) or I(3/4) node is shaded only for degree 3;
+ *   5. one tb_span_run per band with all of the band's intervals, on a
+ *      fresh simulation of the policy's unit; the pixels come back in
+ *      order and are written into the hardware image.
+ * The rows are split into a fixed number of bands (TB_SCENE_BANDS, or one
+ * per row when there are fewer rows) whatever the number of threads, and
+ * the bands' figures are summed in band order: the output is the same for
+ * any -j.
+ *
+ * Metrics over covered pixels, on the hardware's raw values (not clamped:
+ * an overshoot of the interpolation is an error like any other):
+ *   NMSE = sum (hw - ref)^2 / sum ref^2, max_abs_err = max |hw - ref|.
+ * On 8 bits, v8 = round(255 clamp(v, 0, 1)) (also the PNG images):
+ *   PSNR = 10 log10(255^2 / mean (hw8 - ref8)^2) (infinite when equal),
+ *   max_err8 = max |hw8 - ref8|, diff8_share = share of pixels with
+ *   hw8 != ref8.
+ * clocks_per_pixel = clocks of all bands' simulations / covered pixels.
+ */
+#include "testbench/tb_scene.h"
+#include "testbench/tb.h"
+#include "units/unit_coef.h"
+#include "units/unit_net.h"
+#include "sim/sim_out.h"
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define TB_SCENE_BANDS 16
+
+/* ------------------------------------------------- the unit of a policy */
+
+int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_fmts *f,
+                  char *err, size_t errlen)
+{
+    static const char *const uname[SCN_POL__COUNT] = { "span1", "span2", "span3", "span3", "span23", "span23" };
+    if ((int)d->policy < 0 || d->policy >= SCN_POL__COUNT) { snprintf(err, errlen, "unknown policy"); return -1; }
+    const unit_desc *u = unit_find(uname[d->policy]);
+    if (!u) { snprintf(err, errlen, "unit %s is not built into this shadesim", uname[d->policy]); return -1; }
+    unit_cfg_default(cfg);
+    cfg->width = d->fmt_width;
+    cfg->L = d->L;
+    cfg->terms = d->terms;
+    cfg->series = d->series;
+    cfg->rnd = (sim_round)d->rnd;
+    cfg->ovf = (sim_ovf)d->ovf;
+    int s = unit_sched_find(u, d->schedule);
+    if (s < 0) {
+        char list[200] = "";
+        for (int j = 0; j < u->nsched; j++) {
+            strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
+            strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
+        }
+        snprintf(err, errlen, "schedule %s: unit %s has schedules: %s", d->schedule, u->name, list);
+        return -1;
+    }
+    cfg->schedule = s;
+    /* Every parameter through its own range check (set from its text). */
+    for (int i = 0; i < u->nparams; i++) {
+        char v[64];
+        if (!strcmp(u->params[i].name, "nodes")) {
+            int n2 = d->policy == SCN_POL_CUBIC_N2 ||
+                     ((d->policy == SCN_POL_ADAPTIVE_REGION || d->policy == SCN_POL_ADAPTIVE_AUTO) && d->auto_cubic_nodes == 2);
+            snprintf(v, sizeof v, "%s", n2 ? "n2" : "n1");
+        } else unit_param_get(&u->params[i], cfg, v, sizeof v);
+        if (unit_param_set(u, cfg, u->params[i].name, v, err, errlen)) return -1;
+    }
+    const char *ov[SCN_MAX_FMT];
+    for (int i = 0; i < d->nfmt && i < SCN_MAX_FMT; i++) ov[i] = d->fmt[i];
+    if (tb_formats(u, cfg, ov, d->nfmt, f, err, errlen)) return -1;
+    *up = u;
+    return 0;
+}
+
+/* 1 if the policy's cubic intervals use node set N2 (I(3/4)). */
+static int nodes_n2(const scn_desc *d)
+{
+    if (d->policy == SCN_POL_CUBIC_N2) return 1;
+    if (d->policy == SCN_POL_ADAPTIVE_REGION || d->policy == SCN_POL_ADAPTIVE_AUTO) return d->auto_cubic_nodes == 2;
+    return 0;
+}
+
+/* --------------------------------------------------- operation counts */
+
+/* The operations of one evaluation of the lighting model at a point, from
+ * the interpolated (not normalized) normal and the position: the reference
+ * does this at every covered pixel, the method at every shaded node. One
+ * table, one row per step; a row counts when its condition holds, once or
+ * per light. Comparisons, max(0, .), clamps, constant factors known
+ * before the frame (ks, kd, I0 products, m^2, 1/pi) and shifts are free.
+ *
+ *  step                                   when                    add mul div sqrt pow
+ *  normalize N: N.N, sqrt, 1/|N|, 3 mul   always                    2   6   1   1   0
+ *  ambient term added                     always                    1   0   0   0   0
+ *  V = eye - P, normalized                perspective camera        5   6   1   1   0
+ *  L = light - P, normalized              point light, per light    5   6   1   1   0
+ *  N.L                                    per light                 2   3   0   0   0
+ *  kd N.L                                 per light                 0   1   0   0   0
+ *  I0 (diffuse + specular), summed        per light                 2   1   0   0   0
+ *  Phong: R = 2(N.L)N - L, R.V, pow, ks   Phong, per light          5   7   0   0   1
+ *  H = L + V normalized, N.H              Blinn/Cook/Ward, per light 7  9   1   1   0
+ *  Blinn: (N.H)^n, ks                     Blinn, per light          0   1   0   0   1
+ *  Cook: N.V, V.H                         Cook, per light           4   6   0   0   0
+ *  Cook D exact Beckmann: c^2, c^4,
+ *    (c^2 - 1)/(m^2 c^2), exp, / c^4      Cook dg = 0, per light    1   3   2   0   1
+ *  Cook D_g = (1 - (1-c^2)/(g m^2))^g:
+ *    c^2, 1 - c^2, 1 - ./(g m^2), ^g      Cook dg > 0, per light    2   2   0   0   1
+ *  Cook G = min(1, 2 N.H N.V / V.H,
+ *    2 N.H N.L / V.H)                     Cook, per light           0   3   1   0   0
+ *  Cook ks D F G / (N.L N.V)              Cook, per light           0   4   1   0   0
+ *  Ward: N.V, tan^2 d = (1 - c^2)/c^2,
+ *    exp(-tan^2/a^2) (or its polynomial
+ *    power), / sqrt(N.L N.V)              Ward, per light           3   6   2   1   1
+ *  Fresnel Schlick F0 + (1-F0)(1-c)^n     Schlick, per light        2   1   0   0   1
+ *  modified Schlick (the paper's
+ *    rational form: one division)         mod. Schlick, per light   3   2   1   0   0
+ *
+ * The method, per covered pixel: (shaded nodes x the same per-point cost)
+ * / pixels; the coefficient network's adders per interval / pixels (every
+ * ADD/SUB element of the network of the interval's degree, each /3
+ * network its terms' subtractors: `terms` for the paper series, terms - 1
+ * for the quarter series; shifts are wiring); Horner per pixel: deg mul +
+ * deg add; t = k * (1/dv): 1 mul per pixel (the reciprocal is a ROM).
+ * Costs weigh the counts with the description's weights (cost key). */
+typedef enum { W_ALWAYS, W_PERSP, W_POINT, W_LIGHT, W_PHONG, W_HALF, W_BLINN, W_COOK,
+               W_COOK_EXACT, W_COOK_DG, W_WARD, W_SCHLICK, W_MSCHLICK } ops_when;
+typedef struct ops_row { ops_when when; int per_light; double n[SCN_OP__COUNT]; } ops_row;
+static const ops_row ops_table[] = {
+    /*  when           per light  add mul div sqrt pow */
+    { W_ALWAYS,     0, { 2, 6, 1, 1, 0 } },   /* normalize N */
+    { W_ALWAYS,     0, { 1, 0, 0, 0, 0 } },   /* ambient */
+    { W_PERSP,      0, { 5, 6, 1, 1, 0 } },   /* V */
+    { W_POINT,      1, { 5, 6, 1, 1, 0 } },   /* L of a point light */
+    { W_LIGHT,      1, { 2, 3, 0, 0, 0 } },   /* N.L */
+    { W_LIGHT,      1, { 0, 1, 0, 0, 0 } },   /* kd N.L */
+    { W_LIGHT,      1, { 2, 1, 0, 0, 0 } },   /* I0 (d + s), sum */
+    { W_PHONG,      1, { 5, 7, 0, 0, 1 } },   /* R, R.V, pow, ks */
+    { W_HALF,       1, { 7, 9, 1, 1, 0 } },   /* H normalized, N.H */
+    { W_BLINN,      1, { 0, 1, 0, 0, 1 } },   /* (N.H)^n ks */
+    { W_COOK,       1, { 4, 6, 0, 0, 0 } },   /* N.V, V.H */
+    { W_COOK_EXACT, 1, { 1, 3, 2, 0, 1 } },   /* Beckmann D */
+    { W_COOK_DG,    1, { 2, 2, 0, 0, 1 } },   /* D_g */
+    { W_COOK,       1, { 0, 3, 1, 0, 0 } },   /* G */
+    { W_COOK,       1, { 0, 4, 1, 0, 0 } },   /* ks D F G / (N.L N.V) */
+    { W_WARD,       1, { 3, 6, 2, 1, 1 } },   /* Ward */
+    { W_SCHLICK,    1, { 2, 1, 0, 0, 1 } },   /* Schlick */
+    { W_MSCHLICK,   1, { 3, 2, 1, 0, 0 } },   /* modified Schlick */
+};
+
+static int ops_applies(ops_when w, const scn_material *m, const scn_view *v, const scn_light *l)
+{
+    int cook = m->spec == SCN_SPEC_COOK, fres = cook || m->spec == SCN_SPEC_WARD;
+    switch (w) {
+    case W_ALWAYS: return 1;
+    case W_PERSP: return v->cam.perspective;
+    case W_POINT: return l && l->point;
+    case W_LIGHT: return 1;
+    case W_PHONG: return m->spec == SCN_SPEC_PHONG;
+    case W_HALF: return m->spec != SCN_SPEC_PHONG;
+    case W_BLINN: return m->spec == SCN_SPEC_BLINN;
+    case W_COOK: return cook;
+    case W_COOK_EXACT: return cook && m->dg == 0;
+    case W_COOK_DG: return cook && m->dg > 0;
+    case W_WARD: return m->spec == SCN_SPEC_WARD;
+    case W_SCHLICK: return fres && m->fresnel == SCN_FRESNEL_SCHLICK;
+    case W_MSCHLICK: return fres && m->fresnel == SCN_FRESNEL_MSCHLICK;
+    }
+    return 0;
+}
+
+void tb_scene_point_ops(const scn_desc *d, const scn_view *v, double ops[SCN_OP__COUNT])
+{
+    for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] = 0;
+    for (size_t i = 0; i < sizeof ops_table / sizeof ops_table[0]; i++) {
+        const ops_row *r = &ops_table[i];
+        if (!r->per_light) {
+            if (ops_applies(r->when, &d->mat, v, NULL))
+                for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] += r->n[k];
+            continue;
+        }
+        for (int l = 0; l < v->nlights; l++)
+            if (ops_applies(r->when, &d->mat, v, &v->light[l]))
+                for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] += r->n[k];
+    }
+}
+
+/* Adders of a coefficient network (ADD and SUB elements; a /3 network is
+ * its subtractors or adders). */
+static int net_adds(const coef_net *net, int terms, int series)
+{
+    int n = 0;
+    for (int i = 0; i < net->nnodes; i++) {
+        if (net->node[i].op == COEF_ADD || net->node[i].op == COEF_SUB) n++;
+        else if (net->node[i].op == COEF_DIV3) n += series == DIV3_QUARTER ? terms - 1 : terms;
+    }
+    return n;
+}
+
+/* Adders of the coefficients of one interval of degree deg. */
+static int coef_adds(const scn_desc *d, int deg)
+{
+    if (deg <= 1) return 1;                              /* B = I2 - I1 */
+    if (deg == 2) return net_adds(&coef_net_q, d->terms, d->series);
+    return net_adds(nodes_n2(d) ? &coef_net_n2 : &coef_net_n1, d->terms, d->series);
+}
+
+/* ------------------------------------------------------------ render */
+
+typedef struct band {
+    int y0, y1;
+    size_t s0, s1;                 /* its spans */
+    tb_span_stats st;
+    size_t intervals, deg2, nodes;
+    double coef_adds, horner_deg;  /* sums over intervals / pixels */
+    int rc;
+    char err[300];
+} band;
+
+typedef struct job {
+    const scn_desc *d;
+    const scn_gbuf *g;
+    const scn_view *view;
+    tb_scene_shader fn;
+    void *ctx;
+    const unit_desc *u;
+    const unit_cfg *cfg;
+    const unit_fmts *fmts;
+    const scn_span *spans;
+    band *bands;
+    int nbands, vcd_band;
+    const char *vcd_path;
+    tb_scene_result *r;
+    pthread_mutex_t lock;
+    int next;
+} job;
+
+static double shade_at(const job *J, const double pos[3], const double nrm[3])
+{
+    if (J->fn) return J->fn(J->ctx, pos, nrm);
+    return scn_shade(&J->d->mat, J->view, pos, nrm);
+}
+
+static double shade_node(const job *J, const scn_span *s, double x)
+{
+    double p[3], n[3];
+    if (x > s->x1 - 1) x = s->x1 - 1;   /* guards rounding only: nodes lie in the span */
+    scn_span_at(J->g, s, x, p, n);
+    return shade_at(J, p, n);
+}
+
+/* Degree of an interval before its nodes are known (0: decided from them). */
+static int policy_deg(const scn_desc *d, int region)
+{
+    switch (d->policy) {
+    case SCN_POL_LINEAR: return 1;
+    case SCN_POL_QUADRATIC: return 2;
+    case SCN_POL_CUBIC_N1: case SCN_POL_CUBIC_N2: return 3;
+    case SCN_POL_ADAPTIVE_REGION:
+        return region < SCN_MAX_REGIONS && d->region_deg[region] == 2 ? 2 : 3;
+    default: return 0;
+    }
+}
+
+static void run_band(job *J, band *b)
+{
+    const scn_desc *d = J->d;
+    const scn_gbuf *g = J->g;
+    tb_scene_result *r = J->r;
+    int W = g->w, L = d->L, n2 = nodes_n2(d);
+    /* reference */
+    for (int y = b->y0; y < b->y1; y++)
+        for (int x = 0; x < W; x++) {
+            size_t i = (size_t)y * W + x;
+            if (g->tri[i] < 0) continue;
+            double n[3] = { g->nrm[i][0], g->nrm[i][1], g->nrm[i][2] };
+            double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            if (len > 0) { n[0] /= len; n[1] /= len; n[2] /= len; }
+            r->ref[i] = shade_at(J, g->pos[i], n);
+        }
+    /* intervals */
+    size_t nitems = 0, npix = 0;
+    for (size_t k = b->s0; k < b->s1; k++) {
+        int n = J->spans[k].x1 - J->spans[k].x0;
+        nitems += (size_t)(n + L - 1) / L;
+        npix += (size_t)n;
+    }
+    if (!nitems) return;
+    tb_span_item *items = calloc(nitems, sizeof *items);
+    double *pix = malloc(npix * sizeof *pix);
+    if (!items || !pix) {
+        free(items); free(pix);
+        b->rc = TB_FAIL;
+        snprintf(b->err, sizeof b->err, "out of memory");
+        return;
+    }
+    size_t it = 0;
+    for (size_t k = b->s0; k < b->s1; k++) {
+        const scn_span *s = &J->spans[k];
+        int fixed = policy_deg(d, s->region);
+        double i0 = shade_node(J, s, s->x0);
+        b->nodes++;
+        for (int start = s->x0; start < s->x1; start += L) {
+            tb_span_item *m = &items[it++];
+            int len = s->x1 - start < L ? s->x1 - start : L;
+            int last = start + L >= s->x1;
+            int dv = last ? (len - 1 > 1 ? len - 1 : 1) : L;
+            m->n = len;
+            m->dv = dv;
+            m->node[0] = i0;
+            int deg = fixed;
+            if (last && len == 1) {
+                /* one pixel, t = 0: a constant interval, nothing to shade */
+                m->node[1] = m->node[2] = m->node[3] = i0;
+                if (!deg) deg = 2;
+            } else {
+                m->node[1] = shade_node(J, s, start + dv);
+                b->nodes++;
+                if (deg != 1) {
+                    m->node[2] = shade_node(J, s, start + dv * 0.5);
+                    b->nodes++;
+                }
+                if (!deg) deg = fabs(m->node[0] + m->node[1] - 2 * m->node[2]) > d->auto_threshold ? 3 : 2;
+                if (deg == 3) {
+                    m->node[3] = shade_node(J, s, start + dv * (n2 ? 0.75 : 0.25));
+                    b->nodes++;
+                }
+            }
+            m->deg = deg;
+            i0 = m->node[1];
+            b->intervals++;
+            if (deg == 2) b->deg2++;
+            b->coef_adds += coef_adds(d, deg);
+            b->horner_deg += (double)deg * len;
+            for (int x = start; x < start + len; x++) r->deg[(size_t)s->y * W + x] = (uint8_t)deg;
+        }
+    }
+    const char *vcd = J->vcd_band == (int)(b - J->bands) ? J->vcd_path : NULL;
+    b->rc = tb_span_run(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err);
+    if (b->rc == TB_OK) {
+        size_t p = 0;
+        for (size_t k = b->s0; k < b->s1; k++) {
+            const scn_span *s = &J->spans[k];
+            for (int x = s->x0; x < s->x1; x++) r->hw[(size_t)s->y * W + x] = pix[p++];
+        }
+    }
+    free(items);
+    free(pix);
+}
+
+static void *worker(void *arg)
+{
+    job *J = arg;
+    for (;;) {
+        pthread_mutex_lock(&J->lock);
+        int b = J->next < J->nbands ? J->next++ : -1;
+        pthread_mutex_unlock(&J->lock);
+        if (b < 0) return NULL;
+        run_band(J, &J->bands[b]);
+    }
+}
+
+static uint8_t to8(double v)
+{
+    if (!(v > 0)) return 0;     /* NaN too */
+    if (v >= 1) return 255;
+    return (uint8_t)floor(255 * v + 0.5);
+}
+
+/* The figures over covered pixels, from the two images. */
+static void metrics(const scn_gbuf *g, tb_scene_result *r)
+{
+    double se = 0, sr = 0, se8 = 0, maxe = 0;
+    int max8 = 0;
+    size_t diff = 0, n = 0;
+    for (size_t i = 0; i < (size_t)g->w * g->h; i++) {
+        if (g->tri[i] < 0) continue;
+        double e = r->hw[i] - r->ref[i];
+        se += e * e;
+        sr += r->ref[i] * r->ref[i];
+        if (fabs(e) > maxe || isnan(e)) maxe = fabs(e);
+        int e8 = abs((int)to8(r->hw[i]) - (int)to8(r->ref[i]));
+        se8 += (double)e8 * e8;
+        if (e8 > max8) max8 = e8;
+        if (e8) diff++;
+        n++;
+    }
+    r->covered = n;
+    r->nmse = sr > 0 ? se / sr : (se > 0 ? INFINITY : 0);
+    r->max_abs_err = maxe;
+    r->max_err8 = max8;
+    r->diff8_share = n ? (double)diff / n : 0;
+    r->psnr = se8 > 0 ? 10 * log10(255.0 * 255.0 / (se8 / n)) : INFINITY;
+}
+
+int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
+                         const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    tb_scene_opts dflt = { 1, 0, NULL, NULL };
+    if (!o) o = &dflt;
+    r->heldout = o->heldout;
+    if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen)) return TB_BADINPUT;
+    if (o->fmts) r->fmts = *o->fmts;
+    const scn_view *view = o->heldout ? &d->heldout : &d->view;
+    size_t np = (size_t)g->w * g->h;
+    r->w = g->w;
+    r->h = g->h;
+    r->ref = calloc(np ? np : 1, sizeof *r->ref);
+    r->hw = calloc(np ? np : 1, sizeof *r->hw);
+    r->deg = calloc(np ? np : 1, 1);
+    r->region = calloc(np ? np : 1, 1);
+    scn_span *spans = NULL;
+    size_t nspans = scn_spans(g, &spans);
+    int nb = g->h < TB_SCENE_BANDS ? g->h : TB_SCENE_BANDS;
+    band *bands = calloc(nb > 0 ? nb : 1, sizeof *bands);
+    if (!r->ref || !r->hw || !r->deg || !r->region || !bands || (nspans && !spans)) {
+        free(bands); free(spans);
+        tb_scene_free(r);
+        snprintf(err, errlen, "out of memory (%dx%d image)", g->w, g->h);
+        return TB_FAIL;
+    }
+    for (size_t i = 0; i < np; i++) if (g->tri[i] >= 0) r->region[i] = g->region[i];
+    r->spans = nspans;
+    /* bands of equal rows; spans are in row order */
+    job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
+              .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
+              .vcd_path = o->vcd_path, .r = r, .next = 0 };
+    size_t s = 0;
+    for (int k = 0; k < nb; k++) {
+        band *b = &bands[k];
+        b->y0 = (int)((long long)g->h * k / nb);
+        b->y1 = (int)((long long)g->h * (k + 1) / nb);
+        while (s < nspans && spans[s].y < b->y0) s++;
+        b->s0 = s;
+        while (s < nspans && spans[s].y < b->y1) s++;
+        b->s1 = s;
+        if (J.vcd_band < 0 && b->s1 > b->s0) J.vcd_band = k;
+    }
+    pthread_mutex_init(&J.lock, NULL);
+    int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
+    if (jobs > nb) jobs = nb;
+    pthread_t th[256];
+    int started = 0;
+    for (int t = 1; t < jobs; t++) {
+        if (pthread_create(&th[started], NULL, worker, &J)) break;
+        started++;
+    }
+    worker(&J);
+    for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
+    pthread_mutex_destroy(&J.lock);
+
+    /* sums in band order */
+    int rc = TB_OK;
+    double adds = 0, hdeg = 0;
+    for (int k = 0; k < nb; k++) {
+        band *b = &bands[k];
+        if (b->rc != TB_OK && rc == TB_OK) {
+            rc = b->rc;
+            snprintf(err, errlen, "%s", b->err);
+        }
+        r->hwst.clocks += b->st.clocks;
+        r->hwst.pixels += b->st.pixels;
+        r->hwst.items += b->st.items;
+        r->hwst.items_deg2 += b->st.items_deg2;
+        r->hwst.overflows += b->st.overflows;
+        if (b->st.area_ge > r->hwst.area_ge) r->hwst.area_ge = b->st.area_ge;
+        r->intervals += b->intervals;
+        r->intervals_deg2 += b->deg2;
+        r->nodes_shaded += b->nodes;
+        adds += b->coef_adds;
+        hdeg += b->horner_deg;
+    }
+    free(bands);
+    free(spans);
+    if (rc != TB_OK) { tb_scene_free(r); return rc; }
+    metrics(g, r);
+    size_t px = r->covered;
+    r->clocks_per_pixel = px ? (double)r->hwst.clocks / px : 0;
+    r->deg2_share = r->intervals ? (double)r->intervals_deg2 / r->intervals : 0;
+    /* operation counts per covered pixel */
+    double pt[SCN_OP__COUNT];
+    tb_scene_point_ops(d, view, pt);
+    for (int k = 0; k < SCN_OP__COUNT; k++) {
+        r->ops_ref[k] = px ? pt[k] : 0;
+        r->ops_hw[k] = px ? pt[k] * (double)r->nodes_shaded / px : 0;
+    }
+    if (px) {
+        r->ops_hw[SCN_OP_ADD] += adds / px + hdeg / px;     /* network; Horner adds */
+        r->ops_hw[SCN_OP_MUL] += hdeg / px + 1;             /* Horner muls; t = k * (1/dv) */
+    }
+    for (int k = 0; k < SCN_OP__COUNT; k++) {
+        r->cost_ref += r->ops_ref[k] * d->cost[k];
+        r->cost_hw += r->ops_hw[k] * d->cost[k];
+    }
+    r->speedup = r->cost_hw > 0 ? r->cost_ref / r->cost_hw : 0;
+    return TB_OK;
+}
+
+int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,
+                    tb_scene_result *r, char *err, size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    const scn_view *view = o && o->heldout ? &d->heldout : &d->view;
+    scn_gbuf g;
+    if (scn_raster(m, &view->cam, d->width, d->height, &g, err, errlen)) return TB_FAIL;
+    int rc = tb_scene_render_gbuf(d, &g, NULL, NULL, o, r, err, errlen);
+    scn_gbuf_free(&g);
+    return rc;
+}
+
+void tb_scene_free(tb_scene_result *r)
+{
+    free(r->ref);
+    free(r->hw);
+    free(r->deg);
+    free(r->region);
+    r->ref = r->hw = NULL;
+    r->deg = r->region = NULL;
+}
+
+/* ------------------------------------------------------------ outputs */
+
+int tb_scene_err_scale(const tb_scene_result *r)
+{
+    int k = 4096;
+    while (k > 1 && r->max_abs_err * k > 1) k /= 4;
+    return k;
+}
+
+/* JSON has no inf or NaN: such a figure is null. */
+static void jnum(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, "%.17g", v);
+    else fputs("null", f);
+}
+
+static void jops(FILE *f, const double *ops)
+{
+    fputc('{', f);
+    for (int k = 0; k < SCN_OP__COUNT; k++) {
+        fprintf(f, "%s\"%s\": ", k ? ", " : "", scn_op_name[k]);
+        jnum(f, ops[k]);
+    }
+    fputc('}', f);
+}
+
+/* A JSON string (paths may hold anything). */
+static void jstr(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') fprintf(f, "\\%c", c);
+        else if (c < 0x20) fprintf(f, "\\u%04x", c);
+        else fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
+{
+    const unit_desc *u = r->unit;
+    char fb[SIM_FMT_STRLEN];
+    fputs("{\n  \"mesh\": ", f);
+    jstr(f, d->mesh);
+    fprintf(f, ",\n  \"resolution\": \"%dx%d\",\n  \"view\": \"%s\",\n  \"policy\": \"%s\",\n", r->w, r->h,
+            r->heldout ? "heldout" : "main", scn_policy_name(d->policy));
+    fprintf(f, "  \"L\": %d,\n  \"terms\": %d,\n  \"series\": \"%s\",\n  \"width\": %d,\n", d->L, d->terms,
+            d->series == DIV3_QUARTER ? "quarter" : "paper", d->fmt_width);
+    fprintf(f, "  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"formats\": {", u->name, u->sched[r->cfg.schedule].name);
+    for (int i = 0, n = 0; i < u->nsigs; i++)
+        if (unit_sig_used(u, i, r->cfg.schedule))
+            fprintf(f, "%s\"%s\": \"%s\"", n++ ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
+    fprintf(f, "},\n  \"round\": \"%s\",\n  \"overflow\": \"%s\",\n", sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
+    fprintf(f, "  \"covered\": %zu,\n  \"nmse\": ", r->covered); jnum(f, r->nmse);
+    fputs(",\n  \"psnr\": ", f); jnum(f, r->psnr);
+    fputs(",\n  \"max_abs_err\": ", f); jnum(f, r->max_abs_err);
+    fprintf(f, ",\n  \"max_err8\": %d,\n  \"diff8_share\": ", r->max_err8); jnum(f, r->diff8_share);
+    fprintf(f, ",\n  \"err_scale\": %d,\n", tb_scene_err_scale(r));
+    fprintf(f, "  \"clocks\": %llu,\n  \"pixels\": %llu,\n  \"clocks_per_pixel\": ",
+            (unsigned long long)r->hwst.clocks, (unsigned long long)r->hwst.pixels);
+    jnum(f, r->clocks_per_pixel);
+    fputs(",\n  \"area_ge\": ", f); jnum(f, r->hwst.area_ge);
+    fprintf(f, ",\n  \"overflows\": %llu,\n  \"spans\": %zu,\n  \"intervals\": %zu,\n  \"intervals_deg2\": %zu,\n  \"deg2_share\": ",
+            (unsigned long long)r->hwst.overflows, r->spans, r->intervals, r->intervals_deg2);
+    jnum(f, r->deg2_share);
+    fprintf(f, ",\n  \"nodes_shaded\": %zu,\n  \"ops_ref\": ", r->nodes_shaded);
+    jops(f, r->ops_ref);
+    fputs(",\n  \"ops_hw\": ", f); jops(f, r->ops_hw);
+    fputs(",\n  \"cost_weights\": ", f); jops(f, d->cost);
+    fputs(",\n  \"cost_ref\": ", f); jnum(f, r->cost_ref);
+    fputs(",\n  \"cost_hw\": ", f); jnum(f, r->cost_hw);
+    fputs(",\n  \"speedup\": ", f); jnum(f, r->speedup);
+    fputs("\n}\n", f);
+    return ferror(f) ? -1 : 0;
+}
+
+/* mkdir -p */
+static int mkdirs(const char *dir, char *err, size_t errlen)
+{
+    char p[4096];
+    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) { snprintf(err, errlen, "%s: path too long", dir); return -1; }
+    for (char *c = p + 1; ; c++) {
+        if (*c != '/' && *c) continue;
+        char keep = *c;
+        *c = 0;
+        if (mkdir(p, 0755) && errno != EEXIST) { snprintf(err, errlen, "%s: cannot create: %s", p, strerror(errno)); return -1; }
+        *c = keep;
+        if (!keep) break;
+    }
+    struct stat st;
+    if (stat(dir, &st) || !S_ISDIR(st.st_mode)) { snprintf(err, errlen, "%s: not a directory", dir); return -1; }
+    return 0;
+}
+
+static int write_png(const char *dir, const char *name, int w, int h, int ch, const uint8_t *pix,
+                     char *err, size_t errlen)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    uint8_t *buf;
+    size_t len;
+    if (scn_png_encode(w, h, ch, pix, &buf, &len)) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
+    int rc = sim_out_write_all(path, buf, len, err, errlen);
+    free(buf);
+    return rc;
+}
+
+int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir, char *err, size_t errlen)
+{
+    if (mkdirs(dir, err, errlen)) return -1;
+    size_t np = (size_t)r->w * r->h;
+    uint8_t *g8 = calloc(np ? np : 1, 1), *rgb = calloc(np ? np * 3 : 1, 1);
+    if (!g8 || !rgb) { free(g8); free(rgb); snprintf(err, errlen, "out of memory"); return -1; }
+    int rc = 0;
+    for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? to8(r->ref[i]) : 0;
+    rc = rc ? rc : write_png(dir, "ref.png", r->w, r->h, 1, g8, err, errlen);
+    for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? to8(r->hw[i]) : 0;
+    rc = rc ? rc : write_png(dir, "hw.png", r->w, r->h, 1, g8, err, errlen);
+    int K = tb_scene_err_scale(r);
+    for (size_t i = 0; i < np; i++) {
+        if (!r->deg[i]) { memset(rgb + 3 * i, 0, 3); continue; }
+        double e = fabs(r->hw[i] - r->ref[i]) * K;
+        scn_heat_rgb(e < 1 ? e : 1, rgb + 3 * i);
+    }
+    char name[64];
+    snprintf(name, sizeof name, "err-x%d.png", K);
+    rc = rc ? rc : write_png(dir, name, r->w, r->h, 3, rgb, err, errlen);
+    for (size_t i = 0; i < np; i++) {
+        if (r->deg[i]) scn_label_rgb(r->deg[i], rgb + 3 * i);
+        else memset(rgb + 3 * i, 0, 3);
+    }
+    rc = rc ? rc : write_png(dir, "degree.png", r->w, r->h, 3, rgb, err, errlen);
+    for (size_t i = 0; i < np; i++) {
+        if (r->deg[i]) scn_label_rgb(r->region[i], rgb + 3 * i);
+        else memset(rgb + 3 * i, 0, 3);
+    }
+    rc = rc ? rc : write_png(dir, "region.png", r->w, r->h, 3, rgb, err, errlen);
+    free(g8);
+    free(rgb);
+    if (rc) return -1;
+    /* the heat maps of earlier renders at other scales would mislead */
+    for (int k = 1; k <= 4096; k *= 4) {
+        if (k == K) continue;
+        char old[4200];
+        snprintf(old, sizeof old, "%s/err-x%d.png", dir, k);
+        unlink(old);
+    }
+    char path[4200];
+    snprintf(path, sizeof path, "%s/scene.json", dir);
+    sim_out *o = sim_out_open(path, err, errlen);
+    if (!o) return -1;
+    tb_scene_json(sim_out_file(o), d, r);
+    return sim_out_close(o, err, errlen);
+}
