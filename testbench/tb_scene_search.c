@@ -1,18 +1,541 @@
-/* tb_scene_search.c - format search and sweeps over a scene (being built). */
+/* tb_scene_search.c - the smallest formats a scene needs, found by
+ * rendering it, and checked on a view the search never saw.
+ *
+ * The search (docs/scenes.md, "what the scene needs"):
+ *  1. the smallest uniform width W of the span unit's default-format rule
+ *     whose render of the scene's view meets the target: the scene's own
+ *     width first, then steps of 4 down (or up) until one fails (meets),
+ *     then bisection, so W - 1 is known to fail;
+ *  2. from W's formats, each signal's fraction bits are cut, one signal at
+ *     a time, dearest first (the area one fraction bit of it costs, from
+ *     the unit built at W; ties in the unit's signal order); per signal a
+ *     try of one bit less, then bisection down to the fewest bits that
+ *     still hold;
+ *  3. passes of single-bit removals over every signal from the final
+ *     formats until none holds, so that at the end removing one more
+ *     fraction bit from any signal breaks the target. The candidates of a
+ *     pass are rendered speculatively on `jobs` threads; the first that
+ *     holds in order wins, as a one-at-a-time pass would: the result and
+ *     the render count do not depend on jobs.
+ * "Holds" = the render succeeded, NMSE <= target and no overflow anywhere
+ * (input quantization included). Integer bits are left as the rule gives
+ * them: the rule sizes them from the range the hardware can see (any node
+ * intensity in [0, 1]), which holds for every view; trimming them to one
+ * view's observed range would not be sound for another.
+ * Signals pinned by the description's fmt overrides keep their formats.
+ *
+ * Every render uses the scene's own resolution; the surface buffers of the
+ * view and of the held-out view are rasterized once and reused.
+ */
 #include "testbench/tb_scene_search.h"
+#include "testbench/tb_sweep.h"
+#include "sim/sim_out.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define W_MIN 4
+#define W_MAX 48
+
+/* Make dir and its parents. 0, or -1 with a message. */
+static int mkdirs(const char *dir, char *err, size_t errlen)
+{
+    char p[1024];
+    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) {
+        snprintf(err, errlen, "%s: path too long", dir);
+        return -1;
+    }
+    for (char *s = p + 1;; s++) {
+        char ch = *s;
+        if (ch == '/' || ch == 0) {
+            *s = 0;
+            struct stat st;
+            if (mkdir(p, 0777) && errno != EEXIST) {
+                snprintf(err, errlen, "%s: cannot create folder %s: %s", dir, p, strerror(errno));
+                return -1;
+            }
+            if (stat(p, &st) || !S_ISDIR(st.st_mode)) {
+                snprintf(err, errlen, "%s: %s is not a folder", dir, p);
+                return -1;
+            }
+            *s = ch;
+        }
+        if (!ch) break;
+    }
+    return 0;
+}
+
+/* ------------------------------------------------------------ evaluation */
+
+typedef struct eval {
+    int      status;
+    double   nmse, psnr, area;
+    int      max_err8;
+    uint64_t ovf;
+    unit_fmts fmts;
+    char     err[256];
+} eval;
+
+typedef struct search {
+    const scn_desc *d;
+    const scn_gbuf *gv, *gh;      /* view, held-out view */
+    int      jobs;
+    double   target;
+    size_t   renders;
+    int      tty;
+} search;
+
+static int holds(const search *s, const eval *e)
+{
+    return e->status == TB_OK && e->ovf == 0 && e->nmse <= s->target;
+}
+
+/* Render description d (its own formats when f is NULL) on the view or
+ * the held-out view with `threads` bands. */
+static void render(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, eval *e)
+{
+    tb_scene_opts o = { threads, heldout, NULL, f };
+    tb_scene_result r;
+    memset(&r, 0, sizeof r);
+    memset(e, 0, sizeof *e);
+    e->status = tb_scene_render_gbuf(d, heldout ? s->gh : s->gv, NULL, NULL, &o, &r, e->err, sizeof e->err);
+    if (e->status == TB_OK) {
+        e->nmse = r.nmse;
+        e->psnr = r.psnr;
+        e->area = r.hwst.area_ge;
+        e->max_err8 = r.max_err8;
+        e->ovf = r.hwst.overflows;
+        e->fmts = r.fmts;
+    }
+    tb_scene_free(&r);
+}
+
+static void progress(search *s, const char *what)
+{
+    if (!s->tty) return;
+    fprintf(stderr, "\rscene search: %zu renders, %-40.40s", s->renders, what);
+    fflush(stderr);
+}
+
+/* The render at uniform width w (the description's overrides applied). */
+static void at_width(search *s, int w, eval *e)
+{
+    scn_desc dw = *s->d;
+    dw.fmt_width = w;
+    char what[64];
+    snprintf(what, sizeof what, "uniform width %d", w);
+    progress(s, what);
+    render(s, &dw, NULL, 0, s->jobs, e);
+    s->renders++;
+}
+
+/* Candidate renders of a pass, run together. */
+typedef struct cand {
+    const search *s;
+    unit_fmts f;
+    eval e;
+    int sig;
+} cand;
+
+static void cand_run(void *ctx, size_t i)
+{
+    cand *c = (cand *)ctx + i;
+    render(c->s, c->s->d, &c->f, 0, 1, &c->e);
+}
+
+/* A signal the description fixes with an fmt override (NAME=... or all=). */
+static int pinned(const scn_desc *d, const char *name)
+{
+    for (int k = 0; k < d->nfmt; k++) {
+        const char *o = d->fmt[k];
+        size_t n = strcspn(o, "=");
+        if ((n == 3 && !strncmp(o, "all", 3)) || (n == strlen(name) && !strncmp(o, name, n))) return 1;
+    }
+    return 0;
+}
+
+/* Area of unit u built at formats f (no simulation); -1 if it cannot be
+ * built. Orders the signals only: the figures come from the renders. */
+static double unit_area(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f)
+{
+    char err[256];
+    sim_ctx *c = sim_new();
+    if (!c) return -1;
+    sim_set_quant(c, cfg->rnd, cfg->ovf);
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_scope *sc = sim_scope_new(c, NULL, u->name);
+    unit_io io;
+    memset(&io, 0, sizeof io);
+    double a = u->build(c, sc, clk, cfg, f, &io, err, sizeof err) ? -1 : sim_scope_area(sc);
+    sim_free(c);
+    return a;
+}
+
+/* The fewest fraction bits signal sig can have. */
+static int fmin_of(sim_fmt f) { return f.ibits >= 1 ? 0 : 1; }
+
+static sim_fmt with_fbits(sim_fmt f, int fb)
+{
+    f.fbits = (int8_t)fb;
+    f.width = (uint8_t)(f.ibits + fb);
+    return f;
+}
+
+typedef struct order_t { int sig; double saving; } order_t;
+static int order_cmp(const void *a, const void *b)
+{
+    const order_t *x = a, *y = b;
+    if (x->saving != y->saving) return x->saving > y->saving ? -1 : 1;
+    return x->sig - y->sig;
+}
+
+/* ---------------------------------------------------------------- report */
+
+typedef struct report {
+    const scn_desc *d;
+    const unit_desc *u;
+    double target;
+    int met, wu;                 /* a uniform width met the target; it */
+    int floor_stop;              /* stopped going up: the method's own error is above the target */
+    eval uni, uni_below, uni_held, found, found_held;
+    int have_below;
+    int nsig, sig[UNIT_MAX_SIGS];   /* signals trimmed, in the order tried */
+    size_t renders;
+    int verdict;                 /* TB_OK / TB_FAIL */
+} report;
+
+static void jstr(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
+        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
+        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
+        else fputc(*p, f);
+    }
+    fputc('"', f);
+}
+static void jnum(FILE *f, double v)
+{
+    if (isfinite(v)) fprintf(f, "%.9g", v);
+    else fputs("null", f);
+}
+
+static double saved_pct(const report *rp)
+{
+    return rp->uni.area > 0 ? 100.0 * (rp->uni.area - rp->found.area) / rp->uni.area : 0;
+}
+
+static void verdict_text(const report *rp, char *buf, size_t len)
+{
+    if (!rp->met)
+        snprintf(buf, len, "FAIL: no uniform width %d..%d meets NMSE <= %g on the view%s", W_MIN, W_MAX, rp->target,
+                 rp->floor_stop ? " (the method's own error is above the target: change L, terms or policy)" : "");
+    else if (rp->verdict == TB_OK)
+        snprintf(buf, len, "ok: the held-out view meets NMSE <= %g with the per-signal formats (NMSE %.3g%s)",
+                 rp->target, rp->found_held.nmse,
+                 rp->found_held.ovf ? ", overflows" : "");
+    else if (rp->found_held.status != TB_OK)
+        snprintf(buf, len, "FAIL: the held-out view could not be rendered: %s", rp->found_held.err);
+    else
+        snprintf(buf, len, "FAIL: the held-out view does NOT meet NMSE <= %g with the per-signal formats "
+                 "(NMSE %.3g, %llu overflows); the search overfitted the view", rp->target, rp->found_held.nmse,
+                 (unsigned long long)rp->found_held.ovf);
+}
+
+static void print_json(FILE *f, const report *rp)
+{
+    char fb[SIM_FMT_STRLEN], fb2[SIM_FMT_STRLEN], v[512];
+    const scn_desc *d = rp->d;
+    fputs("{\n  \"search\": {\n    \"target_nmse\": ", f);
+    jnum(f, rp->target);
+    fprintf(f, ",\n    \"resolution\": [%d, %d],\n    \"mesh\": ", d->width, d->height);
+    jstr(f, d->mesh);
+    fputs(",\n    \"policy\": ", f);
+    jstr(f, scn_policy_name(d->policy));
+    fprintf(f, ",\n    \"L\": %d,\n    \"terms\": %d,\n    \"schedule\": ", d->L, d->terms);
+    jstr(f, d->schedule);
+    fputs(",\n    \"unit\": ", f);
+    jstr(f, rp->u ? rp->u->name : "");
+    fprintf(f, ",\n    \"uniform_met\": %s", rp->met ? "true" : "false");
+    if (rp->met) {
+        fprintf(f, ",\n    \"uniform_width\": %d,\n    \"uniform_area_ge\": ", rp->wu);
+        jnum(f, rp->uni.area);
+        fputs(",\n    \"uniform_nmse\": ", f); jnum(f, rp->uni.nmse);
+        fputs(",\n    \"uniform_heldout_nmse\": ", f); jnum(f, rp->uni_held.nmse);
+        fprintf(f, ",\n    \"uniform_heldout_overflows\": %llu", (unsigned long long)rp->uni_held.ovf);
+        fprintf(f, ",\n    \"uniform_heldout_meets\": %s", rp->uni_held.status == TB_OK && rp->uni_held.ovf == 0
+                && rp->uni_held.nmse <= rp->target ? "true" : "false");
+        if (rp->have_below) {
+            fputs(",\n    \"width_below_nmse\": ", f);
+            jnum(f, rp->uni_below.status == TB_OK ? rp->uni_below.nmse : NAN);
+        }
+        fputs(",\n    \"area_ge\": ", f); jnum(f, rp->found.area);
+        fputs(",\n    \"area_saved_pct\": ", f); jnum(f, saved_pct(rp));
+        fputs(",\n    \"nmse\": ", f); jnum(f, rp->found.nmse);
+        fputs(",\n    \"psnr\": ", f); jnum(f, rp->found.psnr);
+        fputs(",\n    \"heldout_nmse\": ", f); jnum(f, rp->found_held.status == TB_OK ? rp->found_held.nmse : NAN);
+        fprintf(f, ",\n    \"heldout_overflows\": %llu", (unsigned long long)rp->found_held.ovf);
+        fputs(",\n    \"signals\": [", f);
+        int first = 1;
+        for (int i = 0; i < rp->u->nsigs; i++) {
+            sim_fmt a = rp->uni.fmts.f[i], b = rp->found.fmts.f[i];
+            if (!a.width) continue;
+            fprintf(f, "%s\n      {\"name\": ", first ? "" : ",");
+            first = 0;
+            jstr(f, rp->u->sigs[i].name);
+            fprintf(f, ", \"uniform\": \"%s\", \"found\": \"%s\"}", sim_fmt_str(a, fb), sim_fmt_str(b, fb2));
+        }
+        fputs("\n    ]", f);
+    }
+    fprintf(f, ",\n    \"renders\": %zu", rp->renders);
+    fprintf(f, ",\n    \"heldout_meets\": %s", rp->verdict == TB_OK ? "true" : "false");
+    verdict_text(rp, v, sizeof v);
+    fputs(",\n    \"verdict\": ", f);
+    jstr(f, v);
+    fputs("\n  }\n}\n", f);
+}
+
+static void print_text(FILE *f, const report *rp)
+{
+    const scn_desc *d = rp->d;
+    char fb[SIM_FMT_STRLEN], fb2[SIM_FMT_STRLEN], v[512];
+    fprintf(f, "scene search: NMSE <= %g on %s %dx%d, policy %s, L %d, terms %d, schedule %s (unit %s)\n",
+            rp->target, d->mesh, d->width, d->height, scn_policy_name(d->policy), d->L, d->terms, d->schedule,
+            rp->u ? rp->u->name : "?");
+    if (rp->met) {
+        fprintf(f, "smallest uniform width: W = %d", rp->wu);
+        if (rp->have_below) {
+            if (rp->uni_below.status == TB_OK)
+                fprintf(f, " (W = %d: NMSE %.3g, %llu overflows)", rp->wu - 1, rp->uni_below.nmse,
+                        (unsigned long long)rp->uni_below.ovf);
+            else fprintf(f, " (W = %d cannot be built)", rp->wu - 1);
+        }
+        fputs("\n\n", f);
+        fprintf(f, "  %-10s %-9s %-9s\n", "signal", "uniform", "found");
+        for (int i = 0; i < rp->u->nsigs; i++) {
+            sim_fmt a = rp->uni.fmts.f[i], b = rp->found.fmts.f[i];
+            if (!a.width) continue;
+            fprintf(f, "  %-10s %-9s %-9s%s\n", rp->u->sigs[i].name, sim_fmt_str(a, fb), sim_fmt_str(b, fb2),
+                    pinned(d, rp->u->sigs[i].name) ? "  (pinned)" : "");
+        }
+        fprintf(f, "\n  %-22s %10s %12s %14s %10s\n", "", "area (GE)", "NMSE view", "NMSE held-out", "meets");
+        fprintf(f, "  uniform W = %-10d %10.0f %12.4g %14.4g %10s\n", rp->wu, rp->uni.area, rp->uni.nmse,
+                rp->uni_held.nmse, rp->uni_held.status == TB_OK && !rp->uni_held.ovf &&
+                rp->uni_held.nmse <= rp->target ? "yes" : "no");
+        fprintf(f, "  %-22s %10.0f %12.4g %14.4g %10s\n", "per-signal", rp->found.area, rp->found.nmse,
+                rp->found_held.nmse, rp->verdict == TB_OK ? "yes" : "no");
+        fprintf(f, "  area saved: %.1f%%  renders: %zu\n", saved_pct(rp), rp->renders);
+    } else {
+        fprintf(f, "renders: %zu\n", rp->renders);
+    }
+    verdict_text(rp, v, sizeof v);
+    fprintf(f, "%s\n", v);
+}
+
+static int write_report(const report *rp, const char *outdir, char *err, size_t errlen)
+{
+    char path[1100];
+    for (int k = 0; k < 2; k++) {
+        snprintf(path, sizeof path, "%s/%s", outdir, k ? "search.txt" : "search.json");
+        sim_out *o = sim_out_open(path, err, errlen);
+        if (!o) return -1;
+        if (k) print_text(sim_out_file(o), rp);
+        else print_json(sim_out_file(o), rp);
+        if (sim_out_close(o, err, errlen)) return -1;
+    }
+    return 0;
+}
+
+/* ---------------------------------------------------------------- search */
 
 int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double target_nmse,
                     const char *outdir, int json, FILE *out, char *err, size_t errlen)
 {
-    (void)d; (void)m; (void)jobs; (void)target_nmse; (void)outdir; (void)json; (void)out;
-    snprintf(err, errlen, "scene --target-nmse: not built yet");
-    return TB_BADINPUT;
-}
+    if (!(target_nmse > 0) || !isfinite(target_nmse)) {
+        snprintf(err, errlen, "--target-nmse: needs a positive number");
+        return TB_BADINPUT;
+    }
+    if (jobs < 1) jobs = 1;
+    if (jobs > 64) jobs = 64;
+    if (outdir && mkdirs(outdir, err, errlen)) return TB_BADINPUT;
 
-int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *spec,
-                   const char *outdir, int json, FILE *out, char *err, size_t errlen)
-{
-    (void)d; (void)m; (void)jobs; (void)spec; (void)outdir; (void)json; (void)out;
-    snprintf(err, errlen, "scene --sweep: not built yet");
-    return TB_BADINPUT;
+    scn_gbuf gv, gh;
+    memset(&gv, 0, sizeof gv);
+    memset(&gh, 0, sizeof gh);
+    if (scn_raster(m, &d->view.cam, d->width, d->height, &gv, err, errlen) ||
+        scn_raster(m, &d->heldout.cam, d->width, d->height, &gh, err, errlen)) {
+        scn_gbuf_free(&gv);
+        scn_gbuf_free(&gh);
+        return TB_BADINPUT;
+    }
+    search s = { d, &gv, &gh, jobs, target_nmse, 0, isatty(2) };
+    report *rp = calloc(1, sizeof *rp);
+    cand *cj = calloc((size_t)jobs, sizeof *cj);
+    int rc = TB_FAIL;
+    if (!rp || !cj) { snprintf(err, errlen, "scene search: out of memory"); rc = TB_BADINPUT; goto done; }
+    rp->d = d;
+    rp->target = target_nmse;
+    unit_cfg cfg;
+    unit_fmts f0;
+    if (tb_scene_unit(d, &rp->u, &cfg, &f0, err, errlen)) { rc = TB_BADINPUT; goto done; }
+
+    /* 1. The smallest uniform width. */
+    eval e;
+    int w = d->fmt_width < W_MIN ? W_MIN : d->fmt_width > W_MAX ? W_MAX : d->fmt_width;
+    at_width(&s, w, &e);
+    if (e.status == TB_BADINPUT && w == d->fmt_width) {
+        snprintf(err, errlen, "%s", e.err);
+        rc = TB_BADINPUT;
+        goto done;
+    }
+    int lo = 0, hi = 0;          /* a failing and a holding width */
+    if (holds(&s, &e)) {
+        hi = w;
+        rp->uni = e;
+        for (;;) {
+            if (hi == W_MIN) { lo = W_MIN - 1; break; }
+            int x = hi - 4 < W_MIN ? W_MIN : hi - 4;
+            at_width(&s, x, &e);
+            if (holds(&s, &e)) { hi = x; rp->uni = e; }
+            else { lo = x; rp->uni_below = e; break; }
+        }
+    } else {
+        lo = w;
+        rp->uni_below = e;
+        double prev = e.status == TB_OK ? e.nmse : INFINITY;
+        for (int x = w + 4; x <= W_MAX; x += 4) {
+            at_width(&s, x, &e);
+            if (holds(&s, &e)) { hi = x; rp->uni = e; break; }
+            lo = x;
+            rp->uni_below = e;
+            /* The error has stopped falling with width: what is left is the
+             * method's own (interpolation) error, which no width removes. */
+            if (e.status == TB_OK && e.ovf == 0 && e.nmse > 0.9 * prev && e.nmse > 2 * target_nmse) {
+                rp->floor_stop = 1;
+                break;
+            }
+            if (e.status == TB_OK) prev = e.nmse;
+        }
+    }
+    if (!hi) { rp->met = 0; rc = TB_FAIL; goto report; }
+    while (hi - lo > 1) {
+        int mid = lo + (hi - lo) / 2;
+        at_width(&s, mid, &e);
+        if (holds(&s, &e)) { hi = mid; rp->uni = e; }
+        else { lo = mid; rp->uni_below = e; }
+    }
+    rp->met = 1;
+    rp->wu = hi;
+    rp->have_below = lo >= W_MIN;
+    if (!rp->have_below) memset(&rp->uni_below, 0, sizeof rp->uni_below);
+
+    /* 2. Fraction bits, signal by signal, dearest first. */
+    {
+        scn_desc dw = *d;
+        dw.fmt_width = rp->wu;
+        unit_cfg c2;
+        unit_fmts fw;
+        const unit_desc *u2;
+        if (tb_scene_unit(&dw, &u2, &c2, &fw, err, errlen)) { rc = TB_BADINPUT; goto done; }
+        cfg = c2;
+    }
+    const unit_desc *u = rp->u;
+    unit_fmts cur = rp->uni.fmts;
+    rp->found = rp->uni;
+    order_t ord[UNIT_MAX_SIGS];
+    int no = 0;
+    double a0 = unit_area(u, &cfg, &cur);
+    for (int i = 0; i < u->nsigs; i++) {
+        sim_fmt fi = cur.f[i];
+        if (!fi.width || !unit_sig_used(u, i, cfg.schedule) || pinned(d, u->sigs[i].name)) continue;
+        if (fi.fbits <= fmin_of(fi)) continue;
+        unit_fmts t = cur;
+        t.f[i] = with_fbits(fi, fi.fbits - 1);
+        double a = unit_area(u, &cfg, &t);
+        ord[no++] = (order_t){ i, a >= 0 && a0 >= 0 ? a0 - a : 0 };
+    }
+    qsort(ord, (size_t)no, sizeof *ord, order_cmp);
+    /* The description with the unit's formats given explicitly. */
+    for (int k = 0; k < no; k++) {
+        int i = ord[k].sig;
+        rp->sig[rp->nsig++] = i;
+        sim_fmt fi = cur.f[i];
+        int good = fi.fbits, bad = fmin_of(fi) - 1;
+        char what[64];
+        snprintf(what, sizeof what, "signal %s", u->sigs[i].name);
+        /* One bit less first: a signal the target already needs whole
+         * costs one render. */
+        unit_fmts t = cur;
+        t.f[i] = with_fbits(fi, good - 1);
+        progress(&s, what);
+        render(&s, d, &t, 0, jobs, &e);
+        s.renders++;
+        if (!holds(&s, &e)) continue;
+        good--;
+        rp->found = e;
+        while (good - bad > 1) {
+            int mid = bad + (good - bad) / 2;
+            t.f[i] = with_fbits(fi, mid);
+            progress(&s, what);
+            render(&s, d, &t, 0, jobs, &e);
+            s.renders++;
+            if (holds(&s, &e)) { good = mid; rp->found = e; }
+            else bad = mid;
+        }
+        cur.f[i] = with_fbits(fi, good);
+    }
+
+    /* 3. Passes of single-bit removals until none holds. */
+    for (int changed = 1; changed;) {
+        changed = 0;
+        for (int next = 0; next < no && !changed;) {
+            int nb = 0;
+            while (next < no && nb < jobs) {
+                int i = ord[next++].sig;
+                if (cur.f[i].fbits <= fmin_of(cur.f[i])) continue;
+                cj[nb].s = &s;
+                cj[nb].f = cur;
+                cj[nb].f.f[i] = with_fbits(cur.f[i], cur.f[i].fbits - 1);
+                cj[nb].sig = i;
+                nb++;
+            }
+            if (!nb) break;
+            progress(&s, "final pass");
+            tb_par_for((size_t)nb, jobs, cand_run, cj);
+            for (int b = 0; b < nb; b++) {
+                s.renders++;
+                if (holds(&s, &cj[b].e)) {
+                    cur = cj[b].f;
+                    rp->found = cj[b].e;
+                    changed = 1;
+                    break;
+                }
+            }
+        }
+    }
+
+    /* 4. The held-out view, with the found formats and with uniform W. */
+    progress(&s, "held-out view");
+    render(&s, d, &cur, 1, jobs, &rp->found_held);
+    render(&s, d, &rp->uni.fmts, 1, jobs, &rp->uni_held);
+    s.renders += 2;
+    rp->found.fmts = cur;
+    rc = holds(&s, &rp->found_held) ? TB_OK : TB_FAIL;
+
+report:
+    if (s.tty) fputs("\r\033[K", stderr);
+    rp->renders = s.renders;
+    rp->verdict = rc;
+    if (outdir && write_report(rp, outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (json) print_json(out, rp);
+    else print_text(out, rp);
+done:
+    free(rp);
+    free(cj);
+    scn_gbuf_free(&gv);
+    scn_gbuf_free(&gh);
+    return rc;
 }
