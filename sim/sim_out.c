@@ -143,6 +143,7 @@ static void escape(const char *s, char *out, size_t n)
 static void msg(char *err, size_t errlen, const char *path, const char *fmt, ...)
 {
     if (!err || !errlen) return;
+    int saved = errno;          /* callers may report errno after us */
     char p[512], what[512];
     escape(path, p, sizeof p);
     va_list ap;
@@ -150,6 +151,7 @@ static void msg(char *err, size_t errlen, const char *path, const char *fmt, ...
     vsnprintf(what, sizeof what, fmt, ap);
     va_end(ap);
     snprintf(err, errlen, "%s: %s", p, what);
+    errno = saved;
 }
 
 /* ---- opening ----------------------------------------------------------- */
@@ -201,7 +203,9 @@ static char *resolve(const char *path, struct stat *st, int *exists)
 static void out_free(sim_out *o)
 {
     if (!o) return;
+    int saved = errno;
     free(o->shown); free(o->target); free(o->tmp); free(o);
+    errno = saved;
 }
 
 static int open_temp(sim_out *o, const struct stat *st, int exists, char *err, size_t errlen)
@@ -209,6 +213,7 @@ static int open_temp(sim_out *o, const struct stat *st, int exists, char *err, s
     const char *t = o->target;
     size_t tl = strlen(t);
     if (tl && t[tl - 1] == '/') {
+        errno = EISDIR;
         msg(err, errlen, o->shown, "names a folder, not a file");
         return -1;
     }
@@ -234,6 +239,7 @@ static int open_temp(sim_out *o, const struct stat *st, int exists, char *err, s
     if (fd >= 0) o->slot = reg_add(o->tmp);
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     if (fd < 0) {
+        errno = e;
         msg(err, errlen, o->shown, "cannot create: %s", strerror(e));
         return -1;
     }
@@ -245,6 +251,7 @@ static int open_temp(sim_out *o, const struct stat *st, int exists, char *err, s
         unlink(o->tmp);
         reg_remove(o->slot);
         o->slot = -1;
+        errno = e;
         msg(err, errlen, o->shown, "cannot write: %s", strerror(e));
         return -1;
     }
@@ -257,11 +264,13 @@ sim_out *sim_out_open(const char *path, char *err, size_t errlen)
     pthread_once(&mode_once, read_umask);
     if (!path || !*path) {
         if (err && errlen) snprintf(err, errlen, "empty output path");
+        errno = ENOENT;
         return NULL;
     }
     sim_out *o = calloc(1, sizeof *o);
     if (!o || !(o->shown = strdup(path))) {
         free(o);
+        errno = ENOMEM;
         msg(err, errlen, path, "out of memory");
         return NULL;
     }
@@ -280,6 +289,7 @@ sim_out *sim_out_open(const char *path, char *err, size_t errlen)
         return NULL;
     }
     if (exists && S_ISDIR(st.st_mode)) {
+        errno = EISDIR;
         msg(err, errlen, path, "is a folder");
         out_free(o);
         return NULL;
@@ -297,9 +307,11 @@ sim_out *sim_out_open(const char *path, char *err, size_t errlen)
     }
     o->f = fdopen(fd, "wb");
     if (!o->f) {
-        msg(err, errlen, path, "cannot write: %s", strerror(errno));
+        int e = errno;
+        msg(err, errlen, path, "cannot write: %s", strerror(e));
         close(fd);
         out_free(o);
+        errno = e;
         return NULL;
     }
     o->kind = OUT_THROUGH;
@@ -313,24 +325,32 @@ FILE *sim_out_file(sim_out *o)
 
 /* ---- closing ----------------------------------------------------------- */
 
-/* Flush f and return 0, or the errno of the failure (EIO when the error
- * flag was set by an earlier write whose errno is gone). */
-static int flush_err(FILE *f)
+/* Flush f and return 0, or the errno of the failure. When the error flag
+ * was set by an earlier write (glibc drops the buffer then, so the flush
+ * succeeds), the cause is gone from the stream; the caller's errno on
+ * entry is taken if it is one a write gives (a writer stops at its first
+ * failed fprintf, so errno still holds ENOSPC), else EIO. */
+static int flush_err(FILE *f, int entry_errno)
 {
     errno = 0;
     if (fflush(f) != 0) return errno ? errno : EIO;
-    if (ferror(f)) return EIO;
-    return 0;
+    if (!ferror(f)) return 0;
+    switch (entry_errno) {
+    case ENOSPC: case EDQUOT: case EFBIG: case EPIPE: case EIO: case ENXIO: case EROFS:
+        return entry_errno;
+    default:
+        return EIO;
+    }
 }
 
 int sim_out_close(sim_out *o, char *err, size_t errlen)
 {
     if (!o) return 0;
-    int e = flush_err(o->f);
-    if (e == EIO && o->werr) e = o->werr;
+    int e = flush_err(o->f, o->werr ? o->werr : errno);
     if (o->kind == OUT_STDOUT) {
         if (e) msg(err, errlen, "standard output", "write failed: %s", strerror(e));
         out_free(o);
+        if (e) errno = e;
         return e ? -1 : 0;
     }
     const char *what = "write failed";
@@ -350,6 +370,7 @@ int sim_out_close(sim_out *o, char *err, size_t errlen)
     }
     if (e) msg(err, errlen, o->shown, "%s: %s", what, strerror(e));
     out_free(o);
+    if (e) errno = e;           /* for callers that only get -1 */
     return e ? -1 : 0;
 }
 
@@ -379,7 +400,7 @@ int sim_out_write_all(const char *path, const void *buf, size_t len, char *err, 
 
 int sim_out_stdout_check(char *err, size_t errlen)
 {
-    int e = flush_err(stdout);
+    int e = flush_err(stdout, errno);
     if (!e) return 0;
     if (err && errlen) snprintf(err, errlen, "standard output: write failed: %s", strerror(e));
     return -1;

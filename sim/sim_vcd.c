@@ -7,6 +7,7 @@
  * Vector values are `b` + binary digits without leading zeros + space + id.
  */
 #include "sim/sim_vcd.h"
+#include "sim/sim_out.h"
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,8 +21,8 @@
 
 struct sim_vcd {
     sim_ctx *ctx;
-    FILE    *f;
-    char    *path, *tmp;
+    FILE    *f;           /* sim_out_file(out) */
+    sim_out *out;         /* temporary + rename, or written through, or stdout */
     int      started;     /* $dumpvars written */
     int      io_error;
     size_t   n;           /* bytes in buf */
@@ -74,20 +75,17 @@ sim_vcd *sim_vcd_open(sim_ctx *c, const char *path, const char *timescale,
                       char *err, size_t errlen)
 {
     sim_vcd *v = calloc(1, sizeof *v);
-    size_t n = strlen(path);
-    if (!v || !(v->path = malloc(n + 1)) || !(v->tmp = malloc(n + 8))) {
+    if (!v) {
         snprintf(err, errlen, "%s: out of memory", path);
-        goto fail;
+        return NULL;
     }
-    memcpy(v->path, path, n + 1);
-    snprintf(v->tmp, n + 8, "%s.XXXXXX", path);
-    int fd = mkstemp(v->tmp);
-    if (fd >= 0) fchmod(fd, 0644);   /* mkstemp's 0600 is for secrets, not dumps */
-    if (fd < 0 || !(v->f = fdopen(fd, "w"))) {
-        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-        if (fd >= 0) { close(fd); unlink(v->tmp); }
-        goto fail;
+    /* A dump can be hundreds of MB: sim_out registers its temporary so
+     * that SIGINT/SIGTERM/SIGHUP remove it; "-" streams to stdout. */
+    if (!(v->out = sim_out_open(path, err, errlen))) {
+        free(v);
+        return NULL;
     }
+    v->f = sim_out_file(v->out);
     v->ctx = c;
     for (uint32_t i = 0, ns = sim_signal_count(c); i < ns; i++) {
         sim_signal *s = sim_signal_at(c, i);
@@ -99,9 +97,6 @@ sim_vcd *sim_vcd_open(sim_ctx *c, const char *path, const char *timescale,
     fputs("$enddefinitions $end\n", v->f);
     sim_attach_vcd(c, v);
     return v;
-fail:
-    if (v) { free(v->path); free(v->tmp); free(v); }
-    return NULL;
 }
 
 /* "1!" / "b1010 #" and a newline at p; returns the end. */
@@ -193,24 +188,25 @@ void sim_vcd_step(sim_vcd *v, sim_time t)
 int sim_vcd_close(sim_vcd *v)
 {
     if (!v) return 0;
-    int rc = 0;
     flush_buf(v);
-    if (v->io_error || ferror(v->f)) rc = -1;
-    if (fclose(v->f) != 0) rc = -1;
-    if (rc == 0 && rename(v->tmp, v->path) != 0) rc = -1;
-    if (rc) unlink(v->tmp);
+    /* sim_out_close checks the stream (a failed fwrite left its error
+     * flag), renames, and on failure removes the temporary and leaves
+     * errno at the cause (ENOSPC...), which is what the caller reports. */
+    char msg[256];
+    int rc = sim_out_close(v->out, msg, sizeof msg);
+    int e = errno;
     sim_attach_vcd(v->ctx, NULL);
-    free(v->path); free(v->tmp); free(v);
+    free(v);
+    errno = e;
     return rc;
 }
 
 void sim_vcd_abort(sim_vcd *v)
 {
     if (!v) return;
-    fclose(v->f);
-    unlink(v->tmp);
+    sim_out_abort(v->out);
     sim_attach_vcd(v->ctx, NULL);
-    free(v->path); free(v->tmp); free(v);
+    free(v);
 }
 
 static void gtkw_scope(FILE *f, const sim_scope *sc, const char *prefix)
@@ -236,23 +232,15 @@ static void gtkw_scope(FILE *f, const sim_scope *sc, const char *prefix)
 
 int sim_vcd_write_gtkw(sim_ctx *c, const char *vcd_path, const char *gtkw_path)
 {
-    size_t n = strlen(gtkw_path);
-    char *tmp = malloc(n + 8);
-    if (!tmp) return -1;
-    snprintf(tmp, n + 8, "%s.XXXXXX", gtkw_path);
-    int fd = mkstemp(tmp);
-    if (fd >= 0) fchmod(fd, 0644);
-    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
-    if (!f) { if (fd >= 0) { close(fd); unlink(tmp); } free(tmp); return -1; }
+    char msg[256];
+    sim_out *o = sim_out_open(gtkw_path, msg, sizeof msg);
+    if (!o) return -1;                          /* errno from the open */
+    FILE *f = sim_out_file(o);
     /* GTKWave resolves a relative dumpfile against the save file's folder. */
     const char *base = strrchr(vcd_path, '/');
     fprintf(f, "[*] shadesim: open with  gtkwave %s\n[dumpfile] \"%s\"\n[timestart] 0\n",
             gtkw_path, base ? base + 1 : vcd_path);
     fprintf(f, "[treeopen] %s.\n", sim_root(c)->name);
     gtkw_scope(f, sim_root(c), "");
-    int rc = (ferror(f) | fclose(f)) ? -1 : 0;
-    if (rc == 0 && rename(tmp, gtkw_path) != 0) rc = -1;
-    if (rc) unlink(tmp);
-    free(tmp);
-    return rc;
+    return sim_out_close(o, msg, sizeof msg);   /* errno = the cause on -1 */
 }

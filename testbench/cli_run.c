@@ -1,10 +1,20 @@
 /* cli_run.c - the verbs that read the unit descriptors: list, vectors, run. */
 #include "testbench/cli.h"
 #include "vectors/vec_file.h"
+#include "sim/sim_out.h"
 #include <stdlib.h>
 #include <string.h>
 
 static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
+
+/* Results went to stdout: a write error there (full disk, closed pipe)
+ * must not pass as success. Every verb returns through this. */
+static int stdout_done(int rc)
+{
+    char e[300];
+    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    return rc;
+}
 
 /* ------------------------------------------------------------------- list */
 
@@ -121,7 +131,7 @@ int cli_list(int argc, char **argv)
                  "the unit's first; --markdown without --schedule: all, with a column\n"
                  "naming each one's schedules). --markdown prints the same as\n"
                  "docs/units.md is made of.");
-            return CLI_OK;
+            return stdout_done(CLI_OK);
         }
         if (!strcmp(argv[i], "--width") && i + 1 < argc) {
             char *end;
@@ -160,7 +170,7 @@ int cli_list(int argc, char **argv)
         list_unit(stdout, u, width, si < 0 ? 0 : si);
         if (!only && i + 1 < n) putchar('\n');
     }
-    return CLI_OK;
+    return stdout_done(CLI_OK);
 }
 
 /* ---------------------------------------------------------------- vectors */
@@ -178,8 +188,10 @@ int cli_vectors(int argc, char **argv)
                  "Golden vectors for UNIT from the double-precision float reference, in the\n"
                  "SPEC's text format (stdout, or FILE written atomically). With the default\n"
                  "N (0: the unit's default set) and seed 1 this is the checked-in\n"
-                 "vectors/UNIT.vec.");
-            return CLI_OK;
+                 "vectors/UNIT.vec.\n\n"
+                 "-o FILE: a regular file is replaced only once complete (a symbolic link is\n"
+                 "followed and kept); a device or FIFO is written to in place; -o - is stdout.");
+            return stdout_done(CLI_OK);
         }
         char *end;
         if ((!strcmp(argv[i], "-n")) && i + 1 < argc) {
@@ -203,13 +215,10 @@ int cli_vectors(int argc, char **argv)
     char err[600];
     if (cli_make_vectors(o.u, &o.cfg, (size_t)n, seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
     int rc = CLI_OK;
-    if (out) {
-        if (vec_file_write(out, &vs, err, sizeof err)) rc = cli_usage_error("%s", err);
-    } else if (vec_file_print(stdout, &vs) || fflush(stdout)) {
-        rc = cli_usage_error("writing vectors to stdout failed");
-    }
+    /* "-" (and no -o) is stdout, checked for write errors like a file. */
+    if (vec_file_write(out ? out : "-", &vs, err, sizeof err)) rc = cli_usage_error("%s", err);
     vec_set_free(&vs);
-    return rc;
+    return rc == CLI_OK ? stdout_done(rc) : rc;
 }
 
 /* -------------------------------------------------------------------- run */
@@ -226,7 +235,11 @@ static const char run_help2[] =
     "  --json               print the result as one JSON object\n"
     "  --out FILE.csv       one row per vector: index, cycle, NAME_raw/_real/_expected/_err\n"
     "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD),\n"
-    "                       with FILE.gtkw, a GTKWave save file grouping the unit's signals\n";
+    "                       with FILE.gtkw, a GTKWave save file grouping the unit's signals\n"
+    "\nOutput files: a regular file is replaced only once complete (a symbolic link is\n"
+    "followed and kept); a device or FIFO is written to in place. --out - or --vcd -\n"
+    "writes that file to stdout (no .gtkw then) and the report goes to stderr; only\n"
+    "one of --out -, --vcd - and --json can have stdout.\n";
 
 static int run_all(void)
 {
@@ -254,7 +267,7 @@ static int run_all(void)
         tb_result_free(&r);
         vec_set_free(&vs);
     }
-    return rc;
+    return stdout_done(rc);
 }
 
 int cli_run(int argc, char **argv)
@@ -263,7 +276,7 @@ int cli_run(int argc, char **argv)
     const char *unit = NULL, *vcd = NULL, *csv = NULL;
     int json = 0;
     for (int i = 1; i < argc; i++) {
-        if (is_help(argv[i])) { fputs(run_help, stdout); fputs(cli_unit_opts_help, stdout); fputs(run_help2, stdout); return CLI_OK; }
+        if (is_help(argv[i])) { fputs(run_help, stdout); fputs(cli_unit_opts_help, stdout); fputs(run_help2, stdout); return stdout_done(CLI_OK); }
     }
     if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, or run all)");
     unit = argv[1];
@@ -282,12 +295,17 @@ int cli_run(int argc, char **argv)
         else if (!strcmp(argv[i], "--vcd") || !strcmp(argv[i], "--out")) return cli_usage_error("%s needs a file name", argv[i]);
         else return cli_usage_error("run: unknown option '%s' (see shadesim run --help)", argv[i]);
     }
+    /* "-" is stdout for each output option; stdout holds one stream. */
+    int vcd_out = vcd && !strcmp(vcd, "-"), csv_out = csv && !strcmp(csv, "-");
+    if (vcd_out + csv_out + json > 1)
+        return cli_usage_error("run: only one of --out -, --vcd - and --json can write to stdout");
+    FILE *report = vcd_out || csv_out ? stderr : stdout;
     unit_fmts fm;
     char err[600];
     if (tb_formats(o.u, &o.cfg, o.fmt, o.nfmt, &fm, err, sizeof err)) return cli_usage_error("%s", err);
     vec_set vs;
     if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
-    tb_opts opts = { vcd, 1 };
+    tb_opts opts = { vcd, !vcd_out };
     tb_result r;
     int t = tb_run(o.u, &o.cfg, &fm, &vs, &opts, &r, err, sizeof err);
     int rc = CLI_OK;
@@ -299,10 +317,10 @@ int cli_run(int argc, char **argv)
     } else {
         if (csv && tb_write_csv(csv, &r, &vs, err, sizeof err)) rc = cli_usage_error("%s", err);
         if (json) tb_write_json(stdout, &r);
-        else tb_print_table(stdout, &r);
+        else tb_print_table(report, &r);
         if (rc == CLI_OK && !r.within_bound) rc = CLI_FAIL;
     }
     tb_result_free(&r);
     vec_set_free(&vs);
-    return rc;
+    return rc == CLI_USAGE ? rc : stdout_done(rc);
 }

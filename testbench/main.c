@@ -1,5 +1,6 @@
 /* main.c - bin/shadesim: dispatch to a verb. */
 #include "testbench/cli.h"
+#include "sim/sim_out.h"
 #include <string.h>
 
 const cli_verb cli_verbs[] = {
@@ -23,6 +24,7 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
+    sim_out_install_signals();  /* temporaries removed on SIGINT/TERM/HUP */
     if (argc < 2) return cli_usage_error("no verb given (shadesim --help lists them)");
     if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) { usage(stdout); return CLI_OK; }
     for (const cli_verb *v = cli_verbs; v->name; v++)

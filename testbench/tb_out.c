@@ -1,5 +1,6 @@
 /* tb_out.c - a testbench result as JSON, CSV and a readable table. */
 #include "testbench/tb.h"
+#include "sim/sim_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -72,20 +73,11 @@ int tb_write_json(FILE *f, const tb_result *r)
 
 int tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *err, size_t errlen)
 {
-    size_t n = strlen(path);
-    char *tmp = malloc(n + 8);
-    if (!tmp) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
-    snprintf(tmp, n + 8, "%s.XXXXXX", path);
-    int fd = mkstemp(tmp);
-    /* mkstemp makes the file private (0600); a result file is not. */
-    if (fd >= 0) fchmod(fd, 0644);
-    FILE *f = fd >= 0 ? fdopen(fd, "w") : NULL;
-    if (!f) {
-        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-        if (fd >= 0) { close(fd); unlink(tmp); }
-        free(tmp);
-        return -1;
-    }
+    /* sim_out: atomic replace of a regular file, written through to a
+     * device or FIFO, "-" for stdout; every write error reported. */
+    sim_out *o = sim_out_open(path, err, errlen);
+    if (!o) return -1;
+    FILE *f = sim_out_file(o);
     int nb = r->beats, no = r->n_out;
     fputs("index,cycle", f);
     for (int k = 0; k < vs->n_out; k++) {
@@ -105,16 +97,7 @@ int tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *
             }
         fputc('\n', f);
     }
-    int bad = ferror(f);
-    bad |= fclose(f);
-    if (bad || rename(tmp, path)) {
-        snprintf(err, errlen, "%s: write failed: %s", path, strerror(errno));
-        unlink(tmp);
-        free(tmp);
-        return -1;
-    }
-    free(tmp);
-    return 0;
+    return sim_out_close(o, err, errlen);
 }
 
 void tb_print_table(FILE *f, const tb_result *r)

@@ -2,9 +2,11 @@
  * any unit, then error metrics against the golden vectors. */
 #include "testbench/tb.h"
 #include "sim/sim_vcd.h"
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 typedef struct tb_state {
     const unit_io *io;
@@ -272,13 +274,27 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         rc = TB_FAIL;
     }
     if (vcd) {
+        struct stat vst;
         if (sim_vcd_close(vcd) && rc == TB_OK) {
-            snprintf(err, errlen, "%s: write failed", o->vcd_path);
+            snprintf(err, errlen, "%s: write failed: %s", o->vcd_path, strerror(errno));
             rc = TB_BADINPUT;
-        } else if (o->gtkw && rc == TB_OK) {
-            char g[1024];
-            snprintf(g, sizeof g, "%s.gtkw", o->vcd_path);
-            sim_vcd_write_gtkw(c, o->vcd_path, g);
+        } else if (o->gtkw && rc == TB_OK && stat(o->vcd_path, &vst) == 0 && S_ISREG(vst.st_mode)) {
+            /* The companion goes beside a dump in a file (not stdout, not
+             * /dev/null: no /dev/null.gtkw), any path length; a companion
+             * that cannot be written is an error, not a silent omission. */
+            size_t gl = strlen(o->vcd_path) + sizeof ".gtkw";
+            char *g = malloc(gl);
+            if (!g) {
+                snprintf(err, errlen, "%s.gtkw: out of memory", o->vcd_path);
+                rc = TB_BADINPUT;
+            } else {
+                snprintf(g, gl, "%s.gtkw", o->vcd_path);
+                if (sim_vcd_write_gtkw(c, o->vcd_path, g)) {
+                    snprintf(err, errlen, "%s: cannot write: %s", g, strerror(errno));
+                    rc = TB_BADINPUT;
+                }
+                free(g);
+            }
         }
         vcd = NULL;
     }

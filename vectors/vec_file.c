@@ -10,6 +10,7 @@
  * set that holds no rows (or free it first). On failure it is left empty.
  */
 #include "vectors/vec_file.h"
+#include "sim/sim_out.h"
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -86,58 +87,13 @@ static int check_set(const vec_set *s, char *err, size_t errlen, const char *pat
 int vec_file_write(const char *path, const vec_set *s, char *err, size_t errlen)
 {
     if (check_set(s, err, errlen, path)) return -1;
-    if (!strcmp(path, "-")) {
-        if (vec_file_print(stdout, s) || fflush(stdout)) {
-            msg(err, errlen, "-: write error: %s", strerror(errno));
-            return -1;
-        }
-        return 0;
-    }
-    /* Temporary next to the target so that rename() is atomic: a reader
-     * never sees a half-written file under the final name. */
-    size_t len = strlen(path);
-    char *tmp = malloc(len + sizeof ".tmp-XXXXXX");
-    if (!tmp) {
-        msg(err, errlen, "%s: out of memory", path);
-        return -1;
-    }
-    memcpy(tmp, path, len);
-    memcpy(tmp + len, ".tmp-XXXXXX", sizeof ".tmp-XXXXXX");
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        msg(err, errlen, "%s: cannot create: %s", path, strerror(errno));
-        free(tmp);
-        return -1;
-    }
-    /* mkstemp makes the file 0600; a vector file is for sharing. Keep
-     * the mode of a file being replaced, else rw-r--r--. (umask cannot be
-     * read without changing it, which is not thread-safe.) */
-    struct stat st;
-    (void)fchmod(fd, stat(path, &st) == 0 ? (st.st_mode & 07777) : 0644);
-    FILE *f = fdopen(fd, "w");
-    if (!f) {
-        msg(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-        close(fd);
-        unlink(tmp);
-        free(tmp);
-        return -1;
-    }
-    errno = 0;
-    int bad = vec_file_print(f, s);
-    int e = errno;
-    if (fclose(f) != 0 && !bad) {
-        bad = 1;
-        e = errno;
-    }
-    if (bad) {
-        msg(err, errlen, "%s: write error: %s", path, strerror(e ? e : EIO));
-    } else if (rename(tmp, path) != 0) {
-        bad = 1;
-        msg(err, errlen, "%s: cannot rename into place: %s", path, strerror(errno));
-    }
-    if (bad) unlink(tmp);
-    free(tmp);
-    return bad ? -1 : 0;
+    /* sim_out: a temporary beside a regular file, renamed when complete
+     * (a reader never sees half a file); devices and FIFOs written
+     * through; "-" is stdout. */
+    sim_out *o = sim_out_open(path, err, errlen);
+    if (!o) return -1;
+    (void)vec_file_print(sim_out_file(o), s);  /* an error is kept in the stream */
+    return sim_out_close(o, err, errlen);
 }
 
 /* ---- reading ---------------------------------------------------------
