@@ -113,31 +113,32 @@ static int nodes_n2(const scn_desc *d)
  * per light. Comparisons, max(0, .), clamps, constant factors known
  * before the frame (ks, kd, I0 products, m^2, 1/pi) and shifts are free.
  *
- *  step                                   when                    add mul div sqrt pow
- *  normalize N: N.N, sqrt, 1/|N|, 3 mul   always                    2   6   1   1   0
- *  ambient term added                     always                    1   0   0   0   0
- *  V = eye - P, normalized                perspective camera        5   6   1   1   0
- *  L = light - P, normalized              point light, per light    5   6   1   1   0
- *  N.L                                    per light                 2   3   0   0   0
- *  kd N.L                                 per light                 0   1   0   0   0
- *  I0 (diffuse + specular), summed        per light                 2   1   0   0   0
- *  Phong: R = 2(N.L)N - L, R.V, pow, ks   Phong, per light          5   7   0   0   1
- *  H = L + V normalized, N.H              Blinn/Cook/Ward, per light 7  9   1   1   0
- *  Blinn: (N.H)^n, ks                     Blinn, per light          0   1   0   0   1
- *  Cook: N.V, V.H                         Cook, per light           4   6   0   0   0
- *  Cook D exact Beckmann: c^2, c^4,
- *    (c^2 - 1)/(m^2 c^2), exp, / c^4      Cook dg = 0, per light    1   3   2   0   1
- *  Cook D_g = (1 - (1-c^2)/(g m^2))^g:
- *    c^2, 1 - c^2, 1 - ./(g m^2), ^g      Cook dg > 0, per light    2   2   0   0   1
- *  Cook G = min(1, 2 N.H N.V / V.H,
- *    2 N.H N.L / V.H)                     Cook, per light           0   3   1   0   0
- *  Cook ks D F G / (N.L N.V)              Cook, per light           0   4   1   0   0
- *  Ward: N.V, tan^2 d = (1 - c^2)/c^2,
- *    exp(-tan^2/a^2) (or its polynomial
- *    power), / sqrt(N.L N.V)              Ward, per light           3   6   2   1   1
- *  Fresnel Schlick F0 + (1-F0)(1-c)^n     Schlick, per light        2   1   0   0   1
- *  modified Schlick (the paper's
- *    rational form: one division)         mod. Schlick, per light   3   2   1   0   0
+ *  step                                       when                  add mul div sqrt pow
+ *  normalize N: N.N, sqrt, 1/|N|, 3 mul       always                  2   6   1   1   0
+ *  ambient term                               always                  1   0   0   0   0
+ *  V = eye - P, normalized                    perspective camera      5   6   1   1   0
+ *  L = light - P, normalized                  point light, per light  5   6   1   1   0
+ *  N.L                                        per light               2   3   0   0   0
+ *  kd N.L                                     per light               0   1   0   0   0
+ *  I0 (diffuse + specular), summed            per light               2   1   0   0   0
+ *  phong: R = 2(N.L)N - L, R.V, ^n, ks        phong, per light        5   7   0   0   1
+ *  H = normalize(L + V), N.H                  blinn/cook/ward, light  7   9   1   1   0
+ *  blinn: (N.H)^n, ks                         blinn, per light        0   1   0   0   1
+ *  cook: N.V, L.H, V.H                        cook, per light         6   9   0   0   0
+ *  cook D Beckmann: c^2, tan^2 = (1-c^2)/c^2,
+ *    /m^2, exp, c^4, the division             cook dg = 0, light      1   3   2   0   1
+ *  cook D_g: k (c - 1) + 1, ^g, 1/(4m^2)      cook dg > 0, light      2   2   0   0   1
+ *  cook G: (N.H)(N.V), (N.H)(N.L), min, /V.H  cook, per light         0   2   1   0   0
+ *  cook F D G / (pi (N.L)(N.V)), ks           cook, per light         0   5   1   0   0
+ *  Schlick F = c/(n - n c + c)                cook schlick, light     2   1   1   0   0
+ *  modified Schlick 2c/(1.25 (n-nc+1.25c)^2)  cook mschlick, light    2   4   1   0   0
+ *  ward: N.V                                  ward, per light         2   3   0   0   0
+ *  ward exact: tan^2, /a^2, exp,
+ *    sqrt((N.L)(N.V)), division, ks           ward dg = 0, light      1   4   2   1   1
+ *  ward polynomial: k (c - 1) + 1, ^16,
+ *    sqrt((N.L)(N.V)), division, ks           ward dg > 0, light      2   3   1   1   1
+ * (a power x^n, x^g, exp: one "pow"; c = N.H for D, L.H for F. The
+ * specular rows count only when ks != 0.)
  *
  * The method, per covered pixel: (shaded nodes x the same per-point cost)
  * / pixels; the coefficient network's adders per interval / pixels (every
@@ -147,7 +148,7 @@ static int nodes_n2(const scn_desc *d)
  * deg add; t = k * (1/dv): 1 mul per pixel (the reciprocal is a ROM).
  * Costs weigh the counts with the description's weights (cost key). */
 typedef enum { W_ALWAYS, W_PERSP, W_POINT, W_LIGHT, W_PHONG, W_HALF, W_BLINN, W_COOK,
-               W_COOK_EXACT, W_COOK_DG, W_WARD, W_SCHLICK, W_MSCHLICK } ops_when;
+               W_COOK_EXACT, W_COOK_DG, W_SCHLICK, W_MSCHLICK, W_WARD, W_WARD_EXACT, W_WARD_POLY } ops_when;
 typedef struct ops_row { ops_when when; int per_light; double n[SCN_OP__COUNT]; } ops_row;
 static const ops_row ops_table[] = {
     /*  when           per light  add mul div sqrt pow */
@@ -158,22 +159,25 @@ static const ops_row ops_table[] = {
     { W_LIGHT,      1, { 2, 3, 0, 0, 0 } },   /* N.L */
     { W_LIGHT,      1, { 0, 1, 0, 0, 0 } },   /* kd N.L */
     { W_LIGHT,      1, { 2, 1, 0, 0, 0 } },   /* I0 (d + s), sum */
-    { W_PHONG,      1, { 5, 7, 0, 0, 1 } },   /* R, R.V, pow, ks */
+    { W_PHONG,      1, { 5, 7, 0, 0, 1 } },   /* R, R.V, ^n, ks */
     { W_HALF,       1, { 7, 9, 1, 1, 0 } },   /* H normalized, N.H */
     { W_BLINN,      1, { 0, 1, 0, 0, 1 } },   /* (N.H)^n ks */
-    { W_COOK,       1, { 4, 6, 0, 0, 0 } },   /* N.V, V.H */
+    { W_COOK,       1, { 6, 9, 0, 0, 0 } },   /* N.V, L.H, V.H */
     { W_COOK_EXACT, 1, { 1, 3, 2, 0, 1 } },   /* Beckmann D */
     { W_COOK_DG,    1, { 2, 2, 0, 0, 1 } },   /* D_g */
-    { W_COOK,       1, { 0, 3, 1, 0, 0 } },   /* G */
-    { W_COOK,       1, { 0, 4, 1, 0, 0 } },   /* ks D F G / (N.L N.V) */
-    { W_WARD,       1, { 3, 6, 2, 1, 1 } },   /* Ward */
-    { W_SCHLICK,    1, { 2, 1, 0, 0, 1 } },   /* Schlick */
-    { W_MSCHLICK,   1, { 3, 2, 1, 0, 0 } },   /* modified Schlick */
+    { W_COOK,       1, { 0, 2, 1, 0, 0 } },   /* G */
+    { W_COOK,       1, { 0, 5, 1, 0, 0 } },   /* F D G / (pi N.L N.V), ks */
+    { W_SCHLICK,    1, { 2, 1, 1, 0, 0 } },   /* Schlick */
+    { W_MSCHLICK,   1, { 2, 4, 1, 0, 0 } },   /* modified Schlick */
+    { W_WARD,       1, { 2, 3, 0, 0, 0 } },   /* N.V */
+    { W_WARD_EXACT, 1, { 1, 4, 2, 1, 1 } },   /* exact Ward */
+    { W_WARD_POLY,  1, { 2, 3, 1, 1, 1 } },   /* polynomial Ward */
 };
 
 static int ops_applies(ops_when w, const scn_material *m, const scn_view *v, const scn_light *l)
 {
-    int cook = m->spec == SCN_SPEC_COOK, fres = cook || m->spec == SCN_SPEC_WARD;
+    int cook = m->spec == SCN_SPEC_COOK, ward = m->spec == SCN_SPEC_WARD;
+    if (w >= W_PHONG && m->ks == 0) return 0;     /* no specular term is evaluated */
     switch (w) {
     case W_ALWAYS: return 1;
     case W_PERSP: return v->cam.perspective;
@@ -185,9 +189,11 @@ static int ops_applies(ops_when w, const scn_material *m, const scn_view *v, con
     case W_COOK: return cook;
     case W_COOK_EXACT: return cook && m->dg == 0;
     case W_COOK_DG: return cook && m->dg > 0;
-    case W_WARD: return m->spec == SCN_SPEC_WARD;
-    case W_SCHLICK: return fres && m->fresnel == SCN_FRESNEL_SCHLICK;
-    case W_MSCHLICK: return fres && m->fresnel == SCN_FRESNEL_MSCHLICK;
+    case W_SCHLICK: return cook && m->fresnel == SCN_FRESNEL_SCHLICK;
+    case W_MSCHLICK: return cook && m->fresnel == SCN_FRESNEL_MSCHLICK;
+    case W_WARD: return ward;
+    case W_WARD_EXACT: return ward && m->dg == 0;
+    case W_WARD_POLY: return ward && m->dg > 0;
     }
     return 0;
 }
