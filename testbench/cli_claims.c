@@ -7,6 +7,7 @@
 #include "testbench/cli.h"
 #include "testbench/tb_svg.h"
 #include "vectors/claims.h"
+#include "testbench/tb_scene_claims.h"
 #include "vectors/ref_brdf.h"
 #include <errno.h>
 #include <stdarg.h>
@@ -29,7 +30,9 @@ static const char claims_help[] =
     "area of our hardware units against a cost model of the exact functions, and\n"
     "as CPU time of float code on this machine (machine-dependent). Last, where\n"
     "each approximation fails: relative error above 10% where the exact value is\n"
-    "above 1% of its peak.\n\noptions:\n"
+    "above 1% of its peak. The face scene's claims (NMSE against per-pixel Phong,\n"
+    "operation-count speed-up) are measured at 256x256 through the simulated\n"
+    "span hardware.\n\noptions:\n"
     "  --json               one JSON object instead of text\n"
     "  -o DIR               also write the charts into DIR (made if missing):\n"
     "                       claims_d16.svg, claims_ward.svg, claims_schlick.svg\n"
@@ -435,7 +438,7 @@ static int write_charts(const char *dir, char paths[][600], int *np)
 
 typedef struct report {
     claim_result rows[CLAIMS_MAX];
-    const char *kind[CLAIMS_MAX];     /* "accuracy", "speed_hw", "speed_cpu" */
+    const char *kind[CLAIMS_MAX];     /* "accuracy", "speed_hw", "scene", "speed_cpu" */
     size_t n;
     hw_cost hc;
     bands fb[N_APPROX];
@@ -482,6 +485,11 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
           "  intermediate cos^(2/m^2-4) and cos^(2/a^2) forms computed exactly.\n\n", f);
     for (size_t i = 0; i < rp->n; i++)
         if (!strcmp(rp->kind[i], "speed_hw")) print_row(f, &rp->rows[i]);
+
+    fprintf(f, "Claims on the face scene (%dx%d) through the simulated hardware path\n\n", TB_SCENE_CLAIMS_RES,
+            TB_SCENE_CLAIMS_RES);
+    for (size_t i = 0; i < rp->n; i++)
+        if (!strcmp(rp->kind[i], "scene")) print_row(f, &rp->rows[i]);
 
     if (rp->cpu) {
         fputs("Speed claims on this CPU (float code; machine-, compiler- and libm-dependent)\n\n", f);
@@ -616,6 +624,13 @@ int cli_claims(int argc, char **argv)
     if (rp->n + 2 <= CLAIMS_MAX) {
         size_t k = speed_hw_rows(&rp->hc, &rp->rows[rp->n]);
         for (size_t i = 0; i < k; i++) rp->kind[rp->n + i] = "speed_hw";
+        rp->n += k;
+    }
+    if (rp->n + TB_SCENE_CLAIMS_ROWS <= CLAIMS_MAX) {
+        char serr[300];
+        size_t k = tb_scene_claims(&rp->rows[rp->n], CLAIMS_MAX - rp->n, TB_SCENE_CLAIMS_RES, 2, serr, sizeof serr);
+        if (!k) { free(rp); return cli_usage_error("claims: face scene: %s", serr); }
+        for (size_t i = 0; i < k; i++) rp->kind[rp->n + i] = "scene";
         rp->n += k;
     }
     if (cpu_s > 0 && rp->n < CLAIMS_MAX) {
