@@ -131,10 +131,20 @@ typedef struct scn_desc {
     int          rnd, ovf;       /* sim_round / sim_ovf values */
     char         schedule[16];   /* "paper", "mac", "pipe" */
     double       cost[SCN_OP__COUNT];           /* weights of the operation count */
+    /* Bookkeeping of scn_desc_set / scn_desc_read (scene_file.c): */
+    int          cook_dg, ward_dg;   /* "distribution" and "ward-form" as set; mat.dg is the
+                                        one of mat.spec (so key order does not matter) */
+    unsigned     heldout_given;      /* SCN_HELD_* bits: held-out keys set explicitly; the
+                                        others follow the view (scn_desc_sync) */
 } scn_desc;
 
+#define SCN_HELD_EYE    1u
+#define SCN_HELD_TARGET 2u
+#define SCN_HELD_LIGHT  4u
+
 void scn_desc_default(scn_desc *d);
-/* Read a scene file over the defaults. Errors: "FILE:LINE: what". 0 or -1. */
+/* Read a scene file over the defaults (d is set to scn_desc_default
+ * first; on error it is left unchanged). Errors: "FILE:LINE: what". 0 or -1. */
 int  scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen);
 /* Set one key from text, as a line "key value" would ("light" appends a
  * light); for --set KEY=VALUE on the command line. 0 or -1 with a message. */
@@ -142,6 +152,17 @@ int  scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, si
 /* Write the description back as a scene file (every key). */
 int  scn_desc_write(FILE *f, const scn_desc *d);
 const char *scn_policy_name(scn_policy p);
+/* The built-in scenes "face" (= scn_desc_default), "sphere", "torus": the
+ * face scene's settings on that mesh with a camera that frames it. 0, or
+ * -1 for an unknown name. Names NULL-terminated in scn_desc_builtin_names. */
+int  scn_desc_builtin(const char *name, scn_desc *d);
+extern const char *const scn_desc_builtin_names[];
+/* After changing view fields directly: recompute what follows the view
+ * (held-out camera type, up, fov, height always; held-out eye, target,
+ * lights unless set explicitly). scn_desc_set and scn_desc_read call it. */
+void scn_desc_sync(scn_desc *d);
+/* The scene file keys, NULL-terminated (for help texts). */
+extern const char *const scn_desc_keys[];
 
 /* ---------------------------------------------------- surface buffer */
 
