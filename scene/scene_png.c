@@ -127,17 +127,20 @@ int scn_png_encode(int w, int h, int channels, const uint8_t *pix, uint8_t **out
  * linearly between its ends, so the map is monotone in luminance. */
 void scn_heat_rgb(double v, uint8_t rgb[3])
 {
-    static const double key[5][3] = {
-        { 0, 0, 0 }, { 0, 0, 255 }, { 255, 0, 0 }, { 255, 255, 0 }, { 255, 255, 255 } };
     if (!(v > 0.0)) v = 0.0;                    /* also NaN */
     if (v > 1.0) v = 1.0;
     double s = v * 4.0;
     int i = (int)s;
     if (i > 3) i = 3;
-    double f = s - i;
-    for (int c = 0; c < 3; c++) {
-        double x = key[i][c] + (key[i + 1][c] - key[i][c]) * f;
-        rgb[c] = (uint8_t)lround(x);
+    /* One integer step k = 0..255 along the segment; in blue -> red the
+     * two channels move together (R = k, B = 255 - k), so rounding never
+     * lets luminance step back. */
+    uint8_t k = (uint8_t)lround((s - i) * 255.0);
+    switch (i) {
+    case 0: rgb[0] = 0;   rgb[1] = 0;   rgb[2] = k;   break;      /* black -> blue */
+    case 1: rgb[0] = k;   rgb[1] = 0;   rgb[2] = (uint8_t)(255 - k); break;  /* blue -> red */
+    case 2: rgb[0] = 255; rgb[1] = k;   rgb[2] = 0;   break;      /* red -> yellow */
+    default: rgb[0] = 255; rgb[1] = 255; rgb[2] = k;  break;      /* yellow -> white */
     }
 }
 
