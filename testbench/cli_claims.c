@@ -5,6 +5,7 @@
  * code, the failure region of each approximation, and with -o DIR the
  * charts (docs/brdf.md). */
 #include "testbench/cli.h"
+#include "sim/sim_out.h"
 #include "testbench/tb_svg.h"
 #include "vectors/claims.h"
 #include "testbench/tb_scene_claims.h"
@@ -647,7 +648,9 @@ int cli_claims(int argc, char **argv)
     if (rc == CLI_OK) {
         if (json) print_json(stdout, rp, paths, np);
         else print_text(stdout, rp, paths, np);
-        if (fflush(stdout)) rc = cli_usage_error("claims: writing to stdout failed");
+        /* fflush alone misses an error whose write happened earlier. */
+        char e[300];
+        if (sim_out_stdout_check(e, sizeof e)) rc = cli_usage_error("claims: %s", e);
     }
     free(rp);
     return rc;

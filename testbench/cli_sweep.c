@@ -3,6 +3,7 @@
 #include "testbench/cli.h"
 #include "testbench/tb_svg.h"
 #include "testbench/tb_sweep.h"
+#include "sim/sim_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -46,9 +47,20 @@ static const char merge_help[] =
     "Joins the CSVs of a sweep's shards (shadesim sweep --shard K/N) into exactly\n"
     "the sweep.csv that the whole sweep writes: rows back in configuration order.\n"
     "The headers must be identical and the rows of one sweep (same sweep_id);\n"
-    "a configuration given twice or missing is an error (exit status 2).\n";
+    "a configuration given twice or missing is an error (exit status 2).\n"
+    "-o - writes to stdout; an existing OUT.csv is replaced only once complete\n"
+    "(a symbolic link is followed and kept; a device or FIFO is written to in place).\n";
 
 static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
+
+/* Results went to stdout: a write error there (full disk, closed pipe)
+ * must not pass as success. */
+static int stdout_done(int rc)
+{
+    char e[300];
+    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    return rc;
+}
 
 /* "--opt VALUE" or "--opt=VALUE": 1 and the value (NULL if missing), or 0. */
 static int opt(const char *name, int argc, char **argv, int *i, const char **val)
@@ -814,7 +826,7 @@ static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
 int cli_sweep(int argc, char **argv)
 {
     for (int i = 1; i < argc; i++)
-        if (is_help(argv[i])) { fputs(sweep_help, stdout); return CLI_OK; }
+        if (is_help(argv[i])) { fputs(sweep_help, stdout); return stdout_done(CLI_OK); }
     sweep_args a;
     if (parse_sweep(argc, argv, &a)) return CLI_USAGE;
     char defdir[300];
@@ -859,7 +871,7 @@ done:
     free(sets);
     free(a.t.res);
     tb_sweep_free(&s);
-    return rc;
+    return rc == CLI_USAGE ? rc : stdout_done(rc);
 }
 
 /* ---------------------------------------------------------------- merge */
@@ -872,7 +884,7 @@ int cli_merge(int argc, char **argv)
     if (!in) return cli_usage_error("merge: out of memory");
     for (int i = 1; i < argc; i++) {
         const char *v;
-        if (is_help(argv[i])) { free(in); fputs(merge_help, stdout); return CLI_OK; }
+        if (is_help(argv[i])) { free(in); fputs(merge_help, stdout); return stdout_done(CLI_OK); }
         if (opt("-o", argc, argv, &i, &v)) {
             if (!v || !*v) { free(in); return cli_usage_error("-o needs a file name"); }
             out = v;
@@ -887,5 +899,5 @@ int cli_merge(int argc, char **argv)
     else if (!out) rc = cli_usage_error("merge: -o OUT.csv is required");
     else if (tb_sweep_merge(in, n, out, err, sizeof err)) rc = cli_usage_error("%s", err);
     free(in);
-    return rc;
+    return rc == CLI_USAGE ? rc : stdout_done(rc);
 }

@@ -6,6 +6,7 @@
  * half-written chart.
  */
 #include "testbench/tb_svg.h"
+#include "sim/sim_out.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -1236,54 +1237,10 @@ int tb_chart_write(const tb_chart *c, const char *path, char *err, size_t errlen
         return -1;
     }
 
-    /* The temporary file sits beside the target so that rename is atomic.
-     * O_EXCL with a pid-and-counter name avoids mkstemp's 0600 mode: the
-     * chart gets the umask's permissions like any other output file. */
-    size_t tl = strlen(path) + 48;
-    char *tmp = malloc(tl);
-    if (!tmp) {
-        free(b.p);
-        tb_svg_err(err, errlen, "tb_chart_write: %s: out of memory", path);
-        return -1;
-    }
-    int fd = -1;
-    for (int i = 0; i < 100 && fd < 0; i++) {
-        snprintf(tmp, tl, "%s.%ld.%d.tmp", path, (long)getpid(), i);
-        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd < 0 && errno != EEXIST) break;
-    }
-    if (fd < 0) {
-        int e = errno;
-        tb_svg_err(err, errlen, "tb_chart_write: cannot create a temporary file for %s: %s", path, strerror(e));
-        free(tmp);
-        free(b.p);
-        return -1;
-    }
-    int e = 0;
-    for (size_t off = 0; off < b.n && !e;) {
-        ssize_t w = write(fd, b.p + off, b.n - off);
-        if (w > 0) off += (size_t)w;
-        else if (w < 0 && errno == EINTR) continue;
-        else e = w < 0 ? errno : EIO;
-    }
-    /* fsync before rename: after a crash the path holds the old chart or
-     * the new one, never an empty file. */
-    if (!e && fsync(fd) != 0 && errno != EINVAL) e = errno;
-    if (close(fd) != 0 && !e) e = errno;
+    /* sim_out: a temporary beside a regular file, renamed once complete
+     * (with the umask's permissions), removed on SIGINT/TERM/HUP; a device
+     * or FIFO written through; "-" is stdout. */
+    int rc = sim_out_write_all(path, b.p, b.n, err, errlen);
     free(b.p);
-    if (e) {
-        unlink(tmp);
-        free(tmp);
-        tb_svg_err(err, errlen, "tb_chart_write: cannot write %s: %s", path, strerror(e));
-        return -1;
-    }
-    if (rename(tmp, path) != 0) {
-        e = errno;
-        unlink(tmp);
-        free(tmp);
-        tb_svg_err(err, errlen, "tb_chart_write: cannot rename into %s: %s", path, strerror(e));
-        return -1;
-    }
-    free(tmp);
-    return 0;
+    return rc;
 }

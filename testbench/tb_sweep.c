@@ -1,6 +1,7 @@
 /* tb_sweep.c - the sweep engine: configurations, threads, shards, the CSV,
  * merging shards, and the per-signal format search. */
 #include "testbench/tb_sweep.h"
+#include "sim/sim_out.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -11,57 +12,31 @@
 
 /* ------------------------------------------------------------- utilities */
 
+/* tb_afile is sim_out under the sweep's names: a regular file (or a new
+ * path, or a symlink's target) replaced atomically once complete, with a
+ * registered temporary that SIGINT/SIGTERM/SIGHUP remove; a device or
+ * FIFO written through; "-" is stdout. */
 int tb_afile_open(tb_afile *a, const char *path, char *err, size_t errlen)
 {
-    size_t n = strlen(path) + 48;
-    int fd = -1;
-    a->f = NULL;
     a->path = path;
-    a->tmp = malloc(n);
-    if (!a->tmp) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
-    /* Not mkstemp: its files are 0600, and an output file should get the
-     * umask's permissions like any other. */
-    for (int i = 0; i < 100 && fd < 0; i++) {
-        snprintf(a->tmp, n, "%s.%ld.%d.tmp", path, (long)getpid(), i);
-        fd = open(a->tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
-        if (fd < 0 && errno != EEXIST) break;
-    }
-    if (fd >= 0) a->f = fdopen(fd, "w");
-    if (!a->f) {
-        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-        if (fd >= 0) { close(fd); unlink(a->tmp); }
-        free(a->tmp);
-        a->tmp = NULL;
-        return -1;
-    }
-    return 0;
+    a->out = sim_out_open(path, err, errlen);
+    a->f = a->out ? sim_out_file(a->out) : NULL;
+    return a->out ? 0 : -1;
 }
 
 int tb_afile_commit(tb_afile *a, char *err, size_t errlen)
 {
-    int e = ferror(a->f) ? EIO : 0;
-    if (!e && fflush(a->f)) e = errno;
-    /* Flushed to disk before the rename: after a crash the path holds the
-     * old file or the new one, never a short one. */
-    if (!e && fsync(fileno(a->f)) && errno != EINVAL) e = errno;
-    if (fclose(a->f) && !e) e = errno;
+    int rc = sim_out_close(a->out, err, errlen);
+    a->out = NULL;
     a->f = NULL;
-    if (!e && rename(a->tmp, a->path)) e = errno;
-    if (e) {
-        snprintf(err, errlen, "%s: write failed: %s", a->path, strerror(e));
-        unlink(a->tmp);
-    }
-    free(a->tmp);
-    a->tmp = NULL;
-    return e ? -1 : 0;
+    return rc;
 }
 
 void tb_afile_abort(tb_afile *a)
 {
-    if (a->f) fclose(a->f);
-    if (a->tmp) { unlink(a->tmp); free(a->tmp); }
+    sim_out_abort(a->out);
+    a->out = NULL;
     a->f = NULL;
-    a->tmp = NULL;
 }
 
 typedef struct par_ctx {
@@ -388,27 +363,55 @@ static int mrow_cmp(const void *a, const void *b)
     return x->line - y->line;
 }
 
-/* The whole file, NUL-terminated; NULL with a message. */
+/* A sweep CSV's line is a few hundred bytes; anything near this is not
+ * one (merge /dev/zero, a binary file) and is refused as it is read. */
+#define MERGE_MAX_LINE ((size_t)1 << 20)
+
+/* The whole file, NUL-terminated; NULL with a message. Checked while it
+ * is read, so that a device or a huge binary is refused at its first bad
+ * block instead of being held in memory: a NUL byte, or a line longer
+ * than MERGE_MAX_LINE, stops the reading. */
 static char *slurp(const char *path, size_t *len, char *err, size_t errlen)
 {
     FILE *f = fopen(path, "rb");
     if (!f) { snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno)); return NULL; }
-    size_t cap = 1 << 16, n = 0;
+    size_t cap = 1 << 16, n = 0, line_start = 0, lineno = 1;
     char *b = malloc(cap);
     for (;;) {
         if (!b) { fclose(f); snprintf(err, errlen, "%s: out of memory", path); return NULL; }
-        n += fread(b + n, 1, cap - n - 1, f);
-        if (n < cap - 1) break;
+        size_t k = fread(b + n, 1, cap - n - 1, f);
+        /* Check what just arrived: NULs, and each line's length. */
+        for (size_t i = n; i < n + k; i++) {
+            if (b[i] == 0) {
+                fclose(f); free(b);
+                snprintf(err, errlen, "%s:%zu: not a text file (NUL byte)", path, lineno);
+                return NULL;
+            }
+            if (b[i] == '\n') { line_start = i + 1; lineno++; }
+        }
+        n += k;
+        if (n - line_start > MERGE_MAX_LINE) {
+            fclose(f); free(b);
+            snprintf(err, errlen, "%s:%zu: line longer than %zu bytes: not a sweep CSV", path, lineno, MERGE_MAX_LINE);
+            return NULL;
+        }
+        if (k == 0 || n < cap - 1) {
+            if (ferror(f)) {
+                int e = errno;
+                fclose(f); free(b);
+                snprintf(err, errlen, "%s: read error: %s", path, strerror(e));
+                return NULL;
+            }
+            if (feof(f)) break;
+            continue;               /* a short read from a pipe or FIFO */
+        }
         char *nb = realloc(b, cap * 2);
         if (!nb) free(b);
         b = nb;
         cap *= 2;
     }
-    int bad = ferror(f);
     fclose(f);
-    if (bad) { free(b); snprintf(err, errlen, "%s: read error", path); return NULL; }
     b[n] = 0;
-    if (strlen(b) != n) { free(b); snprintf(err, errlen, "%s: not a text file (NUL byte)", path); return NULL; }
     *len = n;
     return b;
 }

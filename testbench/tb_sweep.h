@@ -132,8 +132,10 @@ int  tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double t
 /* ------------------------------------------------------------- utilities */
 
 /* A file written atomically: a temporary in the same directory, renamed
- * over path by tb_afile_commit; nothing is left behind on failure. */
-typedef struct tb_afile { FILE *f; char *tmp; const char *path; } tb_afile;
+ * over path by tb_afile_commit; nothing is left behind on failure (nor on
+ * SIGINT/TERM/HUP). Devices and FIFOs are written through, "-" is stdout
+ * (sim/sim_out.h). */
+typedef struct tb_afile { FILE *f; struct sim_out *out; const char *path; } tb_afile;
 int  tb_afile_open(tb_afile *a, const char *path, char *err, size_t errlen);
 int  tb_afile_commit(tb_afile *a, char *err, size_t errlen);
 void tb_afile_abort(tb_afile *a);

@@ -1,0 +1,480 @@
+/* test_out.c - sim_out: output files replaced atomically, devices, FIFOs
+ * and stdout written through, symlinks kept, errors reported, temporaries
+ * removed on abort and on SIGINT/SIGTERM/SIGHUP.
+ *
+ * Everything happens in a scratch folder under /tmp; device nodes are the
+ * system's /dev/null and /dev/full, only ever opened, and checked to still
+ * be character devices afterwards. The process umask is set to 027 before
+ * the first sim_out call so that "respects the umask" is distinguishable
+ * from a hard-coded 0644.
+ */
+#include "tst.h"
+#include "sim/sim_out.h"
+#include <errno.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#define UMASK 027
+
+static char dir[128];
+
+static void path_in(char *buf, size_t n, const char *name)
+{
+    snprintf(buf, n, "%s/%s", dir, name);
+}
+
+/* The whole file into buf (NUL-terminated); its length, or -1. */
+static long slurp(const char *path, char *buf, size_t cap)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return -1;
+    size_t n = fread(buf, 1, cap - 1, f);
+    fclose(f);
+    buf[n] = 0;
+    return (long)n;
+}
+
+static void put(const char *path, const char *text, mode_t mode)
+{
+    int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, mode);
+    if (fd < 0) return;
+    if (write(fd, text, strlen(text)) < 0) { /* checked by the reader */ }
+    fchmod(fd, mode);
+    close(fd);
+}
+
+/* Entries of the scratch folder other than "." and ".." (temporaries are
+ * hidden names, so count everything). */
+static int entries(void)
+{
+    DIR *d = opendir(dir);
+    int n = 0;
+    struct dirent *e;
+    while (d && (e = readdir(d)))
+        if (strcmp(e->d_name, ".") && strcmp(e->d_name, "..")) n++;
+    if (d) closedir(d);
+    return n;
+}
+
+/* 1 if the folder holds a name containing ".tmp-". */
+static int has_temp(void)
+{
+    DIR *d = opendir(dir);
+    int found = 0;
+    struct dirent *e;
+    while (d && (e = readdir(d)))
+        if (strstr(e->d_name, ".tmp-")) found = 1;
+    if (d) closedir(d);
+    return found;
+}
+
+static void t_new_path(void)
+{
+    tst_rmtree(dir);
+    char p[400], buf[256], err[300];
+    path_in(p, sizeof p, "new.txt");
+    const char *text = "one\ntwo\n";
+    TST_EQ_INT(sim_out_write_all(p, text, strlen(text), err, sizeof err), 0);
+    TST_EQ_INT(slurp(p, buf, sizeof buf), (long)strlen(text));
+    TST_EQ_STR(buf, text);
+    struct stat st;
+    TST_CHECK(stat(p, &st) == 0 && S_ISREG(st.st_mode), "a regular file");
+    TST_EQ_INT(st.st_mode & 0777, 0666 & ~UMASK);
+    TST_EQ_INT(entries(), 1);
+}
+
+static void t_replace_regular(void)
+{
+    tst_rmtree(dir);
+    char p[400], buf[256], err[300];
+    path_in(p, sizeof p, "r.csv");
+    put(p, "old contents\n", 0600);
+    sim_out *o = sim_out_open(p, err, sizeof err);
+    TST_CHECK(o != NULL, "%s", err);
+    if (!o) return;
+    fputs("new", sim_out_file(o));
+    fflush(sim_out_file(o));
+    /* Until close, readers see the old file; the new one is a temporary. */
+    TST_EQ_INT(slurp(p, buf, sizeof buf), 13);
+    TST_EQ_STR(buf, "old contents\n");
+    TST_CHECK(has_temp(), "a temporary beside the file while writing");
+    TST_EQ_INT(sim_out_close(o, err, sizeof err), 0);
+    TST_EQ_INT(slurp(p, buf, sizeof buf), 3);
+    TST_EQ_STR(buf, "new");
+    struct stat st;
+    TST_CHECK(stat(p, &st) == 0, "stat");
+    TST_EQ_INT(st.st_mode & 0777, 0600);       /* the replaced file's mode kept */
+    TST_EQ_INT(entries(), 1);
+
+    /* Abort: the old file stays, nothing else. */
+    o = sim_out_open(p, err, sizeof err);
+    TST_CHECK(o != NULL, "%s", err);
+    if (!o) return;
+    fputs("half", sim_out_file(o));
+    sim_out_abort(o);
+    TST_EQ_INT(slurp(p, buf, sizeof buf), 3);
+    TST_EQ_STR(buf, "new");
+    TST_EQ_INT(entries(), 1);
+}
+
+static void t_symlink(void)
+{
+    tst_rmtree(dir);
+    char sub[400], tgt[400], lnk[400], dang[400], buf[256], err[300];
+    path_in(sub, sizeof sub, "sub");
+    mkdir(sub, 0777);
+    path_in(tgt, sizeof tgt, "sub/target.csv");
+    path_in(lnk, sizeof lnk, "link.csv");
+    put(tgt, "target before\n", 0644);
+    /* Relative link: resolved against the link's folder, not the cwd. */
+    TST_CHECK(symlink("sub/target.csv", lnk) == 0, "symlink: %s", strerror(errno));
+    TST_EQ_INT(sim_out_write_all(lnk, "via link\n", 9, err, sizeof err), 0);
+    struct stat st;
+    TST_CHECK(lstat(lnk, &st) == 0 && S_ISLNK(st.st_mode), "the link is still a link");
+    TST_EQ_INT(slurp(tgt, buf, sizeof buf), 9);
+    TST_EQ_STR(buf, "via link\n");
+    TST_CHECK(lstat(tgt, &st) == 0 && S_ISREG(st.st_mode), "the target a regular file");
+    /* A dangling link: the file appears where the link points. */
+    path_in(dang, sizeof dang, "dangling.csv");
+    TST_CHECK(symlink("sub/later.csv", dang) == 0, "symlink");
+    TST_EQ_INT(sim_out_write_all(dang, "x", 1, err, sizeof err), 0);
+    TST_CHECK(lstat(dang, &st) == 0 && S_ISLNK(st.st_mode), "the dangling link is still a link");
+    path_in(tgt, sizeof tgt, "sub/later.csv");
+    TST_EQ_INT(slurp(tgt, buf, sizeof buf), 1);
+    /* A loop is an error, not a hang. */
+    char a[400], b[400];
+    path_in(a, sizeof a, "la");
+    path_in(b, sizeof b, "lb");
+    TST_CHECK(symlink("lb", a) == 0 && symlink("la", b) == 0, "symlinks");
+    TST_EQ_INT(sim_out_write_all(a, "x", 1, err, sizeof err), -1);
+    TST_CHECK(strstr(err, "symbolic links") != NULL, "err = %s", err);
+    TST_CHECK(!has_temp(), "no temporary left");
+}
+
+/* A character device is written through: after the write it must be the
+ * same device node (root would otherwise have replaced /dev/null). */
+static void t_devnull(void)
+{
+    struct stat before, after;
+    if (stat("/dev/null", &before) || !S_ISCHR(before.st_mode)) TST_SKIP("/dev/null is not a character device here");
+    char err[300];
+    static char big[1 << 17];
+    memset(big, 'v', sizeof big);
+    TST_EQ_INT(sim_out_write_all("/dev/null", big, sizeof big, err, sizeof err), 0);
+    TST_CHECK(stat("/dev/null", &after) == 0 && S_ISCHR(after.st_mode), "still a character device");
+    TST_EQ_INT(after.st_rdev, before.st_rdev);
+    TST_EQ_INT(after.st_ino, before.st_ino);
+}
+
+/* /dev/full: every write fails with ENOSPC; close must say so. */
+static void t_devfull(void)
+{
+    struct stat st;
+    if (stat("/dev/full", &st) || !S_ISCHR(st.st_mode)) TST_SKIP("/dev/full not available");
+    char err[300] = "";
+    /* Small (stays in the buffer until close) and large (fails in fwrite). */
+    TST_EQ_INT(sim_out_write_all("/dev/full", "abc", 3, err, sizeof err), -1);
+    TST_CHECK(strstr(err, strerror(ENOSPC)) != NULL, "err = %s", err);
+    static char big[1 << 17];
+    memset(big, 'f', sizeof big);
+    err[0] = 0;
+    TST_EQ_INT(sim_out_write_all("/dev/full", big, sizeof big, err, sizeof err), -1);
+    TST_CHECK(strstr(err, strerror(ENOSPC)) != NULL, "err = %s", err);
+    TST_CHECK(stat("/dev/full", &st) == 0 && S_ISCHR(st.st_mode), "still a character device");
+    /* Through a stream the caller writes with fprintf. */
+    sim_out *o = sim_out_open("/dev/full", err, sizeof err);
+    TST_CHECK(o != NULL, "%s", err);
+    if (!o) return;
+    for (int i = 0; i < 10000; i++) fprintf(sim_out_file(o), "line %d\n", i);
+    TST_EQ_INT(sim_out_close(o, err, sizeof err), -1);
+    TST_CHECK(strstr(err, strerror(ENOSPC)) != NULL, "err = %s", err);
+}
+
+static void t_fifo(void)
+{
+    tst_rmtree(dir);
+    char p[400], err[300];
+    path_in(p, sizeof p, "pipe");
+    if (mkfifo(p, 0666)) TST_SKIP("mkfifo: %s", strerror(errno));
+    /* The reader: a child that counts the bytes and checks each one. */
+    size_t n = 200000;
+    pid_t pid = fork();
+    if (pid == 0) {
+        FILE *f = fopen(p, "rb");
+        if (!f) _exit(3);
+        size_t got = 0, bad = 0;
+        int c;
+        while ((c = getc(f)) != EOF) { if (c != 'a' + (int)(got % 26)) bad++; got++; }
+        fclose(f);
+        _exit(got == n && !bad ? 0 : 1);
+    }
+    TST_CHECK(pid > 0, "fork");
+    if (pid < 0) return;
+    char *buf = malloc(n);
+    for (size_t i = 0; i < n; i++) buf[i] = (char)('a' + i % 26);
+    TST_EQ_INT(sim_out_write_all(p, buf, n, err, sizeof err), 0);
+    free(buf);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    TST_CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0, "the reader got every byte (status %d)", status);
+    struct stat st;
+    TST_CHECK(lstat(p, &st) == 0 && S_ISFIFO(st.st_mode), "still a FIFO");
+    TST_EQ_INT(entries(), 1);
+}
+
+/* The rename fails (a folder took the name meanwhile): error, the
+ * temporary removed, the folder untouched. */
+static void t_rename_fails(void)
+{
+    tst_rmtree(dir);
+    char p[400], err[300] = "";
+    path_in(p, sizeof p, "late");
+    sim_out *o = sim_out_open(p, err, sizeof err);
+    TST_CHECK(o != NULL, "%s", err);
+    if (!o) return;
+    fputs("data", sim_out_file(o));
+    TST_CHECK(mkdir(p, 0777) == 0, "mkdir");
+    TST_EQ_INT(sim_out_close(o, err, sizeof err), -1);
+    TST_CHECK(strstr(err, "rename") != NULL, "err = %s", err);
+    struct stat st;
+    TST_CHECK(stat(p, &st) == 0 && S_ISDIR(st.st_mode), "the folder is still there");
+    TST_EQ_INT(entries(), 1);
+}
+
+/* A regular file that cannot grow (RLIMIT_FSIZE stands in for a full
+ * disk): close fails with the cause, the old file is kept, no temporary
+ * is left. In a child, so that the limit stays there. */
+static void t_file_too_big(void)
+{
+    tst_rmtree(dir);
+    char p[400];
+    path_in(p, sizeof p, "limited.csv");
+    put(p, "old\n", 0644);
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+        signal(SIGXFSZ, SIG_IGN);
+        struct rlimit rl = { 4096, 4096 };
+        if (setrlimit(RLIMIT_FSIZE, &rl)) _exit(3);
+        static char big[1 << 16];
+        memset(big, 'b', sizeof big);
+        char err[300] = "";
+        if (sim_out_write_all(p, big, sizeof big, err, sizeof err) != -1) _exit(4);
+        if (!strstr(err, strerror(EFBIG))) _exit(5);
+        _exit(0);
+    }
+    TST_CHECK(pid > 0, "fork");
+    if (pid <= 0) return;
+    int status = 0;
+    waitpid(pid, &status, 0);
+    TST_CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0, "child status %d", WEXITSTATUS(status));
+    char buf[64];
+    TST_EQ_INT(slurp(p, buf, sizeof buf), 4);
+    TST_EQ_STR(buf, "old\n");
+    TST_EQ_INT(entries(), 1);
+}
+
+static void t_bad_paths(void)
+{
+    tst_rmtree(dir);
+    char err[300] = "", p[400];
+    TST_CHECK(sim_out_open("", err, sizeof err) == NULL, "empty path refused");
+    TST_CHECK(strstr(err, "empty") != NULL, "err = %s", err);
+    TST_CHECK(sim_out_open(dir, err, sizeof err) == NULL, "a folder refused");
+    path_in(p, sizeof p, "no/such/folder/x.csv");
+    TST_CHECK(sim_out_open(p, err, sizeof err) == NULL, "missing folder refused");
+    TST_CHECK(strstr(err, strerror(ENOENT)) != NULL, "err = %s", err);
+    /* Raw bytes of a path are escaped in the message. */
+    path_in(p, sizeof p, "no/\x01\xff/x");
+    TST_CHECK(sim_out_open(p, err, sizeof err) == NULL, "refused");
+    TST_CHECK(strstr(err, "\\x01\\xff") != NULL && !strchr(err, '\x01'), "err = %s", err);
+    /* A name near NAME_MAX: the temporary's name must still fit. */
+    char name[256];
+    memset(name, 'n', 250);
+    name[250] = 0;
+    path_in(p, sizeof p, name);
+    TST_EQ_INT(sim_out_write_all(p, "long", 4, err, sizeof err), 0);
+    TST_EQ_INT(entries(), 1);
+}
+
+/* Standard output, in a child whose stdout is a file, then /dev/full. */
+static void t_stdout(void)
+{
+    tst_rmtree(dir);
+    char p[400];
+    path_in(p, sizeof p, "stdout.txt");
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+        int fd = open(p, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd < 0 || dup2(fd, 1) < 0) _exit(3);
+        char err[300];
+        sim_out *o = sim_out_open("-", err, sizeof err);
+        if (!o || sim_out_file(o) != stdout) _exit(4);
+        fputs("first ", sim_out_file(o));
+        if (sim_out_close(o, err, sizeof err)) _exit(5);
+        /* stdout is still open after close. */
+        if (fputs("second\n", stdout) < 0 || sim_out_stdout_check(err, sizeof err)) _exit(6);
+        int full = open("/dev/full", O_WRONLY);
+        if (full < 0) _exit(0);         /* the first half was checked */
+        fflush(stdout);
+        dup2(full, 1);
+        printf("lost");
+        if (sim_out_stdout_check(err, sizeof err) != -1 || !strstr(err, strerror(ENOSPC))) _exit(7);
+        o = sim_out_open("-", err, sizeof err);
+        if (!o) _exit(8);
+        fputs("lost too", sim_out_file(o));
+        if (sim_out_close(o, err, sizeof err) != -1) _exit(9);
+        _exit(0);
+    }
+    TST_CHECK(pid > 0, "fork");
+    if (pid <= 0) return;
+    int status = 0;
+    waitpid(pid, &status, 0);
+    TST_CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0, "child status %d", WEXITSTATUS(status));
+    char buf[64];
+    TST_EQ_INT(slurp(p, buf, sizeof buf), 13);
+    TST_EQ_STR(buf, "first second\n");
+}
+
+/* A child opens a file, writes, confirms its temporary exists (through a
+ * pipe), then dies by sig: nothing may be left in the folder. */
+static void killed_child(int sig)
+{
+    tst_rmtree(dir);
+    int fds[2];
+    TST_CHECK(pipe(fds) == 0, "pipe");
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fds[0]);
+        sim_out_install_signals();
+        char p[400], err[300];
+        path_in(p, sizeof p, "big.vcd");
+        sim_out *o = sim_out_open(p, err, sizeof err);
+        if (!o) _exit(3);
+        for (int i = 0; i < 100000; i++) fprintf(sim_out_file(o), "#%d\n", i);
+        fflush(sim_out_file(o));
+        char seen = has_temp() ? '1' : '0';
+        if (write(fds[1], &seen, 1) != 1) _exit(4);
+        raise(sig);
+        _exit(5);                       /* not reached: the signal kills */
+    }
+    TST_CHECK(pid > 0, "fork");
+    if (pid <= 0) return;
+    close(fds[1]);
+    char seen = 0;
+    TST_CHECK(read(fds[0], &seen, 1) == 1 && seen == '1', "the child had a temporary (%c)", seen);
+    close(fds[0]);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    TST_CHECK(WIFSIGNALED(status) && WTERMSIG(status) == sig, "died by signal %d (status %#x)", sig, status);
+    TST_EQ_INT(entries(), 0);
+}
+
+static void t_sigterm(void) { killed_child(SIGTERM); }
+static void t_sigint(void)  { killed_child(SIGINT); }
+static void t_sighup(void)  { killed_child(SIGHUP); }
+
+/* A signal from outside (kill with the child's pid) while it writes. */
+static void t_kill_from_outside(void)
+{
+    tst_rmtree(dir);
+    int fds[2];
+    TST_CHECK(pipe(fds) == 0, "pipe");
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fds[0]);
+        sim_out_install_signals();
+        char p[400], err[300];
+        path_in(p, sizeof p, "endless.csv");
+        sim_out *o = sim_out_open(p, err, sizeof err);
+        if (!o) _exit(3);
+        if (write(fds[1], "g", 1) != 1) _exit(4);
+        for (unsigned long i = 0;; i++) {
+            fprintf(sim_out_file(o), "%lu\n", i);
+            if (i % 100000 == 0) { sim_out_abort(o); if (!(o = sim_out_open(p, err, sizeof err))) _exit(6); }
+        }
+    }
+    TST_CHECK(pid > 0, "fork");
+    if (pid <= 0) return;
+    close(fds[1]);
+    char go;
+    TST_CHECK(read(fds[0], &go, 1) == 1, "child started");
+    close(fds[0]);
+    struct timespec ts = { 0, 50000000 };   /* let it write a while */
+    nanosleep(&ts, NULL);
+    kill(pid, SIGTERM);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    TST_CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM, "status %#x", status);
+    TST_EQ_INT(entries(), 0);
+}
+
+/* Sweeps write from several threads at once. */
+typedef struct { int k; int rc; } job;
+static void *writer(void *arg)
+{
+    job *j = arg;
+    char p[400], err[300], name[32], text[64];
+    for (int r = 0; r < 50 && !j->rc; r++) {
+        snprintf(name, sizeof name, "t%d.txt", j->k);
+        path_in(p, sizeof p, name);
+        snprintf(text, sizeof text, "thread %d round %d\n", j->k, r);
+        j->rc = sim_out_write_all(p, text, strlen(text), err, sizeof err);
+    }
+    return NULL;
+}
+
+static void t_threads(void)
+{
+    tst_rmtree(dir);
+    enum { N = 8 };
+    pthread_t th[N];
+    job jobs[N];
+    for (int k = 0; k < N; k++) { jobs[k] = (job){ k, 0 }; pthread_create(&th[k], NULL, writer, &jobs[k]); }
+    for (int k = 0; k < N; k++) pthread_join(th[k], NULL);
+    for (int k = 0; k < N; k++) {
+        TST_EQ_INT(jobs[k].rc, 0);
+        char p[400], name[32], buf[64], want[64];
+        snprintf(name, sizeof name, "t%d.txt", k);
+        path_in(p, sizeof p, name);
+        snprintf(want, sizeof want, "thread %d round 49\n", k);
+        slurp(p, buf, sizeof buf);
+        TST_EQ_STR(buf, want);
+    }
+    TST_EQ_INT(entries(), N);
+}
+
+int main(void)
+{
+    umask(UMASK);
+    snprintf(dir, sizeof dir, "/tmp/shadesim-test-out-%ld", (long)getpid());
+    mkdir(dir, 0700);
+    TST_RUN(t_new_path);
+    TST_RUN(t_replace_regular);
+    TST_RUN(t_symlink);
+    TST_RUN(t_devnull);
+    TST_RUN(t_devfull);
+    TST_RUN(t_fifo);
+    TST_RUN(t_rename_fails);
+    TST_RUN(t_file_too_big);
+    TST_RUN(t_bad_paths);
+    TST_RUN(t_stdout);
+    TST_RUN(t_sigterm);
+    TST_RUN(t_sigint);
+    TST_RUN(t_sighup);
+    TST_RUN(t_kill_from_outside);
+    TST_RUN(t_threads);
+    tst_rmtree(dir);
+    rmdir(dir);
+    TST_EXIT();
+}
