@@ -23,3 +23,17 @@ double sim_area_mul(int wa, int wb)
 
 double sim_area_round(int w) { return w * SIM_GE_HA; }
 double sim_area_sat(int w, int extra) { return extra > 0 ? w * SIM_GE_MUX2 + extra * SIM_GE_XOR2 : 0.0; }
+
+double sim_area_rom(const int64_t *words, int n, int w)
+{
+    if (n <= 0 || w <= 0) return 0.0;
+    int a = 0;
+    while (a < 31 && (1 << a) < n) a++;          /* address bits */
+    double ge = a * SIM_GE_INV + (a > 1 ? (double)n * (a - 1) * SIM_GE_AND2 : 0.0);
+    for (int b = 0; b < w && b < 64; b++) {
+        int ones = 0;
+        for (int i = 0; i < n; i++) ones += (int)(((uint64_t)words[i] >> b) & 1u);
+        if (ones > 1) ge += (ones - 1) * SIM_GE_OR2;
+    }
+    return ge;
+}

@@ -6,10 +6,12 @@
  */
 #ifndef SIM_AREA_H
 #define SIM_AREA_H
+#include <stdint.h>
 
 #define SIM_GE_NAND2 1.00   /* NAND2_X1  0.798 um^2 */
 #define SIM_GE_INV   0.67   /* INV_X1    0.532 um^2 */
 #define SIM_GE_AND2  1.33   /* AND2_X1   1.064 um^2 */
+#define SIM_GE_OR2   1.33   /* OR2_X1    1.064 um^2 */
 #define SIM_GE_XOR2  2.00   /* XOR2_X1   1.596 um^2 */
 #define SIM_GE_MUX2  2.33   /* MUX2_X1   1.862 um^2 */
 #define SIM_GE_HA    3.33   /* HA_X1     2.660 um^2 */
@@ -30,4 +32,10 @@ double sim_area_mul(int wa, int wb);                   /* array: wa*wb AND2 + (w
  * (extra XOR2 to detect, a MUX2 per bit to clamp). */
 double sim_area_round(int w);
 double sim_area_sat(int w, int extra);
+/* A constant table (ROM) of n words of w bits, words[0..n-1] its raw
+ * contents, as logic: a one-hot address decoder (an AND of the address
+ * bits a word line, with the address inverted once) and, per output bit,
+ * an OR tree over the word lines whose word has a 1 there. Synthesis would
+ * minimize further: an upper estimate (docs/area.md). */
+double sim_area_rom(const int64_t *words, int n, int w);
 #endif

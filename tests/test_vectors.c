@@ -671,9 +671,9 @@ static void t_file_bad(void)
         "too long");
     BAD("no_names.vec", "# shadesim vectors 1\n# unit: horner3\n# inputs:\n", 3, "no inputs named");
     BAD("dup_name.vec", "# shadesim vectors 1\n# unit: horner3\n# inputs: a a c d t\n", 3, "duplicate");
-    /* Too many ports: 41 inputs. */
+    /* Too many ports: VEC_MAX_PORTS + 1 inputs. */
     char many[1024] = "# shadesim vectors 1\n# unit: horner3\n# inputs:";
-    for (int i = 0; i < 41; i++) snprintf(many + strlen(many), sizeof many - strlen(many), " p%d", i);
+    for (int i = 0; i < VEC_MAX_PORTS + 1; i++) snprintf(many + strlen(many), sizeof many - strlen(many), " p%d", i);
     strcat(many, "\n");
     bad_case("many_ports.vec", many, strlen(many), 3, "too many inputs", NULL);
     /* A line over 64 KiB. */

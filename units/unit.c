@@ -8,8 +8,9 @@
 /* Each module exports a NULL-terminated table of its units. */
 extern const unit_desc *const units_seed000[];   /* horner, div3, coef, interp */
 extern const unit_desc *const units_brdf[];      /* BRDF approximation units */
+extern const unit_desc *const units_span[];      /* span interpolation, any L (unit_span.c) */
 
-static const unit_desc *const *const tables[] = { units_seed000, units_brdf };
+static const unit_desc *const *const tables[] = { units_seed000, units_brdf, units_span };
 #define NTABLES (sizeof tables / sizeof tables[0])
 
 size_t unit_count(void)

@@ -32,7 +32,8 @@ typedef struct unit_cfg {
     int    schedule;    /* index into the unit's schedules */
     int    terms;       /* div3: subtracted (paper) or added (quarter) terms */
     int    series;      /* div3: 0 = paper x/2 - x/8 - ..., 1 = quarter x/4 + x/16 + ... */
-    int    L;           /* interp: pixels per interval (power of two) */
+    int    L;           /* interp: pixels per interval (power of two); span: 2..64 */
+    int    nodes;       /* span3, span23: cubic node set, 0 = N1, 1 = N2 */
     int    g;           /* powg, d_approx: power (power of two) */
     int    n;           /* pow_n exponent; schlick's n */
     double m;           /* d_approx roughness */

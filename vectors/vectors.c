@@ -7,8 +7,9 @@
 /* Each module exports a NULL-terminated table of its models. */
 extern const vec_model *const vec_models_seed000[];   /* ref_seed000.c */
 extern const vec_model *const vec_models_brdf[];      /* ref_brdf_models.c */
+extern const vec_model *const vec_models_span[];      /* ref_span.c */
 
-static const vec_model *const *const tables[] = { vec_models_seed000, vec_models_brdf };
+static const vec_model *const *const tables[] = { vec_models_seed000, vec_models_brdf, vec_models_span };
 
 size_t vec_model_count(void)
 {
@@ -35,7 +36,7 @@ const vec_model *vec_model_find(const char *name)
 
 void vec_params_default(vec_params *p)
 {
-    p->L = 8; p->g = 16; p->n = 32; p->m = 0.2; p->alpha = 0.2;
+    p->L = 8; p->g = 16; p->n = 32; p->m = 0.2; p->alpha = 0.2; p->nodes = 0;
 }
 
 void vec_set_init(vec_set *s) { memset(s, 0, sizeof *s); }

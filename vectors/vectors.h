@@ -15,7 +15,7 @@
 #include <stdint.h>
 #include <stddef.h>
 
-#define VEC_MAX_PORTS 40    /* inputs or outputs of one vector */
+#define VEC_MAX_PORTS 64    /* inputs or outputs of one vector (span units: L <= 64 pixels) */
 
 /* Parameters a model may take (same names as the unit's parameters);
  * a model ignores those it does not use. */
@@ -25,6 +25,7 @@ typedef struct vec_params {
     int n;          /* exponent for pow_n; refractive-like n for schlick */
     double m;       /* Beckmann roughness for d_approx */
     double alpha;   /* Ward roughness */
+    int nodes;      /* span3, span23: cubic node set, 0 = N1, 1 = N2 */
 } vec_params;
 void vec_params_default(vec_params *p);
 
