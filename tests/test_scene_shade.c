@@ -494,7 +494,7 @@ static void desc_every_key(void)
     TST_CHECK(p != NULL, "cannot write");
     if (!p) return;
     scn_desc d;
-    char err[600], want[700];
+    char err[600], want[800];
     int rc = scn_desc_read(p, &d, err, sizeof err);
     TST_EQ_INT(rc, 0);
     if (rc) { printf("  %s\n", err); return; }
@@ -648,7 +648,7 @@ static void desc_errors(void)
         { "mesh\n", 2, "mesh" },
         { "shadesim-scene 1\n", 2, "version line" },
     };
-    char err[600], want[700], name[32];
+    char err[600], want[800], name[32];
     for (size_t i = 0; i < sizeof C / sizeof C[0]; i++) {
         char body[600];
         snprintf(body, sizeof body, "shadesim-scene 1\n%s", C[i].body);
@@ -690,7 +690,7 @@ static void desc_version(void)
         { "shadesim-scene\n", 1, "version line" },
         { "shadesim-scene 1 1\n", 1, "version line" },
     };
-    char err[600], want[700];
+    char err[600], want[800];
     for (size_t i = 0; i < sizeof C / sizeof C[0]; i++) {
         const char *p = write_tmp("ver.scene", C[i].body);
         scn_desc d;
@@ -739,7 +739,7 @@ static void desc_garbage(void)
     fclose(f);
     scn_desc d;
     TST_EQ_INT(scn_desc_read(path, &d, err, sizeof err), -1);
-    char want[720];
+    char want[800];
     snprintf(want, sizeof want, "%s:2: line longer", path);
     TST_CHECK(!strncmp(err, want, strlen(want)), "%s", err);
     f = fopen(path, "wb");
@@ -761,7 +761,7 @@ static void desc_garbage(void)
 
 static void desc_mesh_paths(void)
 {
-    char err[600], want[700];
+    char err[600], want[800];
     scn_desc d;
     const char *p = write_tmp("m1.scene", "shadesim-scene 1\nmesh torus\n");
     TST_EQ_INT(scn_desc_read(p, &d, err, sizeof err), 0);
