@@ -566,6 +566,14 @@ static void desc_roundtrip(void)
             d.view.light[0].v[0] = 1.0 / 3.0;
             d.view.nlights = 0;
             scn_desc_sync(&d);
+            /* directions normalized when set must read back bit for bit */
+            for (int i = 1; i <= 3; i++) {
+                char txt[64];
+                snprintf(txt, sizeof txt, "directional %d %d %d 0.%d", i, 2 * i + 1, 7 - i, i);
+                TST_EQ_INT(scn_desc_set(&d, "light", txt, err, sizeof err), 0);
+                TST_EQ_INT(scn_desc_set(&d, "heldout-light", txt, err, sizeof err), 0);
+            }
+            TST_EQ_INT(d.heldout.nlights, 3);
         }
         TST_EQ_INT(write_desc(&d, "w1.scene", t1, sizeof t1), 0);
         snprintf(p2, sizeof p2, "%s/w1.scene", tdir);
@@ -700,6 +708,12 @@ static void desc_version(void)
         TST_CHECK(strstr(err, C[i].what) != NULL, "case %zu: \"%s\" should say \"%s\"", i, err,
                   C[i].what);
     }
+    /* CR LF line ends and tabs are fine. */
+    const char *q = write_tmp("crlf.scene", "shadesim-scene 1\r\nkd\t0.5\r\nmesh sphere\r\n");
+    scn_desc c;
+    TST_EQ_INT(scn_desc_read(q, &c, err, sizeof err), 0);
+    TST_NEAR(c.mat.kd, 0.5, 0);
+    TST_EQ_STR(c.mesh, "sphere");
     /* Just the version line: the defaults. */
     const char *p = write_tmp("ver.scene", "shadesim-scene 1");
     scn_desc d, def;
