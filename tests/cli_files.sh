@@ -8,6 +8,7 @@
 # the test may (root), which is the case where replacing it did damage.
 PREFIX=cli_files.
 . tests/lib_cli.sh
+case $S in /*) ;; */*) S=$(pwd)/$S ;; esac    # some checks run in another folder
 
 # expect2 NAME CMD...: exit 2 with exactly one "shadesim: " line on stderr.
 expect2() {
