@@ -1,0 +1,313 @@
+/* test_scene_search.c - the scene format search, the scene sweep and the
+ * scene claims, on small scenes (a 40x40 sphere, a 48x48 face).
+ *
+ * Every figure the code under test reports is re-derived here from
+ * independent renders: NMSE recomputed from the two images, the
+ * "smallest" property checked by removing one more bit from each signal,
+ * the held-out verdict by rendering the held-out view ourselves. */
+#include "tests/tst.h"
+#include "testbench/tb_scene_search.h"
+#include "testbench/tb_scene_claims.h"
+#include "testbench/tb.h"
+#include <sys/stat.h>
+
+#define SCRATCH "/tmp/shadesim_test_scene_search"
+
+static scn_desc D;
+static scn_mesh M;
+static int have_scene;
+
+static int setup(void)
+{
+    char err[300];
+    if (have_scene) return 1;
+    if (scn_desc_builtin("sphere", &D)) return 0;
+    D.width = D.height = 40;
+    if (scn_mesh_builtin(D.mesh, D.detail, &M, err, sizeof err)) { printf("  %s\n", err); return 0; }
+    have_scene = 1;
+    return 1;
+}
+
+/* NMSE over covered pixels, from the images alone. */
+static double nmse_of(const tb_scene_result *r)
+{
+    double se = 0, sr = 0;
+    for (int i = 0; i < r->w * r->h; i++) {
+        if (!r->deg[i]) continue;
+        double e = r->hw[i] - r->ref[i];
+        se += e * e;
+        sr += r->ref[i] * r->ref[i];
+    }
+    return sr > 0 ? se / sr : 0;
+}
+
+/* Render d's view (or held-out view) at formats f from scratch. */
+static int render(const scn_desc *d, const unit_fmts *f, int heldout, double *nmse, uint64_t *ovf)
+{
+    char err[300];
+    tb_scene_opts o = { 1, heldout, NULL, f };
+    tb_scene_result r;
+    memset(&r, 0, sizeof r);
+    int rc = tb_scene_render(d, &M, &o, &r, err, sizeof err);
+    if (rc == TB_OK) {
+        *nmse = nmse_of(&r);
+        *ovf = r.hwst.overflows;
+    } else printf("  render: %s\n", err);
+    tb_scene_free(&r);
+    return rc;
+}
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    static char buf[1 << 16];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = 0;
+    return buf;
+}
+
+static double jnum_of(const char *js, const char *key)
+{
+    char k[64];
+    snprintf(k, sizeof k, "\"%s\": ", key);
+    const char *p = strstr(js, k);
+    return p ? strtod(p + strlen(k), NULL) : NAN;
+}
+
+static double target_for(void)
+{
+    /* Twice the error of a wide datapath: met by some width, not by all. */
+    scn_desc w = D;
+    w.fmt_width = 28;
+    double e;
+    uint64_t ov;
+    if (render(&w, NULL, 0, &e, &ov) != TB_OK) return NAN;
+    return 2 * e + 1e-9;
+}
+
+static void test_search_smallest_and_heldout(void)
+{
+    if (!setup()) TST_SKIP("no built-in sphere scene");
+    double target = target_for();
+    TST_CHECK(isfinite(target), "wide render failed");
+    mkdir(SCRATCH, 0777);
+    tst_rmtree(SCRATCH);
+    char err[300];
+    FILE *out = fopen("/dev/null", "w");
+    int rc = tb_scene_search(&D, &M, 2, target, SCRATCH, 1, out, err, sizeof err);
+    fclose(out);
+    TST_CHECK(rc == TB_OK || rc == TB_FAIL, "rc %d: %s", rc, err);
+    char *js = slurp(SCRATCH "/search.json");
+    TST_CHECK(js != NULL, "no search.json");
+    if (!js) return;
+    TST_CHECK(strstr(js, "\"uniform_met\": true") != NULL, "no uniform width met %g", target);
+    int wu = (int)jnum_of(js, "uniform_width");
+    TST_CHECK(wu >= 4 && wu <= 48, "uniform width %d", wu);
+
+    /* The uniform width meets the target, one bit less does not. */
+    scn_desc dw = D;
+    double e;
+    uint64_t ov;
+    dw.fmt_width = wu;
+    TST_EQ_INT(render(&dw, NULL, 0, &e, &ov), TB_OK);
+    TST_CHECK(e <= target && ov == 0, "W=%d: NMSE %g ovf %llu", wu, e, (unsigned long long)ov);
+    TST_NEAR(jnum_of(js, "uniform_nmse"), e, 1e-8 * e + 1e-300);
+    dw.fmt_width = wu - 1;
+    int rc1 = render(&dw, NULL, 0, &e, &ov);
+    TST_CHECK(rc1 != TB_OK || e > target || ov > 0, "W=%d also meets (NMSE %g)", wu - 1, e);
+
+    /* The found formats, read back from the JSON. */
+    dw.fmt_width = wu;
+    const unit_desc *u;
+    unit_cfg cfg;
+    unit_fmts f;
+    TST_EQ_INT(tb_scene_unit(&dw, &u, &cfg, &f, err, sizeof err), 0);
+    int nsig = 0, trimmed = 0;
+    for (const char *p = strstr(js, "{\"name\": \""); p; p = strstr(p + 1, "{\"name\": \"")) {
+        char name[32], uni[16], fnd[16];
+        if (sscanf(p, "{\"name\": \"%31[^\"]\", \"uniform\": \"%15[^\"]\", \"found\": \"%15[^\"]\"", name, uni,
+                   fnd) != 3) continue;
+        int i = unit_sig_index(u, name);
+        TST_CHECK(i >= 0, "unknown signal %s", name);
+        if (i < 0) continue;
+        sim_fmt a, b;
+        TST_EQ_INT(sim_fmt_parse(uni, &a, err, sizeof err), 0);
+        TST_EQ_INT(sim_fmt_parse(fnd, &b, err, sizeof err), 0);
+        TST_CHECK(a.width == f.f[i].width && a.fbits == f.f[i].fbits, "%s: uniform %s is not the rule's", name, uni);
+        TST_CHECK(b.ibits == a.ibits && b.fbits <= a.fbits, "%s: %s -> %s", name, uni, fnd);
+        f.f[i] = b;
+        nsig++;
+        trimmed += b.fbits < a.fbits;
+    }
+    TST_CHECK(nsig > 3, "only %d signals in the JSON", nsig);
+    TST_CHECK(trimmed > 0, "nothing trimmed");
+
+    /* The found formats meet the target on the view (NMSE from the images). */
+    TST_EQ_INT(render(&D, &f, 0, &e, &ov), TB_OK);
+    TST_CHECK(e <= target && ov == 0, "found formats: NMSE %g (target %g), %llu overflows", e, target,
+              (unsigned long long)ov);
+    TST_NEAR(jnum_of(js, "nmse"), e, 1e-8 * e + 1e-300);
+
+    /* Smallest: one more fraction bit off any signal breaks the target. */
+    int checked = 0;
+    for (int i = 0; i < u->nsigs; i++) {
+        sim_fmt b = f.f[i];
+        if (!b.width || !unit_sig_used(u, i, cfg.schedule) || b.fbits <= (b.ibits >= 1 ? 0 : 1)) continue;
+        unit_fmts g = f;
+        g.f[i].fbits--;
+        g.f[i].width--;
+        int r2 = render(&D, &g, 0, &e, &ov);
+        TST_CHECK(r2 != TB_OK || e > target || ov > 0, "signal %s: one bit less still meets (NMSE %g)",
+                  u->sigs[i].name, e);
+        checked++;
+    }
+    TST_CHECK(checked > 0, "no signal to check");
+
+    /* The held-out verdict. */
+    TST_EQ_INT(render(&D, &f, 1, &e, &ov), TB_OK);
+    int meets = e <= target && ov == 0;
+    TST_EQ_INT(rc, meets ? TB_OK : TB_FAIL);
+    TST_CHECK(strstr(js, meets ? "\"heldout_meets\": true" : "\"heldout_meets\": false") != NULL, "json verdict");
+    TST_NEAR(jnum_of(js, "heldout_nmse"), e, 1e-8 * e + 1e-300);
+    struct stat st;
+    TST_CHECK(stat(SCRATCH "/search.txt", &st) == 0 && st.st_size > 0, "no search.txt");
+}
+
+static void test_search_unmeetable(void)
+{
+    if (!setup()) TST_SKIP("no built-in sphere scene");
+    /* Below the method's own error no width helps: TB_FAIL, said plainly. */
+    char err[300], buf[4096] = "";
+    FILE *out = fmemopen(buf, sizeof buf - 1, "w");
+    int rc = tb_scene_search(&D, &M, 1, 1e-30, NULL, 0, out, err, sizeof err);
+    fclose(out);
+    TST_EQ_INT(rc, TB_FAIL);
+    TST_CHECK(strstr(buf, "no uniform width") != NULL, "summary: %s", buf);
+    TST_EQ_INT(tb_scene_search(&D, &M, 1, -1, NULL, 0, stdout, err, sizeof err), TB_BADINPUT);
+}
+
+static size_t count_lines(const char *s)
+{
+    size_t n = 0;
+    for (; *s; s++) n += *s == '\n';
+    return n;
+}
+
+static void test_sweep_csv(void)
+{
+    if (!setup()) TST_SKIP("no built-in sphere scene");
+    const char *spec = "L=4,8;policy=quadratic,cubic-n1;terms=3,8;width=12,16";
+    char err[300], *a = NULL, *b = NULL;
+    FILE *out = fopen("/dev/null", "w");
+    for (int j = 1; j <= 2; j++) {
+        char dir[128];
+        snprintf(dir, sizeof dir, SCRATCH "/sweep%d", j);
+        mkdir(SCRATCH, 0777);
+        int rc = tb_scene_sweep(&D, &M, j, spec, dir, 0, out, err, sizeof err);
+        TST_EQ_INT(rc, TB_OK);
+        char p[160];
+        snprintf(p, sizeof p, "%s/sweep.csv", dir);
+        char *s = slurp(p);
+        TST_CHECK(s != NULL, "no %s", p);
+        if (!s) break;
+        if (j == 1) a = strdup(s); else b = strdup(s);
+        snprintf(p, sizeof p, "%s/sweep_ops.svg", dir);
+        struct stat st;
+        TST_CHECK(stat(p, &st) == 0 && st.st_size > 500, "no %s", p);
+        snprintf(p, sizeof p, "%s/sweep_clocks.svg", dir);
+        TST_CHECK(stat(p, &st) == 0 && st.st_size > 500, "no %s", p);
+    }
+    fclose(out);
+    if (a && b) {
+        TST_EQ_INT(count_lines(a), 1 + 2 * 2 * 2 * 2);
+        TST_CHECK(!strcmp(a, b), "sweep.csv differs between -j 1 and -j 2");
+        /* Each row's settings, and its NMSE against an independent render. */
+        const char *line = strchr(a, '\n') + 1;
+        int rows = 0;
+        while (*line) {
+            int cfgi, L, terms, width;
+            char pol[32], sched[16], unit[16], status[16], rest[64];
+            if (sscanf(line, "%d,%31[^,],%d,%d,%d,%15[^,],%15[^,],%15[^,],%63[^,\n]", &cfgi, pol, &L, &terms,
+                       &width, sched, unit, status, rest) < 8) break;
+            TST_EQ_INT(cfgi, rows);
+            TST_EQ_STR(status, "ok");
+            if (rows == 3) {    /* width 12, quadratic, L 8, terms 8 (the last axis fastest) */
+                TST_EQ_INT(width, 12); TST_EQ_STR(pol, "quadratic"); TST_EQ_INT(L, 8); TST_EQ_INT(terms, 8);
+                scn_desc d = D;
+                d.width = D.width;
+                d.policy = SCN_POL_QUADRATIC; d.L = 8; d.terms = 8; d.fmt_width = 12;
+                double e;
+                uint64_t ov;
+                TST_EQ_INT(render(&d, NULL, 0, &e, &ov), TB_OK);
+                const char *c = line;
+                for (int k = 0; k < 9 && c; k++) c = strchr(c, ',') + 1;
+                TST_NEAR(strtod(c, NULL), e, 1e-8 * e + 1e-300);
+            }
+            rows++;
+            line = strchr(line, '\n');
+            if (!line) break;
+            line++;
+        }
+        TST_EQ_INT(rows, 16);
+    }
+    free(a);
+    free(b);
+    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, "L=4;bogus=1", NULL, 0, stdout, err, sizeof err), TB_BADINPUT);
+    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, "policy=cubic", NULL, 0, stdout, err, sizeof err), TB_BADINPUT);
+}
+
+static void test_scene_claims(void)
+{
+    claim_result rows[TB_SCENE_CLAIMS_ROWS];
+    char err[300];
+    size_t n = tb_scene_claims(rows, TB_SCENE_CLAIMS_ROWS, 48, 2, err, sizeof err);
+    if (!n) TST_SKIP("face scene: %.200s", err);
+    TST_EQ_INT(n, 4);
+    TST_EQ_STR(rows[0].id, "scene_nmse_paper");
+    TST_EQ_STR(rows[1].id, "scene_nmse_terms");
+    TST_EQ_STR(rows[2].id, "scene_nmse_auto");
+    TST_EQ_STR(rows[3].id, "scene_speedup");
+    for (size_t i = 0; i < n; i++) {
+        int k = claims_verdict_kind(rows[i].verdict);
+        TST_CHECK(k >= -1, "%s: verdict '%s'", rows[i].id, rows[i].verdict);
+        TST_CHECK(isfinite(rows[i].measured), "%s", rows[i].id);
+    }
+    /* Verdicts follow the numbers. */
+    TST_CHECK((claims_verdict_kind(rows[0].verdict) == 1) == (rows[0].measured <= 1e-4), "%s %g",
+              rows[0].verdict, rows[0].measured);
+    TST_CHECK((claims_verdict_kind(rows[1].verdict) >= 0) == (rows[1].measured <= 1e-4), "%s %g",
+              rows[1].verdict, rows[1].measured);
+    if (claims_verdict_kind(rows[2].verdict) >= 0) TST_CHECK(rows[2].measured <= 1e-4, "%g", rows[2].measured);
+    if (claims_verdict_kind(rows[3].verdict) == 1) TST_CHECK(rows[3].measured >= 3, "%g", rows[3].measured);
+    if (rows[3].measured < 1) TST_EQ_INT(claims_verdict_kind(rows[3].verdict), -1);
+    /* Row (a)'s NMSE from an independent render of the same configuration. */
+    scn_desc d;
+    scn_mesh m;
+    TST_EQ_INT(scn_desc_builtin("face", &d), 0);
+    d.width = d.height = 48;
+    d.policy = SCN_POL_ADAPTIVE_REGION; d.L = 8; d.terms = 3; d.fmt_width = 16;
+    snprintf(d.schedule, sizeof d.schedule, "paper");
+    TST_EQ_INT(scn_mesh_builtin(d.mesh, d.detail, &m, err, sizeof err), 0);
+    tb_scene_opts o = { 1, 0, NULL, NULL };
+    tb_scene_result r;
+    memset(&r, 0, sizeof r);
+    TST_EQ_INT(tb_scene_render(&d, &m, &o, &r, err, sizeof err), TB_OK);
+    TST_NEAR(rows[0].measured, nmse_of(&r), 1e-9 * rows[0].measured + 1e-300);
+    TST_CHECK(rows[3].measured >= r.speedup - 1e-12, "speed-up %g below L 8's %g", rows[3].measured, r.speedup);
+    tb_scene_free(&r);
+    scn_mesh_free(&m);
+}
+
+int main(void)
+{
+    TST_RUN(test_search_smallest_and_heldout);
+    TST_RUN(test_search_unmeetable);
+    TST_RUN(test_sweep_csv);
+    TST_RUN(test_scene_claims);
+    if (have_scene) scn_mesh_free(&M);
+    tst_rmtree(SCRATCH);
+    rmdir(SCRATCH);
+    TST_EXIT();
+}
