@@ -256,10 +256,10 @@ static const struct { bump b; int sym; } face_bumps[] = {
     { { 0.00, -0.265,0.05, 0.03, -0.015 }, 0 },   /* under the nose */
     { { 0.33, -0.04, 0.10, 0.07,  0.050 }, 1 },   /* cheek bones */
     { { 0.30, -0.30, 0.08, 0.10, -0.025 }, 1 },   /* cheek hollows */
-    { { 0.00, -0.36, 0.13, 0.03,  0.045 }, 0 },   /* upper lip */
-    { { 0.00, -0.45, 0.11, 0.03,  0.045 }, 0 },   /* lower lip */
-    { { 0.00, -0.405,0.12, 0.02, -0.015 }, 0 },   /* the line between the lips */
-    { { 0.14, -0.405,0.03, 0.03, -0.020 }, 1 },   /* mouth corners */
+    { { 0.00, -0.36, 0.13, 0.035, 0.045 }, 0 },   /* upper lip */
+    { { 0.00, -0.45, 0.11, 0.035, 0.045 }, 0 },   /* lower lip */
+    { { 0.00, -0.405,0.12, 0.028,-0.012 }, 0 },   /* the line between the lips */
+    { { 0.14, -0.405,0.035,0.035,-0.020 }, 1 },   /* mouth corners */
     { { 0.00, -0.56, 0.10, 0.03, -0.020 }, 0 },   /* dent under the lower lip */
     { { 0.00, -0.70, 0.12, 0.08,  0.050 }, 0 },   /* chin */
     { { 0.48, -0.52, 0.08, 0.10,  0.020 }, 1 },   /* jaw angles */
@@ -295,7 +295,7 @@ static double face_height(double X, double Y)
      * tip (Y = -0.16), widening, and falling off fast below the tip
      * (the squared max() keeps it C1). */
     double rise = smoother((0.22 - Y) / 0.38);
-    double below = Y < -0.16 ? (-0.16 - Y) / 0.035 : 0;
+    double below = Y < -0.16 ? (-0.16 - Y) / 0.05 : 0;
     double sx = 0.035 + 0.025 * rise;
     h += (0.03 + 0.14 * rise) * smoother((0.30 - Y) / 0.12) * exp(-0.5 * below * below)
          * exp(-0.5 * (X / sx) * (X / sx));

@@ -1,0 +1,332 @@
+/* scene_obj.c - Wavefront OBJ reader (see scene.h).
+ *
+ * Read: "v x y z" (extra numbers, w or a colour, allowed and dropped),
+ * "vn x y z", "f" with corners "v", "v/vt", "v//vn" or "v/vt/vn"
+ * (positive indices count from 1, negative ones back from the last
+ * element read so far), polygons fanned into triangles (c0 ci ci+1).
+ * "vt" lines are counted (face texture indices are range-checked) and,
+ * like every other kind (o, g, s, usemtl, mtllib, l, p, ...), ignored and
+ * counted in m->ignored. "#" starts a comment.
+ *
+ * A position referenced with several normals (or with and without one)
+ * becomes several vertices: the mesh keeps one normal per vertex. A corner
+ * without a normal gets the area-weighted normal of its position over all
+ * faces of the file (scn_vertex_normals). A given normal is normalized;
+ * a zero one falls back to the computed normal. Positions no face uses
+ * are dropped. Region 0 everywhere.
+ *
+ * Errors "PATH:LINE: what" (or "PATH: what" for the whole file): an
+ * index 0 or out of range, an unparsable or non-finite number, a v or vn
+ * with fewer than 3 numbers, a face with fewer than 3 corners, a NUL or
+ * control byte (binary data), fewer than 3 vertices or no face at all.
+ * Files over 256 MiB are refused before reading (by size for regular
+ * files, while reading for pipes).
+ */
+#include "scene/scene_geom.h"
+#include <errno.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define OBJ_MAX_BYTES ((off_t)256 << 20)
+#define NONE UINT32_MAX
+
+/* A growing array of fixed-size elements. */
+typedef struct { void *p; size_t n, cap, el; } vec;
+
+static void *vec_push(vec *v)
+{
+    if (v->n == v->cap) {
+        size_t nc = v->cap ? 2 * v->cap : 256;
+        if (nc > SIZE_MAX / v->el) return NULL;
+        void *np = realloc(v->p, nc * v->el);
+        if (!np) return NULL;
+        v->p = np;
+        v->cap = nc;
+    }
+    return (char *)v->p + v->el * v->n++;
+}
+
+typedef struct {
+    const char *path;
+    size_t      line;
+    char       *err;
+    size_t      errlen;
+} ctx;
+
+static int fail(ctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int fail(ctx *c, const char *fmt, ...)
+{
+    char what[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    if (c->line) snprintf(c->err, c->errlen, "%s:%zu: %s", c->path, c->line, what);
+    else snprintf(c->err, c->errlen, "%s: %s", c->path, what);
+    return -1;
+}
+
+static int is_space(char ch)
+{
+    return ch == ' ' || ch == '\t' || ch == '\r' || ch == '\v' || ch == '\f';
+}
+
+/* Next whitespace-separated token of *s, NUL-terminated in place. */
+static char *token(char **s)
+{
+    char *p = *s;
+    while (is_space(*p)) p++;
+    if (!*p) { *s = p; return NULL; }
+    char *t = p;
+    while (*p && !is_space(*p)) p++;
+    if (*p) *p++ = 0;
+    *s = p;
+    return t;
+}
+
+/* "v"/"vn": at least 3 numbers (v: up to 7), all finite. */
+static int numbers(ctx *c, char *s, const char *kw, int maxn, double out[3])
+{
+    int k = 0;
+    char *t;
+    while ((t = token(&s))) {
+        if (k == maxn)
+            return fail(c, "%s: more than %d numbers", kw, maxn);
+        char *end;
+        errno = 0;
+        double x = strtod(t, &end);
+        if (end == t || *end)
+            return fail(c, "%s: '%.40s' is not a number", kw, t);
+        if (!isfinite(x))
+            return fail(c, "%s: '%.40s' is not a finite number", kw, t);
+        if (k < 3) out[k] = x;
+        k++;
+    }
+    if (k < 3) return fail(c, "%s: needs 3 numbers, got %d", kw, k);
+    return 0;
+}
+
+/* One index of a corner: count elements so far; 0-based result. */
+static int index_of(ctx *c, const char *t, char **end, const char *what, size_t count, uint32_t *out)
+{
+    errno = 0;
+    long long v = strtoll(t, end, 10);
+    if (*end == t)
+        return fail(c, "face: missing or bad %s index", what);
+    if (v == 0)
+        return fail(c, "face: %s index 0 (OBJ indices start at 1)", what);
+    if (errno == ERANGE || (v > 0 && (unsigned long long)v > count) ||
+        (v < 0 && (v == LLONG_MIN || (unsigned long long)-v > count)))
+        return fail(c, "face: %s index %lld out of range (%zu so far)", what, v, count);
+    *out = (uint32_t)(v > 0 ? v - 1 : (long long)count + v);
+    return 0;
+}
+
+typedef struct { uint32_t v[3], n[3]; } otri;
+
+static int face(ctx *c, char *s, size_t nv, size_t nvt, size_t nvn, vec *tris)
+{
+    uint32_t cv[3] = { 0 }, cn[3] = { 0 };
+    int k = 0;
+    char *t;
+    while ((t = token(&s))) {
+        uint32_t vi, ni = NONE, ti;
+        char *e;
+        if (index_of(c, t, &e, "vertex", nv, &vi)) return -1;
+        if (*e == '/') {
+            if (e[1] == '/') {                   /* v//vn */
+                if (index_of(c, e + 2, &e, "normal", nvn, &ni)) return -1;
+            } else {                             /* v/vt or v/vt/vn */
+                if (index_of(c, e + 1, &e, "texture", nvt, &ti)) return -1;
+                if (*e == '/' && index_of(c, e + 1, &e, "normal", nvn, &ni)) return -1;
+            }
+        }
+        if (*e)
+            return fail(c, "face: bad corner '%.40s' (v, v/vt, v//vn or v/vt/vn)", t);
+        if (k < 2) {
+            cv[k] = vi;
+            cn[k] = ni;
+        } else {
+            cv[2] = vi;
+            cn[2] = ni;
+            otri *o = vec_push(tris);
+            if (!o) return fail(c, "out of memory");
+            memcpy(o->v, cv, sizeof cv);
+            memcpy(o->n, cn, sizeof cn);
+            cv[1] = vi;                           /* fan: c0 ci ci+1 */
+            cn[1] = ni;
+        }
+        k++;
+    }
+    if (k < 3) return fail(c, "face with %d corner%s: needs at least 3", k, k == 1 ? "" : "s");
+    return 0;
+}
+
+/* Build the mesh: split positions by normal index, compute missing normals. */
+static int build(ctx *c, const vec *vp, const vec *vn, const vec *tris, scn_mesh *m)
+{
+    const double (*P)[3] = vp->p, (*N)[3] = vn->p;
+    const otri *T = tris->p;
+    size_t nt = tris->n, np = vp->n;
+    double (*auto_n)[3] = malloc((np ? np : 1) * sizeof *auto_n);
+    uint32_t (*tv)[3] = malloc((nt ? nt : 1) * sizeof *tv);
+    size_t *head = malloc((np ? np : 1) * sizeof *head);
+    /* Entries of a per-position list: (normal index, output vertex, next). */
+    struct ent { uint32_t n, out; size_t next; } *ent = malloc(3 * (nt ? nt : 1) * sizeof *ent);
+    int rc = -1;
+    if (!auto_n || !tv || !head || !ent) goto oom;
+    for (size_t t = 0; t < nt; t++) memcpy(tv[t], T[t].v, sizeof tv[t]);
+    scn_vertex_normals(P, np, (const uint32_t (*)[3])tv, nt, auto_n);
+    for (size_t i = 0; i < np; i++) head[i] = SIZE_MAX;
+    size_t nout = 0;
+    for (size_t t = 0; t < nt; t++)
+        for (int k = 0; k < 3; k++) {
+            uint32_t v = T[t].v[k], n = T[t].n[k];
+            size_t e = head[v];
+            while (e != SIZE_MAX && ent[e].n != n) e = ent[e].next;
+            if (e == SIZE_MAX) {
+                e = nout;
+                ent[e].n = n;
+                ent[e].out = (uint32_t)nout++;
+                ent[e].next = head[v];
+                head[v] = e;
+            }
+            tv[t][k] = ent[e].out;
+        }
+    if (nout > UINT32_MAX || scn_mesh_alloc(m, nout, nt)) goto oom;
+    for (size_t v = 0; v < np; v++)
+        for (size_t e = head[v]; e != SIZE_MAX; e = ent[e].next) {
+            uint32_t o = ent[e].out;
+            memcpy(m->pos[o], P[v], sizeof m->pos[o]);
+            if (ent[e].n == NONE) {
+                memcpy(m->nrm[o], auto_n[v], sizeof m->nrm[o]);
+            } else {
+                memcpy(m->nrm[o], N[ent[e].n], sizeof m->nrm[o]);
+                scn_normalize_or(m->nrm[o], auto_n[v]);
+            }
+        }
+    memcpy(m->tri, tv, nt * sizeof *tv);
+    rc = 0;
+    goto done;
+oom:
+    c->line = 0;
+    fail(c, "out of memory");
+done:
+    free(auto_n);
+    free(tv);
+    free(head);
+    free(ent);
+    return rc;
+}
+
+int scn_mesh_obj(const char *path, scn_mesh *m, char *err, size_t errlen)
+{
+    memset(m, 0, sizeof *m);
+    ctx c = { path, 0, err, errlen };
+    int fd = open(path, O_RDONLY);
+    if (fd < 0) return fail(&c, "cannot open: %s", strerror(errno));
+    struct stat st;
+    if (fstat(fd, &st)) {
+        close(fd);
+        return fail(&c, "cannot stat: %s", strerror(errno));
+    }
+    if (S_ISDIR(st.st_mode)) {
+        close(fd);
+        return fail(&c, "is a directory, not an OBJ file");
+    }
+    if (S_ISREG(st.st_mode) && st.st_size > OBJ_MAX_BYTES) {
+        close(fd);
+        return fail(&c, "file of %lld bytes: OBJ files over %lld MiB are refused",
+                    (long long)st.st_size, (long long)(OBJ_MAX_BYTES >> 20));
+    }
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        close(fd);
+        return fail(&c, "cannot open: %s", strerror(errno));
+    }
+    vec vp = { NULL, 0, 0, sizeof(double[3]) }, vn = { NULL, 0, 0, sizeof(double[3]) };
+    vec tris = { NULL, 0, 0, sizeof(otri) };
+    size_t nvt = 0, ignored = 0;
+    long long total = 0;
+    char *line = NULL;
+    size_t cap = 0;
+    ssize_t len;
+    int rc = -1;
+    errno = 0;
+    while ((len = getline(&line, &cap, f)) >= 0) {
+        c.line++;
+        total += len;
+        if (total > (long long)OBJ_MAX_BYTES) {
+            fail(&c, "more than %lld MiB: OBJ files over that are refused",
+                 (long long)(OBJ_MAX_BYTES >> 20));
+            goto out;
+        }
+        for (ssize_t i = 0; i < len; i++) {
+            unsigned char ch = (unsigned char)line[i];
+            if (ch < 0x20 && ch != '\n' && !is_space((char)ch)) {
+                fail(&c, "binary data (byte 0x%02x): not an OBJ file", ch);
+                goto out;
+            }
+        }
+        char *hash = strchr(line, '#');
+        if (hash) *hash = 0;
+        char *nl = strchr(line, '\n');
+        if (nl) *nl = 0;
+        char *s = line, *kw = token(&s);
+        if (!kw) continue;
+        if (!strcmp(kw, "v") || !strcmp(kw, "vn")) {
+            int isv = kw[1] == 0;
+            double p[3];
+            if (numbers(&c, s, kw, isv ? 7 : 3, p)) goto out;
+            vec *dst = isv ? &vp : &vn;
+            if (dst->n >= UINT32_MAX - 1) {
+                fail(&c, "too many %s lines", kw);
+                goto out;
+            }
+            double *d = vec_push(dst);
+            if (!d) { fail(&c, "out of memory"); goto out; }
+            memcpy(d, p, sizeof p);
+        } else if (!strcmp(kw, "f")) {
+            if (face(&c, s, vp.n, nvt, vn.n, &tris)) goto out;
+        } else {
+            if (!strcmp(kw, "vt")) nvt++;
+            ignored++;
+        }
+        errno = 0;
+    }
+    if (ferror(f)) {
+        c.line = 0;
+        fail(&c, "read error: %s", strerror(errno ? errno : EIO));
+        goto out;
+    }
+    c.line = 0;
+    if (vp.n < 3) {
+        fail(&c, "too few vertices (%zu): a mesh needs at least 3", vp.n);
+        goto out;
+    }
+    if (!tris.n) {
+        fail(&c, "no faces: nothing to draw");
+        goto out;
+    }
+    if (tris.n > INT32_MAX) {
+        fail(&c, "too many triangles (%zu)", tris.n);
+        goto out;
+    }
+    if (build(&c, &vp, &vn, &tris, m)) goto out;
+    m->ignored = ignored;
+    rc = 0;
+out:
+    free(line);
+    fclose(f);
+    free(vp.p);
+    free(vn.p);
+    free(tris.p);
+    return rc;
+}
