@@ -79,8 +79,8 @@ typedef struct scn_view {
 typedef enum {
     SCN_SPEC_PHONG,              /* ks (R.V)^n */
     SCN_SPEC_BLINN,              /* ks (N.H)^n */
-    SCN_SPEC_COOK,               /* ks D F / (pi? see scene_shade.c) with D Beckmann or D4/D8/D16 */
-    SCN_SPEC_WARD,               /* ks Ward isotropic, exact exponential or the 16th-power polynomial */
+    SCN_SPEC_COOK,               /* ks F D G / (pi (N.L)(N.V)), D Beckmann or D4/D8/D16 (scene_shade.c) */
+    SCN_SPEC_WARD,               /* ks e / (4 pi a^2 sqrt((N.L)(N.V))), e exact or the 16th-power polynomial */
     SCN_SPEC__COUNT
 } scn_spec_model;
 
