@@ -81,6 +81,14 @@
  *
  * The derived values (held-out eye, target, lights marked auto) follow the
  * view: setting eye after heldout-eye auto still moves the held-out eye.
+ * Coordinates (eye, target, up, light) are world units within +-1e6; the
+ * built-in meshes are about unit size around the origin, +y up, facing +z.
+ * Lines may end in CR LF.
+ *
+ * Built-in scenes (scn_desc_builtin): "face" is the table above; "sphere"
+ * is the same with mesh sphere and ortho-height 2.4 (radius 1 and a
+ * margin); "torus" is the same with mesh torus, camera perspective and
+ * fov 28 (2.5 units shown at the distance 5 of the eye).
  *
  * Errors: "PATH:LINE: what" for a bad line (unknown key with the closest
  * key suggested, wrong count of values, not a number, out of range, bad
