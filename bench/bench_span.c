@@ -1,0 +1,68 @@
+/* bench_span.c - tb_span_run over 200,000 pixels in intervals of random
+ * length (1..L, L = 8, dv = L or n - 1, as a scene cuts spans), VCD off:
+ * clocks per second of each span unit and schedule, the build included
+ * (a scene builds once per band). Best of 3. */
+#include "testbench/tb_span.h"
+#include "testbench/tb.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#define PIXELS 200000
+
+static double now_s(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+int main(void)
+{
+    static const char *const units[] = { "span1", "span2", "span3", "span23" };
+    static const char *const scheds[] = { "paper", "mac", "pipe" };
+    int L = 8;
+    size_t cap = PIXELS, ni = 0, np = 0;
+    tb_span_item *it = calloc(cap, sizeof *it);
+    double *pix = malloc(PIXELS * sizeof *pix);
+    if (!it || !pix) return 1;
+    uint64_t s = 12345;
+    while (np < PIXELS) {
+        tb_span_item *m = &it[ni++];
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        m->n = 1 + (int)((s >> 33) % (uint64_t)L);
+        if (np + (size_t)m->n > PIXELS) m->n = (int)(PIXELS - np);
+        m->dv = (s >> 40) & 1 ? L : (m->n > 1 ? m->n - 1 : 1);
+        m->deg = (s >> 41) & 1 ? 2 : 3;
+        for (int k = 0; k < 4; k++) m->node[k] = (double)((s >> (20 + 5 * k)) & 1023) / 1023;
+        np += (size_t)m->n;
+    }
+    for (int u = 0; u < 4; u++)
+        for (int sc = 0; sc < 3; sc++) {
+            const unit_desc *ud = unit_find(units[u]);
+            unit_cfg cfg;
+            unit_cfg_default(&cfg);
+            cfg.L = L;
+            cfg.schedule = unit_sched_find(ud, scheds[sc]);
+            unit_fmts f;
+            ud->formats(&cfg, &f);
+            double best = 1e9;
+            tb_span_stats st;
+            char err[300];
+            for (int rep = 0; rep < 3; rep++) {
+                double t0 = now_s();
+                if (tb_span_run(ud, &cfg, &f, it, ni, pix, &st, NULL, err, sizeof err) != TB_OK) {
+                    fprintf(stderr, "%s: %s\n", units[u], err);
+                    return 1;
+                }
+                double dt = now_s() - t0;
+                if (dt < best) best = dt;
+            }
+            printf("%-7s %-6s %zu items, %llu pixels, %llu clocks: %.3f s = %.2f M clocks/s\n", units[u], scheds[sc], ni,
+                   (unsigned long long)st.pixels, (unsigned long long)st.clocks, best, (double)st.clocks / best / 1e6);
+        }
+    free(it);
+    free(pix);
+    return 0;
+}
