@@ -62,8 +62,13 @@ test:
 bench: $(BENCHBIN) bin/shadesim
 	@for b in $(BENCHBIN); do $$b || exit 1; done
 
+# Every unit on its default vectors, then the default face scene through
+# the hardware: the paper's configuration next to corrected ones (a table;
+# images in out/scene-face/*/).
 run: bin/shadesim
 	@./bin/shadesim run all
+	@echo
+	@./bin/shadesim scene face --compare -j 2
 
 # Regenerate the checked-in default vectors of every unit (tests compare
 # them byte for byte with what the float reference gives).

@@ -1,8 +1,310 @@
-/* cli_scene.c - shadesim scene (being built). */
+/* cli_scene.c - shadesim scene: a scene rendered through the simulated
+ * span hardware; images, JSON and a table of the figures; the format
+ * search (--target-nmse), the sweep (--sweep) and the side-by-side of the
+ * paper's configuration and a corrected one (--compare). */
 #include "testbench/cli.h"
+#include "testbench/tb_scene.h"
+#include "testbench/tb_scene_search.h"
+#include "sim/sim_out.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The divide-by-3 network's terms that the corrected configuration of
+ * --compare uses: the fewest that keep the default face scene's NMSE under
+ * 1e-4 (measured with shadesim scene face --set terms=N; docs/scenes.md). */
+#define COMPARE_TERMS 5
+#define COMPARE_TARGET 1e-4
+
+static const char scene_help[] =
+    "usage: shadesim scene [NAME|FILE] [options]\n\n"
+    "Renders a scene through the simulated interpolation hardware: every span of\n"
+    "every row is cut into intervals of L pixels whose node intensities are shaded\n"
+    "exactly; the span unit of the scene's policy (linear, quadratic, cubic with\n"
+    "node set N1 or N2, or degree 2/3 adaptive) interpolates every pixel clock by\n"
+    "clock at the scene's fixed-point formats. Prints NMSE, PSNR, errors on 8 bits,\n"
+    "clocks per pixel, area, and the operations per pixel of the method against\n"
+    "per-pixel shading (the speed-up).\n\n"
+    "NAME is a built-in scene: face (default), sphere, torus. Anything else is a\n"
+    "scene file (key value lines, docs/scenes.md); write ./face for a file of that\n"
+    "name.\n\n"
+    "options:\n"
+    "  --set KEY=VALUE  set a scene key as a line of the file would (repeatable,\n"
+    "                   applied after the file), e.g. --set policy=cubic-n1\n"
+    "                   --set terms=5 --set resolution=256x256 --set light=...\n"
+    "  -o DIR           output folder (default out/scene-NAME; created). It gets\n"
+    "                   ref.png (per-pixel shading), hw.png (the hardware's pixels),\n"
+    "                   err-xK.png (|hw - ref| heat map, full white = 1/K; K in\n"
+    "                   4^0..4^6, the largest that shows the maximum error),\n"
+    "                   degree.png (degree of each interval), region.png (mesh\n"
+    "                   regions) and scene.json (the figures)\n"
+    "  --json           print the JSON summary on stdout instead of the table\n"
+    "  -j N             threads (default 1); the output is the same for any N\n"
+    "  --heldout        render the scene's held-out view (other camera and light)\n"
+    "  --vcd FILE       VCD of the hardware of the first band of rows that has spans\n"
+    "  --max-nmse X     exit status 1 when the NMSE exceeds X\n"
+    "  --target-nmse X  find the smallest per-signal formats that keep the NMSE\n"
+    "                   under X, check them on the held-out view, report the area\n"
+    "                   saved against the smallest uniform width (exit 1: not met)\n"
+    "  --sweep [SPEC]   sweep L, policy, terms, width, schedule: CSV and SVG charts\n"
+    "                   of NMSE against operations and clocks per pixel, Pareto\n"
+    "                   front; SPEC like \"L=4,8;terms=3,5\" (default grid)\n"
+    "  --compare        the scene twice: the paper's configuration (adaptive-region,\n"
+    "                   3-term /3 network) and a corrected one (enough terms for\n"
+    "                   NMSE <= 1e-4), and adaptive-auto; a table, images in DIR/*/\n\n"
+    "Metrics over covered pixels: NMSE = sum (hw - ref)^2 / sum ref^2 on the\n"
+    "hardware's raw output (not clamped); 8-bit values round(255 clamp(v)) give\n"
+    "PSNR, the largest 8-bit error and the share of pixels whose 8-bit value\n"
+    "differs. Operation counts and cost weights: docs/scenes.md (scene key cost).\n\n"
+    "exit status: 0 done, 1 NMSE over --max-nmse / target not met / simulation\n"
+    "failed, 2 bad usage or input (a bad scene file names FILE:LINE).\n";
+
+static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
+
+static int is_builtin(const char *name)
+{
+    for (const char *const *n = scn_desc_builtin_names; *n; n++) if (!strcmp(*n, name)) return 1;
+    return 0;
+}
+
+static int mesh_is_builtin(const char *name)
+{
+    for (const char *const *n = scn_mesh_builtin_names; *n; n++) if (!strcmp(*n, name)) return 1;
+    return 0;
+}
+
+static int parse_double(const char *opt, const char *s, double *v)
+{
+    char *end;
+    errno = 0;
+    *v = strtod(s, &end);
+    if (!*s || *end || errno || !isfinite(*v) || *v < 0) {
+        cli_usage_error("%s %s: expected a number >= 0", opt, s);
+        return -1;
+    }
+    return 0;
+}
+
+/* out/scene-NAME: NAME is the built-in's name or the file's base name
+ * without its extension. */
+static void default_dir(const char *what, char *buf, size_t len)
+{
+    const char *b = strrchr(what, '/');
+    b = b ? b + 1 : what;
+    const char *dot = strrchr(b, '.');
+    int n = dot && dot != b ? (int)(dot - b) : (int)strlen(b);
+    snprintf(buf, len, "out/scene-%.*s", n, b);
+}
+
+static void fmt_nmse(char *buf, size_t len, double v)
+{
+    if (isfinite(v)) snprintf(buf, len, "%.3e", v);
+    else snprintf(buf, len, "inf");
+}
+
+static void fmt_psnr(char *buf, size_t len, double v)
+{
+    if (isfinite(v)) snprintf(buf, len, "%.2f dB", v);
+    else snprintf(buf, len, "inf");
+}
+
+static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, const char *dir, double max_nmse)
+{
+    char a[64], b[64];
+    const unit_desc *u = r->unit;
+    fprintf(f, "scene %s %dx%d, %s view; policy %s, L %d, /3 network %d terms (%s series), width %d, schedule %s\n",
+            d->mesh, r->w, r->h, r->heldout ? "held-out" : "main", scn_policy_name(d->policy), d->L, d->terms,
+            d->series ? "quarter" : "paper", d->fmt_width, u->sched[r->cfg.schedule].name);
+    fmt_nmse(a, sizeof a, r->nmse);
+    fprintf(f, "  %-22s %-14s %s\n", "NMSE", a, "sum (hw - ref)^2 / sum ref^2 over covered pixels");
+    if (max_nmse >= 0)
+        fprintf(f, "  %-22s %-14s %s\n", "", r->nmse <= max_nmse ? "meets" : "MISSES",
+                "your target --max-nmse");
+    fmt_psnr(a, sizeof a, r->psnr);
+    fprintf(f, "  %-22s %-14s %s\n", "PSNR", a, "on 8-bit values round(255 clamp(v))");
+    snprintf(a, sizeof a, "%.3g", r->max_abs_err);
+    fprintf(f, "  %-22s %-14s %s\n", "max |hw - ref|", a, "intensity, full scale 1");
+    snprintf(a, sizeof a, "%d", r->max_err8);
+    snprintf(b, sizeof b, "%.2f%%", 100 * r->diff8_share);
+    fprintf(f, "  %-22s %-14s pixels whose 8-bit value differs: %s\n", "max 8-bit error", a, b);
+    snprintf(a, sizeof a, "%zu", r->covered);
+    fprintf(f, "  %-22s %-14s spans %zu, intervals %zu (degree 2: %.1f%%), nodes shaded %zu\n", "covered pixels", a,
+            r->spans, r->intervals, 100 * r->deg2_share, r->nodes_shaded);
+    snprintf(a, sizeof a, "%.3f", r->clocks_per_pixel);
+    fprintf(f, "  %-22s %-14s %llu clocks of unit %s, overflows %llu\n", "clocks / pixel", a,
+            (unsigned long long)r->hwst.clocks, u->name, (unsigned long long)r->hwst.overflows);
+    snprintf(a, sizeof a, "%.0f GE", r->hwst.area_ge);
+    fprintf(f, "  %-22s %-14s %s\n", "area", a, "gate equivalents of the instantiated unit");
+    fprintf(f, "  %-22s", "ops / pixel");
+    for (int k = 0; k < SCN_OP__COUNT; k++) fprintf(f, " %s %.3g/%.3g", scn_op_name[k], r->ops_ref[k], r->ops_hw[k]);
+    fputs("   (reference/method)\n", f);
+    snprintf(a, sizeof a, "%.2fx", r->speedup);
+    fprintf(f, "  %-22s %-14s weighted cost %.4g (reference) / %.4g (method)\n", "speed-up", a, r->cost_ref, r->cost_hw);
+    if (dir) fprintf(f, "  %-22s %s/ (ref.png hw.png err-x%d.png degree.png region.png scene.json)\n", "images", dir,
+                     tb_scene_err_scale(r));
+}
+
+/* Load the description's mesh (built-in name or OBJ path). */
+static int load_mesh(const scn_desc *d, scn_mesh *m)
+{
+    char err[600];
+    int rc = mesh_is_builtin(d->mesh) ? scn_mesh_builtin(d->mesh, d->detail, m, err, sizeof err)
+                                      : scn_mesh_obj(d->mesh, m, err, sizeof err);
+    if (rc) { cli_usage_error("%s", err); return -1; }
+    return 0;
+}
+
+static void progress(const char *what)
+{
+    if (cli_stderr_tty()) fprintf(stderr, "\r%-70s\r", what);
+}
+
+/* --compare: the paper's configuration next to the corrected ones. */
+static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, const char *dir, int json)
+{
+    static const struct { const char *name; int policy, terms; } cfgs[] = {
+        { "paper", SCN_POL_ADAPTIVE_REGION, 3 },
+        { "corrected", SCN_POL_ADAPTIVE_REGION, COMPARE_TERMS },
+        { "auto", SCN_POL_ADAPTIVE_AUTO, COMPARE_TERMS },
+    };
+    int n = (int)(sizeof cfgs / sizeof cfgs[0]);
+    if (json) puts("[");
+    else printf("%-10s %-46s %11s %10s %9s %13s %9s\n", "config", "", "NMSE", "PSNR", "speed-up", "clocks/pixel", "area GE");
+    for (int i = 0; i < n; i++) {
+        scn_desc d = *d0;
+        d.policy = (scn_policy)cfgs[i].policy;
+        d.terms = cfgs[i].terms;
+        tb_scene_opts o = { jobs, 0, NULL, NULL };
+        tb_scene_result r;
+        char err[600], sub[4200];
+        progress(cfgs[i].name);
+        int t = tb_scene_render(&d, m, &o, &r, err, sizeof err);
+        progress("");
+        if (t != TB_OK) { cli_usage_error("%s", err); return t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL; }
+        snprintf(sub, sizeof sub, "%s/%s", dir, cfgs[i].name);
+        if (tb_scene_write(&d, &r, sub, err, sizeof err)) { tb_scene_free(&r); return cli_usage_error("%s", err); }
+        if (json) {
+            printf("%s", i ? ",\n" : "");
+            tb_scene_json(stdout, &d, &r);
+        } else {
+            char a[32], b[32], what[64];
+            fmt_nmse(a, sizeof a, r.nmse);
+            fmt_psnr(b, sizeof b, r.psnr);
+            snprintf(what, sizeof what, "%s, /3 network %d terms", scn_policy_name(d.policy), d.terms);
+            printf("%-10s %-46s %11s %10s %8.2fx %13.3f %9.0f  %s\n", cfgs[i].name, what, a, b, r.speedup,
+                   r.clocks_per_pixel, r.hwst.area_ge, r.nmse <= COMPARE_TARGET ? "NMSE <= 1e-4" : "NMSE > 1e-4");
+        }
+        tb_scene_free(&r);
+    }
+    if (json) puts("]");
+    else printf("images: %s/{paper,corrected,auto}/ (ref.png hw.png err-x*.png degree.png region.png scene.json)\n", dir);
+    return CLI_OK;
+}
 
 int cli_scene(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    return cli_usage_error("scene: not built yet");
+    const char *what = NULL, *dir = NULL, *vcd = NULL, *sweep_spec = NULL;
+    const char *sets[256];
+    int nsets = 0, json = 0, jobs = 1, heldout = 0, sweep = 0, cmp = 0;
+    double max_nmse = -1, target = -1;
+    for (int i = 1; i < argc; i++)
+        if (is_help(argv[i])) { fputs(scene_help, stdout); return CLI_OK; }
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int has = i + 1 < argc;
+        if (!strcmp(a, "--set")) {
+            if (!has) return cli_usage_error("--set needs KEY=VALUE");
+            if (nsets == 256) return cli_usage_error("--set: at most 256");
+            sets[nsets++] = argv[++i];
+        } else if (!strcmp(a, "-o")) {
+            if (!has) return cli_usage_error("-o needs a folder");
+            dir = argv[++i];
+        } else if (!strcmp(a, "--json")) json = 1;
+        else if (!strcmp(a, "--heldout")) heldout = 1;
+        else if (!strcmp(a, "--compare")) cmp = 1;
+        else if (!strcmp(a, "-j")) {
+            if (!has) return cli_usage_error("-j needs a number of threads");
+            char *end;
+            long v = strtol(argv[++i], &end, 10);
+            if (*end || v < 1 || v > 256) return cli_usage_error("-j %s: expected 1..256", argv[i]);
+            jobs = (int)v;
+        } else if (!strcmp(a, "--vcd")) {
+            if (!has) return cli_usage_error("--vcd needs a file name");
+            vcd = argv[++i];
+        } else if (!strcmp(a, "--max-nmse")) {
+            if (!has) return cli_usage_error("--max-nmse needs a number");
+            if (parse_double(a, argv[++i], &max_nmse)) return CLI_USAGE;
+        } else if (!strcmp(a, "--target-nmse")) {
+            if (!has) return cli_usage_error("--target-nmse needs a number");
+            if (parse_double(a, argv[++i], &target)) return CLI_USAGE;
+            if (target <= 0) return cli_usage_error("--target-nmse %s: expected a number > 0", argv[i]);
+        } else if (!strcmp(a, "--sweep")) {
+            sweep = 1;
+            if (has && argv[i + 1][0] != '-' && strchr(argv[i + 1], '=')) sweep_spec = argv[++i];
+        } else if (a[0] == '-' && a[1]) return cli_usage_error("scene: unknown option '%s' (see shadesim scene --help)", a);
+        else if (!what) what = a;
+        else return cli_usage_error("scene: one scene at most ('%s' and '%s')", what, a);
+    }
+    if ((target > 0) + sweep + cmp > 1) return cli_usage_error("scene: --target-nmse, --sweep and --compare go one at a time");
+    if (!what) what = "face";
+
+    scn_desc d;
+    char err[600];
+    if (is_builtin(what)) {
+        scn_desc_builtin(what, &d);
+    } else if (scn_desc_read(what, &d, err, sizeof err)) {
+        return cli_usage_error("%s", err);
+    }
+    for (int k = 0; k < nsets; k++) {
+        const char *eq = strchr(sets[k], '=');
+        if (!eq || eq == sets[k]) return cli_usage_error("--set %s: expected KEY=VALUE", sets[k]);
+        char key[64];
+        if ((size_t)(eq - sets[k]) >= sizeof key) return cli_usage_error("--set %s: no such key", sets[k]);
+        snprintf(key, sizeof key, "%.*s", (int)(eq - sets[k]), sets[k]);
+        if (scn_desc_set(&d, key, eq + 1, err, sizeof err)) return cli_usage_error("--set %s: %s", sets[k], err);
+    }
+    char dbuf[4096];
+    if (!dir) { default_dir(what, dbuf, sizeof dbuf); dir = dbuf; }
+
+    /* the unit and formats first: a bad format is a usage error before any work */
+    const unit_desc *u;
+    unit_cfg cfg;
+    unit_fmts fm;
+    if (tb_scene_unit(&d, &u, &cfg, &fm, err, sizeof err)) return cli_usage_error("%s", err);
+
+    scn_mesh m;
+    if (load_mesh(&d, &m)) return CLI_USAGE;
+    int rc = CLI_OK;
+    if (cmp) {
+        rc = compare(&d, &m, jobs, dir, json);
+    } else if (target > 0 || sweep) {
+        progress(sweep ? "sweeping..." : "searching formats...");
+        int t = sweep ? tb_scene_sweep(&d, &m, jobs, sweep_spec, dir, json, stdout, err, sizeof err)
+                      : tb_scene_search(&d, &m, jobs, target, dir, json, stdout, err, sizeof err);
+        progress("");
+        if (t == TB_BADINPUT) rc = cli_usage_error("%s", err);
+        else if (t == TB_FAIL) { if (err[0]) fprintf(stderr, "shadesim: %s\n", err); rc = CLI_FAIL; }
+    } else {
+        tb_scene_opts o = { jobs, heldout, vcd, NULL };
+        tb_scene_result r;
+        progress("rendering...");
+        int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
+        progress("");
+        if (t != TB_OK) {
+            fprintf(stderr, "shadesim: %s\n", err);
+            rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
+        } else {
+            if (tb_scene_write(&d, &r, dir, err, sizeof err)) rc = cli_usage_error("%s", err);
+            else {
+                if (json) tb_scene_json(stdout, &d, &r);
+                else print_table(stdout, &d, &r, dir, max_nmse);
+                if (max_nmse >= 0 && !(r.nmse <= max_nmse)) rc = CLI_FAIL;
+            }
+            tb_scene_free(&r);
+        }
+    }
+    scn_mesh_free(&m);
+    if (sim_out_stdout_check(err, sizeof err)) return cli_usage_error("%s", err);
+    return rc;
 }

@@ -1,0 +1,108 @@
+#!/bin/sh
+# Command-line contract of shadesim scene: the JSON fields, the output
+# folder's files (PNGs checked by pngcheck when installed), one-line errors
+# naming FILE:LINE for bad scene files, exit 2 for a bad --set, exit 1 for
+# a missed --max-nmse, and the same bytes for -j 1 and -j 2. Small images.
+PREFIX=cli_scene.
+. tests/lib_cli.sh
+
+# expect NAME STATUS CMD...: exit status, and for status 2 exactly one
+# stderr line starting "shadesim: ".
+expect() {
+    name=$1; want=$2; shift 2
+    "$@" >"$T/out" 2>"$T/err"; got=$?
+    if [ "$got" -ne "$want" ]; then fail "$name" "exit $got, expected $want: $(head -c 300 "$T/err")"; return 1; fi
+    if [ "$want" -eq 2 ]; then
+        n=$(wc -l <"$T/err")
+        if [ "$n" -ne 1 ] || ! grep -q '^shadesim: ' "$T/err"; then fail "$name" "stderr not one 'shadesim:' line: $(cat "$T/err")"; return 1; fi
+    fi
+    ok "$name"
+}
+
+R="--set resolution=64x64"
+expect help 0 "$S" scene --help
+grep -q -- '--target-nmse' "$T/out" && grep -q -- '--sweep' "$T/out" && grep -q -- '--heldout' "$T/out" \
+    && ok help_options || fail help_options "--help misses an option"
+
+# A render: every JSON field, every file of the folder.
+expect json 0 "$S" scene face $R --json -o "$T/face"
+for k in mesh resolution view policy L terms series width unit schedule formats round overflow covered nmse \
+         psnr max_abs_err max_err8 diff8_share err_scale clocks pixels clocks_per_pixel area_ge overflows spans \
+         intervals intervals_deg2 deg2_share nodes_shaded ops_ref ops_hw cost_ref cost_hw speedup; do
+    grep -q "^  \"$k\": " "$T/out" && ok "json_$k" || fail "json_$k" "field $k missing"
+done
+cmp -s "$T/out" "$T/face/scene.json" && ok json_is_scene_json || fail json_is_scene_json "stdout differs from scene.json"
+if command -v python3 >/dev/null 2>&1; then
+    python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["covered"]>0 and d["nmse"]>0 and d["speedup"]>1 and d["resolution"]=="64x64" and set(d["ops_ref"])=={"add","mul","div","sqrt","pow"}' "$T/out" \
+        && ok json_parses || fail json_parses "python3 could not read the JSON or a figure is off"
+else
+    echo "skip cli_scene.json_parses: python3 not installed"
+fi
+k=$(sed -n 's/^  "err_scale": \([0-9]*\),$/\1/p' "$T/out")
+for f in ref.png hw.png "err-x$k.png" degree.png region.png scene.json; do
+    [ -s "$T/face/$f" ] && ok "file_$f" || fail "file_$f" "missing in the output folder"
+done
+[ "$(ls "$T/face" | wc -l)" -eq 6 ] && ok files_only || fail files_only "$(ls "$T/face")"
+if command -v pngcheck >/dev/null 2>&1; then
+    for f in "$T"/face/*.png; do
+        pngcheck -q "$f" >/dev/null 2>&1 && ok "pngcheck_$(basename "$f")" || fail "pngcheck_$(basename "$f")" "$(pngcheck "$f" 2>&1 | head -2)"
+    done
+else
+    echo "skip cli_scene.pngcheck: pngcheck not installed"
+fi
+
+# The table, --max-nmse.
+expect table 0 "$S" scene face $R -o "$T/t"
+grep -q '^  NMSE ' "$T/out" && grep -q 'speed-up' "$T/out" && ok table_rows || fail table_rows "$(cat "$T/out")"
+expect max_nmse_met 0 "$S" scene face $R -o "$T/t" --max-nmse 1
+grep -q 'meets' "$T/out" && ok max_nmse_says_meets || fail max_nmse_says_meets "$(cat "$T/out")"
+expect max_nmse_tiny 1 "$S" scene face $R -o "$T/t" --max-nmse 1e-30
+grep -q 'MISSES' "$T/out" && ok max_nmse_says_misses || fail max_nmse_says_misses "$(cat "$T/out")"
+
+# Same bytes for any -j.
+"$S" scene face $R --set policy=adaptive-auto -o "$T/j1" -j 1 --json >"$T/j1.json" 2>/dev/null
+"$S" scene face $R --set policy=adaptive-auto -o "$T/j2" -j 2 --json >"$T/j2.json" 2>/dev/null
+same=1
+for f in j1.json j1/ref.png j1/hw.png j1/degree.png j1/region.png j1/scene.json; do
+    g=$(echo "$f" | sed 's/j1/j2/')
+    cmp -s "$T/$f" "$T/$g" || same=0
+done
+[ $same -eq 1 ] && ok jobs_same_bytes || fail jobs_same_bytes "-j 1 and -j 2 differ"
+
+# Other built-ins, a scene file, the held-out view.
+expect sphere 0 "$S" scene sphere $R -o "$T/s"
+printf 'shadesim-scene 1\n# a small face\nmesh face\nresolution 48x40\npolicy cubic-n2\nL 6\n' >"$T/small.scene"
+expect scene_file 0 "$S" scene "$T/small.scene" --json -o "$T/sf"
+grep -q '"resolution": "48x40"' "$T/out" && grep -q '"policy": "cubic-n2"' "$T/out" && ok scene_file_read || fail scene_file_read "$(head -5 "$T/out")"
+expect heldout 0 "$S" scene face $R --heldout --json -o "$T/h"
+grep -q '"view": "heldout"' "$T/out" && ok heldout_view || fail heldout_view "view not heldout"
+
+# Bad scene files: exit 2, one line naming FILE:LINE:.
+bad() {   # bad NAME CONTENT LINE
+    printf "$2" >"$T/$1.scene"
+    if expect "$1" 2 "$S" scene "$T/$1.scene" -o "$T/bad"; then
+        grep -q "$T/$1.scene:$3:" "$T/err" && ok "$1_line" || fail "$1_line" "$(cat "$T/err")"
+    fi
+}
+bad bad_key 'shadesim-scene 1\nresolution 64x64\nfrobnicate 3\n' 3
+bad bad_number 'shadesim-scene 1\nL eight\n' 2
+bad bad_version 'shadesim-scene 99\n' 1
+[ ! -e "$T/bad" ] && ok bad_no_output || fail bad_no_output "output folder made for a bad scene"
+expect no_file 2 "$S" scene "$T/nosuch.scene"
+printf 'v 0 0 0\nv 1 0 0\nf 1 2 7\n' >"$T/bad.obj"
+printf 'shadesim-scene 1\nmesh %s\n' "$T/bad.obj" >"$T/obj.scene"
+expect bad_obj 2 "$S" scene "$T/obj.scene"
+grep -q "bad.obj:3:" "$T/err" && ok bad_obj_line || fail bad_obj_line "$(cat "$T/err")"
+
+# Bad usage.
+expect set_unknown_key 2 "$S" scene face --set frobnicate=1
+expect set_no_eq 2 "$S" scene face --set L
+expect set_bad_value 2 "$S" scene face --set L=eight
+expect set_bad_fmt 2 "$S" scene face --set fmt=nosig=s2.14
+expect bad_option 2 "$S" scene face --bogus
+expect bad_jobs 2 "$S" scene face -j 0
+expect max_nmse_bad 2 "$S" scene face --max-nmse abc
+expect two_scenes 2 "$S" scene face sphere
+if [ -w /dev/full ]; then
+    expect stdout_full 2 sh -c "\"$S\" scene face $R -o \"$T/full\" >/dev/full"
+fi

@@ -1,0 +1,325 @@
+/* test_scene.c - the scene testbench (testbench/tb_scene.c) against
+ * references written here: the interval cutting and node placement redone
+ * from the rules of docs/scenes.md with a Lagrange evaluation of its own,
+ * a synthetic surface whose intensity is exactly quadratic (and cubic)
+ * along rows, the metrics recomputed from the two images, and the bytes of
+ * the outputs for one thread and several. */
+#include "tst.h"
+#include "tst_ref.h"
+#include "testbench/tb_scene.h"
+#include "testbench/tb.h"
+#include <stdint.h>
+
+/* The wide formats at which the hardware is float interpolation. */
+static void wide(scn_desc *d)
+{
+    d->nfmt = 1;
+    snprintf(d->fmt[0], sizeof d->fmt[0], "all=s8.40");
+    d->fmt_width = 48;
+    d->terms = 20;
+}
+
+static scn_mesh face;
+static int face_ok;
+
+static int load_face(void)
+{
+    if (face_ok) return 1;
+    char err[300];
+    if (scn_mesh_builtin("face", 1, &face, err, sizeof err)) { printf("  face: %s\n", err); return 0; }
+    return face_ok = 1;
+}
+
+static double node_shade(const scn_desc *d, const scn_gbuf *g, const scn_span *s, double x)
+{
+    double p[3], n[3];
+    scn_span_at(g, s, x, p, n);
+    return scn_shade(&d->mat, &d->view, p, n);
+}
+
+/* The expected hardware image, redone from the rules: intervals of L from
+ * the span's left end; dv = L, the span's last interval max(len - 1, 1);
+ * nodes at t = 0, 1, 1/2, 1/4 or 3/4; the degree from the policy; then the
+ * Lagrange polynomial through the degree's nodes at t = k/dv. Counts the
+ * intervals and the distinct nodes shaded. */
+static void expected(const scn_desc *d, const scn_gbuf *g, double *img, size_t *nint, size_t *nnodes)
+{
+    scn_span *sp;
+    size_t ns = scn_spans(g, &sp);
+    int L = d->L;
+    int n2 = d->policy == SCN_POL_CUBIC_N2 ||
+             (d->policy >= SCN_POL_ADAPTIVE_REGION && d->auto_cubic_nodes == 2);
+    *nint = *nnodes = 0;
+    for (size_t k = 0; k < ns; k++) {
+        const scn_span *s = &sp[k];
+        int n = s->x1 - s->x0, nj = (n + L - 1) / L;
+        (*nnodes)++;                                   /* the span's first node */
+        for (int j = 0; j < nj; j++) {
+            int x0 = s->x0 + j * L, len = j == nj - 1 ? n - j * L : L;
+            double dv = j == nj - 1 ? (len - 1 > 1 ? len - 1 : 1) : L;
+            double t[4] = { 0, 1, 0.5, n2 ? 0.75 : 0.25 }, I[4];
+            (*nint)++;
+            if (len == 1 && j == nj - 1) {             /* one pixel at t = 0 */
+                img[(size_t)s->y * g->w + x0] = node_shade(d, g, s, x0);
+                continue;
+            }
+            for (int i = 0; i < 4; i++) I[i] = node_shade(d, g, s, x0 + dv * t[i]);
+            int deg;
+            switch (d->policy) {
+            case SCN_POL_LINEAR: deg = 1; break;
+            case SCN_POL_QUADRATIC: deg = 2; break;
+            case SCN_POL_ADAPTIVE_REGION: deg = d->region_deg[s->region] == 2 ? 2 : 3; break;
+            case SCN_POL_ADAPTIVE_AUTO: deg = fabs(I[0] + I[1] - 2 * I[2]) > d->auto_threshold ? 3 : 2; break;
+            default: deg = 3;
+            }
+            *nnodes += (size_t)deg;
+            for (int p = 0; p < len; p++)
+                img[(size_t)s->y * g->w + x0 + p] = tst_lagrange(t, I, deg + 1, p / dv);
+        }
+    }
+    free(sp);
+}
+
+/* At s8.40 and a 20-term /3 network the hardware is the float
+ * interpolation of the same nodes within 1e-9, for every policy, at a
+ * power-of-two L and at another. */
+static void test_wide_equals_float(void)
+{
+    if (!load_face()) { tst_fail(__FILE__, __LINE__, "no face mesh"); return; }
+    static const scn_policy pols[] = { SCN_POL_LINEAR, SCN_POL_QUADRATIC, SCN_POL_CUBIC_N1, SCN_POL_CUBIC_N2,
+                                       SCN_POL_ADAPTIVE_REGION, SCN_POL_ADAPTIVE_AUTO };
+    static const int Ls[] = { 8, 5 };
+    for (size_t pi = 0; pi < sizeof pols / sizeof pols[0]; pi++)
+        for (size_t li = 0; li < 2; li++) {
+            scn_desc d;
+            scn_desc_default(&d);
+            d.width = d.height = 64;
+            d.policy = pols[pi];
+            d.L = Ls[li];
+            wide(&d);
+            tb_scene_opts o = { 1, 0, NULL, NULL };
+            tb_scene_result r;
+            char err[600];
+            int rc = tb_scene_render(&d, &face, &o, &r, err, sizeof err);
+            TST_CHECK(rc == TB_OK, "%s L=%d: %s", scn_policy_name(d.policy), d.L, err);
+            if (rc != TB_OK) continue;
+            scn_gbuf g;
+            TST_CHECK(!scn_raster(&face, &d.view.cam, 64, 64, &g, err, sizeof err), "%s", err);
+            double *img = calloc(64 * 64, sizeof *img);
+            size_t nint, nnodes;
+            expected(&d, &g, img, &nint, &nnodes);
+            double worst = 0;
+            size_t cov = 0;
+            for (size_t i = 0; i < 64 * 64; i++) {
+                if (g.tri[i] < 0) { TST_CHECK(r.deg[i] == 0 && r.hw[i] == 0, "uncovered pixel %zu", i); continue; }
+                cov++;
+                double e = fabs(r.hw[i] - img[i]);
+                if (e > worst || isnan(e)) worst = e;
+            }
+            TST_CHECK(worst <= 1e-9, "%s L=%d: max |hw - float| = %g", scn_policy_name(d.policy), d.L, worst);
+            TST_EQ_INT(r.covered, cov);
+            TST_EQ_INT(r.intervals, nint);
+            TST_EQ_INT(r.nodes_shaded, nnodes);
+            TST_CHECK(cov > 500, "the face covers %zu pixels of 64x64", cov);
+            free(img);
+            scn_gbuf_free(&g);
+            tb_scene_free(&r);
+        }
+}
+
+/* A synthetic surface buffer: every pixel of a w x h image covered, the
+ * world position of pixel (x, y) is (x, y, 0); the shader returns a
+ * polynomial of x. */
+static void synth_gbuf(scn_gbuf *g, int w, int h)
+{
+    memset(g, 0, sizeof *g);
+    size_t n = (size_t)w * h;
+    g->w = w; g->h = h;
+    g->tri = calloc(n, sizeof *g->tri);
+    g->region = calloc(n, 1);
+    g->depth = calloc(n, sizeof *g->depth);
+    g->pos = calloc(n, sizeof *g->pos);
+    g->nrm = calloc(n, sizeof *g->nrm);
+    g->frags = calloc(n, sizeof *g->frags);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            size_t i = (size_t)y * w + x;
+            g->depth[i] = 1;
+            g->pos[i][0] = x; g->pos[i][1] = y;
+            g->nrm[i][2] = 1;
+            g->frags[i] = 1;
+        }
+}
+
+static double poly_c[4];
+static double poly_shader(void *ctx, const double pos[3], const double nrm[3])
+{
+    (void)ctx; (void)nrm;
+    double x = pos[0];
+    return ((poly_c[3] * x + poly_c[2]) * x + poly_c[1]) * x + poly_c[0];
+}
+
+/* max |hw - profile| over the image. */
+static double synth_err(const scn_desc *d, int *ok)
+{
+    scn_gbuf g;
+    synth_gbuf(&g, 45, 3);       /* spans of 45: intervals 8*5 + 5, dv = 4 in the last */
+    tb_scene_opts o = { 2, 0, NULL, NULL };
+    tb_scene_result r;
+    char err[600];
+    *ok = tb_scene_render_gbuf(d, &g, poly_shader, NULL, &o, &r, err, sizeof err) == TB_OK;
+    TST_CHECK(*ok, "%s", err);
+    double worst = 0;
+    if (*ok) {
+        for (size_t i = 0; i < 45 * 3; i++) {
+            double e = fabs(r.hw[i] - poly_shader(NULL, g.pos[i], NULL));
+            if (e > worst || isnan(e)) worst = e;
+            /* the reference image is the shader at every pixel */
+            TST_NEAR(r.ref[i], poly_shader(NULL, g.pos[i], NULL), 0);
+        }
+        TST_EQ_INT(r.covered, 45 * 3);
+        TST_EQ_INT(r.spans, 3);
+        TST_EQ_INT(r.intervals, 3 * 6);
+        tb_scene_free(&r);
+    }
+    scn_gbuf_free(&g);
+    return worst;
+}
+
+/* A profile quadratic in x is reproduced by degree 2 (and a cubic by
+ * degree 3, both node sets); a lower degree does not reproduce it. */
+static void test_polynomial_profiles(void)
+{
+    scn_desc d;
+    scn_desc_default(&d);
+    wide(&d);
+    d.L = 8;
+    int ok;
+    /* 0.1 + 0.8 (x/44)^2 over x = 0..44 */
+    memset(poly_c, 0, sizeof poly_c);
+    poly_c[0] = 0.1; poly_c[2] = 0.8 / (44.0 * 44.0);
+    d.policy = SCN_POL_QUADRATIC;
+    double e = synth_err(&d, &ok);
+    TST_CHECK(ok && e <= 1e-9, "quadratic by degree 2: max error %g", e);
+    d.policy = SCN_POL_LINEAR;
+    e = synth_err(&d, &ok);
+    TST_CHECK(ok && e > 1e-4, "quadratic by degree 1 should not be exact: max error %g", e);
+    /* 0.5 + 0.4 ((x - 22)/22)^3 */
+    double s = 1.0 / 22;
+    poly_c[0] = 0.5 - 0.4; poly_c[1] = 0.4 * 3 * s; poly_c[2] = -0.4 * 3 * s * s; poly_c[3] = 0.4 * s * s * s;
+    for (int p = SCN_POL_CUBIC_N1; p <= SCN_POL_CUBIC_N2; p++) {
+        d.policy = (scn_policy)p;
+        e = synth_err(&d, &ok);
+        TST_CHECK(ok && e <= 1e-9, "cubic by %s: max error %g", scn_policy_name(d.policy), e);
+    }
+    d.policy = SCN_POL_QUADRATIC;
+    e = synth_err(&d, &ok);
+    TST_CHECK(ok && e > 1e-5, "cubic by degree 2 should not be exact: max error %g", e);
+}
+
+static uint8_t v8(double v) { return (uint8_t)(v <= 0 ? 0 : v >= 1 ? 255 : floor(255 * v + 0.5)); }
+
+/* NMSE, PSNR, the 8-bit errors and the operation counts' weighting,
+ * recomputed from the two images, at the default (narrow) formats. */
+static void test_metrics(void)
+{
+    if (!load_face()) { tst_fail(__FILE__, __LINE__, "no face mesh"); return; }
+    scn_desc d;
+    scn_desc_default(&d);
+    d.width = d.height = 96;
+    tb_scene_opts o = { 1, 0, NULL, NULL };
+    tb_scene_result r;
+    char err[600];
+    int rc = tb_scene_render(&d, &face, &o, &r, err, sizeof err);
+    TST_CHECK(rc == TB_OK, "%s", err);
+    if (rc != TB_OK) return;
+    double se = 0, sr = 0, s8 = 0, mx = 0;
+    long n = 0, diff = 0, mx8 = 0;
+    for (int i = 0; i < r.w * r.h; i++) {
+        if (!r.deg[i]) continue;
+        double e = r.hw[i] - r.ref[i];
+        se += e * e; sr += r.ref[i] * r.ref[i];
+        if (fabs(e) > mx) mx = fabs(e);
+        long e8 = labs((long)v8(r.hw[i]) - (long)v8(r.ref[i]));
+        s8 += (double)(e8 * e8);
+        if (e8) diff++;
+        if (e8 > mx8) mx8 = e8;
+        n++;
+    }
+    TST_EQ_INT(r.covered, n);
+    TST_NEAR(r.nmse, se / sr, 1e-12 * (se / sr));
+    TST_CHECK(r.nmse > 0, "narrow formats give some error");
+    TST_NEAR(r.max_abs_err, mx, 0);
+    TST_EQ_INT(r.max_err8, mx8);
+    TST_NEAR(r.diff8_share, (double)diff / n, 1e-15);
+    if (s8 > 0) TST_NEAR(r.psnr, 10 * log10(65025.0 * n / s8), 1e-9);
+    else TST_CHECK(isinf(r.psnr), "PSNR of equal 8-bit images is infinite");
+    TST_NEAR(r.clocks_per_pixel, (double)r.hwst.clocks / n, 1e-12);
+    double cr = 0, ch = 0;
+    for (int k = 0; k < SCN_OP__COUNT; k++) { cr += r.ops_ref[k] * d.cost[k]; ch += r.ops_hw[k] * d.cost[k]; }
+    TST_NEAR(r.speedup, cr / ch, 1e-12);
+    TST_CHECK(r.speedup > 1, "interpolation is cheaper than shading every pixel: %g", r.speedup);
+    TST_CHECK(r.hwst.area_ge > 0, "area");
+    tb_scene_free(&r);
+}
+
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    char *b = NULL;
+    size_t cap = 0;
+    *len = 0;
+    for (;;) {
+        if (*len + 65536 > cap) { cap = cap * 2 + 65536; b = realloc(b, cap); }
+        size_t k = fread(b + *len, 1, cap - *len, f);
+        if (!k) break;
+        *len += k;
+    }
+    fclose(f);
+    return b;
+}
+
+/* One thread or three: the same images, JSON and files, byte for byte. */
+static void test_jobs_same_bytes(void)
+{
+    if (!load_face()) { tst_fail(__FILE__, __LINE__, "no face mesh"); return; }
+    scn_desc d;
+    scn_desc_default(&d);
+    d.width = 100; d.height = 90;
+    d.policy = SCN_POL_ADAPTIVE_AUTO;
+    char dir[2][64];
+    for (int k = 0; k < 2; k++) {
+        snprintf(dir[k], sizeof dir[k], "/tmp/shadesim_test_scene.%d.%d", (int)getpid(), k);
+        tb_scene_opts o = { k ? 3 : 1, 0, NULL, NULL };
+        tb_scene_result r;
+        char err[600];
+        int rc = tb_scene_render(&d, &face, &o, &r, err, sizeof err);
+        TST_CHECK(rc == TB_OK, "%s", err);
+        if (rc != TB_OK) return;
+        TST_CHECK(!tb_scene_write(&d, &r, dir[k], err, sizeof err), "%s", err);
+        tb_scene_free(&r);
+    }
+    static const char *const files[] = { "ref.png", "hw.png", "degree.png", "region.png", "scene.json" };
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        char p0[128], p1[128];
+        snprintf(p0, sizeof p0, "%s/%s", dir[0], files[i]);
+        snprintf(p1, sizeof p1, "%s/%s", dir[1], files[i]);
+        size_t n0, n1;
+        char *b0 = slurp(p0, &n0), *b1 = slurp(p1, &n1);
+        TST_CHECK(b0 && b1 && n0 == n1 && !memcmp(b0, b1, n0), "%s differs between -j 1 and -j 3", files[i]);
+        TST_CHECK(b0 && n0 > 8, "%s written", files[i]);
+        free(b0); free(b1);
+    }
+    for (int k = 0; k < 2; k++) { tst_rmtree(dir[k]); rmdir(dir[k]); }
+}
+
+int main(void)
+{
+    TST_RUN(test_wide_equals_float);
+    TST_RUN(test_polynomial_profiles);
+    TST_RUN(test_metrics);
+    TST_RUN(test_jobs_same_bytes);
+    if (face_ok) scn_mesh_free(&face);
+    TST_EXIT();
+}
