@@ -137,7 +137,7 @@ typedef struct cand {
     const search *s;
     unit_fmts f;
     eval e;
-    int sig;
+    int sig, pos;
 } cand;
 
 static void cand_run(void *ctx, size_t i)
@@ -199,6 +199,7 @@ typedef struct report {
     const unit_desc *u;
     double target;
     int met, wu;                 /* a uniform width met the target; it */
+    int sched;                   /* the unit's schedule index */
     int floor_stop;              /* stopped going up: the method's own error is above the target */
     eval uni, uni_below, uni_held, found, found_held;
     int have_below;
@@ -282,7 +283,7 @@ static void print_json(FILE *f, const report *rp)
         int first = 1;
         for (int i = 0; i < rp->u->nsigs; i++) {
             sim_fmt a = rp->uni.fmts.f[i], b = rp->found.fmts.f[i];
-            if (!a.width) continue;
+            if (!a.width || !unit_sig_used(rp->u, i, rp->sched)) continue;
             fprintf(f, "%s\n      {\"name\": ", first ? "" : ",");
             first = 0;
             jstr(f, rp->u->sigs[i].name);
@@ -317,7 +318,7 @@ static void print_text(FILE *f, const report *rp)
         fprintf(f, "  %-10s %-9s %-9s\n", "signal", "uniform", "found");
         for (int i = 0; i < rp->u->nsigs; i++) {
             sim_fmt a = rp->uni.fmts.f[i], b = rp->found.fmts.f[i];
-            if (!a.width) continue;
+            if (!a.width || !unit_sig_used(rp->u, i, rp->sched)) continue;
             fprintf(f, "  %-10s %-9s %-9s%s\n", rp->u->sigs[i].name, sim_fmt_str(a, fb), sim_fmt_str(b, fb2),
                     pinned(d, rp->u->sigs[i].name) ? "  (pinned)" : "");
         }
@@ -381,6 +382,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
     unit_cfg cfg;
     unit_fmts f0;
     if (tb_scene_unit(d, &rp->u, &cfg, &f0, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    rp->sched = cfg.schedule;
 
     /* 1. The smallest uniform width. */
     eval e;
@@ -476,6 +478,16 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
         if (!holds(&s, &e)) continue;
         good--;
         rp->found = e;
+        /* Then none at all (a signal this view hardly uses, such as the
+         * quadratic network where every interval is cubic): one render. */
+        if (good - bad > 1) {
+            t.f[i] = with_fbits(fi, bad + 1);
+            progress(&s, what);
+            render(&s, d, &t, 0, jobs, &e);
+            s.renders++;
+            if (holds(&s, &e)) { good = bad + 1; rp->found = e; }
+            else bad++;
+        }
         while (good - bad > 1) {
             int mid = bad + (good - bad) / 2;
             t.f[i] = with_fbits(fi, mid);
@@ -491,7 +503,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
     /* 3. Passes of single-bit removals until none holds. */
     for (int changed = 1; changed;) {
         changed = 0;
-        for (int next = 0; next < no && !changed;) {
+        for (int next = 0; next < no;) {
             int nb = 0;
             while (next < no && nb < jobs) {
                 int i = ord[next++].sig;
@@ -500,17 +512,21 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
                 cj[nb].f = cur;
                 cj[nb].f.f[i] = with_fbits(cur.f[i], cur.f[i].fbits - 1);
                 cj[nb].sig = i;
+                cj[nb].pos = next - 1;
                 nb++;
             }
             if (!nb) break;
             progress(&s, "final pass");
             tb_par_for((size_t)nb, jobs, cand_run, cj);
+            /* The first that holds wins; the pass goes on after it, as a
+             * one-at-a-time pass would. */
             for (int b = 0; b < nb; b++) {
                 s.renders++;
                 if (holds(&s, &cj[b].e)) {
                     cur = cj[b].f;
                     rp->found = cj[b].e;
                     changed = 1;
+                    next = cj[b].pos + 1;
                     break;
                 }
             }
