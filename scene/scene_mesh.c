@@ -20,8 +20,8 @@
  *   the parameter derivatives, by central differences), not of the mesh.
  *
  *   Regions, one label per triangle, from the undeformed front
- *   coordinates (X, Y) of its centroid (Y up, X to the face's left as
- *   seen by the viewer = +x) and how far it faces the viewer (uz = z
+ *   coordinates (X, Y) of its centroid (X = x, to the viewer's right;
+ *   Y = y, up) and how far it faces the viewer (uz = z
  *   component of the direction on the ellipsoid; "front" means uz > 0.35
  *   and -0.85 < Y < 0.80). First match wins:
  *
