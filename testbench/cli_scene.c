@@ -118,9 +118,11 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
             d->series ? "quarter" : "paper", d->fmt_width, u->sched[r->cfg.schedule].name);
     fmt_nmse(a, sizeof a, r->nmse);
     fprintf(f, "  %-22s %-14s %s\n", "NMSE", a, "sum (hw - ref)^2 / sum ref^2 over covered pixels");
-    if (max_nmse >= 0)
-        fprintf(f, "  %-22s %-14s %s\n", "", r->nmse <= max_nmse ? "meets" : "MISSES",
-                "your target --max-nmse");
+    if (max_nmse >= 0) {
+        snprintf(a, sizeof a, "%.3e", max_nmse);
+        fprintf(f, "  %-22s %-14s %s\n", "target (--max-nmse)", a,
+                r->nmse <= max_nmse ? "meets your target" : "does NOT meet your target");
+    }
     fmt_psnr(a, sizeof a, r->psnr);
     fprintf(f, "  %-22s %-14s %s\n", "PSNR", a, "on 8-bit values round(255 clamp(v))");
     snprintf(a, sizeof a, "%.3g", r->max_abs_err);

@@ -11,7 +11,7 @@
  *      shaded exactly (scn_span_at, then the lighting). The t = 1 node of
  *      an interval is the t = 0 node of the next one: it is shaded once.
  *      A last interval of one pixel needs only its t = 0 node (the other
- *      node inputs repeat it: a constant). Only the nodes the interval's
+ *      node inputs repeat it: a constant; adaptive-auto gives it degree 2). Only the nodes the interval's
  *      degree reads are shaded, and counted;
  *   4. the degree: fixed by the policy; adaptive-region: the table of the
  *      description (region -> 2 or 3); adaptive-auto: from the nodes the
@@ -597,7 +597,9 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
             r->heldout ? "heldout" : "main", scn_policy_name(d->policy));
     fprintf(f, "  \"L\": %d,\n  \"terms\": %d,\n  \"series\": \"%s\",\n  \"width\": %d,\n", d->L, d->terms,
             d->series == DIV3_QUARTER ? "quarter" : "paper", d->fmt_width);
-    fprintf(f, "  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"formats\": {", u->name, u->sched[r->cfg.schedule].name);
+    fprintf(f, "  \"cubic_nodes\": \"%s\",\n  \"auto_threshold\": ", nodes_n2(d) ? "n2" : "n1");
+    jnum(f, d->auto_threshold);
+    fprintf(f, ",\n  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"formats\": {", u->name, u->sched[r->cfg.schedule].name);
     for (int i = 0, n = 0; i < u->nsigs; i++)
         if (unit_sig_used(u, i, r->cfg.schedule))
             fprintf(f, "%s\"%s\": \"%s\"", n++ ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
