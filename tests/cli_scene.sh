@@ -106,3 +106,11 @@ expect two_scenes 2 "$S" scene face sphere
 if [ -w /dev/full ]; then
     expect stdout_full 2 sh -c "\"$S\" scene face $R -o \"$T/full\" >/dev/full"
 fi
+
+# --compare: three configurations, a table row and a folder each.
+expect compare 0 "$S" scene face $R --compare -o "$T/cmp"
+[ "$(grep -cE '^(paper|corrected|auto) ' "$T/out")" -eq 3 ] && ok compare_rows || fail compare_rows "$(cat "$T/out")"
+[ -s "$T/cmp/paper/scene.json" ] && [ -s "$T/cmp/corrected/hw.png" ] && [ -s "$T/cmp/auto/degree.png" ] \
+    && ok compare_files || fail compare_files "$(ls -R "$T/cmp")"
+grep -q '"terms": 3,' "$T/cmp/paper/scene.json" && grep -q '"policy": "adaptive-auto"' "$T/cmp/auto/scene.json" \
+    && ok compare_configs || fail compare_configs "paper or auto configuration not as named"
