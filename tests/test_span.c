@@ -431,6 +431,72 @@ static void t_bound(void)
     if (getenv("TST_VERBOSE")) printf("  smallest worst/bound ratio over units and widths: %.3f\n", min_ratio);
 }
 
+/* The bound follows --fmt overrides, the /3 network's terms and series,
+ * the rounding mode and L: t and the ROM without guard bits, a coarse
+ * multiplier, adder or registers, narrow inputs, a wider everything;
+ * random intervals, every unit and schedule, never above the bound. */
+static void t_bound_overrides(void)
+{
+    static const char *const ovs[][3] = {
+        { "t=u1.5", "rcp=u1.5", NULL }, { "t=u1.9", "rcp=u1.7", NULL }, { "rcp=u1.4", NULL, NULL },
+        { "sm=s7.4", "rg=s7.6", NULL }, { "ra=s7.3", "rb=s7.5", "y=s7.3" }, { "all=s9.7", "t=u1.12", "rcp=u1.20" },
+        { "i1=u1.6", "i2=u1.6", "t=u1.4" },
+    };
+    int runs = 0;
+    for (size_t ui = 0; ui < NUNITS; ui++)
+        for (int s = 0; s < 3; s++)
+            for (size_t o = 0; o < sizeof ovs / sizeof ovs[0]; o++) {
+                const ut *t = &UNITS[ui];
+                int nov = 0;
+                while (nov < 3 && ovs[o][nov]) nov++;
+                /* the overrides of signals this schedule has (the pipe has no sm, rg) */
+                const unit_desc *ud = unit_find(t->name);
+                int have = 1;
+                for (int k = 0; k < nov; k++) {
+                    char nm[16];
+                    snprintf(nm, sizeof nm, "%.*s", (int)strcspn(ovs[o][k], "="), ovs[o][k]);
+                    int i = unit_sig_index(ud, nm);
+                    have &= !strcmp(nm, "all") || (i >= 0 && unit_sig_used(ud, i, s));
+                }
+                if (!have) continue;
+                unit_cfg cfg;
+                unit_fmts f;
+                int L = 2 + (int)(urand() * 40), terms = 1 + (int)(urand() * 5);
+                const unit_desc *u = setup(t, s, 10, L, terms, ovs[o], nov, &cfg, &f);
+                if (!u) return;
+                cfg.series = urand() < 0.5;
+                cfg.rnd = (sim_round)(int)(urand() * 3);
+                double b;
+                u->bound(&cfg, &f, &b);
+                tb_span_item it[100];
+                for (int i = 0; i < 100; i++) {
+                    memset(&it[i], 0, sizeof it[i]);
+                    it[i].n = 1 + (int)(urand() * L);
+                    it[i].dv = urand() < 0.5 ? L : (it[i].n > 1 ? it[i].n - 1 : 1);
+                    it[i].deg = urand() < 0.5 ? 2 : 3;
+                    for (int k = 0; k < 4; k++) it[i].node[k] = i % 7 ? urand() : (double)(urand() < 0.5);
+                }
+                double pix[100 * 42];
+                tb_span_stats st;
+                char err[300];
+                if (tb_span_run(u, &cfg, &f, it, 100, pix, &st, NULL, err, sizeof err) != TB_OK) { TST_CHECK(0, "%s", err); return; }
+                double fac = factor(cfg.terms, cfg.series), worst = 0;
+                size_t p = 0;
+                for (int i = 0; i < 100; i++) {
+                    double I[4], c[4];
+                    for (int k = 0; k < 4; k++) I[k] = held(it[i].node[k], u, &f, &cfg, k < t->nin ? k : 0);
+                    int k;
+                    ideal_coef(t, has_deg(t) ? it[i].deg : 3, I, fac, c, &k);
+                    for (int x = 0; x < it[i].n; x++, p++)
+                        worst = fmax(worst, fabs(pix[p] - poly(c, k, (double)x / it[i].dv)));
+                }
+                TST_CHECK(worst <= b * (1 + 1e-12), "%s%s %s overrides %zu L=%d terms=%d %s: |e| %g > bound %g", t->name,
+                          t->n2 ? " n2" : "", SCHED[s], o, L, cfg.terms, sim_round_name(cfg.rnd), worst, b);
+                runs++;
+            }
+    TST_CHECK(runs >= 100, "%d runs", runs);
+}
+
 /* ---- the generic testbench ------------------------------------------------------ */
 
 /* `run` through tb_run: the default vectors (n = L, dv = L and L - 1)
@@ -620,6 +686,7 @@ int main(void)
     TST_RUN(t_rom_t);
     TST_RUN(t_clocks);
     TST_RUN(t_bound);
+    TST_RUN(t_bound_overrides);
     TST_RUN(t_generic_run);
     TST_RUN(t_signals_built);
     TST_RUN(t_rejected);
