@@ -196,7 +196,7 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
         }
         vcd = NULL;
     }
-    st->clocks = s.last_pixel - s.first_accept;
+    if (rc == TB_OK) st->clocks = s.last_pixel - s.first_accept;
     st->pixels = s.got;
     st->overflows = s.in_ovf + scope_overflows(sc);
     st->area_ge = sim_scope_area(sc);

@@ -656,7 +656,7 @@ SPAN_FNS(23, k23)
 #define S_I12 S_IN("i1", "I1 = I(0)"), S_IN("i2", "I2 = I(1)")
 #define S_I3 S_IN("i3", "I3 = I(1/2)")
 #define S_I4 S_IN("i4", "I4 = I(1/4) (nodes=n1) or I(3/4) (nodes=n2)")
-#define S_NDV S_IN("n", "pixels of the interval, 1..L: the item's beats"), \
+#define S_NDV S_IN("n", "pixels of the interval, 1..L: the item's beats (`run` gives every item L beats: its vectors have n = L)"), \
               S_IN("dv", "divisor, 1..L: pixel k has t = k/dv (L for a full interval, n-1 for a span's last)")
 #define S_DEG S_IN("deg", "degree of the item: 2 (the quadratic through I1, I2, I3) or 3 (the cubic)")
 #define S_Y { "y", UNIT_SIG_OUT, "intensity I(k/dv) of pixel k, one beat per pixel, n beats per item", 0 }
