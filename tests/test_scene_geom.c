@@ -874,6 +874,91 @@ static void t_obj_bad(void)
     rmdir(tmpdir);
 }
 
+/* Random edits of good files: never a crash (the ASan run watches),
+ * either a sound mesh or -1 with "PATH:" in front of the message. */
+static void t_obj_fuzz(void)
+{
+    if (make_tmpdir()) TST_SKIP("no temporary directory");
+    static const char base[] =
+        "# fuzz\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\nvt 0 0\nvn 0 0 1\nvn 0 0 -1\n"
+        "f 1//2 4//2 3//2 2//2\nf 1/1 2/1 5/1\nf -4 -3 -1\nf 3//1 4//1 5//1\nf 4 1 5\n";
+    static const char alphabet[] = "0123456789-+/ .\nfvnt#eExX\t\r";
+    char buf[512], err[512], head[600];
+    size_t bad = 0, accepted = 0;
+    for (int k = 0; k < 400; k++) {
+        size_t n = sizeof base - 1;
+        memcpy(buf, base, n);
+        int edits = 1 + (int)(rng() % 4);
+        for (int e = 0; e < edits; e++) {
+            size_t at = rng() % n;
+            switch (rng() % 4) {
+            case 0: buf[at] = alphabet[rng() % (sizeof alphabet - 1)]; break;
+            case 1: memmove(buf + at, buf + at + 1, n - at - 1); n--; break;
+            case 2: if (n + 8 < sizeof buf) { memmove(buf + at + 1, buf + at, n - at); buf[at] = alphabet[rng() % (sizeof alphabet - 1)]; n++; } break;
+            default: buf[at] = (char)(rng() & 0xff); break;
+            }
+        }
+        const char *p = wfile("fuzz.obj", buf, n);
+        scn_mesh m;
+        int r = scn_mesh_obj(p, &m, err, sizeof err);
+        if (r == 0) {
+            accepted++;
+            for (size_t t = 0; t < m.nt; t++)
+                for (int q = 0; q < 3; q++) if (m.tri[t][q] >= m.nv) bad++;
+            for (size_t v = 0; v < m.nv; v++) {
+                if (!(fabs(len(m.nrm[v]) - 1) < 1e-12)) bad++;
+                for (int q = 0; q < 3; q++) if (!isfinite(m.pos[v][q])) bad++;
+            }
+            scn_mesh_free(&m);
+        } else {
+            snprintf(head, sizeof head, "%s:", p);
+            if (r != -1 || strncmp(err, head, strlen(head)) || m.pos || m.nt) bad++;
+        }
+    }
+    TST_EQ_INT(bad, 0);
+    TST_CHECK(accepted > 20 && accepted < 400, "%zu of 400 edited files accepted", accepted);
+    tst_rmtree(tmpdir);
+    rmdir(tmpdir);
+    tmpdir[0] = 0;
+}
+
+/* Vertices at NaN, infinity, 1e300 and on the eye among sound ones: those
+ * triangles go, the rest is drawn, nothing non-finite in the buffer. */
+static void t_raster_hostile(void)
+{
+    scn_mesh m;
+    mesh_new(&m, 16, 16);
+    uint32_t a = add_v(&m, -1, -1, 0), b = add_v(&m, 1, -1, 0), c = add_v(&m, 0, 1, 0);
+    uint32_t nan_v = add_v(&m, NAN, 0, 0), inf_v = add_v(&m, 0, INFINITY, 0);
+    uint32_t big = add_v(&m, 1e300, -1e300, 1e300), eye = add_v(&m, 0, 0, 4), near = add_v(&m, 1e-9, 0, 4 - 1e-12);
+    add_t(&m, nan_v, a, b);
+    add_t(&m, a, inf_v, b);
+    add_t(&m, big, a, b);
+    add_t(&m, a, b, eye);
+    add_t(&m, near, a, b);
+    add_t(&m, c, near, eye);
+    add_t(&m, a, b, c);                      /* the sound one, drawn last */
+    m.nrm[nan_v][0] = NAN;
+    scn_camera cams[3] = { { 1, { 0, 0, 4 }, { 0, 0, 0 }, { 0, 1, 0 }, 50, 0 },
+                           { 0, { 0, 0, 4 }, { 0, 0, 0 }, { 0, 1, 0 }, 0, 3 },
+                           { 1, { 0.3, 0.2, 1e-3 }, { 0, 0, -1 }, { 0, 1, 0 }, 170, 0 } };
+    for (int k = 0; k < 3; k++) {
+        scn_gbuf g;
+        if (raster(&m, &cams[k], 40, 30, &g)) { TST_CHECK(0, "raster"); continue; }
+        size_t bad = 0, drawn = 0;
+        for (int i = 0; i < 40 * 30; i++) {
+            if (g.tri[i] < 0) continue;
+            drawn++;
+            if (g.frags[i] < 1 || !isfinite(g.depth[i])) bad++;
+            for (int q = 0; q < 3; q++) if (!isfinite(g.pos[i][q]) || !isfinite(g.nrm[i][q])) bad++;
+        }
+        TST_EQ_INT(bad, 0);
+        if (k < 2) TST_CHECK(drawn > 100, "camera %d: %zu pixels of the sound triangle", k, drawn);
+        scn_gbuf_free(&g);
+    }
+    scn_mesh_free(&m);
+}
+
 /* ------------------------------------------------------------- spans */
 
 static void check_spans_partition(const scn_gbuf *g, const scn_span *s, size_t n, const char *what)
@@ -1057,8 +1142,10 @@ int main(void)
     TST_RUN(t_builtin_face);
     TST_RUN(t_obj_good);
     TST_RUN(t_obj_bad);
+    TST_RUN(t_obj_fuzz);
     TST_RUN(t_spans_synthetic);
     TST_RUN(t_spans_rendered);
     TST_RUN(t_raster_bad);
+    TST_RUN(t_raster_hostile);
     TST_EXIT();
 }
