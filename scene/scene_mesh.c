@@ -409,6 +409,7 @@ int scn_mesh_builtin(const char *name, int detail, scn_mesh *m, char *err, size_
         return -1;
     }
     int r;
+    if (!name) name = "(null)";
     if (!strcmp(name, "face")) r = build_face(detail, m);
     else if (!strcmp(name, "sphere")) r = build_sphere(detail, m);
     else if (!strcmp(name, "torus")) r = build_torus(detail, m);

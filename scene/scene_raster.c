@@ -38,6 +38,13 @@
  *
  * The z-test is strict (<): of two fragments at equal depth the one of
  * the lower triangle index stays. Deterministic: one thread, mesh order.
+ * Uncovered pixels: tri -1, depth +inf, region, pos, nrm 0.
+ *
+ * Errors (-1 with a message; beyond the header's out of memory): image
+ * size outside 1..32768 per side or 2^28 pixels, eye == target, up zero
+ * or along the view, fov outside (0, 180), ortho height <= 0, more than
+ * INT32_MAX triangles. 128-bit integers are the GNU __int128, as in
+ * sim/sim_fixed.c.
  */
 #include "scene/scene.h"
 #include <math.h>
