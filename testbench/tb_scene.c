@@ -96,7 +96,9 @@ int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_f
     return 0;
 }
 
-/* 1 if the policy's cubic intervals use node set N2 (I(3/4)). */
+/* 1 if the policy's cubic intervals use node set N2 (I(3/4)). Both
+ * adaptive policies run on the span23 unit and take its node set from the
+ * auto-nodes key (auto_cubic_nodes). */
 static int nodes_n2(const scn_desc *d)
 {
     if (d->policy == SCN_POL_CUBIC_N2) return 1;
