@@ -117,6 +117,7 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
     fprintf(f, "scene %s %dx%d, %s view; policy %s, L %d, /3 network %d terms (%s series), width %d, schedule %s\n",
             d->mesh, r->w, r->h, r->heldout ? "held-out" : "main", scn_policy_name(d->policy), d->L, d->terms,
             d->series ? "quarter" : "paper", d->fmt_width, u->sched[r->cfg.schedule].name);
+    if (!r->covered) fputs("  (nothing covered: the camera sees no part of the mesh)\n", f);
     fmt_nmse(a, sizeof a, r->nmse);
     fprintf(f, "  %-22s %-14s %s\n", "NMSE", a, "sum (hw - ref)^2 / sum ref^2 over covered pixels");
     if (max_nmse >= 0) {

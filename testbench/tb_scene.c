@@ -534,7 +534,10 @@ int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o
     memset(r, 0, sizeof *r);
     const scn_view *view = o && o->heldout ? &d->heldout : &d->view;
     scn_gbuf g;
-    if (scn_raster(m, &view->cam, d->width, d->height, &g, err, errlen)) return TB_FAIL;
+    /* the rasterizer fails for a camera it cannot use (bad input) or
+     * out of memory */
+    if (scn_raster(m, &view->cam, d->width, d->height, &g, err, errlen))
+        return strstr(err, "memory") ? TB_FAIL : TB_BADINPUT;
     int rc = tb_scene_render_gbuf(d, &g, NULL, NULL, o, r, err, errlen);
     scn_gbuf_free(&g);
     return rc;

@@ -103,6 +103,7 @@ expect bad_option 2 "$S" scene face --bogus
 expect bad_jobs 2 "$S" scene face -j 0
 expect max_nmse_bad 2 "$S" scene face --max-nmse abc
 expect two_scenes 2 "$S" scene face sphere
+expect bad_camera 2 "$S" scene face $R --set "eye=0 0 -5" --set "target=0 100 -5" -o "$T/cam"
 if [ -w /dev/full ]; then
     expect stdout_full 2 sh -c "\"$S\" scene face $R -o \"$T/full\" >/dev/full"
 fi
