@@ -223,15 +223,16 @@ static double t_err(const unit_cfg *cfg, sim_fmt frcp, sim_fmt ft)
     rom_fill(&r, L, frcp);
     double e = 0;
     for (int dv = 1; dv <= L; dv++) {
-        double w = sim_fx_to_real(r.raw[dv], frcp);
-        e = fmax(e, fabs(1.0 - dv * w));   /* dv (1/dv - w), exact in a double for these widths */
+        /* dv (1/dv - w) = (2^F - dv raw) 2^-F, the numerator exact in 128 bits */
+        sim_wide num = ((sim_wide)1 << frcp.fbits) - (sim_wide)dv * r.raw[dv];
+        e = fmax(e, ldexp(fabs((double)num), -frcp.fbits));
     }
     return e + unit_qerr(ft, frcp.fbits, cfg->rnd);
 }
 
 /* ------------------------------------------------------------- control */
 
-/* Raw value of an integer input in format f: drop the fraction bits. */
+/* The fraction bits of an integer input's format (f_is2 drops them). */
 typedef struct int_in { int fbits; } int_in;
 
 /* in: k, rn. The item's last pixel: k + 1 >= n (n = 0 counts as 1). */
@@ -315,8 +316,8 @@ enum { SP_PAPER = HORNER_PAPER, SP_MAC = HORNER_MAC, SP_PIPE = HORNER_PIPE };
 
 /* span1's multiply-add. paper: step 0 RG <= B (MX2 = B, BK zero), step 1
  * RG <= A t + RG (MX2 = MUL, BK passes); mac and pipe: RG <= A t + B every
- * clock. Returns the result register; *done is 1 in the clock before it
- * holds a finished pixel. */
+ * clock. Returns the result register; *last is 1 in the clock a pixel's
+ * last step runs (the register holds the pixel after that edge). */
 static sim_signal *dp_lin(sim_ctx *c, sim_scope *sc, sim_signal *clk, int sched, sim_signal *run,
                           sim_signal *ra, sim_signal *rb, sim_signal *t, const span_kind *K,
                           const unit_fmts *f, sim_signal **last)
