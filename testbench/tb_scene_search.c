@@ -9,14 +9,16 @@
  *  2. from W's formats, each signal's fraction bits are cut, one signal at
  *     a time, dearest first (the area one fraction bit of it costs, from
  *     the unit built at W; ties in the unit's signal order); per signal a
- *     try of one bit less, then bisection down to the fewest bits that
- *     still hold;
- *  3. passes of single-bit removals over every signal from the final
- *     formats until none holds, so that at the end removing one more
- *     fraction bit from any signal breaks the target. The candidates of a
- *     pass are rendered speculatively on `jobs` threads; the first that
- *     holds in order wins, as a one-at-a-time pass would: the result and
- *     the render count do not depend on jobs.
+ *     try of one bit less (a signal the target needs whole costs one
+ *     render), then of none at all (a signal the view hardly uses costs
+ *     two), then bisection down to the fewest bits that still hold;
+ *  3. passes of single-bit removals over every signal from the current
+ *     formats, each pass going on after a removal that holds, until a pass
+ *     keeps none: at the end, removing one more fraction bit from any
+ *     signal breaks the target. A pass's candidates are rendered
+ *     speculatively on `jobs` threads and the first that holds in order
+ *     wins, as a one-at-a-time pass would: the result and the render count
+ *     do not depend on jobs.
  * "Holds" = the render succeeded, NMSE <= target and no overflow anywhere
  * (input quantization included). Integer bits are left as the rule gives
  * them: the rule sizes them from the range the hardware can see (any node
@@ -200,6 +202,7 @@ typedef struct report {
     double target;
     int met, wu;                 /* a uniform width met the target; it */
     int sched;                   /* the unit's schedule index */
+    int below_w;                 /* width of uni_below */
     int floor_stop;              /* stopped going up: the method's own error is above the target */
     eval uni, uni_below, uni_held, found, found_held;
     int have_below;
@@ -232,8 +235,10 @@ static double saved_pct(const report *rp)
 static void verdict_text(const report *rp, char *buf, size_t len)
 {
     if (!rp->met)
-        snprintf(buf, len, "FAIL: no uniform width %d..%d meets NMSE <= %g on the view%s", W_MIN, W_MAX, rp->target,
-                 rp->floor_stop ? " (the method's own error is above the target: change L, terms or policy)" : "");
+        snprintf(buf, len, "FAIL: no uniform width %d..%d meets NMSE <= %g on the view%s (NMSE %.3g at W = %d)",
+                 W_MIN, W_MAX, rp->target,
+                 rp->floor_stop ? ": the method's own error is above the target, change L, terms or policy" : "",
+                 rp->uni_below.nmse, rp->below_w);
     else if (rp->verdict == TB_OK)
         snprintf(buf, len, "ok: the held-out view meets NMSE <= %g with the per-signal formats (NMSE %.3g%s)",
                  rp->target, rp->found_held.nmse,
@@ -355,6 +360,7 @@ static int write_report(const report *rp, const char *outdir, char *err, size_t 
 int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double target_nmse,
                     const char *outdir, int json, FILE *out, char *err, size_t errlen)
 {
+    if (errlen) err[0] = 0;
     if (!(target_nmse > 0) || !isfinite(target_nmse)) {
         snprintf(err, errlen, "--target-nmse: needs a positive number");
         return TB_BADINPUT;
@@ -402,17 +408,19 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
             int x = hi - 4 < W_MIN ? W_MIN : hi - 4;
             at_width(&s, x, &e);
             if (holds(&s, &e)) { hi = x; rp->uni = e; }
-            else { lo = x; rp->uni_below = e; break; }
+            else { lo = x; rp->uni_below = e; rp->below_w = x; break; }
         }
     } else {
         lo = w;
         rp->uni_below = e;
+        rp->below_w = w;
         double prev = e.status == TB_OK ? e.nmse : INFINITY;
         for (int x = w + 4; x <= W_MAX; x += 4) {
             at_width(&s, x, &e);
             if (holds(&s, &e)) { hi = x; rp->uni = e; break; }
             lo = x;
             rp->uni_below = e;
+            rp->below_w = x;
             /* The error has stopped falling with width: what is left is the
              * method's own (interpolation) error, which no width removes. */
             if (e.status == TB_OK && e.ovf == 0 && e.nmse > 0.9 * prev && e.nmse > 2 * target_nmse) {
@@ -427,7 +435,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
         int mid = lo + (hi - lo) / 2;
         at_width(&s, mid, &e);
         if (holds(&s, &e)) { hi = mid; rp->uni = e; }
-        else { lo = mid; rp->uni_below = e; }
+        else { lo = mid; rp->uni_below = e; rp->below_w = mid; }
     }
     rp->met = 1;
     rp->wu = hi;
@@ -548,6 +556,12 @@ report:
     if (outdir && write_report(rp, outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
     if (json) print_json(out, rp);
     else print_text(out, rp);
+    if (rc == TB_FAIL) {
+        /* The reason, for the caller's one line on stderr. */
+        char v[512];
+        verdict_text(rp, v, sizeof v);
+        snprintf(err, errlen, "scene search: %s", strncmp(v, "FAIL: ", 6) ? v : v + 6);
+    }
 done:
     free(rp);
     free(cj);

@@ -266,10 +266,14 @@ static int is_paper(const pt *p)
 
 static int pt_ok(const pt *p) { return p->status == TB_OK; }
 
-static void chart(const pt *p, size_t n, int clocks, const char *path, char *err, size_t errlen, int *rc)
+static void chart(const scn_desc *d, const pt *p, size_t n, int clocks, const char *path, char *err, size_t errlen,
+                  int *rc)
 {
-    tb_chart *c = tb_chart_new(clocks ? "Scene: NMSE against clocks per pixel"
-                                      : "Scene: NMSE against operations per pixel",
+    char title[200];
+    const char *b = strrchr(d->mesh, '/');
+    snprintf(title, sizeof title, "%.60s %dx%d: NMSE against %s per pixel", b ? b + 1 : d->mesh, d->width, d->height,
+             clocks ? "clocks" : "operations");
+    tb_chart *c = tb_chart_new(title,
                                clocks ? "clocks per pixel of the simulated span unit"
                                       : "operation cost per pixel (weighted, method)",
                                "NMSE vs per-pixel reference");
@@ -278,8 +282,8 @@ static void chart(const pt *p, size_t n, int clocks, const char *path, char *err
     /* The front first (a line under the points), then the marked kinds,
      * then one series per policy. */
     int s_front = tb_chart_series(c, "Pareto front (no overflow)", TB_STEP);
-    int s_paper = tb_chart_series(c, "paper: adaptive-region L8 terms 3 W16", TB_POINTS);
-    int s_break = tb_chart_series(c, "breaks: overflow or NMSE > 10x front (this marker)", TB_POINTS);
+    int s_paper = tb_chart_series(c, "paper (L8, 3 terms, W16)", TB_POINTS);
+    int s_break = tb_chart_series(c, "breaks: ovf or >10x front", TB_POINTS);
     int s_pol[SCN_POL__COUNT];
     for (int q = 0; q < SCN_POL__COUNT; q++) s_pol[q] = tb_chart_series(c, scn_policy_name((scn_policy)q), TB_POINTS);
     /* Front points in increasing cost. */
@@ -357,6 +361,7 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *s
                    const char *outdir, int json, FILE *out, char *err, size_t errlen)
 {
     axes a;
+    if (errlen) err[0] = 0;
     axes_default(&a);
     if (spec && *spec && parse_spec(spec, &a, err, errlen)) return TB_BADINPUT;
     if (jobs < 1) jobs = 1;
@@ -453,8 +458,8 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *s
         write_csv(sim_out_file(o), p, n);
         if (sim_out_close(o, err, errlen)) { rc = TB_BADINPUT; goto done; }
         int crc = 0;
-        chart(p, n, 0, paths[1], err, errlen, &crc);
-        if (!crc) chart(p, n, 1, paths[2], err, errlen, &crc);
+        chart(d, p, n, 0, paths[1], err, errlen, &crc);
+        if (!crc) chart(d, p, n, 1, paths[2], err, errlen, &crc);
         if (crc) { rc = TB_BADINPUT; goto done; }
     }
 
@@ -502,7 +507,11 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *s
                 "(overflow or NMSE > 10x the front)\n", nfo, nfc, nb);
         for (int j = 0; outdir && j < 3; j++) fprintf(out, "wrote %s\n", paths[j]);
     }
-    if (nfail) rc = TB_FAIL;
+    if (nfail) {
+        rc = TB_FAIL;
+        snprintf(err, errlen, "scene sweep: %zu of %zu renders failed (their rows in sweep.csv are marked failed)",
+                 nfail, sw.ntodo);
+    }
 done:
     free(sw.todo);
     free(p);
