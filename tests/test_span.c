@@ -638,6 +638,13 @@ static void t_rejected(void)
     u = setup(&UNITS[2], 0, 16, 8, 3, &ov, 1, &cfg, &f);
     TST_CHECK(tb_span_run(u, &cfg, &f, &ok, 1, pix, &st, NULL, err, sizeof err) == TB_BADINPUT && strstr(err, "t format"),
               "t=u0.16: '%s'", err);
+    /* n, dv formats that cannot hold L */
+    static const char *const narrow[] = { "n=u3.0", "dv=s4.2" };
+    for (int k = 0; k < 2; k++) {
+        u = setup(&UNITS[2], 0, 16, 8, 3, &narrow[k], 1, &cfg, &f);
+        TST_CHECK(tb_span_run(u, &cfg, &f, &ok, 1, pix, &st, NULL, err, sizeof err) == TB_BADINPUT
+                  && strstr(err, "cannot hold 8"), "%s: '%s'", narrow[k], err);
+    }
     /* not a span unit */
     unit_cfg hc;
     unit_cfg_default(&hc);

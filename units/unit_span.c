@@ -389,6 +389,16 @@ static int build(const span_kind *K, sim_ctx *c, sim_scope *sc, sim_signal *clk,
                  sim_fmt_str(ft, b1), sim_fmt_str(frcp, b2), L);
         return -1;
     }
+    static const char *const ints[] = { "n", "dv", "deg" };
+    for (int i = 0; i < (K->kind == K_ADAPT ? 3 : 2); i++) {
+        sim_fmt fi = f->f[sig(K, ints[i])];
+        int need = i < 2 ? L : 3;
+        if (sim_fmt_real_max(fi) < need) {
+            char b[SIM_FMT_STRLEN];
+            snprintf(err, errlen, "%s: %s format %s cannot hold %d", u->name, ints[i], sim_fmt_str(fi, b), need);
+            return -1;
+        }
+    }
     int G = kbits(L);
     sim_fmt u1 = unit_fmt(0, 1, 0);
     const coef_net *net = main_net(K, cfg);
