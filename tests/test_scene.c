@@ -263,6 +263,50 @@ static void test_metrics(void)
     tb_scene_free(&r);
 }
 
+/* The operation counts: the reference's by hand from the documented
+ * steps (docs/scenes.md), the method's from the nodes, intervals and
+ * pixels the render reports. */
+static void test_op_counts(void)
+{
+    if (!load_face()) { tst_fail(__FILE__, __LINE__, "no face mesh"); return; }
+    scn_desc d;
+    scn_desc_default(&d);
+    d.width = d.height = 80;
+    d.policy = SCN_POL_LINEAR;
+    d.view.cam.perspective = 0;
+    d.view.nlights = 1;
+    d.view.light[0].point = 0;
+    d.mat.spec = SCN_SPEC_BLINN;
+    d.mat.ks = 0.3;
+    /* Blinn, orthographic, one directional light: normalize N (2 add,
+     * 6 mul, div, sqrt), ambient (1 add), N.L (2, 3), kd (0, 1), combine
+     * (2, 1), H normalized and N.H (7, 9, div, sqrt), (N.H)^n ks (0, 1, pow) */
+    double want[SCN_OP__COUNT] = { 14, 21, 2, 2, 1 };
+    tb_scene_opts o = { 1, 0, NULL, NULL };
+    tb_scene_result r;
+    char err[600];
+    int rc = tb_scene_render(&d, &face, &o, &r, err, sizeof err);
+    TST_CHECK(rc == TB_OK, "%s", err);
+    if (rc != TB_OK) return;
+    double px = (double)r.covered, nodes = (double)r.nodes_shaded / px;
+    for (int k = 0; k < SCN_OP__COUNT; k++) TST_NEAR(r.ops_ref[k], want[k], 0);
+    /* linear: B = I2 - I1 per interval; Horner 1 mul 1 add; t 1 mul */
+    TST_NEAR(r.ops_hw[SCN_OP_ADD], nodes * want[SCN_OP_ADD] + r.intervals / px + 1, 1e-12);
+    TST_NEAR(r.ops_hw[SCN_OP_MUL], nodes * want[SCN_OP_MUL] + 2, 1e-12);
+    TST_NEAR(r.ops_hw[SCN_OP_DIV], nodes * want[SCN_OP_DIV], 1e-12);
+    TST_NEAR(r.ops_hw[SCN_OP_POW], nodes * want[SCN_OP_POW], 1e-12);
+    tb_scene_free(&r);
+    /* a point light and a perspective camera: each adds a vector
+     * normalized per point (5 add, 6 mul, div, sqrt) */
+    d.view.cam.perspective = 1;
+    d.view.light[0].point = 1;
+    d.view.light[0].v[0] = 1; d.view.light[0].v[1] = 2; d.view.light[0].v[2] = 4;
+    double p[SCN_OP__COUNT];
+    tb_scene_point_ops(&d, &d.view, p);
+    double want2[SCN_OP__COUNT] = { 24, 33, 4, 4, 1 };
+    for (int k = 0; k < SCN_OP__COUNT; k++) TST_NEAR(p[k], want2[k], 0);
+}
+
 static char *slurp(const char *path, size_t *len)
 {
     FILE *f = fopen(path, "rb");
@@ -319,6 +363,7 @@ int main(void)
     TST_RUN(test_wide_equals_float);
     TST_RUN(test_polynomial_profiles);
     TST_RUN(test_metrics);
+    TST_RUN(test_op_counts);
     TST_RUN(test_jobs_same_bytes);
     if (face_ok) scn_mesh_free(&face);
     TST_EXIT();
