@@ -91,7 +91,11 @@ int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_f
     }
     const char *ov[SCN_MAX_FMT];
     for (int i = 0; i < d->nfmt && i < SCN_MAX_FMT; i++) ov[i] = d->fmt[i];
-    if (tb_formats(u, cfg, ov, d->nfmt, f, err, errlen)) return -1;
+    if (tb_formats(u, cfg, ov, d->nfmt, f, err, errlen)) {
+        /* here the overrides come from the scene key fmt, not --fmt */
+        if (!strncmp(err, "--fmt ", 6)) memmove(err, err + 2, strlen(err + 2) + 1);
+        return -1;
+    }
     *up = u;
     return 0;
 }
