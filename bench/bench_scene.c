@@ -30,16 +30,25 @@ int main(void)
     tb_scene_result r[2];
     double dt[2];
     int bad = 0;
+    /* Best of three runs for each -j (the machine may be busy); the
+     * first run's output is the one compared. */
     for (int k = 0; k < 2; k++) {
         tb_scene_opts o = { k + 1, 0, NULL, NULL };
-        memset(&r[k], 0, sizeof r[k]);
-        double t0 = now_s();
-        int rc = tb_scene_render(&d, &m, &o, &r[k], err, sizeof err);
-        dt[k] = now_s() - t0;
-        if (rc != TB_OK) { fprintf(stderr, "bench_scene: -j %d: %s\n", k + 1, err); return 1; }
-        printf("scene face 512x512 %s -j %d: %.3f s, %zu covered pixels, %.3g pixels/s, %llu clocks, %.3g clocks/s\n",
-               scn_policy_name(d.policy), k + 1, dt[k], r[k].covered, (double)r[k].covered / dt[k],
-               (unsigned long long)r[k].hwst.clocks, (double)r[k].hwst.clocks / dt[k]);
+        dt[k] = 1e9;
+        for (int rep = 0; rep < 3; rep++) {
+            tb_scene_result t;
+            memset(&t, 0, sizeof t);
+            double t0 = now_s();
+            int rc = tb_scene_render(&d, &m, &o, &t, err, sizeof err);
+            double e = now_s() - t0;
+            if (rc != TB_OK) { fprintf(stderr, "bench_scene: -j %d: %s\n", k + 1, err); return 1; }
+            if (e < dt[k]) dt[k] = e;
+            if (rep == 0) r[k] = t;
+            else tb_scene_free(&t);
+        }
+        printf("scene face 512x512 %s -j %d: %.3f s (best of 3), %zu covered pixels, %.3g pixels/s, "
+               "%llu clocks, %.3g clocks/s\n", scn_policy_name(d.policy), k + 1, dt[k], r[k].covered,
+               (double)r[k].covered / dt[k], (unsigned long long)r[k].hwst.clocks, (double)r[k].hwst.clocks / dt[k]);
     }
     size_t n = (size_t)r[0].w * (size_t)r[0].h;
     if (r[0].w != r[1].w || r[0].h != r[1].h || memcmp(r[0].hw, r[1].hw, n * sizeof *r[0].hw) ||

@@ -125,6 +125,7 @@ static void test_search_smallest_and_heldout(void)
     unit_fmts f;
     TST_EQ_INT(tb_scene_unit(&dw, &u, &cfg, &f, err, sizeof err), 0);
     int nsig = 0, trimmed = 0;
+    unsigned char listed[UNIT_MAX_SIGS] = { 0 };
     for (const char *p = strstr(js, "{\"name\": \""); p; p = strstr(p + 1, "{\"name\": \"")) {
         char name[32], uni[16], fnd[16];
         if (sscanf(p, "{\"name\": \"%31[^\"]\", \"uniform\": \"%15[^\"]\", \"found\": \"%15[^\"]\"", name, uni,
@@ -138,6 +139,7 @@ static void test_search_smallest_and_heldout(void)
         TST_CHECK(a.width == f.f[i].width && a.fbits == f.f[i].fbits, "%s: uniform %s is not the rule's", name, uni);
         TST_CHECK(b.ibits == a.ibits && b.fbits <= a.fbits, "%s: %s -> %s", name, uni, fnd);
         f.f[i] = b;
+        listed[i] = 1;
         nsig++;
         trimmed += b.fbits < a.fbits;
     }
@@ -150,11 +152,25 @@ static void test_search_smallest_and_heldout(void)
               (unsigned long long)ov);
     TST_NEAR(jnum_of(js, "nmse"), e, 1e-8 * e + 1e-300);
 
+    /* A signal the search does not list is not built: no format of it
+     * changes the image. */
+    double e_found = e;
+    for (int i = 0; i < u->nsigs; i++) {
+        if (listed[i] || !f.f[i].width || !unit_sig_used(u, i, cfg.schedule) || f.f[i].fbits < 1) continue;
+        unit_fmts g = f;
+        g.f[i].width = (uint8_t)(g.f[i].width - g.f[i].fbits + (g.f[i].ibits ? 0 : 1));
+        g.f[i].fbits = g.f[i].ibits ? 0 : 1;
+        double e2;
+        TST_EQ_INT(render(&D, &g, 0, &e2, &ov), TB_OK);
+        TST_CHECK(e2 == e_found, "unlisted signal %s changes the NMSE: %g vs %g", u->sigs[i].name, e2, e_found);
+    }
+
     /* Smallest: one more fraction bit off any signal breaks the target. */
     int checked = 0;
     for (int i = 0; i < u->nsigs; i++) {
         sim_fmt b = f.f[i];
-        if (!b.width || !unit_sig_used(u, i, cfg.schedule) || b.fbits <= (b.ibits >= 1 ? 0 : 1)) continue;
+        if (!listed[i] || !b.width || !unit_sig_used(u, i, cfg.schedule) || b.fbits <= (b.ibits >= 1 ? 0 : 1))
+            continue;
         unit_fmts g = f;
         g.f[i].fbits--;
         g.f[i].width--;
