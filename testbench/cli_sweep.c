@@ -5,6 +5,7 @@
 #include "testbench/tb_sweep.h"
 #include "sim/sim_out.h"
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,6 +40,10 @@ static const char sweep_help[] =
     "  --shard K/N          run only configurations i with i mod N = K-1 and write\n"
     "                       DIR/sweep-K-of-N.csv; join them with shadesim merge\n"
     "  -o DIR               output folder (default out/sweep-UNIT), made if missing\n\n"
+    "The files are written in full, then moved into DIR together: an interrupted\n"
+    "sweep leaves DIR as it was, and of two sweeps into one DIR the folder keeps\n"
+    "the complete set of the one that finished last (they take turns on the lock\n"
+    "file DIR/.sweep.lock).\n\n"
     "exit status: 0 done (a width over its error bound is data: within_bound),\n"
     "1 some configuration's simulation failed, 2 bad usage or input\n";
 
@@ -214,13 +219,80 @@ static int fpt_cmp(const void *a, const void *b)
     return p->i < q->i ? -1 : p->i > q->i;
 }
 
-static int write_chart(tb_chart *c, const char *dir, const char *name, char *files, size_t flen)
+/* ------------------------------------------------------- the file set */
+
+/* A sweep's files are written in full first, each to its own temporary
+ * (sim_out: removed if the process is interrupted), and only then moved
+ * into DIR one after the other under a lock on DIR/.sweep.lock. So an
+ * interrupted sweep changes nothing in DIR, and two sweeps into one folder
+ * move their sets in turn: the folder ends up with the whole set of the
+ * one that finished last (a file the other wrote and this one does not,
+ * e.g. target.json, is removed under the same lock). */
+#define OSET_MAX 8
+typedef struct oset {
+    const char *dir;
+    int n;
+    sim_out *o[OSET_MAX];
+} oset;
+
+/* Open DIR/name as one of the set; NULL after printing the error. */
+static FILE *oset_open(oset *os, const char *name)
 {
     char path[4200], err[600];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
+    snprintf(path, sizeof path, "%s/%s", os->dir, name);
+    if (os->n == OSET_MAX) { cli_usage_error("%s: too many output files", path); return NULL; }
+    sim_out *o = sim_out_open(path, err, sizeof err);
+    if (!o) { cli_usage_error("%s", err); return NULL; }
+    os->o[os->n++] = o;
+    return sim_out_file(o);
+}
+
+static void oset_abort(oset *os)
+{
+    for (int i = 0; i < os->n; i++) sim_out_abort(os->o[i]);
+    os->n = 0;
+}
+
+/* Move the set in (and remove DIR/gone[k]) under the folder's lock. */
+static int oset_commit(oset *os, const char *const *gone, int ngone)
+{
+    char path[4200], err[600];
+    snprintf(path, sizeof path, "%s/.sweep.lock", os->dir);
+    int fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (fd < 0) {
+        oset_abort(os);
+        return cli_usage_error("%s: cannot open: %s", path, strerror(errno));
+    }
+    struct flock lk;
+    memset(&lk, 0, sizeof lk);
+    lk.l_type = F_WRLCK;
+    lk.l_whence = SEEK_SET;
+    /* Where locks are not supported (ENOLCK) the set still moves in, only
+     * without the guarantee against a concurrent sweep. */
+    while (fcntl(fd, F_SETLKW, &lk) == -1 && errno == EINTR) {}
+    int rc = 0;
+    for (int i = 0; i < os->n; i++) {
+        if (rc) sim_out_abort(os->o[i]);
+        else if (sim_out_close(os->o[i], err, sizeof err)) rc = cli_usage_error("%s", err);
+    }
+    os->n = 0;
+    for (int k = 0; k < ngone && !rc; k++) {
+        snprintf(path, sizeof path, "%s/%s", os->dir, gone[k]);
+        unlink(path);
+    }
+    close(fd);                  /* releases the lock */
+    return rc;
+}
+
+static int write_chart(tb_chart *c, oset *os, const char *name, char *files, size_t flen)
+{
+    char path[4200], err[600];
+    snprintf(path, sizeof path, "%s/%s", os->dir, name);
     if (!c) return cli_usage_error("%s: out of memory", path);
-    int rc = tb_chart_write(c, path, err, sizeof err);
+    FILE *f = oset_open(os, name);
+    int rc = f ? tb_chart_fwrite(c, f, path, err, sizeof err) : 0;
     tb_chart_free(c);
+    if (!f) return CLI_USAGE;
     if (rc) return cli_usage_error("%s", err);
     strncat(files, ", ", flen - strlen(files) - 1);
     strncat(files, name, flen - strlen(files) - 1);
@@ -269,7 +341,7 @@ static void legend_label(const tb_sweep *s, size_t g, int shorten, const char *p
     snprintf(buf, len, "%s%s%s", prefix, *prefix && *gl ? " " : "", *gl || *prefix ? gl : "uniform widths");
 }
 
-static int chart_error_width(const tb_sweep *s, const target_info *t, const char *dir, char *files, size_t flen)
+static int chart_error_width(const tb_sweep *s, const target_info *t, oset *os, char *files, size_t flen)
 {
     int sh = labels_long(s);
     char title[200];
@@ -294,7 +366,7 @@ static int chart_error_width(const tb_sweep *s, const target_info *t, const char
         snprintf(lab, sizeof lab, "target %g", t->value);
         tb_chart_hline(c, t->value, lab);
     }
-    return write_chart(c, dir, "error_vs_width.svg", files, flen);
+    return write_chart(c, os, "error_vs_width.svg", files, flen);
 }
 
 /* The front as a staircase through its points in order of x, each
@@ -324,7 +396,7 @@ static double f_err(const tb_result *r) { return r->max_abs_err; }
 static double f_cpi(const tb_result *r) { return r->cycles_per_item; }
 
 static int chart_area_error(const tb_sweep *s, const unsigned char *on, const target_info *t,
-                            const char *dir, char *files, size_t flen)
+                            oset *os, char *files, size_t flen)
 {
     int sh = labels_long(s);
     char title[200];
@@ -356,13 +428,13 @@ static int chart_area_error(const tb_sweep *s, const unsigned char *on, const ta
             tb_chart_hline(c, t->value, lab);
         }
     }
-    return write_chart(c, dir, "area_vs_error.svg", files, flen);
+    return write_chart(c, os, "area_vs_error.svg", files, flen);
 }
 
 /* Only drawn when clocks per item differ between configurations (several
  * schedules or parameters that change the timing): otherwise it is one
  * horizontal row of points and says nothing. */
-static int chart_cycles_error(const tb_sweep *s, const char *dir, char *files, size_t flen, int *drawn)
+static int chart_cycles_error(const tb_sweep *s, oset *os, char *files, size_t flen, int *drawn)
 {
     int sh = labels_long(s);
     double c0 = NAN;
@@ -397,7 +469,7 @@ static int chart_cycles_error(const tb_sweep *s, const char *dir, char *files, s
     }
     free(x); free(y); free(on);
     *drawn = 1;
-    return write_chart(c, dir, "cycles_vs_error.svg", files, flen);
+    return write_chart(c, os, "cycles_vs_error.svg", files, flen);
 }
 
 /* -------------------------------------------------------------- summary */
@@ -561,13 +633,11 @@ static void jdesign(FILE *f, const unit_desc *u, int sched, const unit_fmts *fm,
             r->within_bound ? "true" : "false");
 }
 
-static int write_target_json(const tb_sweep *s, const target_info *t, const char *path)
+static int write_target_json(const tb_sweep *s, const target_info *t, oset *os)
 {
     const unit_desc *u = s->spec.u;
-    tb_afile a;
-    char err[600];
-    if (tb_afile_open(&a, path, err, sizeof err)) return cli_usage_error("%s", err);
-    FILE *f = a.f;
+    FILE *f = oset_open(os, "target.json");
+    if (!f) return CLI_USAGE;
     fprintf(f, "{\n  \"unit\": \"%s\",\n  \"target\": {\"metric\": \"%s\", \"value\": ", u->name,
             t->kind == TB_TARGET_NMSE ? "nmse" : "max_abs_err");
     jnum(f, t->value);
@@ -601,7 +671,6 @@ static int write_target_json(const tb_sweep *s, const target_info *t, const char
         fputc('}', f);
     }
     fputs("\n  ]\n}\n", f);
-    if (tb_afile_commit(&a, err, sizeof err)) return cli_usage_error("%s", err);
     return 0;
 }
 
@@ -751,47 +820,44 @@ static int load_vectors(sweep_args *a, tb_sweep *s, vec_set *sets)
     return 0;
 }
 
-/* Files of an earlier sweep in DIR that this one does not write would
- * contradict its sweep.csv: they go. */
-static void remove_stale(const char *dir, const char *name)
-{
-    char p[4200];
-    snprintf(p, sizeof p, "%s/%s", dir, name);
-    unlink(p);
-}
-
 static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
 {
-    char path[4200], err[600], files[600] = "sweep.csv";
-    snprintf(path, sizeof path, "%s/sweep.csv", a->dir);
-    if (tb_sweep_write_csv(s, path, 0, 0, err, sizeof err)) return cli_usage_error("%s", err);
+    char err[600], files[600] = "sweep.csv";
+    oset os = { a->dir, 0, { 0 } };
+    FILE *csv = oset_open(&os, "sweep.csv");
+    if (!csv) return CLI_USAGE;
+    tb_sweep_print_csv(s, csv, 0, 0);
     if (a->t.on) {
         a->t.res = calloc(s->ngroups, sizeof *a->t.res);
-        if (!a->t.res) return cli_usage_error("target search: out of memory");
+        if (!a->t.res) { oset_abort(&os); return cli_usage_error("target search: out of memory"); }
         for (size_t g = 0; g < s->ngroups; g++) {
             if (tty) fprintf(stderr, "\rshadesim sweep %s: target search, settings %zu/%zu \033[K", s->spec.u->name, g + 1, s->ngroups);
             int bad = tb_sweep_target(s, g, a->t.kind, a->t.value, a->threads, &a->t.res[g], err, sizeof err);
             if (tty) fputs("\r\033[K", stderr);
-            if (bad) return cli_usage_error("%s", err);
+            if (bad) { oset_abort(&os); return cli_usage_error("%s", err); }
         }
     }
     size_t nfront = 0;
     unsigned char *on = front_of(s, &nfront);
-    int drawn = 0, rc = 0;
-    if (!on) return cli_usage_error("sweep: out of memory");
-    if (chart_error_width(s, &a->t, a->dir, files, sizeof files) ||
-        chart_area_error(s, on, &a->t, a->dir, files, sizeof files) ||
-        chart_cycles_error(s, a->dir, files, sizeof files, &drawn)) {
+    int drawn = 0;
+    if (!on) { oset_abort(&os); return cli_usage_error("sweep: out of memory"); }
+    if (chart_error_width(s, &a->t, &os, files, sizeof files) ||
+        chart_area_error(s, on, &a->t, &os, files, sizeof files) ||
+        chart_cycles_error(s, &os, files, sizeof files, &drawn)) {
         free(on);
+        oset_abort(&os);
         return CLI_USAGE;
     }
-    if (!drawn) remove_stale(a->dir, "cycles_vs_error.svg");
+    /* Files of an earlier sweep in DIR that this one does not write would
+     * contradict its sweep.csv: they go, when this set moves in. */
+    const char *gone[2];
+    int ngone = 0;
+    if (!drawn) gone[ngone++] = "cycles_vs_error.svg";
     if (a->t.on) {
-        snprintf(path, sizeof path, "%s/target.json", a->dir);
-        if (write_target_json(s, &a->t, path)) { free(on); return CLI_USAGE; }
+        if (write_target_json(s, &a->t, &os)) { free(on); oset_abort(&os); return CLI_USAGE; }
         strncat(files, ", target.json", sizeof files - strlen(files) - 1);
     } else {
-        remove_stale(a->dir, "target.json");
+        gone[ngone++] = "target.json";
     }
     strncat(files, ", summary.txt", sizeof files - strlen(files) - 1);
 
@@ -799,7 +865,7 @@ static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     char *text = NULL;
     size_t tlen = 0;
     FILE *m = open_memstream(&text, &tlen);
-    if (!m) { free(on); return cli_usage_error("sweep: out of memory"); }
+    if (!m) { free(on); oset_abort(&os); return cli_usage_error("sweep: out of memory"); }
     fprintf(m, "sweep %s: %zu configurations (widths %d..%d", s->spec.u->name, s->n, s->spec.wlo, s->spec.whi);
     if (s->ngroups > 1) fprintf(m, " x %zu settings", s->ngroups);
     fprintf(m, "), %zu vectors", s->vs[0]->n_rows);
@@ -810,14 +876,13 @@ static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     if (a->t.on) print_target(m, s, &a->t);
     fclose(m);
     free(on);
-    fputs(text, stdout);
-    printf("wrote %s/: %s (%.2f s on %d thread%s)\n", a->dir, files, now_s() - t0, a->threads, a->threads > 1 ? "s" : "");
-    snprintf(path, sizeof path, "%s/summary.txt", a->dir);
-    tb_afile af;
-    if (tb_afile_open(&af, path, err, sizeof err)) rc = cli_usage_error("%s", err);
-    else {
-        fputs(text, af.f);
-        if (tb_afile_commit(&af, err, sizeof err)) rc = cli_usage_error("%s", err);
+    FILE *sf = oset_open(&os, "summary.txt");
+    if (!sf) { free(text); oset_abort(&os); return CLI_USAGE; }
+    fputs(text, sf);
+    int rc = oset_commit(&os, gone, ngone);
+    if (rc == 0) {
+        fputs(text, stdout);
+        printf("wrote %s/: %s (%.2f s on %d thread%s)\n", a->dir, files, now_s() - t0, a->threads, a->threads > 1 ? "s" : "");
     }
     free(text);
     return rc;

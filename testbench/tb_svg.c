@@ -1218,24 +1218,43 @@ static void tb_svg_err(char *err, size_t errlen, const char *fmt, ...)
         if ((unsigned char)*p < 0x20) *p = '?';
 }
 
-int tb_chart_write(const tb_chart *c, const char *path, char *err, size_t errlen)
+/* The rendered SVG in b (caller frees b->p); 0, or -1 with a message
+ * naming `what` (the path). */
+static int tb_svg_rendered(const tb_chart *c, const char *what, tb_svg_buf *b, char *err, size_t errlen)
 {
     if (err && errlen) err[0] = 0;
-    if (!c || !path || !*path) {
-        tb_svg_err(err, errlen, "tb_chart_write: no chart or no path");
+    if (!c || !what || !*what) {
+        tb_svg_err(err, errlen, "chart: no chart or no path");
         return -1;
     }
     if (c->err[0]) {
-        tb_svg_err(err, errlen, "tb_chart_write: %s: chart is incomplete: %s", path, c->err);
+        tb_svg_err(err, errlen, "%s: chart is incomplete: %s", what, c->err);
         return -1;
     }
+    tb_svg_render(c, b);
+    if (b->oom) {
+        free(b->p);
+        b->p = NULL;
+        tb_svg_err(err, errlen, "%s: out of memory", what);
+        return -1;
+    }
+    return 0;
+}
+
+int tb_chart_fwrite(const tb_chart *c, FILE *f, const char *what, char *err, size_t errlen)
+{
     tb_svg_buf b = { 0 };
-    tb_svg_render(c, &b);
-    if (b.oom) {
-        free(b.p);
-        tb_svg_err(err, errlen, "tb_chart_write: %s: out of memory", path);
-        return -1;
-    }
+    if (tb_svg_rendered(c, what, &b, err, errlen)) return -1;
+    /* A write error stays in the stream's flag for whoever closes it. */
+    if (b.n) fwrite(b.p, 1, b.n, f);
+    free(b.p);
+    return 0;
+}
+
+int tb_chart_write(const tb_chart *c, const char *path, char *err, size_t errlen)
+{
+    tb_svg_buf b = { 0 };
+    if (tb_svg_rendered(c, path, &b, err, errlen)) return -1;
 
     /* sim_out: a temporary beside a regular file, renamed once complete
      * (with the umask's permissions), removed on SIGINT/TERM/HUP; a device

@@ -336,14 +336,19 @@ static void csv_row(FILE *f, const tb_sweep *s, size_t i)
     else fputs(",,,,\n", f);
 }
 
+void tb_sweep_print_csv(const tb_sweep *s, FILE *f, int shard_k, int shard_n)
+{
+    csv_header(f, s->spec.u);
+    for (size_t i = 0; i < s->n; i++)
+        if (tb_sweep_in_shard(i, shard_k, shard_n)) csv_row(f, s, i);
+}
+
 int tb_sweep_write_csv(const tb_sweep *s, const char *path, int shard_k, int shard_n,
                        char *err, size_t errlen)
 {
     tb_afile a;
     if (tb_afile_open(&a, path, err, errlen)) return -1;
-    csv_header(a.f, s->spec.u);
-    for (size_t i = 0; i < s->n; i++)
-        if (tb_sweep_in_shard(i, shard_k, shard_n)) csv_row(a.f, s, i);
+    tb_sweep_print_csv(s, a.f, shard_k, shard_n);
     return tb_afile_commit(&a, err, errlen);
 }
 

@@ -94,6 +94,8 @@ void tb_sweep_group_label(const tb_sweep *s, size_t group, char *buf, size_t len
 /* The CSV of the run rows (shard k/n, or all with n = 0), atomically. */
 int  tb_sweep_write_csv(const tb_sweep *s, const char *path, int shard_k, int shard_n,
                         char *err, size_t errlen);
+/* The same CSV to an open stream (write errors left in its error flag). */
+void tb_sweep_print_csv(const tb_sweep *s, FILE *f, int shard_k, int shard_n);
 /* merge: shards' CSVs into the whole run's CSV; 0, or -1 with a message. */
 int  tb_sweep_merge(const char *const *paths, int n, const char *out, char *err, size_t errlen);
 

@@ -76,6 +76,9 @@ if mkfifo "$T/fifo" 2>/dev/null; then
     cat "$T/fifo" >"$T/fifo_got" &
     reader=$!
     "$S" vectors horner3 -o "$T/fifo"; rc=$?
+    # A shadesim that replaced the FIFO (or never opened it) leaves the
+    # reader waiting for a writer forever: end it rather than hang.
+    if [ $rc -ne 0 ] || [ ! -p "$T/fifo" ]; then kill $reader 2>/dev/null; fi
     wait $reader
     if [ $rc -eq 0 ] && [ -p "$T/fifo" ] && cmp -s "$T/fifo_got" "$T/vec_stdout"; then ok vectors_fifo
     else fail vectors_fifo "exit $rc, $(ls -l "$T/fifo"), $(wc -c <"$T/fifo_got") bytes"; fi
@@ -156,3 +159,34 @@ for sig in TERM HUP; do
     fi
     rm -f "$T/kill/big.vcd" "$T/kill/big.vcd.gtkw"
 done
+
+# --- a sweep's files move into its folder as one set -----------------------
+# consistent NAME DIR: summary.txt and sweep.csv of one sweep (same
+# sweep_id), and target.json present exactly when the summary has a target.
+consistent() {
+    sid=$(sed -n 's/.*sweep_id \([0-9a-f]*\).*/\1/p' "$2/summary.txt" | head -1)
+    cid=$(sed -n '2p' "$2/sweep.csv" | cut -d, -f3)
+    if [ -z "$sid" ] || [ "$sid" != "$cid" ]; then fail "$1" "summary.txt sweep_id '$sid', sweep.csv '$cid'"; return; fi
+    if grep -q '^target' "$2/summary.txt"; then t=1; else t=0; fi
+    if [ -e "$2/target.json" ]; then j=1; else j=0; fi
+    [ $t -eq $j ] && ok "$1" || fail "$1" "target in summary: $t, target.json: $j"
+}
+"$S" sweep horner3 --widths 8:9 -o "$T/set" >/dev/null
+cp -r "$T/set" "$T/set_before"
+"$S" sweep horner3 --widths 1:40 -n 20000 --target-error 0.01 -o "$T/set" >/dev/null 2>&1 &
+pid=$!
+sleep 0.3
+kill -TERM $pid 2>/dev/null
+{ wait $pid; } 2>/dev/null
+diff -r "$T/set" "$T/set_before" >/dev/null && ok sweep_interrupted_leaves_folder || fail sweep_interrupted_leaves_folder "$(diff -rq "$T/set" "$T/set_before" | head -3)"
+no_temp sweep_interrupted_no_temp "$T/set"
+# Two sweeps into one folder at once, a few times: one whole set each time.
+for round in 1 2 3; do
+    "$S" sweep horner3 --widths 8:10 --target-error 1 -o "$T/set" >/dev/null 2>&1 &
+    p1=$!
+    "$S" sweep horner3 --widths 8:12 --round trunc,even -o "$T/set" >/dev/null 2>&1 &
+    p2=$!
+    wait $p1; wait $p2
+    consistent "concurrent_sweeps_one_set_$round" "$T/set"
+done
+no_temp concurrent_sweeps_no_temp "$T/set"
