@@ -176,12 +176,22 @@ static double unit_area(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     return a;
 }
 
+/* A unit signal is built when a signal or a sub-scope (a network such as
+ * the divide-by-3, whose format is its output's) of the build has its name. */
+static void mark_name(const unit_desc *u, const char *name, unsigned char *built)
+{
+    if (!name) return;
+    for (int i = 0; i < u->nsigs; i++)
+        if (!strcmp(name, u->sigs[i].name)) built[i] = 1;
+}
+
 static void mark_scope(const unit_desc *u, const sim_scope *sc, unsigned char *built)
 {
-    for (const sim_signal *g = sc->first_sig; g; g = g->next_in_scope)
-        for (int i = 0; i < u->nsigs; i++)
-            if (g->name && !strcmp(g->name, u->sigs[i].name)) built[i] = 1;
-    for (const sim_scope *c = sc->first_child; c; c = c->next_sibling) mark_scope(u, c, built);
+    for (const sim_signal *g = sc->first_sig; g; g = g->next_in_scope) mark_name(u, g->name, built);
+    for (const sim_scope *c = sc->first_child; c; c = c->next_sibling) {
+        mark_name(u, c->name, built);
+        mark_scope(u, c, built);
+    }
 }
 
 /* Which of the unit's signals the build at cfg actually makes (a node-set
