@@ -53,7 +53,7 @@ typedef struct pt {
     int status;
     char err[200];
     char unit[32];
-    double nmse, psnr, max_abs, cpp, cost_hw, cost_ref, speedup, area, deg2;
+    double nmse, psnr, max_abs, cpp, cost_hw, cost_ref, speedup, area, deg2, ops_hw;
     int max_err8;
     uint64_t ovf;
     int front_ops, front_clk, jump_ops, jump_clk;
@@ -220,6 +220,8 @@ static void run_pt(void *ctx, size_t k)
         p->area = r.hwst.area_ge;
         p->ovf = r.hwst.overflows;
         p->deg2 = r.deg2_share;
+        p->ops_hw = 0;
+        for (int k = 0; k < SCN_OP__COUNT; k++) p->ops_hw += r.ops_hw[k];
     }
     tb_scene_free(&r);
     pthread_mutex_lock(&s->mu);
@@ -333,7 +335,7 @@ static void cnum(FILE *f, double v)
 static void write_csv(FILE *f, const pt *p, size_t n)
 {
     fputs("config,policy,L,terms,width,schedule,unit,status,same_as,nmse,psnr,max_abs_err,max_err8,"
-          "clocks_per_pixel,cost_per_pixel,cost_ref_per_pixel,speedup,area_ge,overflows,deg2_share,"
+          "clocks_per_pixel,ops_per_pixel,cost_per_pixel,cost_ref_per_pixel,speedup,area_ge,overflows,deg2_share,"
           "front_ops,front_clocks,breaks_ops,breaks_clocks,paper\n", f);
     for (size_t i = 0; i < n; i++) {
         const pt *q = &p[i];
@@ -344,13 +346,13 @@ static void write_csv(FILE *f, const pt *p, size_t n)
         if (r->status == TB_OK) {
             cnum(f, r->nmse); cnum(f, r->psnr); cnum(f, r->max_abs);
             fprintf(f, ",%d", r->max_err8);
-            cnum(f, r->cpp); cnum(f, r->cost_hw); cnum(f, r->cost_ref); cnum(f, r->speedup); cnum(f, r->area);
+            cnum(f, r->cpp); cnum(f, r->ops_hw); cnum(f, r->cost_hw); cnum(f, r->cost_ref); cnum(f, r->speedup); cnum(f, r->area);
             fprintf(f, ",%llu", (unsigned long long)r->ovf);
             cnum(f, r->deg2);
             fprintf(f, ",%d,%d,%d,%d,%d\n", q->front_ops, q->front_clk, r->ovf > 0 || r->jump_ops,
                     r->ovf > 0 || r->jump_clk, is_paper(q));
         } else {
-            fprintf(f, ",,,,,,,,,,,,,,,%d\n", is_paper(q));
+            fprintf(f, ",,,,,,,,,,,,,,,,%d\n", is_paper(q));
         }
     }
 }
