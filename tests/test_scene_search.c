@@ -190,6 +190,16 @@ static void test_search_smallest_and_heldout(void)
     TST_NEAR(jnum_of(js, "heldout_nmse"), e, 1e-8 * e + 1e-300);
     struct stat st;
     TST_CHECK(stat(SCRATCH "/search.txt", &st) == 0 && st.st_size > 0, "no search.txt");
+
+    /* The same search on one thread: the same bytes (renders included). */
+    char *js2 = strdup(js);
+    out = fopen("/dev/null", "w");
+    int rc2 = tb_scene_search(&D, &M, 1, target, SCRATCH "/j1", 1, out, err, sizeof err);
+    fclose(out);
+    TST_EQ_INT(rc2, rc);
+    char *js1 = slurp(SCRATCH "/j1/search.json");
+    TST_CHECK(js1 && js2 && !strcmp(js1, js2), "search.json differs between -j 1 and -j 2");
+    free(js2);
 }
 
 static void test_search_unmeetable(void)
