@@ -22,23 +22,10 @@
  * power of a negative base rises again.
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include "vectors/ref_brdf.h"
 #include <math.h>
 #include <stddef.h>
-
-/* shared with unit_powg.c */
-sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
-                     const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog);
-double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
-                double e_in, double m_in, const char *prog, double *m_out);
-/* shared with units_brdf.c */
-sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
-                      sim_signal *x, sim_signal *k);
-int    brdf_ibits(double x);
-int    brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
-double brdf_const_err(double x, sim_fmt f);
-sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x);
 
 /* Signal indices, shared by both descriptors (d_approx adds c0 at the end). */
 enum { S_C, S_OUT, S_OM, S_K, S_P, S_BASE, S_CLAMP, S_MX, S_MUL, S_RG, S_C0, S_NSIGS };

@@ -28,20 +28,14 @@
  * remainder test (docs/brdf.md).
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
 
-/* shared with units_brdf.c */
-void brdf_seq(sim_ctx *c, sim_scope *sc, sim_signal *clk, int nsteps, unit_io *io,
-              sim_signal **next_out, sim_signal **first_out);
-int  brdf_bitlen(uint64_t v);
-int  brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
-
 /* Quotient bits: the Q register's width without a sign bit. */
-int dv_steps(sim_fmt q) { return q.width - q.is_signed; }
+static int dv_steps(sim_fmt q) { return q.width - q.is_signed; }
 
 /* ------------------------------------------------------------------ logic */
 

@@ -9,19 +9,10 @@
  * (at least 1): 10 for n = 1024, 18 for n = 1023, 6 for the default 32.
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
-
-/* shared with unit_powg.c */
-sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
-                     const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog);
-double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
-                double e_in, double m_in, const char *prog, double *m_out);
-/* shared with units_brdf.c */
-int    brdf_bitlen(uint64_t v);
-int    brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
 
 extern const unit_desc unit_pow_n;
 

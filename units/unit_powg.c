@@ -15,17 +15,10 @@
  * wiring), so each unit pays only for the muxes its program uses.
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
-
-/* shared with units_brdf.c */
-void brdf_seq(sim_ctx *c, sim_scope *sc, sim_signal *clk, int nsteps, unit_io *io,
-              sim_signal **next_out, sim_signal **first_out);
-sim_signal *brdf_decode(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *name,
-                        sim_signal *next, const uint8_t *table, int n);
-int    brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
 
 extern const unit_desc unit_powg;
 

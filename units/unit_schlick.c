@@ -24,24 +24,11 @@
  * F_MSH(1) = 2/1.25^3 = 1.024 for every n, so q and f keep one integer bit.
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include "vectors/ref_brdf.h"
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stddef.h>
-
-/* shared with unit_div.c */
-sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
-                     const unit_fmts *f, unit_io *io, sim_signal *num, sim_signal *den,
-                     sim_signal *shr, int shr_max, char *err, size_t errlen);
-/* shared with units_brdf.c */
-sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
-                      sim_signal *x, sim_signal *k);
-int    brdf_bitlen(uint64_t v);
-int    brdf_ibits(double x);
-int    brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
-double brdf_const_err(double x, sim_fmt f);
-sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x);
 
 extern const unit_desc unit_schlick, unit_mschlick;
 

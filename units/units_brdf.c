@@ -4,11 +4,10 @@
  *   powg, pow_n, d_approx, ward_approx   one-multiplier power engine (unit_powg.c)
  *   div, schlick, mschlick               restoring divider (unit_div.c)
  *
- * There is no units_brdf.h (units/ keeps one header, unit.h): each file
- * that uses a helper repeats its prototype under "shared with
- * units_brdf.c"; the definitions below are the reference.
+ * units_brdf.h declares them (and the power engine's and the divider's
+ * shared functions) for the files that use them.
  */
-#include "units/unit.h"
+#include "units/units_brdf.h"
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stdlib.h>
@@ -134,10 +133,15 @@ sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
     uint64_t mag = kr < 0 ? (uint64_t)0 - (uint64_t)kr : (uint64_t)kr;
     int span, digits = csd_digits(mag, &span);
     int w = x->fmt.width + span, adders = digits - 1;
-    /* A negative k makes one of the adders a subtractor (or, for a power
-     * of two, adds a negator). */
-    if (kr < 0) y->area_ge = sim_area_sub(w) + (adders > 1 ? (adders - 1) * sim_area_add(w) : 0.0);
-    else y->area_ge = adders > 0 ? adders * sim_area_add(w) : 0.0;
+    /* sim_mul charged an array multiplier plus y's quantization logic
+     * (rounding incrementer, saturation clamp): swap only the multiplier
+     * for the network; the quantization logic is still there. A negative
+     * k makes one of the adders a subtractor (or, for a power of two,
+     * adds a negator). */
+    double quant = y->area_ge - sim_area_mul(x->fmt.width, k->fmt.width);
+    double net = kr < 0 ? sim_area_sub(w) + (adders > 1 ? (adders - 1) * sim_area_add(w) : 0.0)
+                        : adders > 0 ? adders * sim_area_add(w) : 0.0;
+    y->area_ge = net + quant;
     return y;
 }
 
