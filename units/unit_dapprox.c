@@ -216,14 +216,14 @@ static void w_bound(const unit_cfg *cfg, const unit_fmts *f, double *o) { da_bou
 /* ------------------------------------------------------------- descriptors */
 
 #define DA_INTERNALS \
-    { "om", UNIT_SIG_INTERNAL, "subtractor OM = 1 - c" }, \
-    { "k", UNIT_SIG_INTERNAL, "constant k (slope of the base)" }, \
-    { "p", UNIT_SIG_INTERNAL, "constant multiplier P = k * OM (shift-and-add)" }, \
-    { "base", UNIT_SIG_INTERNAL, "subtractor BASE = 1 - P" }, \
-    { "clamp", UNIT_SIG_INTERNAL, "block key: BASE, or 0 when BASE < 0" }, \
-    { "mx", UNIT_SIG_INTERNAL, "operand mux: CLAMP in the first clock, then RG (drives both inputs)" }, \
-    { "mul", UNIT_SIG_INTERNAL, "multiplier MUL = MX * MX (a squarer)" }, \
-    { "rg", UNIT_SIG_INTERNAL, "register RG <= MUL every clock" }
+    { .name = "om", .role = UNIT_SIG_INTERNAL, .what = "subtractor OM = 1 - c" }, \
+    { .name = "k", .role = UNIT_SIG_INTERNAL, .what = "constant k (slope of the base)" }, \
+    { .name = "p", .role = UNIT_SIG_INTERNAL, .what = "constant multiplier P = k * OM (shift-and-add)" }, \
+    { .name = "base", .role = UNIT_SIG_INTERNAL, .what = "subtractor BASE = 1 - P" }, \
+    { .name = "clamp", .role = UNIT_SIG_INTERNAL, .what = "block key: BASE, or 0 when BASE < 0" }, \
+    { .name = "mx", .role = UNIT_SIG_INTERNAL, .what = "operand mux: CLAMP in the first clock, then RG (drives both inputs)" }, \
+    { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX * MX (a squarer)" }, \
+    { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" }
 
 const unit_desc unit_d_approx = {
     .name = "d_approx",
@@ -231,10 +231,10 @@ const unit_desc unit_d_approx = {
     .seed = "000 sec. III, 001 sec. 3 (D4, D8, D16)",
     .nsigs = S_NSIGS,
     .sigs = {
-        { "c", UNIT_SIG_IN, "cos g = N.H, in [0, 1]" },
-        { "d", UNIT_SIG_OUT, "D_g, in [0, 1/(4m^2)]" },
+        { .name = "c", .role = UNIT_SIG_IN, .what = "cos g = N.H, in [0, 1]" },
+        { .name = "d", .role = UNIT_SIG_OUT, .what = "D_g, in [0, 1/(4m^2)]" },
         DA_INTERNALS,
-        { "c0", UNIT_SIG_INTERNAL, "constant c0 = 1/(4m^2); d = c0 * RG by a constant multiplier" } },
+        { .name = "c0", .role = UNIT_SIG_INTERNAL, .what = "constant c0 = 1/(4m^2); d = c0 * RG by a constant multiplier" } },
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: log2(g) clocks" } },
     .nparams = 2,
@@ -254,8 +254,8 @@ const unit_desc unit_ward_approx = {
     .seed = "000 sec. III, 001 sec. 3 (Ward)",
     .nsigs = S_NSIGS - 1,
     .sigs = {
-        { "c", UNIT_SIG_IN, "cos g = N.H, in [0, 1]" },
-        { "e", UNIT_SIG_OUT, "the 16th power, in [0, 1]" },
+        { .name = "c", .role = UNIT_SIG_IN, .what = "cos g = N.H, in [0, 1]" },
+        { .name = "e", .role = UNIT_SIG_OUT, .what = "the 16th power, in [0, 1]" },
         DA_INTERNALS },
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: 4 clocks" } },

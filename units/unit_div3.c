@@ -111,8 +111,8 @@ static void bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 }
 
 /* t<i>: the i-th term, x/2^p in the paper series, x/2^q in the quarter. */
-#define TERM(i, p, q) { "t" #i, UNIT_SIG_INTERNAL, "term " #i ": x/2^" #p " (paper), x/2^" #q " (quarter)" }
-#define SUM(i) { "s" #i, UNIT_SIG_INTERNAL, "partial sum s" #i " = s" #i "-1 - t" #i " (paper), + t" #i " (quarter)" }
+#define TERM(i, p, q) { .name = "t" #i, .role = UNIT_SIG_INTERNAL, .what = "term " #i ": x/2^" #p " (paper), x/2^" #q " (quarter)" }
+#define SUM(i) { .name = "s" #i, .role = UNIT_SIG_INTERNAL, .what = "partial sum s" #i " = s" #i "-1 - t" #i " (paper), + t" #i " (quarter)" }
 
 const unit_desc unit_div3 = {
     .name = "div3",
@@ -120,14 +120,14 @@ const unit_desc unit_div3 = {
     .seed = "000 Fig. 7",
     .nsigs = 43,
     .sigs = {
-        { "x", UNIT_SIG_IN, "dividend" },
-        { "y", UNIT_SIG_OUT, "x/3 by the network (a view of the last partial sum)" },
-        { "t0", UNIT_SIG_INTERNAL, "x/2, the paper series' first term" },
+        { .name = "x", .role = UNIT_SIG_IN, .what = "dividend" },
+        { .name = "y", .role = UNIT_SIG_OUT, .what = "x/3 by the network (a view of the last partial sum)" },
+        { .name = "t0", .role = UNIT_SIG_INTERNAL, .what = "x/2, the paper series' first term" },
         TERM(1, 3, 2), TERM(2, 5, 4), TERM(3, 7, 6), TERM(4, 9, 8), TERM(5, 11, 10),
         TERM(6, 13, 12), TERM(7, 15, 14), TERM(8, 17, 16), TERM(9, 19, 18), TERM(10, 21, 20),
         TERM(11, 23, 22), TERM(12, 25, 24), TERM(13, 27, 26), TERM(14, 29, 28), TERM(15, 31, 30),
         TERM(16, 33, 32), TERM(17, 35, 34), TERM(18, 37, 36), TERM(19, 39, 38), TERM(20, 41, 40),
-        { "s1", UNIT_SIG_INTERNAL, "partial sum s1 = t0 - t1 (paper; the quarter series starts at s2 = t1 + t2)" },
+        { .name = "s1", .role = UNIT_SIG_INTERNAL, .what = "partial sum s1 = t0 - t1 (paper; the quarter series starts at s2 = t1 + t2)" },
         SUM(2), SUM(3), SUM(4), SUM(5), SUM(6), SUM(7), SUM(8), SUM(9), SUM(10), SUM(11),
         SUM(12), SUM(13), SUM(14), SUM(15), SUM(16), SUM(17), SUM(18), SUM(19), SUM(20),
     },

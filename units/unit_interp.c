@@ -64,7 +64,7 @@ enum { INTERP_FWD = HORNER_NSCHED };     /* paper, mac, pipe, then fwd */
 
 typedef struct fwd_node { const char *name; coef_op op; const char *a, *b; int hs, k; } fwd_node;
 #define FWD_NODE(name, op, a, b, hs, k, what) { #name, COEF_##op, #a, #b, hs, k },
-#define FWD_SIG(name, op, a, b, hs, k, what) { #name, UNIT_SIG_INTERNAL, what, I_FWD },
+#define FWD_SIG(nm_, op, a, b, hs, k, wh_) { .name = #nm_, .role = UNIT_SIG_INTERNAL, .what = wh_, .scheds = I_FWD },
 #define FWD_COUNT(name, op, a, b, hs, k, what) + 1
 static const fwd_node fwd3_nodes[] = { FWD3_NET(FWD_NODE) };
 static const fwd_node fwd2_nodes[] = { FWD2_NET(FWD_NODE) };
@@ -73,7 +73,7 @@ static const fwd_node fwd2_nodes[] = { FWD2_NET(FWD_NODE) };
  * adder (fy + fd1, ...) and load multiplexer take its format. */
 static const char *const fwd_regs[] = { "fy", "fd1", "fd2", "fd3" };
 static const char *const fwd_init[] = { NULL, "d1i", "d2i", "d3i" };   /* fy starts at the constant coefficient */
-#define FWD_REG(name, what) { name, UNIT_SIG_INTERNAL, what, I_FWD }
+#define FWD_REG(nm_, wh_) { .name = nm_, .role = UNIT_SIG_INTERNAL, .what = wh_, .scheds = I_FWD }
 #define FWD_REGS3 \
     FWD_REG("fy", "fwd register of the pixel value: fy <= fy + fd1 each clock (its adder and load mux share this format)"), \
     FWD_REG("fd1", "fwd register of the first difference: fd1 <= fd1 + fd2"), \
@@ -498,9 +498,9 @@ INTERP_FNS(2, k2)
                   "terms of each /3 network (see div3); 3 is the paper's" }
 #define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, "paper quarter", \
                    "series of each /3 network (see div3)" }
-#define REG(name, what) { name, UNIT_SIG_INTERNAL, what, I_HORNER }
-#define T_SIG { "t", UNIT_SIG_INTERNAL, "t = k/L, the pixel counter k with its binary point moved (wiring)", I_HORNER }
-#define Y_SIG { "y", UNIT_SIG_OUT, "intensity I(k/L) of pixel k, one beat per pixel (the Horner's result; fwd: fy)" }
+#define REG(nm_, wh_) { .name = nm_, .role = UNIT_SIG_INTERNAL, .what = wh_, .scheds = I_HORNER }
+#define T_SIG { .name = "t", .role = UNIT_SIG_INTERNAL, .what = "t = k/L, the pixel counter k with its binary point moved (wiring)", .scheds = I_HORNER }
+#define Y_SIG { .name = "y", .role = UNIT_SIG_OUT, .what = "intensity I(k/L) of pixel k, one beat per pixel (the Horner's result; fwd: fy)" }
 #define INTERP_RULE(coefs) "i* u1.(W-1); the coefficient network as in the coefficient units; " coefs \
     ", their registers, y and the Horner datapaths s7.(W-7) (the Horner's rule); t and its copies u1.(W-1); " \
     "fwd: start networks lossless, registers fy, fd* W bits with the fewest integer bits (1..7) for their range and error"

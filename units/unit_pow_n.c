@@ -79,13 +79,13 @@ const unit_desc unit_pow_n = {
     .seed = "004 eq. 13 (F_B = cos^n x), the exact reference of the Schlick forms",
     .nsigs = PN_NSIGS,
     .sigs = {
-        { "x", UNIT_SIG_IN, "base (a cosine), in [0, 1]" },
-        { "y", UNIT_SIG_OUT, "x^n (RG after the last step)" },
-        { "mx_a", UNIT_SIG_INTERNAL, "operand mux A: x in the first clock, then RG" },
-        { "mx_b", UNIT_SIG_INTERNAL, "operand mux B: x (first clock, multiplies) or RG (squarings); "
+        { .name = "x", .role = UNIT_SIG_IN, .what = "base (a cosine), in [0, 1]" },
+        { .name = "y", .role = UNIT_SIG_OUT, .what = "x^n (RG after the last step)" },
+        { .name = "mx_a", .role = UNIT_SIG_INTERNAL, .what = "operand mux A: x in the first clock, then RG" },
+        { .name = "mx_b", .role = UNIT_SIG_INTERNAL, .what = "operand mux B: x (first clock, multiplies) or RG (squarings); "
                                      "absent when n is a power of two" },
-        { "mul", UNIT_SIG_INTERNAL, "multiplier MUL = MX_A * MX_B, quantized to its own format" },
-        { "rg", UNIT_SIG_INTERNAL, "register RG <= MUL every clock" } },
+        { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX_A * MX_B, quantized to its own format" },
+        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" } },
     .nsched = 1,
     .sched = { { "sqmul", "left-to-right square and multiply: a squaring per bit of n after the "
                           "leading one, a multiply per further 1 bit" } },
