@@ -1,10 +1,11 @@
 # shadesim build. One library of every layer (sim/ units/ vectors/ scene/ testbench/)
 # linked into bin/shadesim, each tests/test_*.c and each bench/*.c.
-# `make test` runs the suite twice: plain (-O2) and under ASan+UBSan.
+# `make test` runs the suite twice: plain (-O2) and under ASan+UBSan;
+# `make test-clang` runs the same two flavours built by clang (build-clang*).
 
 CC      ?= cc
 CSTD    := -std=c11 -D_POSIX_C_SOURCE=200809L
-WARN    := -Wall -Wextra
+WARN    := -Wall -Wextra -Wmissing-prototypes
 OPT     ?= -O2
 CFLAGS  ?=
 ALLCFLAGS = $(CSTD) $(WARN) $(OPT) -I. $(CFLAGS)
@@ -59,6 +60,29 @@ test:
 	@$(MAKE) -s bin/shadesim >/dev/null
 	@sh tests/run.sh build build-asan
 
+# The same suite built by clang, in its own build folders (objects of one
+# compiler are never reused by the other). CLANG=clang-18 picks a version.
+CLANG ?= clang
+.PHONY: test-clang
+test-clang:
+	@$(MAKE) -s testbins B=build-clang CC=$(CLANG) >/dev/null
+	@$(MAKE) -s testbins B=build-clang-asan CC=$(CLANG) OPT="-O1 -g -fno-omit-frame-pointer" \
+	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined" >/dev/null
+	@sh tests/run.sh build-clang build-clang-asan
+
+# Both compilers' flavours in one run, so the closing line is the total
+# (what .ci/run calls).
+.PHONY: test-all
+test-all:
+	@$(MAKE) -s testbins B=build >/dev/null
+	@$(MAKE) -s testbins B=build-asan OPT="-O1 -g -fno-omit-frame-pointer" \
+	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined" >/dev/null
+	@$(MAKE) -s testbins B=build-clang CC=$(CLANG) >/dev/null
+	@$(MAKE) -s testbins B=build-clang-asan CC=$(CLANG) OPT="-O1 -g -fno-omit-frame-pointer" \
+	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined" >/dev/null
+	@$(MAKE) -s bin/shadesim >/dev/null
+	@sh tests/run.sh build build-asan build-clang build-clang-asan
+
 bench: $(BENCHBIN) bin/shadesim
 	@for b in $(BENCHBIN); do $$b || exit 1; done
 
@@ -76,4 +100,4 @@ docs: bin/shadesim
 	./bin/shadesim list --markdown > docs/units.md.tmp && mv docs/units.md.tmp docs/units.md
 
 clean:
-	rm -rf build build-asan bin
+	rm -rf build build-asan build-clang build-clang-asan bin

@@ -755,9 +755,9 @@ static void t_file_fuzz(void)
         int kind = it % 4;
         if (kind == 0) len = (size_t)(urand(&rs) * glen);                 /* truncation */
         else if (kind == 1)                                                 /* byte flips */
-            for (int k = 0; k < 3; k++) buf[(size_t)(urand(&rs) * glen)] = (char)(urand(&rs) * 256);
+            for (int k = 0; k < 3; k++) buf[(size_t)(urand(&rs) * glen)] = (char)(unsigned char)(urand(&rs) * 256);
         else if (kind == 2)                                                 /* random bytes */
-            for (size_t k = 0; k < len; k++) buf[k] = (char)(urand(&rs) * 256);
+            for (size_t k = 0; k < len; k++) buf[k] = (char)(unsigned char)(urand(&rs) * 256);
         else {                                                              /* printable junk */
             static const char cs[] = "0123456789.-+eE|# \nabcnaif";
             for (size_t k = 80; k < len; k++) buf[k] = cs[(size_t)(urand(&rs) * (sizeof cs - 1))];
