@@ -2,6 +2,7 @@
 #include "units/unit.h"
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -70,6 +71,22 @@ int unit_sig_used(const unit_desc *u, int i, int sched)
 {
     unsigned m = u->sigs[i].scheds;
     return !m || (sched >= 0 && sched < 32 && (m >> sched & 1u));
+}
+
+int unit_sig_built(const unit_desc *u, int i, const unit_cfg *cfg)
+{
+    if (!unit_sig_used(u, i, cfg->schedule)) return 0;
+    return !u->sig_used || u->sig_used(cfg, i);
+}
+
+int unit_sig_must(const unit_desc *u, const char *name)
+{
+    int i = unit_sig_index(u, name);
+    if (i < 0) {
+        fprintf(stderr, "shadesim: internal error: unit %s has no signal '%s'\n", u->name, name);
+        abort();
+    }
+    return i;
 }
 
 int unit_sched_find(const unit_desc *u, const char *name)

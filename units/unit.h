@@ -120,6 +120,11 @@ struct unit_desc {
      * by beat (interp's forward differencing accumulates its errors over
      * the pixels); bound is their maximum per port. */
     void (*bound_beats)(const unit_cfg *cfg, const unit_fmts *f, double *per_beat);
+    /* Optional (NULL: every signal of the schedule is built): whether
+     * configuration cfg builds signal i, for units whose signal set depends
+     * on a parameter (div3's terms and series). Only asked about signals
+     * of cfg->schedule; unit_sig_built combines the two. */
+    int  (*sig_used)(const unit_cfg *cfg, int i);
 };
 
 /* The registry. */
@@ -133,6 +138,13 @@ int  unit_n_out(const unit_desc *u);
 int  unit_sig_index(const unit_desc *u, const char *name);   /* -1 if none */
 /* 1 if schedule sched builds signal i (its scheds mask). */
 int  unit_sig_used(const unit_desc *u, int i, int sched);
+/* 1 if configuration cfg builds signal i: its schedule has it and the
+ * unit's sig_used hook (if any) says the parameters build it. list, run,
+ * --fmt, the JSON/CSV formats and the target search show exactly these. */
+int  unit_sig_built(const unit_desc *u, int i, const unit_cfg *cfg);
+/* Index of a signal the unit's own code names: it must exist (a misspelt
+ * name is a bug, reported and aborted, never a silent default format). */
+int  unit_sig_must(const unit_desc *u, const char *name);
 /* Set a parameter from "value" text; 0, or -1 with a message. */
 int  unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
                     const char *value, char *err, size_t errlen);
