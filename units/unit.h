@@ -125,6 +125,14 @@ struct unit_desc {
      * on a parameter (div3's terms and series). Only asked about signals
      * of cfg->schedule; unit_sig_built combines the two. */
     int  (*sig_used)(const unit_cfg *cfg, int i);
+    /* Optional (NULL: the testbench has only the double ideal): ideal in
+     * exact dyadic arithmetic, for the exact values of the quantized
+     * inputs; out as ideal's. 0, or -1 when the value does not fit a
+     * sim_dy (the testbench then says it could not check). Units whose
+     * ideal is a dyadic rational of the inputs provide it, so that the
+     * bound check holds at every width (a double ideal loses bits beyond
+     * 53). */
+    int  (*ideal_exact)(const unit_cfg *cfg, const sim_dy *in, sim_dy *out);
 };
 
 /* The registry. */

@@ -41,6 +41,29 @@ static void formula_q(const double *I, double th, double *o)
     o[2] = I[0];
 }
 
+int coef_exact(const coef_net *net, double third, const sim_dy *in, sim_dy *out)
+{
+    double e[4] = { 0, 0, 0, 0 }, col[4][4];
+    for (int j = 0; j < net->nin; j++) {
+        e[j] = 1;
+        net->formula(e, third, col[j]);
+        e[j] = 0;
+    }
+    int bad = 0;
+    for (int i = 0; i < net->nout; i++) {
+        sim_dy acc, c, p;
+        sim_dy_int(&acc, 0, 0);
+        for (int j = 0; j < net->nin; j++) {
+            sim_dy_double(&c, col[j][i]);
+            sim_dy_mul(&p, &c, &in[j]);
+            sim_dy_add(&acc, &acc, &p);
+        }
+        out[i] = acc;
+        bad |= acc.ovf;
+    }
+    return bad ? -1 : 0;
+}
+
 const coef_net coef_net_n1 = { 4, 4, COEF3_N1_NODES, n1_nodes, formula_n1 };
 const coef_net coef_net_n2 = { 4, 4, COEF3_N2_NODES, n2_nodes, formula_n2 };
 const coef_net coef_net_q = { 3, 3, COEF2_NODES, q_nodes, formula_q };
@@ -160,7 +183,9 @@ static int beats1(const unit_cfg *cfg) { (void)cfg; return 1; }
     { (void)clk; return coef_build(&UNIT, &NET, c, sc, cfg, f, io, err, errlen); } \
     static void ideal_##sfx(const unit_cfg *cfg, const double *in, double *out) \
     { NET.formula(in, ref_div3_factor(cfg->terms, cfg->series), out); } \
-    static void bound_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { coef_bound(&UNIT, &NET, cfg, f, o); }
+    static void bound_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { coef_bound(&UNIT, &NET, cfg, f, o); } \
+    static int exact_##sfx(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) \
+    { return coef_exact(&NET, ref_div3_factor(cfg->terms, cfg->series), in, out); }
 
 COEF_UNIT_FNS(n1, unit_coef3_n1, coef_net_n1)
 COEF_UNIT_FNS(n2, unit_coef3_n2, coef_net_n2)
@@ -188,7 +213,7 @@ const unit_desc unit_coef3_n1 = {
     .nsched = 1, .sched = COMB_SCHED,
     .nparams = 2, .params = { P_TERMS, P_SERIES },
     .fmt_rule = COEF_RULE,
-    .formats = formats_n1, .beats = beats1, .build = build_n1, .ideal = ideal_n1, .bound = bound_n1,
+    .formats = formats_n1, .beats = beats1, .build = build_n1, .ideal = ideal_n1, .bound = bound_n1, .ideal_exact = exact_n1,
 };
 
 const unit_desc unit_coef3_n2 = {
@@ -202,7 +227,7 @@ const unit_desc unit_coef3_n2 = {
     .nsched = 1, .sched = COMB_SCHED,
     .nparams = 2, .params = { P_TERMS, P_SERIES },
     .fmt_rule = COEF_RULE,
-    .formats = formats_n2, .beats = beats1, .build = build_n2, .ideal = ideal_n2, .bound = bound_n2,
+    .formats = formats_n2, .beats = beats1, .build = build_n2, .ideal = ideal_n2, .bound = bound_n2, .ideal_exact = exact_n2,
 };
 
 const unit_desc unit_coef2 = {
@@ -219,5 +244,5 @@ const unit_desc unit_coef2 = {
                 "holding the coefficient's exact range over [0, 1]^3 plus its error bound; every shift and adder "
                 "keeps all the fraction bits it produces, with I from its range, unsigned unless it is a "
                 "difference or can be negative",
-    .formats = formats_q, .beats = beats1, .build = build_q, .ideal = ideal_q, .bound = bound_q,
+    .formats = formats_q, .beats = beats1, .build = build_q, .ideal = ideal_q, .bound = bound_q, .ideal_exact = exact_q,
 };

@@ -140,6 +140,12 @@ typedef struct coef_net {
 
 extern const coef_net coef_net_n1, coef_net_n2, coef_net_q;
 
+/* The formula exactly (dyadic inputs; third is a dyadic network factor):
+ * the formulas are linear, so their coefficients are the formula at the
+ * unit vectors, exact in double (small integers times a factor of at most
+ * 2 * DIV3_MAX_TERMS + 1 bits). 0, or -1 when a value does not fit. */
+int coef_exact(const coef_net *net, double third, const sim_dy *in, sim_dy *out);
+
 /* Walk a network over inputs in[0..nin-1] (built, bounded or formatted by
  * n); DIV3 elements get sub-scopes when building. The coefficients' values
  * go to out[0..nout-1]. 0, or -1 with n->why set. */

@@ -11,14 +11,16 @@
  *
  * Signals are named by term index, not by shift, so that one list serves
  * both series: t0 = x/2 (paper only), ti = the i-th term, si = the i-th
- * partial sum. sigs[] declares all 20 terms' signals (--fmt may name any);
- * a network of N terms builds t0..tN and s1..sN (quarter: s2..sN, since its
- * first partial sum is t1 itself).
+ * partial sum. sigs[] declares all 20 terms' signals; a network of N
+ * terms builds t0..tN and s1..sN (quarter: t1..tN and s2..sN, since its
+ * first partial sum is t1 itself), and only those exist for list, run,
+ * --fmt and the VCD (sig_used).
  */
 #include "units/unit_net.h"
 #include "vectors/ref_seed000.h"
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 int div3_guard_bits(int terms)
 {
@@ -65,11 +67,21 @@ static void formats(const unit_cfg *cfg, unit_fmts *out)
     unet_rule(&n, cfg->width, x_lo, x_hi, 1);
     n.fm.f[0] = unit_fmt(1, 1, cfg->width - 1);
     div3_walk(&n, unet_input(&n, "x", 0), cfg->terms, cfg->series, -1);
-    /* Terms and sums past cfg->terms are not built; show them in t1's
-     * format, which every term and sum of the network shares. */
-    for (int i = 2; i < unit_div3.nsigs; i++)
-        if (!n.chosen[i]) n.fm.f[i] = n.fm.f[unit_sig_index(&unit_div3, "t1")];
+    /* Terms and sums past cfg->terms are not built (sig_used says so) and
+     * keep no format: list, run and --fmt do not show them. */
     *out = n.fm;
+}
+
+/* The network of cfg->terms terms builds t0 and s1 (paper series only),
+ * t1..tN and s2..sN; the signal list declares all 20 terms' signals. */
+static int sig_used(const unit_cfg *cfg, int i)
+{
+    const char *nm = unit_div3.sigs[i].name;
+    int paper = cfg->series == DIV3_PAPER, k = nm[1] ? atoi(nm + 1) : -1;
+    int terms = cfg->terms < 1 ? 1 : cfg->terms > DIV3_MAX_TERMS ? DIV3_MAX_TERMS : cfg->terms;
+    if (nm[0] == 't' && k >= 0) return k == 0 ? paper : k <= terms;
+    if (nm[0] == 's' && k >= 1) return k == 1 ? paper : k <= terms;
+    return 1;   /* x, y */
 }
 
 static int beats1(const unit_cfg *cfg) { (void)cfg; return 1; }
@@ -100,6 +112,16 @@ static int build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *cfg
 static void ideal(const unit_cfg *cfg, const double *in, double *out)
 {
     out[0] = in[0] * ref_div3_factor(cfg->terms, cfg->series);
+}
+
+/* Exactly: the network's factor is a sum of a few powers of two, so the
+ * double holds it exactly. */
+static int ideal_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
+{
+    sim_dy k;
+    sim_dy_double(&k, ref_div3_factor(cfg->terms, cfg->series));
+    sim_dy_mul(out, &in[0], &k);
+    return out->ovf ? -1 : 0;
 }
 
 /* The walk's error of y: every term's and sum's quantization, no gain. */
@@ -143,5 +165,6 @@ const unit_desc unit_div3 = {
     .fmt_rule = "x s1.(W-1) (x in [-1, 1)); y s1.(W-1); terms and partial sums s1.(W-1+G), "
                 "G = ceil(log2(terms+1)) guard bits so that their truncations add up to at most 1 LSB of x; "
                 "only the terms and sums of the configured network are built",
-    .formats = formats, .beats = beats1, .build = build, .ideal = ideal, .bound = bound,
+    .formats = formats, .beats = beats1, .build = build, .ideal = ideal, .bound = bound, .ideal_exact = ideal_exact,
+    .sig_used = sig_used,
 };

@@ -301,6 +301,20 @@ static void ideal2(const unit_cfg *cfg, const double *in, double *out)
     out[0] = (in[0] * t + in[1]) * t + in[2];
 }
 
+/* The same polynomials exactly (the inputs are dyadic, so is y). */
+static int horner_exact(int deg, const sim_dy *in, sim_dy *out)
+{
+    sim_dy y = in[0];
+    for (int j = 1; j <= deg; j++) {
+        sim_dy_mul(&y, &y, &in[deg + 1]);
+        sim_dy_add(&y, &y, &in[j]);
+    }
+    *out = y;
+    return y.ovf ? -1 : 0;
+}
+static int ideal3_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) { (void)cfg; return horner_exact(3, in, out); }
+static int ideal2_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) { (void)cfg; return horner_exact(2, in, out); }
+
 /* Walk the paper table accumulating the worst-case error of RG
  * (docs/bounds.md): every element that drops fraction bits adds its
  * quantization error; multiplying by t (|t| <= 1) does not grow an error. */
@@ -443,7 +457,7 @@ const unit_desc unit_horner3 = {
     .sched = H_SCHEDS("the paper's sequence, six clocks per pixel (SPEC 2.3)", "3", "3"),
     .nparams = 0,
     .fmt_rule = H_RULE,
-    .formats = formats3, .beats = beats1, .build = build3, .ideal = ideal3, .bound = bound3,
+    .formats = formats3, .beats = beats1, .build = build3, .ideal = ideal3, .bound = bound3, .ideal_exact = ideal3_exact,
 };
 
 const unit_desc unit_horner2 = {
@@ -461,5 +475,5 @@ const unit_desc unit_horner2 = {
     .sched = H_SCHEDS("the paper's sequence cut to degree 2, four clocks per pixel", "2", "2"),
     .nparams = 0,
     .fmt_rule = H_RULE,
-    .formats = formats2, .beats = beats1, .build = build2, .ideal = ideal2, .bound = bound2,
+    .formats = formats2, .beats = beats1, .build = build2, .ideal = ideal2, .bound = bound2, .ideal_exact = ideal2_exact,
 };

@@ -431,6 +431,25 @@ static void ideal(const interp_kind *K, const unit_cfg *cfg, const double *in, d
     }
 }
 
+/* The same exactly: t = k/L is dyadic (L a power of two). */
+static int ideal_exact(const interp_kind *K, const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
+{
+    sim_dy co[4];
+    if (coef_exact(K->net, ref_div3_factor(cfg->terms, cfg->series), in, co)) return -1;
+    int bad = 0;
+    for (int k = 0; k < cfg->L; k++) {
+        sim_dy t, y = co[0];
+        sim_dy_double(&t, (double)k / cfg->L);
+        for (int j = 1; j <= K->deg; j++) {
+            sim_dy_mul(&y, &y, &t);
+            sim_dy_add(&y, &y, &co[j]);
+        }
+        out[k] = y;
+        bad |= y.ovf;
+    }
+    return bad ? -1 : 0;
+}
+
 /* Per pixel. Horner schedules: a coefficient's error e_j reaches y times
  * t^(deg-j) <= 1, so y's bound is the sum of the latched coefficients'
  * errors (the network's walk plus the register's quantization) plus the
@@ -488,7 +507,8 @@ static void bound(const interp_kind *K, const unit_cfg *cfg, const unit_fmts *f,
     { return build(&K, c, sc, clk, cfg, f, io, err, errlen); } \
     static void ideal_##sfx(const unit_cfg *cfg, const double *in, double *out) { ideal(&K, cfg, in, out); } \
     static void bound_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { bound(&K, cfg, f, o); } \
-    static void beats_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { bound_beats(&K, cfg, f, o); }
+    static void beats_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { bound_beats(&K, cfg, f, o); } \
+    static int exact_##sfx(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) { return ideal_exact(&K, cfg, in, out); }
 
 INTERP_FNS(3, k3)
 INTERP_FNS(2, k2)
@@ -526,7 +546,7 @@ const unit_desc unit_interp3 = {
                            "3 clocks per pixel, 3L per item", "L per item, first pixel 4 clocks after the accept"),
     .nparams = 3, .params = { P_L, P_TERMS, P_SERIES },
     .fmt_rule = INTERP_RULE("a b c d"),
-    .formats = formats_3, .beats = beats, .build = build_3, .ideal = ideal_3, .bound = bound_3,
+    .formats = formats_3, .beats = beats, .build = build_3, .ideal = ideal_3, .bound = bound_3, .ideal_exact = exact_3,
     .bound_beats = beats_3,
 };
 
@@ -546,6 +566,6 @@ const unit_desc unit_interp2 = {
                            "2 clocks per pixel, 2L per item", "L per item, first pixel 3 clocks after the accept"),
     .nparams = 1, .params = { P_L },
     .fmt_rule = INTERP_RULE("a b c"),
-    .formats = formats_2, .beats = beats, .build = build_2, .ideal = ideal_2, .bound = bound_2,
+    .formats = formats_2, .beats = beats, .build = build_2, .ideal = ideal_2, .bound = bound_2, .ideal_exact = exact_2,
     .bound_beats = beats_2,
 };
