@@ -162,11 +162,13 @@ int brdf_holds(sim_fmt f, double lo, double hi)
     return lo >= sim_fmt_real_min(f) && hi <= sim_fmt_real_max(f);
 }
 
-/* The bound when some format cannot hold its signal's range (a user's
- * --fmt override): the output may then wrap anywhere in its format. */
+/* When some format cannot hold its signal's range (a user's --fmt
+ * override) the derivation does not apply: there is no bound (NaN, which
+ * the testbench reports as "no bound"), not a made-up one (issue 9). */
 double brdf_range_bound(sim_fmt out, double ideal_max)
 {
-    return fmax(fabs(sim_fmt_real_min(out)), fabs(sim_fmt_real_max(out))) + fabs(ideal_max);
+    (void)out; (void)ideal_max;
+    return NAN;
 }
 
 /* A hard-wired constant: x truncated (toward minus infinity) to f, so
@@ -175,18 +177,23 @@ double brdf_range_bound(sim_fmt out, double ideal_max)
  * whatever the double arithmetic that made it: 2/0.2^2 - 4 comes out as
  * 45.99999999999999, and truncating it would cost a CSD digit and an adder
  * for nothing. */
-static int64_t const_raw(double x, sim_fmt f)
+static int64_t const_raw(double x, sim_fmt f, int *ovf)
 {
     double y = ldexp(x, f.fbits), r = nearbyint(y);
     if (fabs(y - r) <= 0x1p-30 * fmax(1.0, fabs(y))) x = ldexp(r, -f.fbits);
-    return sim_fx_from_real(x, f, SIM_RND_TRUNC, SIM_OVF_SAT, NULL);
+    return sim_fx_from_real(x, f, SIM_RND_TRUNC, SIM_OVF_SAT, ovf);
 }
+/* A constant that does not fit its format saturates; it counts as one
+ * overflow of its signal, so that the run reports it (issue 9). */
 sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x)
 {
-    return sim_const_raw(c, sc, name, f, const_raw(x, f));
+    int ovf = 0;
+    sim_signal *s = sim_const_raw(c, sc, name, f, const_raw(x, f, &ovf));
+    s->overflows += (uint64_t)ovf;
+    return s;
 }
 /* |x - the constant brdf_const stores|. */
 double brdf_const_err(double x, sim_fmt f)
 {
-    return fabs(sim_fx_to_real(const_raw(x, f), f) - x);
+    return fabs(sim_fx_to_real(const_raw(x, f, NULL), f) - x);
 }
