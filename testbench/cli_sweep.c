@@ -482,12 +482,12 @@ static void print_front(FILE *f, const tb_sweep *s, const unsigned char *on, siz
     free(p);
 }
 
-/* The formats of the signals schedule `sched` builds. */
-static void fmt_list(FILE *f, const unit_desc *u, int sched, const unit_fmts *fm, const char *pre, const char *sep)
+/* The formats of the signals configuration cfg builds. */
+static void fmt_list(FILE *f, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const char *pre, const char *sep)
 {
     char fb[SIM_FMT_STRLEN];
     for (int i = 0, first = 1; i < u->nsigs; i++) {
-        if (!unit_sig_used(u, i, sched)) continue;
+        if (!unit_sig_built(u, i, cfg)) continue;
         fprintf(f, "%s%s%s=%s", first ? "" : sep, pre, u->sigs[i].name, sim_fmt_str(fm->f[i], fb));
         first = 0;
     }
@@ -514,17 +514,17 @@ static void print_target(FILE *f, const tb_sweep *s, const target_info *t)
                 metric_name(t->kind), metric_of(t->kind, &x->r), saved, ru->area_ge > 0 ? 100 * saved / ru->area_ge : 0.0,
                 x->runs);
         fputs("  formats:", f);
-        fmt_list(f, s->spec.u, s->cfg[x->uniform].cfg.schedule, &x->fmts, " ", "");
+        fmt_list(f, s->spec.u, &s->cfg[x->uniform].cfg, &x->fmts, " ", "");
         fputc('\n', f);
     }
 }
 
-static void jstr_fmts(FILE *f, const unit_desc *u, int sched, const unit_fmts *fm)
+static void jstr_fmts(FILE *f, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm)
 {
     char fb[SIM_FMT_STRLEN];
     fputc('{', f);
     for (int i = 0, first = 1; i < u->nsigs; i++) {
-        if (!unit_sig_used(u, i, sched)) continue;
+        if (!unit_sig_built(u, i, cfg)) continue;
         fprintf(f, "%s\"%s\": \"%s\"", first ? "" : ", ", u->sigs[i].name, sim_fmt_str(fm->f[i], fb));
         first = 0;
     }
@@ -537,10 +537,10 @@ static void jnum(FILE *f, double v)
     else fputs("null", f);
 }
 
-static void jdesign(FILE *f, const unit_desc *u, int sched, const unit_fmts *fm, const tb_result *r)
+static void jdesign(FILE *f, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const tb_result *r)
 {
     fputs("{\"formats\": ", f);
-    jstr_fmts(f, u, sched, fm);
+    jstr_fmts(f, u, cfg, fm);
     fputs(", \"max_abs_err\": ", f); jnum(f, r->max_abs_err);
     fputs(", \"rms_err\": ", f); jnum(f, r->rms_err);
     fputs(", \"nmse\": ", f); jnum(f, r->nmse);
@@ -575,15 +575,15 @@ static int write_target_json(const tb_sweep *s, const target_info *t, const char
         if (x->met) {
             const tb_result *ru = &s->row[x->uniform].r;
             fprintf(f, ",\n     \"uniform\": {\"width\": %d, \"design\": ", s->cfg[x->uniform].cfg.width);
-            jdesign(f, u, c->schedule, &s->cfg[x->uniform].fmts, ru);
+            jdesign(f, u, c, &s->cfg[x->uniform].fmts, ru);
             fputs("},\n     \"chosen\": ", f);
-            jdesign(f, u, c->schedule, &x->fmts, &x->r);
+            jdesign(f, u, c, &x->fmts, &x->r);
             fputs(",\n     \"area_saved_ge\": ", f); jnum(f, ru->area_ge - x->r.area_ge);
             fputs(", \"area_saved_pct\": ", f);
             jnum(f, ru->area_ge > 0 ? 100 * (ru->area_ge - x->r.area_ge) / ru->area_ge : 0);
             fprintf(f, ", \"runs\": %zu,\n     \"run_args\": \"--round %s --overflow %s", x->runs, sim_round_name(c->rnd),
                     sim_ovf_name(c->ovf));
-            fmt_list(f, u, c->schedule, &x->fmts, " --fmt ", "");
+            fmt_list(f, u, c, &x->fmts, " --fmt ", "");
             fputc('"', f);
         }
         fputc('}', f);

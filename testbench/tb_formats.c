@@ -22,6 +22,25 @@ int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, i
             continue;
         }
         int i = unit_sig_index(u, name);
+        if (i >= 0 && unit_sig_used(u, i, cfg->schedule) && !unit_sig_built(u, i, cfg)) {
+            /* Declared, but these parameters do not build it (div3's t7
+             * with terms=3): name the parameters and what they build. */
+            char list[600] = "", pv[200] = "";
+            for (int j = 0, m = 0; j < u->nsigs; j++)
+                if (unit_sig_built(u, j, cfg)) {
+                    strncat(list, m++ ? " " : "", sizeof list - strlen(list) - 1);
+                    strncat(list, u->sigs[j].name, sizeof list - strlen(list) - 1);
+                }
+            for (int p = 0; p < u->nparams; p++) {
+                char v[64];
+                unit_param_get(&u->params[p], cfg, v, sizeof v);
+                size_t k = strlen(pv);
+                snprintf(pv + k, sizeof pv - k, "%s%s=%s", p ? " " : "", u->params[p].name, v);
+            }
+            snprintf(err, errlen, "--fmt %s: unit %s with %s does not build signal '%s' (it builds: %s)",
+                     ov[k], u->name, pv, name, list);
+            return -1;
+        }
         if (i < 0 || !unit_sig_used(u, i, cfg->schedule)) {
             /* A signal of another schedule's datapath: say whose. */
             const char *sn = u->sched[cfg->schedule].name;
@@ -34,7 +53,7 @@ int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, i
                     }
             } else {            /* the signals this schedule has */
                 for (int j = 0, m = 0; j < u->nsigs; j++)
-                    if (unit_sig_used(u, j, cfg->schedule)) {
+                    if (unit_sig_built(u, j, cfg)) {
                         strncat(list, m++ ? " " : "", sizeof list - strlen(list) - 1);
                         strncat(list, u->sigs[j].name, sizeof list - strlen(list) - 1);
                     }

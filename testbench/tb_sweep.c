@@ -635,7 +635,7 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
         jobs[q].status = TB_SWEEP_NOT_RUN;
         /* Pinned signals stay; signals the schedule does not build have
          * nothing to trim. */
-        if (pinned(s, q / 2) || !unit_sig_used(u, q / 2, c->cfg.schedule)) cand[q].sig = -1;
+        if (pinned(s, q / 2) || !unit_sig_built(u, q / 2, &c->cfg)) cand[q].sig = -1;
         if (cand[q].sig < 0 || shorter(out->fmts.f[q / 2], q % 2, &jobs[q].f.f[q / 2])) jobs[q].c = NULL;
     }
     tb_par_for((size_t)nc, threads, cand_run, jobs);

@@ -73,6 +73,18 @@ static const char *da_prog(int g, char *buf, size_t len)
     return buf;
 }
 
+/* g = 2 squares CLAMP once: the operand is CLAMP itself, no mux. */
+static int da_sig_used(const da_kind *kd, const unit_cfg *cfg, int i)
+{
+    double k, c0;
+    int g;
+    char prog[16];
+    kd->consts(cfg, &k, &c0, &g);
+    return pw_sig_built(kd->u, da_prog(g, prog, sizeof prog), i);
+}
+static int d_sig_used(const unit_cfg *cfg, int i) { return da_sig_used(&K_D, cfg, i); }
+static int w_sig_used(const unit_cfg *cfg, int i) { return da_sig_used(&K_W, cfg, i); }
+
 /* ---------------------------------------------------------------- formats */
 
 static void da_formats(const da_kind *kd, const unit_cfg *cfg, unit_fmts *out)
@@ -246,6 +258,7 @@ const unit_desc unit_d_approx = {
                 "bits of the largest power (1 for m <= 1/sqrt 2); c0 and d the same rule for c0 and "
                 "its peak",
     .formats = d_formats, .beats = beats1, .build = d_build, .ideal = d_ideal, .bound = d_bound,
+    .sig_used = d_sig_used,
 };
 
 const unit_desc unit_ward_approx = {
@@ -264,4 +277,5 @@ const unit_desc unit_ward_approx = {
     .fmt_rule = "c, om u1.(W-1); k uI.(W-I) and p uI.(W-1) with I = integer bits of 1/(8 alpha^2); "
                 "base s(I+1).(W-1); clamp, mx, mul, rg, e u1.(W-1)",
     .formats = w_formats, .beats = beats1, .build = w_build, .ideal = w_ideal, .bound = w_bound,
+    .sig_used = w_sig_used,
 };

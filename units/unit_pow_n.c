@@ -37,6 +37,14 @@ static const char *pow_n_prog(int n, char *buf)
 
 enum { PN_X, PN_Y, PN_MXA, PN_MXB, PN_MUL, PN_RG, PN_NSIGS };
 
+/* n = 1 multiplies x by 1 (no mux); a power of two only squares (one
+ * mux drives both operands, no mx_b). */
+static int pow_n_sig_used(const unit_cfg *cfg, int i)
+{
+    char prog[PN_PROG_LEN];
+    return pw_sig_built(&unit_pow_n, pow_n_prog(cfg->n, prog), i);
+}
+
 static void pow_n_formats(const unit_cfg *cfg, unit_fmts *out)
 {
     for (int i = 0; i < PN_NSIGS; i++) out->f[i] = unit_fmt(0, 1, cfg->width - 1);
@@ -94,4 +102,5 @@ const unit_desc unit_pow_n = {
     .fmt_rule = "every signal u1.(W-1) (values in [0, 1])",
     .formats = pow_n_formats, .beats = beats1, .build = pow_n_build,
     .ideal = pow_n_ideal, .bound = pow_n_bound,
+    .sig_used = pow_n_sig_used,
 };

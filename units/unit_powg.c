@@ -64,6 +64,17 @@ static int pw_make_plan(const unit_desc *u, const char *prog, pw_plan *p)
     return 0;
 }
 
+/* Whether the engine for prog builds signal i: an operand with a single
+ * source is wiring, not a mux, and a shared operand has no B mux. */
+int pw_sig_built(const unit_desc *u, const char *prog, int i)
+{
+    pw_plan p;
+    if (!prog || pw_make_plan(u, prog, &p)) return 1;
+    if (i == p.ia) return strlen(p.src_a) > 1;
+    if (i == unit_sig_index(u, "mx_b")) return !p.shared && strlen(p.src_b) > 1;
+    return 1;
+}
+
 /* ----------------------------------------------------------------- build */
 
 static sim_signal *operand(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *name, sim_fmt f,
@@ -167,6 +178,13 @@ static const char *powg_prog(int g, char *buf, size_t len)
 
 enum { PG_X, PG_Y, PG_MX, PG_MUL, PG_RG, PG_NSIGS };
 
+/* g = 2 squares x once: the operand is x itself, no mux. */
+static int powg_sig_used(const unit_cfg *cfg, int i)
+{
+    char prog[2 * PW_MAX_STEPS + 1];
+    return pw_sig_built(&unit_powg, powg_prog(cfg->g, prog, sizeof prog), i);
+}
+
 static void powg_formats(const unit_cfg *cfg, unit_fmts *out)
 {
     /* Every value is in [0, 1]: one integer bit holds 1 exactly. */
@@ -225,4 +243,5 @@ const unit_desc unit_powg = {
     .fmt_rule = "every signal u1.(W-1) (values in [0, 1])",
     .formats = powg_formats, .beats = beats1, .build = powg_build,
     .ideal = powg_ideal, .bound = powg_bound,
+    .sig_used = powg_sig_used,
 };

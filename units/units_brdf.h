@@ -32,6 +32,9 @@ sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
                      const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog);
 double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
                 double e_in, double m_in, const char *prog, double *m_out);
+/* Whether the engine running prog builds signal i (its operand muxes
+ * exist only where an operand has more than one source); 1 for others. */
+int    pw_sig_built(const unit_desc *u, const char *prog, int i);
 
 /* ---- unit_div.c: the restoring divider ---- */
 sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
