@@ -136,7 +136,7 @@ static void coef_formats(const unit_desc *u, const coef_net *net, const unit_cfg
     unet_val in[UNET_MAXIN], o[UNET_MAXIN];
     unet_init(&n, u, NULL, cfg->rnd);
     unet_rule(&n, cfg->width, lo, hi, net->nin);
-    for (int i = 0; i < net->nin; i++) n.fm.f[unit_sig_index(u, in_names[i])] = coef_input_fmt(cfg->width);
+    for (int i = 0; i < net->nin; i++) n.fm.f[unit_sig_must(u, in_names[i])] = coef_input_fmt(cfg->width);
     walk_unit(&n, net, cfg, in, o);
     *out = n.fm;
 }

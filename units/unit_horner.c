@@ -87,11 +87,11 @@ static int imax(int a, int b) { return a > b ? a : b; }
 static int bits_for(int v) { int b = 1; while ((1 << b) <= v) b++; return b; }
 
 /* Format of u's signal `name` in f (the builders and the bound take every
- * format by name: the pipe's signals are not contiguous). */
+ * format by name: the pipe's signals are not contiguous). A name the unit
+ * does not have is a bug here, not a reason for a default format. */
 static sim_fmt fmt_of(const unit_desc *u, const unit_fmts *f, const char *name)
 {
-    int i = unit_sig_index(u, name);
-    return i >= 0 ? f->f[i] : unit_fmt(1, HORNER_IBITS, 9);
+    return f->f[unit_sig_must(u, name)];
 }
 
 /* ------------------------------------------------------------- controller */

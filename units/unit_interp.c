@@ -217,7 +217,7 @@ static void fwd_formats(const interp_kind *K, const unit_cfg *cfg, unit_fmts *fm
         if (!changed) break;
         fwd_errs(K->deg, L, init, rf, cfg->rnd, E);
     }
-    for (int j = 0; j <= K->deg; j++) fm->f[unit_sig_index(K->u, fwd_regs[j])] = rf[j];
+    for (int j = 0; j <= K->deg; j++) fm->f[unit_sig_must(K->u, fwd_regs[j])] = rf[j];
 }
 
 /* ------------------------------------------------------------- formats */
@@ -237,17 +237,17 @@ static void formats(const interp_kind *K, const unit_cfg *cfg, unit_fmts *out)
     unet_init(&n, u, NULL, cfg->rnd);
     unet_rule(&n, W, lo, hi, K->net->nin);
     for (int i = 0; i < K->net->nin; i++) {
-        n.fm.f[unit_sig_index(u, in_names[i])] = coef_input_fmt(W);
+        n.fm.f[unit_sig_must(u, in_names[i])] = coef_input_fmt(W);
         in[i] = unet_input(&n, in_names[i], i);
     }
     coef_walk(&n, K->net, in, cfg->terms, cfg->series, o);
     sim_fmt dp = unit_fmt(1, HORNER_IBITS, W - HORNER_IBITS);
     for (int j = 0; j <= K->deg; j++) {
-        n.fm.f[unit_sig_index(u, coef_names[j])] = dp;
-        n.fm.f[unit_sig_index(u, reg_names[j])] = dp;
+        n.fm.f[unit_sig_must(u, coef_names[j])] = dp;
+        n.fm.f[unit_sig_must(u, reg_names[j])] = dp;
     }
-    n.fm.f[unit_sig_index(u, "t")] = unit_fmt(0, 1, W - 1);
-    n.fm.f[unit_sig_index(u, "y")] = dp;
+    n.fm.f[unit_sig_must(u, "t")] = unit_fmt(0, 1, W - 1);
+    n.fm.f[unit_sig_must(u, "y")] = dp;
     horner_default_fmts(u, W, &n.fm);
     *out = n.fm;
     fwd_formats(K, cfg, out);
@@ -340,7 +340,7 @@ static int build_fwd(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal
     sim_signal *reg[4];
     sim_fmt rf[4];
     for (int j = 0; j <= deg; j++) {
-        rf[j] = f->f[unit_sig_index(u, fwd_regs[j])];
+        rf[j] = f->f[unit_sig_must(u, fwd_regs[j])];
         /* the last difference is constant: it loads on an accept only */
         reg[j] = sim_reg(c, n->sc, fwd_regs[j], rf[j], clk, j == deg ? init[j].s : NULL,
                          j == deg ? ctl.accept : adv, NULL, 0);
@@ -353,7 +353,7 @@ static int build_fwd(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal
         sim_signal *mx_in[2] = { sum, init[j].s };
         sim_reg_connect(reg[j], sim_mux(c, n->sc, nm, rf[j], ctl.accept, 2, mx_in));
     }
-    io->out[0] = sim_shift(c, sc, "y", f->f[unit_sig_index(u, "y")], reg[0], 0);
+    io->out[0] = sim_shift(c, sc, "y", f->f[unit_sig_must(u, "y")], reg[0], 0);
     /* fy holds pixel k of the item in every busy clock */
     io->out_valid = sim_shift(c, sc, "out_valid", u1, busy, 0);
     io->scope = sc;
@@ -370,7 +370,7 @@ static int build(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal *cl
         return -1;
     }
     if (sched < 0 || sched > INTERP_FWD) { snprintf(err, errlen, "%s: no schedule %d", u->name, sched); return -1; }
-    sim_fmt ft = f->f[unit_sig_index(u, "t")];
+    sim_fmt ft = f->f[unit_sig_must(u, "t")];
     if (sched != INTERP_FWD && (ft.fbits < lgL || sim_fmt_real_max(ft) < (double)(L - 1) / L)) {
         char b[SIM_FMT_STRLEN];
         snprintf(err, errlen, "%s: t format %s cannot hold k/L exactly for L = %d (needs %d fraction bits)",
@@ -406,11 +406,11 @@ static int build(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal *cl
     /* Coefficient registers, t, and the Horner datapath. */
     sim_signal *r[4];
     for (int j = 0; j <= K->deg; j++)
-        r[j] = sim_reg(c, sc, reg_names[j], f->f[unit_sig_index(u, reg_names[j])], clk, o[j].s, ctl.accept, NULL, 0);
+        r[j] = sim_reg(c, sc, reg_names[j], f->f[unit_sig_must(u, reg_names[j])], clk, o[j].s, ctl.accept, NULL, 0);
     sim_signal *t = sim_shift(c, sc, "t", ft, ctl.k, -lgL);
     horner_dp_on(c, hsc, clk, &hw, busy, r, t, u, f);
 
-    io->out[0] = sim_shift(c, sc, "y", f->f[unit_sig_index(u, "y")], hw.rg, 0);
+    io->out[0] = sim_shift(c, sc, "y", f->f[unit_sig_must(u, "y")], hw.rg, 0);
     io->out_valid = sim_reg(c, sc, "out_valid", u1, clk, hw.done, NULL, NULL, 0);
     io->scope = sc;
     return 0;
@@ -460,14 +460,14 @@ static void bound_beats(const interp_kind *K, const unit_cfg *cfg, const unit_fm
 {
     const unit_desc *u = K->u;
     int L = cfg->L < FWD_MAXK ? cfg->L : FWD_MAXK - 1;
-    sim_fmt fy = f->f[unit_sig_index(u, "y")];
+    sim_fmt fy = f->f[unit_sig_must(u, "y")];
     if (cfg->schedule == INTERP_FWD) {
         unit_fmts fm = *f;
         unet_val coef[4], init[4];
         double E[4][FWD_MAXK];
         sim_fmt rf[4];
         if (fwd_values(K, cfg, &fm, 0, coef, init)) { for (int k = 0; k < cfg->L; k++) per_beat[k] = INFINITY; return; }
-        for (int j = 0; j <= K->deg; j++) rf[j] = f->f[unit_sig_index(u, fwd_regs[j])];
+        for (int j = 0; j <= K->deg; j++) rf[j] = f->f[unit_sig_must(u, fwd_regs[j])];
         fwd_errs(K->deg, L, init, rf, cfg->rnd, E);
         for (int k = 0; k < cfg->L; k++) per_beat[k] = E[0][k < FWD_MAXK ? k : FWD_MAXK - 1] + unit_qerr(fy, rf[0].fbits, cfg->rnd);
         return;
@@ -480,10 +480,10 @@ static void bound_beats(const interp_kind *K, const unit_cfg *cfg, const unit_fm
     double e = 0;
     sim_fmt rf[4];
     for (int j = 0; j <= K->deg; j++) {
-        rf[j] = f->f[unit_sig_index(u, reg_names[j])];
+        rf[j] = f->f[unit_sig_must(u, reg_names[j])];
         e += o[j].err + unit_qerr(rf[j], o[j].f.fbits, cfg->rnd);
     }
-    e += horner_bound_on(K->deg, cfg->schedule, rf, f->f[unit_sig_index(u, "t")], u, f, fy, cfg->rnd);
+    e += horner_bound_on(K->deg, cfg->schedule, rf, f->f[unit_sig_must(u, "t")], u, f, fy, cfg->rnd);
     for (int k = 0; k < cfg->L; k++) per_beat[k] = e;
 }
 
