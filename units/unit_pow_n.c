@@ -69,6 +69,20 @@ static void pow_n_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = pow(in[0], cfg->n);
 }
 
+/* x^n exactly while it fits a sim_dy (-1 beyond: the testbench then
+ * decides with the double pow, or says it cannot). */
+static int pow_n_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
+{
+    sim_dy y, x = in[0];
+    sim_dy_int(&y, 1, 0);
+    for (int e = cfg->n; e && !y.ovf; e >>= 1) {
+        if (e & 1) sim_dy_mul(&y, &y, &x);
+        if (e > 1) sim_dy_mul(&x, &x, &x);
+    }
+    *out = y;
+    return y.ovf ? -1 : 0;
+}
+
 static void pow_n_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 {
     char prog[PN_PROG_LEN];
@@ -101,6 +115,6 @@ const unit_desc unit_pow_n = {
     .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, PN_MAX_N, NULL, "exponent" } },
     .fmt_rule = "every signal u1.(W-1) (values in [0, 1])",
     .formats = pow_n_formats, .beats = beats1, .build = pow_n_build,
-    .ideal = pow_n_ideal, .bound = pow_n_bound,
+    .ideal = pow_n_ideal, .bound = pow_n_bound, .ideal_exact = pow_n_exact,
     .sig_used = pow_n_sig_used,
 };

@@ -213,6 +213,20 @@ static void powg_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = pow(in[0], cfg->g);
 }
 
+/* x^g exactly while it fits a sim_dy (-1 beyond: the testbench then
+ * decides with the double pow, or says it cannot). */
+static int powg_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
+{
+    sim_dy y, x = in[0];
+    sim_dy_int(&y, 1, 0);
+    for (int e = cfg->g; e && !y.ovf; e >>= 1) {
+        if (e & 1) sim_dy_mul(&y, &y, &x);
+        if (e > 1) sim_dy_mul(&x, &x, &x);
+    }
+    *out = y;
+    return y.ovf ? -1 : 0;
+}
+
 static void powg_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 {
     char prog[2 * PW_MAX_STEPS + 1];
@@ -242,6 +256,6 @@ const unit_desc unit_powg = {
     .params = { { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, NULL, "power, a power of two" } },
     .fmt_rule = "every signal u1.(W-1) (values in [0, 1])",
     .formats = powg_formats, .beats = beats1, .build = powg_build,
-    .ideal = powg_ideal, .bound = powg_bound,
+    .ideal = powg_ideal, .bound = powg_bound, .ideal_exact = powg_exact,
     .sig_used = powg_sig_used,
 };
