@@ -824,6 +824,27 @@ int cli_sweep(int argc, char **argv)
     }
     tb_sweep s;
     char err[600];
+    /* No silent widening: widths below what the unit's integer part needs
+     * would all build the same formats; the sweep starts at the smallest
+     * honest width and says so, once. */
+    int lim;
+    unit_cfg limc;
+    int wmin = tb_sweep_min_width(&a.sp, &lim, &limc);
+    if (wmin > a.sp.wlo) {
+        char why[200] = "";
+        if (lim >= 0) {
+            unit_fmts f;
+            limc.width = wmin;
+            a.o.u->formats(&limc, &f);
+            snprintf(why, sizeof why, " (signal %s's integer part is %c%d)", a.o.u->sigs[lim].name,
+                     f.f[lim].is_signed ? 's' : 'u', f.f[lim].ibits);
+        }
+        if (wmin > a.sp.whi)
+            return cli_usage_error("--widths %d:%d: unit %s needs widths >= %d%s", a.sp.wlo, a.sp.whi, a.o.u->name, wmin, why);
+        fprintf(stderr, "shadesim: sweep %s: widths below %d are too narrow for its integer part%s; starting at %d\n",
+                a.o.u->name, wmin, why, wmin);
+        a.sp.wlo = wmin;
+    }
     if (tb_sweep_init(&s, &a.sp, err, sizeof err)) return cli_usage_error("%s", err);
     vec_set *sets = calloc(s.npsets, sizeof *sets);
     int rc = CLI_OK;

@@ -8,6 +8,25 @@
 int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, int n,
                unit_fmts *out, char *err, size_t errlen)
 {
+    /* No silent widening: below its minimum width the rule would hand
+     * some signal more bits than --width says (unit_fmt's clamp), so the
+     * run would print one width and build another. all=FMT sets every
+     * format itself, and then the width does not matter. */
+    int all = 0;
+    for (int k = 0; k < n; k++) all |= !strncmp(ov[k], "all=", 4);
+    int lim, wmin = unit_min_width(u, cfg, &lim);
+    if (!all && cfg->width < wmin) {
+        unit_cfg c = *cfg;
+        unit_fmts f;
+        c.width = wmin;
+        u->formats(&c, &f);
+        if (lim >= 0)
+            snprintf(err, errlen, "--width %d: unit %s needs --width >= %d (signal %s's integer part is %c%d)",
+                     cfg->width, u->name, wmin, u->sigs[lim].name, f.f[lim].is_signed ? 's' : 'u', f.f[lim].ibits);
+        else
+            snprintf(err, errlen, "--width %d: unit %s needs --width >= %d", cfg->width, u->name, wmin);
+        return -1;
+    }
     u->formats(cfg, out);
     for (int k = 0; k < n; k++) {
         const char *eq = strchr(ov[k], '=');

@@ -164,6 +164,27 @@ int tb_sweep_init(tb_sweep *s, const tb_sweep_spec *sp, char *err, size_t errlen
     return 0;
 }
 
+int tb_sweep_min_width(const tb_sweep_spec *spec, int *limit_sig, unit_cfg *limit_cfg)
+{
+    tb_sweep_spec sp = *spec;
+    tb_sweep s;
+    char err[400];
+    int wmin = 1;
+    *limit_sig = -1;
+    *limit_cfg = spec->base;
+    for (int k = 0; k < sp.nfmt; k++)
+        if (!strncmp(sp.fmt[k], "all=", 4)) return 1;
+    /* Every group's configuration at one width that any rule can build. */
+    sp.wlo = sp.whi = 64;
+    if (tb_sweep_init(&s, &sp, err, sizeof err)) return 1;   /* tb_sweep_init proper will say why */
+    for (size_t i = 0; i < s.n; i++) {
+        int lim, w = unit_min_width(sp.u, &s.cfg[i].cfg, &lim);
+        if (w > wmin) { wmin = w; *limit_sig = lim; *limit_cfg = s.cfg[i].cfg; }
+    }
+    tb_sweep_free(&s);
+    return wmin;
+}
+
 void tb_sweep_free(tb_sweep *s)
 {
     free(s->cfg);

@@ -71,6 +71,12 @@ typedef struct tb_sweep {
  * many configurations, out of memory). */
 int  tb_sweep_init(tb_sweep *s, const tb_sweep_spec *spec, char *err, size_t errlen);
 void tb_sweep_free(tb_sweep *s);
+/* The smallest width every configuration of the spec can be built at
+ * without the format rule widening a signal (unit_min_width over the
+ * schedules and parameter values; 1 when --fmt all=... sets every format);
+ * *limit_sig, *limit_cfg: the signal that limits it and a configuration
+ * where it does. */
+int  tb_sweep_min_width(const tb_sweep_spec *spec, int *limit_sig, unit_cfg *limit_cfg);
 /* A configuration with parameter set p, to load or make its vectors. */
 const unit_cfg *tb_sweep_pset_cfg(const tb_sweep *s, size_t p);
 /* After the vectors are in place: the sweep's fingerprint (s->id), which

@@ -169,6 +169,40 @@ void unit_param_get(const unit_param *p, const unit_cfg *cfg, char *buf, size_t 
     snprintf(buf, len, "%.*s", (int)strcspn(s, " "), s);
 }
 
+static int fmt_eq(sim_fmt a, sim_fmt b)
+{
+    return a.is_signed == b.is_signed && a.ibits == b.ibits && a.fbits == b.fbits;
+}
+
+int unit_min_width(const unit_desc *u, const unit_cfg *cfg, int *limit_sig)
+{
+    unit_cfg c = *cfg;
+    unit_fmts f16, f17, prev, cur;
+    unsigned char dep[UNIT_MAX_SIGS];
+    /* The signals that follow W: their formats differ between 16 and 17
+     * (mid-range: no clamp at either end). */
+    c.width = 16; u->formats(&c, &f16);
+    c.width = 17; u->formats(&c, &f17);
+    for (int i = 0; i < u->nsigs; i++) dep[i] = unit_sig_built(u, i, &c) && !fmt_eq(f16.f[i], f17.f[i]);
+    int lim = -1;
+    c.width = 1;
+    u->formats(&c, &prev);
+    for (int w = 2; w <= 64; w++, prev = cur) {
+        c.width = w;
+        u->formats(&c, &cur);
+        int bad = -1;
+        for (int i = 0; i < u->nsigs; i++)
+            if (dep[i] && fmt_eq(cur.f[i], prev.f[i]) && (bad < 0 || cur.f[i].ibits > cur.f[bad].ibits)) bad = i;
+        if (bad < 0) {
+            if (limit_sig) *limit_sig = lim;
+            return w;
+        }
+        lim = bad;
+    }
+    if (limit_sig) *limit_sig = lim;
+    return 64;
+}
+
 sim_fmt unit_fmt(int is_signed, int ibits, int fbits)
 {
     sim_fmt f;

@@ -160,6 +160,14 @@ int  unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
 void unit_param_get(const unit_param *p, const unit_cfg *cfg, char *buf, size_t len);
 int  unit_sched_find(const unit_desc *u, const char *name);  /* -1 if none */
 
+/* The smallest width W whose default formats hold the unit's integer
+ * range without the rule widening a signal: every signal whose format
+ * follows W gets a format of its own at W (not the same as at W - 1,
+ * which is what unit_fmt's clamp to F >= 0 produces). *limit_sig (if not
+ * NULL) is the signal with the widest integer part among those that
+ * limit it (-1 if none). Depends on cfg's parameters, not its width. */
+int  unit_min_width(const unit_desc *u, const unit_cfg *cfg, int *limit_sig);
+
 /* Helpers for format rules and bounds. */
 sim_fmt unit_fmt(int is_signed, int ibits, int fbits);   /* clamps F >= 0, W <= 64 */
 /* Largest error one quantization from src_f fraction bits into f adds:
