@@ -56,7 +56,7 @@ grep -q '^verdict: GOLDEN MISMATCH' "$T/out" && ok golden_named || fail golden_n
 st golden_true 0 "$S" run horner3 --vectors "$T/h.vec"
 
 # case 4: targets
-st width4_nmse_target 1 "$S" run horner3 --width 4 --max-nmse 0.01
+st nmse_target_missed 1 "$S" run horner3 --width 8 --max-nmse 1e-6
 grep -q 'MISSES YOUR TARGET' "$T/out" && ok target_named || fail target_named "$(grep verdict "$T/out")"
 st target_met 0 "$S" run horner3 --max-error 0.01
 st bad_target 2 "$S" run horner3 --max-error -1
