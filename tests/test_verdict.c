@@ -345,9 +345,13 @@ static void t_accept(void)
 /* ---- randomized: every unit, drawn formats and modes ---------------------
  * Each draw: a width, rounding and overflow mode, and one signal's format
  * moved by -3..+3 fraction bits. The run either reports an overflow or is
- * not over its bound (decided exactly, or said to be undecidable); and
- * widening any one signal by a fraction bit never makes a derived bound
- * grow, nor disappear. */
+ * not over its bound (decided exactly, or said to be undecidable). And with
+ * trunc, widening any internal or output signal by a fraction bit never
+ * makes a derived bound grow, nor disappear (docs/bounds.md, "Widening a
+ * signal"). With half-up or even rounding it may, and rightly: rounding
+ * twice can err by more than rounding once (0.4375 LSB rounds to 0.5 LSB
+ * at one more bit, then up to 1); widening an input moves the ideal the
+ * bound is measured from. Those are counted and printed, not failed. */
 static int widen(sim_fmt *f)
 {
     if (f->width >= (f->is_signed ? 64 : 63)) return 0;
@@ -355,16 +359,13 @@ static int widen(sim_fmt *f)
     return 1;
 }
 
-static int monotone_open;
-
 static void t_random_units(void)
 {
-    int runs = 0;
+    int runs = 0, checked = 0;
     for (size_t ui = 0; ui < unit_count(); ui++) {
         const unit_desc *u = unit_at(ui);
-        int no = unit_n_out(u), grew = 0;
-        char where[200] = "";
-        for (int d = 0; d < 12; d++) {
+        int no = unit_n_out(u), grew = 0, inherent = 0;
+        for (int d = 0; d < 24; d++) {
             unit_cfg cfg;
             unit_cfg_default(&cfg);
             cfg.width = 8 + (int)(rnd64() % 17);
@@ -378,19 +379,22 @@ static void t_random_units(void)
             int fb = f.f[i].fbits + (int)(rnd64() % 7) - 3;
             if (fb >= 0 && f.f[i].ibits + fb >= 1 && f.f[i].ibits + fb <= (f.f[i].is_signed ? 64 : 63))
                 f.f[i] = unit_fmt(f.f[i].is_signed, f.f[i].ibits, fb);
-            vec_set vs;
-            if (cli_make_vectors(u, &cfg, 24, (uint64_t)d + 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
-            tb_result r;
-            int rc = tb_run(u, &cfg, &f, &vs, NULL, &r, err, sizeof err);
-            vec_set_free(&vs);
-            if (rc == TB_BADINPUT) { tb_result_free(&r); continue; }     /* formats the unit refuses */
-            TST_CHECK(rc == TB_OK, "%s: %s", u->name, err);
-            if (rc == TB_OK) {
-                runs++;
-                TST_CHECK(r.overflows > 0 || r.bound_check != TB_CHECK_EXCEEDED, "%s w=%d rnd=%d ovf=%d %s=%d frac: over its bound, no overflow",
-                          u->name, cfg.width, cfg.rnd, cfg.ovf, u->sigs[i].name, f.f[i].fbits);
+            if (d % 2 == 0) {       /* simulate every other draw (the bounds are cheap, runs are not) */
+                vec_set vs;
+                if (cli_make_vectors(u, &cfg, 24, (uint64_t)d + 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
+                tb_result r;
+                int rc = tb_run(u, &cfg, &f, &vs, NULL, &r, err, sizeof err);
+                vec_set_free(&vs);
+                if (rc == TB_OK) {
+                    runs++;
+                    TST_CHECK(r.overflows > 0 || r.bound_check != TB_CHECK_EXCEEDED,
+                              "%s w=%d rnd=%d ovf=%d %s=%d frac: over its bound, no overflow",
+                              u->name, cfg.width, cfg.rnd, cfg.ovf, u->sigs[i].name, f.f[i].fbits);
+                } else {
+                    TST_CHECK(rc == TB_BADINPUT, "%s: %s", u->name, err);   /* formats the unit refuses */
+                }
+                tb_result_free(&r);
             }
-            tb_result_free(&r);
             /* widen each signal in turn by one fraction bit */
             double b0[UNIT_MAX_IO], b1[UNIT_MAX_IO];
             u->bound(&cfg, &f, b0);
@@ -399,31 +403,34 @@ static void t_random_units(void)
                 unit_fmts g = f;
                 if (!widen(&g.f[j])) continue;
                 u->bound(&cfg, &g, b1);
-                for (int o = 0; o < no; o++)
-                    if (isfinite(b0[o]) && !(b1[o] <= b0[o])) {
-                        if (!grew++)
-                            snprintf(where, sizeof where, "w=%d rnd=%d %s widened: %g -> %g", cfg.width, cfg.rnd,
-                                     u->sigs[j].name, b0[o], b1[o]);
-                    }
+                /* mschlick's T: its truncation only raises U = n - T, U's
+                 * lowers it; widening T moves error from the harmless side
+                 * to the side that raises 1/U^2 (docs/bounds.md) */
+                int strict = cfg.rnd == SIM_RND_TRUNC && u->sigs[j].role != UNIT_SIG_IN
+                             && !(!strcmp(u->name, "mschlick") && !strcmp(u->sigs[j].name, "t"));
+                for (int o = 0; o < no; o++) {
+                    if (!isfinite(b0[o])) continue;
+                    checked += strict;
+                    if (b1[o] <= b0[o]) continue;
+                    if (!strict) { inherent++; continue; }
+                    if (!grew++)
+                        printf("  %s w=%d: widening %s to %d fraction bits: bound %.17g -> %.17g\n", u->name,
+                               cfg.width, u->sigs[j].name, g.f[j].fbits, b0[o], b1[o]);
+                }
             }
         }
-        /* OPEN (issue 9 case 3): the derived bounds add a requantization's
-         * error per element, so widening a signal that feeds a narrower
-         * one (two successive truncations, whose sum is really one)
-         * raises them. Reported, not yet failed: see t_random_monotone. */
-        if (grew) printf("  monotone: %s: %d widenings grow the bound, e.g. %s\n", u->name, grew, where);
-        if (grew) monotone_open++;
+        TST_CHECK(!grew, "%s: %d widenings (trunc, internal or output) grow the bound or lose it", u->name, grew);
+        if (inherent && getenv("VERDICT_DEBUG"))
+            printf("  %s: %d widenings of an input or with rounding grow the bound\n", u->name, inherent);
     }
     TST_CHECK(runs > 100, "only %d runs", runs);
-}
-
-static void t_random_monotone(void)
-{
-    if (monotone_open) TST_SKIP("%d units' bounds grow when a signal is widened (listed above; issue 9 case 3 open)", monotone_open);
+    TST_CHECK(checked > 1000, "only %d widenings checked", checked);
 }
 
 int main(void)
 {
+    /* fixed draws by default (deterministic); VERDICT_SEED=N draws others */
+    if (getenv("VERDICT_SEED")) rng_state ^= strtoull(getenv("VERDICT_SEED"), NULL, 10) * 0x2545f4914f6cdd1du;
     TST_RUN(t_dy_vs_int128);
     TST_RUN(t_exact_wide);
     TST_RUN(t_exact_int128);
@@ -436,6 +443,5 @@ int main(void)
     TST_RUN(t_overflow_named);
     TST_RUN(t_accept);
     TST_RUN(t_random_units);
-    TST_RUN(t_random_monotone);
     TST_EXIT();
 }

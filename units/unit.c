@@ -220,5 +220,9 @@ sim_fmt unit_fmt(int is_signed, int ibits, int fbits)
 double unit_qerr(sim_fmt f, int src_f, sim_round r)
 {
     if (src_f <= f.fbits) return 0.0;
-    return ldexp(r == SIM_RND_TRUNC ? 1.0 : 0.5, -f.fbits);
+    /* trunc drops at most all-ones below the kept LSB: 2^-F - 2^-src_f
+     * (a double rounds it up, never down); not a whole LSB, so that a
+     * signal made wider does not make its consumer's bound grow */
+    if (r == SIM_RND_TRUNC) return ldexp(1.0, -f.fbits) - ldexp(1.0, -src_f);
+    return ldexp(0.5, -f.fbits);
 }

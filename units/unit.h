@@ -171,6 +171,7 @@ int  unit_min_width(const unit_desc *u, const unit_cfg *cfg, int *limit_sig);
 /* Helpers for format rules and bounds. */
 sim_fmt unit_fmt(int is_signed, int ibits, int fbits);   /* clamps F >= 0, W <= 64 */
 /* Largest error one quantization from src_f fraction bits into f adds:
- * 0 if no bits are dropped, an LSB for trunc, half an LSB when rounding. */
+ * 0 if no bits are dropped, an LSB less 2^-src_f for trunc, half an LSB
+ * when rounding. */
 double  unit_qerr(sim_fmt f, int src_f, sim_round r);
 #endif

@@ -173,6 +173,9 @@ static void w_ideal(const unit_cfg *cfg, const double *in, double *out) { out[0]
  * quantized products), through the 1-Lipschitz clamp, into the power
  * engine's bound, then the output scale. INFINITY when a format cannot
  * hold its range. */
+static int imin(int a, int b) { return a < b ? a : b; }
+static int imax(int a, int b) { return a > b ? a : b; }
+
 static double da_bound_core(const da_kind *kd, const unit_cfg *cfg, const unit_fmts *f, double *ideal_max)
 {
     int g;
@@ -183,13 +186,18 @@ static double da_bound_core(const da_kind *kd, const unit_cfg *cfg, const unit_f
     if (!da_prog(g, prog, sizeof prog) || !brdf_holds(f->f[S_C], 0, 1)) return INFINITY;
     sim_round r = cfg->rnd;
     const sim_fmt *F = f->f;
+    /* eff_*: the fraction bits each value really has (see unit_net.h) */
     double e_om = unit_qerr(F[S_OM], F[S_C].fbits, r);
+    int eff_om = imin(F[S_OM].fbits, F[S_C].fbits);
     if (!brdf_holds(F[S_OM], 0, 1 + e_om)) return INFINITY;
     if (!brdf_holds(F[S_K], fmin(k, 0), fmax(k, 0))) return INFINITY;
     double ek = brdf_const_err(k, F[S_K]);
     double kh = fabs(k) + ek;                                        /* bounds |k_h| */
-    double q_p = unit_qerr(F[S_P], F[S_OM].fbits + F[S_K].fbits, r);
-    double q_b = unit_qerr(F[S_BASE], F[S_P].fbits, r);
+    int src_p = eff_om + brdf_const_eff(k, F[S_K]);
+    double q_p = unit_qerr(F[S_P], src_p, r);
+    int eff_p = imax(0, imin(F[S_P].fbits, src_p));                  /* base = 1 -+ p */
+    double q_b = unit_qerr(F[S_BASE], eff_p, r);
+    int eff_b = imin(F[S_BASE].fbits, eff_p);
     double p_hi = kh * (1 + e_om) + q_p;
     if (!brdf_holds(F[S_P], k < 0 ? -p_hi : 0, k < 0 ? 0 : p_hi)) return INFINITY;
     if (!brdf_holds(F[S_BASE], k < 0 ? 1 - q_b : 1 - p_hi - q_b, k < 0 ? 1 + p_hi + q_b : 1)) return INFINITY;
@@ -197,19 +205,21 @@ static double da_bound_core(const da_kind *kd, const unit_cfg *cfg, const unit_f
      * either base can still be positive (beyond it both clamp to 0). */
     double e0 = kh * e_om + q_p + q_b, t_max = 1.0;
     if (k > ek) t_max = fmin(1.0, (1.0 + e0) / (k - ek));
-    double e_clamp = ek * t_max + e0 + unit_qerr(F[S_CLAMP], F[S_BASE].fbits, r);
+    double e_clamp = ek * t_max + e0 + unit_qerr(F[S_CLAMP], eff_b, r);
+    sim_fmt clamp_eff = unit_fmt(F[S_CLAMP].is_signed, F[S_CLAMP].ibits, imin(F[S_CLAMP].fbits, eff_b));
     double bm = base_max(k);
     if (!brdf_holds(F[S_CLAMP], 0, bm + e_clamp)) return INFINITY;
     double m_rg;
-    double e_rg = pw_bound(kd->u, f, r, F[S_CLAMP], e_clamp, bm, prog, &m_rg);
+    int eff_rg = F[S_RG].fbits;
+    double e_rg = pw_bound(kd->u, f, r, clamp_eff, e_clamp, bm, prog, &m_rg, &eff_rg);
     if (!isfinite(e_rg)) return INFINITY;
     double e_out;
     if (kd->has_c0) {
         if (!brdf_holds(F[S_C0], 0, c0)) return INFINITY;
         double e_c0 = brdf_const_err(c0, F[S_C0]);
-        e_out = (c0 + e_c0) * e_rg + e_c0 * m_rg + unit_qerr(F[S_OUT], F[S_RG].fbits + F[S_C0].fbits, r);
+        e_out = (c0 + e_c0) * e_rg + e_c0 * m_rg + unit_qerr(F[S_OUT], eff_rg + brdf_const_eff(c0, F[S_C0]), r);
     } else {
-        e_out = e_rg + unit_qerr(F[S_OUT], F[S_RG].fbits, r);
+        e_out = e_rg + unit_qerr(F[S_OUT], eff_rg, r);
     }
     if (!brdf_holds(F[S_OUT], 0, c0 * m_rg + e_out)) return INFINITY;
     return e_out;

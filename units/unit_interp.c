@@ -143,7 +143,7 @@ static int fwd_walk(unet *n, const interp_kind *K, int lgL, const unet_val *coef
 static void fwd_errs(int deg, int L, const unet_val *init, const sim_fmt *rf, sim_round r, double E[4][FWD_MAXK])
 {
     double a[4] = { 0, 0, 0, 0 };
-    for (int j = 0; j <= deg; j++) E[j][0] = init[j].err + unit_qerr(rf[j], init[j].f.fbits, r);
+    for (int j = 0; j <= deg; j++) E[j][0] = init[j].err + unit_qerr(rf[j], init[j].eff, r);
     for (int j = 0; j < deg; j++)
         a[j] = unit_qerr(rf[j], rf[j].fbits > rf[j + 1].fbits ? rf[j].fbits : rf[j + 1].fbits, r);
     for (int k = 1; k <= L && k < FWD_MAXK; k++) {
@@ -481,9 +481,17 @@ static void bound_beats(const interp_kind *K, const unit_cfg *cfg, const unit_fm
     sim_fmt rf[4];
     for (int j = 0; j <= K->deg; j++) {
         rf[j] = f->f[unit_sig_must(u, reg_names[j])];
-        e += o[j].err + unit_qerr(rf[j], o[j].f.fbits, cfg->rnd);
+        e += o[j].err + unit_qerr(rf[j], o[j].eff, cfg->rnd);
+        /* the Horner walk sees the fraction bits the register really
+         * holds (fewer than its format's when the coefficient has fewer) */
+        if (o[j].eff < rf[j].fbits) rf[j] = unit_fmt(rf[j].is_signed, rf[j].ibits, o[j].eff < 0 ? 0 : o[j].eff);
     }
-    e += horner_bound_on(K->deg, cfg->schedule, rf, f->f[unit_sig_must(u, "t")], u, f, fy, cfg->rnd);
+    /* t = k/L: lg L fraction bits whatever its format (build checks it holds them) */
+    sim_fmt tf = f->f[unit_sig_must(u, "t")];
+    int lgL = 0;
+    while ((1 << lgL) < cfg->L) lgL++;
+    if (tf.fbits > lgL) tf = unit_fmt(tf.is_signed, tf.ibits, lgL);
+    e += horner_bound_on(K->deg, cfg->schedule, rf, tf, u, f, fy, cfg->rnd);
     for (int k = 0; k < cfg->L; k++) per_beat[k] = e;
 }
 

@@ -29,6 +29,12 @@ typedef struct unet_val {
     sim_fmt     f;                  /* its format */
     double      lin[UNET_MAXIN];    /* ideal value = sum lin[i] * input i */
     double      err;                /* worst-case |hardware - ideal| */
+    /* Fraction bits the value can really have: its format's, or fewer
+     * when its operands have fewer (a wide register holding a coarse
+     * value). A requantization drops bits only below these, so widening a
+     * signal moves a quantization downstream rather than adding one
+     * (with trunc, the bound never grows). */
+    int         eff;
 } unet_val;
 
 typedef struct unet {

@@ -87,9 +87,10 @@ static void pow_n_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out
 {
     char prog[PN_PROG_LEN];
     double e = INFINITY, m = 1;
+    int eff = f->f[PN_RG].fbits;
     if (pow_n_prog(cfg->n, prog) && brdf_holds(f->f[PN_X], 0, 1))
-        e = pw_bound(&unit_pow_n, f, cfg->rnd, f->f[PN_X], 0, 1, prog, &m);
-    e += unit_qerr(f->f[PN_Y], f->f[PN_RG].fbits, cfg->rnd);
+        e = pw_bound(&unit_pow_n, f, cfg->rnd, f->f[PN_X], 0, 1, prog, &m, &eff);
+    e += unit_qerr(f->f[PN_Y], eff, cfg->rnd);
     if (!isfinite(e) || !brdf_holds(f->f[PN_Y], 0, m + e)) e = brdf_range_bound(f->f[PN_Y], 1);
     /* An input format that cannot hold [0, 1] wraps inputs anywhere: no bound. */
     per_out[0] = brdf_holds(f->f[PN_X], 0, 1) ? e : INFINITY;

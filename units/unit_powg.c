@@ -129,13 +129,14 @@ sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
  * INFINITY when some format cannot hold its value (an override that may
  * overflow); *m_out is the largest ideal value of RG. */
 double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
-                double e_in, double m_in, const char *prog, double *m_out)
+                double e_in, double m_in, const char *prog, double *m_out, int *eff_out)
 {
     pw_plan p;
     if (pw_make_plan(u, prog, &p)) return INFINITY;
     sim_fmt fa = f->f[p.ia], fb = f->f[p.ib], fm = f->f[p.imul], fr = f->f[p.irg];
     int mux_a = strlen(p.src_a) > 1, mux_b = !p.shared && strlen(p.src_b) > 1;
     double e_rg = 0, m_rg = 0;
+    int eff_rg = fr.fbits;      /* fraction bits RG's value really has */
     for (int s = 0; s < p.nsteps; s++) {
         double e[2], m[2];
         int fbits[2];
@@ -143,24 +144,27 @@ double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_
             char src = prog[2 * s + k];
             int has_mux = k == 0 ? mux_a : (p.shared ? mux_a : mux_b);
             sim_fmt fmx = k == 0 || p.shared ? fa : fb;
-            int sf = src == 'I' ? in_fmt.fbits : src == 'R' ? fr.fbits : 0;
+            int sf = src == 'I' ? in_fmt.fbits : src == 'R' ? eff_rg : 0;
             e[k] = src == 'I' ? e_in : src == 'R' ? e_rg : 0;
             m[k] = src == 'I' ? m_in : src == 'R' ? m_rg : 1;
             if (has_mux) {
                 e[k] += unit_qerr(fmx, sf, r);
                 if (!brdf_holds(fmx, 0, m[k] + e[k])) return INFINITY;
-                sf = fmx.fbits;
+                sf = sf < fmx.fbits ? sf : fmx.fbits;
             }
             fbits[k] = sf;
         }
         double m_mul = m[0] * m[1];
         double e_mul = e[0] * (m[1] + e[1]) + m[0] * e[1] + unit_qerr(fm, fbits[0] + fbits[1], r);
         if (!brdf_holds(fm, 0, m_mul + e_mul)) return INFINITY;
-        e_rg = e_mul + unit_qerr(fr, fm.fbits, r);
+        int eff_mul = fbits[0] + fbits[1] < fm.fbits ? fbits[0] + fbits[1] : fm.fbits;
+        e_rg = e_mul + unit_qerr(fr, eff_mul, r);
+        eff_rg = eff_mul < fr.fbits ? eff_mul : fr.fbits;
         m_rg = m_mul;
         if (!brdf_holds(fr, 0, m_rg + e_rg)) return INFINITY;
     }
     if (m_out) *m_out = m_rg;
+    if (eff_out) *eff_out = eff_rg;
     return e_rg;
 }
 
@@ -231,9 +235,10 @@ static void powg_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 {
     char prog[2 * PW_MAX_STEPS + 1];
     double e = INFINITY, m = 1;
+    int eff = f->f[PG_RG].fbits;
     if (powg_prog(cfg->g, prog, sizeof prog) && brdf_holds(f->f[PG_X], 0, 1))
-        e = pw_bound(&unit_powg, f, cfg->rnd, f->f[PG_X], 0, 1, prog, &m);
-    e += unit_qerr(f->f[PG_Y], f->f[PG_RG].fbits, cfg->rnd);
+        e = pw_bound(&unit_powg, f, cfg->rnd, f->f[PG_X], 0, 1, prog, &m, &eff);
+    e += unit_qerr(f->f[PG_Y], eff, cfg->rnd);
     if (!isfinite(e) || !brdf_holds(f->f[PG_Y], 0, m + e)) e = brdf_range_bound(f->f[PG_Y], 1);
     /* An input format that cannot hold [0, 1] wraps inputs anywhere: no bound. */
     per_out[0] = brdf_holds(f->f[PG_X], 0, 1) ? e : INFINITY;

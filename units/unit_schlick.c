@@ -85,8 +85,11 @@ static double sh_bound_core(const unit_cfg *cfg, const unit_fmts *f)
     sim_round r = cfg->rnd;
     double n = cfg->n;
     if (!brdf_holds(F[SH_C], 0, 1) || !brdf_holds(F[SH_K], 0, n - 1)) return INFINITY;
-    double e_t = brdf_const_err(n - 1, F[SH_K]) + unit_qerr(F[SH_T], F[SH_C].fbits + F[SH_K].fbits, r);
-    double e_den = e_t + unit_qerr(F[SH_DEN], F[SH_T].fbits, r);
+    /* the fraction bits T really has: c's plus the constant's (see unit_net.h) */
+    int src_t = F[SH_C].fbits + brdf_const_eff(n - 1, F[SH_K]);
+    int eff_t = src_t < F[SH_T].fbits ? src_t : F[SH_T].fbits;
+    double e_t = brdf_const_err(n - 1, F[SH_K]) + unit_qerr(F[SH_T], src_t, r);
+    double e_den = e_t + unit_qerr(F[SH_DEN], eff_t < 0 ? 0 : eff_t, r);
     if (e_den >= 0.5 || !brdf_holds(F[SH_T], 0, n - 1 + e_t) || !brdf_holds(F[SH_DEN], 1 - e_den, n + e_den))
         return INFINITY;
     double e = e_den / (1 - e_den), qmax = 1 + e;
@@ -225,10 +228,18 @@ static double ms_bound_core(const unit_cfg *cfg, const unit_fmts *f)
     sim_round r = cfg->rnd;
     double n = cfg->n, k = n - 1.25, umin = fmin(n, 1.25), umax = fmax(n, 1.25);
     if (!brdf_holds(F[MS_C], 0, 1) || !brdf_holds(F[MS_K], fmin(k, 0), fmax(k, 0))) return INFINITY;
-    double e_t = brdf_const_err(k, F[MS_K]) + unit_qerr(F[MS_T], F[MS_C].fbits + F[MS_K].fbits, r);
-    double e_u = e_t + unit_qerr(F[MS_U], F[MS_T].fbits, r);
-    double ulo = umin - e_u;
-    if (ulo < 1 || !brdf_holds(F[MS_T], fmin(k, 0) - e_t, fmax(k, 0) + e_t)
+    int src_t = F[MS_C].fbits + brdf_const_eff(k, F[MS_K]);
+    int eff_t = src_t < F[MS_T].fbits ? src_t : F[MS_T].fbits;
+    double e_t = brdf_const_err(k, F[MS_K]) + unit_qerr(F[MS_T], src_t, r);
+    double q_u = unit_qerr(F[MS_U], eff_t < 0 ? 0 : eff_t, r);
+    double e_u = e_t + q_u;                                                       /* U = n - T */
+    /* trunc lowers T (so raises U) and lowers U by at most q_u: U stays
+     * above umin - q_u; rounding may move either way */
+    double ulo = umin - (r == SIM_RND_TRUNC ? q_u : e_u);
+    /* T = k c keeps k's sign whatever its rounding (a quantization of a
+     * value >= 0 is >= 0): only the far end widens by e_t. A wider c used to
+     * fail this with lo = -e_t and fall back to a made-up bound (issue 9). */
+    if (ulo < 1 || !brdf_holds(F[MS_T], k < 0 ? k - e_t : 0, k < 0 ? 0 : k + e_t)
         || !brdf_holds(F[MS_U], ulo, umax + e_u) || !brdf_holds(F[MS_E], 0, F[MS_U].ibits))
         return INFINITY;
     double e_f = 1.6 * e_u * (2 * umin + e_u) / (umin * umin * ulo * ulo);

@@ -192,6 +192,12 @@ sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, d
     s->overflows += (uint64_t)ovf;
     return s;
 }
+int brdf_const_eff(double x, sim_fmt f)
+{
+    int64_t raw = const_raw(x, f, NULL);
+    if (!raw) return -64;
+    return f.fbits - __builtin_ctzll((uint64_t)raw);
+}
 /* |x - the constant brdf_const stores|. */
 double brdf_const_err(double x, sim_fmt f)
 {

@@ -26,12 +26,18 @@ int    brdf_holds(sim_fmt f, double lo, double hi);
 double brdf_range_bound(sim_fmt out, double ideal_max);
 sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x);
 double brdf_const_err(double x, sim_fmt f);
+/* Fraction bits the constant brdf_const stores really has (fewer than
+ * f's when its raw ends in zeros; -64 for 0): what a product with it
+ * carries, so that widening the constant's format adds no quantization. */
+int    brdf_const_eff(double x, sim_fmt f);
 
 /* ---- unit_powg.c: the one-multiplier power engine ---- */
 sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
                      const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog);
+/* in_fmt: the input's format with fbits the bits it really has; *eff_out
+ * (may be NULL): those of RG after the program. */
 double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
-                double e_in, double m_in, const char *prog, double *m_out);
+                double e_in, double m_in, const char *prog, double *m_out, int *eff_out);
 /* Whether the engine running prog builds signal i (its operand muxes
  * exist only where an operand has more than one source); 1 for others. */
 int    pw_sig_built(const unit_desc *u, const char *prog, int i);
