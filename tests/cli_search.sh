@@ -40,3 +40,44 @@ check div3_vcd_same_set sh -c "grep -q ' t3 ' '$T/d.vcd' && ! grep -q ' t4 ' '$T
 "$S" claims --json >"$T/c2" 2>/dev/null
 check claims_json_twice_same_bytes cmp -s "$T/c1" "$T/c2"
 check claims_no_cpu_kind sh -c "! grep -q 'speed_cpu\|on this CPU' '$T/c1'"
+
+# ---- validated searches: the result is re-checked on held-out stimuli ----
+# Without a margin the cheapest design for 1e-2 fits the sweep's vectors
+# and misses on seed 2's: exit 1, and every output says so.
+"$S" sweep horner3 --widths 8:24 --target-error 1e-2 -o "$T/h0" >"$T/h0.out" 2>"$T/h0.err"
+check heldout_fail_exit_1 [ $? -eq 1 ]
+check heldout_fail_in_summary grep -q '^  held-out check (seed 2, 640 vectors): .*FAILED: max |e| .* > target 0.01' "$T/h0/summary.txt"
+check heldout_fail_in_json grep -q '"held_out": {"passed": false' "$T/h0/target.json"
+check heldout_fail_in_csv [ "$(sed -n 2p "$T/h0/target.csv" | awk -F, '{print $(NF-1)}')" = false ]
+# With a margin of one bit it passes: exit 0.
+"$S" sweep horner3 --widths 8:24 --target-error 1e-2 --margin 1 -o "$T/h1" >"$T/h1.out" 2>&1
+check heldout_margin_exit_0 [ $? -eq 0 ]
+check heldout_margin_passed grep -q '"held_out": {"passed": true' "$T/h1/target.json"
+check heldout_margin_goal grep -q '"margin_bits": 1, "goal": 0.005' "$T/h1/target.json"
+# The held-out figure is what run gives for the chosen formats on seed 2's
+# vectors (an independent run of the same design).
+args=$(sed -n 's/.*"run_args": "\([^"]*\)".*/\1/p' "$T/h1/target.json")
+"$S" vectors horner3 --seed 2 -o "$T/seed2.vec" 2>/dev/null
+"$S" run horner3 --vectors "$T/seed2.vec" $args --json >"$T/r2.json" 2>/dev/null
+want=$(sed -n 's/.*"held_out": {"passed": true, "metric": \([^,]*\),.*/\1/p' "$T/h1/target.json")
+got=$(sed -n 's/^  "max_abs_err": \([^,]*\),*$/\1/p' "$T/r2.json" | head -1)
+check heldout_metric_is_run_on_seed2 [ -n "$want" -a "$want" = "$got" ]
+[ -n "$want" -a "$want" = "$got" ] || echo "  target.json $want, run $got"
+# The chosen t keeps the bits its whole range needs (the k/8 vectors gave u0.3).
+check heldout_t_not_fitted_to_grid sh -c "! grep -q 't=u0.3 ' '$T/h1/summary.txt'"
+
+# ---- acceptance flags on sweep ---------------------------------------------
+"$S" sweep horner3 --widths 8:14 --max-error 0.05 -o "$T/acc" >"$T/acc.out" 2>&1
+check accept_violation_exit_1 [ $? -eq 1 ]
+col=$(head -1 "$T/acc/sweep.csv" | tr ',' '\n' | grep -nx meets_target | cut -d: -f1)
+ecol=$(head -1 "$T/acc/sweep.csv" | tr ',' '\n' | grep -nx max_abs_err | cut -d: -f1)
+bad=$(tail -n +2 "$T/acc/sweep.csv" | awk -F, -v c="$col" -v e="$ecol" \
+      '{ want = ($e <= 0.05) ? "true" : "false"; if ($c != want) n++ } END { print n + 0 }')
+check accept_column_matches_max_abs_err [ -n "$col" -a "$bad" -eq 0 ]
+check accept_summary_line grep -q '^acceptance (max |e| <= 0.05): [0-9]* of 7 configurations miss it' "$T/acc/summary.txt"
+"$S" sweep horner3 --widths 20:21 --max-error 0.05 -o "$T/acc2" >/dev/null 2>&1
+check accept_all_meet_exit_0 [ $? -eq 0 ]
+"$S" sweep horner3 --widths 20:21 -o "$T/acc3" >/dev/null 2>&1
+check accept_column_empty_without_flags [ -z "$(tail -n +2 "$T/acc3/sweep.csv" | cut -d, -f"$col" | tr -d '\n')" ]
+"$S" sweep horner3 --widths 8:9 --max-nmse -1 -o "$T/x" >/dev/null 2>"$T/e"
+check accept_bad_value_exit_2 [ $? -eq 2 -a "$(wc -l <"$T/e")" -eq 1 ]
