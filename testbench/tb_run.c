@@ -118,11 +118,22 @@ typedef struct tb_golden {
 
 /* The exact check of one value: TB_CHECK_OK / EXCEEDED / UNCHECKED, and
  * |hw - ideal| (as a double, for the report). */
-static int check_value(int64_t raw, sim_fmt f, const sim_dy *exact, double ideal_d,
+static int check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *den, double ideal_d,
                        const sim_dy *bound, double *err)
 {
     sim_dy hw, id, d;
     sim_dy_raw(&hw, raw, f);
+    if (exact && den) {
+        /* ideal = num/den, den > 0: |hw - num/den| <= B iff |hw den - num| <= B den */
+        sim_dy bd;
+        sim_dy_mul(&hw, &hw, den);
+        sim_dy_sub(&d, &hw, exact);
+        sim_dy_abs(&d, &d);
+        sim_dy_mul(&bd, bound, den);
+        *err = sim_dy_to_double(&d) / sim_dy_to_double(den);
+        if (d.ovf || bd.ovf) { *err = fabs(sim_fx_to_real(raw, f) - ideal_d); return TB_CHECK_UNCHECKED; }
+        return sim_dy_cmp(&d, &bd) <= 0 ? TB_CHECK_OK : TB_CHECK_EXCEEDED;
+    }
     if (exact) id = *exact;
     else sim_dy_double(&id, ideal_d);
     sim_dy_sub(&d, &hw, &id);
@@ -140,7 +151,7 @@ static int check_value(int64_t raw, sim_fmt f, const sim_dy *exact, double ideal
 }
 
 static void metrics(tb_result *r, const vec_set *vs, const double *ideal, const sim_dy *exact,
-                    const unsigned char *exact_ok, const tb_golden *g)
+                    const sim_dy *exact_den, const unsigned char *exact_ok, const tb_golden *g)
 {
     int no = r->n_out, nb = r->beats;
     double sum_e2 = 0, sum_ref2 = 0, sum_e = 0;
@@ -168,7 +179,9 @@ static void metrics(tb_result *r, const vec_set *vs, const double *ideal, const 
                 double hw = sim_fx_to_real(r->raw[k], m->fmt);
                 double ref = vec_row(vs, it)[r->n_in + bt * no + o];
                 double e = hw - ref, ei;
-                int c = check_value(r->raw[k], m->fmt, exact && exact_ok[it] ? &exact[k] : NULL, ideal[k], &b, &ei);
+                int ex = exact && exact_ok[it];
+                int c = check_value(r->raw[k], m->fmt, ex ? &exact[k] : NULL, ex && exact_den ? &exact_den[k] : NULL,
+                                    ideal[k], &b, &ei);
                 se += e;
                 m->sum_e2 += e * e;
                 m->sum_ref2 += ref * ref;
@@ -312,12 +325,14 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     size_t n = vs->n_rows, nbeats = n * (size_t)r->beats, nvals = nbeats * (size_t)r->n_out;
     int64_t *in_raw = malloc(n * (size_t)r->n_in * sizeof *in_raw);
     double *ideal = malloc(4 * nvals * sizeof *ideal);
-    sim_dy *exact = u->ideal_exact ? malloc(nvals * sizeof *exact) : NULL;
+    int has_exact = u->ideal_exact || u->ideal_ratio;
+    sim_dy *exact = has_exact ? malloc(nvals * sizeof *exact) : NULL;
+    sim_dy *exact_den = u->ideal_ratio ? malloc(nvals * sizeof *exact_den) : NULL;
     unsigned char *exact_ok = calloc(n, 1);
     r->raw = calloc(nvals, sizeof *r->raw);
     r->beat_cycle = calloc(nbeats, sizeof *r->beat_cycle);
-    if (!in_raw || !ideal || (u->ideal_exact && !exact) || !exact_ok || !r->raw || !r->beat_cycle) {
-        free(in_raw); free(ideal); free(exact); free(exact_ok);
+    if (!in_raw || !ideal || (has_exact && !exact) || (u->ideal_ratio && !exact_den) || !exact_ok || !r->raw || !r->beat_cycle) {
+        free(in_raw); free(ideal); free(exact); free(exact_den); free(exact_ok);
         snprintf(err, errlen, "out of memory for %zu vectors", n);
         return TB_FAIL;
     }
@@ -357,7 +372,8 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         u->ideal(cfg, x, (double *)gold.ideal_u + at);
         if (model) model->eval(&vp, x, (double *)gold.ref_u + at);
         else for (int j = 0; j < r->beats * r->n_out; j++) ((double *)gold.ref_u)[at + j] = vec_row(vs, it)[r->n_in + j];
-        if (exact) exact_ok[it] = u->ideal_exact(cfg, qd, exact + at) == 0;
+        if (u->ideal_ratio) exact_ok[it] = u->ideal_ratio(cfg, qd, exact + at, exact_den + at) == 0;
+        else if (exact) exact_ok[it] = u->ideal_exact(cfg, qd, exact + at) == 0;
     }
 
     double bound[UNIT_MAX_IO];
@@ -458,7 +474,7 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
             }
             r->nsigs = st.nsmp;
         }
-        metrics(r, vs, ideal, exact, exact_ok, &gold);
+        metrics(r, vs, ideal, exact, exact_den, exact_ok, &gold);
         tb_verdict(r, NULL);
     }
 done:
@@ -467,6 +483,7 @@ done:
     free(in_raw);
     free(ideal);
     free(exact);
+    free(exact_den);
     free(exact_ok);
     free(st.smp);
     free(st.mn);

@@ -133,6 +133,10 @@ struct unit_desc {
      * bound check holds at every width (a double ideal loses bits beyond
      * 53). */
     int  (*ideal_exact)(const unit_cfg *cfg, const sim_dy *in, sim_dy *out);
+    /* Optional, for units whose ideal divides (a rational of the inputs):
+     * ideal = num / den exactly, den > 0, one value per output and beat.
+     * 0, or -1 when a value does not fit a sim_dy. */
+    int  (*ideal_ratio)(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den);
 };
 
 /* The registry. */

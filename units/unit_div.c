@@ -207,6 +207,19 @@ static void div_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = in[0] / in[1];
 }
 
+/* n/d exactly (d > 0 in the unit's domain; d <= 0 is not a ratio the
+ * check can use: -1). */
+static int div_ratio(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den)
+{
+    (void)cfg;
+    sim_dy z;
+    sim_dy_int(&z, 0, 0);
+    if (sim_dy_cmp(&in[1], &z) <= 0) return -1;
+    *num = in[0];
+    *den = in[1];
+    return 0;
+}
+
 /* The golden vectors' domain (vectors/ref_brdf_models.c): d in [1/2, 1],
  * 0 <= n <= d - 2^-8, so that n < d still holds after the inputs are
  * quantized to at least 8 fraction bits. */
@@ -246,5 +259,5 @@ const unit_desc unit_div = {
     .sched = { { "restoring", "one quotient bit a clock: as many clocks as q has value bits" } },
     .nparams = 0,
     .fmt_rule = "n, d, r u1.(W-1); q u0.W (W clocks); dz u1.0",
-    .formats = div_formats, .beats = beats1, .build = div_build, .ideal = div_ideal, .bound = div_bound,
+    .formats = div_formats, .beats = beats1, .build = div_build, .ideal = div_ideal, .bound = div_bound, .ideal_ratio = div_ratio,
 };

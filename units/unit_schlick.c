@@ -76,6 +76,19 @@ static void sh_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = ref_brdf_schlick(in[0], cfg->n);
 }
 
+/* The same exactly: c / (n - n c + c), c dyadic, n whole. */
+static int sh_ratio(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den)
+{
+    sim_dy n, k, t, z;
+    sim_dy_int(&n, cfg->n, 0);
+    sim_dy_int(&k, cfg->n - 1, 0);
+    sim_dy_mul(&t, &k, &in[0]);
+    sim_dy_sub(den, &n, &t);
+    *num = in[0];
+    sim_dy_int(&z, 0, 0);
+    return den->ovf || sim_dy_cmp(den, &z) <= 0 ? -1 : 0;
+}
+
 /* docs/brdf.md, "schlick": DEN's error e (0 in the default formats) moves
  * c/DEN by at most e/(1 - e), since DEN >= 1 and c <= 1; the quotient is
  * truncated (< 1 LSB of q); f may requantize q. */
@@ -127,7 +140,7 @@ const unit_desc unit_schlick = {
     .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, NULL, "specular exponent n" } },
     .fmt_rule = "c, f, q u1.(W-1); k u(I).0 for the integer n-1; t, den, r uI.(W-1) with I the "
                 "integer bits of n",
-    .formats = sh_formats, .beats = beats1, .build = sh_build, .ideal = sh_ideal, .bound = sh_bound,
+    .formats = sh_formats, .beats = beats1, .build = sh_build, .ideal = sh_ideal, .bound = sh_bound, .ideal_ratio = sh_ratio,
 };
 
 /* --------------------------------------------------------------- mschlick */
@@ -217,6 +230,23 @@ static void ms_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = ref_brdf_mschlick(in[0], cfg->n);
 }
 
+/* The same exactly: 2c / (1.25 u^2), u = n - (n - 1.25) c. */
+static int ms_ratio(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den)
+{
+    sim_dy n, k, t, u, c54, z, two;
+    sim_dy_int(&n, cfg->n, 0);
+    sim_dy_int(&k, 4 * (int64_t)cfg->n - 5, 2);      /* n - 1.25 */
+    sim_dy_int(&c54, 5, 2);                          /* 1.25 */
+    sim_dy_int(&two, 2, 0);
+    sim_dy_mul(&t, &k, &in[0]);
+    sim_dy_sub(&u, &n, &t);
+    sim_dy_mul(&u, &u, &u);
+    sim_dy_mul(den, &c54, &u);
+    sim_dy_mul(num, &two, &in[0]);
+    sim_dy_int(&z, 0, 0);
+    return den->ovf || num->ovf || sim_dy_cmp(den, &z) <= 0 ? -1 : 0;
+}
+
 /* docs/brdf.md, "mschlick". Errors of U (0 in the default formats) move
  * 1.6c/U^2 by at most 1.6 e (2U + e)/(U^2 (U - e)^2), largest at the
  * smallest U. Normalizing is exact; UN's truncation, V's quantization and
@@ -295,5 +325,5 @@ const unit_desc unit_mschlick = {
     .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, NULL, "specular exponent n" } },
     .fmt_rule = "c, f, q u1.(W-1); k uI.2, t uI.(W+1) for n - 1.25; u uI.(W+1) with I the integer "
                 "bits of n; e u(bits of I).0; un, v u0.W; den, r u1.(W+2)",
-    .formats = ms_formats, .beats = beats1, .build = ms_build, .ideal = ms_ideal, .bound = ms_bound,
+    .formats = ms_formats, .beats = beats1, .build = ms_build, .ideal = ms_ideal, .bound = ms_bound, .ideal_ratio = ms_ratio,
 };
