@@ -125,7 +125,8 @@ static void t_exact_int128(void)
         const double *row = vec_row(&vs, it);
         __int128 q[5];
         for (int i = 0; i < 5; i++) q[i] = (__int128)floor(ldexp(row[i], 24));     /* trunc, the default */
-        __int128 id = ((q[0] * q[4] + (q[1] << 24)) * q[4] + (q[2] << 48)) * q[4] + (q[3] << 72);
+        const __int128 s24 = (__int128)1 << 24;   /* multiply, not shift: q may be negative */
+        __int128 id = ((q[0] * q[4] + q[1] * s24) * q[4] + q[2] * s24 * s24) * q[4] + q[3] * s24 * s24 * s24;
         __int128 hw = (__int128)r.raw[it] * ((__int128)1 << 72);
         __int128 d = hw > id ? hw - id : id - hw;
         if (d > worst) worst = d;
