@@ -385,6 +385,38 @@ void sim_dy_mul(sim_dy *r, const sim_dy *a, const sim_dy *b)
 
 void sim_dy_abs(sim_dy *r, const sim_dy *a) { *r = *a; r->neg = 0; }
 
+void sim_dy_cut(sim_dy *d, int e_max, int up)
+{
+    if (d->ovf || d->e <= e_max) return;
+    int sh = d->e - e_max, lost = 0;
+    if (sh >= SIM_DY_BITS) {
+        lost = !dy_zero(d);
+        memset(d->m, 0, sizeof d->m);
+    } else {
+        int ws = sh / 64, bs = sh % 64;
+        for (int i = 0; i < ws; i++) lost |= d->m[i] != 0;
+        if (bs) lost |= (d->m[ws] & ((1ULL << bs) - 1)) != 0;
+        for (int i = 0; i < SIM_DY_WORDS; i++) {
+            uint64_t lo = i + ws < SIM_DY_WORDS ? d->m[i + ws] : 0;
+            uint64_t hi = i + ws + 1 < SIM_DY_WORDS ? d->m[i + ws + 1] : 0;
+            d->m[i] = bs ? (lo >> bs) | (hi << (64 - bs)) : lo;
+        }
+    }
+    d->e = e_max;
+    if (up && lost) {           /* add one unit of the last kept place */
+        int neg = d->neg;
+        sim_dy one;
+        sim_dy_int(&one, 1, e_max);
+        d->neg = 0;
+        sim_dy_add(d, d, &one);
+        d->neg = neg && !dy_zero(d);
+        return;
+    }
+    int neg = d->neg;
+    dy_norm(d);
+    d->neg = neg && !dy_zero(d);
+}
+
 int sim_dy_cmp(const sim_dy *a, const sim_dy *b)
 {
     sim_dy d;

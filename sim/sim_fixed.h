@@ -89,6 +89,10 @@ void   sim_dy_add(sim_dy *r, const sim_dy *a, const sim_dy *b);
 void   sim_dy_sub(sim_dy *r, const sim_dy *a, const sim_dy *b);
 void   sim_dy_mul(sim_dy *r, const sim_dy *a, const sim_dy *b);
 void   sim_dy_abs(sim_dy *r, const sim_dy *a);
+/* Keep at most e_max fraction bits: the magnitude rounded down (toward
+ * zero) or, with up, away from zero; for intervals that must contain a
+ * value too long to hold. */
+void   sim_dy_cut(sim_dy *d, int e_max, int up);
 /* -1, 0, 1 as a < b, a == b, a > b (neither may have ovf set). */
 int    sim_dy_cmp(const sim_dy *a, const sim_dy *b);
 /* Nearest double or so (for printing: exact up to its last bit or two). */

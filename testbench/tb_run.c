@@ -120,11 +120,27 @@ typedef struct tb_golden {
 
 /* The exact check of one value: TB_CHECK_OK / EXCEEDED / UNCHECKED, and
  * |hw - ideal| (as a double, for the report). */
-static int check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *den, double ideal_d,
-                       const sim_dy *bound, double *err)
+static int check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
+                       double ideal_d, const sim_dy *bound, double *err)
 {
     sim_dy hw, id, d;
     sim_dy_raw(&hw, raw, f);
+    if (exact && hi) {
+        /* the ideal is somewhere in [exact, hi]: within the bound if both
+         * ends are; over it if the nearer end is */
+        sim_dy dl, dh;
+        sim_dy_sub(&dl, &hw, exact);
+        sim_dy_abs(&dl, &dl);
+        sim_dy_sub(&dh, &hw, hi);
+        sim_dy_abs(&dh, &dh);
+        if (dl.ovf || dh.ovf) { *err = fabs(sim_fx_to_real(raw, f) - ideal_d); return TB_CHECK_UNCHECKED; }
+        int far_hi = sim_dy_cmp(&dh, &dl) > 0;
+        *err = sim_dy_to_double(far_hi ? &dh : &dl);
+        if (sim_dy_cmp(far_hi ? &dh : &dl, bound) <= 0) return TB_CHECK_OK;
+        int inside = sim_dy_cmp(&hw, exact) >= 0 && sim_dy_cmp(&hw, hi) <= 0;
+        if (!inside && sim_dy_cmp(far_hi ? &dl : &dh, bound) > 0) return TB_CHECK_EXCEEDED;
+        return TB_CHECK_UNCHECKED;
+    }
     if (exact && den) {
         /* ideal = num/den, den > 0: |hw - num/den| <= B iff |hw den - num| <= B den */
         sim_dy bd;
@@ -155,17 +171,18 @@ static int check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy
     *err = sim_dy_to_double(&d);
     if (d.ovf) { *err = fabs(sim_fx_to_real(raw, f) - ideal_d); return TB_CHECK_UNCHECKED; }
     if (exact) return sim_dy_cmp(&d, bound) <= 0 ? TB_CHECK_OK : TB_CHECK_EXCEEDED;
-    sim_dy delta, lo, hi;
+    sim_dy delta, dlo, dhi;
     sim_dy_double(&delta, TB_DOUBLE_IDEAL_REL * fmax(1.0, fabs(ideal_d)));
-    sim_dy_add(&hi, &d, &delta);
-    sim_dy_sub(&lo, &d, &delta);
-    if (sim_dy_cmp(&hi, bound) <= 0) return TB_CHECK_OK;
-    if (sim_dy_cmp(&lo, bound) > 0) return TB_CHECK_EXCEEDED;
+    sim_dy_add(&dhi, &d, &delta);
+    sim_dy_sub(&dlo, &d, &delta);
+    if (sim_dy_cmp(&dhi, bound) <= 0) return TB_CHECK_OK;
+    if (sim_dy_cmp(&dlo, bound) > 0) return TB_CHECK_EXCEEDED;
     return TB_CHECK_UNCHECKED;
 }
 
 static void metrics(tb_result *r, const vec_set *vs, const double *ideal, const sim_dy *exact,
-                    const sim_dy *exact_den, const unsigned char *exact_ok, const tb_golden *g)
+                    const sim_dy *exact_den, const sim_dy *exact_hi, const unsigned char *exact_ok,
+                    const tb_golden *g)
 {
     int no = r->n_out, nb = r->beats;
     double sum_e2 = 0, sum_ref2 = 0, sum_e = 0;
@@ -194,9 +211,9 @@ static void metrics(tb_result *r, const vec_set *vs, const double *ideal, const 
                 double hw = sim_fx_to_real(r->raw[k], m->fmt);
                 double ref = vec_row(vs, it)[r->n_in + bt * no + o];
                 double e = hw - ref, ei;
-                int ex = exact && exact_ok[it];
-                int c = check_value(r->raw[k], m->fmt, ex ? &exact[k] : NULL, ex && exact_den ? &exact_den[k] : NULL,
-                                    ideal[k], &b, &ei);
+                int ex = exact && exact_ok[it], iv = ex && exact_ok[it] == 2;
+                int c = check_value(r->raw[k], m->fmt, ex ? &exact[k] : NULL, ex && !iv && exact_den ? &exact_den[k] : NULL,
+                                    iv ? &exact_hi[k] : NULL, ideal[k], &b, &ei);
                 se += e;
                 m->sum_e2 += e * e;
                 m->sum_ref2 += ref * ref;
@@ -346,14 +363,15 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     size_t n = vs->n_rows, nbeats = n * (size_t)r->beats, nvals = nbeats * (size_t)r->n_out;
     int64_t *in_raw = malloc(n * (size_t)r->n_in * sizeof *in_raw);
     double *ideal = malloc(4 * nvals * sizeof *ideal);
-    int has_exact = u->ideal_exact || u->ideal_ratio;
+    int has_exact = u->ideal_exact || u->ideal_ratio || u->ideal_interval;
     sim_dy *exact = has_exact ? malloc(nvals * sizeof *exact) : NULL;
     sim_dy *exact_den = u->ideal_ratio ? malloc(nvals * sizeof *exact_den) : NULL;
+    sim_dy *exact_hi = u->ideal_interval ? malloc(nvals * sizeof *exact_hi) : NULL;
     unsigned char *exact_ok = calloc(n, 1);
     r->raw = calloc(nvals, sizeof *r->raw);
     r->beat_cycle = calloc(nbeats, sizeof *r->beat_cycle);
-    if (!in_raw || !ideal || (has_exact && !exact) || (u->ideal_ratio && !exact_den) || !exact_ok || !r->raw || !r->beat_cycle) {
-        free(in_raw); free(ideal); free(exact); free(exact_den); free(exact_ok);
+    if (!in_raw || !ideal || (has_exact && !exact) || (u->ideal_ratio && !exact_den) || (u->ideal_interval && !exact_hi) || !exact_ok || !r->raw || !r->beat_cycle) {
+        free(in_raw); free(ideal); free(exact); free(exact_den); free(exact_hi); free(exact_ok);
         snprintf(err, errlen, "out of memory for %zu vectors", n);
         return TB_FAIL;
     }
@@ -395,6 +413,8 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         else for (int j = 0; j < r->beats * r->n_out; j++) ((double *)gold.ref_u)[at + j] = vec_row(vs, it)[r->n_in + j];
         if (u->ideal_ratio) exact_ok[it] = u->ideal_ratio(cfg, qd, exact + at, exact_den + at) == 0;
         else if (exact) exact_ok[it] = u->ideal_exact(cfg, qd, exact + at) == 0;
+        if (exact && !exact_ok[it] && u->ideal_interval)
+            exact_ok[it] = u->ideal_interval(cfg, qd, exact + at, exact_hi + at) == 0 ? 2 : 0;
     }
 
     double bound[UNIT_MAX_IO];
@@ -499,7 +519,7 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
             }
             r->nsigs = st.nsmp;
         }
-        metrics(r, vs, ideal, exact, exact_den, exact_ok, &gold);
+        metrics(r, vs, ideal, exact, exact_den, exact_hi, exact_ok, &gold);
         tb_verdict(r, NULL);
     }
 done:
@@ -509,6 +529,7 @@ done:
     free(ideal);
     free(exact);
     free(exact_den);
+    free(exact_hi);
     free(exact_ok);
     free(st.smp);
     free(st.mn);

@@ -137,6 +137,10 @@ struct unit_desc {
      * ideal = num / den exactly, den > 0, one value per output and beat.
      * 0, or -1 when a value does not fit a sim_dy. */
     int  (*ideal_ratio)(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den);
+    /* Optional, where ideal_exact's value is too long for a sim_dy (a high
+     * power): an interval [lo, hi] that contains the ideal exactly (e.g.
+     * products cut down and up to a few hundred fraction bits). 0, or -1. */
+    int  (*ideal_interval)(const unit_cfg *cfg, const sim_dy *in, sim_dy *lo, sim_dy *hi);
 };
 
 /* The registry. */
