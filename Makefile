@@ -37,15 +37,24 @@ $(B)/libshadesim.a: $(LIBOBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(B)/%.o: %.c $(HDRS) Makefile
+# The compiler and flags a build folder was made with: a change (make test
+# CC=clang after a gcc build, other CFLAGS) rebuilds it instead of linking
+# the other compiler's objects.
+FLAGSTAMP := $(B)/.flags
+.PHONY: FORCE
+$(FLAGSTAMP): FORCE
+	@mkdir -p $(B)
+	@echo '$(CC) $(ALLCFLAGS)' | cmp -s - $@ || echo '$(CC) $(ALLCFLAGS)' > $@
+
+$(B)/%.o: %.c $(HDRS) Makefile $(FLAGSTAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALLCFLAGS) -c -o $@ $<
 
-$(B)/tests/%: tests/%.c $(B)/libshadesim.a $(HDRS)
+$(B)/tests/%: tests/%.c $(B)/libshadesim.a $(HDRS) $(FLAGSTAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALLCFLAGS) -o $@ $< $(B)/libshadesim.a $(LDLIBS)
 
-$(B)/bench/%: bench/%.c $(B)/libshadesim.a $(HDRS)
+$(B)/bench/%: bench/%.c $(B)/libshadesim.a $(HDRS) $(FLAGSTAMP)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALLCFLAGS) -o $@ $< $(B)/libshadesim.a $(LDLIBS)
 
