@@ -31,10 +31,10 @@ void unet_rule(unet *n, int width, const double *lo, const double *hi, int nin)
 
 int unet_sig(unet *n, const char *name)
 {
-    int i = unit_sig_index(n->u, name);
-    if (i < 0 && !n->why[0])
-        snprintf(n->why, sizeof n->why, "unit %s: no signal '%s' for an element of its network", n->u->name, name);
-    return i;
+    /* The names come from the unit's own network tables: one the unit
+     * does not declare is a bug, and a format rule walk (which has no
+     * error path) must not carry on with a made-up format. */
+    return unit_sig_must(n->u, name);
 }
 
 /* Exact range of a linear form over the input box. */
@@ -111,8 +111,7 @@ unet_val unet_wrap(sim_signal *s, sim_fmt f, int k)
 
 unet_val unet_input(unet *n, const char *name, int k)
 {
-    int sig = unet_sig(n, name);
-    sim_fmt f = sig >= 0 ? n->fm.f[sig] : unit_fmt(1, 8, 8);
+    sim_fmt f = n->fm.f[unet_sig(n, name)];
     sim_signal *s = n->c ? sim_signal_new(n->c, n->sc, name, f, SIM_KIND_INPUT) : NULL;
     return unet_wrap(s, f, k);
 }
