@@ -55,6 +55,7 @@ static void list_unit(FILE *f, const unit_desc *u, int width, int sched)
         else fprintf(f, " (%g..%g)", u->params[i].min, u->params[i].max);
     }
     fprintf(f, "\n  default formats for --width %d: %s\n", width, u->fmt_rule);
+    fprintf(f, "  smallest --width: %d (default parameters)\n", unit_min_width(u, &cfg, NULL));
     if (has_masks(u))
         fprintf(f, "  signals of schedule %s (list %s --schedule NAME shows another's):\n", u->sched[sched].name, u->name);
     else
@@ -90,7 +91,9 @@ static void list_unit_md(FILE *f, const unit_desc *u, int width, int sched)
         }
     }
     int col = sched < 0 && has_masks(u);
-    fprintf(f, "\nDefault formats from `--width W`: %s.\n\n", u->fmt_rule);
+    fprintf(f, "\nDefault formats from `--width W`: %s. Smallest W with the default parameters: %d "
+               "(narrower, the rule could only widen some signal: docs/formats.md).\n\n", u->fmt_rule,
+            unit_min_width(u, &cfg, NULL));
     if (sched >= 0 && has_masks(u)) fprintf(f, "Signals of schedule `%s`.\n\n", u->sched[sched].name);
     fprintf(f, "| signal | role | format at W = %d | what |%s\n| --- | --- | --- | --- |%s\n",
             width, col ? " schedules |" : "", col ? " --- |" : "");
@@ -176,7 +179,7 @@ int cli_vectors(int argc, char **argv)
         if (is_help(argv[i])) {
             puts("usage: shadesim vectors UNIT [-n N] [--seed S] [--param NAME=VALUE ...] [-o FILE]\n\n"
                  "Golden vectors for UNIT from the double-precision float reference, in the\n"
-                 "SPEC's text format (stdout, or FILE written atomically). With the default\n"
+                 "text vector format (stdout, or FILE written atomically). With the default\n"
                  "N (0: the unit's default set) and seed 1 this is the checked-in\n"
                  "vectors/UNIT.vec.");
             return CLI_OK;

@@ -467,7 +467,7 @@ const unit_desc unit_horner3 = {
         { .name = "y", .role = UNIT_SIG_OUT, .what = "intensity I(t) (RG after the last step)" },
         HORNER_SIGS3 },
     .nsched = 3,
-    .sched = H_SCHEDS("the paper's sequence, six clocks per pixel (SPEC 2.3)", "3", "3"),
+    .sched = H_SCHEDS("the paper's sequence, six clocks per pixel", "3", "3"),
     .nparams = 0,
     .fmt_rule = H_RULE,
     .formats = formats3, .beats = beats1, .build = build3, .ideal = ideal3, .bound = bound3, .ideal_exact = ideal3_exact,
