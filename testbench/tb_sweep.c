@@ -315,6 +315,14 @@ void tb_sweep_fingerprint(tb_sweep *s)
         h = fnv(h, &v->n_rows, sizeof v->n_rows);
         h = fnv(h, v->data, v->n_rows * (size_t)(v->n_in + v->n_out) * sizeof *v->data);
     }
+    /* Shards judged against other acceptance would disagree on
+     * meets_target: another sweep. (Without acceptance the id is as it was.) */
+    const tb_accept *ac = &s->spec.accept;
+    if (ac->max_error > 0 || ac->max_nmse > 0 || ac->max_lsb > 0) {
+        h = fnv(h, &ac->max_error, sizeof ac->max_error);
+        h = fnv(h, &ac->max_nmse, sizeof ac->max_nmse);
+        h = fnv(h, &ac->max_lsb, sizeof ac->max_lsb);
+    }
     s->id = h;
 }
 

@@ -81,3 +81,8 @@ check accept_all_meet_exit_0 [ $? -eq 0 ]
 check accept_column_empty_without_flags [ -z "$(tail -n +2 "$T/acc3/sweep.csv" | cut -d, -f"$col" | tr -d '\n')" ]
 "$S" sweep horner3 --widths 8:9 --max-nmse -1 -o "$T/x" >/dev/null 2>"$T/e"
 check accept_bad_value_exit_2 [ $? -eq 2 -a "$(wc -l <"$T/e")" -eq 1 ]
+# Shards judged against different acceptance are different sweeps for merge.
+"$S" sweep horner3 --widths 8:11 --max-error 0.5 --shard 1/2 -o "$T/sh" >/dev/null 2>&1
+"$S" sweep horner3 --widths 8:11 --shard 2/2 -o "$T/sh" >/dev/null 2>&1
+"$S" merge "$T/sh/sweep-1-of-2.csv" "$T/sh/sweep-2-of-2.csv" -o "$T/sh/m.csv" 2>"$T/e"
+check accept_merge_refuses_mixed_acceptance [ $? -eq 2 -a ! -e "$T/sh/m.csv" ]
