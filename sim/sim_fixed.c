@@ -249,9 +249,37 @@ static int dy_zero(const sim_dy *a)
     return 1;
 }
 
+/* 1 if only the low word is in use (the fast paths' case). */
+static inline int dy_small(const sim_dy *a)
+{
+    uint64_t hi = 0;
+    for (int i = 1; i < SIM_DY_WORDS; i++) hi |= a->m[i];
+    return hi == 0;
+}
+
+/* Set d to sign neg and magnitude v * 2^-e, normalized (v < 2^128). */
+static void dy_set128(sim_dy *d, int neg, unsigned __int128 v, int e)
+{
+    memset(d, 0, sizeof *d);
+    if (!v) return;
+    int tz = (uint64_t)v ? __builtin_ctzll((uint64_t)v) : 64 + __builtin_ctzll((uint64_t)(v >> 64));
+    v >>= tz;
+    d->m[0] = (uint64_t)v;
+    d->m[1] = (uint64_t)(v >> 64);
+    d->e = e - tz;
+    d->neg = neg;
+}
+
 static void dy_norm(sim_dy *d)
 {
     if (d->ovf) return;
+    if (dy_small(d)) {
+        if (!d->m[0]) { d->neg = 0; d->e = 0; return; }
+        int tz = __builtin_ctzll(d->m[0]);
+        d->m[0] >>= tz;
+        d->e -= tz;
+        return;
+    }
     if (dy_zero(d)) { d->neg = 0; d->e = 0; return; }
     int w = 0;
     while (!d->m[w]) w++;
@@ -321,6 +349,19 @@ static int dy_align(const sim_dy *a, const sim_dy *b, sim_dy *x, sim_dy *y)
 /* r = a + (negate b ? -b : b) */
 static void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
 {
+    /* Fast path: one word each, exponents within 62 of each other: the
+     * aligned values and their sum fit a signed 128-bit integer. */
+    if (!a->ovf && !b->ovf && dy_small(a) && dy_small(b)) {
+        int e = a->e > b->e ? a->e : b->e, sa = e - a->e, sb = e - b->e;
+        if (sa <= 62 && sb <= 62) {
+            __int128 x = (__int128)a->m[0] << sa, y = (__int128)b->m[0] << sb;
+            if (a->neg) x = -x;
+            if (b->neg != negate) y = -y;
+            __int128 s = x + y;
+            dy_set128(r, s < 0, s < 0 ? (unsigned __int128)(-s) : (unsigned __int128)s, e);
+            return;
+        }
+    }
     sim_dy x, y;
     if (a->ovf || b->ovf || !dy_align(a, b, &x, &y)) { memset(r, 0, sizeof *r); r->ovf = 1; return; }
     int yneg = y.neg ^ (negate && !dy_zero(&y));
@@ -358,6 +399,10 @@ void sim_dy_sub(sim_dy *r, const sim_dy *a, const sim_dy *b) { dy_addsub(r, a, b
 
 void sim_dy_mul(sim_dy *r, const sim_dy *a, const sim_dy *b)
 {
+    if (!a->ovf && !b->ovf && dy_small(a) && dy_small(b)) {   /* fast path: one word each */
+        dy_set128(r, (a->neg ^ b->neg) && a->m[0] && b->m[0], (unsigned __int128)a->m[0] * b->m[0], a->e + b->e);
+        return;
+    }
     uint64_t p[2 * SIM_DY_WORDS];
     memset(p, 0, sizeof p);
     sim_dy o;
