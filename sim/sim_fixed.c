@@ -237,3 +237,248 @@ int64_t sim_fx_canon(int64_t raw, sim_fmt f)
 {
     return extend((uint64_t)raw, f);
 }
+
+/* ---- exact dyadic numbers (sim_dy) ----
+ * Sign and magnitude; after every operation the magnitude is made odd
+ * (trailing zero bits moved into e), so that values stay as short as their
+ * meaning and alignment shifts stay small. */
+
+static int dy_zero(const sim_dy *a)
+{
+    for (int i = 0; i < SIM_DY_WORDS; i++) if (a->m[i]) return 0;
+    return 1;
+}
+
+/* 1 if only the low word is in use (the fast paths' case). */
+static inline int dy_small(const sim_dy *a)
+{
+    uint64_t hi = 0;
+    for (int i = 1; i < SIM_DY_WORDS; i++) hi |= a->m[i];
+    return hi == 0;
+}
+
+/* Set d to sign neg and magnitude v * 2^-e, normalized (v < 2^128). */
+static void dy_set128(sim_dy *d, int neg, unsigned __int128 v, int e)
+{
+    memset(d, 0, sizeof *d);
+    if (!v) return;
+    int tz = (uint64_t)v ? __builtin_ctzll((uint64_t)v) : 64 + __builtin_ctzll((uint64_t)(v >> 64));
+    v >>= tz;
+    d->m[0] = (uint64_t)v;
+    d->m[1] = (uint64_t)(v >> 64);
+    d->e = e - tz;
+    d->neg = neg;
+}
+
+static void dy_norm(sim_dy *d)
+{
+    if (d->ovf) return;
+    if (dy_small(d)) {
+        if (!d->m[0]) { d->neg = 0; d->e = 0; return; }
+        int tz = __builtin_ctzll(d->m[0]);
+        d->m[0] >>= tz;
+        d->e -= tz;
+        return;
+    }
+    if (dy_zero(d)) { d->neg = 0; d->e = 0; return; }
+    int w = 0;
+    while (!d->m[w]) w++;
+    int tz = 64 * w + __builtin_ctzll(d->m[w]);
+    int ws = tz / 64, bs = tz % 64;
+    for (int i = 0; i < SIM_DY_WORDS; i++) {
+        uint64_t lo = i + ws < SIM_DY_WORDS ? d->m[i + ws] : 0;
+        uint64_t hi = i + ws + 1 < SIM_DY_WORDS ? d->m[i + ws + 1] : 0;
+        d->m[i] = bs ? (lo >> bs) | (hi << (64 - bs)) : lo;
+    }
+    d->e -= tz;
+}
+
+/* m <<= k; 1 if bits were lost (the value does not fit). */
+static int mag_shl(uint64_t *m, int k)
+{
+    if (k <= 0) return 0;
+    if (k >= SIM_DY_BITS) return 1;     /* callers never shift a zero */
+    int ws = k / 64, bs = k % 64;
+    for (int i = SIM_DY_WORDS - ws; i < SIM_DY_WORDS; i++) if (m[i]) return 1;
+    if (bs && (m[SIM_DY_WORDS - ws - 1] >> (64 - bs))) return 1;
+    for (int i = SIM_DY_WORDS - 1; i >= 0; i--) {
+        uint64_t lo = i - ws >= 0 ? m[i - ws] : 0;
+        uint64_t lo2 = i - ws - 1 >= 0 ? m[i - ws - 1] : 0;
+        m[i] = bs ? (lo << bs) | (lo2 >> (64 - bs)) : lo;
+    }
+    return 0;
+}
+
+static int mag_cmp(const uint64_t *a, const uint64_t *b)
+{
+    for (int i = SIM_DY_WORDS - 1; i >= 0; i--)
+        if (a[i] != b[i]) return a[i] < b[i] ? -1 : 1;
+    return 0;
+}
+
+void sim_dy_int(sim_dy *d, int64_t v, int e)
+{
+    memset(d, 0, sizeof *d);
+    d->neg = v < 0;
+    d->m[0] = v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
+    d->e = e;
+    dy_norm(d);
+}
+
+void sim_dy_raw(sim_dy *d, int64_t raw, sim_fmt f) { sim_dy_int(d, raw, f.fbits); }
+
+void sim_dy_double(sim_dy *d, double x)
+{
+    if (!isfinite(x)) { memset(d, 0, sizeof *d); d->ovf = 1; return; }
+    int e;
+    double m = ldexp(frexp(x, &e), 53);     /* x = m * 2^(e-53), m integral */
+    sim_dy_int(d, (int64_t)m, 53 - e);
+}
+
+/* a and b brought to a common e (the larger); 0 if that does not fit. */
+static int dy_align(const sim_dy *a, const sim_dy *b, sim_dy *x, sim_dy *y)
+{
+    *x = *a; *y = *b;
+    if (dy_zero(x)) x->e = y->e;
+    if (dy_zero(y)) y->e = x->e;
+    if (x->e < y->e) { if (mag_shl(x->m, y->e - x->e)) return 0; x->e = y->e; }
+    else if (y->e < x->e) { if (mag_shl(y->m, x->e - y->e)) return 0; y->e = x->e; }
+    return 1;
+}
+
+/* r = a + (negate b ? -b : b) */
+static void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
+{
+    /* Fast path: one word each, exponents within 62 of each other: the
+     * aligned values and their sum fit a signed 128-bit integer. */
+    if (!a->ovf && !b->ovf && dy_small(a) && dy_small(b)) {
+        int e = a->e > b->e ? a->e : b->e, sa = e - a->e, sb = e - b->e;
+        if (sa <= 62 && sb <= 62) {
+            __int128 x = (__int128)a->m[0] << sa, y = (__int128)b->m[0] << sb;
+            if (a->neg) x = -x;
+            if (b->neg != negate) y = -y;
+            __int128 s = x + y;
+            dy_set128(r, s < 0, s < 0 ? (unsigned __int128)(-s) : (unsigned __int128)s, e);
+            return;
+        }
+    }
+    sim_dy x, y;
+    if (a->ovf || b->ovf || !dy_align(a, b, &x, &y)) { memset(r, 0, sizeof *r); r->ovf = 1; return; }
+    int yneg = y.neg ^ (negate && !dy_zero(&y));
+    sim_dy o;
+    memset(&o, 0, sizeof o);
+    o.e = x.e;
+    if (x.neg == yneg) {
+        unsigned __int128 c = 0;
+        for (int i = 0; i < SIM_DY_WORDS; i++) {
+            c += (unsigned __int128)x.m[i] + y.m[i];
+            o.m[i] = (uint64_t)c;
+            c >>= 64;
+        }
+        o.neg = x.neg;
+        o.ovf = c != 0;
+    } else {
+        const sim_dy *big = &x, *small = &y;
+        int bneg = x.neg;
+        if (mag_cmp(x.m, y.m) < 0) { big = &y; small = &x; bneg = yneg; }
+        uint64_t borrow = 0;
+        for (int i = 0; i < SIM_DY_WORDS; i++) {
+            uint64_t s = small->m[i] + borrow;
+            uint64_t nb = (s < borrow) || (big->m[i] < s);
+            o.m[i] = big->m[i] - s;
+            borrow = nb;
+        }
+        o.neg = bneg;
+    }
+    dy_norm(&o);
+    *r = o;
+}
+
+void sim_dy_add(sim_dy *r, const sim_dy *a, const sim_dy *b) { dy_addsub(r, a, b, 0); }
+void sim_dy_sub(sim_dy *r, const sim_dy *a, const sim_dy *b) { dy_addsub(r, a, b, 1); }
+
+void sim_dy_mul(sim_dy *r, const sim_dy *a, const sim_dy *b)
+{
+    if (!a->ovf && !b->ovf && dy_small(a) && dy_small(b)) {   /* fast path: one word each */
+        dy_set128(r, (a->neg ^ b->neg) && a->m[0] && b->m[0], (unsigned __int128)a->m[0] * b->m[0], a->e + b->e);
+        return;
+    }
+    uint64_t p[2 * SIM_DY_WORDS];
+    memset(p, 0, sizeof p);
+    sim_dy o;
+    memset(&o, 0, sizeof o);
+    if (a->ovf || b->ovf) { o.ovf = 1; *r = o; return; }
+    int nb = SIM_DY_WORDS;
+    while (nb > 0 && !b->m[nb - 1]) nb--;     /* b's used words */
+    for (int i = 0; i < SIM_DY_WORDS; i++) {
+        if (!a->m[i]) continue;
+        unsigned __int128 c = 0;
+        for (int j = 0; j < nb; j++) {
+            c += (unsigned __int128)a->m[i] * b->m[j] + p[i + j];
+            p[i + j] = (uint64_t)c;
+            c >>= 64;
+        }
+        p[i + nb] = (uint64_t)c;
+    }
+    for (int i = SIM_DY_WORDS; i < 2 * SIM_DY_WORDS; i++) if (p[i]) o.ovf = 1;
+    memcpy(o.m, p, sizeof o.m);
+    o.neg = a->neg ^ b->neg;
+    o.e = a->e + b->e;
+    dy_norm(&o);
+    *r = o;
+}
+
+void sim_dy_abs(sim_dy *r, const sim_dy *a) { *r = *a; r->neg = 0; }
+
+void sim_dy_cut(sim_dy *d, int e_max, int up)
+{
+    if (d->ovf || d->e <= e_max) return;
+    int sh = d->e - e_max, lost = 0;
+    if (sh >= SIM_DY_BITS) {
+        lost = !dy_zero(d);
+        memset(d->m, 0, sizeof d->m);
+    } else {
+        int ws = sh / 64, bs = sh % 64;
+        for (int i = 0; i < ws; i++) lost |= d->m[i] != 0;
+        if (bs) lost |= (d->m[ws] & ((1ULL << bs) - 1)) != 0;
+        for (int i = 0; i < SIM_DY_WORDS; i++) {
+            uint64_t lo = i + ws < SIM_DY_WORDS ? d->m[i + ws] : 0;
+            uint64_t hi = i + ws + 1 < SIM_DY_WORDS ? d->m[i + ws + 1] : 0;
+            d->m[i] = bs ? (lo >> bs) | (hi << (64 - bs)) : lo;
+        }
+    }
+    d->e = e_max;
+    if (up && lost) {           /* add one unit of the last kept place */
+        int neg = d->neg;
+        sim_dy one;
+        sim_dy_int(&one, 1, e_max);
+        d->neg = 0;
+        sim_dy_add(d, d, &one);
+        d->neg = neg && !dy_zero(d);
+        return;
+    }
+    int neg = d->neg;
+    dy_norm(d);
+    d->neg = neg && !dy_zero(d);
+}
+
+int sim_dy_cmp(const sim_dy *a, const sim_dy *b)
+{
+    sim_dy d;
+    sim_dy_sub(&d, a, b);
+    if (d.ovf) {            /* cannot align: the exponents are far apart */
+        double x = sim_dy_to_double(a), y = sim_dy_to_double(b);
+        return x < y ? -1 : x > y;
+    }
+    if (dy_zero(&d)) return 0;
+    return d.neg ? -1 : 1;
+}
+
+double sim_dy_to_double(const sim_dy *a)
+{
+    if (a->ovf) return NAN;
+    double v = 0;
+    for (int i = SIM_DY_WORDS - 1; i >= 0; i--) v = v * 0x1p64 + (double)a->m[i];
+    v = ldexp(v, -a->e);
+    return a->neg ? -v : v;
+}

@@ -66,4 +66,36 @@ double  sim_fx_to_real(int64_t raw, sim_fmt f);
  * bits); used when a raw arrives from outside (e.g. a VCD or a file). */
 int64_t sim_fx_canon(int64_t raw, sim_fmt f);
 
+/* ---- exact dyadic numbers, for checking results ----
+ * A sim_dy is m * 2^-e exactly: a sign and a magnitude of up to
+ * SIM_DY_BITS bits. Enough for the ideal of a cubic in 64-bit inputs
+ * (4 * 64 bits plus carries); an operation whose result would not fit
+ * sets ovf, and a result with ovf set is not a number (callers then say
+ * they cannot check). Slow but exact: testbenches use it once per output. */
+#define SIM_DY_WORDS 8
+#define SIM_DY_BITS  (64 * SIM_DY_WORDS)
+typedef struct sim_dy {
+    uint64_t m[SIM_DY_WORDS];   /* magnitude, little-endian words */
+    int      neg;               /* 1: negative (never for zero) */
+    int      e;                 /* value = m * 2^-e */
+    int      ovf;               /* did not fit: not a number */
+} sim_dy;
+
+void   sim_dy_int(sim_dy *d, int64_t v, int e);        /* v * 2^-e */
+void   sim_dy_raw(sim_dy *d, int64_t raw, sim_fmt f);   /* a raw's exact value */
+/* A finite double's exact value (0, ovf set, for NaN and infinities). */
+void   sim_dy_double(sim_dy *d, double x);
+void   sim_dy_add(sim_dy *r, const sim_dy *a, const sim_dy *b);
+void   sim_dy_sub(sim_dy *r, const sim_dy *a, const sim_dy *b);
+void   sim_dy_mul(sim_dy *r, const sim_dy *a, const sim_dy *b);
+void   sim_dy_abs(sim_dy *r, const sim_dy *a);
+/* Keep at most e_max fraction bits: the magnitude rounded down (toward
+ * zero) or, with up, away from zero; for intervals that must contain a
+ * value too long to hold. */
+void   sim_dy_cut(sim_dy *d, int e_max, int up);
+/* -1, 0, 1 as a < b, a == b, a > b (neither may have ovf set). */
+int    sim_dy_cmp(const sim_dy *a, const sim_dy *b);
+/* Nearest double or so (for printing: exact up to its last bit or two). */
+double sim_dy_to_double(const sim_dy *a);
+
 #endif

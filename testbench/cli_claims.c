@@ -1,9 +1,10 @@
 /* cli_claims.c - the verb claims: every numerical claim of the seeds next
  * to what we measure, with a verdict (vectors/claims.c computes them), the
  * seeds' speed claims measured as hardware clocks and area of our units
- * against a cost model of the exact functions and as CPU time of float
- * code, the failure region of each approximation, and with -o DIR the
- * charts (docs/brdf.md). */
+ * against a cost model of the exact functions (deterministic: the same
+ * bytes on every machine; CPU timings of float code are `make bench`'s,
+ * bench/bench_claims.c), the failure region of each approximation, and
+ * with -o DIR the charts (docs/brdf.md). */
 #include "testbench/cli.h"
 #include "sim/sim_out.h"
 #include "testbench/tb_svg.h"
@@ -23,17 +24,18 @@
 #define DEG (M_PI / 180.0)
 
 static const char claims_help[] =
-    "usage: shadesim claims [--json] [-o DIR] [--width W] [--cpu-seconds S]\n\n"
+    "usage: shadesim claims [--json] [-o DIR] [--width W]\n\n"
     "Prints each numerical claim of the seeds (000, 001, 004) beside what the\n"
     "double-precision references measure, and a verdict: holds, holds only for\n"
     "<condition>, or does not hold. Then the seeds' speed claims (D16 4.34x faster\n"
-    "than D, the Ward approximation more than 2x), measured twice: as clocks and\n"
-    "area of our hardware units against a cost model of the exact functions, and\n"
-    "as CPU time of float code on this machine (machine-dependent). Last, where\n"
+    "than D, the Ward approximation more than 2x), measured as clocks and area of\n"
+    "our hardware units against a cost model of the exact functions. Last, where\n"
     "each approximation fails: relative error above 10% where the exact value is\n"
     "above 1% of its peak. The face scene's claims (NMSE against per-pixel Phong,\n"
     "operation-count speed-up) are measured at 256x256 through the simulated\n"
-    "span hardware.\n\noptions:\n"
+    "span hardware. The output is the same bytes on every run and machine;\n"
+    "CPU timings of the float kernels are machine-dependent and live in `make\n"
+    "bench` (bench/bench_claims), not in these verdicts.\n\noptions:\n"
     "  --json               one JSON object instead of text\n"
     "  -o DIR               also write the charts into DIR (made if missing):\n"
     "                       claims_d16.svg, claims_ward.svg, claims_schlick.svg\n"
@@ -41,9 +43,7 @@ static const char claims_help[] =
     "                       claims_d16_clamp.svg (why d_approx clamps its base) and\n"
     "                       claims_cost.svg (clocks x area against error, our units)\n"
     "  --width W            width of the hardware units for the speed and cost\n"
-    "                       figures (default 16)\n"
-    "  --cpu-seconds S      time each float kernel for at least S seconds, best of\n"
-    "                       three (default 0.05; 0 skips the CPU timing)\n\n"
+    "                       figures (default 16)\n\n"
     "exit status: 0 done (a claim that does not hold is a finding, not an error),\n"
     "2 bad usage or an unwritable DIR\n";
 
@@ -439,11 +439,10 @@ static int write_charts(const char *dir, char paths[][600], int *np)
 
 typedef struct report {
     claim_result rows[CLAIMS_MAX];
-    const char *kind[CLAIMS_MAX];     /* "accuracy", "speed_hw", "scene", "speed_cpu" */
+    const char *kind[CLAIMS_MAX];     /* "accuracy", "speed_hw", "scene" */
     size_t n;
     hw_cost hc;
     bands fb[N_APPROX];
-    int cpu;
 } report;
 
 static void print_row(FILE *f, const claim_result *r)
@@ -492,13 +491,8 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
     for (size_t i = 0; i < rp->n; i++)
         if (!strcmp(rp->kind[i], "scene")) print_row(f, &rp->rows[i]);
 
-    if (rp->cpu) {
-        fputs("Speed claims on this CPU (float code; machine-, compiler- and libm-dependent)\n\n", f);
-        for (size_t i = 0; i < rp->n; i++)
-            if (!strcmp(rp->kind[i], "speed_cpu")) print_row(f, &rp->rows[i]);
-    } else {
-        fputs("Speed claims on this CPU: not timed (--cpu-seconds 0)\n\n", f);
-    }
+    fputs("Speed on a CPU (float code) depends on the machine, compiler and libm: `make bench`\n"
+          "times it (bench/bench_claims); it is not part of these verdicts.\n\n", f);
 
     fputs("Failure regions: relative error above 10% where the exact value is above 1% of its peak\n", f);
     for (size_t k = 0; k < N_APPROX; k++) {
@@ -515,8 +509,7 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
         int k = claims_verdict_kind(rp->rows[i].verdict);
         nh += k == 1; no += k == 0; nf += k == -1;
     }
-    fprintf(f, "\n%zu claims: %d hold, %d hold only under a condition, %d do not hold%s\n", rp->n, nh, no, nf,
-            rp->cpu ? " (the CPU rows are machine-dependent)" : "");
+    fprintf(f, "\n%zu claims: %d hold, %d hold only under a condition, %d do not hold\n", rp->n, nh, no, nf);
     for (int i = 0; i < np; i++) fprintf(f, "wrote %s\n", paths[i]);
 }
 
@@ -563,9 +556,7 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
     fputs("    },\n    \"model\": ", f);
     jstr(f, "exact D = squarer + divider + shift-and-add exp (W clocks, two divider datapaths) + squarer + "
             "divider = 3W+2 clocks; Ward exp = squarer + divider + exp = 2W+1 clocks; lower bounds");
-    fputs("\n  },\n  \"cpu_timed\": ", f);
-    fputs(rp->cpu ? "true" : "false", f);
-    fputs(",\n  \"failure_regions\": [\n", f);
+    fputs("\n  },\n  \"failure_regions\": [\n", f);
     for (size_t k = 0; k < N_APPROX; k++) {
         const approx *a = &APPROX[k];
         const bands *b = &rp->fb[k];
@@ -591,7 +582,6 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
 int cli_claims(int argc, char **argv)
 {
     int json = 0, width = 16;
-    double cpu_s = 0.05;
     const char *dir = NULL;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -608,12 +598,8 @@ int cli_claims(int argc, char **argv)
             width = (int)w;
             i++;
         } else if (!strcmp(a, "--cpu-seconds")) {
-            char *end;
-            double s = i + 1 < argc ? strtod(argv[i + 1], &end) : -1;
-            if (i + 1 >= argc || *end || !*argv[i + 1] || !(s >= 0 && s <= 10))
-                return cli_usage_error("claims: --cpu-seconds needs a number of seconds 0..10");
-            cpu_s = s;
-            i++;
+            return cli_usage_error("claims: --cpu-seconds is gone: CPU timings are machine-dependent and not "
+                                   "verdicts; make bench times them (bench/bench_claims)");
         } else return cli_usage_error("claims: unknown argument '%s' (see shadesim claims --help)", a);
     }
 
@@ -633,12 +619,6 @@ int cli_claims(int argc, char **argv)
         if (!k) { free(rp); return cli_usage_error("claims: face scene: %s", serr); }
         for (size_t i = 0; i < k; i++) rp->kind[rp->n + i] = "scene";
         rp->n += k;
-    }
-    if (cpu_s > 0 && rp->n < CLAIMS_MAX) {
-        size_t k = claims_speed(&rp->rows[rp->n], CLAIMS_MAX - rp->n, cpu_s);
-        for (size_t i = 0; i < k; i++) rp->kind[rp->n + i] = "speed_cpu";
-        rp->n += k;
-        rp->cpu = 1;
     }
     for (size_t k = 0; k < N_APPROX; k++) failure_bands(&APPROX[k], &rp->fb[k]);
 

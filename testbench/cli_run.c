@@ -65,13 +65,14 @@ static void list_unit(FILE *f, const unit_desc *u, int width, int sched)
         else fprintf(f, " (%g..%g)", u->params[i].min, u->params[i].max);
     }
     fprintf(f, "\n  default formats for --width %d: %s\n", width, u->fmt_rule);
+    fprintf(f, "  smallest --width: %d (default parameters)\n", unit_min_width(u, &cfg, NULL));
     if (has_masks(u))
         fprintf(f, "  signals of schedule %s (list %s --schedule NAME shows another's):\n", u->sched[sched].name, u->name);
     else
         fputs("  signals:\n", f);
     static const char *const role[] = { "in", "out", "" };
     for (int i = 0; i < u->nsigs; i++)
-        if (unit_sig_used(u, i, sched))
+        if (unit_sig_built(u, i, &cfg))
             fprintf(f, "    %-4s %-10s %-8s %s\n", role[u->sigs[i].role], u->sigs[i].name,
                     sim_fmt_str(fm.f[i], fb), u->sigs[i].what);
 }
@@ -100,13 +101,15 @@ static void list_unit_md(FILE *f, const unit_desc *u, int width, int sched)
         }
     }
     int col = sched < 0 && has_masks(u);
-    fprintf(f, "\nDefault formats from `--width W`: %s.\n\n", u->fmt_rule);
+    fprintf(f, "\nDefault formats from `--width W`: %s. Smallest W with the default parameters: %d "
+               "(narrower, the rule could only widen some signal: docs/formats.md).\n\n", u->fmt_rule,
+            unit_min_width(u, &cfg, NULL));
     if (sched >= 0 && has_masks(u)) fprintf(f, "Signals of schedule `%s`.\n\n", u->sched[sched].name);
     fprintf(f, "| signal | role | format at W = %d | what |%s\n| --- | --- | --- | --- |%s\n",
             width, col ? " schedules |" : "", col ? " --- |" : "");
     static const char *const role[] = { "input", "output", "internal" };
     for (int i = 0; i < u->nsigs; i++) {
-        if (sched >= 0 && !unit_sig_used(u, i, sched)) continue;
+        if (sched >= 0 ? !unit_sig_built(u, i, &cfg) : u->sig_used && !u->sig_used(&cfg, i)) continue;
         fprintf(f, "| `%s` | %s | `%s` | %s |", u->sigs[i].name, role[u->sigs[i].role], sim_fmt_str(fm.f[i], fb), u->sigs[i].what);
         if (col) {
             char sn[120];
@@ -186,7 +189,7 @@ int cli_vectors(int argc, char **argv)
         if (is_help(argv[i])) {
             puts("usage: shadesim vectors UNIT [-n N] [--seed S] [--param NAME=VALUE ...] [-o FILE]\n\n"
                  "Golden vectors for UNIT from the double-precision float reference, in the\n"
-                 "SPEC's text format (stdout, or FILE written atomically). With the default\n"
+                 "text vector format (stdout, or FILE written atomically). With the default\n"
                  "N (0: the unit's default set) and seed 1 this is the checked-in\n"
                  "vectors/UNIT.vec.\n\n"
                  "-o FILE: a regular file is replaced only once complete (a symbolic link is\n"
@@ -225,13 +228,23 @@ int cli_vectors(int argc, char **argv)
 
 static const char run_help[] =
     "usage: shadesim run UNIT [options]\n"
-    "       shadesim run all          every unit on its default vectors, one summary table\n\n"
+    "       shadesim run all [acceptance options]   every unit on its default vectors, one summary table\n\n"
     "Drives UNIT clock by clock with golden vectors (inputs quantized to the unit's\n"
-    "input formats with --round), reports cycles, area and quantization error, and\n"
-    "exits 1 when an output exceeds the error bound derived from the formats\n"
-    "(docs/bounds.md).\n\noptions:\n";
+    "input formats with --round), reports cycles, area, quantization error and\n"
+    "every signal's overflows, and gives a verdict (docs/bounds.md). Exit 0 when\n"
+    "the verdict is ok: no signal overflowed, every output is within the error\n"
+    "bound derived from the formats (checked exactly against the unit's ideal\n"
+    "function of the quantized inputs), the golden check against the vector\n"
+    "file's expected outputs holds, and your targets, if set, are met. Exit 1\n"
+    "otherwise, also when the bound cannot be decided (\"unchecked\") or the unit\n"
+    "derives none for the formats (\"no bound\").\n\noptions:\n";
 
 static const char run_help2[] =
+    "  --max-error E        target: max |hardware - expected| <= E\n"
+    "  --max-nmse X         target: NMSE against the expected outputs <= X\n"
+    "  --max-lsb K          target: max |hardware - expected| <= K output LSBs\n"
+    "  --allow-overflow     an overflow does not fail the verdict (it is still reported)\n"
+    "  --ranges             list every signal's observed raw range, not only those that overflowed\n"
     "  --json               print the result as one JSON object\n"
     "  --out FILE.csv       one row per vector: index, cycle, NAME_raw/_real/_expected/_err\n"
     "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD),\n"
@@ -241,11 +254,32 @@ static const char run_help2[] =
     "writes that file to stdout (no .gtkw then) and the report goes to stderr; only\n"
     "one of --out -, --vcd - and --json can have stdout.\n";
 
-static int run_all(void)
+/* An acceptance option at argv[*i]: 1 (consumed), 0 (not one), -1 (bad). */
+static int accept_option(tb_accept *a, int *ranges, int argc, char **argv, int *i)
 {
-    printf("%-11s %-9s %6s %12s %12s %12s %10s %6s\n", "unit", "schedule", "width", "clocks/item",
-           "max|e|", "nmse", "area GE", "bound");
-    int rc = CLI_OK;
+    const char *o = argv[*i];
+    double *dst = !strcmp(o, "--max-error") ? &a->max_error : !strcmp(o, "--max-nmse") ? &a->max_nmse
+                : !strcmp(o, "--max-lsb") ? &a->max_lsb : NULL;
+    if (dst) {
+        if (*i + 1 >= argc) { cli_usage_error("%s needs a number", o); return -1; }
+        char *end;
+        double v = strtod(argv[++*i], &end);
+        if (*end || !*argv[*i] || !(v > 0) || v > 1e300) { cli_usage_error("%s %s: expected a positive number", o, argv[*i]); return -1; }
+        *dst = v;
+        return 1;
+    }
+    if (!strcmp(o, "--allow-overflow")) { a->allow_overflow = 1; return 1; }
+    if (ranges && !strcmp(o, "--ranges")) { *ranges = 1; return 1; }
+    return 0;
+}
+
+static int run_all(const tb_accept *acc)
+{
+    int target = acc->max_error > 0 || acc->max_nmse > 0 || acc->max_lsb > 0;
+    printf("%-11s %-9s %6s %12s %12s %12s %10s %-9s %-8s %s\n", "unit", "schedule", "width", "clocks/item",
+           "max|e|", "nmse", "area GE", "bound", "golden", target ? "target" : "method error");
+    int rc = CLI_OK, bad = 0, missed = 0;
+    char far[400] = "";
     for (size_t i = 0, n = unit_count(); i < n; i++) {
         cli_unit_opts o;
         cli_unit_select(&o, unit_at(i)->name);
@@ -260,13 +294,39 @@ static int run_all(void)
             fprintf(stderr, "shadesim: %s: %s\n", o.u->name, err);
             rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
         } else {
-            printf("%-11s %-9s %6d %12.4g %12.4g %12.4g %10.1f %6s\n", o.u->name, o.u->sched[o.cfg.schedule].name,
-                   o.cfg.width, r.cycles_per_item, r.max_abs_err, r.nmse, r.area_ge, r.within_bound ? "ok" : "EXCEED");
-            if (!r.within_bound && rc == CLI_OK) rc = CLI_FAIL;
+            tb_verdict(&r, acc);
+            double me = 0;
+            for (int k = 0; k < r.n_out; k++) if (r.out[k].max_method_err > me) me = r.out[k].max_method_err;
+            if (me > 1e-3 && strlen(far) < sizeof far - 40)
+                snprintf(far + strlen(far), sizeof far - strlen(far), " %s (%.3g)", o.u->name, me);
+            const char *bc = r.overflows && !acc->allow_overflow ? "OVERFLOW" : r.bound_check == TB_CHECK_OK ? "ok"
+                           : r.bound_check == TB_CHECK_EXCEEDED ? "EXCEEDED" : r.bound_check == TB_CHECK_NO_BOUND ? "NO BOUND" : "UNCHECKED";
+            char last[32];
+            if (target) snprintf(last, sizeof last, "%s", r.target_met ? "met" : "MISSED");
+            else snprintf(last, sizeof last, "%.3g", me);
+            printf("%-11s %-9s %6d %12.4g %12.4g %12.4g %10.1f %-9s %-8s %s\n", o.u->name, o.u->sched[o.cfg.schedule].name,
+                   o.cfg.width, r.cycles_per_item, r.max_abs_err, r.nmse, r.area_ge, bc, r.golden_ok ? "ok" : "EXCEEDED", last);
+            if (!r.ok) {
+                if (r.target_set && !r.target_met && r.within_bound && r.golden_ok) missed++;
+                else bad++;
+                if (rc == CLI_OK) rc = CLI_FAIL;
+            }
         }
         tb_result_free(&r);
         vec_set_free(&vs);
     }
+    printf("\nbound ok: no overflow and every output within the bound derived from its formats, checked\n"
+           "against the unit's ideal function (exactly; units whose ideal is only a double: to 2^-40\n"
+           "relative, else \"unchecked\"); golden ok: within that bound plus input rounding\n"
+           "plus the method's own approximation of the true function. max|e| is against the true\n"
+           "function: a unit can be within its bound and far from it (interp3's 3-term 1/3).\n%s\n",
+           target ? "target: your --max-error / --max-nmse / --max-lsb." :
+           "method error: how far the unit's ideal is from the true function; no target set\n"
+           "(--max-error, --max-nmse, --max-lsb make a miss fail the run).");
+    if (bad) printf("summary: %d unit(s) fail the derived-bound or golden check\n", bad);
+    else printf("summary: every unit within its derived bound and golden check\n");
+    if (far[0]) printf("summary: within their bound but far from the true function (method error > 1e-3):%s\n", far);
+    if (target) printf("summary: %s\n", missed ? "some units MISS your target" : "every unit meets your target");
     return stdout_done(rc);
 }
 
@@ -280,13 +340,23 @@ int cli_run(int argc, char **argv)
     }
     if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, or run all)");
     unit = argv[1];
+    tb_accept acc;
+    memset(&acc, 0, sizeof acc);
+    int ranges = 0;
     if (!strcmp(unit, "all")) {
-        if (argc > 2) return cli_usage_error("run all takes no options");
-        return run_all();
+        for (int i = 2; i < argc; i++) {
+            int r = accept_option(&acc, NULL, argc, argv, &i);
+            if (r < 0) return CLI_USAGE;
+            if (!r) return cli_usage_error("run all: unknown option '%s' (it takes --max-error, --max-nmse, --max-lsb, --allow-overflow)", argv[i]);
+        }
+        return run_all(&acc);
     }
     if (cli_unit_select(&o, unit)) return CLI_USAGE;
     for (int i = 2; i < argc; i++) {
         int r = cli_unit_option(&o, argc, argv, &i);
+        if (r < 0) return CLI_USAGE;
+        if (r) continue;
+        r = accept_option(&acc, &ranges, argc, argv, &i);
         if (r < 0) return CLI_USAGE;
         if (r) continue;
         if (!strcmp(argv[i], "--json")) json = 1;
@@ -316,9 +386,13 @@ int cli_run(int argc, char **argv)
         if (t == TB_FAIL) rc = CLI_FAIL;
     } else {
         if (csv && tb_write_csv(csv, &r, &vs, err, sizeof err)) rc = cli_usage_error("%s", err);
+        tb_verdict(&r, &acc);
         if (json) tb_write_json(stdout, &r);
-        else tb_print_table(report, &r);
-        if (rc == CLI_OK && !r.within_bound) rc = CLI_FAIL;
+        else {
+            tb_print_table(report, &r);
+            if (ranges) tb_print_ranges(report, &r, 1);
+        }
+        if (rc == CLI_OK && !r.ok) rc = CLI_FAIL;
     }
     tb_result_free(&r);
     vec_set_free(&vs);

@@ -23,6 +23,7 @@ static const char sweep_help[] =
     "  cycles_vs_error.svg  clocks per item against max error (when they vary)\n"
     "  summary.txt          what is printed on stdout\n"
     "  target.json          with --target-error/--target-nmse: the chosen formats\n"
+    "  target.csv           ... and the same per settings group as one CSV row each\n"
     "Order of the rows: width-major, then schedule, each --param in the order\n"
     "given, round, overflow (the last varies fastest). docs/sweeps.md has more.\n\n"
     "options:\n"
@@ -34,8 +35,15 @@ static const char sweep_help[] =
     "  --fmt NAME=sI.F      pin a signal's format in every configuration (repeatable)\n"
     "  --vectors FILE       golden vectors (default: the unit's file in vectors/)\n"
     "  -n N [--seed S]      instead, N vectors made by the float reference (seed 1)\n"
-    "  --target-error E     cheapest per-signal formats with max |error| <= E\n"
+    "  --target-error E     cheapest per-signal formats with max |error| <= E,\n"
+    "                       re-checked on held-out stimuli (another seed)\n"
     "  --target-nmse E      ... with NMSE <= E\n"
+    "  --margin BITS        the search aims at E / 2^BITS (NMSE: E / 4^BITS), so\n"
+    "                       that the held-out check at E has room (default 0)\n"
+    "  --max-error E        acceptance: a row meets it when max |error| <= E\n"
+    "  --max-nmse X         ... when NMSE <= X\n"
+    "  --max-lsb K          ... when max |error| <= K LSB of the output format;\n"
+    "                       the CSV's meets_target says which rows do\n"
     "  -j N                 run on N threads (default 1); the output is the same\n"
     "  --shard K/N          run only configurations i with i mod N = K-1 and write\n"
     "                       DIR/sweep-K-of-N.csv; join them with shadesim merge\n"
@@ -45,7 +53,9 @@ static const char sweep_help[] =
     "the complete set of the one that finished last (they take turns on the lock\n"
     "file DIR/.sweep.lock).\n\n"
     "exit status: 0 done (a width over its error bound is data: within_bound),\n"
-    "1 some configuration's simulation failed, 2 bad usage or input\n";
+    "1 some configuration's simulation failed, a row misses --max-error/--max-nmse/\n"
+    "--max-lsb, or a target search's result failed its held-out check; 2 bad usage\n"
+    "or input\n";
 
 static const char merge_help[] =
     "usage: shadesim merge SHARD.csv ... -o OUT.csv\n\n"
@@ -303,6 +313,10 @@ typedef struct target_info {
     int on;
     tb_target_kind kind;
     double value;
+    double margin;          /* --margin BITS */
+    double goal;            /* what the search aims at: value less the margin */
+    unsigned long long ho_seed;   /* seed of the held-out stimuli */
+    size_t ho_rows;         /* their vectors per parameter set */
     tb_target_res *res;     /* [ngroups] */
 } target_info;
 
@@ -566,12 +580,12 @@ static void print_front(FILE *f, const tb_sweep *s, const unsigned char *on, siz
     free(p);
 }
 
-/* The formats of the signals schedule `sched` builds. */
-static void fmt_list(FILE *f, const unit_desc *u, int sched, const unit_fmts *fm, const char *pre, const char *sep)
+/* The formats of the signals configuration cfg builds. */
+static void fmt_list(FILE *f, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const char *pre, const char *sep)
 {
     char fb[SIM_FMT_STRLEN];
     for (int i = 0, first = 1; i < u->nsigs; i++) {
-        if (!unit_sig_used(u, i, sched)) continue;
+        if (!unit_sig_built(u, i, cfg)) continue;
         fprintf(f, "%s%s%s=%s", first ? "" : sep, pre, u->sigs[i].name, sim_fmt_str(fm->f[i], fb));
         first = 0;
     }
@@ -579,6 +593,15 @@ static void fmt_list(FILE *f, const unit_desc *u, int sched, const unit_fmts *fm
 
 static const char *metric_name(tb_target_kind k) { return k == TB_TARGET_NMSE ? "NMSE" : "max |e|"; }
 static double metric_of(tb_target_kind k, const tb_result *r) { return k == TB_TARGET_NMSE ? r->nmse : r->max_abs_err; }
+
+/* Row of the smallest width of group g that meets the target itself (no
+ * margin), or s->n. */
+static size_t uniform_at(const tb_sweep *s, size_t g, tb_target_kind k, double target)
+{
+    for (size_t i = g; i < s->n; i += s->ngroups)
+        if (tb_target_holds(&s->row[i].r, s->row[i].status, k, target, UINT64_MAX)) return i;
+    return s->n;
+}
 
 static void print_target(FILE *f, const tb_sweep *s, const target_info *t)
 {
@@ -598,17 +621,69 @@ static void print_target(FILE *f, const tb_sweep *s, const target_info *t)
                 metric_name(t->kind), metric_of(t->kind, &x->r), saved, ru->area_ge > 0 ? 100 * saved / ru->area_ge : 0.0,
                 x->runs);
         fputs("  formats:", f);
-        fmt_list(f, s->spec.u, s->cfg[x->uniform].cfg.schedule, &x->fmts, " ", "");
+        fmt_list(f, s->spec.u, &s->cfg[x->uniform].cfg, &x->fmts, " ", "");
         fputc('\n', f);
+        if (t->margin > 0) {
+            fprintf(f, "  searched for %s <= %g (margin %g bits)", metric_name(t->kind), t->goal, t->margin);
+            size_t ua = uniform_at(s, g, t->kind, t->value);
+            if (ua < s->n) {
+                double sv = s->row[ua].r.area_ge - x->r.area_ge;
+                fprintf(f, "; against the smallest uniform width that meets the target itself, %d (%.1f GE): saving %.1f GE (%.1f%%)",
+                        s->cfg[ua].cfg.width, s->row[ua].r.area_ge, sv, 100 * sv / s->row[ua].r.area_ge);
+            }
+            fputc('\n', f);
+        }
+        if (x->heldout)
+            fprintf(f, "  held-out check (seed %llu, %zu vectors): %s %.4g (uniform width %d: %.4g): %s%s\n",
+                    t->ho_seed, t->ho_rows, metric_name(t->kind), metric_of(t->kind, &x->heldout_r),
+                    s->cfg[x->uniform].cfg.width, metric_of(t->kind, &x->heldout_u),
+                    x->heldout_ok ? "passed" : "FAILED: ", x->heldout_why);
     }
 }
 
-static void jstr_fmts(FILE *f, const unit_desc *u, int sched, const unit_fmts *fm)
+/* The target search's result per group as CSV (target.csv). */
+static int write_target_csv(const tb_sweep *s, const target_info *t, oset *os)
+{
+    const unit_desc *u = s->spec.u;
+    FILE *f = oset_open(os, "target.csv");
+    if (!f) return CLI_USAGE;
+    fputs("group,unit,schedule", f);
+    for (int i = 0; i < u->nparams; i++) fprintf(f, ",%s", u->params[i].name);
+    fputs(",round,overflow,metric,target,margin_bits,goal,met,uniform_width,uniform_area_ge,uniform_metric,"
+          "chosen_area_ge,chosen_metric,area_saved_ge,area_saved_pct,runs,heldout_seed,heldout_vectors,"
+          "heldout_metric,heldout_uniform_metric,heldout_overflows,heldout_passed,formats\n", f);
+    for (size_t g = 0; g < s->ngroups; g++) {
+        const tb_target_res *x = &t->res[g];
+        const unit_cfg *c = &s->cfg[g].cfg;
+        fprintf(f, "%zu,%s,%s", g, u->name, u->sched[c->schedule].name);
+        for (int i = 0; i < u->nparams; i++) {
+            char v[64];
+            unit_param_get(&u->params[i], c, v, sizeof v);
+            fprintf(f, ",%s", v);
+        }
+        fprintf(f, ",%s,%s,%s,%.17g,%g,%.17g,%s", sim_round_name(c->rnd), sim_ovf_name(c->ovf),
+                t->kind == TB_TARGET_NMSE ? "nmse" : "max_abs_err", t->value, t->margin, t->goal,
+                x->met ? "true" : "false");
+        if (!x->met) { fputs(",,,,,,,,,,,,,,,,\n", f); continue; }
+        const tb_result *ru = &s->row[x->uniform].r;
+        double saved = ru->area_ge - x->r.area_ge;
+        fprintf(f, ",%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%llu,%zu,%.17g,%.17g,%llu,%s,",
+                s->cfg[x->uniform].cfg.width, ru->area_ge, metric_of(t->kind, ru), x->r.area_ge,
+                metric_of(t->kind, &x->r), saved, ru->area_ge > 0 ? 100 * saved / ru->area_ge : 0.0, x->runs,
+                t->ho_seed, t->ho_rows, metric_of(t->kind, &x->heldout_r), metric_of(t->kind, &x->heldout_u),
+                (unsigned long long)x->heldout_r.overflows, x->heldout_ok ? "true" : "false");
+        fmt_list(f, u, c, &x->fmts, "", " ");
+        fputc('\n', f);
+    }
+    return 0;
+}
+
+static void jstr_fmts(FILE *f, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm)
 {
     char fb[SIM_FMT_STRLEN];
     fputc('{', f);
     for (int i = 0, first = 1; i < u->nsigs; i++) {
-        if (!unit_sig_used(u, i, sched)) continue;
+        if (!unit_sig_built(u, i, cfg)) continue;
         fprintf(f, "%s\"%s\": \"%s\"", first ? "" : ", ", u->sigs[i].name, sim_fmt_str(fm->f[i], fb));
         first = 0;
     }
@@ -621,10 +696,10 @@ static void jnum(FILE *f, double v)
     else fputs("null", f);
 }
 
-static void jdesign(FILE *f, const unit_desc *u, int sched, const unit_fmts *fm, const tb_result *r)
+static void jdesign(FILE *f, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const tb_result *r)
 {
     fputs("{\"formats\": ", f);
-    jstr_fmts(f, u, sched, fm);
+    jstr_fmts(f, u, cfg, fm);
     fputs(", \"max_abs_err\": ", f); jnum(f, r->max_abs_err);
     fputs(", \"rms_err\": ", f); jnum(f, r->rms_err);
     fputs(", \"nmse\": ", f); jnum(f, r->nmse);
@@ -641,8 +716,14 @@ static int write_target_json(const tb_sweep *s, const target_info *t, oset *os)
     fprintf(f, "{\n  \"unit\": \"%s\",\n  \"target\": {\"metric\": \"%s\", \"value\": ", u->name,
             t->kind == TB_TARGET_NMSE ? "nmse" : "max_abs_err");
     jnum(f, t->value);
-    fputs("},\n  \"rule\": \"metric <= target, every output within its bound, no more overflows than the uniform design\",\n"
-          "  \"groups\": [", f);
+    fputs(", \"margin_bits\": ", f);
+    jnum(f, t->margin);
+    fputs(", \"goal\": ", f);
+    jnum(f, t->goal);
+    fprintf(f, "},\n  \"rule\": \"metric <= goal (the target less the margin), every output within its bound, no more "
+               "overflows than the uniform design\",\n  \"held_out\": {\"seed\": %llu, \"vectors\": %zu, \"rule\": "
+               "\"metric <= target, every output within its bound, no more overflows than the uniform design on the "
+               "same stimuli\"},\n  \"groups\": [", t->ho_seed, t->ho_rows);
     for (size_t g = 0; g < s->ngroups; g++) {
         const tb_target_res *x = &t->res[g];
         const unit_cfg *c = &s->cfg[g].cfg;
@@ -657,16 +738,26 @@ static int write_target_json(const tb_sweep *s, const target_info *t, oset *os)
         if (x->met) {
             const tb_result *ru = &s->row[x->uniform].r;
             fprintf(f, ",\n     \"uniform\": {\"width\": %d, \"design\": ", s->cfg[x->uniform].cfg.width);
-            jdesign(f, u, c->schedule, &s->cfg[x->uniform].fmts, ru);
+            jdesign(f, u, c, &s->cfg[x->uniform].fmts, ru);
             fputs("},\n     \"chosen\": ", f);
-            jdesign(f, u, c->schedule, &x->fmts, &x->r);
+            jdesign(f, u, c, &x->fmts, &x->r);
             fputs(",\n     \"area_saved_ge\": ", f); jnum(f, ru->area_ge - x->r.area_ge);
             fputs(", \"area_saved_pct\": ", f);
             jnum(f, ru->area_ge > 0 ? 100 * (ru->area_ge - x->r.area_ge) / ru->area_ge : 0);
             fprintf(f, ", \"runs\": %zu,\n     \"run_args\": \"--round %s --overflow %s", x->runs, sim_round_name(c->rnd),
                     sim_ovf_name(c->ovf));
-            fmt_list(f, u, c->schedule, &x->fmts, " --fmt ", "");
+            fmt_list(f, u, c, &x->fmts, " --fmt ", "");
             fputc('"', f);
+            fputs(",\n     \"held_out\": {\"passed\": ", f);
+            fputs(x->heldout_ok ? "true" : "false", f);
+            fputs(", \"metric\": ", f); jnum(f, metric_of(t->kind, &x->heldout_r));
+            fputs(", \"uniform_metric\": ", f); jnum(f, metric_of(t->kind, &x->heldout_u));
+            fprintf(f, ", \"overflows\": %llu, \"uniform_overflows\": %llu, \"why\": \"",
+                    (unsigned long long)x->heldout_r.overflows, (unsigned long long)x->heldout_u.overflows);
+            for (const char *q = x->heldout_why; *q; q++)
+                if (*q == '"' || *q == '\\') fprintf(f, "\\%c", *q);
+                else if ((unsigned char)*q >= 0x20) fputc(*q, f);
+            fputs("\"}", f);
         }
         fputc('}', f);
     }
@@ -684,6 +775,8 @@ typedef struct sweep_args {
     long long nvec;
     unsigned long long seed;
     target_info t;
+    int ho_failed;          /* some group's held-out check failed */
+    size_t misses;          /* rows that miss --max-error/--max-nmse/--max-lsb */
 } sweep_args;
 
 static int parse_sweep(int argc, char **argv, sweep_args *a)
@@ -778,6 +871,15 @@ static int parse_sweep(int argc, char **argv, sweep_args *a)
             if (!v || !*v || *v == '-') return cli_usage_error("--seed needs a whole number");
             a->seed = strtoull(v, &end, 10);
             if (*end) return cli_usage_error("--seed %s: expected a whole number", v);
+        } else if (opt("--margin", argc, argv, &i, &v)) {
+            if (!v || parse_real(v, &a->t.margin) || a->t.margin > 32 || a->t.margin != floor(a->t.margin))
+                return cli_usage_error("--margin %s: expected whole bits 0..32", v ? v : "");
+        } else if (opt("--max-error", argc, argv, &i, &v) || opt("--max-nmse", argc, argv, &i, &v) ||
+                   opt("--max-lsb", argc, argv, &i, &v)) {
+            double *dst = strstr(name, "nmse") ? &sp->accept.max_nmse : strstr(name, "lsb") ? &sp->accept.max_lsb
+                        : &sp->accept.max_error;
+            if (!v || parse_real(v, dst) || !(*dst > 0))
+                return cli_usage_error("%s %s: expected a number > 0, e.g. 1e-3", name, v ? v : "");
         } else if (opt("--target-error", argc, argv, &i, &v) || opt("--target-nmse", argc, argv, &i, &v)) {
             int nmse = strstr(name, "nmse") != NULL;
             if (a->t.on) return cli_usage_error("sweep: one target at a time (--target-error or --target-nmse)");
@@ -793,6 +895,8 @@ static int parse_sweep(int argc, char **argv, sweep_args *a)
     if (!have_w) return cli_usage_error("sweep: --widths LO:HI is required, e.g. --widths 8:24");
     if (a->nvec > 0 && a->o.vectors) return cli_usage_error("sweep: -n makes vectors; --vectors reads them: give one");
     if (a->shard_n && a->t.on) return cli_usage_error("sweep: the target search needs the whole sweep, not a shard");
+    if (a->t.margin > 0 && !a->t.on) return cli_usage_error("sweep: --margin goes with --target-error or --target-nmse");
+    a->t.goal = a->t.on ? tb_target_goal(a->t.kind, a->t.value, a->t.margin) : 0;
     sp->base = a->o.cfg;
     if (!sp->nsched) { sp->nsched = 1; sp->sched[0] = a->o.cfg.schedule; }
     if (!sp->nrnd) { sp->nrnd = 1; sp->rnd[0] = a->o.cfg.rnd; }
@@ -820,6 +924,65 @@ static int load_vectors(sweep_args *a, tb_sweep *s, vec_set *sets)
     return 0;
 }
 
+/* The target search's results on held-out stimuli: vectors of another
+ * seed (the sweep's seed + 1; the default files are seed 1's), as many as
+ * the sweep used, made once per parameter set; the generators put their
+ * full-range corner values first whatever the seed. */
+static int heldout_check(sweep_args *a, tb_sweep *s)
+{
+    vec_set *ho = calloc(s->npsets, sizeof *ho);
+    unsigned char *made = calloc(s->npsets, 1);
+    char err[600];
+    int rc = 0;
+    if (!ho || !made) { free(ho); free(made); return cli_usage_error("sweep: out of memory"); }
+    a->t.ho_seed = (a->nvec > 0 ? a->seed : 1) + 1;
+    a->t.ho_rows = s->vs[0]->n_rows;
+    for (size_t g = 0; g < s->ngroups && !rc; g++) {
+        tb_target_res *x = &a->t.res[g];
+        size_t p = s->cfg[g].pset;
+        if (!x->met) continue;
+        if (!made[p]) {
+            if (cli_make_vectors(a->o.u, tb_sweep_pset_cfg(s, p), s->vs[p]->n_rows, a->t.ho_seed, &ho[p], err, sizeof err)) {
+                rc = cli_usage_error("held-out stimuli: %s", err);
+                break;
+            }
+            made[p] = 1;
+        }
+        if (tb_sweep_target_heldout(s, &ho[p], a->t.kind, a->t.value, x, err, sizeof err)) rc = cli_usage_error("%s", err);
+        else if (!x->heldout_ok) a->ho_failed = 1;
+    }
+    for (size_t p = 0; p < s->npsets; p++) if (made[p]) vec_set_free(&ho[p]);
+    free(ho);
+    free(made);
+    return rc;
+}
+
+/* Rows (of shard k/n; n = 0: all) that miss the user's acceptance
+ * (--max-error/--max-nmse/--max-lsb): a line saying which, counted in
+ * *misses; nothing when no acceptance option was given. */
+static void print_accept(FILE *f, const tb_sweep *s, int shard_k, int shard_n, size_t *misses)
+{
+    const tb_accept *ac = &s->spec.accept;
+    *misses = 0;
+    if (!(ac->max_error > 0 || ac->max_nmse > 0 || ac->max_lsb > 0)) return;
+    unsigned char *miss = calloc(s->n ? s->n : 1, 1);
+    size_t nrun = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        if (!tb_sweep_in_shard(i, shard_k, shard_n) || !row_ok(s, i)) continue;
+        nrun++;
+        if (!s->row[i].r.target_met) { ++*misses; if (miss) miss[i] = 1; }
+    }
+    fputs("acceptance (", f);
+    int k = 0;
+    if (ac->max_error > 0) fprintf(f, "%smax |e| <= %g", k++ ? ", " : "", ac->max_error);
+    if (ac->max_nmse > 0) fprintf(f, "%sNMSE <= %g", k++ ? ", " : "", ac->max_nmse);
+    if (ac->max_lsb > 0) fprintf(f, "%smax LSB <= %g", k++ ? ", " : "", ac->max_lsb);
+    fprintf(f, "): %zu of %zu configurations miss it", *misses, nrun);
+    if (*misses && miss && !shard_n) { fputs(":", f); print_ranges(f, s, miss, 1); }
+    fputc('\n', f);
+    free(miss);
+}
+
 static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
 {
     char err[600], files[600] = "sweep.csv";
@@ -832,10 +995,11 @@ static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
         if (!a->t.res) { oset_abort(&os); return cli_usage_error("target search: out of memory"); }
         for (size_t g = 0; g < s->ngroups; g++) {
             if (tty) fprintf(stderr, "\rshadesim sweep %s: target search, settings %zu/%zu \033[K", s->spec.u->name, g + 1, s->ngroups);
-            int bad = tb_sweep_target(s, g, a->t.kind, a->t.value, a->threads, &a->t.res[g], err, sizeof err);
+            int bad = tb_sweep_target(s, g, a->t.kind, a->t.goal, a->threads, &a->t.res[g], err, sizeof err);
             if (tty) fputs("\r\033[K", stderr);
             if (bad) { oset_abort(&os); return cli_usage_error("%s", err); }
         }
+        if (heldout_check(a, s)) { oset_abort(&os); return CLI_USAGE; }
     }
     size_t nfront = 0;
     unsigned char *on = front_of(s, &nfront);
@@ -850,14 +1014,15 @@ static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     }
     /* Files of an earlier sweep in DIR that this one does not write would
      * contradict its sweep.csv: they go, when this set moves in. */
-    const char *gone[2];
+    const char *gone[3];
     int ngone = 0;
     if (!drawn) gone[ngone++] = "cycles_vs_error.svg";
     if (a->t.on) {
-        if (write_target_json(s, &a->t, &os)) { free(on); oset_abort(&os); return CLI_USAGE; }
-        strncat(files, ", target.json", sizeof files - strlen(files) - 1);
+        if (write_target_json(s, &a->t, &os) || write_target_csv(s, &a->t, &os)) { free(on); oset_abort(&os); return CLI_USAGE; }
+        strncat(files, ", target.json, target.csv", sizeof files - strlen(files) - 1);
     } else {
         gone[ngone++] = "target.json";
+        gone[ngone++] = "target.csv";
     }
     strncat(files, ", summary.txt", sizeof files - strlen(files) - 1);
 
@@ -872,6 +1037,7 @@ static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     if (s->npsets > 1) fputs(" per parameter set", m);
     fprintf(m, ", sweep_id %016llx\n", (unsigned long long)s->id);
     print_table(m, s, on);
+    print_accept(m, s, 0, 0, &a->misses);
     print_front(m, s, on, nfront);
     if (a->t.on) print_target(m, s, &a->t);
     fclose(m);
@@ -882,7 +1048,11 @@ static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     int rc = oset_commit(&os, gone, ngone);
     if (rc == 0) {
         fputs(text, stdout);
-        printf("wrote %s/: %s (%.2f s on %d thread%s)\n", a->dir, files, now_s() - t0, a->threads, a->threads > 1 ? "s" : "");
+        /* Timings are not output (the same inputs give the same bytes): only
+         * a terminal's stderr hears how long it took. */
+        printf("wrote %s/: %s\n", a->dir, files);
+        if (tty) fprintf(stderr, "shadesim sweep %s: %.2f s on %d thread%s\n", s->spec.u->name, now_s() - t0,
+                         a->threads, a->threads > 1 ? "s" : "");
     }
     free(text);
     return rc;
@@ -901,6 +1071,27 @@ int cli_sweep(int argc, char **argv)
     }
     tb_sweep s;
     char err[600];
+    /* No silent widening: widths below what the unit's integer part needs
+     * would all build the same formats; the sweep starts at the smallest
+     * honest width and says so, once. */
+    int lim;
+    unit_cfg limc;
+    int wmin = tb_sweep_min_width(&a.sp, &lim, &limc);
+    if (wmin > a.sp.wlo) {
+        char why[200] = "";
+        if (lim >= 0) {
+            unit_fmts f;
+            limc.width = wmin;
+            a.o.u->formats(&limc, &f);
+            snprintf(why, sizeof why, " (signal %s's integer part is %c%d)", a.o.u->sigs[lim].name,
+                     f.f[lim].is_signed ? 's' : 'u', f.f[lim].ibits);
+        }
+        if (wmin > a.sp.whi)
+            return cli_usage_error("--widths %d:%d: unit %s needs widths >= %d%s", a.sp.wlo, a.sp.whi, a.o.u->name, wmin, why);
+        fprintf(stderr, "shadesim: sweep %s: widths below %d are too narrow for its integer part%s; starting at %d\n",
+                a.o.u->name, wmin, why, wmin);
+        a.sp.wlo = wmin;
+    }
     if (tb_sweep_init(&s, &a.sp, err, sizeof err)) return cli_usage_error("%s", err);
     vec_set *sets = calloc(s.npsets, sizeof *sets);
     int rc = CLI_OK;
@@ -924,13 +1115,16 @@ int cli_sweep(int argc, char **argv)
         else {
             size_t mine = 0;
             for (size_t i = 0; i < s.n; i++) mine += (size_t)tb_sweep_in_shard(i, a.shard_k, a.shard_n);
-            printf("sweep %s shard %d/%d: %zu of %zu configurations, sweep_id %016llx\nwrote %s (%.2f s)\n", a.o.u->name,
-                   a.shard_k, a.shard_n, mine, s.n, (unsigned long long)s.id, path, secs);
+            printf("sweep %s shard %d/%d: %zu of %zu configurations, sweep_id %016llx\n", a.o.u->name,
+                   a.shard_k, a.shard_n, mine, s.n, (unsigned long long)s.id);
+            print_accept(stdout, &s, a.shard_k, a.shard_n, &a.misses);
+            printf("wrote %s\n", path);
+            if (tty) fprintf(stderr, "shadesim sweep %s: %.2f s\n", a.o.u->name, secs);
         }
     } else {
         rc = outputs(&a, &s, pr.t0, tty);
     }
-    if (rc == CLI_OK && failed) rc = CLI_FAIL;
+    if (rc == CLI_OK && (failed || a.misses || a.ho_failed)) rc = CLI_FAIL;
 done:
     for (size_t p = 0; p < s.npsets; p++) vec_set_free(&sets[p]);
     free(sets);

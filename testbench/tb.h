@@ -13,15 +13,53 @@
 #include "units/unit.h"
 #include "vectors/vectors.h"
 
+/* How an output's error against the ideal compares with its bound
+ * (docs/bounds.md, "The verdict"). */
+enum {
+    TB_CHECK_OK = 0,        /* every value within the bound, decided exactly */
+    TB_CHECK_EXCEEDED,      /* some value is over the bound, decided exactly */
+    TB_CHECK_UNCHECKED,     /* the ideal is a double that cannot decide it */
+    TB_CHECK_NO_BOUND       /* the unit derives no bound for these formats */
+};
+const char *tb_check_name(int check);      /* "ok" "exceeded" "unchecked" "no bound" */
+
 typedef struct tb_metrics {
     char    name[16];
     sim_fmt fmt;
+    /* Golden error: hardware against the vector file's expected outputs. */
     double  max_abs_err, mean_err, rms_err, nmse, max_err_lsb;
-    double  bound;          /* allowed |hardware - ideal(quantized inputs)| */
+    double  bound;          /* allowed |hardware - ideal(quantized inputs)|; inf/NaN: none */
     double  max_err_ideal;  /* measured |hardware - ideal(quantized inputs)| */
     double  sum_e2, sum_ref2;
     size_t  n;
+    int     check;          /* TB_CHECK_* of this output */
+    /* The golden check: |hw - expected| <= allowed, with allowed = bound +
+     * |ideal(rounded inputs) - ideal(inputs)| + |ideal(inputs) - ref(inputs)|
+     * (docs/bounds.md). golden_ok 0: first row over it, its error and allowance. */
+    int     golden_ok;
+    size_t  golden_first;
+    double  golden_err, golden_allowed;
+    double  max_method_err; /* max |ideal(inputs) - ref(inputs)|: the method's own approximation */
 } tb_metrics;
+
+/* Range logging of one signal of the unit: settled values sampled at every
+ * rising clock edge, and the overflows counted on it. */
+typedef struct tb_sig {
+    char     name[48];      /* path below the unit's scope: "y", "div3_a.t1" */
+    sim_fmt  fmt;
+    int      kind;          /* sim_kind */
+    uint64_t overflows;     /* inputs: quantization of the vectors; constants: at build */
+    int64_t  min, max;      /* observed raw values (valid if seen) */
+    int      seen;
+} tb_sig;
+
+/* What the user accepts (0 / negative: not set). */
+typedef struct tb_accept {
+    double max_error;       /* --max-error: max |hw - expected| */
+    double max_nmse;        /* --max-nmse */
+    double max_lsb;         /* --max-lsb: max |hw - expected| in output LSBs */
+    int    allow_overflow;  /* --allow-overflow */
+} tb_accept;
 
 typedef struct tb_result {
     const unit_desc *unit;
@@ -40,6 +78,16 @@ typedef struct tb_result {
     size_t     first_violation;  /* item index, if !within_bound */
     tb_metrics out[UNIT_MAX_IO];
     sim_stats  stats;
+    /* The verdict (tb_verdict): */
+    int        bound_check;      /* worst TB_CHECK_* over the outputs */
+    int        golden_ok;        /* every output within its golden allowance */
+    uint64_t   in_overflows;     /* of the inputs' quantization */
+    int        target_set, target_met;   /* user acceptance (tb_accept) */
+    int        ok;               /* the overall verdict */
+    char       why[256];         /* one line: what failed, or what "ok" means */
+    /* Range logging: every signal of the unit, in creation order. */
+    tb_sig    *sigs;
+    int        nsigs;
     /* Per item and beat (item-major): the cycle it appeared, and raws per port. */
     uint64_t  *beat_cycle;
     int64_t   *raw;              /* [item][beat][port] */
@@ -71,8 +119,20 @@ void tb_vec_params(const unit_cfg *cfg, vec_params *p);
 int  tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *overrides,
                 int n, unit_fmts *out, char *err, size_t errlen);
 
+/* Compute r->ok, r->target_* and r->why for acceptance a (NULL: none;
+ * tb_run does this with none, callers with a user's targets call it again). The verdict is
+ * ok when the bound check is ok, the golden check is ok, no signal
+ * overflowed (unless allowed), and the user's targets, if any, are met. */
+void tb_verdict(tb_result *r, const tb_accept *a);
+/* Overflows as "NAME:COUNT NAME:COUNT" (signals with any), for a CSV
+ * column or a message; "" if none. */
+void tb_overflow_list(const tb_result *r, char *buf, size_t len);
+
 /* Output writers. Each writes atomically where it writes a file. */
 int  tb_write_json(FILE *f, const tb_result *r);
 int  tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *err, size_t errlen);
 void tb_print_table(FILE *f, const tb_result *r);
+/* The per-signal range table; all: every signal, else only those that
+ * overflowed. */
+void tb_print_ranges(FILE *f, const tb_result *r, int all);
 #endif

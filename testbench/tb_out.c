@@ -26,6 +26,9 @@ static void jmetrics(FILE *f, const tb_metrics *m, const char *ind)
     fprintf(f, ",\n%s  \"max_err_lsb\": ", ind); jnum(f, m->max_err_lsb);
     fprintf(f, ",\n%s  \"bound\": ", ind); jnum(f, m->bound);
     fprintf(f, ",\n%s  \"max_err_vs_ideal\": ", ind); jnum(f, m->max_err_ideal);
+    fprintf(f, ",\n%s  \"bound_check\": \"%s\"", ind, tb_check_name(m->check));
+    fprintf(f, ",\n%s  \"golden_check\": \"%s\"", ind, m->golden_ok ? "ok" : "exceeded");
+    fprintf(f, ",\n%s  \"max_method_err\": ", ind); jnum(f, m->max_method_err);
     fprintf(f, "\n%s}", ind);
 }
 
@@ -45,7 +48,7 @@ int tb_write_json(FILE *f, const tb_result *r)
     fputs("},\n  \"formats\": {", f);
     /* the signals of the schedule that ran */
     for (int i = 0, n = 0; i < u->nsigs; i++)
-        if (unit_sig_used(u, i, r->cfg.schedule))
+        if (unit_sig_built(u, i, &r->cfg))
             fprintf(f, "%s\"%s\": \"%s\"", n++ ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
     fprintf(f, "},\n  \"round\": \"%s\",\n  \"overflow\": \"%s\",\n", sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
     fprintf(f, "  \"vectors\": %zu,\n  \"beats_per_item\": %d,\n  \"cycles\": %llu,\n", r->vectors, r->beats,
@@ -60,7 +63,22 @@ int tb_write_json(FILE *f, const tb_result *r)
     fputs(",\n  \"max_err_lsb\": ", f); jnum(f, r->max_err_lsb);
     fprintf(f, ",\n  \"overflows\": %llu,\n  \"area_ge\": ", (unsigned long long)r->overflows);
     jnum(f, r->area_ge);
-    fprintf(f, ",\n  \"within_bound\": %s,\n  \"outputs\": {", r->within_bound ? "true" : "false");
+    fprintf(f, ",\n  \"within_bound\": %s,\n  \"bound_check\": \"%s\",\n  \"golden_check\": \"%s\",\n",
+            r->within_bound ? "true" : "false", tb_check_name(r->bound_check), r->golden_ok ? "ok" : "exceeded");
+    fprintf(f, "  \"input_overflows\": %llu,\n  \"target\": \"%s\",\n  \"verdict\": \"%s\",\n  \"why\": \"%s\",\n",
+            (unsigned long long)r->in_overflows, !r->target_set ? "none" : r->target_met ? "met" : "missed",
+            r->ok ? "ok" : "fail", r->why);
+    fputs("  \"signals\": [", f);
+    for (int i = 0; i < r->nsigs; i++) {
+        const tb_sig *g = &r->sigs[i];
+        fprintf(f, "%s\n    {\"name\": \"%s\", \"fmt\": \"%s\", \"overflows\": %llu, ", i ? "," : "", g->name,
+                sim_fmt_str(g->fmt, fb), (unsigned long long)g->overflows);
+        if (g->seen) fprintf(f, "\"min\": %lld, \"max\": %lld, ", (long long)g->min, (long long)g->max);
+        else fputs("\"min\": null, \"max\": null, ", f);
+        fprintf(f, "\"range_min\": %lld, \"range_max\": %lld}", (long long)sim_fmt_raw_min(g->fmt),
+                (long long)sim_fmt_raw_max(g->fmt));
+    }
+    fputs(r->nsigs ? "\n  ],\n  \"outputs\": {" : "],\n  \"outputs\": {", f);
     for (int o = 0; o < r->n_out; o++) {
         fprintf(f, "%s\n    \"%s\": ", o ? "," : "", r->out[o].name);
         jmetrics(f, &r->out[o], "    ");
@@ -100,6 +118,24 @@ int tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *
     return sim_out_close(o, err, errlen);
 }
 
+void tb_print_ranges(FILE *f, const tb_result *r, int all)
+{
+    char fb[SIM_FMT_STRLEN];
+    int shown = 0;
+    for (int i = 0; i < r->nsigs; i++) {
+        const tb_sig *g = &r->sigs[i];
+        if (!all && !g->overflows) continue;
+        if (!shown++)
+            fprintf(f, "%-22s %-8s %10s %21s %21s %21s %21s\n", all ? "signal (range logging)" : "signal (overflowed)",
+                    "format", "overflows", "min raw", "max raw", "format min", "format max");
+        char mn[24] = "-", mx[24] = "-";
+        if (g->seen) { snprintf(mn, sizeof mn, "%lld", (long long)g->min); snprintf(mx, sizeof mx, "%lld", (long long)g->max); }
+        fprintf(f, "%-22s %-8s %10llu %21s %21s %21lld %21lld\n", g->name, sim_fmt_str(g->fmt, fb),
+                (unsigned long long)g->overflows, mn, mx, (long long)sim_fmt_raw_min(g->fmt),
+                (long long)sim_fmt_raw_max(g->fmt));
+    }
+}
+
 void tb_print_table(FILE *f, const tb_result *r)
 {
     const unit_desc *u = r->unit;
@@ -114,17 +150,33 @@ void tb_print_table(FILE *f, const tb_result *r)
     }
     fputs("formats:", f);
     for (int i = 0; i < u->nsigs; i++)
-        if (unit_sig_used(u, i, r->cfg.schedule)) fprintf(f, " %s=%s", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
+        if (unit_sig_built(u, i, &r->cfg)) fprintf(f, " %s=%s", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
     fprintf(f, "\nvectors %zu, cycles %llu, cycles/item %.3g, cycles/beat %.3g, latency %llu, area %.1f GE, overflows %llu\n",
             r->vectors, (unsigned long long)r->cycles, r->cycles_per_item, r->cycles_per_beat,
             (unsigned long long)r->latency, r->area_ge, (unsigned long long)r->overflows);
-    fprintf(f, "%-8s %-8s %12s %12s %12s %12s %10s %12s %12s\n", "output", "format", "max|e|", "mean e",
-            "rms e", "nmse", "max LSB", "bound", "max|e-ideal|");
+    fprintf(f, "%-8s %-8s %12s %12s %12s %12s %10s %12s %12s %-9s %s\n", "output", "format", "max|e|", "mean e",
+            "rms e", "nmse", "max LSB", "bound", "max|e-ideal|", "bound", "golden");
     for (int o = 0; o < r->n_out; o++) {
         const tb_metrics *m = &r->out[o];
-        fprintf(f, "%-8s %-8s %12.4g %12.4g %12.4g %12.4g %10.3g %12.4g %12.4g\n", m->name, sim_fmt_str(m->fmt, fb),
-                m->max_abs_err, m->mean_err, m->rms_err, m->nmse, m->max_err_lsb, m->bound, m->max_err_ideal);
+        char b[16];
+        if (m->check == TB_CHECK_NO_BOUND) snprintf(b, sizeof b, "no bound");
+        else snprintf(b, sizeof b, "%.4g", m->bound);
+        fprintf(f, "%-8s %-8s %12.4g %12.4g %12.4g %12.4g %10.3g %12s %12.4g %-9s %s\n", m->name, sim_fmt_str(m->fmt, fb),
+                m->max_abs_err, m->mean_err, m->rms_err, m->nmse, m->max_err_lsb, b, m->max_err_ideal,
+                tb_check_name(m->check), m->check == TB_CHECK_NO_BOUND ? "-" : m->golden_ok ? "ok" : "exceeded");
     }
-    if (r->within_bound) fputs("bound: every output within its bound\n", f);
-    else fprintf(f, "bound: EXCEEDED, first at vector %zu\n", r->first_violation);
+    tb_print_ranges(f, r, 0);
+    fputs("errors: max|e| .. max LSB are against the vector file's expected outputs (the golden error);\n"
+          "  max|e-ideal| is against the unit's ideal function of the quantized inputs, which the bound\n"
+          "  limits (docs/bounds.md); golden ok: |e| <= bound + input rounding + method error\n", f);
+    for (int o = 0; o < r->n_out; o++)
+        if (r->out[o].max_method_err > 4 * sim_fmt_lsb(r->out[o].fmt))
+            fprintf(f, "method: %s's ideal is up to %.4g from the true function (the unit's own approximation)\n",
+                    r->out[o].name, r->out[o].max_method_err);
+    if (r->bound_check == TB_CHECK_OK) fputs("bound: every output within its bound\n", f);
+    else if (r->bound_check == TB_CHECK_EXCEEDED) fprintf(f, "bound: EXCEEDED, first at vector %zu\n", r->first_violation);
+    else if (r->bound_check == TB_CHECK_NO_BOUND) fputs("bound: NONE derived for these formats (not checked)\n", f);
+    else fprintf(f, "bound: UNCHECKED from vector %zu (the unit's ideal is a double, too coarse at this width)\n",
+                 r->first_violation);
+    fprintf(f, "verdict: %s\n", r->why);
 }

@@ -19,6 +19,11 @@ typedef struct tb_state {
     const sim_ctx *ctx;
     uint64_t *beat_cycle;
     int64_t  *raw;
+    /* Range logging: the unit's signals, sampled at every rising edge. */
+    sim_signal **smp;
+    int64_t  *mn, *mx;
+    int       nsmp;
+    int      *live, nlive;      /* the entries that can change (not constants) */
 } tb_state;
 
 /* Driver, at each rising edge: if the unit accepted the offered item (valid
@@ -43,6 +48,14 @@ static void driver(sim_proc *p)
 static void monitor(sim_proc *p)
 {
     tb_state *s = p->data;
+    /* Settled values of the cycle that ended: what a logic analyzer (or
+     * MATLAB's range logging) records; glitches between deltas are not. */
+    for (int j = 0; j < s->nlive; j++) {
+        int i = s->live[j];
+        int64_t v = s->smp[i]->cur;
+        if (v < s->mn[i]) s->mn[i] = v;
+        if (v > s->mx[i]) s->mx[i] = v;
+    }
     if (!s->io->out_valid->cur) return;
     size_t total = s->n_items * (size_t)s->beats;
     if (s->got >= total) return;
@@ -74,53 +87,6 @@ void tb_expected_header(const unit_desc *u, const unit_cfg *cfg, vec_set *h)
         }
 }
 
-int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, int n,
-               unit_fmts *out, char *err, size_t errlen)
-{
-    u->formats(cfg, out);
-    for (int k = 0; k < n; k++) {
-        const char *eq = strchr(ov[k], '=');
-        if (!eq) { snprintf(err, errlen, "--fmt %s: expected NAME=sI.F (e.g. mul=s4.12 or all=s8.8)", ov[k]); return -1; }
-        char name[32];
-        snprintf(name, sizeof name, "%.*s", (int)(eq - ov[k]), ov[k]);
-        sim_fmt f;
-        char ferr[160];
-        if (sim_fmt_parse(eq + 1, &f, ferr, sizeof ferr)) { snprintf(err, errlen, "--fmt %s: %s", ov[k], ferr); return -1; }
-        if (!strcmp(name, "all")) {
-            for (int i = 0; i < u->nsigs; i++) out->f[i] = f;
-            continue;
-        }
-        int i = unit_sig_index(u, name);
-        if (i < 0 || !unit_sig_used(u, i, cfg->schedule)) {
-            /* A signal of another schedule's datapath: say whose. */
-            const char *sn = u->sched[cfg->schedule].name;
-            char list[600] = "";
-            if (i >= 0) {       /* the schedules that have it */
-                for (int j = 0, m = 0; j < u->nsched; j++)
-                    if (unit_sig_used(u, i, j)) {
-                        strncat(list, m++ ? ", " : "", sizeof list - strlen(list) - 1);
-                        strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
-                    }
-            } else {            /* the signals this schedule has */
-                for (int j = 0, m = 0; j < u->nsigs; j++)
-                    if (unit_sig_used(u, j, cfg->schedule)) {
-                        strncat(list, m++ ? " " : "", sizeof list - strlen(list) - 1);
-                        strncat(list, u->sigs[j].name, sizeof list - strlen(list) - 1);
-                    }
-            }
-            if (i >= 0)
-                snprintf(err, errlen, "--fmt %s: schedule %s of unit %s has no signal '%s' (it is in %s %s; "
-                         "shadesim list %s --schedule %s shows %s's)", ov[k], sn, u->name, name,
-                         strchr(list, ',') ? "schedules" : "schedule", list, u->name, sn, sn);
-            else
-                snprintf(err, errlen, "--fmt %s: unit %s has no signal '%s' (signals: %s)", ov[k], u->name, name, list);
-            return -1;
-        }
-        out->f[i] = f;
-    }
-    return 0;
-}
-
 static int header_matches(const vec_set *a, const vec_set *b, char *err, size_t errlen)
 {
     if (strcmp(a->unit, b->unit)) { snprintf(err, errlen, "vectors are for unit '%s', not '%s'", a->unit, b->unit); return 0; }
@@ -136,38 +102,162 @@ static int header_matches(const vec_set *a, const vec_set *b, char *err, size_t 
     return 1;
 }
 
-static void metrics(tb_result *r, const vec_set *vs, const double *ideal)
+const char *tb_check_name(int check)
+{
+    static const char *const n[] = { "ok", "exceeded", "unchecked", "no bound" };
+    return (unsigned)check < 4 ? n[check] : "?";
+}
+
+/* What the double ideals of units without an exact one are taken to be
+ * accurate to, relative to max(1, |ideal|): their float formulas have at
+ * most a few dozen roundings of 2^-53 each (pow_n: 10 squarings). A
+ * comparison closer than this to the bound is "unchecked". */
+#define TB_DOUBLE_IDEAL_REL 0x1p-40
+
+/* Per-row figures the golden check needs, beat-major like ideal. */
+typedef struct tb_golden {
+    const double *ideal_r;   /* ideal of the inputs rounded (not wrapped) to their formats */
+    const double *ideal_u;   /* ideal of the vector file's inputs */
+    const double *ref_u;     /* the float reference model of the file's inputs */
+} tb_golden;
+
+/* The exact check of one value: TB_CHECK_OK / EXCEEDED / UNCHECKED, and
+ * |hw - ideal| (as a double, for the report). */
+static int check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
+                       double ideal_d, const sim_dy *bound, double *err)
+{
+    sim_dy hw, id, d;
+    sim_dy_raw(&hw, raw, f);
+    if (exact && hi) {
+        /* the ideal is somewhere in [exact, hi]: within the bound if both
+         * ends are; over it if the nearer end is */
+        sim_dy dl, dh;
+        sim_dy_sub(&dl, &hw, exact);
+        sim_dy_abs(&dl, &dl);
+        sim_dy_sub(&dh, &hw, hi);
+        sim_dy_abs(&dh, &dh);
+        if (dl.ovf || dh.ovf) { *err = fabs(sim_fx_to_real(raw, f) - ideal_d); return TB_CHECK_UNCHECKED; }
+        int far_hi = sim_dy_cmp(&dh, &dl) > 0;
+        *err = sim_dy_to_double(far_hi ? &dh : &dl);
+        if (sim_dy_cmp(far_hi ? &dh : &dl, bound) <= 0) return TB_CHECK_OK;
+        int inside = sim_dy_cmp(&hw, exact) >= 0 && sim_dy_cmp(&hw, hi) <= 0;
+        if (!inside && sim_dy_cmp(far_hi ? &dl : &dh, bound) > 0) return TB_CHECK_EXCEEDED;
+        return TB_CHECK_UNCHECKED;
+    }
+    if (exact && den) {
+        /* ideal = num/den, den > 0: |hw - num/den| <= B iff |hw den - num| <= B den */
+        sim_dy bd;
+        sim_dy_mul(&hw, &hw, den);
+        sim_dy_sub(&d, &hw, exact);
+        sim_dy_abs(&d, &d);
+        sim_dy_mul(&bd, bound, den);
+        *err = sim_dy_to_double(&d) / sim_dy_to_double(den);
+        if (d.ovf || bd.ovf) { *err = fabs(sim_fx_to_real(raw, f) - ideal_d); return TB_CHECK_UNCHECKED; }
+        return sim_dy_cmp(&d, &bd) <= 0 ? TB_CHECK_OK : TB_CHECK_EXCEEDED;
+    }
+    if (exact && f.width <= 53) {
+        /* Fast and still exact in its verdict: the raw is exact in a
+         * double; to_double errs by at most 2^-49 |I| (8 words summed),
+         * the subtraction by 2^-53 of the result. Decide only outside
+         * that margin (and away from subnormals); else below. */
+        double hd = sim_fx_to_real(raw, f), id_d = sim_dy_to_double(exact), bd = sim_dy_to_double(bound);
+        double dd = fabs(hd - id_d), eps = 0x1p-47 * (fabs(hd) + fabs(id_d) + bd);
+        if (!exact->ovf && (id_d == 0 || fabs(id_d) > 0x1p-900) && (bd == 0 || bd > 0x1p-900)) {
+            if (dd + eps < bd) { *err = dd; return TB_CHECK_OK; }
+            if (dd - eps > bd) { *err = dd; return TB_CHECK_EXCEEDED; }
+        }
+    }
+    if (exact) id = *exact;
+    else sim_dy_double(&id, ideal_d);
+    sim_dy_sub(&d, &hw, &id);
+    sim_dy_abs(&d, &d);
+    *err = sim_dy_to_double(&d);
+    if (d.ovf) { *err = fabs(sim_fx_to_real(raw, f) - ideal_d); return TB_CHECK_UNCHECKED; }
+    if (exact) return sim_dy_cmp(&d, bound) <= 0 ? TB_CHECK_OK : TB_CHECK_EXCEEDED;
+    sim_dy delta, dlo, dhi;
+    sim_dy_double(&delta, TB_DOUBLE_IDEAL_REL * fmax(1.0, fabs(ideal_d)));
+    sim_dy_add(&dhi, &d, &delta);
+    sim_dy_sub(&dlo, &d, &delta);
+    if (sim_dy_cmp(&dhi, bound) <= 0) return TB_CHECK_OK;
+    if (sim_dy_cmp(&dlo, bound) > 0) return TB_CHECK_EXCEEDED;
+    return TB_CHECK_UNCHECKED;
+}
+
+static void metrics(tb_result *r, const vec_set *vs, const double *ideal, const sim_dy *exact,
+                    const sim_dy *exact_den, const sim_dy *exact_hi, const unsigned char *exact_ok,
+                    const tb_golden *g)
 {
     int no = r->n_out, nb = r->beats;
     double sum_e2 = 0, sum_ref2 = 0, sum_e = 0;
     size_t cnt = 0;
     r->within_bound = 1;
+    r->bound_check = TB_CHECK_OK;
+    r->golden_ok = 1;
     r->max_abs_err = r->max_err_lsb = 0;
     for (int o = 0; o < no; o++) {
         tb_metrics *m = &r->out[o];
         double se = 0;
-        m->max_abs_err = m->max_err_ideal = 0;
+        m->max_abs_err = m->max_err_ideal = m->max_method_err = 0;
         m->sum_e2 = m->sum_ref2 = 0;
         m->n = 0;
+        m->golden_ok = 1;
+        int has_bound = isfinite(m->bound) && m->bound >= 0;
+        m->check = has_bound ? TB_CHECK_OK : TB_CHECK_NO_BOUND;
+        size_t first_unchecked = 0, first_exceeded = 0;
+        int any_unchecked = 0, any_exceeded = 0;
+        sim_dy b;
+        sim_dy_double(&b, has_bound ? m->bound : 0);
+        double out_scale = fmax(fabs(sim_fmt_real_min(m->fmt)), fabs(sim_fmt_real_max(m->fmt)));
         for (size_t it = 0; it < r->vectors; it++)
-            for (int b = 0; b < nb; b++) {
-                size_t k = (it * (size_t)nb + (size_t)b) * (size_t)no + (size_t)o;
+            for (int bt = 0; bt < nb; bt++) {
+                size_t k = (it * (size_t)nb + (size_t)bt) * (size_t)no + (size_t)o;
                 double hw = sim_fx_to_real(r->raw[k], m->fmt);
-                double ref = vec_row(vs, it)[r->n_in + b * no + o];
-                double e = hw - ref, ei = fabs(hw - ideal[k]);
+                double ref = vec_row(vs, it)[r->n_in + bt * no + o];
+                double e = hw - ref, ei;
+                int ex = exact && exact_ok[it], iv = ex && exact_ok[it] == 2;
+                int c = check_value(r->raw[k], m->fmt, ex ? &exact[k] : NULL, ex && !iv && exact_den ? &exact_den[k] : NULL,
+                                    iv ? &exact_hi[k] : NULL, ideal[k], &b, &ei);
                 se += e;
                 m->sum_e2 += e * e;
                 m->sum_ref2 += ref * ref;
                 if (fabs(e) > m->max_abs_err) m->max_abs_err = fabs(e);
                 if (ei > m->max_err_ideal) m->max_err_ideal = ei;
-                /* The bound is exact arithmetic on the formats; allow only
-                 * the double rounding of the ideal computation itself. */
-                if (ei > m->bound + 1e-12 * (1 + fabs(ideal[k])) && r->within_bound) {
-                    r->within_bound = 0;
-                    r->first_violation = it;
+                if (has_bound && c == TB_CHECK_EXCEEDED && !any_exceeded) { any_exceeded = 1; first_exceeded = it; }
+                if (has_bound && c == TB_CHECK_UNCHECKED && !any_unchecked) { any_unchecked = 1; first_unchecked = it; }
+                /* Golden: the bound, plus what rounding the inputs moves
+                 * the ideal by, plus the method's own approximation (the
+                 * ideal against the float reference), plus the doubles'
+                 * rounding in those three. */
+                double dq = fabs(g->ideal_r[k] - g->ideal_u[k]), dm = fabs(g->ideal_u[k] - g->ref_u[k]);
+                if (dm > m->max_method_err) m->max_method_err = dm;
+                /* The golden values are doubles computed with the same
+                 * cancellations as the ideal: their error is relative to
+                 * the terms' size, which the output's range bounds, not
+                 * to the result's (at --width 64 this, not the LSB, is
+                 * the golden check's resolution). */
+                double slack = TB_DOUBLE_IDEAL_REL * (fabs(g->ideal_r[k]) + fabs(g->ideal_u[k]) + fabs(g->ref_u[k])
+                                                      + fabs(ref) + out_scale);
+                double allowed = m->bound + dq + dm + slack;
+                if (has_bound && !(fabs(e) <= allowed) && m->golden_ok) {
+                    m->golden_ok = 0;
+                    m->golden_first = it;
+                    m->golden_err = fabs(e);
+                    m->golden_allowed = allowed;
                 }
                 m->n++;
             }
+        if (any_exceeded) m->check = TB_CHECK_EXCEEDED;
+        else if (any_unchecked && has_bound) m->check = TB_CHECK_UNCHECKED;
+        /* the run's check: exceeded beats no bound beats unchecked beats ok */
+        static const int rank[] = { 0, 3, 1, 2 };
+        if (rank[m->check] > rank[r->bound_check]) r->bound_check = m->check;
+        if (m->check != TB_CHECK_OK && r->within_bound) {
+            r->within_bound = 0;
+            r->first_violation = any_exceeded ? first_exceeded : first_unchecked;
+        } else if (m->check == TB_CHECK_EXCEEDED && first_exceeded < r->first_violation) {
+            r->first_violation = first_exceeded;
+        }
+        if (!m->golden_ok) r->golden_ok = 0;
         m->mean_err = m->n ? se / (double)m->n : 0;
         m->rms_err = m->n ? sqrt(m->sum_e2 / (double)m->n) : 0;
         m->nmse = m->sum_ref2 > 0 ? m->sum_e2 / m->sum_ref2 : (m->sum_e2 > 0 ? INFINITY : 0);
@@ -179,6 +269,77 @@ static void metrics(tb_result *r, const vec_set *vs, const double *ideal)
     r->mean_err = cnt ? sum_e / (double)cnt : 0;
     r->rms_err = cnt ? sqrt(sum_e2 / (double)cnt) : 0;
     r->nmse = sum_ref2 > 0 ? sum_e2 / sum_ref2 : (sum_e2 > 0 ? INFINITY : 0);
+}
+
+void tb_overflow_list(const tb_result *r, char *buf, size_t len)
+{
+    size_t n = 0;
+    if (len) buf[0] = 0;
+    for (int i = 0; i < r->nsigs && n + 1 < len; i++)
+        if (r->sigs[i].overflows) {
+            int w = snprintf(buf + n, len - n, "%s%s:%llu", n ? " " : "", r->sigs[i].name,
+                             (unsigned long long)r->sigs[i].overflows);
+            if (w < 0 || (size_t)w >= len - n) { buf[n] = 0; break; }
+            n += (size_t)w;
+        }
+}
+
+void tb_verdict(tb_result *r, const tb_accept *a)
+{
+    tb_accept none;
+    memset(&none, 0, sizeof none);
+    if (!a) a = &none;
+    r->target_set = a->max_error > 0 || a->max_nmse > 0 || a->max_lsb > 0;
+    r->target_met = (!(a->max_error > 0) || r->max_abs_err <= a->max_error)
+                 && (!(a->max_nmse > 0) || r->nmse <= a->max_nmse)
+                 && (!(a->max_lsb > 0) || r->max_err_lsb <= a->max_lsb);
+    r->ok = 0;
+    char ov[120];
+    tb_overflow_list(r, ov, sizeof ov);
+    if (r->overflows && !a->allow_overflow)
+        snprintf(r->why, sizeof r->why, "OVERFLOW on %.120s (--allow-overflow accepts it)", ov);
+    else if (r->bound_check == TB_CHECK_EXCEEDED)
+        snprintf(r->why, sizeof r->why, "EXCEEDED its derived bound, first at vector %zu", r->first_violation);
+    else if (r->bound_check == TB_CHECK_NO_BOUND)
+        snprintf(r->why, sizeof r->why, "NO BOUND: the unit derives none for these formats, so the error is not checked");
+    else if (r->bound_check == TB_CHECK_UNCHECKED)
+        snprintf(r->why, sizeof r->why, "UNCHECKED: the unit's ideal is a double that cannot decide the bound at vector %zu",
+                 r->first_violation);
+    else if (!r->golden_ok) {
+        const tb_metrics *m = r->out;
+        for (int o = 0; o < r->n_out; o++) if (!r->out[o].golden_ok) { m = &r->out[o]; break; }
+        snprintf(r->why, sizeof r->why, "GOLDEN MISMATCH: %.15s at vector %zu is %.4g from the expected value, %.4g allowed",
+                 m->name, m->golden_first, m->golden_err, m->golden_allowed);
+    } else if (r->target_set && !r->target_met)
+        snprintf(r->why, sizeof r->why, "MISSES YOUR TARGET (within the derived bound)");
+    else {
+        r->ok = 1;
+        snprintf(r->why, sizeof r->why, "%s", r->target_set ? "ok: within the derived bound and meets your target"
+                                                             : "ok: within the derived bound (no target set)");
+    }
+}
+
+/* 1 if s is in scope sc or below it. */
+static int in_scope(const sim_signal *s, const sim_scope *sc)
+{
+    for (const sim_scope *p = s->scope; p; p = p->parent) if (p == sc) return 1;
+    return 0;
+}
+
+/* s's dotted path below scope sc: "y", "div3_a.t1". */
+static void rel_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len)
+{
+    const sim_scope *chain[16];
+    int n = 0;
+    for (const sim_scope *p = s->scope; p && p != sc && n < 16; p = p->parent) chain[n++] = p;
+    size_t at = 0;
+    buf[0] = 0;
+    while (n-- > 0 && at + 1 < len) {
+        int w = snprintf(buf + at, len - at, "%s.", chain[n]->name);
+        if (w < 0) break;
+        at += (size_t)w < len - at ? (size_t)w : len - at - 1;
+    }
+    snprintf(buf + at, len - at, "%s", s->name);
 }
 
 static uint64_t scope_overflows(const sim_scope *sc)
@@ -204,30 +365,59 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
 
     size_t n = vs->n_rows, nbeats = n * (size_t)r->beats, nvals = nbeats * (size_t)r->n_out;
     int64_t *in_raw = malloc(n * (size_t)r->n_in * sizeof *in_raw);
-    double *ideal = malloc(nvals * sizeof *ideal);
+    double *ideal = malloc(4 * nvals * sizeof *ideal);
+    int has_exact = u->ideal_exact || u->ideal_ratio || u->ideal_interval;
+    sim_dy *exact = has_exact ? malloc(nvals * sizeof *exact) : NULL;
+    sim_dy *exact_den = u->ideal_ratio ? malloc(nvals * sizeof *exact_den) : NULL;
+    sim_dy *exact_hi = u->ideal_interval ? malloc(nvals * sizeof *exact_hi) : NULL;
+    unsigned char *exact_ok = calloc(n, 1);
     r->raw = calloc(nvals, sizeof *r->raw);
     r->beat_cycle = calloc(nbeats, sizeof *r->beat_cycle);
-    if (!in_raw || !ideal || !r->raw || !r->beat_cycle) {
-        free(in_raw); free(ideal);
+    if (!in_raw || !ideal || (has_exact && !exact) || (u->ideal_ratio && !exact_den) || (u->ideal_interval && !exact_hi) || !exact_ok || !r->raw || !r->beat_cycle) {
+        free(in_raw); free(ideal); free(exact); free(exact_den); free(exact_hi); free(exact_ok);
         snprintf(err, errlen, "out of memory for %zu vectors", n);
         return TB_FAIL;
     }
+    tb_golden gold = { ideal + nvals, ideal + 2 * nvals, ideal + 3 * nvals };
+    const vec_model *model = vec_model_find(u->name);
+    vec_params vp;
+    tb_vec_params(cfg, &vp);
 
     /* Quantize inputs as the hardware will hold them, and compute what the
-     * unit should give for exactly those inputs. */
-    uint64_t in_ovf = 0;
+     * unit should give for exactly those inputs; for the golden check also
+     * the ideal of the inputs rounded but not wrapped, of the file's own
+     * inputs, and the float reference of those. */
+    uint64_t in_ovf[UNIT_MAX_IO] = { 0 };
     int in_idx[UNIT_MAX_IO], k = 0;
     for (int i = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN) in_idx[k++] = i;
     for (size_t it = 0; it < n; it++) {
-        double q[UNIT_MAX_IO];
+        double q[UNIT_MAX_IO], qr[UNIT_MAX_IO], x[UNIT_MAX_IO];
+        sim_dy qd[UNIT_MAX_IO];
+        size_t at = it * (size_t)r->beats * (size_t)r->n_out;
         for (int i = 0; i < r->n_in; i++) {
             int ov = 0;
             sim_fmt f = fmts->f[in_idx[i]];
-            in_raw[it * (size_t)r->n_in + i] = sim_fx_from_real(vec_row(vs, it)[i], f, cfg->rnd, cfg->ovf, &ov);
-            in_ovf += (uint64_t)ov;
+            x[i] = vec_row(vs, it)[i];
+            in_raw[it * (size_t)r->n_in + i] = sim_fx_from_real(x[i], f, cfg->rnd, cfg->ovf, &ov);
+            in_ovf[i] += (uint64_t)ov;
             q[i] = sim_fx_to_real(in_raw[it * (size_t)r->n_in + i], f);
+            sim_dy_raw(&qd[i], in_raw[it * (size_t)r->n_in + i], f);
+            /* Rounded to f's fraction bits with an unlimited integer part
+             * (exact in double: a value of more than 52 bits after the
+             * scaling is already a whole number). */
+            double y = ldexp(x[i], f.fbits);
+            y = cfg->rnd == SIM_RND_TRUNC ? floor(y) : cfg->rnd == SIM_RND_HALF_UP ? floor(y + 0.5) : nearbyint(y);
+            qr[i] = ldexp(y, -f.fbits);
         }
-        u->ideal(cfg, q, ideal + it * (size_t)r->beats * (size_t)r->n_out);
+        u->ideal(cfg, q, ideal + at);
+        u->ideal(cfg, qr, (double *)gold.ideal_r + at);
+        u->ideal(cfg, x, (double *)gold.ideal_u + at);
+        if (model) model->eval(&vp, x, (double *)gold.ref_u + at);
+        else for (int j = 0; j < r->beats * r->n_out; j++) ((double *)gold.ref_u)[at + j] = vec_row(vs, it)[r->n_in + j];
+        if (u->ideal_ratio) exact_ok[it] = u->ideal_ratio(cfg, qd, exact + at, exact_den + at) == 0;
+        else if (exact) exact_ok[it] = u->ideal_exact(cfg, qd, exact + at) == 0;
+        if (exact && !exact_ok[it] && u->ideal_interval)
+            exact_ok[it] = u->ideal_interval(cfg, qd, exact + at, exact_hi + at) == 0 ? 2 : 0;
     }
 
     double bound[UNIT_MAX_IO];
@@ -248,10 +438,30 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     memset(&io, 0, sizeof io);
     int rc = TB_OK;
     sim_vcd *vcd = NULL;
+    tb_state st;
+    memset(&st, 0, sizeof st);
     if (u->build(c, sc, clk, cfg, fmts, &io, err, errlen)) { rc = TB_BADINPUT; goto done; }
     /* 100 MHz in a 1 ns timescale: rising edges at 5, 15, 25, ... */
     sim_clock(c, clk, 5, 5);
-    tb_state st = { &io, r->n_in, r->n_out, r->beats, n, in_raw, 0, 0, 0, c, r->beat_cycle, r->raw };
+    st.io = &io; st.n_in = r->n_in; st.n_out = r->n_out; st.beats = r->beats; st.n_items = n;
+    st.in_raw = in_raw; st.ctx = c; st.beat_cycle = r->beat_cycle; st.raw = r->raw;
+    /* Range logging: every signal of the unit's scope (not the clock). */
+    uint32_t nsig_all = sim_signal_count(c);
+    st.smp = calloc(nsig_all ? nsig_all : 1, sizeof *st.smp);
+    st.mn = calloc(nsig_all ? nsig_all : 1, sizeof *st.mn);
+    st.mx = calloc(nsig_all ? nsig_all : 1, sizeof *st.mx);
+    st.live = calloc(nsig_all ? nsig_all : 1, sizeof *st.live);
+    if (!st.smp || !st.mn || !st.mx || !st.live) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+    for (uint32_t i = 0; i < nsig_all; i++) {
+        sim_signal *sg = sim_signal_at(c, i);
+        if (sg == clk || !in_scope(sg, sc)) continue;
+        /* a constant never changes: its range is its value, not sampled */
+        int cst = sg->kind == SIM_KIND_CONST;
+        st.mn[st.nsmp] = cst ? sg->cur : INT64_MAX;
+        st.mx[st.nsmp] = cst ? sg->cur : INT64_MIN;
+        if (!cst) st.live[st.nlive++] = st.nsmp;
+        st.smp[st.nsmp++] = sg;
+    }
     sim_proc *drv = sim_proc_new(c, "tb.driver", driver, &st);
     sim_sensitive(drv, clk, SIM_EDGE_POS);
     sim_proc *mon = sim_proc_new(c, "tb.monitor", monitor, &st);
@@ -308,19 +518,48 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
                                         : (double)r->cycles;
         r->area_ge = sim_scope_area(sc);
-        r->overflows = in_ovf + scope_overflows(sc);
-        metrics(r, vs, ideal);
+        r->overflows = scope_overflows(sc);
+        for (int i = 0; i < r->n_in; i++) { r->in_overflows += in_ovf[i]; r->overflows += in_ovf[i]; }
+        r->sigs = calloc(st.nsmp ? (size_t)st.nsmp : 1, sizeof *r->sigs);
+        if (r->sigs) {
+            for (int i = 0; i < st.nsmp; i++) {
+                const sim_signal *sg = st.smp[i];
+                tb_sig *t = &r->sigs[i];
+                rel_name(sg, sc, t->name, sizeof t->name);
+                t->fmt = sg->fmt;
+                t->kind = sg->kind;
+                t->overflows = sg->overflows;
+                for (int j = 0; j < r->n_in; j++) if (io.in[j] == sg) t->overflows += in_ovf[j];
+                t->seen = st.mn[i] <= st.mx[i];
+                t->min = st.mn[i];
+                t->max = st.mx[i];
+            }
+            r->nsigs = st.nsmp;
+        }
+        metrics(r, vs, ideal, exact, exact_den, exact_hi, exact_ok, &gold);
+        tb_verdict(r, NULL);
     }
 done:
     if (vcd) sim_vcd_abort(vcd);
     sim_free(c);
     free(in_raw);
     free(ideal);
+    free(exact);
+    free(exact_den);
+    free(exact_hi);
+    free(exact_ok);
+    free(st.smp);
+    free(st.mn);
+    free(st.mx);
+    free(st.live);
     return rc;
 }
 
 void tb_result_free(tb_result *r)
 {
+    free(r->sigs);
+    r->sigs = NULL;
+    r->nsigs = 0;
     free(r->raw);
     free(r->beat_cycle);
     r->raw = NULL;

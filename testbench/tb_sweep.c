@@ -139,6 +139,27 @@ int tb_sweep_init(tb_sweep *s, const tb_sweep_spec *sp, char *err, size_t errlen
     return 0;
 }
 
+int tb_sweep_min_width(const tb_sweep_spec *spec, int *limit_sig, unit_cfg *limit_cfg)
+{
+    tb_sweep_spec sp = *spec;
+    tb_sweep s;
+    char err[400];
+    int wmin = 1;
+    *limit_sig = -1;
+    *limit_cfg = spec->base;
+    for (int k = 0; k < sp.nfmt; k++)
+        if (!strncmp(sp.fmt[k], "all=", 4)) return 1;
+    /* Every group's configuration at one width that any rule can build. */
+    sp.wlo = sp.whi = 64;
+    if (tb_sweep_init(&s, &sp, err, sizeof err)) return 1;   /* tb_sweep_init proper will say why */
+    for (size_t i = 0; i < s.n; i++) {
+        int lim, w = unit_min_width(sp.u, &s.cfg[i].cfg, &lim);
+        if (w > wmin) { wmin = w; *limit_sig = lim; *limit_cfg = s.cfg[i].cfg; }
+    }
+    tb_sweep_free(&s);
+    return wmin;
+}
+
 void tb_sweep_free(tb_sweep *s)
 {
     free(s->cfg);
@@ -195,6 +216,7 @@ static void run_one(void *ctx, size_t k)
     tb_sweep_row *row = &j->s->row[i];
     row->status = tb_run(j->s->spec.u, &c->cfg, &c->fmts, j->s->vs[c->pset], NULL, &row->r,
                          row->err, sizeof row->err);
+    if (row->status == TB_OK) tb_verdict(&row->r, &j->s->spec.accept);   /* the user's targets */
     tb_result_free(&row->r);
     pthread_mutex_lock(&j->mu);
     j->done++;
@@ -268,6 +290,14 @@ void tb_sweep_fingerprint(tb_sweep *s)
         h = fnv(h, &v->n_rows, sizeof v->n_rows);
         h = fnv(h, v->data, v->n_rows * (size_t)(v->n_in + v->n_out) * sizeof *v->data);
     }
+    /* Shards judged against other acceptance would disagree on
+     * meets_target: another sweep. (Without acceptance the id is as it was.) */
+    const tb_accept *ac = &s->spec.accept;
+    if (ac->max_error > 0 || ac->max_nmse > 0 || ac->max_lsb > 0) {
+        h = fnv(h, &ac->max_error, sizeof ac->max_error);
+        h = fnv(h, &ac->max_nmse, sizeof ac->max_nmse);
+        h = fnv(h, &ac->max_lsb, sizeof ac->max_lsb);
+    }
     s->id = h;
 }
 
@@ -285,14 +315,14 @@ static void cnum(FILE *f, double v)
 static const char *const out_fields[] = { "max_abs_err", "mean_err", "rms_err", "nmse", "max_err_lsb",
                                           "bound", "max_err_vs_ideal" };
 #define N_OUT_FIELDS 7
-#define N_FIGURES 14   /* vectors .. within_bound */
+#define N_FIGURES 15   /* vectors .. meets_target */
 
 static void csv_header(FILE *f, const unit_desc *u)
 {
     fputs("config,n_configs,sweep_id,unit,schedule,width", f);
     for (int p = 0; p < u->nparams; p++) fprintf(f, ",%s", u->params[p].name);
     fputs(",round,overflow,status,vectors,beats_per_item,cycles,cycles_per_item,cycles_per_beat,latency,"
-          "max_abs_err,mean_err,rms_err,nmse,max_err_lsb,overflows,area_ge,within_bound", f);
+          "max_abs_err,mean_err,rms_err,nmse,max_err_lsb,overflows,area_ge,within_bound,meets_target", f);
     for (int i = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_OUT)
             for (int k = 0; k < N_OUT_FIELDS; k++) fprintf(f, ",%s_%s", u->sigs[i].name, out_fields[k]);
@@ -320,6 +350,8 @@ static void csv_row(FILE *f, const tb_sweep *s, size_t i)
         fprintf(f, ",%llu", (unsigned long long)r->overflows);
         cnum(f, r->area_ge);
         fputs(r->within_bound ? ",true" : ",false", f);
+        /* Empty without --max-error/--max-nmse/--max-lsb: no target to meet. */
+        fputs(!r->target_set ? "," : r->target_met ? ",true" : ",false", f);
         for (int o = 0; o < nout; o++) {
             const tb_metrics *m = &r->out[o];
             cnum(f, m->max_abs_err); cnum(f, m->mean_err); cnum(f, m->rms_err); cnum(f, m->nmse);
@@ -643,7 +675,7 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
         jobs[q].status = TB_SWEEP_NOT_RUN;
         /* Pinned signals stay; signals the schedule does not build have
          * nothing to trim. */
-        if (pinned(s, q / 2) || !unit_sig_used(u, q / 2, c->cfg.schedule)) cand[q].sig = -1;
+        if (pinned(s, q / 2) || !unit_sig_built(u, q / 2, &c->cfg)) cand[q].sig = -1;
         if (cand[q].sig < 0 || shorter(out->fmts.f[q / 2], q % 2, &jobs[q].f.f[q / 2])) jobs[q].c = NULL;
     }
     tb_par_for((size_t)nc, threads, cand_run, jobs);
@@ -688,5 +720,43 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
     }
     free(jobs);
     free(cand);
+    return 0;
+}
+
+double tb_target_goal(tb_target_kind k, double target, double bits)
+{
+    return ldexp(target, -(int)lround((k == TB_TARGET_NMSE ? 2 : 1) * bits));
+}
+
+int tb_sweep_target_heldout(const tb_sweep *s, const vec_set *ho, tb_target_kind k, double target,
+                            tb_target_res *out, char *err, size_t errlen)
+{
+    if (!out->met) return 0;
+    const tb_sweep_cfg *c = &s->cfg[out->uniform];
+    char e1[240], e2[240];
+    int su = tb_run(s->spec.u, &c->cfg, &c->fmts, ho, NULL, &out->heldout_u, e1, sizeof e1);
+    tb_result_free(&out->heldout_u);
+    out->heldout_status = tb_run(s->spec.u, &c->cfg, &out->fmts, ho, NULL, &out->heldout_r, e2, sizeof e2);
+    tb_result_free(&out->heldout_r);
+    if (su == TB_BADINPUT || out->heldout_status == TB_BADINPUT) {
+        snprintf(err, errlen, "held-out check: %s", su == TB_BADINPUT ? e1 : e2);
+        return -1;
+    }
+    out->heldout = 1;
+    const tb_result *r = &out->heldout_r;
+    double v = k == TB_TARGET_NMSE ? r->nmse : r->max_abs_err;
+    uint64_t uo = su == TB_OK ? out->heldout_u.overflows : 0;
+    out->heldout_why[0] = 0;
+    if (out->heldout_status != TB_OK)
+        snprintf(out->heldout_why, sizeof out->heldout_why, "the simulation failed: %.200s", e2);
+    else if (!r->within_bound)
+        snprintf(out->heldout_why, sizeof out->heldout_why, "an output exceeds its error bound");
+    else if (!(v <= target))
+        snprintf(out->heldout_why, sizeof out->heldout_why, "%s %.4g > target %g",
+                 k == TB_TARGET_NMSE ? "NMSE" : "max |e|", v, target);
+    else if (r->overflows > uo)
+        snprintf(out->heldout_why, sizeof out->heldout_why, "%llu overflows, the uniform design %llu",
+                 (unsigned long long)r->overflows, (unsigned long long)uo);
+    out->heldout_ok = !out->heldout_why[0];
     return 0;
 }

@@ -41,6 +41,7 @@ typedef struct tb_sweep_spec {
     int        npax;  tb_sweep_paxis pax[UNIT_MAX_PARAMS];
     const char *const *fmt;               /* --fmt overrides, applied to every configuration */
     int        nfmt;
+    tb_accept  accept;                    /* --max-error/--max-nmse/--max-lsb: each row's meets_target */
 } tb_sweep_spec;
 
 typedef struct tb_sweep_cfg {
@@ -71,6 +72,12 @@ typedef struct tb_sweep {
  * many configurations, out of memory). */
 int  tb_sweep_init(tb_sweep *s, const tb_sweep_spec *spec, char *err, size_t errlen);
 void tb_sweep_free(tb_sweep *s);
+/* The smallest width every configuration of the spec can be built at
+ * without the format rule widening a signal (unit_min_width over the
+ * schedules and parameter values; 1 when --fmt all=... sets every format);
+ * *limit_sig, *limit_cfg: the signal that limits it and a configuration
+ * where it does. */
+int  tb_sweep_min_width(const tb_sweep_spec *spec, int *limit_sig, unit_cfg *limit_cfg);
 /* A configuration with parameter set p, to load or make its vectors. */
 const unit_cfg *tb_sweep_pset_cfg(const tb_sweep *s, size_t p);
 /* After the vectors are in place: the sweep's fingerprint (s->id), which
@@ -110,6 +117,13 @@ typedef struct tb_target_res {
     unit_fmts fmts;           /* the chosen per-signal formats */
     tb_result r;              /* their result (raw freed) */
     size_t    runs;           /* tb_run calls of a one-at-a-time search */
+    /* The held-out check (tb_sweep_target_heldout): */
+    int       heldout;        /* 1 once checked */
+    int       heldout_ok;     /* the chosen design met the target there */
+    int       heldout_status; /* tb_run's status for the chosen design */
+    tb_result heldout_r;      /* the chosen design on the held-out stimuli */
+    tb_result heldout_u;      /* the uniform design on them */
+    char      heldout_why[240];   /* why it failed ("" when it passed) */
 } tb_target_res;
 
 /* The acceptance rule of the search (docs/sweeps.md): the run succeeded,
@@ -130,6 +144,22 @@ int  tb_target_holds(const tb_result *r, int status, tb_target_kind k, double ta
  * -1 with a message (out of memory). */
 int  tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double target,
                      int threads, tb_target_res *out, char *err, size_t errlen);
+
+/* The target with a margin of `bits` bits: max |e| target / 2^bits, NMSE
+ * target / 4^bits (NMSE is a squared error). The search aims at this; the
+ * held-out check asks for the target itself. */
+double tb_target_goal(tb_target_kind k, double target, double bits);
+
+/* Re-check a search's result on held-out stimuli `ho` (vectors the search
+ * never saw: another seed, with the generator's full-range corner values):
+ * the chosen formats and the uniform design it started from both run on
+ * them; it passes when the chosen design's run succeeds, every output is
+ * within its bound, its metric meets `target`, and it has no more
+ * overflows than the uniform design on the same stimuli. Sets out->heldout*
+ * (nothing for a group whose target was not met). 0, or -1 when a run
+ * could not be made (message). */
+int  tb_sweep_target_heldout(const tb_sweep *s, const vec_set *ho, tb_target_kind k, double target,
+                             tb_target_res *out, char *err, size_t errlen);
 
 /* ------------------------------------------------------------- utilities */
 

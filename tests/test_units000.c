@@ -218,7 +218,7 @@ static void t_bound_follows_overrides(void)
         double b0[UNIT_MAX_IO], b1[UNIT_MAX_IO];
         u->bound(&cfg, &def, b0);
         for (int i = 0; i < u->nsigs; i++) {
-            if (u->sigs[i].role != UNIT_SIG_INTERNAL || !strcmp(u->sigs[i].name, "t") || !unit_sig_used(u, i, cfg.schedule)) continue;
+            if (u->sigs[i].role != UNIT_SIG_INTERNAL || !strcmp(u->sigs[i].name, "t") || !unit_sig_built(u, i, &cfg)) continue;
             sim_fmt f = def.f[i];
             char ov[64], fs[SIM_FMT_STRLEN];
             sim_fmt g = unit_fmt(f.is_signed, f.ibits, f.fbits - 5);
@@ -612,7 +612,9 @@ static void t_scopes(void)
 }
 
 /* The refactored Horner builder left horner3 as it was (numbers from the
- * code before the refactor, default vectors, width 16). */
+ * code before the refactor, default vectors, width 16; the max error
+ * re-pinned when the default vectors gained t off the pixel grid, with
+ * the builder unchanged: cycles and area did not move). */
 static void t_horner3_unchanged(void)
 {
     unit_cfg cfg = cfg_of(16);
@@ -621,7 +623,7 @@ static void t_horner3_unchanged(void)
     if (run("horner3", &cfg, NULL, 0, NULL, &r, err, sizeof err) != TB_OK) { TST_CHECK(0, "%s", err); return; }
     TST_NEAR(r.cycles_per_item, 6, 0);
     TST_NEAR(r.area_ge, 2064.75, 1e-9);
-    TST_NEAR(r.max_abs_err, 0.0082392958041110353, 0);
+    TST_NEAR(r.max_abs_err, 0.0085827453787687968, 0);
     TST_EQ_INT(r.cycles, 3841);
     tb_result_free(&r);
 }

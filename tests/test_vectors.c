@@ -353,21 +353,33 @@ static void t_gen_realistic(void)
         TST_EQ_INT(out_of_range, 0);
         vec_set_free(&s);
     }
-    /* Horner: t = k/8 only; the coefficient extremes (range edges) are in. */
+    /* Horner: t covers all of [0, 1) -- the pixel grid k/8 on even rows,
+     * off-grid values on odd rows, every sixteenth of [0, 1) hit, both
+     * ends' neighbourhoods within 2^-15 -- and the coefficient extremes
+     * (range edges) are in. */
     const char *hn[] = { "horner3", "horner2" };
     for (int h = 0; h < 2; h++) {
         const vec_model *m = vec_model_find(hn[h]);
         vec_set s;
         TST_EQ_INT(gen_default(m, 3, 0, &s), 0);
-        int tcol = h == 0 ? 4 : 3, bad_t = 0;
-        double amax = -1e9, amin = 1e9;
+        int tcol = h == 0 ? 4 : 3, bad_t = 0, grid = 0, off = 0, bins[16] = { 0 }, empty = 0;
+        double amax = -1e9, amin = 1e9, tmax = 0, tmin = 1;
         for (size_t r = 0; r < s.n_rows; r++) {
             double t = vec_row(&s, r)[tcol];
-            bad_t += !(t >= 0 && t < 1 && t * 8 == floor(t * 8));
+            bad_t += !(t >= 0 && t < 1);
+            if (t * 8 == floor(t * 8)) grid++;
+            else off++;
+            if (t >= 0 && t < 1) bins[(int)(t * 16)]++;
+            if (t > 0) tmin = fmin(tmin, t);
+            tmax = fmax(tmax, t);
             amax = fmax(amax, vec_row(&s, r)[0]);
             amin = fmin(amin, vec_row(&s, r)[0]);
         }
+        for (int b = 0; b < 16; b++) empty += bins[b] == 0;
         TST_EQ_INT(bad_t, 0);
+        TST_CHECK(grid >= (int)s.n_rows / 2 && off >= (int)s.n_rows / 3, "%s: %d on the grid, %d off", hn[h], grid, off);
+        TST_EQ_INT(empty, 0);
+        TST_CHECK(tmax >= 1 - 0x1p-15 && tmin <= 0x1p-15, "%s: t in [%g, %g]", hn[h], tmin, tmax);
         TST_NEAR(amax, h == 0 ? 24 : 4, 1e-12);     /* quadratic A = 2I1+2I2-4I3 */
         TST_NEAR(amin, h == 0 ? -24 : -4, 1e-12);
         vec_set_free(&s);
@@ -755,9 +767,9 @@ static void t_file_fuzz(void)
         int kind = it % 4;
         if (kind == 0) len = (size_t)(urand(&rs) * glen);                 /* truncation */
         else if (kind == 1)                                                 /* byte flips */
-            for (int k = 0; k < 3; k++) buf[(size_t)(urand(&rs) * glen)] = (char)(urand(&rs) * 256);
+            for (int k = 0; k < 3; k++) buf[(size_t)(urand(&rs) * glen)] = (char)(unsigned char)(urand(&rs) * 256);
         else if (kind == 2)                                                 /* random bytes */
-            for (size_t k = 0; k < len; k++) buf[k] = (char)(urand(&rs) * 256);
+            for (size_t k = 0; k < len; k++) buf[k] = (char)(unsigned char)(urand(&rs) * 256);
         else {                                                              /* printable junk */
             static const char cs[] = "0123456789.-+eE|# \nabcnaif";
             for (size_t k = 80; k < len; k++) buf[k] = cs[(size_t)(urand(&rs) * (sizeof cs - 1))];

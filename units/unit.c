@@ -2,6 +2,7 @@
 #include "units/unit.h"
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,6 +72,22 @@ int unit_sig_used(const unit_desc *u, int i, int sched)
 {
     unsigned m = u->sigs[i].scheds;
     return !m || (sched >= 0 && sched < 32 && (m >> sched & 1u));
+}
+
+int unit_sig_built(const unit_desc *u, int i, const unit_cfg *cfg)
+{
+    if (!unit_sig_used(u, i, cfg->schedule)) return 0;
+    return !u->sig_used || u->sig_used(cfg, i);
+}
+
+int unit_sig_must(const unit_desc *u, const char *name)
+{
+    int i = unit_sig_index(u, name);
+    if (i < 0) {
+        fprintf(stderr, "shadesim: internal error: unit %s has no signal '%s'\n", u->name, name);
+        abort();
+    }
+    return i;
 }
 
 int unit_sched_find(const unit_desc *u, const char *name)
@@ -153,6 +170,40 @@ void unit_param_get(const unit_param *p, const unit_cfg *cfg, char *buf, size_t 
     snprintf(buf, len, "%.*s", (int)strcspn(s, " "), s);
 }
 
+static int fmt_eq(sim_fmt a, sim_fmt b)
+{
+    return a.is_signed == b.is_signed && a.ibits == b.ibits && a.fbits == b.fbits;
+}
+
+int unit_min_width(const unit_desc *u, const unit_cfg *cfg, int *limit_sig)
+{
+    unit_cfg c = *cfg;
+    unit_fmts f16, f17, prev, cur;
+    unsigned char dep[UNIT_MAX_SIGS];
+    /* The signals that follow W: their formats differ between 16 and 17
+     * (mid-range: no clamp at either end). */
+    c.width = 16; u->formats(&c, &f16);
+    c.width = 17; u->formats(&c, &f17);
+    for (int i = 0; i < u->nsigs; i++) dep[i] = unit_sig_built(u, i, &c) && !fmt_eq(f16.f[i], f17.f[i]);
+    int lim = -1;
+    c.width = 1;
+    u->formats(&c, &prev);
+    for (int w = 2; w <= 64; w++, prev = cur) {
+        c.width = w;
+        u->formats(&c, &cur);
+        int bad = -1;
+        for (int i = 0; i < u->nsigs; i++)
+            if (dep[i] && fmt_eq(cur.f[i], prev.f[i]) && (bad < 0 || cur.f[i].ibits > cur.f[bad].ibits)) bad = i;
+        if (bad < 0) {
+            if (limit_sig) *limit_sig = lim;
+            return w;
+        }
+        lim = bad;
+    }
+    if (limit_sig) *limit_sig = lim;
+    return 64;
+}
+
 sim_fmt unit_fmt(int is_signed, int ibits, int fbits)
 {
     sim_fmt f;
@@ -170,5 +221,9 @@ sim_fmt unit_fmt(int is_signed, int ibits, int fbits)
 double unit_qerr(sim_fmt f, int src_f, sim_round r)
 {
     if (src_f <= f.fbits) return 0.0;
-    return ldexp(r == SIM_RND_TRUNC ? 1.0 : 0.5, -f.fbits);
+    /* trunc drops at most all-ones below the kept LSB: 2^-F - 2^-src_f
+     * (a double rounds it up, never down); not a whole LSB, so that a
+     * signal made wider does not make its consumer's bound grow */
+    if (r == SIM_RND_TRUNC) return ldexp(1.0, -f.fbits) - ldexp(1.0, -src_f);
+    return ldexp(0.5, -f.fbits);
 }

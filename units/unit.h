@@ -121,6 +121,27 @@ struct unit_desc {
      * by beat (interp's forward differencing accumulates its errors over
      * the pixels); bound is their maximum per port. */
     void (*bound_beats)(const unit_cfg *cfg, const unit_fmts *f, double *per_beat);
+    /* Optional (NULL: every signal of the schedule is built): whether
+     * configuration cfg builds signal i, for units whose signal set depends
+     * on a parameter (div3's terms and series). Only asked about signals
+     * of cfg->schedule; unit_sig_built combines the two. */
+    int  (*sig_used)(const unit_cfg *cfg, int i);
+    /* Optional (NULL: the testbench has only the double ideal): ideal in
+     * exact dyadic arithmetic, for the exact values of the quantized
+     * inputs; out as ideal's. 0, or -1 when the value does not fit a
+     * sim_dy (the testbench then says it could not check). Units whose
+     * ideal is a dyadic rational of the inputs provide it, so that the
+     * bound check holds at every width (a double ideal loses bits beyond
+     * 53). */
+    int  (*ideal_exact)(const unit_cfg *cfg, const sim_dy *in, sim_dy *out);
+    /* Optional, for units whose ideal divides (a rational of the inputs):
+     * ideal = num / den exactly, den > 0, one value per output and beat.
+     * 0, or -1 when a value does not fit a sim_dy. */
+    int  (*ideal_ratio)(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den);
+    /* Optional, where ideal_exact's value is too long for a sim_dy (a high
+     * power): an interval [lo, hi] that contains the ideal exactly (e.g.
+     * products cut down and up to a few hundred fraction bits). 0, or -1. */
+    int  (*ideal_interval)(const unit_cfg *cfg, const sim_dy *in, sim_dy *lo, sim_dy *hi);
 };
 
 /* The registry. */
@@ -134,6 +155,13 @@ int  unit_n_out(const unit_desc *u);
 int  unit_sig_index(const unit_desc *u, const char *name);   /* -1 if none */
 /* 1 if schedule sched builds signal i (its scheds mask). */
 int  unit_sig_used(const unit_desc *u, int i, int sched);
+/* 1 if configuration cfg builds signal i: its schedule has it and the
+ * unit's sig_used hook (if any) says the parameters build it. list, run,
+ * --fmt, the JSON/CSV formats and the target search show exactly these. */
+int  unit_sig_built(const unit_desc *u, int i, const unit_cfg *cfg);
+/* Index of a signal the unit's own code names: it must exist (a misspelt
+ * name is a bug, reported and aborted, never a silent default format). */
+int  unit_sig_must(const unit_desc *u, const char *name);
 /* Set a parameter from "value" text; 0, or -1 with a message. */
 int  unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
                     const char *value, char *err, size_t errlen);
@@ -141,9 +169,18 @@ int  unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
 void unit_param_get(const unit_param *p, const unit_cfg *cfg, char *buf, size_t len);
 int  unit_sched_find(const unit_desc *u, const char *name);  /* -1 if none */
 
+/* The smallest width W whose default formats hold the unit's integer
+ * range without the rule widening a signal: every signal whose format
+ * follows W gets a format of its own at W (not the same as at W - 1,
+ * which is what unit_fmt's clamp to F >= 0 produces). *limit_sig (if not
+ * NULL) is the signal with the widest integer part among those that
+ * limit it (-1 if none). Depends on cfg's parameters, not its width. */
+int  unit_min_width(const unit_desc *u, const unit_cfg *cfg, int *limit_sig);
+
 /* Helpers for format rules and bounds. */
 sim_fmt unit_fmt(int is_signed, int ibits, int fbits);   /* clamps F >= 0, W <= 64 */
 /* Largest error one quantization from src_f fraction bits into f adds:
- * 0 if no bits are dropped, an LSB for trunc, half an LSB when rounding. */
+ * 0 if no bits are dropped, an LSB less 2^-src_f for trunc, half an LSB
+ * when rounding. */
 double  unit_qerr(sim_fmt f, int src_f, sim_round r);
 #endif

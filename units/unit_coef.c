@@ -41,6 +41,29 @@ static void formula_q(const double *I, double th, double *o)
     o[2] = I[0];
 }
 
+int coef_exact(const coef_net *net, double third, const sim_dy *in, sim_dy *out)
+{
+    double e[4] = { 0, 0, 0, 0 }, col[4][4];
+    for (int j = 0; j < net->nin; j++) {
+        e[j] = 1;
+        net->formula(e, third, col[j]);
+        e[j] = 0;
+    }
+    int bad = 0;
+    for (int i = 0; i < net->nout; i++) {
+        sim_dy acc, c, p;
+        sim_dy_int(&acc, 0, 0);
+        for (int j = 0; j < net->nin; j++) {
+            sim_dy_double(&c, col[j][i]);
+            sim_dy_mul(&p, &c, &in[j]);
+            sim_dy_add(&acc, &acc, &p);
+        }
+        out[i] = acc;
+        bad |= acc.ovf;
+    }
+    return bad ? -1 : 0;
+}
+
 const coef_net coef_net_n1 = { 4, 4, COEF3_N1_NODES, n1_nodes, formula_n1 };
 const coef_net coef_net_n2 = { 4, 4, COEF3_N2_NODES, n2_nodes, formula_n2 };
 const coef_net coef_net_q = { 3, 3, COEF2_NODES, q_nodes, formula_q };
@@ -113,7 +136,7 @@ static void coef_formats(const unit_desc *u, const coef_net *net, const unit_cfg
     unet_val in[UNET_MAXIN], o[UNET_MAXIN];
     unet_init(&n, u, NULL, cfg->rnd);
     unet_rule(&n, cfg->width, lo, hi, net->nin);
-    for (int i = 0; i < net->nin; i++) n.fm.f[unit_sig_index(u, in_names[i])] = coef_input_fmt(cfg->width);
+    for (int i = 0; i < net->nin; i++) n.fm.f[unit_sig_must(u, in_names[i])] = coef_input_fmt(cfg->width);
     walk_unit(&n, net, cfg, in, o);
     *out = n.fm;
 }
@@ -160,7 +183,9 @@ static int beats1(const unit_cfg *cfg) { (void)cfg; return 1; }
     { (void)clk; return coef_build(&UNIT, &NET, c, sc, cfg, f, io, err, errlen); } \
     static void ideal_##sfx(const unit_cfg *cfg, const double *in, double *out) \
     { NET.formula(in, ref_div3_factor(cfg->terms, cfg->series), out); } \
-    static void bound_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { coef_bound(&UNIT, &NET, cfg, f, o); }
+    static void bound_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { coef_bound(&UNIT, &NET, cfg, f, o); } \
+    static int exact_##sfx(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) \
+    { return coef_exact(&NET, ref_div3_factor(cfg->terms, cfg->series), in, out); }
 
 COEF_UNIT_FNS(n1, unit_coef3_n1, coef_net_n1)
 COEF_UNIT_FNS(n2, unit_coef3_n2, coef_net_n2)
@@ -180,7 +205,7 @@ COEF_UNIT_FNS(q, unit_coef2, coef_net_q)
 const unit_desc unit_coef3_n1 = {
     .name = "coef3_n1",
     .summary = "cubic coefficients A B C D from I(0), I(1), I(1/2), I(1/4) by shifts, adders and two /3 networks (Fig. 8)",
-    .seed = "000 Fig. 8, SPEC 2.1 N1",
+    .seed = "000 Fig. 8, nodes N1: I(0), I(1), I(1/2), I(1/4)",
     .nsigs = 4 + COEF3_N1_NODES,
     .sigs = { COEF_SIGS_I123, COEF_SIG_I4_N1,
               COEF3_N1_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
@@ -188,13 +213,13 @@ const unit_desc unit_coef3_n1 = {
     .nsched = 1, .sched = COMB_SCHED,
     .nparams = 2, .params = { P_TERMS, P_SERIES },
     .fmt_rule = COEF_RULE,
-    .formats = formats_n1, .beats = beats1, .build = build_n1, .ideal = ideal_n1, .bound = bound_n1,
+    .formats = formats_n1, .beats = beats1, .build = build_n1, .ideal = ideal_n1, .bound = bound_n1, .ideal_exact = exact_n1,
 };
 
 const unit_desc unit_coef3_n2 = {
     .name = "coef3_n2",
     .summary = "cubic coefficients A B C D from I(0), I(1), I(1/2), I(3/4), same structure as coef3_n1",
-    .seed = "000 SPEC 2.1 N2",
+    .seed = "000, nodes N2: I(0), I(1), I(1/2), I(3/4)",
     .nsigs = 4 + COEF3_N2_NODES,
     .sigs = { COEF_SIGS_I123, COEF_SIG_I4_N2,
               COEF3_N2_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
@@ -202,13 +227,13 @@ const unit_desc unit_coef3_n2 = {
     .nsched = 1, .sched = COMB_SCHED,
     .nparams = 2, .params = { P_TERMS, P_SERIES },
     .fmt_rule = COEF_RULE,
-    .formats = formats_n2, .beats = beats1, .build = build_n2, .ideal = ideal_n2, .bound = bound_n2,
+    .formats = formats_n2, .beats = beats1, .build = build_n2, .ideal = ideal_n2, .bound = bound_n2, .ideal_exact = exact_n2,
 };
 
 const unit_desc unit_coef2 = {
     .name = "coef2",
     .summary = "quadratic coefficients A B C from I(0), I(1), I(1/2) by shifts and adders (no /3)",
-    .seed = "000 SPEC 2.1 quadratic",
+    .seed = "000, quadratic through I(0), I(1), I(1/2)",
     .nsigs = 3 + COEF2_NODES,
     .sigs = { COEF_SIGS_I123,
               COEF2_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
@@ -219,5 +244,5 @@ const unit_desc unit_coef2 = {
                 "holding the coefficient's exact range over [0, 1]^3 plus its error bound; every shift and adder "
                 "keeps all the fraction bits it produces, with I from its range, unsigned unless it is a "
                 "difference or can be negative",
-    .formats = formats_q, .beats = beats1, .build = build_q, .ideal = ideal_q, .bound = bound_q,
+    .formats = formats_q, .beats = beats1, .build = build_q, .ideal = ideal_q, .bound = bound_q, .ideal_exact = exact_q,
 };

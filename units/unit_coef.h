@@ -104,13 +104,13 @@
 
 /* Expansions into unit_sig entries. */
 #define COEF_SIG_SKIP(name, op, a, b, k, what)
-#define COEF_SIG_INT(name, op, a, b, k, what) { #name, UNIT_SIG_INTERNAL, what },
-#define COEF_SIG_OUT(name, op, a, b, k, what) { #name, UNIT_SIG_OUT, what },
+#define COEF_SIG_INT(nm_, op, a, b, k, wh_) { .name = #nm_, .role = UNIT_SIG_INTERNAL, .what = wh_ },
+#define COEF_SIG_OUT(nm_, op, a, b, k, wh_) { .name = #nm_, .role = UNIT_SIG_OUT, .what = wh_ },
 #define COEF_SIGS_I123 \
-    { "i1", UNIT_SIG_IN, "I1 = I(0)" }, { "i2", UNIT_SIG_IN, "I2 = I(1)" }, \
-    { "i3", UNIT_SIG_IN, "I3 = I(1/2)" }
-#define COEF_SIG_I4_N1 { "i4", UNIT_SIG_IN, "I4 = I(1/4)" }
-#define COEF_SIG_I4_N2 { "i4", UNIT_SIG_IN, "I4 = I(3/4)" }
+    { .name = "i1", .role = UNIT_SIG_IN, .what = "I1 = I(0)" }, { .name = "i2", .role = UNIT_SIG_IN, .what = "I2 = I(1)" }, \
+    { .name = "i3", .role = UNIT_SIG_IN, .what = "I3 = I(1/2)" }
+#define COEF_SIG_I4_N1 { .name = "i4", .role = UNIT_SIG_IN, .what = "I4 = I(1/4)" }
+#define COEF_SIG_I4_N2 { .name = "i4", .role = UNIT_SIG_IN, .what = "I4 = I(3/4)" }
 /* Elements of a network, as a constant: (0 NET(COEF_COUNT, COEF_COUNT)). */
 #define COEF_COUNT(name, op, a, b, k, what) + 1
 #define COEF3_N1_NODES (0 COEF3_N1_NET(COEF_COUNT, COEF_COUNT))
@@ -139,6 +139,12 @@ typedef struct coef_net {
 } coef_net;
 
 extern const coef_net coef_net_n1, coef_net_n2, coef_net_q;
+
+/* The formula exactly (dyadic inputs; third is a dyadic network factor):
+ * the formulas are linear, so their coefficients are the formula at the
+ * unit vectors, exact in double (small integers times a factor of at most
+ * 2 * DIV3_MAX_TERMS + 1 bits). 0, or -1 when a value does not fit. */
+int coef_exact(const coef_net *net, double third, const sim_dy *in, sim_dy *out);
 
 /* Walk a network over inputs in[0..nin-1] (built, bounded or formatted by
  * n); DIV3 elements get sub-scopes when building. The coefficients' values

@@ -22,23 +22,10 @@
  * power of a negative base rises again.
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include "vectors/ref_brdf.h"
 #include <math.h>
 #include <stddef.h>
-
-/* shared with unit_powg.c */
-sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
-                     const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog);
-double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
-                double e_in, double m_in, const char *prog, double *m_out);
-/* shared with units_brdf.c */
-sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
-                      sim_signal *x, sim_signal *k);
-int    brdf_ibits(double x);
-int    brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
-double brdf_const_err(double x, sim_fmt f);
-sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x);
 
 /* Signal indices, shared by both descriptors (d_approx adds c0 at the end). */
 enum { S_C, S_OUT, S_OM, S_K, S_P, S_BASE, S_CLAMP, S_MX, S_MUL, S_RG, S_C0, S_NSIGS };
@@ -85,6 +72,18 @@ static const char *da_prog(int g, char *buf, size_t len)
     buf[n] = 0;
     return buf;
 }
+
+/* g = 2 squares CLAMP once: the operand is CLAMP itself, no mux. */
+static int da_sig_used(const da_kind *kd, const unit_cfg *cfg, int i)
+{
+    double k, c0;
+    int g;
+    char prog[16];
+    kd->consts(cfg, &k, &c0, &g);
+    return pw_sig_built(kd->u, da_prog(g, prog, sizeof prog), i);
+}
+static int d_sig_used(const unit_cfg *cfg, int i) { return da_sig_used(&K_D, cfg, i); }
+static int w_sig_used(const unit_cfg *cfg, int i) { return da_sig_used(&K_W, cfg, i); }
 
 /* ---------------------------------------------------------------- formats */
 
@@ -174,6 +173,9 @@ static void w_ideal(const unit_cfg *cfg, const double *in, double *out) { out[0]
  * quantized products), through the 1-Lipschitz clamp, into the power
  * engine's bound, then the output scale. INFINITY when a format cannot
  * hold its range. */
+static int imin(int a, int b) { return a < b ? a : b; }
+static int imax(int a, int b) { return a > b ? a : b; }
+
 static double da_bound_core(const da_kind *kd, const unit_cfg *cfg, const unit_fmts *f, double *ideal_max)
 {
     int g;
@@ -184,13 +186,18 @@ static double da_bound_core(const da_kind *kd, const unit_cfg *cfg, const unit_f
     if (!da_prog(g, prog, sizeof prog) || !brdf_holds(f->f[S_C], 0, 1)) return INFINITY;
     sim_round r = cfg->rnd;
     const sim_fmt *F = f->f;
+    /* eff_*: the fraction bits each value really has (see unit_net.h) */
     double e_om = unit_qerr(F[S_OM], F[S_C].fbits, r);
+    int eff_om = imin(F[S_OM].fbits, F[S_C].fbits);
     if (!brdf_holds(F[S_OM], 0, 1 + e_om)) return INFINITY;
     if (!brdf_holds(F[S_K], fmin(k, 0), fmax(k, 0))) return INFINITY;
     double ek = brdf_const_err(k, F[S_K]);
     double kh = fabs(k) + ek;                                        /* bounds |k_h| */
-    double q_p = unit_qerr(F[S_P], F[S_OM].fbits + F[S_K].fbits, r);
-    double q_b = unit_qerr(F[S_BASE], F[S_P].fbits, r);
+    int src_p = eff_om + brdf_const_eff(k, F[S_K]);
+    double q_p = unit_qerr(F[S_P], src_p, r);
+    int eff_p = imax(0, imin(F[S_P].fbits, src_p));                  /* base = 1 -+ p */
+    double q_b = unit_qerr(F[S_BASE], eff_p, r);
+    int eff_b = imin(F[S_BASE].fbits, eff_p);
     double p_hi = kh * (1 + e_om) + q_p;
     if (!brdf_holds(F[S_P], k < 0 ? -p_hi : 0, k < 0 ? 0 : p_hi)) return INFINITY;
     if (!brdf_holds(F[S_BASE], k < 0 ? 1 - q_b : 1 - p_hi - q_b, k < 0 ? 1 + p_hi + q_b : 1)) return INFINITY;
@@ -198,19 +205,21 @@ static double da_bound_core(const da_kind *kd, const unit_cfg *cfg, const unit_f
      * either base can still be positive (beyond it both clamp to 0). */
     double e0 = kh * e_om + q_p + q_b, t_max = 1.0;
     if (k > ek) t_max = fmin(1.0, (1.0 + e0) / (k - ek));
-    double e_clamp = ek * t_max + e0 + unit_qerr(F[S_CLAMP], F[S_BASE].fbits, r);
+    double e_clamp = ek * t_max + e0 + unit_qerr(F[S_CLAMP], eff_b, r);
+    sim_fmt clamp_eff = unit_fmt(F[S_CLAMP].is_signed, F[S_CLAMP].ibits, imin(F[S_CLAMP].fbits, eff_b));
     double bm = base_max(k);
     if (!brdf_holds(F[S_CLAMP], 0, bm + e_clamp)) return INFINITY;
     double m_rg;
-    double e_rg = pw_bound(kd->u, f, r, F[S_CLAMP], e_clamp, bm, prog, &m_rg);
+    int eff_rg = F[S_RG].fbits;
+    double e_rg = pw_bound(kd->u, f, r, clamp_eff, e_clamp, bm, prog, &m_rg, &eff_rg);
     if (!isfinite(e_rg)) return INFINITY;
     double e_out;
     if (kd->has_c0) {
         if (!brdf_holds(F[S_C0], 0, c0)) return INFINITY;
         double e_c0 = brdf_const_err(c0, F[S_C0]);
-        e_out = (c0 + e_c0) * e_rg + e_c0 * m_rg + unit_qerr(F[S_OUT], F[S_RG].fbits + F[S_C0].fbits, r);
+        e_out = (c0 + e_c0) * e_rg + e_c0 * m_rg + unit_qerr(F[S_OUT], eff_rg + brdf_const_eff(c0, F[S_C0]), r);
     } else {
-        e_out = e_rg + unit_qerr(F[S_OUT], F[S_RG].fbits, r);
+        e_out = e_rg + unit_qerr(F[S_OUT], eff_rg, r);
     }
     if (!brdf_holds(F[S_OUT], 0, c0 * m_rg + e_out)) return INFINITY;
     return e_out;
@@ -229,14 +238,14 @@ static void w_bound(const unit_cfg *cfg, const unit_fmts *f, double *o) { da_bou
 /* ------------------------------------------------------------- descriptors */
 
 #define DA_INTERNALS \
-    { "om", UNIT_SIG_INTERNAL, "subtractor OM = 1 - c" }, \
-    { "k", UNIT_SIG_INTERNAL, "constant k (slope of the base)" }, \
-    { "p", UNIT_SIG_INTERNAL, "constant multiplier P = k * OM (shift-and-add)" }, \
-    { "base", UNIT_SIG_INTERNAL, "subtractor BASE = 1 - P" }, \
-    { "clamp", UNIT_SIG_INTERNAL, "block key: BASE, or 0 when BASE < 0" }, \
-    { "mx", UNIT_SIG_INTERNAL, "operand mux: CLAMP in the first clock, then RG (drives both inputs)" }, \
-    { "mul", UNIT_SIG_INTERNAL, "multiplier MUL = MX * MX (a squarer)" }, \
-    { "rg", UNIT_SIG_INTERNAL, "register RG <= MUL every clock" }
+    { .name = "om", .role = UNIT_SIG_INTERNAL, .what = "subtractor OM = 1 - c" }, \
+    { .name = "k", .role = UNIT_SIG_INTERNAL, .what = "constant k (slope of the base)" }, \
+    { .name = "p", .role = UNIT_SIG_INTERNAL, .what = "constant multiplier P = k * OM (shift-and-add)" }, \
+    { .name = "base", .role = UNIT_SIG_INTERNAL, .what = "subtractor BASE = 1 - P" }, \
+    { .name = "clamp", .role = UNIT_SIG_INTERNAL, .what = "block key: BASE, or 0 when BASE < 0" }, \
+    { .name = "mx", .role = UNIT_SIG_INTERNAL, .what = "operand mux: CLAMP in the first clock, then RG (drives both inputs)" }, \
+    { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX * MX (a squarer)" }, \
+    { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" }
 
 const unit_desc unit_d_approx = {
     .name = "d_approx",
@@ -244,10 +253,10 @@ const unit_desc unit_d_approx = {
     .seed = "000 sec. III, 001 sec. 3 (D4, D8, D16)",
     .nsigs = S_NSIGS,
     .sigs = {
-        { "c", UNIT_SIG_IN, "cos g = N.H, in [0, 1]" },
-        { "d", UNIT_SIG_OUT, "D_g, in [0, 1/(4m^2)]" },
+        { .name = "c", .role = UNIT_SIG_IN, .what = "cos g = N.H, in [0, 1]" },
+        { .name = "d", .role = UNIT_SIG_OUT, .what = "D_g, in [0, 1/(4m^2)]" },
         DA_INTERNALS,
-        { "c0", UNIT_SIG_INTERNAL, "constant c0 = 1/(4m^2); d = c0 * RG by a constant multiplier" } },
+        { .name = "c0", .role = UNIT_SIG_INTERNAL, .what = "constant c0 = 1/(4m^2); d = c0 * RG by a constant multiplier" } },
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: log2(g) clocks" } },
     .nparams = 2,
@@ -259,6 +268,7 @@ const unit_desc unit_d_approx = {
                 "bits of the largest power (1 for m <= 1/sqrt 2); c0 and d the same rule for c0 and "
                 "its peak",
     .formats = d_formats, .beats = beats1, .build = d_build, .ideal = d_ideal, .bound = d_bound,
+    .sig_used = d_sig_used,
 };
 
 const unit_desc unit_ward_approx = {
@@ -267,8 +277,8 @@ const unit_desc unit_ward_approx = {
     .seed = "000 sec. III, 001 sec. 3 (Ward)",
     .nsigs = S_NSIGS - 1,
     .sigs = {
-        { "c", UNIT_SIG_IN, "cos g = N.H, in [0, 1]" },
-        { "e", UNIT_SIG_OUT, "the 16th power, in [0, 1]" },
+        { .name = "c", .role = UNIT_SIG_IN, .what = "cos g = N.H, in [0, 1]" },
+        { .name = "e", .role = UNIT_SIG_OUT, .what = "the 16th power, in [0, 1]" },
         DA_INTERNALS },
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: 4 clocks" } },
@@ -277,4 +287,5 @@ const unit_desc unit_ward_approx = {
     .fmt_rule = "c, om u1.(W-1); k uI.(W-I) and p uI.(W-1) with I = integer bits of 1/(8 alpha^2); "
                 "base s(I+1).(W-1); clamp, mx, mul, rg, e u1.(W-1)",
     .formats = w_formats, .beats = beats1, .build = w_build, .ideal = w_ideal, .bound = w_bound,
+    .sig_used = w_sig_used,
 };

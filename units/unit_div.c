@@ -28,20 +28,14 @@
  * remainder test (docs/brdf.md).
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
 
-/* shared with units_brdf.c */
-void brdf_seq(sim_ctx *c, sim_scope *sc, sim_signal *clk, int nsteps, unit_io *io,
-              sim_signal **next_out, sim_signal **first_out);
-int  brdf_bitlen(uint64_t v);
-int  brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
-
 /* Quotient bits: the Q register's width without a sign bit. */
-int dv_steps(sim_fmt q) { return q.width - q.is_signed; }
+static int dv_steps(sim_fmt q) { return q.width - q.is_signed; }
 
 /* ------------------------------------------------------------------ logic */
 
@@ -213,6 +207,19 @@ static void div_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = in[0] / in[1];
 }
 
+/* n/d exactly (d > 0 in the unit's domain; d <= 0 is not a ratio the
+ * check can use: -1). */
+static int div_ratio(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den)
+{
+    (void)cfg;
+    sim_dy z;
+    sim_dy_int(&z, 0, 0);
+    if (sim_dy_cmp(&in[1], &z) <= 0) return -1;
+    *num = in[0];
+    *den = in[1];
+    return 0;
+}
+
 /* The golden vectors' domain (vectors/ref_brdf_models.c): d in [1/2, 1],
  * 0 <= n <= d - 2^-8, so that n < d still holds after the inputs are
  * quantized to at least 8 fraction bits. */
@@ -243,14 +250,14 @@ const unit_desc unit_div = {
     .seed = "004 (the division of F_SH and F_MSH)",
     .nsigs = DV_NSIGS,
     .sigs = {
-        { "n", UNIT_SIG_IN, "dividend, 0 <= n < d" },
-        { "d", UNIT_SIG_IN, "divisor, in [1/2, 1] for the golden vectors (any d > 0 works)" },
-        { "q", UNIT_SIG_OUT, "quotient register Q: floor(n/d) in q's format after the last clock" },
-        { "r", UNIT_SIG_INTERNAL, "remainder register R: (n - q d) 2^F_q at the end" },
-        { "dz", UNIT_SIG_INTERNAL, "divide-by-zero flag register, d == 0, valid with q" } },
+        { .name = "n", .role = UNIT_SIG_IN, .what = "dividend, 0 <= n < d" },
+        { .name = "d", .role = UNIT_SIG_IN, .what = "divisor, in [1/2, 1] for the golden vectors (any d > 0 works)" },
+        { .name = "q", .role = UNIT_SIG_OUT, .what = "quotient register Q: floor(n/d) in q's format after the last clock" },
+        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "remainder register R: (n - q d) 2^F_q at the end" },
+        { .name = "dz", .role = UNIT_SIG_INTERNAL, .what = "divide-by-zero flag register, d == 0, valid with q" } },
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: as many clocks as q has value bits" } },
     .nparams = 0,
     .fmt_rule = "n, d, r u1.(W-1); q u0.W (W clocks); dz u1.0",
-    .formats = div_formats, .beats = beats1, .build = div_build, .ideal = div_ideal, .bound = div_bound,
+    .formats = div_formats, .beats = beats1, .build = div_build, .ideal = div_ideal, .bound = div_bound, .ideal_ratio = div_ratio,
 };

@@ -11,14 +11,16 @@
  *
  * Signals are named by term index, not by shift, so that one list serves
  * both series: t0 = x/2 (paper only), ti = the i-th term, si = the i-th
- * partial sum. sigs[] declares all 20 terms' signals (--fmt may name any);
- * a network of N terms builds t0..tN and s1..sN (quarter: s2..sN, since its
- * first partial sum is t1 itself).
+ * partial sum. sigs[] declares all 20 terms' signals; a network of N
+ * terms builds t0..tN and s1..sN (quarter: t1..tN and s2..sN, since its
+ * first partial sum is t1 itself), and only those exist for list, run,
+ * --fmt and the VCD (sig_used).
  */
 #include "units/unit_net.h"
 #include "vectors/ref_seed000.h"
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 int div3_guard_bits(int terms)
 {
@@ -65,11 +67,21 @@ static void formats(const unit_cfg *cfg, unit_fmts *out)
     unet_rule(&n, cfg->width, x_lo, x_hi, 1);
     n.fm.f[0] = unit_fmt(1, 1, cfg->width - 1);
     div3_walk(&n, unet_input(&n, "x", 0), cfg->terms, cfg->series, -1);
-    /* Terms and sums past cfg->terms are not built; show them in t1's
-     * format, which every term and sum of the network shares. */
-    for (int i = 2; i < unit_div3.nsigs; i++)
-        if (!n.chosen[i]) n.fm.f[i] = n.fm.f[unit_sig_index(&unit_div3, "t1")];
+    /* Terms and sums past cfg->terms are not built (sig_used says so) and
+     * keep no format: list, run and --fmt do not show them. */
     *out = n.fm;
+}
+
+/* The network of cfg->terms terms builds t0 and s1 (paper series only),
+ * t1..tN and s2..sN; the signal list declares all 20 terms' signals. */
+static int sig_used(const unit_cfg *cfg, int i)
+{
+    const char *nm = unit_div3.sigs[i].name;
+    int paper = cfg->series == DIV3_PAPER, k = nm[1] ? atoi(nm + 1) : -1;
+    int terms = cfg->terms < 1 ? 1 : cfg->terms > DIV3_MAX_TERMS ? DIV3_MAX_TERMS : cfg->terms;
+    if (nm[0] == 't' && k >= 0) return k == 0 ? paper : k <= terms;
+    if (nm[0] == 's' && k >= 1) return k == 1 ? paper : k <= terms;
+    return 1;   /* x, y */
 }
 
 static int beats1(const unit_cfg *cfg) { (void)cfg; return 1; }
@@ -102,6 +114,16 @@ static void ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = in[0] * ref_div3_factor(cfg->terms, cfg->series);
 }
 
+/* Exactly: the network's factor is a sum of a few powers of two, so the
+ * double holds it exactly. */
+static int ideal_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
+{
+    sim_dy k;
+    sim_dy_double(&k, ref_div3_factor(cfg->terms, cfg->series));
+    sim_dy_mul(out, &in[0], &k);
+    return out->ovf ? -1 : 0;
+}
+
 /* The walk's error of y: every term's and sum's quantization, no gain. */
 static void bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 {
@@ -111,8 +133,8 @@ static void bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 }
 
 /* t<i>: the i-th term, x/2^p in the paper series, x/2^q in the quarter. */
-#define TERM(i, p, q) { "t" #i, UNIT_SIG_INTERNAL, "term " #i ": x/2^" #p " (paper), x/2^" #q " (quarter)" }
-#define SUM(i) { "s" #i, UNIT_SIG_INTERNAL, "partial sum s" #i " = s" #i "-1 - t" #i " (paper), + t" #i " (quarter)" }
+#define TERM(i, p, q) { .name = "t" #i, .role = UNIT_SIG_INTERNAL, .what = "term " #i ": x/2^" #p " (paper), x/2^" #q " (quarter)" }
+#define SUM(i) { .name = "s" #i, .role = UNIT_SIG_INTERNAL, .what = "partial sum s" #i " = s" #i "-1 - t" #i " (paper), + t" #i " (quarter)" }
 
 const unit_desc unit_div3 = {
     .name = "div3",
@@ -120,14 +142,14 @@ const unit_desc unit_div3 = {
     .seed = "000 Fig. 7",
     .nsigs = 43,
     .sigs = {
-        { "x", UNIT_SIG_IN, "dividend" },
-        { "y", UNIT_SIG_OUT, "x/3 by the network (a view of the last partial sum)" },
-        { "t0", UNIT_SIG_INTERNAL, "x/2, the paper series' first term" },
+        { .name = "x", .role = UNIT_SIG_IN, .what = "dividend" },
+        { .name = "y", .role = UNIT_SIG_OUT, .what = "x/3 by the network (a view of the last partial sum)" },
+        { .name = "t0", .role = UNIT_SIG_INTERNAL, .what = "x/2, the paper series' first term" },
         TERM(1, 3, 2), TERM(2, 5, 4), TERM(3, 7, 6), TERM(4, 9, 8), TERM(5, 11, 10),
         TERM(6, 13, 12), TERM(7, 15, 14), TERM(8, 17, 16), TERM(9, 19, 18), TERM(10, 21, 20),
         TERM(11, 23, 22), TERM(12, 25, 24), TERM(13, 27, 26), TERM(14, 29, 28), TERM(15, 31, 30),
         TERM(16, 33, 32), TERM(17, 35, 34), TERM(18, 37, 36), TERM(19, 39, 38), TERM(20, 41, 40),
-        { "s1", UNIT_SIG_INTERNAL, "partial sum s1 = t0 - t1 (paper; the quarter series starts at s2 = t1 + t2)" },
+        { .name = "s1", .role = UNIT_SIG_INTERNAL, .what = "partial sum s1 = t0 - t1 (paper; the quarter series starts at s2 = t1 + t2)" },
         SUM(2), SUM(3), SUM(4), SUM(5), SUM(6), SUM(7), SUM(8), SUM(9), SUM(10), SUM(11),
         SUM(12), SUM(13), SUM(14), SUM(15), SUM(16), SUM(17), SUM(18), SUM(19), SUM(20),
     },
@@ -143,5 +165,6 @@ const unit_desc unit_div3 = {
     .fmt_rule = "x s1.(W-1) (x in [-1, 1)); y s1.(W-1); terms and partial sums s1.(W-1+G), "
                 "G = ceil(log2(terms+1)) guard bits so that their truncations add up to at most 1 LSB of x; "
                 "only the terms and sums of the configured network are built",
-    .formats = formats, .beats = beats1, .build = build, .ideal = ideal, .bound = bound,
+    .formats = formats, .beats = beats1, .build = build, .ideal = ideal, .bound = bound, .ideal_exact = ideal_exact,
+    .sig_used = sig_used,
 };

@@ -84,14 +84,15 @@ int horner_latency(int deg, int sched)
 }
 
 static int imax(int a, int b) { return a > b ? a : b; }
+static int imin(int a, int b) { return a < b ? a : b; }
 static int bits_for(int v) { int b = 1; while ((1 << b) <= v) b++; return b; }
 
 /* Format of u's signal `name` in f (the builders and the bound take every
- * format by name: the pipe's signals are not contiguous). */
+ * format by name: the pipe's signals are not contiguous). A name the unit
+ * does not have is a bug here, not a reason for a default format. */
 static sim_fmt fmt_of(const unit_desc *u, const unit_fmts *f, const char *name)
 {
-    int i = unit_sig_index(u, name);
-    return i >= 0 ? f->f[i] : unit_fmt(1, HORNER_IBITS, 9);
+    return f->f[unit_sig_must(u, name)];
 }
 
 /* ------------------------------------------------------------- controller */
@@ -301,38 +302,42 @@ static void ideal2(const unit_cfg *cfg, const double *in, double *out)
     out[0] = (in[0] * t + in[1]) * t + in[2];
 }
 
-/* Walk the paper table accumulating the worst-case error of RG
- * (docs/bounds.md): every element that drops fraction bits adds its
- * quantization error; multiplying by t (|t| <= 1) does not grow an error. */
-static double bound_paper(const h_sched *p, const sim_fmt *coef_f, sim_fmt t, const unit_desc *u,
-                          const unit_fmts *f, sim_round r)
+/* The same polynomials exactly (the inputs are dyadic, so is y). */
+static int horner_exact(int deg, const sim_dy *in, sim_dy *out)
 {
-    sim_fmt fmx1 = fmt_of(u, f, "mx1"), fmul = fmt_of(u, f, "mul"), fmx2 = fmt_of(u, f, "mx2"),
-            fbk = fmt_of(u, f, "bk"), fsm = fmt_of(u, f, "sm"), frg = fmt_of(u, f, "rg");
-    double e_rg = 0;
-    for (int s = 0; s < p->nsteps; s++) {
-        const h_step *st = &p->step[s];
-        double e_mx2, e_bk = 0;
-        if (st->mx2 == MX2_MUL) {
-            sim_fmt src = st->mx1 == MX1_A ? coef_f[0] : frg;
-            double e_mx1 = (st->mx1 == MX1_A ? 0 : e_rg) + unit_qerr(fmx1, src.fbits, r);
-            double e_mul = e_mx1 + unit_qerr(fmul, fmx1.fbits + t.fbits, r);
-            e_mx2 = e_mul + unit_qerr(fmx2, fmul.fbits, r);
-        } else {
-            e_mx2 = unit_qerr(fmx2, coef_f[st->mx2].fbits, r);
-        }
-        if (st->bk) e_bk = e_rg + unit_qerr(fbk, frg.fbits, r);
-        double e_sm = e_mx2 + e_bk + unit_qerr(fsm, imax(fmx2.fbits, fbk.fbits), r);
-        e_rg = e_sm + unit_qerr(frg, fsm.fbits, r);
+    sim_dy y = in[0];
+    for (int j = 1; j <= deg; j++) {
+        sim_dy_mul(&y, &y, &in[deg + 1]);
+        sim_dy_add(&y, &y, &in[j]);
     }
-    return e_rg;
+    *out = y;
+    return y.ovf ? -1 : 0;
 }
+static int ideal3_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) { (void)cfg; return horner_exact(3, in, out); }
+static int ideal2_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) { (void)cfg; return horner_exact(2, in, out); }
 
-/* A value as the bound sees it: its format and worst-case error. */
-typedef struct h_val { sim_fmt f; double e; } h_val;
+/* A value as the bound sees it: its format, worst-case error, and the
+ * fraction bits it can really have (eff <= f.fbits: a wide register
+ * holding a coarser value). Quantizations count only bits dropped below
+ * eff, so that widening a signal moves a truncation downstream instead of
+ * adding one: with trunc the bound never grows (unit_qerr's 2^-F - 2^-src
+ * telescopes). */
+typedef struct h_val { sim_fmt f; double e; int eff; } h_val;
 
 /* Largest |value| a format holds. */
 static double fmt_maxabs(sim_fmt f) { return ldexp(1.0, f.is_signed ? f.ibits - 1 : f.ibits); }
+
+/* An exact input (coefficient, t) of format f. */
+static h_val exact_of(sim_fmt f) { return (h_val){ f, 0, f.fbits }; }
+
+/* v's exact value with src fraction bits (and error e) into format f. */
+static h_val requant(sim_fmt f, double e, int src, sim_round r)
+{
+    return (h_val){ f, e + unit_qerr(f, src, r), imin(f.fbits, src) };
+}
+
+/* A value through a register or multiplexer of format f. */
+static h_val pass(h_val v, sim_fmt f, sim_round r) { return requant(f, v.e, v.eff, r); }
 
 /* One multiply-add acc = x * t + c through the multiplier, the adder and
  * the result register. x_hw t_hw - x t = (x_hw - x) t_hw + x_hw (t_hw - t)
@@ -341,43 +346,66 @@ static double fmt_maxabs(sim_fmt f) { return ldexp(1.0, f.is_signed ? f.ibits - 
  * narrower than t). */
 static h_val madd(h_val x, h_val t, h_val c, sim_fmt fmul, sim_fmt fsm, sim_fmt frg, sim_round r)
 {
-    double e_mul = x.e + (t.e > 0 ? fmt_maxabs(x.f) * t.e : 0) + unit_qerr(fmul, x.f.fbits + t.f.fbits, r);
-    double e_sm = e_mul + c.e + unit_qerr(fsm, imax(fmul.fbits, c.f.fbits), r);
-    return (h_val){ frg, e_sm + unit_qerr(frg, fsm.fbits, r) };
+    h_val mul = requant(fmul, x.e + (t.e > 0 ? fmt_maxabs(x.f) * t.e : 0), x.eff + t.eff, r);
+    h_val sm = requant(fsm, mul.e + c.e, imax(mul.eff, c.eff), r);
+    return pass(sm, frg, r);
 }
 
-/* A value through a register or multiplexer of format f. */
-static h_val pass(h_val v, sim_fmt f, sim_round r) { return (h_val){ f, v.e + unit_qerr(f, v.f.fbits, r) }; }
-
-/* mac: each row's operands pass MX1 (A or RG) and MX2 (a coefficient). */
-static double bound_mac(const h_sched *p, const sim_fmt *coef_f, sim_fmt t, const unit_desc *u,
-                        const unit_fmts *f, sim_round r)
+/* Walk the paper table accumulating the worst-case error of RG
+ * (docs/bounds.md): every element that drops fraction bits adds its
+ * quantization error; multiplying by t (|t| <= 1) does not grow an error. */
+static h_val bound_paper(const h_sched *p, const sim_fmt *coef_f, sim_fmt t, const unit_desc *u,
+                         const unit_fmts *f, sim_round r)
 {
-    sim_fmt fmx1 = fmt_of(u, f, "mx1"), fmx2 = fmt_of(u, f, "mx2");
-    h_val acc = { fmt_of(u, f, "rg"), 0 };
+    sim_fmt fmx1 = fmt_of(u, f, "mx1"), fmul = fmt_of(u, f, "mul"), fmx2 = fmt_of(u, f, "mx2"),
+            fbk = fmt_of(u, f, "bk"), fsm = fmt_of(u, f, "sm"), frg = fmt_of(u, f, "rg");
+    h_val rg = { frg, 0, 0 };       /* RG starts at 0 */
     for (int s = 0; s < p->nsteps; s++) {
         const h_step *st = &p->step[s];
-        h_val x = pass(st->mx1 == MX1_A ? (h_val){ coef_f[0], 0 } : acc, fmx1, r);
-        h_val c = pass((h_val){ coef_f[st->mx2], 0 }, fmx2, r);
-        acc = madd(x, (h_val){ t, 0 }, c, fmt_of(u, f, "mul"), fmt_of(u, f, "sm"), fmt_of(u, f, "rg"), r);
+        h_val mx2, bk = { fbk, 0, -64 };   /* forced zero: exact, no fraction bits */
+        if (st->mx2 == MX2_MUL) {
+            h_val mx1 = pass(st->mx1 == MX1_A ? exact_of(coef_f[0]) : rg, fmx1, r);
+            h_val mul = requant(fmul, mx1.e, mx1.eff + t.fbits, r);
+            mx2 = pass(mul, fmx2, r);
+        } else {
+            mx2 = pass(exact_of(coef_f[st->mx2]), fmx2, r);
+        }
+        if (st->bk) bk = pass(rg, fbk, r);
+        h_val sm = requant(fsm, mx2.e + bk.e, imax(mx2.eff, bk.eff), r);
+        rg = pass(sm, frg, r);
     }
-    return acc.e;
+    return rg;
+}
+
+/* mac: each row's operands pass MX1 (A or RG) and MX2 (a coefficient). */
+static h_val bound_mac(const h_sched *p, const sim_fmt *coef_f, sim_fmt t, const unit_desc *u,
+                       const unit_fmts *f, sim_round r)
+{
+    sim_fmt fmx1 = fmt_of(u, f, "mx1"), fmx2 = fmt_of(u, f, "mx2");
+    h_val acc = { fmt_of(u, f, "rg"), 0, 0 };
+    for (int s = 0; s < p->nsteps; s++) {
+        const h_step *st = &p->step[s];
+        h_val x = pass(st->mx1 == MX1_A ? exact_of(coef_f[0]) : acc, fmx1, r);
+        h_val c = pass(exact_of(coef_f[st->mx2]), fmx2, r);
+        acc = madd(x, exact_of(t), c, fmt_of(u, f, "mul"), fmt_of(u, f, "sm"), fmt_of(u, f, "rg"), r);
+    }
+    return acc;
 }
 
 /* pipe: row j is stage j+1; t and the coefficients still to come pass a
  * pipeline register per stage (lossless in the default rule). */
-static double bound_pipe(const h_sched *p, const sim_fmt *coef_f, sim_fmt t_f, const unit_desc *u,
-                         const unit_fmts *f, sim_round r)
+static h_val bound_pipe(const h_sched *p, const sim_fmt *coef_f, sim_fmt t_f, const unit_desc *u,
+                        const unit_fmts *f, sim_round r)
 {
-    h_val carry[4], acc = { coef_f[0], 0 }, t = { t_f, 0 };
-    for (int k = 0; k <= p->deg; k++) carry[k] = (h_val){ coef_f[k], 0 };
+    h_val carry[4], acc = exact_of(coef_f[0]), t = exact_of(t_f);
+    for (int k = 0; k <= p->deg; k++) carry[k] = exact_of(coef_f[k]);
     for (int j = 1; j <= p->nsteps; j++) {
         const h_step *st = &p->step[j - 1];
         char m[16], s[16], g[16];
         snprintf(m, sizeof m, "mul%d", j);
         snprintf(s, sizeof s, "sm%d", j);
         snprintf(g, sizeof g, "rg%d", j);
-        h_val x = st->mx1 == MX1_A ? (h_val){ coef_f[0], 0 } : acc;
+        h_val x = st->mx1 == MX1_A ? exact_of(coef_f[0]) : acc;
         acc = madd(x, t, carry[st->mx2], fmt_of(u, f, m), fmt_of(u, f, s), fmt_of(u, f, g), r);
         if (j == p->nsteps) break;
         snprintf(m, sizeof m, "t%d", j);
@@ -387,7 +415,7 @@ static double bound_pipe(const h_sched *p, const sim_fmt *coef_f, sim_fmt t_f, c
             carry[k] = pass(carry[k], fmt_of(u, f, m), r);
         }
     }
-    return acc.e;
+    return acc;
 }
 
 double horner_bound_on(int deg, int sched, const sim_fmt *coef_f, sim_fmt t, const unit_desc *u,
@@ -395,11 +423,10 @@ double horner_bound_on(int deg, int sched, const sim_fmt *coef_f, sim_fmt t, con
 {
     const h_sched *p = sched_of(deg, sched);
     if (!p) return INFINITY;
-    double e = p->sched == HORNER_PAPER ? bound_paper(p, coef_f, t, u, f, r)
-             : p->sched == HORNER_MAC   ? bound_mac(p, coef_f, t, u, f, r)
-                                        : bound_pipe(p, coef_f, t, u, f, r);
-    sim_fmt res = fmt_of(u, f, p->sched == HORNER_PIPE ? (deg == 3 ? "rg3" : "rg2") : "rg");
-    return e + unit_qerr(y_f, res.fbits, r);
+    h_val v = p->sched == HORNER_PAPER ? bound_paper(p, coef_f, t, u, f, r)
+            : p->sched == HORNER_MAC   ? bound_mac(p, coef_f, t, u, f, r)
+                                       : bound_pipe(p, coef_f, t, u, f, r);
+    return v.e + unit_qerr(y_f, v.eff, r);
 }
 
 static void horner_bound(const unit_desc *u, int deg, const unit_cfg *cfg, const unit_fmts *f, double *per_out)
@@ -434,16 +461,16 @@ const unit_desc unit_horner3 = {
     .seed = "000 Fig. 9",
     .nsigs = 6 + HORNER_NSIGS3,
     .sigs = {
-        { "a", UNIT_SIG_IN, "coefficient A" }, { "b", UNIT_SIG_IN, "coefficient B" },
-        { "c", UNIT_SIG_IN, "coefficient C" }, { "d", UNIT_SIG_IN, "coefficient D" },
-        { "t", UNIT_SIG_IN, "position in the interval, k/L" },
-        { "y", UNIT_SIG_OUT, "intensity I(t) (RG after the last step)" },
+        { .name = "a", .role = UNIT_SIG_IN, .what = "coefficient A" }, { .name = "b", .role = UNIT_SIG_IN, .what = "coefficient B" },
+        { .name = "c", .role = UNIT_SIG_IN, .what = "coefficient C" }, { .name = "d", .role = UNIT_SIG_IN, .what = "coefficient D" },
+        { .name = "t", .role = UNIT_SIG_IN, .what = "position in the interval, k/L" },
+        { .name = "y", .role = UNIT_SIG_OUT, .what = "intensity I(t) (RG after the last step)" },
         HORNER_SIGS3 },
     .nsched = 3,
-    .sched = H_SCHEDS("the paper's sequence, six clocks per pixel (SPEC 2.3)", "3", "3"),
+    .sched = H_SCHEDS("the paper's sequence, six clocks per pixel", "3", "3"),
     .nparams = 0,
     .fmt_rule = H_RULE,
-    .formats = formats3, .beats = beats1, .build = build3, .ideal = ideal3, .bound = bound3,
+    .formats = formats3, .beats = beats1, .build = build3, .ideal = ideal3, .bound = bound3, .ideal_exact = ideal3_exact,
 };
 
 const unit_desc unit_horner2 = {
@@ -452,14 +479,14 @@ const unit_desc unit_horner2 = {
     .seed = "000 Fig. 9 (degree 2)",
     .nsigs = 5 + HORNER_NSIGS2,
     .sigs = {
-        { "a", UNIT_SIG_IN, "coefficient A" }, { "b", UNIT_SIG_IN, "coefficient B" },
-        { "c", UNIT_SIG_IN, "coefficient C" },
-        { "t", UNIT_SIG_IN, "position in the interval, k/L" },
-        { "y", UNIT_SIG_OUT, "intensity I(t)" },
+        { .name = "a", .role = UNIT_SIG_IN, .what = "coefficient A" }, { .name = "b", .role = UNIT_SIG_IN, .what = "coefficient B" },
+        { .name = "c", .role = UNIT_SIG_IN, .what = "coefficient C" },
+        { .name = "t", .role = UNIT_SIG_IN, .what = "position in the interval, k/L" },
+        { .name = "y", .role = UNIT_SIG_OUT, .what = "intensity I(t)" },
         HORNER_SIGS2 },
     .nsched = 3,
     .sched = H_SCHEDS("the paper's sequence cut to degree 2, four clocks per pixel", "2", "2"),
     .nparams = 0,
     .fmt_rule = H_RULE,
-    .formats = formats2, .beats = beats1, .build = build2, .ideal = ideal2, .bound = bound2,
+    .formats = formats2, .beats = beats1, .build = build2, .ideal = ideal2, .bound = bound2, .ideal_exact = ideal2_exact,
 };

@@ -37,20 +37,20 @@ enum { HORNER_PAPER = 0, HORNER_MAC = 1, HORNER_PIPE = 2, HORNER_NSCHED = 3 };
 /* The sequential datapaths (paper: all six; mac: no BK, and Sm adds MUL
  * and a coefficient). The order is the paper's, as the VCD shows it. */
 #define HORNER_SIGS_SEQ \
-    { "mx1", UNIT_SIG_INTERNAL, "multiplexer MX1: A or RG into the multiplier", H_P | H_M }, \
-    { "mul", UNIT_SIG_INTERNAL, "multiplier MUL = MX1 * t, quantized to its own format", H_P | H_M }, \
-    { "mx2", UNIT_SIG_INTERNAL, "multiplexer MX2: paper MUL or a coefficient into the adder; mac a coefficient", H_P | H_M }, \
-    { "bk",  UNIT_SIG_INTERNAL, "block key BK: passes RG or forces zero", H_P }, \
-    { "sm",  UNIT_SIG_INTERNAL, "adder Sm: paper MX2 + BK, mac MUL + MX2", H_P | H_M }, \
-    { "rg",  UNIT_SIG_INTERNAL, "register RG <= Sm every clock", H_P | H_M }
+    { .name = "mx1", .role = UNIT_SIG_INTERNAL, .what = "multiplexer MX1: A or RG into the multiplier", .scheds = H_P | H_M }, \
+    { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX1 * t, quantized to its own format", .scheds = H_P | H_M }, \
+    { .name = "mx2", .role = UNIT_SIG_INTERNAL, .what = "multiplexer MX2: paper MUL or a coefficient into the adder; mac a coefficient", .scheds = H_P | H_M }, \
+    { .name = "bk",  .role = UNIT_SIG_INTERNAL, .what = "block key BK: passes RG or forces zero", .scheds = H_P }, \
+    { .name = "sm",  .role = UNIT_SIG_INTERNAL, .what = "adder Sm: paper MX2 + BK, mac MUL + MX2", .scheds = H_P | H_M }, \
+    { .name = "rg",  .role = UNIT_SIG_INTERNAL, .what = "register RG <= Sm every clock", .scheds = H_P | H_M }
 
 /* Stage j of the pipe: mulJ = (A or rgJ-1) * t, smJ = mulJ + coefficient J,
  * rgJ <= smJ; tJ and cJ, dJ carry t and the later coefficients along. */
-#define H_STAGE(j, what) \
-    { "mul" #j, UNIT_SIG_INTERNAL, "pipe stage " #j ": multiplier " what, H_PP }, \
-    { "sm" #j,  UNIT_SIG_INTERNAL, "pipe stage " #j ": adder", H_PP }, \
-    { "rg" #j,  UNIT_SIG_INTERNAL, "pipe stage " #j ": its result register", H_PP }
-#define H_DELAY(name, what) { name, UNIT_SIG_INTERNAL, "pipe register: " what, H_PP }
+#define H_STAGE(j, wh_) \
+    { .name = "mul" #j, .role = UNIT_SIG_INTERNAL, .what = "pipe stage " #j ": multiplier " wh_, .scheds = H_PP }, \
+    { .name = "sm" #j,  .role = UNIT_SIG_INTERNAL, .what = "pipe stage " #j ": adder", .scheds = H_PP }, \
+    { .name = "rg" #j,  .role = UNIT_SIG_INTERNAL, .what = "pipe stage " #j ": its result register", .scheds = H_PP }
+#define H_DELAY(nm_, wh_) { .name = nm_, .role = UNIT_SIG_INTERNAL, .what = "pipe register: " wh_, .scheds = H_PP }
 
 #define HORNER_SIGS3 HORNER_SIGS_SEQ, \
     H_STAGE(1, "A * t"), H_DELAY("t1", "t for stage 2"), H_DELAY("c1", "C for stage 2"), \

@@ -64,7 +64,7 @@ enum { INTERP_FWD = HORNER_NSCHED };     /* paper, mac, pipe, then fwd */
 
 typedef struct fwd_node { const char *name; coef_op op; const char *a, *b; int hs, k; } fwd_node;
 #define FWD_NODE(name, op, a, b, hs, k, what) { #name, COEF_##op, #a, #b, hs, k },
-#define FWD_SIG(name, op, a, b, hs, k, what) { #name, UNIT_SIG_INTERNAL, what, I_FWD },
+#define FWD_SIG(nm_, op, a, b, hs, k, wh_) { .name = #nm_, .role = UNIT_SIG_INTERNAL, .what = wh_, .scheds = I_FWD },
 #define FWD_COUNT(name, op, a, b, hs, k, what) + 1
 static const fwd_node fwd3_nodes[] = { FWD3_NET(FWD_NODE) };
 static const fwd_node fwd2_nodes[] = { FWD2_NET(FWD_NODE) };
@@ -73,7 +73,7 @@ static const fwd_node fwd2_nodes[] = { FWD2_NET(FWD_NODE) };
  * adder (fy + fd1, ...) and load multiplexer take its format. */
 static const char *const fwd_regs[] = { "fy", "fd1", "fd2", "fd3" };
 static const char *const fwd_init[] = { NULL, "d1i", "d2i", "d3i" };   /* fy starts at the constant coefficient */
-#define FWD_REG(name, what) { name, UNIT_SIG_INTERNAL, what, I_FWD }
+#define FWD_REG(nm_, wh_) { .name = nm_, .role = UNIT_SIG_INTERNAL, .what = wh_, .scheds = I_FWD }
 #define FWD_REGS3 \
     FWD_REG("fy", "fwd register of the pixel value: fy <= fy + fd1 each clock (its adder and load mux share this format)"), \
     FWD_REG("fd1", "fwd register of the first difference: fd1 <= fd1 + fd2"), \
@@ -143,7 +143,7 @@ static int fwd_walk(unet *n, const interp_kind *K, int lgL, const unet_val *coef
 static void fwd_errs(int deg, int L, const unet_val *init, const sim_fmt *rf, sim_round r, double E[4][FWD_MAXK])
 {
     double a[4] = { 0, 0, 0, 0 };
-    for (int j = 0; j <= deg; j++) E[j][0] = init[j].err + unit_qerr(rf[j], init[j].f.fbits, r);
+    for (int j = 0; j <= deg; j++) E[j][0] = init[j].err + unit_qerr(rf[j], init[j].eff, r);
     for (int j = 0; j < deg; j++)
         a[j] = unit_qerr(rf[j], rf[j].fbits > rf[j + 1].fbits ? rf[j].fbits : rf[j + 1].fbits, r);
     for (int k = 1; k <= L && k < FWD_MAXK; k++) {
@@ -217,7 +217,7 @@ static void fwd_formats(const interp_kind *K, const unit_cfg *cfg, unit_fmts *fm
         if (!changed) break;
         fwd_errs(K->deg, L, init, rf, cfg->rnd, E);
     }
-    for (int j = 0; j <= K->deg; j++) fm->f[unit_sig_index(K->u, fwd_regs[j])] = rf[j];
+    for (int j = 0; j <= K->deg; j++) fm->f[unit_sig_must(K->u, fwd_regs[j])] = rf[j];
 }
 
 /* ------------------------------------------------------------- formats */
@@ -237,17 +237,17 @@ static void formats(const interp_kind *K, const unit_cfg *cfg, unit_fmts *out)
     unet_init(&n, u, NULL, cfg->rnd);
     unet_rule(&n, W, lo, hi, K->net->nin);
     for (int i = 0; i < K->net->nin; i++) {
-        n.fm.f[unit_sig_index(u, in_names[i])] = coef_input_fmt(W);
+        n.fm.f[unit_sig_must(u, in_names[i])] = coef_input_fmt(W);
         in[i] = unet_input(&n, in_names[i], i);
     }
     coef_walk(&n, K->net, in, cfg->terms, cfg->series, o);
     sim_fmt dp = unit_fmt(1, HORNER_IBITS, W - HORNER_IBITS);
     for (int j = 0; j <= K->deg; j++) {
-        n.fm.f[unit_sig_index(u, coef_names[j])] = dp;
-        n.fm.f[unit_sig_index(u, reg_names[j])] = dp;
+        n.fm.f[unit_sig_must(u, coef_names[j])] = dp;
+        n.fm.f[unit_sig_must(u, reg_names[j])] = dp;
     }
-    n.fm.f[unit_sig_index(u, "t")] = unit_fmt(0, 1, W - 1);
-    n.fm.f[unit_sig_index(u, "y")] = dp;
+    n.fm.f[unit_sig_must(u, "t")] = unit_fmt(0, 1, W - 1);
+    n.fm.f[unit_sig_must(u, "y")] = dp;
     horner_default_fmts(u, W, &n.fm);
     *out = n.fm;
     fwd_formats(K, cfg, out);
@@ -340,7 +340,7 @@ static int build_fwd(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal
     sim_signal *reg[4];
     sim_fmt rf[4];
     for (int j = 0; j <= deg; j++) {
-        rf[j] = f->f[unit_sig_index(u, fwd_regs[j])];
+        rf[j] = f->f[unit_sig_must(u, fwd_regs[j])];
         /* the last difference is constant: it loads on an accept only */
         reg[j] = sim_reg(c, n->sc, fwd_regs[j], rf[j], clk, j == deg ? init[j].s : NULL,
                          j == deg ? ctl.accept : adv, NULL, 0);
@@ -353,7 +353,7 @@ static int build_fwd(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal
         sim_signal *mx_in[2] = { sum, init[j].s };
         sim_reg_connect(reg[j], sim_mux(c, n->sc, nm, rf[j], ctl.accept, 2, mx_in));
     }
-    io->out[0] = sim_shift(c, sc, "y", f->f[unit_sig_index(u, "y")], reg[0], 0);
+    io->out[0] = sim_shift(c, sc, "y", f->f[unit_sig_must(u, "y")], reg[0], 0);
     /* fy holds pixel k of the item in every busy clock */
     io->out_valid = sim_shift(c, sc, "out_valid", u1, busy, 0);
     io->scope = sc;
@@ -370,7 +370,7 @@ static int build(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal *cl
         return -1;
     }
     if (sched < 0 || sched > INTERP_FWD) { snprintf(err, errlen, "%s: no schedule %d", u->name, sched); return -1; }
-    sim_fmt ft = f->f[unit_sig_index(u, "t")];
+    sim_fmt ft = f->f[unit_sig_must(u, "t")];
     if (sched != INTERP_FWD && (ft.fbits < lgL || sim_fmt_real_max(ft) < (double)(L - 1) / L)) {
         char b[SIM_FMT_STRLEN];
         snprintf(err, errlen, "%s: t format %s cannot hold k/L exactly for L = %d (needs %d fraction bits)",
@@ -406,11 +406,11 @@ static int build(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal *cl
     /* Coefficient registers, t, and the Horner datapath. */
     sim_signal *r[4];
     for (int j = 0; j <= K->deg; j++)
-        r[j] = sim_reg(c, sc, reg_names[j], f->f[unit_sig_index(u, reg_names[j])], clk, o[j].s, ctl.accept, NULL, 0);
+        r[j] = sim_reg(c, sc, reg_names[j], f->f[unit_sig_must(u, reg_names[j])], clk, o[j].s, ctl.accept, NULL, 0);
     sim_signal *t = sim_shift(c, sc, "t", ft, ctl.k, -lgL);
     horner_dp_on(c, hsc, clk, &hw, busy, r, t, u, f);
 
-    io->out[0] = sim_shift(c, sc, "y", f->f[unit_sig_index(u, "y")], hw.rg, 0);
+    io->out[0] = sim_shift(c, sc, "y", f->f[unit_sig_must(u, "y")], hw.rg, 0);
     io->out_valid = sim_reg(c, sc, "out_valid", u1, clk, hw.done, NULL, NULL, 0);
     io->scope = sc;
     return 0;
@@ -431,6 +431,25 @@ static void ideal(const interp_kind *K, const unit_cfg *cfg, const double *in, d
     }
 }
 
+/* The same exactly: t = k/L is dyadic (L a power of two). */
+static int ideal_exact(const interp_kind *K, const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
+{
+    sim_dy co[4];
+    if (coef_exact(K->net, ref_div3_factor(cfg->terms, cfg->series), in, co)) return -1;
+    int bad = 0;
+    for (int k = 0; k < cfg->L; k++) {
+        sim_dy t, y = co[0];
+        sim_dy_double(&t, (double)k / cfg->L);
+        for (int j = 1; j <= K->deg; j++) {
+            sim_dy_mul(&y, &y, &t);
+            sim_dy_add(&y, &y, &co[j]);
+        }
+        out[k] = y;
+        bad |= y.ovf;
+    }
+    return bad ? -1 : 0;
+}
+
 /* Per pixel. Horner schedules: a coefficient's error e_j reaches y times
  * t^(deg-j) <= 1, so y's bound is the sum of the latched coefficients'
  * errors (the network's walk plus the register's quantization) plus the
@@ -441,14 +460,14 @@ static void bound_beats(const interp_kind *K, const unit_cfg *cfg, const unit_fm
 {
     const unit_desc *u = K->u;
     int L = cfg->L < FWD_MAXK ? cfg->L : FWD_MAXK - 1;
-    sim_fmt fy = f->f[unit_sig_index(u, "y")];
+    sim_fmt fy = f->f[unit_sig_must(u, "y")];
     if (cfg->schedule == INTERP_FWD) {
         unit_fmts fm = *f;
         unet_val coef[4], init[4];
         double E[4][FWD_MAXK];
         sim_fmt rf[4];
         if (fwd_values(K, cfg, &fm, 0, coef, init)) { for (int k = 0; k < cfg->L; k++) per_beat[k] = INFINITY; return; }
-        for (int j = 0; j <= K->deg; j++) rf[j] = f->f[unit_sig_index(u, fwd_regs[j])];
+        for (int j = 0; j <= K->deg; j++) rf[j] = f->f[unit_sig_must(u, fwd_regs[j])];
         fwd_errs(K->deg, L, init, rf, cfg->rnd, E);
         for (int k = 0; k < cfg->L; k++) per_beat[k] = E[0][k < FWD_MAXK ? k : FWD_MAXK - 1] + unit_qerr(fy, rf[0].fbits, cfg->rnd);
         return;
@@ -461,10 +480,18 @@ static void bound_beats(const interp_kind *K, const unit_cfg *cfg, const unit_fm
     double e = 0;
     sim_fmt rf[4];
     for (int j = 0; j <= K->deg; j++) {
-        rf[j] = f->f[unit_sig_index(u, reg_names[j])];
-        e += o[j].err + unit_qerr(rf[j], o[j].f.fbits, cfg->rnd);
+        rf[j] = f->f[unit_sig_must(u, reg_names[j])];
+        e += o[j].err + unit_qerr(rf[j], o[j].eff, cfg->rnd);
+        /* the Horner walk sees the fraction bits the register really
+         * holds (fewer than its format's when the coefficient has fewer) */
+        if (o[j].eff < rf[j].fbits) rf[j] = unit_fmt(rf[j].is_signed, rf[j].ibits, o[j].eff < 0 ? 0 : o[j].eff);
     }
-    e += horner_bound_on(K->deg, cfg->schedule, rf, f->f[unit_sig_index(u, "t")], u, f, fy, cfg->rnd);
+    /* t = k/L: lg L fraction bits whatever its format (build checks it holds them) */
+    sim_fmt tf = f->f[unit_sig_must(u, "t")];
+    int lgL = 0;
+    while ((1 << lgL) < cfg->L) lgL++;
+    if (tf.fbits > lgL) tf = unit_fmt(tf.is_signed, tf.ibits, lgL);
+    e += horner_bound_on(K->deg, cfg->schedule, rf, tf, u, f, fy, cfg->rnd);
     for (int k = 0; k < cfg->L; k++) per_beat[k] = e;
 }
 
@@ -488,7 +515,8 @@ static void bound(const interp_kind *K, const unit_cfg *cfg, const unit_fmts *f,
     { return build(&K, c, sc, clk, cfg, f, io, err, errlen); } \
     static void ideal_##sfx(const unit_cfg *cfg, const double *in, double *out) { ideal(&K, cfg, in, out); } \
     static void bound_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { bound(&K, cfg, f, o); } \
-    static void beats_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { bound_beats(&K, cfg, f, o); }
+    static void beats_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { bound_beats(&K, cfg, f, o); } \
+    static int exact_##sfx(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) { return ideal_exact(&K, cfg, in, out); }
 
 INTERP_FNS(3, k3)
 INTERP_FNS(2, k2)
@@ -498,9 +526,9 @@ INTERP_FNS(2, k2)
                   "terms of each /3 network (see div3); 3 is the paper's" }
 #define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, "paper quarter", \
                    "series of each /3 network (see div3)" }
-#define REG(name, what) { name, UNIT_SIG_INTERNAL, what, I_HORNER }
-#define T_SIG { "t", UNIT_SIG_INTERNAL, "t = k/L, the pixel counter k with its binary point moved (wiring)", I_HORNER }
-#define Y_SIG { "y", UNIT_SIG_OUT, "intensity I(k/L) of pixel k, one beat per pixel (the Horner's result; fwd: fy)" }
+#define REG(nm_, wh_) { .name = nm_, .role = UNIT_SIG_INTERNAL, .what = wh_, .scheds = I_HORNER }
+#define T_SIG { .name = "t", .role = UNIT_SIG_INTERNAL, .what = "t = k/L, the pixel counter k with its binary point moved (wiring)", .scheds = I_HORNER }
+#define Y_SIG { .name = "y", .role = UNIT_SIG_OUT, .what = "intensity I(k/L) of pixel k, one beat per pixel (the Horner's result; fwd: fy)" }
 #define INTERP_RULE(coefs) "i* u1.(W-1); the coefficient network as in the coefficient units; " coefs \
     ", their registers, y and the Horner datapaths s7.(W-7) (the Horner's rule); t and its copies u1.(W-1); " \
     "fwd: start networks lossless, registers fy, fd* W bits with the fewest integer bits (1..7) for their range and error"
@@ -526,7 +554,7 @@ const unit_desc unit_interp3 = {
                            "3 clocks per pixel, 3L per item", "L per item, first pixel 4 clocks after the accept"),
     .nparams = 3, .params = { P_L, P_TERMS, P_SERIES },
     .fmt_rule = INTERP_RULE("a b c d"),
-    .formats = formats_3, .beats = beats, .build = build_3, .ideal = ideal_3, .bound = bound_3,
+    .formats = formats_3, .beats = beats, .build = build_3, .ideal = ideal_3, .bound = bound_3, .ideal_exact = exact_3,
     .bound_beats = beats_3,
 };
 
@@ -546,6 +574,6 @@ const unit_desc unit_interp2 = {
                            "2 clocks per pixel, 2L per item", "L per item, first pixel 3 clocks after the accept"),
     .nparams = 1, .params = { P_L },
     .fmt_rule = INTERP_RULE("a b c"),
-    .formats = formats_2, .beats = beats, .build = build_2, .ideal = ideal_2, .bound = bound_2,
+    .formats = formats_2, .beats = beats, .build = build_2, .ideal = ideal_2, .bound = bound_2, .ideal_exact = exact_2,
     .bound_beats = beats_2,
 };

@@ -31,10 +31,10 @@ void unet_rule(unet *n, int width, const double *lo, const double *hi, int nin)
 
 int unet_sig(unet *n, const char *name)
 {
-    int i = unit_sig_index(n->u, name);
-    if (i < 0 && !n->why[0])
-        snprintf(n->why, sizeof n->why, "unit %s: no signal '%s' for an element of its network", n->u->name, name);
-    return i;
+    /* The names come from the unit's own network tables: one the unit
+     * does not declare is a bug, and a format rule walk (which has no
+     * error path) must not carry on with a made-up format. */
+    return unit_sig_must(n->u, name);
 }
 
 /* Exact range of a linear form over the input box. */
@@ -104,14 +104,14 @@ unet_val unet_wrap(sim_signal *s, sim_fmt f, int k)
     memset(&v, 0, sizeof v);
     v.s = s;
     v.f = f;
+    v.eff = f.fbits;
     if (k >= 0 && k < UNET_MAXIN) v.lin[k] = 1;
     return v;
 }
 
 unet_val unet_input(unet *n, const char *name, int k)
 {
-    int sig = unet_sig(n, name);
-    sim_fmt f = sig >= 0 ? n->fm.f[sig] : unit_fmt(1, 8, 8);
+    sim_fmt f = n->fm.f[unet_sig(n, name)];
     sim_signal *s = n->c ? sim_signal_new(n->c, n->sc, name, f, SIM_KIND_INPUT) : NULL;
     return unet_wrap(s, f, k);
 }
@@ -126,7 +126,9 @@ unet_val unet_shift(unet *n, int sig, const char *name, unet_val x, int k)
      * more, up to the cap (terms of the /3 network). */
     int f_nat = k >= 0 ? imax(0, src_f) : imin(src_f, imax(n->fcap, x.f.fbits));
     v.f = fmt_of(n, sig, !x.f.is_signed, v.lin, base, src_f, f_nat);
-    v.err = base + unit_qerr(v.f, src_f, n->r);
+    int eff_src = x.eff - k;                        /* the bits the shifted value really has */
+    v.err = base + unit_qerr(v.f, eff_src, n->r);
+    v.eff = imin(v.f.fbits, eff_src);
     v.s = n->c ? sim_shift(n->c, n->sc, name, v.f, x.s, k) : NULL;
     return v;
 }
@@ -138,7 +140,9 @@ static unet_val addsub(unet *n, int sig, const char *name, unet_val a, unet_val 
     double base = a.err + b.err;
     int src_f = imax(a.f.fbits, b.f.fbits);         /* the exact sum's fraction bits */
     v.f = fmt_of(n, sig, !sub && !a.f.is_signed && !b.f.is_signed, v.lin, base, src_f, src_f);
-    v.err = base + unit_qerr(v.f, src_f, n->r);
+    int eff_src = imax(a.eff, b.eff);
+    v.err = base + unit_qerr(v.f, eff_src, n->r);
+    v.eff = imin(v.f.fbits, eff_src);
     v.s = !n->c ? NULL : sub ? sim_sub(n->c, n->sc, name, v.f, a.s, b.s)
                              : sim_add(n->c, n->sc, name, v.f, a.s, b.s);
     return v;

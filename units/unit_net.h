@@ -29,6 +29,12 @@ typedef struct unet_val {
     sim_fmt     f;                  /* its format */
     double      lin[UNET_MAXIN];    /* ideal value = sum lin[i] * input i */
     double      err;                /* worst-case |hardware - ideal| */
+    /* Fraction bits the value can really have: its format's, or fewer
+     * when its operands have fewer (a wide register holding a coarse
+     * value). A requantization drops bits only below these, so widening a
+     * signal moves a quantization downstream rather than adding one
+     * (with trunc, the bound never grows). */
+    int         eff;
 } unet_val;
 
 typedef struct unet {
@@ -61,7 +67,8 @@ void unet_hw(unet *n, sim_ctx *c, sim_scope *sc);
  * n->fm by the caller before the walk. */
 void unet_rule(unet *n, int width, const double *lo, const double *hi, int nin);
 
-/* Index of signal name in the unit (-1 and n->why set if none). */
+/* Index of signal name in the unit; a name the unit does not declare is
+ * a bug in the unit (unit_sig_must: reported, aborted). */
 int unet_sig(unet *n, const char *name);
 
 /* Input k of the unit: signal name, format from n->fm, exact (err 0). */

@@ -9,19 +9,10 @@
  * (at least 1): 10 for n = 1024, 18 for n = 1023, 6 for the default 32.
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
-
-/* shared with unit_powg.c */
-sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
-                     const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog);
-double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
-                double e_in, double m_in, const char *prog, double *m_out);
-/* shared with units_brdf.c */
-int    brdf_bitlen(uint64_t v);
-int    brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
 
 extern const unit_desc unit_pow_n;
 
@@ -45,6 +36,14 @@ static const char *pow_n_prog(int n, char *buf)
 }
 
 enum { PN_X, PN_Y, PN_MXA, PN_MXB, PN_MUL, PN_RG, PN_NSIGS };
+
+/* n = 1 multiplies x by 1 (no mux); a power of two only squares (one
+ * mux drives both operands, no mx_b). */
+static int pow_n_sig_used(const unit_cfg *cfg, int i)
+{
+    char prog[PN_PROG_LEN];
+    return pw_sig_built(&unit_pow_n, pow_n_prog(cfg->n, prog), i);
+}
 
 static void pow_n_formats(const unit_cfg *cfg, unit_fmts *out)
 {
@@ -70,13 +69,49 @@ static void pow_n_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = pow(in[0], cfg->n);
 }
 
+/* x^n between two bounds when the exact power is too long: the same
+ * square-and-multiply on lower and upper values cut to 240 fraction bits
+ * (x >= 0, so every product is monotone in its operands). */
+static int pow_n_interval(const unit_cfg *cfg, const sim_dy *in, sim_dy *lo, sim_dy *hi)
+{
+    sim_dy z;
+    sim_dy_int(&z, 0, 0);
+    if (sim_dy_cmp(&in[0], &z) < 0) return -1;
+    for (int side = 0; side < 2; side++) {
+        sim_dy y, x = in[0];
+        sim_dy_int(&y, 1, 0);
+        for (int e = cfg->n; e && !y.ovf && !x.ovf; e >>= 1) {
+            if (e & 1) { sim_dy_mul(&y, &y, &x); sim_dy_cut(&y, 240, side); }
+            if (e > 1) { sim_dy_mul(&x, &x, &x); sim_dy_cut(&x, 240, side); }
+        }
+        if (y.ovf || x.ovf) return -1;
+        *(side ? hi : lo) = y;
+    }
+    return 0;
+}
+
+/* x^n exactly while it fits a sim_dy (-1 beyond: the testbench then
+ * decides with the double pow, or says it cannot). */
+static int pow_n_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
+{
+    sim_dy y, x = in[0];
+    sim_dy_int(&y, 1, 0);
+    for (int e = cfg->n; e && !y.ovf; e >>= 1) {
+        if (e & 1) sim_dy_mul(&y, &y, &x);
+        if (e > 1) sim_dy_mul(&x, &x, &x);
+    }
+    *out = y;
+    return y.ovf ? -1 : 0;
+}
+
 static void pow_n_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 {
     char prog[PN_PROG_LEN];
     double e = INFINITY, m = 1;
+    int eff = f->f[PN_RG].fbits;
     if (pow_n_prog(cfg->n, prog) && brdf_holds(f->f[PN_X], 0, 1))
-        e = pw_bound(&unit_pow_n, f, cfg->rnd, f->f[PN_X], 0, 1, prog, &m);
-    e += unit_qerr(f->f[PN_Y], f->f[PN_RG].fbits, cfg->rnd);
+        e = pw_bound(&unit_pow_n, f, cfg->rnd, f->f[PN_X], 0, 1, prog, &m, &eff);
+    e += unit_qerr(f->f[PN_Y], eff, cfg->rnd);
     if (!isfinite(e) || !brdf_holds(f->f[PN_Y], 0, m + e)) e = brdf_range_bound(f->f[PN_Y], 1);
     /* An input format that cannot hold [0, 1] wraps inputs anywhere: no bound. */
     per_out[0] = brdf_holds(f->f[PN_X], 0, 1) ? e : INFINITY;
@@ -88,13 +123,13 @@ const unit_desc unit_pow_n = {
     .seed = "004 eq. 13 (F_B = cos^n x), the exact reference of the Schlick forms",
     .nsigs = PN_NSIGS,
     .sigs = {
-        { "x", UNIT_SIG_IN, "base (a cosine), in [0, 1]" },
-        { "y", UNIT_SIG_OUT, "x^n (RG after the last step)" },
-        { "mx_a", UNIT_SIG_INTERNAL, "operand mux A: x in the first clock, then RG" },
-        { "mx_b", UNIT_SIG_INTERNAL, "operand mux B: x (first clock, multiplies) or RG (squarings); "
+        { .name = "x", .role = UNIT_SIG_IN, .what = "base (a cosine), in [0, 1]" },
+        { .name = "y", .role = UNIT_SIG_OUT, .what = "x^n (RG after the last step)" },
+        { .name = "mx_a", .role = UNIT_SIG_INTERNAL, .what = "operand mux A: x in the first clock, then RG" },
+        { .name = "mx_b", .role = UNIT_SIG_INTERNAL, .what = "operand mux B: x (first clock, multiplies) or RG (squarings); "
                                      "absent when n is a power of two" },
-        { "mul", UNIT_SIG_INTERNAL, "multiplier MUL = MX_A * MX_B, quantized to its own format" },
-        { "rg", UNIT_SIG_INTERNAL, "register RG <= MUL every clock" } },
+        { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX_A * MX_B, quantized to its own format" },
+        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" } },
     .nsched = 1,
     .sched = { { "sqmul", "left-to-right square and multiply: a squaring per bit of n after the "
                           "leading one, a multiply per further 1 bit" } },
@@ -102,5 +137,6 @@ const unit_desc unit_pow_n = {
     .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, PN_MAX_N, NULL, "exponent" } },
     .fmt_rule = "every signal u1.(W-1) (values in [0, 1])",
     .formats = pow_n_formats, .beats = beats1, .build = pow_n_build,
-    .ideal = pow_n_ideal, .bound = pow_n_bound,
+    .ideal = pow_n_ideal, .bound = pow_n_bound, .ideal_exact = pow_n_exact, .ideal_interval = pow_n_interval,
+    .sig_used = pow_n_sig_used,
 };

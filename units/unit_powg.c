@@ -15,17 +15,10 @@
  * wiring), so each unit pays only for the muxes its program uses.
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
-
-/* shared with units_brdf.c */
-void brdf_seq(sim_ctx *c, sim_scope *sc, sim_signal *clk, int nsteps, unit_io *io,
-              sim_signal **next_out, sim_signal **first_out);
-sim_signal *brdf_decode(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *name,
-                        sim_signal *next, const uint8_t *table, int n);
-int    brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
 
 extern const unit_desc unit_powg;
 
@@ -69,6 +62,17 @@ static int pw_make_plan(const unit_desc *u, const char *prog, pw_plan *p)
     p->irg = unit_sig_index(u, "rg");
     if (p->ia < 0 || p->ib < 0 || p->imul < 0 || p->irg < 0) return -1;
     return 0;
+}
+
+/* Whether the engine for prog builds signal i: an operand with a single
+ * source is wiring, not a mux, and a shared operand has no B mux. */
+int pw_sig_built(const unit_desc *u, const char *prog, int i)
+{
+    pw_plan p;
+    if (!prog || pw_make_plan(u, prog, &p)) return 1;
+    if (i == p.ia) return strlen(p.src_a) > 1;
+    if (i == unit_sig_index(u, "mx_b")) return !p.shared && strlen(p.src_b) > 1;
+    return 1;
 }
 
 /* ----------------------------------------------------------------- build */
@@ -125,13 +129,14 @@ sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
  * INFINITY when some format cannot hold its value (an override that may
  * overflow); *m_out is the largest ideal value of RG. */
 double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
-                double e_in, double m_in, const char *prog, double *m_out)
+                double e_in, double m_in, const char *prog, double *m_out, int *eff_out)
 {
     pw_plan p;
     if (pw_make_plan(u, prog, &p)) return INFINITY;
     sim_fmt fa = f->f[p.ia], fb = f->f[p.ib], fm = f->f[p.imul], fr = f->f[p.irg];
     int mux_a = strlen(p.src_a) > 1, mux_b = !p.shared && strlen(p.src_b) > 1;
     double e_rg = 0, m_rg = 0;
+    int eff_rg = fr.fbits;      /* fraction bits RG's value really has */
     for (int s = 0; s < p.nsteps; s++) {
         double e[2], m[2];
         int fbits[2];
@@ -139,24 +144,27 @@ double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_
             char src = prog[2 * s + k];
             int has_mux = k == 0 ? mux_a : (p.shared ? mux_a : mux_b);
             sim_fmt fmx = k == 0 || p.shared ? fa : fb;
-            int sf = src == 'I' ? in_fmt.fbits : src == 'R' ? fr.fbits : 0;
+            int sf = src == 'I' ? in_fmt.fbits : src == 'R' ? eff_rg : 0;
             e[k] = src == 'I' ? e_in : src == 'R' ? e_rg : 0;
             m[k] = src == 'I' ? m_in : src == 'R' ? m_rg : 1;
             if (has_mux) {
                 e[k] += unit_qerr(fmx, sf, r);
                 if (!brdf_holds(fmx, 0, m[k] + e[k])) return INFINITY;
-                sf = fmx.fbits;
+                sf = sf < fmx.fbits ? sf : fmx.fbits;
             }
             fbits[k] = sf;
         }
         double m_mul = m[0] * m[1];
         double e_mul = e[0] * (m[1] + e[1]) + m[0] * e[1] + unit_qerr(fm, fbits[0] + fbits[1], r);
         if (!brdf_holds(fm, 0, m_mul + e_mul)) return INFINITY;
-        e_rg = e_mul + unit_qerr(fr, fm.fbits, r);
+        int eff_mul = fbits[0] + fbits[1] < fm.fbits ? fbits[0] + fbits[1] : fm.fbits;
+        e_rg = e_mul + unit_qerr(fr, eff_mul, r);
+        eff_rg = eff_mul < fr.fbits ? eff_mul : fr.fbits;
         m_rg = m_mul;
         if (!brdf_holds(fr, 0, m_rg + e_rg)) return INFINITY;
     }
     if (m_out) *m_out = m_rg;
+    if (eff_out) *eff_out = eff_rg;
     return e_rg;
 }
 
@@ -173,6 +181,13 @@ static const char *powg_prog(int g, char *buf, size_t len)
 }
 
 enum { PG_X, PG_Y, PG_MX, PG_MUL, PG_RG, PG_NSIGS };
+
+/* g = 2 squares x once: the operand is x itself, no mux. */
+static int powg_sig_used(const unit_cfg *cfg, int i)
+{
+    char prog[2 * PW_MAX_STEPS + 1];
+    return pw_sig_built(&unit_powg, powg_prog(cfg->g, prog, sizeof prog), i);
+}
 
 static void powg_formats(const unit_cfg *cfg, unit_fmts *out)
 {
@@ -202,13 +217,49 @@ static void powg_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = pow(in[0], cfg->g);
 }
 
+/* x^g between two bounds when the exact power is too long: the same
+ * square-and-multiply on lower and upper values cut to 240 fraction bits
+ * (x >= 0, so every product is monotone in its operands). */
+static int powg_interval(const unit_cfg *cfg, const sim_dy *in, sim_dy *lo, sim_dy *hi)
+{
+    sim_dy z;
+    sim_dy_int(&z, 0, 0);
+    if (sim_dy_cmp(&in[0], &z) < 0) return -1;
+    for (int side = 0; side < 2; side++) {
+        sim_dy y, x = in[0];
+        sim_dy_int(&y, 1, 0);
+        for (int e = cfg->g; e && !y.ovf && !x.ovf; e >>= 1) {
+            if (e & 1) { sim_dy_mul(&y, &y, &x); sim_dy_cut(&y, 240, side); }
+            if (e > 1) { sim_dy_mul(&x, &x, &x); sim_dy_cut(&x, 240, side); }
+        }
+        if (y.ovf || x.ovf) return -1;
+        *(side ? hi : lo) = y;
+    }
+    return 0;
+}
+
+/* x^g exactly while it fits a sim_dy (-1 beyond: the testbench then
+ * decides with the double pow, or says it cannot). */
+static int powg_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
+{
+    sim_dy y, x = in[0];
+    sim_dy_int(&y, 1, 0);
+    for (int e = cfg->g; e && !y.ovf; e >>= 1) {
+        if (e & 1) sim_dy_mul(&y, &y, &x);
+        if (e > 1) sim_dy_mul(&x, &x, &x);
+    }
+    *out = y;
+    return y.ovf ? -1 : 0;
+}
+
 static void powg_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 {
     char prog[2 * PW_MAX_STEPS + 1];
     double e = INFINITY, m = 1;
+    int eff = f->f[PG_RG].fbits;
     if (powg_prog(cfg->g, prog, sizeof prog) && brdf_holds(f->f[PG_X], 0, 1))
-        e = pw_bound(&unit_powg, f, cfg->rnd, f->f[PG_X], 0, 1, prog, &m);
-    e += unit_qerr(f->f[PG_Y], f->f[PG_RG].fbits, cfg->rnd);
+        e = pw_bound(&unit_powg, f, cfg->rnd, f->f[PG_X], 0, 1, prog, &m, &eff);
+    e += unit_qerr(f->f[PG_Y], eff, cfg->rnd);
     if (!isfinite(e) || !brdf_holds(f->f[PG_Y], 0, m + e)) e = brdf_range_bound(f->f[PG_Y], 1);
     /* An input format that cannot hold [0, 1] wraps inputs anywhere: no bound. */
     per_out[0] = brdf_holds(f->f[PG_X], 0, 1) ? e : INFINITY;
@@ -220,16 +271,17 @@ const unit_desc unit_powg = {
     .seed = "000 sec. III, 001 sec. 3 (the power of D_g)",
     .nsigs = PG_NSIGS,
     .sigs = {
-        { "x", UNIT_SIG_IN, "base, in [0, 1]" },
-        { "y", UNIT_SIG_OUT, "x^g (RG after the last squaring)" },
-        { "mx", UNIT_SIG_INTERNAL, "operand mux: x in the first clock, then RG (drives both inputs)" },
-        { "mul", UNIT_SIG_INTERNAL, "multiplier MUL = MX * MX (a squarer), quantized to its own format" },
-        { "rg", UNIT_SIG_INTERNAL, "register RG <= MUL every clock" } },
+        { .name = "x", .role = UNIT_SIG_IN, .what = "base, in [0, 1]" },
+        { .name = "y", .role = UNIT_SIG_OUT, .what = "x^g (RG after the last squaring)" },
+        { .name = "mx", .role = UNIT_SIG_INTERNAL, .what = "operand mux: x in the first clock, then RG (drives both inputs)" },
+        { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX * MX (a squarer), quantized to its own format" },
+        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" } },
     .nsched = 1,
     .sched = { { "square", "one squaring a clock: log2(g) clocks per item" } },
     .nparams = 1,
     .params = { { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, NULL, "power, a power of two" } },
     .fmt_rule = "every signal u1.(W-1) (values in [0, 1])",
     .formats = powg_formats, .beats = beats1, .build = powg_build,
-    .ideal = powg_ideal, .bound = powg_bound,
+    .ideal = powg_ideal, .bound = powg_bound, .ideal_exact = powg_exact, .ideal_interval = powg_interval,
+    .sig_used = powg_sig_used,
 };

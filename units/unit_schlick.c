@@ -24,24 +24,11 @@
  * F_MSH(1) = 2/1.25^3 = 1.024 for every n, so q and f keep one integer bit.
  */
 #include "units/unit.h"
+#include "units/units_brdf.h"
 #include "vectors/ref_brdf.h"
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stddef.h>
-
-/* shared with unit_div.c */
-sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
-                     const unit_fmts *f, unit_io *io, sim_signal *num, sim_signal *den,
-                     sim_signal *shr, int shr_max, char *err, size_t errlen);
-/* shared with units_brdf.c */
-sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
-                      sim_signal *x, sim_signal *k);
-int    brdf_bitlen(uint64_t v);
-int    brdf_ibits(double x);
-int    brdf_holds(sim_fmt f, double lo, double hi);
-double brdf_range_bound(sim_fmt out, double ideal_max);
-double brdf_const_err(double x, sim_fmt f);
-sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x);
 
 extern const unit_desc unit_schlick, unit_mschlick;
 
@@ -89,6 +76,19 @@ static void sh_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = ref_brdf_schlick(in[0], cfg->n);
 }
 
+/* The same exactly: c / (n - n c + c), c dyadic, n whole. */
+static int sh_ratio(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den)
+{
+    sim_dy n, k, t, z;
+    sim_dy_int(&n, cfg->n, 0);
+    sim_dy_int(&k, cfg->n - 1, 0);
+    sim_dy_mul(&t, &k, &in[0]);
+    sim_dy_sub(den, &n, &t);
+    *num = in[0];
+    sim_dy_int(&z, 0, 0);
+    return den->ovf || sim_dy_cmp(den, &z) <= 0 ? -1 : 0;
+}
+
 /* docs/brdf.md, "schlick": DEN's error e (0 in the default formats) moves
  * c/DEN by at most e/(1 - e), since DEN >= 1 and c <= 1; the quotient is
  * truncated (< 1 LSB of q); f may requantize q. */
@@ -98,8 +98,11 @@ static double sh_bound_core(const unit_cfg *cfg, const unit_fmts *f)
     sim_round r = cfg->rnd;
     double n = cfg->n;
     if (!brdf_holds(F[SH_C], 0, 1) || !brdf_holds(F[SH_K], 0, n - 1)) return INFINITY;
-    double e_t = brdf_const_err(n - 1, F[SH_K]) + unit_qerr(F[SH_T], F[SH_C].fbits + F[SH_K].fbits, r);
-    double e_den = e_t + unit_qerr(F[SH_DEN], F[SH_T].fbits, r);
+    /* the fraction bits T really has: c's plus the constant's (see unit_net.h) */
+    int src_t = F[SH_C].fbits + brdf_const_eff(n - 1, F[SH_K]);
+    int eff_t = src_t < F[SH_T].fbits ? src_t : F[SH_T].fbits;
+    double e_t = brdf_const_err(n - 1, F[SH_K]) + unit_qerr(F[SH_T], src_t, r);
+    double e_den = e_t + unit_qerr(F[SH_DEN], eff_t < 0 ? 0 : eff_t, r);
     if (e_den >= 0.5 || !brdf_holds(F[SH_T], 0, n - 1 + e_t) || !brdf_holds(F[SH_DEN], 1 - e_den, n + e_den))
         return INFINITY;
     double e = e_den / (1 - e_den), qmax = 1 + e;
@@ -124,20 +127,20 @@ const unit_desc unit_schlick = {
     .seed = "004 eq. 2",
     .nsigs = SH_NSIGS,
     .sigs = {
-        { "c", UNIT_SIG_IN, "cos x, in [0, 1]" },
-        { "f", UNIT_SIG_OUT, "F_SH, in [0, 1]" },
-        { "k", UNIT_SIG_INTERNAL, "constant n - 1" },
-        { "t", UNIT_SIG_INTERNAL, "constant multiplier T = (n - 1) c (shift-and-add)" },
-        { "den", UNIT_SIG_INTERNAL, "subtractor DEN = n - T, in [1, n]" },
-        { "q", UNIT_SIG_INTERNAL, "divider's quotient register Q" },
-        { "r", UNIT_SIG_INTERNAL, "divider's remainder register R" } },
+        { .name = "c", .role = UNIT_SIG_IN, .what = "cos x, in [0, 1]" },
+        { .name = "f", .role = UNIT_SIG_OUT, .what = "F_SH, in [0, 1]" },
+        { .name = "k", .role = UNIT_SIG_INTERNAL, .what = "constant n - 1" },
+        { .name = "t", .role = UNIT_SIG_INTERNAL, .what = "constant multiplier T = (n - 1) c (shift-and-add)" },
+        { .name = "den", .role = UNIT_SIG_INTERNAL, .what = "subtractor DEN = n - T, in [1, n]" },
+        { .name = "q", .role = UNIT_SIG_INTERNAL, .what = "divider's quotient register Q" },
+        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "divider's remainder register R" } },
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,
     .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, NULL, "specular exponent n" } },
     .fmt_rule = "c, f, q u1.(W-1); k u(I).0 for the integer n-1; t, den, r uI.(W-1) with I the "
                 "integer bits of n",
-    .formats = sh_formats, .beats = beats1, .build = sh_build, .ideal = sh_ideal, .bound = sh_bound,
+    .formats = sh_formats, .beats = beats1, .build = sh_build, .ideal = sh_ideal, .bound = sh_bound, .ideal_ratio = sh_ratio,
 };
 
 /* --------------------------------------------------------------- mschlick */
@@ -227,6 +230,23 @@ static void ms_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = ref_brdf_mschlick(in[0], cfg->n);
 }
 
+/* The same exactly: 2c / (1.25 u^2), u = n - (n - 1.25) c. */
+static int ms_ratio(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den)
+{
+    sim_dy n, k, t, u, c54, z, two;
+    sim_dy_int(&n, cfg->n, 0);
+    sim_dy_int(&k, 4 * (int64_t)cfg->n - 5, 2);      /* n - 1.25 */
+    sim_dy_int(&c54, 5, 2);                          /* 1.25 */
+    sim_dy_int(&two, 2, 0);
+    sim_dy_mul(&t, &k, &in[0]);
+    sim_dy_sub(&u, &n, &t);
+    sim_dy_mul(&u, &u, &u);
+    sim_dy_mul(den, &c54, &u);
+    sim_dy_mul(num, &two, &in[0]);
+    sim_dy_int(&z, 0, 0);
+    return den->ovf || num->ovf || sim_dy_cmp(den, &z) <= 0 ? -1 : 0;
+}
+
 /* docs/brdf.md, "mschlick". Errors of U (0 in the default formats) move
  * 1.6c/U^2 by at most 1.6 e (2U + e)/(U^2 (U - e)^2), largest at the
  * smallest U. Normalizing is exact; UN's truncation, V's quantization and
@@ -238,10 +258,18 @@ static double ms_bound_core(const unit_cfg *cfg, const unit_fmts *f)
     sim_round r = cfg->rnd;
     double n = cfg->n, k = n - 1.25, umin = fmin(n, 1.25), umax = fmax(n, 1.25);
     if (!brdf_holds(F[MS_C], 0, 1) || !brdf_holds(F[MS_K], fmin(k, 0), fmax(k, 0))) return INFINITY;
-    double e_t = brdf_const_err(k, F[MS_K]) + unit_qerr(F[MS_T], F[MS_C].fbits + F[MS_K].fbits, r);
-    double e_u = e_t + unit_qerr(F[MS_U], F[MS_T].fbits, r);
-    double ulo = umin - e_u;
-    if (ulo < 1 || !brdf_holds(F[MS_T], fmin(k, 0) - e_t, fmax(k, 0) + e_t)
+    int src_t = F[MS_C].fbits + brdf_const_eff(k, F[MS_K]);
+    int eff_t = src_t < F[MS_T].fbits ? src_t : F[MS_T].fbits;
+    double e_t = brdf_const_err(k, F[MS_K]) + unit_qerr(F[MS_T], src_t, r);
+    double q_u = unit_qerr(F[MS_U], eff_t < 0 ? 0 : eff_t, r);
+    double e_u = e_t + q_u;                                                       /* U = n - T */
+    /* trunc lowers T (so raises U) and lowers U by at most q_u: U stays
+     * above umin - q_u; rounding may move either way */
+    double ulo = umin - (r == SIM_RND_TRUNC ? q_u : e_u);
+    /* T = k c keeps k's sign whatever its rounding (a quantization of a
+     * value >= 0 is >= 0): only the far end widens by e_t. A wider c used to
+     * fail this with lo = -e_t and fall back to a made-up bound (issue 9). */
+    if (ulo < 1 || !brdf_holds(F[MS_T], k < 0 ? k - e_t : 0, k < 0 ? 0 : k + e_t)
         || !brdf_holds(F[MS_U], ulo, umax + e_u) || !brdf_holds(F[MS_E], 0, F[MS_U].ibits))
         return INFINITY;
     double e_f = 1.6 * e_u * (2 * umin + e_u) / (umin * umin * ulo * ulo);
@@ -280,22 +308,22 @@ const unit_desc unit_mschlick = {
     .seed = "004 eq. 5",
     .nsigs = MS_NSIGS,
     .sigs = {
-        { "c", UNIT_SIG_IN, "cos x, in [0, 1]" },
-        { "f", UNIT_SIG_OUT, "F_MSH, in [0, 1.024]" },
-        { "k", UNIT_SIG_INTERNAL, "constant n - 1.25" },
-        { "t", UNIT_SIG_INTERNAL, "constant multiplier T = (n - 1.25) c" },
-        { "u", UNIT_SIG_INTERNAL, "subtractor U = n - T, in [1.25, n]" },
-        { "e", UNIT_SIG_INTERNAL, "leading-one detector: bits of U's integer part" },
-        { "un", UNIT_SIG_INTERNAL, "barrel shifter UN = U 2^-E, in [1/2, 1)" },
-        { "v", UNIT_SIG_INTERNAL, "multiplier V = UN * UN" },
-        { "den", UNIT_SIG_INTERNAL, "adder DEN = V + V/4 = 1.25 V" },
-        { "q", UNIT_SIG_INTERNAL, "divider's quotient register Q = 2c 2^-2E / DEN" },
-        { "r", UNIT_SIG_INTERNAL, "divider's remainder register R" } },
+        { .name = "c", .role = UNIT_SIG_IN, .what = "cos x, in [0, 1]" },
+        { .name = "f", .role = UNIT_SIG_OUT, .what = "F_MSH, in [0, 1.024]" },
+        { .name = "k", .role = UNIT_SIG_INTERNAL, .what = "constant n - 1.25" },
+        { .name = "t", .role = UNIT_SIG_INTERNAL, .what = "constant multiplier T = (n - 1.25) c" },
+        { .name = "u", .role = UNIT_SIG_INTERNAL, .what = "subtractor U = n - T, in [1.25, n]" },
+        { .name = "e", .role = UNIT_SIG_INTERNAL, .what = "leading-one detector: bits of U's integer part" },
+        { .name = "un", .role = UNIT_SIG_INTERNAL, .what = "barrel shifter UN = U 2^-E, in [1/2, 1)" },
+        { .name = "v", .role = UNIT_SIG_INTERNAL, .what = "multiplier V = UN * UN" },
+        { .name = "den", .role = UNIT_SIG_INTERNAL, .what = "adder DEN = V + V/4 = 1.25 V" },
+        { .name = "q", .role = UNIT_SIG_INTERNAL, .what = "divider's quotient register Q = 2c 2^-2E / DEN" },
+        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "divider's remainder register R" } },
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,
     .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, NULL, "specular exponent n" } },
     .fmt_rule = "c, f, q u1.(W-1); k uI.2, t uI.(W+1) for n - 1.25; u uI.(W+1) with I the integer "
                 "bits of n; e u(bits of I).0; un, v u0.W; den, r u1.(W+2)",
-    .formats = ms_formats, .beats = beats1, .build = ms_build, .ideal = ms_ideal, .bound = ms_bound,
+    .formats = ms_formats, .beats = beats1, .build = ms_build, .ideal = ms_ideal, .bound = ms_bound, .ideal_ratio = ms_ratio,
 };

@@ -4,11 +4,10 @@
  *   powg, pow_n, d_approx, ward_approx   one-multiplier power engine (unit_powg.c)
  *   div, schlick, mschlick               restoring divider (unit_div.c)
  *
- * There is no units_brdf.h (units/ keeps one header, unit.h): each file
- * that uses a helper repeats its prototype under "shared with
- * units_brdf.c"; the definitions below are the reference.
+ * units_brdf.h declares them (and the power engine's and the divider's
+ * shared functions) for the files that use them.
  */
-#include "units/unit.h"
+#include "units/units_brdf.h"
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stdlib.h>
@@ -134,10 +133,15 @@ sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
     uint64_t mag = kr < 0 ? (uint64_t)0 - (uint64_t)kr : (uint64_t)kr;
     int span, digits = csd_digits(mag, &span);
     int w = x->fmt.width + span, adders = digits - 1;
-    /* A negative k makes one of the adders a subtractor (or, for a power
-     * of two, adds a negator). */
-    if (kr < 0) y->area_ge = sim_area_sub(w) + (adders > 1 ? (adders - 1) * sim_area_add(w) : 0.0);
-    else y->area_ge = adders > 0 ? adders * sim_area_add(w) : 0.0;
+    /* sim_mul charged an array multiplier plus y's quantization logic
+     * (rounding incrementer, saturation clamp): swap only the multiplier
+     * for the network; the quantization logic is still there. A negative
+     * k makes one of the adders a subtractor (or, for a power of two,
+     * adds a negator). */
+    double quant = y->area_ge - sim_area_mul(x->fmt.width, k->fmt.width);
+    double net = kr < 0 ? sim_area_sub(w) + (adders > 1 ? (adders - 1) * sim_area_add(w) : 0.0)
+                        : adders > 0 ? adders * sim_area_add(w) : 0.0;
+    y->area_ge = net + quant;
     return y;
 }
 
@@ -158,11 +162,13 @@ int brdf_holds(sim_fmt f, double lo, double hi)
     return lo >= sim_fmt_real_min(f) && hi <= sim_fmt_real_max(f);
 }
 
-/* The bound when some format cannot hold its signal's range (a user's
- * --fmt override): the output may then wrap anywhere in its format. */
+/* When some format cannot hold its signal's range (a user's --fmt
+ * override) the derivation does not apply: there is no bound (NaN, which
+ * the testbench reports as "no bound"), not a made-up one (issue 9). */
 double brdf_range_bound(sim_fmt out, double ideal_max)
 {
-    return fmax(fabs(sim_fmt_real_min(out)), fabs(sim_fmt_real_max(out))) + fabs(ideal_max);
+    (void)out; (void)ideal_max;
+    return NAN;
 }
 
 /* A hard-wired constant: x truncated (toward minus infinity) to f, so
@@ -171,18 +177,29 @@ double brdf_range_bound(sim_fmt out, double ideal_max)
  * whatever the double arithmetic that made it: 2/0.2^2 - 4 comes out as
  * 45.99999999999999, and truncating it would cost a CSD digit and an adder
  * for nothing. */
-static int64_t const_raw(double x, sim_fmt f)
+static int64_t const_raw(double x, sim_fmt f, int *ovf)
 {
     double y = ldexp(x, f.fbits), r = nearbyint(y);
     if (fabs(y - r) <= 0x1p-30 * fmax(1.0, fabs(y))) x = ldexp(r, -f.fbits);
-    return sim_fx_from_real(x, f, SIM_RND_TRUNC, SIM_OVF_SAT, NULL);
+    return sim_fx_from_real(x, f, SIM_RND_TRUNC, SIM_OVF_SAT, ovf);
 }
+/* A constant that does not fit its format saturates; it counts as one
+ * overflow of its signal, so that the run reports it (issue 9). */
 sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x)
 {
-    return sim_const_raw(c, sc, name, f, const_raw(x, f));
+    int ovf = 0;
+    sim_signal *s = sim_const_raw(c, sc, name, f, const_raw(x, f, &ovf));
+    s->overflows += (uint64_t)ovf;
+    return s;
+}
+int brdf_const_eff(double x, sim_fmt f)
+{
+    int64_t raw = const_raw(x, f, NULL);
+    if (!raw) return -64;
+    return f.fbits - __builtin_ctzll((uint64_t)raw);
 }
 /* |x - the constant brdf_const stores|. */
 double brdf_const_err(double x, sim_fmt f)
 {
-    return fabs(sim_fx_to_real(const_raw(x, f), f) - x);
+    return fabs(sim_fx_to_real(const_raw(x, f, NULL), f) - x);
 }

@@ -319,7 +319,7 @@ static void claim_ward(table *t)
                    : CLAIM_FAILS;
         text(r->note, sizeof r->note,
              "measured: max |poly/exp - 1| where exp > 0.1 (poly clamped at base 0, c < 1 - 8a^2); "
-             "on whole degrees only, as SPEC's check sampled, %.3g%%. a = 0.2 is a sweet spot: "
+             "on whole degrees only (a coarser check), %.3g%%. a = 0.2 is a sweet spot: "
              "the two approximation steps cancel", e1deg);
     }
 }

@@ -42,7 +42,8 @@ size_t claims_compute(claim_result *out, size_t max);
 int claims_verdict_kind(const char *verdict);
 
 /* ---- CPU speed claims (seeds 000/001: D16 4.34x faster than D, Ward
- * approximation more than 2x). Timing-dependent: for the CLI only, never
+ * approximation more than 2x). Timing-dependent: for `make bench` only
+ * (bench/bench_claims.c), never in `shadesim claims`'s verdicts, never
  * asserted in tests. ---- */
 
 typedef enum claims_kernel {

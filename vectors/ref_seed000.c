@@ -359,10 +359,22 @@ static int gen_interp2(const vec_params *p, size_t n, uint64_t seed, vec_set *ou
     return gen_nodes(&m_interp2, ref_nodes_q, 3, p, n, seed, out);
 }
 
+/* t values at the range's edges that a pixel grid k/L never reaches: the
+ * largest t below 1 at 8, 16, 24 and 53 fraction bits, the smallest above
+ * 0, and one LSB either side of 1/2 (in a u1.F format they quantize to the
+ * format's own extremes). */
+static const double horner_t_edges[] = {
+    0x1.fffep-1, 0x1p-16, 0x1.fep-1, 0x1.fffffep-1, 0x1.fffffffffffffp-1,
+    0x1.fffcp-2, 0x1.0002p-1, 0x1p-8,
+};
+
 /* Horner units: the coefficients a coefficient unit would hand them (the
  * named spans split in 4, the 0/1 node patterns that give the coefficient
- * extremes, then random spans; N1 for the cubic), each evaluated at the 8
- * pixels t = k/8 of an interval of L = 8. */
+ * extremes, then random spans; N1 for the cubic), each at 8 positions t:
+ * the pixels t = k/8 of an interval of L = 8 for even k, and for odd k a t
+ * drawn uniformly from all of [0, 1) (the first rows: the edges above), so
+ * that t's whole range is exercised and a search for t's format cannot
+ * fit the pixel grid alone. */
 static int gen_horner(const vec_model *m, int cubic, size_t n, uint64_t seed,
                       vec_set *out)
 {
@@ -372,15 +384,21 @@ static int gen_horner(const vec_model *m, int cubic, size_t n, uint64_t seed,
     node_stream ns;
     node_stream_init(&ns, cubic ? ref_nodes_n1 : ref_nodes_q, cubic ? 4 : 3,
                      splits_4, 1, model_seed(m->name, seed));
+    vec_rng rt = { model_seed(m->name, seed) ^ 0x9e3779b97f4a7c15ull };
     double I[4], v[2 * VEC_MAX_PORTS];
     int nc = cubic ? 4 : 3;
+    size_t ne = sizeof horner_t_edges / sizeof horner_t_edges[0], odd = 0;
     for (size_t r = 0; r < n; r++) {
         if (r % L == 0) {
             node_next(&ns, I);
             if (cubic) ref_coef3_n1(I, v);
             else ref_coef2(I, v);
         }
-        v[nc] = (double)(r % L) / L;
+        if (r % 2 == 0) v[nc] = (double)(r % L) / L;
+        else {
+            v[nc] = odd < ne ? horner_t_edges[odd] : vec_rng_unit(&rt);
+            odd++;
+        }
         if (push_row(m, NULL, out, v)) return -1;
     }
     return 0;

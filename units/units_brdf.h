@@ -1,0 +1,49 @@
+/* units_brdf.h - pieces of hardware and arithmetic the BRDF units share
+ * (units_brdf.c: brdf_*; unit_powg.c: the power engine pw_*; unit_div.c:
+ * the restoring divider dv_*). Internal to units/: the rest of the program
+ * sees units only through unit.h. One header, so that a definition and its
+ * users cannot drift apart (the compiler checks both against it). */
+#ifndef UNITS_BRDF_H
+#define UNITS_BRDF_H
+#include "units/unit.h"
+
+/* ---- units_brdf.c ---- */
+/* Bits of v (0 for 0). */
+int    brdf_bitlen(uint64_t v);
+/* Step counter of a multi-clock unit: in_valid, in_ready, out_valid, and
+ * the registered "next step" and "first step" signals. */
+void   brdf_seq(sim_ctx *c, sim_scope *sc, sim_signal *clk, int nsteps, unit_io *io,
+                sim_signal **next_out, sim_signal **first_out);
+/* A registered decoder of a step-indexed control table of n entries. */
+sim_signal *brdf_decode(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *name,
+                        sim_signal *next, const uint8_t *table, int n);
+/* y = x * k, k a constant: a shift-and-add network (CSD digits of k); its
+ * area is the adders' plus y's quantization logic (rounding, clamp). */
+sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
+                      sim_signal *x, sim_signal *k);
+int    brdf_ibits(double x);
+int    brdf_holds(sim_fmt f, double lo, double hi);
+double brdf_range_bound(sim_fmt out, double ideal_max);
+sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x);
+double brdf_const_err(double x, sim_fmt f);
+/* Fraction bits the constant brdf_const stores really has (fewer than
+ * f's when its raw ends in zeros; -64 for 0): what a product with it
+ * carries, so that widening the constant's format adds no quantization. */
+int    brdf_const_eff(double x, sim_fmt f);
+
+/* ---- unit_powg.c: the one-multiplier power engine ---- */
+sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
+                     const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog);
+/* in_fmt: the input's format with fbits the bits it really has; *eff_out
+ * (may be NULL): those of RG after the program. */
+double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
+                double e_in, double m_in, const char *prog, double *m_out, int *eff_out);
+/* Whether the engine running prog builds signal i (its operand muxes
+ * exist only where an operand has more than one source); 1 for others. */
+int    pw_sig_built(const unit_desc *u, const char *prog, int i);
+
+/* ---- unit_div.c: the restoring divider ---- */
+sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
+                     const unit_fmts *f, unit_io *io, sim_signal *num, sim_signal *den,
+                     sim_signal *shr, int shr_max, char *err, size_t errlen);
+#endif
