@@ -7,6 +7,7 @@
  */
 #include "sim/sim_prim.h"
 #include "sim/sim_area.h"
+#include <string.h>
 
 typedef struct prim {
     /* what every evaluation reads first */
@@ -24,6 +25,7 @@ typedef struct prim {
     sim_signal *const *in;
     sim_logic_fn fn;
     void       *user;
+    sim_signal *clk;             /* register's clock (for sim_prim_describe) */
 } prim;
 
 int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, sim_ovf o)
@@ -184,7 +186,7 @@ sim_signal *sim_reg(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 {
     sim_signal *y = sim_signal_new(c, sc, name, fmt, SIM_KIND_REG);
     prim *p = prim_new(c, y);
-    p->a = d; p->c = en; p->rst = rst;
+    p->a = d; p->c = en; p->rst = rst; p->clk = clk;
     p->rst_raw = sim_fx_canon(rst_raw, fmt);
     y->cur = y->nxt = p->rst_raw;
     sim_proc *pr = prim_proc(c, y, reg_eval, p);
@@ -435,4 +437,32 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     for (int i = 0; i < n; i++) sim_sensitive(pr, copy[i], SIM_EDGE_ANY);
     y->area_ge = area_ge;
     return y;
+}
+
+/* ------------------------------------------------------------ description */
+
+/* Whether fn is one of this file's evaluations (the process is a prim). */
+static int is_prim_fn(sim_proc_fn fn)
+{
+    static const sim_proc_fn fns[] = { reg_eval, copy_slow, mux_eval, bk_eval, add_eval, sub_eval,
+                                       add_fast_al, sub_fast_al, mul_eval, shift_eval, shift_fast,
+                                       logic_eval };
+    for (size_t i = 0; i < sizeof fns / sizeof fns[0]; i++) if (fns[i] == fn) return 1;
+    return 0;
+}
+
+int sim_prim_describe(const sim_signal *y, sim_prim_info *out)
+{
+    memset(out, 0, sizeof *out);
+    out->kind = (sim_kind)y->kind;
+    if (y->kind == SIM_KIND_CONST) { out->r = SIM_RND_TRUNC; out->o = SIM_OVF_WRAP; return 0; }
+    if (!y->driver || !is_prim_fn(y->driver->fn)) return -1;
+    const prim *p = y->driver->data;
+    out->a = p->a; out->b = p->b; out->c = p->c;
+    out->rst = p->rst; out->rst_raw = p->rst_raw; out->clk = p->clk;
+    out->n = p->n; out->in = p->in; out->fn = p->fn; out->user = p->user;
+    out->r = p->r; out->o = p->o;
+    /* sim_shift kept f = fbits(x) - sh as src_f - sa (one of them 0) */
+    if (y->kind == SIM_KIND_SHIFT) out->shift = p->a->fmt.fbits - (p->src_f - p->sa);
+    return 0;
 }

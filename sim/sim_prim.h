@@ -73,4 +73,27 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
  * units that model an element the primitives do not cover. */
 int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits,
                        sim_round r, sim_ovf o);
+/* What an element is, for exporters (Verilog): read from the element's own
+ * record, so the kernel's evaluation is untouched. kind is the output
+ * signal's kind; a, b: operands (register: D; mux: unused, see in);
+ * c: register enable, mux select, block-key pass (NULL: none); rst and
+ * rst_raw: a register's synchronous reset; clk: the register's clock;
+ * shift: sim_shift's sh; n, in: mux inputs or logic inputs; fn, user:
+ * the logic function; r, o: the element's quantization modes. A WIRE with
+ * a driver is a sim_assign of a. */
+typedef struct sim_prim_info {
+    sim_kind    kind;
+    sim_signal *a, *b, *c, *rst, *clk;
+    int64_t     rst_raw;
+    int         shift;
+    int         n;
+    sim_signal *const *in;
+    sim_logic_fn fn;
+    void       *user;
+    sim_round   r;
+    sim_ovf     o;
+} sim_prim_info;
+/* 0 and *out filled for a signal driven by a primitive (or a constant);
+ * -1 for an input, a clock, or a signal a user process drives. */
+int sim_prim_describe(const sim_signal *y, sim_prim_info *out);
 #endif

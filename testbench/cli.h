@@ -25,6 +25,9 @@ int cli_claims(int argc, char **argv);
 int cli_sweep(int argc, char **argv);
 int cli_merge(int argc, char **argv);
 int cli_scene(int argc, char **argv);
+int cli_verilog(int argc, char **argv);
+int cli_cosim(int argc, char **argv);
+int cli_synth(int argc, char **argv);
 
 /* Print "shadesim: " + message + newline to stderr; returns CLI_USAGE. */
 int cli_usage_error(const char *fmt, ...);

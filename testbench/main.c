@@ -10,6 +10,9 @@ const cli_verb cli_verbs[] = {
     { "claims",  cli_claims,  "each numerical claim of the seeds next to what we measure" },
     { "sweep",   cli_sweep,   "a unit over bit widths and settings: CSV, charts, Pareto front, target search" },
     { "scene",   cli_scene,   "render a scene through the simulated interpolation hardware: images, NMSE, clocks, area" },
+    { "verilog", cli_verilog, "a unit as synthesizable Verilog-2001, bit-exact with the simulation, and its testbench" },
+    { "cosim",   cli_cosim,   "the exported Verilog in Icarus or Verilator against shadesim, raw for raw, cycle for cycle" },
+    { "synth",   cli_synth,   "Yosys cell counts of the exported Verilog beside shadesim's area estimate" },
     { "merge",   cli_merge,   "join the CSVs of a sharded sweep into the whole sweep's CSV" },
     { NULL, NULL, NULL }
 };

@@ -1,0 +1,253 @@
+/* cli_verilog.c - the verbs from simulation to RTL: verilog (export),
+ * cosim (the export against shadesim in Icarus Verilog or Verilator,
+ * every output raw and its cycle), synth (Yosys cell counts beside the
+ * area model). */
+#include "testbench/cli.h"
+#include "testbench/tb_verilog.h"
+#include "sim/sim_out.h"
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
+
+static int stdout_done(int rc)
+{
+    char e[300];
+    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    return rc;
+}
+
+static int have_tool(const char *tool)
+{
+    char cmd[200];
+    snprintf(cmd, sizeof cmd, "command -v %s >/dev/null 2>&1", tool);
+    return system(cmd) == 0;
+}
+
+/* Shared parsing: UNIT, the unit options, and the verb's own options
+ * (handled by own(); returns 1 consumed, 0 not ours, -1 error). */
+typedef int (*own_fn)(void *st, int argc, char **argv, int *i);
+static int parse(const char *verb, int argc, char **argv, cli_unit_opts *o, own_fn own, void *st)
+{
+    int have = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!have && argv[i][0] != '-') {
+            if (cli_unit_select(o, argv[i])) return CLI_USAGE;
+            have = 1;
+            continue;
+        }
+        int r = own ? own(st, argc, argv, &i) : 0;
+        if (r < 0) return CLI_USAGE;
+        if (r) continue;
+        if (have) {
+            r = cli_unit_option(o, argc, argv, &i);
+            if (r < 0) return CLI_USAGE;
+            if (r) continue;
+        }
+        return cli_usage_error("%s: unexpected argument '%s' (see shadesim %s --help)", verb, argv[i], verb);
+    }
+    if (!have) return cli_usage_error("%s: no unit given (shadesim list shows the units)", verb);
+    return CLI_OK;
+}
+
+static int formats(cli_unit_opts *o, unit_fmts *fm)
+{
+    char err[600];
+    if (tb_formats(o->u, &o->cfg, o->fmt, o->nfmt, fm, err, sizeof err)) return cli_usage_error("%s", err);
+    return CLI_OK;
+}
+
+/* ----------------------------------------------------------------- verilog */
+
+static const char verilog_help[] =
+    "usage: shadesim verilog UNIT [options] -o DIR\n"
+    "Write DIR/UNIT.v, synthesizable Verilog-2001 of the unit exactly as shadesim\n"
+    "builds it (same formats, rounding, overflow, schedule and handshake), and\n"
+    "DIR/UNIT_tb.v, a testbench that reads `shadesim run UNIT --stimulus-hex FILE`\n"
+    "stimulus with $readmemh and writes each output beat with its cycle.\n"
+    "options:\n"
+    "  -o DIR               output folder (made if missing)\n";
+
+static int own_o(void *st, int argc, char **argv, int *i)
+{
+    const char **dir = st;
+    if (strcmp(argv[*i], "-o")) return 0;
+    if (*i + 1 >= argc) { cli_usage_error("-o needs a folder"); return -1; }
+    *dir = argv[++*i];
+    return 1;
+}
+
+int cli_verilog(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (is_help(argv[i])) { fputs(verilog_help, stdout); fputs(cli_unit_opts_help, stdout); return stdout_done(CLI_OK); }
+    cli_unit_opts o;
+    const char *dir = NULL;
+    int rc = parse("verilog", argc, argv, &o, own_o, &dir);
+    if (rc) return rc;
+    if (!dir) return cli_usage_error("verilog: -o DIR is required");
+    unit_fmts fm;
+    if (formats(&o, &fm)) return CLI_USAGE;
+    char err[600];
+    if (tb_verilog_export(o.u, &o.cfg, &fm, dir, err, sizeof err)) return cli_usage_error("%s", err);
+    return stdout_done(CLI_OK);
+}
+
+/* ------------------------------------------------------------------- cosim */
+
+static const char cosim_help[] =
+    "usage: shadesim cosim UNIT [options] [--sim icarus|verilator] [-n N] [--keep DIR]\n"
+    "Export the unit (as `shadesim verilog`), run the same stimulus in shadesim and in\n"
+    "the external simulator, and compare every output raw and the cycle of every beat.\n"
+    "Prints \"bit-exact, N items, M clocks\" or the first mismatch; exit 1 on a mismatch.\n"
+    "options:\n"
+    "  --sim NAME           icarus (default; Debian package iverilog) or verilator\n"
+    "  -n N                 items (default 50), generated from the float reference,\n"
+    "                       unless --vectors FILE is given\n"
+    "  --seed S             seed of the generated items (default 1)\n"
+    "  --keep DIR           leave the export, stimulus and results in DIR\n";
+
+typedef struct cosim_st { const char *sim, *keep; long n; unsigned long long seed; } cosim_st;
+
+static int own_cosim(void *stp, int argc, char **argv, int *i)
+{
+    cosim_st *st = stp;
+    const char *a = argv[*i];
+    if (strcmp(a, "--sim") && strcmp(a, "-n") && strcmp(a, "--keep") && strcmp(a, "--seed")) return 0;
+    if (*i + 1 >= argc) { cli_usage_error("%s needs a value", a); return -1; }
+    const char *v = argv[++*i];
+    if (!strcmp(a, "--sim")) {
+        if (strcmp(v, "icarus") && strcmp(v, "verilator")) { cli_usage_error("--sim %s: expected icarus or verilator", v); return -1; }
+        st->sim = v;
+    } else if (!strcmp(a, "--keep")) st->keep = v;
+    else {
+        char *end;
+        unsigned long long x = strtoull(v, &end, 10);
+        if (!*v || *end || *v == '-' || (a[1] == 'n' && (x < 1 || x > 1000000))) {
+            cli_usage_error("%s %s: expected a whole number%s", a, v, a[1] == 'n' ? " 1..1000000" : "");
+            return -1;
+        }
+        if (a[1] == 'n') st->n = (long)x; else st->seed = x;
+    }
+    return 1;
+}
+
+/* Remove a folder we made and the files in it (one level). */
+static void rm_tree(const char *dir)
+{
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    if (system(cmd) != 0) { /* a temporary left behind is harmless */ }
+}
+
+/* First differing line of two files: 0 same; else line number (1-based) and both lines. */
+static long first_diff(const char *pa, const char *pb, char *la, char *lb, size_t len, long *lines)
+{
+    FILE *a = fopen(pa, "r"), *b = fopen(pb, "r");
+    long n = 0, bad = 0;
+    la[0] = lb[0] = 0;
+    while (a && b) {
+        char *x = fgets(la, (int)len, a), *y = fgets(lb, (int)len, b);
+        if (!x && !y) break;
+        n++;
+        if (!x) la[0] = 0;
+        if (!y) lb[0] = 0;
+        if (!x || !y || strcmp(la, lb)) { bad = n; break; }
+    }
+    if (!a || !b) bad = -1;
+    if (a) fclose(a);
+    if (b) fclose(b);
+    la[strcspn(la, "\n")] = 0;
+    lb[strcspn(lb, "\n")] = 0;
+    *lines = n;
+    return bad;
+}
+
+int cli_cosim(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (is_help(argv[i])) { fputs(cosim_help, stdout); fputs(cli_unit_opts_help, stdout); return stdout_done(CLI_OK); }
+    cli_unit_opts o;
+    cosim_st st = { "icarus", NULL, 50, 1 };
+    int rc = parse("cosim", argc, argv, &o, own_cosim, &st);
+    if (rc) return rc;
+    int icarus = !strcmp(st.sim, "icarus");
+    if (icarus && (!have_tool("iverilog") || !have_tool("vvp")))
+        return cli_usage_error("cosim: iverilog not found (install the Debian package iverilog)");
+    if (!icarus && !have_tool("verilator"))
+        return cli_usage_error("cosim: verilator not found (install the Debian package verilator)");
+    unit_fmts fm;
+    if (formats(&o, &fm)) return CLI_USAGE;
+    char err[600];
+    vec_set vs;
+    if (o.vectors) { if (cli_load_vectors(&o, &vs)) return CLI_USAGE; }
+    else if (cli_make_vectors(o.u, &o.cfg, (size_t)st.n, st.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
+
+    char tmpl[] = "/tmp/shadesim_cosim_XXXXXX";
+    const char *dir = st.keep;
+    if (!dir) {
+        if (!mkdtemp(tmpl)) { vec_set_free(&vs); return cli_usage_error("cosim: cannot make a temporary folder"); }
+        dir = tmpl;
+    }
+    tb_result r;
+    memset(&r, 0, sizeof r);
+    int t = tb_run(o.u, &o.cfg, &fm, &vs, NULL, &r, err, sizeof err);
+    if (t != TB_OK) { rc = t == TB_BADINPUT ? cli_usage_error("%s", err) : (fprintf(stderr, "shadesim: %s\n", err), CLI_FAIL); goto done; }
+    if (tb_verilog_export(o.u, &o.cfg, &fm, dir, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    size_t pl = strlen(dir) + 64;
+    char *in = malloc(pl), *ex = malloc(pl), *res = malloc(pl), *cmd = malloc(8 * pl + 1024);
+    if (!in || !ex || !res || !cmd) { free(in); free(ex); free(res); free(cmd); rc = cli_usage_error("out of memory"); goto done; }
+    snprintf(in, pl, "%s/stimulus.hex", dir);
+    snprintf(ex, pl, "%s/stimulus.hex.expect", dir);
+    snprintf(res, pl, "%s/%s.out", dir, st.sim);
+    if (tb_stimulus_write(o.u, &o.cfg, &fm, &vs, &r, in, ex, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done2; }
+    size_t words = vs.n_rows * (size_t)unit_n_in(o.u);
+    const char *u = o.u->name;
+    if (icarus)
+        snprintf(cmd, 8 * pl + 1024,
+                 "cd '%s' && iverilog -g2005 -Wall -P %s_tb.MAXWORDS=%zu -o %s_tb.vvp %s_tb.v %s.v >iverilog.log 2>&1 && "
+                 "vvp -n %s_tb.vvp +in=stimulus.hex +items=%zu +out=icarus.out >vvp.log 2>&1",
+                 dir, u, words, u, u, u, u, vs.n_rows);
+    else
+        snprintf(cmd, 8 * pl + 1024,
+                 "cd '%s' && verilator --binary -j 2 -Wno-fatal -Wno-lint -Wno-style -GMAXWORDS=%zu --top-module %s_tb "
+                 "-o %s_vtb --Mdir obj_verilator %s_tb.v %s.v >verilator.log 2>&1 && "
+                 "obj_verilator/%s_vtb +in=stimulus.hex +items=%zu +out=verilator.out >vtb.log 2>&1",
+                 dir, words, u, u, u, u, u, vs.n_rows);
+    if (system(cmd) != 0) {
+        fprintf(stderr, "shadesim: cosim: %s failed (its log is in the folder: use --keep DIR)\n", st.sim);
+        rc = CLI_FAIL;
+        goto done2;
+    }
+    char la[1024], lb[1024];
+    long lines = 0;
+    long bad = first_diff(ex, res, la, lb, sizeof la, &lines);
+    size_t nb = r.vectors * (size_t)r.beats;
+    if (bad == 0 && (size_t)lines == nb) {
+        printf("bit-exact, %zu items, %llu clocks (%s)\n", r.vectors, (unsigned long long)r.cycles, st.sim);
+        rc = CLI_OK;
+    } else if (bad < 0) {
+        fprintf(stderr, "shadesim: cosim: %s wrote no results\n", st.sim);
+        rc = CLI_FAIL;
+    } else {
+        long beat = bad ? bad - 1 : lines;
+        printf("MISMATCH at item %ld beat %ld: shadesim \"%s\", %s \"%s\" (cycle, then output raws in hex)\n",
+               beat / r.beats, beat % r.beats, la, st.sim, lb[0] ? lb : "nothing");
+        rc = CLI_FAIL;
+    }
+done2:
+    free(in); free(ex); free(res); free(cmd);
+done:
+    tb_result_free(&r);
+    vec_set_free(&vs);
+    if (!st.keep) rm_tree(dir);
+    return stdout_done(rc);
+}
+
+int cli_synth(int argc, char **argv)
+{
+    (void)argc; (void)argv;
+    return cli_usage_error("synth: not yet");
+}
