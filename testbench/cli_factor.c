@@ -1,0 +1,284 @@
+/* cli_factor.c - shadesim factor: a BRDF factorized into lambda(d0) pi(h)
+ * lambda(di) (vectors/ref_factor.c), its error against the BRDF and
+ * against the rank-K sum-of-products baseline, the maps as PNG and raw
+ * floats, and a study over resolutions and sample counts. */
+#include "testbench/cli.h"
+#include "vectors/ref_factor.h"
+#include "scene/scene.h"
+#include "sim/sim_out.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static const char factor_help[] =
+    "usage: shadesim factor BRDF [options]\n\n"
+    "Factorizes a BRDF as f(d0, di) ~ lambda(d0) pi(h) lambda(di), h = norm(d0 + di)\n"
+    "(homomorphic factorization, Romanyuk, Vyatkin, Voitko, Romanyuk 2020): both\n"
+    "factors are R x R textures over the hemisphere in the parabolic map\n"
+    "(u, v) = (x, y) / (1 + z); the fit is linear least squares on log f with a\n"
+    "smoothness term, solved by conjugate gradients. Prints the error of the\n"
+    "factorization against the BRDF on held-out direction pairs, next to the\n"
+    "rank-1..K sum-of-products (SVD) approximation in the half/difference\n"
+    "parameterization. docs/factorization.md explains every figure.\n\n"
+    "BRDF: blinn, ct (Cook-Torrance), ward (isotropic), ward-aniso.\n\n"
+    "options:\n"
+    "  --res R          texture side, 2..256 (default 32)\n"
+    "  --samples N      direction pairs sampled, 1..10000000 (default 24 R^2)\n"
+    "  --smooth S       smoothness weight >= 0 (default 0.3)\n"
+    "  --floor F        samples below F times the 99th percentile are left out of\n"
+    "                   the fit and of the relative errors (default 1e-4)\n"
+    "  --param K=V      BRDF parameter (repeatable): blinn e; ct dist=beckmann|d4|\n"
+    "                   d8|d16|schlick|mschlick, m, n, fresnel=none|schlick, f0,\n"
+    "                   shadow=0|1; ward alpha (= ax = ay), ax, ay, rho\n"
+    "  --svd K          rank of the baseline, 0..8 (default 4; its resolution is\n"
+    "                   min(R, 32))\n"
+    "  --heldout N      held-out pairs for the errors (default 20000)\n"
+    "  --seed N         sampling seed (default 1)\n"
+    "  --study          also DIR/study.csv: the errors over R = 8, 16, 32, 64 and\n"
+    "                   over samples = 6, 24, 96 R^2 at the chosen R\n"
+    "  -o DIR           output folder (default out/factor-BRDF; created): lambda.png,\n"
+    "                   pi.png (log-scaled grey, the range in report.csv),\n"
+    "                   factors.f32 (little-endian float32: lambda's R*R texels,\n"
+    "                   then pi's, rows of v from -1, u from -1), report.csv\n\n"
+    "exit status: 0 done, 2 bad usage or input.\n";
+
+static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
+
+static int parse_long(const char *opt, const char *s, long lo, long hi, long *v)
+{
+    char *end;
+    errno = 0;
+    long x = strtol(s, &end, 10);
+    if (!*s || *end || errno || x < lo || x > hi)
+        return cli_usage_error("%s %s: expected a whole number in %ld..%ld", opt, s, lo, hi);
+    *v = x;
+    return CLI_OK;
+}
+
+static int parse_real(const char *opt, const char *s, double *v)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(s, &end);
+    if (!*s || *end || errno || !isfinite(x) || x < 0)
+        return cli_usage_error("%s %s: expected a finite number >= 0", opt, s);
+    *v = x;
+    return CLI_OK;
+}
+
+static int make_dir(const char *dir)
+{
+    char p[600];
+    snprintf(p, sizeof p, "%s", dir);
+    for (char *s = p + 1; ; s++) {
+        char ch = *s;
+        if (ch == '/' || ch == 0) {
+            *s = 0;
+            if (mkdir(p, 0777) && errno != EEXIST)
+                return cli_usage_error("-o %s: cannot create folder %s: %s", dir, p, strerror(errno));
+            *s = ch;
+        }
+        if (!ch) break;
+    }
+    return CLI_OK;
+}
+
+/* A map as grey PNG: log of the texel scaled from [lo, hi] to 0..255,
+ * each texel a square of k pixels (k: the image at least 256 wide). */
+static int write_map_png(const char *path, const double *logtex, int R, double *lo_out, double *hi_out,
+                         char *err, size_t errlen)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (int j = 0; j < R * R; j++) {
+        if (logtex[j] < lo) lo = logtex[j];
+        if (logtex[j] > hi) hi = logtex[j];
+    }
+    *lo_out = lo; *hi_out = hi;
+    int k = R >= 256 ? 1 : (256 + R - 1) / R, W = R * k;
+    uint8_t *pix = malloc((size_t)W * W);
+    if (!pix) { snprintf(err, errlen, "out of memory"); return -1; }
+    for (int y = 0; y < W; y++)
+        for (int x = 0; x < W; x++) {
+            /* image rows top to bottom = v from +1 to -1 */
+            double t = hi > lo ? (logtex[(R - 1 - y / k) * R + x / k] - lo) / (hi - lo) : 0.5;
+            pix[(size_t)y * W + x] = (uint8_t)lrint(255 * t);
+        }
+    uint8_t *png = NULL;
+    size_t len = 0;
+    int rc = scn_png_encode(W, W, 1, pix, &png, &len);
+    free(pix);
+    if (rc) { snprintf(err, errlen, "out of memory"); return -1; }
+    rc = sim_out_write_all(path, png, len, err, errlen);
+    free(png);
+    return rc;
+}
+
+static int write_f32(const char *path, const rf_fact *f, char *err, size_t errlen)
+{
+    size_t T = (size_t)f->R * f->R;
+    uint8_t *buf = malloc(8 * T);
+    if (!buf) { snprintf(err, errlen, "out of memory"); return -1; }
+    for (size_t j = 0; j < 2 * T; j++) {
+        float v = (float)(j < T ? f->lam[j] : f->pi[j - T]);
+        uint32_t u;
+        memcpy(&u, &v, 4);
+        for (int b = 0; b < 4; b++) buf[4 * j + b] = (uint8_t)(u >> (8 * b));
+    }
+    int rc = sim_out_write_all(path, buf, 8 * T, err, errlen);
+    free(buf);
+    return rc;
+}
+
+static void csv_row(FILE *f, const char *method, int R, long samples, int rank, const rf_err *e)
+{
+    fprintf(f, "%s,%d,%ld,%d,%.6g,%.6g,%.6g,%.2f,%.2f,%.6g,%.6g,%ld,%ld\n", method, R, samples, rank, e->rel_rms,
+            e->nrms, e->rel_max, e->max_t0, e->max_ti, e->neg_share, e->recip_max, e->n, e->n_zero);
+}
+
+static const char csv_head[] =
+    "method,res,samples,rank,rel_rms,nrms,rel_max,rel_max_theta0,rel_max_thetai,neg_share,recip_max,heldout,under_floor\n";
+
+static void print_line(const char *method, const rf_err *e)
+{
+    printf("  %-14s rel RMS %8.4f  NRMS %8.4f  max rel %9.3f at (%4.1f, %4.1f) deg  negative %6.2f%%  reciprocity %.1e\n",
+           method, e->rel_rms, e->nrms, e->rel_max, e->max_t0, e->max_ti, 100 * e->neg_share, e->recip_max);
+}
+
+/* One factorization and its two error rows (texture lookups, log model). */
+static int fact_rows(rf_brdf *b, const rf_opts *o, long heldout, double flr, FILE *csv, char *err, size_t errlen)
+{
+    rf_fact f;
+    if (rf_factorize(rf_brdf_fn, b, o, &f, err, errlen)) return -1;
+    rf_err e;
+    long ns = o->samples > 0 ? o->samples : 24L * o->R * o->R;
+    rf_error(rf_brdf_fn, b, rf_fact_fn, &f, heldout, o->seed + 1000, flr, &e);
+    csv_row(csv, "factor", o->R, ns, 1, &e);
+    rf_error(rf_brdf_fn, b, rf_fact_log_fn, &f, heldout, o->seed + 1000, flr, &e);
+    csv_row(csv, "factor-log", o->R, ns, 1, &e);
+    rf_fact_free(&f);
+    return 0;
+}
+
+int cli_factor(int argc, char **argv)
+{
+    if (argc < 2 || is_help(argv[1])) {
+        fputs(factor_help, argc < 2 ? stderr : stdout);
+        return argc < 2 ? CLI_USAGE : CLI_OK;
+    }
+    char err[600];
+    rf_brdf b;
+    if (rf_brdf_init(&b, argv[1], err, sizeof err)) return cli_usage_error("%s", err);
+    rf_opts o;
+    rf_opts_default(&o);
+    long svd_k = 4, heldout = 20000, v;
+    int study = 0;
+    const char *dir = NULL;
+    for (int i = 2; i < argc; i++) {
+        const char *a = argv[i];
+        if (is_help(a)) { fputs(factor_help, stdout); return CLI_OK; }
+        if (!strcmp(a, "--study")) { study = 1; continue; }
+        if (i + 1 >= argc) return cli_usage_error("%s: missing value (see shadesim factor --help)", a);
+        const char *val = argv[++i];
+        if (!strcmp(a, "--res")) { if (parse_long(a, val, 2, 256, &v)) return CLI_USAGE; o.R = (int)v; }
+        else if (!strcmp(a, "--samples")) { if (parse_long(a, val, 1, 10000000, &o.samples)) return CLI_USAGE; }
+        else if (!strcmp(a, "--smooth")) { if (parse_real(a, val, &o.smooth)) return CLI_USAGE; }
+        else if (!strcmp(a, "--floor")) {
+            if (parse_real(a, val, &o.floor)) return CLI_USAGE;
+            if (o.floor >= 1) return cli_usage_error("--floor %s: expected a number in [0, 1)", val);
+        }
+        else if (!strcmp(a, "--param")) { if (rf_brdf_param(&b, val, err, sizeof err)) return cli_usage_error("%s", err); }
+        else if (!strcmp(a, "--svd")) { if (parse_long(a, val, 0, 8, &svd_k)) return CLI_USAGE; }
+        else if (!strcmp(a, "--heldout")) { if (parse_long(a, val, 100, 10000000, &heldout)) return CLI_USAGE; }
+        else if (!strcmp(a, "--seed")) { if (parse_long(a, val, 0, 1000000000, &v)) return CLI_USAGE; o.seed = (uint64_t)v; }
+        else if (!strcmp(a, "-o")) dir = val;
+        else return cli_usage_error("%s: unknown option (see shadesim factor --help)", a);
+    }
+    char dbuf[300];
+    if (!dir) { snprintf(dbuf, sizeof dbuf, "out/factor-%s", argv[1]); dir = dbuf; }
+    if (make_dir(dir)) return CLI_USAGE;
+
+    rf_fact f;
+    if (rf_factorize(rf_brdf_fn, &b, &o, &f, err, sizeof err)) return cli_usage_error("%s", err);
+    char desc[160], path[700];
+    rf_brdf_describe(&b, desc, sizeof desc);
+    long ns = o.samples > 0 ? o.samples : 24L * o.R * o.R;
+    printf("factor %s: %dx%d maps, %ld samples (%ld in the fit, %ld under the floor, %ld without a mirror),\n"
+           "  smoothness %g, CG %d iterations, relative residual %.1e\n",
+           desc, o.R, o.R, ns, f.used, f.floored, f.skipped, o.smooth, f.iters, f.relres);
+    printf("  lambda in [%.4g, %.4g], pi in [%.4g, %.4g] over the disk's texels\n", f.lam_min, f.lam_max, f.pi_min, f.pi_max);
+
+    char *csvbuf = NULL;
+    size_t csvlen = 0;
+    FILE *csv = open_memstream(&csvbuf, &csvlen);
+    if (!csv) { rf_fact_free(&f); return cli_usage_error("out of memory"); }
+    fputs(csv_head, csv);
+    rf_err e;
+    uint64_t hseed = o.seed + 1000;
+    rf_error(rf_brdf_fn, &b, rf_fact_fn, &f, heldout, hseed, o.floor, &e);
+    print_line("factorized", &e);
+    csv_row(csv, "factor", o.R, ns, 1, &e);
+    rf_error(rf_brdf_fn, &b, rf_fact_log_fn, &f, heldout, hseed, o.floor, &e);
+    print_line("factorized-log", &e);
+    csv_row(csv, "factor-log", o.R, ns, 1, &e);
+    int rc = CLI_OK;
+    if (svd_k > 0) {
+        rf_svd s;
+        int rs = o.R < 32 ? o.R : 32;
+        if (rf_svd_fit(rf_brdf_fn, &b, rs, (int)svd_k, &s, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+        for (int k = 1; k <= svd_k; k++) {
+            char name[32];
+            s.k_used = k;
+            rf_error(rf_brdf_fn, &b, rf_svd_fn, &s, heldout, hseed, o.floor, &e);
+            snprintf(name, sizeof name, "svd rank %d", k);
+            print_line(name, &e);
+            csv_row(csv, "svd", rs, 0, k, &e);
+        }
+        rf_svd_free(&s);
+    }
+    double llo, lhi, plo, phi;
+    snprintf(path, sizeof path, "%s/lambda.png", dir);
+    if (write_map_png(path, f.llam, o.R, &llo, &lhi, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    snprintf(path, sizeof path, "%s/pi.png", dir);
+    if (write_map_png(path, f.lpi, o.R, &plo, &phi, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    fprintf(csv, "# lambda.png: grey 0..255 = log lambda %.6g..%.6g; pi.png: log pi %.6g..%.6g\n", llo, lhi, plo, phi);
+    snprintf(path, sizeof path, "%s/factors.f32", dir);
+    if (write_f32(path, &f, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    if (study) {
+        char *sb = NULL;
+        size_t sl = 0;
+        FILE *sf = open_memstream(&sb, &sl);
+        if (!sf) { rc = cli_usage_error("out of memory"); goto done; }
+        fputs(csv_head, sf);
+        static const int res[] = { 8, 16, 32, 64 };
+        for (size_t k = 0; k < sizeof res / sizeof res[0] && rc == CLI_OK; k++) {
+            rf_opts q = o;
+            q.R = res[k];
+            q.samples = 0;
+            if (fact_rows(&b, &q, heldout, o.floor, sf, err, sizeof err)) rc = cli_usage_error("%s", err);
+        }
+        static const int mult[] = { 6, 24, 96 };
+        for (size_t k = 0; k < sizeof mult / sizeof mult[0] && rc == CLI_OK; k++) {
+            rf_opts q = o;
+            q.samples = (long)mult[k] * o.R * o.R;
+            if (fact_rows(&b, &q, heldout, o.floor, sf, err, sizeof err)) rc = cli_usage_error("%s", err);
+        }
+        fclose(sf);
+        snprintf(path, sizeof path, "%s/study.csv", dir);
+        if (rc == CLI_OK && sim_out_write_all(path, sb, sl, err, sizeof err)) rc = cli_usage_error("%s", err);
+        free(sb);
+        if (rc) goto done;
+    }
+    fclose(csv);
+    csv = NULL;
+    snprintf(path, sizeof path, "%s/report.csv", dir);
+    if (sim_out_write_all(path, csvbuf, csvlen, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    printf("  wrote %s/{lambda.png, pi.png, factors.f32, report.csv%s}\n", dir, study ? ", study.csv" : "");
+    if (sim_out_stdout_check(err, sizeof err)) rc = cli_usage_error("%s", err);
+done:
+    if (csv) fclose(csv);
+    free(csvbuf);
+    rf_fact_free(&f);
+    return rc;
+}
