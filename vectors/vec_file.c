@@ -10,6 +10,7 @@
  * set that holds no rows (or free it first). On failure it is left empty.
  */
 #include "vectors/vec_file.h"
+#include "vectors/vec_num.h"
 #include "sim/sim_out.h"
 #include <errno.h>
 #include <math.h>
@@ -101,12 +102,13 @@ int vec_file_write(const char *path, const vec_set *s, char *err, size_t errlen)
  * The file is read in large blocks (no per-character stdio call). One
  * pass over a line, eight bytes at a time, finds its end and any byte
  * that is not allowed; the line is cut out of the block in place and its
- * numbers parsed by strtod straight from it (a token is only copied out
- * for an error message). Once the first row has been read, the rows of a
- * large block are parsed by two threads, each taking half of the block,
- * joined in order. Every check, its message and the line it names are
- * those of a line-by-line, character-by-character reading: the first
- * problem in file order is the one reported. */
+ * numbers parsed straight from it by vec_num_strtod (strtod's results,
+ * faster; a token is only copied out for an error message). Once the
+ * first row has been read, the rows of a large block are parsed by two
+ * threads, each taking half of the block, joined in order. Every check,
+ * its message and the line it names are those of a line-by-line,
+ * character-by-character reading: the first problem in file order is the
+ * one reported. */
 
 typedef struct reader {
     const char *path;
@@ -308,13 +310,14 @@ static int parse_comment(reader *r, char *p, vec_set *s, const vec_set *expect,
 }
 
 /* One number at *pp, a token ending at a space, a tab or the end: the
- * whole token must be a finite real. strtod reads it in place; only a
- * token it refuses is cut out, for the message. */
+ * whole token must be a finite real. vec_num_strtod (strtod's result, bit
+ * for bit) reads it in place; only a token it refuses is cut out, for the
+ * message. */
 static int parse_num(reader *r, char **pp, double *out)
 {
     char cut[32], *tok = *pp, *end;
     errno = 0;
-    double v = strtod(tok, &end);
+    double v = vec_num_strtod(tok, &end);
     if (end == tok || (*end && !is_space(*end))) {
         char *e = tok;
         while (*e && !is_space(*e)) e++;

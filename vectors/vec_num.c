@@ -1,0 +1,146 @@
+/* vec_num.c - decimal to double: an exact fast path, strtod for the rest.
+ *
+ * A decimal w * 10^q with w < 10^19 (19 significant digits at most) and
+ * |q| <= 27 is w * 5^q * 2^q, and 5^|q| < 2^63 fits one word:
+ *  - q >= 0: N = w * 5^q is an exact 128-bit integer;
+ *  - q < 0:  N = floor(w * 2^s / 5^-q) with s chosen so that N has at
+ *    least 64 significant bits, plus a sticky bit (remainder nonzero).
+ * Rounding N (and the sticky bit) to 53 bits, to nearest with ties to
+ * even, is then the correctly rounded double of the decimal, which is what
+ * glibc's strtod gives; the binary exponent 2^q or 2^(q-s) is put in the
+ * result's exponent field (the values reachable here, 10^-27 to 10^46,
+ * are far from subnormals and infinity). Before that, Clinger's fast path:
+ * w <= 2^53 and |q| <= 22 make w and 10^|q| exact doubles, so one IEEE
+ * multiply or divide rounds correctly.
+ *
+ * Anything else -- more digits, larger exponents, hexadecimal, inf/nan,
+ * leading blanks, a number followed by an unusual character -- goes to
+ * strtod, so the value and the end pointer are always strtod's.
+ */
+#include "vectors/vec_num.h"
+#include <float.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const uint64_t pow5[28] = {
+    1u, 5u, 25u, 125u, 625u, 3125u, 15625u, 78125u, 390625u, 1953125u, 9765625u, 48828125u,
+    244140625u, 1220703125u, 6103515625u, 30517578125u, 152587890625u, 762939453125u,
+    3814697265625u, 19073486328125u, 95367431640625u, 476837158203125u, 2384185791015625u,
+    11920928955078125u, 59604644775390625u, 298023223876953125u, 1490116119384765625u,
+    7450580596923828125u
+};
+
+static const double pow10d[23] = {
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11,
+    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22
+};
+
+__extension__ typedef unsigned __int128 u128;
+
+static int is_digit(char c) { return c >= '0' && c <= '9'; }
+
+/* Significant bits of n > 0. */
+static int bits128(u128 n)
+{
+    uint64_t hi = (uint64_t)(n >> 64);
+    return hi ? 128 - __builtin_clzll(hi) : 64 - __builtin_clzll((uint64_t)n);
+}
+
+/* n * 2^e2 (+ a fraction of 2^e2 below n's last bit when sticky), n > 0,
+ * rounded to nearest even; 0 when the result would not be a normal double
+ * (the caller then asks strtod). */
+static int round_to_double(u128 n, int sticky, int e2, int neg, double *out)
+{
+    int b = bits128(n);
+    uint64_t m;
+    if (b <= 53) {
+        m = (uint64_t)n << (53 - b);     /* exact (sticky is 0 here) */
+        e2 -= 53 - b;
+    } else {
+        int sh = b - 53;
+        m = (uint64_t)(n >> sh);
+        u128 rem = n & (((u128)1 << sh) - 1), half = (u128)1 << (sh - 1);
+        if (rem > half || (rem == half && (sticky || (m & 1)))) {
+            m++;
+            if (m >> 53) { m >>= 1; e2++; }
+        }
+        e2 += sh;
+    }
+    int be = e2 + 52 + 1023;             /* m in [2^52, 2^53) */
+    if (be <= 0 || be >= 2047) return 0;
+    uint64_t bits = ((uint64_t)neg << 63) | ((uint64_t)be << 52) | (m & ((UINT64_C(1) << 52) - 1));
+    memcpy(out, &bits, sizeof *out);
+    return 1;
+}
+
+double vec_num_strtod(const char *s, char **end)
+{
+    const char *p = s;
+    int neg = 0;
+    if (*p == '-' || *p == '+') { neg = *p == '-'; p++; }
+    uint64_t w = 0;
+    int nd = 0, frac = 0, any = 0;
+    while (*p == '0') { p++; any = 1; }            /* leading zeros are not significant */
+    for (; is_digit(*p); p++) {
+        if (++nd > 19) goto slow;
+        w = w * 10 + (uint64_t)(*p - '0');
+        any = 1;
+    }
+    if (*p == '.') {
+        p++;
+        if (!nd) while (*p == '0') { p++; frac++; any = 1; }
+        for (; is_digit(*p); p++) {
+            if (++nd > 19) goto slow;
+            w = w * 10 + (uint64_t)(*p - '0');
+            frac++;
+            any = 1;
+        }
+    }
+    if (!any) goto slow;
+    long e = 0;
+    if (*p == 'e' || *p == 'E') {
+        const char *q = p + 1;
+        int eneg = 0;
+        if (*q == '+' || *q == '-') { eneg = *q == '-'; q++; }
+        if (is_digit(*q)) {
+            for (; is_digit(*q); q++)
+                if (e < 100000) e = e * 10 + (*q - '0');
+            if (eneg) e = -e;
+            p = q;
+        }
+        /* "1e" or "1e+": strtod stops before the 'e'; the check below
+         * sends such a number to it. */
+    }
+    /* Only a number ending where vector files end one; anything else is
+     * strtod's to judge. */
+    if (*p && *p != ' ' && *p != '\t' && *p != '|' && *p != '\n') goto slow;
+    long q10 = e - frac;
+    if (!w) {
+        if (end) *end = (char *)p;
+        return neg ? -0.0 : 0.0;
+    }
+    double r;
+#if FLT_EVAL_METHOD == 0
+    if (w <= (UINT64_C(1) << 53) && q10 >= -22 && q10 <= 22) {
+        r = (double)w;
+        r = q10 >= 0 ? r * pow10d[q10] : r / pow10d[-q10];
+        if (end) *end = (char *)p;
+        return neg ? -r : r;
+    }
+#endif
+    if (q10 >= 0 && q10 <= 27) {
+        if (!round_to_double((u128)w * pow5[q10], 0, (int)q10, neg, &r)) goto slow;
+    } else if (q10 < 0 && q10 >= -27) {
+        uint64_t d = pow5[-q10];
+        int s = 127 - (64 - __builtin_clzll(w));   /* w 2^s just below 2^127 */
+        u128 n0 = (u128)w << s, n = n0 / d;
+        if (!round_to_double(n, n0 - n * d != 0, (int)q10 - s, neg, &r)) goto slow;
+    } else {
+        goto slow;
+    }
+    if (end) *end = (char *)p;
+    return r;
+slow:
+    return strtod(s, end);
+}
