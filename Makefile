@@ -22,20 +22,49 @@ LIBOBJ  := $(patsubst %.c,$(B)/%.o,$(LIBSRC))
 TESTBIN := $(patsubst tests/%.c,$(B)/tests/%,$(TESTSRC))
 BENCHBIN:= $(patsubst bench/%.c,$(B)/bench/%,$(BENCHSRC))
 
-.PHONY: all test bench run clean vectors docs
+.PHONY: all test bench run clean vectors docs install uninstall
 all: bin/shadesim
+
+# Quiet builds: one short line per step; V=1 shows the full commands.
+ifeq ($(V),1)
+Q :=
+say = @true
+else ifeq ($(BRIEF),1)
+Q := @
+say = @true
+else
+Q := @
+say = @printf '  %-5s %s\n'
+endif
 
 # Copy then rename: a running bin/shadesim is replaced, not overwritten.
 bin/shadesim: $(B)/shadesim
 	@mkdir -p bin
-	cp $< $@.tmp && mv -f $@.tmp $@
+	$(Q)cp $< $@.tmp && mv -f $@.tmp $@
 
 $(B)/shadesim: $(B)/testbench/main.o $(B)/libshadesim.a
-	$(CC) $(ALLCFLAGS) -o $@ $^ $(LDLIBS)
+	$(say) LD $@
+	$(Q)$(CC) $(ALLCFLAGS) -o $@ $^ $(LDLIBS)
 
 $(B)/libshadesim.a: $(LIBOBJ)
 	@rm -f $@
-	ar rcs $@ $^
+	$(Q)ar rcs $@ $^
+
+# The version --version prints: VERSION, and where git is there the commit
+# (git describe); the same tree gives the same string, and without git
+# just VERSION. Rewritten only when it changes, so nothing rebuilds for it.
+VERSION_STR = $(shell v=$$(cat VERSION 2>/dev/null || echo unknown); \
+	g=$$(git describe --always --dirty 2>/dev/null); \
+	if [ -n "$$g" ]; then echo "$$v (git $$g)"; else echo "$$v"; fi)
+$(B)/version.h: FORCE
+	@mkdir -p $(B)
+	@echo '#define SHADESIM_VERSION "$(VERSION_STR)"' | cmp -s - $@ \
+	    || echo '#define SHADESIM_VERSION "$(VERSION_STR)"' > $@
+
+$(B)/testbench/main.o: testbench/main.c $(B)/version.h $(HDRS) Makefile $(FLAGSTAMP)
+	@mkdir -p $(dir $@)
+	$(say) CC $<
+	$(Q)$(CC) $(ALLCFLAGS) -I$(B) -c -o $@ $<
 
 # The compiler and flags a build folder was made with: a change (make test
 # CC=clang after a gcc build, other CFLAGS) rebuilds it instead of linking
@@ -48,15 +77,18 @@ $(FLAGSTAMP): FORCE
 
 $(B)/%.o: %.c $(HDRS) Makefile $(FLAGSTAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALLCFLAGS) -c -o $@ $<
+	$(say) CC $<
+	$(Q)$(CC) $(ALLCFLAGS) -c -o $@ $<
 
 $(B)/tests/%: tests/%.c $(B)/libshadesim.a $(HDRS) $(FLAGSTAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALLCFLAGS) -o $@ $< $(B)/libshadesim.a $(LDLIBS)
+	$(say) CC $<
+	$(Q)$(CC) $(ALLCFLAGS) -o $@ $< $(B)/libshadesim.a $(LDLIBS)
 
 $(B)/bench/%: bench/%.c $(B)/libshadesim.a $(HDRS) $(FLAGSTAMP)
 	@mkdir -p $(dir $@)
-	$(CC) $(ALLCFLAGS) -o $@ $< $(B)/libshadesim.a $(LDLIBS)
+	$(say) CC $<
+	$(Q)$(CC) $(ALLCFLAGS) -o $@ $< $(B)/libshadesim.a $(LDLIBS)
 
 # Build-only target used by the test script for each flavour.
 .PHONY: testbins
@@ -72,16 +104,26 @@ ASAN_FLAGS = OPT="-O1 -g -fno-omit-frame-pointer" \
 	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
 TB := $(if $(filter clang%,$(notdir $(CC))),build-clang,build)
 
+# Sub-makes build quietly (BRIEF=1: no per-file lines) under one line per
+# step; V=1 shows every command.
+SUBMAKE = $(MAKE) --no-print-directory $(if $(filter 1,$(V)),,-s BRIEF=1)
+
 test:
-	@$(MAKE) -s testbins B=$(TB) >/dev/null
-	@$(MAKE) -s testbins B=$(TB)-asan $(ASAN_FLAGS) >/dev/null
-	@$(MAKE) -s bin/shadesim >/dev/null
+	@echo "building $(TB)/ ($(CC) $(OPT))..."
+	@$(SUBMAKE) testbins B=$(TB)
+	@echo "building $(TB)-asan/ ($(CC) ASan+UBSan)..."
+	@$(SUBMAKE) testbins B=$(TB)-asan $(ASAN_FLAGS)
+	@$(SUBMAKE) bin/shadesim
+	@echo "testing..."
 	@sh tests/run.sh $(TB) $(TB)-asan
 
 .PHONY: test-clang
 test-clang:
-	@$(MAKE) -s testbins B=build-clang CC=$(CLANG) >/dev/null
-	@$(MAKE) -s testbins B=build-clang-asan CC=$(CLANG) $(ASAN_FLAGS) >/dev/null
+	@echo "building build-clang/ ($(CLANG) $(OPT))..."
+	@$(SUBMAKE) testbins B=build-clang CC=$(CLANG)
+	@echo "building build-clang-asan/ ($(CLANG) ASan+UBSan)..."
+	@$(SUBMAKE) testbins B=build-clang-asan CC=$(CLANG) $(ASAN_FLAGS)
+	@echo "testing..."
 	@sh tests/run.sh build-clang build-clang-asan
 
 bench: $(BENCHBIN) bin/shadesim
@@ -90,7 +132,9 @@ bench: $(BENCHBIN) bin/shadesim
 # Every unit on its default vectors, then the default face scene through
 # the hardware: the paper's configuration next to corrected ones (a table;
 # images in out/scene-face/*/).
-run: bin/shadesim
+run:
+	@echo "building bin/shadesim ($(CC) $(OPT))..."
+	@$(SUBMAKE) bin/shadesim
 	@./bin/shadesim run all
 	@echo
 	@./bin/shadesim scene face --compare -j 2
@@ -104,6 +148,28 @@ vectors: bin/shadesim
 # Regenerate docs made from the unit descriptors.
 docs: bin/shadesim
 	./bin/shadesim list --markdown > docs/units.md.tmp && mv docs/units.md.tmp docs/units.md
+
+# Install: the binary, its data (the default vectors, which the installed
+# binary finds in ../share/shadesim from its own folder), the manual page
+# that shadesim --man makes from its verb table and each verb's --help, and
+# the documentation. DESTDIR stages a package.
+PREFIX ?= /usr/local
+DESTDIR ?=
+DEST = $(DESTDIR)$(PREFIX)
+install:
+	@echo "building bin/shadesim ($(CC) $(OPT))..."
+	@$(SUBMAKE) bin/shadesim
+	@echo "installing into $(DEST)..."
+	$(Q)install -d $(DEST)/bin $(DEST)/share/shadesim/vectors $(DEST)/share/man/man1 $(DEST)/share/doc/shadesim
+	$(Q)install -m 755 bin/shadesim $(DEST)/bin/shadesim.tmp && mv -f $(DEST)/bin/shadesim.tmp $(DEST)/bin/shadesim
+	$(Q)install -m 644 vectors/*.vec $(DEST)/share/shadesim/vectors/
+	$(Q)./bin/shadesim --man > $(DEST)/share/man/man1/shadesim.1.tmp \
+	    && mv -f $(DEST)/share/man/man1/shadesim.1.tmp $(DEST)/share/man/man1/shadesim.1
+	$(Q)install -m 644 README.md LICENSE docs/*.md $(DEST)/share/doc/shadesim/
+
+uninstall:
+	rm -f $(DEST)/bin/shadesim $(DEST)/share/man/man1/shadesim.1
+	rm -rf $(DEST)/share/shadesim $(DEST)/share/doc/shadesim
 
 clean:
 	rm -rf build build-asan build-clang build-clang-asan bin

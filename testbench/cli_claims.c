@@ -25,9 +25,9 @@
 
 static const char claims_help[] =
     "usage: shadesim claims [--json] [-o DIR] [--width W]\n\n"
-    "Prints each numerical claim of the seeds (000, 001, 004) beside what the\n"
+    "Prints each numerical claim of the papers (docs/references.md) beside what the\n"
     "double-precision references measure, and a verdict: holds, holds only for\n"
-    "<condition>, or does not hold. Then the seeds' speed claims (D16 4.34x faster\n"
+    "<condition>, or does not hold. Then the papers' speed claims (D16 4.34x faster\n"
     "than D, the Ward approximation more than 2x), measured as clocks and area of\n"
     "our hardware units against a cost model of the exact functions. Last, where\n"
     "each approximation fails: relative error above 10% where the exact value is\n"
@@ -189,7 +189,7 @@ static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
     claim_result *r = &out[0];
     memset(out, 0, 2 * sizeof *out);
     r->id = "d16_speed_hw";
-    r->seed = "000 sec. III results; 001 sec. 4";
+    r->seed = "Nechyporuk & Romanyuk (2020), sec. III results; S. O. Romanyuk et al. (SPIE), sec. 4";
     r->claim = "computing D16 instead of D raises the speed 4.34 times (here: in clocks of our hardware)";
     r->claimed = 4.34;
     r->measured = hc->exact_d_clocks / hc->d16.clocks;
@@ -205,7 +205,7 @@ static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
              "divider datapaths) + squarer + divider = 3W+2 clocks; m = 0.2, g = 16");
     r = &out[1];
     r->id = "ward_speed_hw";
-    r->seed = "000 sec. III results; 001 sec. 4";
+    r->seed = "Nechyporuk & Romanyuk (2020), sec. III results; S. O. Romanyuk et al. (SPIE), sec. 4";
     r->claim = "for the Ward model the speed gain of the approximation is more than twice (here: in clocks)";
     r->claimed = 2.0;
     r->measured = hc->exact_w_clocks / hc->ward16.clocks;
@@ -218,7 +218,7 @@ static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
                : r->measured > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up in hardware" : CLAIM_FAILS;
     settext(r->note, sizeof r->note,
              "exp(-tan^2/a^2) modelled as squarer + divider + shift-and-add exp = 2W+1 clocks (a lower "
-             "bound); only the exponential factor, as the seeds approximate it; a = 0.2");
+             "bound); only the exponential factor, as the papers approximate it; a = 0.2");
     return 2;
 }
 
@@ -449,15 +449,15 @@ static void print_row(FILE *f, const claim_result *r)
 {
     fprintf(f, "%s (%s): %s\n", r->id, r->seed, r->verdict);
     fprintf(f, "  claim:    %s\n", r->claim);
-    if (isfinite(r->claimed)) fprintf(f, "  seed:     %g    measured: %.4g\n", r->claimed, r->measured);
-    else fprintf(f, "  seed:     (no number)    measured: %.4g\n", r->measured);
+    if (isfinite(r->claimed)) fprintf(f, "  paper:    %g    measured: %.4g\n", r->claimed, r->measured);
+    else fprintf(f, "  paper:    (no number)    measured: %.4g\n", r->measured);
     fprintf(f, "  ours:     %s\n", r->measured_text);
     fprintf(f, "  note:     %s\n\n", r->note);
 }
 
 static void print_text(FILE *f, const report *rp, char paths[][600], int np)
 {
-    fputs("The seeds' numerical claims next to what the double-precision references measure.\n"
+    fputs("The papers' numerical claims next to what the double-precision references measure.\n"
           "Verdicts: holds / holds only for <condition> / does not hold.\n\n", f);
     for (size_t i = 0; i < rp->n; i++)
         if (!strcmp(rp->kind[i], "accuracy")) print_row(f, &rp->rows[i]);
@@ -481,7 +481,7 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
     fputs("  cost model: exact D = c^2 (squarer, 1 clock) + (1-c^2)/c^2 (divider, W clocks)\n"
           "  + exp by shift and add (W clocks, area of two divider datapaths; ROM, shifter and\n"
           "  range reduction not counted) + c^4 (1 clock) + division by c^4 (W clocks) = 3W+2;\n"
-          "  Ward's exp term stops after the exp: 2W+1 clocks. pow_n rows: the seeds'\n"
+          "  Ward's exp term stops after the exp: 2W+1 clocks. pow_n rows: the papers'\n"
           "  intermediate cos^(2/m^2-4) and cos^(2/a^2) forms computed exactly.\n\n", f);
     for (size_t i = 0; i < rp->n; i++)
         if (!strcmp(rp->kind[i], "speed_hw")) print_row(f, &rp->rows[i]);
@@ -517,7 +517,7 @@ static void json_row(FILE *f, const claim_result *r, const char *kind)
 {
     fputs("    {\"id\": ", f); jstr(f, r->id);
     fputs(", \"kind\": ", f); jstr(f, kind);
-    fputs(", \"seed\": ", f); jstr(f, r->seed);
+    fputs(", \"source\": ", f); jstr(f, r->seed);
     fputs(",\n     \"claim\": ", f); jstr(f, r->claim);
     fputs(",\n     \"claimed\": ", f); jnum(f, r->claimed);
     fputs(", \"measured\": ", f); jnum(f, r->measured);

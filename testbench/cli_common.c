@@ -109,22 +109,46 @@ int cli_unit_option(cli_unit_opts *o, int argc, char **argv, int *i)
     return 0;
 }
 
+/* The data folders, in the order searched (docs/cli.md, "Data files"):
+ *   1. $SHADESIM_HOME, when set (and then only it: an explicit choice that
+ *      does not hold the file is an error, not a fallback);
+ *   2. PREFIX/share/shadesim beside an installed PREFIX/bin/shadesim;
+ *   3. the source tree of a binary built in it (bin/shadesim, build/shadesim:
+ *      one folder up from the executable's folder);
+ *   4. the current folder.
+ * Each holds vectors/UNIT.vec. The first that has the file wins; when none
+ * has it, the path of 2 or 3 that fits the binary's place is returned, so
+ * that the message names where the file was expected. */
 const char *cli_default_vectors_path(const char *unit, char *buf, size_t len)
 {
-    /* The tree the binary was built in: bin/shadesim or build/shadesim,
-     * so vectors/ is one folder up from the executable's folder. */
+    const char *home = getenv("SHADESIM_HOME");
+    if (home && *home) {
+        snprintf(buf, len, "%s/vectors/%s.vec", home, unit);
+        return buf;
+    }
     char exe[4096];
     ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    const char *home = getenv("SHADESIM_HOME");
-    if (home) snprintf(buf, len, "%s/vectors/%s.vec", home, unit);
-    else if (n > 0) {
+    if (n > 0) {
         exe[n] = 0;
         char *s = strrchr(exe, '/');
-        if (s) *s = 0;
-        s = strrchr(exe, '/');          /* up from bin/ or build/ */
-        if (s) *s = 0;
+        if (s) *s = 0;                  /* the executable's folder */
+        s = strrchr(exe, '/');
+        const char *dir = s ? s + 1 : exe;
+        if (s) *s = 0;                  /* one up: PREFIX, or the source tree */
+        else snprintf(exe, sizeof exe, ".");
+        snprintf(buf, len, "%s/share/shadesim/vectors/%s.vec", exe, unit);
+        if (!access(buf, R_OK)) return buf;
         snprintf(buf, len, "%s/vectors/%s.vec", exe, unit);
-    } else snprintf(buf, len, "vectors/%s.vec", unit);
+        if (!access(buf, R_OK)) return buf;
+        char cwd[600];
+        snprintf(cwd, sizeof cwd, "vectors/%s.vec", unit);
+        if (!access(cwd, R_OK)) { snprintf(buf, len, "%s", cwd); return buf; }
+        /* Not found: name the installed place for an installed binary. */
+        if (!strcmp(dir, "bin") && access(buf, F_OK))
+            snprintf(buf, len, "%s/share/shadesim/vectors/%s.vec", exe, unit);
+        return buf;
+    }
+    snprintf(buf, len, "vectors/%s.vec", unit);
     return buf;
 }
 
@@ -168,6 +192,10 @@ int cli_load_vectors(const cli_unit_opts *o, vec_set *vs)
         return CLI_OK;
     }
     const char *p = o->vectors ? o->vectors : cli_default_vectors_path(o->u->name, path, sizeof path);
+    if (!o->vectors && access(p, R_OK))
+        return cli_usage_error("%s: the default vectors of %s are not there (set SHADESIM_HOME to the "
+                               "folder that holds vectors/, install with make install, or give --vectors FILE)",
+                               p, o->u->name);
     if (vec_file_read(p, vs, &hdr, err, sizeof err)) { vec_set_free(vs); return cli_usage_error("%s", err); }
     return CLI_OK;
 }

@@ -119,7 +119,7 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
     }
 
     memset(out, 0, TB_SCENE_CLAIMS_ROWS * sizeof *out);
-    const char *where = "000 sec. IV (conclusion)";
+    const char *where = "Nechyporuk & Romanyuk (2020), sec. IV (conclusion)";
     claim_result *r = &out[n++];
     r->id = "scene_nmse_paper";
     r->seed = where;

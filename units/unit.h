@@ -92,7 +92,7 @@ typedef struct unit_desc unit_desc;
 struct unit_desc {
     const char *name;
     const char *summary;            /* one line for `shadesim list` */
-    const char *seed;               /* where it comes from: "000 Fig. 9" */
+    const char *seed;               /* the paper it comes from (docs/references.md): "Nechyporuk & Romanyuk (2020), Fig. 9" */
     int nsigs;
     unit_sig sigs[UNIT_MAX_SIGS];   /* inputs first, then outputs, then internals */
     int nsched;

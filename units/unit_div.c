@@ -247,7 +247,7 @@ static void div_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 const unit_desc unit_div = {
     .name = "div",
     .summary = "q = n/d by a restoring divider, one quotient bit a clock (remainder r, flag dz)",
-    .seed = "004 (the division of F_SH and F_MSH)",
+    .seed = "Zavalniuk et al. (2022), the division of F_SH and F_MSH",
     .nsigs = DV_NSIGS,
     .sigs = {
         { .name = "n", .role = UNIT_SIG_IN, .what = "dividend, 0 <= n < d" },

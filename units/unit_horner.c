@@ -458,7 +458,7 @@ HORNER_FNS(2, 2)
 const unit_desc unit_horner3 = {
     .name = "horner3",
     .summary = "cubic I = ((A t + B) t + C) t + D on the Fig. 9 datapath (RG, MX1, MX2, BK, Sm, MUL)",
-    .seed = "000 Fig. 9",
+    .seed = "Nechyporuk & Romanyuk (2020), Fig. 9",
     .nsigs = 6 + HORNER_NSIGS3,
     .sigs = {
         { .name = "a", .role = UNIT_SIG_IN, .what = "coefficient A" }, { .name = "b", .role = UNIT_SIG_IN, .what = "coefficient B" },
@@ -476,7 +476,7 @@ const unit_desc unit_horner3 = {
 const unit_desc unit_horner2 = {
     .name = "horner2",
     .summary = "quadratic I = (A t + B) t + C on the same datapath, four clocks per pixel",
-    .seed = "000 Fig. 9 (degree 2)",
+    .seed = "Nechyporuk & Romanyuk (2020), Fig. 9 (degree 2)",
     .nsigs = 5 + HORNER_NSIGS2,
     .sigs = {
         { .name = "a", .role = UNIT_SIG_IN, .what = "coefficient A" }, { .name = "b", .role = UNIT_SIG_IN, .what = "coefficient B" },

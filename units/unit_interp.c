@@ -541,7 +541,7 @@ INTERP_FNS(2, k2)
 const unit_desc unit_interp3 = {
     .name = "interp3",
     .summary = "cubic interpolation of a span interval: coef3_n1 + registers + the Fig. 9 Horner, L pixels per item",
-    .seed = "000 IV, Figs. 8 and 9",
+    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
     .nsigs = 5 + COEF3_N1_NODES + 4 + 1 + HORNER_NSIGS3 + (0 FWD3_NET(FWD_COUNT)) + 4,
     .sigs = { COEF_SIGS_I123, COEF_SIG_I4_N1, Y_SIG,
               COEF3_N1_NET(COEF_SIG_INT, COEF_SIG_INT)
@@ -561,7 +561,7 @@ const unit_desc unit_interp3 = {
 const unit_desc unit_interp2 = {
     .name = "interp2",
     .summary = "quadratic interpolation of a span interval: coef2 + registers + the Horner cut to degree 2, L pixels per item",
-    .seed = "000 IV, Fig. 9 (degree 2)",
+    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
     .nsigs = 4 + COEF2_NODES + 3 + 1 + HORNER_NSIGS2 + (0 FWD2_NET(FWD_COUNT)) + 3,
     .sigs = { COEF_SIGS_I123, Y_SIG,
               COEF2_NET(COEF_SIG_INT, COEF_SIG_INT)

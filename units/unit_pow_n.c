@@ -120,7 +120,7 @@ static void pow_n_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out
 const unit_desc unit_pow_n = {
     .name = "pow_n",
     .summary = "y = x^n (Blinn/Phong cos^n), n = 1..1024, square and multiply on one multiplier",
-    .seed = "004 eq. 13 (F_B = cos^n x), the exact reference of the Schlick forms",
+    .seed = "Zavalniuk et al. (2022), eq. 13 (F_B = cos^n x), the exact reference of the Schlick forms",
     .nsigs = PN_NSIGS,
     .sigs = {
         { .name = "x", .role = UNIT_SIG_IN, .what = "base (a cosine), in [0, 1]" },

@@ -268,7 +268,7 @@ static void powg_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 const unit_desc unit_powg = {
     .name = "powg",
     .summary = "y = x^g, g = 2^k, by repeated squaring: k clocks on one multiplier",
-    .seed = "000 sec. III, 001 sec. 3 (the power of D_g)",
+    .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (the power of D_g)",
     .nsigs = PG_NSIGS,
     .sigs = {
         { .name = "x", .role = UNIT_SIG_IN, .what = "base, in [0, 1]" },

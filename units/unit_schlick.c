@@ -124,7 +124,7 @@ static void sh_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 const unit_desc unit_schlick = {
     .name = "schlick",
     .summary = "F_SH = c/(n - n c + c) (Schlick's stand-in for cos^n) on the restoring divider",
-    .seed = "004 eq. 2",
+    .seed = "Zavalniuk et al. (2022), eq. 2",
     .nsigs = SH_NSIGS,
     .sigs = {
         { .name = "c", .role = UNIT_SIG_IN, .what = "cos x, in [0, 1]" },
@@ -305,7 +305,7 @@ static void ms_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 const unit_desc unit_mschlick = {
     .name = "mschlick",
     .summary = "F_MSH = 2c/(1.25 (n - n c + 1.25 c)^2): normalize, square, divide",
-    .seed = "004 eq. 5",
+    .seed = "Zavalniuk et al. (2022), eq. 5",
     .nsigs = MS_NSIGS,
     .sigs = {
         { .name = "c", .role = UNIT_SIG_IN, .what = "cos x, in [0, 1]" },

@@ -725,7 +725,7 @@ SPAN_FNS(23, k23)
 const unit_desc unit_span1 = {
     .name = "span1",
     .summary = "linear I1 + (I2 - I1) t" SPAN_SUMMARY,
-    .seed = "000 IV (degree 1, for comparison)",
+    .seed = "Nechyporuk & Romanyuk (2020), sec. IV (degree 1, for comparison)",
     .nsigs = 16,
     .sigs = { S_I12, S_NDV, S_Y,
               S_INT("a", "A = I2 - I1 (a subtractor)"), S_INT("b", "B = I1 (wiring)"),
@@ -747,7 +747,7 @@ const unit_desc unit_span1 = {
 const unit_desc unit_span2 = {
     .name = "span2",
     .summary = "quadratic through I(0), I(1), I(1/2)" SPAN_SUMMARY,
-    .seed = "000 IV, Fig. 9 (degree 2)",
+    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
     .nsigs = 6 + COEF2_NODES + 3 + 2 + HORNER_NSIGS2,
     .sigs = { S_I12, S_I3, S_NDV, S_Y,
               COEF2_NET(S_NET, S_NET)
@@ -765,7 +765,7 @@ const unit_desc unit_span2 = {
 const unit_desc unit_span3 = {
     .name = "span3",
     .summary = "cubic through node set N1 or N2" SPAN_SUMMARY,
-    .seed = "000 IV, Figs. 8 and 9",
+    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
     .nsigs = 7 + S_CUBE_N + 4 + 2 + HORNER_NSIGS3,
     .sigs = { S_I12, S_I3, S_I4, S_NDV, S_Y, S_CUBE, S_REGS3, S_T, HORNER_SIGS3 },
     .nsched = 3,
@@ -779,7 +779,7 @@ const unit_desc unit_span3 = {
 const unit_desc unit_span23 = {
     .name = "span23",
     .summary = "adaptive: quadratic or cubic per item (input deg), both networks, one Horner" SPAN_SUMMARY,
-    .seed = "000 IV, Figs. 8 and 9; degree chosen per interval",
+    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9; degree chosen per interval",
     .nsigs = 8 + S_CUBE_N + COEF2_NODES + 4 + 2 + HORNER_NSIGS3,
     .sigs = { S_I12, S_I3, S_I4, S_NDV, S_DEG, S_Y, S_CUBE,
               COEF2_NET(SQ_SIG, SQ_SIG)

@@ -132,7 +132,7 @@ static double max_abs_refined(fn_cp a, fn_cp r, double p)
 
 static void claim_div3(table *t)
 {
-    claim_result *r = add(t, "div3_network", "000 sec. IV, Fig. 7",
+    claim_result *r = add(t, "div3_network", "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 7",
         "1/3 ~ 1/2 - 1/8 - 1/32 - 1/128 (shifts and three subtractors): "
         "relative error no more than 0.79%", 0.79);
     double v = 0.5 - 0.125 - 0.03125 - 0.0078125;     /* exact in binary */
@@ -170,7 +170,7 @@ static double span_nmse(const shade_span *s, int L)
 
 static void claim_interp_nmse(table *t)
 {
-    claim_result *r = add(t, "interp_nmse", "000 sec. IV (conclusion)",
+    claim_result *r = add(t, "interp_nmse", "Nechyporuk & Romanyuk (2020), sec. IV (conclusion)",
         "interpolating diffuse and specular intensity by polynomials of degree 2 and 3 "
         "achieves NMSE no more than 0.0001 against Phong (visually indistinguishable)", 1e-4);
     double worst = 0;
@@ -221,7 +221,7 @@ static void claim_cpow(table *t)
     static const char *const ids[N_ROUGH] = { "cpow_m0.2", "cpow_m0.3", "cpow_m0.4", "cpow_m0.5", "cpow_m0.6" };
     for (size_t i = 0; i < N_ROUGH; i++) {
         double m = ROUGHNESS[i], peak = 1.0 / (4.0 * m * m);
-        claim_result *r = add(t, ids[i], "000 sec. III, Figs. 2-3; 001 sec. 3, Figs. 1-2",
+        claim_result *r = add(t, ids[i], "Nechyporuk & Romanyuk (2020), sec. III, Figs. 2-3; S. O. Romanyuk et al. (SPIE), sec. 3, Figs. 1-2",
             "D ~ cos^(2/m^2-4)(g)/(4m^2) (from exp(-tg^2 g/m^2) ~ cos^(2/m^2) g): good "
             "convergence with D, high accuracy over a significant interval (m 0.2..0.6)", NAN);
         double abs_pk = 100.0 * max_abs(d_cpow, d_exact, m, 0.0, HALF_PI, 8000) / peak;
@@ -248,7 +248,7 @@ static void claim_d16(table *t)
     static const char *const ids[N_ROUGH] = { "d16_m0.2", "d16_m0.3", "d16_m0.4", "d16_m0.5", "d16_m0.6" };
     for (size_t i = 0; i < N_ROUGH; i++) {
         double m = ROUGHNESS[i], peak = 1.0 / (4.0 * m * m);
-        claim_result *r = add(t, ids[i], "000 sec. III, Figs. 4-5; 001 sec. 3, Figs. 3-4",
+        claim_result *r = add(t, ids[i], "Nechyporuk & Romanyuk (2020), sec. III, Figs. 4-5; S. O. Romanyuk et al. (SPIE), sec. 3, Figs. 3-4",
             "D16 = (1/(4m^2))[(1/(8m^2) - 1/4)(cos g - 1) + 1]^16 approximates D with high "
             "accuracy both at the epicenter of the bell and in its blooming zone", NAN);
         double r1 = d_band_rel(d_16c, m, 0.01), r50 = d_band_rel(d_16c, m, 0.5);
@@ -297,7 +297,7 @@ static void claim_ward(table *t)
                                        "ward_a0.5", "ward_a0.6" };
     for (size_t i = 0; i < sizeof A / sizeof A[0]; i++) {
         double a = A[i];
-        claim_result *r = add(t, ids[i], "000 sec. III; 001 sec. 3",
+        claim_result *r = add(t, ids[i], "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3",
             "the relative error of approximating exp(-tg^2 g/a^2) by "
             "((1/(8a^2))(cos g - 1) + 1)^16 does not exceed 1.3%", 1.3);
         double e5 = max_rel_pct(w_poly, w_exact, a, ward_band(a, 0.5), 4000);
@@ -363,7 +363,7 @@ static void claim_epicenter(table *t)
         if (f_msh(pow(0.3, 1.0 / n), n) < 0.3) n_under = n;
     double at1000 = 100.0 * (f_msh(pow(0.3, 1e-3), 1000) / 0.3 - 1.0);
 
-    claim_result *r = add(t, "mschlick_epicenter", "004 eq. 6, Fig. 4",
+    claim_result *r = add(t, "mschlick_epicenter", "Zavalniuk et al. (2022), eq. 6, Fig. 4",
         "relative error of F_MSH vs Blinn cos^n x at the highlight epicenter (F_B = 0.3), "
         "n in [2, 1000]: no more than 16%", 16.0);
     r->measured = e.msh;
@@ -372,10 +372,10 @@ static void claim_epicenter(table *t)
          e.msh, e.n_msh, n_under, at1000);
     r->verdict = e.msh <= r->claimed ? CLAIM_HOLDS : CLAIM_FAILS;
     text(r->note, sizeof r->note,
-         "at cos x = 0.3^(1/n) exactly; with the seed's eq. 6 abscissa acos(exp(-1.2/n)), "
+         "at cos x = 0.3^(1/n) exactly; with the paper's eq. 6 abscissa acos(exp(-1.2/n)), "
          "where F_B = e^-1.2 = 0.3012: %.4g%%", e6.msh);
 
-    r = add(t, "schlick_epicenter", "004 eq. 6, Fig. 4",
+    r = add(t, "schlick_epicenter", "Zavalniuk et al. (2022), eq. 6, Fig. 4",
         "relative error of F_SH vs Blinn cos^n x at the highlight epicenter (F_B = 0.3), "
         "n in [2, 1000]: no more than 52%", 52.0);
     r->measured = e.sh;
@@ -384,7 +384,7 @@ static void claim_epicenter(table *t)
          e.sh, e.n_sh, 100.0 * (1.0 / (0.3 * (1.0 - log(0.3))) - 1.0));
     r->verdict = e.sh <= r->claimed ? CLAIM_HOLDS : CLAIM_FAILS;
     text(r->note, sizeof r->note,
-         "at cos x = 0.3^(1/n) exactly; with the seed's eq. 6 abscissa: %.4g%%", e6.sh);
+         "at cos x = 0.3^(1/n) exactly; with the paper's eq. 6 abscissa: %.4g%%", e6.sh);
 }
 
 static void claim_abs_half(table *t)
@@ -395,7 +395,7 @@ static void claim_abs_half(table *t)
         am = fmax(am, max_abs(f_msh, f_b, n, 0.0, HALF_PI, 256));
         as = fmax(as, max_abs(f_sh, f_b, n, 0.0, HALF_PI, 256));
     }
-    claim_result *r = add(t, "abs_error_half", "004 eq. 7, Figs. 3, 5",
+    claim_result *r = add(t, "abs_error_half", "Zavalniuk et al. (2022), eq. 7, Figs. 3, 5",
         "the largest absolute error |F_MSH - cos^n x| is about half the largest "
         "|F_SH - cos^n x| (ratio ~0.5)", 0.5);
     r->measured = am60 / as60;
@@ -404,7 +404,7 @@ static void claim_abs_half(table *t)
          am60, as60, am60 / as60, am, as, am / as);
     r->verdict = r->measured <= 0.65 ? CLAIM_HOLDS : CLAIM_FAILS;
     text(r->note, sizeof r->note,
-         "n = 60 as in the seed's Fig. 3; F_MSH's largest error is somewhat less than half "
+         "n = 60 as in the paper's Fig. 3; F_MSH's largest error is somewhat less than half "
          "(better than claimed); 'about half' taken as ratio <= 0.65");
 }
 
@@ -439,7 +439,7 @@ static void claim_rel_ratio(table *t)
     rel_ratio_range(8, &lo8, &hi8, &nb8, &s8, &m8);
     rel_ratio_range(12, &lo12, &hi12, &nb, &s, &m);
     rel_ratio_range(16, &lo16, &hi16, &nb, &s, &m);
-    claim_result *r = add(t, "maxrel_ratio", "004 eq. 17, Figs. 8-9",
+    claim_result *r = add(t, "maxrel_ratio", "Zavalniuk et al. (2022), eq. 17, Figs. 8-9",
         "the maximum relative errors of F_MSH are 1.5 to 7 times smaller than those of F_SH "
         "over the sequence of n (angles up to the cut-off)", 1.5);
     r->measured = lo8;
@@ -469,7 +469,7 @@ static void claim_cutoff_forms(table *t)
             worst = fmax(worst, fabs(f_msh(cos(ref_brdf_cutoff_mschlick(n, q)), n) / th - 1.0));
             worst12 = fmax(worst12, fabs(f_msh(cos(ref_brdf_cutoff_mschlick_eq12(n, q)), n) / th - 1.0));
         }
-    claim_result *r = add(t, "cutoff_forms", "004 eqs. 9-14",
+    claim_result *r = add(t, "cutoff_forms", "Zavalniuk et al. (2022), eqs. 9-14",
         "the interval of computation (F >= 2^-q) ends at x = acos(n/(2^q + n - 1)) for F_SH "
         "(eq. 10), the eq. 12 expression for F_MSH, acos(2^(-q/n)) for F_B (eq. 14)", 0.0);
     r->measured = fmax(worst, worst12);
@@ -496,7 +496,7 @@ static void claim_spot_ratio(table *t)
                 m_lo = fmin(m_lo, rm); m_hi = fmax(m_hi, rm);
             }
         }
-    claim_result *r = add(t, "spot_ratio", "004 eqs. 15-16, Fig. 7",
+    claim_result *r = add(t, "spot_ratio", "Zavalniuk et al. (2022), eqs. 15-16, Fig. 7",
         "the blooming zone of F_MSH is computed on a shorter interval than that of F_SH "
         "(spot size ratios to Blinn: R_MSH < R_SH)", NAN);
     r->measured = worst;
@@ -517,7 +517,7 @@ static void claim_mschlick_shape(table *t)
         double mid = 0.5 * (lo + hi);
         if (f_msh(cos(mid), 60) > 0.0) lo = mid; else hi = mid;
     }
-    claim_result *r = add(t, "mschlick_zero", "004, after eq. 7",
+    claim_result *r = add(t, "mschlick_zero", "Zavalniuk et al. (2022), after eq. 7",
         "F_MSH reaches zero at x = 1.570796, approximately pi/2", 1.570796);
     r->measured = 0.5 * (lo + hi);
     text(r->measured_text, sizeof r->measured_text,
@@ -538,7 +538,7 @@ static void claim_mschlick_shape(table *t)
             dmax = fmax(dmax, d8);
             dev = fmax(dev, fabs(d8 - num));
         }
-    r = add(t, "mschlick_monotone", "004 eq. 8, Fig. 6",
+    r = add(t, "mschlick_monotone", "Zavalniuk et al. (2022), eq. 8, Fig. 6",
         "F_MSH decreases monotonically on [0, pi/2]: its derivative (eq. 8) is negative", 0.0);
     r->measured = dmax;
     text(r->measured_text, sizeof r->measured_text,
@@ -560,7 +560,7 @@ static void claim_mad(table *t)
             sm += fabs(f_msh(c, n) - b);
             ss += fabs(f_sh(c, n) - b);
         }
-    claim_result *r = add(t, "mschlick_mad", "004 Table 1, model 2",
+    claim_result *r = add(t, "mschlick_mad", "Zavalniuk et al. (2022), Table 1, model 2",
         "mean absolute deviation of F_MSH (eq. 5, model 2) from Blinn over angles [0, 90] and "
         "n [1, 1000]: 0.0066", 0.0066);
     r->measured = sm / k;
@@ -568,7 +568,7 @@ static void claim_mad(table *t)
          "%.5f (F_SH: %.4f) over whole degrees 0..90, n = 1..1000", sm / k, ss / k);
     r->verdict = fabs(r->measured - r->claimed) < 0.00005 ? CLAIM_HOLDS : CLAIM_FAILS;
     text(r->note, sizeof r->note,
-         "the seed's fitting program (Fig. 2) sampled degrees and n on these grids; "
+         "the paper's fitting program (Fig. 2) sampled degrees and n on these grids; "
          "agreement to the 2 digits printed");
 }
 
@@ -694,7 +694,7 @@ size_t claims_speed(claim_result *out, size_t max, double min_seconds)
     table t = { out, max, 0, { 0 } };
     double d = claims_cpu_ns(CLAIMS_CPU_D, min_seconds), d16 = claims_cpu_ns(CLAIMS_CPU_D16, min_seconds);
     double w = claims_cpu_ns(CLAIMS_CPU_WARD, min_seconds), w16 = claims_cpu_ns(CLAIMS_CPU_WARD16, min_seconds);
-    claim_result *r = add(&t, "d16_speed", "000 sec. III results; 001 sec. 4",
+    claim_result *r = add(&t, "d16_speed", "Nechyporuk & Romanyuk (2020), sec. III results; S. O. Romanyuk et al. (SPIE), sec. 4",
         "computing D16 instead of D = exp(-tg^2 g/m^2)/(4m^2 cos^4 g) raises its speed 4.34 times", 4.34);
     r->measured = d / d16;
     text(r->measured_text, sizeof r->measured_text,
@@ -704,9 +704,9 @@ size_t claims_speed(claim_result *out, size_t max, double min_seconds)
                : CLAIM_FAILS;
     text(r->note, sizeof r->note,
          "timing of float loops over 1024 cosines, best of 3 runs; depends on compiler, libm and "
-         "vectorization (the seed's environment is not stated)");
+         "vectorization (the papers' environment is not stated)");
 
-    r = add(&t, "ward_speed", "000 sec. III results; 001 sec. 4",
+    r = add(&t, "ward_speed", "Nechyporuk & Romanyuk (2020), sec. III results; S. O. Romanyuk et al. (SPIE), sec. 4",
         "for the Ward model, the speed gain of the approximation is more than twice", 2.0);
     r->measured = w / w16;
     text(r->measured_text, sizeof r->measured_text,

@@ -261,10 +261,10 @@ static const vec_model m_div = {
     "div", "q = n/d, fraction quotient: d in [1/2,1], 0 <= n <= d - 2^-8, q in [0,1)",
     ports_nd_q, eval_div, gen_div };
 static const vec_model m_schlick = {
-    "schlick", "f = c/(n - n c + c) (Schlick, seed 004 eq. 2); f in [0,1]",
+    "schlick", "f = c/(n - n c + c) (Schlick; Zavalniuk et al. (2022), eq. 2); f in [0,1]",
     ports_c_f, eval_schlick, gen_schlick };
 static const vec_model m_mschlick = {
-    "mschlick", "f = 2c/(1.25 (n - n c + 1.25 c)^2) (seed 004 eq. 5); f in [0,1.024]",
+    "mschlick", "f = 2c/(1.25 (n - n c + 1.25 c)^2) (Zavalniuk et al. (2022), eq. 5); f in [0,1.024]",
     ports_c_f, eval_mschlick, gen_mschlick };
 
 const vec_model *const vec_models_brdf[] = {
