@@ -163,10 +163,8 @@ static int fact_rows(rf_brdf *b, const rf_opts *o, long heldout, double flr, FIL
 
 int cli_factor(int argc, char **argv)
 {
-    if (argc < 2 || is_help(argv[1])) {
-        fputs(factor_help, argc < 2 ? stderr : stdout);
-        return argc < 2 ? CLI_USAGE : CLI_OK;
-    }
+    if (argc < 2) return cli_usage_error("factor: missing BRDF (blinn, ct, ward, ward-aniso; see shadesim factor --help)");
+    if (is_help(argv[1])) { fputs(factor_help, stdout); return CLI_OK; }
     char err[600];
     rf_brdf b;
     if (rf_brdf_init(&b, argv[1], err, sizeof err)) return cli_usage_error("%s", err);
