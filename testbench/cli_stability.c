@@ -1,0 +1,140 @@
+/* cli_stability.c - the verb stability: where each method stops working
+ * (testbench/tb_stability.c measures it), as one table and charts. */
+#include "testbench/cli.h"
+#include "testbench/tb_stability.h"
+#include "sim/sim_out.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+static const char stability_help[] =
+    "usage: shadesim stability [--json] [-o DIR]\n\n"
+    "The stability atlas: each method driven past the point where it stops\n"
+    "working, one row per failure boundary, as \"method | condition | measured |\n"
+    "verdict\". The boundaries are found by running the units clock by clock:\n"
+    "forward differencing (register bits against interval length), the\n"
+    "coefficient networks' integer ranges (and what wrap and sat do one bit\n"
+    "short), cubic overshoot on narrow highlights (and an output clamp's cost),\n"
+    "degree 1, 2 and 3 against the adaptive policy's curvature measure, the /3\n"
+    "network's terms against width, the restoring divider and the power units;\n"
+    "the BRDF approximations' parameter ranges come from their double\n"
+    "references sampled densely. Targets: 2^-8 (one LSB of an 8-bit intensity)\n"
+    "unless a row says otherwise. The same bytes on every run (no timings);\n"
+    "docs/stability.md explains each boundary.\n\noptions:\n"
+    "  --json     one JSON object instead of the table\n"
+    "  -o DIR     also write the charts into DIR (made if missing), each marking\n"
+    "             its boundary: stability_fwd.svg, stability_fwd_err.svg,\n"
+    "             stability_coef.svg, stability_overshoot.svg,\n"
+    "             stability_degree.svg, stability_div3.svg,\n"
+    "             stability_brdf_d.svg, stability_brdf_schlick.svg,\n"
+    "             stability_pow.svg\n\n"
+    "exit status: 0 done (a boundary is a finding, not an error), 2 bad usage,\n"
+    "an unwritable DIR or a unit that failed to run\n";
+
+static void jstr(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
+        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
+        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
+        else fputc(*p, f);
+    }
+    fputc('"', f);
+}
+
+static int make_dir(const char *dir)
+{
+    char p[600];
+    snprintf(p, sizeof p, "%s", dir);
+    for (char *s = p + 1; ; s++) {
+        char ch = *s;
+        if (ch == '/' || ch == 0) {
+            *s = 0;
+            if (mkdir(p, 0777) && errno != EEXIST)
+                return cli_usage_error("stability: -o %s: cannot create folder %s: %s", dir, p, strerror(errno));
+            *s = ch;
+        }
+        if (!ch) break;
+    }
+    return CLI_OK;
+}
+
+static int write_charts(const tb_stab *s, const char *dir, char paths[][600], int *np)
+{
+    if (make_dir(dir)) return CLI_USAGE;
+    for (int i = 0; i < s->ncharts; i++) {
+        char err[800];
+        snprintf(paths[*np], 600, "%s/%s", dir, s->chart_files[i]);
+        if (tb_chart_write(s->charts[i], paths[*np], err, sizeof err))
+            return cli_usage_error("stability: %s", err);
+        (*np)++;
+    }
+    return CLI_OK;
+}
+
+static void print_text(FILE *f, const tb_stab *s, char paths[][600], int np)
+{
+    fputs("Where each method stops working, measured (targets 2^-8 unless a row says otherwise)\n\n"
+          "method | condition | measured | verdict\n", f);
+    for (int i = 0; i < s->nrows; i++) {
+        const tb_stab_row *r = &s->rows[i];
+        fprintf(f, "%s | %s | %s | %s\n", r->method, r->condition, r->measured, r->verdict);
+    }
+    fprintf(f, "\n%d rows\n", s->nrows);
+    for (int i = 0; i < np; i++) fprintf(f, "wrote %s\n", paths[i]);
+}
+
+static void print_json(FILE *f, const tb_stab *s, char paths[][600], int np)
+{
+    fputs("{\n  \"target\": 0.00390625,\n  \"rows\": [\n", f);
+    for (int i = 0; i < s->nrows; i++) {
+        const tb_stab_row *r = &s->rows[i];
+        fputs("    {\"id\": ", f); jstr(f, r->id);
+        fputs(", \"method\": ", f); jstr(f, r->method);
+        fputs(",\n     \"condition\": ", f); jstr(f, r->condition);
+        fputs(",\n     \"measured\": ", f); jstr(f, r->measured);
+        fputs(",\n     \"verdict\": ", f); jstr(f, r->verdict);
+        fputs(",\n     \"boundary\": ", f);
+        if (isfinite(r->boundary)) fprintf(f, "%.10g", r->boundary); else fputs("null", f);
+        fprintf(f, "}%s\n", i + 1 < s->nrows ? "," : "");
+    }
+    fputs("  ],\n  \"charts\": [", f);
+    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); jstr(f, paths[i]); }
+    fputs("]\n}\n", f);
+}
+
+int cli_stability(int argc, char **argv)
+{
+    int json = 0;
+    const char *dir = NULL;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(stability_help, stdout); return CLI_OK; }
+        if (!strcmp(a, "--json")) json = 1;
+        else if (!strcmp(a, "-o")) {
+            if (i + 1 >= argc || !*argv[i + 1]) return cli_usage_error("stability: -o needs a folder");
+            dir = argv[++i];
+        } else return cli_usage_error("stability: unknown argument '%s' (see shadesim stability --help)", a);
+    }
+    tb_stab *s = calloc(1, sizeof *s);
+    if (!s) return cli_usage_error("stability: out of memory");
+    char err[300];
+    if (tb_stability(s, dir != NULL, err, sizeof err)) {
+        tb_stab_free(s);
+        free(s);
+        return cli_usage_error("%s", err);
+    }
+    char paths[TB_STAB_MAX_CHARTS][600];
+    int np = 0, rc = CLI_OK;
+    if (dir) rc = write_charts(s, dir, paths, &np);
+    if (rc == CLI_OK) {
+        if (json) print_json(stdout, s, paths, np);
+        else print_text(stdout, s, paths, np);
+        if (sim_out_stdout_check(err, sizeof err)) rc = cli_usage_error("stability: %s", err);
+    }
+    tb_stab_free(s);
+    free(s);
+    return rc;
+}
