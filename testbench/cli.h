@@ -28,6 +28,11 @@ int cli_scene(int argc, char **argv);
 int cli_factor(int argc, char **argv);
 int cli_chart(int argc, char **argv);
 int cli_report(int argc, char **argv);
+/* The rows `shadesim claims` prints (at most CLAIMS_MAX; kind[i]:
+ * "accuracy", "speed_hw" or "scene"), hardware figures at width; 0 with a
+ * message when the face scene cannot be rendered. (cli_claims.c) */
+struct claim_result;
+size_t cli_claims_table(struct claim_result *rows, const char **kind, int width, char *err, size_t errlen);
 int cli_stability(int argc, char **argv);
 int cli_verilog(int argc, char **argv);
 int cli_cosim(int argc, char **argv);

@@ -577,6 +577,36 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
     fputs("]\n}\n", f);
 }
 
+/* ------------------------------------------------------------------ rows */
+
+/* Every row of the claims table: accuracy, the hardware speed claims at
+ * width, the face scene's; kinds "accuracy", "speed_hw", "scene". */
+static size_t claims_rows(claim_result *rows, const char **kind, int width, hw_cost *hc, char *err, size_t errlen)
+{
+    size_t n = claims_compute(rows, CLAIMS_MAX);
+    for (size_t i = 0; i < n; i++) kind[i] = "accuracy";
+    measure_cost(width, hc);
+    if (n + 2 <= CLAIMS_MAX) {
+        size_t k = speed_hw_rows(hc, &rows[n]);
+        for (size_t i = 0; i < k; i++) kind[n + i] = "speed_hw";
+        n += k;
+    }
+    if (n + TB_SCENE_CLAIMS_ROWS <= CLAIMS_MAX) {
+        char serr[300];
+        size_t k = tb_scene_claims(&rows[n], CLAIMS_MAX - n, TB_SCENE_CLAIMS_RES, 2, serr, sizeof serr);
+        if (!k) { snprintf(err, errlen, "face scene: %s", serr); return 0; }
+        for (size_t i = 0; i < k; i++) kind[n + i] = "scene";
+        n += k;
+    }
+    return n;
+}
+
+size_t cli_claims_table(claim_result *rows, const char **kind, int width, char *err, size_t errlen)
+{
+    hw_cost hc;
+    return claims_rows(rows, kind, width, &hc, err, errlen);
+}
+
 /* ------------------------------------------------------------------ verb */
 
 int cli_claims(int argc, char **argv)
@@ -605,21 +635,9 @@ int cli_claims(int argc, char **argv)
 
     report *rp = calloc(1, sizeof *rp);
     if (!rp) return cli_usage_error("claims: out of memory");
-    rp->n = claims_compute(rp->rows, CLAIMS_MAX);
-    for (size_t i = 0; i < rp->n; i++) rp->kind[i] = "accuracy";
-    measure_cost(width, &rp->hc);
-    if (rp->n + 2 <= CLAIMS_MAX) {
-        size_t k = speed_hw_rows(&rp->hc, &rp->rows[rp->n]);
-        for (size_t i = 0; i < k; i++) rp->kind[rp->n + i] = "speed_hw";
-        rp->n += k;
-    }
-    if (rp->n + TB_SCENE_CLAIMS_ROWS <= CLAIMS_MAX) {
-        char serr[300];
-        size_t k = tb_scene_claims(&rp->rows[rp->n], CLAIMS_MAX - rp->n, TB_SCENE_CLAIMS_RES, 2, serr, sizeof serr);
-        if (!k) { free(rp); return cli_usage_error("claims: face scene: %s", serr); }
-        for (size_t i = 0; i < k; i++) rp->kind[rp->n + i] = "scene";
-        rp->n += k;
-    }
+    char serr[300];
+    rp->n = claims_rows(rp->rows, rp->kind, width, &rp->hc, serr, sizeof serr);
+    if (!rp->n) { free(rp); return cli_usage_error("claims: %s", serr); }
     for (size_t k = 0; k < N_APPROX; k++) failure_bands(&APPROX[k], &rp->fb[k]);
 
     char paths[8][600];

@@ -3,6 +3,7 @@
 #include "testbench/cli.h"
 #include "testbench/tb_svg.h"
 #include "testbench/tb_sweep.h"
+#include "testbench/tb_sweep_chart.h"
 #include "sim/sim_out.h"
 #include <errno.h>
 #include <fcntl.h>
@@ -19,8 +20,11 @@ static const char sweep_help[] =
     "`shadesim list UNIT`), crossed with the listed settings, and writes into DIR:\n"
     "  sweep.csv            one row per configuration, every figure of run --json\n"
     "  error_vs_width.svg   max and RMS error against width (log scale)\n"
-    "  area_vs_error.svg    area against max error, the Pareto front marked\n"
-    "  cycles_vs_error.svg  clocks per item against max error (when they vary)\n"
+    "  area_vs_error.svg    area against max error, the Pareto front ringed\n"
+    "  cycles_vs_error.svg  clocks per pixel against max error (when they vary)\n"
+    "                       (the front: no other configuration is as good in\n"
+    "                       max error, area and clocks per pixel and better in one;\n"
+    "                       `shadesim chart` draws the charts from any sweep CSV)\n"
     "  summary.txt          what is printed on stdout\n"
     "  target.json          with --target-error/--target-nmse: the chosen formats\n"
     "  target.csv           ... and the same per settings group as one CSV row each\n"
@@ -203,20 +207,24 @@ static void progress_clear(progress *p)
 
 static int row_ok(const tb_sweep *s, size_t i) { return s->row[i].status == TB_OK; }
 
-/* Pareto front of the successful rows: area (cost) against max error. */
+/* Pareto front of the successful rows over max error, area and clocks
+ * per pixel (per output beat: an interpolation unit's item is L pixels),
+ * as the charts draw it (tb_sweep_chart.h). */
 static unsigned char *front_of(const tb_sweep *s, size_t *nfront)
 {
-    double *x = malloc(s->n * sizeof *x), *y = malloc(s->n * sizeof *y);
+    double *x = malloc(s->n * sizeof *x), *y = malloc(s->n * sizeof *y), *z = malloc(s->n * sizeof *z);
     unsigned char *on = calloc(s->n ? s->n : 1, 1);
     *nfront = 0;
-    if (!x || !y || !on) { free(x); free(y); free(on); return NULL; }
+    if (!x || !y || !z || !on) { free(x); free(y); free(z); free(on); return NULL; }
     for (size_t i = 0; i < s->n; i++) {
-        x[i] = row_ok(s, i) ? s->row[i].r.area_ge : NAN;
-        y[i] = row_ok(s, i) ? s->row[i].r.max_abs_err : NAN;
+        x[i] = row_ok(s, i) ? s->row[i].r.max_abs_err : NAN;
+        y[i] = row_ok(s, i) ? s->row[i].r.area_ge : NAN;
+        z[i] = row_ok(s, i) ? s->row[i].r.cycles_per_beat : NAN;
     }
-    *nfront = tb_pareto(x, y, s->n, on);
+    *nfront = tb_pareto3(x, y, z, s->n, on);
     free(x);
     free(y);
+    free(z);
     return on;
 }
 
@@ -320,170 +328,45 @@ typedef struct target_info {
     tb_target_res *res;     /* [ngroups] */
 } target_info;
 
-/* True when some group label would not fit a legend line (26 characters)
- * after a short prefix; then every legend shortens "terms=3" to "t=3". */
-static int labels_long(const tb_sweep *s)
+/* The charts, drawn from the CSV text as `shadesim chart` draws them
+ * (tb_sweep_chart.h), so both give the same bytes; the sweep adds the
+ * target search's designs. *drawn: the clocks chart was drawn. */
+static int write_charts(const tb_sweep *s, const target_info *t, oset *os, char *files, size_t flen, int *drawn)
 {
-    for (size_t g = 0; g < s->ngroups; g++) {
-        char gl[200];
-        tb_sweep_group_label(s, g, gl, sizeof gl);
-        if (strlen(gl) > 21) return 1;
-    }
-    return 0;
-}
-
-static void legend_label(const tb_sweep *s, size_t g, int shorten, const char *prefix, char *buf, size_t len)
-{
-    char gl[200], *w = gl;
-    tb_sweep_group_label(s, g, gl, sizeof gl);
-    if (shorten)
-        for (const char *r = gl; *r;) {
-            size_t k = strcspn(r, " ");
-            const char *eq = memchr(r, '=', k);
-            if (eq && eq > r + 1) {       /* keep the name's first letter */
-                *w++ = *r;
-                r = eq;
-                k = strcspn(r, " ");
-            }
-            memmove(w, r, k);
-            w += k;
-            r += k;
-            if (*r) *w++ = *r++;
-        }
-    else w += strlen(gl);
-    *w = 0;
-    snprintf(buf, len, "%s%s%s", prefix, *prefix && *gl ? " " : "", *gl || *prefix ? gl : "uniform widths");
-}
-
-static int chart_error_width(const tb_sweep *s, const target_info *t, oset *os, char *files, size_t flen)
-{
-    int sh = labels_long(s);
-    char title[200];
-    snprintf(title, sizeof title, "%s: error against width", s->spec.u->name);
-    tb_chart *c = tb_chart_new(title, "width W (bits, the unit's format rule)",
-                               "max |e| and RMS e vs float reference (output units)");
-    tb_chart_log_y(c, 1);
-    for (size_t g = 0; g < s->ngroups; g++) {
-        char lab[260];
-        legend_label(s, g, sh, s->ngroups > 1 ? "max" : "max |e|", lab, sizeof lab);
-        int smax = tb_chart_series(c, lab, TB_LINE | TB_POINTS);
-        legend_label(s, g, sh, s->ngroups > 1 ? "RMS" : "RMS e", lab, sizeof lab);
-        int srms = tb_chart_series(c, lab, TB_LINE | TB_POINTS);
-        for (size_t i = g; i < s->n; i += s->ngroups) {
-            double w = s->cfg[i].cfg.width;
-            tb_chart_point(c, smax, w, row_ok(s, i) ? s->row[i].r.max_abs_err : NAN);
-            tb_chart_point(c, srms, w, row_ok(s, i) ? s->row[i].r.rms_err : NAN);
-        }
-    }
-    if (t->on && t->kind == TB_TARGET_MAX_ABS_ERR) {
-        char lab[64];
-        snprintf(lab, sizeof lab, "target %g", t->value);
-        tb_chart_hline(c, t->value, lab);
-    }
-    return write_chart(c, os, "error_vs_width.svg", files, flen);
-}
-
-/* The front as a staircase through its points in order of x, each
- * labelled with its width; the points' own markers (their group's series,
- * drawn before) show under the line which setting each one is. */
-static void add_front(tb_chart *c, const tb_sweep *s, const unsigned char *on, double (*x)(const tb_result *),
-                      double (*y)(const tb_result *), const char *label)
-{
-    fpt *p = malloc(s->n * sizeof *p);
-    size_t n = 0;
-    if (!p) return;
-    for (size_t i = 0; i < s->n; i++)
-        if (on[i]) p[n++] = (fpt){ x(&s->row[i].r), y(&s->row[i].r), i };
-    qsort(p, n, sizeof *p, fpt_cmp);
-    int sf = tb_chart_series(c, label, TB_STEP);
-    for (size_t k = 0; k < n; k++) {
-        char lab[32];
-        snprintf(lab, sizeof lab, "w=%d", s->cfg[p[k].i].cfg.width);
-        /* Labels on every point of a long front would only collide. */
-        tb_chart_point_label(c, sf, p[k].x, p[k].y, n <= 24 || k % ((n + 23) / 24) == 0 ? lab : NULL);
-    }
-    free(p);
-}
-
-static double f_area(const tb_result *r) { return r->area_ge; }
-static double f_err(const tb_result *r) { return r->max_abs_err; }
-static double f_cpi(const tb_result *r) { return r->cycles_per_item; }
-
-static int chart_area_error(const tb_sweep *s, const unsigned char *on, const target_info *t,
-                            oset *os, char *files, size_t flen)
-{
-    int sh = labels_long(s);
-    char title[200];
-    snprintf(title, sizeof title, "%s: area against max error", s->spec.u->name);
-    tb_chart *c = tb_chart_new(title, "area (GE, NAND2 gate equivalents)", "max |e| vs float reference (output units)");
-    tb_chart_log_y(c, 1);
-    double amin = INFINITY, amax = 0;
-    for (size_t i = 0; i < s->n; i++)
-        if (row_ok(s, i)) {
-            if (s->row[i].r.area_ge < amin) amin = s->row[i].r.area_ge;
-            if (s->row[i].r.area_ge > amax) amax = s->row[i].r.area_ge;
-        }
-    tb_chart_log_x(c, amin > 0 && amax > 10 * amin);
-    for (size_t g = 0; g < s->ngroups; g++) {
-        char gl[200];
-        legend_label(s, g, sh, "", gl, sizeof gl);
-        int sg = tb_chart_series(c, gl, TB_POINTS);
-        for (size_t i = g; i < s->n; i += s->ngroups)
-            if (row_ok(s, i)) tb_chart_point(c, sg, s->row[i].r.area_ge, s->row[i].r.max_abs_err);
-    }
-    add_front(c, s, on, f_area, f_err, "Pareto front");
+    char *text = NULL, err[600];
+    size_t len = 0;
+    FILE *m = open_memstream(&text, &len);
+    if (!m) return cli_usage_error("sweep: out of memory");
+    tb_sweep_print_csv(s, m, 0, 0);
+    if (fclose(m)) { free(text); return cli_usage_error("sweep: out of memory"); }
+    tb_sc *sc = tb_sc_read(text, len, "sweep.csv", err, sizeof err);
+    free(text);
+    if (!sc) return cli_usage_error("%s", err);
+    double *te = NULL, *ta = NULL;
+    tb_sc_target tg = { 0, 0, 0, 0, NULL, NULL };
     if (t->on) {
-        int st = tb_chart_series(c, "target search", TB_POINTS);
+        te = calloc(s->ngroups, sizeof *te);
+        ta = calloc(s->ngroups, sizeof *ta);
+        if (!te || !ta) { free(te); free(ta); tb_sc_free(sc); return cli_usage_error("sweep: out of memory"); }
+        tg.on = 1;
+        tg.nmse = t->kind == TB_TARGET_NMSE;
+        tg.value = t->value;
         for (size_t g = 0; g < s->ngroups; g++)
-            if (t->res[g].met) tb_chart_point_label(c, st, t->res[g].r.area_ge, t->res[g].r.max_abs_err, "target search");
-        if (t->kind == TB_TARGET_MAX_ABS_ERR) {
-            char lab[64];
-            snprintf(lab, sizeof lab, "target %g", t->value);
-            tb_chart_hline(c, t->value, lab);
-        }
+            if (t->res[g].met) { te[tg.n] = t->res[g].r.max_abs_err; ta[tg.n] = t->res[g].r.area_ge; tg.n++; }
+        tg.err = te;
+        tg.area = ta;
     }
-    return write_chart(c, os, "area_vs_error.svg", files, flen);
-}
-
-/* Only drawn when clocks per item differ between configurations (several
- * schedules or parameters that change the timing): otherwise it is one
- * horizontal row of points and says nothing. */
-static int chart_cycles_error(const tb_sweep *s, oset *os, char *files, size_t flen, int *drawn)
-{
-    int sh = labels_long(s);
-    double c0 = NAN;
-    int varies = 0;
+    int rc = 0;
     *drawn = 0;
-    for (size_t i = 0; i < s->n; i++)
-        if (row_ok(s, i)) {
-            if (isnan(c0)) c0 = s->row[i].r.cycles_per_item;
-            else if (s->row[i].r.cycles_per_item != c0) varies = 1;
-        }
-    if (!varies) return 0;
-    char title[200];
-    snprintf(title, sizeof title, "%s: clocks per item against max error", s->spec.u->name);
-    tb_chart *c = tb_chart_new(title, "max |e| vs float reference (output units)", "clocks per item (steady state)");
-    tb_chart_log_x(c, 1);
-    for (size_t g = 0; g < s->ngroups; g++) {
-        char gl[200];
-        legend_label(s, g, sh, "", gl, sizeof gl);
-        int sg = tb_chart_series(c, gl, TB_POINTS);
-        for (size_t i = g; i < s->n; i += s->ngroups)
-            if (row_ok(s, i)) tb_chart_point(c, sg, s->row[i].r.max_abs_err, s->row[i].r.cycles_per_item);
+    for (int k = 0; k < TB_SC_NCHARTS && !rc; k++) {
+        if (!tb_sc_chart_drawn(sc, k)) continue;
+        if (k == TB_SC_CLOCKS_ERROR) *drawn = 1;
+        rc = write_chart(tb_sc_chart(sc, k, t->on ? &tg : NULL), os, tb_sc_chart_file[k], files, flen);
     }
-    double *x = malloc(s->n * sizeof *x), *y = malloc(s->n * sizeof *y);
-    unsigned char *on = calloc(s->n, 1);
-    if (x && y && on) {
-        for (size_t i = 0; i < s->n; i++) {
-            x[i] = row_ok(s, i) ? s->row[i].r.max_abs_err : NAN;
-            y[i] = row_ok(s, i) ? s->row[i].r.cycles_per_item : NAN;
-        }
-        tb_pareto(x, y, s->n, on);
-        add_front(c, s, on, f_err, f_cpi, "Pareto front");
-    }
-    free(x); free(y); free(on);
-    *drawn = 1;
-    return write_chart(c, os, "cycles_vs_error.svg", files, flen);
+    free(te);
+    free(ta);
+    tb_sc_free(sc);
+    return rc;
 }
 
 /* -------------------------------------------------------------- summary */
@@ -543,11 +426,11 @@ static void print_front(FILE *f, const tb_sweep *s, const unsigned char *on, siz
 {
     size_t nok = 0;
     for (size_t i = 0; i < s->n; i++) nok += row_ok(s, i);
-    fprintf(f, "Pareto front (area vs max |e|), %zu of %zu configurations:", nfront, nok);
+    fprintf(f, "Pareto front (max |e|, area, clocks per pixel), %zu of %zu configurations:", nfront, nok);
     print_ranges(f, s, on, 1);
     fputc('\n', f);
     if (nfront < nok) {
-        fputs("  dominated (no less error for no less area):", f);
+        fputs("  dominated (another is no worse in error, area and clocks per pixel, and better in one):", f);
         print_ranges(f, s, on, 0);
         fputc('\n', f);
     }
@@ -1005,9 +888,7 @@ static int outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     unsigned char *on = front_of(s, &nfront);
     int drawn = 0;
     if (!on) { oset_abort(&os); return cli_usage_error("sweep: out of memory"); }
-    if (chart_error_width(s, &a->t, &os, files, sizeof files) ||
-        chart_area_error(s, on, &a->t, &os, files, sizeof files) ||
-        chart_cycles_error(s, &os, files, sizeof files, &drawn)) {
+    if (write_charts(s, &a->t, &os, files, sizeof files, &drawn)) {
         free(on);
         oset_abort(&os);
         return CLI_USAGE;

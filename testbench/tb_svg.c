@@ -55,6 +55,10 @@ typedef struct {
     int        style;
     tb_svg_pt *pt;
     size_t     n, cap;
+    char       colour[8];   /* "#rrggbb", or "" for the palette's */
+    int        shape;       /* marker shape, or -1 for the series index's */
+    int        dash;        /* 1 dashed, 0 solid, -1 by index (dashed past the palette) */
+    int        key;         /* a legend entry only (tb_chart_legend_key) */
 } tb_svg_series;
 
 typedef struct { int series; size_t idx; char *text; } tb_svg_plabel;
@@ -153,8 +157,31 @@ int tb_chart_series(tb_chart *c, const char *label, int style)
     tb_svg_series *s = &c->ser[c->nser];
     memset(s, 0, sizeof *s);
     s->style = style;
+    s->shape = -1;
+    s->dash = -1;
     if (label && *label && !(s->label = tb_chart_text(c, label))) return -1;
     return (int)c->nser++;
+}
+
+void tb_chart_series_look(tb_chart *c, int series, const char *colour, int shape, int dashed)
+{
+    if (!c || series < 0 || (size_t)series >= c->nser) return;
+    tb_svg_series *s = &c->ser[series];
+    /* Only "#rrggbb": the colour goes into an attribute unescaped. */
+    if (colour && strlen(colour) == 7 && colour[0] == '#' && strspn(colour + 1, "0123456789abcdefABCDEF") == 6)
+        memcpy(s->colour, colour, 8);
+    if (shape >= 0) s->shape = shape % 5;
+    if (dashed >= 0) s->dash = !!dashed;
+}
+
+int tb_chart_legend_key(tb_chart *c, const char *label, const char *colour, int shape, int style)
+{
+    if (!c || !label || !*label) return -1;
+    int k = tb_chart_series(c, label, style ? style : TB_POINTS);
+    if (k < 0) return -1;
+    c->ser[k].key = style ? 1 : 2;          /* 2: a heading, text only */
+    tb_chart_series_look(c, k, colour ? colour : "#444444", shape, 0);
+    return k;
 }
 
 /* Append a point; its index in the series, or SIZE_MAX after an error. */
@@ -285,6 +312,65 @@ size_t tb_pareto(const double *x, const double *y, size_t n, unsigned char *on_f
     }
     free(p);
     return count;
+}
+
+typedef struct { double v[3]; size_t i; } tb_svg_p3;
+
+static int tb_svg_p3_cmp(const void *pa, const void *pb)
+{
+    const tb_svg_p3 *a = pa, *b = pb;
+    for (int k = 0; k < 3; k++)
+        if (a->v[k] != b->v[k]) return a->v[k] < b->v[k] ? -1 : 1;
+    return (a->i > b->i) - (a->i < b->i);
+}
+
+/* b dominates a: no worse in every coordinate, better in one. */
+static int tb_svg_dom3(const double *b, const double *a)
+{
+    return b[0] <= a[0] && b[1] <= a[1] && b[2] <= a[2] && (b[0] < a[0] || b[1] < a[1] || b[2] < a[2]);
+}
+
+size_t tb_pareto3(const double *x, const double *y, const double *z, size_t n, unsigned char *on_front)
+{
+    if (!on_front || n == 0) return 0;
+    memset(on_front, 0, n);
+    if (!x || !y || !z) return 0;
+    tb_svg_p3 *p = n <= SIZE_MAX / sizeof *p ? malloc(n * sizeof *p) : NULL;
+    size_t *front = n <= SIZE_MAX / sizeof *front ? malloc(n * sizeof *front) : NULL;
+    size_t m = 0, nf = 0;
+    if (!p || !front) {
+        free(p);
+        free(front);
+        /* No memory for the sort: the quadratic definition. */
+        for (size_t i = 0; i < n; i++) {
+            double a[3] = { x[i], y[i], z[i] };
+            if (isnan(a[0]) || isnan(a[1]) || isnan(a[2])) continue;
+            int dom = 0;
+            for (size_t j = 0; j < n && !dom; j++) {
+                double b[3] = { x[j], y[j], z[j] };
+                dom = tb_svg_dom3(b, a);
+            }
+            on_front[i] = !dom;
+            nf += !dom;
+        }
+        return nf;
+    }
+    for (size_t i = 0; i < n; i++)
+        if (!isnan(x[i]) && !isnan(y[i]) && !isnan(z[i])) {
+            p[m].v[0] = x[i]; p[m].v[1] = y[i]; p[m].v[2] = z[i]; p[m].i = i; m++;
+        }
+    qsort(p, m, sizeof *p, tb_svg_p3_cmp);
+    /* In lexicographic order a point's dominators all come before it, and
+     * dominance is transitive, so some dominator is on the front: checking
+     * against the front found so far is enough. */
+    for (size_t k = 0; k < m; k++) {
+        int dom = 0;
+        for (size_t j = 0; j < nf && !dom; j++) dom = tb_svg_dom3(p[front[j]].v, p[k].v);
+        if (!dom) { front[nf++] = k; on_front[p[k].i] = 1; }
+    }
+    free(p);
+    free(front);
+    return nf;
 }
 
 /* ---- output buffer and locale-independent formatting ------------------ */
@@ -744,16 +830,56 @@ static void tb_svg_marker(tb_svg_buf *b, int shape, double x, double y, double r
     }
 }
 
-/* Stroke attributes of series i's line. */
-static void tb_svg_linestyle(tb_svg_buf *b, int i)
+/* Series i's colour and marker shape: its own (tb_chart_series_look) or
+ * the palette's by index. */
+static const char *tb_svg_colour(const tb_chart *c, size_t i)
 {
-    tb_svg_f(b, "fill=\"none\" stroke=\"%s\" stroke-width=\"1.8\" "
-             "stroke-linejoin=\"round\" stroke-linecap=\"round\"",
-             tb_svg_palette[i % TB_SVG_NCOLOR]);
-    if (i >= TB_SVG_NCOLOR) tb_svg_puts(b, " stroke-dasharray=\"6 3\"");
+    return c->ser[i].colour[0] ? c->ser[i].colour : tb_svg_palette[i % TB_SVG_NCOLOR];
+}
+static int tb_svg_shape(const tb_chart *c, size_t i)
+{
+    return c->ser[i].shape >= 0 ? c->ser[i].shape : (int)(i % TB_SVG_NSHAPE);
 }
 
-static double tb_svg_marker_r(int style) { return style & (TB_LINE | TB_STEP) ? 3.2 : 3.8; }
+/* Stroke attributes of series i's line. */
+static void tb_svg_linestyle(tb_svg_buf *b, const tb_chart *c, size_t i)
+{
+    int dash = c->ser[i].dash >= 0 ? c->ser[i].dash : i >= TB_SVG_NCOLOR;
+    tb_svg_f(b, "fill=\"none\" stroke=\"%s\" stroke-width=\"%s\" "
+             "stroke-linejoin=\"round\" stroke-linecap=\"round\"",
+             tb_svg_colour(c, i), dash ? "1.4" : "1.8");
+    if (dash) tb_svg_puts(b, " stroke-dasharray=\"6 3\"");
+}
+
+static double tb_svg_marker_r(int style)
+{
+    return style & TB_HOLLOW ? 6.5 : style & (TB_LINE | TB_STEP) ? 3.2 : 3.8;
+}
+
+/* The markers of a series (path data d) filled, or as rings (TB_HOLLOW). */
+static void tb_svg_marker_paint(tb_svg_buf *b, const tb_chart *c, size_t s, const char *d)
+{
+    if (c->ser[s].style & TB_HOLLOW)
+        tb_svg_f(b, "<path fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" d=\"%s\"/>\n", tb_svg_colour(c, s), d);
+    else    /* a thin white edge keeps overlapping markers apart */
+        tb_svg_f(b, "<path fill=\"%s\" stroke=\"#fff\" stroke-width=\"0.6\" d=\"%s\"/>\n", tb_svg_colour(c, s), d);
+}
+
+/* Does series s draw anything (a marker, or a line of two points)? A
+ * legend lists only what is drawn. */
+static int tb_svg_draws(const tb_chart *c, size_t s)
+{
+    const tb_svg_series *se = &c->ser[s];
+    if (se->key) return 1;
+    int prev = 0;
+    for (size_t i = 0; i < se->n; i++) {
+        int shown = tb_svg_visible(c, se->pt[i].x, se->pt[i].y) == TB_SVG_SHOWN;
+        if (shown && (se->style & TB_POINTS)) return 1;
+        if (shown && prev) return 1;
+        prev = shown;
+    }
+    return 0;
+}
 
 /* A text that stays readable where it crosses lines: a white outline is
  * painted under the glyphs. */
@@ -789,7 +915,7 @@ typedef struct {
 #define TB_SVG_LEGMAX   26  /* legend text cut to this many characters */
 #define TB_SVG_BANDMAX  30  /* band labels likewise */
 #define TB_SVG_PLMAX    20  /* point labels likewise */
-#define TB_SVG_BANDROWS 3   /* rows for band labels; the last one may crowd */
+#define TB_SVG_BANDROWS 3   /* rows for band labels; a label that fits none is dropped */
 
 static int tb_svg_shown_hl(const tb_chart *c, double y)
 {
@@ -820,7 +946,7 @@ static int tb_svg_layout_bands(tb_svg_lay *l)
             tb_svg_box bx = { cx - w / 2 - 4, r, cx + w / 2 + 4, r + 0.5 };
             int clash = 0;
             for (size_t j = 0; j < placed.n; j++) clash |= tb_svg_overlap(bx, placed.v[j]);
-            if (!clash || r == TB_SVG_BANDROWS - 1) { l->brow[i] = r; tb_svg_addbox(&placed, bx, l->b); }
+            if (!clash) { l->brow[i] = r; tb_svg_addbox(&placed, bx, l->b); }
         }
         if (l->brow[i] + 1 > nrows) nrows = l->brow[i] + 1;
     }
@@ -872,9 +998,10 @@ static void tb_svg_layout(tb_svg_lay *l)
      * data; long labels are cut rather than squeezing the plot. */
     double legtw = 0;
     for (size_t s = 0; s < c->nser; s++)
-        if (c->ser[s].label) {
+        if (c->ser[s].label && tb_svg_draws(c, s)) {
             l->nleg++;
-            legtw = fmax(legtw, tb_svg_textw(c->ser[s].label, TB_SVG_FS_TICK, TB_SVG_LEGMAX));
+            legtw = fmax(legtw, c->ser[s].key == 2 ? tb_svg_textw(c->ser[s].label, TB_SVG_FS_TICK, TB_SVG_LEGMAX + 6) - 32
+                                                  : tb_svg_textw(c->ser[s].label, TB_SVG_FS_TICK, TB_SVG_LEGMAX));
         }
     l->legw = l->nleg ? 10 + 24 + 8 + legtw + 10 : 0;
 
@@ -981,7 +1108,7 @@ static void tb_svg_draw_series(const tb_svg_lay *l)
             }
             if (d.n) {
                 tb_svg_puts(l->b, "<path ");
-                tb_svg_linestyle(l->b, (int)s);
+                tb_svg_linestyle(l->b, c, s);
                 tb_svg_f(l->b, " d=\"%s\"/>\n", d.p);
             }
         }
@@ -990,12 +1117,9 @@ static void tb_svg_draw_series(const tb_svg_lay *l)
             double r = tb_svg_marker_r(se->style);
             for (size_t i = 0; i < se->n; i++)
                 if (tb_svg_visible(c, se->pt[i].x, se->pt[i].y) == TB_SVG_SHOWN)
-                    tb_svg_marker(&d, (int)(s % TB_SVG_NSHAPE), tb_svg_pix(&l->ax, se->pt[i].x),
+                    tb_svg_marker(&d, tb_svg_shape(c, s), tb_svg_pix(&l->ax, se->pt[i].x),
                                   tb_svg_pix(&l->ay, se->pt[i].y), r);
-            /* a thin white edge keeps overlapping markers apart */
-            if (d.n)
-                tb_svg_f(l->b, "<path fill=\"%s\" stroke=\"#fff\" stroke-width=\"0.6\" d=\"%s\"/>\n",
-                         tb_svg_palette[s % TB_SVG_NCOLOR], d.p);
+            if (d.n) tb_svg_marker_paint(l->b, c, s, d.p);
         }
     }
     if (d.oom) l->b->oom = 1;
@@ -1004,8 +1128,10 @@ static void tb_svg_draw_series(const tb_svg_lay *l)
 
 /* Point labels: the first of a few spots around the point where the text
  * overlaps no placed label and no marker and stays inside the frame;
- * failing that, the spot with the fewest overlaps. Greedy in the order the
- * labels were given, which keeps the output deterministic. */
+ * failing that, the spot with the fewest marker overlaps; a label that
+ * would overlap another text or leave the frame wherever it goes is
+ * dropped. Greedy in the order the labels were given, which keeps the
+ * output deterministic. */
 static void tb_svg_draw_plabels(const tb_svg_lay *l)
 {
     const tb_chart *c = l->c;
@@ -1020,6 +1146,15 @@ static void tb_svg_draw_plabels(const tb_svg_lay *l)
             tb_svg_addbox(&obst, bx, b);
         }
     const double fs = TB_SVG_FS_SMALL, asc = 0.75 * fs, dsc = 0.22 * fs, gap = 5;
+    /* The reference lines' labels (tb_svg_draw_hlabels) are texts too. */
+    for (size_t i = 0; i < c->nhl; i++) {
+        const tb_svg_hl *h = &c->hl[i];
+        if (!h->label || !tb_svg_shown_hl(c, h->y)) continue;
+        double p = tb_svg_pix(&l->ay, h->y), ty = p - 4 - 10 < l->T ? p + 13 : p - 4;
+        double w = tb_svg_textw(h->label, fs, tb_svg_fit(l->R - l->L - 8, fs));
+        tb_svg_box bx = { l->R - 4 - w, ty - fs, l->R - 4, ty + 0.3 * fs };
+        tb_svg_addbox(&lab, bx, b);
+    }
     for (size_t k = 0; k < c->npl && !b->oom; k++) {
         const tb_svg_pt *pt = &c->ser[c->pl[k].series].pt[c->pl[k].idx];
         if (tb_svg_visible(c, pt->x, pt->y) != TB_SVG_SHOWN) continue;
@@ -1041,6 +1176,7 @@ static void tb_svg_draw_plabels(const tb_svg_lay *l)
             for (size_t j = 0; j < obst.n; j++) score += (size_t)tb_svg_overlap(bx, obst.v[j]);
             if (score < bestscore) { bestscore = score; best = q; }
         }
+        if (bestscore >= 100) continue;       /* on another text or outside: dropped */
         tb_svg_box bx = { x + spot[best][0], y + spot[best][1] - asc,
                           x + spot[best][0] + w, y + spot[best][1] + dsc };
         tb_svg_addbox(&lab, bx, b);
@@ -1145,17 +1281,26 @@ static void tb_svg_draw_legend(const tb_svg_lay *l)
     size_t row = 0;
     for (size_t s = 0; s < c->nser && row < shown; s++) {
         const tb_svg_series *se = &c->ser[s];
-        if (!se->label) continue;
+        if (!se->label || !tb_svg_draws(c, s)) continue;
         double cy = ly + 4 + rowh * (double)row + rowh / 2;
+        if (se->key == 2) {             /* a heading: the text from the left edge */
+            tb_svg_f(b, "<text x=\"%f\" y=\"%f\" fill=\"#555\">", lx + 10, cy + 4);
+            tb_svg_text(b, se->label, TB_SVG_LEGMAX + 6);
+            tb_svg_puts(b, "</text>\n");
+            row++;
+            continue;
+        }
         if (se->style & (TB_LINE | TB_STEP)) {
             tb_svg_f(b, "<path d=\"M%f %fh24\" ", lx + 10, cy);
-            tb_svg_linestyle(b, (int)s);
+            tb_svg_linestyle(b, c, s);
             tb_svg_puts(b, "/>\n");
         }
         if (se->style & TB_POINTS) {
-            tb_svg_f(b, "<path fill=\"%s\" d=\"", tb_svg_palette[s % TB_SVG_NCOLOR]);
-            tb_svg_marker(b, (int)(s % TB_SVG_NSHAPE), lx + 22, cy, tb_svg_marker_r(se->style));
-            tb_svg_puts(b, "\"/>\n");
+            tb_svg_buf d = { 0 };
+            tb_svg_marker(&d, tb_svg_shape(c, s), lx + 22, cy, tb_svg_marker_r(se->style));
+            if (d.oom) b->oom = 1;
+            else tb_svg_marker_paint(b, c, s, d.p);
+            free(d.p);
         }
         tb_svg_f(b, "<text x=\"%f\" y=\"%f\">", lx + 42, cy + 4);
         tb_svg_text(b, se->label, TB_SVG_LEGMAX);

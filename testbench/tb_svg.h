@@ -35,7 +35,9 @@ typedef struct tb_chart tb_chart;
  * a staircase (horizontal, then vertical: "steps-post"), which is how a
  * Pareto front reads; it implies a line. Lines join points in the order
  * they were added and break where a point is skipped. */
-enum { TB_LINE = 1, TB_POINTS = 2, TB_STEP = 4 };
+enum { TB_LINE = 1, TB_POINTS = 2, TB_STEP = 4, TB_HOLLOW = 8 };
+/* TB_HOLLOW (with TB_POINTS): large rings instead of filled markers, to
+ * circle points of other series (e.g. those on a Pareto front). */
 
 /* A new empty chart; any text may be NULL (none). NULL when out of memory.
  * Labels should carry units, e.g. "error (ulp)". */
@@ -53,13 +55,27 @@ void tb_chart_log_y(tb_chart *c, int on);
  * the legend. A style without any bit means TB_POINTS. */
 int  tb_chart_series(tb_chart *c, const char *label, int style);
 void tb_chart_point(tb_chart *c, int series, double x, double y);
-/* A point with a small text beside it (e.g. "w=12"); the text is placed
- * where it overlaps no other point label or marker, if such a place exists. */
+/* Give a series its own look: colour "#rrggbb" (NULL: the palette's),
+ * marker shape 0..4 (circle, square, triangle up, diamond, triangle down;
+ * -1: by index), dashed line 1/0 (-1: by index). For charts that encode
+ * one setting by colour and another by shape. */
+void tb_chart_series_look(tb_chart *c, int series, const char *colour, int shape, int dashed);
+/* A legend entry that draws no data: the key to a colour, shape or line
+ * style that unlabelled series use (style as for a series; colour NULL:
+ * dark grey). Style 0 makes a heading: text only. Returns its index. The
+ * legend lists keys and the labelled series that draw something (a marker
+ * or a line between two shown points), in the order they were added. */
+int  tb_chart_legend_key(tb_chart *c, const char *label, const char *colour, int shape, int style);
+/* A point with a small text beside it (e.g. "width 12"); the text is
+ * placed where it overlaps no other point label or marker, if such a place
+ * exists; where it would overlap another text or leave the plot wherever
+ * it goes, it is dropped (no two texts of a chart overlap). */
 void tb_chart_point_label(tb_chart *c, int series, double x, double y,
                           const char *label);
 
 /* A shaded band across the whole plot height over x in [x0, x1] (e.g. a
- * failure region); its label is written above the plot. The band does not
+ * failure region); its label is written above the plot, in one of three
+ * rows (dropped when it overlaps a label in each). The band does not
  * widen the x axis: it is cut to the plot area (x0/x1 may be +-inf). */
 void tb_chart_hband(tb_chart *c, double x0, double x1, const char *label);
 /* A dashed horizontal line at y (e.g. a target error), labelled at its
@@ -84,6 +100,11 @@ int  tb_chart_fwrite(const tb_chart *c, FILE *f, const char *what, char *err, si
  * equal y). Points with a NaN coordinate are never on the front and never
  * dominate. Returns the number of points on the front. O(n log n). */
 size_t tb_pareto(const double *x, const double *y, size_t n, unsigned char *on_front);
+/* The same over three costs (e.g. error, area, clocks per pixel): a point
+ * is on the front when no other is at least as good in all three and
+ * strictly better in one; exact duplicates do not dominate each other;
+ * NaN: never on the front. O(n x front size). */
+size_t tb_pareto3(const double *x, const double *y, const double *z, size_t n, unsigned char *on_front);
 
 /* The axis ticks the charts use, exposed for tests and for callers that
  * want the same scale elsewhere. For the data range [dmin, dmax]:

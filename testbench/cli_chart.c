@@ -1,0 +1,172 @@
+/* cli_chart.c - the verb chart: a sweep's charts from its CSV (sweep.csv,
+ * a shard's, or merge's), the same bytes the sweep itself draws. */
+#include "testbench/cli.h"
+#include "testbench/tb_sweep_chart.h"
+#include "sim/sim_out.h"
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static const char chart_help[] =
+    "usage: shadesim chart SWEEP.csv [-o DIR] [--png]\n\n"
+    "Draws a sweep's charts from its CSV: sweep.csv, a shard's CSV or the CSV\n"
+    "that shadesim merge joins from shards. The charts are the bytes the sweep\n"
+    "itself writes (without its target search's marks):\n"
+    "  error_vs_width.svg   max |e| (line) and RMS e (dashed) against width\n"
+    "  area_vs_error.svg    area against max error, the Pareto front ringed\n"
+    "  cycles_vs_error.svg  clocks per pixel against max error (when they vary)\n"
+    "The Pareto front: configurations that no other matches in max error, area\n"
+    "and clocks per pixel while beating it in one. Up to 7 settings groups get a\n"
+    "colour each; more are coloured by the setting with the most values (a scale\n"
+    "when it has more than 7) and shaped by a second one.\n\n"
+    "options:\n"
+    "  -o DIR               output folder (default: the CSV's folder), made if missing\n"
+    "  --png                also write each chart as CHART.png with rsvg-convert\n"
+    "                       (an error when rsvg-convert is not installed)\n\n"
+    "exit status: 0 done, 2 bad usage, an unreadable or malformed CSV, an\n"
+    "unwritable DIR or a failed PNG conversion\n";
+
+/* The whole file; NULL after printing the error. */
+static char *slurp(const char *path, size_t *len)
+{
+    FILE *f = !strcmp(path, "-") ? stdin : fopen(path, "rb");
+    if (!f) { cli_usage_error("%s: cannot open: %s", path, strerror(errno)); return NULL; }
+    size_t cap = 1 << 16, n = 0;
+    char *b = malloc(cap);
+    while (b) {
+        if (n == cap) {
+            char *nb = cap < ((size_t)1 << 40) ? realloc(b, cap * 2) : NULL;
+            if (!nb) { free(b); b = NULL; break; }
+            b = nb;
+            cap *= 2;
+        }
+        size_t k = fread(b + n, 1, cap - n, f);
+        n += k;
+        if (k == 0) break;
+    }
+    int bad = ferror(f);
+    if (f != stdin) fclose(f);
+    if (!b) { cli_usage_error("%s: out of memory", path); return NULL; }
+    if (bad) { free(b); cli_usage_error("%s: read error", path); return NULL; }
+    *len = n;
+    return b;
+}
+
+static int make_dir(const char *dir)
+{
+    char p[4096];
+    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) return cli_usage_error("%s: path too long", dir);
+    for (char *s = p + 1;; s++) {
+        if (*s == '/' || !*s) {
+            char c = *s;
+            *s = 0;
+            if (mkdir(p, 0777) && errno != EEXIST) return cli_usage_error("%s: cannot create folder %s: %s", dir, p, strerror(errno));
+            *s = c;
+            if (!c) break;
+        }
+    }
+    struct stat st;
+    if (stat(dir, &st) || !S_ISDIR(st.st_mode)) return cli_usage_error("%s: not a folder", dir);
+    return CLI_OK;
+}
+
+/* Is prog on PATH? */
+static int on_path(const char *prog)
+{
+    const char *path = getenv("PATH");
+    char buf[4200];
+    for (const char *p = path ? path : "/usr/bin:/bin"; *p;) {
+        size_t k = strcspn(p, ":");
+        snprintf(buf, sizeof buf, "%.*s/%s", (int)k, k ? p : ".", prog);
+        if (access(buf, X_OK) == 0) return 1;
+        p += k;
+        if (*p) p++;
+    }
+    return 0;
+}
+
+/* svg -> png with rsvg-convert (no shell), its output into a sim_out so
+ * that the PNG appears only when complete. */
+static int to_png(const char *svg, const char *png)
+{
+    char err[600];
+    sim_out *o = sim_out_open(png, err, sizeof err);
+    if (!o) return cli_usage_error("%s", err);
+    FILE *f = sim_out_file(o);
+    fflush(f);
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid < 0) { sim_out_abort(o); return cli_usage_error("%s: cannot start rsvg-convert: %s", png, strerror(errno)); }
+    if (pid == 0) {
+        if (dup2(fileno(f), 1) < 0) _exit(126);
+        execlp("rsvg-convert", "rsvg-convert", svg, (char *)NULL);
+        _exit(127);
+    }
+    int st;
+    while (waitpid(pid, &st, 0) < 0)
+        if (errno != EINTR) { sim_out_abort(o); return cli_usage_error("%s: rsvg-convert: %s", png, strerror(errno)); }
+    if (!WIFEXITED(st) || WEXITSTATUS(st)) { sim_out_abort(o); return cli_usage_error("%s: rsvg-convert failed", png); }
+    if (sim_out_close(o, err, sizeof err)) return cli_usage_error("%s", err);
+    return CLI_OK;
+}
+
+int cli_chart(int argc, char **argv)
+{
+    const char *csv = NULL, *dir = NULL;
+    int png = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            fputs(chart_help, stdout);
+            char e[300];
+            return sim_out_stdout_check(e, sizeof e) ? cli_usage_error("%s", e) : CLI_OK;
+        }
+        if (!strcmp(argv[i], "-o")) {
+            if (i + 1 >= argc || !*argv[i + 1]) return cli_usage_error("chart: -o needs a folder");
+            dir = argv[++i];
+        } else if (!strcmp(argv[i], "--png")) png = 1;
+        else if (argv[i][0] == '-' && argv[i][1]) return cli_usage_error("chart: unknown option '%s' (see shadesim chart --help)", argv[i]);
+        else if (!csv) csv = argv[i];
+        else return cli_usage_error("chart: one CSV at a time (shadesim merge joins shards)");
+    }
+    if (!csv) return cli_usage_error("chart: which CSV? (shadesim chart out/sweep-UNIT/sweep.csv)");
+    if (png && !on_path("rsvg-convert"))
+        return cli_usage_error("chart: --png needs rsvg-convert, which is not installed (Debian: librsvg2-bin)");
+    char defdir[4096];
+    if (!dir) {
+        const char *sl = strrchr(csv, '/');
+        if (!sl || !strcmp(csv, "-")) snprintf(defdir, sizeof defdir, ".");
+        else snprintf(defdir, sizeof defdir, "%.*s", (int)(sl - csv) ? (int)(sl - csv) : 1, csv);
+        dir = defdir;
+    }
+    size_t len = 0;
+    char *text = slurp(csv, &len), err[800];
+    if (!text) return CLI_USAGE;
+    tb_sc *sc = tb_sc_read(text, len, csv, err, sizeof err);
+    free(text);
+    if (!sc) return cli_usage_error("%s", err);
+    if (make_dir(dir)) { tb_sc_free(sc); return CLI_USAGE; }
+    int rc = CLI_OK;
+    for (int k = 0; k < TB_SC_NCHARTS && rc == CLI_OK; k++) {
+        if (!tb_sc_chart_drawn(sc, k)) continue;
+        char path[4200], ppath[4200];
+        snprintf(path, sizeof path, "%s/%s", dir, tb_sc_chart_file[k]);
+        tb_chart *c = tb_sc_chart(sc, k, NULL);
+        if (!c) { rc = cli_usage_error("%s: out of memory", path); break; }
+        if (tb_chart_write(c, path, err, sizeof err)) rc = cli_usage_error("%s", err);
+        tb_chart_free(c);
+        if (rc) break;
+        printf("wrote %s\n", path);
+        if (png) {
+            snprintf(ppath, sizeof ppath, "%.*s.png", (int)(strlen(path) - 4), path);
+            rc = to_png(path, ppath);
+            if (rc == CLI_OK) printf("wrote %s\n", ppath);
+        }
+    }
+    tb_sc_free(sc);
+    char e[300];
+    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    return rc;
+}
