@@ -152,24 +152,27 @@ docs: bin/shadesim
 # Install: the binary, its data (the default vectors, which the installed
 # binary finds in ../share/shadesim from its own folder), the manual page
 # that shadesim --man makes from its verb table and each verb's --help, and
-# the documentation. DESTDIR stages a package.
+# the documentation. DESTDIR stages a package. INSTALL_BIN=FILE installs
+# that binary instead of building bin/shadesim (tests/cli_install.sh).
 PREFIX ?= /usr/local
 DESTDIR ?=
 DEST = $(DESTDIR)$(PREFIX)
+INSTALL_BIN ?=
+IBIN = $(or $(INSTALL_BIN),bin/shadesim)
 install:
-	@echo "building bin/shadesim ($(CC) $(OPT))..."
-	@$(SUBMAKE) bin/shadesim
+	@if [ -z "$(INSTALL_BIN)" ]; then echo "building bin/shadesim ($(CC) $(OPT))..."; \
+	    $(SUBMAKE) bin/shadesim || exit 1; fi
 	@echo "installing into $(DEST)..."
-	$(Q)install -d $(DEST)/bin $(DEST)/share/shadesim/vectors $(DEST)/share/man/man1 $(DEST)/share/doc/shadesim
-	$(Q)install -m 755 bin/shadesim $(DEST)/bin/shadesim.tmp && mv -f $(DEST)/bin/shadesim.tmp $(DEST)/bin/shadesim
-	$(Q)install -m 644 vectors/*.vec $(DEST)/share/shadesim/vectors/
-	$(Q)./bin/shadesim --man > $(DEST)/share/man/man1/shadesim.1.tmp \
-	    && mv -f $(DEST)/share/man/man1/shadesim.1.tmp $(DEST)/share/man/man1/shadesim.1
-	$(Q)install -m 644 README.md LICENSE docs/*.md $(DEST)/share/doc/shadesim/
+	$(Q)install -d "$(DEST)/bin" "$(DEST)/share/shadesim/vectors" "$(DEST)/share/man/man1" "$(DEST)/share/doc/shadesim"
+	$(Q)install -m 755 $(IBIN) "$(DEST)/bin/shadesim.tmp" && mv -f "$(DEST)/bin/shadesim.tmp" "$(DEST)/bin/shadesim"
+	$(Q)install -m 644 vectors/*.vec "$(DEST)/share/shadesim/vectors/"
+	$(Q)$(IBIN) --man > "$(DEST)/share/man/man1/shadesim.1.tmp" \
+	    && mv -f "$(DEST)/share/man/man1/shadesim.1.tmp" "$(DEST)/share/man/man1/shadesim.1"
+	$(Q)install -m 644 README.md LICENSE docs/*.md "$(DEST)/share/doc/shadesim/"
 
 uninstall:
-	rm -f $(DEST)/bin/shadesim $(DEST)/share/man/man1/shadesim.1
-	rm -rf $(DEST)/share/shadesim $(DEST)/share/doc/shadesim
+	rm -f "$(DEST)/bin/shadesim" "$(DEST)/share/man/man1/shadesim.1"
+	rm -rf "$(DEST)/share/shadesim" "$(DEST)/share/doc/shadesim"
 
 clean:
 	rm -rf build build-asan build-clang build-clang-asan bin

@@ -34,7 +34,8 @@ static void roff_text(FILE *f, const char *s)
     }
 }
 
-/* The text a verb prints for --help (malloc'd), or NULL. */
+/* The text a verb prints for --help (malloc'd; a note when it prints
+ * none), or NULL when it cannot be captured. */
 static char *verb_help(const cli_verb *v)
 {
     FILE *tmp = tmpfile();
@@ -49,16 +50,19 @@ static char *verb_help(const cli_verb *v)
     char a0[32], a1[] = "--help";
     snprintf(a0, sizeof a0, "%s", v->name);
     char *argv[] = { a0, a1, NULL };
-    int rc = v->fn(2, argv);
+    (void)v->fn(2, argv);
     fflush(stdout);
     dup2(saved, 1);
     close(saved);
     char *buf = NULL;
     long len = ftell(tmp);
-    if (rc == CLI_OK && len > 0 && (buf = malloc((size_t)len + 1))) {
+    if (len > 0 && (buf = malloc((size_t)len + 1))) {
         rewind(tmp);
         size_t got = fread(buf, 1, (size_t)len, tmp);
         buf[got] = 0;
+    } else if (len <= 0) {
+        static const char none[] = "(this verb prints no help text)\n";
+        if ((buf = malloc(sizeof none))) memcpy(buf, none, sizeof none);
     }
     fclose(tmp);
     return buf;
