@@ -5,10 +5,16 @@
  * the first time step `#0 $dumpvars ... $end` with every value, afterwards
  * `#t` and the signals whose value differs from what was last written.
  * Vector values are `b` + binary digits without leading zeros + space + id.
+ * Real variables a testbench declares (`$var real 64`) follow the design's
+ * scopes under the root, one `$scope module` per scope name; their values
+ * are `r` + %.17g (read back exactly) + space + id.
  */
+#define _XOPEN_SOURCE 700          /* realpath */
 #include "sim/sim_vcd.h"
 #include "sim/sim_out.h"
 #include <errno.h>
+#include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -19,12 +25,26 @@
 #define VCD_BUF  (1 << 16)
 #define VCD_LINE 96             /* longest line: 'b', 64 digits, ' ', id, '\n' */
 
+typedef struct vcd_real {
+    char   *scope, *name;
+    char    id[8];
+    double  cur, last;    /* value now; last written */
+    int     dirty;
+} vcd_real;
+
 struct sim_vcd {
     sim_ctx *ctx;
     FILE    *f;           /* sim_out_file(out) */
     sim_out *out;         /* temporary + rename, or written through, or stdout */
+    char    *timescale;
+    int      header;      /* header written */
     int      started;     /* $dumpvars written */
+    int      mode;        /* SIM_VCD_WRITE / HOLD / LAST */
     int      io_error;
+    vcd_real *reals;
+    int      nreals, capreals;
+    sim_vcd_hook hook;
+    void    *hook_data;
     size_t   n;           /* bytes in buf */
     char     buf[VCD_BUF];
 };
@@ -57,6 +77,16 @@ static void make_id(uint32_t n, char *out)
     out[i] = 0;
 }
 
+/* The real variables of scope name sc, in the order they were added. */
+static void write_real_scope(sim_vcd *v, const char *sc)
+{
+    fprintf(v->f, "$scope module %s $end\n", sc);
+    for (int i = 0; i < v->nreals; i++)
+        if (!strcmp(v->reals[i].scope, sc))
+            fprintf(v->f, "$var real 64 %s %s $end\n", v->reals[i].id, v->reals[i].name);
+    fputs("$upscope $end\n", v->f);
+}
+
 static void write_scope(sim_vcd *v, const sim_scope *sc)
 {
     fprintf(v->f, "$scope module %s $end\n", sc->name);
@@ -68,7 +98,22 @@ static void write_scope(sim_vcd *v, const sim_scope *sc)
                     s->name, s->fmt.width - 1);
     }
     for (const sim_scope *ch = sc->first_child; ch; ch = ch->next_sibling) write_scope(v, ch);
+    if (sc == sim_root(v->ctx))
+        for (int i = 0; i < v->nreals; i++) {
+            int first = 1;   /* the first real of its scope name */
+            for (int j = 0; j < i && first; j++) first = strcmp(v->reals[j].scope, v->reals[i].scope) != 0;
+            if (first) write_real_scope(v, v->reals[i].scope);
+        }
     fputs("$upscope $end\n", v->f);
+}
+
+static void write_header(sim_vcd *v)
+{
+    if (v->header) return;
+    v->header = 1;
+    fprintf(v->f, "$version shadesim $end\n$timescale %s $end\n", v->timescale);
+    write_scope(v, sim_root(v->ctx));
+    fputs("$enddefinitions $end\n", v->f);
 }
 
 sim_vcd *sim_vcd_open(sim_ctx *c, const char *path, const char *timescale,
@@ -87,16 +132,57 @@ sim_vcd *sim_vcd_open(sim_ctx *c, const char *path, const char *timescale,
     }
     v->f = sim_out_file(v->out);
     v->ctx = c;
+    if (!(v->timescale = strdup(timescale))) {
+        snprintf(err, errlen, "%s: out of memory", path);
+        sim_out_abort(v->out);
+        free(v);
+        return NULL;
+    }
     for (uint32_t i = 0, ns = sim_signal_count(c); i < ns; i++) {
         sim_signal *s = sim_signal_at(c, i);
         make_id(i, s->vcd_id);
         s->vcd_last = 0;
     }
-    fprintf(v->f, "$version shadesim $end\n$timescale %s $end\n", timescale);
-    write_scope(v, sim_root(c));
-    fputs("$enddefinitions $end\n", v->f);
     sim_attach_vcd(c, v);
     return v;
+}
+
+int sim_vcd_add_real(sim_vcd *v, const char *scope, const char *name)
+{
+    if (v->header) return -1;
+    if (v->nreals == v->capreals) {
+        int cap = v->capreals ? 2 * v->capreals : 8;
+        vcd_real *r = realloc(v->reals, (size_t)cap * sizeof *r);
+        if (!r) return -1;
+        v->reals = r;
+        v->capreals = cap;
+    }
+    vcd_real *r = &v->reals[v->nreals];
+    memset(r, 0, sizeof *r);
+    r->scope = strdup(scope);
+    r->name = strdup(name);
+    if (!r->scope || !r->name) { free(r->scope); free(r->name); return -1; }
+    /* ids after the signals' */
+    make_id(sim_signal_count(v->ctx) + (uint32_t)v->nreals, r->id);
+    return v->nreals++;
+}
+
+void sim_vcd_set_real(sim_vcd *v, int idx, double value)
+{
+    if (idx < 0 || idx >= v->nreals) return;
+    v->reals[idx].cur = value;
+    v->reals[idx].dirty = 1;
+}
+
+void sim_vcd_on_step(sim_vcd *v, sim_vcd_hook fn, void *data)
+{
+    v->hook = fn;
+    v->hook_data = data;
+}
+
+void sim_vcd_window(sim_vcd *v, int mode)
+{
+    v->mode = mode;
 }
 
 /* "1!" / "b1010 #" and a newline at p; returns the end. */
@@ -155,8 +241,27 @@ static void write_text(sim_vcd *v, const char *text)
     v->n += k;
 }
 
+/* "r0.25 id" and a newline. A value that is not finite (no reader
+ * agrees on its spelling) is written as 0. */
+static void write_real(sim_vcd *v, vcd_real *r)
+{
+    if (v->n > VCD_BUF - VCD_LINE) flush_buf(v);
+    double x = isfinite(r->cur) ? r->cur : 0;
+    int k = snprintf(v->buf + v->n, VCD_LINE, "r%.17g %s\n", x, r->id);
+    if (k > 0 && k < VCD_LINE) v->n += (size_t)k;
+    r->last = r->cur;
+    r->dirty = 0;
+}
+
 void sim_vcd_step(sim_vcd *v, sim_time t)
 {
+    if (v->hook) v->hook(v, t, v->hook_data);
+    /* Held: the kernel's list of changed signals keeps growing (each
+     * signal is in it once), so the first step written afterwards
+     * writes what changed meanwhile. */
+    if (v->mode == SIM_VCD_HOLD) return;
+    if (v->mode == SIM_VCD_LAST) v->mode = SIM_VCD_HOLD;
+    write_header(v);
     uint32_t n;
     sim_signal **d = sim__vcd_take_dirty(v->ctx, &n);
     int stamped = 0;
@@ -170,6 +275,7 @@ void sim_vcd_step(sim_vcd *v, sim_time t)
             s->vcd_last = s->cur;
             write_value(v, s, s->cur);
         }
+        for (int i = 0; i < v->nreals; i++) write_real(v, &v->reals[i]);
         write_text(v, "$end\n");
         return;
     }
@@ -183,11 +289,27 @@ void sim_vcd_step(sim_vcd *v, sim_time t)
         s->vcd_last = s->cur;
         write_value(v, s, s->cur);
     }
+    for (int i = 0; i < v->nreals; i++) {
+        vcd_real *r = &v->reals[i];
+        if (!r->dirty) continue;
+        if (r->cur == r->last || (isnan(r->cur) && isnan(r->last))) { r->dirty = 0; continue; }
+        if (!stamped) { write_time(v, t); stamped = 1; }
+        write_real(v, r);
+    }
+}
+
+static void free_vcd(sim_vcd *v)
+{
+    for (int i = 0; i < v->nreals; i++) { free(v->reals[i].scope); free(v->reals[i].name); }
+    free(v->reals);
+    free(v->timescale);
+    free(v);
 }
 
 int sim_vcd_close(sim_vcd *v)
 {
     if (!v) return 0;
+    write_header(v);      /* a dump with no time step written still has one */
     flush_buf(v);
     /* sim_out_close checks the stream (a failed fwrite left its error
      * flag), renames, and on failure removes the temporary and leaves
@@ -196,7 +318,7 @@ int sim_vcd_close(sim_vcd *v)
     int rc = sim_out_close(v->out, msg, sizeof msg);
     int e = errno;
     sim_attach_vcd(v->ctx, NULL);
-    free(v);
+    free_vcd(v);
     errno = e;
     return rc;
 }
@@ -206,7 +328,38 @@ void sim_vcd_abort(sim_vcd *v)
     if (!v) return;
     sim_out_abort(v->out);
     sim_attach_vcd(v->ctx, NULL);
-    free(v);
+    free_vcd(v);
+}
+
+/* s's full dotted path: "top.horner3.div3_a" + "." + name. */
+static void sig_path(const sim_signal *s, char *buf, size_t len)
+{
+    const sim_scope *chain[32];
+    int n = 0;
+    for (const sim_scope *p = s->scope; p && n < 32; p = p->parent) chain[n++] = p;
+    size_t at = 0;
+    buf[0] = 0;
+    while (n-- > 0 && at + 1 < len) {
+        int w = snprintf(buf + at, len - at, "%s.", chain[n]->name);
+        if (w < 0) break;
+        at += (size_t)w < len - at ? (size_t)w : len - at - 1;
+    }
+    snprintf(buf + at, len - at, "%s", s->name);
+}
+
+/* One trace: its flags line, the fixed-point shift, its name. Flags are
+ * GTKWave's TraceEntFlagBits: 0x4 decimal, 0x20 right-justified, 0x8
+ * binary, 0x400 signed, 0x40000000 fixed-point shift ([fpshift_count]). */
+static void gtkw_signal(FILE *f, const sim_signal *s)
+{
+    char path[600];
+    sig_path(s, path, sizeof path);
+    if (s->fmt.width == 1) { fprintf(f, "@28\n%s\n", path); return; }
+    unsigned long flags = 0x24 | (s->fmt.is_signed ? 0x400 : 0);
+    int fp = s->fmt.fbits >= 1 && s->fmt.fbits <= SIM_GTKW_MAX_FPSHIFT;
+    if (fp) fprintf(f, "@%lx\n[fpshift_count] %d\n", flags | 0x40000000ul, s->fmt.fbits);
+    else fprintf(f, "@%lx\n", flags);
+    fprintf(f, "%s[%d:0]\n", path, s->fmt.width - 1);
 }
 
 static void gtkw_scope(FILE *f, const sim_scope *sc, const char *prefix)
@@ -214,14 +367,9 @@ static void gtkw_scope(FILE *f, const sim_scope *sc, const char *prefix)
     char path[512];
     snprintf(path, sizeof path, "%s%s", prefix, sc->name);
     if (sc->first_sig) {
-        /* 0x800200 / 0x1000200: group begin / end (blank trace);
-         * 0x424: signed decimal, right-justified; 0x28: binary. */
+        /* 0x800200 / 0x1000200: group begin / end (blank trace) */
         fprintf(f, "@800200\n-%s\n", path);
-        for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope) {
-            if (s->fmt.width == 1) fprintf(f, "@28\n%s.%s\n", path, s->name);
-            else fprintf(f, "@%s\n%s.%s[%d:0]\n", s->fmt.is_signed ? "424" : "24",
-                         path, s->name, s->fmt.width - 1);
-        }
+        for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope) gtkw_signal(f, s);
         fprintf(f, "@1000200\n-%s\n", path);
     }
     char child_prefix[520];
@@ -230,17 +378,49 @@ static void gtkw_scope(FILE *f, const sim_scope *sc, const char *prefix)
         gtkw_scope(f, ch, child_prefix);
 }
 
-int sim_vcd_write_gtkw(sim_ctx *c, const char *vcd_path, const char *gtkw_path)
+/* path made absolute: its folder resolved (links too), then its name;
+ * NULL with errno. The caller frees. */
+static char *abs_path(const char *path)
 {
+    const char *slash = strrchr(path, '/');
+    char dir[PATH_MAX];
+    if (!slash) snprintf(dir, sizeof dir, ".");
+    else if (slash == path) snprintf(dir, sizeof dir, "/");
+    else snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    char *real = realpath(dir, NULL);
+    if (!real) return NULL;
+    const char *base = slash ? slash + 1 : path;
+    size_t n = strlen(real) + strlen(base) + 2;
+    char *out = malloc(n);
+    if (out) snprintf(out, n, "%s%s%s", real, strcmp(real, "/") ? "/" : "", base);
+    else errno = ENOMEM;
+    free(real);
+    return out;
+}
+
+int sim_vcd_write_gtkw(sim_ctx *c, const char *dump_path, const char *gtkw_path,
+                       const char *lead_title, const sim_gtkw_trace *lead, int nlead)
+{
+    char *dump = abs_path(dump_path), *save = abs_path(gtkw_path);
+    if (!dump || !save) { int e = errno; free(dump); free(save); errno = e; return -1; }
     char msg[256];
     sim_out *o = sim_out_open(gtkw_path, msg, sizeof msg);
-    if (!o) return -1;                          /* errno from the open */
+    if (!o) { free(dump); free(save); return -1; }   /* errno from the open */
     FILE *f = sim_out_file(o);
-    /* GTKWave resolves a relative dumpfile against the save file's folder. */
-    const char *base = strrchr(vcd_path, '/');
-    fprintf(f, "[*] shadesim: open with  gtkwave %s\n[dumpfile] \"%s\"\n[timestart] 0\n",
-            gtkw_path, base ? base + 1 : vcd_path);
+    fprintf(f, "[*] shadesim: open with  gtkwave %s\n[dumpfile] \"%s\"\n[savefile] \"%s\"\n[timestart] 0\n",
+            save, dump, save);
+    free(dump);
+    free(save);
     fprintf(f, "[treeopen] %s.\n", sim_root(c)->name);
+    if (nlead > 0) {
+        fprintf(f, "@800200\n-%s\n", lead_title ? lead_title : "check");
+        for (int i = 0; i < nlead; i++) {
+            if (lead[i].sig) gtkw_signal(f, lead[i].sig);
+            /* a real variable keeps its own (real) display: no number-base flag */
+            else if (lead[i].real) fprintf(f, "@20\n%s.%s\n", sim_root(c)->name, lead[i].real);
+        }
+        fprintf(f, "@1000200\n-%s\n", lead_title ? lead_title : "check");
+    }
     gtkw_scope(f, sim_root(c), "");
     return sim_out_close(o, msg, sizeof msg);   /* errno = the cause on -1 */
 }

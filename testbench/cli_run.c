@@ -1,5 +1,6 @@
 /* cli_run.c - the verbs that read the unit descriptors: list, vectors, run. */
 #include "testbench/cli.h"
+#include "testbench/tb_wave.h"
 #include "vectors/vec_file.h"
 #include "sim/sim_out.h"
 #include <stdlib.h>
@@ -247,8 +248,15 @@ static const char run_help2[] =
     "  --ranges             list every signal's observed raw range, not only those that overflowed\n"
     "  --json               print the result as one JSON object\n"
     "  --out FILE.csv       one row per vector: index, cycle, NAME_raw/_real/_expected/_err\n"
-    "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD),\n"
-    "                       with FILE.gtkw, a GTKWave save file grouping the unit's signals\n"
+    "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD)\n"
+    "                       and each output beat's expected value and error (tb.expected_NAME,\n"
+    "                       tb.err_NAME), with FILE.gtkw, a GTKWave save file: a group of the\n"
+    "                       outputs with their expected values and errors, then one per unit,\n"
+    "                       values in fixed point (docs/vcd.md)\n"
+    "  --vcd-from N, --vcd-to M  dump only items N..M (from 0, as --out's index): from the\n"
+    "                       edge where item N is offered to the one that samples M's last beat\n"
+    "  --fst                FILE is an FST dump (GTKWave's compact format), converted by\n"
+    "                       vcd2fst (Debian package gtkwave)\n"
     "\nOutput files: a regular file is replaced only once complete (a symbolic link is\n"
     "followed and kept); a device or FIFO is written to in place. --out - or --vcd -\n"
     "writes that file to stdout (no .gtkw then) and the report goes to stderr; only\n"
@@ -334,7 +342,8 @@ int cli_run(int argc, char **argv)
 {
     cli_unit_opts o;
     const char *unit = NULL, *vcd = NULL, *csv = NULL;
-    int json = 0;
+    int json = 0, fst = 0;
+    long long vfrom = -1, vto = -1;
     for (int i = 1; i < argc; i++) {
         if (is_help(argv[i])) { fputs(run_help, stdout); fputs(cli_unit_opts_help, stdout); fputs(run_help2, stdout); return stdout_done(CLI_OK); }
     }
@@ -362,6 +371,16 @@ int cli_run(int argc, char **argv)
         if (!strcmp(argv[i], "--json")) json = 1;
         else if (!strcmp(argv[i], "--vcd") && i + 1 < argc) vcd = argv[++i];
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) csv = argv[++i];
+        else if (!strcmp(argv[i], "--fst")) fst = 1;
+        else if (!strcmp(argv[i], "--vcd-from") || !strcmp(argv[i], "--vcd-to")) {
+            const char *opt = argv[i];
+            char *end;
+            if (i + 1 >= argc) return cli_usage_error("%s needs an item number", opt);
+            const char *a = argv[++i];
+            long long v = strtoll(a, &end, 10);
+            if (!*a || *end || v < 0 || *a == '-' || *a == '+') return cli_usage_error("%s %s: expected an item number (0, 1, ...)", opt, a);
+            if (!strcmp(opt, "--vcd-from")) vfrom = v; else vto = v;
+        }
         else if (!strcmp(argv[i], "--vcd") || !strcmp(argv[i], "--out")) return cli_usage_error("%s needs a file name", argv[i]);
         else return cli_usage_error("run: unknown option '%s' (see shadesim run --help)", argv[i]);
     }
@@ -369,13 +388,32 @@ int cli_run(int argc, char **argv)
     int vcd_out = vcd && !strcmp(vcd, "-"), csv_out = csv && !strcmp(csv, "-");
     if (vcd_out + csv_out + json > 1)
         return cli_usage_error("run: only one of --out -, --vcd - and --json can write to stdout");
+    if ((vfrom >= 0 || vto >= 0 || fst) && !vcd)
+        return cli_usage_error("run: %s needs --vcd FILE", fst ? "--fst" : vfrom >= 0 ? "--vcd-from" : "--vcd-to");
+    if (vfrom >= 0 && vto >= 0 && vfrom > vto)
+        return cli_usage_error("run: --vcd-from %lld is after --vcd-to %lld", vfrom, vto);
+    if (fst && vcd_out) return cli_usage_error("run: --fst needs a file, not --vcd -");
+    if (fst && !tb_wave_have_vcd2fst())
+        return cli_usage_error("run: --fst needs vcd2fst, which is not installed (Debian package gtkwave)");
     FILE *report = vcd_out || csv_out ? stderr : stdout;
     unit_fmts fm;
     char err[600];
     if (tb_formats(o.u, &o.cfg, o.fmt, o.nfmt, &fm, err, sizeof err)) return cli_usage_error("%s", err);
     vec_set vs;
     if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
-    tb_opts opts = { vcd, !vcd_out };
+    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst };
+    if (vfrom >= 0 || vto >= 0) {
+        int bad_from = vfrom >= 0 && (size_t)vfrom >= vs.n_rows;
+        if (bad_from || (vto >= 0 && (size_t)vto >= vs.n_rows)) {
+            size_t n = vs.n_rows;
+            vec_set_free(&vs);
+            return cli_usage_error("run: --vcd-%s %lld: the vectors have %zu items (0..%zu)", bad_from ? "from" : "to",
+                                   bad_from ? vfrom : vto, n, n ? n - 1 : 0);
+        }
+        opts.vcd_window = 1;
+        opts.vcd_from = vfrom >= 0 ? (size_t)vfrom : 0;
+        opts.vcd_to = vto >= 0 ? (size_t)vto : vs.n_rows - 1;
+    }
     tb_result r;
     int t = tb_run(o.u, &o.cfg, &fm, &vs, &opts, &r, err, sizeof err);
     int rc = CLI_OK;

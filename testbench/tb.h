@@ -96,6 +96,9 @@ typedef struct tb_result {
 typedef struct tb_opts {
     const char *vcd_path;        /* NULL: no dump */
     int         gtkw;            /* also write VCD_PATH with .gtkw */
+    int         vcd_window;      /* dump only items vcd_from..vcd_to (testbench/tb_wave.h) */
+    size_t      vcd_from, vcd_to;
+    int         fst;             /* VCD_PATH is an FST file, converted by vcd2fst */
 } tb_opts;
 
 enum { TB_OK = 0, TB_FAIL = 1, TB_BADINPUT = 2 };

@@ -1,7 +1,7 @@
 /* tb_run.c - the generic testbench: a driver and a monitor process around
  * any unit, then error metrics against the golden vectors. */
 #include "testbench/tb.h"
-#include "sim/sim_vcd.h"
+#include "testbench/tb_wave.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -467,8 +467,9 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     sim_proc *mon = sim_proc_new(c, "tb.monitor", monitor, &st);
     sim_sensitive(mon, clk, SIM_EDGE_POS);
     mon->no_init = 1;
+    tb_wave wave;
     if (o && o->vcd_path) {
-        vcd = sim_vcd_open(c, o->vcd_path, "1ns", err, errlen);
+        vcd = tb_wave_open(&wave, c, o, &io, clk, u, cfg, vs, err, errlen);
         if (!vcd) { rc = TB_BADINPUT; goto done; }
     }
     /* No unit needs more than a few thousand clocks per beat (pow_n at
@@ -485,28 +486,7 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         rc = TB_FAIL;
     }
     if (vcd) {
-        struct stat vst;
-        if (sim_vcd_close(vcd) && rc == TB_OK) {
-            snprintf(err, errlen, "%s: write failed: %s", o->vcd_path, strerror(errno));
-            rc = TB_BADINPUT;
-        } else if (o->gtkw && rc == TB_OK && stat(o->vcd_path, &vst) == 0 && S_ISREG(vst.st_mode)) {
-            /* The companion goes beside a dump in a file (not stdout, not
-             * /dev/null: no /dev/null.gtkw), any path length; a companion
-             * that cannot be written is an error, not a silent omission. */
-            size_t gl = strlen(o->vcd_path) + sizeof ".gtkw";
-            char *g = malloc(gl);
-            if (!g) {
-                snprintf(err, errlen, "%s.gtkw: out of memory", o->vcd_path);
-                rc = TB_BADINPUT;
-            } else {
-                snprintf(g, gl, "%s.gtkw", o->vcd_path);
-                if (sim_vcd_write_gtkw(c, o->vcd_path, g)) {
-                    snprintf(err, errlen, "%s: cannot write: %s", g, strerror(errno));
-                    rc = TB_BADINPUT;
-                }
-                free(g);
-            }
-        }
+        rc = tb_wave_close(&wave, c, vcd, u, rc, err, errlen);
         vcd = NULL;
     }
     if (rc == TB_OK) {
@@ -540,7 +520,7 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         tb_verdict(r, NULL);
     }
 done:
-    if (vcd) sim_vcd_abort(vcd);
+    if (vcd) { sim_vcd_abort(vcd); tb_wave_free(&wave); }
     sim_free(c);
     free(in_raw);
     free(ideal);

@@ -410,7 +410,7 @@ static void vcd_has_internals(void)
         char err[600];
         tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err);
         cli_make_vectors(u, &cfg, 4, 1, &vs, err, sizeof err);
-        tb_opts o = { path, 0 };
+        tb_opts o = { .vcd_path = path, .gtkw = 0 };
         tb_result r;
         TST_EQ_INT(tb_run(u, &cfg, &f, &vs, &o, &r, err, sizeof err), TB_OK);
         tb_result_free(&r);
