@@ -134,35 +134,12 @@ static int own_cosim(void *stp, int argc, char **argv, int *i)
     return 1;
 }
 
-/* Remove a folder we made and the files in it (one level). */
+/* Remove a folder we made and the files in it. */
 static void rm_tree(const char *dir)
 {
     char cmd[1200];
     snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
     if (system(cmd) != 0) { /* a temporary left behind is harmless */ }
-}
-
-/* First differing line of two files: 0 same; else line number (1-based) and both lines. */
-static long first_diff(const char *pa, const char *pb, char *la, char *lb, size_t len, long *lines)
-{
-    FILE *a = fopen(pa, "r"), *b = fopen(pb, "r");
-    long n = 0, bad = 0;
-    la[0] = lb[0] = 0;
-    while (a && b) {
-        char *x = fgets(la, (int)len, a), *y = fgets(lb, (int)len, b);
-        if (!x && !y) break;
-        n++;
-        if (!x) la[0] = 0;
-        if (!y) lb[0] = 0;
-        if (!x || !y || strcmp(la, lb)) { bad = n; break; }
-    }
-    if (!a || !b) bad = -1;
-    if (a) fclose(a);
-    if (b) fclose(b);
-    la[strcspn(la, "\n")] = 0;
-    lb[strcspn(lb, "\n")] = 0;
-    *lines = n;
-    return bad;
 }
 
 int cli_cosim(int argc, char **argv)
@@ -184,63 +161,16 @@ int cli_cosim(int argc, char **argv)
     vec_set vs;
     if (o.vectors) { if (cli_load_vectors(&o, &vs)) return CLI_USAGE; }
     else if (cli_make_vectors(o.u, &o.cfg, (size_t)st.n, st.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
-
     char tmpl[] = "/tmp/shadesim_cosim_XXXXXX";
     const char *dir = st.keep;
-    if (!dir) {
-        if (!mkdtemp(tmpl)) { vec_set_free(&vs); return cli_usage_error("cosim: cannot make a temporary folder"); }
-        dir = tmpl;
-    }
-    tb_result r;
-    memset(&r, 0, sizeof r);
-    int t = tb_run(o.u, &o.cfg, &fm, &vs, NULL, &r, err, sizeof err);
-    if (t != TB_OK) { rc = t == TB_BADINPUT ? cli_usage_error("%s", err) : (fprintf(stderr, "shadesim: %s\n", err), CLI_FAIL); goto done; }
-    if (tb_verilog_export(o.u, &o.cfg, &fm, dir, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
-    size_t pl = strlen(dir) + 64;
-    char *in = malloc(pl), *ex = malloc(pl), *res = malloc(pl), *cmd = malloc(8 * pl + 1024);
-    if (!in || !ex || !res || !cmd) { free(in); free(ex); free(res); free(cmd); rc = cli_usage_error("out of memory"); goto done; }
-    snprintf(in, pl, "%s/stimulus.hex", dir);
-    snprintf(ex, pl, "%s/stimulus.hex.expect", dir);
-    snprintf(res, pl, "%s/%s.out", dir, st.sim);
-    if (tb_stimulus_write(o.u, &o.cfg, &fm, &vs, &r, in, ex, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done2; }
-    size_t words = vs.n_rows * (size_t)unit_n_in(o.u);
-    const char *u = o.u->name;
-    if (icarus)
-        snprintf(cmd, 8 * pl + 1024,
-                 "cd '%s' && iverilog -g2005 -Wall -P %s_tb.MAXWORDS=%zu -o %s_tb.vvp %s_tb.v %s.v >iverilog.log 2>&1 && "
-                 "vvp -n %s_tb.vvp +in=stimulus.hex +items=%zu +out=icarus.out >vvp.log 2>&1",
-                 dir, u, words, u, u, u, u, vs.n_rows);
-    else
-        snprintf(cmd, 8 * pl + 1024,
-                 "cd '%s' && verilator --binary -j 2 -Wno-fatal -Wno-lint -Wno-style -GMAXWORDS=%zu --top-module %s_tb "
-                 "-o %s_vtb --Mdir obj_verilator %s_tb.v %s.v >verilator.log 2>&1 && "
-                 "obj_verilator/%s_vtb +in=stimulus.hex +items=%zu +out=verilator.out >vtb.log 2>&1",
-                 dir, words, u, u, u, u, u, vs.n_rows);
-    if (system(cmd) != 0) {
-        fprintf(stderr, "shadesim: cosim: %s failed (its log is in the folder: use --keep DIR)\n", st.sim);
-        rc = CLI_FAIL;
-        goto done2;
-    }
-    char la[1024], lb[1024];
-    long lines = 0;
-    long bad = first_diff(ex, res, la, lb, sizeof la, &lines);
-    size_t nb = r.vectors * (size_t)r.beats;
-    if (bad == 0 && (size_t)lines == nb) {
-        printf("bit-exact, %zu items, %llu clocks (%s)\n", r.vectors, (unsigned long long)r.cycles, st.sim);
-        rc = CLI_OK;
-    } else if (bad < 0) {
-        fprintf(stderr, "shadesim: cosim: %s wrote no results\n", st.sim);
-        rc = CLI_FAIL;
-    } else {
-        long beat = bad ? bad - 1 : lines;
-        printf("MISMATCH at item %ld beat %ld: shadesim \"%s\", %s \"%s\" (cycle, then output raws in hex)\n",
-               beat / r.beats, beat % r.beats, la, st.sim, lb[0] ? lb : "nothing");
-        rc = CLI_FAIL;
-    }
-done2:
-    free(in); free(ex); free(res); free(cmd);
-done:
-    tb_result_free(&r);
+    if (!dir && !mkdtemp(tmpl)) { vec_set_free(&vs); return cli_usage_error("cosim: cannot make a temporary folder"); }
+    if (!dir) dir = tmpl;
+    char msg[1200];
+    int t = tb_cosim(o.u, &o.cfg, &fm, &vs, icarus ? TB_SIM_ICARUS : TB_SIM_VERILATOR, dir, msg, sizeof msg);
+    if (t == TB_COSIM_EXACT) { printf("%s\n", msg); rc = CLI_OK; }
+    else if (t == TB_COSIM_MISMATCH) { printf("%s\n", msg); rc = CLI_FAIL; }
+    else if (t == TB_COSIM_BADINPUT) rc = cli_usage_error("%s", msg);
+    else { fprintf(stderr, "shadesim: %s\n", msg); rc = CLI_FAIL; }
     vec_set_free(&vs);
     if (!st.keep) rm_tree(dir);
     return stdout_done(rc);

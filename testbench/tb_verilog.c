@@ -222,3 +222,79 @@ int tb_stimulus_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
     }
     return sim_out_close(o, err, errlen);
 }
+
+/* First differing line of two files: 0 same, -1 a file missing, else its
+ * number (1-based); both lines (without newline) and the lines read. */
+static long first_diff(const char *pa, const char *pb, char *la, char *lb, size_t len, long *lines)
+{
+    FILE *a = fopen(pa, "r"), *b = fopen(pb, "r");
+    long n = 0, bad = 0;
+    la[0] = lb[0] = 0;
+    while (a && b) {
+        char *x = fgets(la, (int)len, a), *y = fgets(lb, (int)len, b);
+        if (!x && !y) break;
+        n++;
+        if (!x) la[0] = 0;
+        if (!y) lb[0] = 0;
+        if (!x || !y || strcmp(la, lb)) { bad = n; break; }
+    }
+    if (!a || !b) bad = -1;
+    if (a) fclose(a);
+    if (b) fclose(b);
+    la[strcspn(la, "\n")] = 0;
+    lb[strcspn(lb, "\n")] = 0;
+    *lines = n;
+    return bad;
+}
+
+int tb_cosim(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
+             int sim, const char *dir, char *msg, size_t msglen)
+{
+    tb_result r;
+    char err[600];
+    int t = tb_run(u, cfg, fm, vs, NULL, &r, err, sizeof err);
+    if (t != TB_OK) { snprintf(msg, msglen, "%s", err); return t == TB_BADINPUT ? TB_COSIM_BADINPUT : TB_COSIM_FAILED; }
+    int rc = TB_COSIM_FAILED;
+    const char *sname = sim == TB_SIM_ICARUS ? "icarus" : "verilator";
+    size_t pl = strlen(dir) + 64, cl = 4 * pl + 1024;
+    char *in = malloc(pl), *ex = malloc(pl), *res = malloc(pl), *cmd = malloc(cl);
+    if (!in || !ex || !res || !cmd) { snprintf(msg, msglen, "out of memory"); goto done; }
+    if (tb_verilog_export(u, cfg, fm, dir, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
+    snprintf(in, pl, "%s/stimulus.hex", dir);
+    snprintf(ex, pl, "%s/stimulus.hex.expect", dir);
+    snprintf(res, pl, "%s/%s.out", dir, sname);
+    if (tb_stimulus_write(u, cfg, fm, vs, &r, in, ex, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
+    remove(res);
+    size_t words = vs->n_rows * (size_t)unit_n_in(u);
+    const char *n = u->name;
+    if (sim == TB_SIM_ICARUS)
+        snprintf(cmd, cl,
+                 "cd '%s' && iverilog -g2005 -P %s_tb.MAXWORDS=%zu -o %s_tb.vvp %s_tb.v %s.v >iverilog.log 2>&1 && "
+                 "vvp -n %s_tb.vvp +in=stimulus.hex +items=%zu +out=icarus.out >vvp.log 2>&1",
+                 dir, n, words, n, n, n, n, vs->n_rows);
+    else
+        snprintf(cmd, cl,
+                 "cd '%s' && verilator --binary -j 2 -Wno-fatal -Wno-lint -Wno-style -GMAXWORDS=%zu --top-module %s_tb "
+                 "-o %s_vtb --Mdir obj_verilator %s_tb.v %s.v >verilator.log 2>&1 && "
+                 "obj_verilator/%s_vtb +in=stimulus.hex +items=%zu +out=verilator.out >vtb.log 2>&1",
+                 dir, words, n, n, n, n, n, vs->n_rows);
+    if (system(cmd) != 0) { snprintf(msg, msglen, "cosim: %s failed (its log is in the folder: use --keep DIR)", sname); goto done; }
+    char la[512], lb[512];
+    long lines = 0, bad = first_diff(ex, res, la, lb, sizeof la, &lines);
+    size_t nb = r.vectors * (size_t)r.beats;
+    if (bad == 0 && (size_t)lines == nb) {
+        snprintf(msg, msglen, "bit-exact, %zu items, %llu clocks (%s)", r.vectors, (unsigned long long)r.cycles, sname);
+        rc = TB_COSIM_EXACT;
+    } else if (bad < 0) {
+        snprintf(msg, msglen, "cosim: %s wrote no results", sname);
+    } else {
+        long beat = bad ? bad - 1 : lines;
+        snprintf(msg, msglen, "MISMATCH at item %ld beat %ld: shadesim \"%s\", %s \"%s\" (cycle, then the output raws in hex)",
+                 beat / r.beats, beat % r.beats, la, sname, lb[0] ? lb : "nothing");
+        rc = TB_COSIM_MISMATCH;
+    }
+done:
+    free(in); free(ex); free(res); free(cmd);
+    tb_result_free(&r);
+    return rc;
+}

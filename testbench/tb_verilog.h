@@ -31,4 +31,15 @@ char *tb_verilog_module_text(const unit_desc *u, const unit_cfg *cfg, const unit
 int tb_stimulus_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
                       const vec_set *vs, const tb_result *r, const char *in_path,
                       const char *exp_path, char *err, size_t errlen);
+
+/* Co-simulation: tb_run on vs, the export, stimulus and expected results
+ * into dir (an existing folder), the external simulator run on them, and
+ * the results compared line for line (every output raw, every beat's
+ * cycle). Verilator builds into dir/obj_verilator. msg gets one line:
+ * "bit-exact, N items, M clocks (icarus)", the first mismatch, or what
+ * failed. */
+enum { TB_SIM_ICARUS = 0, TB_SIM_VERILATOR = 1 };
+enum { TB_COSIM_EXACT = 0, TB_COSIM_MISMATCH = 1, TB_COSIM_FAILED = 2, TB_COSIM_BADINPUT = 3 };
+int tb_cosim(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
+             int sim, const char *dir, char *msg, size_t msglen);
 #endif

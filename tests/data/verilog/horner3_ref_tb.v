@@ -1,14 +1,14 @@
-// horner3_tb.v - Icarus Verilog testbench for horner3.v: the same
+// horner3_ref_tb.v - Icarus Verilog testbench for horner3_ref.v: the same
 // valid/ready driving as testbench/tb_run.c, from a file of quantized
 // inputs (one item a line: a b c d t as hex raws of the formats' widths).
 //
-//   iverilog -g2005 -P horner3_tb.W=16 -o tb horner3_tb.v horner3.v
+//   iverilog -g2005 -P horner3_ref_tb.W=16 -o tb horner3_ref_tb.v horner3_ref.v
 //   vvp tb +in=INPUTS.hex +out=OUT.txt
 //
 // OUT: one line per output, "CYCLE Y" (the cycle it was valid in, counting
 // from 0 as shadesim does; Y the signed raw of RG in decimal).
 `timescale 1ns/1ps
-module horner3_tb;
+module horner3_ref_tb;
     parameter W  = 16;             // datapath width: s7.(W-7), t u1.(W-1)
     parameter F  = W - 7;
     parameter MAXN = 1 << 18;      // most items the memory holds (-P to change)
@@ -20,7 +20,7 @@ module horner3_tb;
     wire in_ready, out_valid;
     wire signed [W-1:0] y;
 
-    horner3 #(.W(W), .F(F), .TW(W)) dut (
+    horner3_ref #(.W(W), .F(F), .TW(W)) dut (
         .clk(clk), .a(a), .b(b), .c(c), .d(d), .t(t), .in_valid(in_valid),
         .in_ready(in_ready), .y(y), .out_valid(out_valid));
 

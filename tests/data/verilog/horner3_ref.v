@@ -1,5 +1,5 @@
-// horner3.v - the Horner datapath of seed 000, Fig. 9, written as RTL to
-// cross-check shadesim (units/unit_horner.c) and to compare simulators.
+// horner3_ref.v - the Horner datapath of seed 000, Fig. 9, written by hand as RTL from
+// the paper (not from the simulator or its export), to cross-check both.
 //
 //   MUL = MX1 * t            MX1 in {A, RG}
 //   Sm  = MX2 + BK(RG)       MX2 in {MUL, B, C, D}; BK passes RG or forces 0
@@ -14,7 +14,7 @@
 // it waits at step 0 until in_valid; in_ready is 1 in the last step (the
 // item is accepted at that edge); out_valid is in_ready one clock later,
 // when RG holds I.
-module horner3 #(
+module horner3_ref #(
     parameter W  = 16,          // datapath width
     parameter F  = 9,           // datapath fraction bits (s(W-F).F)
     parameter TW = W,           // width of t (u1.(TW-1))
