@@ -11,12 +11,13 @@ P="$T/prefix dir"         # a space in the path on purpose
 
 # ---- install ----
 if command -v make >/dev/null 2>&1; then
-    make -s --no-print-directory install PREFIX="$P" INSTALL_BIN="$S" >"$T/inst.out" 2>&1
+    env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory install PREFIX="$P" INSTALL_BIN="$S" >"$T/inst.out" 2>&1
     rc=$?
 else
     echo "skip ${PREFIX}install: make not installed"; exit 0
 fi
 check install_exit_0 [ $rc -eq 0 ]
+[ $rc -ne 0 ] && sed -n "1,5s/^/  /p" "$T/inst.out"
 check install_binary [ -x "$P/bin/shadesim" ]
 nsrc=$(ls vectors/*.vec | wc -l)
 ninst=$(ls "$P/share/shadesim/vectors/"*.vec 2>/dev/null | wc -l)
@@ -95,5 +96,5 @@ fi
 check man_deterministic cmp -s "$man1" "$T/man2"
 
 # ---- uninstall ----
-make -s --no-print-directory uninstall PREFIX="$P" >/dev/null 2>&1
+env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory uninstall PREFIX="$P" >/dev/null 2>&1
 check uninstall_removes [ ! -e "$P/bin/shadesim" -a ! -e "$P/share/shadesim" -a ! -e "$man1" ]
