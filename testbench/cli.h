@@ -62,6 +62,11 @@ int cli_unit_option(cli_unit_opts *o, int argc, char **argv, int *i);
  * (vectors/UNIT.vec beside the binary's tree) when the parameters are the
  * defaults, else generated from the float reference. 0 or CLI_USAGE. */
 int cli_load_vectors(const cli_unit_opts *o, vec_set *vs);
+/* The vector file cli_load_vectors would read: 1 and *path (in buf when it
+ * is the unit's default file), 0 when the vectors are generated instead
+ * (parameters other than the defaults, no --vectors), -1 when the default
+ * file is missing (message printed). */
+int cli_vectors_file(const cli_unit_opts *o, char *buf, size_t len, const char **path);
 /* Path of the checked-in default vectors of a unit. */
 const char *cli_default_vectors_path(const char *unit, char *buf, size_t len);
 /* Generate a unit's golden vectors from its reference model. */

@@ -180,6 +180,21 @@ static int params_default(const unit_desc *u, const unit_cfg *cfg)
     return 1;
 }
 
+int cli_vectors_file(const cli_unit_opts *o, char *buf, size_t len, const char **path)
+{
+    *path = NULL;
+    if (!o->vectors && !params_default(o->u, &o->cfg)) return 0;
+    const char *p = o->vectors ? o->vectors : cli_default_vectors_path(o->u->name, buf, len);
+    if (!o->vectors && access(p, R_OK)) {
+        cli_usage_error("%s: the default vectors of %s are not there (set SHADESIM_HOME to the "
+                        "folder that holds vectors/, install with make install, or give --vectors FILE)",
+                        p, o->u->name);
+        return -1;
+    }
+    *path = p;
+    return 1;
+}
+
 int cli_load_vectors(const cli_unit_opts *o, vec_set *vs)
 {
     char err[600], path[4200];

@@ -1,5 +1,6 @@
 /* cli_run.c - the verbs that read the unit descriptors: list, vectors, run. */
 #include "testbench/cli.h"
+#include "testbench/tb_stream.h"
 #include "testbench/tb_wave.h"
 #include "vectors/vec_file.h"
 #include "sim/sim_out.h"
@@ -338,6 +339,59 @@ static int run_all(const tb_accept *acc)
     return stdout_done(rc);
 }
 
+static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, const int64_t *raw,
+                    const double *expected)
+{
+    tb_csv_row(sim_out_file(data), r, idx, cycle, raw, expected);
+}
+
+/* run UNIT on a vector file, streamed (tb_run_stream): the same report,
+ * --out rows written as items complete. The header and first rows are
+ * read first, so a bad file is reported before anything is written. */
+static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char *path, const char *csv,
+                        int json, int ranges, FILE *report, const tb_accept *acc)
+{
+    char err[600];
+    vec_set hdr;
+    vec_set_init(&hdr);
+    tb_expected_header(o->u, &o->cfg, &hdr);
+    vec_stream *vs = vec_stream_open(path, &hdr, err, sizeof err);
+    if (!vs) return cli_usage_error("%s", err);
+    const vec_set *rows;
+    if (vec_stream_next(vs, &rows) < 0) {
+        cli_usage_error("%s", vec_stream_error(vs));
+        vec_stream_close(vs);
+        return CLI_USAGE;
+    }
+    vec_stream_unread(vs);
+    sim_out *out = NULL;
+    if (csv) {
+        out = sim_out_open(csv, err, sizeof err);
+        if (!out) { vec_stream_close(vs); return cli_usage_error("%s", err); }
+        tb_csv_header(sim_out_file(out), rows->n_out, (const char (*)[16])rows->out_names);
+    }
+    tb_result r;
+    int t = tb_run_stream(o->u, &o->cfg, fm, vs, csv ? csv_row : NULL, out, &r, err, sizeof err);
+    vec_stream_close(vs);
+    int rc = CLI_OK;
+    if (t != TB_OK) {
+        if (out) sim_out_abort(out);
+        rc = cli_usage_error("%s", err);
+        if (t == TB_FAIL) rc = CLI_FAIL;
+    } else {
+        if (out && sim_out_close(out, err, sizeof err)) rc = cli_usage_error("%s", err);
+        tb_verdict(&r, acc);
+        if (json) tb_write_json(stdout, &r);
+        else {
+            tb_print_table(report, &r);
+            if (ranges) tb_print_ranges(report, &r, 1);
+        }
+        if (rc == CLI_OK && !r.ok) rc = CLI_FAIL;
+    }
+    tb_result_free(&r);
+    return rc == CLI_USAGE ? rc : stdout_done(rc);
+}
+
 int cli_run(int argc, char **argv)
 {
     cli_unit_opts o;
@@ -399,6 +453,15 @@ int cli_run(int argc, char **argv)
     unit_fmts fm;
     char err[600];
     if (tb_formats(o.u, &o.cfg, o.fmt, o.nfmt, &fm, err, sizeof err)) return cli_usage_error("%s", err);
+    /* Without a dump, a vector file is read a block at a time: memory
+     * does not grow with the number of vectors. */
+    char vpath[4200];
+    const char *vfile = NULL;
+    if (!vcd) {
+        int f = cli_vectors_file(&o, vpath, sizeof vpath, &vfile);
+        if (f < 0) return CLI_USAGE;
+        if (f) return run_streamed(&o, &fm, vfile, csv, json, ranges, report, &acc);
+    }
     vec_set vs;
     if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
     tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst };

@@ -1,5 +1,6 @@
 /* tb_out.c - a testbench result as JSON, CSV and a readable table. */
 #include "testbench/tb.h"
+#include "testbench/tb_stream.h"
 #include "sim/sim_out.h"
 #include <errno.h>
 #include <math.h>
@@ -96,26 +97,36 @@ int tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *
     sim_out *o = sim_out_open(path, err, errlen);
     if (!o) return -1;
     FILE *f = sim_out_file(o);
-    int nb = r->beats, no = r->n_out;
+    size_t nv = (size_t)r->beats * (size_t)r->n_out;
+    tb_csv_header(f, vs->n_out, (const char (*)[16])vs->out_names);
+    for (size_t it = 0; it < r->vectors; it++)
+        /* The item's output appeared with its first beat. */
+        tb_csv_row(f, r, it, r->beat_cycle[it * (size_t)r->beats], r->raw + it * nv, vec_row(vs, it) + r->n_in);
+    return sim_out_close(o, err, errlen);
+}
+
+void tb_csv_header(FILE *f, int n_out, const char names[][16])
+{
     fputs("index,cycle", f);
-    for (int k = 0; k < vs->n_out; k++) {
-        const char *nm = vs->out_names[k];
+    for (int k = 0; k < n_out; k++) {
+        const char *nm = names[k];
         fprintf(f, ",%s_raw,%s_real,%s_expected,%s_err", nm, nm, nm, nm);
     }
     fputc('\n', f);
-    for (size_t it = 0; it < r->vectors; it++) {
-        /* The item's output appeared with its first beat. */
-        fprintf(f, "%zu,%llu", it, (unsigned long long)r->beat_cycle[it * (size_t)nb]);
-        for (int b = 0; b < nb; b++)
-            for (int o = 0; o < no; o++) {
-                size_t k = (it * (size_t)nb + (size_t)b) * (size_t)no + (size_t)o;
-                double hw = sim_fx_to_real(r->raw[k], r->out[o].fmt);
-                double ref = vec_row(vs, it)[r->n_in + b * no + o];
-                fprintf(f, ",%lld,%.17g,%.17g,%.17g", (long long)r->raw[k], hw, ref, hw - ref);
-            }
-        fputc('\n', f);
-    }
-    return sim_out_close(o, err, errlen);
+}
+
+void tb_csv_row(FILE *f, const tb_result *r, size_t idx, uint64_t cycle, const int64_t *raw,
+                const double *expected)
+{
+    int nb = r->beats, no = r->n_out;
+    fprintf(f, "%zu,%llu", idx, (unsigned long long)cycle);
+    for (int b = 0; b < nb; b++)
+        for (int o = 0; o < no; o++) {
+            int k = b * no + o;
+            double hw = sim_fx_to_real(raw[k], r->out[o].fmt);
+            fprintf(f, ",%lld,%.17g,%.17g,%.17g", (long long)raw[k], hw, expected[k], hw - expected[k]);
+        }
+    fputc('\n', f);
 }
 
 void tb_print_ranges(FILE *f, const tb_result *r, int all)

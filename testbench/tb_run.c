@@ -1,6 +1,7 @@
 /* tb_run.c - the generic testbench: a driver and a monitor process around
  * any unit, then error metrics against the golden vectors. */
 #include "testbench/tb.h"
+#include "testbench/tb_stream.h"
 #include "testbench/tb_wave.h"
 #include <errno.h>
 #include <math.h>
@@ -123,8 +124,8 @@ typedef struct tb_golden {
 
 /* The exact check of one value: TB_CHECK_OK / EXCEEDED / UNCHECKED, and
  * |hw - ideal| (as a double, for the report). */
-static int check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
-                       double ideal_d, const sim_dy *bound, double *err)
+int tb_check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
+                   double ideal_d, const sim_dy *bound, double *err)
 {
     sim_dy hw, id, d;
     sim_dy_raw(&hw, raw, f);
@@ -215,7 +216,7 @@ static void metrics(tb_result *r, const vec_set *vs, const double *ideal, const 
                 double ref = vec_row(vs, it)[r->n_in + bt * no + o];
                 double e = hw - ref, ei;
                 int ex = exact && exact_ok[it], iv = ex && exact_ok[it] == 2;
-                int c = check_value(r->raw[k], m->fmt, ex ? &exact[k] : NULL, ex && !iv && exact_den ? &exact_den[k] : NULL,
+                int c = tb_check_value(r->raw[k], m->fmt, ex ? &exact[k] : NULL, ex && !iv && exact_den ? &exact_den[k] : NULL,
                                     iv ? &exact_hi[k] : NULL, ideal[k], &b, &ei);
                 se += e;
                 m->sum_e2 += e * e;

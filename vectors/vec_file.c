@@ -514,85 +514,147 @@ static int do_block(reader *r, char *b, char *e, vec_set *s, const vec_set *expe
 
 #define VEC_BLOCK (4u << 20)     /* bytes read at a time */
 
-static int read_all(reader *r, FILE *f, vec_set *s, const vec_set *expect)
-{
-    rstate st = { 0, 0, 0 };
+/* A file being read: the state read_all kept in locals, so that the rows
+ * can be taken a block at a time (vec_stream_next) as well as all at once
+ * (vec_file_read); both run the same steps, so the checks, messages and
+ * line numbers are the same. */
+struct vec_stream {
+    reader r;
+    FILE *f;
+    int is_stdin;
     /* buf holds the unfinished line carried over plus one block. A line
      * that needs more than VEC_LINE_MAX + 2 bytes (CR, LF) is too long,
      * or has bad bytes before that: check_line finds which. */
-    size_t cap = VEC_BLOCK + VEC_LINE_MAX + 8, len = 0;
-    char *buf = malloc(cap + 1);
-    if (!buf) return fail(r, "out of memory");
-    int rc = 0, eof = 0, rerr = 0;
+    char *buf;
+    size_t cap, len;
+    int eof, done, failed, held;
+    rstate st;
     par pp;
-    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
-    pp.ncpu = ncpu > 1 ? 2 : 1;
-    vec_set_init(&pp.rows);
-    while (!eof) {
-        size_t k = fread(buf + len, 1, cap - len, f);
-        len += k;
-        if (len < cap) {               /* short read: end of file or error */
-            eof = 1;
-            if (ferror(f)) rerr = errno ? errno : EIO;
-        }
-        char *cut = eof ? buf + len : NULL;
-        if (!eof) {
-            /* Up to the last LF of the block; the rest waits for more. */
-            char *q = buf + len;
-            while (q > buf && q[-1] != '\n') q--;
-            cut = q;
-            if (cut == buf) {
-                /* No LF in a full buffer: a line too long (or bad bytes
-                 * before its end). */
-                r->line++;
-                if (check_line(r, buf, len) == 0) rc = fail(r, "line longer than %d bytes", VEC_LINE_MAX);
-                rc = -1;
-                break;
-            }
-        }
-        if (rerr) {
-            /* Complete lines first, as a line-by-line reader would meet
-             * them; then the characters of the unfinished line; then the
-             * error, on the line it hit. */
-            char *q = buf + len;
-            while (q > buf && q[-1] != '\n') q--;
-            if ((rc = do_block(r, buf, q, s, expect, &st, &pp))) break;
-            r->line++;
-            if (q < buf + len && (rc = check_line(r, q, (size_t)(buf + len - q)))) break;
-            rc = fail(r, "read error: %s", strerror(rerr));
-            break;
-        }
-        if ((rc = do_block(r, buf, cut, s, expect, &st, &pp))) break;
-        len = (size_t)(buf + len - cut);
-        memmove(buf, cut, len);
+    const vec_set *expect;
+    vec_set hdr_expect;         /* the stream's copy of expect */
+    vec_set rows;               /* header and the rows of the last block */
+    size_t total;               /* rows read so far */
+    char err[600];
+};
+
+/* One block: read, cut at its last LF, parse its lines into s. 0, or -1
+ * with the message. Sets done at the end of the file (after the checks a
+ * whole file gets). */
+static int read_step(vec_stream *v, vec_set *s)
+{
+    reader *r = &v->r;
+    char *buf = v->buf;
+    size_t cap = v->cap, len = v->len;
+    size_t before = s->n_rows;
+    int rerr = 0;
+    size_t k = fread(buf + len, 1, cap - len, v->f);
+    len += k;
+    if (len < cap) {               /* short read: end of file or error */
+        v->eof = 1;
+        if (ferror(v->f)) rerr = errno ? errno : EIO;
     }
-    free(buf);
-    vec_set_free(&pp.rows);
-    if (rc) return -1;
-    if (r->line == 0) r->line = 1;
-    if (!st.magic) return fail(r, "empty file (expected '# " VEC_MAGIC "')");
-    if (!s->n_rows) return fail(r, "no vector rows");
+    char *cut = v->eof ? buf + len : NULL;
+    if (!v->eof) {
+        /* Up to the last LF of the block; the rest waits for more. */
+        char *q = buf + len;
+        while (q > buf && q[-1] != '\n') q--;
+        cut = q;
+        if (cut == buf) {
+            /* No LF in a full buffer: a line too long (or bad bytes
+             * before its end). */
+            r->line++;
+            if (check_line(r, buf, len) == 0) fail(r, "line longer than %d bytes", VEC_LINE_MAX);
+            return -1;
+        }
+    }
+    if (rerr) {
+        /* Complete lines first, as a line-by-line reader would meet
+         * them; then the characters of the unfinished line; then the
+         * error, on the line it hit. */
+        char *q = buf + len;
+        while (q > buf && q[-1] != '\n') q--;
+        if (do_block(r, buf, q, s, v->expect, &v->st, &v->pp)) return -1;
+        r->line++;
+        if (q < buf + len && check_line(r, q, (size_t)(buf + len - q))) return -1;
+        return fail(r, "read error: %s", strerror(rerr));
+    }
+    if (do_block(r, buf, cut, s, v->expect, &v->st, &v->pp)) return -1;
+    v->total += s->n_rows - before;
+    len = (size_t)(buf + len - cut);
+    memmove(buf, cut, len);
+    v->len = len;
+    if (v->eof) {
+        v->done = 1;
+        if (r->line == 0) r->line = 1;
+        if (!v->st.magic) return fail(r, "empty file (expected '# " VEC_MAGIC "')");
+        if (!v->total) return fail(r, "no vector rows");
+    }
     return 0;
+}
+
+vec_stream *vec_stream_open(const char *path, const vec_set *expect, char *err, size_t errlen)
+{
+    vec_stream *v = calloc(1, sizeof *v);
+    if (!v) { msg(err, errlen, "%s: out of memory", path); return NULL; }
+    v->is_stdin = !strcmp(path, "-");
+    v->r.path = v->is_stdin ? "<stdin>" : path;
+    v->r.err = v->err;
+    v->r.errlen = sizeof v->err;
+    v->cap = VEC_BLOCK + VEC_LINE_MAX + 8;
+    v->buf = malloc(v->cap + 1);
+    v->f = v->is_stdin ? stdin : fopen(path, "rb");
+    if (!v->buf || !v->f) {
+        if (!v->buf) msg(err, errlen, "%s: out of memory", path);
+        else msg(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        if (v->f && !v->is_stdin) fclose(v->f);
+        free(v->buf);
+        free(v);
+        return NULL;
+    }
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    v->pp.ncpu = ncpu > 1 ? 2 : 1;
+    vec_set_init(&v->pp.rows);
+    vec_set_init(&v->rows);
+    if (expect) { v->hdr_expect = *expect; v->hdr_expect.data = NULL; v->hdr_expect.n_rows = v->hdr_expect.cap_rows = 0; v->expect = &v->hdr_expect; }
+    errno = 0;
+    return v;
+}
+
+int vec_stream_next(vec_stream *v, const vec_set **rows)
+{
+    *rows = &v->rows;
+    if (v->held) { v->held = 0; return v->rows.n_rows ? 1 : 0; }
+    v->rows.n_rows = 0;
+    if (v->failed) return -1;
+    while (!v->done && !v->rows.n_rows)
+        if (read_step(v, &v->rows)) { v->failed = 1; v->rows.n_rows = 0; return -1; }
+    return v->rows.n_rows ? 1 : 0;
+}
+
+void vec_stream_unread(vec_stream *v) { if (!v->failed) v->held = 1; }
+
+const char *vec_stream_error(const vec_stream *v) { return v->err; }
+
+void vec_stream_close(vec_stream *v)
+{
+    if (!v) return;
+    if (!v->is_stdin) fclose(v->f);
+    free(v->buf);
+    vec_set_free(&v->pp.rows);
+    vec_set_free(&v->rows);
+    free(v);
 }
 
 int vec_file_read(const char *path, vec_set *s, const vec_set *expect,
                   char *err, size_t errlen)
 {
     vec_set_init(s);
-    int is_stdin = !strcmp(path, "-");
-    reader r;
-    memset(&r, 0, sizeof r);
-    r.path = is_stdin ? "<stdin>" : path;
-    r.err = err;
-    r.errlen = errlen;
-    FILE *f = is_stdin ? stdin : fopen(path, "rb");
-    if (!f) {
-        msg(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return -1;
-    }
-    errno = 0;
-    int rc = read_all(&r, f, s, expect);
-    if (!is_stdin) fclose(f);
-    if (rc) vec_set_free(s);
+    vec_stream *v = vec_stream_open(path, expect, err, errlen);
+    if (!v) return -1;
+    int rc = 0;
+    while (!v->done)
+        if (read_step(v, s)) { rc = -1; break; }
+    if (rc) { msg(err, errlen, "%s", v->err); vec_set_free(s); }
+    vec_stream_close(v);
     return rc;
 }

@@ -24,4 +24,20 @@ int vec_file_print(FILE *f, const vec_set *s);
  * file, binary junk, missing header). */
 int vec_file_read(const char *path, vec_set *s, const vec_set *expect,
                   char *err, size_t errlen);
+
+/* The same file a block at a time (a few MB of text), for readers whose
+ * memory must not grow with the file: open, then vec_stream_next until it
+ * returns 0 (end) or -1 (the message, "PATH:LINE: what" exactly as
+ * vec_file_read gives it, in vec_stream_error). Each call replaces *rows'
+ * rows with the next ones (at least one); *rows also carries the header
+ * (unit, port names) once the first call has returned 1. open: NULL with
+ * "PATH: cannot open: why" in err. */
+typedef struct vec_stream vec_stream;
+vec_stream *vec_stream_open(const char *path, const vec_set *expect, char *err, size_t errlen);
+int         vec_stream_next(vec_stream *v, const vec_set **rows);
+/* The next vec_stream_next gives the same rows again (a caller that
+ * looked at the header and first rows hands the stream on untouched). */
+void        vec_stream_unread(vec_stream *v);
+const char *vec_stream_error(const vec_stream *v);
+void        vec_stream_close(vec_stream *v);
 #endif

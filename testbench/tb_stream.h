@@ -1,0 +1,80 @@
+/* tb_stream.h - the testbench pieces that work one item at a time, shared
+ * by tb_run (every item in memory) and tb_run_stream (a vector file read a
+ * block at a time, memory independent of its length):
+ *
+ *  - tb_prep: quantize one row's inputs as the hardware holds them and
+ *    compute what the unit should give (ideal, exact ideal, the golden
+ *    check's figures);
+ *  - tb_acc: the error metrics, accumulated item by item in item order
+ *    (so the sums are added in the same order whichever way the items
+ *    come: the reports are the same bytes).
+ */
+#ifndef TB_STREAM_H
+#define TB_STREAM_H
+#include "testbench/tb.h"
+#include "vectors/vec_file.h"
+
+/* What tb_prep needs of the unit, set once per run. */
+typedef struct tb_prep_ctx {
+    const unit_desc *u;
+    const unit_cfg  *cfg;
+    const unit_fmts *fmts;
+    const vec_model *model;     /* NULL: the row's expected values stand in */
+    vec_params vp;
+    int n_in, nv;               /* inputs; output values per item (beats x outputs) */
+    int in_idx[UNIT_MAX_IO];    /* signal index of input i */
+} tb_prep_ctx;
+
+/* One item's figures, nv values each (beat-major) unless noted. */
+typedef struct tb_item {
+    int64_t *in_raw;            /* n_in quantized inputs */
+    double  *ideal, *ideal_r, *ideal_u, *ref_u;
+    sim_dy  *exact, *den, *hi;  /* NULL when the unit has no such ideal */
+    unsigned char *exact_ok;    /* one: 0 none, 1 exact (or ratio), 2 interval */
+} tb_item;
+
+void tb_prep_init(tb_prep_ctx *p, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts);
+/* row: n_in inputs then nv expected values. in_ovf[i] counts input i's
+ * quantization overflows. */
+void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_t *in_ovf);
+
+/* Error metrics of a run, item by item. r->out[o].fmt, name and bound must
+ * be set before tb_acc_begin. */
+typedef struct tb_acc {
+    double se[UNIT_MAX_IO], out_scale[UNIT_MAX_IO];
+    sim_dy b[UNIT_MAX_IO];
+    int    has_bound[UNIT_MAX_IO];
+    int    any_unchecked[UNIT_MAX_IO], any_exceeded[UNIT_MAX_IO];
+    size_t first_unchecked[UNIT_MAX_IO], first_exceeded[UNIT_MAX_IO];
+} tb_acc;
+void tb_acc_begin(tb_acc *a, tb_result *r);
+/* Item number idx: its raws and expected values (nv each) and figures. */
+void tb_acc_item(tb_acc *a, tb_result *r, size_t idx, const int64_t *raw, const double *expected,
+                 const tb_item *it);
+void tb_acc_end(tb_acc *a, tb_result *r);
+
+/* The exact check of one value (tb_run.c): TB_CHECK_OK / EXCEEDED /
+ * UNCHECKED, and |hw - ideal| in *err. */
+int tb_check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
+                   double ideal_d, const sim_dy *bound, double *err);
+
+/* The --out CSV (tb_out.c): its header, and one item's row. */
+void tb_csv_header(FILE *f, int n_out, const char names[][16]);
+void tb_csv_row(FILE *f, const tb_result *r, size_t idx, uint64_t cycle, const int64_t *raw,
+                const double *expected);
+
+/* Called with each item once its last output beat is in: its index, the
+ * cycle of its first beat, its raws and expected values (nv each). */
+typedef void (*tb_row_fn)(void *data, const tb_result *r, size_t idx, uint64_t cycle,
+                          const int64_t *raw, const double *expected);
+
+/* tb_run on the rows of a stream (vec_file.h; opened with the unit's
+ * expected header, tb_expected_header, so that its header is checked).
+ * Nothing proportional to the number of rows is kept: res->raw and
+ * res->beat_cycle are NULL, row (if not NULL) sees every item as it
+ * completes. No VCD (o is not taken). A bad row in the file stops the run:
+ * TB_BADINPUT with the reader's "PATH:LINE: what" in err. */
+int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
+                  vec_stream *vs, tb_row_fn row, void *row_data, tb_result *res,
+                  char *err, size_t errlen);
+#endif
