@@ -1,10 +1,10 @@
-/* vec_file.h - golden vector files in the SPEC's text format:
+/* vec_file.h - golden vector files in the text format of docs/vectors.md:
  *
  *     # shadesim vectors 1
  *     # unit: horner3
  *     # inputs: a b c d t
  *     # outputs: y
- *     0.125 -0.5 0.25 0.75 0.5 | 0.78125
+ *     0.125 -0.5 0.25 0.75 0.5 | 0.765625
  *
  * Numbers are written with %.17g so that they read back exactly.
  */
