@@ -15,7 +15,7 @@
 #define CLAIMS_H
 #include <stddef.h>
 
-#define CLAIMS_MAX 48          /* enough rows for claims_compute + claims_speed */
+#define CLAIMS_MAX 64          /* enough rows for claims_compute + claims_speed */
 
 #define CLAIM_HOLDS       "holds"
 #define CLAIM_HOLDS_ONLY  "holds only for "      /* a prefix */
