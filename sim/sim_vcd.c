@@ -13,7 +13,6 @@
 #include "sim/sim_vcd.h"
 #include "sim/sim_out.h"
 #include <errno.h>
-#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -383,11 +382,10 @@ static void gtkw_scope(FILE *f, const sim_scope *sc, const char *prefix)
 static char *abs_path(const char *path)
 {
     const char *slash = strrchr(path, '/');
-    char dir[PATH_MAX];
-    if (!slash) snprintf(dir, sizeof dir, ".");
-    else if (slash == path) snprintf(dir, sizeof dir, "/");
-    else snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    char *dir = !slash ? strdup(".") : slash == path ? strdup("/") : strndup(path, (size_t)(slash - path));
+    if (!dir) { errno = ENOMEM; return NULL; }
     char *real = realpath(dir, NULL);
+    free(dir);
     if (!real) return NULL;
     const char *base = slash ? slash + 1 : path;
     size_t n = strlen(real) + strlen(base) + 2;
