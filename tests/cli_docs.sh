@@ -9,7 +9,11 @@
 PREFIX=cli_docs.
 
 # The forbidden words, as one extended regular expression.
-bad='\.\./shared|shared/seeds|shared/SPEC|\bSPEC\b|[Ss]eeds? 00[0-9]|[Ss]eed 0[0-9]{2}|the brief|seeds? \(0'
+# Also a paper named by its number ("000 sec. III", "004 Table 1") and the
+# papers called "the seeds".
+q="'"
+bad="\.\./shared|shared/seeds|shared/SPEC|\bSPEC\b|[Ss]eeds? 00[0-9]|[Ss]eed 0[0-9]{2}|the brief|seeds? \(0"
+bad="$bad|\b00[0-4],? (sec|eqs?|Figs?|IV|III|Table)\b|[Tt]he seeds\b|[Tt]he seed${q}s|seeds${q}"
 
 notin() { ! grep -qE "$bad" "$1"; }
 
