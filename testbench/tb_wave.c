@@ -84,7 +84,12 @@ sim_vcd *tb_wave_open(tb_wave *w, sim_ctx *c, const tb_opts *o, const unit_io *i
     if (o->fst) snprintf(w->dump_path, n, "%s.%ld.tmp.vcd", o->vcd_path, (long)getpid());
     else snprintf(w->dump_path, n, "%s", o->vcd_path);
     sim_vcd *v = sim_vcd_open(c, w->dump_path, "1ns", err, errlen);
-    if (!v) { tb_wave_free(w); return NULL; }
+    if (!v) {
+        /* name the user's path, not our temporary */
+        if (o->fst) snprintf(err, errlen, "%s: cannot create: %s", o->vcd_path, strerror(errno));
+        tb_wave_free(w);
+        return NULL;
+    }
     for (int k = 0; k < w->n_out; k++) {
         char name[64];
         snprintf(name, sizeof name, "expected_%s", io->out[k]->name);
