@@ -148,8 +148,32 @@ typedef struct hw_cost {
     int width, n_d, n_w;          /* pow_n's exponents: 2/m^2 - 4 and 2/a^2 */
     hw_point d16, ward16, sq, div, pow_d, pow_w;
     double exact_d_clocks, exact_d_area, exact_w_clocks, exact_w_area;
+    double lad_d[3], lad_w[3];    /* the clock ratios at the widths of SPEED_WIDTHS */
     int ok;
 } hw_cost;
+
+/* The ratio moves with the width (the model's divider and exponential take
+ * W clocks each, the approximations a fixed number of squarings). */
+static const int SPEED_WIDTHS[3] = { 8, 16, 24 };
+
+static int speed_ladder(hw_cost *hc)
+{
+    int bad = 0;
+    for (int i = 0; i < 3; i++) {
+        unit_cfg cfg;
+        unit_cfg_default(&cfg);
+        cfg.width = SPEED_WIDTHS[i];
+        hw_point d, w, q;
+        unit_cfg sq = cfg;
+        sq.g = 2;
+        bad |= run_unit("d_approx", &cfg, 16, NULL, 1, &d);
+        bad |= run_unit("ward_approx", &cfg, 16, NULL, 1, &w);
+        bad |= run_unit("powg", &sq, 16, NULL, 1, &q);
+        hc->lad_d[i] = d.clocks > 0 ? (2 * q.clocks + 3 * cfg.width) / d.clocks : NAN;
+        hc->lad_w[i] = w.clocks > 0 ? (q.clocks + 2 * cfg.width) / w.clocks : NAN;
+    }
+    return bad;
+}
 
 static void measure_cost(int width, hw_cost *hc)
 {
@@ -180,6 +204,7 @@ static void measure_cost(int width, hw_cost *hc)
     hc->exact_d_area = hc->sq.area + hc->div.area + exp_area;
     hc->exact_w_clocks = hc->sq.clocks + 2 * width;
     hc->exact_w_area = hc->sq.area + hc->div.area + exp_area;
+    bad |= speed_ladder(hc);
     hc->ok = !bad;
 }
 
@@ -198,11 +223,16 @@ static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
              "%s: %.0f clocks", r->measured, hc->d16.clocks, hc->exact_d_clocks, hc->width,
              hc->exact_d_clocks * hc->exact_d_area / (hc->d16.clocks * hc->d16.area), hc->pow_d.label,
              hc->pow_d.clocks);
-    r->verdict = r->measured >= r->claimed ? CLAIM_HOLDS
+    /* The papers time software and give no word length: the hardware ratio
+     * is our cost model's, and it grows with W. */
+    r->verdict = hc->lad_d[0] >= r->claimed ? CLAIM_HOLDS_ONLY "shadesim's cost model (at every width 8..24; the "
+                                                               "papers give no width to decide at)"
                : r->measured > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up in hardware" : CLAIM_FAILS;
     settext(r->note, sizeof r->note,
-             "exact D modelled as a lower bound: squarer + divider + shift-and-add exp (W clocks, two "
-             "divider datapaths) + squarer + divider = 3W+2 clocks; m = 0.2, g = 16");
+             "shadesim's own cost model (a lower bound for exact D): squarer 1 clock + divider W + shift-and-add "
+             "exp W (a bit a clock) + squarer + divider = 3W+2; m = 0.2, g = 16. Ratio %.3gx at W=8, %.3gx at "
+             "W=16, %.3gx at W=24",
+             hc->lad_d[0], hc->lad_d[1], hc->lad_d[2]);
     r = &out[1];
     r->id = "ward_speed_hw";
     r->seed = "Nechyporuk & Romanyuk (2020), sec. III results; S. O. Romanyuk et al. (SPIE), sec. 4";
@@ -214,11 +244,13 @@ static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
              "less; %s: %.0f clocks", r->measured, hc->ward16.clocks, hc->exact_w_clocks, hc->width,
              hc->exact_w_clocks * hc->exact_w_area / (hc->ward16.clocks * hc->ward16.area), hc->pow_w.label,
              hc->pow_w.clocks);
-    r->verdict = r->measured > r->claimed ? CLAIM_HOLDS
+    r->verdict = hc->lad_w[0] > r->claimed ? CLAIM_HOLDS_ONLY "shadesim's cost model (at every width 8..24; the "
+                                                              "papers give no width to decide at)"
                : r->measured > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up in hardware" : CLAIM_FAILS;
     settext(r->note, sizeof r->note,
-             "exp(-tan^2/a^2) modelled as squarer + divider + shift-and-add exp = 2W+1 clocks (a lower "
-             "bound); only the exponential factor, as the papers approximate it; a = 0.2");
+             "shadesim's own cost model: exp(-tan^2/a^2) as squarer + divider + shift-and-add exp = 2W+1 "
+             "clocks (a lower bound); only the exponential factor, as the papers approximate it; a = 0.2. "
+             "Ratio %.3gx at W=8, %.3gx at W=16, %.3gx at W=24", hc->lad_w[0], hc->lad_w[1], hc->lad_w[2]);
     return 2;
 }
 
