@@ -8,6 +8,7 @@
  */
 #include "tests/tst.h"
 #include "testbench/tb_svg.h"
+#include "tests/tst_svgtext.h"
 
 #include <ctype.h>
 #include <dirent.h>
@@ -411,6 +412,140 @@ static void test_pareto_vs_bruteforce(void)
     TST_EQ_INT(tb_pareto(tx, ty, 0, on), 0);
 }
 
+/* The three-cost front by its definition, O(n^2). */
+static size_t pareto3_ref(const double *x, const double *y, const double *z, size_t n, unsigned char *on)
+{
+    size_t cnt = 0;
+    for (size_t i = 0; i < n; i++) {
+        int dom = isnan(x[i]) || isnan(y[i]) || isnan(z[i]);
+        for (size_t j = 0; j < n && !dom; j++)
+            dom = x[j] <= x[i] && y[j] <= y[i] && z[j] <= z[i] && (x[j] < x[i] || y[j] < y[i] || z[j] < z[i]);
+        on[i] = !dom;
+        cnt += !dom;
+    }
+    return cnt;
+}
+
+static void test_pareto3_vs_bruteforce(void)
+{
+    enum { MAXN = 90 };
+    double x[MAXN], y[MAXN], z[MAXN];
+    unsigned char a[MAXN], r[MAXN];
+    rng_state = 0x2545F4914F6CDD1DULL;
+    for (int t = 0; t < 3000; t++) {
+        size_t n = (size_t)(urand() * MAXN);
+        int mode = t % 4;   /* small integers (ties), reals, with NaN, with inf */
+        for (size_t i = 0; i < n; i++) {
+            if (mode == 0) { x[i] = (int)(urand() * 5); y[i] = (int)(urand() * 5); z[i] = (int)(urand() * 3); }
+            else { x[i] = urand() * 100; y[i] = urand() * 100; z[i] = urand() < 0.5 ? 1 : 6; }
+            if (mode == 2 && urand() < 0.1) z[i] = NAN;
+            if (mode == 3 && urand() < 0.1) { if (urand() < 0.5) x[i] = INFINITY; else y[i] = -INFINITY; }
+            if (i && urand() < 0.1) { x[i] = x[i - 1]; y[i] = y[i - 1]; z[i] = z[i - 1]; }
+        }
+        memset(a, 7, sizeof a);
+        size_t na = tb_pareto3(x, y, z, n, a), nr = pareto3_ref(x, y, z, n, r);
+        TST_EQ_INT(na, nr);
+        for (size_t i = 0; i < n; i++) TST_EQ_INT(a[i], r[i]);
+    }
+    /* A point slower but smaller and more accurate than none other is kept:
+     * the third cost alone can put a point on the front. */
+    double ex[] = { 0.1, 0.1, 0.2 }, ar[] = { 3000, 2000, 2000 }, ck[] = { 1, 3, 3 };
+    unsigned char on[3];
+    TST_EQ_INT(tb_pareto3(ex, ar, ck, 3, on), 2);
+    TST_CHECK(on[0] && on[1] && !on[2], "fast one kept, dominated one dropped");
+    /* with z constant it is the two-cost front */
+    double zc[] = { 1, 1, 1 };
+    TST_EQ_INT(tb_pareto3(ex, ar, zc, 3, on), 1);
+    TST_CHECK(!on[0] && on[1] && !on[2], "2-d front");
+}
+
+/* Labels crowded on purpose: a cluster of labelled points, a reference
+ * line's label among them, more band labels than rows. */
+static tb_chart *sample_crowded(void)
+{
+    tb_chart *c = tb_chart_new("Crowded labels", "max |e| (output units)", "area (GE)");
+    tb_chart_log_x(c, 1);
+    int s = tb_chart_series(c, "configurations", TB_POINTS);
+    rng_state = 777;
+    for (int i = 0; i < 60; i++) {
+        char lab[32];
+        snprintf(lab, sizeof lab, "width %d", 8 + i % 20);
+        tb_chart_point_label(c, s, 0.01 * (1 + urand()), 1000 + 200 * urand(), lab);
+    }
+    tb_chart_point_label(c, s, 1, 3000, "an isolated point");
+    tb_chart_hline(c, 1100, "target line label");
+    for (int k = 0; k < 6; k++) tb_chart_hband(c, 0.011 + 0.0001 * k, 0.012 + 0.0001 * k, "a band label that is long");
+    return c;
+}
+
+/* No two texts of a chart overlap: the sample charts and a crowded one,
+ * boxes computed from the written SVG (tests/tst_svgtext.h). */
+static void test_svg_no_text_overlap(void)
+{
+    char why[400];
+    /* the checker itself sees an overlap where there is one */
+    const char *bad = "<svg font-size=\"11\"><text x=\"10\" y=\"20\">width 12</text>"
+                      "<text x=\"30\" y=\"22\">width 13</text></svg>";
+    TST_CHECK(tst_svg_text_overlap(bad, why, sizeof why) == 1, "the checker misses an overlap");
+    const char *good = "<svg font-size=\"11\"><text x=\"10\" y=\"20\">w</text><text x=\"10\" y=\"40\">w</text></svg>";
+    TST_CHECK(tst_svg_text_overlap(good, why, sizeof why) == 0, "the checker sees an overlap in %s", good);
+    for (size_t i = 0; i <= NSAMPLES; i++) {
+        tb_chart *c = i < NSAMPLES ? samples[i].fn() : sample_crowded();
+        const char *name = i < NSAMPLES ? samples[i].name : "crowded.svg";
+        if (!c || !write_ok(c, tpath(name))) { tb_chart_free(c); continue; }
+        tb_chart_free(c);
+        size_t len;
+        char *svg = slurp(tpath(name), &len);
+        TST_CHECK(svg != NULL, "read %s", name);
+        if (!svg) continue;
+        TST_CHECK(!tst_svg_text_overlap(svg, why, sizeof why), "%s: %s", name, why);
+        if (i == NSAMPLES) {
+            /* the crowded chart keeps some labels and drops others */
+            int kept = 0;
+            for (const char *p = strstr(svg, ">width "); p; p = strstr(p + 1, ">width ")) kept++;
+            TST_CHECK(kept > 0 && kept < 60, "%d of 60 point labels kept", kept);
+            TST_CHECK(strstr(svg, "target line label") != NULL, "the reference line keeps its label");
+        }
+        free(svg);
+    }
+}
+
+/* The legend lists what is drawn: not a series without a shown point nor a
+ * line of one point; keys and headings are listed; series looks apply. */
+static void test_svg_legend_drawn_only(void)
+{
+    tb_chart *c = tb_chart_new("Legend", "x", "y");
+    int a = tb_chart_series(c, "drawn points", TB_POINTS);
+    tb_chart_point(c, a, 1, 1);
+    tb_chart_point(c, a, 2, 3);
+    int e = tb_chart_series(c, "empty series", TB_POINTS);
+    (void)e;
+    int one = tb_chart_series(c, "one-point line", TB_STEP);
+    tb_chart_point(c, one, 1.5, 2);
+    int nan = tb_chart_series(c, "only NaN", TB_POINTS);
+    tb_chart_point(c, nan, NAN, 1);
+    int r = tb_chart_series(c, "rings", TB_POINTS | TB_HOLLOW);
+    tb_chart_point(c, r, 2, 3);
+    tb_chart_series_look(c, r, "#123456", 0, -1);
+    tb_chart_legend_key(c, "colour: terms", NULL, -1, 0);
+    tb_chart_legend_key(c, "terms=5", "#abcdef", 2, TB_POINTS);
+    if (!write_ok(c, tpath("legend.svg"))) { tb_chart_free(c); return; }
+    tb_chart_free(c);
+    size_t len;
+    char *svg = slurp(tpath("legend.svg"), &len);
+    if (!svg) { TST_CHECK(0, "read legend.svg"); return; }
+    TST_CHECK(strstr(svg, ">drawn points<") != NULL, "a drawn series is listed");
+    TST_CHECK(strstr(svg, ">empty series<") == NULL, "an empty series is listed");
+    TST_CHECK(strstr(svg, ">one-point line<") == NULL, "a line that draws nothing is listed");
+    TST_CHECK(strstr(svg, ">only NaN<") == NULL, "a series of skipped points is listed");
+    TST_CHECK(strstr(svg, ">rings<") != NULL && strstr(svg, "fill=\"none\" stroke=\"#123456\"") != NULL,
+              "hollow markers in their own colour");
+    TST_CHECK(strstr(svg, ">colour: terms<") != NULL && strstr(svg, ">terms=5<") != NULL, "keys are listed");
+    TST_CHECK(strstr(svg, "fill=\"#abcdef\"") != NULL, "a key's colour");
+    TST_CHECK(strstr(svg, "more<") == NULL, "no '+N more'");
+    free(svg);
+}
+
 static int is_125(double step)
 {
     double e = floor(log10(step));
@@ -756,6 +891,9 @@ int main(void)
         if (!mkdtemp(tdir)) { printf("FAIL test_svg: mkdtemp: %s\n", strerror(errno)); return 1; }
     }
     TST_RUN(test_pareto_vs_bruteforce);
+    TST_RUN(test_pareto3_vs_bruteforce);
+    TST_RUN(test_svg_no_text_overlap);
+    TST_RUN(test_svg_legend_drawn_only);
     TST_RUN(test_ticks_linear);
     TST_RUN(test_ticks_log);
     TST_RUN(test_svg_well_formed);
