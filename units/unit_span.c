@@ -153,16 +153,8 @@ static void formats(const span_kind *K, const unit_cfg *cfg, unit_fmts *out)
     n.fm.f[sig(K, "n")] = unit_fmt(0, G, 0);
     n.fm.f[sig(K, "dv")] = unit_fmt(0, G, 0);
     if (K->kind == K_ADAPT) n.fm.f[sig(K, "deg")] = unit_fmt(0, 2, 0);
-    /* span3/span23 list both cubic networks' elements: the other node
-     * set's first, so that names they share end with the chosen's. */
-    if (K->kind == K_CUBE || K->kind == K_ADAPT) {
-        unet o;
-        unet_init(&o, u, NULL, cfg->rnd);
-        unet_rule(&o, W, lo, hi, K->nin);
-        o.fm = n.fm;
-        rule_walk(&o, cfg->nodes ? &coef_net_n1 : &coef_net_n2, cfg);
-        for (int i = 0; i < u->nsigs; i++) if (o.chosen[i]) n.fm.f[i] = o.fm.f[i];
-    }
+    /* span3/span23 declare both cubic networks' elements; the other node
+     * set's own ones are not built (sig_used) and keep no format. */
     rule_walk(&n, main_net(K, cfg), cfg);
     if (K->kind == K_ADAPT) rule_walk(&n, &net_q2, cfg);
     int deg = main_deg(K);
@@ -185,6 +177,24 @@ static void formats(const span_kind *K, const unit_cfg *cfg, unit_fmts *out)
 }
 
 static int beats(const unit_cfg *cfg) { return valid_L(cfg->L) ? cfg->L : 8; }
+
+static int in_net(const coef_net *net, const char *name)
+{
+    for (int i = 0; i < net->nnodes; i++)
+        if (!strcmp(net->node[i].name, name)) return 1;
+    return 0;
+}
+
+/* span3, span23: an element of either cubic network is built only when
+ * it is one of the chosen node set's (n1's i1x7 or n2's i1x2 are not in
+ * the other); everything else (ports, registers, t, the Horner datapath,
+ * span23's quadratic network) is built for both. */
+static int cube_sig_used(const span_kind *K, const unit_cfg *cfg, int i)
+{
+    const char *nm = K->u->sigs[i].name;
+    if (!in_net(&coef_net_n1, nm) && !in_net(&coef_net_n2, nm)) return 1;
+    return in_net(cfg->nodes ? &coef_net_n2 : &coef_net_n1, nm);
+}
 
 /* ---------------------------------------------------- the reciprocal ROM */
 
@@ -214,20 +224,26 @@ static int64_t f_rom(const int64_t *in, void *user)
     return in[0] >= 0 && in[0] <= r->L ? r->raw[in[0]] : 0;
 }
 
-/* Worst-case |t_hw - k/dv| over dv = 1..L and k = 0..dv: k (1/dv - rcp)
- * <= dv (1/dv - rcp), plus the multiplier's quantization into t. */
+/* Worst-case |t_hw - k/dv| over dv = 1..L and k = 0..dv, t_hw as the
+ * hardware makes it: the ROM's word times k, quantized into t's format
+ * (sim_fx_requant, as the multiplier does). Exact per pixel, so with trunc
+ * a wider rcp or t never makes it grow (each t_hw only moves up toward
+ * k/dv). |t_hw dv - k| is exact in 128 bits; the division by dv rounds, so
+ * the result is nudged up. */
 static double t_err(const unit_cfg *cfg, sim_fmt frcp, sim_fmt ft)
 {
     int L = valid_L(cfg->L) ? cfg->L : 8;
     rcp_rom r;
     rom_fill(&r, L, frcp);
     double e = 0;
-    for (int dv = 1; dv <= L; dv++) {
-        /* dv (1/dv - w) = (2^F - dv raw) 2^-F, the numerator exact in 128 bits */
-        sim_wide num = ((sim_wide)1 << frcp.fbits) - (sim_wide)dv * r.raw[dv];
-        e = fmax(e, ldexp(fabs((double)num), -frcp.fbits));
-    }
-    return e + unit_qerr(ft, frcp.fbits, cfg->rnd);
+    for (int dv = 1; dv <= L; dv++)
+        for (int k = 0; k <= dv; k++) {
+            int64_t traw = sim_fx_requant((sim_wide)k * r.raw[dv], frcp.fbits, ft, cfg->rnd, SIM_OVF_SAT, NULL);
+            sim_wide d = (sim_wide)traw * dv - ((sim_wide)k << ft.fbits);
+            if (d < 0) d = -d;
+            e = fmax(e, ldexp((double)d, -ft.fbits) / dv);
+        }
+    return e * (1 + 0x1p-50);
 }
 
 /* ------------------------------------------------------------- control */
@@ -520,6 +536,41 @@ static void ideal(const span_kind *K, const unit_cfg *cfg, const double *in, dou
     }
 }
 
+/* The same exactly, as a ratio (k/dv is not dyadic): with co_j the
+ * coefficients (dyadic: the network's factor is a sum of powers of two),
+ * p(k/dv) = sum_j co_j k^(deg-j) dv^j / dv^deg. dv = 0 gives t = 0 as
+ * ideal does (den 1, num the constant coefficient). */
+static int ideal_ratio(const span_kind *K, const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den)
+{
+    int L = beats(cfg), deg = main_deg(K);
+    const coef_net *net = main_net(K, cfg);
+    double dvd = floor(sim_dy_to_double(&in[K->nin + 1]));
+    if (K->kind == K_ADAPT && floor(sim_dy_to_double(&in[K->nin + 2])) == 2) { net = &net_q2; deg = 2; }
+    if (!(dvd >= 0 && dvd <= 1e9)) return -1;
+    int64_t dv = (int64_t)dvd;
+    sim_dy co[4], vdv, vden;
+    if (coef_exact(net, ref_div3_factor(cfg->terms, cfg->series), in, co)) return -1;
+    sim_dy_int(&vdv, dv > 0 ? dv : 1, 0);
+    sim_dy_int(&vden, 1, 0);
+    for (int j = 0; j < deg; j++) sim_dy_mul(&vden, &vden, &vdv);
+    int bad = vden.ovf;
+    for (int k = 0; k < L; k++) {
+        /* Horner in k and dv: y = co_0; y = y k + co_j dv^j */
+        sim_dy y = co[0], kk, pw = vdv, term;
+        sim_dy_int(&kk, dv > 0 ? k : 0, 0);
+        for (int j = 1; j <= deg; j++) {
+            sim_dy_mul(&y, &y, &kk);
+            sim_dy_mul(&term, &co[j], &pw);
+            sim_dy_add(&y, &y, &term);
+            sim_dy_mul(&pw, &pw, &vdv);
+        }
+        num[k] = y;
+        den[k] = vden;
+        bad |= y.ovf;
+    }
+    return bad ? -1 : 0;
+}
+
 /* --------------------------------------------------------------- bound */
 
 /* Range of g(x) = c2 x^2 + c1 x + c0 over [u, v]. */
@@ -566,26 +617,53 @@ static double deriv_max(int deg, const unet_val *coef, const double *lo, const d
     return best * (1 + 1e-9);      /* the double roundings of the sums above */
 }
 
-/* span1's datapath error for coefficients held exactly in ra, rb and t
- * exact in its format: the quantizations of its elements (as the Horner's
- * bound walks its table; multiplying by t in [0, 1] does not grow an
- * error). */
-static double lin_dp_bound(const span_kind *K, int sched, const unit_fmts *f, sim_round r)
+/* A value as the datapath walks see it (as unit_horner.c's h_val): its
+ * worst-case error and the fraction bits it can really have, so that a
+ * quantization counts only the bits it drops below those (widening a
+ * signal moves a truncation downstream instead of adding one). */
+typedef struct sp_val { double e; int eff; } sp_val;
+
+static int imin(int a, int b) { return a < b ? a : b; }
+static int imax(int a, int b) { return a > b ? a : b; }
+
+/* v into format f. */
+static sp_val sp_pass(sp_val v, sim_fmt f, sim_round r)
 {
-    sim_fmt fa = f->f[sig(K, "ra")], fb = f->f[sig(K, "rb")], ft = f->f[sig(K, "t")],
-            fmul = f->f[sig(K, "mul")], fmx2 = f->f[sig(K, "mx2")], fbk = f->f[sig(K, "bk")],
-            fsm = f->f[sig(K, "sm")], frg = f->f[sig(K, "rg")], fy = f->f[sig(K, "y")];
-    double e_mul = unit_qerr(fmul, fa.fbits + ft.fbits, r), e;
+    return (sp_val){ v.e + unit_qerr(f, v.eff, r), imin(f.fbits, v.eff) };
+}
+/* a + b into format f. */
+static sp_val sp_add(sp_val a, sp_val b, sim_fmt f, sim_round r)
+{
+    return sp_pass((sp_val){ a.e + b.e, imax(a.eff, b.eff) }, f, r);
+}
+
+/* span1's datapath error for coefficients exact in ra, rb with fa_eff,
+ * fb_eff fraction bits and t exact with ft_eff: the quantizations of its
+ * elements (as the Horner's bound walks its table; multiplying by t in
+ * [0, 1] does not grow an error). paper: RG <= MX2(B) + 0, then RG <=
+ * MX2(MUL) + BK(RG); mac and pipe: RG <= MUL + RB. */
+static double lin_dp_bound(const span_kind *K, int sched, const unit_fmts *f, int fa_eff, int fb_eff,
+                           int ft_eff, sim_round r)
+{
+    sim_fmt fmul = f->f[sig(K, "mul")], fsm = f->f[sig(K, "sm")], frg = f->f[sig(K, "rg")], fy = f->f[sig(K, "y")];
+    sp_val mul = sp_pass((sp_val){ 0, fa_eff + ft_eff }, fmul, r), b = { 0, fb_eff }, rg;
     if (sched == SP_PAPER) {
-        int fs = fmx2.fbits > fbk.fbits ? fmx2.fbits : fbk.fbits;
-        double e0 = unit_qerr(fmx2, fb.fbits, r) + unit_qerr(fsm, fs, r) + unit_qerr(frg, fsm.fbits, r);
-        double e_mx2 = e_mul + unit_qerr(fmx2, fmul.fbits, r), e_bk = e0 + unit_qerr(fbk, frg.fbits, r);
-        e = e_mx2 + e_bk + unit_qerr(fsm, fs, r) + unit_qerr(frg, fsm.fbits, r);
+        sim_fmt fmx2 = f->f[sig(K, "mx2")], fbk = f->f[sig(K, "bk")];
+        sp_val zero = { 0, -64 };           /* BK forcing zero: exact, no fraction bits */
+        rg = sp_pass(sp_add(sp_pass(b, fmx2, r), zero, fsm, r), frg, r);
+        rg = sp_pass(sp_add(sp_pass(mul, fmx2, r), sp_pass(rg, fbk, r), fsm, r), frg, r);
     } else {
-        int fs = fmul.fbits > fb.fbits ? fmul.fbits : fb.fbits;
-        e = e_mul + unit_qerr(fsm, fs, r) + unit_qerr(frg, fsm.fbits, r);
+        rg = sp_pass(sp_add(mul, b, fsm, r), frg, r);
     }
-    return e + unit_qerr(fy, frg.fbits, r);
+    return sp_pass(rg, fy, r).e;
+}
+
+/* A register's format as the datapath sees it: no more fraction bits than
+ * the value it holds has (eff), so that the walk does not count bits a
+ * wide register never holds. */
+static sim_fmt held_fmt(sim_fmt f, int eff)
+{
+    return eff < f.fbits ? unit_fmt(f.is_signed, f.ibits, eff < 0 ? 0 : eff) : f;
 }
 
 /* The bound of items of one degree: network net's coefficients go to the
@@ -593,7 +671,8 @@ static double lin_dp_bound(const span_kind *K, int sched, const unit_fmts *f, si
  * (span23's quadratic: slots 0-2 on the degree-2 sequence, or 1-3 on the
  * cubic pipe with ra = 0). Coefficient errors (the network's walk plus the
  * register's quantization) reach y times t^m <= 1; the datapath's own from
- * horner_bound_on (span1: lin_dp_bound); t's error et times max |p'|. */
+ * horner_bound_on (span1: lin_dp_bound) for the fraction bits the
+ * registers and t really hold; t's error et times max |p'|. */
 static double path_bound(const span_kind *K, const unit_cfg *cfg, const unit_fmts *f, const coef_net *net,
                          int deg_poly, const int *slot, int hdeg, double et)
 {
@@ -605,11 +684,19 @@ static double path_bound(const span_kind *K, const unit_cfg *cfg, const unit_fmt
     if (coef_walk(&n, net, in, cfg->terms, cfg->series, o)) return INFINITY;
     double e = 0;
     sim_fmt rf[4];
-    for (int j = 0; j <= main_deg(K); j++) rf[j] = f->f[sig(K, reg_names[j])];
-    for (int j = 0; j <= deg_poly; j++) e += o[j].err + unit_qerr(rf[slot[j]], o[j].f.fbits, cfg->rnd);
+    int hd = main_deg(K);
+    /* registers no coefficient of this degree is loaded into hold 0 (span23's ra on the pipe) */
+    for (int j = 0; j <= hd; j++) rf[j] = held_fmt(f->f[sig(K, reg_names[j])], 0);
+    for (int j = 0; j <= deg_poly; j++) {
+        sim_fmt fr = f->f[sig(K, reg_names[slot[j]])];
+        e += o[j].err + unit_qerr(fr, o[j].eff, cfg->rnd);
+        rf[slot[j]] = held_fmt(fr, o[j].eff);
+    }
+    /* t = k rcp: k is whole, so t has at most rcp's fraction bits */
     sim_fmt ft = f->f[sig(K, "t")], fy = f->f[sig(K, "y")];
-    e += hdeg == 1 ? lin_dp_bound(K, cfg->schedule, f, cfg->rnd)
-                   : horner_bound_on(hdeg, cfg->schedule, rf, ft, u, f, fy, cfg->rnd);
+    sim_fmt ft_eff = held_fmt(ft, f->f[sig(K, "rcp")].fbits);
+    e += hdeg == 1 ? lin_dp_bound(K, cfg->schedule, f, rf[0].fbits, rf[1].fbits, ft_eff.fbits, cfg->rnd)
+                   : horner_bound_on(hdeg, cfg->schedule, rf, ft_eff, u, f, fy, cfg->rnd);
     double lo[UNET_MAXIN], hi[UNET_MAXIN];
     for (int i = 0; i < net->nin; i++) {
         sim_fmt fi = f->f[sig(K, in_names[i])];
@@ -646,12 +733,17 @@ static const span_kind k23 = { &unit_span23, K_ADAPT, 4 };
                            const unit_fmts *f, unit_io *io, char *err, size_t errlen) \
     { return build(&K, c, sc, clk, cfg, f, io, err, errlen); } \
     static void ideal_##sfx(const unit_cfg *cfg, const double *in, double *out) { ideal(&K, cfg, in, out); } \
-    static void bound_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { bound(&K, cfg, f, o); }
+    static void bound_##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { bound(&K, cfg, f, o); } \
+    static int ratio_##sfx(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *den) \
+    { return ideal_ratio(&K, cfg, in, num, den); }
 
 SPAN_FNS(1, k1)
 SPAN_FNS(2, k2)
 SPAN_FNS(3, k3)
 SPAN_FNS(23, k23)
+
+static int sig_used_3(const unit_cfg *cfg, int i) { return cube_sig_used(&k3, cfg, i); }
+static int sig_used_23(const unit_cfg *cfg, int i) { return cube_sig_used(&k23, cfg, i); }
 
 #define P_L { "L", UNIT_P_INT, offsetof(unit_cfg, L), 2, SPAN_LMAX, NULL, \
               "pixels per interval, any 2..64: beats per item in `run`, the largest n and dv" }
@@ -742,6 +834,7 @@ const unit_desc unit_span1 = {
     .nparams = 1, .params = { P_L },
     .fmt_rule = SPAN_RULE("a, ra, y and the datapath s2.(W-2); b, rb u1.(W-1)"),
     .formats = formats_1, .beats = beats, .build = build_1, .ideal = ideal_1, .bound = bound_1,
+    .ideal_ratio = ratio_1,
 };
 
 const unit_desc unit_span2 = {
@@ -760,6 +853,7 @@ const unit_desc unit_span2 = {
     .nparams = 1, .params = { P_L },
     .fmt_rule = SPAN_RULE("a b c, their registers, y and the Horner datapath s7.(W-7)"),
     .formats = formats_2, .beats = beats, .build = build_2, .ideal = ideal_2, .bound = bound_2,
+    .ideal_ratio = ratio_2,
 };
 
 const unit_desc unit_span3 = {
@@ -774,6 +868,7 @@ const unit_desc unit_span3 = {
     .nparams = 4, .params = { P_L, P_TERMS, P_SERIES, P_NODES },
     .fmt_rule = SPAN_RULE("a b c d, their registers, y and the Horner datapath s7.(W-7)"),
     .formats = formats_3, .beats = beats, .build = build_3, .ideal = ideal_3, .bound = bound_3,
+    .ideal_ratio = ratio_3, .sig_used = sig_used_3,
 };
 
 const unit_desc unit_span23 = {
@@ -792,6 +887,7 @@ const unit_desc unit_span23 = {
     .fmt_rule = SPAN_RULE("both networks' coefficients, the registers (loaded through a degree mux), y and the "
                           "Horner datapath s7.(W-7)"),
     .formats = formats_23, .beats = beats, .build = build_23, .ideal = ideal_23, .bound = bound_23,
+    .ideal_ratio = ratio_23, .sig_used = sig_used_23,
 };
 
 const unit_desc *const units_span[] = { &unit_span1, &unit_span2, &unit_span3, &unit_span23, NULL };
