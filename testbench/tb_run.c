@@ -109,12 +109,6 @@ const char *tb_check_name(int check)
     return (unsigned)check < 4 ? n[check] : "?";
 }
 
-/* What the double ideals of units without an exact one are taken to be
- * accurate to, relative to max(1, |ideal|): their float formulas have at
- * most a few dozen roundings of 2^-53 each (pow_n: 10 squarings). A
- * comparison closer than this to the bound is "unchecked". */
-#define TB_DOUBLE_IDEAL_REL 0x1p-40
-
 /* Per-row figures the golden check needs, beat-major like ideal. */
 typedef struct tb_golden {
     const double *ideal_r;   /* ideal of the inputs rounded (not wrapped) to their formats */
@@ -184,92 +178,24 @@ int tb_check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *de
     return TB_CHECK_UNCHECKED;
 }
 
+/* The metrics over every item, in item order (tb_stream.c accumulates
+ * them; tb_run_stream does the same as its items complete). */
 static void metrics(tb_result *r, const vec_set *vs, const double *ideal, const sim_dy *exact,
                     const sim_dy *exact_den, const sim_dy *exact_hi, const unsigned char *exact_ok,
                     const tb_golden *g)
 {
-    int no = r->n_out, nb = r->beats;
-    double sum_e2 = 0, sum_ref2 = 0, sum_e = 0;
-    size_t cnt = 0;
-    r->within_bound = 1;
-    r->bound_check = TB_CHECK_OK;
-    r->golden_ok = 1;
-    r->max_abs_err = r->max_err_lsb = 0;
-    for (int o = 0; o < no; o++) {
-        tb_metrics *m = &r->out[o];
-        double se = 0;
-        m->max_abs_err = m->max_err_ideal = m->max_method_err = 0;
-        m->sum_e2 = m->sum_ref2 = 0;
-        m->n = 0;
-        m->golden_ok = 1;
-        int has_bound = isfinite(m->bound) && m->bound >= 0;
-        m->check = has_bound ? TB_CHECK_OK : TB_CHECK_NO_BOUND;
-        size_t first_unchecked = 0, first_exceeded = 0;
-        int any_unchecked = 0, any_exceeded = 0;
-        sim_dy b;
-        sim_dy_double(&b, has_bound ? m->bound : 0);
-        double out_scale = fmax(fabs(sim_fmt_real_min(m->fmt)), fabs(sim_fmt_real_max(m->fmt)));
-        for (size_t it = 0; it < r->vectors; it++)
-            for (int bt = 0; bt < nb; bt++) {
-                size_t k = (it * (size_t)nb + (size_t)bt) * (size_t)no + (size_t)o;
-                double hw = sim_fx_to_real(r->raw[k], m->fmt);
-                double ref = vec_row(vs, it)[r->n_in + bt * no + o];
-                double e = hw - ref, ei;
-                int ex = exact && exact_ok[it], iv = ex && exact_ok[it] == 2;
-                int c = tb_check_value(r->raw[k], m->fmt, ex ? &exact[k] : NULL, ex && !iv && exact_den ? &exact_den[k] : NULL,
-                                    iv ? &exact_hi[k] : NULL, ideal[k], &b, &ei);
-                se += e;
-                m->sum_e2 += e * e;
-                m->sum_ref2 += ref * ref;
-                if (fabs(e) > m->max_abs_err) m->max_abs_err = fabs(e);
-                if (ei > m->max_err_ideal) m->max_err_ideal = ei;
-                if (has_bound && c == TB_CHECK_EXCEEDED && !any_exceeded) { any_exceeded = 1; first_exceeded = it; }
-                if (has_bound && c == TB_CHECK_UNCHECKED && !any_unchecked) { any_unchecked = 1; first_unchecked = it; }
-                /* Golden: the bound, plus what rounding the inputs moves
-                 * the ideal by, plus the method's own approximation (the
-                 * ideal against the float reference), plus the doubles'
-                 * rounding in those three. */
-                double dq = fabs(g->ideal_r[k] - g->ideal_u[k]), dm = fabs(g->ideal_u[k] - g->ref_u[k]);
-                if (dm > m->max_method_err) m->max_method_err = dm;
-                /* The golden values are doubles computed with the same
-                 * cancellations as the ideal: their error is relative to
-                 * the terms' size, which the output's range bounds, not
-                 * to the result's (at --width 64 this, not the LSB, is
-                 * the golden check's resolution). */
-                double slack = TB_DOUBLE_IDEAL_REL * (fabs(g->ideal_r[k]) + fabs(g->ideal_u[k]) + fabs(g->ref_u[k])
-                                                      + fabs(ref) + out_scale);
-                double allowed = m->bound + dq + dm + slack;
-                if (has_bound && !(fabs(e) <= allowed) && m->golden_ok) {
-                    m->golden_ok = 0;
-                    m->golden_first = it;
-                    m->golden_err = fabs(e);
-                    m->golden_allowed = allowed;
-                }
-                m->n++;
-            }
-        if (any_exceeded) m->check = TB_CHECK_EXCEEDED;
-        else if (any_unchecked && has_bound) m->check = TB_CHECK_UNCHECKED;
-        /* the run's check: exceeded beats no bound beats unchecked beats ok */
-        static const int rank[] = { 0, 3, 1, 2 };
-        if (rank[m->check] > rank[r->bound_check]) r->bound_check = m->check;
-        if (m->check != TB_CHECK_OK && r->within_bound) {
-            r->within_bound = 0;
-            r->first_violation = any_exceeded ? first_exceeded : first_unchecked;
-        } else if (m->check == TB_CHECK_EXCEEDED && first_exceeded < r->first_violation) {
-            r->first_violation = first_exceeded;
-        }
-        if (!m->golden_ok) r->golden_ok = 0;
-        m->mean_err = m->n ? se / (double)m->n : 0;
-        m->rms_err = m->n ? sqrt(m->sum_e2 / (double)m->n) : 0;
-        m->nmse = m->sum_ref2 > 0 ? m->sum_e2 / m->sum_ref2 : (m->sum_e2 > 0 ? INFINITY : 0);
-        m->max_err_lsb = m->max_abs_err / sim_fmt_lsb(m->fmt);
-        sum_e2 += m->sum_e2; sum_ref2 += m->sum_ref2; sum_e += se; cnt += m->n;
-        if (m->max_abs_err > r->max_abs_err) r->max_abs_err = m->max_abs_err;
-        if (m->max_err_lsb > r->max_err_lsb) r->max_err_lsb = m->max_err_lsb;
+    tb_acc a;
+    size_t nv = (size_t)r->beats * (size_t)r->n_out;
+    tb_acc_begin(&a, r);
+    for (size_t it = 0; it < r->vectors; it++) {
+        size_t at = it * nv;
+        tb_item ti = { NULL, (double *)ideal + at, (double *)g->ideal_r + at, (double *)g->ideal_u + at,
+                       (double *)g->ref_u + at, exact ? (sim_dy *)exact + at : NULL,
+                       exact_den ? (sim_dy *)exact_den + at : NULL, exact_hi ? (sim_dy *)exact_hi + at : NULL,
+                       (unsigned char *)exact_ok + it };
+        tb_acc_item(&a, r, it, r->raw + at, vec_row(vs, it) + r->n_in, &ti);
     }
-    r->mean_err = cnt ? sum_e / (double)cnt : 0;
-    r->rms_err = cnt ? sqrt(sum_e2 / (double)cnt) : 0;
-    r->nmse = sum_ref2 > 0 ? sum_e2 / sum_ref2 : (sum_e2 > 0 ? INFINITY : 0);
+    tb_acc_end(&a, r);
 }
 
 void tb_overflow_list(const tb_result *r, char *buf, size_t len)
@@ -380,45 +306,19 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         return TB_FAIL;
     }
     tb_golden gold = { ideal + nvals, ideal + 2 * nvals, ideal + 3 * nvals };
-    const vec_model *model = vec_model_find(u->name);
-    vec_params vp;
-    tb_vec_params(cfg, &vp);
 
     /* Quantize inputs as the hardware will hold them, and compute what the
-     * unit should give for exactly those inputs; for the golden check also
-     * the ideal of the inputs rounded but not wrapped, of the file's own
-     * inputs, and the float reference of those. */
+     * unit should give for exactly those inputs and the golden check's
+     * figures (tb_prep). */
     uint64_t in_ovf[UNIT_MAX_IO] = { 0 };
-    int in_idx[UNIT_MAX_IO], k = 0;
-    for (int i = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN) in_idx[k++] = i;
+    tb_prep_ctx pc;
+    tb_prep_init(&pc, u, cfg, fmts);
     for (size_t it = 0; it < n; it++) {
-        double q[UNIT_MAX_IO], qr[UNIT_MAX_IO], x[UNIT_MAX_IO];
-        sim_dy qd[UNIT_MAX_IO];
         size_t at = it * (size_t)r->beats * (size_t)r->n_out;
-        for (int i = 0; i < r->n_in; i++) {
-            int ov = 0;
-            sim_fmt f = fmts->f[in_idx[i]];
-            x[i] = vec_row(vs, it)[i];
-            in_raw[it * (size_t)r->n_in + i] = sim_fx_from_real(x[i], f, cfg->rnd, cfg->ovf, &ov);
-            in_ovf[i] += (uint64_t)ov;
-            q[i] = sim_fx_to_real(in_raw[it * (size_t)r->n_in + i], f);
-            sim_dy_raw(&qd[i], in_raw[it * (size_t)r->n_in + i], f);
-            /* Rounded to f's fraction bits with an unlimited integer part
-             * (exact in double: a value of more than 52 bits after the
-             * scaling is already a whole number). */
-            double y = ldexp(x[i], f.fbits);
-            y = cfg->rnd == SIM_RND_TRUNC ? floor(y) : cfg->rnd == SIM_RND_HALF_UP ? floor(y + 0.5) : nearbyint(y);
-            qr[i] = ldexp(y, -f.fbits);
-        }
-        u->ideal(cfg, q, ideal + at);
-        u->ideal(cfg, qr, (double *)gold.ideal_r + at);
-        u->ideal(cfg, x, (double *)gold.ideal_u + at);
-        if (model) model->eval(&vp, x, (double *)gold.ref_u + at);
-        else for (int j = 0; j < r->beats * r->n_out; j++) ((double *)gold.ref_u)[at + j] = vec_row(vs, it)[r->n_in + j];
-        if (u->ideal_ratio) exact_ok[it] = u->ideal_ratio(cfg, qd, exact + at, exact_den + at) == 0;
-        else if (exact) exact_ok[it] = u->ideal_exact(cfg, qd, exact + at) == 0;
-        if (exact && !exact_ok[it] && u->ideal_interval)
-            exact_ok[it] = u->ideal_interval(cfg, qd, exact + at, exact_hi + at) == 0 ? 2 : 0;
+        tb_item ti = { in_raw + it * (size_t)r->n_in, ideal + at, (double *)gold.ideal_r + at,
+                       (double *)gold.ideal_u + at, (double *)gold.ref_u + at, exact ? exact + at : NULL,
+                       exact_den ? exact_den + at : NULL, exact_hi ? exact_hi + at : NULL, exact_ok + it };
+        tb_prep(&pc, vec_row(vs, it), &ti, in_ovf);
     }
 
     double bound[UNIT_MAX_IO];

@@ -71,10 +71,6 @@ void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_
 
 /* -------------------------------------------------------------- metrics */
 
-/* What the double ideals of units without an exact one are taken to be
- * accurate to (tb_run.c's TB_DOUBLE_IDEAL_REL). */
-#define TB_DOUBLE_IDEAL_REL 0x1p-40
-
 void tb_acc_begin(tb_acc *a, tb_result *r)
 {
     memset(a, 0, sizeof *a);

@@ -14,6 +14,13 @@
 #include "testbench/tb.h"
 #include "vectors/vec_file.h"
 
+/* What the double ideals of units without an exact one are taken to be
+ * accurate to, relative to max(1, |ideal|): their float formulas have at
+ * most a few dozen roundings of 2^-53 each (pow_n: 10 squarings). A
+ * comparison closer than this to the bound is "unchecked"; the golden
+ * check allows this much relative to its terms' size. */
+#define TB_DOUBLE_IDEAL_REL 0x1p-40
+
 /* What tb_prep needs of the unit, set once per run. */
 typedef struct tb_prep_ctx {
     const unit_desc *u;
