@@ -1,5 +1,5 @@
 /* bench_verilog.c - `make bench` entry for bench/verilog/run.sh: shadesim
- * against Verilator (and Icarus) on the same horner3 design and vectors.
+ * against Verilator and Icarus on the exported horner3 and interp3 RTL.
  * The script says "skipped" when verilator is not installed. */
 #include <stdio.h>
 #include <stdlib.h>

@@ -68,14 +68,20 @@ static const char verilog_help[] =
     "DIR/UNIT_tb.v, a testbench that reads `shadesim run UNIT --stimulus-hex FILE`\n"
     "stimulus with $readmemh and writes each output beat with its cycle.\n"
     "options:\n"
-    "  -o DIR               output folder (made if missing)\n";
+    "  -o DIR               output folder (made if missing)\n"
+    "  --stimulus-hex FILE  also write the stimulus of the vectors (--vectors, or the\n"
+    "                       unit's default ones) to FILE and shadesim's results to\n"
+    "                       FILE.expect, what the testbench must write:\n"
+    "                       vvp -n tb.vvp +in=FILE +items=N +out=OUT && diff FILE.expect OUT\n";
 
-static int own_o(void *st, int argc, char **argv, int *i)
+typedef struct verilog_st { const char *dir, *hex; } verilog_st;
+static int own_o(void *stp, int argc, char **argv, int *i)
 {
-    const char **dir = st;
-    if (strcmp(argv[*i], "-o")) return 0;
-    if (*i + 1 >= argc) { cli_usage_error("-o needs a folder"); return -1; }
-    *dir = argv[++*i];
+    verilog_st *st = stp;
+    int o = !strcmp(argv[*i], "-o"), h = !strcmp(argv[*i], "--stimulus-hex");
+    if (!o && !h) return 0;
+    if (*i + 1 >= argc) { cli_usage_error("%s needs a %s", argv[*i], o ? "folder" : "file"); return -1; }
+    if (o) st->dir = argv[++*i]; else st->hex = argv[++*i];
     return 1;
 }
 
@@ -84,15 +90,33 @@ int cli_verilog(int argc, char **argv)
     for (int i = 1; i < argc; i++)
         if (is_help(argv[i])) { fputs(verilog_help, stdout); fputs(cli_unit_opts_help, stdout); return stdout_done(CLI_OK); }
     cli_unit_opts o;
-    const char *dir = NULL;
-    int rc = parse("verilog", argc, argv, &o, own_o, &dir);
+    verilog_st st = { NULL, NULL };
+    int rc = parse("verilog", argc, argv, &o, own_o, &st);
     if (rc) return rc;
-    if (!dir) return cli_usage_error("verilog: -o DIR is required");
+    if (!st.dir) return cli_usage_error("verilog: -o DIR is required");
     unit_fmts fm;
     if (formats(&o, &fm)) return CLI_USAGE;
     char err[600];
-    if (tb_verilog_export(o.u, &o.cfg, &fm, dir, err, sizeof err)) return cli_usage_error("%s", err);
-    return stdout_done(CLI_OK);
+    if (tb_verilog_export(o.u, &o.cfg, &fm, st.dir, err, sizeof err)) return cli_usage_error("%s", err);
+    if (st.hex) {
+        vec_set vs;
+        if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
+        tb_result r;
+        int t = tb_run(o.u, &o.cfg, &fm, &vs, NULL, &r, err, sizeof err);
+        if (t != TB_OK) { vec_set_free(&vs); return t == TB_BADINPUT ? cli_usage_error("%s", err) : (fprintf(stderr, "shadesim: %s\n", err), CLI_FAIL); }
+        size_t pl = strlen(st.hex) + 8;
+        char *ex = malloc(pl);
+        if (!ex) rc = cli_usage_error("out of memory");
+        else {
+            snprintf(ex, pl, "%s.expect", st.hex);
+            if (tb_stimulus_write(o.u, &o.cfg, &fm, &vs, &r, st.hex, ex, err, sizeof err)) rc = cli_usage_error("%s", err);
+            else if (cli_stderr_tty()) fprintf(stderr, "%zu items: +items=%zu\n", vs.n_rows, vs.n_rows);
+        }
+        free(ex);
+        tb_result_free(&r);
+        vec_set_free(&vs);
+    }
+    return stdout_done(rc);
 }
 
 /* ------------------------------------------------------------------- cosim */
@@ -176,8 +200,73 @@ int cli_cosim(int argc, char **argv)
     return stdout_done(rc);
 }
 
+/* ------------------------------------------------------------------- synth */
+
+static const char synth_help[] =
+    "usage: shadesim synth UNIT [options] [--keep DIR]\n"
+    "Export the unit and synthesize it with Yosys to generic gates (synth; abc -g\n"
+    "AND,NAND,OR,NOR,XOR,XNOR,MUX; no cell library): prints Yosys's cells by type\n"
+    "and in total beside shadesim's area estimate in NAND2 gate equivalents.\n"
+    "Needs yosys (Debian package yosys).\n"
+    "options:\n"
+    "  --keep DIR           leave the export and Yosys's log in DIR\n";
+
+static int own_keep(void *stp, int argc, char **argv, int *i)
+{
+    const char **keep = stp;
+    if (strcmp(argv[*i], "--keep")) return 0;
+    if (*i + 1 >= argc) { cli_usage_error("--keep needs a folder"); return -1; }
+    *keep = argv[++*i];
+    return 1;
+}
+
 int cli_synth(int argc, char **argv)
 {
-    (void)argc; (void)argv;
-    return cli_usage_error("synth: not yet");
+    for (int i = 1; i < argc; i++)
+        if (is_help(argv[i])) { fputs(synth_help, stdout); fputs(cli_unit_opts_help, stdout); return stdout_done(CLI_OK); }
+    cli_unit_opts o;
+    const char *keep = NULL;
+    int rc = parse("synth", argc, argv, &o, own_keep, &keep);
+    if (rc) return rc;
+    if (!have_tool("yosys")) return cli_usage_error("synth: yosys not found (install the Debian package yosys)");
+    unit_fmts fm;
+    if (formats(&o, &fm)) return CLI_USAGE;
+    char err[600];
+    double ge = tb_verilog_area(o.u, &o.cfg, &fm, err, sizeof err);
+    if (ge < 0) return cli_usage_error("%s", err);
+    char tmpl[] = "/tmp/shadesim_synth_XXXXXX";
+    const char *dir = keep;
+    if (!dir && !mkdtemp(tmpl)) return cli_usage_error("synth: cannot make a temporary folder");
+    if (!dir) dir = tmpl;
+    if (tb_verilog_export(o.u, &o.cfg, &fm, dir, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    size_t cl = 3 * strlen(dir) + 512;
+    char *cmd = malloc(cl);
+    if (!cmd) { rc = cli_usage_error("out of memory"); goto done; }
+    snprintf(cmd, cl, "cd '%s' && yosys -q -p 'read_verilog %s.v; synth -top %s; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; "
+             "opt_clean; tee -o stat.txt stat' >yosys.log 2>&1", dir, o.u->name, o.u->name);
+    int sr = system(cmd);
+    free(cmd);
+    if (sr != 0) { fprintf(stderr, "shadesim: synth: yosys failed (see yosys.log: use --keep DIR)\n"); rc = CLI_FAIL; goto done; }
+    char path[1200], line[300];
+    snprintf(path, sizeof path, "%s/stat.txt", dir);
+    FILE *f = fopen(path, "r");
+    long total = -1;
+    printf("%s --width %d --schedule %s (%s, %s): Yosys generic gates\n", o.u->name, o.cfg.width,
+           o.u->sched[o.cfg.schedule].name, sim_round_name(o.cfg.rnd), sim_ovf_name(o.cfg.ovf));
+    while (f && fgets(line, sizeof line, f)) {
+        char cell[100];
+        long n;
+        if (strstr(line, "Number of cells:")) total = atol(strchr(line, ':') + 1);
+        else if (sscanf(line, " %99s %ld", cell, &n) == 2 && !strncmp(cell, "$_", 2)) printf("  %-12s %ld\n", cell + 2, n);
+    }
+    if (f) fclose(f);
+    printf("  cells        %ld\n  shadesim     %.0f NAND2 gate equivalents (area model)\n", total, ge);
+    if (total > 0) printf("  ratio        %.2f gate equivalents per Yosys cell\n", ge / (double)total);
+done:
+    if (!keep) {
+        char c2[1200];
+        snprintf(c2, sizeof c2, "rm -rf '%s'", dir);
+        if (system(c2)) { /* best effort */ }
+    }
+    return stdout_done(rc);
 }

@@ -298,3 +298,17 @@ done:
     tb_result_free(&r);
     return rc;
 }
+
+double tb_verilog_area(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
+                       char *err, size_t errlen)
+{
+    sim_ctx *c = sim_new();
+    sim_set_quant(c, cfg->rnd, cfg->ovf);
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_scope *sc = sim_scope_new(c, NULL, u->name);
+    unit_io io;
+    memset(&io, 0, sizeof io);
+    double a = u->build(c, sc, clk, cfg, fm, &io, err, errlen) ? -1 : sim_scope_area(sc);
+    sim_free(c);
+    return a;
+}

@@ -24,6 +24,10 @@ int tb_verilog_export(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
 /* The module text alone, malloc'd (NULL with a message). */
 char *tb_verilog_module_text(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
                              char *err, size_t errlen);
+/* shadesim's area estimate of the unit (NAND2 gate equivalents), or -1
+ * with a message. */
+double tb_verilog_area(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
+                       char *err, size_t errlen);
 
 /* Stimulus of vs quantized as tb_run quantizes it, to in_path; the
  * expected beats of r (a tb_run of the same vectors) to exp_path (NULL:

@@ -1,47 +1,26 @@
 #!/bin/sh
-# bench/verilog/run.sh - shadesim against Verilator (and Icarus Verilog) on
-# the same design and the same vector file: horner3 (bench/verilog/horner3.v,
-# the RTL of units/unit_horner.c) over 200,000 pixels, 1.2M clocks.
+# bench/verilog/run.sh - shadesim against Verilator and Icarus Verilog on the
+# Verilog that `shadesim verilog` exports (generated, not hand-written):
+# horner3 (paper schedule, 200,000 pixels, 1.2M clocks) and interp3 (paper
+# schedule, L = 8: 5,000 intervals, 240k clocks), same stimulus.
 #
-# Each simulator's whole process is timed from outside (best of 3): reading
-# and parsing the vector text, quantizing, simulating, writing results.
-# The outputs are compared raw for raw. Called by `make bench`; prints
-# "skipped: verilator not installed" when there is no verilator.
+# `shadesim cosim --keep` exports, builds and checks each design bit- and
+# cycle-exact first; then each simulator's whole process is timed from
+# outside (best of 3; Icarus once): shadesim reads and quantizes the vector
+# text and simulates; the Verilog testbenches read the pre-quantized hex
+# stimulus. Called by `make bench`; says "skipped" without verilator.
 #
-#   sh bench/verilog/run.sh [VECTORS]     (default: generated, 200k pixels)
+#   sh bench/verilog/run.sh
 cd "$(dirname "$0")/../.." || exit 2
 if ! command -v verilator >/dev/null 2>&1; then
-    echo "verilog  horner3 vs Verilator: skipped: verilator not installed"
+    echo "verilog  generated RTL vs Verilator: skipped: verilator not installed"
     exit 0
 fi
 SHADESIM=${SHADESIM:-bin/shadesim}
-B=build/verilog
-OBJ=$B/obj16
-TB=$OBJ/horner3_tb
-mkdir -p "$B"
 tmp=$(mktemp -d /tmp/shadesim_verilog.XXXXXX) || exit 2
 trap 'rm -rf "$tmp"' EXIT
-
-# Build the Verilator model when its sources changed.
-if [ ! -x "$TB" ] || [ bench/verilog/horner3.v -nt "$TB" ] || [ bench/verilog/horner3_tb.cpp -nt "$TB" ]; then
-    rm -rf "$OBJ"
-    # The model's C++ at -O3 (Verilator's makefile default is -Os, slower here).
-    if ! verilator -O3 --x-assign fast --x-initial fast --noassert -Wno-fatal \
-            --cc --exe --build -j 2 -CFLAGS -O2 -MAKEFLAGS "OPT_FAST=-O3 OPT_GLOBAL=-O2" \
-            --Mdir "$OBJ" --top-module horner3 \
-            -o horner3_tb "$PWD/bench/verilog/horner3.v" "$PWD/bench/verilog/horner3_tb.cpp" \
-            >"$B/verilator.log" 2>&1; then
-        echo "verilog: verilator build failed, see $B/verilator.log"
-        exit 1
-    fi
-fi
-
-VEC=${1:-$tmp/h3.vec}
-if [ -z "$1" ]; then
-    "$SHADESIM" vectors horner3 -n 200000 --seed 7 -o "$VEC" || exit 1
-fi
 now() { date +%s.%N; }
-# best CMD...: best of 3 wall-clock seconds of CMD (stdout discarded).
+# best CMD...: best of 3 wall-clock seconds of CMD (output discarded).
 best() {
     b=
     for k in 1 2 3; do
@@ -50,29 +29,26 @@ best() {
     done
     echo "$b"
 }
-ts=$(best "$SHADESIM" run horner3 --vectors "$VEC" --json) || exit 1
-tv=$(best "$TB" "$VEC" -) || exit 1
-
-# Same outputs: shadesim's y_raw column against the Verilator model's.
-"$SHADESIM" run horner3 --vectors "$VEC" --out "$tmp/s.csv" >/dev/null || exit 1
-"$TB" "$VEC" "$tmp/v.txt" --raw-in "$tmp/in.hex" 2>/dev/null || exit 1
-tail -n +2 "$tmp/s.csv" | cut -d, -f3 >"$tmp/s.txt"
-n=$(wc -l <"$tmp/s.txt")
-if cmp -s "$tmp/s.txt" "$tmp/v.txt"; then same="identical ($n values)"; else same="DIFFER"; fi
-
-echo "verilog  horner3 $n pixels, 1.2M clocks, whole process (parse + quantize + simulate + output), best of 3:"
-echo "$ts $tv" | awk '{printf "verilog    shadesim  %.3f s\nverilog    verilator %.3f s   (-O3 --x-assign fast, C++ -O3)\nverilog    shadesim / verilator = %.2f\n", $1, $2, $1 / $2}'
-echo "verilog    outputs shadesim vs verilator: $same"
-
-if command -v iverilog >/dev/null 2>&1 && [ -z "$NO_ICARUS" ]; then
-    if iverilog -g2005 -o "$tmp/tb.vvp" bench/verilog/horner3_tb.v bench/verilog/horner3.v 2>"$tmp/iv.log"; then
-        # One run: Icarus reads the quantized inputs (hex), not the text.
-        t0=$(now); vvp -n "$tmp/tb.vvp" +in="$tmp/in.hex" +out="$tmp/i.txt" >/dev/null 2>&1; t1=$(now)
-        cut -d' ' -f2 "$tmp/i.txt" | cmp -s - "$tmp/v.txt" && isame=identical || isame=DIFFER
-        echo "$t0 $t1 $ts" | awk '{d = $2 - $1; printf "verilog    icarus    %.3f s   (one run, from pre-quantized hex; %.2f M clocks/s; %.0fx shadesim)\n", d, 1.2 / d, d / $3}'
-        echo "verilog    outputs icarus vs verilator: $isame"
-    else
-        echo "verilog    icarus: compile failed: $(head -1 "$tmp/iv.log")"
-    fi
-fi
-[ "$same" != DIFFER ]
+fail=0
+for spec in "horner3 200000" "interp3 5000"; do
+    set -- $spec
+    u=$1 n=$2 D=$tmp/$u
+    "$SHADESIM" vectors "$u" -n "$n" --seed 7 -o "$tmp/$u.vec" || exit 1
+    v=$("$SHADESIM" cosim "$u" --width 16 --vectors "$tmp/$u.vec" --sim verilator --keep "$D") || { echo "verilog  $u: $v"; fail=1; continue; }
+    clocks=$(echo "$v" | sed 's/.* items, \([0-9]*\) clocks.*/\1/')
+    ts=$(best "$SHADESIM" run "$u" --width 16 --vectors "$tmp/$u.vec" --json) || exit 1
+    tv=$(best "$D/obj_verilator/${u}_vtb" +in="$D/stimulus.hex" +items="$n" +out="$tmp/v.out") || exit 1
+    # Icarus is slow: a tenth of the items, one run, checked against the
+    # same expected lines, its time scaled up by ten.
+    ni=$((n / 10))
+    (cd "$D" && iverilog -g2005 -P "${u}_tb.MAXWORDS=$((n * 8))" -o "${u}_tb.vvp" "${u}_tb.v" "$u.v") || exit 1
+    t0=$(now); vvp -n "$D/${u}_tb.vvp" +in="$D/stimulus.hex" +items="$ni" +out="$tmp/i.out" >/dev/null 2>&1; t1=$(now)
+    lines=$(wc -l <"$tmp/i.out")
+    if head -n "$lines" "$D/stimulus.hex.expect" | cmp -s - "$tmp/i.out" && [ "$lines" -gt 0 ]; then i="bit-exact ($lines beats)"; else i=DIFFER; fail=1; fi
+    echo "verilog  $u (generated RTL, --width 16): $n items, $clocks clocks; verilator: $v; icarus on $ni items: $i"
+    echo "$ts $tv $t0 $t1 $clocks" | awk '{ti = 10 * ($4 - $3);
+        printf "verilog    shadesim  %.3f s   (%.2f M clocks/s)\n", $1, $5 / $1 / 1e6;
+        printf "verilog    verilator %.3f s   (--binary, timed testbench; shadesim / verilator = %.2f)\n", $2, $1 / $2;
+        printf "verilog    icarus    %.3f s   (a tenth of the items times ten; icarus / shadesim = %.1f)\n", ti, ti / $1}'
+done
+exit $fail
