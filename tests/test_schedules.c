@@ -102,7 +102,7 @@ static void t_signals_follow_schedule(void)
                 if (!u->sigs[i].scheds || u->sigs[i].role != UNIT_SIG_INTERNAL) continue;
                 /* an element of the unit, its horner scope or its fwd scope */
                 static const char *const where[] = { "", "horner.", "fwd." };
-                int want = unit_sig_used(u, i, s), got = 0;
+                int want = unit_sig_built(u, i, &cfg), got = 0;
                 for (int w = 0; w < 3; w++) {
                     char path[64];
                     snprintf(path, sizeof path, "%s.%s%s", u->name, where[w], u->sigs[i].name);
@@ -177,7 +177,7 @@ static void t_bound_follows_overrides(void)
             double b0[UNIT_MAX_IO], b1[UNIT_MAX_IO];
             u->bound(&cfg, &def, b0);
             for (int i = 0; i < u->nsigs; i++) {
-                if (u->sigs[i].role != UNIT_SIG_INTERNAL || !unit_sig_used(u, i, s) || !strcmp(u->sigs[i].name, "t"))
+                if (u->sigs[i].role != UNIT_SIG_INTERNAL || !unit_sig_built(u, i, &cfg) || !strcmp(u->sigs[i].name, "t"))
                     continue;
                 sim_fmt f = def.f[i];
                 char ov[64], fs[SIM_FMT_STRLEN];

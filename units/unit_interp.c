@@ -98,6 +98,13 @@ extern const unit_desc unit_interp3, unit_interp2;
 static const interp_kind k3 = { &unit_interp3, &coef_net_n1, 3, fwd3_nodes, 0 FWD3_NET(FWD_COUNT) };
 static const interp_kind k2 = { &unit_interp2, &coef_net_q, 2, fwd2_nodes, 0 FWD2_NET(FWD_COUNT) };
 
+/* The cubic's node set is a parameter (nodes: n1 = I(0), I(1), I(1/2),
+ * I(1/4), the paper's choice; n2 = ... I(3/4)); the quadratic has one. */
+static const coef_net *net_of(const interp_kind *K, const unit_cfg *cfg)
+{
+    return K->deg == 3 && cfg->nodes ? &coef_net_n2 : K->net;
+}
+
 static const char *const in_names[] = { "i1", "i2", "i3", "i4" };
 static const char *const coef_names[] = { "a", "b", "c", "d" };
 static const char *const reg_names[] = { "ra", "rb", "rc", "rd" };
@@ -182,9 +189,9 @@ static int fwd_values(const interp_kind *K, const unit_cfg *cfg, unit_fmts *fm, 
     unet n;
     unet_val in[UNET_MAXIN];
     unet_init(&n, K->u, fm, cfg->rnd);
-    for (int i = 0; i < K->net->nin; i++) in[i] = unet_input(&n, in_names[i], i);
-    if (coef_walk(&n, K->net, in, cfg->terms, cfg->series, coef)) return -1;
-    if (choose) unet_rule(&n, cfg->width, lo, hi, K->net->nin);
+    for (int i = 0; i < net_of(K, cfg)->nin; i++) in[i] = unet_input(&n, in_names[i], i);
+    if (coef_walk(&n, net_of(K, cfg), in, cfg->terms, cfg->series, coef)) return -1;
+    if (choose) unet_rule(&n, cfg->width, lo, hi, net_of(K, cfg)->nin);
     if (fwd_walk(&n, K, lg2(cfg->L), coef, init)) return -1;
     *fm = n.fm;
     return 0;
@@ -235,12 +242,14 @@ static void formats(const interp_kind *K, const unit_cfg *cfg, unit_fmts *out)
     unet n;
     unet_val in[UNET_MAXIN], o[UNET_MAXIN];
     unet_init(&n, u, NULL, cfg->rnd);
-    unet_rule(&n, W, lo, hi, K->net->nin);
-    for (int i = 0; i < K->net->nin; i++) {
+    unet_rule(&n, W, lo, hi, net_of(K, cfg)->nin);
+    for (int i = 0; i < net_of(K, cfg)->nin; i++) {
         n.fm.f[unit_sig_must(u, in_names[i])] = coef_input_fmt(W);
         in[i] = unet_input(&n, in_names[i], i);
     }
-    coef_walk(&n, K->net, in, cfg->terms, cfg->series, o);
+    /* interp3 declares both node sets' elements; the other set's own ones
+     * are not built (sig_used) and keep no format. */
+    coef_walk(&n, net_of(K, cfg), in, cfg->terms, cfg->series, o);
     sim_fmt dp = unit_fmt(1, HORNER_IBITS, W - HORNER_IBITS);
     for (int j = 0; j <= K->deg; j++) {
         n.fm.f[unit_sig_must(u, coef_names[j])] = dp;
@@ -385,13 +394,13 @@ static int build(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal *cl
     unet_val in[UNET_MAXIN], o[UNET_MAXIN];
     unet_init(&n, u, f, cfg->rnd);
     unet_hw(&n, c, sc);
-    for (int i = 0; i < K->net->nin; i++) {
+    for (int i = 0; i < net_of(K, cfg)->nin; i++) {
         in[i] = unet_input(&n, in_names[i], i);
         io->in[i] = in[i].s;
     }
     io->in_valid = sim_bit_new(c, sc, "in_valid", SIM_KIND_INPUT);
     n.sc = sim_scope_new(c, sc, "coef");
-    if (coef_walk(&n, K->net, in, cfg->terms, cfg->series, o)) { snprintf(err, errlen, "%s", n.why); return -1; }
+    if (coef_walk(&n, net_of(K, cfg), in, cfg->terms, cfg->series, o)) { snprintf(err, errlen, "%s", n.why); return -1; }
     if (sched == INTERP_FWD) return build_fwd(K, c, sc, clk, cfg, f, &n, o, Lp, io, err, errlen);
 
     /* Control: busy, the pixel counter k, the Horner's step controller. */
@@ -423,7 +432,7 @@ static int build(const interp_kind *K, sim_ctx *c, sim_scope *sc, sim_signal *cl
 static void ideal(const interp_kind *K, const unit_cfg *cfg, const double *in, double *out)
 {
     double co[4];
-    K->net->formula(in, ref_div3_factor(cfg->terms, cfg->series), co);
+    net_of(K, cfg)->formula(in, ref_div3_factor(cfg->terms, cfg->series), co);
     for (int k = 0; k < cfg->L; k++) {
         double t = (double)k / cfg->L, y = co[0];
         for (int j = 1; j <= K->deg; j++) y = y * t + co[j];
@@ -435,7 +444,7 @@ static void ideal(const interp_kind *K, const unit_cfg *cfg, const double *in, d
 static int ideal_exact(const interp_kind *K, const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
 {
     sim_dy co[4];
-    if (coef_exact(K->net, ref_div3_factor(cfg->terms, cfg->series), in, co)) return -1;
+    if (coef_exact(net_of(K, cfg), ref_div3_factor(cfg->terms, cfg->series), in, co)) return -1;
     int bad = 0;
     for (int k = 0; k < cfg->L; k++) {
         sim_dy t, y = co[0];
@@ -475,8 +484,8 @@ static void bound_beats(const interp_kind *K, const unit_cfg *cfg, const unit_fm
     unet n;
     unet_val in[UNET_MAXIN], o[UNET_MAXIN];
     unet_init(&n, u, f, cfg->rnd);
-    for (int i = 0; i < K->net->nin; i++) in[i] = unet_input(&n, in_names[i], i);
-    coef_walk(&n, K->net, in, cfg->terms, cfg->series, o);
+    for (int i = 0; i < net_of(K, cfg)->nin; i++) in[i] = unet_input(&n, in_names[i], i);
+    coef_walk(&n, net_of(K, cfg), in, cfg->terms, cfg->series, o);
     double e = 0;
     sim_fmt rf[4];
     for (int j = 0; j <= K->deg; j++) {
@@ -521,11 +530,38 @@ static void bound(const interp_kind *K, const unit_cfg *cfg, const unit_fmts *f,
 INTERP_FNS(3, k3)
 INTERP_FNS(2, k2)
 
+static int in_net(const coef_net *net, const char *name)
+{
+    for (int i = 0; i < net->nnodes; i++)
+        if (!strcmp(net->node[i].name, name)) return 1;
+    return 0;
+}
+
+/* interp3: an element of either cubic network is built only when it is
+ * the chosen node set's; everything else is built for both. */
+static int sig_used_3(const unit_cfg *cfg, int i)
+{
+    const char *nm = unit_interp3.sigs[i].name;
+    if (!in_net(&coef_net_n1, nm) && !in_net(&coef_net_n2, nm)) return 1;
+    return in_net(cfg->nodes ? &coef_net_n2 : &coef_net_n1, nm);
+}
+
 #define P_L { "L", UNIT_P_POW2, offsetof(unit_cfg, L), 2, 32, NULL, "pixels per interval (beats per item)" }
 #define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, NULL, \
                   "terms of each /3 network (see div3); 3 is the paper's" }
 #define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, "paper quarter", \
                    "series of each /3 network (see div3)" }
+#define P_NODES { "nodes", UNIT_P_ENUM, offsetof(unit_cfg, nodes), 0, 1, "n1 n2", \
+                  "node set of the cubic: n1 = I(0), I(1), I(1/2), I(1/4) (the paper's choice); n2 = I(0), I(1), I(1/2), I(3/4)" }
+/* N2's own elements (coef3_n2's network), built only with nodes=n2; the
+ * names both sets share are described by N1's formulas. */
+#define N2_SIG(nm_, wh_) { .name = nm_, .role = UNIT_SIG_INTERNAL, .what = "nodes=n2 only: " wh_ }
+#define N2_SIGS \
+    N2_SIG("i1x2", "2 I1"), N2_SIG("i1x3", "3 I1 = 2 I1 + I1"), N2_SIG("i2x4", "4 I2"), \
+    N2_SIG("i2x5", "5 I2 = 4 I2 + I2"), N2_SIG("i3x16", "16 I3"), N2_SIG("i3x14", "14 I3 = 16 I3 - 2 I3"), \
+    N2_SIG("uc", "I2 + 4 I3"), N2_SIG("ucx2", "2 (I2 + 4 I3)"), N2_SIG("ucx3", "3 (I2 + 4 I3)"), \
+    N2_SIG("i1x4", "4 I1"), N2_SIG("i1x12", "12 I1 = 8 I1 + 4 I1"), N2_SIG("i1x13", "13 I1 = 12 I1 + I1")
+#define N2_NSIGS 12
 #define REG(nm_, wh_) { .name = nm_, .role = UNIT_SIG_INTERNAL, .what = wh_, .scheds = I_HORNER }
 #define T_SIG { .name = "t", .role = UNIT_SIG_INTERNAL, .what = "t = k/L, the pixel counter k with its binary point moved (wiring)", .scheds = I_HORNER }
 #define Y_SIG { .name = "y", .role = UNIT_SIG_OUT, .what = "intensity I(k/L) of pixel k, one beat per pixel (the Horner's result; fwd: fy)" }
@@ -542,9 +578,10 @@ const unit_desc unit_interp3 = {
     .name = "interp3",
     .summary = "cubic interpolation of a span interval: coef3_n1 + registers + the Fig. 9 Horner, L pixels per item",
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
-    .nsigs = 5 + COEF3_N1_NODES + 4 + 1 + HORNER_NSIGS3 + (0 FWD3_NET(FWD_COUNT)) + 4,
-    .sigs = { COEF_SIGS_I123, COEF_SIG_I4_N1, Y_SIG,
-              COEF3_N1_NET(COEF_SIG_INT, COEF_SIG_INT)
+    .nsigs = 5 + COEF3_N1_NODES + N2_NSIGS + 4 + 1 + HORNER_NSIGS3 + (0 FWD3_NET(FWD_COUNT)) + 4,
+    .sigs = { COEF_SIGS_I123, { .name = "i4", .role = UNIT_SIG_IN, .what = "I4 = I(1/4) (nodes=n1) or I(3/4) (nodes=n2)" },
+              Y_SIG,
+              COEF3_N1_NET(COEF_SIG_INT, COEF_SIG_INT) N2_SIGS,
               REG("ra", "register of A, loaded when an item is accepted"),
               REG("rb", "register of B"), REG("rc", "register of C"), REG("rd", "register of D"),
               T_SIG, HORNER_SIGS3,
@@ -552,10 +589,10 @@ const unit_desc unit_interp3 = {
     .nsched = 4,
     .sched = INTERP_SCHEDS("coefficients once per item, then the paper's Horner sequence: 6 clocks per pixel, 6L per item",
                            "3 clocks per pixel, 3L per item", "L per item, first pixel 4 clocks after the accept"),
-    .nparams = 3, .params = { P_L, P_TERMS, P_SERIES },
+    .nparams = 4, .params = { P_L, P_TERMS, P_SERIES, P_NODES },
     .fmt_rule = INTERP_RULE("a b c d"),
     .formats = formats_3, .beats = beats, .build = build_3, .ideal = ideal_3, .bound = bound_3, .ideal_exact = exact_3,
-    .bound_beats = beats_3,
+    .bound_beats = beats_3, .sig_used = sig_used_3,
 };
 
 const unit_desc unit_interp2 = {

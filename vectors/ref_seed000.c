@@ -217,7 +217,9 @@ static void eval_coef2(const vec_params *p, const double *in, double *out)
 }
 static void eval_interp3(const vec_params *p, const double *in, double *out)
 {
-    ref_interp3(in, safe_L(p), out);
+    int L = safe_L(p);
+    if (!p->nodes) ref_interp3(in, L, out);
+    else for (int i = 0; i < L; i++) out[i] = lagrange_at(ref_nodes_n2, in, 4, (double)i / L);
 }
 static void eval_interp2(const vec_params *p, const double *in, double *out)
 {
@@ -351,7 +353,7 @@ static int gen_coef2(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 static int gen_interp3(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
     if (valid_L(p) < 0) return -1;
-    return gen_nodes(&m_interp3, ref_nodes_n1, 4, p, n, seed, out);
+    return gen_nodes(&m_interp3, p->nodes ? ref_nodes_n2 : ref_nodes_n1, 4, p, n, seed, out);
 }
 static int gen_interp2(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
@@ -485,7 +487,7 @@ static const vec_model m_coef2 = {
     "coef2", "quadratic coefficients from I(0), I(1), I(1/2)",
     ports_coef2, eval_coef2, gen_coef2 };
 static const vec_model m_interp3 = {
-    "interp3", "cubic through N1 nodes at the L pixels t = k/L (param L)",
+    "interp3", "cubic through N1 (or, param nodes, N2) nodes at the L pixels t = k/L (param L)",
     ports_interp3, eval_interp3, gen_interp3 };
 static const vec_model m_interp2 = {
     "interp2", "quadratic through I(0), I(1), I(1/2) at t = k/L (param L)",
