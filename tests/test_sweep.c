@@ -9,6 +9,7 @@
 #include "testbench/cli.h"
 #include "testbench/tb_sweep.h"
 #include "vectors/vec_file.h"
+#include "tests/tst_svgtext.h"
 
 #include <ctype.h>
 #include <dirent.h>
@@ -375,6 +376,132 @@ static void test_sweep_charts_render(void)
     }
 }
 
+static char *read_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    char *b = calloc(1, 1 << 22);
+    if (b) fread(b, 1, (1 << 22) - 1, f);
+    fclose(f);
+    return b;
+}
+
+/* Column `name` of every row of a CSV (no quoting: the sweep's), as
+ * numbers; returns the row count. */
+static size_t csv_col(const char *csv, const char *name, double *out, size_t cap)
+{
+    const char *p = csv;
+    int col = -1, k = 0;
+    const char *eol = strchr(p, '\n');
+    for (const char *q = p; q < eol; k++) {
+        size_t n = strcspn(q, ",\n");
+        if (n == strlen(name) && !strncmp(q, name, n)) col = k;
+        q += n + 1;
+    }
+    if (col < 0) return 0;
+    size_t rows = 0;
+    for (p = eol + 1; *p && rows < cap; rows++) {
+        const char *q = p;
+        for (int c = 0; c < col; c++) q += strcspn(q, ",\n") + 1;
+        out[rows] = strtod(q, NULL);
+        p = strchr(p, '\n');
+        if (!p) { rows++; break; }
+        p++;
+    }
+    return rows;
+}
+
+/* Numbers of the y axis's tick labels (texts anchored at the end, left of
+ * the plot) of a chart; their largest. */
+static double max_ytick(const char *svg)
+{
+    double m = -1;
+    for (const char *p = strstr(svg, "text-anchor=\"end\">"); p; p = strstr(p + 1, "text-anchor=\"end\">")) {
+        const char *x = p;
+        while (x > svg && strncmp(x, "x=\"", 3)) x--;
+        if (atof(x + 3) > 100) continue;          /* not left of the plot */
+        m = fmax(m, atof(p + strlen("text-anchor=\"end\">")));
+    }
+    return m;
+}
+
+/* The charts read well: no two texts overlap, settings spelled out, no
+ * "+N more" legend, a legend by setting for a large sweep, clocks per
+ * pixel (not per item) on the clocks chart, and the ringed front is the
+ * three-cost front computed here from the CSV by its definition. */
+static void test_sweep_charts_read_well(void)
+{
+    if (!unit_find("interp3")) TST_SKIP("no interp3 unit");
+    char out[2][300];
+    snprintf(out[0], sizeof out[0], "%s/rw6", tdir);
+    snprintf(out[1], sizeof out[1], "%s/rw30", tdir);
+    char *a6[] = { "sweep", "interp3", "--widths", "10:12", "--schedule", "paper,mac,pipe", "--param", "terms=2,3",
+                   "-n", "16", "-o", out[0], NULL };
+    char *a30[] = { "sweep", "interp3", "--widths", "10:11", "--param", "terms=1,2,3,4,5,6,7,8,9,10",
+                    "--round", "trunc,half-up,even", "-n", "16", "-o", out[1], NULL };
+    TST_EQ_INT(verb(cli_sweep, 12, a6), 0);
+    TST_EQ_INT(verb(cli_sweep, 12, a30), 0);
+    const char *names[] = { "error_vs_width.svg", "area_vs_error.svg", "cycles_vs_error.svg" };
+    int xmllint = have_tool("xmllint");
+    for (int o = 0; o < 2; o++)
+        for (int k = 0; k < 3; k++) {
+            char p[700], why[400], cmd[900];
+            snprintf(p, sizeof p, "%s/%s", out[o], names[k]);
+            char *b = read_file(p);
+            if (o == 1 && k == 2) { TST_CHECK(!b, "a clocks chart where clocks per pixel do not vary"); free(b); continue; }
+            TST_CHECK(b != NULL, "%s missing", p);
+            if (!b) continue;
+            TST_CHECK(!tst_svg_text_overlap(b, why, sizeof why), "%s: %s", p, why);
+            TST_CHECK(!strstr(b, " more<"), "%s: a '+N more' legend", p);
+            TST_CHECK(!strstr(b, ">t=") && !strstr(b, " t=") && !strstr(b, ">w="), "%s: abbreviated names", p);
+            if (o == 0) TST_CHECK(strstr(b, ">mac terms=3<") != NULL, "%s: settings not spelled out", p);
+            if (o == 1) TST_CHECK(strstr(b, ">colour: terms") && strstr(b, ">shape: round<") && strstr(b, ">terms=10<"),
+                                  "%s: no legend by setting", p);
+            if (xmllint) {
+                snprintf(cmd, sizeof cmd, "xmllint --noout '%s' 2>/dev/null", p);
+                TST_CHECK(system(cmd) == 0, "xmllint rejects %s", p);
+            }
+            free(b);
+        }
+    /* Clocks per pixel and the front, from the 6-group sweep's CSV. */
+    char p[700];
+    snprintf(p, sizeof p, "%s/sweep.csv", out[0]);
+    char *csv = read_file(p);
+    snprintf(p, sizeof p, "%s/cycles_vs_error.svg", out[0]);
+    char *cy = read_file(p);
+    snprintf(p, sizeof p, "%s/area_vs_error.svg", out[0]);
+    char *ar = read_file(p);
+    enum { N = 64 };
+    double e[N], a[N], cpi[N], beats[N];
+    size_t n = csv ? csv_col(csv, "max_abs_err", e, N) : 0;
+    TST_CHECK(n == 18, "%zu rows", n);
+    if (csv && cy && ar && n == 18) {
+        csv_col(csv, "area_ge", a, N);
+        csv_col(csv, "cycles_per_item", cpi, N);
+        csv_col(csv, "beats_per_item", beats, N);
+        double cpp_max = 0;
+        size_t nf = 0;
+        for (size_t i = 0; i < n; i++) {
+            double ci = cpi[i] / beats[i];
+            cpp_max = fmax(cpp_max, ci);
+            int dom = 0;
+            for (size_t j = 0; j < n && !dom; j++) {
+                double cj = cpi[j] / beats[j];
+                dom = e[j] <= e[i] && a[j] <= a[i] && cj <= ci && (e[j] < e[i] || a[j] < a[i] || cj < ci);
+            }
+            nf += !dom;
+        }
+        double top = max_ytick(cy);
+        TST_CHECK(top >= cpp_max && top < 2 * cpp_max + 1, "clocks axis up to %g, clocks per pixel up to %g", top, cpp_max);
+        /* rings: one per front point, and the legend's */
+        size_t rings = 0;
+        for (const char *q = strstr(ar, "a6.5 6.5 0 1 0 13 0"); q; q = strstr(q + 1, "a6.5 6.5 0 1 0 13 0")) rings++;
+        TST_EQ_INT(rings, nf + 1);
+        TST_CHECK(nf > 3, "front of %zu", nf);
+    }
+    free(csv); free(cy); free(ar);
+}
+
 /* merge refuses what is not exactly one sweep's rows. */
 static void test_sweep_merge_refuses(void)
 {
@@ -419,6 +546,7 @@ int main(void)
     TST_RUN(test_sweep_target_nmse_is_met_and_tight);
     TST_RUN(test_sweep_charts_are_xml);
     TST_RUN(test_sweep_charts_render);
+    TST_RUN(test_sweep_charts_read_well);
     TST_RUN(test_sweep_merge_refuses);
     tst_rmtree(tdir);
     rmdir(tdir);
