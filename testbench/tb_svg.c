@@ -68,6 +68,7 @@ typedef struct { double y; char *label; } tb_svg_hl;
 struct tb_chart {
     char *title, *xlabel, *ylabel;
     int   log_x, log_y;
+    int   int_x;          /* x ticks at whole numbers only */
     tb_svg_series *ser;   size_t nser, capser;
     tb_svg_plabel *pl;    size_t npl, cappl;
     tb_svg_band   *band;  size_t nband, capband;
@@ -143,6 +144,7 @@ void tb_chart_free(tb_chart *c)
 
 void tb_chart_log_x(tb_chart *c, int on) { if (c) c->log_x = !!on; }
 void tb_chart_log_y(tb_chart *c, int on) { if (c) c->log_y = !!on; }
+void tb_chart_int_x(tb_chart *c, int on) { if (c) c->int_x = !!on; }
 
 int tb_chart_series(tb_chart *c, const char *label, int style)
 {
@@ -1013,10 +1015,16 @@ static void tb_svg_layout(tb_svg_lay *l)
 
     /* x: fewer intervals while the tick labels would crowd each other. */
     if (l->have) {
-        int ok = 0;
-        for (int mi = TB_SVG_MAXINT; mi >= 1 && !ok; mi--) {
-            if (c->log_x ? tb_svg_log_fit(&l->ax, xmin, xmax, mi)
-                         : tb_svg_lin_fit(&l->ax, xmin, xmax, mi)) break;
+        int ok = 0, m0 = TB_SVG_MAXINT;
+        double x0 = xmin, x1 = xmax;
+        /* Whole-number data (bit widths): no tick between two of them. */
+        if (c->int_x && !c->log_x) {
+            if (x1 - x0 < 1) { x0 -= 1; x1 += 1; }
+            if (x1 - x0 < m0) m0 = (int)floor(x1 - x0);
+        }
+        for (int mi = m0; mi >= 1 && !ok; mi--) {
+            if (c->log_x ? tb_svg_log_fit(&l->ax, x0, x1, mi)
+                         : tb_svg_lin_fit(&l->ax, x0, x1, mi)) break;
             tb_svg_labels(&l->ax);
             double room = (l->R - l->L - 2 * TB_SVG_PAD) / (double)(l->ax.nmaj > 1 ? l->ax.nmaj - 1 : 1);
             ok = mi == 1 || tb_svg_maxlabw(&l->ax, TB_SVG_FS_TICK) + 12 <= room;

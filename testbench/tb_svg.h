@@ -48,6 +48,8 @@ void      tb_chart_free(tb_chart *c);
  * (on an axis of one or two decades, 2 and 5 x 10^k are labelled too). */
 void tb_chart_log_x(tb_chart *c, int on);
 void tb_chart_log_y(tb_chart *c, int on);
+/* Whole-number x data (e.g. bit widths): ticks at whole numbers only. */
+void tb_chart_int_x(tb_chart *c, int on);
 
 /* Add a series; returns its index (0, 1, ...), -1 when out of memory.
  * Series i gets palette colour i mod 7 and marker shape i mod 5, and from

@@ -450,26 +450,36 @@ int tb_sc_chart_drawn(const tb_sc *sc, int which)
 
 static tb_chart *sc_error_width(const tb_sc *sc, const sc_look *l, const tb_sc_target *t)
 {
+    /* Lines need two widths; with one, the RMS error (a dashed line)
+     * would not show, and neither does its key. */
+    int lines = 0;
+    for (size_t i = 1; i < sc->n && !lines; i++)
+        for (size_t j = 0; j < i && !lines; j++)
+            lines = sc->row[i].ok && sc->row[j].ok && sc->row[i].group == sc->row[j].group &&
+                    sc->row[i].width != sc->row[j].width;
     char title[200];
-    snprintf(title, sizeof title, "%s: max and RMS error against width", sc->unit);
+    snprintf(title, sizeof title, lines ? "%s: max and RMS error against width" : "%s: max error against width", sc->unit);
     tb_chart *c = tb_chart_new(title, "width W (bits, the unit's format rule)", "error vs float reference (output units)");
     if (!c) return NULL;
     tb_chart_log_y(c, 1);
+    tb_chart_int_x(c, 1);
     for (size_t g = 0; g < sc->ngroups; g++) {
         int smax = sc_series(c, sc, l, g, TB_LINE | TB_POINTS, 1);
-        int srms = sc_series(c, sc, l, g, TB_LINE, 0);
-        tb_chart_series_look(c, srms, NULL, -1, 1);
+        int srms = lines ? sc_series(c, sc, l, g, TB_LINE, 0) : -1;
+        if (lines) tb_chart_series_look(c, srms, NULL, -1, 1);
         for (size_t i = 0; i < sc->n; i++) {
             const tb_sc_row *r = &sc->row[i];
             if (r->group != g) continue;
             tb_chart_point(c, smax, r->width, r->ok ? r->max_err : NAN);
-            tb_chart_point(c, srms, r->width, r->ok ? r->rms_err : NAN);
+            if (lines) tb_chart_point(c, srms, r->width, r->ok ? r->rms_err : NAN);
         }
     }
     sc_keys(c, sc, l, TB_POINTS);
-    tb_chart_legend_key(c, "line: max |e|", "#444444", 0, TB_LINE | TB_POINTS);
-    int k = tb_chart_legend_key(c, "dashed: RMS e", "#444444", -1, TB_LINE);
-    tb_chart_series_look(c, k, NULL, -1, 1);
+    if (lines) {
+        tb_chart_legend_key(c, "line: max |e|", "#444444", 0, TB_LINE | TB_POINTS);
+        int k = tb_chart_legend_key(c, "dashed: RMS e", "#444444", -1, TB_LINE);
+        tb_chart_series_look(c, k, NULL, -1, 1);
+    } else tb_chart_legend_key(c, "points: max |e|", "#444444", 0, TB_POINTS);
     if (t && t->on && !t->nmse) {
         char lab[64];
         snprintf(lab, sizeof lab, "target %g", t->value);
