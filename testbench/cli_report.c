@@ -414,6 +414,54 @@ static int section_sweeps(FILE *f, const char *dir)
 
 /* ---------------------------------------------------------------- scene */
 
+/* The same face under other settings: what the divide-by-3 network's
+ * terms and the degree policy change. */
+static int scene_compare(FILE *f)
+{
+    static const struct { const char *policy, *terms; } cf[] = {
+        { NULL, NULL }, { NULL, "5" }, { "adaptive-region", NULL }, { "adaptive-region", "5" }, { "adaptive-auto", "5" },
+    };
+    scn_desc d0;
+    scn_mesh m;
+    char err[600];
+    memset(&m, 0, sizeof m);
+    if (scn_desc_builtin("face", &d0)) return cli_usage_error("report: no built-in face scene");
+    d0.width = d0.height = SCENE_RES;
+    if (scn_mesh_builtin(d0.mesh, d0.detail, &m, err, sizeof err)) return cli_usage_error("report: %s", err);
+    fprintf(f, "<h3>Other settings</h3>\n<p>The same face at %dx%d with other settings (rerun each with "
+               "<code>shadesim scene face --set resolution=%dx%d --set KEY=VALUE ...</code>):</p>\n<table>\n"
+               "<tr><th>settings</th><th>policy</th><th>terms</th><th>NMSE</th><th>PSNR (dB)</th><th>max 8-bit error</th>"
+               "<th>degree 2</th><th>clocks / pixel</th><th>area (GE)</th><th>speed-up</th></tr>\n",
+            SCENE_RES, SCENE_RES, SCENE_RES, SCENE_RES);
+    int rc = CLI_OK;
+    for (size_t k = 0; k < sizeof cf / sizeof cf[0] && rc == CLI_OK; k++) {
+        scn_desc d = d0;
+        if ((cf[k].policy && scn_desc_set(&d, "policy", cf[k].policy, err, sizeof err)) ||
+            (cf[k].terms && scn_desc_set(&d, "terms", cf[k].terms, err, sizeof err))) {
+            rc = cli_usage_error("report: %s", err);
+            break;
+        }
+        tb_scene_opts o = { 2, 0, NULL, NULL };
+        tb_scene_result r;
+        memset(&r, 0, sizeof r);
+        if (tb_scene_render(&d, &m, &o, &r, err, sizeof err) != TB_OK) rc = cli_usage_error("report: face scene: %s", err);
+        else {
+            char set[120] = "";
+            if (cf[k].policy) snprintf(set, sizeof set, "--set policy=%s", cf[k].policy);
+            if (cf[k].terms) snprintf(set + strlen(set), sizeof set - strlen(set), "%s--set terms=%s", *set ? " " : "", cf[k].terms);
+            fprintf(f, "<tr><td>%s%s%s</td><td>%s</td><td class=\"n\">%d</td><td class=\"n\">%.3g</td>"
+                       "<td class=\"n\">%.2f</td><td class=\"n\">%d</td><td class=\"n\">%.0f%%</td><td class=\"n\">%.3g</td>"
+                       "<td class=\"n\">%.0f</td><td class=\"n\">%.2fx</td></tr>\n",
+                    *set ? "<code>" : "", *set ? set : "as above", *set ? "</code>" : "", scn_policy_name(d.policy),
+                    d.terms, r.nmse, r.psnr, r.max_err8, 100 * r.deg2_share, r.clocks_per_pixel, r.hwst.area_ge, r.speedup);
+        }
+        tb_scene_free(&r);
+    }
+    scn_mesh_free(&m);
+    fputs("</table>\n", f);
+    return rc;
+}
+
 static int section_scene(FILE *f, const char *dir)
 {
     scn_desc d;
@@ -473,7 +521,7 @@ static int section_scene(FILE *f, const char *dir)
     fprintf(f, "<tr><td>speed-up</td><td class=\"n\">%.2fx</td><td>weighted operations of per-pixel shading over the "
                "method's (%.4g / %.4g per pixel)</td></tr>\n</table>\n", r.speedup, r.cost_ref, r.cost_hw);
     tb_scene_free(&r);
-    return CLI_OK;
+    return scene_compare(f);
 }
 
 /* ------------------------------------------------------------ waveforms */
