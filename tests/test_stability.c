@@ -3,6 +3,7 @@
  * placed against an independent algebraic estimate computed here. */
 #include "tests/tst.h"
 #include "testbench/tb_stability.h"
+#include "testbench/tb.h"
 #include <stdint.h>
 
 #ifndef M_PI
@@ -185,12 +186,58 @@ static void divider_and_powers(void)
         TST_NEAR(cl, W, 0);                                    /* a quotient bit a clock */
     }
     /* pow_n at width 16: n = 8 within 8 LSB, n = 16 not */
-    double e8, e16, c8, c16;
+    double e8 = 0, e16 = 0, c8 = 0, c16 = 0;
     TST_CHECK(!tb_stab_unit("pow_n", 16, 8, &e8, &c8) && !tb_stab_unit("pow_n", 16, 16, &e16, &c16), "pow_n runs");
     TST_CHECK(e8 <= 8 && e16 > 8, "n=8 %g LSB, n=16 %g LSB", e8, e16);
     /* square and multiply: log2 n squarings, a clock each */
     TST_NEAR(c8, 3, 0);
     TST_NEAR(c16, 4, 0);
+}
+
+/* interp3 with nodes=n2 computes the cubic through I(0), I(1), I(1/2),
+ * I(3/4): its pixels against the Lagrange form written out here. */
+static void interp3_n2_is_lagrange(void)
+{
+    static const double tn[4] = { 0, 1, 0.5, 0.75 };
+    const unit_desc *u = unit_find("interp3");
+    TST_CHECK(u != NULL, "interp3");
+    if (!u) return;
+    unit_cfg cfg;
+    unit_cfg_default(&cfg);
+    cfg.width = 24;
+    cfg.terms = 12;
+    cfg.L = 8;
+    char err[400];
+    TST_CHECK(!unit_param_set(u, &cfg, "nodes", "n2", err, sizeof err), "%s", err);
+    unit_fmts fm;
+    TST_CHECK(!tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err), "%s", err);
+    vec_set vs;
+    vec_set_init(&vs);
+    vec_params p;
+    tb_vec_params(&cfg, &p);
+    vec_set_header(&vs, vec_model_find("interp3"), &p);
+    double I[8][4], row[12];
+    for (int it = 0; it < 8; it++) {
+        for (int i = 0; i < 4; i++) I[it][i] = row[i] = fmod(0.37 * (it + 1) * (i + 2) + 0.11 * i, 1.0);
+        for (int k = 0; k < 8; k++) row[4 + k] = 0;
+        vec_set_push(&vs, row);
+    }
+    tb_result r;
+    TST_CHECK(tb_run(u, &cfg, &fm, &vs, NULL, &r, err, sizeof err) == TB_OK, "%s", err);
+    double worst = 0;
+    for (int it = 0; it < 8; it++)
+        for (int k = 0; k < 8; k++) {
+            double t = k / 8.0, y = 0;
+            for (int i = 0; i < 4; i++) {
+                double l = 1;
+                for (int j = 0; j < 4; j++) if (j != i) l *= (t - tn[j]) / (tn[i] - tn[j]);
+                y += l * I[it][i];
+            }
+            worst = fmax(worst, fabs(sim_fx_to_real(r.raw[it * 8 + k], r.out[0].fmt) - y));
+        }
+    TST_CHECK(worst < 1e-4, "max |hw - Lagrange N2| = %g", worst);
+    tb_result_free(&r);
+    vec_set_free(&vs);
 }
 
 static void atlas_rows(void)
@@ -215,6 +262,7 @@ int main(void)
     TST_RUN(div3_terms);
     TST_RUN(brdf_d16_range);
     TST_RUN(divider_and_powers);
+    TST_RUN(interp3_n2_is_lagrange);
     TST_RUN(atlas_rows);
     TST_EXIT();
 }
