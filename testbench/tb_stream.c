@@ -198,6 +198,8 @@ typedef struct st_state {
     sim_signal **smp;
     int64_t *mn, *mx;
     int nsmp, *live, nlive;
+    sim_signal **lsig;          /* smp[live[j]] */
+    int64_t *lmm;               /* its min, max (copied to mn, mx at the end) */
 } st_state;
 
 static tb_item ring_item(const st_state *s, size_t idx)
@@ -272,11 +274,14 @@ static void st_driver(sim_proc *p)
 static void st_monitor(sim_proc *p)
 {
     st_state *s = p->data;
-    for (int j = 0; j < s->nlive; j++) {
-        int i = s->live[j];
-        int64_t v = s->smp[i]->cur;
-        if (v < s->mn[i]) s->mn[i] = v;
-        if (v > s->mx[i]) s->mx[i] = v;
+    /* Range logging over the live signals, packed (lsig[j], and lmm's
+     * min and max pairs): the loop runs every clock. */
+    sim_signal *const *ls = s->lsig;
+    int64_t *mm = s->lmm;
+    for (int j = 0, n = s->nlive; j < n; j++, mm += 2) {
+        int64_t v = ls[j]->cur;
+        mm[0] = v < mm[0] ? v : mm[0];
+        mm[1] = v > mm[1] ? v : mm[1];
     }
     if (!s->io->out_valid->cur) return;
     size_t it = s->got / (size_t)s->beats;
@@ -413,14 +418,25 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     st.mn = calloc(nsig_all ? nsig_all : 1, sizeof *st.mn);
     st.mx = calloc(nsig_all ? nsig_all : 1, sizeof *st.mx);
     st.live = calloc(nsig_all ? nsig_all : 1, sizeof *st.live);
-    if (!st.smp || !st.mn || !st.mx || !st.live) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+    st.lsig = calloc(nsig_all ? nsig_all : 1, sizeof *st.lsig);
+    st.lmm = calloc(2 * (size_t)(nsig_all ? nsig_all : 1), sizeof *st.lmm);
+    if (!st.smp || !st.mn || !st.mx || !st.live || !st.lsig || !st.lmm) {
+        snprintf(err, errlen, "out of memory");
+        rc = TB_FAIL;
+        goto done;
+    }
     for (uint32_t i = 0; i < nsig_all; i++) {
         sim_signal *sg = sim_signal_at(c, i);
         if (sg == clk || !in_scope(sg, sc)) continue;
         int cst = sg->kind == SIM_KIND_CONST;
         st.mn[st.nsmp] = cst ? sg->cur : INT64_MAX;
         st.mx[st.nsmp] = cst ? sg->cur : INT64_MIN;
-        if (!cst) st.live[st.nlive++] = st.nsmp;
+        if (!cst) {
+            st.lsig[st.nlive] = sg;
+            st.lmm[2 * st.nlive] = INT64_MAX;
+            st.lmm[2 * st.nlive + 1] = INT64_MIN;
+            st.live[st.nlive++] = st.nsmp;
+        }
         st.smp[st.nsmp++] = sg;
     }
     sim_proc *drv = sim_proc_new(c, "tb.driver", st_driver, &st);
@@ -449,6 +465,10 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
         snprintf(err, errlen, "unit %s gave %zu of %zu outputs in %llu clocks", u->name, st.got,
                  st.prepared * (size_t)st.beats, (unsigned long long)r->stats.clocks);
         rc = TB_FAIL;
+    }
+    for (int j = 0; j < st.nlive; j++) {
+        st.mn[st.live[j]] = st.lmm[2 * j];
+        st.mx[st.live[j]] = st.lmm[2 * j + 1];
     }
     if (rc == TB_OK) {
         size_t n = st.prepared, nbeats = n * (size_t)st.beats;
@@ -487,5 +507,7 @@ done:
     free(st.mn);
     free(st.mx);
     free(st.live);
+    free(st.lsig);
+    free(st.lmm);
     return rc;
 }
