@@ -429,7 +429,7 @@ static tb_chart *cost_chart(void)
             hw_point pt;
             if (run_unit(COST_UNITS[k].unit, &cfg, 0, COST_UNITS[k].phys, peak, &pt)) continue;
             char lab[16];
-            snprintf(lab, sizeof lab, "w=%d", COST_WIDTHS[w]);
+            snprintf(lab, sizeof lab, "width %d", COST_WIDTHS[w]);
             if (w == 0 || w == N_COST_WIDTHS - 1) tb_chart_point_label(c, s, pt.clocks * pt.area, pt.max_err_peak, lab);
             else tb_chart_point(c, s, pt.clocks * pt.area, pt.max_err_peak);
         }

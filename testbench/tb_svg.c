@@ -917,7 +917,7 @@ typedef struct {
 #define TB_SVG_LEGMAX   26  /* legend text cut to this many characters */
 #define TB_SVG_BANDMAX  30  /* band labels likewise */
 #define TB_SVG_PLMAX    20  /* point labels likewise */
-#define TB_SVG_BANDROWS 3   /* rows for band labels; a label that fits none is dropped */
+#define TB_SVG_BANDROWS 4   /* rows for band labels; a label that fits none is dropped */
 
 static int tb_svg_shown_hl(const tb_chart *c, double y)
 {

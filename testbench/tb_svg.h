@@ -76,7 +76,7 @@ void tb_chart_point_label(tb_chart *c, int series, double x, double y,
                           const char *label);
 
 /* A shaded band across the whole plot height over x in [x0, x1] (e.g. a
- * failure region); its label is written above the plot, in one of three
+ * failure region); its label is written above the plot, in one of four
  * rows (dropped when it overlaps a label in each). The band does not
  * widen the x axis: it is cut to the plot area (x0/x1 may be +-inf). */
 void tb_chart_hband(tb_chart *c, double x0, double x1, const char *label);
