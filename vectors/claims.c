@@ -597,8 +597,8 @@ static void claim_mad_models(table *t)
                 double c = d == 90 ? 0.0 : cos(d / RAD2DEG);
                 sm += fabs(msh_model(c, n, M[k].b) - f_b(c, n));
             }
-        static const char *const seeds[] = { "004 Table 1, model 0", "004 Table 1, model 1",
-                                             "004 Table 1, model 3", "004 Table 1, model 4" };
+        static const char *const seeds[] = { "Zavalniuk et al. (2022), Table 1, model 0", "Zavalniuk et al. (2022), Table 1, model 1",
+                                             "Zavalniuk et al. (2022), Table 1, model 3", "Zavalniuk et al. (2022), Table 1, model 4" };
         static const char *const claims[] = {
             "model 0, 2cos^2 x / (1.25 (n - n cos x + 1.25 cos^2 x)^2): mean absolute deviation from Blinn 0.0063 (second best, 3 raisings to powers)",
             "model 1, 2cos^3 x / (1.25 (n - n cos x + 1.25 cos^3 x)^2): mean absolute deviation from Blinn 0.0062 (the most accurate, 5 raisings)",
@@ -635,9 +635,9 @@ static void claim_dg_best(table *t)
             e[k] = 100.0 * worst / peak;
             if (e[k] < e[best]) best = k;
         }
-        claim_result *r = add(t, ids[i], "000 sec. III, Figs. 4-5; 001 sec. 3",
+        claim_result *r = add(t, ids[i], "Nechyporuk & Romanyuk (2020), sec. III, Figs. 4-5; S. O. Romanyuk et al. (SPIE), sec. 3",
             "of D4, D8 and D16 (cos^(2/m^2-4) as a g-th power, g = 4, 8, 16), D16 is the one to compute "
-            "(the seeds choose g = 16 for every m)", 16);
+            "(the papers choose g = 16 for every m)", 16);
         r->measured = G[best];
         text(r->measured_text, sizeof r->measured_text,
              "m=%.1f: max |D_g - D| / peak: D4 %.3g%%, D8 %.3g%%, D16 %.3g%%; best D%d", m, e[0], e[1], e[2], G[best]);
@@ -696,7 +696,7 @@ static void claim_nodes(table *t)
         ref_coef3_n2(I, c2);
         for (int k = 0; k < 4; k++) { r1 = fmax(r1, fabs(c1[k])); r2 = fmax(r2, fabs(c2[k])); }
     }
-    claim_result *r = add(t, "nodes_n1_n2", "000 sec. IV (two node sets)",
+    claim_result *r = add(t, "nodes_n1_n2", "Nechyporuk & Romanyuk (2020), sec. IV (two node sets)",
         "of the two node sets, t = 0, 1/4, 1/2, 1 (N1) and t = 0, 1/2, 3/4, 1 (N2), the first is the most "
         "appropriate", NAN);
     r->measured = w1 / w2;
@@ -708,7 +708,7 @@ static void claim_nodes(table *t)
                : CLAIM_FAILS;
     text(r->note, sizeof r->note,
          "float cubic, 8-pixel intervals, 64-pixel spans as interp_nmse; the hardware comparison: shadesim scene "
-         "with cubic_nodes n1/n2, or run span3 --param nodes=n2");
+         "with cubic_nodes n1/n2, or run interp3 --param nodes=n2; shadesim stability compares both in hardware");
 }
 
 size_t claims_compute(claim_result *out, size_t max)
