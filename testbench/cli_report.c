@@ -16,6 +16,7 @@
 #include "testbench/tb_scene.h"
 #include "testbench/tb_sweep.h"
 #include "testbench/tb_sweep_chart.h"
+#include "testbench/tb_stability.h"
 #include "vectors/claims.h"
 #include "sim/sim_out.h"
 #include <errno.h>
@@ -36,6 +37,8 @@ static const char report_help[] =
     "    divide-by-3 network's terms), as `shadesim sweep` draws them;\n"
     "  - the built-in face scene at 128x128 through the simulated span hardware:\n"
     "    reference, hardware, error, degree and region images and the figures;\n"
+    "  - where each method stops working (what `shadesim stability` prints), with\n"
+    "    its charts;\n"
     "  - a waveform of horner3 (VCD and GTKWave save file) to open in GTKWave.\n"
     "Beside the page in DIR: sweep-horner3.csv, sweep-interp3.csv, scene/ and\n"
     "horner3.vcd with horner3.vcd.gtkw. The page embeds its charts and images,\n"
@@ -524,6 +527,54 @@ static int section_scene(FILE *f, const char *dir)
     return scene_compare(f);
 }
 
+/* ------------------------------------------------------------ stability */
+
+/* The stability atlas (testbench/tb_stability.c): every failure boundary
+ * as a table row, and its charts with the boundaries marked. */
+static int section_stability(FILE *f)
+{
+    tb_stab *s = calloc(1, sizeof *s);
+    char err[400];
+    if (!s) return cli_usage_error("report: out of memory");
+    progress("stability");
+    if (tb_stability(s, 1, err, sizeof err)) { tb_stab_free(s); free(s); return cli_usage_error("report: %s", err); }
+    fputs("<h2 id=\"stability\">Where each method stops working</h2>\n"
+          "<p>Each method driven past its failure boundary, found by running the units clock by clock (the BRDF "
+          "rows sample their double references); target 2^-8 unless a row says otherwise. Rerun: "
+          "<code>shadesim stability</code> (<code>-o DIR</code> for the charts); docs/stability.md explains "
+          "each boundary.</p>\n<table>\n<tr><th>method</th><th>condition</th><th>measured</th><th>verdict</th></tr>\n", f);
+    for (int i = 0; i < s->nrows; i++) {
+        const tb_stab_row *r = &s->rows[i];
+        fprintf(f, "<tr id=\"stab-%s\"><td class=\"id\">", r->id);
+        h(f, r->method);
+        fputs("</td><td>", f);
+        h(f, r->condition);
+        fputs("</td><td>", f);
+        h(f, r->measured);
+        fputs("</td><td>", f);
+        h(f, r->verdict);
+        fputs("</td></tr>\n", f);
+    }
+    fputs("</table>\n<div class=\"charts\">\n", f);
+    int rc = CLI_OK;
+    for (int k = 0; k < s->ncharts && rc == CLI_OK; k++) {
+        char *svg = NULL;
+        size_t sl = 0;
+        FILE *m = open_memstream(&svg, &sl);
+        if (!m || tb_chart_fwrite(s->charts[k], m, s->chart_files[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
+        if (m && fclose(m) && rc == CLI_OK) rc = cli_usage_error("report: out of memory");
+        if (rc == CLI_OK) {
+            img(f, "image/svg+xml", svg, sl, s->chart_files[k], 800, 500);
+            fputc('\n', f);
+        }
+        free(svg);
+    }
+    fputs("</div>\n", f);
+    tb_stab_free(s);
+    free(s);
+    return rc;
+}
+
 /* ------------------------------------------------------------ waveforms */
 
 static int section_wave(FILE *f, const char *dir)
@@ -590,13 +641,14 @@ int cli_report(int argc, char **argv)
           "<code>shadesim report</code>; every number below comes from a command named beside it, and the same "
           "build gives the same page byte for byte. docs/references.md lists the papers.</p>\n"
           "<div class=\"toc\"><ul><li><a href=\"#units\">Units</a></li><li><a href=\"#claims\">Claims</a></li>"
-          "<li><a href=\"#sweeps\">Sweeps</a></li><li><a href=\"#scene\">Face scene</a></li>"
+          "<li><a href=\"#sweeps\">Sweeps</a></li><li><a href=\"#scene\">Face scene</a></li><li><a href=\"#stability\">Stability</a></li>"
           "<li><a href=\"#waves\">Waveforms</a></li></ul></div>\n", f);
     int nfail = 0;
     int rc = section_units(f, &nfail);
     if (!rc) rc = section_claims(f);
     if (!rc) rc = section_sweeps(f, dir);
     if (!rc) rc = section_scene(f, dir);
+    if (!rc) rc = section_stability(f);
     if (!rc) rc = section_wave(f, dir);
     fputs("</body>\n</html>\n", f);
     int bad = fclose(f);
