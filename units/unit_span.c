@@ -224,26 +224,25 @@ static int64_t f_rom(const int64_t *in, void *user)
     return in[0] >= 0 && in[0] <= r->L ? r->raw[in[0]] : 0;
 }
 
-/* Worst-case |t_hw - k/dv| over dv = 1..L and k = 0..dv, t_hw as the
- * hardware makes it: the ROM's word times k, quantized into t's format
- * (sim_fx_requant, as the multiplier does). Exact per pixel, so with trunc
- * a wider rcp or t never makes it grow (each t_hw only moves up toward
- * k/dv). |t_hw dv - k| is exact in 128 bits; the division by dv rounds, so
- * the result is nudged up. */
-static double t_err(const unit_cfg *cfg, sim_fmt frcp, sim_fmt ft)
+/* t's error and fraction bits for a ROM of format frcp: t_hw = Q_t(k rcp)
+ * differs from k/dv by k (1/dv - rcp) (at most its largest at k = dv, *rom)
+ * plus t's own quantization from the fraction bits k rcp really has, at
+ * most those of the ROM's words (*src: the most any word has). */
+static void rom_err(const unit_cfg *cfg, sim_fmt frcp, double *rom, int *src)
 {
     int L = valid_L(cfg->L) ? cfg->L : 8;
     rcp_rom r;
     rom_fill(&r, L, frcp);
-    double e = 0;
-    for (int dv = 1; dv <= L; dv++)
-        for (int k = 0; k <= dv; k++) {
-            int64_t traw = sim_fx_requant((sim_wide)k * r.raw[dv], frcp.fbits, ft, cfg->rnd, SIM_OVF_SAT, NULL);
-            sim_wide d = (sim_wide)traw * dv - ((sim_wide)k << ft.fbits);
-            if (d < 0) d = -d;
-            e = fmax(e, ldexp((double)d, -ft.fbits) / dv);
-        }
-    return e * (1 + 0x1p-50);
+    *rom = 0;
+    *src = 0;
+    for (int dv = 1; dv <= L; dv++) {
+        /* dv (1/dv - w) = (2^F - dv raw) 2^-F, the numerator exact in 128 bits */
+        sim_wide num = ((sim_wide)1 << frcp.fbits) - (sim_wide)dv * r.raw[dv];
+        *rom = fmax(*rom, ldexp(fabs((double)num), -frcp.fbits));
+        int fb = frcp.fbits;
+        for (int64_t x = r.raw[dv]; x && !(x & 1) && fb > 0; x >>= 1) fb--;
+        if (r.raw[dv] && fb > *src) *src = fb;
+    }
 }
 
 /* ------------------------------------------------------------- control */
@@ -674,7 +673,7 @@ static sim_fmt held_fmt(sim_fmt f, int eff)
  * horner_bound_on (span1: lin_dp_bound) for the fraction bits the
  * registers and t really hold; t's error et times max |p'|. */
 static double path_bound(const span_kind *K, const unit_cfg *cfg, const unit_fmts *f, const coef_net *net,
-                         int deg_poly, const int *slot, int hdeg, double et)
+                         int deg_poly, const int *slot, int hdeg, int nrom, const double *et, const int *t_eff)
 {
     const unit_desc *u = K->u;
     unet n;
@@ -692,29 +691,51 @@ static double path_bound(const span_kind *K, const unit_cfg *cfg, const unit_fmt
         e += o[j].err + unit_qerr(fr, o[j].eff, cfg->rnd);
         rf[slot[j]] = held_fmt(fr, o[j].eff);
     }
-    /* t = k rcp: k is whole, so t has at most rcp's fraction bits */
-    sim_fmt ft = f->f[sig(K, "t")], fy = f->f[sig(K, "y")];
-    sim_fmt ft_eff = held_fmt(ft, f->f[sig(K, "rcp")].fbits);
-    e += hdeg == 1 ? lin_dp_bound(K, cfg->schedule, f, rf[0].fbits, rf[1].fbits, ft_eff.fbits, cfg->rnd)
-                   : horner_bound_on(hdeg, cfg->schedule, rf, ft_eff, u, f, fy, cfg->rnd);
     double lo[UNET_MAXIN], hi[UNET_MAXIN];
     for (int i = 0; i < net->nin; i++) {
         sim_fmt fi = f->f[sig(K, in_names[i])];
         lo[i] = sim_fmt_real_min(fi);
         hi[i] = sim_fmt_real_max(fi);
     }
-    return e + deriv_max(deg_poly, o, lo, hi, net->nin) * et;
+    double D = deriv_max(deg_poly, o, lo, hi, net->nin), worst = 0;
+    sim_fmt fy = f->f[sig(K, "y")];
+    for (int i = 0; i < nrom; i++) {
+        /* t as the Horner sees it: the fraction bits its values really have */
+        sim_fmt ft = held_fmt(f->f[sig(K, "t")], t_eff[i]);
+        double h = hdeg == 1 ? lin_dp_bound(K, cfg->schedule, f, rf[0].fbits, rf[1].fbits, ft.fbits, cfg->rnd)
+                             : horner_bound_on(hdeg, cfg->schedule, rf, ft, u, f, fy, cfg->rnd);
+        worst = fmax(worst, e + h + D * et[i]);
+    }
+    return worst;
 }
 
+/* The bound is the largest over ROMs of rcp's format and every wider one
+ * (up to 63 bits): a wider ROM word can gain a fraction bit (more for t's
+ * quantization and the multipliers to drop) without lowering the worst
+ * pixel's ROM error, and a --fmt that widens rcp must not make the bound
+ * grow. Each is a bound of the unit with that ROM; the one of rcp's own
+ * format is among them, so the largest is sound. */
 static void bound(const span_kind *K, const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 {
     static const int s0[4] = { 0, 1, 2, 3 }, s1[3] = { 1, 2, 3 };
-    double et = t_err(cfg, f->f[sig(K, "rcp")], f->f[sig(K, "t")]);
+    sim_fmt frcp = f->f[sig(K, "rcp")], ft = f->f[sig(K, "t")];
+    double et[64];
+    int t_eff[64], nrom = 0;
+    for (int F = frcp.fbits; nrom < 64; F++) {
+        sim_fmt fr = unit_fmt(frcp.is_signed, frcp.ibits, F);
+        if (fr.fbits != F) break;                       /* the widest format there is */
+        double rom;
+        int src;
+        rom_err(cfg, fr, &rom, &src);
+        et[nrom] = rom + unit_qerr(ft, src, cfg->rnd);
+        t_eff[nrom++] = src < ft.fbits ? src : ft.fbits;
+    }
+    if (!nrom) { per_out[0] = INFINITY; return; }
     int deg = main_deg(K);
-    double e = path_bound(K, cfg, f, main_net(K, cfg), deg, s0, deg, et);
+    double e = path_bound(K, cfg, f, main_net(K, cfg), deg, s0, deg, nrom, et, t_eff);
     if (K->kind == K_ADAPT) {
         int pipe = cfg->schedule == SP_PIPE;
-        e = fmax(e, path_bound(K, cfg, f, &net_q2, 2, pipe ? s1 : s0, pipe ? 3 : 2, et));
+        e = fmax(e, path_bound(K, cfg, f, &net_q2, 2, pipe ? s1 : s0, pipe ? 3 : 2, nrom, et, t_eff));
     }
     per_out[0] = e;
 }
