@@ -236,8 +236,9 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
         for (size_t i = 0; i < sc->n; i++) {
             memcpy(gv[i], sc->gval[sorted[i].group], SC_MAXID);
             if (i && sorted[i].config == sorted[i - 1].config) {
-                free(sorted); free(gv);
                 sc_err(err, errlen, "%s: configuration %zu is given twice", what, sorted[i].config);
+                free(sorted);
+                free(gv);
                 goto bad;
             }
         }
