@@ -26,6 +26,7 @@ typedef struct prim {
     sim_logic_fn fn;
     void       *user;
     sim_signal *clk;             /* register's clock (for sim_prim_describe) */
+    const char *verilog;         /* logic: sim_logic_verilog's text */
 } prim;
 
 int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, sim_ovf o)
@@ -462,7 +463,14 @@ int sim_prim_describe(const sim_signal *y, sim_prim_info *out)
     out->rst = p->rst; out->rst_raw = p->rst_raw; out->clk = p->clk;
     out->n = p->n; out->in = p->in; out->fn = p->fn; out->user = p->user;
     out->r = p->r; out->o = p->o;
+    out->verilog = p->verilog;
     /* sim_shift kept f = fbits(x) - sh as src_f - sa (one of them 0) */
     if (y->kind == SIM_KIND_SHIFT) out->shift = p->a->fmt.fbits - (p->src_f - p->sa);
     return 0;
+}
+
+void sim_logic_verilog(sim_signal *y, const char *text)
+{
+    if (y->kind != SIM_KIND_LOGIC || !y->driver || y->driver->fn != logic_eval) return;
+    ((prim *)y->driver->data)->verilog = sim_strdup(y->ctx, text);
 }

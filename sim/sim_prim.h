@@ -68,6 +68,16 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                       int n, sim_signal *const *in, sim_logic_fn fn, void *user,
                       double area_ge);
 
+/* Optional, for exporters: a logic element's function as Verilog-2001
+ * statements (the element's inputs are too wide to tabulate). In text,
+ * %y stands for the output (a wire of y's width, to be assigned), %t for
+ * a prefix unique to the element (for its own wires: %t_e), %0..%7 for the
+ * inputs (bit vectors of their formats' widths; signedness as their
+ * formats say, to be handled by the text). The text must compute exactly
+ * what the C function computes, raw bits of y's format; the co-simulation
+ * tests check it. Copied. */
+void sim_logic_verilog(sim_signal *y, const char *text);
+
 /* Quantize an exact wide value with src_fbits into s's format using the
  * element's modes, count an overflow on s; used by the primitives and by
  * units that model an element the primitives do not cover. */
@@ -92,6 +102,7 @@ typedef struct sim_prim_info {
     void       *user;
     sim_round   r;
     sim_ovf     o;
+    const char *verilog;     /* logic: sim_logic_verilog's text, or NULL */
 } sim_prim_info;
 /* 0 and *out filled for a signal driven by a primitive (or a constant);
  * -1 for an input, a clock, or a signal a user process drives. */

@@ -200,13 +200,30 @@ static int64_t canon(uint64_t v, sim_fmt f)
     return sim_fx_canon((int64_t)v, f);
 }
 
-/* A logic element as a table over its input bits. */
+/* A logic element's own Verilog text (sim_logic_verilog), placeholders
+ * replaced. */
+static void emit_text(vgen *g, const sim_signal *y, const sim_prim_info *in)
+{
+    const char *nm = N(g, y);
+    fputs("    ", g->f);
+    for (const char *p = in->verilog; *p; p++) {
+        if (*p == '%' && p[1] == 'y') { fputs(nm, g->f); p++; }
+        else if (*p == '%' && p[1] == 't') { fprintf(g->f, "%s_", nm); p++; }
+        else if (*p == '%' && p[1] >= '0' && p[1] < '0' + in->n) { fputs(N(g, in->in[p[1] - '0']), g->f); p++; }
+        else if (*p == '\n') fputs(p[1] ? "\n    " : "\n", g->f);
+        else fputc(*p, g->f);
+    }
+    if (!*in->verilog || in->verilog[strlen(in->verilog) - 1] != '\n') fputc('\n', g->f);
+}
+
+/* A logic element as a table over its input bits (or its own text). */
 static int emit_logic(vgen *g, const sim_signal *y, const sim_prim_info *in)
 {
     FILE *f = g->f;
     int bits = 0;
     for (int i = 0; i < in->n; i++) bits += in->in[i]->fmt.width;
     const char *nm = N(g, y);
+    if (in->verilog && bits > 8) { emit_text(g, y, in); return 0; }
     if (bits > SIM_VERILOG_MAX_LOGIC_BITS) {
         snprintf(g->err, g->errlen, "logic element %s has %d input bits: too many to tabulate (at most %d)",
                  y->name, bits, SIM_VERILOG_MAX_LOGIC_BITS);

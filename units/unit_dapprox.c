@@ -145,6 +145,14 @@ static int da_build(const da_kind *kd, sim_ctx *c, sim_scope *sc, sim_signal *cl
     int64_t *one_p = sim_alloc(c, sizeof *one_p);
     *one_p = f->f[S_P].fbits < 62 ? (int64_t)1 << f->f[S_P].fbits : INT64_MAX;
     sim_signal *pos = sim_logic(c, sc, "base_pos", unit_fmt(0, 1, 0), 1, &p, f_base_pos, one_p, 0.67);
+    {   /* the same comparison as RTL, for the Verilog export */
+        sim_fmt fp = f->f[S_P];
+        char vt[160];
+        if (*one_p > sim_fmt_raw_max(fp)) snprintf(vt, sizeof vt, "assign %%y = 1'b1;");
+        else snprintf(vt, sizeof vt, fp.is_signed ? "assign %%y = $signed(%%0) <= $signed(%d'h%llx);" : "assign %%y = %%0 <= %d'h%llx;",
+                      fp.width, (unsigned long long)*one_p);
+        sim_logic_verilog(pos, vt);
+    }
     sim_signal *clamp = sim_bk(c, sc, "clamp", f->f[S_CLAMP], pos, base);
     sim_signal *rg = pw_build(u, c, sc, clk, f, io, clamp, prog);
     if (!rg) { snprintf(err, errlen, "%s: internal: bad engine program", u->name); return -1; }

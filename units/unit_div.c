@@ -88,6 +88,31 @@ static int64_t f_q_next(const int64_t *in, void *u)
 }
 static int64_t f_is_zero(const int64_t *in, void *u) { return in[0] == 0 ? *(const int64_t *)u : 0; }
 
+/* ------------------------------------------------------ the logic as RTL
+ * For the Verilog export (sim_logic_verilog): the same functions as
+ * statements, exact by construction; test_verilog co-simulates them. */
+
+/* Bits [lo + w - 1 : lo] of floor(x * 2^d), x the input %K of width wx
+ * (signed or not), shifted further right by input %1 when var_shr: into
+ * %y, zero-extended from w to wy bits. */
+static void vl_scaled(sim_signal *y, int wx, int sgn, int d, int var_shr, int w, int wy)
+{
+    char t[600], pad[40] = "";
+    int dpos = d > 0 ? d : 0, dneg = d < 0 ? -d : 0, T = wx + dpos + dneg + w + 1;
+    char sgnbit[32];
+    snprintf(sgnbit, sizeof sgnbit, sgn ? "%%0[%d]" : "1'b0", wx - 1);
+    if (wy > w) snprintf(pad, sizeof pad, "%d'b0, ", wy - w);
+    char zeros[32] = "";
+    if (dpos) snprintf(zeros, sizeof zeros, ", %d'b0", dpos);
+    int n = snprintf(t, sizeof t, "wire [%d:0] %%t_e = {{%d{%s}}, %%0%s};\n", T - 1, T - wx - dpos, sgnbit, zeros);
+    if (var_shr)
+        n += snprintf(t + n, sizeof t - (size_t)n, "wire [%d:0] %%t_s = %s;\nassign %%y = {%s%%t_s[%d:%d]};\n", T - 1,
+                      sgn ? "$signed(%t_e) >>> %1" : "%t_e >> %1", pad, dneg + w - 1, dneg);
+    else
+        n += snprintf(t + n, sizeof t - (size_t)n, "assign %%y = {%s%%t_e[%d:%d]};\n", pad, dneg + w - 1, dneg);
+    sim_logic_verilog(y, t);
+}
+
 /* ------------------------------------------------------------------ build */
 
 /* Builds the sequencer and the divider of num by den (num shifted right by
@@ -134,6 +159,8 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
      * amount: then a barrel shifter over the R-Q pair. */
     double shifter = shr ? brdf_bitlen((uint64_t)shr_max) * (fr.width + qb) * SIM_GE_MUX2 : 0.0;
     sim_signal *r_load = sim_logic(c, sc, "r_load", fr, nld, ld_in, shr ? f_r_load_shr : f_r_load, ld, shifter);
+    vl_scaled(r_load, fn.width, fn.is_signed, ld->s - qb, shr != NULL, fr.width, fr.width);
+    char vt[200];
 
     sim_signal *r = sim_reg(c, sc, "r", fr, clk, NULL, NULL, NULL, 0);
     sim_signal *q = sim_reg(c, sc, "q", fq, clk, NULL, NULL, NULL, 0);
@@ -143,6 +170,7 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
     if (shr || ld->s < qb) {
         /* Dividend bits below the quotient's LSB enter through Q. */
         sim_signal *q_load = sim_logic(c, sc, "q_load", fq, nld, ld_in, shr ? f_q_load_shr : f_q_load, ld, 0);
+        vl_scaled(q_load, fn.width, fn.is_signed, ld->s, shr != NULL, qb < fq.width ? qb : fq.width, fq.width);
         sim_signal *q_in_src[2] = { q, q_load };
         q_in = sim_mux(c, sc, "q_in", fq, first, 2, q_in_src);
     } else {
@@ -152,21 +180,38 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
     }
     sim_signal *r2_in[2] = { r_in, q_in };
     sim_signal *r2 = sim_logic(c, sc, "r2", unit_fmt(fr.is_signed, fr.ibits + 1, fr.fbits), 2, r2_in, f_r2, qbp, 0);
+    snprintf(vt, sizeof vt, "assign %%y = {%%0, %%1[%d]};", qb - 1);
+    sim_logic_verilog(r2, vt);
     sim_signal *trial = sim_sub(c, sc, "trial", unit_fmt(1, fr.ibits + 2, fr.fbits), r2, den);
     sim_signal *qbit = sim_logic(c, sc, "qbit", u1, 1, &trial, f_qbit, NULL, SIM_GE_INV);
+    snprintf(vt, sizeof vt, "assign %%y = ~%%0[%d];", trial->fmt.width - 1);
+    sim_logic_verilog(qbit, vt);
     /* The restore mux keeps TRIAL's format: its select arrives a delta
      * after its data, and a narrower output would count the transient
      * (unselected) values as overflows. R quantizes the settled value. */
     sim_signal *r_next_src[2] = { r2, trial };
     sim_reg_connect(r, sim_mux(c, sc, "r_next", trial->fmt, qbit, 2, r_next_src));
     sim_signal *q_next_in[2] = { q_in, qbit };
-    sim_reg_connect(q, sim_logic(c, sc, "q_next", fq, 2, q_next_in, f_q_next, qbp, 0));
+    sim_signal *q_next = sim_logic(c, sc, "q_next", fq, 2, q_next_in, f_q_next, qbp, 0);
+    {
+        int kb = qb < fq.width ? qb : fq.width;     /* the quotient bits kept */
+        char pad[32] = "", low[40] = "";
+        if (fq.width > kb) snprintf(pad, sizeof pad, "%d'b0, ", fq.width - kb);
+        if (kb >= 2) snprintf(low, sizeof low, "%%0[%d:0], ", kb - 2);
+        snprintf(vt, sizeof vt, "assign %%y = {%s%s%%1};", pad, low);
+        sim_logic_verilog(q_next, vt);
+    }
+    sim_reg_connect(q, q_next);
     if (idz >= 0) {
         int64_t *one = sim_alloc(c, sizeof *one);
         *one = sim_fx_from_real(1.0, f->f[idz], SIM_RND_TRUNC, SIM_OVF_SAT, NULL);
         /* A NOR over d's bits, registered like Q and R: in the clock the
          * result is valid the source already offers the next item. */
         sim_signal *z = sim_logic(c, sc, "dz_next", f->f[idz], 1, &den, f_is_zero, one, fd.width * SIM_GE_NAND2);
+        sim_fmt fz = f->f[idz];
+        snprintf(vt, sizeof vt, "assign %%y = (%%0 == %d'b0) ? %d'h%llx : %d'b0;", fd.width, fz.width,
+                 (unsigned long long)((uint64_t)*one & (fz.width >= 64 ? ~0ull : (1ull << fz.width) - 1)), fz.width);
+        sim_logic_verilog(z, vt);
         sim_reg(c, sc, "dz", f->f[idz], clk, z, NULL, NULL, 0);
     }
     return q;

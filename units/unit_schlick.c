@@ -193,6 +193,58 @@ static int64_t f_twice(const int64_t *in, void *u)
     return 2 * (in[0] >> nm->fe);
 }
 
+/* For the Verilog export: E's leading-one detector and UN's barrel shifter
+ * as RTL (sim_logic_verilog), the same functions as f_lzd and f_norm. The
+ * bit length of U's integer part (64 for a negative U, as lzd computes it
+ * on the raw as unsigned) as %t_l, 7 bits. */
+static int ms_vl_lzd(char *t, size_t len, sim_fmt fu)
+{
+    int wi = fu.width - fu.fbits, n = snprintf(t, len, "wire [6:0] %%t_l = ");
+    for (int j = wi - 1; j >= 0; j--)
+        n += snprintf(t + n, len - (size_t)n, "%%0[%d] ? 7'd%d : ", fu.fbits + j, fu.is_signed && j == wi - 1 ? 64 : j + 1);
+    n += snprintf(t + n, len - (size_t)n, "7'd0;\n");
+    return n;
+}
+
+static void ms_vl(sim_signal *e, sim_signal *un, sim_fmt fu, sim_fmt fe, sim_fmt fun)
+{
+    char t[8192];
+    int n = ms_vl_lzd(t, sizeof t, fu), T = 7 + fe.fbits;
+    char zeros[32] = "";
+    if (fe.fbits) snprintf(zeros, sizeof zeros, ", %d'b0", fe.fbits);
+    n += snprintf(t + n, sizeof t - (size_t)n, "wire [%d:0] %%t_s = {%%t_l%s};\n", T - 1, zeros);
+    if (fe.width <= T) snprintf(t + n, sizeof t - (size_t)n, "assign %%y = %%t_s[%d:0];\n", fe.width - 1);
+    else snprintf(t + n, sizeof t - (size_t)n, "assign %%y = {%d'b0, %%t_s};\n", fe.width - T);
+    sim_logic_verilog(e, t);
+
+    /* UN = floor(U 2^-sh), sh = fu + lzd - fun, for each lzd U can have */
+    int wi = fu.width - fu.fbits, wu = fu.width, wn = fun.width;
+    int shmin = 1000, shmax = -1000;
+    for (int l = 0; l <= wi; l++) {
+        int sh = fu.fbits + (fu.is_signed && l == wi ? 64 : l) - fun.fbits;
+        if (sh <= -63 || sh >= 63) continue;
+        if (sh < shmin) shmin = sh;
+        if (sh > shmax) shmax = sh;
+    }
+    n = ms_vl_lzd(t, sizeof t, fu);
+    if (shmin > shmax) { snprintf(t, sizeof t, "assign %%y = %d'b0;", wn); sim_logic_verilog(un, t); return; }
+    int base = shmin < 0 ? -shmin : 0, top = base + (shmax > 0 ? shmax : 0) + wn + 1, ext = top - base - wu;
+    if (ext < 1) ext = 1;
+    int TT = base + wu + ext;
+    char sg[32], bz[32] = "";
+    snprintf(sg, sizeof sg, fu.is_signed ? "%%0[%d]" : "1'b0", wu - 1);
+    if (base) snprintf(bz, sizeof bz, ", %d'b0", base);
+    n += snprintf(t + n, sizeof t - (size_t)n, "wire [%d:0] %%t_e = {{%d{%s}}, %%0%s};\n", TT - 1, ext, sg, bz);
+    n += snprintf(t + n, sizeof t - (size_t)n, "reg [%d:0] %%t_r;\nalways @* begin\n    case (%%t_l)\n", wn - 1);
+    for (int l = 0; l <= wi; l++) {
+        int L = fu.is_signed && l == wi ? 64 : l, sh = fu.fbits + L - fun.fbits;
+        if (sh <= -63 || sh >= 63) n += snprintf(t + n, sizeof t - (size_t)n, "        7'd%d: %%t_r = %d'b0;\n", L, wn);
+        else n += snprintf(t + n, sizeof t - (size_t)n, "        7'd%d: %%t_r = %%t_e[%d:%d];\n", L, base + sh + wn - 1, base + sh);
+    }
+    snprintf(t + n, sizeof t - (size_t)n, "        default: %%t_r = %d'b0;\n    endcase\nend\nassign %%y = %%t_r;\n", wn);
+    sim_logic_verilog(un, t);
+}
+
 static int ms_build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *cfg,
                     const unit_fmts *f, unit_io *io, char *err, size_t errlen)
 {
@@ -211,6 +263,7 @@ static int ms_build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *
     sim_signal *e = sim_logic(c, sc, "e", F[MS_E], 1, &u, f_lzd, nm, 3.0 * ubits);
     double shifter = brdf_bitlen((uint64_t)ubits) * F[MS_UN].width * SIM_GE_MUX2;
     sim_signal *un = sim_logic(c, sc, "un", F[MS_UN], 1, &u, f_norm, nm, shifter);
+    ms_vl(e, un, F[MS_U], F[MS_E], F[MS_UN]);
     sim_signal *v = sim_mul(c, sc, "v", F[MS_V], un, un);
     sim_fmt fv = F[MS_V];
     sim_signal *v4 = sim_shift(c, sc, "v4", unit_fmt(fv.is_signed, fv.ibits, fv.fbits + 2), v, -2);
