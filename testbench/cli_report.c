@@ -151,8 +151,8 @@ static const char css[] =
     "td.v-ok{background:#e3f4e6 !important}td.v-bad{background:#fbe1e1 !important}td.v-cond{background:#fdf0dc !important}\n"
     ".note{color:#555;font-size:0.92em;margin-top:2px}\n"
     ".charts img,.scene img{border:1px solid #ddd;max-width:100%;height:auto;margin:4px 8px 8px 0}\n"
-    ".scene div.fig{display:inline-block;margin:0 14px 10px 0;text-align:center;vertical-align:top;width:258px}\n"
-    ".scene img{image-rendering:pixelated;width:256px;height:256px}\n"
+    ".scene div.fig{display:inline-block;margin:0 12px 10px 0;text-align:center;vertical-align:top;width:212px}\n"
+    ".scene img{image-rendering:pixelated;width:210px;height:210px}\n"
     ".scene div.cap{font-size:0.88em;color:#444}\n"
     ".summary{background:#f5f7fa;border-left:4px solid #8aa4c8;padding:6px 10px}\n";
 
@@ -487,7 +487,7 @@ static int section_scene(FILE *f, const char *dir)
                "<p>The built-in face at %dx%d: each span cut into intervals of L = %d pixels, the nodes shaded exactly, "
                "every pixel between them interpolated by the cycle-accurate %s unit (%s policy, %d-term divide-by-3 "
                "network, width %d), against per-pixel shading in double precision. Rerun: "
-               "<code>shadesim scene face --set width=%d --set height=%d -o scene</code>. Files: <a href=\"scene/scene.json\">"
+               "<code>shadesim scene face --set resolution=%dx%d -o scene</code>. Files: <a href=\"scene/scene.json\">"
                "scene/scene.json</a> and the PNGs in <code>scene/</code>.</p>\n",
             r.w, r.h, d.L, r.unit ? r.unit->name : "span", scn_policy_name(d.policy), d.terms, d.fmt_width, r.w, r.h);
     fputs("<div class=\"scene\">\n", f);
@@ -505,7 +505,7 @@ static int section_scene(FILE *f, const char *dir)
         unsigned char *b = read_all(p, &n);
         if (!b) { tb_scene_free(&r); return cli_usage_error("%s: cannot read back: %s", p, strerror(errno)); }
         fputs("<div class=\"fig\">", f);
-        img(f, "image/png", b, n, caps[k], 256, 256);
+        img(f, "image/png", b, n, caps[k], 210, 210);
         fputs("<div class=\"cap\">", f);
         h(f, caps[k]);
         fprintf(f, " &middot; <a href=\"scene/%s\">%s</a></div></div>\n", files[k], files[k]);
