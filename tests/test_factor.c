@@ -6,6 +6,8 @@
 #include "tests/tst.h"
 #include "vectors/ref_factor.h"
 #include "vectors/ref_brdf.h"
+#include "vectors/vectors.h"
+#include "testbench/tb.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
@@ -192,6 +194,54 @@ static void t_bad_parameters(void)
     TST_CHECK(rf_brdf_param(&b, "dist=d3", err, sizeof err) == -1, "unknown distribution accepted");
 }
 
+/* The hf_lookup unit at wide formats: the hardware equals the float
+ * lookup (the vector model's expected outputs, computed here again from
+ * the maps) within the unit's derived bound, and the bound is small. */
+static void t_hf_lookup_wide(void)
+{
+    const unit_desc *u = unit_find("hf_lookup");
+    const vec_model *m = vec_model_find("hf_lookup");
+    if (!u || !m) { TST_CHECK(0, "hf_lookup not registered"); return; }
+    static const int L[2] = { 8, 16 }, W[2] = { 24, 32 };
+    for (int k = 0; k < 2; k++) {
+        unit_cfg cfg;
+        unit_cfg_default(&cfg);
+        cfg.width = W[k];
+        cfg.L = L[k];
+        vec_params p;
+        vec_params_default(&p);
+        p.L = L[k];
+        p.alpha = cfg.alpha;
+        vec_set vs;
+        vec_set_init(&vs);
+        vec_set_header(&vs, m, &p);
+        TST_CHECK(!m->gen(&p, 200, 5, &vs), "vectors");
+        const rf_maps *mp = rf_ward_maps(L[k], cfg.alpha);
+        TST_CHECK(mp != NULL, "maps");
+        /* the expected output is the product of three bilinear lookups */
+        for (size_t i = 0; mp && i < vs.n_rows; i++) {
+            const double *r = vec_row(&vs, i);
+            TST_NEAR(r[9], rf_maps_lookup(mp, r, r + 3, r + 6), 1e-15);
+        }
+        unit_fmts f;
+        u->formats(&cfg, &f);
+        tb_result res;
+        char err[300];
+        int rc = tb_run(u, &cfg, &f, &vs, NULL, &res, err, sizeof err);
+        TST_CHECK(rc == TB_OK, "%s", err);
+        if (rc == TB_OK) {
+            TST_CHECK(res.bound_check == TB_CHECK_OK, "check %s", tb_check_name(res.bound_check));
+            TST_CHECK(res.out[0].max_abs_err <= res.out[0].bound + 1e-12, "golden error %g over bound %g",
+                      res.out[0].max_abs_err, res.out[0].bound);
+            TST_CHECK(res.out[0].bound < (W[k] == 32 ? 1e-5 : 1e-3), "bound %g", res.out[0].bound);
+            TST_EQ_INT(res.overflows, 0);
+            TST_NEAR(res.cycles_per_item, 1, 0);
+        }
+        tb_result_free(&res);
+        vec_set_free(&vs);
+    }
+}
+
 int main(void)
 {
     TST_RUN(t_parabolic_round_trip);
@@ -201,5 +251,6 @@ int main(void)
     TST_RUN(t_positive_and_reciprocal);
     TST_RUN(t_half_difference);
     TST_RUN(t_bad_parameters);
+    TST_RUN(t_hf_lookup_wide);
     TST_EXIT();
 }

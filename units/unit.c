@@ -10,8 +10,9 @@
 extern const unit_desc *const units_seed000[];   /* horner, div3, coef, interp */
 extern const unit_desc *const units_brdf[];      /* BRDF approximation units */
 extern const unit_desc *const units_span[];      /* span interpolation, any L (unit_span.c) */
+extern const unit_desc *const units_factor[];    /* hf_lookup (unit_hflookup.c) */
 
-static const unit_desc *const *const tables[] = { units_seed000, units_brdf, units_span };
+static const unit_desc *const *const tables[] = { units_seed000, units_brdf, units_span, units_factor };
 #define NTABLES (sizeof tables / sizeof tables[0])
 
 size_t unit_count(void)

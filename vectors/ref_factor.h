@@ -157,6 +157,21 @@ typedef struct rf_err {
 } rf_err;
 void rf_error(rf_fn fn, void *fu, rf_fn approx, void *au, long n, uint64_t seed, double floor, rf_err *e);
 
+/* ------------------------------- the maps of the hf_lookup unit */
+
+/* The factorization of the isotropic Ward BRDF (roughness alpha, rho 1)
+ * at R x R (12 R^2 samples, smoothness 0.3, seed 1), each map divided by
+ * its largest texel (outside the disk included) so that every ROM entry
+ * is in (0, 1]: f ~ lam_scale^2 pi_scale lam(d0) pi(h) lam(di).
+ * Computed once per (R, alpha) and kept (thread-safe); NULL if the
+ * factorization fails. vectors/ref_hflookup.c. */
+typedef struct rf_maps { int R; double alpha; double *lam, *pi; double lam_scale, pi_scale; } rf_maps;
+const rf_maps *rf_ward_maps(int R, double alpha);
+/* The unit's function: bilinear lookups of lam at the parabolic
+ * coordinates of d0 and di and of pi at those of h (each (x, y)/(1 + z) of
+ * the vector as given, not renormalized), multiplied: lam lam first. */
+double rf_maps_lookup(const rf_maps *m, const double d0[3], const double di[3], const double h[3]);
+
 /* Uniform double in [0, 1) from a splitmix64 state. */
 double rf_rand(uint64_t *state);
 #endif

@@ -8,8 +8,9 @@
 extern const vec_model *const vec_models_seed000[];   /* ref_seed000.c */
 extern const vec_model *const vec_models_brdf[];      /* ref_brdf_models.c */
 extern const vec_model *const vec_models_span[];      /* ref_span.c */
+extern const vec_model *const vec_models_factor[];    /* ref_hflookup.c */
 
-static const vec_model *const *const tables[] = { vec_models_seed000, vec_models_brdf, vec_models_span };
+static const vec_model *const *const tables[] = { vec_models_seed000, vec_models_brdf, vec_models_span, vec_models_factor };
 
 size_t vec_model_count(void)
 {

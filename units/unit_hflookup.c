@@ -1,0 +1,437 @@
+/* unit_hflookup.c - hf_lookup: the factorized BRDF lambda(d0) pi(h)
+ * lambda(di) of the homomorphic factorization (Romanyuk, Vyatkin, Voitko,
+ * Romanyuk 2020), evaluated as the paper's three texture lookups and two
+ * multiplications, in fixed point, combinationally (one item a clock).
+ *
+ * Three lookup paths, one per direction (sub-scopes l0 for d0, li for di,
+ * ph for h; their signals share formats by name). Each:
+ *
+ *   ZQ  = z's top A fraction bits    the reciprocal ROM's address (wiring)
+ *   REC ~ 1 / (1 + z)                reciprocal ROM of 2^A + 1 entries and a
+ *                                    linear interpolation between two of them
+ *   U = x REC, V = y REC             multipliers: the parabolic map
+ *   SU, SV = clamp(U R/2 + (R-1)/2, 0, R-1)   texel coordinates (shift,
+ *                                    add of a constant, clamp)
+ *   IX, AX / IY, AY                  integer and fraction of SU / SV (wiring;
+ *                                    at the last texel IX = R-2, AX = 1)
+ *   T00, T01, T10, T11               the map's ROM at (IX + a, IY + b)
+ *   TOP = T00 + AX (T01 - T00), BOT = T10 + AX (T11 - T10)
+ *   VAL = TOP + AY (BOT - TOP)       the bilinear filter: 3 multipliers
+ *
+ * then M1 = VAL_l0 * VAL_li and Y = M1 * VAL_ph. The ROMs hold a Ward
+ * factorization (vectors/ref_factor.h, rf_ward_maps: roughness alpha,
+ * R x R texels with R = the parameter L), each map scaled to largest
+ * entry 1.
+ *
+ * Area: the texture ROMs at HF_GE_PER_ROM_BIT gate equivalents a bit (a
+ * mask ROM estimate), one copy per lookup (a single-port ROM cannot serve
+ * d0 and di in the same clock), the reciprocal ROMs likewise; the
+ * arithmetic from the primitives.
+ */
+#include "units/unit.h"
+#include "units/units_brdf.h"
+#include "vectors/ref_factor.h"
+#include "sim/sim_area.h"
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#define HF_GE_PER_ROM_BIT 0.25
+
+extern const unit_desc unit_hf_lookup;
+
+enum {
+    HF_X0, HF_Y0, HF_Z0, HF_XI, HF_YI, HF_ZI, HF_XH, HF_YH, HF_ZH, HF_Y,
+    HF_ZQ, HF_REC, HF_U, HF_V, HF_SU, HF_SV, HF_IX, HF_AX, HF_IY, HF_AY,
+    HF_ROM, HF_DX0, HF_MX0, HF_TOP, HF_DX1, HF_MX1, HF_BOT, HF_DY, HF_MY, HF_VAL, HF_M1, HF_NSIGS
+};
+
+static int lg2(int R) { int k = 0; while ((1 << k) < R) k++; return k; }
+
+static int beats1(const unit_cfg *cfg) { (void)cfg; return 1; }
+
+/* Default formats for width W (docs/factorization.md, "the unit"). */
+static void hf_formats(const unit_cfg *cfg, unit_fmts *out)
+{
+    int W = cfg->width, lr = lg2(cfg->L);
+    int A = W / 2 > 12 ? 12 : W / 2;     /* reciprocal ROM: 2^A + 1 entries */
+    for (int k = 0; k < 3; k++) {
+        out->f[HF_X0 + 3 * k] = unit_fmt(1, 2, W - 2);     /* x, y in [-1, 1] */
+        out->f[HF_Y0 + 3 * k] = unit_fmt(1, 2, W - 2);
+        out->f[HF_Z0 + 3 * k] = unit_fmt(0, 1, W - 1);     /* z in [0, 1] */
+    }
+    out->f[HF_ZQ] = unit_fmt(0, 1, A);                     /* 2^A-entry reciprocal ROM */
+    out->f[HF_REC] = unit_fmt(0, 1, W - 1);                /* 1/(1+z) in [1/2, 1] */
+    out->f[HF_U] = unit_fmt(1, 2, W - 2);
+    out->f[HF_V] = unit_fmt(1, 2, W - 2);
+    out->f[HF_SU] = unit_fmt(0, lr, W - lr);               /* [0, R-1] */
+    out->f[HF_SV] = unit_fmt(0, lr, W - lr);
+    out->f[HF_IX] = unit_fmt(0, lr, 0);
+    out->f[HF_IY] = unit_fmt(0, lr, 0);
+    out->f[HF_AX] = unit_fmt(0, 1, W - lr);                /* [0, 1] */
+    out->f[HF_AY] = unit_fmt(0, 1, W - lr);
+    out->f[HF_ROM] = unit_fmt(0, 1, W - 1);                /* entries in (0, 1] */
+    out->f[HF_DX0] = out->f[HF_DX1] = unit_fmt(1, 2, W - 1);
+    out->f[HF_MX0] = out->f[HF_MX1] = unit_fmt(1, 2, W - 1);
+    out->f[HF_TOP] = out->f[HF_BOT] = unit_fmt(1, 2, W - 1);
+    out->f[HF_DY] = unit_fmt(1, 2, W - 1);
+    out->f[HF_MY] = unit_fmt(1, 2, W - 1);
+    out->f[HF_VAL] = unit_fmt(1, 2, W - 1);
+    out->f[HF_M1] = unit_fmt(1, 2, W - 1);
+    out->f[HF_Y] = unit_fmt(1, 2, W - 2);
+}
+
+/* ------------------------------------------------------------ elements */
+
+/* Quantize v / 2^src into f with rounding r (the kernel's rules: trunc
+ * toward minus infinity, round half up); saturates (these elements clamp
+ * by construction, so a saturation never happens with the unit's ranges). */
+static int64_t quant(__int128 v, int src, sim_fmt f, sim_round r)
+{
+    int sh = src - f.fbits;
+    if (sh > 0) {
+        if (r != SIM_RND_TRUNC) v += (__int128)1 << (sh - 1);
+        v >>= sh;       /* arithmetic: floor */
+    } else if (sh < 0) v *= (__int128)1 << -sh;
+    __int128 lo = f.is_signed ? -((__int128)1 << (f.ibits + f.fbits - 1)) : 0;
+    __int128 hi = f.is_signed ? ((__int128)1 << (f.ibits + f.fbits - 1)) - 1 : ((__int128)1 << (f.ibits + f.fbits)) - 1;
+    if (v < lo) v = lo;
+    if (v > hi) v = hi;
+    return (int64_t)v;
+}
+
+typedef struct hf_rec { sim_fmt fz, fq, fr; sim_round r; } hf_rec;
+
+/* The reciprocal 1/(1 + z) from a ROM of 2^A + 1 entries and a linear
+ * interpolation between two of them (the chord):
+ *   k = ZQ 2^A (the address), t = (z - ZQ) 2^A in [0, 1),
+ *   e_k = 1/(1 + k 2^-A) quantized to REC's format (the ROM),
+ *   REC = e_k + t (e_(k+1) - e_k), exact, then quantized into REC.
+ * One element: a 2^A-entry ROM with a second read port, a subtractor, a
+ * (bits of t) x (bits of REC) multiplier and an adder. */
+static int64_t f_rec(const int64_t *in, void *u)
+{
+    const hf_rec *p = u;
+    int Fz = p->fz.fbits, A = p->fq.fbits, Fr = p->fr.fbits;
+    int64_t k = in[1];                               /* ZQ's raw: z's top A fraction bits */
+    int Ft = Fz > A ? Fz - A : 0;
+    int64_t t = Fz > A ? in[0] - (k << (Fz - A)) : 0;   /* t 2^Ft */
+    int64_t e[2];
+    for (int j = 0; j < 2; j++) {
+        __int128 den = ((__int128)1 << A) + k + j;
+        __int128 q = p->r == SIM_RND_TRUNC ? ((__int128)1 << (A + Fr)) / den
+                                           : (((__int128)1 << (A + Fr + 1)) + den) / (2 * den);
+        e[j] = (int64_t)q;
+    }
+    __int128 v = ((__int128)e[0] << Ft) + (__int128)t * (e[1] - e[0]);    /* at Fr + Ft bits */
+    return quant(v, Fr + Ft, p->fr, p->r);
+}
+
+/* ZQ: z's top A fraction bits (wiring: a truncation whatever the mode). */
+static int64_t f_zq(const int64_t *in, void *u)
+{
+    const hf_rec *p = u;
+    int sh = p->fz.fbits - p->fq.fbits;
+    return sh >= 0 ? in[0] >> sh : in[0] << -sh;
+}
+
+typedef struct hf_addr { sim_fmt fu, fs; int R; sim_round r; } hf_addr;
+
+/* clamp(U R/2 + (R-1)/2, 0, R-1), exact at Fu + 1 fraction bits, then
+ * quantized into SU's format. */
+static int64_t f_addr(const int64_t *in, void *u)
+{
+    const hf_addr *p = u;
+    int F = p->fu.fbits + 1;
+    __int128 s = (__int128)in[0] * p->R + (__int128)(p->R - 1) * ((__int128)1 << p->fu.fbits);
+    __int128 hi = (__int128)(p->R - 1) << F;
+    if (s < 0) s = 0;
+    if (s > hi) s = hi;
+    return quant(s, F, p->fs, p->r);
+}
+
+typedef struct hf_split { int fs, fa, fi, R, frac; } hf_split;
+
+/* The integer part (frac 0) or the fraction (frac 1) of S; at S >= R-1,
+ * R-2 and 1 (the same bilinear value, and IX + 1 stays in the map). */
+static int64_t f_split(const int64_t *in, void *u)
+{
+    const hf_split *p = u;
+    int64_t i = in[0] >> p->fs;
+    if (i >= p->R - 1) return p->frac ? (int64_t)1 << p->fa : (int64_t)(p->R - 2) << p->fi;
+    if (!p->frac) return i << p->fi;
+    int64_t f = in[0] & (((int64_t)1 << p->fs) - 1);
+    return p->fa >= p->fs ? f << (p->fa - p->fs) : f >> (p->fs - p->fa);
+}
+
+typedef struct hf_rom { const int64_t *raw; int R, ox, oy, fx, fy; } hf_rom;
+
+static int64_t f_rom(const int64_t *in, void *u)
+{
+    const hf_rom *p = u;
+    int x = (int)(in[0] >> p->fx) + p->ox, y = (int)(in[1] >> p->fy) + p->oy;
+    if (x < 0 || x >= p->R || y < 0 || y >= p->R) return 0;
+    return p->raw[y * p->R + x];
+}
+
+/* A map quantized into the ROM's format (the kernel's rounding). */
+static int64_t rom_raw(double x, sim_fmt f, sim_round r)
+{
+    double s = ldexp(x, f.fbits);
+    double v = r == SIM_RND_TRUNC ? floor(s) : floor(s + 0.5);
+    double hi = ldexp(1.0, f.ibits + f.fbits - f.is_signed) - 1;
+    return (int64_t)(v > hi ? hi : v < 0 ? 0 : v);
+}
+
+static sim_signal *lookup(sim_ctx *c, sim_scope *top, const char *scope, const unit_cfg *cfg,
+                          const unit_fmts *f, sim_signal *x, sim_signal *y, sim_signal *z,
+                          const double *map)
+{
+    sim_scope *sc = sim_scope_new(c, top, scope);
+    int R = cfg->L;
+    const sim_fmt *F = f->f;
+    hf_rec *rp = sim_alloc(c, sizeof *rp);
+    rp->fz = z->fmt; rp->fq = F[HF_ZQ]; rp->fr = F[HF_REC]; rp->r = cfg->rnd;
+    sim_signal *zq = sim_logic(c, sc, "zq", F[HF_ZQ], 1, &z, f_zq, rp, 0);
+    int A = F[HF_ZQ].fbits, wr = F[HF_REC].ibits + F[HF_REC].fbits;
+    int wt = rp->fz.fbits > A ? rp->fz.fbits - A : 0;
+    double rec_ge = HF_GE_PER_ROM_BIT * (ldexp(1.0, A) + 1) * wr * 2     /* two read ports */
+                  + (double)wt * wr * SIM_GE_FA + 2.0 * wr * SIM_GE_FA;  /* multiplier, subtractor, adder */
+    sim_signal *zin[2] = { z, zq };
+    sim_signal *rec = sim_logic(c, sc, "rec", F[HF_REC], 2, zin, f_rec, rp, rec_ge);
+    sim_signal *u = sim_mul(c, sc, "u", F[HF_U], x, rec);
+    sim_signal *v = sim_mul(c, sc, "v", F[HF_V], y, rec);
+    sim_signal *ax = NULL, *ix = NULL, *ay = NULL, *iy = NULL;
+    for (int k = 0; k < 2; k++) {
+        hf_addr *ap = sim_alloc(c, sizeof *ap);
+        ap->fu = F[k ? HF_V : HF_U]; ap->fs = F[k ? HF_SV : HF_SU]; ap->R = R; ap->r = cfg->rnd;
+        int w = ap->fu.ibits + ap->fu.fbits + 2;
+        sim_signal *s = sim_logic(c, sc, k ? "sv" : "su", ap->fs, 1, k ? &v : &u, f_addr, ap,
+                                  w * (SIM_GE_FA + 2 * SIM_GE_MUX2));
+        hf_split *pi = sim_alloc(c, sizeof *pi), *pa = sim_alloc(c, sizeof *pa);
+        pi->fs = pa->fs = ap->fs.fbits; pi->R = pa->R = R;
+        pi->fa = 0; pi->frac = 0; pi->fi = F[k ? HF_IY : HF_IX].fbits;
+        pa->fa = F[k ? HF_AY : HF_AX].fbits; pa->frac = 1;
+        int lr = lg2(R);
+        sim_signal *ii = sim_logic(c, sc, k ? "iy" : "ix", F[k ? HF_IY : HF_IX], 1, &s, f_split, pi, lr * SIM_GE_MUX2);
+        sim_signal *aa = sim_logic(c, sc, k ? "ay" : "ax", F[k ? HF_AY : HF_AX], 1, &s, f_split, pa,
+                                   (pa->fa + 1) * SIM_GE_AND2);
+        if (k) { iy = ii; ay = aa; } else { ix = ii; ax = aa; }
+    }
+    int64_t *raw = sim_alloc(c, sizeof(int64_t) * (size_t)R * R);
+    for (int j = 0; j < R * R; j++) raw[j] = rom_raw(map[j], F[HF_ROM], cfg->rnd);
+    double rom_ge = HF_GE_PER_ROM_BIT * R * R * (F[HF_ROM].ibits + F[HF_ROM].fbits) / 4;
+    sim_signal *t[4], *idx[2] = { ix, iy };
+    static const char *const tn[4] = { "t00", "t01", "t10", "t11" };
+    sim_scope *rs = sim_scope_new(c, sc, "rom");    /* the four reads share the entry format "rom" */
+    for (int k = 0; k < 4; k++) {
+        hf_rom *p = sim_alloc(c, sizeof *p);
+        p->raw = raw; p->R = R; p->ox = k & 1; p->oy = k >> 1;
+        p->fx = F[HF_IX].fbits; p->fy = F[HF_IY].fbits;
+        t[k] = sim_logic(c, rs, tn[k], F[HF_ROM], 2, idx, f_rom, p, rom_ge);
+    }
+    sim_signal *dx0 = sim_sub(c, sc, "dx0", F[HF_DX0], t[1], t[0]);
+    sim_signal *mx0 = sim_mul(c, sc, "mx0", F[HF_MX0], ax, dx0);
+    sim_signal *tp = sim_add(c, sc, "top", F[HF_TOP], t[0], mx0);
+    sim_signal *dx1 = sim_sub(c, sc, "dx1", F[HF_DX1], t[3], t[2]);
+    sim_signal *mx1 = sim_mul(c, sc, "mx1", F[HF_MX1], ax, dx1);
+    sim_signal *bt = sim_add(c, sc, "bot", F[HF_BOT], t[2], mx1);
+    sim_signal *dy = sim_sub(c, sc, "dy", F[HF_DY], bt, tp);
+    sim_signal *my = sim_mul(c, sc, "my", F[HF_MY], ay, dy);
+    return sim_add(c, sc, "val", F[HF_VAL], tp, my);
+}
+
+static int hf_build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *cfg,
+                    const unit_fmts *f, unit_io *io, char *err, size_t errlen)
+{
+    (void)clk;
+    const rf_maps *m = rf_ward_maps(cfg->L, cfg->alpha);
+    if (!m) { snprintf(err, errlen, "hf_lookup: the factorization of the maps failed"); return -1; }
+    if (f->f[HF_ROM].is_signed || f->f[HF_ZQ].is_signed) {
+        snprintf(err, errlen, "hf_lookup: rom and zq must be unsigned formats");
+        return -1;
+    }
+    sim_fmt u1 = unit_fmt(0, 1, 0);
+    for (int i = 0; i < 9; i++) io->in[i] = sim_signal_new(c, sc, unit_hf_lookup.sigs[i].name, f->f[i], SIM_KIND_INPUT);
+    io->in_valid = sim_bit_new(c, sc, "in_valid", SIM_KIND_INPUT);
+    io->in_ready = sim_const_raw(c, sc, "in_ready", u1, 1);
+    io->out_valid = sim_signal_new(c, sc, "out_valid", u1, SIM_KIND_WIRE);
+    sim_assign(c, io->out_valid, io->in_valid);
+    sim_signal *l0 = lookup(c, sc, "l0", cfg, f, io->in[0], io->in[1], io->in[2], m->lam);
+    sim_signal *li = lookup(c, sc, "li", cfg, f, io->in[3], io->in[4], io->in[5], m->lam);
+    sim_signal *ph = lookup(c, sc, "ph", cfg, f, io->in[6], io->in[7], io->in[8], m->pi);
+    sim_signal *m1 = sim_mul(c, sc, "m1", f->f[HF_M1], l0, li);
+    io->out[0] = sim_mul(c, sc, "y", f->f[HF_Y], m1, ph);
+    io->scope = sc;
+    return 0;
+}
+
+static void hf_ideal(const unit_cfg *cfg, const double *in, double *out)
+{
+    const rf_maps *m = rf_ward_maps(cfg->L, cfg->alpha);
+    out[0] = m ? rf_maps_lookup(m, in, in + 3, in + 6) : NAN;
+}
+
+/* ---------------------------------------------------------------- bound */
+
+/* Largest difference of neighbouring texels along x (dir 0) or y (1):
+ * the bilinear filter's slope per texel of address error. */
+static double slope(const double *map, int R, int dir)
+{
+    double d = 0;
+    for (int j = 0; j < R; j++)
+        for (int i = 0; i + 1 < R; i++) {
+            double a = dir ? map[i * R + j] : map[j * R + i], b = dir ? map[(i + 1) * R + j] : map[j * R + i + 1];
+            if (fabs(a - b) > d) d = fabs(a - b);
+        }
+    return d;
+}
+
+static int imin(int a, int b) { return a < b ? a : b; }
+static int imax(int a, int b) { return a > b ? a : b; }
+
+/* |VAL - bilinear(map, exact address)| for one lookup (docs/factorization.md):
+ * the address error through the map's slopes, the ROM's quantization, the
+ * filter's arithmetic. Each value carries the fraction bits it really has
+ * (eff: its format's, or fewer when its operands have fewer), so that
+ * widening a signal never makes the bound grow. *eff_val: VAL's.
+ * INFINITY when a format cannot hold its value. */
+static double lookup_bound(const unit_cfg *cfg, const unit_fmts *fm, const double *map, int kx, int *eff_val)
+{
+    const sim_fmt *F = fm->f;
+    sim_round r = cfg->rnd;
+    int R = cfg->L;
+    sim_fmt fx = F[kx], fy = F[kx + 1], fz = F[kx + 2];
+    if (!brdf_holds(fx, -1, 1) || !brdf_holds(fy, -1, 1) || !brdf_holds(fz, 0, 1)) return INFINITY;
+    if (!brdf_holds(F[HF_ZQ], 0, 1) || F[HF_ZQ].fbits > fz.fbits || F[HF_ZQ].fbits > 20
+        || !brdf_holds(F[HF_REC], 0.5, 1)) return INFINITY;
+    /* the chord of 1/(1+z) over a step h = 2^-A lies above it by at most
+     * h^2 max|f''| / 8 = h^2 / 4; the ROM's entries and REC's
+     * quantization add one quantization each */
+    int A = F[HF_ZQ].fbits;
+    double e_rec = ldexp(0.25, -2 * A) + 2 * unit_qerr(F[HF_REC], 200, r);
+    int e_fr = F[HF_REC].fbits;
+    double e_s[2];
+    int eff_a[2];
+    for (int k = 0; k < 2; k++) {
+        sim_fmt fi = k ? fy : fx, fu = F[k ? HF_V : HF_U], fs = F[k ? HF_SV : HF_SU];
+        double e_u = e_rec + unit_qerr(fu, fi.fbits + e_fr, r);       /* |x| <= 1 */
+        int eff_u = imin(fu.fbits, fi.fbits + e_fr);
+        if (!brdf_holds(fu, -1 - e_u, 1 + e_u)) return INFINITY;
+        if (!brdf_holds(fs, 0, R - 1)) return INFINITY;
+        e_s[k] = e_u * R / 2 + unit_qerr(fs, eff_u + 1, r);             /* the clamp is 1-Lipschitz */
+        int eff_s = imin(fs.fbits, eff_u + 1);
+        sim_fmt fa = F[k ? HF_AY : HF_AX], fi2 = F[k ? HF_IY : HF_IX];
+        if (!brdf_holds(fa, 0, 1) || !brdf_holds(fi2, 0, R - 2)) return INFINITY;
+        /* a weight with fewer fraction bits than the coordinate is its
+         * truncation (wiring drops the low bits, whatever the mode) */
+        e_s[k] += unit_qerr(fa, eff_s, SIM_RND_TRUNC);
+        eff_a[k] = imin(fa.fbits, eff_s);
+    }
+    sim_fmt fr = F[HF_ROM];
+    if (!brdf_holds(fr, 0, 1)) return INFINITY;
+    double e_rom = unit_qerr(fr, 200, r);
+    double sx = slope(map, R, 0) + 2 * e_rom, sy = slope(map, R, 1) + 2 * e_rom;
+    /* the filter at the hardware's address, on the ROM's values: the x
+     * lerps (top from dx0, mx0; bot from dx1, mx1), then the y lerp */
+    double e_row[2];
+    int eff_row[2];
+    for (int k = 0; k < 2; k++) {
+        sim_fmt fd = F[k ? HF_DX1 : HF_DX0], fm2 = F[k ? HF_MX1 : HF_MX0], ft = F[k ? HF_BOT : HF_TOP];
+        if (!brdf_holds(fd, -1, 1) || !brdf_holds(fm2, -1, 1)) return INFINITY;
+        double e_dx = unit_qerr(fd, fr.fbits, r);
+        int eff_dx = imin(fd.fbits, fr.fbits);
+        int fp = eff_a[0] + eff_dx;
+        double e_mx = e_dx + unit_qerr(fm2, fp, r);                     /* |AX| <= 1 */
+        int eff_mx = imin(fm2.fbits, fp);
+        e_row[k] = e_mx + unit_qerr(ft, imax(fr.fbits, eff_mx), r);
+        eff_row[k] = imin(ft.fbits, imax(fr.fbits, eff_mx));
+        if (!brdf_holds(ft, -e_row[k], 1 + e_row[k])) return INFINITY;
+    }
+    double e_tb = e_row[0] > e_row[1] ? e_row[0] : e_row[1];
+    int src_dy = imax(eff_row[0], eff_row[1]);
+    double e_dy0 = unit_qerr(F[HF_DY], src_dy, r);
+    int eff_dy = imin(F[HF_DY].fbits, src_dy);
+    double m_dy = 1 + e_row[0] + e_row[1] + e_dy0;
+    double e_my0 = unit_qerr(F[HF_MY], eff_a[1] + eff_dy, r);
+    int eff_my = imin(F[HF_MY].fbits, eff_a[1] + eff_dy);
+    if (!brdf_holds(F[HF_DY], -m_dy, m_dy) || !brdf_holds(F[HF_MY], -m_dy - e_my0, m_dy + e_my0)) return INFINITY;
+    /* VAL - exact = (1 - AY)(TOP - top) + AY (BOT - bot) + AY e(DY) + e(MY) + e(VAL) */
+    int src_val = imax(eff_row[0], eff_my);
+    double e_val = e_tb + e_dy0 + e_my0 + unit_qerr(F[HF_VAL], src_val, r);
+    *eff_val = imin(F[HF_VAL].fbits, src_val);
+    double e = sx * e_s[0] + sy * e_s[1] + e_rom + e_val;
+    if (!brdf_holds(F[HF_VAL], -e, 1 + e)) return INFINITY;
+    return e;
+}
+
+static void hf_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
+{
+    const rf_maps *m = rf_ward_maps(cfg->L, cfg->alpha);
+    per_out[0] = INFINITY;
+    if (!m) return;
+    int f0, fi, fp;
+    double e0 = lookup_bound(cfg, f, m->lam, HF_X0, &f0), ei = lookup_bound(cfg, f, m->lam, HF_XI, &fi);
+    double ep = lookup_bound(cfg, f, m->pi, HF_XH, &fp);
+    if (!isfinite(e0) || !isfinite(ei) || !isfinite(ep)) return;
+    sim_fmt f1 = f->f[HF_M1], fyo = f->f[HF_Y];
+    /* values in [0, 1] exactly, within e of it in hardware */
+    double e1 = e0 * (1 + ei) + ei + unit_qerr(f1, f0 + fi, cfg->rnd);
+    int eff1 = imin(f1.fbits, f0 + fi);
+    if (!brdf_holds(f1, -e1, 1 + e1)) return;
+    double ey = e1 * (1 + ep) + ep + unit_qerr(fyo, eff1 + fp, cfg->rnd);
+    if (!brdf_holds(fyo, -ey, 1 + ey)) return;
+    per_out[0] = ey;
+}
+
+const unit_desc unit_hf_lookup = {
+    .name = "hf_lookup",
+    .summary = "factorized BRDF lambda(d0) pi(h) lambda(di): parabolic addresses, 3 bilinear ROM lookups, 2 multipliers; one item a clock",
+    .seed = "Romanyuk et al. (2020), eqs. 6-7 (homomorphic factorization)",
+    .nsigs = HF_NSIGS,
+    .sigs = {
+        { .name = "x0", .role = UNIT_SIG_IN, .what = "d0 (view) x, local frame" },
+        { .name = "y0", .role = UNIT_SIG_IN, .what = "d0 y" },
+        { .name = "z0", .role = UNIT_SIG_IN, .what = "d0 z (along the normal), in [0, 1]" },
+        { .name = "xi", .role = UNIT_SIG_IN, .what = "di (light) x" },
+        { .name = "yi", .role = UNIT_SIG_IN, .what = "di y" },
+        { .name = "zi", .role = UNIT_SIG_IN, .what = "di z" },
+        { .name = "xh", .role = UNIT_SIG_IN, .what = "h = norm(d0 + di) x" },
+        { .name = "yh", .role = UNIT_SIG_IN, .what = "h y" },
+        { .name = "zh", .role = UNIT_SIG_IN, .what = "h z" },
+        { .name = "y", .role = UNIT_SIG_OUT, .what = "lambda(d0) lambda(di) pi(h), maps scaled to largest entry 1" },
+        { .name = "zq", .role = UNIT_SIG_INTERNAL, .what = "z's top bits: the reciprocal ROM's address (per lookup: l0, li, ph)" },
+        { .name = "rec", .role = UNIT_SIG_INTERNAL, .what = "1 / (1 + z): reciprocal ROM at zq and zq + 1 LSB, linear interpolation" },
+        { .name = "u", .role = UNIT_SIG_INTERNAL, .what = "multiplier u = x rec (parabolic map)" },
+        { .name = "v", .role = UNIT_SIG_INTERNAL, .what = "multiplier v = y rec" },
+        { .name = "su", .role = UNIT_SIG_INTERNAL, .what = "texel coordinate clamp(u R/2 + (R-1)/2, 0, R-1)" },
+        { .name = "sv", .role = UNIT_SIG_INTERNAL, .what = "texel coordinate from v" },
+        { .name = "ix", .role = UNIT_SIG_INTERNAL, .what = "integer part of su (R-2 at the last texel)" },
+        { .name = "ax", .role = UNIT_SIG_INTERNAL, .what = "fraction of su (1 at the last texel)" },
+        { .name = "iy", .role = UNIT_SIG_INTERNAL, .what = "integer part of sv" },
+        { .name = "ay", .role = UNIT_SIG_INTERNAL, .what = "fraction of sv" },
+        { .name = "rom", .role = UNIT_SIG_INTERNAL, .what = "the map's ROM reads t00, t01, t10, t11 at (ix + a, iy + b): the entry format" },
+        { .name = "dx0", .role = UNIT_SIG_INTERNAL, .what = "subtractor dx0 = t01 - t00" },
+        { .name = "mx0", .role = UNIT_SIG_INTERNAL, .what = "multiplier mx0 = ax dx0" },
+        { .name = "top", .role = UNIT_SIG_INTERNAL, .what = "adder top = t00 + mx0" },
+        { .name = "dx1", .role = UNIT_SIG_INTERNAL, .what = "subtractor dx1 = t11 - t10" },
+        { .name = "mx1", .role = UNIT_SIG_INTERNAL, .what = "multiplier mx1 = ax dx1" },
+        { .name = "bot", .role = UNIT_SIG_INTERNAL, .what = "adder bot = t10 + mx1" },
+        { .name = "dy", .role = UNIT_SIG_INTERNAL, .what = "subtractor dy = bot - top" },
+        { .name = "my", .role = UNIT_SIG_INTERNAL, .what = "multiplier my = ay dy" },
+        { .name = "val", .role = UNIT_SIG_INTERNAL, .what = "adder val = top + my: the bilinear lookup" },
+        { .name = "m1", .role = UNIT_SIG_INTERNAL, .what = "multiplier m1 = val(l0) val(li)" } },
+    .nsched = 1,
+    .sched = { { "comb", "three lookup paths and two multipliers, combinational: one item a clock" } },
+    .nparams = 2,
+    .params = {
+        { "L", UNIT_P_POW2, offsetof(unit_cfg, L), 4, 32, NULL, "map resolution R (R x R texels)" },
+        { "alpha", UNIT_P_REAL, offsetof(unit_cfg, alpha), 0.1, 0.6, NULL, "roughness of the Ward BRDF the maps factorize" } },
+    .fmt_rule = "x, y s2.(W-2); z u1.(W-1); zq u1.min(W/2, 12); rec, rom u1.(W-1); u, v s2.(W-2); su, sv "
+                "u(lgR).(W-lgR); filter s2.(W-1); y s2.(W-2)",
+    .formats = hf_formats, .beats = beats1, .build = hf_build,
+    .ideal = hf_ideal, .bound = hf_bound,
+};
+
+const unit_desc *const units_factor[] = { &unit_hf_lookup, NULL };
