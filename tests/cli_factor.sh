@@ -1,5 +1,6 @@
 #!/bin/sh
-# Command-line contract of shadesim factor: help, the output folder's files
+# Command-line contract of shadesim factor: help, the output folder's files,
+# the claims' verdicts
 # (PNGs checked by pngcheck when installed), the same bytes on a rerun, and
 # exit 2 with one 'shadesim:' line for bad input. Small maps (R = 8).
 PREFIX=cli_factor.
@@ -39,6 +40,11 @@ expect rerun 0 "$S" factor ward-aniso --res 8 --svd 2 --heldout 2000 -o "$T/b"
 for f in lambda.png pi.png factors.f32 report.csv; do
     cmp -s "$T/a/$f" "$T/b/$f" || { fail same_bytes "$f differs"; break; }
 done && ok same_bytes
+
+# --claims: every claim measured holds for Ward (exit 0), the Fig. 1 row says it is not measured
+expect claims 0 "$S" factor ward --res 8 --heldout 2000 --claims -o "$T/c"
+[ "$(grep -c ',holds$' "$T/c/claims.csv")" -eq 4 ] && grep -q ',not measured$' "$T/c/claims.csv" \
+    && ok claims_rows || fail claims_rows "$(cat "$T/c/claims.csv")"
 
 expect unknown_brdf 2 "$S" factor phong9 -o "$T/c"
 expect res_0 2 "$S" factor ct --res 0 -o "$T/c"
