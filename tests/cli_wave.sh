@@ -15,6 +15,8 @@ expect2() {   # NAME CMD...: exit 2 with one "shadesim: " line
     else fail "$name" "exit $got: $(head -c 300 "$T/err")"; fi
 }
 
+# the runs below change folder: the binary by absolute path
+S=$(cd "$(dirname "$S")" && pwd)/$(basename "$S")
 mkdir -p "$T/run/sub" "$T/elsewhere"
 # written from one folder with a relative path ...
 (cd "$T/run" && "$S" run horner3 --vcd sub/h.vcd --out h.csv >/dev/null 2>&1) || fail written "run failed"
