@@ -25,6 +25,8 @@ typedef struct tb_state {
     int64_t  *mn, *mx;
     int       nsmp;
     int      *live, nlive;      /* the entries that can change (not constants) */
+    sim_signal **lsig;          /* smp[live[j]], packed for the per-clock loop */
+    int64_t  *lmm;              /* its min, max (copied to mn, mx after the run) */
 } tb_state;
 
 /* Driver, at each rising edge: if the unit accepted the offered item (valid
@@ -51,11 +53,12 @@ static void monitor(sim_proc *p)
     tb_state *s = p->data;
     /* Settled values of the cycle that ended: what a logic analyzer (or
      * MATLAB's range logging) records; glitches between deltas are not. */
-    for (int j = 0; j < s->nlive; j++) {
-        int i = s->live[j];
-        int64_t v = s->smp[i]->cur;
-        if (v < s->mn[i]) s->mn[i] = v;
-        if (v > s->mx[i]) s->mx[i] = v;
+    sim_signal *const *ls = s->lsig;
+    int64_t *mm = s->lmm;
+    for (int j = 0, n = s->nlive; j < n; j++, mm += 2) {
+        int64_t v = ls[j]->cur;
+        mm[0] = v < mm[0] ? v : mm[0];
+        mm[1] = v > mm[1] ? v : mm[1];
     }
     if (!s->io->out_valid->cur) return;
     size_t total = s->n_items * (size_t)s->beats;
@@ -352,7 +355,13 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     st.mn = calloc(nsig_all ? nsig_all : 1, sizeof *st.mn);
     st.mx = calloc(nsig_all ? nsig_all : 1, sizeof *st.mx);
     st.live = calloc(nsig_all ? nsig_all : 1, sizeof *st.live);
-    if (!st.smp || !st.mn || !st.mx || !st.live) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+    st.lsig = calloc(nsig_all ? nsig_all : 1, sizeof *st.lsig);
+    st.lmm = calloc(2 * (size_t)(nsig_all ? nsig_all : 1), sizeof *st.lmm);
+    if (!st.smp || !st.mn || !st.mx || !st.live || !st.lsig || !st.lmm) {
+        snprintf(err, errlen, "out of memory");
+        rc = TB_FAIL;
+        goto done;
+    }
     for (uint32_t i = 0; i < nsig_all; i++) {
         sim_signal *sg = sim_signal_at(c, i);
         if (sg == clk || !in_scope(sg, sc)) continue;
@@ -360,7 +369,12 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         int cst = sg->kind == SIM_KIND_CONST;
         st.mn[st.nsmp] = cst ? sg->cur : INT64_MAX;
         st.mx[st.nsmp] = cst ? sg->cur : INT64_MIN;
-        if (!cst) st.live[st.nlive++] = st.nsmp;
+        if (!cst) {
+            st.lsig[st.nlive] = sg;
+            st.lmm[2 * st.nlive] = INT64_MAX;
+            st.lmm[2 * st.nlive + 1] = INT64_MIN;
+            st.live[st.nlive++] = st.nsmp;
+        }
         st.smp[st.nsmp++] = sg;
     }
     sim_proc *drv = sim_proc_new(c, "tb.driver", driver, &st);
@@ -389,6 +403,10 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     if (vcd) {
         rc = tb_wave_close(&wave, c, vcd, u, rc, err, errlen);
         vcd = NULL;
+    }
+    for (int j = 0; j < st.nlive; j++) {
+        st.mn[st.live[j]] = st.lmm[2 * j];
+        st.mx[st.live[j]] = st.lmm[2 * j + 1];
     }
     if (rc == TB_OK) {
         r->latency = r->beat_cycle[0];
@@ -433,6 +451,8 @@ done:
     free(st.mn);
     free(st.mx);
     free(st.live);
+    free(st.lsig);
+    free(st.lmm);
     return rc;
 }
 
