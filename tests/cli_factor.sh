@@ -46,6 +46,17 @@ expect claims 0 "$S" factor ward --res 8 --heldout 2000 --claims -o "$T/c"
 [ "$(grep -c ',holds$' "$T/c/claims.csv")" -eq 4 ] && grep -q ',not measured$' "$T/c/claims.csv" \
     && ok claims_rows || fail claims_rows "$(cat "$T/c/claims.csv")"
 
+# --scene: the three images and both NMSE figures (small image)
+expect scene 0 "$S" factor ward --res 8 --heldout 1000 --svd 0 --scene sphere --scene-res 48 -o "$T/s"
+for f in vertex.png factorized.png exact.png; do
+    [ -s "$T/s/$f" ] || { fail scene_files "$f missing"; break; }
+done && ok scene_files
+grep -q 'exact at vertices, interpolated   NMSE [0-9]' "$T/out" && grep -q 'factorized per pixel (hf_lookup)  NMSE [0-9]' "$T/out" \
+    && ok scene_nmse || fail scene_nmse "$(cat "$T/out")"
+expect scene_not_ward 2 "$S" factor ct --res 8 --scene sphere -o "$T/s"
+expect scene_bad_res 2 "$S" factor ward --res 12 --scene sphere -o "$T/s"
+expect scene_unknown 2 "$S" factor ward --res 8 --svd 0 --scene nowhere -o "$T/s"
+
 expect unknown_brdf 2 "$S" factor phong9 -o "$T/c"
 expect res_0 2 "$S" factor ct --res 0 -o "$T/c"
 expect res_100000 2 "$S" factor ct --res 100000 -o "$T/c"
