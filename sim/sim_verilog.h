@@ -21,7 +21,7 @@
 #include <stdio.h>
 #include "sim/sim.h"
 
-#define SIM_VERILOG_MAX_LOGIC_BITS 16
+#define SIM_VERILOG_MAX_LOGIC_BITS 12
 
 typedef struct sim_vport {
     const char *name;       /* port name */
