@@ -5,6 +5,7 @@
 #include "testbench/cli.h"
 #include "testbench/tb_verilog.h"
 #include "sim/sim_out.h"
+#include "sim/sim_area.h"
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -206,10 +207,30 @@ static const char synth_help[] =
     "usage: shadesim synth UNIT [options] [--keep DIR]\n"
     "Export the unit and synthesize it with Yosys to generic gates (synth; abc -g\n"
     "AND,NAND,OR,NOR,XOR,XNOR,MUX; no cell library): prints Yosys's cells by type\n"
-    "and in total beside shadesim's area estimate in NAND2 gate equivalents.\n"
+    "and in total, weighted with the area model's NAND2 gate equivalents per gate,\n"
+    "beside shadesim's area estimate.\n"
     "Needs yosys (Debian package yosys).\n"
     "options:\n"
     "  --keep DIR           leave the export and Yosys's log in DIR\n";
+
+/* A Yosys generic cell in NAND2 gate equivalents, with the constants of
+ * sim/sim_area.h (NanGate 45 nm): flip-flops with an enable add a MUX2,
+ * with a synchronous reset an AND2. */
+static double cell_ge(const char *c)
+{
+    if (!strncmp(c, "NAND", 4) || !strncmp(c, "NOR", 3)) return SIM_GE_NAND2;
+    if (!strncmp(c, "NOT", 3)) return SIM_GE_INV;
+    if (!strncmp(c, "AND", 3) || !strncmp(c, "OR", 2)) return SIM_GE_AND2;
+    if (!strncmp(c, "XOR", 3) || !strncmp(c, "XNOR", 4)) return SIM_GE_XOR2;
+    if (!strncmp(c, "MUX", 3)) return SIM_GE_MUX2;
+    if (strstr(c, "DFF")) {
+        double g = SIM_GE_DFF;
+        if (c[0] == 'S') g += SIM_GE_AND2;
+        if (strstr(c, "DFFE") || strstr(c, "DFFCE")) g += SIM_GE_MUX2;
+        return g;
+    }
+    return SIM_GE_NAND2;
+}
 
 static int own_keep(void *stp, int argc, char **argv, int *i)
 {
@@ -253,15 +274,21 @@ int cli_synth(int argc, char **argv)
     long total = -1;
     printf("%s --width %d --schedule %s (%s, %s): Yosys generic gates\n", o.u->name, o.cfg.width,
            o.u->sched[o.cfg.schedule].name, sim_round_name(o.cfg.rnd), sim_ovf_name(o.cfg.ovf));
+    double yge = 0;
     while (f && fgets(line, sizeof line, f)) {
         char cell[100];
         long n;
         if (strstr(line, "Number of cells:")) total = atol(strchr(line, ':') + 1);
-        else if (sscanf(line, " %99s %ld", cell, &n) == 2 && !strncmp(cell, "$_", 2)) printf("  %-12s %ld\n", cell + 2, n);
+        else if (sscanf(line, " %99s %ld", cell, &n) == 2 && !strncmp(cell, "$_", 2)) {
+            double w = cell_ge(cell + 2);
+            yge += w * (double)n;
+            printf("  %-12s %6ld  x %.2f GE\n", cell + 2, n, w);
+        }
     }
     if (f) fclose(f);
-    printf("  cells        %ld\n  shadesim     %.0f NAND2 gate equivalents (area model)\n", total, ge);
-    if (total > 0) printf("  ratio        %.2f gate equivalents per Yosys cell\n", ge / (double)total);
+    printf("  cells        %6ld  = %.0f GE with the area model's gate constants\n", total, yge);
+    printf("  shadesim     %.0f GE (area model)\n", ge);
+    if (yge > 0) printf("  ratio        %.2f (shadesim / Yosys)\n", ge / yge);
 done:
     if (!keep) {
         char c2[1200];

@@ -71,7 +71,7 @@ else
 fi
 if command -v yosys >/dev/null 2>&1; then
     "$S" synth div3 --width 8 >"$T/out" 2>"$T/err"
-    grep -q '^  cells  *[1-9]' "$T/out" && grep -q 'NAND2 gate equivalents' "$T/out" && ok synth_div3 || fail synth_div3 "$(cat "$T/out" "$T/err")"
+    grep -q '^  cells  *[1-9]' "$T/out" && grep -q 'GE (area model)' "$T/out" && ok synth_div3 || fail synth_div3 "$(cat "$T/out" "$T/err")"
 else
     echo "skip ${PREFIX}synth_div3: yosys not installed"
 fi
