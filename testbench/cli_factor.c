@@ -36,6 +36,9 @@ static const char factor_help[] =
     "  --svd K          rank of the baseline, 0..8 (default 4; its resolution is\n"
     "                   min(R, 32))\n"
     "  --heldout N      held-out pairs for the errors (default 20000)\n"
+    "  --refine N       Gauss-Newton steps fitting the texel values themselves, as\n"
+    "                   bilinear texture hardware reads them, from the log-space\n"
+    "                   solution (default 3; 0: the log-space solution only)\n"
     "  --seed N         sampling seed (default 1)\n"
     "  --claims         also DIR/claims.csv: what the paper states (positive\n"
     "                   factors, reciprocity, relative-error minimization, few\n"
@@ -282,6 +285,7 @@ int cli_factor(int argc, char **argv)
         else if (!strcmp(a, "--param")) { if (rf_brdf_param(&b, val, err, sizeof err)) return cli_usage_error("%s", err); }
         else if (!strcmp(a, "--svd")) { if (parse_long(a, val, 0, 8, &svd_k)) return CLI_USAGE; }
         else if (!strcmp(a, "--heldout")) { if (parse_long(a, val, 100, 10000000, &heldout)) return CLI_USAGE; }
+        else if (!strcmp(a, "--refine")) { if (parse_long(a, val, 0, 50, &v)) return CLI_USAGE; o.refine = (int)v; }
         else if (!strcmp(a, "--seed")) { if (parse_long(a, val, 0, 1000000000, &v)) return CLI_USAGE; o.seed = (uint64_t)v; }
         else if (!strcmp(a, "-o")) dir = val;
         else if (!strcmp(a, "--scene")) scene = val;

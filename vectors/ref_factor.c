@@ -226,6 +226,7 @@ void rf_opts_default(rf_opts *o)
     o->max_iter = 3000;
     o->tol = 1e-9;
     o->floor = 1e-4;
+    o->refine = 3;
 }
 
 /* A direction uniform over the parabolic disk (the same count per texel). */
@@ -313,6 +314,67 @@ static int cgls(const sp *a, int n, double *x, int max_iter, double tol, double 
     *relres = g0 > 0 ? sqrt(g / g0) : 0;
     free(r); free(q); free(s); free(p);
     return it;
+}
+
+/* Sum of squared residuals of the texture model at x (logs of the texel
+ * values): data rows log(L(d0)) + log(L(di)) + log(P(h)) - log f, with
+ * L, P bilinear in the values e^x; smoothness rows linear in x. Fills
+ * res (rows) and, when jv is not NULL, the Jacobian's values. */
+static double tex_resid(const sp *a, long ndata, const double *x, double *res, double *jv)
+{
+    double ss = 0;
+    for (long r = 0; r < a->rows; r++) {
+        long k0 = a->ptr[r];
+        if (r < ndata) {
+            double part[3] = { 0, 0, 0 };
+            for (int k = 0; k < 12; k++) part[k / 4] += a->val[k0 + k] * exp(x[a->col[k0 + k]]);
+            res[r] = log(part[0]) + log(part[1]) + log(part[2]) - a->rhs[r];
+            if (jv) for (int k = 0; k < 12; k++) jv[k0 + k] = a->val[k0 + k] * exp(x[a->col[k0 + k]]) / part[k / 4];
+        } else {
+            double v = 0;
+            for (long k = k0; k < a->ptr[r + 1]; k++) {
+                v += a->val[k] * x[a->col[k]];
+                if (jv) jv[k] = a->val[k];
+            }
+            res[r] = v - a->rhs[r];
+        }
+        ss += res[r] * res[r];
+    }
+    return ss;
+}
+
+/* Gauss-Newton on the texture model (what bilinear texture hardware
+ * evaluates), from the log-space solution: each step solves J d = -res by
+ * CGLS and halves d until the sum of squares falls. Still positive (the
+ * unknowns are logs) and reciprocal (lambda is shared). -1: no memory. */
+static int refine(const sp *a, long ndata, int n, double *x, int steps, int max_iter)
+{
+    sp j = *a;
+    double *res = malloc(sizeof(double) * (size_t)a->rows), *d = malloc(sizeof(double) * (size_t)n);
+    double *xt = malloc(sizeof(double) * (size_t)n);
+    j.val = malloc(sizeof(double) * (size_t)a->nnz);
+    j.rhs = malloc(sizeof(double) * (size_t)a->rows);
+    int rc = -1;
+    if (!res || !d || !xt || !j.val || !j.rhs) goto out;
+    double ss = tex_resid(a, ndata, x, res, j.val);
+    for (int s = 0; s < steps; s++) {
+        for (long r = 0; r < a->rows; r++) j.rhs[r] = -res[r];
+        double rr;
+        if (cgls(&j, n, d, max_iter, 1e-6, &rr) < 0) goto out;
+        double t = 1, s1 = INFINITY;
+        for (int h = 0; h < 8; h++, t /= 2) {
+            for (int i = 0; i < n; i++) xt[i] = x[i] + t * d[i];
+            s1 = tex_resid(a, ndata, xt, res, NULL);
+            if (s1 < ss) break;
+        }
+        if (!(s1 < ss)) break;
+        memcpy(x, xt, sizeof(double) * (size_t)n);
+        ss = tex_resid(a, ndata, x, res, j.val);
+    }
+    rc = 0;
+out:
+    free(res); free(d); free(xt); free(j.val); free(j.rhs);
+    return rc;
 }
 
 static int in_disk(int R, int j)
@@ -413,16 +475,25 @@ int rf_factorize(rf_fn fn, void *user, const rf_opts *o, rf_fact *f, char *err, 
     }
     f->iters = cgls(&a, n, x, o->max_iter, o->tol, &f->relres);
     if (f->iters < 0) { snprintf(err, len, "out of memory in the solver"); goto out; }
+    double *xr = malloc(sizeof(double) * (size_t)n);
+    if (!xr) { snprintf(err, len, "out of memory in the solver"); goto out; }
+    memcpy(xr, x, sizeof(double) * (size_t)n);
+    if (o->refine > 0 && refine(&a, f->used, n, xr, o->refine, o->max_iter) < 0) {
+        free(xr);
+        snprintf(err, len, "out of memory in the refinement");
+        goto out;
+    }
     /* Gauge: lambda's largest disk texel = 1 (lambda c, pi / c^2 fit alike). */
-    double mx = -INFINITY;
+    double mx = -INFINITY, mr = -INFINITY;
     for (int j = 0; j < T; j++) if (in_disk(R, j) && x[j] > mx) mx = x[j];
+    for (int j = 0; j < T; j++) if (in_disk(R, j) && xr[j] > mr) mr = xr[j];
     f->lam_min = f->pi_min = INFINITY;
     f->lam_max = f->pi_max = -INFINITY;
     for (int j = 0; j < T; j++) {
         f->llam[j] = x[j] - mx;
         f->lpi[j] = x[T + j] + 2 * mx;
-        f->lam[j] = exp(f->llam[j]);
-        f->pi[j] = exp(f->lpi[j]);
+        f->lam[j] = exp(xr[j] - mr);
+        f->pi[j] = exp(xr[T + j] + 2 * mr);
         if (in_disk(R, j)) {
             if (f->lam[j] < f->lam_min) f->lam_min = f->lam[j];
             if (f->lam[j] > f->lam_max) f->lam_max = f->lam[j];
@@ -430,6 +501,7 @@ int rf_factorize(rf_fn fn, void *user, const rf_opts *o, rf_fact *f, char *err, 
             if (f->pi[j] > f->pi_max) f->pi_max = f->pi[j];
         }
     }
+    free(xr);
     rc = 0;
 out:
     free(a.ptr); free(a.col); free(a.val); free(a.rhs); free(x);

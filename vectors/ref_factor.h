@@ -85,13 +85,15 @@ typedef struct rf_opts {
     int      max_iter;  /* conjugate-gradient iterations at most */
     double   tol;       /* stop when |A^T r| <= tol |A^T b| */
     double   floor;     /* samples below floor * (99th percentile of the samples) are left out */
+    int      refine;    /* Gauss-Newton steps fitting the texture values themselves (0: none) */
 } rf_opts;
 void rf_opts_default(rf_opts *o);
 
 typedef struct rf_fact {
     int     R;
     double *llam, *lpi;     /* log lambda, log pi: R*R texels each, row-major (v rows, u columns) */
-    double *lam, *pi;       /* exp of the logs; lambda's largest disk texel is 1 */
+    double *lam, *pi;       /* the texel values: exp of the logs, or the refined values (rf_opts.refine);
+                               lambda's largest disk texel is 1 */
     int     iters;          /* CG iterations done */
     double  relres;         /* |A^T r| / |A^T b| at the end */
     long    used, skipped;  /* samples in the fit, samples skipped (no mirror direction, f not finite) */
@@ -160,7 +162,7 @@ void rf_error(rf_fn fn, void *fu, rf_fn approx, void *au, long n, uint64_t seed,
 /* ------------------------------- the maps of the hf_lookup unit */
 
 /* The factorization of the isotropic Ward BRDF (roughness alpha, rho 1)
- * at R x R (12 R^2 samples, smoothness 0.3, seed 1), each map divided by
+ * at R x R (12 R^2 samples, smoothness 0.3, seed 1, no refinement), each map divided by
  * its largest texel (outside the disk included) so that every ROM entry
  * is in (0, 1]: f ~ lam_scale^2 pi_scale lam(d0) pi(h) lam(di).
  * Computed once per (R, alpha) and kept (thread-safe); NULL if the

@@ -42,6 +42,9 @@ const rf_maps *rf_ward_maps(int R, double alpha)
         o.R = R;
         o.samples = 12L * R * R;
         o.tol = 1e-7;
+        o.refine = 0;       /* the paper's log-space solution: Gauss-Newton on the
+                               values can leave a texel outside the disk far above
+                               the rest, and the ROM's scale follows the largest */
         if (!rf_factorize(rf_brdf_fn, &b, &o, &f, err, sizeof err)) {
             rf_maps *m = &cache[ncache++];
             m->R = R; m->alpha = alpha;
