@@ -61,7 +61,9 @@ sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                       sim_signal *x, int sh);
 
 /* Combinational logic with a user function over up to 8 inputs' raw values,
- * for small controllers (decoders of a step counter, comparators).
+ * for small controllers (decoders of a step counter, comparators). The
+ * function must be defined for every raw value of its inputs' formats,
+ * reachable or not: the Verilog export tabulates it over all of them.
  * area_ge is the caller's estimate of the logic's gates. */
 typedef int64_t (*sim_logic_fn)(const int64_t *in, void *user);
 sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,

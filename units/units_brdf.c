@@ -89,7 +89,10 @@ static int64_t table_at(const int64_t *in, void *u) { return ((const uint8_t *)u
 sim_signal *brdf_decode(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *name,
                         sim_signal *next, const uint8_t *table, int n)
 {
-    uint8_t *t = sim_alloc(c, (size_t)n);
+    /* Zero-filled past n up to every value next's format holds: the
+     * Verilog export tabulates the decoder over all of them. */
+    size_t cap = next->fmt.width <= 12 && ((size_t)1 << next->fmt.width) > (size_t)n ? (size_t)1 << next->fmt.width : (size_t)n;
+    uint8_t *t = sim_alloc(c, cap);
     int maxv = 0;
     for (int i = 0; i < n; i++) { t[i] = table[i]; if (t[i] > maxv) maxv = t[i]; }
     int bits = brdf_bitlen((uint64_t)maxv);
