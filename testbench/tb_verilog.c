@@ -93,8 +93,8 @@ static char *tb_text(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f
     fprintf(f, "//\n// Testbench: reads the stimulus (+in=FILE, +items=N: one line of input raws\n"
                "// per item, hex), offers item after item through the handshake and writes\n"
                "// one line per output beat to +out=FILE: the cycle (decimal) and each output's\n"
-               "// raw bits (hex). `shadesim run %s --stimulus-hex FILE` writes the stimulus\n"
-               "// and FILE.expect, what this must write.\n", u->name);
+               "// raw bits (hex). `shadesim verilog %s -o DIR --stimulus-hex FILE` writes the\n"
+               "// stimulus and FILE.expect, what this must write.\n", u->name);
     fprintf(f, "`timescale 1ns/1ps\nmodule %s_tb;\n", u->name);
     fprintf(f, "    parameter NIN = %d;\n    parameter BEATS = %d;\n    parameter MAXWORDS = 65536;\n", nin, beats);
     fprintf(f, "    reg clk = 1'b0;\n    reg [%d:0] mem [0:MAXWORDS-1];\n", mw - 1);
