@@ -107,12 +107,14 @@ TB := $(if $(filter clang%,$(notdir $(CC))),build-clang,build)
 # Sub-makes build quietly (BRIEF=1: no per-file lines) under one line per
 # step; V=1 shows every command.
 SUBMAKE = $(MAKE) --no-print-directory $(if $(filter 1,$(V)),,-s BRIEF=1)
+# The test builds use both cores (-j2) unless make was given its own -j.
+TESTJ = $(if $(filter -j%,$(MAKEFLAGS)),,-j2)
 
 test:
 	@echo "building $(TB)/ ($(CC) $(OPT))..."
-	@$(SUBMAKE) testbins B=$(TB)
+	@$(SUBMAKE) $(TESTJ) testbins B=$(TB)
 	@echo "building $(TB)-asan/ ($(CC) ASan+UBSan)..."
-	@$(SUBMAKE) testbins B=$(TB)-asan $(ASAN_FLAGS)
+	@$(SUBMAKE) $(TESTJ) testbins B=$(TB)-asan $(ASAN_FLAGS)
 	@$(SUBMAKE) bin/shadesim
 	@echo "testing..."
 	@sh tests/run.sh $(TB) $(TB)-asan
@@ -120,9 +122,9 @@ test:
 .PHONY: test-clang
 test-clang:
 	@echo "building build-clang/ ($(CLANG) $(OPT))..."
-	@$(SUBMAKE) testbins B=build-clang CC=$(CLANG)
+	@$(SUBMAKE) $(TESTJ) testbins B=build-clang CC=$(CLANG)
 	@echo "building build-clang-asan/ ($(CLANG) ASan+UBSan)..."
-	@$(SUBMAKE) testbins B=build-clang-asan CC=$(CLANG) $(ASAN_FLAGS)
+	@$(SUBMAKE) $(TESTJ) testbins B=build-clang-asan CC=$(CLANG) $(ASAN_FLAGS)
 	@echo "testing..."
 	@sh tests/run.sh build-clang build-clang-asan
 

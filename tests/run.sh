@@ -5,29 +5,74 @@
 # Each test prints one line: "ok NAME", "FAIL NAME" or "skip NAME: why";
 # a test program that crashes or exits non-zero without a FAIL line counts
 # as one failure of its own.
+#
+# TST_JOBS tests run at a time (default 2: the suite's CPU time is spread
+# over two cores); each one's output is kept and printed in the fixed order
+# (flavour by flavour, binaries then scripts), so the output is the same
+# bytes whatever the order they finish in. TST_JOBS=1 runs them one by one.
 cd "$(dirname "$0")/.." || exit 2
-log=$(mktemp); out=$(mktemp)
-trap 'rm -f "$log" "$out"' EXIT
-one() {   # one NAME CMD...
-    name=$1; shift
-    echo "== $name"
-    "$@" >"$out" 2>&1
-    rc=$?
-    sed 's|^|  |' "$out"
-    cat "$out" >>"$log"
-    if [ $rc -ne 0 ] && ! grep -q '^FAIL ' "$out"; then
-        echo "FAIL $name: exit status $rc" | tee -a "$log"
-    fi
-}
+jobs=${TST_JOBS:-2}
+case $jobs in ''|*[!0-9]*|0) echo "tests/run.sh: TST_JOBS must be a whole number >= 1" >&2; exit 2;; esac
+dir=$(mktemp -d) || exit 2
+trap 'rm -rf "$dir"' EXIT
+trap 'exit 130' INT TERM
+
+# The job list: one line "N BUILD KIND PATH" per test, in print order.
+n=0
 for b in "$@"; do
-    export SHADESIM="$b/shadesim" TST_BUILD="$b"
     for t in "$b"/tests/test_*; do
-        [ -x "$t" ] && one "$t" "$t"
+        [ -x "$t" ] && { n=$((n + 1)); echo "$n $b bin $t"; }
     done
     for t in tests/cli_*.sh; do
-        [ -f "$t" ] && one "$t [$b]" sh "$t"
+        [ -f "$t" ] && { n=$((n + 1)); echo "$n $b cli $t"; }
     done
-done
+done >"$dir/jobs"
+
+# One job: its output to N.out, then its exit status to N.rc (the printer
+# below waits for N.rc, so it is written last).
+cat >"$dir/one.sh" <<'EOF'
+d=$1 i=$2 b=$3 kind=$4 t=$5
+export SHADESIM="$b/shadesim" TST_BUILD="$b"
+if [ "$kind" = bin ]; then "$t" >"$d/$i.out" 2>&1; else sh "$t" >"$d/$i.out" 2>&1; fi
+echo $? >"$d/$i.tmp" && mv "$d/$i.tmp" "$d/$i.rc"
+EOF
+# The printer, in the background: each job's output in the fixed order as
+# soon as it is there. (The jobs themselves run in the foreground: a
+# background command of a script ignores SIGINT, and so would every test
+# it runs, which test_out checks.)
+print_all() {
+    : >"$dir/log"
+    while read -r i b kind t; do
+        name=$t
+        [ "$kind" = cli ] && name="$t [$b]"
+        # wait for it (when the runner stopped early, e.g. xargs after a
+        # killed job, the rest never ran: they count as failures)
+        while [ ! -f "$dir/$i.rc" ] && [ ! -f "$dir/done" ]; do sleep 1; done
+        echo "== $name"
+        if [ -f "$dir/$i.rc" ]; then
+            rc=$(cat "$dir/$i.rc")
+            sed 's|^|  |' "$dir/$i.out"
+            cat "$dir/$i.out" >>"$dir/log"
+        else
+            rc="none (not run: the runner stopped)"
+        fi
+        if [ "$rc" != 0 ] && ! grep -q '^FAIL ' "$dir/$i.out" 2>/dev/null; then
+            echo "FAIL $name: exit status $rc" | tee -a "$dir/log"
+        fi
+    done <"$dir/jobs"
+}
+print_all &
+printer=$!
+
+# Longest first: the ASan flavour's jobs (slower) lead, so that the
+# workers finish close together; the print order does not change.
+{ grep -- '-asan ' "$dir/jobs"; grep -v -- '-asan ' "$dir/jobs"; } \
+    | awk -v d="$dir" '{ print d, $1, $2, $3, $4 }' \
+    | xargs -n 5 -P "$jobs" sh "$dir/one.sh"
+: >"$dir/done"
+wait "$printer"
+
+log=$dir/log
 pass=$(grep -c '^ok ' "$log")
 fail=$(grep -c '^FAIL ' "$log")
 skip=$(grep -c '^skip ' "$log")

@@ -11,7 +11,17 @@
 #include "testbench/tb.h"
 #include <sys/stat.h>
 
-#define SCRATCH "/tmp/shadesim_test_scene_search"
+/* The scratch folder, one per process: tests/run.sh runs the plain and the
+ * ASan flavour's copies of this test at the same time. */
+static char scratch[64];
+#define SCRATCH scratch
+/* SCRATCH "/name" as a path (static buffer: use before the next call). */
+static const char *scr(const char *name)
+{
+    static char p[128];
+    snprintf(p, sizeof p, "%s%s", scratch, name);
+    return p;
+}
 
 static scn_desc D;
 static scn_mesh M;
@@ -100,7 +110,7 @@ static void test_search_smallest_and_heldout(void)
     int rc = tb_scene_search(&D, &M, 2, target, SCRATCH, 1, out, err, sizeof err);
     fclose(out);
     TST_CHECK(rc == TB_OK || rc == TB_FAIL, "rc %d: %s", rc, err);
-    char *js = slurp(SCRATCH "/search.json");
+    char *js = slurp(scr("/search.json"));
     TST_CHECK(js != NULL, "no search.json");
     if (!js) return;
     TST_CHECK(strstr(js, "\"uniform_met\": true") != NULL, "no uniform width met %g", target);
@@ -189,7 +199,7 @@ static void test_search_smallest_and_heldout(void)
     TST_CHECK(strstr(js, meets ? "\"heldout_meets\": true" : "\"heldout_meets\": false") != NULL, "json verdict");
     TST_NEAR(jnum_of(js, "heldout_nmse"), e, 1e-8 * e + 1e-300);
     struct stat st;
-    TST_CHECK(stat(SCRATCH "/search.txt", &st) == 0 && st.st_size > 0, "no search.txt");
+    TST_CHECK(stat(scr("/search.txt"), &st) == 0 && st.st_size > 0, "no search.txt");
 
 }
 
@@ -208,7 +218,7 @@ static void test_search_jobs(void)
     char err[300], *a = NULL;
     for (int j = 1; j <= 3; j += 2) {
         char dir[128], p[160];
-        snprintf(dir, sizeof dir, SCRATCH "/j%d", j);
+        snprintf(dir, sizeof dir, "%s/j%d", SCRATCH, j);
         FILE *out = fopen("/dev/null", "w");
         int rc = tb_scene_search(&d, &M, j, 1.5 * e, dir, 1, out, err, sizeof err);
         fclose(out);
@@ -252,7 +262,7 @@ static void test_sweep_csv(void)
     FILE *out = fopen("/dev/null", "w");
     for (int j = 1; j <= 2; j++) {
         char dir[128];
-        snprintf(dir, sizeof dir, SCRATCH "/sweep%d", j);
+        snprintf(dir, sizeof dir, "%s/sweep%d", SCRATCH, j);
         mkdir(SCRATCH, 0777);
         int rc = tb_scene_sweep(&D, &M, j, spec, dir, 0, out, err, sizeof err);
         TST_EQ_INT(rc, TB_OK);
@@ -351,6 +361,7 @@ static void test_scene_claims(void)
 
 int main(void)
 {
+    snprintf(scratch, sizeof scratch, "/tmp/shadesim_test_scene_search.%ld", (long)getpid());
     TST_RUN(test_search_smallest_and_heldout);
     TST_RUN(test_search_jobs);
     TST_RUN(test_search_unmeetable);
