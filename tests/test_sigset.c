@@ -24,7 +24,17 @@ static int at_top(const sim_scope *sc, const char *name)
     return 0;
 }
 
-static int check_cfg(const unit_desc *u, const unit_cfg *cfg)
+/* Under ASan (TST_BUILD ending in -asan) the per-signal --fmt check runs
+ * for the default parameters only (it is the same code for every
+ * configuration); the plain build checks every configuration. */
+static int asan_build(void)
+{
+    const char *b = getenv("TST_BUILD");
+    size_t n = b ? strlen(b) : 0;
+    return n >= 5 && !strcmp(b + n - 5, "-asan");
+}
+
+static int check_cfg(const unit_desc *u, const unit_cfg *cfg, int fmt_checks)
 {
     unit_fmts fm;
     char err[800];
@@ -42,6 +52,7 @@ static int check_cfg(const unit_desc *u, const unit_cfg *cfg)
         int built = unit_sig_built(u, i, cfg);
         if (built && !in_tree(sc, nm)) { TST_CHECK(0, "%s sched %d terms %d series %d: listed '%s' is not built", u->name, cfg->schedule, cfg->terms, cfg->series, nm); bad = 1; }
         if (!built && at_top(sc, nm)) { TST_CHECK(0, "%s sched %d terms %d series %d: '%s' is built but not listed", u->name, cfg->schedule, cfg->terms, cfg->series, nm); bad = 1; }
+        if (!fmt_checks) continue;
         /* --fmt NAME=... is accepted exactly for the built signals. */
         char ov[64];
         const char *ovp = ov;
@@ -73,7 +84,7 @@ static void built_signals_are_listed_ones(void)
                     else snprintf(val, sizeof val, "%d", (int)x);
                     if (unit_param_set(u, &cfg, pp->name, val, e, sizeof e)) { TST_CHECK(0, "%s", e); continue; }
                 }
-                if (check_cfg(u, &cfg)) return;
+                if (check_cfg(u, &cfg, v == 0 || !asan_build())) return;
             }
     }
 }
