@@ -610,7 +610,7 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     jnum(f, d->auto_threshold);
     fprintf(f, ",\n  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"formats\": {", u->name, u->sched[r->cfg.schedule].name);
     for (int i = 0, n = 0; i < u->nsigs; i++)
-        if (unit_sig_used(u, i, r->cfg.schedule))
+        if (unit_sig_built(u, i, &r->cfg))
             fprintf(f, "%s\"%s\": \"%s\"", n++ ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
     fprintf(f, "},\n  \"round\": \"%s\",\n  \"overflow\": \"%s\",\n", sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
     fprintf(f, "  \"covered\": %zu,\n  \"nmse\": ", r->covered); jnum(f, r->nmse);

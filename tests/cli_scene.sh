@@ -32,6 +32,10 @@ for k in mesh resolution view policy L terms series width unit schedule formats 
     grep -q "^  \"$k\": " "$T/out" && ok "json_$k" || fail "json_$k" "field $k missing"
 done
 cmp -s "$T/out" "$T/face/scene.json" && ok json_is_scene_json || fail json_is_scene_json "stdout differs from scene.json"
+# formats lists the built signals only: the default cubic uses node set N1,
+# so N2's own elements (i1x13, ucx3) are not built and not listed.
+grep '"formats"' "$T/out" | grep -q '"i1x7"' && ! grep '"formats"' "$T/out" | grep -q '"i1x13"\|"ucx3"\|u0\.0' \
+    && ok json_formats_built_only || fail json_formats_built_only "formats lists a signal the unit does not build"
 if command -v python3 >/dev/null 2>&1; then
     python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["covered"]>0 and d["nmse"]>0 and d["speedup"]>1 and d["resolution"]=="64x64" and set(d["ops_ref"])=={"add","mul","div","sqrt","pow"}' "$T/out" \
         && ok json_parses || fail json_parses "python3 could not read the JSON or a figure is off"
