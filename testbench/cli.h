@@ -40,6 +40,19 @@ int cli_synth(int argc, char **argv);
 
 /* Print "shadesim: " + message + newline to stderr; returns CLI_USAGE. */
 int cli_usage_error(const char *fmt, ...);
+/* Strict numbers for option values: the whole text must be the number
+ * (decimal digits, a leading '-' only when lo < 0; reals also a fraction
+ * and an exponent; no spaces, '+', hex, inf or nan), within lo..hi.
+ * 0 and *out, or CLI_USAGE after "OPT TEXT: expected WHAT" on stderr
+ * (what: NULL says "a whole number LO..HI" / "a number LO..HI"). */
+int cli_parse_long(const char *opt, const char *text, long lo, long hi, const char *what, long *out);
+int cli_parse_u64(const char *opt, const char *text, const char *what, uint64_t *out);
+int cli_parse_real(const char *opt, const char *text, double lo, double hi, const char *what, double *out);
+/* 1 if text is a plain decimal real as above (no range check). */
+int cli_is_real(const char *text);
+/* User text made printable for a message: bytes outside 0x20..0x7e as
+ * \xNN (cut to fit buf). Returns buf. */
+const char *cli_esc(const char *text, char *buf, size_t len);
 /* True if stderr is a terminal (progress displays only then). */
 int cli_stderr_tty(void);
 

@@ -653,12 +653,10 @@ int cli_claims(int argc, char **argv)
             if (i + 1 >= argc || !*argv[i + 1]) return cli_usage_error("claims: -o needs a folder");
             dir = argv[++i];
         } else if (!strcmp(a, "--width")) {
-            char *end;
-            long w = i + 1 < argc ? strtol(argv[i + 1], &end, 10) : 0;
-            if (i + 1 >= argc || *end || !*argv[i + 1] || w < 4 || w > 48)
-                return cli_usage_error("claims: --width needs a whole number 4..48");
+            long w;
+            if (i + 1 >= argc) return cli_usage_error("claims: --width needs a whole number 4..48");
+            if (cli_parse_long("--width", argv[++i], 4, 48, NULL, &w)) return CLI_USAGE;
             width = (int)w;
-            i++;
         } else if (!strcmp(a, "--cpu-seconds")) {
             return cli_usage_error("claims: --cpu-seconds is gone: CPU timings are machine-dependent and not "
                                    "verdicts; make bench times them (bench/bench_claims)");

@@ -1,6 +1,8 @@
 /* cli_common.c - options shared by the verbs, and where vectors come from. */
 #include "testbench/cli.h"
 #include "vectors/vec_file.h"
+#include <errno.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +20,91 @@ int cli_usage_error(const char *fmt, ...)
 }
 
 int cli_stderr_tty(void) { return isatty(2); }
+
+const char *cli_esc(const char *text, char *buf, size_t len)
+{
+    size_t k = 0;
+    if (!len) return buf;
+    for (const unsigned char *p = (const unsigned char *)(text ? text : ""); *p; p++) {
+        char one[5];
+        int n = *p >= 0x20 && *p < 0x7f && *p != '\\' ? snprintf(one, sizeof one, "%c", *p)
+              : *p == '\\' ? snprintf(one, sizeof one, "\\\\") : snprintf(one, sizeof one, "\\x%02x", *p);
+        if (k + (size_t)n >= len) break;
+        memcpy(buf + k, one, (size_t)n);
+        k += (size_t)n;
+    }
+    buf[k] = 0;
+    return buf;
+}
+
+/* Length of the run of decimal digits at s. */
+static size_t digits(const char *s) { size_t n = 0; while (s[n] >= '0' && s[n] <= '9') n++; return n; }
+
+int cli_is_real(const char *s)
+{
+    if (*s == '-') s++;
+    size_t a = digits(s), b = 0;
+    s += a;
+    if (*s == '.') { b = digits(++s); s += b; }
+    if (!a && !b) return 0;
+    if (*s == 'e' || *s == 'E') {
+        s++;
+        if (*s == '-' || *s == '+') s++;
+        size_t e = digits(s);
+        if (!e) return 0;
+        s += e;
+    }
+    return !*s;
+}
+
+static int num_error(const char *opt, const char *text, const char *what, const char *dflt)
+{
+    char e[200];
+    return cli_usage_error("%s %s: expected %s", opt, cli_esc(text, e, sizeof e), what ? what : dflt);
+}
+
+int cli_parse_long(const char *opt, const char *text, long lo, long hi, const char *what, long *out)
+{
+    char d[80];
+    snprintf(d, sizeof d, "a whole number %ld..%ld", lo, hi);
+    if (!text) return num_error(opt, "", what, d);
+    const char *s = text + (*text == '-' && lo < 0);
+    size_t n = digits(s);
+    if (!n || s[n]) return num_error(opt, text, what, d);
+    char *end;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    if (errno || *end || v < lo || v > hi) return num_error(opt, text, what, d);
+    *out = v;
+    return 0;
+}
+
+int cli_parse_u64(const char *opt, const char *text, const char *what, uint64_t *out)
+{
+    const char *d = "a whole number 0..18446744073709551615";
+    if (!text) return num_error(opt, "", what, d);
+    size_t n = digits(text);
+    if (!n || text[n]) return num_error(opt, text, what, d);
+    char *end;
+    errno = 0;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (errno || *end) return num_error(opt, text, what, d);
+    *out = (uint64_t)v;
+    return 0;
+}
+
+int cli_parse_real(const char *opt, const char *text, double lo, double hi, const char *what, double *out)
+{
+    char d[80];
+    snprintf(d, sizeof d, "a number %g..%g", lo, hi);
+    if (!text || !cli_is_real(text)) return num_error(opt, text ? text : "", what, d);
+    errno = 0;
+    double v = strtod(text, NULL);
+    if (errno == ERANGE && fabs(v) > 1) return num_error(opt, text, what, d);
+    if (!isfinite(v) || v < lo || v > hi) return num_error(opt, text, what, d);
+    *out = v;
+    return 0;
+}
 
 const char cli_unit_opts_help[] =
     "  --width W            default-format rule width (see `shadesim list UNIT`); default 16\n"
@@ -62,9 +149,8 @@ int cli_unit_option(cli_unit_opts *o, int argc, char **argv, int *i)
         char err[300];
         switch (k) {
         case 0: {
-            char *end;
-            long w = strtol(v, &end, 10);
-            if (*v == 0 || *end || w < 1 || w > 64) { cli_usage_error("--width %s: expected a whole number 1..64", v); return -1; }
+            long w;
+            if (cli_parse_long("--width", v, 1, 64, NULL, &w)) return -1;
             o->cfg.width = (int)w;
             break;
         }

@@ -63,24 +63,12 @@ static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-
 
 static int parse_long(const char *opt, const char *s, long lo, long hi, long *v)
 {
-    char *end;
-    errno = 0;
-    long x = strtol(s, &end, 10);
-    if (!*s || *end || errno || x < lo || x > hi)
-        return cli_usage_error("%s %s: expected a whole number in %ld..%ld", opt, s, lo, hi);
-    *v = x;
-    return CLI_OK;
+    return cli_parse_long(opt, s, lo, hi, NULL, v);
 }
 
 static int parse_real(const char *opt, const char *s, double *v)
 {
-    char *end;
-    errno = 0;
-    double x = strtod(s, &end);
-    if (!*s || *end || errno || !isfinite(x) || x < 0)
-        return cli_usage_error("%s %s: expected a finite number >= 0", opt, s);
-    *v = x;
-    return CLI_OK;
+    return cli_parse_real(opt, s, 0, HUGE_VAL, "a finite number >= 0", v);
 }
 
 static int make_dir(const char *dir)

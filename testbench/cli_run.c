@@ -4,6 +4,7 @@
 #include "testbench/tb_wave.h"
 #include "vectors/vec_file.h"
 #include "sim/sim_out.h"
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -139,9 +140,8 @@ int cli_list(int argc, char **argv)
             return stdout_done(CLI_OK);
         }
         if (!strcmp(argv[i], "--width") && i + 1 < argc) {
-            char *end;
-            long w = strtol(argv[++i], &end, 10);
-            if (*end || w < 1 || w > 64) return cli_usage_error("--width %s: expected 1..64", argv[i]);
+            long w;
+            if (cli_parse_long("--width", argv[++i], 1, 64, NULL, &w)) return CLI_USAGE;
             width = (int)w;
         } else if (!strcmp(argv[i], "--schedule") && i + 1 < argc) {
             sched = argv[++i];
@@ -184,7 +184,7 @@ int cli_vectors(int argc, char **argv)
 {
     const char *unit = NULL, *out = NULL;
     long long n = 0;
-    unsigned long long seed = 1;
+    uint64_t seed = 1;
     cli_unit_opts o;
     memset(&o, 0, sizeof o);
     for (int i = 1; i < argc; i++) {
@@ -198,13 +198,12 @@ int cli_vectors(int argc, char **argv)
                  "followed and kept); a device or FIFO is written to in place; -o - is stdout.");
             return stdout_done(CLI_OK);
         }
-        char *end;
         if ((!strcmp(argv[i], "-n")) && i + 1 < argc) {
-            n = strtoll(argv[++i], &end, 10);
-            if (*end || n < 0 || n > 10000000) return cli_usage_error("-n %s: expected 0..10000000", argv[i]);
+            long x;
+            if (cli_parse_long("-n", argv[++i], 0, 10000000, NULL, &x)) return CLI_USAGE;
+            n = x;
         } else if (!strcmp(argv[i], "--seed") && i + 1 < argc) {
-            seed = strtoull(argv[++i], &end, 10);
-            if (*end || !*argv[i] || argv[i][0] == '-') return cli_usage_error("--seed %s: expected a whole number", argv[i]);
+            if (cli_parse_u64("--seed", argv[++i], NULL, &seed)) return CLI_USAGE;
         } else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
             out = argv[++i];
         } else if (!unit && argv[i][0] != '-') {
@@ -271,9 +270,9 @@ static int accept_option(tb_accept *a, int *ranges, int argc, char **argv, int *
                 : !strcmp(o, "--max-lsb") ? &a->max_lsb : NULL;
     if (dst) {
         if (*i + 1 >= argc) { cli_usage_error("%s needs a number", o); return -1; }
-        char *end;
-        double v = strtod(argv[++*i], &end);
-        if (*end || !*argv[*i] || !(v > 0) || v > 1e300) { cli_usage_error("%s %s: expected a positive number", o, argv[*i]); return -1; }
+        double v;
+        if (cli_parse_real(o, argv[++*i], 0, 1e300, "a positive number", &v)) return -1;
+        if (!(v > 0)) { cli_usage_error("%s %s: expected a positive number", o, argv[*i]); return -1; }
         *dst = v;
         return 1;
     }
@@ -428,11 +427,10 @@ int cli_run(int argc, char **argv)
         else if (!strcmp(argv[i], "--fst")) fst = 1;
         else if (!strcmp(argv[i], "--vcd-from") || !strcmp(argv[i], "--vcd-to")) {
             const char *opt = argv[i];
-            char *end;
             if (i + 1 >= argc) return cli_usage_error("%s needs an item number", opt);
             const char *a = argv[++i];
-            long long v = strtoll(a, &end, 10);
-            if (!*a || *end || v < 0 || *a == '-' || *a == '+') return cli_usage_error("%s %s: expected an item number (0, 1, ...)", opt, a);
+            long v;
+            if (cli_parse_long(opt, a, 0, LONG_MAX, "an item number (0, 1, ...)", &v)) return CLI_USAGE;
             if (!strcmp(opt, "--vcd-from")) vfrom = v; else vto = v;
         }
         else if (!strcmp(argv[i], "--vcd") || !strcmp(argv[i], "--out")) return cli_usage_error("%s needs a file name", argv[i]);

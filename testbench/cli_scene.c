@@ -77,14 +77,7 @@ static int mesh_is_builtin(const char *name)
 
 static int parse_double(const char *opt, const char *s, double *v)
 {
-    char *end;
-    errno = 0;
-    *v = strtod(s, &end);
-    if (!*s || *end || errno || !isfinite(*v) || *v < 0) {
-        cli_usage_error("%s %s: expected a number >= 0", opt, s);
-        return -1;
-    }
-    return 0;
+    return cli_parse_real(opt, s, 0, HUGE_VAL, "a number >= 0", v) ? -1 : 0;
 }
 
 /* out/scene-NAME: NAME is the built-in's name or the file's base name
@@ -230,9 +223,8 @@ int cli_scene(int argc, char **argv)
         else if (!strcmp(a, "--compare")) cmp = 1;
         else if (!strcmp(a, "-j")) {
             if (!has) return cli_usage_error("-j needs a number of threads");
-            char *end;
-            long v = strtol(argv[++i], &end, 10);
-            if (*end || v < 1 || v > 256) return cli_usage_error("-j %s: expected 1..256", argv[i]);
+            long v;
+            if (cli_parse_long("-j", argv[++i], 1, 256, NULL, &v)) return CLI_USAGE;
             jobs = (int)v;
         } else if (!strcmp(a, "--vcd")) {
             if (!has) return cli_usage_error("--vcd needs a file name");

@@ -92,30 +92,34 @@ static int opt(const char *name, int argc, char **argv, int *i, const char **val
     return 1;
 }
 
-static int parse_long(const char *s, long lo, long hi, long *v)
+/* The n characters at s as a whole number lo..hi: digits only (no sign,
+ * space or junk, nothing cut off). */
+static int parse_long_n(const char *s, size_t n, long lo, long hi, long *v)
 {
-    char *end;
-    errno = 0;
-    long x = strtol(s, &end, 10);
-    if (!*s || *end || errno || x < lo || x > hi || !strchr("0123456789", *s)) return -1;
+    long x = 0;
+    if (!n) return -1;
+    for (size_t k = 0; k < n; k++) {
+        if (s[k] < '0' || s[k] > '9') return -1;
+        if (x > 100000000000L) return -1;      /* far past any hi used here */
+        x = x * 10 + (s[k] - '0');
+    }
+    if (x < lo || x > hi) return -1;
     *v = x;
     return 0;
 }
 
+static int parse_long(const char *s, long lo, long hi, long *v) { return parse_long_n(s, strlen(s), lo, hi, v); }
+
 static int parse_widths(const char *v, int *lo, int *hi)
 {
-    char a[32], b[32];
     const char *colon = strchr(v, ':');
-    if (colon) {
-        snprintf(a, sizeof a, "%.*s", (int)(colon - v), v);
-        snprintf(b, sizeof b, "%s", colon + 1);
-    } else {
-        snprintf(a, sizeof a, "%s", v);
-        snprintf(b, sizeof b, "%s", v);
-    }
+    size_t na = colon ? (size_t)(colon - v) : strlen(v);
+    const char *b = colon ? colon + 1 : v;
     long x, y;
-    if (parse_long(a, 0, 1000000, &x) || parse_long(b, 0, 1000000, &y))
-        return cli_usage_error("--widths %s: expected LO:HI with whole numbers, e.g. 8:24", v);
+    if (parse_long_n(v, na, 0, 1000000, &x) || parse_long(b, 0, 1000000, &y)) {
+        char e[200];
+        return cli_usage_error("--widths %s: expected LO:HI with whole numbers, e.g. 8:24", cli_esc(v, e, sizeof e));
+    }
     if (x < 1 || y > 64 || y < 1 || x > 64)
         return cli_usage_error("--widths %s: widths must be within 1..64", v);
     if (x > y) return cli_usage_error("--widths %s: LO is greater than HI", v);
@@ -146,6 +150,7 @@ static int parse_real(const char *s, double *v)
 {
     char *end;
     errno = 0;
+    if (!cli_is_real(s)) return -1;
     *v = strtod(s, &end);
     return !*s || *end || errno || !isfinite(*v) || *v < 0 ? -1 : 0;
 }
@@ -735,11 +740,10 @@ static int parse_sweep(int argc, char **argv, sweep_args *a)
         } else if (opt("--shard", argc, argv, &i, &v)) {
             long k, m;
             const char *sl = v ? strchr(v, '/') : NULL;
-            char kb[32];
-            if (!sl) return cli_usage_error("--shard %s: expected K/N, e.g. 1/4", v ? v : "");
-            snprintf(kb, sizeof kb, "%.*s", (int)(sl - v < 31 ? sl - v : 31), v);
-            if (parse_long(kb, 0, 1000000, &k) || parse_long(sl + 1, 0, 1000000, &m))
-                return cli_usage_error("--shard %s: expected K/N with whole numbers, e.g. 1/4", v);
+            char e[200];
+            if (!sl) return cli_usage_error("--shard %s: expected K/N, e.g. 1/4", cli_esc(v ? v : "", e, sizeof e));
+            if (parse_long_n(v, (size_t)(sl - v), 0, 1000000, &k) || parse_long(sl + 1, 0, 1000000, &m))
+                return cli_usage_error("--shard %s: expected K/N with whole numbers, e.g. 1/4", cli_esc(v, e, sizeof e));
             if (m < 1 || k < 1 || k > m) return cli_usage_error("--shard %s: K must be 1..N (shards are numbered from 1)", v);
             a->shard_k = (int)k;
             a->shard_n = (int)m;
@@ -750,10 +754,10 @@ static int parse_sweep(int argc, char **argv, sweep_args *a)
             if (!v || parse_long(v, 1, 10000000, &x)) return cli_usage_error("-n %s: expected 1..10000000 vectors", v ? v : "");
             a->nvec = x;
         } else if (opt("--seed", argc, argv, &i, &v)) {
-            char *end;
-            if (!v || !*v || *v == '-') return cli_usage_error("--seed needs a whole number");
-            a->seed = strtoull(v, &end, 10);
-            if (*end) return cli_usage_error("--seed %s: expected a whole number", v);
+            if (!v) return cli_usage_error("--seed needs a whole number");
+            uint64_t sd;
+            if (cli_parse_u64("--seed", v, NULL, &sd)) return CLI_USAGE;
+            a->seed = sd;
         } else if (opt("--margin", argc, argv, &i, &v)) {
             if (!v || parse_real(v, &a->t.margin) || a->t.margin > 32 || a->t.margin != floor(a->t.margin))
                 return cli_usage_error("--margin %s: expected whole bits 0..32", v ? v : "");

@@ -7,6 +7,7 @@
 #include "sim/sim_out.h"
 #include "sim/sim_area.h"
 #include <stdlib.h>
+#include <errno.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -149,8 +150,9 @@ static int own_cosim(void *stp, int argc, char **argv, int *i)
     } else if (!strcmp(a, "--keep")) st->keep = v;
     else {
         char *end;
+        errno = 0;
         unsigned long long x = strtoull(v, &end, 10);
-        if (!*v || *end || *v == '-' || (a[1] == 'n' && (x < 1 || x > 1000000))) {
+        if (!*v || *end || strspn(v, "0123456789") != strlen(v) || errno || (a[1] == 'n' && (x < 1 || x > 1000000))) {
             cli_usage_error("%s %s: expected a whole number%s", a, v, a[1] == 'n' ? " 1..1000000" : "");
             return -1;
         }

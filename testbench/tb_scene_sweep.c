@@ -98,6 +98,7 @@ static int policy_find(const char *s)
 static int parse_int(const char *s, int lo, int hi, int *v)
 {
     char *end;
+    if (*s == '-' || *s == '+' || (*s && strspn(s, "0123456789") != strlen(s))) return -1;
     errno = 0;
     long x = strtol(s, &end, 10);
     if (!*s || *end || errno || x < lo || x > hi) return -1;

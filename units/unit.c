@@ -112,6 +112,26 @@ static int choice_index(const char *list, const char *w)
     return -1;
 }
 
+/* A plain decimal number: [-]digits[.digits][e[+-]digits], nothing else
+ * (strtod alone would take spaces, '+', hex, inf and nan). */
+static int plain_real(const char *s)
+{
+    size_t a, b = 0;
+    if (*s == '-') s++;
+    a = strspn(s, "0123456789");
+    s += a;
+    if (*s == '.') { b = strspn(++s, "0123456789"); s += b; }
+    if (!a && !b) return 0;
+    if (*s == 'e' || *s == 'E') {
+        s++;
+        if (*s == '-' || *s == '+') s++;
+        size_t e = strspn(s, "0123456789");
+        if (!e) return 0;
+        s += e;
+    }
+    return !*s;
+}
+
 int unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
                    const char *value, char *err, size_t errlen)
 {
@@ -138,7 +158,7 @@ int unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
     char *end;
     errno = 0;
     double v = strtod(value, &end);
-    if (end == value || *end || errno || !isfinite(v)) {
+    if (!plain_real(value) || end == value || *end || errno || !isfinite(v)) {
         snprintf(err, errlen, "parameter %s: '%s' is not a number", name, value);
         return -1;
     }
