@@ -38,7 +38,9 @@ int cli_verilog(int argc, char **argv);
 int cli_cosim(int argc, char **argv);
 int cli_synth(int argc, char **argv);
 
-/* Print "shadesim: " + message + newline to stderr; returns CLI_USAGE. */
+/* Print "shadesim: " + message + newline to stderr; returns CLI_USAGE.
+ * Control bytes and bytes that are not UTF-8 go out as \xNN (messages
+ * echo user text), so it serves every one-line error message. */
 int cli_usage_error(const char *fmt, ...);
 /* Strict numbers for option values: the whole text must be the number
  * (decimal digits, a leading '-' only when lo < 0; reals also a fraction

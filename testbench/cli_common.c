@@ -8,14 +8,43 @@
 #include <string.h>
 #include <unistd.h>
 
+/* Length of the valid UTF-8 sequence at p (a printable character beyond
+ * ASCII), 0 when the bytes there are not one. */
+static size_t utf8_len(const unsigned char *p)
+{
+    size_t n = p[0] >= 0xf0 && p[0] <= 0xf4 ? 4 : p[0] >= 0xe0 ? 3 : p[0] >= 0xc2 && p[0] < 0xe0 ? 2 : 0;
+    if (p[0] >= 0xf5) return 0;
+    for (size_t k = 1; k < n; k++)
+        if ((p[k] & 0xc0) != 0x80) return 0;
+    if (n == 3 && ((p[0] == 0xe0 && p[1] < 0xa0) || (p[0] == 0xed && p[1] >= 0xa0))) return 0;  /* overlong, surrogate */
+    if (n == 4 && ((p[0] == 0xf0 && p[1] < 0x90) || (p[0] == 0xf4 && p[1] >= 0x90))) return 0;
+    return n;
+}
+
+/* The message goes out with every byte a terminal could take for a control
+ * (C0, DEL, bytes that are not UTF-8) as \xNN: messages echo option values,
+ * paths and file text as the user gave them. */
 int cli_usage_error(const char *fmt, ...)
 {
+    char small[1024], *msg = small;
     va_list ap;
-    fputs("shadesim: ", stderr);
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    int n = vsnprintf(small, sizeof small, fmt, ap);
     va_end(ap);
+    if (n >= (int)sizeof small && (msg = malloc((size_t)n + 1))) {
+        va_start(ap, fmt);
+        vsnprintf(msg, (size_t)n + 1, fmt, ap);
+        va_end(ap);
+    } else if (n >= (int)sizeof small) msg = small;
+    fputs("shadesim: ", stderr);
+    for (const unsigned char *p = (const unsigned char *)msg; *p;) {
+        size_t u = *p >= 0x80 ? utf8_len(p) : 0;
+        if (u) { fwrite(p, 1, u, stderr); p += u; }
+        else if (*p < 0x20 || *p >= 0x7f) fprintf(stderr, "\\x%02x", *p++);
+        else fputc(*p++, stderr);
+    }
     fputc('\n', stderr);
+    if (msg != small) free(msg);
     return CLI_USAGE;
 }
 

@@ -5,6 +5,7 @@
 #include "vectors/vec_file.h"
 #include "sim/sim_out.h"
 #include <limits.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -145,6 +146,8 @@ int cli_list(int argc, char **argv)
             width = (int)w;
         } else if (!strcmp(argv[i], "--schedule") && i + 1 < argc) {
             sched = argv[++i];
+        } else if (!strcmp(argv[i], "--width") || !strcmp(argv[i], "--schedule")) {
+            return cli_usage_error("%s needs a value", argv[i]);
         } else if (!strcmp(argv[i], "--markdown")) md = 1;
         else if (argv[i][0] == '-') return cli_usage_error("list: unknown option '%s'", argv[i]);
         else if (!only) only = argv[i];
@@ -206,6 +209,10 @@ int cli_vectors(int argc, char **argv)
             if (cli_parse_u64("--seed", argv[++i], NULL, &seed)) return CLI_USAGE;
         } else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
             out = argv[++i];
+        } else if (!strcmp(argv[i], "-o")) {
+            return cli_usage_error("-o needs a FILE");
+        } else if (!strcmp(argv[i], "-n") || !strcmp(argv[i], "--seed")) {
+            return cli_usage_error("%s needs a value", argv[i]);
         } else if (!unit && argv[i][0] != '-') {
             unit = argv[i];
             if (cli_unit_select(&o, unit)) return CLI_USAGE;
@@ -299,7 +306,7 @@ static int run_all(const tb_accept *acc)
         tb_formats(o.u, &o.cfg, NULL, 0, &fm, err, sizeof err);
         int t = tb_run(o.u, &o.cfg, &fm, &vs, NULL, &r, err, sizeof err);
         if (t != TB_OK) {
-            fprintf(stderr, "shadesim: %s: %s\n", o.u->name, err);
+            (void)cli_usage_error("%s: %s", o.u->name, err);
             rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
         } else {
             tb_verdict(&r, acc);
@@ -313,7 +320,8 @@ static int run_all(const tb_accept *acc)
             if (target) snprintf(last, sizeof last, "%s", r.target_met ? "met" : "MISSED");
             else snprintf(last, sizeof last, "%.3g", me);
             printf("%-11s %-9s %6d %12.4g %12.4g %12.4g %10.1f %-9s %-8s %s\n", o.u->name, o.u->sched[o.cfg.schedule].name,
-                   o.cfg.width, r.cycles_per_item, r.max_abs_err, r.nmse, r.area_ge, bc, r.golden_ok ? "ok" : "EXCEEDED", last);
+                   o.cfg.width, r.cycles_per_item, isnan(r.max_abs_err) ? NAN : r.max_abs_err,
+                   isnan(r.nmse) ? NAN : r.nmse, r.area_ge, bc, r.golden_ok ? "ok" : "EXCEEDED", last);
             if (!r.ok) {
                 if (r.target_set && !r.target_met && r.within_bound && r.golden_ok) missed++;
                 else bad++;

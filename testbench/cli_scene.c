@@ -281,7 +281,7 @@ int cli_scene(int argc, char **argv)
                       : tb_scene_search(&d, &m, jobs, target, dir, json, stdout, err, sizeof err);
         progress("");
         if (t == TB_BADINPUT) rc = cli_usage_error("%s", err);
-        else if (t == TB_FAIL) { if (err[0]) fprintf(stderr, "shadesim: %s\n", err); rc = CLI_FAIL; }
+        else if (t == TB_FAIL) { if (err[0]) (void)cli_usage_error("%s", err); rc = CLI_FAIL; }
     } else {
         tb_scene_opts o = { jobs, heldout, vcd, NULL };
         tb_scene_result r;
@@ -289,7 +289,7 @@ int cli_scene(int argc, char **argv)
         int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
         progress("");
         if (t != TB_OK) {
-            fprintf(stderr, "shadesim: %s\n", err);
+            (void)cli_usage_error("%s", err);
             rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
         } else {
             if (tb_scene_write(&d, &r, dir, err, sizeof err)) rc = cli_usage_error("%s", err);

@@ -92,6 +92,10 @@ static int opt(const char *name, int argc, char **argv, int *i, const char **val
     return 1;
 }
 
+/* printf spells a NaN "-nan" when its sign bit is set (0/0, inf/inf on
+ * x86): the tables print every NaN as "nan", like the CSV. */
+static double pnan(double v) { return isnan(v) ? NAN : v; }
+
 /* The n characters at s as a whole number lo..hi: digits only (no sign,
  * space or junk, nothing cut off). */
 static int parse_long_n(const char *s, size_t n, long lo, long hi, long *v)
@@ -390,7 +394,7 @@ static void print_table(FILE *f, const tb_sweep *s, const unsigned char *on)
             continue;
         }
         fprintf(f, "%5d  %-22s %11.4g %11.4g %11.4g %9.3g %10.1f %8.3g %5llu %-6s %s\n", s->cfg[i].cfg.width, gl,
-                r->max_abs_err, r->rms_err, r->nmse, r->max_err_lsb, r->area_ge, r->cycles_per_item,
+                pnan(r->max_abs_err), pnan(r->rms_err), pnan(r->nmse), pnan(r->max_err_lsb), r->area_ge, r->cycles_per_item,
                 (unsigned long long)r->overflows, r->within_bound ? "ok" : "EXCEED", on && on[i] ? "*" : "");
     }
 }

@@ -16,6 +16,15 @@ static void jnum(FILE *f, double v)
     else fputs("null", f);
 }
 
+/* A figure for the table and CSV: printf's %g spells a NaN "nan" or "-nan"
+ * by its sign bit; one spelling, "nan", everywhere (JSON: null). */
+static const char *tnum(char *b, size_t n, const char *fmt, double v)
+{
+    if (isnan(v)) snprintf(b, n, "nan");
+    else snprintf(b, n, fmt, v);
+    return b;
+}
+
 static void jmetrics(FILE *f, const tb_metrics *m, const char *ind)
 {
     char fb[SIM_FMT_STRLEN];
@@ -124,7 +133,9 @@ void tb_csv_row(FILE *f, const tb_result *r, size_t idx, uint64_t cycle, const i
         for (int o = 0; o < no; o++) {
             int k = b * no + o;
             double hw = sim_fx_to_real(raw[k], r->out[o].fmt);
-            fprintf(f, ",%lld,%.17g,%.17g,%.17g", (long long)raw[k], hw, expected[k], hw - expected[k]);
+            char x[3][32];
+            fprintf(f, ",%lld,%s,%s,%s", (long long)raw[k], tnum(x[0], 32, "%.17g", hw),
+                    tnum(x[1], 32, "%.17g", expected[k]), tnum(x[2], 32, "%.17g", hw - expected[k]));
         }
     fputc('\n', f);
 }
@@ -162,18 +173,22 @@ void tb_print_table(FILE *f, const tb_result *r)
     fputs("formats:", f);
     for (int i = 0; i < u->nsigs; i++)
         if (unit_sig_built(u, i, &r->cfg)) fprintf(f, " %s=%s", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
-    fprintf(f, "\nvectors %zu, cycles %llu, cycles/item %.3g, cycles/beat %.3g, latency %llu, area %.1f GE, overflows %llu\n",
-            r->vectors, (unsigned long long)r->cycles, r->cycles_per_item, r->cycles_per_beat,
-            (unsigned long long)r->latency, r->area_ge, (unsigned long long)r->overflows);
+    char x[7][32];
+    fprintf(f, "\nvectors %zu, cycles %llu, cycles/item %s, cycles/beat %s, latency %llu, area %s GE, overflows %llu\n",
+            r->vectors, (unsigned long long)r->cycles, tnum(x[0], 32, "%.3g", r->cycles_per_item),
+            tnum(x[1], 32, "%.3g", r->cycles_per_beat), (unsigned long long)r->latency,
+            tnum(x[2], 32, "%.1f", r->area_ge), (unsigned long long)r->overflows);
     fprintf(f, "%-8s %-8s %12s %12s %12s %12s %10s %12s %12s %-9s %s\n", "output", "format", "max|e|", "mean e",
             "rms e", "nmse", "max LSB", "bound", "max|e-ideal|", "bound", "golden");
     for (int o = 0; o < r->n_out; o++) {
         const tb_metrics *m = &r->out[o];
         char b[16];
         if (m->check == TB_CHECK_NO_BOUND) snprintf(b, sizeof b, "no bound");
-        else snprintf(b, sizeof b, "%.4g", m->bound);
-        fprintf(f, "%-8s %-8s %12.4g %12.4g %12.4g %12.4g %10.3g %12s %12.4g %-9s %s\n", m->name, sim_fmt_str(m->fmt, fb),
-                m->max_abs_err, m->mean_err, m->rms_err, m->nmse, m->max_err_lsb, b, m->max_err_ideal,
+        else tnum(b, sizeof b, "%.4g", m->bound);
+        fprintf(f, "%-8s %-8s %12s %12s %12s %12s %10s %12s %12s %-9s %s\n", m->name, sim_fmt_str(m->fmt, fb),
+                tnum(x[0], 32, "%.4g", m->max_abs_err), tnum(x[1], 32, "%.4g", m->mean_err),
+                tnum(x[2], 32, "%.4g", m->rms_err), tnum(x[3], 32, "%.4g", m->nmse),
+                tnum(x[4], 32, "%.3g", m->max_err_lsb), b, tnum(x[5], 32, "%.4g", m->max_err_ideal),
                 tb_check_name(m->check), m->check == TB_CHECK_NO_BOUND ? "-" : m->golden_ok ? "ok" : "exceeded");
     }
     tb_print_ranges(f, r, 0);

@@ -55,3 +55,31 @@ taken seed_2_64_minus_1 vectors horner3 -n 1 --seed 18446744073709551615
 taken param_whole vectors div3 -n 1 --param terms=3
 taken param_real_form vectors div3 -n 1 --param terms=3e0
 taken list_width list horner3 --width 64
+
+# Messages. message NAME EXPECTED ARGS...: exit 2 and stderr is exactly
+# the line EXPECTED.
+message() {
+    name=$1 want=$2; shift 2
+    "$S" "$@" >"$T/out" 2>"$T/err"; rc=$?
+    if [ $rc -ne 2 ]; then fail "$name" "exit $rc, expected 2"
+    elif [ "$(cat "$T/err")" != "$want" ]; then fail "$name" "stderr: $(cat "$T/err")"
+    else ok "$name"; fi
+}
+message list_schedule_without_value "shadesim: --schedule needs a value" list horner3 --schedule
+message vectors_o_without_value "shadesim: -o needs a FILE" vectors horner3 -o
+message vectors_o_empty "shadesim: empty output path" vectors horner3 -o ""
+# A raw byte 0xff and an escape character in user text are echoed as \xNN.
+bad=$(printf 'hor\377ner\033[31m')
+message raw_bytes_escaped "shadesim: unknown unit 'hor\\xffner\\x1b[31m' (shadesim list shows the units)" run "$bad"
+message raw_bytes_in_value "shadesim: --width 1\\xff: expected a whole number 1..64" run horner3 --width "$(printf '1\377')"
+
+# One spelling of not-a-number. Expected outputs of 1e200 make every error
+# about 1e200: the squared errors and references overflow to inf, and the
+# NMSE, inf/inf, is NaN (IEEE 754). Text and CSV say nan, JSON null.
+printf '# shadesim vectors 1\n# unit: horner3\n# inputs: a b c d t\n# outputs: y\n0 0 0 0 0 | 1e200\n0 0 0 0 0.5 | 1e200\n' >"$T/nan.vec"
+"$S" run horner3 --vectors "$T/nan.vec" >"$T/t.txt" 2>/dev/null
+"$S" run horner3 --vectors "$T/nan.vec" --json >"$T/t.json" 2>/dev/null
+"$S" sweep horner3 --widths 16:16 --vectors "$T/nan.vec" -o "$T/sw" >/dev/null 2>&1
+check nan_table_spelling sh -c 'grep -q "^y .* nan " "$1" && ! grep -q -- "-nan" "$1"' sh "$T/t.txt"
+check nan_json_null grep -q '^  "nmse": null,' "$T/t.json"
+check nan_sweep_summary sh -c 'grep -q " nan " "$1/summary.txt" && ! grep -q -- "-nan" "$1/summary.txt" "$1/sweep.csv"' sh "$T/sw"
