@@ -136,7 +136,7 @@ int cli_parse_real(const char *opt, const char *text, double lo, double hi, cons
 }
 
 const char cli_unit_opts_help[] =
-    "  --width W            default-format rule width (see `shadesim list UNIT`); default 16\n"
+    "  --width W            default-format rule width (the unit's range: `shadesim list UNIT`); default 16\n"
     "  --fmt NAME=sI.F      override one signal's format; --fmt all=sI.F sets every signal;\n"
     "                       later --fmt arguments override earlier ones (repeatable)\n"
     "  --round MODE         trunc (default), half-up, even\n"

@@ -2,6 +2,7 @@
 #include "testbench/cli.h"
 #include "testbench/tb_stream.h"
 #include "testbench/tb_wave.h"
+#include "testbench/tb_widths.h"
 #include "vectors/vec_file.h"
 #include "sim/sim_out.h"
 #include <limits.h>
@@ -69,7 +70,11 @@ static void list_unit(FILE *f, const unit_desc *u, int width, int sched)
         else fprintf(f, " (%g..%g)", u->params[i].min, u->params[i].max);
     }
     fprintf(f, "\n  default formats for --width %d: %s\n", width, u->fmt_rule);
-    fprintf(f, "  smallest --width: %d (default parameters)\n", unit_min_width(u, &cfg, NULL));
+    char why[400];
+    int wmax = tb_width_max(u, &cfg, why, sizeof why);
+    fprintf(f, "  --width range: %d..%d (default parameters)", unit_min_width(u, &cfg, NULL), wmax);
+    if (wmax < 64) fprintf(f, "; wider, the default formats do not build: %s", why);
+    fputc('\n', f);
     if (has_masks(u))
         fprintf(f, "  signals of schedule %s (list %s --schedule NAME shows another's):\n", u->sched[sched].name, u->name);
     else
@@ -105,9 +110,13 @@ static void list_unit_md(FILE *f, const unit_desc *u, int width, int sched)
         }
     }
     int col = sched < 0 && has_masks(u);
+    char why[400];
+    int wmax = tb_width_max(u, &cfg, why, sizeof why);
     fprintf(f, "\nDefault formats from `--width W`: %s. Smallest W with the default parameters: %d "
-               "(narrower, the rule could only widen some signal: docs/formats.md).\n\n", u->fmt_rule,
+               "(narrower, the rule could only widen some signal: docs/formats.md).", u->fmt_rule,
             unit_min_width(u, &cfg, NULL));
+    if (wmax < 64) fprintf(f, " Largest W: %d (wider, the default formats do not build: %s).", wmax, why);
+    fputs("\n\n", f);
     if (sched >= 0 && has_masks(u)) fprintf(f, "Signals of schedule `%s`.\n\n", u->sched[sched].name);
     fprintf(f, "| signal | role | format at W = %d | what |%s\n| --- | --- | --- | --- |%s\n",
             width, col ? " schedules |" : "", col ? " --- |" : "");
@@ -459,6 +468,14 @@ int cli_run(int argc, char **argv)
     unit_fmts fm;
     char err[600];
     if (tb_formats(o.u, &o.cfg, o.fmt, o.nfmt, &fm, err, sizeof err)) return cli_usage_error("%s", err);
+    if (!o.nfmt) {
+        /* Past the top of the unit's range the build would refuse with a
+         * hint about one signal; say the range instead (shadesim list). */
+        int wmax = tb_width_max(o.u, &o.cfg, err, sizeof err);
+        if (o.cfg.width > wmax)
+            return cli_usage_error("--width %d: unit %s builds with its default formats at widths %d..%d only (%s)",
+                                   o.cfg.width, o.u->name, unit_min_width(o.u, &o.cfg, NULL), wmax, err);
+    }
     /* Without a dump, a vector file is read a block at a time: memory
      * does not grow with the number of vectors. */
     char vpath[4200];

@@ -390,7 +390,8 @@ static void print_table(FILE *f, const tb_sweep *s, const unsigned char *on)
         tb_sweep_group_label(s, s->cfg[i].group, gl, sizeof gl);
         if (!*gl) snprintf(gl, sizeof gl, "-");
         if (!row_ok(s, i)) {
-            fprintf(f, "%5d  %-22s failed: %s\n", s->cfg[i].cfg.width, gl, s->row[i].err);
+            fprintf(f, "%5d  %-22s %s: %s\n", s->cfg[i].cfg.width, gl,
+                    s->row[i].status == TB_BADINPUT ? "not buildable" : "failed", s->row[i].err);
             continue;
         }
         fprintf(f, "%5d  %-22s %11.4g %11.4g %11.4g %9.3g %10.1f %8.3g %5llu %-6s %s\n", s->cfg[i].cfg.width, gl,
@@ -994,9 +995,18 @@ int cli_sweep(int argc, char **argv)
     size_t failed = tb_sweep_run(&s, a.threads, a.shard_k, a.shard_n, tty ? on_progress : NULL, &pr);
     progress_clear(&pr);
     double secs = now_s() - pr.t0;
-    for (size_t i = 0; i < s.n; i++)
-        if (s.row[i].status != TB_OK && s.row[i].status != TB_SWEEP_NOT_RUN)
-            fprintf(stderr, "shadesim: %s width %d (configuration %zu): %s\n", a.o.u->name, s.cfg[i].cfg.width, i, s.row[i].err);
+    /* A configuration the unit cannot be built at (past the top of its
+     * width range, say: shadesim list) is "not buildable", a row of the
+     * results like any other, not a failed simulation. */
+    size_t unbuilt = 0;
+    for (size_t i = 0; i < s.n; i++) {
+        if (s.row[i].status == TB_OK || s.row[i].status == TB_SWEEP_NOT_RUN) continue;
+        int nb = s.row[i].status == TB_BADINPUT;
+        unbuilt += (size_t)nb;
+        (void)cli_usage_error("%s width %d (configuration %zu)%s: %s", a.o.u->name, s.cfg[i].cfg.width, i,
+                              nb ? " not buildable" : "", s.row[i].err);
+    }
+    failed -= unbuilt;
     if (a.shard_n) {
         char path[4200];
         snprintf(path, sizeof path, "%s/sweep-%d-of-%d.csv", a.dir, a.shard_k, a.shard_n);

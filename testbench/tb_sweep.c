@@ -339,7 +339,7 @@ static void csv_row(FILE *f, const tb_sweep *s, size_t i)
     char fb[SIM_FMT_STRLEN];
     fprintf(f, "%zu,%zu,%016llx,", i, s->n, (unsigned long long)s->id);
     ident(f, s, i);
-    fputs(ok ? ",ok" : ",failed", f);
+    fputs(ok ? ",ok" : row->status == TB_BADINPUT ? ",not_buildable" : ",failed", f);
     if (ok) {
         fprintf(f, ",%zu,%d,%llu", r->vectors, r->beats, (unsigned long long)r->cycles);
         cnum(f, r->cycles_per_item);

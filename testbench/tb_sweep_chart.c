@@ -182,8 +182,8 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
         r->config = (size_t)cfg;
         r->width = (int)w;
         const char *st = f[col[C_STATUS]];
-        if (strcmp(st, "ok") && strcmp(st, "failed")) {
-            sc_err(err, errlen, "%s:%d: status '%s' is neither ok nor failed", what, lineno, st);
+        if (strcmp(st, "ok") && strcmp(st, "failed") && strcmp(st, "not_buildable")) {
+            sc_err(err, errlen, "%s:%d: status '%s' is not ok, failed or not_buildable", what, lineno, st);
             goto bad;
         }
         r->ok = !strcmp(st, "ok");
