@@ -22,7 +22,7 @@ LIBOBJ  := $(patsubst %.c,$(B)/%.o,$(LIBSRC))
 TESTBIN := $(patsubst tests/%.c,$(B)/tests/%,$(TESTSRC))
 BENCHBIN:= $(patsubst bench/%.c,$(B)/bench/%,$(BENCHSRC))
 
-.PHONY: all test bench run clean vectors docs install uninstall
+.PHONY: all test bench run clean vectors docs install uninstall fuzz
 all: bin/shadesim
 
 # Quiet builds: one short line per step; V=1 shows the full commands.
@@ -127,6 +127,11 @@ test-clang:
 	@$(SUBMAKE) $(TESTJ) testbins B=build-clang-asan CC=$(CLANG) $(ASAN_FLAGS)
 	@echo "testing..."
 	@sh tests/run.sh build-clang build-clang-asan
+
+# libFuzzer targets (vector, format, scene and OBJ readers) built by clang
+# into build-fuzz/ and run FUZZ_RUNS inputs each; skipped without libFuzzer.
+fuzz:
+	@sh tests/fuzz/run.sh
 
 bench: $(BENCHBIN) bin/shadesim
 	@for b in $(BENCHBIN); do $$b || exit 1; done
