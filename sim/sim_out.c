@@ -405,3 +405,41 @@ int sim_out_stdout_check(char *err, size_t errlen)
     if (err && errlen) snprintf(err, errlen, "standard output: write failed: %s", strerror(e));
     return -1;
 }
+
+int sim_out_mkdirs(const char *dir, char *err, size_t errlen)
+{
+    char p[4096];
+    if (!dir[0]) { snprintf(err, errlen, "empty folder name"); return -1; }
+    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) {
+        snprintf(err, errlen, "%s: path too long", dir);
+        return -1;
+    }
+    for (char *s = p + 1;; s++) {
+        char ch = *s;
+        if (ch == '/' || ch == 0) {
+            *s = 0;
+            struct stat st;
+            if (mkdir(p, 0777) && errno != EEXIST) {
+                snprintf(err, errlen, "%s: cannot create folder %s: %s", dir, p, strerror(errno));
+                return -1;
+            }
+            if (stat(p, &st) || !S_ISDIR(st.st_mode)) {
+                snprintf(err, errlen, "%s: %s is not a folder", dir, p);
+                return -1;
+            }
+            *s = ch;
+        }
+        if (!ch) break;
+    }
+    /* A long run should not find out at its end that it cannot write. */
+    char probe[4200];
+    snprintf(probe, sizeof probe, "%s/.shadesim-probe-%ld", dir, (long)getpid());
+    int fd = open(probe, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0) {
+        snprintf(err, errlen, "%s: cannot write in the output folder: %s", dir, strerror(errno));
+        return -1;
+    }
+    close(fd);
+    unlink(probe);
+    return 0;
+}

@@ -31,6 +31,10 @@ int      sim_out_close(sim_out *o, char *err, size_t errlen);
 void     sim_out_abort(sim_out *o);
 /* The whole of buf to path, as open + write + close. 0 or -1. */
 int      sim_out_write_all(const char *path, const void *buf, size_t len, char *err, size_t errlen);
+/* Make folder dir and its parents (mkdir -p; mode 0777 less the umask).
+ * and check that a file can be created in it. 0, or -1 with "DIR: cannot
+ * create folder P: why", "... is not a folder" or "cannot write in ...". */
+int      sim_out_mkdirs(const char *dir, char *err, size_t errlen);
 /* Flush standard output and report a write error on it (EPIPE, ENOSPC):
  * 0, or -1 with a message. Every verb that prints results calls it last. */
 int      sim_out_stdout_check(char *err, size_t errlen);

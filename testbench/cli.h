@@ -55,6 +55,9 @@ int cli_is_real(const char *text);
 /* User text made printable for a message: bytes outside 0x20..0x7e as
  * \xNN (cut to fit buf). Returns buf. */
 const char *cli_esc(const char *text, char *buf, size_t len);
+/* mkdir -p for an output folder (-o DIR): CLI_OK, or CLI_USAGE after one
+ * line on stderr. */
+int cli_make_dir(const char *dir);
 /* True if stderr is a terminal (progress displays only then). */
 int cli_stderr_tty(void);
 

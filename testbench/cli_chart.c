@@ -55,24 +55,6 @@ static char *slurp(const char *path, size_t *len)
     return b;
 }
 
-static int make_dir(const char *dir)
-{
-    char p[4096];
-    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) return cli_usage_error("%s: path too long", dir);
-    for (char *s = p + 1;; s++) {
-        if (*s == '/' || !*s) {
-            char c = *s;
-            *s = 0;
-            if (mkdir(p, 0777) && errno != EEXIST) return cli_usage_error("%s: cannot create folder %s: %s", dir, p, strerror(errno));
-            *s = c;
-            if (!c) break;
-        }
-    }
-    struct stat st;
-    if (stat(dir, &st) || !S_ISDIR(st.st_mode)) return cli_usage_error("%s: not a folder", dir);
-    return CLI_OK;
-}
-
 /* Is prog on PATH? */
 static int on_path(const char *prog)
 {
@@ -147,7 +129,7 @@ int cli_chart(int argc, char **argv)
     tb_sc *sc = tb_sc_read(text, len, csv, err, sizeof err);
     free(text);
     if (!sc) return cli_usage_error("%s", err);
-    if (make_dir(dir)) { tb_sc_free(sc); return CLI_USAGE; }
+    if (cli_make_dir(dir)) { tb_sc_free(sc); return CLI_USAGE; }
     int rc = CLI_OK;
     for (int k = 0; k < TB_SC_NCHARTS && rc == CLI_OK; k++) {
         if (!tb_sc_chart_drawn(sc, k)) continue;

@@ -70,22 +70,6 @@ static void jnum(FILE *f, double v)
 }
 
 /* Text into a claim_result field (fixed size): formatted in full, then cut. */
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static void settext(char *dst, size_t size, const char *fmt, ...)
-{
-    char tmp[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(tmp, sizeof tmp, fmt, ap);
-    va_end(ap);
-    size_t n = strlen(tmp);
-    if (n >= size) n = size - 1;
-    memcpy(dst, tmp, n);
-    dst[n] = 0;
-}
-
 /* ------------------------------------------------- hardware cost figures */
 
 /* One unit run on vectors from its reference model at a width. */
@@ -218,7 +202,7 @@ static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
     r->claim = "computing D16 instead of D raises the speed 4.34 times (here: in clocks of our hardware)";
     r->claimed = 4.34;
     r->measured = hc->exact_d_clocks / hc->d16.clocks;
-    settext(r->measured_text, sizeof r->measured_text,
+    tb_settext(r->measured_text, sizeof r->measured_text,
              "%.3gx fewer clocks: d_approx %.0f, exact-D model %.0f (width %d); clocks x area %.3gx less; "
              "%s: %.0f clocks", r->measured, hc->d16.clocks, hc->exact_d_clocks, hc->width,
              hc->exact_d_clocks * hc->exact_d_area / (hc->d16.clocks * hc->d16.area), hc->pow_d.label,
@@ -228,7 +212,7 @@ static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
     r->verdict = hc->lad_d[0] >= r->claimed ? CLAIM_HOLDS_ONLY "shadesim's cost model (at every width 8..24; the "
                                                                "papers give no width to decide at)"
                : r->measured > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up in hardware" : CLAIM_FAILS;
-    settext(r->note, sizeof r->note,
+    tb_settext(r->note, sizeof r->note,
              "shadesim's own cost model (a lower bound for exact D): squarer 1 clock + divider W + shift-and-add "
              "exp W (a bit a clock) + squarer + divider = 3W+2; m = 0.2, g = 16. Ratio %.3gx at W=8, %.3gx at "
              "W=16, %.3gx at W=24",
@@ -239,7 +223,7 @@ static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
     r->claim = "for the Ward model the speed gain of the approximation is more than twice (here: in clocks)";
     r->claimed = 2.0;
     r->measured = hc->exact_w_clocks / hc->ward16.clocks;
-    settext(r->measured_text, sizeof r->measured_text,
+    tb_settext(r->measured_text, sizeof r->measured_text,
              "%.3gx fewer clocks: ward_approx %.0f, exact-exp model %.0f (width %d); clocks x area %.3gx "
              "less; %s: %.0f clocks", r->measured, hc->ward16.clocks, hc->exact_w_clocks, hc->width,
              hc->exact_w_clocks * hc->exact_w_area / (hc->ward16.clocks * hc->ward16.area), hc->pow_w.label,
@@ -247,7 +231,7 @@ static size_t speed_hw_rows(const hw_cost *hc, claim_result *out)
     r->verdict = hc->lad_w[0] > r->claimed ? CLAIM_HOLDS_ONLY "shadesim's cost model (at every width 8..24; the "
                                                               "papers give no width to decide at)"
                : r->measured > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up in hardware" : CLAIM_FAILS;
-    settext(r->note, sizeof r->note,
+    tb_settext(r->note, sizeof r->note,
              "shadesim's own cost model: exp(-tan^2/a^2) as squarer + divider + shift-and-add exp = 2W+1 "
              "clocks (a lower bound); only the exponential factor, as the papers approximate it; a = 0.2. "
              "Ratio %.3gx at W=8, %.3gx at W=16, %.3gx at W=24", hc->lad_w[0], hc->lad_w[1], hc->lad_w[2]);
@@ -437,26 +421,9 @@ static tb_chart *cost_chart(void)
     return c;
 }
 
-static int make_dir(const char *dir)
-{
-    char p[600];
-    snprintf(p, sizeof p, "%s", dir);
-    for (char *s = p + 1; ; s++) {
-        char ch = *s;
-        if (ch == '/' || ch == 0) {
-            *s = 0;
-            if (mkdir(p, 0777) && errno != EEXIST)
-                return cli_usage_error("-o %s: cannot create folder %s: %s", dir, p, strerror(errno));
-            *s = ch;
-        }
-        if (!ch) break;
-    }
-    return CLI_OK;
-}
-
 static int write_charts(const char *dir, char paths[][600], int *np)
 {
-    if (make_dir(dir)) return CLI_USAGE;
+    if (cli_make_dir(dir)) return CLI_USAGE;
     if (write_chart(error_chart("D16 (clamped) against Beckmann D", 0, 3), dir, "claims_d16.svg", paths, np) ||
         write_chart(error_chart("Ward's exponential as a 16th power", 4, 7), dir, "claims_ward.svg", paths, np) ||
         write_chart(error_chart("Schlick and modified Schlick against Blinn cos^n", 8, 11), dir,

@@ -1,5 +1,6 @@
 /* cli_common.c - options shared by the verbs, and where vectors come from. */
 #include "testbench/cli.h"
+#include "sim/sim_out.h"
 #include "vectors/vec_file.h"
 #include <errno.h>
 #include <math.h>
@@ -46,6 +47,13 @@ int cli_usage_error(const char *fmt, ...)
     fputc('\n', stderr);
     if (msg != small) free(msg);
     return CLI_USAGE;
+}
+
+int cli_make_dir(const char *dir)
+{
+    char err[4400];
+    if (sim_out_mkdirs(dir, err, sizeof err)) return cli_usage_error("%s", err);
+    return CLI_OK;
 }
 
 int cli_stderr_tty(void) { return isatty(2); }

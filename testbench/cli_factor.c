@@ -71,23 +71,6 @@ static int parse_real(const char *opt, const char *s, double *v)
     return cli_parse_real(opt, s, 0, HUGE_VAL, "a finite number >= 0", v);
 }
 
-static int make_dir(const char *dir)
-{
-    char p[600];
-    snprintf(p, sizeof p, "%s", dir);
-    for (char *s = p + 1; ; s++) {
-        char ch = *s;
-        if (ch == '/' || ch == 0) {
-            *s = 0;
-            if (mkdir(p, 0777) && errno != EEXIST)
-                return cli_usage_error("-o %s: cannot create folder %s: %s", dir, p, strerror(errno));
-            *s = ch;
-        }
-        if (!ch) break;
-    }
-    return CLI_OK;
-}
-
 /* A map as grey PNG: log of the texel scaled from [lo, hi] to 0..255,
  * each texel a square of k pixels (k: the image at least 256 wide). */
 static int write_map_png(const char *path, const double *logtex, int R, double *lo_out, double *hi_out,
@@ -288,7 +271,7 @@ int cli_factor(int argc, char **argv)
     if (scene && (b.ax < 0.1 || b.ax > 0.6)) return cli_usage_error("--scene: alpha %g: the unit takes 0.1..0.6", b.ax);
     char dbuf[300];
     if (!dir) { snprintf(dbuf, sizeof dbuf, "out/factor-%s", argv[1]); dir = dbuf; }
-    if (make_dir(dir)) return CLI_USAGE;
+    if (cli_make_dir(dir)) return CLI_USAGE;
 
     rf_fact f;
     if (rf_factorize(rf_brdf_fn, &b, &o, &f, err, sizeof err)) return cli_usage_error("%s", err);

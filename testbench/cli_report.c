@@ -53,24 +53,6 @@ static const char report_help[] =
 
 /* ------------------------------------------------------------ utilities */
 
-static int make_dir(const char *dir)
-{
-    char p[4096];
-    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) return cli_usage_error("%s: path too long", dir);
-    for (char *s = p + 1;; s++) {
-        if (*s == '/' || !*s) {
-            char c = *s;
-            *s = 0;
-            if (mkdir(p, 0777) && errno != EEXIST) return cli_usage_error("-o %s: cannot create folder %s: %s", dir, p, strerror(errno));
-            *s = c;
-            if (!c) break;
-        }
-    }
-    struct stat st;
-    if (stat(dir, &st) || !S_ISDIR(st.st_mode)) return cli_usage_error("-o %s: not a folder", dir);
-    return CLI_OK;
-}
-
 /* Text for HTML: & < > " escaped. */
 static void h(FILE *f, const char *s)
 {
@@ -626,7 +608,7 @@ int cli_report(int argc, char **argv)
             dir = argv[++i];
         } else return cli_usage_error("report: unexpected argument '%s' (see shadesim report --help)", argv[i]);
     }
-    if (make_dir(dir)) return CLI_USAGE;
+    if (cli_make_dir(dir)) return CLI_USAGE;
     char *html = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&html, &len);

@@ -44,26 +44,9 @@ static void jstr(FILE *f, const char *s)
     fputc('"', f);
 }
 
-static int make_dir(const char *dir)
-{
-    char p[600];
-    snprintf(p, sizeof p, "%s", dir);
-    for (char *s = p + 1; ; s++) {
-        char ch = *s;
-        if (ch == '/' || ch == 0) {
-            *s = 0;
-            if (mkdir(p, 0777) && errno != EEXIST)
-                return cli_usage_error("stability: -o %s: cannot create folder %s: %s", dir, p, strerror(errno));
-            *s = ch;
-        }
-        if (!ch) break;
-    }
-    return CLI_OK;
-}
-
 static int write_charts(const tb_stab *s, const char *dir, char paths[][600], int *np)
 {
-    if (make_dir(dir)) return CLI_USAGE;
+    if (cli_make_dir(dir)) return CLI_USAGE;
     for (int i = 0; i < s->ncharts; i++) {
         char err[800];
         snprintf(paths[*np], 600, "%s/%s", dir, s->chart_files[i]);

@@ -159,31 +159,6 @@ static int parse_real(const char *s, double *v)
     return !*s || *end || errno || !isfinite(*v) || *v < 0 ? -1 : 0;
 }
 
-/* mkdir -p, then make sure a file can be created in it. */
-static int make_dir(const char *dir)
-{
-    char p[4096];
-    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) return cli_usage_error("%s: path too long", dir);
-    for (char *s = p + 1;; s++) {
-        if (*s == '/' || !*s) {
-            char c = *s;
-            *s = 0;
-            if (mkdir(p, 0777) && errno != EEXIST) return cli_usage_error("%s: cannot create folder %s: %s", dir, p, strerror(errno));
-            *s = c;
-            if (!c) break;
-        }
-    }
-    struct stat st;
-    if (stat(dir, &st) || !S_ISDIR(st.st_mode)) return cli_usage_error("%s: not a folder", dir);
-    char probe[4200];
-    snprintf(probe, sizeof probe, "%s/.shadesim-probe-%ld", dir, (long)getpid());
-    FILE *f = fopen(probe, "w");
-    if (!f) return cli_usage_error("%s: cannot write in the output folder: %s", dir, strerror(errno));
-    fclose(f);
-    unlink(probe);
-    return 0;
-}
-
 /* ------------------------------------------------------------- progress */
 
 typedef struct progress { const char *unit; double t0, last; int shown; } progress;
@@ -987,7 +962,7 @@ int cli_sweep(int argc, char **argv)
     int rc = CLI_OK;
     if (!sets) { tb_sweep_free(&s); return cli_usage_error("sweep: out of memory"); }
     /* Everything that can be refused is refused before the long part. */
-    if (load_vectors(&a, &s, sets) || make_dir(a.dir)) { rc = CLI_USAGE; goto done; }
+    if (load_vectors(&a, &s, sets) || cli_make_dir(a.dir)) { rc = CLI_USAGE; goto done; }
     tb_sweep_fingerprint(&s);
 
     progress pr = { a.o.u->name, now_s(), 0, 0 };

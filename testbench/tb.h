@@ -131,6 +131,12 @@ void tb_verdict(tb_result *r, const tb_accept *a);
  * column or a message; "" if none. */
 void tb_overflow_list(const tb_result *r, char *buf, size_t len);
 
+/* snprintf into a fixed text field, cut to fit (claims and atlas rows). */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+void tb_settext(char *dst, size_t size, const char *fmt, ...);
+
 /* Output writers. Each writes atomically where it writes a file. */
 int  tb_write_json(FILE *f, const tb_result *r);
 int  tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *err, size_t errlen);

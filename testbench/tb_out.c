@@ -2,6 +2,7 @@
 #include "testbench/tb.h"
 #include "testbench/tb_stream.h"
 #include "sim/sim_out.h"
+#include <stdarg.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -205,4 +206,17 @@ void tb_print_table(FILE *f, const tb_result *r)
     else fprintf(f, "bound: UNCHECKED from vector %zu (the unit's ideal is a double, too coarse at this width)\n",
                  r->first_violation);
     fprintf(f, "verdict: %s\n", r->why);
+}
+
+void tb_settext(char *dst, size_t size, const char *fmt, ...)
+{
+    char tmp[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    size_t n = strlen(tmp);
+    if (n >= size) n = size - 1;
+    memcpy(dst, tmp, n);
+    dst[n] = 0;
 }

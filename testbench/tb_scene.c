@@ -636,24 +636,6 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     return ferror(f) ? -1 : 0;
 }
 
-/* mkdir -p */
-static int mkdirs(const char *dir, char *err, size_t errlen)
-{
-    char p[4096];
-    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) { snprintf(err, errlen, "%s: path too long", dir); return -1; }
-    for (char *c = p + 1; ; c++) {
-        if (*c != '/' && *c) continue;
-        char keep = *c;
-        *c = 0;
-        if (mkdir(p, 0755) && errno != EEXIST) { snprintf(err, errlen, "%s: cannot create: %s", p, strerror(errno)); return -1; }
-        *c = keep;
-        if (!keep) break;
-    }
-    struct stat st;
-    if (stat(dir, &st) || !S_ISDIR(st.st_mode)) { snprintf(err, errlen, "%s: not a directory", dir); return -1; }
-    return 0;
-}
-
 static int write_png(const char *dir, const char *name, int w, int h, int ch, const uint8_t *pix,
                      char *err, size_t errlen)
 {
@@ -669,7 +651,7 @@ static int write_png(const char *dir, const char *name, int w, int h, int ch, co
 
 int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir, char *err, size_t errlen)
 {
-    if (mkdirs(dir, err, errlen)) return -1;
+    if (sim_out_mkdirs(dir, err, errlen)) return -1;
     size_t np = (size_t)r->w * r->h;
     uint8_t *g8 = calloc(np ? np : 1, 1), *rgb = calloc(np ? np * 3 : 1, 1);
     if (!g8 || !rgb) { free(g8); free(rgb); snprintf(err, errlen, "out of memory"); return -1; }

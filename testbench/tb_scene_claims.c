@@ -34,22 +34,6 @@ static const char *const VERDICT[N_L * N_T] = {
     VT(8, 3), VT(8, 4), VT(8, 5), VT(8, 6), VT(8, 8), VT(8, 12),
     VT(4, 3), VT(4, 4), VT(4, 5), VT(4, 6), VT(4, 8), VT(4, 12) };
 
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static void settext(char *dst, size_t size, const char *fmt, ...)
-{
-    char tmp[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(tmp, sizeof tmp, fmt, ap);
-    va_end(ap);
-    size_t n = strlen(tmp);
-    if (n >= size) n = size - 1;
-    memcpy(dst, tmp, n);
-    dst[n] = 0;
-}
-
 typedef struct meas { int ok; double nmse, speedup, deg2, cost_ref, cost_hw; } meas;
 
 static int measure(const scn_desc *d0, const scn_gbuf *g, scn_policy pol, int L, int terms, int jobs, meas *out,
@@ -127,11 +111,11 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
                "(here: degree by face region, L 8, the paper's 3-term divide-by-3 network, through the simulated hardware)";
     r->claimed = CLAIM_NMSE;
     r->measured = pa.nmse;
-    settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g (adaptive-region, L 8, 3 terms, width 16); "
+    tb_settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g (adaptive-region, L 8, 3 terms, width 16); "
             "%.0f%% of intervals degree 2", pa.nmse, 100 * pa.deg2);
     /* The row is about the paper's own setting: other settings are row (b). */
     r->verdict = pa.nmse <= CLAIM_NMSE ? CLAIM_HOLDS : CLAIM_FAILS;
-    settext(r->note, sizeof r->note, "built-in face at %dx%d (lower than the default 512x512 to keep claims fast), "
+    tb_settext(r->note, sizeof r->note, "built-in face at %dx%d (lower than the default 512x512 to keep claims fast), "
             "every pixel through the cycle-accurate span unit, per-pixel shading in double (Phong normal "
             "interpolation) as reference; the 3-term network's 1/3 is 43/128", res, res);
 
@@ -141,12 +125,12 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
     r->claim = "the same with enough terms in the divide-by-3 network (and, if that is not enough, shorter intervals)";
     r->claimed = CLAIM_NMSE;
     r->measured = pk.nmse;
-    if (KL) settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g at L %d with %d terms (L 8 with 3 terms: %.3g)",
+    if (KL) tb_settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g at L %d with %d terms (L 8 with 3 terms: %.3g)",
                     pk.nmse, KL, KT, pa.nmse);
-    else settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g at L %d with %d terms, the last tried, still "
+    else tb_settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g at L %d with %d terms, the last tried, still "
                  "above; L 8 with 3 terms: %.3g", pk.nmse, L_TRY[N_L - 1], T_TRY[N_T - 1], pa.nmse);
     r->verdict = KL == 8 && KT == 3 ? CLAIM_HOLDS : KL ? VERDICT[ci] : CLAIM_FAILS;
-    settext(r->note, sizeof r->note, "adaptive-region, width 16, face %dx%d; tried in order L 8 then L 4, each with "
+    tb_settext(r->note, sizeof r->note, "adaptive-region, width 16, face %dx%d; tried in order L 8 then L 4, each with "
             "terms 3, 4, 5, 6, 8, 12; the first that meets 1e-4 is reported (more terms is not always better at "
             "width 16: the network's own rounding grows)", res, res);
 
@@ -159,14 +143,14 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
     int auto_ok3 = au3.nmse <= CLAIM_NMSE, auto_okk = KL && !(KL == 8 && KT == 3) && auk.nmse <= CLAIM_NMSE;
     r->measured = auto_ok3 || !KL || (KL == 8 && KT == 3) ? au3.nmse : auk.nmse;
     if (KL && !(KL == 8 && KT == 3))
-        settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g at L 8 with 3 terms (%.0f%% of intervals "
+        tb_settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g at L 8 with 3 terms (%.0f%% of intervals "
                 "degree 2), %.3g at L %d with %d terms (%.0f%%)", au3.nmse, 100 * au3.deg2, auk.nmse, KL, KT,
                 100 * auk.deg2);
     else
-        settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g at L 8 with 3 terms; %.0f%% of intervals "
+        tb_settext(r->measured_text, sizeof r->measured_text, "NMSE %.3g at L 8 with 3 terms; %.0f%% of intervals "
                 "degree 2", au3.nmse, 100 * au3.deg2);
     r->verdict = auto_ok3 ? CLAIM_HOLDS : auto_okk ? VERDICT[ci] : CLAIM_FAILS;
-    settext(r->note, sizeof r->note, "adaptive-auto, width 16, face %dx%d, the scene's threshold %g on "
+    tb_settext(r->note, sizeof r->note, "adaptive-auto, width 16, face %dx%d, the scene's threshold %g on "
             "|I(0) + I(1) - 2 I(1/2)|; at the settings of scene_nmse_terms", res, res, d.auto_threshold);
 
     r = &out[n++];
@@ -184,10 +168,10 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
     if (KL && !(KL == 8 && KT == 3))
         snprintf(at_k, sizeof at_k, "; %.3gx where NMSE meets 1e-4 (L %d, %d terms)", pk.speedup, KL, KT);
     if (bestL == 8)
-        settext(r->measured_text, sizeof r->measured_text, "%.3gx at L 8 (Phong %.3g, method %.3g per pixel)%s",
+        tb_settext(r->measured_text, sizeof r->measured_text, "%.3gx at L 8 (Phong %.3g, method %.3g per pixel)%s",
                 pa.speedup, pa.cost_ref, pa.cost_hw, at_k);
     else
-        settext(r->measured_text, sizeof r->measured_text, "%.3gx at L 8 (NMSE %.3g); %.3gx at L %d (NMSE %.3g)%s",
+        tb_settext(r->measured_text, sizeof r->measured_text, "%.3gx at L 8 (NMSE %.3g); %.3gx at L %d (NMSE %.3g)%s",
                 pa.speedup, pa.nmse, best, bestL, bestL == 16 ? sp16.nmse : sp32.nmse, at_k);
     const meas *bm = bestL == 8 ? &pa : bestL == 16 ? &sp16 : &sp32;
     r->verdict = pa.speedup >= 3 ? CLAIM_HOLDS
@@ -195,7 +179,7 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
                : best >= 3 ? CLAIM_HOLDS_ONLY "intervals longer than L 8, where NMSE exceeds 0.0001"
                : best > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up than 3x"
                           : CLAIM_FAILS;
-    settext(r->note, sizeof r->note, "face %dx%d, adaptive-region, 3 terms; a shaded node costs what a Phong "
+    tb_settext(r->note, sizeof r->note, "face %dx%d, adaptive-region, 3 terms; a shaded node costs what a Phong "
             "pixel costs, plus the coefficient network per interval and Horner per pixel; default weights "
             "add 1 mul 1 div 4 sqrt 4 pow 8 (docs/scenes.md)", res, res);
 done:

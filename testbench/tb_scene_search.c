@@ -42,34 +42,6 @@
 #define W_MIN 4
 #define W_MAX 48
 
-/* Make dir and its parents. 0, or -1 with a message. */
-static int mkdirs(const char *dir, char *err, size_t errlen)
-{
-    char p[1024];
-    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) {
-        snprintf(err, errlen, "%s: path too long", dir);
-        return -1;
-    }
-    for (char *s = p + 1;; s++) {
-        char ch = *s;
-        if (ch == '/' || ch == 0) {
-            *s = 0;
-            struct stat st;
-            if (mkdir(p, 0777) && errno != EEXIST) {
-                snprintf(err, errlen, "%s: cannot create folder %s: %s", dir, p, strerror(errno));
-                return -1;
-            }
-            if (stat(p, &st) || !S_ISDIR(st.st_mode)) {
-                snprintf(err, errlen, "%s: %s is not a folder", dir, p);
-                return -1;
-            }
-            *s = ch;
-        }
-        if (!ch) break;
-    }
-    return 0;
-}
-
 /* ------------------------------------------------------------ evaluation */
 
 typedef struct eval {
@@ -412,7 +384,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
     }
     if (jobs < 1) jobs = 1;
     if (jobs > 64) jobs = 64;
-    if (outdir && mkdirs(outdir, err, errlen)) return TB_BADINPUT;
+    if (outdir && sim_out_mkdirs(outdir, err, errlen)) return TB_BADINPUT;
 
     scn_gbuf gv, gh;
     memset(&gv, 0, sizeof gv);

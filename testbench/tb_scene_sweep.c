@@ -59,33 +59,6 @@ typedef struct pt {
     int front_ops, front_clk, jump_ops, jump_clk;
 } pt;
 
-static int mkdirs(const char *dir, char *err, size_t errlen)
-{
-    char p[1024];
-    if (snprintf(p, sizeof p, "%s", dir) >= (int)sizeof p) {
-        snprintf(err, errlen, "%s: path too long", dir);
-        return -1;
-    }
-    for (char *s = p + 1;; s++) {
-        char ch = *s;
-        if (ch == '/' || ch == 0) {
-            *s = 0;
-            struct stat st;
-            if (mkdir(p, 0777) && errno != EEXIST) {
-                snprintf(err, errlen, "%s: cannot create folder %s: %s", dir, p, strerror(errno));
-                return -1;
-            }
-            if (stat(p, &st) || !S_ISDIR(st.st_mode)) {
-                snprintf(err, errlen, "%s: %s is not a folder", dir, p);
-                return -1;
-            }
-            *s = ch;
-        }
-        if (!ch) break;
-    }
-    return 0;
-}
-
 /* ------------------------------------------------------------------ spec */
 
 static int policy_find(const char *s)
@@ -430,7 +403,7 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *s
             if (p[j].same_as < 0 && !strcmp(p[j].key, p[i].key)) { p[i].same_as = (int)j; break; }
         if (p[i].same_as < 0) sw.todo[sw.ntodo++] = i;
     }
-    if (outdir && mkdirs(outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (outdir && sim_out_mkdirs(outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
     if (scn_raster(m, &d->view.cam, d->width, d->height, &g, err, errlen)) { rc = TB_BADINPUT; goto done; }
     sw.g = &g;
     tb_par_for(sw.ntodo, jobs, run_pt, &sw);

@@ -18,22 +18,6 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-#if defined(__GNUC__)
-__attribute__((format(printf, 3, 4)))
-#endif
-static void put(char *dst, size_t size, const char *fmt, ...)
-{
-    char tmp[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(tmp, sizeof tmp, fmt, ap);
-    va_end(ap);
-    size_t n = strlen(tmp);
-    if (n >= size) n = size - 1;
-    memcpy(dst, tmp, n);
-    dst[n] = 0;
-}
-
 /* ------------------------------------------------------------ running */
 
 /* The unit's vectors: its generator's first n rows (named spans), then
@@ -456,8 +440,8 @@ static tb_stab_row *row(tb_stab *s, const char *id, const char *method)
 {
     tb_stab_row *r = &s->rows[s->nrows < TB_STAB_MAX_ROWS ? s->nrows++ : TB_STAB_MAX_ROWS - 1];
     memset(r, 0, sizeof *r);
-    put(r->id, sizeof r->id, "%s", id);
-    put(r->method, sizeof r->method, "%s", method);
+    tb_settext(r->id, sizeof r->id, "%s", id);
+    tb_settext(r->method, sizeof r->method, "%s", method);
     return r;
 }
 
@@ -508,11 +492,11 @@ static int atlas_fwd(tb_stab *s, int charts)
         snprintf(m, sizeof m, "interp%d fwd", dg);
         tb_stab_row *r = row(s, id, m);
         r->boundary = fmin[3];
-        put(r->condition, sizeof r->condition,
+        tb_settext(r->condition, sizeof r->condition,
             "fraction bits F of every fwd register for max |hw - ideal| <= 2^-8, L = 4..32 (width-24 coefficients)");
-        put(r->measured, sizeof r->measured, "%s; at L=32: F=%d holds, F=%d fails (%d bits beyond the output's 8)",
+        tb_settext(r->measured, sizeof r->measured, "%s; at L=32: F=%d holds, F=%d fails (%d bits beyond the output's 8)",
             list, fmin[3], fmin[3] - 1, fmin[3] - 8);
-        put(r->verdict, sizeof r->verdict,
+        tb_settext(r->verdict, sizeof r->verdict,
             "fails with the output's own 8 bits at every L; each doubling of L costs about %d more bits "
             "(truncations summed over C(k,j) clocks)", dg);
     }
@@ -570,14 +554,14 @@ static int atlas_coef(tb_stab *s, int charts)
         snprintf(id, sizeof id, "coef_%s", U[k].unit);
         tb_stab_row *r = row(s, id, U[k].unit);
         r->boundary = ib[jw];
-        put(r->condition, sizeof r->condition,
+        tb_settext(r->condition, sizeof r->condition,
             "integer bits per coefficient for node intensities in [0, 1] (every 0/1 pattern), width 16");
-        put(r->measured, sizeof r->measured,
+        tb_settext(r->measured, sizeof r->measured,
             "%s; %c one bit short (s%d): wrap %llu overflows, max error %.3g; sat %llu, max error %.3g; "
             "at s%d: %llu overflows, error %.2g",
             list, 'A' + jw, ib[jw] - 1, (unsigned long long)ow, ew, (unsigned long long)os, es, ib[jw],
             (unsigned long long)o_ok, e_ok);
-        put(r->verdict, sizeof r->verdict, "%c needs s%d; missing one bit, wrap errs by %.3g (a sign flip), "
+        tb_settext(r->verdict, sizeof r->verdict, "%c needs s%d; missing one bit, wrap errs by %.3g (a sign flip), "
             "sat by %.3g (clipped)", 'A' + jw, ib[jw], ew, es);
     }
     if (ch) chart(s, ch, "stability_coef.svg");
@@ -623,13 +607,13 @@ static int atlas_overshoot(tb_stab *s, int charts)
     double ca = clamp_area(fm.f[unit_sig_must(u, "y")]);
     tb_stab_row *r = row(s, "overshoot", "interp3 (cubic N1)");
     r->boundary = b;
-    put(r->condition, sizeof r->condition,
+    tb_settext(r->condition, sizeof r->condition,
         "highlight exp(-(x-x0)^2/2s^2), peak 1, x0 = 3/8..3/4 of one interval (L = 8, width 20, 10-term /3)");
-    put(r->measured, sizeof r->measured,
+    tb_settext(r->measured, sizeof r->measured,
         "leaves [0, 1] by more than 2^-8 for s <= %.3g intervals (s = %.3g: holds); worst excursion %.3g "
         "(s = %.3g); an output clamp (%.0f GE, %.1f%% of interp3's %.0f GE) cuts that case's max error %.3g -> %.3g",
         b, b + 1 / 64.0, worst, s_w, ca, 100 * ca / area, area, er_w, ec_w);
-    put(r->verdict, sizeof r->verdict,
+    tb_settext(r->verdict, sizeof r->verdict,
         "highlights narrower than %.2g of an interval leave [0, 1]; the clamp removes the excursion, "
         "not the error inside [0, 1]", b);
     if (c) {
@@ -651,10 +635,10 @@ static int atlas_degree(tb_stab *s, int charts)
     for (size_t i = 0; i < d->n; i++) none += d->e3[i] > TB_STAB_TARGET;
     tb_stab_row *r = row(s, "degree_auto", "degree 2 vs 3 vs 1");
     r->boundary = c2;
-    put(r->condition, sizeof r->condition,
+    tb_settext(r->condition, sizeof r->condition,
         "c = |I(0) + I(1) - 2 I(1/2)| of %zu highlight profiles on one interval; max error <= 2^-8 (L = 8, width 20, 10-term /3)",
         d->n);
-    put(r->measured, sizeof r->measured,
+    tb_settext(r->measured, sizeof r->measured,
         "degree 2 first fails (where 3 holds) at c = %.3g; linear (where 2 holds) at c = %.3g; %d profiles "
         "fail every degree (narrower than the node spacing)", c2, c1, none);
     /* failures (degree 2 chosen, degree 3 would hold) and cubic intervals
@@ -674,7 +658,7 @@ static int atlas_degree(tb_stab *s, int charts)
         snprintf(lad + l, sizeof lad - l, "%s%g: %d fail, %d cubic", k ? "; " : "", LAD[k], f, cub);
     }
     if (c2 > AUTO_DEFAULT)
-        put(r->verdict, sizeof r->verdict,
+        tb_settext(r->verdict, sizeof r->verdict,
             "0.01 is safe but cautious: raise it to %.3g (every profile the cubic holds stays within 2^-8). %s",
             c2 * 0.9, lad);
     else {
@@ -684,7 +668,7 @@ static int atlas_degree(tb_stab *s, int charts)
             cub_safe += d->c[i] >= c2 * 0.9;
             cub_def += d->c[i] > AUTO_DEFAULT;
         }
-        put(r->verdict, sizeof r->verdict,
+        tb_settext(r->verdict, sizeof r->verdict,
             "change it: 0.01 gives %d profiles degree 2 that miss 2^-8; %.2g is safe here (%d cubic intervals "
             "instead of %d). Ladder (profiles the cubic holds): %s", fails_at[2], c2 * 0.9, cub_safe, cub_def, lad);
     }
@@ -738,12 +722,12 @@ static int atlas_nodes(tb_stab *s, int charts)
             }
             tb_stab_row *r = row(s, "nodes_n1_n2", "interp3 nodes n1 vs n2");
             r->boundary = h1 - h2;
-            put(r->condition, sizeof r->condition,
+            tb_settext(r->condition, sizeof r->condition,
                 "the same %zu profiles through interp3 with nodes=n1 and nodes=n2 (L = 8, width 20, 10-term /3)", n);
-            put(r->measured, sizeof r->measured,
+            tb_settext(r->measured, sizeof r->measured,
                 "within 2^-8: n1 %d, n2 %d profiles; n1 smaller error on %d, n2 on %d; area n1 %.0f GE, n2 %.0f GE",
                 h1, h2, better1, better2, a1, a2);
-            put(r->verdict, sizeof r->verdict,
+            tb_settext(r->verdict, sizeof r->verdict,
                 "%s, and n1 is %.0f GE %s (its network has fewer adders); the node at 1/4 or 3/4 favours "
                 "highlights on its side of the interval, so the profiles' placement decides the accuracy",
                 h1 >= h2 && better1 >= better2 ? "n1 as accurate or better here (the paper's choice holds)"
@@ -782,10 +766,10 @@ static int atlas_div3(tb_stab *s, int charts)
     double e3 = tb_stab_div3_err(16, 3);
     tb_stab_row *r = row(s, "div3_terms", "div3 (paper series)");
     r->boundary = t16;
-    put(r->condition, sizeof r->condition, "terms for max |hw - x/3| <= one output LSB, x in [-1, 1), widths 8..24");
-    put(r->measured, sizeof r->measured, "%s terms; the paper's 3 terms at W=16: %.3g (%.0f LSB)", list, e3,
+    tb_settext(r->condition, sizeof r->condition, "terms for max |hw - x/3| <= one output LSB, x in [-1, 1), widths 8..24");
+    tb_settext(r->measured, sizeof r->measured, "%s terms; the paper's 3 terms at W=16: %.3g (%.0f LSB)", list, e3,
         ldexp(e3, 15));
-    put(r->verdict, sizeof r->verdict,
+    tb_settext(r->verdict, sizeof r->verdict,
         "each term adds 2 bits: the paper's 3 terms hold to about 7 bits only; in interp3 the error of A is "
         "amplified by up to 24");
     if (c) {
@@ -823,7 +807,7 @@ static int atlas_brdf(tb_stab *s, int charts)
         snprintf(id, sizeof id, "brdf_%s", D[k].kind == 1 ? "cpow" : D[k].name);
         tb_stab_row *r = row(s, id, D[k].name);
         r->boundary = hi;
-        put(r->condition, sizeof r->condition, "m in 0.05..0.70 (steps 0.005): relative error <= 5%% where D > 1%% of its peak");
+        tb_settext(r->condition, sizeof r->condition, "m in 0.05..0.70 (steps 0.005): relative error <= 5%% where D > 1%% of its peak");
         char neg[100] = "";
         if (D[k].kind != 1) {
             /* the base 1 + (1/(2 g m^2) - 1/4)(c - 1) turns negative within
@@ -834,9 +818,9 @@ static int atlas_brdf(tb_stab *s, int charts)
             if (!isnan(mneg)) snprintf(neg, sizeof neg, "; base < 0 before 90 deg for m <= %.3f (clamped)", mneg);
             else snprintf(neg, sizeof neg, "; base >= 0 on the grid");
         }
-        if (isnan(lo)) put(r->measured, sizeof r->measured, "holds nowhere on the grid%s", neg);
-        else put(r->measured, sizeof r->measured, "holds for m in %.3f..%.3f%s", lo, hi, neg);
-        put(r->verdict, sizeof r->verdict, isnan(lo) ? "use another form" : "outside this range the error passes 5%%");
+        if (isnan(lo)) tb_settext(r->measured, sizeof r->measured, "holds nowhere on the grid%s", neg);
+        else tb_settext(r->measured, sizeof r->measured, "holds for m in %.3f..%.3f%s", lo, hi, neg);
+        tb_settext(r->verdict, sizeof r->verdict, isnan(lo) ? "use another form" : "outside this range the error passes 5%%");
         if (c) {
             int se = tb_chart_series(c, D[k].name, TB_LINE);
             for (int i = 0; i < nm; i += 1) tb_chart_point(c, se, mg[i], tb_stab_brdf_err(D[k].kind, mg[i], 0.01));
@@ -857,11 +841,11 @@ static int atlas_brdf(tb_stab *s, int charts)
     holds_range(2, mg, nm, 0.1, 0.013, &lo, &hi);
     tb_stab_row *r = row(s, "brdf_ward", "Ward 16th power");
     r->boundary = hi;
-    put(r->condition, sizeof r->condition, "alpha in 0.05..0.70: relative error <= 1.3%% where exp(-tan^2/a^2) > 0.1");
-    if (isnan(lo)) put(r->measured, sizeof r->measured, "holds nowhere on the grid");
-    else put(r->measured, sizeof r->measured, "holds for alpha in %.3f..%.3f (error %.3g%% at 0.2, %.3g%% at 0.4)", lo, hi,
+    tb_settext(r->condition, sizeof r->condition, "alpha in 0.05..0.70: relative error <= 1.3%% where exp(-tan^2/a^2) > 0.1");
+    if (isnan(lo)) tb_settext(r->measured, sizeof r->measured, "holds nowhere on the grid");
+    else tb_settext(r->measured, sizeof r->measured, "holds for alpha in %.3f..%.3f (error %.3g%% at 0.2, %.3g%% at 0.4)", lo, hi,
              100 * tb_stab_brdf_err(2, 0.2, 0.1), 100 * tb_stab_brdf_err(2, 0.4, 0.1));
-    put(r->verdict, sizeof r->verdict, "the 1.3%% claim is a narrow band of alpha, not a general bound");
+    tb_settext(r->verdict, sizeof r->verdict, "the 1.3%% claim is a narrow band of alpha, not a general bound");
     /* Schlick forms against Blinn's cos^n, n = 2..1000 */
     int ng = 0;
     double nn[64];
@@ -874,13 +858,13 @@ static int atlas_brdf(tb_stab *s, int charts)
         holds_range(kind, nn, ng, 0.3, 0.10, &lo, &hi);
         tb_stab_row *q = row(s, kind == 3 ? "brdf_schlick" : "brdf_mschlick", kind == 3 ? "Schlick" : "modified Schlick");
         q->boundary = isnan(lo) ? NAN : lo;
-        put(q->condition, sizeof q->condition,
+        tb_settext(q->condition, sizeof q->condition,
             "n in 2..1000: relative error <= 10%% where cos^n > 0.3 (the highlight's epicentre level)");
-        if (isnan(lo)) put(q->measured, sizeof q->measured, "holds for no n (%.3g at n=2, %.3g at n=%.0f)",
+        if (isnan(lo)) tb_settext(q->measured, sizeof q->measured, "holds for no n (%.3g at n=2, %.3g at n=%.0f)",
                            tb_stab_brdf_err(kind, 2, 0.3), tb_stab_brdf_err(kind, nn[ng - 1], 0.3), nn[ng - 1]);
-        else put(q->measured, sizeof q->measured, "holds for n in %.0f..%.0f (%.3g at n=2, %.3g at n=%.0f)", lo, hi,
+        else tb_settext(q->measured, sizeof q->measured, "holds for n in %.0f..%.0f (%.3g at n=2, %.3g at n=%.0f)", lo, hi,
                  tb_stab_brdf_err(kind, 2, 0.3), tb_stab_brdf_err(kind, nn[ng - 1], 0.3), nn[ng - 1]);
-        put(q->verdict, sizeof q->verdict, "compared with cos^n, the papers' reference (not Fresnel)");
+        tb_settext(q->verdict, sizeof q->verdict, "compared with cos^n, the papers' reference (not Fresnel)");
         if (cs) {
             int se = tb_chart_series(cs, kind == 3 ? "Schlick" : "modified Schlick", TB_LINE);
             for (int i = 0; i < ng; i++) tb_chart_point(cs, se, nn[i], tb_stab_brdf_err(kind, nn[i], 0.3));
@@ -903,9 +887,9 @@ static int atlas_units(tb_stab *s, int charts)
     }
     tb_stab_row *r = row(s, "div", "div (restoring)");
     r->boundary = worst;
-    put(r->condition, sizeof r->condition, "max |hw - n/d| in quotient LSBs and clocks per item, widths 8..32");
-    put(r->measured, sizeof r->measured, "%s", list);
-    put(r->verdict, sizeof r->verdict, "%s: one clock per quotient bit, error below one LSB at every width",
+    tb_settext(r->condition, sizeof r->condition, "max |hw - n/d| in quotient LSBs and clocks per item, widths 8..32");
+    tb_settext(r->measured, sizeof r->measured, "%s", list);
+    tb_settext(r->verdict, sizeof r->verdict, "%s: one clock per quotient bit, error below one LSB at every width",
         worst < 1 ? "no failure" : "fails");
     /* pow_n against n at width 16 */
     static const int NS[] = { 2, 4, 8, 16, 32, 64, 128, 255 };
@@ -924,9 +908,9 @@ static int atlas_units(tb_stab *s, int charts)
     }
     r = row(s, "pow_n", "pow_n (square and multiply)");
     r->boundary = nmax;
-    put(r->condition, sizeof r->condition, "max |hw - x^n| at width 16 against n; holds while <= 8 LSB (2^-12)");
-    put(r->measured, sizeof r->measured, "%s", pl);
-    put(r->verdict, sizeof r->verdict, "error grows with the number of truncating multiplies (about 2 log2 n)");
+    tb_settext(r->condition, sizeof r->condition, "max |hw - x^n| at width 16 against n; holds while <= 8 LSB (2^-12)");
+    tb_settext(r->measured, sizeof r->measured, "%s", pl);
+    tb_settext(r->verdict, sizeof r->verdict, "error grows with the number of truncating multiplies (about 2 log2 n)");
     if (c) { tb_chart_hline(c, 8, "8 LSB"); chart(s, c, "stability_pow.svg"); }
     /* powg against g */
     char gl[160] = "";
@@ -937,9 +921,9 @@ static int atlas_units(tb_stab *s, int charts)
     }
     r = row(s, "powg", "powg (repeated squaring)");
     r->boundary = NAN;
-    put(r->condition, sizeof r->condition, "max |hw - x^g| at width 16 against g = 2..32");
-    put(r->measured, sizeof r->measured, "%s", gl);
-    put(r->verdict, sizeof r->verdict, "log2 g squarings, one truncation each: the error in LSBs grows with g");
+    tb_settext(r->condition, sizeof r->condition, "max |hw - x^g| at width 16 against g = 2..32");
+    tb_settext(r->measured, sizeof r->measured, "%s", gl);
+    tb_settext(r->verdict, sizeof r->verdict, "log2 g squarings, one truncation each: the error in LSBs grows with g");
     return 0;
 }
 
