@@ -2,6 +2,7 @@
  * any unit, then error metrics against the golden vectors. */
 #include "testbench/tb.h"
 #include "testbench/tb_stream.h"
+#include "testbench/tb_range.h"
 #include "testbench/tb_wave.h"
 #include <errno.h>
 #include <math.h>
@@ -20,13 +21,7 @@ typedef struct tb_state {
     const sim_ctx *ctx;
     uint64_t *beat_cycle;
     int64_t  *raw;
-    /* Range logging: the unit's signals, sampled at every rising edge. */
-    sim_signal **smp;
-    int64_t  *mn, *mx;
-    int       nsmp;
-    int      *live, nlive;      /* the entries that can change (not constants) */
-    sim_signal **lsig;          /* smp[live[j]], packed for the per-clock loop */
-    int64_t  *lmm;              /* its min, max (copied to mn, mx after the run) */
+    tb_range rg;                /* range logging (tb_range.h) */
 } tb_state;
 
 /* Driver, at each rising edge: if the unit accepted the offered item (valid
@@ -51,15 +46,7 @@ static void driver(sim_proc *p)
 static void monitor(sim_proc *p)
 {
     tb_state *s = p->data;
-    /* Settled values of the cycle that ended: what a logic analyzer (or
-     * MATLAB's range logging) records; glitches between deltas are not. */
-    sim_signal *const *ls = s->lsig;
-    int64_t *mm = s->lmm;
-    for (int j = 0, n = s->nlive; j < n; j++, mm += 2) {
-        int64_t v = ls[j]->cur;
-        mm[0] = v < mm[0] ? v : mm[0];
-        mm[1] = v > mm[1] ? v : mm[1];
-    }
+    tb_range_sample(&s->rg);
     if (!s->io->out_valid->cur) return;
     size_t total = s->n_items * (size_t)s->beats;
     if (s->got >= total) return;
@@ -249,37 +236,6 @@ void tb_verdict(tb_result *r, const tb_accept *a)
     }
 }
 
-/* 1 if s is in scope sc or below it. */
-static int in_scope(const sim_signal *s, const sim_scope *sc)
-{
-    for (const sim_scope *p = s->scope; p; p = p->parent) if (p == sc) return 1;
-    return 0;
-}
-
-/* s's dotted path below scope sc: "y", "div3_a.t1". */
-static void rel_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len)
-{
-    const sim_scope *chain[16];
-    int n = 0;
-    for (const sim_scope *p = s->scope; p && p != sc && n < 16; p = p->parent) chain[n++] = p;
-    size_t at = 0;
-    buf[0] = 0;
-    while (n-- > 0 && at + 1 < len) {
-        int w = snprintf(buf + at, len - at, "%s.", chain[n]->name);
-        if (w < 0) break;
-        at += (size_t)w < len - at ? (size_t)w : len - at - 1;
-    }
-    snprintf(buf + at, len - at, "%s", s->name);
-}
-
-static uint64_t scope_overflows(const sim_scope *sc)
-{
-    uint64_t n = 0;
-    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope) n += s->overflows;
-    for (const sim_scope *ch = sc->first_child; ch; ch = ch->next_sibling) n += scope_overflows(ch);
-    return n;
-}
-
 int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
            const vec_set *vs, const tb_opts *o, tb_result *r, char *err, size_t errlen)
 {
@@ -349,33 +305,10 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     sim_clock(c, clk, 5, 5);
     st.io = &io; st.n_in = r->n_in; st.n_out = r->n_out; st.beats = r->beats; st.n_items = n;
     st.in_raw = in_raw; st.ctx = c; st.beat_cycle = r->beat_cycle; st.raw = r->raw;
-    /* Range logging: every signal of the unit's scope (not the clock). */
-    uint32_t nsig_all = sim_signal_count(c);
-    st.smp = calloc(nsig_all ? nsig_all : 1, sizeof *st.smp);
-    st.mn = calloc(nsig_all ? nsig_all : 1, sizeof *st.mn);
-    st.mx = calloc(nsig_all ? nsig_all : 1, sizeof *st.mx);
-    st.live = calloc(nsig_all ? nsig_all : 1, sizeof *st.live);
-    st.lsig = calloc(nsig_all ? nsig_all : 1, sizeof *st.lsig);
-    st.lmm = calloc(2 * (size_t)(nsig_all ? nsig_all : 1), sizeof *st.lmm);
-    if (!st.smp || !st.mn || !st.mx || !st.live || !st.lsig || !st.lmm) {
+    if (tb_range_init(&st.rg, c, sc, clk)) {
         snprintf(err, errlen, "out of memory");
         rc = TB_FAIL;
         goto done;
-    }
-    for (uint32_t i = 0; i < nsig_all; i++) {
-        sim_signal *sg = sim_signal_at(c, i);
-        if (sg == clk || !in_scope(sg, sc)) continue;
-        /* a constant never changes: its range is its value, not sampled */
-        int cst = sg->kind == SIM_KIND_CONST;
-        st.mn[st.nsmp] = cst ? sg->cur : INT64_MAX;
-        st.mx[st.nsmp] = cst ? sg->cur : INT64_MIN;
-        if (!cst) {
-            st.lsig[st.nlive] = sg;
-            st.lmm[2 * st.nlive] = INT64_MAX;
-            st.lmm[2 * st.nlive + 1] = INT64_MIN;
-            st.live[st.nlive++] = st.nsmp;
-        }
-        st.smp[st.nsmp++] = sg;
     }
     sim_proc *drv = sim_proc_new(c, "tb.driver", driver, &st);
     sim_sensitive(drv, clk, SIM_EDGE_POS);
@@ -404,10 +337,6 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         rc = tb_wave_close(&wave, c, vcd, u, rc, err, errlen);
         vcd = NULL;
     }
-    for (int j = 0; j < st.nlive; j++) {
-        st.mn[st.live[j]] = st.lmm[2 * j];
-        st.mx[st.live[j]] = st.lmm[2 * j + 1];
-    }
     if (rc == TB_OK) {
         r->latency = r->beat_cycle[0];
         r->cycles = r->beat_cycle[nbeats - 1] + 1;
@@ -417,24 +346,9 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
         r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
                                         : (double)r->cycles;
         r->area_ge = sim_scope_area(sc);
-        r->overflows = scope_overflows(sc);
+        r->overflows = tb_scope_overflows(sc);
         for (int i = 0; i < r->n_in; i++) { r->in_overflows += in_ovf[i]; r->overflows += in_ovf[i]; }
-        r->sigs = calloc(st.nsmp ? (size_t)st.nsmp : 1, sizeof *r->sigs);
-        if (r->sigs) {
-            for (int i = 0; i < st.nsmp; i++) {
-                const sim_signal *sg = st.smp[i];
-                tb_sig *t = &r->sigs[i];
-                rel_name(sg, sc, t->name, sizeof t->name);
-                t->fmt = sg->fmt;
-                t->kind = sg->kind;
-                t->overflows = sg->overflows;
-                for (int j = 0; j < r->n_in; j++) if (io.in[j] == sg) t->overflows += in_ovf[j];
-                t->seen = st.mn[i] <= st.mx[i];
-                t->min = st.mn[i];
-                t->max = st.mx[i];
-            }
-            r->nsigs = st.nsmp;
-        }
+        tb_range_finish(&st.rg, sc, &io, in_ovf, r);
         metrics(r, vs, ideal, exact, exact_den, exact_hi, exact_ok, &gold);
         tb_verdict(r, NULL);
     }
@@ -447,12 +361,7 @@ done:
     free(exact_den);
     free(exact_hi);
     free(exact_ok);
-    free(st.smp);
-    free(st.mn);
-    free(st.mx);
-    free(st.live);
-    free(st.lsig);
-    free(st.lmm);
+    tb_range_free(&st.rg);
     return rc;
 }
 

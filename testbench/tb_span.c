@@ -7,6 +7,7 @@
  * into the caller's array. */
 #include "testbench/tb_span.h"
 #include "testbench/tb.h"
+#include "testbench/tb_range.h"
 #include "sim/sim_vcd.h"
 #include <math.h>
 #include <string.h>
@@ -72,14 +73,6 @@ static void monitor(sim_proc *p)
         s->last_pixel = sim_get_stats(s->ctx)->clocks;
         sim_stop(p->ctx);
     }
-}
-
-static uint64_t scope_overflows(const sim_scope *sc)
-{
-    uint64_t n = 0;
-    for (const sim_signal *g = sc->first_sig; g; g = g->next_in_scope) n += g->overflows;
-    for (const sim_scope *ch = sc->first_child; ch; ch = ch->next_sibling) n += scope_overflows(ch);
-    return n;
 }
 
 /* Map the unit's input ports to item fields; 0, or -1 if it is not a span
@@ -198,7 +191,7 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     }
     if (rc == TB_OK) st->clocks = s.last_pixel - s.first_accept;
     st->pixels = s.got;
-    st->overflows = s.in_ovf + scope_overflows(sc);
+    st->overflows = s.in_ovf + tb_scope_overflows(sc);
     st->area_ge = sim_scope_area(sc);
 done:
     if (vcd) sim_vcd_abort(vcd);

@@ -15,6 +15,7 @@
  * same kernel, hence the same clocks, events and deltas.
  */
 #include "testbench/tb_stream.h"
+#include "testbench/tb_range.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -194,12 +195,7 @@ typedef struct st_state {
     void *row_data;
     uint64_t first_cycle, last_item_cycle, last_cycle;
     char why[600];
-    /* Range logging, as tb_run. */
-    sim_signal **smp;
-    int64_t *mn, *mx;
-    int nsmp, *live, nlive;
-    sim_signal **lsig;          /* smp[live[j]] */
-    int64_t *lmm;               /* its min, max (copied to mn, mx at the end) */
+    tb_range rg;                /* range logging (tb_range.h) */
 } st_state;
 
 static tb_item ring_item(const st_state *s, size_t idx)
@@ -274,15 +270,7 @@ static void st_driver(sim_proc *p)
 static void st_monitor(sim_proc *p)
 {
     st_state *s = p->data;
-    /* Range logging over the live signals, packed (lsig[j], and lmm's
-     * min and max pairs): the loop runs every clock. */
-    sim_signal *const *ls = s->lsig;
-    int64_t *mm = s->lmm;
-    for (int j = 0, n = s->nlive; j < n; j++, mm += 2) {
-        int64_t v = ls[j]->cur;
-        mm[0] = v < mm[0] ? v : mm[0];
-        mm[1] = v > mm[1] ? v : mm[1];
-    }
+    tb_range_sample(&s->rg);
     if (!s->io->out_valid->cur) return;
     size_t it = s->got / (size_t)s->beats;
     int b = (int)(s->got % (size_t)s->beats);
@@ -334,37 +322,6 @@ static void ring_free(ring *R)
     free(R->exact); free(R->den); free(R->hi); free(R->exact_ok); free(R->cycle);
 }
 
-/* 1 if s is in scope sc or below it. */
-static int in_scope(const sim_signal *s, const sim_scope *sc)
-{
-    for (const sim_scope *p = s->scope; p; p = p->parent) if (p == sc) return 1;
-    return 0;
-}
-
-/* s's dotted path below scope sc: "y", "div3_a.t1" (tb_run.c's rel_name). */
-static void rel_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len)
-{
-    const sim_scope *chain[16];
-    int n = 0;
-    for (const sim_scope *p = s->scope; p && p != sc && n < 16; p = p->parent) chain[n++] = p;
-    size_t at = 0;
-    buf[0] = 0;
-    while (n-- > 0 && at + 1 < len) {
-        int w = snprintf(buf + at, len - at, "%s.", chain[n]->name);
-        if (w < 0) break;
-        at += (size_t)w < len - at ? (size_t)w : len - at - 1;
-    }
-    snprintf(buf + at, len - at, "%s", s->name);
-}
-
-static uint64_t scope_overflows(const sim_scope *sc)
-{
-    uint64_t n = 0;
-    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope) n += s->overflows;
-    for (const sim_scope *ch = sc->first_child; ch; ch = ch->next_sibling) n += scope_overflows(ch);
-    return n;
-}
-
 int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
                   vec_stream *vs, tb_row_fn row, void *row_data, tb_result *r,
                   char *err, size_t errlen)
@@ -413,31 +370,10 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     if (u->build(c, sc, clk, cfg, fmts, &io, err, errlen)) { rc = TB_BADINPUT; goto done; }
     sim_clock(c, clk, 5, 5);
     st.io = &io; st.ctx = c;
-    uint32_t nsig_all = sim_signal_count(c);
-    st.smp = calloc(nsig_all ? nsig_all : 1, sizeof *st.smp);
-    st.mn = calloc(nsig_all ? nsig_all : 1, sizeof *st.mn);
-    st.mx = calloc(nsig_all ? nsig_all : 1, sizeof *st.mx);
-    st.live = calloc(nsig_all ? nsig_all : 1, sizeof *st.live);
-    st.lsig = calloc(nsig_all ? nsig_all : 1, sizeof *st.lsig);
-    st.lmm = calloc(2 * (size_t)(nsig_all ? nsig_all : 1), sizeof *st.lmm);
-    if (!st.smp || !st.mn || !st.mx || !st.live || !st.lsig || !st.lmm) {
+    if (tb_range_init(&st.rg, c, sc, clk)) {
         snprintf(err, errlen, "out of memory");
         rc = TB_FAIL;
         goto done;
-    }
-    for (uint32_t i = 0; i < nsig_all; i++) {
-        sim_signal *sg = sim_signal_at(c, i);
-        if (sg == clk || !in_scope(sg, sc)) continue;
-        int cst = sg->kind == SIM_KIND_CONST;
-        st.mn[st.nsmp] = cst ? sg->cur : INT64_MAX;
-        st.mx[st.nsmp] = cst ? sg->cur : INT64_MIN;
-        if (!cst) {
-            st.lsig[st.nlive] = sg;
-            st.lmm[2 * st.nlive] = INT64_MAX;
-            st.lmm[2 * st.nlive + 1] = INT64_MIN;
-            st.live[st.nlive++] = st.nsmp;
-        }
-        st.smp[st.nsmp++] = sg;
     }
     sim_proc *drv = sim_proc_new(c, "tb.driver", st_driver, &st);
     sim_sensitive(drv, clk, SIM_EDGE_POS);
@@ -466,10 +402,6 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
                  st.prepared * (size_t)st.beats, (unsigned long long)r->stats.clocks);
         rc = TB_FAIL;
     }
-    for (int j = 0; j < st.nlive; j++) {
-        st.mn[st.live[j]] = st.lmm[2 * j];
-        st.mx[st.live[j]] = st.lmm[2 * j + 1];
-    }
     if (rc == TB_OK) {
         size_t n = st.prepared, nbeats = n * (size_t)st.beats;
         r->latency = st.first_cycle;
@@ -479,35 +411,15 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
         r->cycles_per_beat = nbeats > 1 ? (double)(st.last_cycle - st.first_cycle) / (double)(nbeats - 1)
                                         : (double)r->cycles;
         r->area_ge = sim_scope_area(sc);
-        r->overflows = scope_overflows(sc);
+        r->overflows = tb_scope_overflows(sc);
         for (int i = 0; i < r->n_in; i++) { r->in_overflows += st.in_ovf[i]; r->overflows += st.in_ovf[i]; }
-        r->sigs = calloc(st.nsmp ? (size_t)st.nsmp : 1, sizeof *r->sigs);
-        if (r->sigs) {
-            for (int i = 0; i < st.nsmp; i++) {
-                const sim_signal *sg = st.smp[i];
-                tb_sig *t = &r->sigs[i];
-                rel_name(sg, sc, t->name, sizeof t->name);
-                t->fmt = sg->fmt;
-                t->kind = sg->kind;
-                t->overflows = sg->overflows;
-                for (int j = 0; j < r->n_in; j++) if (io.in[j] == sg) t->overflows += st.in_ovf[j];
-                t->seen = st.mn[i] <= st.mx[i];
-                t->min = st.mn[i];
-                t->max = st.mx[i];
-            }
-            r->nsigs = st.nsmp;
-        }
+        tb_range_finish(&st.rg, sc, &io, st.in_ovf, r);
         tb_acc_end(&st.acc, r);
         tb_verdict(r, NULL);
     }
 done:
     sim_free(c);
     ring_free(&st.R);
-    free(st.smp);
-    free(st.mn);
-    free(st.mx);
-    free(st.live);
-    free(st.lsig);
-    free(st.lmm);
+    tb_range_free(&st.rg);
     return rc;
 }

@@ -1,0 +1,100 @@
+/* tb_range.c - range logging and the per-signal table of a run. */
+#include "testbench/tb_range.h"
+#include <stdlib.h>
+#include <string.h>
+
+/* 1 if s is in scope sc or below it. */
+static int in_scope(const sim_signal *s, const sim_scope *sc)
+{
+    for (const sim_scope *p = s->scope; p; p = p->parent) if (p == sc) return 1;
+    return 0;
+}
+
+/* s's dotted path below scope sc: "y", "div3_a.t1". */
+static void rel_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len)
+{
+    const sim_scope *chain[16];
+    int n = 0;
+    for (const sim_scope *p = s->scope; p && p != sc && n < 16; p = p->parent) chain[n++] = p;
+    size_t at = 0;
+    buf[0] = 0;
+    while (n-- > 0 && at + 1 < len) {
+        int w = snprintf(buf + at, len - at, "%s.", chain[n]->name);
+        if (w < 0) break;
+        at += (size_t)w < len - at ? (size_t)w : len - at - 1;
+    }
+    snprintf(buf + at, len - at, "%s", s->name);
+}
+
+int tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signal *clk)
+{
+    memset(g, 0, sizeof *g);
+    size_t n = sim_signal_count(c);
+    if (!n) n = 1;
+    g->smp = calloc(n, sizeof *g->smp);
+    g->mn = calloc(n, sizeof *g->mn);
+    g->mx = calloc(n, sizeof *g->mx);
+    g->live = calloc(n, sizeof *g->live);
+    g->lsig = calloc(n, sizeof *g->lsig);
+    g->lmm = calloc(2 * n, sizeof *g->lmm);
+    if (!g->smp || !g->mn || !g->mx || !g->live || !g->lsig || !g->lmm) return -1;
+    for (uint32_t i = 0, ns = sim_signal_count(c); i < ns; i++) {
+        sim_signal *sg = sim_signal_at(c, i);
+        if (sg == clk || !in_scope(sg, sc)) continue;
+        /* a constant never changes: its range is its value, not sampled */
+        int cst = sg->kind == SIM_KIND_CONST;
+        g->mn[g->nsmp] = cst ? sg->cur : INT64_MAX;
+        g->mx[g->nsmp] = cst ? sg->cur : INT64_MIN;
+        if (!cst) {
+            g->lsig[g->nlive] = sg;
+            g->lmm[2 * g->nlive] = INT64_MAX;
+            g->lmm[2 * g->nlive + 1] = INT64_MIN;
+            g->live[g->nlive++] = g->nsmp;
+        }
+        g->smp[g->nsmp++] = sg;
+    }
+    return 0;
+}
+
+void tb_range_finish(tb_range *g, const sim_scope *sc, const unit_io *io, const uint64_t *in_ovf,
+                     tb_result *r)
+{
+    for (int j = 0; j < g->nlive; j++) {
+        g->mn[g->live[j]] = g->lmm[2 * j];
+        g->mx[g->live[j]] = g->lmm[2 * j + 1];
+    }
+    r->sigs = calloc(g->nsmp ? (size_t)g->nsmp : 1, sizeof *r->sigs);
+    if (!r->sigs) return;
+    for (int i = 0; i < g->nsmp; i++) {
+        const sim_signal *sg = g->smp[i];
+        tb_sig *t = &r->sigs[i];
+        rel_name(sg, sc, t->name, sizeof t->name);
+        t->fmt = sg->fmt;
+        t->kind = sg->kind;
+        t->overflows = sg->overflows;
+        for (int j = 0; j < r->n_in; j++) if (io->in[j] == sg) t->overflows += in_ovf[j];
+        t->seen = g->mn[i] <= g->mx[i];
+        t->min = g->mn[i];
+        t->max = g->mx[i];
+    }
+    r->nsigs = g->nsmp;
+}
+
+void tb_range_free(tb_range *g)
+{
+    free(g->smp);
+    free(g->mn);
+    free(g->mx);
+    free(g->live);
+    free(g->lsig);
+    free(g->lmm);
+    memset(g, 0, sizeof *g);
+}
+
+uint64_t tb_scope_overflows(const sim_scope *sc)
+{
+    uint64_t n = 0;
+    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope) n += s->overflows;
+    for (const sim_scope *ch = sc->first_child; ch; ch = ch->next_sibling) n += tb_scope_overflows(ch);
+    return n;
+}
