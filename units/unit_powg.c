@@ -217,39 +217,15 @@ static void powg_ideal(const unit_cfg *cfg, const double *in, double *out)
     out[0] = pow(in[0], cfg->g);
 }
 
-/* x^g between two bounds when the exact power is too long: the same
- * square-and-multiply on lower and upper values cut to 240 fraction bits
- * (x >= 0, so every product is monotone in its operands). */
+/* x^g exactly, or between two bounds when too long (units_brdf.h). */
 static int powg_interval(const unit_cfg *cfg, const sim_dy *in, sim_dy *lo, sim_dy *hi)
 {
-    sim_dy z;
-    sim_dy_int(&z, 0, 0);
-    if (sim_dy_cmp(&in[0], &z) < 0) return -1;
-    for (int side = 0; side < 2; side++) {
-        sim_dy y, x = in[0];
-        sim_dy_int(&y, 1, 0);
-        for (int e = cfg->g; e && !y.ovf && !x.ovf; e >>= 1) {
-            if (e & 1) { sim_dy_mul(&y, &y, &x); sim_dy_cut(&y, 240, side); }
-            if (e > 1) { sim_dy_mul(&x, &x, &x); sim_dy_cut(&x, 240, side); }
-        }
-        if (y.ovf || x.ovf) return -1;
-        *(side ? hi : lo) = y;
-    }
-    return 0;
+    return brdf_pow_interval(&in[0], cfg->g, lo, hi);
 }
 
-/* x^g exactly while it fits a sim_dy (-1 beyond: the testbench then
- * decides with the double pow, or says it cannot). */
 static int powg_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out)
 {
-    sim_dy y, x = in[0];
-    sim_dy_int(&y, 1, 0);
-    for (int e = cfg->g; e && !y.ovf; e >>= 1) {
-        if (e & 1) sim_dy_mul(&y, &y, &x);
-        if (e > 1) sim_dy_mul(&x, &x, &x);
-    }
-    *out = y;
-    return y.ovf ? -1 : 0;
+    return brdf_pow_exact(&in[0], cfg->g, out);
 }
 
 static void powg_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)

@@ -206,3 +206,33 @@ double brdf_const_err(double x, sim_fmt f)
 {
     return fabs(sim_fx_to_real(const_raw(x, f, NULL), f) - x);
 }
+
+int brdf_pow_exact(const sim_dy *x0, int e, sim_dy *out)
+{
+    sim_dy y, x = *x0;
+    sim_dy_int(&y, 1, 0);
+    for (; e && !y.ovf; e >>= 1) {
+        if (e & 1) sim_dy_mul(&y, &y, &x);
+        if (e > 1) sim_dy_mul(&x, &x, &x);
+    }
+    *out = y;
+    return y.ovf ? -1 : 0;
+}
+
+int brdf_pow_interval(const sim_dy *x0, int e0, sim_dy *lo, sim_dy *hi)
+{
+    sim_dy z;
+    sim_dy_int(&z, 0, 0);
+    if (sim_dy_cmp(x0, &z) < 0) return -1;
+    for (int side = 0; side < 2; side++) {
+        sim_dy y, x = *x0;
+        sim_dy_int(&y, 1, 0);
+        for (int e = e0; e && !y.ovf && !x.ovf; e >>= 1) {
+            if (e & 1) { sim_dy_mul(&y, &y, &x); sim_dy_cut(&y, 240, side); }
+            if (e > 1) { sim_dy_mul(&x, &x, &x); sim_dy_cut(&x, 240, side); }
+        }
+        if (y.ovf || x.ovf) return -1;
+        *(side ? hi : lo) = y;
+    }
+    return 0;
+}

@@ -46,4 +46,10 @@ int    pw_sig_built(const unit_desc *u, const char *prog, int i);
 sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
                      const unit_fmts *f, unit_io *io, sim_signal *num, sim_signal *den,
                      sim_signal *shr, int shr_max, char *err, size_t errlen);
+/* Exact x^e by square and multiply, as the power units compute it: 0, or
+ * -1 when it does not fit a sim_dy (the testbench then uses the interval
+ * or says it cannot check). The interval form gives lower and upper
+ * values cut to 240 fraction bits (x >= 0: every product is monotone). */
+int brdf_pow_exact(const sim_dy *x, int e, sim_dy *out);
+int brdf_pow_interval(const sim_dy *x, int e, sim_dy *lo, sim_dy *hi);
 #endif
