@@ -6,17 +6,6 @@
 PREFIX=cli_chart.
 . tests/lib_cli.sh
 
-expect() {
-    name=$1; want=$2; shift 2
-    "$@" >"$T/out" 2>"$T/err"; got=$?
-    if [ "$got" -ne "$want" ]; then fail "$name" "exit $got, expected $want: $(head -c 300 "$T/err")"; return 1; fi
-    if [ "$want" -eq 2 ]; then
-        n=$(wc -l <"$T/err")
-        if [ "$n" -ne 1 ] || ! grep -q '^shadesim: ' "$T/err"; then fail "$name" "stderr not one 'shadesim:' line: $(cat "$T/err")"; return 1; fi
-    fi
-    ok "$name"
-}
-
 expect help 0 "$S" chart --help
 expect no_csv 2 "$S" chart
 expect missing_csv 2 "$S" chart "$T/nothing.csv"

@@ -6,19 +6,6 @@
 PREFIX=cli_scene.
 . tests/lib_cli.sh
 
-# expect NAME STATUS CMD...: exit status, and for status 2 exactly one
-# stderr line starting "shadesim: ".
-expect() {
-    name=$1; want=$2; shift 2
-    "$@" >"$T/out" 2>"$T/err"; got=$?
-    if [ "$got" -ne "$want" ]; then fail "$name" "exit $got, expected $want: $(head -c 300 "$T/err")"; return 1; fi
-    if [ "$want" -eq 2 ]; then
-        n=$(wc -l <"$T/err")
-        if [ "$n" -ne 1 ] || ! grep -q '^shadesim: ' "$T/err"; then fail "$name" "stderr not one 'shadesim:' line: $(cat "$T/err")"; return 1; fi
-    fi
-    ok "$name"
-}
-
 R="--set resolution=64x64"
 expect help 0 "$S" scene --help
 grep -q -- '--target-nmse' "$T/out" && grep -q -- '--sweep' "$T/out" && grep -q -- '--heldout' "$T/out" \
