@@ -65,6 +65,7 @@ struct sim_signal {
     int64_t     raw_min, raw_max;  /* range of fmt, cached for quantization */
     uint64_t    overflows;  /* time steps that settled on an overflowed quantization */
     int64_t     ovf_raw;    /* the last overflowed result this time step */
+    uint64_t    ovf_run;    /* driver->runs when it overflowed (see sim__overflow) */
     uint32_t    ovf_pending;/* in the kernel's list of overflows to settle */
     double      area_ge;    /* area of the element driving it, NAND2 eq. */
     sim_proc   *driver;     /* process computing it (NULL: input, constant) */
@@ -180,9 +181,13 @@ void sim_attach_vcd(sim_ctx *c, sim_vcd *v);
 /* The signals changed since the last call (each once); resets the list. */
 sim_signal **sim__vcd_take_dirty(sim_ctx *c, uint32_t *n);
 /* A quantization into s overflowed and gave raw. It is counted in
- * s->overflows only if s still holds raw when the time step settles: a
- * glitch while a combinational network settles (an operand updated one
- * delta before the other) is not an overflow of the hardware. */
+ * s->overflows only if the evaluation that overflowed is the last one of
+ * s's driver in this time step (so s settles on raw): a glitch while a
+ * combinational network settles (an operand updated one delta before the
+ * other) is not an overflow of the hardware, even when a later,
+ * in-range evaluation happens to give the same raw. So the count depends
+ * only on settled values, whatever order the kernel evaluates in (a
+ * levelized evaluation, sim_batch.h, counts the same). */
 void sim__overflow(sim_signal *s, int64_t raw);
 
 /* ---- inline fast path ----

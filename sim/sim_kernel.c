@@ -572,6 +572,7 @@ void sim__overflow(sim_signal *s, int64_t raw)
 {
     sim_ctx *c = s->ctx;
     s->ovf_raw = raw;
+    s->ovf_run = s->driver ? s->driver->runs : 0;
     if (!s->ovf_pending) { s->ovf_pending = 1; c->ovfq[c->novfq++] = s; }
 }
 
@@ -581,7 +582,7 @@ static void settle_overflows(sim_ctx *c)
     for (uint32_t i = 0; i < c->novfq; i++) {
         sim_signal *s = c->ovfq[i];
         s->ovf_pending = 0;
-        s->overflows += s->cur == s->ovf_raw;
+        s->overflows += s->cur == s->ovf_raw && (!s->driver || s->driver->runs == s->ovf_run);
     }
     c->novfq = 0;
 }

@@ -319,6 +319,32 @@ static void t_overflow_settled_only(void)
     sim_free(c);
 }
 
+static void t_overflow_glitch_same_raw(void)
+{
+    /* y = a + b in u3.0 (range 0..7, wrap), b = x one delta late. From
+     * a = 0, b = 10 (y = 10 wraps to 2: a real overflow) a step sets a = 2
+     * and x = 2: the adder first sees 2 + 10 = 12, which wraps to 4, then
+     * 2 + 2 = 4, in range. The settled 4 equals the glitch's wrapped raw,
+     * but the last evaluation did not overflow: no count. */
+    sim_ctx *c = sim_new();
+    sim_signal *a = sim_signal_new(c, NULL, "a", F("u4.0"), SIM_KIND_INPUT);
+    sim_signal *x = sim_signal_new(c, NULL, "x", F("u4.0"), SIM_KIND_INPUT);
+    sim_signal *b = sim_signal_new(c, NULL, "b", F("u4.0"), SIM_KIND_WIRE);
+    sim_assign(c, b, x);
+    sim_signal *y = sim_add(c, NULL, "y", F("u3.0"), a, b);
+    sim_run(c, 0);
+    sim_force(x, 10);
+    sim_run(c, 1);
+    TST_EQ_INT(y->cur, 10 - 8);
+    TST_EQ_INT(y->overflows, 1);
+    sim_force(a, 2);
+    sim_force(x, 2);
+    sim_run(c, 2);
+    TST_EQ_INT(y->cur, 4);
+    TST_EQ_INT(y->overflows, 1);
+    sim_free(c);
+}
+
 int main(void)
 {
     TST_RUN(t_shift_register);
@@ -331,5 +357,6 @@ int main(void)
     TST_RUN(t_area_model);
     TST_RUN(t_find_and_paths);
     TST_RUN(t_overflow_settled_only);
+    TST_RUN(t_overflow_glitch_same_raw);
     TST_EXIT();
 }
