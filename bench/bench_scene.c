@@ -33,7 +33,7 @@ int main(void)
     /* Best of three runs for each -j (the machine may be busy); the
      * first run's output is the one compared. */
     for (int k = 0; k < 2; k++) {
-        tb_scene_opts o = { k + 1, 0, NULL, NULL };
+        tb_scene_opts o = { k + 1, 0, NULL, NULL, 0 };
         dt[k] = 1e9;
         for (int rep = 0; rep < 3; rep++) {
             tb_scene_result t;

@@ -167,6 +167,9 @@ const sim_stats *sim_get_stats(const sim_ctx *c);
 /* After SIM_ERR_LOOP: "combinational loop at time T: a -> b -> a" etc. */
 const char *sim_error(const sim_ctx *c);
 
+/* Iterate: every process in creation order. */
+uint32_t    sim_proc_count(const sim_ctx *c);
+sim_proc   *sim_proc_at(const sim_ctx *c, uint32_t i);
 /* Iterate: every signal of the design in creation order. */
 uint32_t    sim_signal_count(const sim_ctx *c);
 sim_signal *sim_signal_at(const sim_ctx *c, uint32_t i);

@@ -220,6 +220,22 @@ int64_t sim_fx_from_real(double x, sim_fmt f, sim_round r, sim_ovf o, int *ovf)
         if (ovf) *ovf = 1;
         return 0;
     }
+    /* The common case without frexp: x 2^F is exact (a power-of-two
+     * scaling, here never past 2^52 and never subnormal), so is its floor
+     * below 2^52, and so is floor(y) + 1/2; rounding half-up adds one
+     * when y is at least that (compared, not subtracted: y - floor(y) of a
+     * negative y can round). In range, that is the raw. */
+    if (r != SIM_RND_EVEN && f.fbits <= 52) {
+        double y = ldexp(x, f.fbits);
+        if (y > -0x1p52 && y < 0x1p52 && (y == 0 || fabs(x) >= 0x1p-960)) {
+            double t = floor(y);
+            int64_t v = (int64_t)t + (r == SIM_RND_HALF_UP && y >= t + 0.5);
+            if (v >= sim_fmt_raw_min(f) && v <= sim_fmt_raw_max(f)) {
+                if (ovf) *ovf = 0;
+                return v;
+            }
+        }
+    }
     /* x = m * 2^(e-53) exactly, m an integer of at most 53 bits: the
      * double becomes an exact wide raw, with no rounding in floating point
      * and no out-of-range conversion however large x is. */

@@ -139,6 +139,8 @@ const char *sim_error(const sim_ctx *c) { return c->err; }
 void sim_stop(sim_ctx *c) { c->stop = 1; }
 void sim_attach_vcd(sim_ctx *c, sim_vcd *v) { c->vcd = v; }
 uint32_t sim_signal_count(const sim_ctx *c) { return c->nsig; }
+uint32_t sim_proc_count(const sim_ctx *c) { return c->nproc; }
+sim_proc *sim_proc_at(const sim_ctx *c, uint32_t i) { return i < c->nproc ? c->procs[i] : NULL; }
 sim_signal *sim_signal_at(const sim_ctx *c, uint32_t i) { return i < c->nsig ? c->sigs[i] : NULL; }
 
 sim_scope *sim_scope_new(sim_ctx *c, sim_scope *parent, const char *name)

@@ -42,6 +42,9 @@ static const char scene_help[] =
     "                   regions) and scene.json (the figures)\n"
     "  --json           print the JSON summary on stdout instead of the table\n"
     "  -j N             threads (default 1); the output is the same for any N\n"
+    "  --no-batch       simulate each band of rows on the event-driven kernel alone\n"
+    "                   (default: the bands side by side as lanes of the batch\n"
+    "                   mode, levelized; the output is the same bytes either way)\n"
     "  --heldout        render the scene's held-out view (other camera and light)\n"
     "  --vcd FILE       VCD of the hardware of the first band of rows that has spans\n"
     "  --max-nmse X     exit status 1 when the NMSE exceeds X\n"
@@ -158,7 +161,7 @@ static void progress(const char *what)
 }
 
 /* --compare: the paper's configuration next to the corrected ones. */
-static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, const char *dir, int json)
+static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch, const char *dir, int json)
 {
     static const struct { const char *name; int policy, terms; } cfgs[] = {
         { "paper", SCN_POL_ADAPTIVE_REGION, 3 },
@@ -173,7 +176,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, const char *
         d.policy = (scn_policy)cfgs[i].policy;
         d.terms = cfgs[i].terms;
         if (i == 0) d.series = DIV3_PAPER;     /* the paper's x/2 - x/8 - x/32 - x/128 */
-        tb_scene_opts o = { jobs, 0, NULL, NULL };
+        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch };
         tb_scene_result r;
         char err[600], sub[4200];
         progress(cfgs[i].name);
@@ -204,7 +207,7 @@ int cli_scene(int argc, char **argv)
 {
     const char *what = NULL, *dir = NULL, *vcd = NULL, *sweep_spec = NULL;
     const char *sets[256];
-    int nsets = 0, json = 0, jobs = 1, heldout = 0, sweep = 0, cmp = 0;
+    int nsets = 0, json = 0, jobs = 1, heldout = 0, sweep = 0, cmp = 0, no_batch = 0;
     double max_nmse = -1, target = -1;
     for (int i = 1; i < argc; i++)
         if (is_help(argv[i])) { fputs(scene_help, stdout); return CLI_OK; }
@@ -221,6 +224,7 @@ int cli_scene(int argc, char **argv)
         } else if (!strcmp(a, "--json")) json = 1;
         else if (!strcmp(a, "--heldout")) heldout = 1;
         else if (!strcmp(a, "--compare")) cmp = 1;
+        else if (!strcmp(a, "--no-batch")) no_batch = 1;
         else if (!strcmp(a, "-j")) {
             if (!has) return cli_usage_error("-j needs a number of threads");
             long v;
@@ -274,16 +278,16 @@ int cli_scene(int argc, char **argv)
     if (load_mesh(&d, &m)) return CLI_USAGE;
     int rc = CLI_OK;
     if (cmp) {
-        rc = compare(&d, &m, jobs, dir, json);
+        rc = compare(&d, &m, jobs, no_batch, dir, json);
     } else if (target > 0 || sweep) {
         progress(sweep ? "sweeping..." : "searching formats...");
-        int t = sweep ? tb_scene_sweep(&d, &m, jobs, sweep_spec, dir, json, stdout, err, sizeof err)
-                      : tb_scene_search(&d, &m, jobs, target, dir, json, stdout, err, sizeof err);
+        int t = sweep ? tb_scene_sweep(&d, &m, jobs, no_batch, sweep_spec, dir, json, stdout, err, sizeof err)
+                      : tb_scene_search(&d, &m, jobs, no_batch, target, dir, json, stdout, err, sizeof err);
         progress("");
         if (t == TB_BADINPUT) rc = cli_usage_error("%s", err);
         else if (t == TB_FAIL) { if (err[0]) (void)cli_usage_error("%s", err); rc = CLI_FAIL; }
     } else {
-        tb_scene_opts o = { jobs, heldout, vcd, NULL };
+        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch };
         tb_scene_result r;
         progress("rendering...");
         int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);

@@ -245,6 +245,9 @@ static int coef_adds(const scn_desc *d, int deg)
 typedef struct band {
     int y0, y1;
     size_t s0, s1;                 /* its spans */
+    tb_span_item *items;           /* its intervals, for the batch (NULL: simulated already) */
+    size_t nitems;
+    double *pix;
     tb_span_stats st;
     size_t intervals, deg2, nodes;
     double coef_adds, horner_deg;  /* sums over intervals / pixels */
@@ -265,9 +268,11 @@ typedef struct job {
     band *bands;
     int nbands, vcd_band;
     const char *vcd_path;
+    int batch;                     /* simulate bands side by side (tb_span_run_lanes) */
+    int ngroups;                   /* the batch: bands in this many groups, one a thread */
     tb_scene_result *r;
     pthread_mutex_t lock;
-    int next;
+    int next, next_group;
 } job;
 
 static double shade_at(const job *J, const double pos[3], const double nrm[3])
@@ -294,6 +299,17 @@ static int policy_deg(const scn_desc *d, int region)
     case SCN_POL_ADAPTIVE_REGION:
         return region < SCN_MAX_REGIONS && d->region_deg[region] == 2 ? 2 : 3;
     default: return 0;
+    }
+}
+
+/* A band's hardware pixels into the image, span by span. */
+static void band_pixels(const job *J, const band *b, const double *pix)
+{
+    int W = J->g->w;
+    size_t p = 0;
+    for (size_t k = b->s0; k < b->s1; k++) {
+        const scn_span *s = &J->spans[k];
+        for (int x = s->x0; x < s->x1; x++) J->r->hw[(size_t)s->y * W + x] = pix[p++];
     }
 }
 
@@ -371,16 +387,45 @@ static void run_band(job *J, band *b)
         }
     }
     const char *vcd = J->vcd_band == (int)(b - J->bands) ? J->vcd_path : NULL;
-    b->rc = tb_span_run(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err);
-    if (b->rc == TB_OK) {
-        size_t p = 0;
-        for (size_t k = b->s0; k < b->s1; k++) {
-            const scn_span *s = &J->spans[k];
-            for (int x = s->x0; x < s->x1; x++) r->hw[(size_t)s->y * W + x] = pix[p++];
-        }
+    if (J->batch && !vcd) {
+        /* simulated with the other bands of its group (run_group) */
+        b->items = items;
+        b->nitems = nitems;
+        b->pix = pix;
+        return;
     }
+    b->rc = tb_span_run(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err);
+    if (b->rc == TB_OK) band_pixels(J, b, pix);
     free(items);
     free(pix);
+}
+
+/* Bands [g * nb / ngroups, (g + 1) * nb / ngroups) whose intervals wait,
+ * as lanes of one batch: each band's figures are tb_span_run's. */
+static void run_group(job *J, int g)
+{
+    int k0 = (int)((long long)J->nbands * g / J->ngroups), k1 = (int)((long long)J->nbands * (g + 1) / J->ngroups);
+    tb_span_lane lanes[TB_SCENE_BANDS];
+    int which[TB_SCENE_BANDS], n = 0;
+    for (int k = k0; k < k1; k++) {
+        band *b = &J->bands[k];
+        if (!b->items) continue;
+        which[n] = k;
+        lanes[n++] = (tb_span_lane){ .items = b->items, .nitems = b->nitems, .pix = b->pix };
+    }
+    if (!n) return;
+    tb_span_run_lanes(J->u, J->cfg, J->fmts, lanes, (size_t)n, 1);
+    for (int i = 0; i < n; i++) {
+        band *b = &J->bands[which[i]];
+        b->st = lanes[i].st;
+        b->rc = lanes[i].rc;
+        snprintf(b->err, sizeof b->err, "%s", lanes[i].err);
+        if (b->rc == TB_OK) band_pixels(J, b, b->pix);
+        free(b->items);
+        free(b->pix);
+        b->items = NULL;
+        b->pix = NULL;
+    }
 }
 
 static void *worker(void *arg)
@@ -392,6 +437,18 @@ static void *worker(void *arg)
         pthread_mutex_unlock(&J->lock);
         if (b < 0) return NULL;
         run_band(J, &J->bands[b]);
+    }
+}
+
+static void *group_worker(void *arg)
+{
+    job *J = arg;
+    for (;;) {
+        pthread_mutex_lock(&J->lock);
+        int g = J->next_group < J->ngroups ? J->next_group++ : -1;
+        pthread_mutex_unlock(&J->lock);
+        if (g < 0) return NULL;
+        run_group(J, g);
     }
 }
 
@@ -432,7 +489,7 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
                          const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
-    tb_scene_opts dflt = { 1, 0, NULL, NULL };
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0 };
     if (!o) o = &dflt;
     r->heldout = o->heldout;
     if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen)) return TB_BADINPUT;
@@ -460,7 +517,7 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     /* bands of equal rows; spans are in row order */
     job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
               .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
-              .vcd_path = o->vcd_path, .r = r, .next = 0 };
+              .vcd_path = o->vcd_path, .batch = !o->no_batch, .r = r, .next = 0 };
     size_t s = 0;
     for (int k = 0; k < nb; k++) {
         band *b = &bands[k];
@@ -483,6 +540,17 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     }
     worker(&J);
     for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
+    if (J.batch) {
+        /* then the bands' hardware, a group of lanes a thread */
+        J.ngroups = jobs;
+        started = 0;
+        for (int t = 1; t < jobs; t++) {
+            if (pthread_create(&th[started], NULL, group_worker, &J)) break;
+            started++;
+        }
+        group_worker(&J);
+        for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
+    }
     pthread_mutex_destroy(&J.lock);
 
     /* sums in band order */

@@ -20,6 +20,8 @@ typedef struct tb_scene_opts {
     int         heldout;     /* 1: render the description's held-out view instead of its view */
     const char *vcd_path;    /* NULL, or a VCD of the hardware (first band only) */
     const unit_fmts *fmts;   /* NULL: the scene's formats (width rule + fmt overrides) */
+    int         no_batch;    /* 1: every band on the event-driven kernel alone; 0: bands as
+                              * lanes of the batch mode (same bytes, faster) */
 } tb_scene_opts;
 
 typedef struct tb_scene_result {

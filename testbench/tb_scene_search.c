@@ -57,6 +57,7 @@ typedef struct search {
     const scn_desc *d;
     const scn_gbuf *gv, *gh;      /* view, held-out view */
     int      jobs;
+    int      no_batch;    /* tb_scene_opts.no_batch of every render */
     double   target;
     size_t   renders;
     int      tty;
@@ -71,7 +72,7 @@ static int holds(const search *s, const eval *e)
  * the held-out view with `threads` bands. */
 static void render(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, eval *e)
 {
-    tb_scene_opts o = { threads, heldout, NULL, f };
+    tb_scene_opts o = { threads, heldout, NULL, f, s->no_batch };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     memset(e, 0, sizeof *e);
@@ -374,7 +375,7 @@ static int write_report(const report *rp, const char *outdir, char *err, size_t 
 
 /* ---------------------------------------------------------------- search */
 
-int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double target_nmse,
+int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, double target_nmse,
                     const char *outdir, int json, FILE *out, char *err, size_t errlen)
 {
     if (errlen) err[0] = 0;
@@ -395,7 +396,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
         scn_gbuf_free(&gh);
         return TB_BADINPUT;
     }
-    search s = { d, &gv, &gh, jobs, target_nmse, 0, isatty(2) };
+    search s = { d, &gv, &gh, jobs, no_batch, target_nmse, 0, isatty(2) };
     report *rp = calloc(1, sizeof *rp);
     cand *cj = calloc((size_t)jobs, sizeof *cj);
     int rc = TB_FAIL;

@@ -20,10 +20,10 @@
 #define TB_SCENE_SEARCH_H
 #include "testbench/tb_scene.h"
 
-int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double target_nmse,
+int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, double target_nmse,
                     const char *outdir, int json, FILE *out, char *err, size_t errlen);
 /* spec: NULL for the default grid, or "KEY=V1,V2,...;KEY=..." with keys
  * L, policy, terms, width, schedule. */
-int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *spec,
+int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, const char *spec,
                    const char *outdir, int json, FILE *out, char *err, size_t errlen);
 #endif

@@ -160,6 +160,7 @@ typedef struct sweep {
     size_t n, *todo, ntodo, done;
     pthread_mutex_t mu;
     int tty;
+    int no_batch;     /* tb_scene_opts.no_batch of every render */
 } sweep;
 
 static void desc_of(const scn_desc *d, const pt *p, scn_desc *out)
@@ -178,7 +179,7 @@ static void run_pt(void *ctx, size_t k)
     pt *p = &s->p[s->todo[k]];
     scn_desc dd;
     desc_of(s->d, p, &dd);
-    tb_scene_opts o = { 1, 0, NULL, NULL };
+    tb_scene_opts o = { 1, 0, NULL, NULL, s->no_batch };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     p->status = tb_scene_render_gbuf(&dd, s->g, NULL, NULL, &o, &r, p->err, sizeof p->err);
@@ -333,7 +334,7 @@ static void write_csv(FILE *f, const pt *p, size_t n)
 
 /* ------------------------------------------------------------------ verb */
 
-int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *spec,
+int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, const char *spec,
                    const char *outdir, int json, FILE *out, char *err, size_t errlen)
 {
     axes a;
@@ -372,7 +373,7 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *s
     /* Check every point's hardware before rendering anything, and find
      * the points that build the same hardware. */
     int rc = TB_OK;
-    sweep sw = { d, m, NULL, p, n, NULL, 0, 0, PTHREAD_MUTEX_INITIALIZER, isatty(2) };
+    sweep sw = { d, m, NULL, p, n, NULL, 0, 0, PTHREAD_MUTEX_INITIALIZER, isatty(2), no_batch };
     scn_gbuf g;
     memset(&g, 0, sizeof g);
     sw.todo = malloc((n ? n : 1) * sizeof *sw.todo);

@@ -9,6 +9,8 @@
 #include "testbench/tb.h"
 #include "testbench/tb_range.h"
 #include "sim/sim_vcd.h"
+#include "sim/sim_batch.h"
+#include <stdlib.h>
 #include <math.h>
 #include <string.h>
 
@@ -32,16 +34,25 @@ typedef struct span_tb {
     size_t got, total;
 } span_tb;
 
-static void offer(span_tb *s, size_t i)
+/* Item i's input raws as the testbench drives them (quantized with the
+ * configuration's modes; each overflow counted in *ovf). */
+static void item_raws(const span_tb *s, size_t i, int64_t *raw, uint64_t *ovf)
 {
     const tb_span_item *it = &s->items[i];
     for (int p = 0; p < s->nin; p++) {
         int w = s->what[p];
         double v = w < IN_N ? it->node[w] : w == IN_N ? it->n : w == IN_DV ? it->dv : it->deg;
         int ov = 0;
-        sim_write(s->io->in[p], sim_fx_from_real(v, s->fmt[p], s->cfg->rnd, s->cfg->ovf, &ov));
-        s->in_ovf += (uint64_t)ov;
+        raw[p] = sim_fx_from_real(v, s->fmt[p], s->cfg->rnd, s->cfg->ovf, &ov);
+        *ovf += (uint64_t)ov;
     }
+}
+
+static void offer(span_tb *s, size_t i)
+{
+    int64_t raw[UNIT_MAX_IO];
+    item_raws(s, i, raw, &s->in_ovf);
+    for (int p = 0; p < s->nin; p++) sim_write(s->io->in[p], raw[p]);
     s->offered = i;
 }
 
@@ -124,27 +135,38 @@ static int check_item(const tb_span_item *it, size_t i, int L, int has_deg, char
     return 0;
 }
 
-int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
-                const tb_span_item *items, size_t nitems, double *pix,
-                tb_span_stats *st, const char *vcd_path, char *err, size_t errlen)
+/* The checks both paths make before simulating: s's input map, every
+ * item's range, st's item counts. -1 with err (TB_BADINPUT), else 0. */
+static int prepare(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const tb_span_item *items,
+                   size_t nitems, span_tb *s, tb_span_stats *st, char *err, size_t errlen)
 {
     memset(st, 0, sizeof *st);
-    span_tb s;
-    memset(&s, 0, sizeof s);
-    if (!u || map_inputs(u, &s, f)) {
+    memset(s, 0, sizeof *s);
+    if (!u || map_inputs(u, s, f)) {
         snprintf(err, errlen, "unit %s is not a span unit (inputs i1.., n, dv)", u ? u->name : "(none)");
-        return TB_BADINPUT;
+        return -1;
     }
-    if (cfg->L < 2 || cfg->L > 64) { snprintf(err, errlen, "%s: L = %d is outside 2..64", u->name, cfg->L); return TB_BADINPUT; }
+    if (cfg->L < 2 || cfg->L > 64) { snprintf(err, errlen, "%s: L = %d is outside 2..64", u->name, cfg->L); return -1; }
     int has_deg = 0;
-    for (int p = 0; p < s.nin; p++) has_deg |= s.what[p] == IN_DEG;
+    for (int p = 0; p < s->nin; p++) has_deg |= s->what[p] == IN_DEG;
     size_t total = 0;
     for (size_t i = 0; i < nitems; i++) {
-        if (check_item(&items[i], i, cfg->L, has_deg, err, errlen)) return TB_BADINPUT;
+        if (check_item(&items[i], i, cfg->L, has_deg, err, errlen)) return -1;
         total += (size_t)items[i].n;
         st->items_deg2 += has_deg && items[i].deg == 2;
     }
     st->items = nitems;
+    s->cfg = cfg; s->items = items; s->nitems = nitems; s->offered = nitems; s->total = total;
+    return 0;
+}
+
+int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                const tb_span_item *items, size_t nitems, double *pix,
+                tb_span_stats *st, const char *vcd_path, char *err, size_t errlen)
+{
+    span_tb s;
+    if (prepare(u, cfg, f, items, nitems, &s, st, err, errlen)) return TB_BADINPUT;
+    size_t total = s.total;
     if (!nitems) return TB_OK;
 
     sim_ctx *c = sim_new();
@@ -157,7 +179,7 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     sim_vcd *vcd = NULL;
     if (u->build(c, sc, clk, cfg, f, &io, err, errlen)) { rc = TB_BADINPUT; goto done; }
     sim_clock(c, clk, 5, 5);
-    s.io = &io; s.cfg = cfg; s.items = items; s.nitems = nitems; s.offered = nitems; s.ctx = c;
+    s.io = &io; s.ctx = c;
     s.y = io.out[0];
     s.lsb = ldexp(1.0, -io.out[0]->fmt.fbits);
     s.pix = pix; s.total = total;
@@ -197,4 +219,151 @@ done:
     if (vcd) sim_vcd_abort(vcd);
     sim_free(c);
     return rc;
+}
+
+/* ------------------------------------------------------------- batch mode */
+
+/* A lane of the batch: the scalar testbench's state (its driver and
+ * monitor read the batch's lane values instead of signals). */
+typedef struct lane_tb {
+    span_tb  s;
+    uint32_t lane;        /* index in the batch */
+    uint64_t max_clocks;
+    int      in_batch, done;
+} lane_tb;
+
+/* The batch's arrays the lane testbench reads and writes. */
+typedef struct lane_io {
+    int64_t *in[UNIT_MAX_IO], *valid;          /* next values */
+    const int64_t *in_valid, *in_ready, *out_valid, *y;
+} lane_io;
+
+/* Offer item i of lane t on the batch's inputs (offer's batch twin). */
+static void lane_offer(const lane_io *x, lane_tb *t, size_t i)
+{
+    int64_t raw[UNIT_MAX_IO];
+    item_raws(&t->s, i, raw, &t->s.in_ovf);
+    for (int p = 0; p < t->s.nin; p++) x->in[p][t->lane] = raw[p];
+    t->s.offered = i;
+}
+
+/* driver() for lane t before edge e, from the values before the edge. */
+static void lane_driver(const lane_io *x, lane_tb *t, uint64_t e)
+{
+    span_tb *s = &t->s;
+    if (s->started && x->in_valid[t->lane] && x->in_ready[t->lane]) {
+        if (s->next == 0) s->first_accept = e;
+        s->next++;
+    }
+    s->started = 1;
+    if (s->next < s->nitems) {
+        if (s->offered != s->next) lane_offer(x, t, s->next);
+        x->valid[t->lane] = 1;
+    } else {
+        x->valid[t->lane] = 0;
+    }
+}
+
+/* monitor() for lane t at edge e; 1 when its last pixel came. */
+static int lane_monitor(const lane_io *x, lane_tb *t, uint64_t e)
+{
+    span_tb *s = &t->s;
+    if (!x->out_valid[t->lane] || s->got >= s->total) return 0;
+    s->pix[s->got++] = (double)x->y[t->lane] * s->lsb;
+    if (s->got < s->total) return 0;
+    s->last_pixel = e;
+    return 1;
+}
+
+/* The lanes marked in_batch, side by side; a lane the batch cannot give
+ * exactly (an overflow, or no answer within its clock budget) is left
+ * in_batch = 0 for tb_span_run. */
+static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                      tb_span_lane *L, lane_tb *T, size_t n, uint32_t nb)
+{
+    char err[300];
+    sim_ctx *c = sim_new();
+    sim_set_quant(c, cfg->rnd, cfg->ovf);
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_scope *sc = sim_scope_new(c, NULL, u->name);
+    unit_io io;
+    memset(&io, 0, sizeof io);
+    sim_batch *b = NULL;
+    if (u->build(c, sc, clk, cfg, f, &io, err, sizeof err) || !(b = sim_batch_new(c, clk, nb, err, sizeof err))) {
+        for (size_t i = 0; i < n; i++) T[i].in_batch = 0;
+        sim_free(c);
+        return;
+    }
+    uint64_t const_ovf = tb_scope_overflows(sc);
+    double area = sim_scope_area(sc), lsb = ldexp(1.0, -io.out[0]->fmt.fbits);
+    lane_io x;
+    memset(&x, 0, sizeof x);
+    for (int p = 0; p < UNIT_MAX_IO && io.in[p]; p++) x.in[p] = sim_batch_next(b, io.in[p]);
+    x.valid = sim_batch_next(b, io.in_valid);
+    x.in_valid = sim_batch_val(b, io.in_valid);
+    x.in_ready = sim_batch_val(b, io.in_ready);
+    x.out_valid = sim_batch_val(b, io.out_valid);
+    x.y = sim_batch_val(b, io.out[0]);
+    uint32_t active = 0;
+    for (size_t i = 0; i < n; i++) {
+        lane_tb *t = &T[i];
+        if (!t->in_batch) continue;
+        t->s.io = &io; t->s.y = io.out[0]; t->s.lsb = lsb; t->s.pix = L[i].pix;
+        t->max_clocks = 1000 + 8 * (uint64_t)t->s.total + 8 * (uint64_t)t->s.nitems;
+        lane_driver(&x, t, 0);   /* the kernel's initialization runs the driver once */
+        active++;
+    }
+    sim_batch_start(b);
+    uint32_t *fin = malloc(n * sizeof *fin);
+    for (uint64_t e = 1; active && fin; e++) {
+        uint32_t nfin = 0;
+        for (size_t i = 0; i < n; i++) {
+            lane_tb *t = &T[i];
+            if (!t->in_batch || t->done) continue;
+            int last = lane_monitor(&x, t, e);
+            lane_driver(&x, t, e);
+            if (last || e >= t->max_clocks) { fin[nfin++] = (uint32_t)i; t->done = 1; active--; }
+            if (!last && e >= t->max_clocks) t->in_batch = 0;   /* tb_span_run says why */
+        }
+        sim_batch_cycle(b);
+        /* the last edge's settling belongs to the lane's run too */
+        for (uint32_t k = 0; k < nfin; k++) {
+            lane_tb *t = &T[fin[k]];
+            if (!t->in_batch) continue;
+            if (sim_batch_overflowed(b, t->lane)) { t->in_batch = 0; continue; }
+            tb_span_stats *st = &L[fin[k]].st;
+            st->clocks = t->s.last_pixel - t->s.first_accept;
+            st->pixels = t->s.got;
+            st->overflows = t->s.in_ovf + const_ovf;
+            st->area_ge = area;
+        }
+    }
+    if (!fin) for (size_t i = 0; i < n; i++) T[i].in_batch = 0;
+    free(fin);
+    sim_batch_free(b);
+    sim_free(c);
+}
+
+void tb_span_run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                       tb_span_lane *L, size_t n, int batch)
+{
+    lane_tb *T = batch && n ? calloc(n, sizeof *T) : NULL;
+    uint32_t nb = 0;
+    for (size_t i = 0; i < n && T; i++) {
+        L[i].rc = TB_OK;
+        L[i].err[0] = 0;
+        /* bad input and empty streams: tb_span_run's answer as it is */
+        if (nb >= SIM_BATCH_MAX_LANES || !L[i].nitems
+            || prepare(u, cfg, f, L[i].items, L[i].nitems, &T[i].s, &L[i].st, L[i].err, sizeof L[i].err))
+            continue;
+        T[i].in_batch = 1;
+        T[i].lane = nb++;
+    }
+    if (nb) run_batch(u, cfg, f, L, T, n, nb);
+    for (size_t i = 0; i < n; i++) {
+        if (T && T[i].in_batch) { L[i].batched = 1; continue; }
+        L[i].batched = 0;
+        L[i].rc = tb_span_run(u, cfg, f, L[i].items, L[i].nitems, L[i].pix, &L[i].st, NULL, L[i].err, sizeof L[i].err);
+    }
+    free(T);
 }

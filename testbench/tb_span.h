@@ -37,4 +37,22 @@ typedef struct tb_span_stats {
 int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
                 const tb_span_item *items, size_t nitems, double *pix,
                 tb_span_stats *st, const char *vcd_path, char *err, size_t errlen);
+/* Batch mode: several independent streams (lanes) at once, each lane's
+ * pixels, figures and error exactly what tb_span_run gives for its stream
+ * alone. The lanes run side by side through one levelized evaluation of
+ * the unit (sim/sim_batch.h); a lane that evaluation cannot reproduce
+ * exactly (a quantization overflowed, or the unit stopped answering) is
+ * simulated again by tb_span_run, as is every lane when batch is 0 or the
+ * unit is not one the batch mode accepts. */
+typedef struct tb_span_lane {
+    const tb_span_item *items;   /* in: the stream */
+    size_t nitems;
+    double *pix;                 /* out: sum(items[i].n) pixels */
+    tb_span_stats st;            /* out */
+    int rc;                      /* out: TB_OK, TB_FAIL or TB_BADINPUT */
+    int batched;                 /* out: 1 if the batch gave this lane */
+    char err[300];               /* out: rc's message */
+} tb_span_lane;
+void tb_span_run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                       tb_span_lane *lanes, size_t nlanes, int batch);
 #endif

@@ -60,6 +60,22 @@ for f in j1.json j1/ref.png j1/hw.png j1/degree.png j1/region.png j1/scene.json;
 done
 [ $same -eq 1 ] && ok jobs_same_bytes || fail jobs_same_bytes "-j 1 and -j 2 differ"
 
+# The batch mode (default) and the kernel alone (--no-batch) give the same
+# bytes, on a configuration that overflows (its lanes fall back) too.
+for n in auto overflowing; do
+    c="--set policy=adaptive-auto"
+    [ $n = overflowing ] && c="--set policy=cubic-n2 --set fmt=a=s3.13"   # A in s3.13 overflows
+    "$S" scene face $R $c -o "$T/b1" --json >"$T/b1.json" 2>/dev/null
+    "$S" scene face $R $c -o "$T/b0" --json --no-batch >"$T/b0.json" 2>/dev/null
+    same=1
+    for f in b1.json b1/ref.png b1/hw.png b1/scene.json; do
+        g=$(echo "$f" | sed 's/b1/b0/')
+        cmp -s "$T/$f" "$T/$g" || same=0
+    done
+    [ -s "$T/b1.json" ] || same=0
+    [ $same -eq 1 ] && ok "no_batch_same_bytes_$n" || fail "no_batch_same_bytes_$n" "--no-batch differs ($c)"
+done
+
 # Other built-ins, a scene file, the held-out view.
 expect sphere 0 "$S" scene sphere $R -o "$T/s"
 printf 'shadesim-scene 1\n# a small face\nmesh face\nresolution 48x40\npolicy cubic-n2\nL 6\n' >"$T/small.scene"

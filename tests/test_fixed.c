@@ -288,6 +288,41 @@ static void test_from_real_grid(void)
 }
 
 /* Random reals on a fine grid (lsb/2^20) and just either side of ties. */
+/* Ties in wide formats (fraction bits up to 52, where the conversion scales in
+ * floating point) against the long-double reference: random doubles of
+ * every magnitude, and values a tiny step either side of a tie, negative
+ * ones included (there y - floor(y) would round). */
+static void test_from_real_ties_wide(void)
+{
+    for (int k = 0; k < 20000; k++) {
+        int sg = (int)(rnd() & 1), fb = (int)(rnd() % 53), ib = 1 + (int)(rnd() % 10);
+        if (ib + fb > (sg ? 64 : 63)) fb = (sg ? 64 : 63) - ib;
+        sim_fmt f = fmt(sg, ib, fb);
+        long double v;
+        if (k & 1) {
+            /* a tie +- one step of a 53-bit mantissa */
+            long double t = (long double)((int64_t)(rnd() % (1ull << 20)) - (1 << 19)) + 0.5L;
+            v = t + (long double)((int)(rnd() % 3) - 1) * ldexpl(1, -30);
+        } else {
+            /* up to 2^8 past the range (overflows too), under 2^62 so
+             * that the reference's long-double wrap is exact */
+            int emax = ib + fb + 8 - 53 < 9 ? ib + fb + 8 - 53 : 9;
+            v = ldexpl((long double)((int64_t)(rnd() >> 11) - (1ll << 52)), emax - (int)(rnd() % 60));
+        }
+        double x = (double)ldexpl(v, -fb);
+        v = ldexpl((long double)x, fb);   /* exactly what the double holds, scaled */
+        for (int r = 0; r < 3; r++)
+            for (int o = 0; o < 2; o++) {
+                int ov = -1, rov;
+                int64_t got = sim_fx_from_real(x, f, RND[r], OVF[o], &ov);
+                long double want = ref_fit_ld(ref_round_ld(v, RND[r]), sg, ib + fb, OVF[o], &rov);
+                TST_CHECK(got == want && ov == rov, "%c%d.%d x=%a %s/%s: got %lld ovf %d, want %.0Lf ovf %d",
+                          sg ? 's' : 'u', ib, fb, x, sim_round_name(RND[r]), sim_ovf_name(OVF[o]),
+                          (long long)got, ov, want, rov);
+            }
+    }
+}
+
 static void test_from_real_random_ties(void)
 {
     for (int w = 1; w <= 10; w++)
@@ -688,6 +723,7 @@ int main(void)
     TST_RUN(test_ranges);
     TST_RUN(test_from_real_grid);
     TST_RUN(test_from_real_random_ties);
+    TST_RUN(test_from_real_ties_wide);
     TST_RUN(test_requant_grid);
     TST_RUN(test_requant_random_wide);
     TST_RUN(test_requant_extremes);

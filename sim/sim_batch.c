@@ -1,0 +1,747 @@
+/* sim_batch.c - levelized evaluation of a primitive netlist over lanes.
+ *
+ * Built from what sim_prim_describe says of each element (the same record
+ * the Verilog export reads), so the batch mode and the kernel share one
+ * description of the hardware. Each element's quantization is
+ * sim_quant_into's, step for step: the same fast path (drop k low bits of
+ * a value under 2^62 by truncation or half-up, in range) and the same
+ * general path (sim_fx_requant), so a lane's values are the kernel's.
+ *
+ * Where the time goes: one pass over the schedule per clock, each element
+ * a loop over the lanes that reads its operands' arrays and writes its
+ * output's; no event lists, no per-element dispatch per lane. An element
+ * whose exact result provably fits 62 bits does the arithmetic in int64_t
+ * (as the kernel's fast path); the rest, and any lane whose fast result
+ * falls out of range, take the exact 128-bit path.
+ */
+#include "sim/sim_batch.h"
+#include "sim/sim_prim.h"
+#include <stdlib.h>
+#include <string.h>
+
+enum { B_COPY, B_ADD, B_SUB, B_MUL, B_SHIFT, B_MUX, B_BK, B_LOGIC, B_REG };
+
+/* One element of the schedule. Operand pointers are the lane arrays of
+ * the signals it reads. */
+typedef struct bop {
+    int      kind;
+    int      fast;        /* the int64_t path applies (see op_setup) */
+    int      sa, sb;      /* left shifts aligning a, b to src_f */
+    int      src_f;       /* fraction bits of the exact result */
+    int      k;           /* fast path: right shift from src_f to y */
+    int64_t  radd;        /* fast path: added before the shift (half-up) */
+    int64_t  lo, hi;      /* y's raw range */
+    sim_fmt  fy;
+    sim_round r;
+    sim_ovf  o;
+    int64_t *y, *a, *b, *c, *rst;
+    int      fa;          /* fraction bits of a (copy, register, block key) */
+    int64_t  rst_raw;
+    int      n;           /* mux, logic: inputs */
+    int64_t **in;
+    int     *in_f;        /* mux: each input's fraction bits */
+    sim_logic_fn fn;
+    void    *user;
+    int64_t *tab;         /* logic: y for every input value (see logic_table), or NULL */
+    int      tsh[8];      /* logic: where input i's bits go in the table index */
+    uint64_t tmask[8];
+    int64_t *nx;          /* register: value after the edge */
+    uint32_t sig;         /* y's signal index */
+    uint32_t *dep;        /* combinational: the signals it reads */
+    int      ndep;
+} bop;
+
+struct sim_batch {
+    uint32_t lanes, nsig;
+    int64_t *val;               /* nsig x lanes: every signal's values */
+    int64_t *pend;              /* inputs' values for the next edge */
+    int32_t *inslot;            /* per signal: its row in pend, or -1 */
+    uint32_t nin;
+    uint32_t *in_sig;           /* per input row: the signal */
+    bop     *comb;  uint32_t ncomb;   /* in topological order */
+    bop     *reg;   uint32_t nreg;
+    int64_t *regnx;             /* nreg x lanes */
+    uint64_t *regm;             /* nreg x nw: lanes to evaluate at the next edge */
+    unsigned char *ovf;         /* per lane: some quantization overflowed */
+    uint32_t nw;                /* 64-lane words of a mask */
+    uint64_t *chg;              /* per signal: lanes it changed in at this edge (nw words) */
+    unsigned char *uni;         /* per signal: 1 if every lane holds the same value */
+    uint64_t all[SIM_BATCH_MAX_LANES / 64];   /* every lane */
+    int      started;
+};
+
+/* ------------------------------------------------------------ quantization */
+
+/* sim_quant_into without the signal: the overflow flags the lane. */
+static int64_t quant(const bop *p, sim_wide raw, int src_f, unsigned char *ovf)
+{
+    int k = src_f - p->fy.fbits;
+    if ((unsigned)k < 63 && raw >= -((sim_wide)1 << 62) && raw < ((sim_wide)1 << 62) && p->r != SIM_RND_EVEN) {
+        int64_t x = (int64_t)raw;
+        if (k && p->r == SIM_RND_HALF_UP) x += (int64_t)1 << (k - 1);
+        x >>= k;
+        if (x >= p->lo && x <= p->hi) return x;
+    }
+    int o = 0;
+    int64_t v = sim_fx_requant(raw, src_f, p->fy, p->r, p->o, &o);
+    if (o) *ovf = 1;
+    return v;
+}
+
+/* Low W bits of v, sign- or zero-extended (a logic element's output). */
+static int64_t canon(int64_t v, sim_fmt f)
+{
+    int sh = 64 - f.width;
+    if (f.is_signed) return (int64_t)((uint64_t)v << sh) >> sh;
+    return (int64_t)((uint64_t)v & (UINT64_MAX >> sh));
+}
+
+static sim_wide align(int64_t raw, int k) { return (sim_wide)raw * ((sim_wide)1 << k); }
+
+/* ------------------------------------------------------------- evaluation */
+
+/* Which lanes an element is evaluated in, and which lanes its output
+ * changed in, are bit masks over the lanes (64 a word): an element is
+ * evaluated only in the lanes where one of its inputs changed at this
+ * edge, as the kernel wakes an element only on a change. Where every lane
+ * of a word needs it (the datapath, busy every clock) the loop runs over
+ * the word's 64 lanes without looking at bits; where a few do (a
+ * coefficient network that changes once an item) only those. */
+#define FOR_LANES(l, m, nw, body) do {                                         \
+        for (uint32_t w_ = 0; w_ < (nw); w_++) {                               \
+            uint64_t m_ = (m)[w_], acc_ = 0;                                   \
+            if (m_ == UINT64_MAX) {                                            \
+                for (uint32_t l = w_ * 64; l < w_ * 64 + 64; l++) { body }      \
+            } else {                                                           \
+                while (m_) {                                                   \
+                    uint32_t l = w_ * 64 + (uint32_t)__builtin_ctzll(m_);       \
+                    m_ &= m_ - 1;                                              \
+                    body                                                       \
+                }                                                              \
+            }                                                                  \
+            om[w_] |= acc_;                                                    \
+        }                                                                      \
+    } while (0)
+/* Lane l's new value v of the output y (a local: stores through y may
+ * alias any int64_t, so nothing the loop needs is read through p). */
+#define PUT(l, v) do { int64_t v_ = (v);                                       \
+        acc_ |= (uint64_t)(y[l] != v_) << ((l) & 63);                          \
+        y[l] = v_; } while (0)
+/* The fast result s (exact, |s| < 2^62) quantized, or the exact path when
+ * it lands out of range (an overflow). */
+#define FAST_Q(s, l) do {                                                      \
+        int64_t s_ = (s);                                                      \
+        int64_t x_ = (int64_t)((uint64_t)s_ + radd) >> k;                      \
+        if (__builtin_expect(x_ < lo || x_ > hi, 0))                           \
+            x_ = quant(p, s_, p->src_f, &ovf[l]);                              \
+        PUT(l, x_);                                                            \
+    } while (0)
+
+/* Evaluate p in the lanes of mask m (nw words); the lanes its output
+ * changed in go into om. */
+static void eval_comb(const bop *p, const uint64_t *m, uint32_t nw, unsigned char *ovf, uint64_t *om)
+{
+    const int64_t *a = p->a, *b = p->b, *c = p->c;
+    int64_t *const y = p->y;
+    const int64_t lo = p->lo, hi = p->hi;
+    const uint64_t radd = (uint64_t)p->radd;
+    const int k = p->k, sa = p->sa, sb = p->sb, fa = p->fa, src_f = p->src_f, n = p->n;
+    int64_t *const *in = p->in;
+    switch (p->kind) {
+    case B_COPY:
+        if (p->fast) FOR_LANES(l, m, nw, FAST_Q(a[l], l););
+        else FOR_LANES(l, m, nw, PUT(l, quant(p, a[l], fa, &ovf[l])););
+        break;
+    case B_ADD:
+        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)(((uint64_t)a[l] << sa) + ((uint64_t)b[l] << sb)), l););
+        else FOR_LANES(l, m, nw, PUT(l, quant(p, align(a[l], sa) + align(b[l], sb), src_f, &ovf[l])););
+        break;
+    case B_SUB:
+        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)(((uint64_t)a[l] << sa) - ((uint64_t)b[l] << sb)), l););
+        else FOR_LANES(l, m, nw, PUT(l, quant(p, align(a[l], sa) - align(b[l], sb), src_f, &ovf[l])););
+        break;
+    case B_MUL:
+        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)((uint64_t)a[l] * (uint64_t)b[l]), l););
+        else FOR_LANES(l, m, nw, PUT(l, quant(p, (sim_wide)a[l] * (sim_wide)b[l], src_f, &ovf[l])););
+        break;
+    case B_SHIFT:
+        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)((uint64_t)a[l] << sa), l););
+        else FOR_LANES(l, m, nw, PUT(l, quant(p, align(a[l], sa), src_f, &ovf[l])););
+        break;
+    case B_BK:
+        FOR_LANES(l, m, nw, {
+            if (!c[l]) PUT(l, 0);
+            else if (p->fast) FAST_Q(a[l], l);
+            else PUT(l, quant(p, a[l], fa, &ovf[l]));
+        });
+        break;
+    case B_MUX:
+        FOR_LANES(l, m, nw, {
+            int64_t sel = c[l];
+            if (sel < 0 || sel >= n) PUT(l, 0);
+            else if (p->fast) FAST_Q(in[sel][l], l);
+            else PUT(l, quant(p, in[sel][l], p->in_f[sel], &ovf[l]));
+        });
+        break;
+    case B_LOGIC:
+        if (p->tab) {
+            const int64_t *tab = p->tab;
+            FOR_LANES(l, m, nw, {
+                uint64_t ix = 0;
+                for (int i = 0; i < n; i++) ix |= ((uint64_t)in[i][l] & p->tmask[i]) << p->tsh[i];
+                PUT(l, tab[ix]);
+            });
+            break;
+        }
+        FOR_LANES(l, m, nw, {
+            int64_t v[8];
+            for (int i = 0; i < n; i++) v[i] = in[i][l];
+            PUT(l, canon(p->fn(v, p->user), p->fy));
+        });
+        break;
+    }
+}
+
+/* A register's value after the edge, from the values before it. */
+/* Register p's value after the edge, in the lanes of mask m, from the
+ * values before it. */
+static inline int64_t reg_next(const bop *p, uint32_t l, unsigned char *ovf)
+{
+    if (p->rst && p->rst[l]) return p->rst_raw;
+    if ((p->c && !p->c[l]) || !p->a) return p->y[l];
+    if (p->fast) {
+        int64_t x = (int64_t)((uint64_t)p->a[l] + (uint64_t)p->radd) >> p->k;
+        if (x >= p->lo && x <= p->hi) return x;
+    }
+    return quant(p, p->a[l], p->fa, &ovf[l]);
+}
+
+static void eval_reg(const bop *p, const uint64_t *m, uint32_t nw, unsigned char *ovf)
+{
+    int64_t *nx = p->nx;
+    for (uint32_t w = 0; w < nw; w++) {
+        uint64_t mw = m[w];
+        if (mw == UINT64_MAX) {
+            for (uint32_t l = w * 64; l < w * 64 + 64; l++) nx[l] = reg_next(p, l, ovf);
+        } else {
+            while (mw) {
+                uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
+                mw &= mw - 1;
+                nx[l] = reg_next(p, l, ovf);
+            }
+        }
+    }
+}
+
+/* 1 if every lane of v holds v[0]. */
+static int same_lanes(const int64_t *v, uint32_t n)
+{
+    uint64_t d = 0;
+    for (uint32_t l = 1; l < n; l++) d |= (uint64_t)(v[l] ^ v[0]);
+    return !d;
+}
+
+/* Inputs take the values set for this edge; the lanes each changed in
+ * are marked. */
+static void apply_inputs(sim_batch *b)
+{
+    size_t L = b->lanes;
+    for (uint32_t i = 0; i < b->nin; i++) {
+        uint32_t sig = b->in_sig[i];
+        int64_t *v = b->val + (size_t)sig * L;
+        const int64_t *p = b->pend + (size_t)i * L;
+        if (!memcmp(v, p, L * sizeof *v)) continue;
+        uint64_t *om = b->chg + (size_t)sig * b->nw;
+        for (size_t l = 0; l < L; l++) {
+            om[l >> 6] |= (uint64_t)(v[l] != p[l]) << (l & 63);
+            v[l] = p[l];
+        }
+        b->uni[sig] = (unsigned char)same_lanes(v, b->lanes);
+    }
+}
+
+/* p's inputs hold one value in every lane (control, in lanes that run in
+ * step): evaluate lane 0 alone and copy it. Returns 0 if they do not. */
+static int eval_uniform(sim_batch *b, const bop *p)
+{
+    for (int k = 0; k < p->ndep; k++) if (!b->uni[p->dep[k]]) return 0;
+    uint64_t one = 1, om0 = 0;
+    unsigned char f = 0;
+    int64_t *y = p->y, old0 = y[0];
+    int was = b->uni[p->sig];
+    eval_comb(p, &one, 1, &f, &om0);
+    if (f) memset(b->ovf, 1, b->lanes);   /* every lane computed the same overflow */
+    int64_t v = y[0];
+    uint64_t *om = b->chg + (size_t)p->sig * b->nw;
+    if (was) {
+        if (v == old0) return 1;   /* changed in no lane */
+        for (uint32_t l = 1; l < b->lanes; l++) y[l] = v;
+        memcpy(om, b->all, b->nw * sizeof *om);
+    } else {
+        om[0] |= om0;
+        for (uint32_t l = 1; l < b->lanes; l++) {
+            om[l >> 6] |= (uint64_t)(y[l] != v) << (l & 63);
+            y[l] = v;
+        }
+    }
+    b->uni[p->sig] = 1;
+    return 1;
+}
+
+/* Settle: each element in order, in the lanes where one of its inputs
+ * changed (the others would compute what they hold). */
+static void settle(sim_batch *b)
+{
+    uint32_t nw = b->nw;
+    uint64_t *chg = b->chg, m[SIM_BATCH_MAX_LANES / 64];
+    for (uint32_t i = 0; i < b->ncomb; i++) {
+        const bop *p = &b->comb[i];
+        uint64_t any = 0;
+        if (!b->started) {
+            for (uint32_t w = 0; w < nw; w++) m[w] = b->all[w];
+            any = 1;
+        } else {
+            for (uint32_t w = 0; w < nw; w++) m[w] = 0;
+            for (int k = 0; k < p->ndep; k++) {
+                const uint64_t *dm = chg + (size_t)p->dep[k] * nw;
+                for (uint32_t w = 0; w < nw; w++) m[w] |= dm[w];
+            }
+            for (uint32_t w = 0; w < nw; w++) any |= m[w];
+        }
+        if (!any) continue;
+        if (b->started && p->ndep && eval_uniform(b, p)) continue;
+        eval_comb(p, m, nw, b->ovf, chg + (size_t)p->sig * nw);
+        b->uni[p->sig] = !b->started ? (unsigned char)same_lanes(p->y, b->lanes) : 0;
+    }
+    /* what each register must look at in the next edge */
+    for (uint32_t i = 0; i < b->nreg; i++) {
+        const bop *p = &b->reg[i];
+        uint64_t *rm = b->regm + (size_t)i * nw;
+        if (!b->started) { memcpy(rm, b->all, nw * sizeof *rm); continue; }
+        for (int k = 0; k < p->ndep; k++) {
+            const uint64_t *dm = chg + (size_t)p->dep[k] * nw;
+            for (uint32_t w = 0; w < nw; w++) rm[w] |= dm[w];
+        }
+    }
+    memset(chg, 0, (size_t)b->nsig * nw * sizeof *chg);
+}
+
+void sim_batch_start(sim_batch *b)
+{
+    for (uint32_t i = 0; i < b->nsig; i++) b->uni[i] = (unsigned char)same_lanes(b->val + (size_t)i * b->lanes, b->lanes);
+    apply_inputs(b);
+    settle(b);
+    b->started = 1;
+}
+
+void sim_batch_cycle(sim_batch *b)
+{
+    /* Every register reads the values before the edge, then all change at
+     * once: the kernel's evaluate/update, without the lists. A register
+     * whose input, enable and reset did not change in a lane since the
+     * last edge would load what it holds there: only the other lanes
+     * (regm) are evaluated. */
+    uint32_t nw = b->nw;
+    for (uint32_t i = 0; i < b->nreg; i++) eval_reg(&b->reg[i], b->regm + (size_t)i * nw, nw, b->ovf);
+    for (uint32_t i = 0; i < b->nreg; i++) {
+        bop *p = &b->reg[i];
+        uint64_t *rm = b->regm + (size_t)i * nw, *om = b->chg + (size_t)p->sig * nw, any = 0;
+        for (uint32_t w = 0; w < nw; w++) {
+            uint64_t mw = rm[w], acc = 0;
+            while (mw) {
+                uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
+                mw &= mw - 1;
+                acc |= (uint64_t)(p->y[l] != p->nx[l]) << (l & 63);
+                p->y[l] = p->nx[l];
+            }
+            om[w] |= acc;
+            any |= acc;
+            rm[w] = 0;
+        }
+        if (any) b->uni[p->sig] = (unsigned char)same_lanes(p->y, b->lanes);
+    }
+    apply_inputs(b);
+    settle(b);
+}
+
+/* ------------------------------------------------------------ construction */
+
+static int raw_bits(const sim_signal *s) { return s->fmt.width; }
+
+/* The fast path's constants for an exact result with src_f fraction bits;
+ * 1 when it applies (as sim_prim.c's fast_quant_setup). */
+static int fast_setup(bop *p, int src_f)
+{
+    p->src_f = src_f;
+    p->k = src_f - p->fy.fbits;
+    if (p->k < 0 || p->k > 61 || p->r == SIM_RND_EVEN) return 0;
+    p->radd = (p->r == SIM_RND_HALF_UP && p->k) ? (int64_t)1 << (p->k - 1) : 0;
+    return 1;
+}
+
+static int imax(int a, int b) { return a > b ? a : b; }
+
+/* A logic element whose inputs have at most LOGIC_TAB_BITS bits in all is
+ * tabulated once (its function is defined for every raw value of its
+ * inputs' formats: sim_prim.h), so that evaluating it is an index and a
+ * load instead of a call per lane. The index is the inputs' raw bits side
+ * by side; a raw is its low W bits, sign-extended back by the format. */
+#define LOGIC_TAB_BITS 12
+static void logic_table(bop *p, const sim_prim_info *in)
+{
+    int bits = 0;
+    for (int i = 0; i < in->n; i++) {
+        p->tsh[i] = bits;
+        p->tmask[i] = UINT64_MAX >> (64 - in->in[i]->fmt.width);
+        bits += in->in[i]->fmt.width;
+        if (bits > LOGIC_TAB_BITS) return;
+    }
+    int64_t *t = malloc(((size_t)1 << bits) * sizeof *t);
+    if (!t) return;   /* evaluated by calls instead */
+    for (uint64_t ix = 0; ix < ((uint64_t)1 << bits); ix++) {
+        int64_t v[8];
+        for (int i = 0; i < in->n; i++) v[i] = canon((int64_t)((ix >> p->tsh[i]) & p->tmask[i]), in->in[i]->fmt);
+        t[ix] = canon(in->fn(v, in->user), p->fy);
+    }
+    p->tab = t;
+}
+
+/* Fill p from the element driving y; -1 (err) for what the batch mode
+ * cannot evaluate. */
+static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_info *in,
+                    const sim_signal *clk, char *err, size_t errlen)
+{
+    char path[256];
+#define ROW(s) (b->val + (size_t)(s)->index * b->lanes)
+    p->fy = y->fmt;
+    p->lo = y->raw_min;
+    p->hi = y->raw_max;
+    p->r = in->r;
+    p->o = in->o;
+    p->sig = y->index;
+    p->y = ROW(y);
+    const sim_signal *reads[10];
+    int nreads = 0;
+    switch (in->kind) {
+    case SIM_KIND_REG:
+        if (in->clk != clk) {
+            snprintf(err, errlen, "register %s is not clocked by %s", sim_signal_path(y, path, sizeof path), clk->name);
+            return -1;
+        }
+        p->kind = B_REG;
+        p->a = in->a ? ROW(in->a) : NULL;
+        p->c = in->c ? ROW(in->c) : NULL;
+        p->rst = in->rst ? ROW(in->rst) : NULL;
+        p->rst_raw = in->rst_raw;
+        if (in->a) {
+            p->fa = in->a->fmt.fbits;
+            p->fast = raw_bits(in->a) <= 62 && fast_setup(p, p->fa);
+        }
+        return 0;
+    case SIM_KIND_WIRE:   /* sim_assign */
+    case SIM_KIND_BK:
+        p->kind = in->kind == SIM_KIND_BK ? B_BK : B_COPY;
+        p->a = ROW(in->a);
+        p->fa = in->a->fmt.fbits;
+        p->fast = raw_bits(in->a) <= 62 && fast_setup(p, p->fa);
+        reads[nreads++] = in->a;
+        if (in->kind == SIM_KIND_BK) { p->c = ROW(in->c); reads[nreads++] = in->c; }
+        break;
+    case SIM_KIND_ADD:
+    case SIM_KIND_SUB:
+        p->kind = in->kind == SIM_KIND_ADD ? B_ADD : B_SUB;
+        p->a = ROW(in->a);
+        p->b = ROW(in->b);
+        p->src_f = imax(in->a->fmt.fbits, in->b->fmt.fbits);
+        p->sa = p->src_f - in->a->fmt.fbits;
+        p->sb = p->src_f - in->b->fmt.fbits;
+        p->fast = raw_bits(in->a) + p->sa <= 61 && raw_bits(in->b) + p->sb <= 61 && fast_setup(p, p->src_f);
+        reads[nreads++] = in->a;
+        reads[nreads++] = in->b;
+        break;
+    case SIM_KIND_MUL:
+        p->kind = B_MUL;
+        p->a = ROW(in->a);
+        p->b = ROW(in->b);
+        p->src_f = in->a->fmt.fbits + in->b->fmt.fbits;
+        p->fast = raw_bits(in->a) + raw_bits(in->b) <= 62 && fast_setup(p, p->src_f);
+        reads[nreads++] = in->a;
+        reads[nreads++] = in->b;
+        break;
+    case SIM_KIND_SHIFT: {
+        p->kind = B_SHIFT;
+        p->a = ROW(in->a);
+        int f = in->a->fmt.fbits - in->shift;
+        p->sa = f < 0 ? -f : 0;
+        p->src_f = f < 0 ? 0 : f;
+        p->fast = raw_bits(in->a) + p->sa <= 61 && fast_setup(p, p->src_f);
+        reads[nreads++] = in->a;
+        break;
+    }
+    case SIM_KIND_MUX: {
+        p->kind = B_MUX;
+        p->c = ROW(in->c);
+        reads[nreads++] = in->c;
+        p->n = in->n;
+        p->in = malloc((size_t)(in->n ? in->n : 1) * sizeof *p->in);
+        p->in_f = malloc((size_t)(in->n ? in->n : 1) * sizeof *p->in_f);
+        if (!p->in || !p->in_f) { snprintf(err, errlen, "out of memory"); return -1; }
+        int same = in->n > 0;
+        for (int i = 0; i < in->n; i++) {
+            p->in[i] = ROW(in->in[i]);
+            p->in_f[i] = in->in[i]->fmt.fbits;
+            same &= in->in[i]->fmt.fbits == in->in[0]->fmt.fbits && raw_bits(in->in[i]) <= 62;
+        }
+        p->fast = same && fast_setup(p, in->in[0]->fmt.fbits);
+        for (int i = 0; i < in->n; i++) {
+            if (in->in[i] == clk) goto reads_clock;
+        }
+        break;
+    }
+    case SIM_KIND_LOGIC:
+        p->kind = B_LOGIC;
+        p->n = in->n;
+        p->fn = in->fn;
+        p->user = in->user;
+        if (in->n > 8) { snprintf(err, errlen, "%s: more than 8 inputs", sim_signal_path(y, path, sizeof path)); return -1; }
+        p->in = malloc((size_t)(in->n ? in->n : 1) * sizeof *p->in);
+        if (!p->in) { snprintf(err, errlen, "out of memory"); return -1; }
+        for (int i = 0; i < in->n; i++) {
+            p->in[i] = ROW(in->in[i]);
+            if (in->in[i] == clk) goto reads_clock;
+        }
+        logic_table(p, in);
+        break;
+    default:
+        snprintf(err, errlen, "%s: an element the batch mode does not know", sim_signal_path(y, path, sizeof path));
+        return -1;
+    }
+    for (int i = 0; i < nreads; i++)
+        if (reads[i] == clk) goto reads_clock;
+    return 0;
+reads_clock:
+    snprintf(err, errlen, "%s reads the clock as data", sim_signal_path(y, path, sizeof path));
+    return -1;
+#undef ROW
+}
+
+/* The signals a combinational element reads. */
+static int comb_reads(const sim_prim_info *in, const sim_signal **r)
+{
+    int n = 0;
+    switch (in->kind) {
+    case SIM_KIND_MUX:
+        r[n++] = in->c;
+        for (int i = 0; i < in->n; i++) r[n++] = in->in[i];
+        break;
+    case SIM_KIND_LOGIC:
+        for (int i = 0; i < in->n && i < 8; i++) r[n++] = in->in[i];
+        break;
+    case SIM_KIND_BK:
+        r[n++] = in->c;
+        /* fall through */
+    default:
+        if (in->a) r[n++] = in->a;
+        if (in->b) r[n++] = in->b;
+        break;
+    }
+    return n;
+}
+
+static void free_ops(bop *ops, uint32_t n)
+{
+    for (uint32_t i = 0; i < n; i++) { free(ops[i].in); free(ops[i].in_f); free(ops[i].dep); free(ops[i].tab); }
+    free(ops);
+}
+
+void sim_batch_free(sim_batch *b)
+{
+    if (!b) return;
+    free_ops(b->comb, b->ncomb);
+    free_ops(b->reg, b->nreg);
+    free(b->val); free(b->pend); free(b->inslot); free(b->in_sig); free(b->regnx); free(b->regm); free(b->ovf); free(b->chg); free(b->uni);
+    free(b);
+}
+
+/* Order the combinational elements so that each comes after every element
+ * whose output it reads (Kahn's algorithm over signal indices); -1 with the
+ * signals of a loop named when there is none. */
+static int levelize(sim_batch *b, const sim_ctx *c, bop *ops, uint32_t nops, const sim_prim_info *info,
+                    const uint32_t *op_of_sig, char *err, size_t errlen)
+{
+    uint32_t *indeg = calloc(nops ? nops : 1, sizeof *indeg);
+    uint32_t *order = malloc((nops ? nops : 1) * sizeof *order);
+    uint32_t *fstart = calloc((size_t)nops + 1, sizeof *fstart);
+    uint32_t *fan = NULL, nfan = 0;
+    if (!indeg || !order || !fstart) goto oom;
+    /* Edges producer -> consumer, counted then filled (CSR). */
+    for (uint32_t pass = 0; pass < 2; pass++) {
+        uint32_t *fill = NULL;
+        if (pass) {
+            for (uint32_t i = 0; i < nops; i++) fstart[i + 1] += fstart[i];
+            nfan = fstart[nops];
+            fan = malloc((nfan ? nfan : 1) * sizeof *fan);
+            fill = calloc(nops ? nops : 1, sizeof *fill);
+            if (!fan || !fill) { free(fill); goto oom; }
+        }
+        for (uint32_t i = 0; i < nops; i++) {
+            const sim_signal *r[10 + 256];
+            const sim_prim_info *in = &info[i];
+            int nr = in->kind == SIM_KIND_MUX && in->n > 256 ? -1 : comb_reads(in, r);
+            if (nr < 0) { free(fill); snprintf(err, errlen, "a multiplexer with more than 256 inputs"); goto fail; }
+            for (int j = 0; j < nr; j++) {
+                uint32_t src = op_of_sig[r[j]->index];
+                if (src == UINT32_MAX) continue;
+                if (!pass) { fstart[src + 1]++; indeg[i]++; }
+                else fan[fstart[src] + fill[src]++] = i;
+            }
+        }
+        free(fill);
+    }
+    uint32_t head = 0, tail = 0;
+    for (uint32_t i = 0; i < nops; i++) if (!indeg[i]) order[tail++] = i;
+    while (head < tail) {
+        uint32_t i = order[head++];
+        for (uint32_t e = fstart[i]; e < fstart[i + 1]; e++)
+            if (!--indeg[fan[e]]) order[tail++] = fan[e];
+    }
+    if (tail < nops) {
+        char path[256];
+        uint32_t k = 0;
+        while (k < nops && !indeg[k]) k++;
+        snprintf(err, errlen, "combinational loop through %s",
+                 sim_signal_path(sim_signal_at(c, ops[k].sig), path, sizeof path));
+        goto fail;
+    }
+    b->comb = malloc((nops ? nops : 1) * sizeof *b->comb);
+    if (!b->comb) goto oom;
+    for (uint32_t i = 0; i < nops; i++) b->comb[i] = ops[order[i]];
+    b->ncomb = nops;
+    free(indeg); free(order); free(fstart); free(fan);
+    return 0;
+oom:
+    snprintf(err, errlen, "out of memory");
+fail:
+    free(indeg); free(order); free(fstart); free(fan);
+    return -1;
+}
+
+sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char *err, size_t errlen)
+{
+    if (lanes < 1 || lanes > SIM_BATCH_MAX_LANES) {
+        snprintf(err, errlen, "batch of %u lanes: 1 to %d", lanes, SIM_BATCH_MAX_LANES);
+        return NULL;
+    }
+    uint32_t nsig = sim_signal_count(c);
+    sim_batch *b = calloc(1, sizeof *b);
+    bop *comb = NULL;
+    sim_prim_info *info = NULL;
+    uint32_t *op_of_sig = NULL;
+    uint32_t ncomb = 0, ndriven = 0;
+    if (!b) goto oom;
+    b->lanes = lanes;
+    b->nsig = nsig;
+    b->val = malloc((size_t)(nsig ? nsig : 1) * lanes * sizeof *b->val);
+    b->inslot = malloc((nsig ? nsig : 1) * sizeof *b->inslot);
+    b->ovf = calloc(lanes, 1);
+    b->nw = (lanes + 63) / 64;
+    for (uint32_t l = 0; l < lanes; l++) b->all[l >> 6] |= (uint64_t)1 << (l & 63);
+    b->chg = calloc((size_t)(nsig ? nsig : 1) * b->nw, sizeof *b->chg);
+    b->uni = calloc(nsig ? nsig : 1, 1);
+    comb = calloc(nsig ? nsig : 1, sizeof *comb);
+    info = calloc(nsig ? nsig : 1, sizeof *info);
+    op_of_sig = malloc((nsig ? nsig : 1) * sizeof *op_of_sig);
+    b->reg = calloc(nsig ? nsig : 1, sizeof *b->reg);
+    b->in_sig = malloc((nsig ? nsig : 1) * sizeof *b->in_sig);
+    if (!b->val || !b->inslot || !b->ovf || !b->chg || !b->uni || !comb || !info || !op_of_sig || !b->reg || !b->in_sig) goto oom;
+
+    /* Every signal's value now in every lane; classify the drivers. */
+    char path[256];
+    for (uint32_t i = 0; i < nsig; i++) {
+        sim_signal *s = sim_signal_at(c, i);
+        for (uint32_t l = 0; l < lanes; l++) b->val[(size_t)i * lanes + l] = s->cur;
+        op_of_sig[i] = UINT32_MAX;
+        b->inslot[i] = -1;
+        if (s->kind == SIM_KIND_CONST) continue;
+        if (!s->driver) {
+            if (s != clk) { b->inslot[i] = (int32_t)b->nin; b->in_sig[b->nin++] = i; }
+            continue;
+        }
+        ndriven++;
+        sim_prim_info in;
+        if (sim_prim_describe(s, &in)) {
+            snprintf(err, errlen, "%s is driven by a process that is not a primitive",
+                     sim_signal_path(s, path, sizeof path));
+            goto fail;
+        }
+        bop *p = in.kind == SIM_KIND_REG ? &b->reg[b->nreg] : &comb[ncomb];
+        if (op_setup(b, p, s, &in, clk, err, errlen)) goto fail;
+        if (in.kind == SIM_KIND_REG) {
+            /* what it samples: input, enable, reset */
+            p->dep = malloc(3 * sizeof *p->dep);
+            if (!p->dep) goto oom;
+            if (in.a) p->dep[p->ndep++] = in.a->index;
+            if (in.c) p->dep[p->ndep++] = in.c->index;
+            if (in.rst) p->dep[p->ndep++] = in.rst->index;
+            b->nreg++;
+            continue;
+        }
+        const sim_signal *r[10 + 256];
+        int nr = in.kind == SIM_KIND_MUX && in.n > 256 ? 0 : comb_reads(&in, r);
+        p->dep = malloc((size_t)(nr ? nr : 1) * sizeof *p->dep);
+        if (!p->dep) goto oom;
+        for (int k = 0; k < nr; k++) p->dep[k] = r[k]->index;
+        p->ndep = nr;
+        info[ncomb] = in;
+        op_of_sig[i] = ncomb++;
+    }
+    if (sim_proc_count(c) != ndriven) {
+        snprintf(err, errlen, "the design has %u processes that drive no signal (testbench or user processes)",
+                 sim_proc_count(c) - ndriven);
+        goto fail;
+    }
+    if (levelize(b, c, comb, ncomb, info, op_of_sig, err, errlen)) goto fail;
+    free(comb); comb = NULL;   /* the ops moved into b->comb (their arrays with them) */
+    b->pend = malloc((size_t)(b->nin ? b->nin : 1) * lanes * sizeof *b->pend);
+    b->regnx = malloc((size_t)(b->nreg ? b->nreg : 1) * lanes * sizeof *b->regnx);
+    b->regm = calloc((size_t)(b->nreg ? b->nreg : 1) * b->nw, sizeof *b->regm);
+    if (!b->pend || !b->regnx || !b->regm) goto oom;
+    for (uint32_t i = 0; i < b->nin; i++)
+        memcpy(b->pend + (size_t)i * lanes, b->val + (size_t)b->in_sig[i] * lanes, lanes * sizeof *b->pend);
+    for (uint32_t i = 0; i < b->nreg; i++) b->reg[i].nx = b->regnx + (size_t)i * lanes;
+    free(info);
+    free(op_of_sig);
+    return b;
+oom:
+    snprintf(err, errlen, "out of memory");
+fail:
+    /* ops not moved into b->comb own their arrays (one more may be half
+     * set up; calloc left the rest NULL) */
+    if (comb) free_ops(comb, ncomb < nsig ? ncomb + 1 : ncomb);
+    free(info);
+    free(op_of_sig);
+    sim_batch_free(b);
+    return NULL;
+}
+
+uint32_t sim_batch_lanes(const sim_batch *b) { return b->lanes; }
+uint32_t sim_batch_elements(const sim_batch *b) { return b->ncomb + b->nreg; }
+int sim_batch_overflowed(const sim_batch *b, uint32_t lane) { return lane < b->lanes && b->ovf[lane]; }
+
+const int64_t *sim_batch_val(const sim_batch *b, const sim_signal *s)
+{
+    return b->val + (size_t)s->index * b->lanes;
+}
+
+int64_t *sim_batch_next(sim_batch *b, const sim_signal *s)
+{
+    if (s->index >= b->nsig || b->inslot[s->index] < 0) return NULL;
+    return b->pend + (size_t)b->inslot[s->index] * b->lanes;
+}
+
+int sim_batch_set(sim_batch *b, const sim_signal *s, uint32_t lane, int64_t v)
+{
+    if (s->index >= b->nsig || b->inslot[s->index] < 0 || lane >= b->lanes) return -1;
+    b->pend[(size_t)b->inslot[s->index] * b->lanes + lane] = v;
+    return 0;
+}

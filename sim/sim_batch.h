@@ -1,0 +1,83 @@
+/* sim_batch.h - batch mode: a design made only of primitives (sim_prim.h),
+ * evaluated levelized for N independent copies of it side by side.
+ *
+ * The event-driven kernel (sim.h) is the reference: it evaluates an element
+ * when one of its inputs changes, delta cycle after delta cycle. For a
+ * synchronous design whose combinational part has no loop, the values it
+ * settles on are a function of the registers and inputs alone, whatever
+ * the order of evaluation. So they can also be computed by evaluating
+ * every combinational element once per clock edge, in topological order
+ * (levelization, as commercial event-driven simulators and Verilator's
+ * static scheduling do), with no event queue at all. sim_batch does that
+ * for `lanes` copies of the design at once, each element's values held as
+ * an array over the lanes (structure of arrays), so that one pass over the
+ * schedule advances every copy by one clock.
+ *
+ * Each lane is its own simulation: the same clock edges, its own inputs,
+ * registers and outputs. Settled values, register contents and therefore
+ * every output and clock count are those of the kernel running that
+ * lane's stimulus alone.
+ *
+ * Overflow counts are the one thing a levelized evaluation does not give
+ * directly (the kernel counts the time steps in which an element was
+ * evaluated and settled on an overflowed quantization, and whether it was
+ * evaluated depends on events). sim_batch does not count them: it flags a
+ * lane in which any quantization overflowed, and the caller simulates that
+ * lane again on the kernel. A lane with no flag had no overflow in any
+ * settled value, so the kernel would count none either (sim__overflow
+ * counts only an element's last evaluation in a time step, which sees the
+ * settled inputs).
+ *
+ * What the batch mode accepts (sim_batch_new says why it refuses):
+ * every process of the context is a primitive's; registers are clocked by
+ * the given clock's rising edge and nothing else reads the clock; the
+ * combinational elements form no loop. Inputs are signals no element
+ * drives; a testbench sets them per lane.
+ *
+ * Use: build the design into a context with no testbench processes, make
+ * the batch, set the inputs of every lane, sim_batch_start (the kernel's
+ * initialization), then per clock: read the values before the edge
+ * (sim_batch_val), set the inputs the testbench writes at the edge
+ * (sim_batch_set), sim_batch_cycle. The context must outlive the batch and
+ * is not simulated itself.
+ */
+#ifndef SIM_BATCH_H
+#define SIM_BATCH_H
+#include "sim/sim.h"
+
+typedef struct sim_batch sim_batch;
+
+/* The batch for `lanes` copies (1..SIM_BATCH_MAX_LANES) of the design in c,
+ * clocked by clk; NULL with the reason in err when the design is not one
+ * the batch mode can evaluate (see above) or memory is short. */
+#define SIM_BATCH_MAX_LANES 4096
+sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes,
+                         char *err, size_t errlen);
+void       sim_batch_free(sim_batch *b);
+uint32_t   sim_batch_lanes(const sim_batch *b);
+
+/* The values of s now, one per lane. */
+const int64_t *sim_batch_val(const sim_batch *b, const sim_signal *s);
+/* Input s of lane `lane` takes raw v at the next edge (or at the start, if
+ * the batch has not started): what sim_write from a process woken by the
+ * edge does. s must be an input (no element drives it): -1 otherwise. */
+int  sim_batch_set(sim_batch *b, const sim_signal *s, uint32_t lane, int64_t v);
+/* The same for every lane at once: the array (one per lane) of the values
+ * input s takes at the next edge, to write in place; they stay set from
+ * edge to edge until written again. NULL if s is not an input. */
+int64_t *sim_batch_next(sim_batch *b, const sim_signal *s);
+
+/* The kernel's initialization: inputs set so far take their values, every
+ * combinational element is evaluated (registers keep their reset values). */
+void sim_batch_start(sim_batch *b);
+/* One rising edge of the clock and what follows it: every register
+ * samples its input as it was before the edge, the inputs set since the
+ * last edge take their values, the combinational network settles. */
+void sim_batch_cycle(sim_batch *b);
+
+/* 1 if some quantization in lane `lane` overflowed since the start (its
+ * overflow counts must come from the kernel). */
+int  sim_batch_overflowed(const sim_batch *b, uint32_t lane);
+/* Combinational elements and registers in the schedule, for reports. */
+uint32_t sim_batch_elements(const sim_batch *b);
+#endif

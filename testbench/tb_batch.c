@@ -1,0 +1,156 @@
+/* tb_batch.c - tb_run's testbench over lanes of sim_batch (tb_batch.h).
+ *
+ * The driver and monitor do per lane, from the values before each edge,
+ * what tb_run's processes do: offer the next item once the unit accepted
+ * the last (valid and ready before the edge), record each beat the unit
+ * marks valid, with the clock it came in. */
+#include "testbench/tb_batch.h"
+#include "sim/sim_batch.h"
+#include "testbench/tb_range.h"
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct lane_st {
+    int64_t *in_raw;        /* [item][input] */
+    size_t   n_items, next, got, total;
+    int      done;
+} lane_st;
+
+/* Quantize lane k's inputs as tb_run does (tb_prep's first step). */
+static int quantize(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, tb_batch_lane *L, lane_st *s)
+{
+    int n_in = unit_n_in(u), idx[UNIT_MAX_IO];
+    for (int i = 0, k = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN) idx[k++] = i;
+    s->n_items = L->vs->n_rows;
+    s->in_raw = malloc((s->n_items ? s->n_items : 1) * (size_t)n_in * sizeof *s->in_raw);
+    if (!s->in_raw) return -1;
+    for (size_t it = 0; it < s->n_items; it++) {
+        const double *row = vec_row(L->vs, it);
+        for (int i = 0; i < n_in; i++) {
+            int ov = 0;
+            s->in_raw[it * (size_t)n_in + (size_t)i] = sim_fx_from_real(row[i], fm->f[idx[i]], cfg->rnd, cfg->ovf, &ov);
+            L->in_overflows += (uint64_t)ov;
+        }
+    }
+    return 0;
+}
+
+/* The driver's writes for lane l: the item at s->next, or valid low past
+ * the last. Written when next moves only: a pending value stays from edge
+ * to edge, as a signal keeps the value the kernel's driver rewrites. */
+static void drive(int64_t *const *nin, int64_t *nvalid, int n_in, const lane_st *s, uint32_t l)
+{
+    if (s->next < s->n_items) {
+        const int64_t *v = s->in_raw + s->next * (size_t)n_in;
+        for (int i = 0; i < n_in; i++) nin[i][l] = v[i];
+        nvalid[l] = 1;
+    } else {
+        nvalid[l] = 0;
+    }
+}
+
+/* Lane k from tb_run (the kernel). */
+static int from_kernel(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, tb_batch_lane *L,
+                       char *err, size_t errlen)
+{
+    tb_result r;
+    int rc = tb_run(u, cfg, fm, L->vs, NULL, &r, err, errlen);
+    if (rc != TB_OK) return rc;
+    free(L->raw);
+    free(L->beat_cycle);
+    L->raw = r.raw;
+    L->beat_cycle = r.beat_cycle;
+    r.raw = NULL;
+    r.beat_cycle = NULL;
+    L->clocks = r.stats.clocks;
+    L->overflows = r.overflows - r.in_overflows;
+    L->in_overflows = r.in_overflows;
+    L->batched = 0;
+    tb_result_free(&r);
+    return TB_OK;
+}
+
+int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
+                 tb_batch_lane *lanes, size_t n, char *err, size_t errlen)
+{
+    if (n < 1 || n > SIM_BATCH_MAX_LANES) { snprintf(err, errlen, "%zu lanes: 1 to %d", n, SIM_BATCH_MAX_LANES); return TB_BADINPUT; }
+    int n_in = unit_n_in(u), n_out = unit_n_out(u), beats = u->beats(cfg);
+    vec_set hdr;
+    vec_set_init(&hdr);
+    tb_expected_header(u, cfg, &hdr);
+    for (size_t k = 0; k < n; k++) {
+        const vec_set *vs = lanes[k].vs;
+        if (strcmp(vs->unit, hdr.unit) || vs->n_in != hdr.n_in || vs->n_out != hdr.n_out || !vs->n_rows) {
+            snprintf(err, errlen, "lane %zu: vectors are not %s's (or empty)", k, u->name);
+            return TB_BADINPUT;
+        }
+    }
+    sim_ctx *c = sim_new();
+    sim_set_quant(c, cfg->rnd, cfg->ovf);
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_scope *sc = sim_scope_new(c, NULL, u->name);
+    unit_io io;
+    memset(&io, 0, sizeof io);
+    sim_batch *b = NULL;
+    lane_st *S = calloc(n, sizeof *S);
+    int rc = TB_OK;
+    if (!S) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+    if (u->build(c, sc, clk, cfg, fm, &io, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (!(b = sim_batch_new(c, clk, (uint32_t)n, err, errlen))) { rc = TB_UNSUPPORTED; goto done; }
+    uint64_t const_ovf = tb_scope_overflows(sc);
+    size_t nv = (size_t)beats * (size_t)n_out;
+    int64_t *nin[UNIT_MAX_IO], *nvalid = sim_batch_next(b, io.in_valid);
+    const int64_t *out[UNIT_MAX_IO];
+    for (int i = 0; i < n_in; i++) nin[i] = sim_batch_next(b, io.in[i]);
+    for (int o = 0; o < n_out; o++) out[o] = sim_batch_val(b, io.out[o]);
+    for (size_t k = 0; k < n; k++) {
+        tb_batch_lane *L = &lanes[k];
+        L->in_overflows = 0;
+        if (quantize(u, cfg, fm, L, &S[k])) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+        S[k].total = S[k].n_items * (size_t)beats;
+        L->raw = calloc(S[k].n_items * nv, sizeof *L->raw);
+        L->beat_cycle = calloc(S[k].total, sizeof *L->beat_cycle);
+        if (!L->raw || !L->beat_cycle) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+        drive(nin, nvalid, n_in, &S[k], (uint32_t)k);   /* the driver's run at initialization */
+    }
+    sim_batch_start(b);
+    size_t active = n;
+    uint64_t e = 0;
+    while (active) {
+        e++;
+        const int64_t *iv = sim_batch_val(b, io.in_valid), *ir = sim_batch_val(b, io.in_ready);
+        const int64_t *ov = sim_batch_val(b, io.out_valid);
+        size_t nfin = 0;
+        for (size_t k = 0; k < n; k++) {
+            lane_st *s = &S[k];
+            tb_batch_lane *L = &lanes[k];
+            if (s->done) continue;
+            /* monitor: the cycle that just ended */
+            if (ov[k] && s->got < s->total) {
+                L->beat_cycle[s->got] = e - 1;
+                for (int o = 0; o < n_out; o++) L->raw[s->got * (size_t)n_out + (size_t)o] = out[o][k];
+                if (++s->got == s->total) { s->done = 1; nfin++; L->clocks = e; }
+            }
+            /* driver */
+            if (iv[k] && ir[k]) { s->next++; drive(nin, nvalid, n_in, s, (uint32_t)k); }
+            /* tb_run's budget: past it the kernel says what went wrong */
+            if (!s->done && e >= 1000 + s->total * 4096) { s->done = 2; nfin++; }
+        }
+        sim_batch_cycle(b);
+        if (!nfin) continue;
+        active -= nfin;
+        for (size_t k = 0; k < n; k++)
+            if (S[k].done == 1 && lanes[k].clocks == e) {
+                lanes[k].batched = !sim_batch_overflowed(b, (uint32_t)k);
+                lanes[k].overflows = const_ovf;
+            }
+    }
+    for (size_t k = 0; k < n && rc == TB_OK; k++)
+        if (!lanes[k].batched) rc = from_kernel(u, cfg, fm, &lanes[k], err, errlen);
+done:
+    if (S) for (size_t k = 0; k < n; k++) free(S[k].in_raw);
+    free(S);
+    sim_batch_free(b);
+    sim_free(c);
+    return rc;
+}

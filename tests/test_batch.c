@@ -1,0 +1,265 @@
+/* test_batch.c - the batch mode (sim/sim_batch.h) against the event-driven
+ * kernel, which is its reference: the same streams through both must give
+ * the same bytes in every output, clock count and overflow count.
+ *
+ * The span units as the scene drives them (tb_span_run_lanes against
+ * tb_span_run lane by lane), on random intervals, at configurations with
+ * and without overflows (a lane with one must come from the kernel); every
+ * registered unit through the generic batch testbench (tb_batch.h) against
+ * tb_run; and the batch's own refusals. */
+#include "tests/tst.h"
+#include "sim/sim_batch.h"
+#include "sim/sim_prim.h"
+#include "testbench/tb.h"
+#include "testbench/tb_span.h"
+#include "testbench/tb_batch.h"
+#include "testbench/cli.h"
+
+static uint64_t rng = 0x9e3779b97f4a7c15ull;
+static uint64_t rnd(void)
+{
+    rng ^= rng << 13; rng ^= rng >> 7; rng ^= rng << 17;
+    return rng;
+}
+static double unif(void) { return (double)(rnd() >> 11) * 0x1p-53; }
+
+/* A random stream of intervals a scene could give: n <= L pixels with
+ * n - 1 <= dv <= L, nodes in [0, hi]. */
+static tb_span_item *random_items(size_t n, int L, double hi)
+{
+    tb_span_item *it = calloc(n ? n : 1, sizeof *it);
+    for (size_t i = 0; i < n; i++) {
+        it[i].n = 1 + (int)(rnd() % (uint64_t)L);
+        int lo = it[i].n - 1 > 1 ? it[i].n - 1 : 1;
+        it[i].dv = lo + (int)(rnd() % (uint64_t)(L - lo + 1));
+        for (int k = 0; k < 4; k++) it[i].node[k] = hi * unif();
+        it[i].deg = 2 + (int)(rnd() & 1);
+    }
+    return it;
+}
+
+/* Lanes of random streams through unit `name` with the given --fmt
+ * overrides, batch against tb_span_run; counts lanes the batch gave and
+ * lanes that overflowed. */
+static void span_case(const char *name, int L, const char *sched, const char *fmt, double hi,
+                      size_t *batched, size_t *fell_back)
+{
+    const unit_desc *u = unit_find(name);
+    TST_CHECK(u != NULL, "%s", name);
+    if (!u) return;
+    unit_cfg cfg;
+    unit_cfg_default(&cfg);
+    cfg.L = L;
+    for (int s = 0; s < u->nsched; s++) if (!strcmp(u->sched[s].name, sched)) cfg.schedule = s;
+    unit_fmts fm;
+    char err[300];
+    const char *ov[1] = { fmt };
+    TST_CHECK(tb_formats(u, &cfg, ov, fmt ? 1 : 0, &fm, err, sizeof err) == 0, "%s", err);
+    enum { N = 7 };
+    tb_span_lane lanes[N];
+    tb_span_item *items[N];
+    double *pix[N];
+    memset(lanes, 0, sizeof lanes);
+    for (int k = 0; k < N; k++) {
+        size_t ni = k == 3 ? 0 : (size_t)(rnd() % 40) + 1;   /* lane 3: an empty stream */
+        items[k] = random_items(ni, L, hi);
+        pix[k] = calloc(ni * (size_t)L + 1, sizeof *pix[k]);
+        lanes[k] = (tb_span_lane){ .items = items[k], .nitems = ni, .pix = pix[k] };
+    }
+    tb_span_run_lanes(u, &cfg, &fm, lanes, N, 1);
+    for (int k = 0; k < N; k++) {
+        size_t np = 0;
+        for (size_t i = 0; i < lanes[k].nitems; i++) np += (size_t)items[k][i].n;
+        double *ref = calloc(np + 1, sizeof *ref);
+        tb_span_stats st;
+        char e2[300] = "";
+        int rc = tb_span_run(u, &cfg, &fm, items[k], lanes[k].nitems, ref, &st, NULL, e2, sizeof e2);
+        TST_EQ_INT(lanes[k].rc, rc);
+        TST_EQ_STR(lanes[k].err, rc == TB_OK ? lanes[k].err : e2);
+        TST_CHECK(!memcmp(ref, pix[k], np * sizeof *ref), "%s %s lane %d: pixels differ", name, sched, k);
+        TST_EQ_INT(lanes[k].st.clocks, st.clocks);
+        TST_EQ_INT(lanes[k].st.pixels, st.pixels);
+        TST_EQ_INT(lanes[k].st.items, st.items);
+        TST_EQ_INT(lanes[k].st.items_deg2, st.items_deg2);
+        TST_EQ_INT(lanes[k].st.overflows, st.overflows);
+        TST_CHECK(lanes[k].st.area_ge == st.area_ge, "%s lane %d area", name, k);
+        /* a lane the batch gave had no overflow in the unit (the inputs'
+         * quantization is the testbench's, counted either way) */
+        if (lanes[k].nitems) { *batched += (size_t)lanes[k].batched; *fell_back += (size_t)!lanes[k].batched; }
+        free(ref);
+        free(items[k]);
+        free(pix[k]);
+    }
+}
+
+static void t_span_lanes_equal_kernel(void)
+{
+    static const char *const units[] = { "span1", "span2", "span3", "span23" };
+    static const char *const scheds[] = { "paper", "mac", "pipe" };
+    size_t batched = 0, fell = 0;
+    for (int i = 0; i < 4; i++)
+        for (int s = 0; s < 3; s++) {
+            const unit_desc *u = unit_find(units[i]);
+            int has = 0;
+            for (int k = 0; u && k < u->nsched; k++) has |= !strcmp(u->sched[k].name, scheds[s]);
+            if (!has) continue;
+            span_case(units[i], 8, scheds[s], NULL, 1.0, &batched, &fell);
+            span_case(units[i], 5, scheds[s], NULL, 1.0, &batched, &fell);
+        }
+    /* every default lane in [0, 1] is the batch's: no overflow there */
+    TST_EQ_INT(fell, 0);
+    TST_CHECK(batched > 50, "%zu lanes batched", batched);
+}
+
+static void t_span_overflow_falls_back(void)
+{
+    /* A = 8 da in s3.13 (|A| < 4) overflows for steep intervals: those
+     * lanes must come from the kernel, with its counts. */
+    size_t batched = 0, fell = 0;
+    span_case("span3", 8, "paper", "a=s3.13", 1.0, &batched, &fell);
+    span_case("span23", 8, "mac", "a=s3.13", 1.0, &batched, &fell);
+    TST_CHECK(fell > 0, "no lane overflowed (%zu batched)", batched);
+}
+
+/* Every registered unit, its default configuration, random stimulus
+ * (the float reference's vectors) split into lanes: the batch testbench
+ * against tb_run on each lane's vectors alone. */
+static void t_units_lanes_equal_kernel(void)
+{
+    size_t tried = 0, refused = 0;
+    for (size_t ui = 0; ui < unit_count(); ui++) {
+        const unit_desc *u = unit_at(ui);
+        unit_cfg cfg;
+        unit_cfg_default(&cfg);
+        unit_fmts fm;
+        char err[600];
+        if (tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); continue; }
+        enum { NL = 3 };
+        vec_set vs[NL];
+        tb_batch_lane lanes[NL];
+        memset(lanes, 0, sizeof lanes);
+        int ok = 1;
+        for (int k = 0; k < NL && ok; k++) {
+            size_t n = 3 + (size_t)k * 4;
+            if (cli_make_vectors(u, &cfg, n, 11 + (uint64_t)k, &vs[k], err, sizeof err)) {
+                TST_CHECK(0, "%s: %s", u->name, err);
+                ok = 0;
+                while (k--) vec_set_free(&vs[k]);
+                break;
+            }
+            lanes[k].vs = &vs[k];
+        }
+        if (!ok) continue;
+        int rc = tb_batch_run(u, &cfg, &fm, lanes, NL, err, sizeof err);
+        tried++;
+        if (rc == TB_UNSUPPORTED) { refused++; TST_CHECK(err[0], "%s: refused without a reason", u->name); }
+        else TST_EQ_INT(rc, TB_OK);
+        for (int k = 0; k < NL; k++) {
+            tb_result r;
+            char e2[600];
+            int rr = tb_run(u, &cfg, &fm, &vs[k], NULL, &r, e2, sizeof e2);
+            TST_EQ_INT(rr, TB_OK);
+            if (rc == TB_OK && rr == TB_OK) {
+                size_t nv = vs[k].n_rows * (size_t)r.beats * (size_t)r.n_out;
+                size_t nb = vs[k].n_rows * (size_t)r.beats;
+                TST_CHECK(!memcmp(r.raw, lanes[k].raw, nv * sizeof *r.raw), "%s lane %d: outputs differ", u->name, k);
+                TST_CHECK(!memcmp(r.beat_cycle, lanes[k].beat_cycle, nb * sizeof *r.beat_cycle),
+                          "%s lane %d: beat cycles differ", u->name, k);
+                TST_EQ_INT(lanes[k].clocks, r.stats.clocks);
+                /* the unit's own overflows (tb_run adds the inputs') */
+                TST_EQ_INT(lanes[k].overflows, r.overflows - r.in_overflows);
+            }
+            if (rr == TB_OK) tb_result_free(&r);
+            free(lanes[k].raw);
+            free(lanes[k].beat_cycle);
+            vec_set_free(&vs[k]);
+        }
+    }
+    TST_CHECK(tried == unit_count(), "%zu of %zu", tried, unit_count());
+    /* the units built of primitives only: all but the BRDF table unit */
+    TST_CHECK(refused <= 1, "%zu units refused", refused);
+}
+
+static void t_refusals(void)
+{
+    char err[300];
+    sim_ctx *c = sim_new();
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_fmt f = { 1, 4, 4, 8 };
+    sim_signal *x = sim_signal_new(c, NULL, "x", f, SIM_KIND_INPUT);
+    sim_signal *w = sim_signal_new(c, NULL, "w", f, SIM_KIND_WIRE);
+    sim_signal *y = sim_add(c, NULL, "y", f, x, w);
+    sim_assign(c, w, y);   /* y = x + y: a loop */
+    TST_CHECK(sim_batch_new(c, clk, 4, err, sizeof err) == NULL, "loop accepted");
+    TST_CHECK(strstr(err, "loop") != NULL, "%s", err);
+    sim_free(c);
+
+    c = sim_new();
+    clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    x = sim_signal_new(c, NULL, "x", f, SIM_KIND_INPUT);
+    sim_reg(c, NULL, "r", f, clk, x, NULL, NULL, 0);
+    sim_batch *b = sim_batch_new(c, clk, 0, err, sizeof err);
+    TST_CHECK(b == NULL, "0 lanes accepted");
+    b = sim_batch_new(c, clk, 2, err, sizeof err);
+    TST_CHECK(b != NULL, "%s", err);
+    if (b) {
+        TST_EQ_INT(sim_batch_set(b, sim_find(c, NULL, "r"), 0, 1), -1);   /* a register is no input */
+        TST_EQ_INT(sim_batch_set(b, x, 2, 1), -1);                       /* no lane 2 */
+        sim_batch_free(b);
+    }
+    sim_signal *other = sim_bit_new(c, NULL, "clk2", SIM_KIND_CLOCK);
+    sim_reg(c, NULL, "r2", f, other, x, NULL, NULL, 0);
+    TST_CHECK(sim_batch_new(c, clk, 2, err, sizeof err) == NULL, "second clock accepted");
+    sim_free(c);
+}
+
+/* A small design by hand: lanes that differ only in their inputs give the
+ * values computed here from the formulas, edge by edge. y = r + 3x/4
+ * (s4.4, wrap), r <= y each rising edge. */
+static void t_accumulator_by_hand(void)
+{
+    char err[300];
+    sim_ctx *c = sim_new();
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_fmt f = { 1, 4, 4, 8 };
+    sim_signal *x = sim_signal_new(c, NULL, "x", f, SIM_KIND_INPUT);
+    sim_signal *k = sim_const(c, NULL, "k", f, 0.75);
+    sim_signal *m = sim_mul(c, NULL, "m", f, x, k);
+    sim_signal *r = sim_reg(c, NULL, "r", f, clk, NULL, NULL, NULL, 0);
+    sim_signal *y = sim_add(c, NULL, "y", f, r, m);
+    sim_reg_connect(r, y);
+    sim_batch *b = sim_batch_new(c, clk, 3, err, sizeof err);
+    TST_CHECK(b != NULL, "%s", err);
+    if (!b) { sim_free(c); return; }
+    int64_t xs[3] = { 16, -8, 5 };   /* 1.0, -0.5, 0.3125 */
+    for (uint32_t l = 0; l < 3; l++) sim_batch_set(b, x, l, xs[l]);
+    sim_batch_start(b);
+    int64_t acc[3] = { 0, 0, 0 };
+    int wrapped = 0;
+    for (int e = 0; e < 12; e++) {
+        for (uint32_t l = 0; l < 3; l++) {
+            int64_t mm = (xs[l] * 12) >> 4;   /* 0.75 = 12/16, truncated */
+            int64_t yy = acc[l] + mm;
+            int64_t yw = (int64_t)(int8_t)(uint8_t)yy;   /* wrap to 8 bits */
+            wrapped |= (l == 0 && yw != yy);
+            TST_EQ_INT(sim_batch_val(b, y)[l], yw);
+            acc[l] = yw;
+        }
+        sim_batch_cycle(b);
+    }
+    TST_CHECK(wrapped, "lane 0 never wrapped");
+    TST_CHECK(sim_batch_overflowed(b, 0), "lane 0's wrap not flagged");
+    TST_CHECK(!sim_batch_overflowed(b, 1) && !sim_batch_overflowed(b, 2), "lanes 1, 2 never overflow");
+    sim_batch_free(b);
+    sim_free(c);
+}
+
+int main(void)
+{
+    TST_RUN(t_accumulator_by_hand);
+    TST_RUN(t_refusals);
+    TST_RUN(t_span_lanes_equal_kernel);
+    TST_RUN(t_span_overflow_falls_back);
+    TST_RUN(t_units_lanes_equal_kernel);
+    TST_EXIT();
+}
