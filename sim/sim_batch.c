@@ -219,9 +219,18 @@ static inline int64_t reg_next(const bop *p, uint32_t l, unsigned char *ovf)
 static void eval_reg(const bop *p, const uint64_t *m, uint32_t nw, unsigned char *ovf)
 {
     int64_t *nx = p->nx;
+    const int64_t *a = p->a, lo = p->lo, hi = p->hi;
+    const uint64_t radd = (uint64_t)p->radd;
+    const int k = p->k, plain = p->fast && a && !p->c && !p->rst;
     for (uint32_t w = 0; w < nw; w++) {
         uint64_t mw = m[w];
-        if (mw == UINT64_MAX) {
+        if (mw == UINT64_MAX && plain) {
+            /* the common register, q <= d, in every lane of the word */
+            for (uint32_t l = w * 64; l < w * 64 + 64; l++) {
+                int64_t x = (int64_t)((uint64_t)a[l] + radd) >> k;
+                nx[l] = x >= lo && x <= hi ? x : quant(p, a[l], p->fa, &ovf[l]);
+            }
+        } else if (mw == UINT64_MAX) {
             for (uint32_t l = w * 64; l < w * 64 + 64; l++) nx[l] = reg_next(p, l, ovf);
         } else {
             while (mw) {
@@ -346,13 +355,22 @@ void sim_batch_cycle(sim_batch *b)
     for (uint32_t i = 0; i < b->nreg; i++) {
         bop *p = &b->reg[i];
         uint64_t *rm = b->regm + (size_t)i * nw, *om = b->chg + (size_t)p->sig * nw, any = 0;
+        int64_t *y = p->y;
+        const int64_t *nx = p->nx;
         for (uint32_t w = 0; w < nw; w++) {
             uint64_t mw = rm[w], acc = 0;
+            if (mw == UINT64_MAX) {
+                for (uint32_t l = w * 64; l < w * 64 + 64; l++) {
+                    acc |= (uint64_t)(y[l] != nx[l]) << (l & 63);
+                    y[l] = nx[l];
+                }
+                mw = 0;
+            }
             while (mw) {
                 uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
                 mw &= mw - 1;
-                acc |= (uint64_t)(p->y[l] != p->nx[l]) << (l & 63);
-                p->y[l] = p->nx[l];
+                acc |= (uint64_t)(y[l] != nx[l]) << (l & 63);
+                y[l] = nx[l];
             }
             om[w] |= acc;
             any |= acc;
