@@ -91,6 +91,6 @@ const char *cli_default_vectors_path(const char *unit, char *buf, size_t len);
 int cli_make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, uint64_t seed,
                      vec_set *vs, char *err, size_t errlen);
 
-/* Help text of the shared options. */
-extern const char cli_unit_opts_help[];
+/* "--schedule NAME: unit U has schedules: a, b": CLI_USAGE. */
+int cli_unit_sched_error(const unit_desc *u, const char *name);
 #endif
