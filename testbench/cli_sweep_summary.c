@@ -219,6 +219,26 @@ void sweep_print_accept(FILE *f, const tb_sweep *s, int shard_k, int shard_n, si
     free(miss);
 }
 
+/* The summary (malloc'd), or NULL when out of memory. */
+static char *summary_text(sweep_args *a, const tb_sweep *s, const unsigned char *on, size_t nfront)
+{
+    char *text = NULL;
+    size_t tlen = 0;
+    FILE *m = open_memstream(&text, &tlen);
+    if (!m) return NULL;
+    fprintf(m, "sweep %s: %zu configurations (widths %d..%d", s->spec.u->name, s->n, s->spec.wlo, s->spec.whi);
+    if (s->ngroups > 1) fprintf(m, " x %zu settings", s->ngroups);
+    fprintf(m, "), %zu vectors", s->vs[0]->n_rows);
+    if (s->npsets > 1) fputs(" per parameter set", m);
+    fprintf(m, ", sweep_id %016llx\n", (unsigned long long)s->id);
+    print_table(m, s, on);
+    sweep_print_accept(m, s, 0, 0, &a->misses);
+    print_front(m, s, on, nfront);
+    if (a->t.on) sweep_print_target(m, s, &a->t);
+    fclose(m);
+    return text;
+}
+
 int sweep_outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
 {
     char files[600] = "sweep.csv";
@@ -251,21 +271,9 @@ int sweep_outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     strncat(files, ", summary.txt", sizeof files - strlen(files) - 1);
 
     /* The summary, printed and saved: the same text. */
-    char *text = NULL;
-    size_t tlen = 0;
-    FILE *m = open_memstream(&text, &tlen);
-    if (!m) { free(on); sweep_oset_abort(&os); return cli_usage_error("sweep: out of memory"); }
-    fprintf(m, "sweep %s: %zu configurations (widths %d..%d", s->spec.u->name, s->n, s->spec.wlo, s->spec.whi);
-    if (s->ngroups > 1) fprintf(m, " x %zu settings", s->ngroups);
-    fprintf(m, "), %zu vectors", s->vs[0]->n_rows);
-    if (s->npsets > 1) fputs(" per parameter set", m);
-    fprintf(m, ", sweep_id %016llx\n", (unsigned long long)s->id);
-    print_table(m, s, on);
-    sweep_print_accept(m, s, 0, 0, &a->misses);
-    print_front(m, s, on, nfront);
-    if (a->t.on) sweep_print_target(m, s, &a->t);
-    fclose(m);
+    char *text = summary_text(a, s, on, nfront);
     free(on);
+    if (!text) { sweep_oset_abort(&os); return cli_usage_error("sweep: out of memory"); }
     FILE *sf = sweep_oset_open(&os, "summary.txt");
     if (!sf) { free(text); sweep_oset_abort(&os); return CLI_USAGE; }
     fputs(text, sf);
