@@ -263,12 +263,6 @@ const cli_opt cli_unit_opt_tab[] = {
     { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
 };
 
-int cli_unit_option(cli_unit_opts *o, int argc, char **argv, int *i)
-{
-    int r = cli_opt_step(cli_unit_opt_tab, o, argc, argv, i);
-    return r == 1 ? 1 : r == 0 || r == CLI_OPT_UNKNOWN ? 0 : -1;
-}
-
 /* The data folders, in the order searched (docs/cli.md, "Data files"):
  *   1. $SHADESIM_HOME, when set (and then only it: an explicit choice that
  *      does not hold the file is an error, not a fallback);
