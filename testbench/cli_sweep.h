@@ -1,6 +1,7 @@
 /* cli_sweep.h - what the files of the sweep verb share (not a public
  * header): its arguments, the set of output files, and the target search.
- *   cli_sweep.c          the verb: options, vectors, the run, a shard's CSV
+ *   cli_sweep.c          the verb: vectors, the run, a shard's CSV
+ *   cli_sweep_opts.c     its options (the grid, targets, shards)
  *   cli_sweep_files.c    the output folder's file set, moved in together
  *   cli_sweep_summary.c  Pareto front, charts, summary table, the whole set
  *   cli_sweep_target.c   the target search, its held-out check, target.json/.csv
@@ -43,6 +44,9 @@ typedef struct sweep_args {
     int ho_failed;          /* some group's held-out check failed */
     size_t misses;          /* rows that miss --max-error/--max-nmse/--max-lsb */
 } sweep_args;
+
+/* The options (argv[1] the unit): 0, or CLI_USAGE after the message. */
+int sweep_parse(int argc, char **argv, sweep_args *a);
 
 /* Open DIR/name as one of the set; NULL after printing the error. */
 FILE *sweep_oset_open(oset *os, const char *name);
