@@ -73,9 +73,9 @@ typedef struct cli_unit_opts {
 
 /* Select the unit (and its defaults) by name; CLI_USAGE with a message. */
 int cli_unit_select(cli_unit_opts *o, const char *name);
-/* If argv[*i] is a shared option, consume it (and its value) and return 1;
- * return 0 if not ours; CLI_USAGE-negated (-1) after printing an error. */
-int cli_unit_option(cli_unit_opts *o, int argc, char **argv, int *i);
+/* The shared options themselves (--width, --fmt, ...) are the table
+ * cli_unit_opt_tab of cli_opt.h. */
+
 /* The vectors: --vectors FILE, else the unit's checked-in default file
  * (vectors/UNIT.vec beside the binary's tree) when the parameters are the
  * defaults, else generated from the float reference. 0 or CLI_USAGE. */
@@ -91,6 +91,6 @@ const char *cli_default_vectors_path(const char *unit, char *buf, size_t len);
 int cli_make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, uint64_t seed,
                      vec_set *vs, char *err, size_t errlen);
 
-/* Help text of the shared options. */
-extern const char cli_unit_opts_help[];
+/* "--schedule NAME: unit U has schedules: a, b": CLI_USAGE. */
+int cli_unit_sched_error(const unit_desc *u, const char *name);
 #endif

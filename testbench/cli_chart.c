@@ -1,6 +1,8 @@
 /* cli_chart.c - the verb chart: a sweep's charts from its CSV (sweep.csv,
  * a shard's, or merge's), the same bytes the sweep itself draws. */
 #include "testbench/cli.h"
+#include "testbench/cli_opt.h"
+#include <stddef.h>
 #include "testbench/tb_sweep_chart.h"
 #include "sim/sim_out.h"
 #include <errno.h>
@@ -10,7 +12,27 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-static const char chart_help[] =
+typedef struct chart_args { const char *csv, *dir; int png; } chart_args;
+
+static int chart_csv(void *base, const char *arg)
+{
+    chart_args *a = base;
+    if (a->csv) return cli_usage_error("chart: one CSV at a time (shadesim merge joins shards)");
+    a->csv = arg;
+    return 0;
+}
+
+static const cli_opt chart_tab[] = {
+    { "-o", NULL, CLI_OPT_STR, offsetof(chart_args, dir), 0, 0, NULL, "chart: -o needs a folder", NULL, CLI_OPT_NONEMPTY,
+      "  -o DIR               output folder (default: the CSV's folder), made if missing\n" },
+    { "--png", NULL, CLI_OPT_FLAG, offsetof(chart_args, png), 0, 0, NULL, NULL, NULL, 0,
+      "  --png                also write each chart as CHART.png with rsvg-convert\n"
+      "                       (an error when rsvg-convert is not installed)\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_chart_spec = {
+    "chart", { chart_tab }, chart_csv, 1, "chart: unknown option '%s' (see shadesim chart --help)",
     "usage: shadesim chart SWEEP.csv [-o DIR] [--png]\n\n"
     "Draws a sweep's charts from its CSV: sweep.csv, a shard's CSV or the CSV\n"
     "that shadesim merge joins from shards. The charts are the bytes the sweep\n"
@@ -22,12 +44,11 @@ static const char chart_help[] =
     "and clocks per pixel while beating it in one. Up to 7 settings groups get a\n"
     "colour each; more are coloured by the setting with the most values (a scale\n"
     "when it has more than 7) and shaped by a second one.\n\n"
-    "options:\n"
-    "  -o DIR               output folder (default: the CSV's folder), made if missing\n"
-    "  --png                also write each chart as CHART.png with rsvg-convert\n"
-    "                       (an error when rsvg-convert is not installed)\n\n"
-    "exit status: 0 done, 2 bad usage, an unreadable or malformed CSV, an\n"
-    "unwritable DIR or a failed PNG conversion\n";
+    "options:\n",
+    "\nexit status: 0 done, 2 bad usage, an unreadable or malformed CSV, an\n"
+    "unwritable DIR or a failed PNG conversion\n"
+};
+
 
 /* The whole file; NULL after printing the error. */
 static char *slurp(const char *path, size_t *len)
@@ -97,22 +118,12 @@ static int to_png(const char *svg, const char *png)
 
 int cli_chart(int argc, char **argv)
 {
-    const char *csv = NULL, *dir = NULL;
-    int png = 0;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            fputs(chart_help, stdout);
-            char e[300];
-            return sim_out_stdout_check(e, sizeof e) ? cli_usage_error("%s", e) : CLI_OK;
-        }
-        if (!strcmp(argv[i], "-o")) {
-            if (i + 1 >= argc || !*argv[i + 1]) return cli_usage_error("chart: -o needs a folder");
-            dir = argv[++i];
-        } else if (!strcmp(argv[i], "--png")) png = 1;
-        else if (argv[i][0] == '-' && argv[i][1]) return cli_usage_error("chart: unknown option '%s' (see shadesim chart --help)", argv[i]);
-        else if (!csv) csv = argv[i];
-        else return cli_usage_error("chart: one CSV at a time (shadesim merge joins shards)");
-    }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_chart_spec);
+    chart_args ca = { NULL, NULL, 0 };
+    void *base[] = { &ca };
+    if (cli_opt_parse(&cli_chart_spec, base, argc, argv, 1)) return CLI_USAGE;
+    const char *csv = ca.csv, *dir = ca.dir;
+    int png = ca.png;
     if (!csv) return cli_usage_error("chart: which CSV? (shadesim chart out/sweep-UNIT/sweep.csv)");
     if (png && !on_path("rsvg-convert"))
         return cli_usage_error("chart: --png needs rsvg-convert, which is not installed (Debian: librsvg2-bin)");

@@ -6,6 +6,7 @@
  * bench/bench_claims.c), the failure region of each approximation, and
  * with -o DIR the charts (docs/brdf.md). */
 #include "testbench/cli.h"
+#include "testbench/cli_opt.h"
 #include "sim/sim_out.h"
 #include "testbench/tb_svg.h"
 #include "vectors/claims.h"
@@ -13,6 +14,7 @@
 #include "vectors/ref_brdf.h"
 #include <errno.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,30 +24,6 @@
 #define M_PI 3.14159265358979323846
 #endif
 #define DEG (M_PI / 180.0)
-
-static const char claims_help[] =
-    "usage: shadesim claims [--json] [-o DIR] [--width W]\n\n"
-    "Prints each numerical claim of the papers (docs/references.md) beside what the\n"
-    "double-precision references measure, and a verdict: holds, holds only for\n"
-    "<condition>, or does not hold. Then the papers' speed claims (D16 4.34x faster\n"
-    "than D, the Ward approximation more than 2x), measured as clocks and area of\n"
-    "our hardware units against a cost model of the exact functions. Last, where\n"
-    "each approximation fails: relative error above 10% where the exact value is\n"
-    "above 1% of its peak. The face scene's claims (NMSE against per-pixel Phong,\n"
-    "operation-count speed-up) are measured at 256x256 through the simulated\n"
-    "span hardware. The output is the same bytes on every run and machine;\n"
-    "CPU timings of the float kernels are machine-dependent and live in `make\n"
-    "bench` (bench/bench_claims), not in these verdicts.\n\noptions:\n"
-    "  --json               one JSON object instead of text\n"
-    "  -o DIR               also write the charts into DIR (made if missing):\n"
-    "                       claims_d16.svg, claims_ward.svg, claims_schlick.svg\n"
-    "                       (error against angle, failure regions shaded),\n"
-    "                       claims_d16_clamp.svg (why d_approx clamps its base) and\n"
-    "                       claims_cost.svg (clocks x area against error, our units)\n"
-    "  --width W            width of the hardware units for the speed and cost\n"
-    "                       figures (default 16)\n\n"
-    "exit status: 0 done (a claim that does not hold is a finding, not an error),\n"
-    "2 bad usage or an unwritable DIR\n";
 
 #define FAIL_REL 0.10          /* a failure: relative error above 10% ... */
 #define FAIL_FLOOR 0.01        /* ... where the exact value is above 1% of its peak */
@@ -608,27 +586,58 @@ size_t cli_claims_table(claim_result *rows, const char **kind, int width, char *
 
 /* ------------------------------------------------------------------ verb */
 
+typedef struct claims_args { int json, width; const char *dir; } claims_args;
+
+static int o_cpu_seconds(void *base, const char *opt, const char *v)
+{
+    (void)base, (void)opt, (void)v;
+    return cli_usage_error("claims: --cpu-seconds is gone: CPU timings are machine-dependent and not "
+                           "verdicts; make bench times them (bench/bench_claims)");
+}
+
+static const cli_opt claims_tab[] = {
+    { "--json", NULL, CLI_OPT_FLAG, offsetof(claims_args, json), 0, 0, NULL, NULL, NULL, 0,
+      "  --json               one JSON object instead of text\n" },
+    { "-o", NULL, CLI_OPT_STR, offsetof(claims_args, dir), 0, 0, NULL, "claims: -o needs a folder", NULL, CLI_OPT_NONEMPTY,
+      "  -o DIR               also write the charts into DIR (made if missing):\n"
+      "                       claims_d16.svg, claims_ward.svg, claims_schlick.svg\n"
+      "                       (error against angle, failure regions shaded),\n"
+      "                       claims_d16_clamp.svg (why d_approx clamps its base) and\n"
+      "                       claims_cost.svg (clocks x area against error, our units)\n" },
+    { "--width", NULL, CLI_OPT_INT, offsetof(claims_args, width), 4, 48, NULL, "claims: --width needs a whole number 4..48",
+      NULL, 0,
+      "  --width W            width of the hardware units for the speed and cost\n"
+      "                       figures (default 16)\n" },
+    { "--cpu-seconds", NULL, CLI_OPT_CALL0, 0, 0, 0, NULL, NULL, o_cpu_seconds, CLI_OPT_HIDDEN, NULL },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_claims_spec = {
+    "claims", { claims_tab }, NULL, 0, "claims: unknown argument '%s' (see shadesim claims --help)",
+    "usage: shadesim claims [--json] [-o DIR] [--width W]\n\n"
+    "Prints each numerical claim of the papers (docs/references.md) beside what the\n"
+    "double-precision references measure, and a verdict: holds, holds only for\n"
+    "<condition>, or does not hold. Then the papers' speed claims (D16 4.34x faster\n"
+    "than D, the Ward approximation more than 2x), measured as clocks and area of\n"
+    "our hardware units against a cost model of the exact functions. Last, where\n"
+    "each approximation fails: relative error above 10% where the exact value is\n"
+    "above 1% of its peak. The face scene's claims (NMSE against per-pixel Phong,\n"
+    "operation-count speed-up) are measured at 256x256 through the simulated\n"
+    "span hardware. The output is the same bytes on every run and machine;\n"
+    "CPU timings of the float kernels are machine-dependent and live in `make\n"
+    "bench` (bench/bench_claims), not in these verdicts.\n\noptions:\n",
+    "\nexit status: 0 done (a claim that does not hold is a finding, not an error),\n"
+    "2 bad usage or an unwritable DIR\n"
+};
+
 int cli_claims(int argc, char **argv)
 {
-    int json = 0, width = 16;
-    const char *dir = NULL;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(claims_help, stdout); return CLI_OK; }
-        if (!strcmp(a, "--json")) json = 1;
-        else if (!strcmp(a, "-o")) {
-            if (i + 1 >= argc || !*argv[i + 1]) return cli_usage_error("claims: -o needs a folder");
-            dir = argv[++i];
-        } else if (!strcmp(a, "--width")) {
-            long w;
-            if (i + 1 >= argc) return cli_usage_error("claims: --width needs a whole number 4..48");
-            if (cli_parse_long("--width", argv[++i], 4, 48, NULL, &w)) return CLI_USAGE;
-            width = (int)w;
-        } else if (!strcmp(a, "--cpu-seconds")) {
-            return cli_usage_error("claims: --cpu-seconds is gone: CPU timings are machine-dependent and not "
-                                   "verdicts; make bench times them (bench/bench_claims)");
-        } else return cli_usage_error("claims: unknown argument '%s' (see shadesim claims --help)", a);
-    }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_claims_spec);
+    claims_args ca = { 0, 16, NULL };
+    void *base[] = { &ca };
+    if (cli_opt_parse(&cli_claims_spec, base, argc, argv, 1)) return CLI_USAGE;
+    int json = ca.json, width = ca.width;
+    const char *dir = ca.dir;
 
     report *rp = calloc(1, sizeof *rp);
     if (!rp) return cli_usage_error("claims: out of memory");

@@ -1,5 +1,6 @@
 /* cli_common.c - options shared by the verbs, and where vectors come from. */
 #include "testbench/cli.h"
+#include "testbench/cli_opt.h"
 #include "sim/sim_out.h"
 #include "vectors/vec_file.h"
 #include <errno.h>
@@ -143,16 +144,6 @@ int cli_parse_real(const char *opt, const char *text, double lo, double hi, cons
     return 0;
 }
 
-const char cli_unit_opts_help[] =
-    "  --width W            default-format rule width (the unit's range: `shadesim list UNIT`); default 16\n"
-    "  --fmt NAME=sI.F      override one signal's format; --fmt all=sI.F sets every signal;\n"
-    "                       later --fmt arguments override earlier ones (repeatable)\n"
-    "  --round MODE         trunc (default), half-up, even\n"
-    "  --overflow MODE      wrap (default), sat\n"
-    "  --schedule NAME      the unit's schedule (default: its first)\n"
-    "  --param NAME=VALUE   a unit parameter, e.g. --param terms=5 (repeatable)\n"
-    "  --vectors FILE       golden vectors (default: the unit's file in vectors/)\n";
-
 int cli_unit_select(cli_unit_opts *o, const char *name)
 {
     memset(o, 0, sizeof *o);
@@ -162,75 +153,115 @@ int cli_unit_select(cli_unit_opts *o, const char *name)
     return CLI_OK;
 }
 
-/* The value of an option written "--opt VALUE" or "--opt=VALUE". */
-static const char *opt_value(const char *opt, int argc, char **argv, int *i, int *matched)
-{
-    size_t n = strlen(opt);
-    *matched = 0;
-    if (strncmp(argv[*i], opt, n)) return NULL;
-    if (argv[*i][n] == '=') { *matched = 1; return argv[*i] + n + 1; }
-    if (argv[*i][n]) return NULL;
-    *matched = 1;
-    if (*i + 1 >= argc) return NULL;
-    return argv[++*i];
-}
+/* The values of the shared options (cli_unit_opt_tab; list, sweep and the
+ * Verilog verbs use the same functions in their own tables). Each is a
+ * cli_opt call on a cli_unit_opts; one before the unit is chosen is not an
+ * option yet (the verb's "unknown" message). */
 
-int cli_unit_option(cli_unit_opts *o, int argc, char **argv, int *i)
+int cli_unit_width(void *base, const char *opt, const char *v)
 {
-    static const char *const names[] = { "--width", "--fmt", "--round", "--overflow", "--schedule", "--param", "--vectors" };
-    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
-        int matched;
-        const char *v = opt_value(names[k], argc, argv, i, &matched);
-        if (!matched) continue;
-        if (!v) { cli_usage_error("%s needs a value", names[k]); return -1; }
-        char err[300];
-        switch (k) {
-        case 0: {
-            long w;
-            if (cli_parse_long("--width", v, 1, 64, NULL, &w)) return -1;
-            o->cfg.width = (int)w;
-            break;
-        }
-        case 1:
-            if (o->nfmt == CLI_MAX_FMT) { cli_usage_error("too many --fmt options (at most %d)", CLI_MAX_FMT); return -1; }
-            o->fmt[o->nfmt++] = v;
-            break;
-        case 2:
-            if (sim_round_parse(v, &o->cfg.rnd)) { cli_usage_error("--round %s: expected trunc, half-up or even", v); return -1; }
-            break;
-        case 3:
-            if (sim_ovf_parse(v, &o->cfg.ovf)) { cli_usage_error("--overflow %s: expected wrap or sat", v); return -1; }
-            break;
-        case 4: {
-            int s = unit_sched_find(o->u, v);
-            if (s < 0) {
-                char list[200] = "";
-                for (int j = 0; j < o->u->nsched; j++) {
-                    strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
-                    strncat(list, o->u->sched[j].name, sizeof list - strlen(list) - 1);
-                }
-                cli_usage_error("--schedule %s: unit %s has schedules: %s", v, o->u->name, list);
-                return -1;
-            }
-            o->cfg.schedule = s;
-            break;
-        }
-        case 5: {
-            const char *eq = strchr(v, '=');
-            if (!eq) { cli_usage_error("--param %s: expected NAME=VALUE", v); return -1; }
-            char name[64];
-            snprintf(name, sizeof name, "%.*s", (int)(eq - v), v);
-            if (unit_param_set(o->u, &o->cfg, name, eq + 1, err, sizeof err)) { cli_usage_error("--param %s: %s", v, err); return -1; }
-            break;
-        }
-        case 6:
-            o->vectors = v;
-            break;
-        }
-        return 1;
-    }
+    cli_unit_opts *o = base;
+    long w;
+    if (cli_parse_long(opt, v, 1, 64, NULL, &w)) return CLI_USAGE;
+    o->cfg.width = (int)w;
     return 0;
 }
+
+int cli_unit_fmt(void *base, const char *opt, const char *v)
+{
+    cli_unit_opts *o = base;
+    (void)opt;
+    if (o->nfmt == CLI_MAX_FMT) return cli_usage_error("too many --fmt options (at most %d)", CLI_MAX_FMT);
+    o->fmt[o->nfmt++] = v;
+    return 0;
+}
+
+static int unit_round(void *base, const char *opt, const char *v)
+{
+    cli_unit_opts *o = base;
+    (void)opt;
+    if (!o->u) return CLI_OPT_UNKNOWN;
+    if (sim_round_parse(v, &o->cfg.rnd)) return cli_usage_error("--round %s: expected trunc, half-up or even", v);
+    return 0;
+}
+
+static int unit_overflow(void *base, const char *opt, const char *v)
+{
+    cli_unit_opts *o = base;
+    (void)opt;
+    if (!o->u) return CLI_OPT_UNKNOWN;
+    if (sim_ovf_parse(v, &o->cfg.ovf)) return cli_usage_error("--overflow %s: expected wrap or sat", v);
+    return 0;
+}
+
+int cli_unit_sched_error(const unit_desc *u, const char *name)
+{
+    char list[200] = "";
+    for (int j = 0; j < u->nsched; j++) {
+        strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
+        strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
+    }
+    return cli_usage_error("--schedule %s: unit %s has schedules: %s", name, u->name, list);
+}
+
+static int unit_schedule(void *base, const char *opt, const char *v)
+{
+    cli_unit_opts *o = base;
+    (void)opt;
+    if (!o->u) return CLI_OPT_UNKNOWN;
+    int s = unit_sched_find(o->u, v);
+    if (s < 0) return cli_unit_sched_error(o->u, v);
+    o->cfg.schedule = s;
+    return 0;
+}
+
+int cli_unit_param(void *base, const char *opt, const char *v)
+{
+    cli_unit_opts *o = base;
+    (void)opt;
+    if (!o->u) return CLI_OPT_UNKNOWN;
+    const char *eq = strchr(v, '=');
+    if (!eq) return cli_usage_error("--param %s: expected NAME=VALUE", v);
+    char name[64], err[300];
+    snprintf(name, sizeof name, "%.*s", (int)(eq - v), v);
+    if (unit_param_set(o->u, &o->cfg, name, eq + 1, err, sizeof err)) return cli_usage_error("--param %s: %s", v, err);
+    return 0;
+}
+
+/* In the shared table: an option before the unit is chosen is not one yet. */
+static int u_width(void *base, const char *opt, const char *v)
+{
+    return ((cli_unit_opts *)base)->u ? cli_unit_width(base, opt, v) : CLI_OPT_UNKNOWN;
+}
+
+static int u_fmt(void *base, const char *opt, const char *v)
+{
+    return ((cli_unit_opts *)base)->u ? cli_unit_fmt(base, opt, v) : CLI_OPT_UNKNOWN;
+}
+
+static int u_vectors(void *base, const char *opt, const char *v)
+{
+    cli_unit_opts *o = base;
+    (void)opt;
+    if (!o->u) return CLI_OPT_UNKNOWN;
+    o->vectors = v;
+    return 0;
+}
+
+#define UOPT(NAME, FN, HELP) { NAME, NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, FN, 0, HELP }
+const cli_opt cli_unit_opt_tab[] = {
+    UOPT("--width", u_width,
+         "  --width W            default-format rule width (the unit's range: `shadesim list UNIT`); default 16\n"),
+    UOPT("--fmt", u_fmt,
+         "  --fmt NAME=sI.F      override one signal's format; --fmt all=sI.F sets every signal;\n"
+         "                       later --fmt arguments override earlier ones (repeatable)\n"),
+    UOPT("--round", unit_round, "  --round MODE         trunc (default), half-up, even\n"),
+    UOPT("--overflow", unit_overflow, "  --overflow MODE      wrap (default), sat\n"),
+    UOPT("--schedule", unit_schedule, "  --schedule NAME      the unit's schedule (default: its first)\n"),
+    UOPT("--param", cli_unit_param, "  --param NAME=VALUE   a unit parameter, e.g. --param terms=5 (repeatable)\n"),
+    UOPT("--vectors", u_vectors, "  --vectors FILE       golden vectors (default: the unit's file in vectors/)\n"),
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
 
 /* The data folders, in the order searched (docs/cli.md, "Data files"):
  *   1. $SHADESIM_HOME, when set (and then only it: an explicit choice that

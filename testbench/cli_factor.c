@@ -3,6 +3,8 @@
  * against the rank-K sum-of-products baseline, the maps as PNG and raw
  * floats, and a study over resolutions and sample counts. */
 #include "testbench/cli.h"
+#include "testbench/cli_opt.h"
+#include <stddef.h>
 #include "vectors/ref_factor.h"
 #include "testbench/tb_factor_scene.h"
 #include "scene/scene.h"
@@ -12,64 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-
-static const char factor_help[] =
-    "usage: shadesim factor BRDF [options]\n\n"
-    "Factorizes a BRDF as f(d0, di) ~ lambda(d0) pi(h) lambda(di), h = norm(d0 + di)\n"
-    "(homomorphic factorization, Romanyuk, Vyatkin, Voitko, Romanyuk 2020): both\n"
-    "factors are R x R textures over the hemisphere in the parabolic map\n"
-    "(u, v) = (x, y) / (1 + z); the fit is linear least squares on log f with a\n"
-    "smoothness term, solved by conjugate gradients. Prints the error of the\n"
-    "factorization against the BRDF on held-out direction pairs, next to the\n"
-    "rank-1..K sum-of-products (SVD) approximation in the half/difference\n"
-    "parameterization. docs/factorization.md explains every figure.\n\n"
-    "BRDF: blinn, ct (Cook-Torrance), ward (isotropic), ward-aniso.\n\n"
-    "options:\n"
-    "  --res R          texture side, 2..256 (default 32)\n"
-    "  --samples N      direction pairs sampled, 1..10000000 (default 24 R^2)\n"
-    "  --smooth S       smoothness weight >= 0 (default 0.3)\n"
-    "  --floor F        samples below F times the 99th percentile are left out of\n"
-    "                   the fit and of the relative errors (default 1e-4)\n"
-    "  --param K=V      BRDF parameter (repeatable): blinn e; ct dist=beckmann|d4|\n"
-    "                   d8|d16|schlick|mschlick, m, n, fresnel=none|schlick, f0,\n"
-    "                   shadow=0|1; ward alpha (= ax = ay), ax, ay, rho\n"
-    "  --svd K          rank of the baseline, 0..8 (default 4; its resolution is\n"
-    "                   min(R, 32))\n"
-    "  --heldout N      held-out pairs for the errors (default 20000)\n"
-    "  --refine N       Gauss-Newton steps fitting the texel values themselves, as\n"
-    "                   bilinear texture hardware reads them, from the log-space\n"
-    "                   solution (default 3; 0: the log-space solution only)\n"
-    "  --seed N         sampling seed (default 1)\n"
-    "  --claims         also DIR/claims.csv: what the paper states (positive\n"
-    "                   factors, reciprocity, relative-error minimization, few\n"
-    "                   costly operations) next to what we measure, with a verdict\n"
-    "  --scene NAME     the paper's Fig. 1 on a built-in scene (face, sphere, torus):\n"
-    "                   Ward's specular term exact at the vertices and interpolated,\n"
-    "                   factorized per pixel through the simulated hf_lookup unit\n"
-    "                   (maps at --res, which must be 4, 8, 16 or 32; roughness\n"
-    "                   --param alpha), exact per pixel: NMSE of each against the\n"
-    "                   last; DIR/vertex.png, factorized.png, exact.png (ward only)\n"
-    "  --width W        hf_lookup's width for --scene, 8..32 (default 16)\n"
-    "  --scene-res N    image side for --scene, 16..1024 (default the scene's)\n"
-    "  --study          also DIR/study.csv: the errors over R = 8, 16, 32, 64 and\n"
-    "                   over samples = 6, 24, 96 R^2 at the chosen R\n"
-    "  -o DIR           output folder (default out/factor-BRDF; created): lambda.png,\n"
-    "                   pi.png (log-scaled grey, the range in report.csv),\n"
-    "                   factors.f32 (little-endian float32: lambda's R*R texels,\n"
-    "                   then pi's, rows of v from -1, u from -1), report.csv\n\n"
-    "exit status: 0 done, 1 --claims: a claim does not hold, 2 bad usage or input.\n";
-
-static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
-
-static int parse_long(const char *opt, const char *s, long lo, long hi, long *v)
-{
-    return cli_parse_long(opt, s, lo, hi, NULL, v);
-}
-
-static int parse_real(const char *opt, const char *s, double *v)
-{
-    return cli_parse_real(opt, s, 0, HUGE_VAL, "a finite number >= 0", v);
-}
 
 /* A map as grey PNG: log of the texel scaled from [lo, hi] to 0..255,
  * each texel a square of k pixels (k: the image at least 256 wide). */
@@ -225,45 +169,128 @@ static int write_claims(rf_brdf *b, const rf_fact *f, const rf_opts *o, long hel
     return rc;
 }
 
+typedef struct factor_args {
+    rf_opts o;
+    rf_brdf *b;
+    long svd_k, heldout, hw_width, scene_res;
+    int study, claims;
+    const char *scene, *dir;
+} factor_args;
+
+static int o_floor(void *base, const char *opt, const char *v)
+{
+    factor_args *a = base;
+    if (cli_parse_real(opt, v, 0, HUGE_VAL, "a finite number >= 0", &a->o.floor)) return CLI_USAGE;
+    if (a->o.floor >= 1) return cli_usage_error("--floor %s: expected a number in [0, 1)", v);
+    return 0;
+}
+
+static int o_param(void *base, const char *opt, const char *v)
+{
+    char err[600];
+    (void)opt;
+    if (rf_brdf_param(((factor_args *)base)->b, v, err, sizeof err)) return cli_usage_error("%s", err);
+    return 0;
+}
+
+static int o_seed(void *base, const char *opt, const char *v)
+{
+    long x;
+    if (cli_parse_long(opt, v, 0, 1000000000, NULL, &x)) return CLI_USAGE;
+    ((factor_args *)base)->o.seed = (uint64_t)x;
+    return 0;
+}
+
+#define F_MISSING "%s: missing value (see shadesim factor --help)"
+#define F_NUM(NAME, KIND, FIELD, LO, HI, HELP) { NAME, NULL, KIND, offsetof(factor_args, FIELD), LO, HI, NULL, \
+    F_MISSING, NULL, 0, HELP }
+#define F_CALL(NAME, FN, HELP) { NAME, NULL, CLI_OPT_CALL, 0, 0, 0, NULL, F_MISSING, FN, 0, HELP }
+#define F_STR(NAME, FIELD, HELP) { NAME, NULL, CLI_OPT_STR, offsetof(factor_args, FIELD), 0, 0, NULL, F_MISSING, NULL, 0, HELP }
+#define F_FLAG(NAME, FIELD, HELP) { NAME, NULL, CLI_OPT_FLAG, offsetof(factor_args, FIELD), 0, 0, NULL, NULL, NULL, 0, HELP }
+static const cli_opt factor_tab[] = {
+    F_NUM("--res", CLI_OPT_INT, o.R, 2, 256, "  --res R          texture side, 2..256 (default 32)\n"),
+    F_NUM("--samples", CLI_OPT_LONG, o.samples, 1, 10000000,
+          "  --samples N      direction pairs sampled, 1..10000000 (default 24 R^2)\n"),
+    { "--smooth", NULL, CLI_OPT_REAL, offsetof(factor_args, o.smooth), 0, HUGE_VAL, "a finite number >= 0", F_MISSING,
+      NULL, 0, "  --smooth S       smoothness weight >= 0 (default 0.3)\n" },
+    F_CALL("--floor", o_floor,
+           "  --floor F        samples below F times the 99th percentile are left out of\n"
+           "                   the fit and of the relative errors (default 1e-4)\n"),
+    F_CALL("--param", o_param,
+           "  --param K=V      BRDF parameter (repeatable): blinn e; ct dist=beckmann|d4|\n"
+           "                   d8|d16|schlick|mschlick, m, n, fresnel=none|schlick, f0,\n"
+           "                   shadow=0|1; ward alpha (= ax = ay), ax, ay, rho\n"),
+    F_NUM("--svd", CLI_OPT_LONG, svd_k, 0, 8,
+          "  --svd K          rank of the baseline, 0..8 (default 4; its resolution is\n"
+          "                   min(R, 32))\n"),
+    F_NUM("--heldout", CLI_OPT_LONG, heldout, 100, 10000000,
+          "  --heldout N      held-out pairs for the errors (default 20000)\n"),
+    F_NUM("--refine", CLI_OPT_INT, o.refine, 0, 50,
+          "  --refine N       Gauss-Newton steps fitting the texel values themselves, as\n"
+          "                   bilinear texture hardware reads them, from the log-space\n"
+          "                   solution (default 3; 0: the log-space solution only)\n"),
+    F_CALL("--seed", o_seed, "  --seed N         sampling seed (default 1)\n"),
+    F_FLAG("--claims", claims,
+           "  --claims         also DIR/claims.csv: what the paper states (positive\n"
+           "                   factors, reciprocity, relative-error minimization, few\n"
+           "                   costly operations) next to what we measure, with a verdict\n"),
+    F_STR("--scene", scene,
+          "  --scene NAME     the paper's Fig. 1 on a built-in scene (face, sphere, torus):\n"
+          "                   Ward's specular term exact at the vertices and interpolated,\n"
+          "                   factorized per pixel through the simulated hf_lookup unit\n"
+          "                   (maps at --res, which must be 4, 8, 16 or 32; roughness\n"
+          "                   --param alpha), exact per pixel: NMSE of each against the\n"
+          "                   last; DIR/vertex.png, factorized.png, exact.png (ward only)\n"),
+    F_NUM("--width", CLI_OPT_LONG, hw_width, 8, 32, "  --width W        hf_lookup's width for --scene, 8..32 (default 16)\n"),
+    F_NUM("--scene-res", CLI_OPT_LONG, scene_res, 16, 1024,
+          "  --scene-res N    image side for --scene, 16..1024 (default the scene's)\n"),
+    F_FLAG("--study", study,
+           "  --study          also DIR/study.csv: the errors over R = 8, 16, 32, 64 and\n"
+           "                   over samples = 6, 24, 96 R^2 at the chosen R\n"),
+    F_STR("-o", dir,
+          "  -o DIR           output folder (default out/factor-BRDF; created): lambda.png,\n"
+          "                   pi.png (log-scaled grey, the range in report.csv),\n"
+          "                   factors.f32 (little-endian float32: lambda's R*R texels,\n"
+          "                   then pi's, rows of v from -1, u from -1), report.csv\n"),
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_factor_spec = {
+    "factor", { factor_tab }, NULL, 0, "%s: unknown option (see shadesim factor --help)",
+    "usage: shadesim factor BRDF [options]\n\n"
+    "Factorizes a BRDF as f(d0, di) ~ lambda(d0) pi(h) lambda(di), h = norm(d0 + di)\n"
+    "(homomorphic factorization, Romanyuk, Vyatkin, Voitko, Romanyuk 2020): both\n"
+    "factors are R x R textures over the hemisphere in the parabolic map\n"
+    "(u, v) = (x, y) / (1 + z); the fit is linear least squares on log f with a\n"
+    "smoothness term, solved by conjugate gradients. Prints the error of the\n"
+    "factorization against the BRDF on held-out direction pairs, next to the\n"
+    "rank-1..K sum-of-products (SVD) approximation in the half/difference\n"
+    "parameterization. docs/factorization.md explains every figure.\n\n"
+    "BRDF: blinn, ct (Cook-Torrance), ward (isotropic), ward-aniso.\n\n"
+    "options:\n",
+    "\nexit status: 0 done, 1 --claims: a claim does not hold, 2 bad usage or input.\n"
+};
+
 int cli_factor(int argc, char **argv)
 {
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_factor_spec);
     if (argc < 2) return cli_usage_error("factor: missing BRDF (blinn, ct, ward, ward-aniso; see shadesim factor --help)");
-    if (is_help(argv[1])) { fputs(factor_help, stdout); return CLI_OK; }
     char err[600];
     rf_brdf b;
     if (rf_brdf_init(&b, argv[1], err, sizeof err)) return cli_usage_error("%s", err);
-    rf_opts o;
-    rf_opts_default(&o);
-    long svd_k = 4, heldout = 20000, v;
-    int study = 0, claims = 0, fails = 0;
-    long hw_width = 16, scene_res = 0;
-    const char *scene = NULL;
-    const char *dir = NULL;
-    for (int i = 2; i < argc; i++) {
-        const char *a = argv[i];
-        if (is_help(a)) { fputs(factor_help, stdout); return CLI_OK; }
-        if (!strcmp(a, "--study")) { study = 1; continue; }
-        if (!strcmp(a, "--claims")) { claims = 1; continue; }
-        if (i + 1 >= argc) return cli_usage_error("%s: missing value (see shadesim factor --help)", a);
-        const char *val = argv[++i];
-        if (!strcmp(a, "--res")) { if (parse_long(a, val, 2, 256, &v)) return CLI_USAGE; o.R = (int)v; }
-        else if (!strcmp(a, "--samples")) { if (parse_long(a, val, 1, 10000000, &o.samples)) return CLI_USAGE; }
-        else if (!strcmp(a, "--smooth")) { if (parse_real(a, val, &o.smooth)) return CLI_USAGE; }
-        else if (!strcmp(a, "--floor")) {
-            if (parse_real(a, val, &o.floor)) return CLI_USAGE;
-            if (o.floor >= 1) return cli_usage_error("--floor %s: expected a number in [0, 1)", val);
-        }
-        else if (!strcmp(a, "--param")) { if (rf_brdf_param(&b, val, err, sizeof err)) return cli_usage_error("%s", err); }
-        else if (!strcmp(a, "--svd")) { if (parse_long(a, val, 0, 8, &svd_k)) return CLI_USAGE; }
-        else if (!strcmp(a, "--heldout")) { if (parse_long(a, val, 100, 10000000, &heldout)) return CLI_USAGE; }
-        else if (!strcmp(a, "--refine")) { if (parse_long(a, val, 0, 50, &v)) return CLI_USAGE; o.refine = (int)v; }
-        else if (!strcmp(a, "--seed")) { if (parse_long(a, val, 0, 1000000000, &v)) return CLI_USAGE; o.seed = (uint64_t)v; }
-        else if (!strcmp(a, "-o")) dir = val;
-        else if (!strcmp(a, "--scene")) scene = val;
-        else if (!strcmp(a, "--width")) { if (parse_long(a, val, 8, 32, &hw_width)) return CLI_USAGE; }
-        else if (!strcmp(a, "--scene-res")) { if (parse_long(a, val, 16, 1024, &scene_res)) return CLI_USAGE; }
-        else return cli_usage_error("%s: unknown option (see shadesim factor --help)", a);
-    }
+    factor_args fa;
+    memset(&fa, 0, sizeof fa);
+    rf_opts_default(&fa.o);
+    fa.b = &b;
+    fa.svd_k = 4;
+    fa.heldout = 20000;
+    fa.hw_width = 16;
+    void *base[] = { &fa };
+    if (cli_opt_parse(&cli_factor_spec, base, argc, argv, 2)) return CLI_USAGE;
+    rf_opts o = fa.o;
+    long svd_k = fa.svd_k, heldout = fa.heldout, hw_width = fa.hw_width, scene_res = fa.scene_res;
+    int study = fa.study, claims = fa.claims, fails = 0;
+    const char *scene = fa.scene, *dir = fa.dir;
     if (scene && (b.kind != RF_WARD || b.ax != b.ay))
         return cli_usage_error("--scene: the hf_lookup unit holds isotropic Ward maps (BRDF ward)");
     if (scene && (o.R < 4 || o.R > 32 || (o.R & (o.R - 1))))

@@ -13,6 +13,8 @@
  * tb_sweep_chart (sweep, chart), tb_scene_render (scene).
  */
 #include "testbench/cli.h"
+#include "testbench/cli_opt.h"
+#include <stddef.h>
 #include "testbench/tb_scene.h"
 #include "testbench/tb_sweep.h"
 #include "testbench/tb_sweep_chart.h"
@@ -25,7 +27,16 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static const char report_help[] =
+typedef struct report_args { const char *dir; } report_args;
+
+static const cli_opt report_tab[] = {
+    { "-o", NULL, CLI_OPT_STR, offsetof(report_args, dir), 0, 0, NULL, "report: -o needs a folder", NULL, CLI_OPT_NONEMPTY,
+      "  -o DIR               output folder, made if missing (default out/report)\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_report_spec = {
+    "report", { report_tab }, NULL, 0, "report: unexpected argument '%s' (see shadesim report --help)",
     "usage: shadesim report [-o DIR]\n\n"
     "Writes DIR/report.html (default DIR: out/report), one page that any browser\n"
     "shows without scripts or network:\n"
@@ -44,10 +55,11 @@ static const char report_help[] =
     "horner3.vcd with horner3.vcd.gtkw. The page embeds its charts and images,\n"
     "so report.html alone can be mailed or archived. The same inputs give the\n"
     "same bytes.\n\n"
-    "options:\n"
-    "  -o DIR               output folder, made if missing (default out/report)\n\n"
-    "exit status: 0 written (a unit that fails its verdict is reported on the\n"
-    "page, not an error), 2 bad usage or an unwritable DIR\n";
+    "options:\n",
+    "\nexit status: 0 written (a unit that fails its verdict is reported on the\n"
+    "page, not an error), 2 bad usage or an unwritable DIR\n"
+};
+
 
 #define SCENE_RES 128
 
@@ -596,18 +608,11 @@ static int section_wave(FILE *f, const char *dir)
 
 int cli_report(int argc, char **argv)
 {
-    const char *dir = "out/report";
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            fputs(report_help, stdout);
-            char e[300];
-            return sim_out_stdout_check(e, sizeof e) ? cli_usage_error("%s", e) : CLI_OK;
-        }
-        if (!strcmp(argv[i], "-o")) {
-            if (i + 1 >= argc || !*argv[i + 1]) return cli_usage_error("report: -o needs a folder");
-            dir = argv[++i];
-        } else return cli_usage_error("report: unexpected argument '%s' (see shadesim report --help)", argv[i]);
-    }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_report_spec);
+    report_args ra = { "out/report" };
+    void *base[] = { &ra };
+    if (cli_opt_parse(&cli_report_spec, base, argc, argv, 1)) return CLI_USAGE;
+    const char *dir = ra.dir;
     if (cli_make_dir(dir)) return CLI_USAGE;
     char *html = NULL;
     size_t len = 0;

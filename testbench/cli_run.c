@@ -1,5 +1,6 @@
 /* cli_run.c - the verbs that read the unit descriptors: list, vectors, run. */
 #include "testbench/cli.h"
+#include "testbench/cli_opt.h"
 #include "testbench/tb_stream.h"
 #include "testbench/tb_wave.h"
 #include "testbench/tb_widths.h"
@@ -7,10 +8,9 @@
 #include "sim/sim_out.h"
 #include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
 
 /* Results went to stdout: a write error there (full disk, closed pipe)
  * must not pass as success. Every verb returns through this. */
@@ -134,48 +134,58 @@ static void list_unit_md(FILE *f, const unit_desc *u, int width, int sched)
     fputc('\n', f);
 }
 
+typedef struct list_args {
+    cli_unit_opts o;        /* --width, parsed as run parses it */
+    int md;
+    const char *only, *sched;
+} list_args;
+
+static int list_unit_arg(void *base, const char *arg)
+{
+    list_args *l = base;
+    if (l->only) return cli_usage_error("list: one unit at most");
+    l->only = arg;
+    return 0;
+}
+
+static const cli_opt list_tab[] = {
+    { "--schedule", NULL, CLI_OPT_STR, offsetof(list_args, sched), 0, 0, NULL, NULL, NULL, 0, NULL },
+    { "--markdown", NULL, CLI_OPT_FLAG, offsetof(list_args, md), 0, 0, NULL, NULL, NULL, 0, NULL },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+static const cli_opt list_width_tab[] = {
+    { "--width", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, cli_unit_width, 0, NULL },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_list_spec = {
+    "list", { list_tab, list_width_tab }, list_unit_arg, 0, "list: unknown option '%s'",
+    "usage: shadesim list [UNIT [--schedule NAME]] [--width W] [--markdown]\n\n"
+    "Lists every unit (or one) with its schedules, parameters, signals and\n"
+    "their default formats at width W (default 16). Where a unit's schedules\n"
+    "are different datapaths, the signals are those of schedule NAME (default\n"
+    "the unit's first; --markdown without --schedule: all, with a column\n"
+    "naming each one's schedules). --markdown prints the same as\n"
+    "docs/units.md is made of.\n", NULL
+};
+
 int cli_list(int argc, char **argv)
 {
-    int width = 16, md = 0;
-    const char *only = NULL, *sched = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (is_help(argv[i])) {
-            puts("usage: shadesim list [UNIT [--schedule NAME]] [--width W] [--markdown]\n\n"
-                 "Lists every unit (or one) with its schedules, parameters, signals and\n"
-                 "their default formats at width W (default 16). Where a unit's schedules\n"
-                 "are different datapaths, the signals are those of schedule NAME (default\n"
-                 "the unit's first; --markdown without --schedule: all, with a column\n"
-                 "naming each one's schedules). --markdown prints the same as\n"
-                 "docs/units.md is made of.");
-            return stdout_done(CLI_OK);
-        }
-        if (!strcmp(argv[i], "--width") && i + 1 < argc) {
-            long w;
-            if (cli_parse_long("--width", argv[++i], 1, 64, NULL, &w)) return CLI_USAGE;
-            width = (int)w;
-        } else if (!strcmp(argv[i], "--schedule") && i + 1 < argc) {
-            sched = argv[++i];
-        } else if (!strcmp(argv[i], "--width") || !strcmp(argv[i], "--schedule")) {
-            return cli_usage_error("%s needs a value", argv[i]);
-        } else if (!strcmp(argv[i], "--markdown")) md = 1;
-        else if (argv[i][0] == '-') return cli_usage_error("list: unknown option '%s'", argv[i]);
-        else if (!only) only = argv[i];
-        else return cli_usage_error("list: one unit at most");
-    }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_list_spec);
+    list_args la;
+    memset(&la, 0, sizeof la);
+    unit_cfg_default(&la.o.cfg);
+    la.o.cfg.width = 16;
+    void *base[] = { &la, &la.o };
+    if (cli_opt_parse(&cli_list_spec, base, argc, argv, 1)) return CLI_USAGE;
+    const char *only = la.only, *sched = la.sched;
+    int width = la.o.cfg.width, md = la.md;
     if (only && !unit_find(only)) return cli_usage_error("unknown unit '%s'", only);
     int si = -1;
     if (sched) {
         if (!only) return cli_usage_error("list: --schedule %s needs a unit (shadesim list UNIT --schedule NAME)", sched);
         si = unit_sched_find(unit_find(only), sched);
-        if (si < 0) {
-            const unit_desc *u = unit_find(only);
-            char list[200] = "";
-            for (int j = 0; j < u->nsched; j++) {
-                strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
-                strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
-            }
-            return cli_usage_error("--schedule %s: unit %s has schedules: %s", sched, only, list);
-        }
+        if (si < 0) return cli_unit_sched_error(unit_find(only), sched);
     }
     if (md && !only)
         printf("# Units\n\nGenerated by `shadesim list --markdown` (`make docs`) from the unit\n"
@@ -192,44 +202,56 @@ int cli_list(int argc, char **argv)
 
 /* ---------------------------------------------------------------- vectors */
 
+typedef struct vectors_args {
+    cli_unit_opts o;        /* the unit, and --param once it is chosen */
+    const char *unit, *out;
+    long n;
+    uint64_t seed;
+} vectors_args;
+
+static int vectors_unit_arg(void *base, const char *arg)
+{
+    vectors_args *va = base;
+    if (va->unit) return CLI_OPT_UNKNOWN;
+    va->unit = arg;
+    return cli_unit_select(&va->o, arg);
+}
+
+static const cli_opt vectors_tab[] = {
+    { "-n", NULL, CLI_OPT_LONG, offsetof(vectors_args, n), 0, 10000000, NULL, NULL, NULL, 0, NULL },
+    { "--seed", NULL, CLI_OPT_U64, offsetof(vectors_args, seed), 0, 0, NULL, NULL, NULL, 0, NULL },
+    { "-o", NULL, CLI_OPT_STR, offsetof(vectors_args, out), 0, 0, NULL, "-o needs a FILE", NULL, 0, NULL },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+static const cli_opt vectors_param_tab[] = {
+    { "--param", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, cli_unit_param, 0, NULL },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_vectors_spec = {
+    "vectors", { vectors_tab, vectors_param_tab }, vectors_unit_arg, 0,
+    "vectors: unexpected argument '%s' (see shadesim vectors --help)",
+    "usage: shadesim vectors UNIT [-n N] [--seed S] [--param NAME=VALUE ...] [-o FILE]\n\n"
+    "Golden vectors for UNIT from the double-precision float reference, in the\n"
+    "text vector format (stdout, or FILE written atomically). With the default\n"
+    "N (0: the unit's default set) and seed 1 this is the checked-in\n"
+    "vectors/UNIT.vec.\n\n"
+    "-o FILE: a regular file is replaced only once complete (a symbolic link is\n"
+    "followed and kept); a device or FIFO is written to in place; -o - is stdout.\n", NULL
+};
+
 int cli_vectors(int argc, char **argv)
 {
-    const char *unit = NULL, *out = NULL;
-    long long n = 0;
-    uint64_t seed = 1;
-    cli_unit_opts o;
-    memset(&o, 0, sizeof o);
-    for (int i = 1; i < argc; i++) {
-        if (is_help(argv[i])) {
-            puts("usage: shadesim vectors UNIT [-n N] [--seed S] [--param NAME=VALUE ...] [-o FILE]\n\n"
-                 "Golden vectors for UNIT from the double-precision float reference, in the\n"
-                 "text vector format (stdout, or FILE written atomically). With the default\n"
-                 "N (0: the unit's default set) and seed 1 this is the checked-in\n"
-                 "vectors/UNIT.vec.\n\n"
-                 "-o FILE: a regular file is replaced only once complete (a symbolic link is\n"
-                 "followed and kept); a device or FIFO is written to in place; -o - is stdout.");
-            return stdout_done(CLI_OK);
-        }
-        if ((!strcmp(argv[i], "-n")) && i + 1 < argc) {
-            long x;
-            if (cli_parse_long("-n", argv[++i], 0, 10000000, NULL, &x)) return CLI_USAGE;
-            n = x;
-        } else if (!strcmp(argv[i], "--seed") && i + 1 < argc) {
-            if (cli_parse_u64("--seed", argv[++i], NULL, &seed)) return CLI_USAGE;
-        } else if (!strcmp(argv[i], "-o") && i + 1 < argc) {
-            out = argv[++i];
-        } else if (!strcmp(argv[i], "-o")) {
-            return cli_usage_error("-o needs a FILE");
-        } else if (!strcmp(argv[i], "-n") || !strcmp(argv[i], "--seed")) {
-            return cli_usage_error("%s needs a value", argv[i]);
-        } else if (!unit && argv[i][0] != '-') {
-            unit = argv[i];
-            if (cli_unit_select(&o, unit)) return CLI_USAGE;
-        } else if (unit && !strncmp(argv[i], "--param", 7)) {
-            int r = cli_unit_option(&o, argc, argv, &i);
-            if (r < 0) return CLI_USAGE;
-        } else return cli_usage_error("vectors: unexpected argument '%s' (see shadesim vectors --help)", argv[i]);
-    }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_vectors_spec);
+    vectors_args va;
+    memset(&va, 0, sizeof va);
+    va.seed = 1;
+    void *base[] = { &va, &va.o };
+    if (cli_opt_parse(&cli_vectors_spec, base, argc, argv, 1)) return CLI_USAGE;
+    cli_unit_opts o = va.o;
+    const char *unit = va.unit, *out = va.out;
+    long n = va.n;
+    uint64_t seed = va.seed;
     if (!unit) return cli_usage_error("vectors: which unit? (shadesim list)");
     vec_set vs;
     char err[600];
@@ -243,7 +265,52 @@ int cli_vectors(int argc, char **argv)
 
 /* -------------------------------------------------------------------- run */
 
-static const char run_help[] =
+typedef struct run_args {
+    const char *vcd, *csv;
+    int json, fst, ranges;
+    long vfrom, vto;
+} run_args;
+
+#define ACC_OPT(NAME, FIELD, HELP) { NAME, NULL, CLI_OPT_REAL, offsetof(tb_accept, FIELD), 0, 1e300, \
+    "a positive number", "%s needs a number", NULL, CLI_OPT_GT_LO, HELP }
+/* The acceptance options (run UNIT and run all). */
+static const cli_opt accept_tab[] = {
+    ACC_OPT("--max-error", max_error, "  --max-error E        target: max |hardware - expected| <= E\n"),
+    ACC_OPT("--max-nmse", max_nmse, "  --max-nmse X         target: NMSE against the expected outputs <= X\n"),
+    ACC_OPT("--max-lsb", max_lsb, "  --max-lsb K          target: max |hardware - expected| <= K output LSBs\n"),
+    { "--allow-overflow", NULL, CLI_OPT_FLAG, offsetof(tb_accept, allow_overflow), 0, 0, NULL, NULL, NULL, 0,
+      "  --allow-overflow     an overflow does not fail the verdict (it is still reported)\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+#define VCD_ITEM(NAME, FIELD, HELP) { NAME, NULL, CLI_OPT_LONG, offsetof(run_args, FIELD), 0, (double)LONG_MAX, \
+    "an item number (0, 1, ...)", "%s needs an item number", NULL, 0, HELP }
+static const cli_opt run_tab[] = {
+    { "--ranges", NULL, CLI_OPT_FLAG, offsetof(run_args, ranges), 0, 0, NULL, NULL, NULL, 0,
+      "  --ranges             list every signal's observed raw range, not only those that overflowed\n" },
+    { "--json", NULL, CLI_OPT_FLAG, offsetof(run_args, json), 0, 0, NULL, NULL, NULL, 0,
+      "  --json               print the result as one JSON object\n" },
+    { "--out", NULL, CLI_OPT_STR, offsetof(run_args, csv), 0, 0, NULL, "%s needs a file name", NULL, 0,
+      "  --out FILE.csv       one row per vector: index, cycle, NAME_raw/_real/_expected/_err\n" },
+    { "--vcd", NULL, CLI_OPT_STR, offsetof(run_args, vcd), 0, 0, NULL, "%s needs a file name", NULL, 0,
+      "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD)\n"
+      "                       and each output beat's expected value and error (tb.expected_NAME,\n"
+      "                       tb.err_NAME), with FILE.gtkw, a GTKWave save file: a group of the\n"
+      "                       outputs with their expected values and errors, then one per unit,\n"
+      "                       values in fixed point (docs/vcd.md)\n" },
+    VCD_ITEM("--vcd-from", vfrom,
+      "  --vcd-from N, --vcd-to M  dump only items N..M (from 0, as --out's index): from the\n"
+      "                       edge where item N is offered to the one that samples M's last beat\n"),
+    VCD_ITEM("--vcd-to", vto, ""),
+    { "--fst", NULL, CLI_OPT_FLAG, offsetof(run_args, fst), 0, 0, NULL, NULL, NULL, 0,
+      "  --fst                FILE is an FST dump (GTKWave's compact format), converted by\n"
+      "                       vcd2fst (Debian package gtkwave)\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_run_spec = {
+    "run", { cli_unit_opt_tab, accept_tab, run_tab }, NULL, 0,
+    "run: unknown option '%s' (see shadesim run --help)",
     "usage: shadesim run UNIT [options]\n"
     "       shadesim run all [acceptance options]   every unit on its default vectors, one summary table\n\n"
     "Drives UNIT clock by clock with golden vectors (inputs quantized to the unit's\n"
@@ -254,48 +321,18 @@ static const char run_help[] =
     "function of the quantized inputs), the golden check against the vector\n"
     "file's expected outputs holds, and your targets, if set, are met. Exit 1\n"
     "otherwise, also when the bound cannot be decided (\"unchecked\") or the unit\n"
-    "derives none for the formats (\"no bound\").\n\noptions:\n";
-
-static const char run_help2[] =
-    "  --max-error E        target: max |hardware - expected| <= E\n"
-    "  --max-nmse X         target: NMSE against the expected outputs <= X\n"
-    "  --max-lsb K          target: max |hardware - expected| <= K output LSBs\n"
-    "  --allow-overflow     an overflow does not fail the verdict (it is still reported)\n"
-    "  --ranges             list every signal's observed raw range, not only those that overflowed\n"
-    "  --json               print the result as one JSON object\n"
-    "  --out FILE.csv       one row per vector: index, cycle, NAME_raw/_real/_expected/_err\n"
-    "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD)\n"
-    "                       and each output beat's expected value and error (tb.expected_NAME,\n"
-    "                       tb.err_NAME), with FILE.gtkw, a GTKWave save file: a group of the\n"
-    "                       outputs with their expected values and errors, then one per unit,\n"
-    "                       values in fixed point (docs/vcd.md)\n"
-    "  --vcd-from N, --vcd-to M  dump only items N..M (from 0, as --out's index): from the\n"
-    "                       edge where item N is offered to the one that samples M's last beat\n"
-    "  --fst                FILE is an FST dump (GTKWave's compact format), converted by\n"
-    "                       vcd2fst (Debian package gtkwave)\n"
+    "derives none for the formats (\"no bound\").\n\noptions:\n",
     "\nOutput files: a regular file is replaced only once complete (a symbolic link is\n"
     "followed and kept); a device or FIFO is written to in place. --out - or --vcd -\n"
     "writes that file to stdout (no .gtkw then) and the report goes to stderr; only\n"
-    "one of --out -, --vcd - and --json can have stdout.\n";
+    "one of --out -, --vcd - and --json can have stdout.\n"
+};
 
-/* An acceptance option at argv[*i]: 1 (consumed), 0 (not one), -1 (bad). */
-static int accept_option(tb_accept *a, int *ranges, int argc, char **argv, int *i)
-{
-    const char *o = argv[*i];
-    double *dst = !strcmp(o, "--max-error") ? &a->max_error : !strcmp(o, "--max-nmse") ? &a->max_nmse
-                : !strcmp(o, "--max-lsb") ? &a->max_lsb : NULL;
-    if (dst) {
-        if (*i + 1 >= argc) { cli_usage_error("%s needs a number", o); return -1; }
-        double v;
-        if (cli_parse_real(o, argv[++*i], 0, 1e300, "a positive number", &v)) return -1;
-        if (!(v > 0)) { cli_usage_error("%s %s: expected a positive number", o, argv[*i]); return -1; }
-        *dst = v;
-        return 1;
-    }
-    if (!strcmp(o, "--allow-overflow")) { a->allow_overflow = 1; return 1; }
-    if (ranges && !strcmp(o, "--ranges")) { *ranges = 1; return 1; }
-    return 0;
-}
+/* run all: the acceptance options only. */
+static const cli_optspec run_all_spec = {
+    "run all", { accept_tab }, NULL, 0,
+    "run all: unknown option '%s' (it takes --max-error, --max-nmse, --max-lsb, --allow-overflow)", NULL, NULL
+};
 
 static int run_all(const tb_accept *acc)
 {
@@ -411,48 +448,23 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
 int cli_run(int argc, char **argv)
 {
     cli_unit_opts o;
-    const char *unit = NULL, *vcd = NULL, *csv = NULL;
-    int json = 0, fst = 0;
-    long long vfrom = -1, vto = -1;
-    for (int i = 1; i < argc; i++) {
-        if (is_help(argv[i])) { fputs(run_help, stdout); fputs(cli_unit_opts_help, stdout); fputs(run_help2, stdout); return stdout_done(CLI_OK); }
-    }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_run_spec);
     if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, or run all)");
-    unit = argv[1];
+    const char *unit = argv[1];
     tb_accept acc;
     memset(&acc, 0, sizeof acc);
-    int ranges = 0;
     if (!strcmp(unit, "all")) {
-        for (int i = 2; i < argc; i++) {
-            int r = accept_option(&acc, NULL, argc, argv, &i);
-            if (r < 0) return CLI_USAGE;
-            if (!r) return cli_usage_error("run all: unknown option '%s' (it takes --max-error, --max-nmse, --max-lsb, --allow-overflow)", argv[i]);
-        }
+        void *base[] = { &acc };
+        if (cli_opt_parse(&run_all_spec, base, argc, argv, 2)) return CLI_USAGE;
         return run_all(&acc);
     }
     if (cli_unit_select(&o, unit)) return CLI_USAGE;
-    for (int i = 2; i < argc; i++) {
-        int r = cli_unit_option(&o, argc, argv, &i);
-        if (r < 0) return CLI_USAGE;
-        if (r) continue;
-        r = accept_option(&acc, &ranges, argc, argv, &i);
-        if (r < 0) return CLI_USAGE;
-        if (r) continue;
-        if (!strcmp(argv[i], "--json")) json = 1;
-        else if (!strcmp(argv[i], "--vcd") && i + 1 < argc) vcd = argv[++i];
-        else if (!strcmp(argv[i], "--out") && i + 1 < argc) csv = argv[++i];
-        else if (!strcmp(argv[i], "--fst")) fst = 1;
-        else if (!strcmp(argv[i], "--vcd-from") || !strcmp(argv[i], "--vcd-to")) {
-            const char *opt = argv[i];
-            if (i + 1 >= argc) return cli_usage_error("%s needs an item number", opt);
-            const char *a = argv[++i];
-            long v;
-            if (cli_parse_long(opt, a, 0, LONG_MAX, "an item number (0, 1, ...)", &v)) return CLI_USAGE;
-            if (!strcmp(opt, "--vcd-from")) vfrom = v; else vto = v;
-        }
-        else if (!strcmp(argv[i], "--vcd") || !strcmp(argv[i], "--out")) return cli_usage_error("%s needs a file name", argv[i]);
-        else return cli_usage_error("run: unknown option '%s' (see shadesim run --help)", argv[i]);
-    }
+    run_args ra = { NULL, NULL, 0, 0, 0, -1, -1 };
+    void *base[] = { &o, &acc, &ra };
+    if (cli_opt_parse(&cli_run_spec, base, argc, argv, 2)) return CLI_USAGE;
+    const char *vcd = ra.vcd, *csv = ra.csv;
+    int json = ra.json, fst = ra.fst, ranges = ra.ranges;
+    long long vfrom = ra.vfrom, vto = ra.vto;
     /* "-" is stdout for each output option; stdout holds one stream. */
     int vcd_out = vcd && !strcmp(vcd, "-"), csv_out = csv && !strcmp(csv, "-");
     if (vcd_out + csv_out + json > 1)

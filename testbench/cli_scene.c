@@ -3,12 +3,14 @@
  * search (--target-nmse), the sweep (--sweep) and the side-by-side of the
  * paper's configuration and a corrected one (--compare). */
 #include "testbench/cli.h"
+#include "testbench/cli_opt.h"
 #include "testbench/tb_scene.h"
 #include "testbench/tb_scene_search.h"
 #include "sim/sim_out.h"
 #include "units/unit_net.h"
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -18,7 +20,89 @@
 #define COMPARE_TERMS 5
 #define COMPARE_TARGET 1e-4
 
-static const char scene_help[] =
+typedef struct scene_args {
+    const char *what, *dir, *vcd, *sweep_spec;
+    const char *sets[256];
+    int nsets, json, jobs, heldout, sweep, cmp, no_batch;
+    double max_nmse, target;
+} scene_args;
+
+static int o_set(void *base, const char *opt, const char *v)
+{
+    scene_args *a = base;
+    (void)opt;
+    if (a->nsets == 256) return cli_usage_error("--set: at most 256");
+    a->sets[a->nsets++] = v;
+    return 0;
+}
+
+static int o_target(void *base, const char *opt, const char *v)
+{
+    scene_args *a = base;
+    if (cli_parse_real(opt, v, 0, HUGE_VAL, "a number >= 0", &a->target)) return CLI_USAGE;
+    if (a->target <= 0) return cli_usage_error("--target-nmse %s: expected a number > 0", v);
+    return 0;
+}
+
+static int o_sweep(void *base, const char *opt, const char *v)
+{
+    scene_args *a = base;
+    (void)opt;
+    a->sweep = 1;
+    if (v) a->sweep_spec = v;
+    return 0;
+}
+
+static int scene_arg(void *base, const char *arg)
+{
+    scene_args *a = base;
+    if (a->what) return cli_usage_error("scene: one scene at most ('%s' and '%s')", a->what, arg);
+    a->what = arg;
+    return 0;
+}
+
+#define SC_FLAG(NAME, FIELD, HELP) { NAME, NULL, CLI_OPT_FLAG, offsetof(scene_args, FIELD), 0, 0, NULL, NULL, NULL, 0, HELP }
+static const cli_opt scene_tab[] = {
+    { "--set", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs KEY=VALUE", o_set, 0,
+      "  --set KEY=VALUE  set a scene key as a line of the file would (repeatable,\n"
+      "                   applied after the file), e.g. --set policy=cubic-n1\n"
+      "                   --set terms=5 --set resolution=256x256 --set light=...\n" },
+    { "-o", NULL, CLI_OPT_STR, offsetof(scene_args, dir), 0, 0, NULL, "%s needs a folder", NULL, 0,
+      "  -o DIR           output folder (default out/scene-NAME; created). It gets\n"
+      "                   ref.png (per-pixel shading), hw.png (the hardware's pixels),\n"
+      "                   err-xK.png (|hw - ref| heat map, full white = 1/K; K in\n"
+      "                   4^0..4^6, the largest that shows the maximum error),\n"
+      "                   degree.png (degree of each interval), region.png (mesh\n"
+      "                   regions) and scene.json (the figures)\n" },
+    SC_FLAG("--json", json, "  --json           print the JSON summary on stdout instead of the table\n"),
+    { "-j", NULL, CLI_OPT_INT, offsetof(scene_args, jobs), 1, 256, NULL, "%s needs a number of threads", NULL, 0,
+      "  -j N             threads (default 1); the output is the same for any N\n" },
+    SC_FLAG("--no-batch", no_batch,
+      "  --no-batch       simulate each band of rows on the event-driven kernel alone\n"
+      "                   (default: the bands side by side as lanes of the batch\n"
+      "                   mode, levelized; the output is the same bytes either way)\n"),
+    SC_FLAG("--heldout", heldout, "  --heldout        render the scene's held-out view (other camera and light)\n"),
+    { "--vcd", NULL, CLI_OPT_STR, offsetof(scene_args, vcd), 0, 0, NULL, "%s needs a file name", NULL, 0,
+      "  --vcd FILE       VCD of the hardware of the first band of rows that has spans\n" },
+    { "--max-nmse", NULL, CLI_OPT_REAL, offsetof(scene_args, max_nmse), 0, HUGE_VAL, "a number >= 0",
+      "%s needs a number", NULL, 0, "  --max-nmse X     exit status 1 when the NMSE exceeds X\n" },
+    { "--target-nmse", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs a number", o_target, 0,
+      "  --target-nmse X  find the smallest per-signal formats that keep the NMSE\n"
+      "                   under X, check them on the held-out view, report the area\n"
+      "                   saved against the smallest uniform width (exit 1: not met)\n" },
+    { "--sweep", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, o_sweep, CLI_OPT_MAYBE,
+      "  --sweep [GRID]   sweep L, policy, terms, width, schedule: CSV and SVG charts\n"
+      "                   of NMSE against operations and clocks per pixel, Pareto\n"
+      "                   front; GRID like \"L=4,8;terms=3,5\" (default grid)\n" },
+    SC_FLAG("--compare", cmp,
+      "  --compare        the scene twice: the paper's configuration (adaptive-region,\n"
+      "                   3-term /3 network) and a corrected one (enough terms for\n"
+      "                   NMSE <= 1e-4), and adaptive-auto; a table, images in DIR/*/\n"),
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_scene_spec = {
+    "scene", { scene_tab }, scene_arg, 1, "scene: unknown option '%s' (see shadesim scene --help)",
     "usage: shadesim scene [NAME|FILE] [options]\n\n"
     "Renders a scene through the simulated interpolation hardware: every span of\n"
     "every row is cut into intervals of L pixels whose node intensities are shaded\n"
@@ -30,41 +114,14 @@ static const char scene_help[] =
     "NAME is a built-in scene: face (default), sphere, torus. Anything else is a\n"
     "scene file (key value lines, docs/scenes.md); write ./face for a file of that\n"
     "name.\n\n"
-    "options:\n"
-    "  --set KEY=VALUE  set a scene key as a line of the file would (repeatable,\n"
-    "                   applied after the file), e.g. --set policy=cubic-n1\n"
-    "                   --set terms=5 --set resolution=256x256 --set light=...\n"
-    "  -o DIR           output folder (default out/scene-NAME; created). It gets\n"
-    "                   ref.png (per-pixel shading), hw.png (the hardware's pixels),\n"
-    "                   err-xK.png (|hw - ref| heat map, full white = 1/K; K in\n"
-    "                   4^0..4^6, the largest that shows the maximum error),\n"
-    "                   degree.png (degree of each interval), region.png (mesh\n"
-    "                   regions) and scene.json (the figures)\n"
-    "  --json           print the JSON summary on stdout instead of the table\n"
-    "  -j N             threads (default 1); the output is the same for any N\n"
-    "  --no-batch       simulate each band of rows on the event-driven kernel alone\n"
-    "                   (default: the bands side by side as lanes of the batch\n"
-    "                   mode, levelized; the output is the same bytes either way)\n"
-    "  --heldout        render the scene's held-out view (other camera and light)\n"
-    "  --vcd FILE       VCD of the hardware of the first band of rows that has spans\n"
-    "  --max-nmse X     exit status 1 when the NMSE exceeds X\n"
-    "  --target-nmse X  find the smallest per-signal formats that keep the NMSE\n"
-    "                   under X, check them on the held-out view, report the area\n"
-    "                   saved against the smallest uniform width (exit 1: not met)\n"
-    "  --sweep [GRID]   sweep L, policy, terms, width, schedule: CSV and SVG charts\n"
-    "                   of NMSE against operations and clocks per pixel, Pareto\n"
-    "                   front; GRID like \"L=4,8;terms=3,5\" (default grid)\n"
-    "  --compare        the scene twice: the paper's configuration (adaptive-region,\n"
-    "                   3-term /3 network) and a corrected one (enough terms for\n"
-    "                   NMSE <= 1e-4), and adaptive-auto; a table, images in DIR/*/\n\n"
-    "Metrics over covered pixels: NMSE = sum (hw - ref)^2 / sum ref^2 on the\n"
+    "options:\n",
+    "\nMetrics over covered pixels: NMSE = sum (hw - ref)^2 / sum ref^2 on the\n"
     "hardware's raw output (not clamped); 8-bit values round(255 clamp(v)) give\n"
     "PSNR, the largest 8-bit error and the share of pixels whose 8-bit value\n"
     "differs. Operation counts and cost weights: docs/scenes.md (scene key cost).\n\n"
     "exit status: 0 done, 1 NMSE over --max-nmse / target not met / simulation\n"
-    "failed, 2 bad usage or input (a bad scene file names FILE:LINE).\n";
-
-static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
+    "failed, 2 bad usage or input (a bad scene file names FILE:LINE).\n"
+};
 
 static int is_builtin(const char *name)
 {
@@ -76,11 +133,6 @@ static int mesh_is_builtin(const char *name)
 {
     for (const char *const *n = scn_mesh_builtin_names; *n; n++) if (!strcmp(*n, name)) return 1;
     return 0;
-}
-
-static int parse_double(const char *opt, const char *s, double *v)
-{
-    return cli_parse_real(opt, s, 0, HUGE_VAL, "a number >= 0", v) ? -1 : 0;
 }
 
 /* out/scene-NAME: NAME is the built-in's name or the file's base name
@@ -205,48 +257,18 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
 
 int cli_scene(int argc, char **argv)
 {
-    const char *what = NULL, *dir = NULL, *vcd = NULL, *sweep_spec = NULL;
-    const char *sets[256];
-    int nsets = 0, json = 0, jobs = 1, heldout = 0, sweep = 0, cmp = 0, no_batch = 0;
-    double max_nmse = -1, target = -1;
-    for (int i = 1; i < argc; i++)
-        if (is_help(argv[i])) { fputs(scene_help, stdout); return CLI_OK; }
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        int has = i + 1 < argc;
-        if (!strcmp(a, "--set")) {
-            if (!has) return cli_usage_error("--set needs KEY=VALUE");
-            if (nsets == 256) return cli_usage_error("--set: at most 256");
-            sets[nsets++] = argv[++i];
-        } else if (!strcmp(a, "-o")) {
-            if (!has) return cli_usage_error("-o needs a folder");
-            dir = argv[++i];
-        } else if (!strcmp(a, "--json")) json = 1;
-        else if (!strcmp(a, "--heldout")) heldout = 1;
-        else if (!strcmp(a, "--compare")) cmp = 1;
-        else if (!strcmp(a, "--no-batch")) no_batch = 1;
-        else if (!strcmp(a, "-j")) {
-            if (!has) return cli_usage_error("-j needs a number of threads");
-            long v;
-            if (cli_parse_long("-j", argv[++i], 1, 256, NULL, &v)) return CLI_USAGE;
-            jobs = (int)v;
-        } else if (!strcmp(a, "--vcd")) {
-            if (!has) return cli_usage_error("--vcd needs a file name");
-            vcd = argv[++i];
-        } else if (!strcmp(a, "--max-nmse")) {
-            if (!has) return cli_usage_error("--max-nmse needs a number");
-            if (parse_double(a, argv[++i], &max_nmse)) return CLI_USAGE;
-        } else if (!strcmp(a, "--target-nmse")) {
-            if (!has) return cli_usage_error("--target-nmse needs a number");
-            if (parse_double(a, argv[++i], &target)) return CLI_USAGE;
-            if (target <= 0) return cli_usage_error("--target-nmse %s: expected a number > 0", argv[i]);
-        } else if (!strcmp(a, "--sweep")) {
-            sweep = 1;
-            if (has && argv[i + 1][0] != '-' && strchr(argv[i + 1], '=')) sweep_spec = argv[++i];
-        } else if (a[0] == '-' && a[1]) return cli_usage_error("scene: unknown option '%s' (see shadesim scene --help)", a);
-        else if (!what) what = a;
-        else return cli_usage_error("scene: one scene at most ('%s' and '%s')", what, a);
-    }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_scene_spec);
+    scene_args sa;
+    memset(&sa, 0, sizeof sa);
+    sa.jobs = 1;
+    sa.max_nmse = sa.target = -1;
+    void *base[] = { &sa };
+    if (cli_opt_parse(&cli_scene_spec, base, argc, argv, 1)) return CLI_USAGE;
+    const char *what = sa.what, *dir = sa.dir, *vcd = sa.vcd, *sweep_spec = sa.sweep_spec;
+    const char *const *sets = sa.sets;
+    int nsets = sa.nsets, json = sa.json, jobs = sa.jobs, heldout = sa.heldout, sweep = sa.sweep, cmp = sa.cmp;
+    int no_batch = sa.no_batch;
+    double max_nmse = sa.max_nmse, target = sa.target;
     if ((target > 0) + sweep + cmp > 1) return cli_usage_error("scene: --target-nmse, --sweep and --compare go one at a time");
     if (!what) what = "face";
 

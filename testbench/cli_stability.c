@@ -1,6 +1,8 @@
 /* cli_stability.c - the verb stability: where each method stops working
  * (testbench/tb_stability.c measures it), as one table and charts. */
 #include "testbench/cli.h"
+#include "testbench/cli_opt.h"
+#include <stddef.h>
 #include "testbench/tb_stability.h"
 #include "sim/sim_out.h"
 #include <errno.h>
@@ -9,29 +11,6 @@
 #include <string.h>
 #include <sys/stat.h>
 
-static const char stability_help[] =
-    "usage: shadesim stability [--json] [-o DIR]\n\n"
-    "The stability atlas: each method driven past the point where it stops\n"
-    "working, one row per failure boundary, as \"method | condition | measured |\n"
-    "verdict\". The boundaries are found by running the units clock by clock:\n"
-    "forward differencing (register bits against interval length), the\n"
-    "coefficient networks' integer ranges (and what wrap and sat do one bit\n"
-    "short), cubic overshoot on narrow highlights (and an output clamp's cost),\n"
-    "degree 1, 2 and 3 against the adaptive policy's curvature measure, the /3\n"
-    "network's terms against width, the restoring divider and the power units;\n"
-    "the BRDF approximations' parameter ranges come from their double\n"
-    "references sampled densely. Targets: 2^-8 (one LSB of an 8-bit intensity)\n"
-    "unless a row says otherwise. The same bytes on every run (no timings);\n"
-    "docs/stability.md explains each boundary.\n\noptions:\n"
-    "  --json     one JSON object instead of the table\n"
-    "  -o DIR     also write the charts into DIR (made if missing), each marking\n"
-    "             its boundary: stability_fwd.svg, stability_fwd_err.svg,\n"
-    "             stability_coef.svg, stability_overshoot.svg,\n"
-    "             stability_degree.svg, stability_div3.svg,\n"
-    "             stability_brdf_d.svg, stability_brdf_schlick.svg,\n"
-    "             stability_pow.svg\n\n"
-    "exit status: 0 done (a boundary is a finding, not an error), 2 bad usage,\n"
-    "an unwritable DIR or a unit that failed to run\n";
 
 static void jstr(FILE *f, const char *s)
 {
@@ -88,19 +67,50 @@ static void print_json(FILE *f, const tb_stab *s, char paths[][600], int np)
     fputs("]\n}\n", f);
 }
 
+typedef struct stability_args { int json; const char *dir; } stability_args;
+
+static const cli_opt stability_tab[] = {
+    { "--json", NULL, CLI_OPT_FLAG, offsetof(stability_args, json), 0, 0, NULL, NULL, NULL, 0,
+      "  --json     one JSON object instead of the table\n" },
+    { "-o", NULL, CLI_OPT_STR, offsetof(stability_args, dir), 0, 0, NULL, "stability: -o needs a folder", NULL,
+      CLI_OPT_NONEMPTY,
+      "  -o DIR     also write the charts into DIR (made if missing), each marking\n"
+      "             its boundary: stability_fwd.svg, stability_fwd_err.svg,\n"
+      "             stability_coef.svg, stability_overshoot.svg,\n"
+      "             stability_degree.svg, stability_div3.svg,\n"
+      "             stability_brdf_d.svg, stability_brdf_schlick.svg,\n"
+      "             stability_pow.svg\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_stability_spec = {
+    "stability", { stability_tab }, NULL, 0, "stability: unknown argument '%s' (see shadesim stability --help)",
+    "usage: shadesim stability [--json] [-o DIR]\n\n"
+    "The stability atlas: each method driven past the point where it stops\n"
+    "working, one row per failure boundary, as \"method | condition | measured |\n"
+    "verdict\". The boundaries are found by running the units clock by clock:\n"
+    "forward differencing (register bits against interval length), the\n"
+    "coefficient networks' integer ranges (and what wrap and sat do one bit\n"
+    "short), cubic overshoot on narrow highlights (and an output clamp's cost),\n"
+    "degree 1, 2 and 3 against the adaptive policy's curvature measure, the /3\n"
+    "network's terms against width, the restoring divider and the power units;\n"
+    "the BRDF approximations' parameter ranges come from their double\n"
+    "references sampled densely. Targets: 2^-8 (one LSB of an 8-bit intensity)\n"
+    "unless a row says otherwise. The same bytes on every run (no timings);\n"
+    "docs/stability.md explains each boundary.\n\noptions:\n",
+    "\n"
+    "exit status: 0 done (a boundary is a finding, not an error), 2 bad usage,\n"
+    "an unwritable DIR or a unit that failed to run\n"
+};
+
 int cli_stability(int argc, char **argv)
 {
-    int json = 0;
-    const char *dir = NULL;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) { fputs(stability_help, stdout); return CLI_OK; }
-        if (!strcmp(a, "--json")) json = 1;
-        else if (!strcmp(a, "-o")) {
-            if (i + 1 >= argc || !*argv[i + 1]) return cli_usage_error("stability: -o needs a folder");
-            dir = argv[++i];
-        } else return cli_usage_error("stability: unknown argument '%s' (see shadesim stability --help)", a);
-    }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_stability_spec);
+    stability_args sa = { 0, NULL };
+    void *base[] = { &sa };
+    if (cli_opt_parse(&cli_stability_spec, base, argc, argv, 1)) return CLI_USAGE;
+    int json = sa.json;
+    const char *dir = sa.dir;
     tb_stab *s = calloc(1, sizeof *s);
     if (!s) return cli_usage_error("stability: out of memory");
     char err[300];

@@ -3,16 +3,16 @@
  * every output raw and its cycle), synth (Yosys cell counts beside the
  * area model). */
 #include "testbench/cli.h"
+#include "testbench/cli_opt.h"
 #include "testbench/tb_verilog.h"
 #include "sim/sim_out.h"
 #include "sim/sim_area.h"
+#include <stddef.h>
 #include <stdlib.h>
 #include <errno.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-static int is_help(const char *a) { return !strcmp(a, "--help") || !strcmp(a, "-h"); }
 
 static int stdout_done(int rc)
 {
@@ -28,29 +28,22 @@ static int have_tool(const char *tool)
     return system(cmd) == 0;
 }
 
-/* Shared parsing: UNIT, the unit options, and the verb's own options
- * (handled by own(); returns 1 consumed, 0 not ours, -1 error). */
-typedef int (*own_fn)(void *st, int argc, char **argv, int *i);
-static int parse(const char *verb, int argc, char **argv, cli_unit_opts *o, own_fn own, void *st)
+/* UNIT, the first argument that is not an option; the unit options
+ * (cli_unit_opt_tab) are options once it is chosen. */
+static int unit_arg(void *base, const char *arg)
 {
-    int have = 0;
-    for (int i = 1; i < argc; i++) {
-        if (!have && argv[i][0] != '-') {
-            if (cli_unit_select(o, argv[i])) return CLI_USAGE;
-            have = 1;
-            continue;
-        }
-        int r = own ? own(st, argc, argv, &i) : 0;
-        if (r < 0) return CLI_USAGE;
-        if (r) continue;
-        if (have) {
-            r = cli_unit_option(o, argc, argv, &i);
-            if (r < 0) return CLI_USAGE;
-            if (r) continue;
-        }
-        return cli_usage_error("%s: unexpected argument '%s' (see shadesim %s --help)", verb, argv[i], verb);
-    }
-    if (!have) return cli_usage_error("%s: no unit given (shadesim list shows the units)", verb);
+    cli_unit_opts *o = base;
+    if (o->u) return CLI_OPT_UNKNOWN;
+    return cli_unit_select(o, arg);
+}
+
+/* The verb's options, then the unit's: CLI_OK or CLI_USAGE. */
+static int parse(const cli_optspec *sp, int argc, char **argv, cli_unit_opts *o, void *own)
+{
+    memset(o, 0, sizeof *o);
+    void *base[] = { o, own, o };
+    if (cli_opt_parse(sp, base, argc, argv, 1)) return CLI_USAGE;
+    if (!o->u) return cli_usage_error("%s: no unit given (shadesim list shows the units)", sp->verb);
     return CLI_OK;
 }
 
@@ -63,37 +56,40 @@ static int formats(cli_unit_opts *o, unit_fmts *fm)
 
 /* ----------------------------------------------------------------- verilog */
 
-static const char verilog_help[] =
+typedef struct verilog_st { const char *dir, *hex; } verilog_st;
+
+static const cli_opt verilog_tab[] = {
+    { "-o", NULL, CLI_OPT_STR, offsetof(verilog_st, dir), 0, 0, NULL, "%s needs a folder", NULL, 0,
+      "  -o DIR               output folder (made if missing)\n" },
+    { "--stimulus-hex", NULL, CLI_OPT_STR, offsetof(verilog_st, hex), 0, 0, NULL, "%s needs a file", NULL, 0,
+      "  --stimulus-hex FILE  also write the stimulus of the vectors (--vectors, or the\n"
+      "                       unit's default ones) to FILE and shadesim's results to\n"
+      "                       FILE.expect, what the testbench must write:\n"
+      "                       vvp -n tb.vvp +in=FILE +items=N +out=OUT && diff FILE.expect OUT\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+/* tab[0] is empty: the unit's table comes after the verb's, as the help
+ * lists them, and parse() passes the unit options' base first for UNIT. */
+static const cli_opt no_opts[] = { { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL } };
+
+const cli_optspec cli_verilog_spec = {
+    "verilog", { no_opts, verilog_tab, cli_unit_opt_tab }, unit_arg, 0,
+    "verilog: unexpected argument '%s' (see shadesim verilog --help)",
     "usage: shadesim verilog UNIT [options] -o DIR\n"
     "Write DIR/UNIT.v, synthesizable Verilog-2001 of the unit exactly as shadesim\n"
     "builds it (same formats, rounding, overflow, schedule and handshake), and\n"
     "DIR/UNIT_tb.v, a testbench that reads the stimulus (--stimulus-hex) with\n"
     "$readmemh and writes each output beat with its cycle.\n"
-    "options:\n"
-    "  -o DIR               output folder (made if missing)\n"
-    "  --stimulus-hex FILE  also write the stimulus of the vectors (--vectors, or the\n"
-    "                       unit's default ones) to FILE and shadesim's results to\n"
-    "                       FILE.expect, what the testbench must write:\n"
-    "                       vvp -n tb.vvp +in=FILE +items=N +out=OUT && diff FILE.expect OUT\n";
-
-typedef struct verilog_st { const char *dir, *hex; } verilog_st;
-static int own_o(void *stp, int argc, char **argv, int *i)
-{
-    verilog_st *st = stp;
-    int o = !strcmp(argv[*i], "-o"), h = !strcmp(argv[*i], "--stimulus-hex");
-    if (!o && !h) return 0;
-    if (*i + 1 >= argc) { cli_usage_error("%s needs a %s", argv[*i], o ? "folder" : "file"); return -1; }
-    if (o) st->dir = argv[++*i]; else st->hex = argv[++*i];
-    return 1;
-}
+    "options:\n", NULL
+};
 
 int cli_verilog(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (is_help(argv[i])) { fputs(verilog_help, stdout); fputs(cli_unit_opts_help, stdout); return stdout_done(CLI_OK); }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_verilog_spec);
     cli_unit_opts o;
     verilog_st st = { NULL, NULL };
-    int rc = parse("verilog", argc, argv, &o, own_o, &st);
+    int rc = parse(&cli_verilog_spec, argc, argv, &o, &st);
     if (rc) return rc;
     if (!st.dir) return cli_usage_error("verilog: -o DIR is required");
     unit_fmts fm;
@@ -123,43 +119,38 @@ int cli_verilog(int argc, char **argv)
 
 /* ------------------------------------------------------------------- cosim */
 
-static const char cosim_help[] =
+typedef struct cosim_st { const char *sim, *keep; long n; uint64_t seed; } cosim_st;
+
+static int cosim_sim(void *base, const char *opt, const char *v)
+{
+    (void)opt;
+    if (strcmp(v, "icarus") && strcmp(v, "verilator")) return cli_usage_error("--sim %s: expected icarus or verilator", v);
+    ((cosim_st *)base)->sim = v;
+    return 0;
+}
+
+static const cli_opt cosim_tab[] = {
+    { "--sim", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, cosim_sim, 0,
+      "  --sim NAME           icarus (default; Debian package iverilog) or verilator\n" },
+    { "-n", NULL, CLI_OPT_LONG, offsetof(cosim_st, n), 1, 1000000, NULL, NULL, NULL, 0,
+      "  -n N                 items (default 50), generated from the float reference,\n"
+      "                       unless --vectors FILE is given\n" },
+    { "--seed", NULL, CLI_OPT_U64, offsetof(cosim_st, seed), 0, 0, "a whole number", NULL, NULL, 0,
+      "  --seed S             seed of the generated items (default 1)\n" },
+    { "--keep", NULL, CLI_OPT_STR, offsetof(cosim_st, keep), 0, 0, NULL, NULL, NULL, 0,
+      "  --keep DIR           leave the export, stimulus and results in DIR\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_cosim_spec = {
+    "cosim", { no_opts, cosim_tab, cli_unit_opt_tab }, unit_arg, 0,
+    "cosim: unexpected argument '%s' (see shadesim cosim --help)",
     "usage: shadesim cosim UNIT [options] [--sim icarus|verilator] [-n N] [--keep DIR]\n"
     "Export the unit (as `shadesim verilog`), run the same stimulus in shadesim and in\n"
     "the external simulator, and compare every output raw and the cycle of every beat.\n"
     "Prints \"bit-exact, N items, M clocks\" or the first mismatch; exit 1 on a mismatch.\n"
-    "options:\n"
-    "  --sim NAME           icarus (default; Debian package iverilog) or verilator\n"
-    "  -n N                 items (default 50), generated from the float reference,\n"
-    "                       unless --vectors FILE is given\n"
-    "  --seed S             seed of the generated items (default 1)\n"
-    "  --keep DIR           leave the export, stimulus and results in DIR\n";
-
-typedef struct cosim_st { const char *sim, *keep; long n; unsigned long long seed; } cosim_st;
-
-static int own_cosim(void *stp, int argc, char **argv, int *i)
-{
-    cosim_st *st = stp;
-    const char *a = argv[*i];
-    if (strcmp(a, "--sim") && strcmp(a, "-n") && strcmp(a, "--keep") && strcmp(a, "--seed")) return 0;
-    if (*i + 1 >= argc) { cli_usage_error("%s needs a value", a); return -1; }
-    const char *v = argv[++*i];
-    if (!strcmp(a, "--sim")) {
-        if (strcmp(v, "icarus") && strcmp(v, "verilator")) { cli_usage_error("--sim %s: expected icarus or verilator", v); return -1; }
-        st->sim = v;
-    } else if (!strcmp(a, "--keep")) st->keep = v;
-    else {
-        char *end;
-        errno = 0;
-        unsigned long long x = strtoull(v, &end, 10);
-        if (!*v || *end || strspn(v, "0123456789") != strlen(v) || errno || (a[1] == 'n' && (x < 1 || x > 1000000))) {
-            cli_usage_error("%s %s: expected a whole number%s", a, v, a[1] == 'n' ? " 1..1000000" : "");
-            return -1;
-        }
-        if (a[1] == 'n') st->n = (long)x; else st->seed = x;
-    }
-    return 1;
-}
+    "options:\n", NULL
+};
 
 /* Remove a folder we made and the files in it. */
 static void rm_tree(const char *dir)
@@ -171,11 +162,10 @@ static void rm_tree(const char *dir)
 
 int cli_cosim(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (is_help(argv[i])) { fputs(cosim_help, stdout); fputs(cli_unit_opts_help, stdout); return stdout_done(CLI_OK); }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_cosim_spec);
     cli_unit_opts o;
     cosim_st st = { "icarus", NULL, 50, 1 };
-    int rc = parse("cosim", argc, argv, &o, own_cosim, &st);
+    int rc = parse(&cli_cosim_spec, argc, argv, &o, &st);
     if (rc) return rc;
     int icarus = !strcmp(st.sim, "icarus");
     if (icarus && (!have_tool("iverilog") || !have_tool("vvp")))
@@ -205,15 +195,25 @@ int cli_cosim(int argc, char **argv)
 
 /* ------------------------------------------------------------------- synth */
 
-static const char synth_help[] =
+typedef struct synth_st { const char *keep; } synth_st;
+
+static const cli_opt synth_tab[] = {
+    { "--keep", NULL, CLI_OPT_STR, offsetof(synth_st, keep), 0, 0, NULL, "%s needs a folder", NULL, 0,
+      "  --keep DIR           leave the export and Yosys's log in DIR\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_synth_spec = {
+    "synth", { no_opts, synth_tab, cli_unit_opt_tab }, unit_arg, 0,
+    "synth: unexpected argument '%s' (see shadesim synth --help)",
     "usage: shadesim synth UNIT [options] [--keep DIR]\n"
     "Export the unit and synthesize it with Yosys to generic gates (synth; abc -g\n"
     "AND,NAND,OR,NOR,XOR,XNOR,MUX; no cell library): prints Yosys's cells by type\n"
     "and in total, weighted with the area model's NAND2 gate equivalents per gate,\n"
     "beside shadesim's area estimate.\n"
     "Needs yosys (Debian package yosys).\n"
-    "options:\n"
-    "  --keep DIR           leave the export and Yosys's log in DIR\n";
+    "options:\n", NULL
+};
 
 /* A Yosys generic cell in NAND2 gate equivalents, with the constants of
  * sim/sim_area.h (NanGate 45 nm): flip-flops with an enable add a MUX2,
@@ -234,22 +234,13 @@ static double cell_ge(const char *c)
     return SIM_GE_NAND2;
 }
 
-static int own_keep(void *stp, int argc, char **argv, int *i)
-{
-    const char **keep = stp;
-    if (strcmp(argv[*i], "--keep")) return 0;
-    if (*i + 1 >= argc) { cli_usage_error("--keep needs a folder"); return -1; }
-    *keep = argv[++*i];
-    return 1;
-}
-
 int cli_synth(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (is_help(argv[i])) { fputs(synth_help, stdout); fputs(cli_unit_opts_help, stdout); return stdout_done(CLI_OK); }
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_synth_spec);
     cli_unit_opts o;
-    const char *keep = NULL;
-    int rc = parse("synth", argc, argv, &o, own_keep, &keep);
+    synth_st st = { NULL };
+    int rc = parse(&cli_synth_spec, argc, argv, &o, &st);
+    const char *keep = st.keep;
     if (rc) return rc;
     if (!have_tool("yosys")) return cli_usage_error("synth: yosys not found (install the Debian package yosys)");
     unit_fmts fm;

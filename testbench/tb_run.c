@@ -236,6 +236,168 @@ void tb_verdict(tb_result *r, const tb_accept *a)
     }
 }
 
+/* tb_run in steps: the working memory (run_mem_alloc), the inputs as the
+ * hardware holds them and what it should give (run_prepare), the
+ * simulation built (run_build) and run (run_simulate), the figures
+ * (run_collect). */
+
+/* What tb_run keeps per item and output value, beat-major. */
+typedef struct run_mem {
+    size_t n, nbeats, nvals;            /* items, output beats, output values */
+    int64_t *in_raw;                    /* [item][input] quantized inputs */
+    double *ideal;                      /* 4 * nvals: the ideal, then gold's three */
+    sim_dy *exact, *exact_den, *exact_hi;   /* the exact ideal, where the unit has one */
+    unsigned char *exact_ok;            /* [item] */
+    tb_golden gold;
+    uint64_t in_ovf[UNIT_MAX_IO];       /* input overflows, per input */
+} run_mem;
+
+static void run_mem_free(run_mem *m)
+{
+    free(m->in_raw);
+    free(m->ideal);
+    free(m->exact);
+    free(m->exact_den);
+    free(m->exact_hi);
+    free(m->exact_ok);
+}
+
+static int run_mem_alloc(run_mem *m, const unit_desc *u, tb_result *r, size_t n, char *err, size_t errlen)
+{
+    memset(m, 0, sizeof *m);
+    m->n = n;
+    m->nbeats = n * (size_t)r->beats;
+    m->nvals = m->nbeats * (size_t)r->n_out;
+    m->in_raw = malloc(n * (size_t)r->n_in * sizeof *m->in_raw);
+    m->ideal = malloc(4 * m->nvals * sizeof *m->ideal);
+    int has_exact = u->ideal_exact || u->ideal_ratio || u->ideal_interval;
+    m->exact = has_exact ? malloc(m->nvals * sizeof *m->exact) : NULL;
+    m->exact_den = u->ideal_ratio ? malloc(m->nvals * sizeof *m->exact_den) : NULL;
+    m->exact_hi = u->ideal_interval ? malloc(m->nvals * sizeof *m->exact_hi) : NULL;
+    m->exact_ok = calloc(n, 1);
+    r->raw = calloc(m->nvals, sizeof *r->raw);
+    r->beat_cycle = calloc(m->nbeats, sizeof *r->beat_cycle);
+    if (!m->in_raw || !m->ideal || (has_exact && !m->exact) || (u->ideal_ratio && !m->exact_den) ||
+        (u->ideal_interval && !m->exact_hi) || !m->exact_ok || !r->raw || !r->beat_cycle) {
+        run_mem_free(m);
+        snprintf(err, errlen, "out of memory for %zu vectors", n);
+        return TB_FAIL;
+    }
+    m->gold = (tb_golden){ m->ideal + m->nvals, m->ideal + 2 * m->nvals, m->ideal + 3 * m->nvals };
+    return TB_OK;
+}
+
+/* Quantize inputs as the hardware will hold them, and compute what the
+ * unit should give for exactly those inputs and the golden check's
+ * figures (tb_prep); name each output with its format and bound. */
+static void run_prepare(run_mem *m, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
+                        const vec_set *vs, tb_result *r)
+{
+    tb_prep_ctx pc;
+    tb_prep_init(&pc, u, cfg, fmts);
+    for (size_t it = 0; it < m->n; it++) {
+        size_t at = it * (size_t)r->beats * (size_t)r->n_out;
+        tb_item ti = { m->in_raw + it * (size_t)r->n_in, m->ideal + at, (double *)m->gold.ideal_r + at,
+                       (double *)m->gold.ideal_u + at, (double *)m->gold.ref_u + at, m->exact ? m->exact + at : NULL,
+                       m->exact_den ? m->exact_den + at : NULL, m->exact_hi ? m->exact_hi + at : NULL, m->exact_ok + it };
+        tb_prep(&pc, vec_row(vs, it), &ti, m->in_ovf);
+    }
+
+    double bound[UNIT_MAX_IO];
+    u->bound(cfg, fmts, bound);
+    for (int i = 0, oi = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_OUT) {
+            snprintf(r->out[oi].name, sizeof r->out[oi].name, "%s", u->sigs[i].name);
+            r->out[oi].fmt = fmts->f[i];
+            r->out[oi].bound = bound[oi];
+            oi++;
+        }
+}
+
+/* The simulation: the unit under a clock, the driver and monitor around
+ * it, and the dump when asked for. */
+typedef struct run_sim {
+    sim_ctx *c;
+    sim_signal *clk;
+    sim_scope *sc;
+    unit_io io;
+    tb_state st;
+    sim_vcd *vcd;
+    tb_wave wave;
+} run_sim;
+
+static int run_build(run_sim *s, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, const vec_set *vs,
+                     const tb_opts *o, run_mem *m, tb_result *r, char *err, size_t errlen)
+{
+    s->c = sim_new();
+    sim_set_quant(s->c, cfg->rnd, cfg->ovf);
+    s->clk = sim_bit_new(s->c, NULL, "clk", SIM_KIND_CLOCK);
+    s->sc = sim_scope_new(s->c, NULL, u->name);
+    if (u->build(s->c, s->sc, s->clk, cfg, fmts, &s->io, err, errlen)) return TB_BADINPUT;
+    /* 100 MHz in a 1 ns timescale: rising edges at 5, 15, 25, ... */
+    sim_clock(s->c, s->clk, 5, 5);
+    tb_state *st = &s->st;
+    st->io = &s->io; st->n_in = r->n_in; st->n_out = r->n_out; st->beats = r->beats; st->n_items = m->n;
+    st->in_raw = m->in_raw; st->ctx = s->c; st->beat_cycle = r->beat_cycle; st->raw = r->raw;
+    if (tb_range_init(&st->rg, s->c, s->sc, s->clk)) {
+        snprintf(err, errlen, "out of memory");
+        return TB_FAIL;
+    }
+    sim_proc *drv = sim_proc_new(s->c, "tb.driver", driver, st);
+    sim_sensitive(drv, s->clk, SIM_EDGE_POS);
+    sim_proc *mon = sim_proc_new(s->c, "tb.monitor", monitor, st);
+    sim_sensitive(mon, s->clk, SIM_EDGE_POS);
+    mon->no_init = 1;
+    if (o && o->vcd_path) {
+        s->vcd = tb_wave_open(&s->wave, s->c, o, &s->io, s->clk, u, cfg, vs, err, errlen);
+        if (!s->vcd) return TB_BADINPUT;
+    }
+    return TB_OK;
+}
+
+/* Run to the last output beat; a unit that never answers is a failure.
+ * The dump is closed here, whatever the outcome. */
+static int run_simulate(run_sim *s, const unit_desc *u, const run_mem *m, tb_result *r, char *err, size_t errlen)
+{
+    int rc = TB_OK;
+    /* No unit needs more than a few thousand clocks per beat (pow_n at
+     * n = 1024 takes about 20). */
+    uint64_t max_clocks = 1000 + m->nbeats * 4096;
+    sim_status ss = sim_run(s->c, max_clocks * 10);
+    r->stats = *sim_get_stats(s->c);
+    if (ss == SIM_ERR_LOOP) {
+        snprintf(err, errlen, "%s", sim_error(s->c));
+        rc = TB_FAIL;
+    } else if (s->st.got < m->nbeats) {
+        snprintf(err, errlen, "unit %s gave %zu of %zu outputs in %llu clocks", u->name, s->st.got, m->nbeats,
+                 (unsigned long long)r->stats.clocks);
+        rc = TB_FAIL;
+    }
+    if (s->vcd) {
+        rc = tb_wave_close(&s->wave, s->c, s->vcd, u, rc, err, errlen);
+        s->vcd = NULL;
+    }
+    return rc;
+}
+
+/* Timing, area, overflows, ranges, error metrics and the verdict. */
+static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
+{
+    size_t n = m->n, nbeats = m->nbeats, nb = (size_t)r->beats;
+    r->latency = r->beat_cycle[0];
+    r->cycles = r->beat_cycle[nbeats - 1] + 1;
+    r->cycles_per_item = n > 1 ? (double)(r->beat_cycle[(n - 1) * nb] - r->beat_cycle[0]) / (double)(n - 1)
+                               : (double)r->cycles;
+    r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
+                                    : (double)r->cycles;
+    r->area_ge = sim_scope_area(s->sc);
+    r->overflows = tb_scope_overflows(s->sc);
+    for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
+    tb_range_finish(&s->st.rg, s->sc, &s->io, m->in_ovf, r);
+    metrics(r, vs, m->ideal, m->exact, m->exact_den, m->exact_hi, m->exact_ok, &m->gold);
+    tb_verdict(r, NULL);
+}
+
 int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
            const vec_set *vs, const tb_opts *o, tb_result *r, char *err, size_t errlen)
 {
@@ -249,119 +411,18 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     if (vs->n_rows == 0) { snprintf(err, errlen, "no vectors"); return TB_BADINPUT; }
     r->vectors = vs->n_rows;
 
-    size_t n = vs->n_rows, nbeats = n * (size_t)r->beats, nvals = nbeats * (size_t)r->n_out;
-    int64_t *in_raw = malloc(n * (size_t)r->n_in * sizeof *in_raw);
-    double *ideal = malloc(4 * nvals * sizeof *ideal);
-    int has_exact = u->ideal_exact || u->ideal_ratio || u->ideal_interval;
-    sim_dy *exact = has_exact ? malloc(nvals * sizeof *exact) : NULL;
-    sim_dy *exact_den = u->ideal_ratio ? malloc(nvals * sizeof *exact_den) : NULL;
-    sim_dy *exact_hi = u->ideal_interval ? malloc(nvals * sizeof *exact_hi) : NULL;
-    unsigned char *exact_ok = calloc(n, 1);
-    r->raw = calloc(nvals, sizeof *r->raw);
-    r->beat_cycle = calloc(nbeats, sizeof *r->beat_cycle);
-    if (!in_raw || !ideal || (has_exact && !exact) || (u->ideal_ratio && !exact_den) || (u->ideal_interval && !exact_hi) || !exact_ok || !r->raw || !r->beat_cycle) {
-        free(in_raw); free(ideal); free(exact); free(exact_den); free(exact_hi); free(exact_ok);
-        snprintf(err, errlen, "out of memory for %zu vectors", n);
-        return TB_FAIL;
-    }
-    tb_golden gold = { ideal + nvals, ideal + 2 * nvals, ideal + 3 * nvals };
-
-    /* Quantize inputs as the hardware will hold them, and compute what the
-     * unit should give for exactly those inputs and the golden check's
-     * figures (tb_prep). */
-    uint64_t in_ovf[UNIT_MAX_IO] = { 0 };
-    tb_prep_ctx pc;
-    tb_prep_init(&pc, u, cfg, fmts);
-    for (size_t it = 0; it < n; it++) {
-        size_t at = it * (size_t)r->beats * (size_t)r->n_out;
-        tb_item ti = { in_raw + it * (size_t)r->n_in, ideal + at, (double *)gold.ideal_r + at,
-                       (double *)gold.ideal_u + at, (double *)gold.ref_u + at, exact ? exact + at : NULL,
-                       exact_den ? exact_den + at : NULL, exact_hi ? exact_hi + at : NULL, exact_ok + it };
-        tb_prep(&pc, vec_row(vs, it), &ti, in_ovf);
-    }
-
-    double bound[UNIT_MAX_IO];
-    u->bound(cfg, fmts, bound);
-    for (int i = 0, oi = 0; i < u->nsigs; i++)
-        if (u->sigs[i].role == UNIT_SIG_OUT) {
-            snprintf(r->out[oi].name, sizeof r->out[oi].name, "%s", u->sigs[i].name);
-            r->out[oi].fmt = fmts->f[i];
-            r->out[oi].bound = bound[oi];
-            oi++;
-        }
-
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
-    int rc = TB_OK;
-    sim_vcd *vcd = NULL;
-    tb_state st;
-    memset(&st, 0, sizeof st);
-    if (u->build(c, sc, clk, cfg, fmts, &io, err, errlen)) { rc = TB_BADINPUT; goto done; }
-    /* 100 MHz in a 1 ns timescale: rising edges at 5, 15, 25, ... */
-    sim_clock(c, clk, 5, 5);
-    st.io = &io; st.n_in = r->n_in; st.n_out = r->n_out; st.beats = r->beats; st.n_items = n;
-    st.in_raw = in_raw; st.ctx = c; st.beat_cycle = r->beat_cycle; st.raw = r->raw;
-    if (tb_range_init(&st.rg, c, sc, clk)) {
-        snprintf(err, errlen, "out of memory");
-        rc = TB_FAIL;
-        goto done;
-    }
-    sim_proc *drv = sim_proc_new(c, "tb.driver", driver, &st);
-    sim_sensitive(drv, clk, SIM_EDGE_POS);
-    sim_proc *mon = sim_proc_new(c, "tb.monitor", monitor, &st);
-    sim_sensitive(mon, clk, SIM_EDGE_POS);
-    mon->no_init = 1;
-    tb_wave wave;
-    if (o && o->vcd_path) {
-        vcd = tb_wave_open(&wave, c, o, &io, clk, u, cfg, vs, err, errlen);
-        if (!vcd) { rc = TB_BADINPUT; goto done; }
-    }
-    /* No unit needs more than a few thousand clocks per beat (pow_n at
-     * n = 1024 takes about 20); a unit that never answers is a failure. */
-    uint64_t max_clocks = 1000 + nbeats * 4096;
-    sim_status ss = sim_run(c, max_clocks * 10);
-    r->stats = *sim_get_stats(c);
-    if (ss == SIM_ERR_LOOP) {
-        snprintf(err, errlen, "%s", sim_error(c));
-        rc = TB_FAIL;
-    } else if (st.got < nbeats) {
-        snprintf(err, errlen, "unit %s gave %zu of %zu outputs in %llu clocks", u->name, st.got, nbeats,
-                 (unsigned long long)r->stats.clocks);
-        rc = TB_FAIL;
-    }
-    if (vcd) {
-        rc = tb_wave_close(&wave, c, vcd, u, rc, err, errlen);
-        vcd = NULL;
-    }
-    if (rc == TB_OK) {
-        r->latency = r->beat_cycle[0];
-        r->cycles = r->beat_cycle[nbeats - 1] + 1;
-        size_t nb = (size_t)r->beats;
-        r->cycles_per_item = n > 1 ? (double)(r->beat_cycle[(n - 1) * nb] - r->beat_cycle[0]) / (double)(n - 1)
-                                   : (double)r->cycles;
-        r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
-                                        : (double)r->cycles;
-        r->area_ge = sim_scope_area(sc);
-        r->overflows = tb_scope_overflows(sc);
-        for (int i = 0; i < r->n_in; i++) { r->in_overflows += in_ovf[i]; r->overflows += in_ovf[i]; }
-        tb_range_finish(&st.rg, sc, &io, in_ovf, r);
-        metrics(r, vs, ideal, exact, exact_den, exact_hi, exact_ok, &gold);
-        tb_verdict(r, NULL);
-    }
-done:
-    if (vcd) { sim_vcd_abort(vcd); tb_wave_free(&wave); }
-    sim_free(c);
-    free(in_raw);
-    free(ideal);
-    free(exact);
-    free(exact_den);
-    free(exact_hi);
-    free(exact_ok);
-    tb_range_free(&st.rg);
+    run_mem m;
+    if (run_mem_alloc(&m, u, r, vs->n_rows, err, errlen)) return TB_FAIL;
+    run_prepare(&m, u, cfg, fmts, vs, r);
+    run_sim s;
+    memset(&s, 0, sizeof s);
+    int rc = run_build(&s, u, cfg, fmts, vs, o, &m, r, err, errlen);
+    if (rc == TB_OK) rc = run_simulate(&s, u, &m, r, err, errlen);
+    if (rc == TB_OK) run_collect(&s, &m, vs, r);
+    if (s.vcd) { sim_vcd_abort(s.vcd); tb_wave_free(&s.wave); }
+    sim_free(s.c);
+    run_mem_free(&m);
+    tb_range_free(&s.st.rg);
     return rc;
 }
 
