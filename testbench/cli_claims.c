@@ -6,7 +6,7 @@
  * bench/bench_claims.c), the failure region of each approximation, and
  * with -o DIR the charts (docs/brdf.md). */
 #include "testbench/cli.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include "testbench/tb_svg.h"
 #include "vectors/claims.h"
 #include "testbench/tb_scene_claims.h"
@@ -645,7 +645,7 @@ int cli_claims(int argc, char **argv)
         else print_text(stdout, rp, paths, np);
         /* fflush alone misses an error whose write happened earlier. */
         char e[300];
-        if (sim_out_stdout_check(e, sizeof e)) rc = cli_usage_error("claims: %s", e);
+        if (base_out_stdout_check(e, sizeof e)) rc = cli_usage_error("claims: %s", e);
     }
     free(rp);
     return rc;

@@ -1,6 +1,6 @@
 /* cli_common.c - options shared by the verbs, and where vectors come from. */
 #include "testbench/cli.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include "vectors/vec_file.h"
 #include <errno.h>
 #include <math.h>
@@ -52,7 +52,7 @@ int cli_usage_error(const char *fmt, ...)
 int cli_make_dir(const char *dir)
 {
     char err[4400];
-    if (sim_out_mkdirs(dir, err, sizeof err)) return cli_usage_error("%s", err);
+    if (base_out_mkdirs(dir, err, sizeof err)) return cli_usage_error("%s", err);
     return CLI_OK;
 }
 

@@ -18,7 +18,7 @@
 #include "testbench/tb_sweep_chart.h"
 #include "testbench/tb_stability.h"
 #include "vectors/claims.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -341,7 +341,7 @@ static int run_sweep(const sweep_def *d, const char *dir, FILE *f)
     char path[4200], name[64];
     snprintf(name, sizeof name, "sweep-%s.csv", d->unit);
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    if (rc == CLI_OK && sim_out_write_all(path, csv, len, err, sizeof err)) rc = cli_usage_error("%s", err);
+    if (rc == CLI_OK && base_out_write_all(path, csv, len, err, sizeof err)) rc = cli_usage_error("%s", err);
     if (rc == CLI_OK && !(sc = tb_sc_read(csv, len, name, err, sizeof err))) rc = cli_usage_error("report: %s", err);
     if (rc == CLI_OK) {
         unsigned char *on = calloc(tb_sc_rows(sc), 1);
@@ -601,7 +601,7 @@ int cli_report(int argc, char **argv)
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
             fputs(report_help, stdout);
             char e[300];
-            return sim_out_stdout_check(e, sizeof e) ? cli_usage_error("%s", e) : CLI_OK;
+            return base_out_stdout_check(e, sizeof e) ? cli_usage_error("%s", e) : CLI_OK;
         }
         if (!strcmp(argv[i], "-o")) {
             if (i + 1 >= argc || !*argv[i + 1]) return cli_usage_error("report: -o needs a folder");
@@ -638,11 +638,11 @@ int cli_report(int argc, char **argv)
     if (!rc && bad) rc = cli_usage_error("report: out of memory");
     char path[4200], err[600];
     snprintf(path, sizeof path, "%s/report.html", dir);
-    if (!rc && sim_out_write_all(path, html, len, err, sizeof err)) rc = cli_usage_error("%s", err);
+    if (!rc && base_out_write_all(path, html, len, err, sizeof err)) rc = cli_usage_error("%s", err);
     free(html);
     if (rc) return rc;
     printf("wrote %s (%d units, %d failing their verdict)\n", path, (int)unit_count(), nfail);
     char e[300];
-    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
     return CLI_OK;
 }

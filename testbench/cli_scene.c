@@ -5,7 +5,7 @@
 #include "testbench/cli.h"
 #include "testbench/tb_scene.h"
 #include "testbench/tb_scene_search.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include "units/unit_net.h"
 #include <errno.h>
 #include <math.h>
@@ -302,6 +302,6 @@ int cli_scene(int argc, char **argv)
         }
     }
     scn_mesh_free(&m);
-    if (sim_out_stdout_check(err, sizeof err)) return cli_usage_error("%s", err);
+    if (base_out_stdout_check(err, sizeof err)) return cli_usage_error("%s", err);
     return rc;
 }

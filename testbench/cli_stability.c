@@ -2,7 +2,7 @@
  * (testbench/tb_stability.c measures it), as one table and charts. */
 #include "testbench/cli.h"
 #include "testbench/tb_stability.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -115,7 +115,7 @@ int cli_stability(int argc, char **argv)
     if (rc == CLI_OK) {
         if (json) print_json(stdout, s, paths, np);
         else print_text(stdout, s, paths, np);
-        if (sim_out_stdout_check(err, sizeof err)) rc = cli_usage_error("stability: %s", err);
+        if (base_out_stdout_check(err, sizeof err)) rc = cli_usage_error("stability: %s", err);
     }
     tb_stab_free(s);
     free(s);

@@ -1,7 +1,7 @@
 /* tb_out.c - a testbench result as JSON, CSV and a readable table. */
 #include "testbench/tb.h"
 #include "testbench/tb_stream.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <stdarg.h>
 #include <errno.h>
 #include <math.h>
@@ -102,17 +102,17 @@ int tb_write_json(FILE *f, const tb_result *r)
 
 int tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *err, size_t errlen)
 {
-    /* sim_out: atomic replace of a regular file, written through to a
+    /* base_out: atomic replace of a regular file, written through to a
      * device or FIFO, "-" for stdout; every write error reported. */
-    sim_out *o = sim_out_open(path, err, errlen);
+    base_out *o = base_out_open(path, err, errlen);
     if (!o) return -1;
-    FILE *f = sim_out_file(o);
+    FILE *f = base_out_file(o);
     size_t nv = (size_t)r->beats * (size_t)r->n_out;
     tb_csv_header(f, vs->n_out, (const char (*)[16])vs->out_names);
     for (size_t it = 0; it < r->vectors; it++)
         /* The item's output appeared with its first beat. */
         tb_csv_row(f, r, it, r->beat_cycle[it * (size_t)r->beats], r->raw + it * nv, vec_row(vs, it) + r->n_in);
-    return sim_out_close(o, err, errlen);
+    return base_out_close(o, err, errlen);
 }
 
 void tb_csv_header(FILE *f, int n_out, const char names[][16])

@@ -41,7 +41,7 @@
 #include "testbench/tb.h"
 #include "units/unit_coef.h"
 #include "units/unit_net.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -644,14 +644,14 @@ static int write_png(const char *dir, const char *name, int w, int h, int ch, co
     uint8_t *buf;
     size_t len;
     if (scn_png_encode(w, h, ch, pix, &buf, &len)) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
-    int rc = sim_out_write_all(path, buf, len, err, errlen);
+    int rc = base_out_write_all(path, buf, len, err, errlen);
     free(buf);
     return rc;
 }
 
 int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir, char *err, size_t errlen)
 {
-    if (sim_out_mkdirs(dir, err, errlen)) return -1;
+    if (base_out_mkdirs(dir, err, errlen)) return -1;
     size_t np = (size_t)r->w * r->h;
     uint8_t *g8 = calloc(np ? np : 1, 1), *rgb = calloc(np ? np * 3 : 1, 1);
     if (!g8 || !rgb) { free(g8); free(rgb); snprintf(err, errlen, "out of memory"); return -1; }
@@ -691,8 +691,8 @@ int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir,
     }
     char path[4200];
     snprintf(path, sizeof path, "%s/scene.json", dir);
-    sim_out *o = sim_out_open(path, err, errlen);
+    base_out *o = base_out_open(path, err, errlen);
     if (!o) return -1;
-    tb_scene_json(sim_out_file(o), d, r);
-    return sim_out_close(o, err, errlen);
+    tb_scene_json(base_out_file(o), d, r);
+    return base_out_close(o, err, errlen);
 }

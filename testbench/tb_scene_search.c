@@ -31,7 +31,7 @@
  */
 #include "testbench/tb_scene_search.h"
 #include "testbench/tb_sweep.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -363,11 +363,11 @@ static int write_report(const report *rp, const char *outdir, char *err, size_t 
     char path[1100];
     for (int k = 0; k < 2; k++) {
         snprintf(path, sizeof path, "%s/%s", outdir, k ? "search.txt" : "search.json");
-        sim_out *o = sim_out_open(path, err, errlen);
+        base_out *o = base_out_open(path, err, errlen);
         if (!o) return -1;
-        if (k) print_text(sim_out_file(o), rp);
-        else print_json(sim_out_file(o), rp);
-        if (sim_out_close(o, err, errlen)) return -1;
+        if (k) print_text(base_out_file(o), rp);
+        else print_json(base_out_file(o), rp);
+        if (base_out_close(o, err, errlen)) return -1;
     }
     return 0;
 }
@@ -384,7 +384,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
     }
     if (jobs < 1) jobs = 1;
     if (jobs > 64) jobs = 64;
-    if (outdir && sim_out_mkdirs(outdir, err, errlen)) return TB_BADINPUT;
+    if (outdir && base_out_mkdirs(outdir, err, errlen)) return TB_BADINPUT;
 
     scn_gbuf gv, gh;
     memset(&gv, 0, sizeof gv);

@@ -23,7 +23,7 @@
 #include "testbench/tb_scene_search.h"
 #include "testbench/tb_sweep.h"
 #include "testbench/tb_svg.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -403,7 +403,7 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *s
             if (p[j].same_as < 0 && !strcmp(p[j].key, p[i].key)) { p[i].same_as = (int)j; break; }
         if (p[i].same_as < 0) sw.todo[sw.ntodo++] = i;
     }
-    if (outdir && sim_out_mkdirs(outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (outdir && base_out_mkdirs(outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
     if (scn_raster(m, &d->view.cam, d->width, d->height, &g, err, errlen)) { rc = TB_BADINPUT; goto done; }
     sw.g = &g;
     tb_par_for(sw.ntodo, jobs, run_pt, &sw);
@@ -429,10 +429,10 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *s
         snprintf(paths[0], sizeof paths[0], "%s/sweep.csv", outdir);
         snprintf(paths[1], sizeof paths[1], "%s/sweep_ops.svg", outdir);
         snprintf(paths[2], sizeof paths[2], "%s/sweep_clocks.svg", outdir);
-        sim_out *o = sim_out_open(paths[0], err, errlen);
+        base_out *o = base_out_open(paths[0], err, errlen);
         if (!o) { rc = TB_BADINPUT; goto done; }
-        write_csv(sim_out_file(o), p, n);
-        if (sim_out_close(o, err, errlen)) { rc = TB_BADINPUT; goto done; }
+        write_csv(base_out_file(o), p, n);
+        if (base_out_close(o, err, errlen)) { rc = TB_BADINPUT; goto done; }
         int crc = 0;
         chart(d, p, n, 0, paths[1], err, errlen, &crc);
         if (!crc) chart(d, p, n, 1, paths[2], err, errlen, &crc);

@@ -6,7 +6,7 @@
  * half-written chart.
  */
 #include "testbench/tb_svg.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -1409,10 +1409,10 @@ int tb_chart_write(const tb_chart *c, const char *path, char *err, size_t errlen
     tb_svg_buf b = { 0 };
     if (tb_svg_rendered(c, path, &b, err, errlen)) return -1;
 
-    /* sim_out: a temporary beside a regular file, renamed once complete
+    /* base_out: a temporary beside a regular file, renamed once complete
      * (with the umask's permissions), removed on SIGINT/TERM/HUP; a device
      * or FIFO written through; "-" is stdout. */
-    int rc = sim_out_write_all(path, b.p, b.n, err, errlen);
+    int rc = base_out_write_all(path, b.p, b.n, err, errlen);
     free(b.p);
     return rc;
 }

@@ -88,7 +88,7 @@ void tb_chart_hline(tb_chart *c, double y, const char *label);
  * then rename). 0 on success; -1 with a one-line message in err (no
  * newline) on failure, leaving no temporary file behind. err may be NULL. */
 int  tb_chart_write(const tb_chart *c, const char *path, char *err, size_t errlen);
-/* The same SVG to an open stream (e.g. a sim_out that the caller commits
+/* The same SVG to an open stream (e.g. a base_out that the caller commits
  * with others); `what` names it in messages. 0, or -1 with a message
  * (incomplete chart, out of memory) and nothing written. Write errors are
  * left in the stream's error flag. */

@@ -1,7 +1,7 @@
 /* tb_sweep.c - the sweep engine: configurations, threads, shards, the CSV,
  * merging shards, and the per-signal format search. */
 #include "testbench/tb_sweep.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -12,21 +12,21 @@
 
 /* ------------------------------------------------------------- utilities */
 
-/* tb_afile is sim_out under the sweep's names: a regular file (or a new
+/* tb_afile is base_out under the sweep's names: a regular file (or a new
  * path, or a symlink's target) replaced atomically once complete, with a
  * registered temporary that SIGINT/SIGTERM/SIGHUP remove; a device or
  * FIFO written through; "-" is stdout. */
 int tb_afile_open(tb_afile *a, const char *path, char *err, size_t errlen)
 {
     a->path = path;
-    a->out = sim_out_open(path, err, errlen);
-    a->f = a->out ? sim_out_file(a->out) : NULL;
+    a->out = base_out_open(path, err, errlen);
+    a->f = a->out ? base_out_file(a->out) : NULL;
     return a->out ? 0 : -1;
 }
 
 int tb_afile_commit(tb_afile *a, char *err, size_t errlen)
 {
-    int rc = sim_out_close(a->out, err, errlen);
+    int rc = base_out_close(a->out, err, errlen);
     a->out = NULL;
     a->f = NULL;
     return rc;
@@ -34,7 +34,7 @@ int tb_afile_commit(tb_afile *a, char *err, size_t errlen)
 
 void tb_afile_abort(tb_afile *a)
 {
-    sim_out_abort(a->out);
+    base_out_abort(a->out);
     a->out = NULL;
     a->f = NULL;
 }

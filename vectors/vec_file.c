@@ -11,7 +11,7 @@
  */
 #include "vectors/vec_file.h"
 #include "vectors/vec_num.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -88,13 +88,13 @@ static int check_set(const vec_set *s, char *err, size_t errlen, const char *pat
 int vec_file_write(const char *path, const vec_set *s, char *err, size_t errlen)
 {
     if (check_set(s, err, errlen, path)) return -1;
-    /* sim_out: a temporary beside a regular file, renamed when complete
+    /* base_out: a temporary beside a regular file, renamed when complete
      * (a reader never sees half a file); devices and FIFOs written
      * through; "-" is stdout. */
-    sim_out *o = sim_out_open(path, err, errlen);
+    base_out *o = base_out_open(path, err, errlen);
     if (!o) return -1;
-    (void)vec_file_print(sim_out_file(o), s);  /* an error is kept in the stream */
-    return sim_out_close(o, err, errlen);
+    (void)vec_file_print(base_out_file(o), s);  /* an error is kept in the stream */
+    return base_out_close(o, err, errlen);
 }
 
 /* ---- reading ---------------------------------------------------------
