@@ -135,10 +135,10 @@ int cli_chart(int argc, char **argv)
         if (!tb_sc_chart_drawn(sc, k)) continue;
         char path[4200], ppath[4200];
         snprintf(path, sizeof path, "%s/%s", dir, tb_sc_chart_file[k]);
-        tb_chart *c = tb_sc_chart(sc, k, NULL);
+        chart *c = tb_sc_chart(sc, k, NULL);
         if (!c) { rc = cli_usage_error("%s: out of memory", path); break; }
-        if (tb_chart_write(c, path, err, sizeof err)) rc = cli_usage_error("%s", err);
-        tb_chart_free(c);
+        if (chart_write(c, path, err, sizeof err)) rc = cli_usage_error("%s", err);
+        chart_free(c);
         if (rc) break;
         printf("wrote %s\n", path);
         if (png) {

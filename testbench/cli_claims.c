@@ -7,7 +7,7 @@
  * with -o DIR the charts (docs/brdf.md). */
 #include "testbench/cli.h"
 #include "base/base_out.h"
-#include "testbench/tb_svg.h"
+#include "chart/chart.h"
 #include "vectors/claims.h"
 #include "testbench/tb_scene_claims.h"
 #include "vectors/ref_brdf.h"
@@ -314,13 +314,13 @@ static const approx APPROX[] = {
 
 /* --------------------------------------------------------------- charts */
 
-static int write_chart(tb_chart *c, const char *dir, const char *file, char paths[][600], int *np)
+static int write_chart(chart *c, const char *dir, const char *file, char paths[][600], int *np)
 {
     char path[600], err[700];
     snprintf(path, sizeof path, "%s/%s", dir, file);
-    int rc = c ? tb_chart_write(c, path, err, sizeof err) : -1;
+    int rc = c ? chart_write(c, path, err, sizeof err) : -1;
     if (!c) snprintf(err, sizeof err, "%s: out of memory", path);
-    tb_chart_free(c);
+    chart_free(c);
     if (rc) return cli_usage_error("%s", err);
     snprintf(paths[(*np)++], 600, "%s", path);
     return CLI_OK;
@@ -328,44 +328,44 @@ static int write_chart(tb_chart *c, const char *dir, const char *file, char path
 
 /* |relative error| in percent against angle, where the exact value is
  * above 0.1% of its peak; failure bands shaded. first..last index APPROX. */
-static tb_chart *error_chart(const char *title, size_t first, size_t last)
+static chart *error_chart(const char *title, size_t first, size_t last)
 {
-    tb_chart *c = tb_chart_new(title, "angle between N and H (deg)", "|relative error| (%)");
+    chart *c = chart_new(title, "angle between N and H (deg)", "|relative error| (%)");
     if (!c) return NULL;
-    tb_chart_log_y(c, 1);
+    chart_log_y(c, 1);
     for (size_t k = first; k <= last; k++) {
         const approx *a = &APPROX[k];
         char label[64];
         snprintf(label, sizeof label, "%s, %s = %g", a->name, a->pname, a->p);
-        int s = tb_chart_series(c, label, TB_LINE);
+        int s = chart_series(c, label, CHART_LINE);
         for (int i = 0; i <= N_ANG; i += 4) {
             double cc = cos(ang_at(i) * DEG), e = a->exact(cc, a->p);
-            if (e > 1e-3 * a->peak) tb_chart_point(c, s, ang_at(i), 100 * fabs(a->f(cc, a->p) / e - 1));
+            if (e > 1e-3 * a->peak) chart_point(c, s, ang_at(i), 100 * fabs(a->f(cc, a->p) / e - 1));
         }
         bands b;
         failure_bands(a, &b);
         for (int j = 0; j < b.n; j++) {
             snprintf(label, sizeof label, "%s=%g fails", a->pname, a->p);
-            tb_chart_hband(c, b.lo[j], b.hi[j], label);
+            chart_hband(c, b.lo[j], b.hi[j], label);
         }
     }
-    tb_chart_hline(c, 100 * FAIL_REL, "10%");
+    chart_hline(c, 100 * FAIL_REL, "10%");
     return c;
 }
 
 /* Why d_approx clamps: D, D16 clamped and D16 as the seeds print it, as
  * fractions of D's peak, m = 0.2; past the cosine where the base turns
  * negative the printed even power rises again, to 2.3e4 x the peak. */
-static tb_chart *clamp_chart(void)
+static chart *clamp_chart(void)
 {
     const double m = 0.2, peak = 1 / (4 * m * m);
-    tb_chart *c = tb_chart_new("D16 with and without the clamp, m = 0.2", "angle between N and H (deg)",
+    chart *c = chart_new("D16 with and without the clamp, m = 0.2", "angle between N and H (deg)",
                                "value / peak of D");
     if (!c) return NULL;
-    tb_chart_log_y(c, 1);
-    int s_d = tb_chart_series(c, "Beckmann D", TB_LINE);
-    int s_u = tb_chart_series(c, "D16 as printed", TB_LINE);
-    int s_c = tb_chart_series(c, "D16 clamped (d_approx)", TB_LINE);   /* drawn over the printed */
+    chart_log_y(c, 1);
+    int s_d = chart_series(c, "Beckmann D", CHART_LINE);
+    int s_u = chart_series(c, "D16 as printed", CHART_LINE);
+    int s_c = chart_series(c, "D16 clamped (d_approx)", CHART_LINE);   /* drawn over the printed */
     /* Values below 1e-12 of the peak are left out (D reaches 1e-300), as
      * NaN so that the lines break there. */
     for (int i = 0; i <= N_ANG; i += 4) {
@@ -373,13 +373,13 @@ static tb_chart *clamp_chart(void)
         double v[3] = { beck(cc, m) / peak, d16c(cc, m) / peak, d16u(cc, m) / peak };
         int s[3] = { s_d, s_c, s_u };
         for (int k = 0; k < 3; k++)
-            tb_chart_point(c, s[k], a, v[k] >= 1e-12 ? v[k] : NAN);
+            chart_point(c, s[k], a, v[k] >= 1e-12 ? v[k] : NAN);
     }
     double c0 = ref_brdf_dg_base_zero_cos(m, 16);
     char lab[64];
     snprintf(lab, sizeof lab, "base < 0 from %.1f deg", acos(c0) / DEG);
-    if (c0 > 0) tb_chart_hband(c, acos(c0) / DEG, 90, lab);
-    tb_chart_hline(c, 1, "peak");
+    if (c0 > 0) chart_hband(c, acos(c0) / DEG, 90, lab);
+    chart_hline(c, 1, "peak");
     return c;
 }
 
@@ -396,15 +396,15 @@ static const cost_unit COST_UNITS[] = {
 static const int COST_WIDTHS[] = { 8, 12, 16, 20, 24 };
 #define N_COST_WIDTHS (sizeof COST_WIDTHS / sizeof COST_WIDTHS[0])
 
-static tb_chart *cost_chart(void)
+static chart *cost_chart(void)
 {
-    tb_chart *c = tb_chart_new("Which specular model buys the most accuracy per clock",
+    chart *c = chart_new("Which specular model buys the most accuracy per clock",
                                "clocks per item x area (GE x clocks)", "max |error| / peak of the exact function");
     if (!c) return NULL;
-    tb_chart_log_x(c, 1);
-    tb_chart_log_y(c, 1);
+    chart_log_x(c, 1);
+    chart_log_y(c, 1);
     for (size_t k = 0; k < N_COST_UNITS; k++) {
-        int s = tb_chart_series(c, COST_UNITS[k].label, TB_LINE | TB_POINTS);
+        int s = chart_series(c, COST_UNITS[k].label, CHART_LINE | CHART_POINTS);
         for (size_t w = 0; w < N_COST_WIDTHS; w++) {
             unit_cfg cfg;
             unit_cfg_default(&cfg);
@@ -414,8 +414,8 @@ static tb_chart *cost_chart(void)
             if (run_unit(COST_UNITS[k].unit, &cfg, 0, COST_UNITS[k].phys, peak, &pt)) continue;
             char lab[16];
             snprintf(lab, sizeof lab, "width %d", COST_WIDTHS[w]);
-            if (w == 0 || w == N_COST_WIDTHS - 1) tb_chart_point_label(c, s, pt.clocks * pt.area, pt.max_err_peak, lab);
-            else tb_chart_point(c, s, pt.clocks * pt.area, pt.max_err_peak);
+            if (w == 0 || w == N_COST_WIDTHS - 1) chart_point_label(c, s, pt.clocks * pt.area, pt.max_err_peak, lab);
+            else chart_point(c, s, pt.clocks * pt.area, pt.max_err_peak);
         }
     }
     return c;

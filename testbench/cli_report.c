@@ -356,11 +356,11 @@ static int run_sweep(const sweep_def *d, const char *dir, FILE *f)
         free(on);
         for (int k = 0; k < TB_SC_NCHARTS && rc == CLI_OK; k++) {
             if (!tb_sc_chart_drawn(sc, k)) continue;
-            tb_chart *c = tb_sc_chart(sc, k, NULL);
+            chart *c = tb_sc_chart(sc, k, NULL);
             char *svg = NULL;
             size_t sl = 0;
             FILE *m = open_memstream(&svg, &sl);
-            if (!c || !m || tb_chart_fwrite(c, m, tb_sc_chart_file[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
+            if (!c || !m || chart_fwrite(c, m, tb_sc_chart_file[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
             if (m && fclose(m) && rc == CLI_OK) rc = cli_usage_error("report: out of memory");
             if (rc == CLI_OK) {
                 char alt[128];
@@ -369,7 +369,7 @@ static int run_sweep(const sweep_def *d, const char *dir, FILE *f)
                 fputc('\n', f);
             }
             free(svg);
-            tb_chart_free(c);
+            chart_free(c);
         }
         fputs("</div>\n", f);
     }
@@ -543,7 +543,7 @@ static int section_stability(FILE *f)
         char *svg = NULL;
         size_t sl = 0;
         FILE *m = open_memstream(&svg, &sl);
-        if (!m || tb_chart_fwrite(s->charts[k], m, s->chart_files[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
+        if (!m || chart_fwrite(s->charts[k], m, s->chart_files[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
         if (m && fclose(m) && rc == CLI_OK) rc = cli_usage_error("report: out of memory");
         if (rc == CLI_OK) {
             img(f, "image/svg+xml", svg, sl, s->chart_files[k], 800, 500);

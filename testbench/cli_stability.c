@@ -50,7 +50,7 @@ static int write_charts(const tb_stab *s, const char *dir, char paths[][600], in
     for (int i = 0; i < s->ncharts; i++) {
         char err[800];
         snprintf(paths[*np], 600, "%s/%s", dir, s->chart_files[i]);
-        if (tb_chart_write(s->charts[i], paths[*np], err, sizeof err))
+        if (chart_write(s->charts[i], paths[*np], err, sizeof err))
             return cli_usage_error("stability: %s", err);
         (*np)++;
     }

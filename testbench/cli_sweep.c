@@ -1,7 +1,7 @@
 /* cli_sweep.c - the verbs sweep and merge: arguments, output folder,
  * charts, the summary and target.json around the engine in tb_sweep.c. */
 #include "testbench/cli.h"
-#include "testbench/tb_svg.h"
+#include "chart/chart.h"
 #include "testbench/tb_sweep.h"
 #include "testbench/tb_sweep_chart.h"
 #include "base/base_out.h"
@@ -205,7 +205,7 @@ static unsigned char *front_of(const tb_sweep *s, size_t *nfront)
         y[i] = row_ok(s, i) ? s->row[i].r.area_ge : NAN;
         z[i] = row_ok(s, i) ? s->row[i].r.cycles_per_beat : NAN;
     }
-    *nfront = tb_pareto3(x, y, z, s->n, on);
+    *nfront = chart_pareto3(x, y, z, s->n, on);
     free(x);
     free(y);
     free(z);
@@ -286,14 +286,14 @@ static int oset_commit(oset *os, const char *const *gone, int ngone)
     return rc;
 }
 
-static int write_chart(tb_chart *c, oset *os, const char *name, char *files, size_t flen)
+static int write_chart(chart *c, oset *os, const char *name, char *files, size_t flen)
 {
     char path[4200], err[600];
     snprintf(path, sizeof path, "%s/%s", os->dir, name);
     if (!c) return cli_usage_error("%s: out of memory", path);
     FILE *f = oset_open(os, name);
-    int rc = f ? tb_chart_fwrite(c, f, path, err, sizeof err) : 0;
-    tb_chart_free(c);
+    int rc = f ? chart_fwrite(c, f, path, err, sizeof err) : 0;
+    chart_free(c);
     if (!f) return CLI_USAGE;
     if (rc) return cli_usage_error("%s", err);
     strncat(files, ", ", flen - strlen(files) - 1);
