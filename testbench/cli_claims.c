@@ -7,6 +7,7 @@
  * with -o DIR the charts (docs/brdf.md). */
 #include "testbench/cli.h"
 #include "base/base_out.h"
+#include "base/base_json.h"
 #include "chart/chart.h"
 #include "vectors/claims.h"
 #include "testbench/tb_scene_claims.h"
@@ -51,23 +52,6 @@ static const char claims_help[] =
 #define FAIL_FLOOR 0.01        /* ... where the exact value is above 1% of its peak */
 
 /* ----------------------------------------------------------- JSON output */
-
-static void jstr(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
-        else if (*p == '\n') fputs("\\n", f);
-        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
-        else fputc(*p, f);
-    }
-    fputc('"', f);
-}
-static void jnum(FILE *f, double v)
-{
-    if (isfinite(v)) fprintf(f, "%.10g", v);
-    else fputs("null", f);
-}
 
 /* Text into a claim_result field (fixed size): formatted in full, then cut. */
 /* ------------------------------------------------- hardware cost figures */
@@ -514,23 +498,23 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
 
 static void json_row(FILE *f, const claim_result *r, const char *kind)
 {
-    fputs("    {\"id\": ", f); jstr(f, r->id);
-    fputs(", \"kind\": ", f); jstr(f, kind);
-    fputs(", \"source\": ", f); jstr(f, r->seed);
-    fputs(",\n     \"claim\": ", f); jstr(f, r->claim);
-    fputs(",\n     \"claimed\": ", f); jnum(f, r->claimed);
-    fputs(", \"measured\": ", f); jnum(f, r->measured);
-    fputs(", \"verdict\": ", f); jstr(f, r->verdict);
-    fputs(",\n     \"measured_text\": ", f); jstr(f, r->measured_text);
-    fputs(",\n     \"note\": ", f); jstr(f, r->note);
+    fputs("    {\"id\": ", f); base_json_str(f, r->id);
+    fputs(", \"kind\": ", f); base_json_str(f, kind);
+    fputs(", \"source\": ", f); base_json_str(f, r->seed);
+    fputs(",\n     \"claim\": ", f); base_json_str(f, r->claim);
+    fputs(",\n     \"claimed\": ", f); base_json_num(f, r->claimed, 10);
+    fputs(", \"measured\": ", f); base_json_num(f, r->measured, 10);
+    fputs(", \"verdict\": ", f); base_json_str(f, r->verdict);
+    fputs(",\n     \"measured_text\": ", f); base_json_str(f, r->measured_text);
+    fputs(",\n     \"note\": ", f); base_json_str(f, r->note);
     fputs("}", f);
 }
 
 static void json_hw(FILE *f, const char *name, double cl, double ar, int n, int last)
 {
-    fputs("      ", f); jstr(f, name);
-    fputs(": {\"clocks_per_item\": ", f); jnum(f, cl);
-    fputs(", \"area_ge\": ", f); jnum(f, ar);
+    fputs("      ", f); base_json_str(f, name);
+    fputs(": {\"clocks_per_item\": ", f); base_json_num(f, cl, 10);
+    fputs(", \"area_ge\": ", f); base_json_num(f, ar, 10);
     if (n) fprintf(f, ", \"n\": %d", n);
     fprintf(f, "}%s\n", last ? "" : ",");
 }
@@ -553,26 +537,26 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
     json_hw(f, "exact_d_model", h->exact_d_clocks, h->exact_d_area, 0, 0);
     json_hw(f, "exact_ward_exp_model", h->exact_w_clocks, h->exact_w_area, 0, 1);
     fputs("    },\n    \"model\": ", f);
-    jstr(f, "exact D = squarer + divider + shift-and-add exp (W clocks, two divider datapaths) + squarer + "
+    base_json_str(f, "exact D = squarer + divider + shift-and-add exp (W clocks, two divider datapaths) + squarer + "
             "divider = 3W+2 clocks; Ward exp = squarer + divider + exp = 2W+1 clocks; lower bounds");
     fputs("\n  },\n  \"failure_regions\": [\n", f);
     for (size_t k = 0; k < N_APPROX; k++) {
         const approx *a = &APPROX[k];
         const bands *b = &rp->fb[k];
-        fputs("    {\"approximation\": ", f); jstr(f, a->name);
-        fputs(", \"param\": ", f); jstr(f, a->pname);
-        fputs(", \"value\": ", f); jnum(f, a->p);
-        fputs(", \"worst_rel_err\": ", f); jnum(f, b->worst);
+        fputs("    {\"approximation\": ", f); base_json_str(f, a->name);
+        fputs(", \"param\": ", f); base_json_str(f, a->pname);
+        fputs(", \"value\": ", f); base_json_num(f, a->p, 10);
+        fputs(", \"worst_rel_err\": ", f); base_json_num(f, b->worst, 10);
         fputs(", \"fails_deg\": [", f);
         for (int j = 0; j < b->n; j++) {
             fprintf(f, "%s[", j ? ", " : "");
-            jnum(f, b->lo[j]); fputs(", ", f); jnum(f, b->hi[j]);
+            base_json_num(f, b->lo[j], 10); fputs(", ", f); base_json_num(f, b->hi[j], 10);
             fputs("]", f);
         }
         fprintf(f, "]}%s\n", k + 1 < N_APPROX ? "," : "");
     }
     fputs("  ],\n  \"charts\": [", f);
-    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); jstr(f, paths[i]); }
+    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); base_json_str(f, paths[i]); }
     fputs("]\n}\n", f);
 }
 

@@ -3,6 +3,7 @@
 #include "testbench/cli.h"
 #include "testbench/tb_stability.h"
 #include "base/base_out.h"
+#include "base/base_json.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -32,17 +33,6 @@ static const char stability_help[] =
     "             stability_pow.svg\n\n"
     "exit status: 0 done (a boundary is a finding, not an error), 2 bad usage,\n"
     "an unwritable DIR or a unit that failed to run\n";
-
-static void jstr(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
-        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
-        else fputc(*p, f);
-    }
-    fputc('"', f);
-}
 
 static int write_charts(const tb_stab *s, const char *dir, char paths[][600], int *np)
 {
@@ -74,17 +64,17 @@ static void print_json(FILE *f, const tb_stab *s, char paths[][600], int np)
     fputs("{\n  \"target\": 0.00390625,\n  \"rows\": [\n", f);
     for (int i = 0; i < s->nrows; i++) {
         const tb_stab_row *r = &s->rows[i];
-        fputs("    {\"id\": ", f); jstr(f, r->id);
-        fputs(", \"method\": ", f); jstr(f, r->method);
-        fputs(",\n     \"condition\": ", f); jstr(f, r->condition);
-        fputs(",\n     \"measured\": ", f); jstr(f, r->measured);
-        fputs(",\n     \"verdict\": ", f); jstr(f, r->verdict);
+        fputs("    {\"id\": ", f); base_json_str(f, r->id);
+        fputs(", \"method\": ", f); base_json_str(f, r->method);
+        fputs(",\n     \"condition\": ", f); base_json_str(f, r->condition);
+        fputs(",\n     \"measured\": ", f); base_json_str(f, r->measured);
+        fputs(",\n     \"verdict\": ", f); base_json_str(f, r->verdict);
         fputs(",\n     \"boundary\": ", f);
-        if (isfinite(r->boundary)) fprintf(f, "%.10g", r->boundary); else fputs("null", f);
+        base_json_num(f, r->boundary, 10);
         fprintf(f, "}%s\n", i + 1 < s->nrows ? "," : "");
     }
     fputs("  ],\n  \"charts\": [", f);
-    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); jstr(f, paths[i]); }
+    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); base_json_str(f, paths[i]); }
     fputs("]\n}\n", f);
 }
 
