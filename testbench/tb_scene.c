@@ -42,9 +42,9 @@
 #include "units/unit_coef.h"
 #include "units/unit_net.h"
 #include "base/base_out.h"
+#include "base/base_par.h"
 #include <errno.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -266,8 +266,6 @@ typedef struct job {
     int nbands, vcd_band;
     const char *vcd_path;
     tb_scene_result *r;
-    pthread_mutex_t lock;
-    int next;
 } job;
 
 static double shade_at(const job *J, const double pos[3], const double nrm[3])
@@ -383,16 +381,10 @@ static void run_band(job *J, band *b)
     free(pix);
 }
 
-static void *worker(void *arg)
+static void band_item(void *arg, size_t b)
 {
     job *J = arg;
-    for (;;) {
-        pthread_mutex_lock(&J->lock);
-        int b = J->next < J->nbands ? J->next++ : -1;
-        pthread_mutex_unlock(&J->lock);
-        if (b < 0) return NULL;
-        run_band(J, &J->bands[b]);
-    }
+    run_band(J, &J->bands[b]);
 }
 
 static uint8_t to8(double v)
@@ -460,7 +452,7 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     /* bands of equal rows; spans are in row order */
     job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
               .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
-              .vcd_path = o->vcd_path, .r = r, .next = 0 };
+              .vcd_path = o->vcd_path, .r = r };
     size_t s = 0;
     for (int k = 0; k < nb; k++) {
         band *b = &bands[k];
@@ -472,18 +464,8 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
         b->s1 = s;
         if (J.vcd_band < 0 && b->s1 > b->s0) J.vcd_band = k;
     }
-    pthread_mutex_init(&J.lock, NULL);
     int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
-    if (jobs > nb) jobs = nb;
-    pthread_t th[256];
-    int started = 0;
-    for (int t = 1; t < jobs; t++) {
-        if (pthread_create(&th[started], NULL, worker, &J)) break;
-        started++;
-    }
-    worker(&J);
-    for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
-    pthread_mutex_destroy(&J.lock);
+    base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
 
     /* sums in band order */
     int rc = TB_OK;

@@ -32,6 +32,7 @@
 #include "testbench/tb_scene_search.h"
 #include "testbench/tb_sweep.h"
 #include "base/base_out.h"
+#include "base/base_par.h"
 #include "base/base_json.h"
 #include <errno.h>
 #include <math.h>
@@ -529,7 +530,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, double targe
             }
             if (!nb) break;
             progress(&s, "final pass");
-            tb_par_for((size_t)nb, jobs, cand_run, cj);
+            base_par_for((size_t)nb, jobs, cand_run, cj);
             /* The first that holds wins; the pass goes on after it, as a
              * one-at-a-time pass would. */
             for (int b = 0; b < nb; b++) {

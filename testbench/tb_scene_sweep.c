@@ -24,6 +24,7 @@
 #include "testbench/tb_sweep.h"
 #include "chart/chart.h"
 #include "base/base_out.h"
+#include "base/base_par.h"
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -406,7 +407,7 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, const char *s
     if (outdir && base_out_mkdirs(outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
     if (scn_raster(m, &d->view.cam, d->width, d->height, &g, err, errlen)) { rc = TB_BADINPUT; goto done; }
     sw.g = &g;
-    tb_par_for(sw.ntodo, jobs, run_pt, &sw);
+    base_par_for(sw.ntodo, jobs, run_pt, &sw);
     if (sw.tty) fputs("\r\033[K", stderr);
     fronts(p, n, 0);
     fronts(p, n, 1);

@@ -171,8 +171,4 @@ typedef struct tb_afile { FILE *f; struct base_out *out; const char *path; } tb_
 int  tb_afile_open(tb_afile *a, const char *path, char *err, size_t errlen);
 int  tb_afile_commit(tb_afile *a, char *err, size_t errlen);
 void tb_afile_abort(tb_afile *a);
-
-/* Run fn(ctx, i) for i in [0, n) on up to `threads` threads (the caller's
- * thread among them); returns when all are done. */
-void tb_par_for(size_t n, int threads, void (*fn)(void *ctx, size_t i), void *ctx);
 #endif

@@ -12,9 +12,9 @@
 #include "vectors/vec_file.h"
 #include "vectors/vec_num.h"
 #include "base/base_out.h"
+#include "base/base_par.h"
 #include <errno.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -441,11 +441,23 @@ typedef struct par {
     vec_set rows;               /* the second thread's rows of a block */
 } par;
 
-static void *half_main(void *arg)
+/* The two halves of a block as the items of a parallel-for: item 0 is
+ * the first half, read into the block's own set; item 1 the second. */
+typedef struct halves {
+    reader *r;
+    char *b, *mid;
+    vec_set *s;
+    const vec_set *expect;
+    rstate *st;
+    int rc;                     /* item 0's */
+    half h;                     /* item 1 */
+} halves;
+
+static void half_item(void *arg, size_t i)
 {
-    half *h = arg;
-    h->rc = do_lines(&h->r, h->b, h->e, h->rows, NULL, &h->st);
-    return NULL;
+    halves *t = arg;
+    if (i == 0) t->rc = do_lines(t->r, t->b, t->mid, t->s, t->expect, t->st);
+    else t->h.rc = do_lines(&t->h.r, t->h.b, t->h.e, t->h.rows, NULL, &t->h.st);
 }
 
 /* Append t's rows to s, growing s as vec_set_push does (doubling). */
@@ -476,25 +488,24 @@ static int do_rows(reader *r, char *b, char *e, vec_set *s, const vec_set *expec
     char *mid = n >= VEC_PAR_MIN && pp->ncpu > 1 ? memchr(b + n / 2, '\n', (size_t)(e - (b + n / 2))) : NULL;
     if (!mid || mid + 1 >= e) return do_lines(r, b, e, s, expect, st);
     mid++;
-    half h;
-    memset(&h, 0, sizeof h);
-    h.r.path = r->path;
-    h.r.defer = 1;
-    h.b = mid; h.e = e;
+    halves t;
+    memset(&t, 0, sizeof t);
+    half *h = &t.h;
+    h->r.path = r->path;
+    h->r.defer = 1;
+    h->b = mid; h->e = e;
     pp->rows.n_in = s->n_in;
     pp->rows.n_out = s->n_out;
     pp->rows.n_rows = 0;
-    h.rows = &pp->rows;
-    h.st = *st;
-    pthread_t th;
-    if (pthread_create(&th, NULL, half_main, &h)) return do_lines(r, b, e, s, expect, st);
-    int rc = do_lines(r, b, mid, s, expect, st);
-    pthread_join(th, NULL);
-    if (rc) return rc;
+    h->rows = &pp->rows;
+    h->st = *st;
+    t.r = r; t.b = b; t.mid = mid; t.s = s; t.expect = expect; t.st = st;
+    base_par_for(2, 2, half_item, &t);
+    if (t.rc) return t.rc;
     /* The second half's lines follow the first's. (Out of memory while
      * appending is reported on the half's last line.) */
-    r->line += h.r.line;
-    if (h.rc) return fail(r, "%s", h.r.why);
+    r->line += h->r.line;
+    if (h->rc) return fail(r, "%s", h->r.why);
     if (append_rows(s, &pp->rows)) return fail(r, "out of memory");
     return 0;
 }
