@@ -2,6 +2,7 @@
 #include "testbench/cli.h"
 #include "base/base_out.h"
 #include "vectors/vec_file.h"
+#include "base/base_join.h"
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -206,8 +207,7 @@ int cli_unit_option(cli_unit_opts *o, int argc, char **argv, int *i)
             if (s < 0) {
                 char list[200] = "";
                 for (int j = 0; j < o->u->nsched; j++) {
-                    strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
-                    strncat(list, o->u->sched[j].name, sizeof list - strlen(list) - 1);
+                    base_join_add(list, sizeof list, ", ", o->u->sched[j].name);
                 }
                 cli_usage_error("--schedule %s: unit %s has schedules: %s", v, o->u->name, list);
                 return -1;

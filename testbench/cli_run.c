@@ -5,6 +5,7 @@
 #include "testbench/tb_widths.h"
 #include "vectors/vec_file.h"
 #include "base/base_out.h"
+#include "base/base_join.h"
 #include <limits.h>
 #include <math.h>
 #include <stdlib.h>
@@ -44,10 +45,9 @@ static void sched_names(const unit_desc *u, int i, char *buf, size_t len)
 {
     buf[0] = 0;
     if (!u->sigs[i].scheds) { snprintf(buf, len, "all"); return; }
-    for (int s = 0, n = 0; s < u->nsched; s++)
+    for (int s = 0; s < u->nsched; s++)
         if (unit_sig_used(u, i, s)) {
-            strncat(buf, n++ ? ", " : "", len - strlen(buf) - 1);
-            strncat(buf, u->sched[s].name, len - strlen(buf) - 1);
+            base_join_add(buf, len, ", ", u->sched[s].name);
         }
 }
 
@@ -171,8 +171,7 @@ int cli_list(int argc, char **argv)
             const unit_desc *u = unit_find(only);
             char list[200] = "";
             for (int j = 0; j < u->nsched; j++) {
-                strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
-                strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
+                base_join_add(list, sizeof list, ", ", u->sched[j].name);
             }
             return cli_usage_error("--schedule %s: unit %s has schedules: %s", sched, only, list);
         }

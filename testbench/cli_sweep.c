@@ -6,6 +6,7 @@
 #include "testbench/tb_sweep_chart.h"
 #include "base/base_out.h"
 #include "base/base_json.h"
+#include "base/base_join.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -681,8 +682,7 @@ static int parse_sweep(int argc, char **argv, sweep_args *a)
                 if ((sp->sched[k] = unit_sched_find(u, items[k])) < 0) {
                     char list[200] = "";
                     for (int j = 0; j < u->nsched; j++) {
-                        strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
-                        strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
+                        base_join_add(list, sizeof list, ", ", u->sched[j].name);
                     }
                     return cli_usage_error("--schedule %s: unit %s has schedules: %s", items[k], u->name, list);
                 }

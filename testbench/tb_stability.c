@@ -8,6 +8,7 @@
 #include "testbench/tb.h"
 #include "sim/sim_area.h"
 #include "vectors/ref_brdf.h"
+#include "base/base_join.h"
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -480,8 +481,7 @@ static int atlas_fwd(tb_stab *s, int charts)
         for (size_t i = 0; i < 4; i++) {
             fmin[i] = tb_stab_fwd_min_frac(dg, LS[i], TB_STAB_TARGET);
             if (fmin[i] < 0) return -1;
-            size_t k = strlen(list);
-            snprintf(list + k, sizeof list - k, "%sL=%d: F=%d", i ? ", " : "", LS[i], fmin[i]);
+            base_join_addf(list, sizeof list, ", ", "L=%d: F=%d", LS[i], fmin[i]);
             if (c) {
                 chart_point(c, sr[3 - dg], LS[i], fmin[i]);
                 if (dg == 3) chart_point(c, sa, LS[i], 8 + log2(fwd_reach(3, LS[i])));
@@ -537,8 +537,7 @@ static int atlas_coef(tb_stab *s, int charts)
         for (int j = 0; j < U[k].n; j++) {
             ib[j] = tb_stab_coef_ibits(U[k].unit, C[j]);
             if (ib[j] < 0) return -1;
-            size_t l = strlen(list);
-            snprintf(list + l, sizeof list - l, "%s%c s%d", j ? ", " : "", 'A' + j, ib[j]);
+            base_join_addf(list, sizeof list, ", ", "%c s%d", 'A' + j, ib[j]);
             if (ch) chart_point(ch, se, j, ib[j]);
         }
         /* the widest coefficient one bit short, wrap and sat */
@@ -751,8 +750,7 @@ static int atlas_div3(tb_stab *s, int charts)
         int t = tb_stab_div3_terms(WS[i]);
         if (t < 0) return -1;
         if (WS[i] == 16) t16 = t;
-        size_t k = strlen(list);
-        snprintf(list + k, sizeof list - k, "%sW=%d: %d", i ? ", " : "", WS[i], t);
+        base_join_addf(list, sizeof list, ", ", "W=%d: %d", WS[i], t);
         if (c) {
             char lab[24];
             snprintf(lab, sizeof lab, "width %d", WS[i]);

@@ -13,6 +13,7 @@
 #include "vectors/vec_num.h"
 #include "base/base_out.h"
 #include "base/base_par.h"
+#include "base/base_join.h"
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -248,13 +249,8 @@ static int parse_names(reader *r, char *p, const char *key, int *n, char names[]
 /* "a b c" for a message. */
 static void join_names(char *out, size_t outlen, int n, const char names[][16])
 {
-    size_t used = 0;
     out[0] = 0;
-    for (int i = 0; i < n && used < outlen; i++) {
-        int k = snprintf(out + used, outlen - used, "%s%s", i ? " " : "", names[i]);
-        if (k < 0) break;
-        used += (size_t)k;
-    }
+    for (int i = 0; i < n; i++) base_join_add(out, outlen, " ", names[i]);
 }
 
 static int same_names(int n, const char a[][16], int m, const char b[][16])
