@@ -6,7 +6,6 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 /* The ports of a built unit, in the documented order. */
 static int unit_ports(const unit_desc *u, const unit_io *io, sim_vport *p)
@@ -163,13 +162,7 @@ int tb_verilog_export(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
     char *tb = tb_text(u, cfg, fm);
     if (!tb) { free(mod); snprintf(err, errlen, "out of memory"); return -1; }
     int rc = -1;
-    struct stat st;
-    if (stat(dir, &st) != 0) {
-        if (mkdir(dir, 0777) != 0) { snprintf(err, errlen, "%s: cannot make the folder: %s", dir, strerror(errno)); goto done; }
-    } else if (!S_ISDIR(st.st_mode)) {
-        snprintf(err, errlen, "%s: not a folder", dir);
-        goto done;
-    }
+    if (base_out_mkdirs(dir, err, errlen)) goto done;
     size_t pl = strlen(dir) + strlen(u->name) + 16;
     char *p = malloc(pl);
     if (!p) { snprintf(err, errlen, "out of memory"); goto done; }
