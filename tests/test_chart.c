@@ -1,4 +1,4 @@
-/* test_svg.c - the SVG chart writer (chart/chart.c).
+/* test_chart.c - the SVG chart writer (chart/).
  *
  * Checks chart_pareto against the O(n^2) definition, the tick placement, and
  * that every chart file is well-formed XML by an independent little checker
