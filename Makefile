@@ -1,5 +1,11 @@
-# shadesim build. One library of every layer (sim/ units/ vectors/ scene/ testbench/)
-# linked into bin/shadesim, each tests/test_*.c and each bench/*.c.
+# shadesim build. One library of every layer linked into bin/shadesim, each
+# tests/test_*.c and each bench/*.c. The layers, bottom up (an arrow only
+# points down; tests/cli_layers.sh checks the #include lines):
+#   sim/ (kernel, fixed point, primitives) and beside it base/ (output
+#   files, JSON numbers, parallel-for, name lists) at the bottom;
+#   chart/ (SVG charts) and vectors/ (float reference) on base/;
+#   units/ on sim/ and vectors/; scene/ on vectors/ (and sim/'s rounding
+#   names); testbench/ (testbenches and the CLI) on top of them all.
 # `make test` runs the suite twice: plain (-O2) and under ASan+UBSan;
 # `make test-clang` runs the same two flavours built by clang (build-clang*).
 
@@ -11,7 +17,7 @@ CFLAGS  ?=
 ALLCFLAGS = $(CSTD) $(WARN) $(OPT) -I. $(CFLAGS)
 LDLIBS  := -lm -lpthread
 
-LAYERS  := sim units vectors scene testbench
+LAYERS  := base sim chart units vectors scene testbench
 LIBSRC  := $(filter-out testbench/main.c,$(foreach d,$(LAYERS),$(wildcard $(d)/*.c)))
 HDRS    := $(foreach d,$(LAYERS),$(wildcard $(d)/*.h)) $(wildcard tests/*.h)
 TESTSRC := $(wildcard tests/test_*.c)

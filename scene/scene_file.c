@@ -97,6 +97,7 @@
  */
 #include "scene/scene.h"
 #include "sim/sim_fixed.h"      /* the sim_round / sim_ovf values only */
+#include "base/base_join.h"
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -319,10 +320,7 @@ static int pick(const char *key, const char *s, const char *const *names, int n,
     for (int i = 0; (n < 0 || i < n) && names[i]; i++)
         if (!strcmp(s, names[i])) return i;
     char b[48], list[160] = "";
-    size_t o = 0;
-    for (int i = 0; (n < 0 || i < n) && names[i]; i++)
-        o += (size_t)snprintf(list + o, o < sizeof list ? sizeof list - o : 0, "%s%s",
-                              i ? ", " : "", names[i]);
+    for (int i = 0; (n < 0 || i < n) && names[i]; i++) base_join_add(list, sizeof list, ", ", names[i]);
     return fail(err, errlen, "%s: \"%s\" is not one of %s", key, shown(s, b), list);
 }
 

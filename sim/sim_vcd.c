@@ -11,7 +11,7 @@
  */
 #define _XOPEN_SOURCE 700          /* realpath */
 #include "sim/sim_vcd.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -33,8 +33,8 @@ typedef struct vcd_real {
 
 struct sim_vcd {
     sim_ctx *ctx;
-    FILE    *f;           /* sim_out_file(out) */
-    sim_out *out;         /* temporary + rename, or written through, or stdout */
+    FILE    *f;           /* base_out_file(out) */
+    base_out *out;         /* temporary + rename, or written through, or stdout */
     char    *timescale;
     int      header;      /* header written */
     int      started;     /* $dumpvars written */
@@ -123,17 +123,17 @@ sim_vcd *sim_vcd_open(sim_ctx *c, const char *path, const char *timescale,
         snprintf(err, errlen, "%s: out of memory", path);
         return NULL;
     }
-    /* A dump can be hundreds of MB: sim_out registers its temporary so
+    /* A dump can be hundreds of MB: base_out registers its temporary so
      * that SIGINT/SIGTERM/SIGHUP remove it; "-" streams to stdout. */
-    if (!(v->out = sim_out_open(path, err, errlen))) {
+    if (!(v->out = base_out_open(path, err, errlen))) {
         free(v);
         return NULL;
     }
-    v->f = sim_out_file(v->out);
+    v->f = base_out_file(v->out);
     v->ctx = c;
     if (!(v->timescale = strdup(timescale))) {
         snprintf(err, errlen, "%s: out of memory", path);
-        sim_out_abort(v->out);
+        base_out_abort(v->out);
         free(v);
         return NULL;
     }
@@ -310,11 +310,11 @@ int sim_vcd_close(sim_vcd *v)
     if (!v) return 0;
     write_header(v);      /* a dump with no time step written still has one */
     flush_buf(v);
-    /* sim_out_close checks the stream (a failed fwrite left its error
+    /* base_out_close checks the stream (a failed fwrite left its error
      * flag), renames, and on failure removes the temporary and leaves
      * errno at the cause (ENOSPC...), which is what the caller reports. */
     char msg[256];
-    int rc = sim_out_close(v->out, msg, sizeof msg);
+    int rc = base_out_close(v->out, msg, sizeof msg);
     int e = errno;
     sim_attach_vcd(v->ctx, NULL);
     free_vcd(v);
@@ -325,7 +325,7 @@ int sim_vcd_close(sim_vcd *v)
 void sim_vcd_abort(sim_vcd *v)
 {
     if (!v) return;
-    sim_out_abort(v->out);
+    base_out_abort(v->out);
     sim_attach_vcd(v->ctx, NULL);
     free_vcd(v);
 }
@@ -402,9 +402,9 @@ int sim_vcd_write_gtkw(sim_ctx *c, const char *dump_path, const char *gtkw_path,
     char *dump = abs_path(dump_path), *save = abs_path(gtkw_path);
     if (!dump || !save) { int e = errno; free(dump); free(save); errno = e; return -1; }
     char msg[256];
-    sim_out *o = sim_out_open(gtkw_path, msg, sizeof msg);
+    base_out *o = base_out_open(gtkw_path, msg, sizeof msg);
     if (!o) { free(dump); free(save); return -1; }   /* errno from the open */
-    FILE *f = sim_out_file(o);
+    FILE *f = base_out_file(o);
     fprintf(f, "[*] shadesim: open with  gtkwave %s\n[dumpfile] \"%s\"\n[savefile] \"%s\"\n[timestart] 0\n",
             save, dump, save);
     free(dump);
@@ -420,5 +420,5 @@ int sim_vcd_write_gtkw(sim_ctx *c, const char *dump_path, const char *gtkw_path,
         fprintf(f, "@1000200\n-%s\n", lead_title ? lead_title : "check");
     }
     gtkw_scope(f, sim_root(c), "");
-    return sim_out_close(o, msg, sizeof msg);   /* errno = the cause on -1 */
+    return base_out_close(o, msg, sizeof msg);   /* errno = the cause on -1 */
 }

@@ -4,7 +4,7 @@
 #include "testbench/cli_opt.h"
 #include <stddef.h>
 #include "testbench/tb_sweep_chart.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -91,18 +91,18 @@ static int on_path(const char *prog)
     return 0;
 }
 
-/* svg -> png with rsvg-convert (no shell), its output into a sim_out so
+/* svg -> png with rsvg-convert (no shell), its output into a base_out so
  * that the PNG appears only when complete. */
 static int to_png(const char *svg, const char *png)
 {
     char err[600];
-    sim_out *o = sim_out_open(png, err, sizeof err);
+    base_out *o = base_out_open(png, err, sizeof err);
     if (!o) return cli_usage_error("%s", err);
-    FILE *f = sim_out_file(o);
+    FILE *f = base_out_file(o);
     fflush(f);
     fflush(stdout);
     pid_t pid = fork();
-    if (pid < 0) { sim_out_abort(o); return cli_usage_error("%s: cannot start rsvg-convert: %s", png, strerror(errno)); }
+    if (pid < 0) { base_out_abort(o); return cli_usage_error("%s: cannot start rsvg-convert: %s", png, strerror(errno)); }
     if (pid == 0) {
         if (dup2(fileno(f), 1) < 0) _exit(126);
         execlp("rsvg-convert", "rsvg-convert", svg, (char *)NULL);
@@ -110,9 +110,9 @@ static int to_png(const char *svg, const char *png)
     }
     int st;
     while (waitpid(pid, &st, 0) < 0)
-        if (errno != EINTR) { sim_out_abort(o); return cli_usage_error("%s: rsvg-convert: %s", png, strerror(errno)); }
-    if (!WIFEXITED(st) || WEXITSTATUS(st)) { sim_out_abort(o); return cli_usage_error("%s: rsvg-convert failed", png); }
-    if (sim_out_close(o, err, sizeof err)) return cli_usage_error("%s", err);
+        if (errno != EINTR) { base_out_abort(o); return cli_usage_error("%s: rsvg-convert: %s", png, strerror(errno)); }
+    if (!WIFEXITED(st) || WEXITSTATUS(st)) { base_out_abort(o); return cli_usage_error("%s: rsvg-convert failed", png); }
+    if (base_out_close(o, err, sizeof err)) return cli_usage_error("%s", err);
     return CLI_OK;
 }
 
@@ -146,10 +146,10 @@ int cli_chart(int argc, char **argv)
         if (!tb_sc_chart_drawn(sc, k)) continue;
         char path[4200], ppath[4200];
         snprintf(path, sizeof path, "%s/%s", dir, tb_sc_chart_file[k]);
-        tb_chart *c = tb_sc_chart(sc, k, NULL);
+        chart *c = tb_sc_chart(sc, k, NULL);
         if (!c) { rc = cli_usage_error("%s: out of memory", path); break; }
-        if (tb_chart_write(c, path, err, sizeof err)) rc = cli_usage_error("%s", err);
-        tb_chart_free(c);
+        if (chart_write(c, path, err, sizeof err)) rc = cli_usage_error("%s", err);
+        chart_free(c);
         if (rc) break;
         printf("wrote %s\n", path);
         if (png) {
@@ -160,6 +160,6 @@ int cli_chart(int argc, char **argv)
     }
     tb_sc_free(sc);
     char e[300];
-    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
     return rc;
 }

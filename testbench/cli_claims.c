@@ -7,8 +7,9 @@
  * with -o DIR the charts (docs/brdf.md). */
 #include "testbench/cli.h"
 #include "testbench/cli_opt.h"
-#include "sim/sim_out.h"
-#include "testbench/tb_svg.h"
+#include "base/base_out.h"
+#include "base/base_json.h"
+#include "chart/chart.h"
 #include "vectors/claims.h"
 #include "testbench/tb_scene_claims.h"
 #include "vectors/ref_brdf.h"
@@ -29,23 +30,6 @@
 #define FAIL_FLOOR 0.01        /* ... where the exact value is above 1% of its peak */
 
 /* ----------------------------------------------------------- JSON output */
-
-static void jstr(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
-        else if (*p == '\n') fputs("\\n", f);
-        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
-        else fputc(*p, f);
-    }
-    fputc('"', f);
-}
-static void jnum(FILE *f, double v)
-{
-    if (isfinite(v)) fprintf(f, "%.10g", v);
-    else fputs("null", f);
-}
 
 /* Text into a claim_result field (fixed size): formatted in full, then cut. */
 /* ------------------------------------------------- hardware cost figures */
@@ -292,13 +276,13 @@ static const approx APPROX[] = {
 
 /* --------------------------------------------------------------- charts */
 
-static int write_chart(tb_chart *c, const char *dir, const char *file, char paths[][600], int *np)
+static int write_chart(chart *c, const char *dir, const char *file, char paths[][600], int *np)
 {
     char path[600], err[700];
     snprintf(path, sizeof path, "%s/%s", dir, file);
-    int rc = c ? tb_chart_write(c, path, err, sizeof err) : -1;
+    int rc = c ? chart_write(c, path, err, sizeof err) : -1;
     if (!c) snprintf(err, sizeof err, "%s: out of memory", path);
-    tb_chart_free(c);
+    chart_free(c);
     if (rc) return cli_usage_error("%s", err);
     snprintf(paths[(*np)++], 600, "%s", path);
     return CLI_OK;
@@ -306,44 +290,44 @@ static int write_chart(tb_chart *c, const char *dir, const char *file, char path
 
 /* |relative error| in percent against angle, where the exact value is
  * above 0.1% of its peak; failure bands shaded. first..last index APPROX. */
-static tb_chart *error_chart(const char *title, size_t first, size_t last)
+static chart *error_chart(const char *title, size_t first, size_t last)
 {
-    tb_chart *c = tb_chart_new(title, "angle between N and H (deg)", "|relative error| (%)");
+    chart *c = chart_new(title, "angle between N and H (deg)", "|relative error| (%)");
     if (!c) return NULL;
-    tb_chart_log_y(c, 1);
+    chart_log_y(c, 1);
     for (size_t k = first; k <= last; k++) {
         const approx *a = &APPROX[k];
         char label[64];
         snprintf(label, sizeof label, "%s, %s = %g", a->name, a->pname, a->p);
-        int s = tb_chart_series(c, label, TB_LINE);
+        int s = chart_series(c, label, CHART_LINE);
         for (int i = 0; i <= N_ANG; i += 4) {
             double cc = cos(ang_at(i) * DEG), e = a->exact(cc, a->p);
-            if (e > 1e-3 * a->peak) tb_chart_point(c, s, ang_at(i), 100 * fabs(a->f(cc, a->p) / e - 1));
+            if (e > 1e-3 * a->peak) chart_point(c, s, ang_at(i), 100 * fabs(a->f(cc, a->p) / e - 1));
         }
         bands b;
         failure_bands(a, &b);
         for (int j = 0; j < b.n; j++) {
             snprintf(label, sizeof label, "%s=%g fails", a->pname, a->p);
-            tb_chart_hband(c, b.lo[j], b.hi[j], label);
+            chart_hband(c, b.lo[j], b.hi[j], label);
         }
     }
-    tb_chart_hline(c, 100 * FAIL_REL, "10%");
+    chart_hline(c, 100 * FAIL_REL, "10%");
     return c;
 }
 
 /* Why d_approx clamps: D, D16 clamped and D16 as the seeds print it, as
  * fractions of D's peak, m = 0.2; past the cosine where the base turns
  * negative the printed even power rises again, to 2.3e4 x the peak. */
-static tb_chart *clamp_chart(void)
+static chart *clamp_chart(void)
 {
     const double m = 0.2, peak = 1 / (4 * m * m);
-    tb_chart *c = tb_chart_new("D16 with and without the clamp, m = 0.2", "angle between N and H (deg)",
+    chart *c = chart_new("D16 with and without the clamp, m = 0.2", "angle between N and H (deg)",
                                "value / peak of D");
     if (!c) return NULL;
-    tb_chart_log_y(c, 1);
-    int s_d = tb_chart_series(c, "Beckmann D", TB_LINE);
-    int s_u = tb_chart_series(c, "D16 as printed", TB_LINE);
-    int s_c = tb_chart_series(c, "D16 clamped (d_approx)", TB_LINE);   /* drawn over the printed */
+    chart_log_y(c, 1);
+    int s_d = chart_series(c, "Beckmann D", CHART_LINE);
+    int s_u = chart_series(c, "D16 as printed", CHART_LINE);
+    int s_c = chart_series(c, "D16 clamped (d_approx)", CHART_LINE);   /* drawn over the printed */
     /* Values below 1e-12 of the peak are left out (D reaches 1e-300), as
      * NaN so that the lines break there. */
     for (int i = 0; i <= N_ANG; i += 4) {
@@ -351,13 +335,13 @@ static tb_chart *clamp_chart(void)
         double v[3] = { beck(cc, m) / peak, d16c(cc, m) / peak, d16u(cc, m) / peak };
         int s[3] = { s_d, s_c, s_u };
         for (int k = 0; k < 3; k++)
-            tb_chart_point(c, s[k], a, v[k] >= 1e-12 ? v[k] : NAN);
+            chart_point(c, s[k], a, v[k] >= 1e-12 ? v[k] : NAN);
     }
     double c0 = ref_brdf_dg_base_zero_cos(m, 16);
     char lab[64];
     snprintf(lab, sizeof lab, "base < 0 from %.1f deg", acos(c0) / DEG);
-    if (c0 > 0) tb_chart_hband(c, acos(c0) / DEG, 90, lab);
-    tb_chart_hline(c, 1, "peak");
+    if (c0 > 0) chart_hband(c, acos(c0) / DEG, 90, lab);
+    chart_hline(c, 1, "peak");
     return c;
 }
 
@@ -374,15 +358,15 @@ static const cost_unit COST_UNITS[] = {
 static const int COST_WIDTHS[] = { 8, 12, 16, 20, 24 };
 #define N_COST_WIDTHS (sizeof COST_WIDTHS / sizeof COST_WIDTHS[0])
 
-static tb_chart *cost_chart(void)
+static chart *cost_chart(void)
 {
-    tb_chart *c = tb_chart_new("Which specular model buys the most accuracy per clock",
+    chart *c = chart_new("Which specular model buys the most accuracy per clock",
                                "clocks per item x area (GE x clocks)", "max |error| / peak of the exact function");
     if (!c) return NULL;
-    tb_chart_log_x(c, 1);
-    tb_chart_log_y(c, 1);
+    chart_log_x(c, 1);
+    chart_log_y(c, 1);
     for (size_t k = 0; k < N_COST_UNITS; k++) {
-        int s = tb_chart_series(c, COST_UNITS[k].label, TB_LINE | TB_POINTS);
+        int s = chart_series(c, COST_UNITS[k].label, CHART_LINE | CHART_POINTS);
         for (size_t w = 0; w < N_COST_WIDTHS; w++) {
             unit_cfg cfg;
             unit_cfg_default(&cfg);
@@ -392,8 +376,8 @@ static tb_chart *cost_chart(void)
             if (run_unit(COST_UNITS[k].unit, &cfg, 0, COST_UNITS[k].phys, peak, &pt)) continue;
             char lab[16];
             snprintf(lab, sizeof lab, "width %d", COST_WIDTHS[w]);
-            if (w == 0 || w == N_COST_WIDTHS - 1) tb_chart_point_label(c, s, pt.clocks * pt.area, pt.max_err_peak, lab);
-            else tb_chart_point(c, s, pt.clocks * pt.area, pt.max_err_peak);
+            if (w == 0 || w == N_COST_WIDTHS - 1) chart_point_label(c, s, pt.clocks * pt.area, pt.max_err_peak, lab);
+            else chart_point(c, s, pt.clocks * pt.area, pt.max_err_peak);
         }
     }
     return c;
@@ -492,23 +476,23 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
 
 static void json_row(FILE *f, const claim_result *r, const char *kind)
 {
-    fputs("    {\"id\": ", f); jstr(f, r->id);
-    fputs(", \"kind\": ", f); jstr(f, kind);
-    fputs(", \"source\": ", f); jstr(f, r->seed);
-    fputs(",\n     \"claim\": ", f); jstr(f, r->claim);
-    fputs(",\n     \"claimed\": ", f); jnum(f, r->claimed);
-    fputs(", \"measured\": ", f); jnum(f, r->measured);
-    fputs(", \"verdict\": ", f); jstr(f, r->verdict);
-    fputs(",\n     \"measured_text\": ", f); jstr(f, r->measured_text);
-    fputs(",\n     \"note\": ", f); jstr(f, r->note);
+    fputs("    {\"id\": ", f); base_json_str(f, r->id);
+    fputs(", \"kind\": ", f); base_json_str(f, kind);
+    fputs(", \"source\": ", f); base_json_str(f, r->seed);
+    fputs(",\n     \"claim\": ", f); base_json_str(f, r->claim);
+    fputs(",\n     \"claimed\": ", f); base_json_num(f, r->claimed, 10);
+    fputs(", \"measured\": ", f); base_json_num(f, r->measured, 10);
+    fputs(", \"verdict\": ", f); base_json_str(f, r->verdict);
+    fputs(",\n     \"measured_text\": ", f); base_json_str(f, r->measured_text);
+    fputs(",\n     \"note\": ", f); base_json_str(f, r->note);
     fputs("}", f);
 }
 
 static void json_hw(FILE *f, const char *name, double cl, double ar, int n, int last)
 {
-    fputs("      ", f); jstr(f, name);
-    fputs(": {\"clocks_per_item\": ", f); jnum(f, cl);
-    fputs(", \"area_ge\": ", f); jnum(f, ar);
+    fputs("      ", f); base_json_str(f, name);
+    fputs(": {\"clocks_per_item\": ", f); base_json_num(f, cl, 10);
+    fputs(", \"area_ge\": ", f); base_json_num(f, ar, 10);
     if (n) fprintf(f, ", \"n\": %d", n);
     fprintf(f, "}%s\n", last ? "" : ",");
 }
@@ -531,26 +515,26 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
     json_hw(f, "exact_d_model", h->exact_d_clocks, h->exact_d_area, 0, 0);
     json_hw(f, "exact_ward_exp_model", h->exact_w_clocks, h->exact_w_area, 0, 1);
     fputs("    },\n    \"model\": ", f);
-    jstr(f, "exact D = squarer + divider + shift-and-add exp (W clocks, two divider datapaths) + squarer + "
+    base_json_str(f, "exact D = squarer + divider + shift-and-add exp (W clocks, two divider datapaths) + squarer + "
             "divider = 3W+2 clocks; Ward exp = squarer + divider + exp = 2W+1 clocks; lower bounds");
     fputs("\n  },\n  \"failure_regions\": [\n", f);
     for (size_t k = 0; k < N_APPROX; k++) {
         const approx *a = &APPROX[k];
         const bands *b = &rp->fb[k];
-        fputs("    {\"approximation\": ", f); jstr(f, a->name);
-        fputs(", \"param\": ", f); jstr(f, a->pname);
-        fputs(", \"value\": ", f); jnum(f, a->p);
-        fputs(", \"worst_rel_err\": ", f); jnum(f, b->worst);
+        fputs("    {\"approximation\": ", f); base_json_str(f, a->name);
+        fputs(", \"param\": ", f); base_json_str(f, a->pname);
+        fputs(", \"value\": ", f); base_json_num(f, a->p, 10);
+        fputs(", \"worst_rel_err\": ", f); base_json_num(f, b->worst, 10);
         fputs(", \"fails_deg\": [", f);
         for (int j = 0; j < b->n; j++) {
             fprintf(f, "%s[", j ? ", " : "");
-            jnum(f, b->lo[j]); fputs(", ", f); jnum(f, b->hi[j]);
+            base_json_num(f, b->lo[j], 10); fputs(", ", f); base_json_num(f, b->hi[j], 10);
             fputs("]", f);
         }
         fprintf(f, "]}%s\n", k + 1 < N_APPROX ? "," : "");
     }
     fputs("  ],\n  \"charts\": [", f);
-    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); jstr(f, paths[i]); }
+    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); base_json_str(f, paths[i]); }
     fputs("]\n}\n", f);
 }
 
@@ -654,7 +638,7 @@ int cli_claims(int argc, char **argv)
         else print_text(stdout, rp, paths, np);
         /* fflush alone misses an error whose write happened earlier. */
         char e[300];
-        if (sim_out_stdout_check(e, sizeof e)) rc = cli_usage_error("claims: %s", e);
+        if (base_out_stdout_check(e, sizeof e)) rc = cli_usage_error("claims: %s", e);
     }
     free(rp);
     return rc;

@@ -1,7 +1,8 @@
 /* cli_common.c - options shared by the verbs, and where vectors come from. */
 #include "testbench/cli.h"
+#include "base/base_join.h"
 #include "testbench/cli_opt.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include "vectors/vec_file.h"
 #include <errno.h>
 #include <math.h>
@@ -53,7 +54,7 @@ int cli_usage_error(const char *fmt, ...)
 int cli_make_dir(const char *dir)
 {
     char err[4400];
-    if (sim_out_mkdirs(dir, err, sizeof err)) return cli_usage_error("%s", err);
+    if (base_out_mkdirs(dir, err, sizeof err)) return cli_usage_error("%s", err);
     return CLI_OK;
 }
 
@@ -197,10 +198,7 @@ static int unit_overflow(void *base, const char *opt, const char *v)
 int cli_unit_sched_error(const unit_desc *u, const char *name)
 {
     char list[200] = "";
-    for (int j = 0; j < u->nsched; j++) {
-        strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
-        strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
-    }
+    for (int j = 0; j < u->nsched; j++) base_join_add(list, sizeof list, ", ", u->sched[j].name);
     return cli_usage_error("--schedule %s: unit %s has schedules: %s", name, u->name, list);
 }
 

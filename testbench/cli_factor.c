@@ -8,7 +8,7 @@
 #include "vectors/ref_factor.h"
 #include "testbench/tb_factor_scene.h"
 #include "scene/scene.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -40,7 +40,7 @@ static int write_map_png(const char *path, const double *logtex, int R, double *
     int rc = scn_png_encode(W, W, 1, pix, &png, &len);
     free(pix);
     if (rc) { snprintf(err, errlen, "out of memory"); return -1; }
-    rc = sim_out_write_all(path, png, len, err, errlen);
+    rc = base_out_write_all(path, png, len, err, errlen);
     free(png);
     return rc;
 }
@@ -56,7 +56,7 @@ static int write_f32(const char *path, const rf_fact *f, char *err, size_t errle
         memcpy(&u, &v, 4);
         for (int b = 0; b < 4; b++) buf[4 * j + b] = (uint8_t)(u >> (8 * b));
     }
-    int rc = sim_out_write_all(path, buf, 8 * T, err, errlen);
+    int rc = base_out_write_all(path, buf, 8 * T, err, errlen);
     free(buf);
     return rc;
 }
@@ -164,7 +164,7 @@ static int write_claims(rf_brdf *b, const rf_fact *f, const rf_opts *o, long hel
     fclose(cf);
     char path[700];
     snprintf(path, sizeof path, "%s/claims.csv", dir);
-    int rc = sim_out_write_all(path, buf, len, err, errlen);
+    int rc = base_out_write_all(path, buf, len, err, errlen);
     free(buf);
     return rc;
 }
@@ -367,7 +367,7 @@ int cli_factor(int argc, char **argv)
         }
         fclose(sf);
         snprintf(path, sizeof path, "%s/study.csv", dir);
-        if (rc == CLI_OK && sim_out_write_all(path, sb, sl, err, sizeof err)) rc = cli_usage_error("%s", err);
+        if (rc == CLI_OK && base_out_write_all(path, sb, sl, err, sizeof err)) rc = cli_usage_error("%s", err);
         free(sb);
         if (rc) goto done;
     }
@@ -389,10 +389,10 @@ int cli_factor(int argc, char **argv)
     fclose(csv);
     csv = NULL;
     snprintf(path, sizeof path, "%s/report.csv", dir);
-    if (sim_out_write_all(path, csvbuf, csvlen, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    if (base_out_write_all(path, csvbuf, csvlen, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
     printf("  wrote %s/{lambda.png, pi.png, factors.f32, report.csv%s%s%s}\n", dir, study ? ", study.csv" : "",
            claims ? ", claims.csv" : "", scene ? ", vertex.png, factorized.png, exact.png" : "");
-    if (sim_out_stdout_check(err, sizeof err)) rc = cli_usage_error("%s", err);
+    if (base_out_stdout_check(err, sizeof err)) rc = cli_usage_error("%s", err);
     else if (fails) rc = CLI_FAIL;
 done:
     if (csv) fclose(csv);

@@ -3,7 +3,7 @@
 #include "testbench/cli.h"
 #include "testbench/cli_opt.h"
 #include "testbench/tb_sweep.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <stddef.h>
 #include <stdlib.h>
 
@@ -49,6 +49,6 @@ int cli_merge(int argc, char **argv)
     else if (!m.out) rc = cli_usage_error("merge: -o OUT.csv is required");
     else if (tb_sweep_merge(m.in, m.n, m.out, err, sizeof err)) rc = cli_usage_error("%s", err);
     free(m.in);
-    if (rc == CLI_OK && sim_out_stdout_check(err, sizeof err)) rc = cli_usage_error("%s", err);
+    if (rc == CLI_OK && base_out_stdout_check(err, sizeof err)) rc = cli_usage_error("%s", err);
     return rc;
 }

@@ -1,7 +1,7 @@
 /* cli_opt.c - the option parser every verb uses (cli_opt.h). */
 #include "testbench/cli_opt.h"
 #include "testbench/cli.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <limits.h>
 #include <string.h>
 
@@ -34,7 +34,7 @@ int cli_opt_help(const cli_optspec *sp)
     if (sp->help_head) fputs(sp->help_head, stdout);
     cli_opt_help_lines(stdout, sp);
     if (sp->help_tail) fputs(sp->help_tail, stdout);
-    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
     return CLI_OK;
 }
 

@@ -20,7 +20,7 @@
 #include "testbench/tb_sweep_chart.h"
 #include "testbench/tb_stability.h"
 #include "vectors/claims.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -353,7 +353,7 @@ static int run_sweep(const sweep_def *d, const char *dir, FILE *f)
     char path[4200], name[64];
     snprintf(name, sizeof name, "sweep-%s.csv", d->unit);
     snprintf(path, sizeof path, "%s/%s", dir, name);
-    if (rc == CLI_OK && sim_out_write_all(path, csv, len, err, sizeof err)) rc = cli_usage_error("%s", err);
+    if (rc == CLI_OK && base_out_write_all(path, csv, len, err, sizeof err)) rc = cli_usage_error("%s", err);
     if (rc == CLI_OK && !(sc = tb_sc_read(csv, len, name, err, sizeof err))) rc = cli_usage_error("report: %s", err);
     if (rc == CLI_OK) {
         unsigned char *on = calloc(tb_sc_rows(sc), 1);
@@ -368,11 +368,11 @@ static int run_sweep(const sweep_def *d, const char *dir, FILE *f)
         free(on);
         for (int k = 0; k < TB_SC_NCHARTS && rc == CLI_OK; k++) {
             if (!tb_sc_chart_drawn(sc, k)) continue;
-            tb_chart *c = tb_sc_chart(sc, k, NULL);
+            chart *c = tb_sc_chart(sc, k, NULL);
             char *svg = NULL;
             size_t sl = 0;
             FILE *m = open_memstream(&svg, &sl);
-            if (!c || !m || tb_chart_fwrite(c, m, tb_sc_chart_file[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
+            if (!c || !m || chart_fwrite(c, m, tb_sc_chart_file[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
             if (m && fclose(m) && rc == CLI_OK) rc = cli_usage_error("report: out of memory");
             if (rc == CLI_OK) {
                 char alt[128];
@@ -381,7 +381,7 @@ static int run_sweep(const sweep_def *d, const char *dir, FILE *f)
                 fputc('\n', f);
             }
             free(svg);
-            tb_chart_free(c);
+            chart_free(c);
         }
         fputs("</div>\n", f);
     }
@@ -555,7 +555,7 @@ static int section_stability(FILE *f)
         char *svg = NULL;
         size_t sl = 0;
         FILE *m = open_memstream(&svg, &sl);
-        if (!m || tb_chart_fwrite(s->charts[k], m, s->chart_files[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
+        if (!m || chart_fwrite(s->charts[k], m, s->chart_files[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
         if (m && fclose(m) && rc == CLI_OK) rc = cli_usage_error("report: out of memory");
         if (rc == CLI_OK) {
             img(f, "image/svg+xml", svg, sl, s->chart_files[k], 800, 500);
@@ -643,11 +643,11 @@ int cli_report(int argc, char **argv)
     if (!rc && bad) rc = cli_usage_error("report: out of memory");
     char path[4200], err[600];
     snprintf(path, sizeof path, "%s/report.html", dir);
-    if (!rc && sim_out_write_all(path, html, len, err, sizeof err)) rc = cli_usage_error("%s", err);
+    if (!rc && base_out_write_all(path, html, len, err, sizeof err)) rc = cli_usage_error("%s", err);
     free(html);
     if (rc) return rc;
     printf("wrote %s (%d units, %d failing their verdict)\n", path, (int)unit_count(), nfail);
     char e[300];
-    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
     return CLI_OK;
 }

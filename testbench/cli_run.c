@@ -1,11 +1,12 @@
 /* cli_run.c - the verbs that read the unit descriptors: list, vectors, run. */
 #include "testbench/cli.h"
+#include "base/base_join.h"
 #include "testbench/cli_opt.h"
 #include "testbench/tb_stream.h"
 #include "testbench/tb_wave.h"
 #include "testbench/tb_widths.h"
 #include "vectors/vec_file.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <limits.h>
 #include <math.h>
 #include <stddef.h>
@@ -17,7 +18,7 @@
 static int stdout_done(int rc)
 {
     char e[300];
-    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
     return rc;
 }
 
@@ -44,11 +45,8 @@ static void sched_names(const unit_desc *u, int i, char *buf, size_t len)
 {
     buf[0] = 0;
     if (!u->sigs[i].scheds) { snprintf(buf, len, "all"); return; }
-    for (int s = 0, n = 0; s < u->nsched; s++)
-        if (unit_sig_used(u, i, s)) {
-            strncat(buf, n++ ? ", " : "", len - strlen(buf) - 1);
-            strncat(buf, u->sched[s].name, len - strlen(buf) - 1);
-        }
+    for (int s = 0; s < u->nsched; s++)
+        if (unit_sig_used(u, i, s)) base_join_add(buf, len, ", ", u->sched[s].name);
 }
 
 /* Signals of schedule sched (its datapath's). */
@@ -395,7 +393,7 @@ static int run_all(const tb_accept *acc)
 static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, const int64_t *raw,
                     const double *expected)
 {
-    tb_csv_row(sim_out_file(data), r, idx, cycle, raw, expected);
+    tb_csv_row(base_out_file(data), r, idx, cycle, raw, expected);
 }
 
 /* run UNIT on a vector file, streamed (tb_run_stream): the same report,
@@ -417,22 +415,22 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
         return CLI_USAGE;
     }
     vec_stream_unread(vs);
-    sim_out *out = NULL;
+    base_out *out = NULL;
     if (csv) {
-        out = sim_out_open(csv, err, sizeof err);
+        out = base_out_open(csv, err, sizeof err);
         if (!out) { vec_stream_close(vs); return cli_usage_error("%s", err); }
-        tb_csv_header(sim_out_file(out), rows->n_out, (const char (*)[16])rows->out_names);
+        tb_csv_header(base_out_file(out), rows->n_out, (const char (*)[16])rows->out_names);
     }
     tb_result r;
     int t = tb_run_stream(o->u, &o->cfg, fm, vs, csv ? csv_row : NULL, out, &r, err, sizeof err);
     vec_stream_close(vs);
     int rc = CLI_OK;
     if (t != TB_OK) {
-        if (out) sim_out_abort(out);
+        if (out) base_out_abort(out);
         rc = cli_usage_error("%s", err);
         if (t == TB_FAIL) rc = CLI_FAIL;
     } else {
-        if (out && sim_out_close(out, err, sizeof err)) rc = cli_usage_error("%s", err);
+        if (out && base_out_close(out, err, sizeof err)) rc = cli_usage_error("%s", err);
         tb_verdict(&r, acc);
         if (json) tb_write_json(stdout, &r);
         else {

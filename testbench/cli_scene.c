@@ -6,7 +6,7 @@
 #include "testbench/cli_opt.h"
 #include "testbench/tb_scene.h"
 #include "testbench/tb_scene_search.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include "units/unit_net.h"
 #include <errno.h>
 #include <math.h>
@@ -328,6 +328,6 @@ int cli_scene(int argc, char **argv)
         }
     }
     scn_mesh_free(&m);
-    if (sim_out_stdout_check(err, sizeof err)) return cli_usage_error("%s", err);
+    if (base_out_stdout_check(err, sizeof err)) return cli_usage_error("%s", err);
     return rc;
 }

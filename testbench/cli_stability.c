@@ -4,7 +4,8 @@
 #include "testbench/cli_opt.h"
 #include <stddef.h>
 #include "testbench/tb_stability.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
+#include "base/base_json.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -12,24 +13,13 @@
 #include <sys/stat.h>
 
 
-static void jstr(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)(s ? s : ""); *p; p++) {
-        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
-        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
-        else fputc(*p, f);
-    }
-    fputc('"', f);
-}
-
 static int write_charts(const tb_stab *s, const char *dir, char paths[][600], int *np)
 {
     if (cli_make_dir(dir)) return CLI_USAGE;
     for (int i = 0; i < s->ncharts; i++) {
         char err[800];
         snprintf(paths[*np], 600, "%s/%s", dir, s->chart_files[i]);
-        if (tb_chart_write(s->charts[i], paths[*np], err, sizeof err))
+        if (chart_write(s->charts[i], paths[*np], err, sizeof err))
             return cli_usage_error("stability: %s", err);
         (*np)++;
     }
@@ -53,17 +43,17 @@ static void print_json(FILE *f, const tb_stab *s, char paths[][600], int np)
     fputs("{\n  \"target\": 0.00390625,\n  \"rows\": [\n", f);
     for (int i = 0; i < s->nrows; i++) {
         const tb_stab_row *r = &s->rows[i];
-        fputs("    {\"id\": ", f); jstr(f, r->id);
-        fputs(", \"method\": ", f); jstr(f, r->method);
-        fputs(",\n     \"condition\": ", f); jstr(f, r->condition);
-        fputs(",\n     \"measured\": ", f); jstr(f, r->measured);
-        fputs(",\n     \"verdict\": ", f); jstr(f, r->verdict);
+        fputs("    {\"id\": ", f); base_json_str(f, r->id);
+        fputs(", \"method\": ", f); base_json_str(f, r->method);
+        fputs(",\n     \"condition\": ", f); base_json_str(f, r->condition);
+        fputs(",\n     \"measured\": ", f); base_json_str(f, r->measured);
+        fputs(",\n     \"verdict\": ", f); base_json_str(f, r->verdict);
         fputs(",\n     \"boundary\": ", f);
-        if (isfinite(r->boundary)) fprintf(f, "%.10g", r->boundary); else fputs("null", f);
+        base_json_num(f, r->boundary, 10);
         fprintf(f, "}%s\n", i + 1 < s->nrows ? "," : "");
     }
     fputs("  ],\n  \"charts\": [", f);
-    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); jstr(f, paths[i]); }
+    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); base_json_str(f, paths[i]); }
     fputs("]\n}\n", f);
 }
 
@@ -125,7 +115,7 @@ int cli_stability(int argc, char **argv)
     if (rc == CLI_OK) {
         if (json) print_json(stdout, s, paths, np);
         else print_text(stdout, s, paths, np);
-        if (sim_out_stdout_check(err, sizeof err)) rc = cli_usage_error("stability: %s", err);
+        if (base_out_stdout_check(err, sizeof err)) rc = cli_usage_error("stability: %s", err);
     }
     tb_stab_free(s);
     free(s);

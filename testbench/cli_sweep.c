@@ -13,7 +13,7 @@
 static int stdout_done(int rc)
 {
     char e[300];
-    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
     return rc;
 }
 

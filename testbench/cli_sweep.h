@@ -10,7 +10,7 @@
 #define CLI_SWEEP_H
 #include "testbench/cli.h"
 #include "testbench/tb_sweep.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 
 /* The files of one sweep, written to temporaries and moved into DIR
  * together (cli_sweep_files.c). */
@@ -18,7 +18,7 @@
 typedef struct oset {
     const char *dir;
     int n;
-    sim_out *o[OSET_MAX];
+    base_out *o[OSET_MAX];
 } oset;
 
 typedef struct target_info {

@@ -6,7 +6,7 @@
 #include <unistd.h>
 
 /* A sweep's files are written in full first, each to its own temporary
- * (sim_out: removed if the process is interrupted), and only then moved
+ * (base_out: removed if the process is interrupted), and only then moved
  * into DIR one after the other under a lock on DIR/.sweep.lock. So an
  * interrupted sweep changes nothing in DIR, and two sweeps into one folder
  * move their sets in turn: the folder ends up with the whole set of the
@@ -17,15 +17,15 @@ FILE *sweep_oset_open(oset *os, const char *name)
     char path[4200], err[600];
     snprintf(path, sizeof path, "%s/%s", os->dir, name);
     if (os->n == OSET_MAX) { cli_usage_error("%s: too many output files", path); return NULL; }
-    sim_out *o = sim_out_open(path, err, sizeof err);
+    base_out *o = base_out_open(path, err, sizeof err);
     if (!o) { cli_usage_error("%s", err); return NULL; }
     os->o[os->n++] = o;
-    return sim_out_file(o);
+    return base_out_file(o);
 }
 
 void sweep_oset_abort(oset *os)
 {
-    for (int i = 0; i < os->n; i++) sim_out_abort(os->o[i]);
+    for (int i = 0; i < os->n; i++) base_out_abort(os->o[i]);
     os->n = 0;
 }
 
@@ -47,8 +47,8 @@ int sweep_oset_commit(oset *os, const char *const *gone, int ngone)
     while (fcntl(fd, F_SETLKW, &lk) == -1 && errno == EINTR) {}
     int rc = 0;
     for (int i = 0; i < os->n; i++) {
-        if (rc) sim_out_abort(os->o[i]);
-        else if (sim_out_close(os->o[i], err, sizeof err)) rc = cli_usage_error("%s", err);
+        if (rc) base_out_abort(os->o[i]);
+        else if (base_out_close(os->o[i], err, sizeof err)) rc = cli_usage_error("%s", err);
     }
     os->n = 0;
     for (int k = 0; k < ngone && !rc; k++) {

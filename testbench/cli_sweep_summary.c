@@ -2,7 +2,7 @@
  * charts (drawn as `shadesim chart` draws them), the summary table and the
  * acceptance line, saved as one set into the output folder. */
 #include "testbench/cli_sweep.h"
-#include "testbench/tb_svg.h"
+#include "chart/chart.h"
 #include "testbench/tb_sweep_chart.h"
 #include <math.h>
 #include <stdlib.h>
@@ -28,7 +28,7 @@ static unsigned char *front_of(const tb_sweep *s, size_t *nfront)
         y[i] = row_ok(s, i) ? s->row[i].r.area_ge : NAN;
         z[i] = row_ok(s, i) ? s->row[i].r.cycles_per_beat : NAN;
     }
-    *nfront = tb_pareto3(x, y, z, s->n, on);
+    *nfront = chart_pareto3(x, y, z, s->n, on);
     free(x);
     free(y);
     free(z);
@@ -44,14 +44,14 @@ static int fpt_cmp(const void *a, const void *b)
     return p->i < q->i ? -1 : p->i > q->i;
 }
 
-static int write_chart(tb_chart *c, oset *os, const char *name, char *files, size_t flen)
+static int write_chart(chart *c, oset *os, const char *name, char *files, size_t flen)
 {
     char path[4200], err[600];
     snprintf(path, sizeof path, "%s/%s", os->dir, name);
     if (!c) return cli_usage_error("%s: out of memory", path);
     FILE *f = sweep_oset_open(os, name);
-    int rc = f ? tb_chart_fwrite(c, f, path, err, sizeof err) : 0;
-    tb_chart_free(c);
+    int rc = f ? chart_fwrite(c, f, path, err, sizeof err) : 0;
+    chart_free(c);
     if (!f) return CLI_USAGE;
     if (rc) return cli_usage_error("%s", err);
     strncat(files, ", ", flen - strlen(files) - 1);

@@ -2,6 +2,7 @@
  * --target-nmse): the search per settings group, its check on held-out
  * stimuli, and what it prints and writes (target.json, target.csv). */
 #include "testbench/cli_sweep.h"
+#include "base/base_json.h"
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -117,20 +118,14 @@ static void jstr_fmts(FILE *f, const unit_desc *u, const unit_cfg *cfg, const un
     fputc('}', f);
 }
 
-static void jnum(FILE *f, double v)
-{
-    if (isfinite(v)) fprintf(f, "%.17g", v);
-    else fputs("null", f);
-}
-
 static void jdesign(FILE *f, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const tb_result *r)
 {
     fputs("{\"formats\": ", f);
     jstr_fmts(f, u, cfg, fm);
-    fputs(", \"max_abs_err\": ", f); jnum(f, r->max_abs_err);
-    fputs(", \"rms_err\": ", f); jnum(f, r->rms_err);
-    fputs(", \"nmse\": ", f); jnum(f, r->nmse);
-    fputs(", \"area_ge\": ", f); jnum(f, r->area_ge);
+    fputs(", \"max_abs_err\": ", f); base_json_num(f, r->max_abs_err, 17);
+    fputs(", \"rms_err\": ", f); base_json_num(f, r->rms_err, 17);
+    fputs(", \"nmse\": ", f); base_json_num(f, r->nmse, 17);
+    fputs(", \"area_ge\": ", f); base_json_num(f, r->area_ge, 17);
     fprintf(f, ", \"overflows\": %llu, \"within_bound\": %s}", (unsigned long long)r->overflows,
             r->within_bound ? "true" : "false");
 }
@@ -142,11 +137,11 @@ int sweep_write_target_json(const tb_sweep *s, const target_info *t, oset *os)
     if (!f) return CLI_USAGE;
     fprintf(f, "{\n  \"unit\": \"%s\",\n  \"target\": {\"metric\": \"%s\", \"value\": ", u->name,
             t->kind == TB_TARGET_NMSE ? "nmse" : "max_abs_err");
-    jnum(f, t->value);
+    base_json_num(f, t->value, 17);
     fputs(", \"margin_bits\": ", f);
-    jnum(f, t->margin);
+    base_json_num(f, t->margin, 17);
     fputs(", \"goal\": ", f);
-    jnum(f, t->goal);
+    base_json_num(f, t->goal, 17);
     fprintf(f, "},\n  \"rule\": \"metric <= goal (the target less the margin), every output within its bound, no more "
                "overflows than the uniform design\",\n  \"held_out\": {\"seed\": %llu, \"vectors\": %zu, \"rule\": "
                "\"metric <= target, every output within its bound, no more overflows than the uniform design on the "
@@ -168,17 +163,17 @@ int sweep_write_target_json(const tb_sweep *s, const target_info *t, oset *os)
             jdesign(f, u, c, &s->cfg[x->uniform].fmts, ru);
             fputs("},\n     \"chosen\": ", f);
             jdesign(f, u, c, &x->fmts, &x->r);
-            fputs(",\n     \"area_saved_ge\": ", f); jnum(f, ru->area_ge - x->r.area_ge);
+            fputs(",\n     \"area_saved_ge\": ", f); base_json_num(f, ru->area_ge - x->r.area_ge, 17);
             fputs(", \"area_saved_pct\": ", f);
-            jnum(f, ru->area_ge > 0 ? 100 * (ru->area_ge - x->r.area_ge) / ru->area_ge : 0);
+            base_json_num(f, ru->area_ge > 0 ? 100 * (ru->area_ge - x->r.area_ge) / ru->area_ge : 0, 17);
             fprintf(f, ", \"runs\": %zu,\n     \"run_args\": \"--round %s --overflow %s", x->runs, sim_round_name(c->rnd),
                     sim_ovf_name(c->ovf));
             fmt_list(f, u, c, &x->fmts, " --fmt ", "");
             fputc('"', f);
             fputs(",\n     \"held_out\": {\"passed\": ", f);
             fputs(x->heldout_ok ? "true" : "false", f);
-            fputs(", \"metric\": ", f); jnum(f, metric_of(t->kind, &x->heldout_r));
-            fputs(", \"uniform_metric\": ", f); jnum(f, metric_of(t->kind, &x->heldout_u));
+            fputs(", \"metric\": ", f); base_json_num(f, metric_of(t->kind, &x->heldout_r), 17);
+            fputs(", \"uniform_metric\": ", f); base_json_num(f, metric_of(t->kind, &x->heldout_u), 17);
             fprintf(f, ", \"overflows\": %llu, \"uniform_overflows\": %llu, \"why\": \"",
                     (unsigned long long)x->heldout_r.overflows, (unsigned long long)x->heldout_u.overflows);
             for (const char *q = x->heldout_why; *q; q++)

@@ -5,7 +5,7 @@
 #include "testbench/cli.h"
 #include "testbench/cli_opt.h"
 #include "testbench/tb_verilog.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include "sim/sim_area.h"
 #include <stddef.h>
 #include <stdlib.h>
@@ -17,7 +17,7 @@
 static int stdout_done(int rc)
 {
     char e[300];
-    if (sim_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
     return rc;
 }
 

@@ -15,7 +15,7 @@
 #include "scene/scene.h"
 #include "vectors/ref_factor.h"
 #include "vectors/vectors.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -74,7 +74,7 @@ static int write_png(const char *path, const double *img, int w, int h, double s
     int rc = scn_png_encode(w, h, 1, pix, &png, &n);
     free(pix);
     if (rc) { snprintf(err, len, "out of memory"); return -1; }
-    rc = sim_out_write_all(path, png, n, err, len);
+    rc = base_out_write_all(path, png, n, err, len);
     free(png);
     return rc;
 }

@@ -2,6 +2,7 @@
  * own rules, then the user's --fmt NAME=sI.F overrides, checked against the
  * signals this configuration actually builds. */
 #include "testbench/tb.h"
+#include "base/base_join.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -45,10 +46,9 @@ int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, i
             /* Declared, but these parameters do not build it (div3's t7
              * with terms=3): name the parameters and what they build. */
             char list[600] = "", pv[200] = "";
-            for (int j = 0, m = 0; j < u->nsigs; j++)
+            for (int j = 0; j < u->nsigs; j++)
                 if (unit_sig_built(u, j, cfg)) {
-                    strncat(list, m++ ? " " : "", sizeof list - strlen(list) - 1);
-                    strncat(list, u->sigs[j].name, sizeof list - strlen(list) - 1);
+                    base_join_add(list, sizeof list, " ", u->sigs[j].name);
                 }
             for (int p = 0; p < u->nparams; p++) {
                 char v[64];
@@ -65,16 +65,14 @@ int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, i
             const char *sn = u->sched[cfg->schedule].name;
             char list[600] = "";
             if (i >= 0) {       /* the schedules that have it */
-                for (int j = 0, m = 0; j < u->nsched; j++)
+                for (int j = 0; j < u->nsched; j++)
                     if (unit_sig_used(u, i, j)) {
-                        strncat(list, m++ ? ", " : "", sizeof list - strlen(list) - 1);
-                        strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
+                        base_join_add(list, sizeof list, ", ", u->sched[j].name);
                     }
             } else {            /* the signals this schedule has */
-                for (int j = 0, m = 0; j < u->nsigs; j++)
+                for (int j = 0; j < u->nsigs; j++)
                     if (unit_sig_built(u, j, cfg)) {
-                        strncat(list, m++ ? " " : "", sizeof list - strlen(list) - 1);
-                        strncat(list, u->sigs[j].name, sizeof list - strlen(list) - 1);
+                        base_join_add(list, sizeof list, " ", u->sigs[j].name);
                     }
             }
             if (i >= 0)

@@ -1,7 +1,8 @@
 /* tb_out.c - a testbench result as JSON, CSV and a readable table. */
 #include "testbench/tb.h"
 #include "testbench/tb_stream.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
+#include "base/base_json.h"
 #include <stdarg.h>
 #include <errno.h>
 #include <math.h>
@@ -9,13 +10,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-/* JSON has no inf or NaN: such a figure is null. */
-static void jnum(FILE *f, double v)
-{
-    if (isfinite(v)) fprintf(f, "%.17g", v);
-    else fputs("null", f);
-}
 
 /* A figure for the table and CSV: printf's %g spells a NaN "nan" or "-nan"
  * by its sign bit; one spelling, "nan", everywhere (JSON: null). */
@@ -30,16 +24,16 @@ static void jmetrics(FILE *f, const tb_metrics *m, const char *ind)
 {
     char fb[SIM_FMT_STRLEN];
     fprintf(f, "{\n%s  \"format\": \"%s\",\n%s  \"max_abs_err\": ", ind, sim_fmt_str(m->fmt, fb), ind);
-    jnum(f, m->max_abs_err);
-    fprintf(f, ",\n%s  \"mean_err\": ", ind); jnum(f, m->mean_err);
-    fprintf(f, ",\n%s  \"rms_err\": ", ind); jnum(f, m->rms_err);
-    fprintf(f, ",\n%s  \"nmse\": ", ind); jnum(f, m->nmse);
-    fprintf(f, ",\n%s  \"max_err_lsb\": ", ind); jnum(f, m->max_err_lsb);
-    fprintf(f, ",\n%s  \"bound\": ", ind); jnum(f, m->bound);
-    fprintf(f, ",\n%s  \"max_err_vs_ideal\": ", ind); jnum(f, m->max_err_ideal);
+    base_json_num(f, m->max_abs_err, 17);
+    fprintf(f, ",\n%s  \"mean_err\": ", ind); base_json_num(f, m->mean_err, 17);
+    fprintf(f, ",\n%s  \"rms_err\": ", ind); base_json_num(f, m->rms_err, 17);
+    fprintf(f, ",\n%s  \"nmse\": ", ind); base_json_num(f, m->nmse, 17);
+    fprintf(f, ",\n%s  \"max_err_lsb\": ", ind); base_json_num(f, m->max_err_lsb, 17);
+    fprintf(f, ",\n%s  \"bound\": ", ind); base_json_num(f, m->bound, 17);
+    fprintf(f, ",\n%s  \"max_err_vs_ideal\": ", ind); base_json_num(f, m->max_err_ideal, 17);
     fprintf(f, ",\n%s  \"bound_check\": \"%s\"", ind, tb_check_name(m->check));
     fprintf(f, ",\n%s  \"golden_check\": \"%s\"", ind, m->golden_ok ? "ok" : "exceeded");
-    fprintf(f, ",\n%s  \"max_method_err\": ", ind); jnum(f, m->max_method_err);
+    fprintf(f, ",\n%s  \"max_method_err\": ", ind); base_json_num(f, m->max_method_err, 17);
     fprintf(f, "\n%s}", ind);
 }
 
@@ -64,16 +58,16 @@ int tb_write_json(FILE *f, const tb_result *r)
     fprintf(f, "},\n  \"round\": \"%s\",\n  \"overflow\": \"%s\",\n", sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
     fprintf(f, "  \"vectors\": %zu,\n  \"beats_per_item\": %d,\n  \"cycles\": %llu,\n", r->vectors, r->beats,
             (unsigned long long)r->cycles);
-    fputs("  \"cycles_per_item\": ", f); jnum(f, r->cycles_per_item);
-    fputs(",\n  \"cycles_per_beat\": ", f); jnum(f, r->cycles_per_beat);
+    fputs("  \"cycles_per_item\": ", f); base_json_num(f, r->cycles_per_item, 17);
+    fputs(",\n  \"cycles_per_beat\": ", f); base_json_num(f, r->cycles_per_beat, 17);
     fprintf(f, ",\n  \"latency\": %llu,\n  \"max_abs_err\": ", (unsigned long long)r->latency);
-    jnum(f, r->max_abs_err);
-    fputs(",\n  \"mean_err\": ", f); jnum(f, r->mean_err);
-    fputs(",\n  \"rms_err\": ", f); jnum(f, r->rms_err);
-    fputs(",\n  \"nmse\": ", f); jnum(f, r->nmse);
-    fputs(",\n  \"max_err_lsb\": ", f); jnum(f, r->max_err_lsb);
+    base_json_num(f, r->max_abs_err, 17);
+    fputs(",\n  \"mean_err\": ", f); base_json_num(f, r->mean_err, 17);
+    fputs(",\n  \"rms_err\": ", f); base_json_num(f, r->rms_err, 17);
+    fputs(",\n  \"nmse\": ", f); base_json_num(f, r->nmse, 17);
+    fputs(",\n  \"max_err_lsb\": ", f); base_json_num(f, r->max_err_lsb, 17);
     fprintf(f, ",\n  \"overflows\": %llu,\n  \"area_ge\": ", (unsigned long long)r->overflows);
-    jnum(f, r->area_ge);
+    base_json_num(f, r->area_ge, 17);
     fprintf(f, ",\n  \"within_bound\": %s,\n  \"bound_check\": \"%s\",\n  \"golden_check\": \"%s\",\n",
             r->within_bound ? "true" : "false", tb_check_name(r->bound_check), r->golden_ok ? "ok" : "exceeded");
     fprintf(f, "  \"input_overflows\": %llu,\n  \"target\": \"%s\",\n  \"verdict\": \"%s\",\n  \"why\": \"%s\",\n",
@@ -102,17 +96,17 @@ int tb_write_json(FILE *f, const tb_result *r)
 
 int tb_write_csv(const char *path, const tb_result *r, const vec_set *vs, char *err, size_t errlen)
 {
-    /* sim_out: atomic replace of a regular file, written through to a
+    /* base_out: atomic replace of a regular file, written through to a
      * device or FIFO, "-" for stdout; every write error reported. */
-    sim_out *o = sim_out_open(path, err, errlen);
+    base_out *o = base_out_open(path, err, errlen);
     if (!o) return -1;
-    FILE *f = sim_out_file(o);
+    FILE *f = base_out_file(o);
     size_t nv = (size_t)r->beats * (size_t)r->n_out;
     tb_csv_header(f, vs->n_out, (const char (*)[16])vs->out_names);
     for (size_t it = 0; it < r->vectors; it++)
         /* The item's output appeared with its first beat. */
         tb_csv_row(f, r, it, r->beat_cycle[it * (size_t)r->beats], r->raw + it * nv, vec_row(vs, it) + r->n_in);
-    return sim_out_close(o, err, errlen);
+    return base_out_close(o, err, errlen);
 }
 
 void tb_csv_header(FILE *f, int n_out, const char names[][16])

@@ -41,10 +41,10 @@
 #include "testbench/tb.h"
 #include "units/unit_coef.h"
 #include "units/unit_net.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
+#include "base/base_par.h"
 #include <errno.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -271,8 +271,6 @@ typedef struct job {
     int batch;                     /* simulate bands side by side (tb_span_run_lanes) */
     int ngroups;                   /* the batch: bands in this many groups, one a thread */
     tb_scene_result *r;
-    pthread_mutex_t lock;
-    int next, next_group;
 } job;
 
 static double shade_at(const job *J, const double pos[3], const double nrm[3])
@@ -428,28 +426,15 @@ static void run_group(job *J, int g)
     }
 }
 
-static void *worker(void *arg)
+static void band_item(void *arg, size_t b)
 {
     job *J = arg;
-    for (;;) {
-        pthread_mutex_lock(&J->lock);
-        int b = J->next < J->nbands ? J->next++ : -1;
-        pthread_mutex_unlock(&J->lock);
-        if (b < 0) return NULL;
-        run_band(J, &J->bands[b]);
-    }
+    run_band(J, &J->bands[b]);
 }
 
-static void *group_worker(void *arg)
+static void group_item(void *arg, size_t g)
 {
-    job *J = arg;
-    for (;;) {
-        pthread_mutex_lock(&J->lock);
-        int g = J->next_group < J->ngroups ? J->next_group++ : -1;
-        pthread_mutex_unlock(&J->lock);
-        if (g < 0) return NULL;
-        run_group(J, g);
-    }
+    run_group(arg, (int)g);
 }
 
 static uint8_t to8(double v)
@@ -517,7 +502,7 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     /* bands of equal rows; spans are in row order */
     job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
               .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
-              .vcd_path = o->vcd_path, .batch = !o->no_batch, .r = r, .next = 0 };
+              .vcd_path = o->vcd_path, .batch = !o->no_batch, .r = r };
     size_t s = 0;
     for (int k = 0; k < nb; k++) {
         band *b = &bands[k];
@@ -529,29 +514,14 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
         b->s1 = s;
         if (J.vcd_band < 0 && b->s1 > b->s0) J.vcd_band = k;
     }
-    pthread_mutex_init(&J.lock, NULL);
     int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
     if (jobs > nb) jobs = nb;
-    pthread_t th[256];
-    int started = 0;
-    for (int t = 1; t < jobs; t++) {
-        if (pthread_create(&th[started], NULL, worker, &J)) break;
-        started++;
-    }
-    worker(&J);
-    for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
+    base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
     if (J.batch) {
         /* then the bands' hardware, a group of lanes a thread */
         J.ngroups = jobs;
-        started = 0;
-        for (int t = 1; t < jobs; t++) {
-            if (pthread_create(&th[started], NULL, group_worker, &J)) break;
-            started++;
-        }
-        group_worker(&J);
-        for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
+        base_par_for((size_t)J.ngroups, jobs, group_item, &J);
     }
-    pthread_mutex_destroy(&J.lock);
 
     /* sums in band order */
     int rc = TB_OK;
@@ -712,14 +682,14 @@ static int write_png(const char *dir, const char *name, int w, int h, int ch, co
     uint8_t *buf;
     size_t len;
     if (scn_png_encode(w, h, ch, pix, &buf, &len)) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
-    int rc = sim_out_write_all(path, buf, len, err, errlen);
+    int rc = base_out_write_all(path, buf, len, err, errlen);
     free(buf);
     return rc;
 }
 
 int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir, char *err, size_t errlen)
 {
-    if (sim_out_mkdirs(dir, err, errlen)) return -1;
+    if (base_out_mkdirs(dir, err, errlen)) return -1;
     size_t np = (size_t)r->w * r->h;
     uint8_t *g8 = calloc(np ? np : 1, 1), *rgb = calloc(np ? np * 3 : 1, 1);
     if (!g8 || !rgb) { free(g8); free(rgb); snprintf(err, errlen, "out of memory"); return -1; }
@@ -759,8 +729,8 @@ int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir,
     }
     char path[4200];
     snprintf(path, sizeof path, "%s/scene.json", dir);
-    sim_out *o = sim_out_open(path, err, errlen);
+    base_out *o = base_out_open(path, err, errlen);
     if (!o) return -1;
-    tb_scene_json(sim_out_file(o), d, r);
-    return sim_out_close(o, err, errlen);
+    tb_scene_json(base_out_file(o), d, r);
+    return base_out_close(o, err, errlen);
 }

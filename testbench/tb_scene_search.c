@@ -31,7 +31,9 @@
  */
 #include "testbench/tb_scene_search.h"
 #include "testbench/tb_sweep.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
+#include "base/base_par.h"
+#include "base/base_json.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -225,22 +227,6 @@ typedef struct report {
     int verdict;                 /* TB_OK / TB_FAIL */
 } report;
 
-static void jstr(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (const unsigned char *p = (const unsigned char *)s; *p; p++) {
-        if (*p == '"' || *p == '\\') fprintf(f, "\\%c", *p);
-        else if (*p < 0x20) fprintf(f, "\\u%04x", *p);
-        else fputc(*p, f);
-    }
-    fputc('"', f);
-}
-static void jnum(FILE *f, double v)
-{
-    if (isfinite(v)) fprintf(f, "%.9g", v);
-    else fputs("null", f);
-}
-
 static double saved_pct(const report *rp)
 {
     return rp->uni.area > 0 ? 100.0 * (rp->uni.area - rp->found.area) / rp->uni.area : 0;
@@ -274,33 +260,33 @@ static void print_json(FILE *f, const report *rp)
     char fb[SIM_FMT_STRLEN], fb2[SIM_FMT_STRLEN], v[512];
     const scn_desc *d = rp->d;
     fputs("{\n  \"search\": {\n    \"target_nmse\": ", f);
-    jnum(f, rp->target);
+    base_json_num(f, rp->target, 9);
     fprintf(f, ",\n    \"resolution\": [%d, %d],\n    \"mesh\": ", d->width, d->height);
-    jstr(f, d->mesh);
+    base_json_str(f, d->mesh);
     fputs(",\n    \"policy\": ", f);
-    jstr(f, scn_policy_name(d->policy));
+    base_json_str(f, scn_policy_name(d->policy));
     fprintf(f, ",\n    \"L\": %d,\n    \"terms\": %d,\n    \"schedule\": ", d->L, d->terms);
-    jstr(f, d->schedule);
+    base_json_str(f, d->schedule);
     fputs(",\n    \"unit\": ", f);
-    jstr(f, rp->u ? rp->u->name : "");
+    base_json_str(f, rp->u ? rp->u->name : "");
     fprintf(f, ",\n    \"uniform_met\": %s", rp->met ? "true" : "false");
     if (rp->met) {
         fprintf(f, ",\n    \"uniform_width\": %d,\n    \"uniform_area_ge\": ", rp->wu);
-        jnum(f, rp->uni.area);
-        fputs(",\n    \"uniform_nmse\": ", f); jnum(f, rp->uni.nmse);
-        fputs(",\n    \"uniform_heldout_nmse\": ", f); jnum(f, rp->uni_held.nmse);
+        base_json_num(f, rp->uni.area, 9);
+        fputs(",\n    \"uniform_nmse\": ", f); base_json_num(f, rp->uni.nmse, 9);
+        fputs(",\n    \"uniform_heldout_nmse\": ", f); base_json_num(f, rp->uni_held.nmse, 9);
         fprintf(f, ",\n    \"uniform_heldout_overflows\": %llu", (unsigned long long)rp->uni_held.ovf);
         fprintf(f, ",\n    \"uniform_heldout_meets\": %s", rp->uni_held.status == TB_OK && rp->uni_held.ovf == 0
                 && rp->uni_held.nmse <= rp->target ? "true" : "false");
         if (rp->have_below) {
             fputs(",\n    \"width_below_nmse\": ", f);
-            jnum(f, rp->uni_below.status == TB_OK ? rp->uni_below.nmse : NAN);
+            base_json_num(f, rp->uni_below.status == TB_OK ? rp->uni_below.nmse : NAN, 9);
         }
-        fputs(",\n    \"area_ge\": ", f); jnum(f, rp->found.area);
-        fputs(",\n    \"area_saved_pct\": ", f); jnum(f, saved_pct(rp));
-        fputs(",\n    \"nmse\": ", f); jnum(f, rp->found.nmse);
-        fputs(",\n    \"psnr\": ", f); jnum(f, rp->found.psnr);
-        fputs(",\n    \"heldout_nmse\": ", f); jnum(f, rp->found_held.status == TB_OK ? rp->found_held.nmse : NAN);
+        fputs(",\n    \"area_ge\": ", f); base_json_num(f, rp->found.area, 9);
+        fputs(",\n    \"area_saved_pct\": ", f); base_json_num(f, saved_pct(rp), 9);
+        fputs(",\n    \"nmse\": ", f); base_json_num(f, rp->found.nmse, 9);
+        fputs(",\n    \"psnr\": ", f); base_json_num(f, rp->found.psnr, 9);
+        fputs(",\n    \"heldout_nmse\": ", f); base_json_num(f, rp->found_held.status == TB_OK ? rp->found_held.nmse : NAN, 9);
         fprintf(f, ",\n    \"heldout_overflows\": %llu", (unsigned long long)rp->found_held.ovf);
         fputs(",\n    \"signals\": [", f);
         int first = 1;
@@ -309,7 +295,7 @@ static void print_json(FILE *f, const report *rp)
             if (!a.width || !rp->built[i] || !unit_sig_used(rp->u, i, rp->sched)) continue;
             fprintf(f, "%s\n      {\"name\": ", first ? "" : ",");
             first = 0;
-            jstr(f, rp->u->sigs[i].name);
+            base_json_str(f, rp->u->sigs[i].name);
             fprintf(f, ", \"uniform\": \"%s\", \"found\": \"%s\"}", sim_fmt_str(a, fb), sim_fmt_str(b, fb2));
         }
         fputs("\n    ]", f);
@@ -318,7 +304,7 @@ static void print_json(FILE *f, const report *rp)
     fprintf(f, ",\n    \"heldout_meets\": %s", rp->verdict == TB_OK ? "true" : "false");
     verdict_text(rp, v, sizeof v);
     fputs(",\n    \"verdict\": ", f);
-    jstr(f, v);
+    base_json_str(f, v);
     fputs("\n  }\n}\n", f);
 }
 
@@ -364,11 +350,11 @@ static int write_report(const report *rp, const char *outdir, char *err, size_t 
     char path[1100];
     for (int k = 0; k < 2; k++) {
         snprintf(path, sizeof path, "%s/%s", outdir, k ? "search.txt" : "search.json");
-        sim_out *o = sim_out_open(path, err, errlen);
+        base_out *o = base_out_open(path, err, errlen);
         if (!o) return -1;
-        if (k) print_text(sim_out_file(o), rp);
-        else print_json(sim_out_file(o), rp);
-        if (sim_out_close(o, err, errlen)) return -1;
+        if (k) print_text(base_out_file(o), rp);
+        else print_json(base_out_file(o), rp);
+        if (base_out_close(o, err, errlen)) return -1;
     }
     return 0;
 }
@@ -385,7 +371,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     }
     if (jobs < 1) jobs = 1;
     if (jobs > 64) jobs = 64;
-    if (outdir && sim_out_mkdirs(outdir, err, errlen)) return TB_BADINPUT;
+    if (outdir && base_out_mkdirs(outdir, err, errlen)) return TB_BADINPUT;
 
     scn_gbuf gv, gh;
     memset(&gv, 0, sizeof gv);
@@ -545,7 +531,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
             }
             if (!nb) break;
             progress(&s, "final pass");
-            tb_par_for((size_t)nb, jobs, cand_run, cj);
+            base_par_for((size_t)nb, jobs, cand_run, cj);
             /* The first that holds wins; the pass goes on after it, as a
              * one-at-a-time pass would. */
             for (int b = 0; b < nb; b++) {

@@ -22,8 +22,9 @@
  */
 #include "testbench/tb_scene_search.h"
 #include "testbench/tb_sweep.h"
-#include "testbench/tb_svg.h"
-#include "sim/sim_out.h"
+#include "chart/chart.h"
+#include "base/base_out.h"
+#include "base/base_par.h"
 #include <errno.h>
 #include <math.h>
 #include <pthread.h>
@@ -223,7 +224,7 @@ static void fronts(pt *p, size_t n, int clocks)
         x[i] = use ? (clocks ? p[i].cpp : p[i].cost_hw) : NAN;
         y[i] = use ? p[i].nmse : NAN;
     }
-    tb_pareto(x, y, n, on);
+    chart_pareto(x, y, n, on);
     for (size_t i = 0; i < n; i++) {
         double xi = clocks ? p[i].cpp : p[i].cost_hw, best = INFINITY;
         for (size_t j = 0; j < n; j++)
@@ -243,26 +244,26 @@ static int is_paper(const pt *p)
 
 static int pt_ok(const pt *p) { return p->status == TB_OK; }
 
-static void chart(const scn_desc *d, const pt *p, size_t n, int clocks, const char *path, char *err, size_t errlen,
+static void draw_chart(const scn_desc *d, const pt *p, size_t n, int clocks, const char *path, char *err, size_t errlen,
                   int *rc)
 {
     char title[200];
     const char *b = strrchr(d->mesh, '/');
     snprintf(title, sizeof title, "%.60s %dx%d: NMSE against %s per pixel", b ? b + 1 : d->mesh, d->width, d->height,
              clocks ? "clocks" : "operations");
-    tb_chart *c = tb_chart_new(title,
+    chart *c = chart_new(title,
                                clocks ? "clocks per pixel of the simulated span unit"
                                       : "operation cost per pixel (weighted, method)",
                                "NMSE vs per-pixel reference");
     if (!c) { snprintf(err, errlen, "%s: out of memory", path); *rc = -1; return; }
-    tb_chart_log_y(c, 1);
+    chart_log_y(c, 1);
     /* The front first (a line under the points), then the marked kinds,
      * then one series per policy. */
-    int s_front = tb_chart_series(c, "Pareto front (no overflow)", TB_STEP);
-    int s_paper = tb_chart_series(c, "paper (L8, 3 terms, W16)", TB_POINTS);
-    int s_break = tb_chart_series(c, "breaks: ovf or >10x front", TB_POINTS);
+    int s_front = chart_series(c, "Pareto front (no overflow)", CHART_STEP);
+    int s_paper = chart_series(c, "paper (L8, 3 terms, W16)", CHART_POINTS);
+    int s_break = chart_series(c, "breaks: ovf or >10x front", CHART_POINTS);
     int s_pol[SCN_POL__COUNT];
-    for (int q = 0; q < SCN_POL__COUNT; q++) s_pol[q] = tb_chart_series(c, scn_policy_name((scn_policy)q), TB_POINTS);
+    for (int q = 0; q < SCN_POL__COUNT; q++) s_pol[q] = chart_series(c, scn_policy_name((scn_policy)q), CHART_POINTS);
     /* Front points in increasing cost. */
     size_t *idx = malloc((n ? n : 1) * sizeof *idx), nf = 0;
     if (idx) {
@@ -277,7 +278,7 @@ static void chart(const scn_desc *d, const pt *p, size_t n, int clocks, const ch
                 } else break;
             }
         for (size_t k = 0; k < nf; k++)
-            tb_chart_point(c, s_front, clocks ? p[idx[k]].cpp : p[idx[k]].cost_hw, p[idx[k]].nmse);
+            chart_point(c, s_front, clocks ? p[idx[k]].cpp : p[idx[k]].cost_hw, p[idx[k]].nmse);
         free(idx);
     }
     for (size_t i = 0; i < n; i++) {
@@ -285,17 +286,17 @@ static void chart(const scn_desc *d, const pt *p, size_t n, int clocks, const ch
         if (q->same_as >= 0 || !pt_ok(q)) continue;
         double x = clocks ? q->cpp : q->cost_hw;
         int brk = q->ovf > 0 || (clocks ? q->jump_clk : q->jump_ops);
-        if (is_paper(q)) tb_chart_point_label(c, s_paper, x, q->nmse, "paper");
-        else if (brk) tb_chart_point(c, s_break, x, q->nmse);
+        if (is_paper(q)) chart_point_label(c, s_paper, x, q->nmse, "paper");
+        else if (brk) chart_point(c, s_break, x, q->nmse);
         else if (q->extra) {
             char lab[16];
             snprintf(lab, sizeof lab, "W%d", q->width);
-            tb_chart_point_label(c, s_pol[q->pol], x, q->nmse, lab);
-        } else tb_chart_point(c, s_pol[q->pol], x, q->nmse);
+            chart_point_label(c, s_pol[q->pol], x, q->nmse, lab);
+        } else chart_point(c, s_pol[q->pol], x, q->nmse);
     }
-    tb_chart_hline(c, 1e-4, "NMSE 1e-4 (the paper's claim)");
-    if (tb_chart_write(c, path, err, errlen)) *rc = -1;
-    tb_chart_free(c);
+    chart_hline(c, 1e-4, "NMSE 1e-4 (the paper's claim)");
+    if (chart_write(c, path, err, errlen)) *rc = -1;
+    chart_free(c);
 }
 
 /* ------------------------------------------------------------------- CSV */
@@ -404,10 +405,10 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
             if (p[j].same_as < 0 && !strcmp(p[j].key, p[i].key)) { p[i].same_as = (int)j; break; }
         if (p[i].same_as < 0) sw.todo[sw.ntodo++] = i;
     }
-    if (outdir && sim_out_mkdirs(outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (outdir && base_out_mkdirs(outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
     if (scn_raster(m, &d->view.cam, d->width, d->height, &g, err, errlen)) { rc = TB_BADINPUT; goto done; }
     sw.g = &g;
-    tb_par_for(sw.ntodo, jobs, run_pt, &sw);
+    base_par_for(sw.ntodo, jobs, run_pt, &sw);
     if (sw.tty) fputs("\r\033[K", stderr);
     fronts(p, n, 0);
     fronts(p, n, 1);
@@ -430,13 +431,13 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
         snprintf(paths[0], sizeof paths[0], "%s/sweep.csv", outdir);
         snprintf(paths[1], sizeof paths[1], "%s/sweep_ops.svg", outdir);
         snprintf(paths[2], sizeof paths[2], "%s/sweep_clocks.svg", outdir);
-        sim_out *o = sim_out_open(paths[0], err, errlen);
+        base_out *o = base_out_open(paths[0], err, errlen);
         if (!o) { rc = TB_BADINPUT; goto done; }
-        write_csv(sim_out_file(o), p, n);
-        if (sim_out_close(o, err, errlen)) { rc = TB_BADINPUT; goto done; }
+        write_csv(base_out_file(o), p, n);
+        if (base_out_close(o, err, errlen)) { rc = TB_BADINPUT; goto done; }
         int crc = 0;
-        chart(d, p, n, 0, paths[1], err, errlen, &crc);
-        if (!crc) chart(d, p, n, 1, paths[2], err, errlen, &crc);
+        draw_chart(d, p, n, 0, paths[1], err, errlen, &crc);
+        if (!crc) draw_chart(d, p, n, 1, paths[2], err, errlen, &crc);
         if (crc) { rc = TB_BADINPUT; goto done; }
     }
 

@@ -8,6 +8,7 @@
 #include "testbench/tb.h"
 #include "sim/sim_area.h"
 #include "vectors/ref_brdf.h"
+#include "base/base_join.h"
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -445,12 +446,12 @@ static tb_stab_row *row(tb_stab *s, const char *id, const char *method)
     return r;
 }
 
-static void chart(tb_stab *s, tb_chart *c, const char *file)
+static void keep_chart(tb_stab *s, chart *c, const char *file)
 {
     if (s->ncharts < TB_STAB_MAX_CHARTS) {
         s->charts[s->ncharts] = c;
         s->chart_files[s->ncharts++] = file;
-    } else tb_chart_free(c);
+    } else chart_free(c);
 }
 
 /* binomial sum 1 + L + C(L,2) + ... + C(L,deg): how many truncations reach fy */
@@ -464,15 +465,15 @@ static double fwd_reach(int deg, int L)
 static int atlas_fwd(tb_stab *s, int charts)
 {
     static const int LS[] = { 4, 8, 16, 32 };
-    tb_chart *c = charts ? tb_chart_new("Forward differencing: register fraction bits for max error <= 2^-8",
+    chart *c = charts ? chart_new("Forward differencing: register fraction bits for max error <= 2^-8",
                                         "interval length L (pixels)", "fraction bits F of fy, fd1.. needed") : NULL;
     int sr[2] = { -1, -1 }, sa = -1;
     if (c) {
-        tb_chart_log_x(c, 1);
-        sr[0] = tb_chart_series(c, "interp3 fwd (measured)", TB_LINE | TB_POINTS);
-        sr[1] = tb_chart_series(c, "interp2 fwd (measured)", TB_LINE | TB_POINTS);
-        sa = tb_chart_series(c, "8 + log2(sum C(L,j)), cubic", TB_LINE);
-        tb_chart_hline(c, 8, "output's 8 bits");
+        chart_log_x(c, 1);
+        sr[0] = chart_series(c, "interp3 fwd (measured)", CHART_LINE | CHART_POINTS);
+        sr[1] = chart_series(c, "interp2 fwd (measured)", CHART_LINE | CHART_POINTS);
+        sa = chart_series(c, "8 + log2(sum C(L,j)), cubic", CHART_LINE);
+        chart_hline(c, 8, "output's 8 bits");
     }
     for (int dg = 3; dg >= 2; dg--) {
         int fmin[4];
@@ -480,11 +481,10 @@ static int atlas_fwd(tb_stab *s, int charts)
         for (size_t i = 0; i < 4; i++) {
             fmin[i] = tb_stab_fwd_min_frac(dg, LS[i], TB_STAB_TARGET);
             if (fmin[i] < 0) return -1;
-            size_t k = strlen(list);
-            snprintf(list + k, sizeof list - k, "%sL=%d: F=%d", i ? ", " : "", LS[i], fmin[i]);
+            base_join_addf(list, sizeof list, ", ", "L=%d: F=%d", LS[i], fmin[i]);
             if (c) {
-                tb_chart_point(c, sr[3 - dg], LS[i], fmin[i]);
-                if (dg == 3) tb_chart_point(c, sa, LS[i], 8 + log2(fwd_reach(3, LS[i])));
+                chart_point(c, sr[3 - dg], LS[i], fmin[i]);
+                if (dg == 3) chart_point(c, sa, LS[i], 8 + log2(fwd_reach(3, LS[i])));
             }
         }
         char id[16], m[32];
@@ -502,24 +502,24 @@ static int atlas_fwd(tb_stab *s, int charts)
     }
     /* error against F at L = 32 */
     if (charts) {
-        tb_chart *e = tb_chart_new("Forward differencing at L = 32: error against register fraction bits",
+        chart *e = chart_new("Forward differencing at L = 32: error against register fraction bits",
                                    "fraction bits F of fy, fd1..", "max |hw - ideal|");
         if (e) {
-            tb_chart_log_y(e, 1);
+            chart_log_y(e, 1);
             for (int dg = 3; dg >= 2; dg--) {
-                int se = tb_chart_series(e, dg == 3 ? "interp3 fwd, L=32" : "interp2 fwd, L=32", TB_LINE | TB_POINTS);
+                int se = chart_series(e, dg == 3 ? "interp3 fwd, L=32" : "interp2 fwd, L=32", CHART_LINE | CHART_POINTS);
                 for (int F = 8; F <= 26; F += 2) {
                     double v = tb_stab_fwd_err(dg, 32, F);
-                    if (v >= 0 && isfinite(v)) tb_chart_point(e, se, F, v);
+                    if (v >= 0 && isfinite(v)) chart_point(e, se, F, v);
                 }
             }
-            tb_chart_hline(e, TB_STAB_TARGET, "2^-8");
+            chart_hline(e, TB_STAB_TARGET, "2^-8");
             int f3 = (int)s->rows[s->nrows - 2].boundary;
-            tb_chart_hband(e, f3 - 0.1, f3 + 0.1, "cubic boundary");
-            chart(s, e, "stability_fwd_err.svg");
+            chart_hband(e, f3 - 0.1, f3 + 0.1, "cubic boundary");
+            keep_chart(s, e, "stability_fwd_err.svg");
         }
     }
-    if (c) chart(s, c, "stability_fwd.svg");
+    if (c) keep_chart(s, c, "stability_fwd.svg");
     return 0;
 }
 
@@ -528,18 +528,17 @@ static int atlas_coef(tb_stab *s, int charts)
     static const struct { const char *unit, *label; int n; } U[] = {
         { "coef3_n1", "cubic N1", 4 }, { "coef3_n2", "cubic N2", 4 }, { "coef2", "quadratic", 3 } };
     static const char *const C[] = { "a", "b", "c", "d" };
-    tb_chart *ch = charts ? tb_chart_new("Integer bits each coefficient needs (intensities in [0, 1])",
+    chart *ch = charts ? chart_new("Integer bits each coefficient needs (intensities in [0, 1])",
                                          "coefficient (0 = A, 1 = B, 2 = C, 3 = D)", "signed integer bits") : NULL;
     for (size_t k = 0; k < 3; k++) {
         int ib[4] = { 0, 0, 0, 0 };
         char list[120] = "";
-        int se = ch ? tb_chart_series(ch, U[k].label, TB_LINE | TB_POINTS) : -1;
+        int se = ch ? chart_series(ch, U[k].label, CHART_LINE | CHART_POINTS) : -1;
         for (int j = 0; j < U[k].n; j++) {
             ib[j] = tb_stab_coef_ibits(U[k].unit, C[j]);
             if (ib[j] < 0) return -1;
-            size_t l = strlen(list);
-            snprintf(list + l, sizeof list - l, "%s%c s%d", j ? ", " : "", 'A' + j, ib[j]);
-            if (ch) tb_chart_point(ch, se, j, ib[j]);
+            base_join_addf(list, sizeof list, ", ", "%c s%d", 'A' + j, ib[j]);
+            if (ch) chart_point(ch, se, j, ib[j]);
         }
         /* the widest coefficient one bit short, wrap and sat */
         int jw = 0;
@@ -564,21 +563,21 @@ static int atlas_coef(tb_stab *s, int charts)
         tb_settext(r->verdict, sizeof r->verdict, "%c needs s%d; missing one bit, wrap errs by %.3g (a sign flip), "
             "sat by %.3g (clipped)", 'A' + jw, ib[jw], ew, es);
     }
-    if (ch) chart(s, ch, "stability_coef.svg");
+    if (ch) keep_chart(s, ch, "stability_coef.svg");
     return 0;
 }
 
 static int atlas_overshoot(tb_stab *s, int charts)
 {
-    tb_chart *c = charts ? tb_chart_new("Cubic overshoot on a highlight inside one interval (interp3, L = 8)",
+    chart *c = charts ? chart_new("Cubic overshoot on a highlight inside one interval (interp3, L = 8)",
                                         "highlight width s (intervals)", "max excursion outside [0, 1]") : NULL;
     int se = -1, sr = -1, sc = -1;
     if (c) {
-        tb_chart_log_x(c, 1);
-        tb_chart_log_y(c, 1);
-        se = tb_chart_series(c, "excursion outside [0, 1]", TB_LINE | TB_POINTS);
-        sr = tb_chart_series(c, "max error, no clamp", TB_LINE);
-        sc = tb_chart_series(c, "max error, clamped", TB_LINE);
+        chart_log_x(c, 1);
+        chart_log_y(c, 1);
+        se = chart_series(c, "excursion outside [0, 1]", CHART_LINE | CHART_POINTS);
+        sr = chart_series(c, "max error, no clamp", CHART_LINE);
+        sc = chart_series(c, "max error, clamped", CHART_LINE);
     }
     double worst = 0, s_w = 0, er_w = 0, ec_w = 0;
     for (int i = 1; i <= 128; i++) {
@@ -586,9 +585,9 @@ static int atlas_overshoot(tb_stab *s, int charts)
         if (tb_stab_overshoot(sw, &ex, &er, &ec)) return -1;
         if (ex > worst) { worst = ex; s_w = sw; er_w = er; ec_w = ec; }
         if (c && (i <= 16 || i % 4 == 0)) {
-            tb_chart_point(c, se, sw, ex);
-            tb_chart_point(c, sr, sw, er);
-            tb_chart_point(c, sc, sw, ec);
+            chart_point(c, se, sw, ex);
+            chart_point(c, sr, sw, er);
+            chart_point(c, sc, sw, ec);
         }
     }
     double b = tb_stab_overshoot_width(TB_STAB_TARGET);
@@ -617,9 +616,9 @@ static int atlas_overshoot(tb_stab *s, int charts)
         "highlights narrower than %.2g of an interval leave [0, 1]; the clamp removes the excursion, "
         "not the error inside [0, 1]", b);
     if (c) {
-        tb_chart_hline(c, TB_STAB_TARGET, "2^-8");
-        tb_chart_hband(c, 0, b, "overshoots");
-        chart(s, c, "stability_overshoot.svg");
+        chart_hline(c, TB_STAB_TARGET, "2^-8");
+        chart_hband(c, 0, b, "overshoots");
+        keep_chart(s, c, "stability_overshoot.svg");
     }
     return 0;
 }
@@ -673,23 +672,23 @@ static int atlas_degree(tb_stab *s, int charts)
             "instead of %d). Ladder (profiles the cubic holds): %s", fails_at[2], c2 * 0.9, cub_safe, cub_def, lad);
     }
     if (charts) {
-        tb_chart *c = tb_chart_new("Interpolation error against the adaptive policy's curvature measure",
+        chart *c = chart_new("Interpolation error against the adaptive policy's curvature measure",
                                    "c = |I(0) + I(1) - 2 I(1/2)|", "max |hw - profile|");
         if (c) {
-            tb_chart_log_x(c, 1);
-            tb_chart_log_y(c, 1);
-            int s1 = tb_chart_series(c, "linear", TB_POINTS);
-            int s2 = tb_chart_series(c, "degree 2 (interp2)", TB_POINTS);
-            int s3 = tb_chart_series(c, "degree 3 (interp3)", TB_POINTS);
+            chart_log_x(c, 1);
+            chart_log_y(c, 1);
+            int s1 = chart_series(c, "linear", CHART_POINTS);
+            int s2 = chart_series(c, "degree 2 (interp2)", CHART_POINTS);
+            int s3 = chart_series(c, "degree 3 (interp3)", CHART_POINTS);
             for (size_t i = 0; i < d->n; i++) {
-                tb_chart_point(c, s1, d->c[i], d->e1[i]);
-                tb_chart_point(c, s2, d->c[i], d->e2[i]);
-                tb_chart_point(c, s3, d->c[i], d->e3[i]);
+                chart_point(c, s1, d->c[i], d->e1[i]);
+                chart_point(c, s2, d->c[i], d->e2[i]);
+                chart_point(c, s3, d->c[i], d->e3[i]);
             }
-            tb_chart_hline(c, TB_STAB_TARGET, "2^-8");
-            tb_chart_hband(c, c2, INFINITY, "degree 2 can fail");
-            tb_chart_hband(c, AUTO_DEFAULT * 0.97, AUTO_DEFAULT * 1.03, "scene default 0.01");
-            chart(s, c, "stability_degree.svg");
+            chart_hline(c, TB_STAB_TARGET, "2^-8");
+            chart_hband(c, c2, INFINITY, "degree 2 can fail");
+            chart_hband(c, AUTO_DEFAULT * 0.97, AUTO_DEFAULT * 1.03, "scene default 0.01");
+            keep_chart(s, c, "stability_degree.svg");
         }
     }
     free(d);
@@ -742,24 +741,23 @@ static int atlas_nodes(tb_stab *s, int charts)
 static int atlas_div3(tb_stab *s, int charts)
 {
     static const int WS[] = { 8, 12, 16, 24 };
-    tb_chart *c = charts ? tb_chart_new("The /3 shift network: error against terms (paper series)",
+    chart *c = charts ? chart_new("The /3 shift network: error against terms (paper series)",
                                         "terms", "max |hw - x/3| in output LSBs") : NULL;
-    if (c) tb_chart_log_y(c, 1);
+    if (c) chart_log_y(c, 1);
     char list[160] = "";
     int t16 = -1;
     for (size_t i = 0; i < 4; i++) {
         int t = tb_stab_div3_terms(WS[i]);
         if (t < 0) return -1;
         if (WS[i] == 16) t16 = t;
-        size_t k = strlen(list);
-        snprintf(list + k, sizeof list - k, "%sW=%d: %d", i ? ", " : "", WS[i], t);
+        base_join_addf(list, sizeof list, ", ", "W=%d: %d", WS[i], t);
         if (c) {
             char lab[24];
             snprintf(lab, sizeof lab, "width %d", WS[i]);
-            int se = tb_chart_series(c, lab, TB_LINE | TB_POINTS);
+            int se = chart_series(c, lab, CHART_LINE | CHART_POINTS);
             for (int n = 1; n <= 12; n++) {
                 double e = tb_stab_div3_err(WS[i], n);
-                if (e >= 0) tb_chart_point(c, se, n, ldexp(e, WS[i] - 1));
+                if (e >= 0) chart_point(c, se, n, ldexp(e, WS[i] - 1));
             }
         }
     }
@@ -773,8 +771,8 @@ static int atlas_div3(tb_stab *s, int charts)
         "each term adds 2 bits: the paper's 3 terms hold to about 7 bits only; in interp3 the error of A is "
         "amplified by up to 24");
     if (c) {
-        tb_chart_hline(c, 1, "1 LSB");
-        chart(s, c, "stability_div3.svg");
+        chart_hline(c, 1, "1 LSB");
+        keep_chart(s, c, "stability_div3.svg");
     }
     return 0;
 }
@@ -797,9 +795,9 @@ static int atlas_brdf(tb_stab *s, int charts)
     for (int i = 10; i <= 140; i++) mg[nm++] = i / 200.0;           /* m, alpha 0.05 .. 0.70 */
     static const struct { int kind; const char *name; } D[] = {
         { 4, "D4" }, { 8, "D8" }, { 16, "D16" }, { 1, "cos-power form" } };
-    tb_chart *c = charts ? tb_chart_new("BRDF approximations against Beckmann D (where D > 1% of its peak)",
+    chart *c = charts ? chart_new("BRDF approximations against Beckmann D (where D > 1% of its peak)",
                                         "roughness m", "max |relative error|") : NULL;
-    if (c) tb_chart_log_y(c, 1);
+    if (c) chart_log_y(c, 1);
     for (size_t k = 0; k < 4; k++) {
         double lo, hi;
         holds_range(D[k].kind, mg, nm, 0.01, 0.05, &lo, &hi);
@@ -822,19 +820,19 @@ static int atlas_brdf(tb_stab *s, int charts)
         else tb_settext(r->measured, sizeof r->measured, "holds for m in %.3f..%.3f%s", lo, hi, neg);
         tb_settext(r->verdict, sizeof r->verdict, isnan(lo) ? "use another form" : "outside this range the error passes 5%%");
         if (c) {
-            int se = tb_chart_series(c, D[k].name, TB_LINE);
-            for (int i = 0; i < nm; i += 1) tb_chart_point(c, se, mg[i], tb_stab_brdf_err(D[k].kind, mg[i], 0.01));
+            int se = chart_series(c, D[k].name, CHART_LINE);
+            for (int i = 0; i < nm; i += 1) chart_point(c, se, mg[i], tb_stab_brdf_err(D[k].kind, mg[i], 0.01));
         }
     }
     if (c) {
-        tb_chart_hline(c, 0.05, "5%");
+        chart_hline(c, 0.05, "5%");
         double m16 = NAN;
         for (int i = 0; i < nm; i++) {
             double z = ref_brdf_dg_base_zero_cos(mg[i], 16);
             if (z > 0 && z < 1) m16 = mg[i];
         }
-        if (!isnan(m16)) tb_chart_hband(c, 0, m16, "D16 base < 0");
-        chart(s, c, "stability_brdf_d.svg");
+        if (!isnan(m16)) chart_hband(c, 0, m16, "D16 base < 0");
+        keep_chart(s, c, "stability_brdf_d.svg");
     }
     /* Ward's 16th power, the paper's 1.3% where exp > 0.1 */
     double lo, hi;
@@ -851,9 +849,9 @@ static int atlas_brdf(tb_stab *s, int charts)
     double nn[64];
     for (int n = 2; n <= 16; n++) nn[ng++] = n;                        /* n = 2..16, then 25% steps */
     for (double n = 20; n <= 1000 && ng < 64; n *= 1.25) nn[ng++] = round(n);
-    tb_chart *cs = charts ? tb_chart_new("Schlick forms against Blinn's cos^n (where cos^n > 0.3)",
+    chart *cs = charts ? chart_new("Schlick forms against Blinn's cos^n (where cos^n > 0.3)",
                                          "specular exponent n", "max |relative error|") : NULL;
-    if (cs) { tb_chart_log_x(cs, 1); tb_chart_log_y(cs, 1); }
+    if (cs) { chart_log_x(cs, 1); chart_log_y(cs, 1); }
     for (int kind = 3; kind <= 5; kind += 2) {
         holds_range(kind, nn, ng, 0.3, 0.10, &lo, &hi);
         tb_stab_row *q = row(s, kind == 3 ? "brdf_schlick" : "brdf_mschlick", kind == 3 ? "Schlick" : "modified Schlick");
@@ -866,11 +864,11 @@ static int atlas_brdf(tb_stab *s, int charts)
                  tb_stab_brdf_err(kind, 2, 0.3), tb_stab_brdf_err(kind, nn[ng - 1], 0.3), nn[ng - 1]);
         tb_settext(q->verdict, sizeof q->verdict, "compared with cos^n, the papers' reference (not Fresnel)");
         if (cs) {
-            int se = tb_chart_series(cs, kind == 3 ? "Schlick" : "modified Schlick", TB_LINE);
-            for (int i = 0; i < ng; i++) tb_chart_point(cs, se, nn[i], tb_stab_brdf_err(kind, nn[i], 0.3));
+            int se = chart_series(cs, kind == 3 ? "Schlick" : "modified Schlick", CHART_LINE);
+            for (int i = 0; i < ng; i++) chart_point(cs, se, nn[i], tb_stab_brdf_err(kind, nn[i], 0.3));
         }
     }
-    if (cs) { tb_chart_hline(cs, 0.10, "10%"); chart(s, cs, "stability_brdf_schlick.svg"); }
+    if (cs) { chart_hline(cs, 0.10, "10%"); keep_chart(s, cs, "stability_brdf_schlick.svg"); }
     return 0;
 }
 
@@ -893,10 +891,10 @@ static int atlas_units(tb_stab *s, int charts)
         worst < 1 ? "no failure" : "fails");
     /* pow_n against n at width 16 */
     static const int NS[] = { 2, 4, 8, 16, 32, 64, 128, 255 };
-    tb_chart *c = charts ? tb_chart_new("Power unit pow_n at width 16: error against the exponent",
+    chart *c = charts ? chart_new("Power unit pow_n at width 16: error against the exponent",
                                         "exponent n", "max |hw - x^n| (output LSBs)") : NULL;
     int se = -1;
-    if (c) { tb_chart_log_x(c, 1); tb_chart_log_y(c, 1); se = tb_chart_series(c, "pow_n, width 16", TB_LINE | TB_POINTS); }
+    if (c) { chart_log_x(c, 1); chart_log_y(c, 1); se = chart_series(c, "pow_n, width 16", CHART_LINE | CHART_POINTS); }
     int nmax = -1;
     char pl[220] = "";
     for (size_t i = 0; i < sizeof NS / sizeof NS[0]; i++) {
@@ -904,14 +902,14 @@ static int atlas_units(tb_stab *s, int charts)
         if (e <= 8) nmax = NS[i];
         size_t k = strlen(pl);
         snprintf(pl + k, sizeof pl - k, "%sn=%d: %.1f LSB %.0f clk", i ? "; " : "", NS[i], e, cl);
-        if (c) tb_chart_point(c, se, NS[i], e);
+        if (c) chart_point(c, se, NS[i], e);
     }
     r = row(s, "pow_n", "pow_n (square and multiply)");
     r->boundary = nmax;
     tb_settext(r->condition, sizeof r->condition, "max |hw - x^n| at width 16 against n; holds while <= 8 LSB (2^-12)");
     tb_settext(r->measured, sizeof r->measured, "%s", pl);
     tb_settext(r->verdict, sizeof r->verdict, "error grows with the number of truncating multiplies (about 2 log2 n)");
-    if (c) { tb_chart_hline(c, 8, "8 LSB"); chart(s, c, "stability_pow.svg"); }
+    if (c) { chart_hline(c, 8, "8 LSB"); keep_chart(s, c, "stability_pow.svg"); }
     /* powg against g */
     char gl[160] = "";
     for (int g = 2; g <= 32; g *= 2) {
@@ -946,6 +944,6 @@ int tb_stability(tb_stab *s, int charts, char *err, size_t errlen)
 
 void tb_stab_free(tb_stab *s)
 {
-    for (int i = 0; i < s->ncharts; i++) tb_chart_free(s->charts[i]);
+    for (int i = 0; i < s->ncharts; i++) chart_free(s->charts[i]);
     s->ncharts = 0;
 }

@@ -12,7 +12,7 @@
 #define TB_STABILITY_H
 #include <stddef.h>
 #include <stdint.h>
-#include "testbench/tb_svg.h"
+#include "chart/chart.h"
 
 #define TB_STAB_TARGET   0.00390625   /* 2^-8: one LSB of an 8-bit intensity */
 #define TB_STAB_MAX_ROWS 40
@@ -30,7 +30,7 @@ typedef struct tb_stab_row {
 typedef struct tb_stab {
     tb_stab_row rows[TB_STAB_MAX_ROWS];
     int nrows;
-    tb_chart *charts[TB_STAB_MAX_CHARTS];
+    chart *charts[TB_STAB_MAX_CHARTS];
     const char *chart_files[TB_STAB_MAX_CHARTS];
     int ncharts;
 } tb_stab;

@@ -1,7 +1,8 @@
 /* tb_sweep.c - the sweep engine: configurations, threads, shards, the CSV,
  * merging shards, and the per-signal format search. */
 #include "testbench/tb_sweep.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
+#include "base/base_par.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <math.h>
@@ -12,21 +13,21 @@
 
 /* ------------------------------------------------------------- utilities */
 
-/* tb_afile is sim_out under the sweep's names: a regular file (or a new
+/* tb_afile is base_out under the sweep's names: a regular file (or a new
  * path, or a symlink's target) replaced atomically once complete, with a
  * registered temporary that SIGINT/SIGTERM/SIGHUP remove; a device or
  * FIFO written through; "-" is stdout. */
 int tb_afile_open(tb_afile *a, const char *path, char *err, size_t errlen)
 {
     a->path = path;
-    a->out = sim_out_open(path, err, errlen);
-    a->f = a->out ? sim_out_file(a->out) : NULL;
+    a->out = base_out_open(path, err, errlen);
+    a->f = a->out ? base_out_file(a->out) : NULL;
     return a->out ? 0 : -1;
 }
 
 int tb_afile_commit(tb_afile *a, char *err, size_t errlen)
 {
-    int rc = sim_out_close(a->out, err, errlen);
+    int rc = base_out_close(a->out, err, errlen);
     a->out = NULL;
     a->f = NULL;
     return rc;
@@ -34,47 +35,9 @@ int tb_afile_commit(tb_afile *a, char *err, size_t errlen)
 
 void tb_afile_abort(tb_afile *a)
 {
-    sim_out_abort(a->out);
+    base_out_abort(a->out);
     a->out = NULL;
     a->f = NULL;
-}
-
-typedef struct par_ctx {
-    size_t n, next;
-    pthread_mutex_t mu;
-    void (*fn)(void *, size_t);
-    void *ctx;
-} par_ctx;
-
-static void *par_worker(void *arg)
-{
-    par_ctx *p = arg;
-    for (;;) {
-        pthread_mutex_lock(&p->mu);
-        size_t i = p->next < p->n ? p->next++ : p->n;
-        pthread_mutex_unlock(&p->mu);
-        if (i >= p->n) return NULL;
-        p->fn(p->ctx, i);
-    }
-}
-
-void tb_par_for(size_t n, int threads, void (*fn)(void *ctx, size_t i), void *ctx)
-{
-    if (threads < 1) threads = 1;
-    if ((size_t)threads > n) threads = (int)n;
-    if (threads <= 1) {
-        for (size_t i = 0; i < n; i++) fn(ctx, i);
-        return;
-    }
-    par_ctx p = { n, 0, PTHREAD_MUTEX_INITIALIZER, fn, ctx };
-    pthread_t *th = malloc((size_t)(threads - 1) * sizeof *th);
-    int started = 0;
-    /* If threads cannot be made, fewer (down to this one) do the work. */
-    while (th && started < threads - 1 && !pthread_create(&th[started], NULL, par_worker, &p)) started++;
-    par_worker(&p);
-    for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
-    free(th);
-    pthread_mutex_destroy(&p.mu);
 }
 
 /* ------------------------------------------------------- configurations */
@@ -240,7 +203,7 @@ size_t tb_sweep_run(tb_sweep *s, int threads, int shard_k, int shard_n,
     }
     for (size_t i = 0; i < s->n; i++)
         if (tb_sweep_in_shard(i, shard_k, shard_n)) j.idx[j.total++] = i;
-    tb_par_for(j.total, threads, run_one, &j);
+    base_par_for(j.total, threads, run_one, &j);
     free(j.idx);
     pthread_mutex_destroy(&j.mu);
     return j.failed;
@@ -678,7 +641,7 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
         if (pinned(s, q / 2) || !unit_sig_built(u, q / 2, &c->cfg)) cand[q].sig = -1;
         if (cand[q].sig < 0 || shorter(out->fmts.f[q / 2], q % 2, &jobs[q].f.f[q / 2])) jobs[q].c = NULL;
     }
-    tb_par_for((size_t)nc, threads, cand_run, jobs);
+    base_par_for((size_t)nc, threads, cand_run, jobs);
     for (int q = 0; q < nc; q++) {
         if (jobs[q].status == TB_SWEEP_NOT_RUN) continue;
         out->runs++;
@@ -705,7 +668,7 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
                 next++;
             }
             if (!nb) break;
-            tb_par_for((size_t)nb, threads, cand_run, jobs);
+            base_par_for((size_t)nb, threads, cand_run, jobs);
             for (int b = 0; b < nb; b++) {
                 out->runs++;
                 if (tb_target_holds(&jobs[b].r, jobs[b].status, k, target, max_ovf)) {

@@ -166,13 +166,9 @@ int  tb_sweep_target_heldout(const tb_sweep *s, const vec_set *ho, tb_target_kin
 /* A file written atomically: a temporary in the same directory, renamed
  * over path by tb_afile_commit; nothing is left behind on failure (nor on
  * SIGINT/TERM/HUP). Devices and FIFOs are written through, "-" is stdout
- * (sim/sim_out.h). */
-typedef struct tb_afile { FILE *f; struct sim_out *out; const char *path; } tb_afile;
+ * (base/base_out.h). */
+typedef struct tb_afile { FILE *f; struct base_out *out; const char *path; } tb_afile;
 int  tb_afile_open(tb_afile *a, const char *path, char *err, size_t errlen);
 int  tb_afile_commit(tb_afile *a, char *err, size_t errlen);
 void tb_afile_abort(tb_afile *a);
-
-/* Run fn(ctx, i) for i in [0, n) on up to `threads` threads (the caller's
- * thread among them); returns when all are done. */
-void tb_par_for(size_t n, int threads, void (*fn)(void *ctx, size_t i), void *ctx);
 #endif

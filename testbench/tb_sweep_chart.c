@@ -318,7 +318,7 @@ size_t tb_sc_front(const tb_sc *sc, unsigned char *on)
             y[i] = r->ok ? r->area : NAN;
             z[i] = r->ok ? r->clocks_per_pixel : NAN;
         }
-        nf = tb_pareto3(x, y, z, sc->n, on);
+        nf = chart_pareto3(x, y, z, sc->n, on);
     } else memset(on, 0, sc->n);
     free(x); free(y); free(z);
     return nf;
@@ -385,7 +385,7 @@ static void sc_value_label(const sc_col *c, size_t v, char *buf, size_t len)
 /* The legend for a per-dimension look: which colour is which value of
  * one dimension (some of them, on a scale), which shape of another, and
  * what else varies without its own look. */
-static void sc_keys(tb_chart *c, const tb_sc *sc, const sc_look *l, int style)
+static void sc_keys(chart *c, const tb_sc *sc, const sc_look *l, int style)
 {
     if (l->per_group) return;
     char lab[96], col[8];
@@ -393,21 +393,21 @@ static void sc_keys(tb_chart *c, const tb_sc *sc, const sc_look *l, int style)
     size_t nv = dc->nval, shown = nv <= 8 ? nv : 6;
     if (shown < nv) snprintf(lab, sizeof lab, "colour: %s, %zu of %zu", dc->name, shown, nv);
     else snprintf(lab, sizeof lab, "colour: %s", dc->name);
-    tb_chart_legend_key(c, lab, NULL, -1, 0);
+    chart_legend_key(c, lab, NULL, -1, 0);
     for (size_t k = 0; k < shown; k++) {
         size_t v = shown == nv ? k : (size_t)lround((double)k * (double)(nv - 1) / (double)(shown - 1));
         if (nv <= SC_SMALL) snprintf(col, sizeof col, "%s", sc_palette[v]);
         else sc_scale((double)v / (double)(nv - 1), col);
         sc_value_label(dc, v, lab, sizeof lab);
-        tb_chart_legend_key(c, lab, col, 0, style);
+        chart_legend_key(c, lab, col, 0, style);
     }
     if (l->ds >= 0) {
         const sc_col *ds = &sc->id[l->ds];
         snprintf(lab, sizeof lab, "shape: %s", ds->name);
-        tb_chart_legend_key(c, lab, NULL, -1, 0);
+        chart_legend_key(c, lab, NULL, -1, 0);
         for (size_t v = 0; v < ds->nval; v++) {
             sc_value_label(ds, v, lab, sizeof lab);
-            tb_chart_legend_key(c, lab, "#555555", (int)v, TB_POINTS);
+            chart_legend_key(c, lab, "#555555", (int)v, CHART_POINTS);
         }
     }
     size_t k = 0;
@@ -417,19 +417,19 @@ static void sc_keys(tb_chart *c, const tb_sc *sc, const sc_look *l, int style)
             int m = snprintf(rest + k, sizeof rest - k, "%s%s", k ? ", " : "also varied: ", sc->id[d].name);
             if (m > 0 && (size_t)m < sizeof rest - k) k += (size_t)m;
         }
-    if (k) tb_chart_legend_key(c, rest, NULL, -1, 0);
+    if (k) chart_legend_key(c, rest, NULL, -1, 0);
 }
 
 /* A series for group g with its look; labelled with its settings in the
  * per-group look. */
-static int sc_series(tb_chart *c, const tb_sc *sc, const sc_look *l, size_t g, int style, int label)
+static int sc_series(chart *c, const tb_sc *sc, const sc_look *l, size_t g, int style, int label)
 {
     char colour[8];
     int shape;
     const char *gl = sc->glabel[g];
-    int s = tb_chart_series(c, label && l->per_group ? (*gl ? gl : "all configurations") : NULL, style);
+    int s = chart_series(c, label && l->per_group ? (*gl ? gl : "all configurations") : NULL, style);
     sc_group_look(sc, l, g, colour, &shape);
-    tb_chart_series_look(c, s, colour, shape, 0);
+    chart_series_look(c, s, colour, shape, 0);
     return s;
 }
 
@@ -449,7 +449,7 @@ int tb_sc_chart_drawn(const tb_sc *sc, int which)
     return 0;
 }
 
-static tb_chart *sc_error_width(const tb_sc *sc, const sc_look *l, const tb_sc_target *t)
+static chart *sc_error_width(const tb_sc *sc, const sc_look *l, const tb_sc_target *t)
 {
     /* Lines need two widths; with one, the RMS error (a dashed line)
      * would not show, and neither does its key. */
@@ -460,40 +460,40 @@ static tb_chart *sc_error_width(const tb_sc *sc, const sc_look *l, const tb_sc_t
                     sc->row[i].width != sc->row[j].width;
     char title[200];
     snprintf(title, sizeof title, lines ? "%s: max and RMS error against width" : "%s: max error against width", sc->unit);
-    tb_chart *c = tb_chart_new(title, "width W (bits, the unit's format rule)", "error vs float reference (output units)");
+    chart *c = chart_new(title, "width W (bits, the unit's format rule)", "error vs float reference (output units)");
     if (!c) return NULL;
-    tb_chart_log_y(c, 1);
-    tb_chart_int_x(c, 1);
+    chart_log_y(c, 1);
+    chart_int_x(c, 1);
     for (size_t g = 0; g < sc->ngroups; g++) {
-        int smax = sc_series(c, sc, l, g, TB_LINE | TB_POINTS, 1);
-        int srms = lines ? sc_series(c, sc, l, g, TB_LINE, 0) : -1;
-        if (lines) tb_chart_series_look(c, srms, NULL, -1, 1);
+        int smax = sc_series(c, sc, l, g, CHART_LINE | CHART_POINTS, 1);
+        int srms = lines ? sc_series(c, sc, l, g, CHART_LINE, 0) : -1;
+        if (lines) chart_series_look(c, srms, NULL, -1, 1);
         for (size_t i = 0; i < sc->n; i++) {
             const tb_sc_row *r = &sc->row[i];
             if (r->group != g) continue;
-            tb_chart_point(c, smax, r->width, r->ok ? r->max_err : NAN);
-            if (lines) tb_chart_point(c, srms, r->width, r->ok ? r->rms_err : NAN);
+            chart_point(c, smax, r->width, r->ok ? r->max_err : NAN);
+            if (lines) chart_point(c, srms, r->width, r->ok ? r->rms_err : NAN);
         }
     }
-    sc_keys(c, sc, l, TB_POINTS);
+    sc_keys(c, sc, l, CHART_POINTS);
     if (lines) {
-        tb_chart_legend_key(c, "line: max |e|", "#444444", 0, TB_LINE | TB_POINTS);
-        int k = tb_chart_legend_key(c, "dashed: RMS e", "#444444", -1, TB_LINE);
-        tb_chart_series_look(c, k, NULL, -1, 1);
-    } else tb_chart_legend_key(c, "points: max |e|", "#444444", 0, TB_POINTS);
+        chart_legend_key(c, "line: max |e|", "#444444", 0, CHART_LINE | CHART_POINTS);
+        int k = chart_legend_key(c, "dashed: RMS e", "#444444", -1, CHART_LINE);
+        chart_series_look(c, k, NULL, -1, 1);
+    } else chart_legend_key(c, "points: max |e|", "#444444", 0, CHART_POINTS);
     if (t && t->on && !t->nmse) {
         char lab[64];
         snprintf(lab, sizeof lab, "target %g", t->value);
-        tb_chart_hline(c, t->value, lab);
+        chart_hline(c, t->value, lab);
     }
     return c;
 }
 
 /* Ring the front's points and label a few with their width. */
-static void sc_front(tb_chart *c, const tb_sc *sc, const unsigned char *on, int clocks)
+static void sc_front(chart *c, const tb_sc *sc, const unsigned char *on, int clocks)
 {
-    int sf = tb_chart_series(c, "Pareto front", TB_POINTS | TB_HOLLOW);
-    tb_chart_series_look(c, sf, "#000000", 0, -1);
+    int sf = chart_series(c, "Pareto front", CHART_POINTS | CHART_HOLLOW);
+    chart_series_look(c, sf, "#000000", 0, -1);
     size_t nf = 0;
     for (size_t i = 0; i < sc->n; i++) nf += on[i];
     size_t every = nf <= 16 ? 1 : (nf + 15) / 16, k = 0;
@@ -502,19 +502,19 @@ static void sc_front(tb_chart *c, const tb_sc *sc, const unsigned char *on, int 
         const tb_sc_row *r = &sc->row[i];
         char lab[32];
         snprintf(lab, sizeof lab, "width %d", r->width);
-        tb_chart_point_label(c, sf, r->max_err, clocks ? r->clocks_per_pixel : r->area, k++ % every == 0 ? lab : NULL);
+        chart_point_label(c, sf, r->max_err, clocks ? r->clocks_per_pixel : r->area, k++ % every == 0 ? lab : NULL);
     }
-    tb_chart_legend_key(c, "(error, area, clocks/pixel)", NULL, -1, 0);
+    chart_legend_key(c, "(error, area, clocks/pixel)", NULL, -1, 0);
 }
 
-static tb_chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_target *t, int clocks)
+static chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_target *t, int clocks)
 {
     char title[200];
     snprintf(title, sizeof title, clocks ? "%s: clocks per pixel against max error" : "%s: area against max error", sc->unit);
-    tb_chart *c = tb_chart_new(title, "max |e| vs float reference (output units)",
+    chart *c = chart_new(title, "max |e| vs float reference (output units)",
                                clocks ? "clocks per pixel (output beat), steady state" : "area (GE, NAND2 gate equivalents)");
     if (!c) return NULL;
-    tb_chart_log_x(c, 1);
+    chart_log_x(c, 1);
     double lo = INFINITY, hi = 0;
     for (size_t i = 0; i < sc->n; i++)
         if (sc->row[i].ok) {
@@ -522,23 +522,23 @@ static tb_chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_ta
             lo = fmin(lo, v);
             hi = fmax(hi, v);
         }
-    tb_chart_log_y(c, lo > 0 && hi > 10 * lo);
+    chart_log_y(c, lo > 0 && hi > 10 * lo);
     for (size_t g = 0; g < sc->ngroups; g++) {
-        int s = sc_series(c, sc, l, g, TB_POINTS, 1);
+        int s = sc_series(c, sc, l, g, CHART_POINTS, 1);
         for (size_t i = 0; i < sc->n; i++) {
             const tb_sc_row *r = &sc->row[i];
-            if (r->group == g && r->ok) tb_chart_point(c, s, r->max_err, clocks ? r->clocks_per_pixel : r->area);
+            if (r->group == g && r->ok) chart_point(c, s, r->max_err, clocks ? r->clocks_per_pixel : r->area);
         }
     }
     unsigned char *on = calloc(sc->n, 1);
-    if (!on) { tb_chart_free(c); return NULL; }
+    if (!on) { chart_free(c); return NULL; }
     tb_sc_front(sc, on);
     /* When the clocks do not vary the front is the two-dimensional one of
      * this plane: a staircase through it reads as the best area at each
      * error. */
     if (!clocks && !tb_sc_chart_drawn(sc, TB_SC_CLOCKS_ERROR)) {
-        int st = tb_chart_series(c, NULL, TB_STEP);
-        tb_chart_series_look(c, st, "#000000", -1, 0);
+        int st = chart_series(c, NULL, CHART_STEP);
+        chart_series_look(c, st, "#000000", -1, 0);
         /* the front in order of error */
         size_t nf = 0;
         for (size_t i = 0; i < sc->n; i++) nf += on[i];
@@ -552,27 +552,27 @@ static tb_chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_ta
                     if (p->max_err < q->max_err || (p->max_err == q->max_err && p->area <= q->area)) break;
                     size_t tmp = ix[b]; ix[b] = ix[b - 1]; ix[b - 1] = tmp;
                 }
-            for (size_t k = 0; k < m; k++) tb_chart_point(c, st, sc->row[ix[k]].max_err, sc->row[ix[k]].area);
+            for (size_t k = 0; k < m; k++) chart_point(c, st, sc->row[ix[k]].max_err, sc->row[ix[k]].area);
             free(ix);
         }
     }
-    sc_keys(c, sc, l, TB_POINTS);
+    sc_keys(c, sc, l, CHART_POINTS);
     sc_front(c, sc, on, clocks);
     free(on);
     if (t && t->on && !clocks) {
-        int st = tb_chart_series(c, "target search", TB_POINTS);
-        tb_chart_series_look(c, st, "#000000", 3, -1);
-        for (size_t k = 0; k < t->n; k++) tb_chart_point(c, st, t->err[k], t->area[k]);
+        int st = chart_series(c, "target search", CHART_POINTS);
+        chart_series_look(c, st, "#000000", 3, -1);
+        for (size_t k = 0; k < t->n; k++) chart_point(c, st, t->err[k], t->area[k]);
         if (!t->nmse) {
             char lab[64];
             snprintf(lab, sizeof lab, "over the target %g", t->value);
-            tb_chart_hband(c, t->value, INFINITY, lab);
+            chart_hband(c, t->value, INFINITY, lab);
         }
     }
     return c;
 }
 
-tb_chart *tb_sc_chart(const tb_sc *sc, int which, const tb_sc_target *t)
+chart *tb_sc_chart(const tb_sc *sc, int which, const tb_sc_target *t)
 {
     sc_look l = sc_look_of(sc);
     switch (which) {

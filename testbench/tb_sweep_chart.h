@@ -26,7 +26,7 @@
 #ifndef TB_SWEEP_CHART_H
 #define TB_SWEEP_CHART_H
 #include <stddef.h>
-#include "testbench/tb_svg.h"
+#include "chart/chart.h"
 
 typedef struct tb_sc tb_sc;
 
@@ -68,5 +68,5 @@ extern const char *const tb_sc_chart_file[TB_SC_NCHARTS];
  * differ between rows (else it is one flat row of points). */
 int    tb_sc_chart_drawn(const tb_sc *sc, int which);
 /* The chart (caller frees), NULL when out of memory. */
-tb_chart *tb_sc_chart(const tb_sc *sc, int which, const tb_sc_target *t);
+chart *tb_sc_chart(const tb_sc *sc, int which, const tb_sc_target *t);
 #endif

@@ -1,12 +1,11 @@
 /* tb_verilog.c - a unit's Verilog module, its testbench and its stimulus
  * (see tb_verilog.h). */
 #include "testbench/tb_verilog.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include "sim/sim_verilog.h"
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 /* The ports of a built unit, in the documented order. */
 static int unit_ports(const unit_desc *u, const unit_io *io, sim_vport *p)
@@ -163,20 +162,14 @@ int tb_verilog_export(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
     char *tb = tb_text(u, cfg, fm);
     if (!tb) { free(mod); snprintf(err, errlen, "out of memory"); return -1; }
     int rc = -1;
-    struct stat st;
-    if (stat(dir, &st) != 0) {
-        if (mkdir(dir, 0777) != 0) { snprintf(err, errlen, "%s: cannot make the folder: %s", dir, strerror(errno)); goto done; }
-    } else if (!S_ISDIR(st.st_mode)) {
-        snprintf(err, errlen, "%s: not a folder", dir);
-        goto done;
-    }
+    if (base_out_mkdirs(dir, err, errlen)) goto done;
     size_t pl = strlen(dir) + strlen(u->name) + 16;
     char *p = malloc(pl);
     if (!p) { snprintf(err, errlen, "out of memory"); goto done; }
     snprintf(p, pl, "%s/%s.v", dir, u->name);
-    if (sim_out_write_all(p, mod, strlen(mod), err, errlen) == 0) {
+    if (base_out_write_all(p, mod, strlen(mod), err, errlen) == 0) {
         snprintf(p, pl, "%s/%s_tb.v", dir, u->name);
-        rc = sim_out_write_all(p, tb, strlen(tb), err, errlen);
+        rc = base_out_write_all(p, tb, strlen(tb), err, errlen);
     }
     free(p);
 done:
@@ -194,9 +187,9 @@ int tb_stimulus_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
         if (u->sigs[i].role == UNIT_SIG_IN) in_idx[nin++] = i;
         if (u->sigs[i].role == UNIT_SIG_OUT) out_idx[nout++] = i;
     }
-    sim_out *o = sim_out_open(in_path, err, errlen);
+    base_out *o = base_out_open(in_path, err, errlen);
     if (!o) return -1;
-    FILE *f = sim_out_file(o);
+    FILE *f = base_out_file(o);
     for (size_t it = 0; it < vs->n_rows; it++)
         for (int i = 0; i < nin; i++) {
             sim_fmt q = fm->f[in_idx[i]];
@@ -205,11 +198,11 @@ int tb_stimulus_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
             uint64_t m = q.width >= 64 ? UINT64_MAX : (((uint64_t)1 << q.width) - 1);
             fprintf(f, "%0*llx%c", (q.width + 3) / 4, (unsigned long long)((uint64_t)raw & m), i + 1 < nin ? ' ' : '\n');
         }
-    if (sim_out_close(o, err, errlen)) return -1;
+    if (base_out_close(o, err, errlen)) return -1;
     if (!exp_path) return 0;
-    o = sim_out_open(exp_path, err, errlen);
+    o = base_out_open(exp_path, err, errlen);
     if (!o) return -1;
-    f = sim_out_file(o);
+    f = base_out_file(o);
     size_t nb = r->vectors * (size_t)r->beats;
     for (size_t b = 0; b < nb; b++) {
         fprintf(f, "%llu", (unsigned long long)r->beat_cycle[b]);
@@ -220,7 +213,7 @@ int tb_stimulus_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
         }
         fputc('\n', f);
     }
-    return sim_out_close(o, err, errlen);
+    return base_out_close(o, err, errlen);
 }
 
 /* First differing line of two files: 0 same, -1 a file missing, else its

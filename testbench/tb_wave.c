@@ -2,6 +2,7 @@
  * traces per output beat, the item window, FILE.gtkw, FST. */
 #include "testbench/tb_wave.h"
 #include "sim/sim_fixed.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <spawn.h>
@@ -126,6 +127,25 @@ static int run_vcd2fst(const char *in, const char *out)
     return WIFEXITED(st) && WEXITSTATUS(st) == 0 ? 0 : -1;
 }
 
+/* The file at from into the output file to (base/base_out.h). 0 or -1. */
+static int copy_out(const char *from, const char *to)
+{
+    FILE *in = fopen(from, "rb");
+    if (!in) return -1;
+    char e[256];
+    base_out *o = base_out_open(to, e, sizeof e);
+    if (!o) { fclose(in); return -1; }
+    char buf[1 << 16];
+    size_t k;
+    int rc = 0;
+    while ((k = fread(buf, 1, sizeof buf, in)) > 0)
+        if (fwrite(buf, 1, k, base_out_file(o)) != k) { rc = -1; break; }
+    if (ferror(in)) rc = -1;
+    fclose(in);
+    if (rc) { base_out_abort(o); return -1; }
+    return base_out_close(o, e, sizeof e);
+}
+
 int tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc,
                   char *err, size_t errlen)
 {
@@ -141,15 +161,18 @@ int tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc
         return rc;
     }
     if (o->fst) {
-        /* The FST appears complete or not at all: vcd2fst writes a
-         * temporary, renamed over the path when it succeeded. */
-        size_t n = strlen(o->vcd_path) + 32;
+        /* vcd2fst writes a scratch file beside the dump (it unlinks the
+         * name it is given first, so it never gets the real path: a device
+         * would be replaced, a file's permissions lost); the FST is then
+         * copied into place as every output file is, complete or not at
+         * all. */
+        size_t n = strlen(w->dump_path) + 8;
         char *tmp = malloc(n);
         int ok = 0;
         if (tmp) {
-            snprintf(tmp, n, "%s.%ld.tmp.fst", o->vcd_path, (long)getpid());
-            ok = run_vcd2fst(w->dump_path, tmp) == 0 && rename(tmp, o->vcd_path) == 0;
-            if (!ok) unlink(tmp);
+            snprintf(tmp, n, "%s.fst", w->dump_path);
+            ok = run_vcd2fst(w->dump_path, tmp) == 0 && copy_out(tmp, o->vcd_path) == 0;
+            unlink(tmp);
             free(tmp);
         }
         unlink(w->dump_path);

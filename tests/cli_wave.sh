@@ -113,6 +113,12 @@ if command -v vcd2fst >/dev/null 2>&1 && command -v fst2vcd >/dev/null 2>&1; the
     else fail fst_reads_back "exit $rc; fst2vcd gave $(grep -c '^#' "$T/back.vcd" 2>/dev/null) time stamps"; fi
     grep -q "^\[dumpfile\] \".*/h.fst\"\$" "$T/h.fst.gtkw" && ok fst_gtkw || fail fst_gtkw "the .gtkw does not name h.fst"
     if ls "$T" | grep -q 'tmp'; then fail fst_no_temporaries "$(ls "$T" | grep tmp)"; else ok fst_no_temporaries; fi
+    # an FST replacing a file keeps the file's permissions (vcd2fst makes
+    # a new file of its own: it never gets the real path)
+    : >"$T/keep.fst" && chmod 600 "$T/keep.fst"
+    "$S" run horner3 --vcd "$T/keep.fst" --fst >/dev/null 2>&1; rc=$?
+    m=$(stat -c %a "$T/keep.fst" 2>/dev/null)
+    [ $rc -eq 0 ] && [ "$m" = 600 ] && [ -s "$T/keep.fst" ] && ok fst_keeps_mode || fail fst_keeps_mode "exit $rc, mode $m"
 else
     echo "skip cli_wave.fst_reads_back: vcd2fst/fst2vcd not installed (Debian package gtkwave)"
 fi

@@ -1,15 +1,15 @@
-/* test_out.c - sim_out: output files replaced atomically, devices, FIFOs
+/* test_out.c - base_out: output files replaced atomically, devices, FIFOs
  * and stdout written through, symlinks kept, errors reported, temporaries
  * removed on abort and on SIGINT/SIGTERM/SIGHUP.
  *
  * Everything happens in a scratch folder under /tmp; device nodes are the
  * system's /dev/null and /dev/full, only ever opened, and checked to still
  * be character devices afterwards. The process umask is set to 027 before
- * the first sim_out call so that "respects the umask" is distinguishable
+ * the first base_out call so that "respects the umask" is distinguishable
  * from a hard-coded 0644.
  */
 #include "tst.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <pthread.h>
@@ -81,7 +81,7 @@ static void t_new_path(void)
     char p[400], buf[256], err[300];
     path_in(p, sizeof p, "new.txt");
     const char *text = "one\ntwo\n";
-    TST_EQ_INT(sim_out_write_all(p, text, strlen(text), err, sizeof err), 0);
+    TST_EQ_INT(base_out_write_all(p, text, strlen(text), err, sizeof err), 0);
     TST_EQ_INT(slurp(p, buf, sizeof buf), (long)strlen(text));
     TST_EQ_STR(buf, text);
     struct stat st;
@@ -96,16 +96,16 @@ static void t_replace_regular(void)
     char p[400], buf[256], err[300];
     path_in(p, sizeof p, "r.csv");
     put(p, "old contents\n", 0600);
-    sim_out *o = sim_out_open(p, err, sizeof err);
+    base_out *o = base_out_open(p, err, sizeof err);
     TST_CHECK(o != NULL, "%s", err);
     if (!o) return;
-    fputs("new", sim_out_file(o));
-    fflush(sim_out_file(o));
+    fputs("new", base_out_file(o));
+    fflush(base_out_file(o));
     /* Until close, readers see the old file; the new one is a temporary. */
     TST_EQ_INT(slurp(p, buf, sizeof buf), 13);
     TST_EQ_STR(buf, "old contents\n");
     TST_CHECK(has_temp(), "a temporary beside the file while writing");
-    TST_EQ_INT(sim_out_close(o, err, sizeof err), 0);
+    TST_EQ_INT(base_out_close(o, err, sizeof err), 0);
     TST_EQ_INT(slurp(p, buf, sizeof buf), 3);
     TST_EQ_STR(buf, "new");
     struct stat st;
@@ -114,11 +114,11 @@ static void t_replace_regular(void)
     TST_EQ_INT(entries(), 1);
 
     /* Abort: the old file stays, nothing else. */
-    o = sim_out_open(p, err, sizeof err);
+    o = base_out_open(p, err, sizeof err);
     TST_CHECK(o != NULL, "%s", err);
     if (!o) return;
-    fputs("half", sim_out_file(o));
-    sim_out_abort(o);
+    fputs("half", base_out_file(o));
+    base_out_abort(o);
     TST_EQ_INT(slurp(p, buf, sizeof buf), 3);
     TST_EQ_STR(buf, "new");
     TST_EQ_INT(entries(), 1);
@@ -135,7 +135,7 @@ static void t_symlink(void)
     put(tgt, "target before\n", 0644);
     /* Relative link: resolved against the link's folder, not the cwd. */
     TST_CHECK(symlink("sub/target.csv", lnk) == 0, "symlink: %s", strerror(errno));
-    TST_EQ_INT(sim_out_write_all(lnk, "via link\n", 9, err, sizeof err), 0);
+    TST_EQ_INT(base_out_write_all(lnk, "via link\n", 9, err, sizeof err), 0);
     struct stat st;
     TST_CHECK(lstat(lnk, &st) == 0 && S_ISLNK(st.st_mode), "the link is still a link");
     TST_EQ_INT(slurp(tgt, buf, sizeof buf), 9);
@@ -144,7 +144,7 @@ static void t_symlink(void)
     /* A dangling link: the file appears where the link points. */
     path_in(dang, sizeof dang, "dangling.csv");
     TST_CHECK(symlink("sub/later.csv", dang) == 0, "symlink");
-    TST_EQ_INT(sim_out_write_all(dang, "x", 1, err, sizeof err), 0);
+    TST_EQ_INT(base_out_write_all(dang, "x", 1, err, sizeof err), 0);
     TST_CHECK(lstat(dang, &st) == 0 && S_ISLNK(st.st_mode), "the dangling link is still a link");
     path_in(tgt, sizeof tgt, "sub/later.csv");
     TST_EQ_INT(slurp(tgt, buf, sizeof buf), 1);
@@ -153,7 +153,7 @@ static void t_symlink(void)
     path_in(a, sizeof a, "la");
     path_in(b, sizeof b, "lb");
     TST_CHECK(symlink("lb", a) == 0 && symlink("la", b) == 0, "symlinks");
-    TST_EQ_INT(sim_out_write_all(a, "x", 1, err, sizeof err), -1);
+    TST_EQ_INT(base_out_write_all(a, "x", 1, err, sizeof err), -1);
     TST_CHECK(strstr(err, "symbolic links") != NULL, "err = %s", err);
     TST_CHECK(!has_temp(), "no temporary left");
 }
@@ -167,7 +167,7 @@ static void t_devnull(void)
     char err[300];
     static char big[1 << 17];
     memset(big, 'v', sizeof big);
-    TST_EQ_INT(sim_out_write_all("/dev/null", big, sizeof big, err, sizeof err), 0);
+    TST_EQ_INT(base_out_write_all("/dev/null", big, sizeof big, err, sizeof err), 0);
     TST_CHECK(stat("/dev/null", &after) == 0 && S_ISCHR(after.st_mode), "still a character device");
     TST_EQ_INT(after.st_rdev, before.st_rdev);
     TST_EQ_INT(after.st_ino, before.st_ino);
@@ -180,20 +180,20 @@ static void t_devfull(void)
     if (stat("/dev/full", &st) || !S_ISCHR(st.st_mode)) TST_SKIP("/dev/full not available");
     char err[300] = "";
     /* Small (stays in the buffer until close) and large (fails in fwrite). */
-    TST_EQ_INT(sim_out_write_all("/dev/full", "abc", 3, err, sizeof err), -1);
+    TST_EQ_INT(base_out_write_all("/dev/full", "abc", 3, err, sizeof err), -1);
     TST_CHECK(strstr(err, strerror(ENOSPC)) != NULL, "err = %s", err);
     static char big[1 << 17];
     memset(big, 'f', sizeof big);
     err[0] = 0;
-    TST_EQ_INT(sim_out_write_all("/dev/full", big, sizeof big, err, sizeof err), -1);
+    TST_EQ_INT(base_out_write_all("/dev/full", big, sizeof big, err, sizeof err), -1);
     TST_CHECK(strstr(err, strerror(ENOSPC)) != NULL, "err = %s", err);
     TST_CHECK(stat("/dev/full", &st) == 0 && S_ISCHR(st.st_mode), "still a character device");
     /* Through a stream the caller writes with fprintf. */
-    sim_out *o = sim_out_open("/dev/full", err, sizeof err);
+    base_out *o = base_out_open("/dev/full", err, sizeof err);
     TST_CHECK(o != NULL, "%s", err);
     if (!o) return;
-    for (int i = 0; i < 10000; i++) fprintf(sim_out_file(o), "line %d\n", i);
-    TST_EQ_INT(sim_out_close(o, err, sizeof err), -1);
+    for (int i = 0; i < 10000; i++) fprintf(base_out_file(o), "line %d\n", i);
+    TST_EQ_INT(base_out_close(o, err, sizeof err), -1);
     TST_CHECK(strstr(err, strerror(ENOSPC)) != NULL, "err = %s", err);
 }
 
@@ -219,7 +219,7 @@ static void t_fifo(void)
     if (pid < 0) return;
     char *buf = malloc(n);
     for (size_t i = 0; i < n; i++) buf[i] = (char)('a' + i % 26);
-    TST_EQ_INT(sim_out_write_all(p, buf, n, err, sizeof err), 0);
+    TST_EQ_INT(base_out_write_all(p, buf, n, err, sizeof err), 0);
     free(buf);
     int status = 0;
     waitpid(pid, &status, 0);
@@ -236,12 +236,12 @@ static void t_rename_fails(void)
     tst_rmtree(dir);
     char p[400], err[300] = "";
     path_in(p, sizeof p, "late");
-    sim_out *o = sim_out_open(p, err, sizeof err);
+    base_out *o = base_out_open(p, err, sizeof err);
     TST_CHECK(o != NULL, "%s", err);
     if (!o) return;
-    fputs("data", sim_out_file(o));
+    fputs("data", base_out_file(o));
     TST_CHECK(mkdir(p, 0777) == 0, "mkdir");
-    TST_EQ_INT(sim_out_close(o, err, sizeof err), -1);
+    TST_EQ_INT(base_out_close(o, err, sizeof err), -1);
     TST_CHECK(strstr(err, "rename") != NULL, "err = %s", err);
     struct stat st;
     TST_CHECK(stat(p, &st) == 0 && S_ISDIR(st.st_mode), "the folder is still there");
@@ -266,7 +266,7 @@ static void t_file_too_big(void)
         static char big[1 << 16];
         memset(big, 'b', sizeof big);
         char err[300] = "";
-        if (sim_out_write_all(p, big, sizeof big, err, sizeof err) != -1) _exit(4);
+        if (base_out_write_all(p, big, sizeof big, err, sizeof err) != -1) _exit(4);
         if (!strstr(err, strerror(EFBIG))) _exit(5);
         _exit(0);
     }
@@ -285,22 +285,22 @@ static void t_bad_paths(void)
 {
     tst_rmtree(dir);
     char err[300] = "", p[400];
-    TST_CHECK(sim_out_open("", err, sizeof err) == NULL, "empty path refused");
+    TST_CHECK(base_out_open("", err, sizeof err) == NULL, "empty path refused");
     TST_CHECK(strstr(err, "empty") != NULL, "err = %s", err);
-    TST_CHECK(sim_out_open(dir, err, sizeof err) == NULL, "a folder refused");
+    TST_CHECK(base_out_open(dir, err, sizeof err) == NULL, "a folder refused");
     path_in(p, sizeof p, "no/such/folder/x.csv");
-    TST_CHECK(sim_out_open(p, err, sizeof err) == NULL, "missing folder refused");
+    TST_CHECK(base_out_open(p, err, sizeof err) == NULL, "missing folder refused");
     TST_CHECK(strstr(err, strerror(ENOENT)) != NULL, "err = %s", err);
     /* Raw bytes of a path are escaped in the message. */
     path_in(p, sizeof p, "no/\x01\xff/x");
-    TST_CHECK(sim_out_open(p, err, sizeof err) == NULL, "refused");
+    TST_CHECK(base_out_open(p, err, sizeof err) == NULL, "refused");
     TST_CHECK(strstr(err, "\\x01\\xff") != NULL && !strchr(err, '\x01'), "err = %s", err);
     /* A name near NAME_MAX: the temporary's name must still fit. */
     char name[256];
     memset(name, 'n', 250);
     name[250] = 0;
     path_in(p, sizeof p, name);
-    TST_EQ_INT(sim_out_write_all(p, "long", 4, err, sizeof err), 0);
+    TST_EQ_INT(base_out_write_all(p, "long", 4, err, sizeof err), 0);
     TST_EQ_INT(entries(), 1);
 }
 
@@ -316,22 +316,22 @@ static void t_stdout(void)
         int fd = open(p, O_WRONLY | O_CREAT | O_TRUNC, 0644);
         if (fd < 0 || dup2(fd, 1) < 0) _exit(3);
         char err[300];
-        sim_out *o = sim_out_open("-", err, sizeof err);
-        if (!o || sim_out_file(o) != stdout) _exit(4);
-        fputs("first ", sim_out_file(o));
-        if (sim_out_close(o, err, sizeof err)) _exit(5);
+        base_out *o = base_out_open("-", err, sizeof err);
+        if (!o || base_out_file(o) != stdout) _exit(4);
+        fputs("first ", base_out_file(o));
+        if (base_out_close(o, err, sizeof err)) _exit(5);
         /* stdout is still open after close. */
-        if (fputs("second\n", stdout) < 0 || sim_out_stdout_check(err, sizeof err)) _exit(6);
+        if (fputs("second\n", stdout) < 0 || base_out_stdout_check(err, sizeof err)) _exit(6);
         int full = open("/dev/full", O_WRONLY);
         if (full < 0) _exit(0);         /* the first half was checked */
         fflush(stdout);
         dup2(full, 1);
         printf("lost");
-        if (sim_out_stdout_check(err, sizeof err) != -1 || !strstr(err, strerror(ENOSPC))) _exit(7);
-        o = sim_out_open("-", err, sizeof err);
+        if (base_out_stdout_check(err, sizeof err) != -1 || !strstr(err, strerror(ENOSPC))) _exit(7);
+        o = base_out_open("-", err, sizeof err);
         if (!o) _exit(8);
-        fputs("lost too", sim_out_file(o));
-        if (sim_out_close(o, err, sizeof err) != -1) _exit(9);
+        fputs("lost too", base_out_file(o));
+        if (base_out_close(o, err, sizeof err) != -1) _exit(9);
         _exit(0);
     }
     TST_CHECK(pid > 0, "fork");
@@ -355,13 +355,13 @@ static void killed_child(int sig)
     pid_t pid = fork();
     if (pid == 0) {
         close(fds[0]);
-        sim_out_install_signals();
+        base_out_install_signals();
         char p[400], err[300];
         path_in(p, sizeof p, "big.vcd");
-        sim_out *o = sim_out_open(p, err, sizeof err);
+        base_out *o = base_out_open(p, err, sizeof err);
         if (!o) _exit(3);
-        for (int i = 0; i < 100000; i++) fprintf(sim_out_file(o), "#%d\n", i);
-        fflush(sim_out_file(o));
+        for (int i = 0; i < 100000; i++) fprintf(base_out_file(o), "#%d\n", i);
+        fflush(base_out_file(o));
         char seen = has_temp() ? '1' : '0';
         if (write(fds[1], &seen, 1) != 1) _exit(4);
         raise(sig);
@@ -393,15 +393,15 @@ static void t_kill_from_outside(void)
     pid_t pid = fork();
     if (pid == 0) {
         close(fds[0]);
-        sim_out_install_signals();
+        base_out_install_signals();
         char p[400], err[300];
         path_in(p, sizeof p, "endless.csv");
-        sim_out *o = sim_out_open(p, err, sizeof err);
+        base_out *o = base_out_open(p, err, sizeof err);
         if (!o) _exit(3);
         if (write(fds[1], "g", 1) != 1) _exit(4);
         for (unsigned long i = 0;; i++) {
-            fprintf(sim_out_file(o), "%lu\n", i);
-            if (i % 100000 == 0) { sim_out_abort(o); if (!(o = sim_out_open(p, err, sizeof err))) _exit(6); }
+            fprintf(base_out_file(o), "%lu\n", i);
+            if (i % 100000 == 0) { base_out_abort(o); if (!(o = base_out_open(p, err, sizeof err))) _exit(6); }
         }
     }
     TST_CHECK(pid > 0, "fork");
@@ -429,7 +429,7 @@ static void *writer(void *arg)
         snprintf(name, sizeof name, "t%d.txt", j->k);
         path_in(p, sizeof p, name);
         snprintf(text, sizeof text, "thread %d round %d\n", j->k, r);
-        j->rc = sim_out_write_all(p, text, strlen(text), err, sizeof err);
+        j->rc = base_out_write_all(p, text, strlen(text), err, sizeof err);
     }
     return NULL;
 }

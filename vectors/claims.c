@@ -7,6 +7,7 @@
 #include "vectors/ref_brdf.h"
 #include "vectors/ref_seed000.h"
 #include "vectors/ref_shading.h"
+#include "base/base_join.h"
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -184,8 +185,7 @@ static void claim_interp_nmse(table *t)
         if (e > worst) { worst = e; worst_name = s->name; }
         if (e > r->claimed) {
             bad++;
-            size_t k = strlen(failing);
-            snprintf(failing + k, sizeof failing - k, "%s%s %.2g", k ? ", " : "", s->name, e);
+            base_join_addf(failing, sizeof failing, ", ", "%s %.2g", s->name, e);
         }
     }
     r->measured = worst;

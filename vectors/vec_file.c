@@ -11,10 +11,11 @@
  */
 #include "vectors/vec_file.h"
 #include "vectors/vec_num.h"
-#include "sim/sim_out.h"
+#include "base/base_out.h"
+#include "base/base_par.h"
+#include "base/base_join.h"
 #include <errno.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -88,13 +89,13 @@ static int check_set(const vec_set *s, char *err, size_t errlen, const char *pat
 int vec_file_write(const char *path, const vec_set *s, char *err, size_t errlen)
 {
     if (check_set(s, err, errlen, path)) return -1;
-    /* sim_out: a temporary beside a regular file, renamed when complete
+    /* base_out: a temporary beside a regular file, renamed when complete
      * (a reader never sees half a file); devices and FIFOs written
      * through; "-" is stdout. */
-    sim_out *o = sim_out_open(path, err, errlen);
+    base_out *o = base_out_open(path, err, errlen);
     if (!o) return -1;
-    (void)vec_file_print(sim_out_file(o), s);  /* an error is kept in the stream */
-    return sim_out_close(o, err, errlen);
+    (void)vec_file_print(base_out_file(o), s);  /* an error is kept in the stream */
+    return base_out_close(o, err, errlen);
 }
 
 /* ---- reading ---------------------------------------------------------
@@ -248,13 +249,8 @@ static int parse_names(reader *r, char *p, const char *key, int *n, char names[]
 /* "a b c" for a message. */
 static void join_names(char *out, size_t outlen, int n, const char names[][16])
 {
-    size_t used = 0;
     out[0] = 0;
-    for (int i = 0; i < n && used < outlen; i++) {
-        int k = snprintf(out + used, outlen - used, "%s%s", i ? " " : "", names[i]);
-        if (k < 0) break;
-        used += (size_t)k;
-    }
+    for (int i = 0; i < n; i++) base_join_add(out, outlen, " ", names[i]);
 }
 
 static int same_names(int n, const char a[][16], int m, const char b[][16])
@@ -441,11 +437,23 @@ typedef struct par {
     vec_set rows;               /* the second thread's rows of a block */
 } par;
 
-static void *half_main(void *arg)
+/* The two halves of a block as the items of a parallel-for: item 0 is
+ * the first half, read into the block's own set; item 1 the second. */
+typedef struct halves {
+    reader *r;
+    char *b, *mid;
+    vec_set *s;
+    const vec_set *expect;
+    rstate *st;
+    int rc;                     /* item 0's */
+    half h;                     /* item 1 */
+} halves;
+
+static void half_item(void *arg, size_t i)
 {
-    half *h = arg;
-    h->rc = do_lines(&h->r, h->b, h->e, h->rows, NULL, &h->st);
-    return NULL;
+    halves *t = arg;
+    if (i == 0) t->rc = do_lines(t->r, t->b, t->mid, t->s, t->expect, t->st);
+    else t->h.rc = do_lines(&t->h.r, t->h.b, t->h.e, t->h.rows, NULL, &t->h.st);
 }
 
 /* Append t's rows to s, growing s as vec_set_push does (doubling). */
@@ -476,25 +484,24 @@ static int do_rows(reader *r, char *b, char *e, vec_set *s, const vec_set *expec
     char *mid = n >= VEC_PAR_MIN && pp->ncpu > 1 ? memchr(b + n / 2, '\n', (size_t)(e - (b + n / 2))) : NULL;
     if (!mid || mid + 1 >= e) return do_lines(r, b, e, s, expect, st);
     mid++;
-    half h;
-    memset(&h, 0, sizeof h);
-    h.r.path = r->path;
-    h.r.defer = 1;
-    h.b = mid; h.e = e;
+    halves t;
+    memset(&t, 0, sizeof t);
+    half *h = &t.h;
+    h->r.path = r->path;
+    h->r.defer = 1;
+    h->b = mid; h->e = e;
     pp->rows.n_in = s->n_in;
     pp->rows.n_out = s->n_out;
     pp->rows.n_rows = 0;
-    h.rows = &pp->rows;
-    h.st = *st;
-    pthread_t th;
-    if (pthread_create(&th, NULL, half_main, &h)) return do_lines(r, b, e, s, expect, st);
-    int rc = do_lines(r, b, mid, s, expect, st);
-    pthread_join(th, NULL);
-    if (rc) return rc;
+    h->rows = &pp->rows;
+    h->st = *st;
+    t.r = r; t.b = b; t.mid = mid; t.s = s; t.expect = expect; t.st = st;
+    base_par_for(2, 2, half_item, &t);
+    if (t.rc) return t.rc;
     /* The second half's lines follow the first's. (Out of memory while
      * appending is reported on the half's last line.) */
-    r->line += h.r.line;
-    if (h.rc) return fail(r, "%s", h.r.why);
+    r->line += h->r.line;
+    if (h->rc) return fail(r, "%s", h->r.why);
     if (append_rows(s, &pp->rows)) return fail(r, "out of memory");
     return 0;
 }

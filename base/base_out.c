@@ -1,4 +1,4 @@
-/* sim_out.c - output files (see sim_out.h).
+/* base_out.c - output files (see base_out.h).
  *
  * Decisions beyond the header:
  *  - The temporary is ".NAME.tmp-XXXXXX" in the target's folder (hidden,
@@ -7,7 +7,7 @@
  *  - Mode: a replaced regular file keeps its permission bits; a new file
  *    gets 0666 & ~umask, as open(O_CREAT, 0666) would give. The umask can
  *    only be read by setting it, which is not thread-safe, so it is read
- *    once: in sim_out_install_signals (main, before any thread) or, in
+ *    once: in base_out_install_signals (main, before any thread) or, in
  *    programs that do not call it, at the first open.
  *  - Write-through targets (devices, FIFOs) are opened O_WRONLY without
  *    O_TRUNC: truncating a FIFO or a tty means nothing, and the node must
@@ -23,7 +23,7 @@
  *  - Paths are escaped in messages (bytes outside printable ASCII as \xNN)
  *    so that a hostile name cannot put control characters on a terminal.
  */
-#include "sim/sim_out.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <pthread.h>
@@ -37,14 +37,14 @@
 
 enum { OUT_TEMP, OUT_THROUGH, OUT_STDOUT };
 
-struct sim_out {
+struct base_out {
     FILE *f;
     int   kind;
     int   slot;       /* registry slot of tmp, or -1 */
     char *shown;      /* the path as given (messages) */
     char *target;     /* where the file goes (symlinks resolved) */
     char *tmp;        /* OUT_TEMP: the temporary */
-    int   werr;       /* errno of a failed write seen by sim_out_write_all */
+    int   werr;       /* errno of a failed write seen by base_out_write_all */
 };
 
 /* ---- registry of temporaries ------------------------------------------ */
@@ -108,7 +108,7 @@ static void read_umask(void)
     new_mode = 0666 & ~m;
 }
 
-void sim_out_install_signals(void)
+void base_out_install_signals(void)
 {
     pthread_once(&mode_once, read_umask);
     static const int sigs[] = { SIGINT, SIGTERM, SIGHUP };
@@ -200,7 +200,7 @@ static char *resolve(const char *path, struct stat *st, int *exists)
     }
 }
 
-static void out_free(sim_out *o)
+static void out_free(base_out *o)
 {
     if (!o) return;
     int saved = errno;
@@ -208,7 +208,7 @@ static void out_free(sim_out *o)
     errno = saved;
 }
 
-static int open_temp(sim_out *o, const struct stat *st, int exists, char *err, size_t errlen)
+static int open_temp(base_out *o, const struct stat *st, int exists, char *err, size_t errlen)
 {
     const char *t = o->target;
     size_t tl = strlen(t);
@@ -259,7 +259,7 @@ static int open_temp(sim_out *o, const struct stat *st, int exists, char *err, s
     return 0;
 }
 
-sim_out *sim_out_open(const char *path, char *err, size_t errlen)
+base_out *base_out_open(const char *path, char *err, size_t errlen)
 {
     pthread_once(&mode_once, read_umask);
     if (!path || !*path) {
@@ -267,7 +267,7 @@ sim_out *sim_out_open(const char *path, char *err, size_t errlen)
         errno = ENOENT;
         return NULL;
     }
-    sim_out *o = calloc(1, sizeof *o);
+    base_out *o = calloc(1, sizeof *o);
     if (!o || !(o->shown = strdup(path))) {
         free(o);
         errno = ENOMEM;
@@ -318,7 +318,7 @@ sim_out *sim_out_open(const char *path, char *err, size_t errlen)
     return o;
 }
 
-FILE *sim_out_file(sim_out *o)
+FILE *base_out_file(base_out *o)
 {
     return o ? o->f : NULL;
 }
@@ -343,7 +343,7 @@ static int flush_err(FILE *f, int entry_errno)
     }
 }
 
-int sim_out_close(sim_out *o, char *err, size_t errlen)
+int base_out_close(base_out *o, char *err, size_t errlen)
 {
     if (!o) return 0;
     int e = flush_err(o->f, o->werr ? o->werr : errno);
@@ -374,7 +374,7 @@ int sim_out_close(sim_out *o, char *err, size_t errlen)
     return e ? -1 : 0;
 }
 
-void sim_out_abort(sim_out *o)
+void base_out_abort(base_out *o)
 {
     if (!o) return;
     if (o->kind == OUT_STDOUT) {
@@ -389,16 +389,16 @@ void sim_out_abort(sim_out *o)
     out_free(o);
 }
 
-int sim_out_write_all(const char *path, const void *buf, size_t len, char *err, size_t errlen)
+int base_out_write_all(const char *path, const void *buf, size_t len, char *err, size_t errlen)
 {
-    sim_out *o = sim_out_open(path, err, errlen);
+    base_out *o = base_out_open(path, err, errlen);
     if (!o) return -1;
     errno = 0;
     if (len && fwrite(buf, 1, len, o->f) != len) o->werr = errno ? errno : EIO;
-    return sim_out_close(o, err, errlen);
+    return base_out_close(o, err, errlen);
 }
 
-int sim_out_stdout_check(char *err, size_t errlen)
+int base_out_stdout_check(char *err, size_t errlen)
 {
     int e = flush_err(stdout, errno);
     if (!e) return 0;
@@ -406,7 +406,7 @@ int sim_out_stdout_check(char *err, size_t errlen)
     return -1;
 }
 
-int sim_out_mkdirs(const char *dir, char *err, size_t errlen)
+int base_out_mkdirs(const char *dir, char *err, size_t errlen)
 {
     char p[4096];
     if (!dir[0]) { snprintf(err, errlen, "empty folder name"); return -1; }

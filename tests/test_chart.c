@@ -1,13 +1,13 @@
-/* test_svg.c - the SVG chart writer (testbench/tb_svg.c).
+/* test_chart.c - the SVG chart writer (chart/).
  *
- * Checks tb_pareto against the O(n^2) definition, the tick placement, and
+ * Checks chart_pareto against the O(n^2) definition, the tick placement, and
  * that every chart file is well-formed XML by an independent little checker
  * here, and by xmllint and rsvg-convert where they are installed (a test
  * that needs a missing tool says skip). Set TST_SVG_KEEP=DIR to keep the
  * sample charts and their PNGs in DIR for looking at.
  */
 #include "tests/tst.h"
-#include "testbench/tb_svg.h"
+#include "chart/chart.h"
 #include "tests/tst_svgtext.h"
 
 #include <ctype.h>
@@ -248,10 +248,10 @@ static void check_file(const char *path)
     free(s);
 }
 
-static int write_ok(tb_chart *c, const char *path)
+static int write_ok(chart *c, const char *path)
 {
     char err[256] = "";
-    int r = tb_chart_write(c, path, err, sizeof err);
+    int r = chart_write(c, path, err, sizeof err);
     TST_CHECK(r == 0, "write %s: %s", path, err);
     return r == 0;
 }
@@ -267,28 +267,28 @@ static double urand(void)   /* [0, 1), xorshift64* */
     return (double)((rng_state * 2685821657736338717ULL) >> 11) * 0x1.0p-53;
 }
 
-static tb_chart *sample_error_width(void)
+static chart *sample_error_width(void)
 {
-    tb_chart *c = tb_chart_new("Max error vs bit width", "bit width (bits)", "max |error| (rad)");
-    tb_chart_log_y(c, 1);
-    int a = tb_chart_series(c, "CORDIC", TB_LINE | TB_POINTS);
-    int b = tb_chart_series(c, "LUT + linear interp.", TB_LINE | TB_POINTS);
-    int p = tb_chart_series(c, "polynomial (deg 3)", TB_LINE | TB_POINTS);
+    chart *c = chart_new("Max error vs bit width", "bit width (bits)", "max |error| (rad)");
+    chart_log_y(c, 1);
+    int a = chart_series(c, "CORDIC", CHART_LINE | CHART_POINTS);
+    int b = chart_series(c, "LUT + linear interp.", CHART_LINE | CHART_POINTS);
+    int p = chart_series(c, "polynomial (deg 3)", CHART_LINE | CHART_POINTS);
     for (int w = 8; w <= 24; w += 2) {
-        tb_chart_point(c, a, w, 3.1 * ldexp(1.0, -w + 1));
-        tb_chart_point(c, b, w, w < 18 ? 0.8 * ldexp(1.0, -w) : 0.8 * ldexp(1.0, -18) * (1 + 0.05 * (w - 18)));
-        tb_chart_point(c, p, w, 0.5 * ldexp(1.0, -w) + 2e-7);
+        chart_point(c, a, w, 3.1 * ldexp(1.0, -w + 1));
+        chart_point(c, b, w, w < 18 ? 0.8 * ldexp(1.0, -w) : 0.8 * ldexp(1.0, -18) * (1 + 0.05 * (w - 18)));
+        chart_point(c, p, w, 0.5 * ldexp(1.0, -w) + 2e-7);
     }
-    tb_chart_hline(c, 1e-5, "target 1e-5");
+    chart_hline(c, 1e-5, "target 1e-5");
     return c;
 }
 
-static tb_chart *sample_area_pareto(void)
+static chart *sample_area_pareto(void)
 {
-    tb_chart *c = tb_chart_new("Area vs error (Pareto front marked)", "max |error| (ulp)", "area (gate equivalents)");
-    tb_chart_log_x(c, 1);
-    int all = tb_chart_series(c, "design points", TB_POINTS);
-    int fr = tb_chart_series(c, "Pareto front", TB_STEP | TB_POINTS);
+    chart *c = chart_new("Area vs error (Pareto front marked)", "max |error| (ulp)", "area (gate equivalents)");
+    chart_log_x(c, 1);
+    int all = chart_series(c, "design points", CHART_POINTS);
+    int fr = chart_series(c, "Pareto front", CHART_STEP | CHART_POINTS);
     enum { N = 40 };
     double x[N], y[N];
     int w[N];
@@ -298,9 +298,9 @@ static tb_chart *sample_area_pareto(void)
         w[i] = 8 + (int)(urand() * 17);
         x[i] = ldexp(1.0, 20 - w[i]) * (1 + 3 * urand());
         y[i] = 40.0 * w[i] * w[i] * (0.6 + urand());
-        tb_chart_point(c, all, x[i], y[i]);
+        chart_point(c, all, x[i], y[i]);
     }
-    tb_pareto(x, y, N, on);
+    chart_pareto(x, y, N, on);
     /* the front in order of increasing error, for the staircase */
     int idx[N], m = 0;
     for (int i = 0; i < N; i++) if (on[i]) idx[m++] = i;
@@ -309,43 +309,43 @@ static tb_chart *sample_area_pareto(void)
     for (int i = 0; i < m; i++) {
         char lab[16];
         snprintf(lab, sizeof lab, "w=%d", w[idx[i]]);
-        tb_chart_point_label(c, fr, x[idx[i]], y[idx[i]], lab);
+        chart_point_label(c, fr, x[idx[i]], y[idx[i]], lab);
     }
     return c;
 }
 
-static tb_chart *sample_angle(void)
+static chart *sample_angle(void)
 {
-    tb_chart *c = tb_chart_new("Error vs angle, 12-bit CORDIC", "angle (degrees)", "|error| (ulp)");
-    int s = tb_chart_series(c, "sin", TB_LINE);
-    int k = tb_chart_series(c, "cos", TB_LINE);
+    chart *c = chart_new("Error vs angle, 12-bit CORDIC", "angle (degrees)", "|error| (ulp)");
+    int s = chart_series(c, "sin", CHART_LINE);
+    int k = chart_series(c, "cos", CHART_LINE);
     for (int d = 0; d <= 360; d += 2) {
         double r = d * 3.14159265358979 / 180;
         double bump = exp(-pow((d % 180 - 90) / 4.0, 2)) * 6;
-        tb_chart_point(c, s, d, 0.6 + 0.3 * fabs(sin(3 * r)) + bump);
-        tb_chart_point(c, k, d, 0.5 + 0.3 * fabs(cos(5 * r)) + (d > 350 ? 4 : 0));
+        chart_point(c, s, d, 0.6 + 0.3 * fabs(sin(3 * r)) + bump);
+        chart_point(c, k, d, 0.5 + 0.3 * fabs(cos(5 * r)) + (d > 350 ? 4 : 0));
     }
-    tb_chart_hband(c, 84, 96, "fails: |err| > 2 ulp");
-    tb_chart_hband(c, 264, 276, "fails");
-    tb_chart_hband(c, 350, INFINITY, "fails");
-    tb_chart_hline(c, 2, "limit 2 ulp");
+    chart_hband(c, 84, 96, "fails: |err| > 2 ulp");
+    chart_hband(c, 264, 276, "fails");
+    chart_hband(c, 350, INFINITY, "fails");
+    chart_hline(c, 2, "limit 2 ulp");
     return c;
 }
 
-static tb_chart *sample_clocks(void)
+static chart *sample_clocks(void)
 {
-    tb_chart *c = tb_chart_new("Clocks per item vs error", "max |error| (ulp)", "clocks / item");
+    chart *c = chart_new("Clocks per item vs error", "max |error| (ulp)", "clocks / item");
     const char *names[] = { "CORDIC serial", "CORDIC unrolled x2", "CORDIC unrolled x4",
                             "LUT", "poly Horner", "poly Estrin", "hybrid", "CORDIC + LUT seed",
                             "a very long series label that will not fit the legend box" };
     for (int i = 0; i < 9; i++) {
-        int s = tb_chart_series(c, names[i], i % 3 == 0 ? TB_POINTS : TB_LINE | TB_POINTS);
-        for (int j = 0; j < 6; j++) tb_chart_point(c, s, 0.5 + j * 0.7 + i * 0.05, 2 + i * 2.5 + 12.0 / (j + 1));
+        int s = chart_series(c, names[i], i % 3 == 0 ? CHART_POINTS : CHART_LINE | CHART_POINTS);
+        for (int j = 0; j < 6; j++) chart_point(c, s, 0.5 + j * 0.7 + i * 0.05, 2 + i * 2.5 + 12.0 / (j + 1));
     }
     return c;
 }
 
-typedef tb_chart *(*sample_fn)(void);
+typedef chart *(*sample_fn)(void);
 static const struct { const char *name; sample_fn fn; } samples[] = {
     { "error_width.svg", sample_error_width },
     { "area_pareto.svg", sample_area_pareto },
@@ -357,14 +357,14 @@ static const struct { const char *name; sample_fn fn; } samples[] = {
 static void write_samples(void)
 {
     for (size_t i = 0; i < NSAMPLES; i++) {
-        tb_chart *c = samples[i].fn();
+        chart *c = samples[i].fn();
         TST_CHECK(c != NULL, "%s", samples[i].name);
         if (c) write_ok(c, tpath(samples[i].name));
-        tb_chart_free(c);
+        chart_free(c);
     }
-    tb_chart *e = tb_chart_new("Empty", "x", "y");
+    chart *e = chart_new("Empty", "x", "y");
     write_ok(e, tpath("empty.svg"));
-    tb_chart_free(e);
+    chart_free(e);
 }
 
 /* ---- tests ------------------------------------------------------------- */
@@ -399,7 +399,7 @@ static void test_pareto_vs_bruteforce(void)
             if (i && urand() < 0.1) { x[i] = x[i - 1]; y[i] = y[i - 1]; }   /* exact duplicate */
         }
         memset(a, 7, sizeof a);
-        size_t na = tb_pareto(x, y, n, a), nr = pareto_ref(x, y, n, r);
+        size_t na = chart_pareto(x, y, n, a), nr = pareto_ref(x, y, n, r);
         TST_EQ_INT(na, nr);
         for (size_t i = 0; i < n; i++) TST_EQ_INT(a[i], r[i]);
         if (n) TST_CHECK(nr > 0 || mode == 2, "a non-empty set without NaN has a front");
@@ -407,9 +407,9 @@ static void test_pareto_vs_bruteforce(void)
     /* documented ties: duplicates are both on the front; equal x, larger y is not */
     double tx[] = { 1, 1, 1, 2, 0.5 }, ty[] = { 3, 3, 4, 2, 5 };
     unsigned char on[5];
-    TST_EQ_INT(tb_pareto(tx, ty, 5, on), 4);
+    TST_EQ_INT(chart_pareto(tx, ty, 5, on), 4);
     TST_CHECK(on[0] && on[1] && !on[2] && on[3] && on[4], "ties");
-    TST_EQ_INT(tb_pareto(tx, ty, 0, on), 0);
+    TST_EQ_INT(chart_pareto(tx, ty, 0, on), 0);
 }
 
 /* The three-cost front by its definition, O(n^2). */
@@ -443,7 +443,7 @@ static void test_pareto3_vs_bruteforce(void)
             if (i && urand() < 0.1) { x[i] = x[i - 1]; y[i] = y[i - 1]; z[i] = z[i - 1]; }
         }
         memset(a, 7, sizeof a);
-        size_t na = tb_pareto3(x, y, z, n, a), nr = pareto3_ref(x, y, z, n, r);
+        size_t na = chart_pareto3(x, y, z, n, a), nr = pareto3_ref(x, y, z, n, r);
         TST_EQ_INT(na, nr);
         for (size_t i = 0; i < n; i++) TST_EQ_INT(a[i], r[i]);
     }
@@ -451,30 +451,30 @@ static void test_pareto3_vs_bruteforce(void)
      * the third cost alone can put a point on the front. */
     double ex[] = { 0.1, 0.1, 0.2 }, ar[] = { 3000, 2000, 2000 }, ck[] = { 1, 3, 3 };
     unsigned char on[3];
-    TST_EQ_INT(tb_pareto3(ex, ar, ck, 3, on), 2);
+    TST_EQ_INT(chart_pareto3(ex, ar, ck, 3, on), 2);
     TST_CHECK(on[0] && on[1] && !on[2], "fast one kept, dominated one dropped");
     /* with z constant it is the two-cost front */
     double zc[] = { 1, 1, 1 };
-    TST_EQ_INT(tb_pareto3(ex, ar, zc, 3, on), 1);
+    TST_EQ_INT(chart_pareto3(ex, ar, zc, 3, on), 1);
     TST_CHECK(!on[0] && on[1] && !on[2], "2-d front");
 }
 
 /* Labels crowded on purpose: a cluster of labelled points, a reference
  * line's label among them, more band labels than rows. */
-static tb_chart *sample_crowded(void)
+static chart *sample_crowded(void)
 {
-    tb_chart *c = tb_chart_new("Crowded labels", "max |e| (output units)", "area (GE)");
-    tb_chart_log_x(c, 1);
-    int s = tb_chart_series(c, "configurations", TB_POINTS);
+    chart *c = chart_new("Crowded labels", "max |e| (output units)", "area (GE)");
+    chart_log_x(c, 1);
+    int s = chart_series(c, "configurations", CHART_POINTS);
     rng_state = 777;
     for (int i = 0; i < 60; i++) {
         char lab[32];
         snprintf(lab, sizeof lab, "width %d", 8 + i % 20);
-        tb_chart_point_label(c, s, 0.01 * (1 + urand()), 1000 + 200 * urand(), lab);
+        chart_point_label(c, s, 0.01 * (1 + urand()), 1000 + 200 * urand(), lab);
     }
-    tb_chart_point_label(c, s, 1, 3000, "an isolated point");
-    tb_chart_hline(c, 1100, "target line label");
-    for (int k = 0; k < 6; k++) tb_chart_hband(c, 0.011 + 0.0001 * k, 0.012 + 0.0001 * k, "a band label that is long");
+    chart_point_label(c, s, 1, 3000, "an isolated point");
+    chart_hline(c, 1100, "target line label");
+    for (int k = 0; k < 6; k++) chart_hband(c, 0.011 + 0.0001 * k, 0.012 + 0.0001 * k, "a band label that is long");
     return c;
 }
 
@@ -490,10 +490,10 @@ static void test_svg_no_text_overlap(void)
     const char *good = "<svg font-size=\"11\"><text x=\"10\" y=\"20\">w</text><text x=\"10\" y=\"40\">w</text></svg>";
     TST_CHECK(tst_svg_text_overlap(good, why, sizeof why) == 0, "the checker sees an overlap in %s", good);
     for (size_t i = 0; i <= NSAMPLES; i++) {
-        tb_chart *c = i < NSAMPLES ? samples[i].fn() : sample_crowded();
+        chart *c = i < NSAMPLES ? samples[i].fn() : sample_crowded();
         const char *name = i < NSAMPLES ? samples[i].name : "crowded.svg";
-        if (!c || !write_ok(c, tpath(name))) { tb_chart_free(c); continue; }
-        tb_chart_free(c);
+        if (!c || !write_ok(c, tpath(name))) { chart_free(c); continue; }
+        chart_free(c);
         size_t len;
         char *svg = slurp(tpath(name), &len);
         TST_CHECK(svg != NULL, "read %s", name);
@@ -514,23 +514,23 @@ static void test_svg_no_text_overlap(void)
  * line of one point; keys and headings are listed; series looks apply. */
 static void test_svg_legend_drawn_only(void)
 {
-    tb_chart *c = tb_chart_new("Legend", "x", "y");
-    int a = tb_chart_series(c, "drawn points", TB_POINTS);
-    tb_chart_point(c, a, 1, 1);
-    tb_chart_point(c, a, 2, 3);
-    int e = tb_chart_series(c, "empty series", TB_POINTS);
+    chart *c = chart_new("Legend", "x", "y");
+    int a = chart_series(c, "drawn points", CHART_POINTS);
+    chart_point(c, a, 1, 1);
+    chart_point(c, a, 2, 3);
+    int e = chart_series(c, "empty series", CHART_POINTS);
     (void)e;
-    int one = tb_chart_series(c, "one-point line", TB_STEP);
-    tb_chart_point(c, one, 1.5, 2);
-    int nan = tb_chart_series(c, "only NaN", TB_POINTS);
-    tb_chart_point(c, nan, NAN, 1);
-    int r = tb_chart_series(c, "rings", TB_POINTS | TB_HOLLOW);
-    tb_chart_point(c, r, 2, 3);
-    tb_chart_series_look(c, r, "#123456", 0, -1);
-    tb_chart_legend_key(c, "colour: terms", NULL, -1, 0);
-    tb_chart_legend_key(c, "terms=5", "#abcdef", 2, TB_POINTS);
-    if (!write_ok(c, tpath("legend.svg"))) { tb_chart_free(c); return; }
-    tb_chart_free(c);
+    int one = chart_series(c, "one-point line", CHART_STEP);
+    chart_point(c, one, 1.5, 2);
+    int nan = chart_series(c, "only NaN", CHART_POINTS);
+    chart_point(c, nan, NAN, 1);
+    int r = chart_series(c, "rings", CHART_POINTS | CHART_HOLLOW);
+    chart_point(c, r, 2, 3);
+    chart_series_look(c, r, "#123456", 0, -1);
+    chart_legend_key(c, "colour: terms", NULL, -1, 0);
+    chart_legend_key(c, "terms=5", "#abcdef", 2, CHART_POINTS);
+    if (!write_ok(c, tpath("legend.svg"))) { chart_free(c); return; }
+    chart_free(c);
     size_t len;
     char *svg = slurp(tpath("legend.svg"), &len);
     if (!svg) { TST_CHECK(0, "read legend.svg"); return; }
@@ -572,7 +572,7 @@ static void test_ticks_linear(void)
             b = a + urand() * sc * (urand() < 0.5 ? 1 : 0.001);
         }
         double dmin = fmin(a, b), dmax = fmax(a, b);
-        size_t n = tb_svg_ticks(a, b, 0, t, 32, &lo, &hi);
+        size_t n = chart_ticks(a, b, 0, t, 32, &lo, &hi);
         TST_CHECK(n >= 2 && n <= 9, "[%g, %g]: %zu ticks", a, b, n);
         if (n < 2 || n > 32) continue;
         double step = t[1] - t[0];
@@ -588,15 +588,15 @@ static void test_ticks_linear(void)
         TST_CHECK(lo == t[0] && hi == t[n - 1], "limits are the end ticks");
     }
     /* the readable choices for common ranges */
-    TST_EQ_INT(tb_svg_ticks(0, 1, 0, t, 32, &lo, &hi), 6);
+    TST_EQ_INT(chart_ticks(0, 1, 0, t, 32, &lo, &hi), 6);
     TST_NEAR(t[1], 0.2, 1e-12);
-    TST_EQ_INT(tb_svg_ticks(8, 24, 0, t, 32, &lo, &hi), 9);
+    TST_EQ_INT(chart_ticks(8, 24, 0, t, 32, &lo, &hi), 9);
     TST_NEAR(t[0], 8, 0);
     TST_NEAR(t[1], 10, 0);
-    TST_EQ_INT(tb_svg_ticks(0, 0.3, 0, t, 32, &lo, &hi), 7);   /* 0.05 steps, no extra for 0.3 */
+    TST_EQ_INT(chart_ticks(0, 0.3, 0, t, 32, &lo, &hi), 7);   /* 0.05 steps, no extra for 0.3 */
     TST_NEAR(hi, 0.3, 1e-12);
-    TST_EQ_INT(tb_svg_ticks(NAN, 1, 0, t, 32, &lo, &hi), 0);
-    TST_EQ_INT(tb_svg_ticks(0, INFINITY, 0, t, 32, &lo, &hi), 0);
+    TST_EQ_INT(chart_ticks(NAN, 1, 0, t, 32, &lo, &hi), 0);
+    TST_EQ_INT(chart_ticks(0, INFINITY, 0, t, 32, &lo, &hi), 0);
 }
 
 static void test_ticks_log(void)
@@ -611,7 +611,7 @@ static void test_ticks_log(void)
         double a, b;
         if (k < sizeof ranges / sizeof ranges[0]) { a = ranges[k][0]; b = ranges[k][1]; }
         else { a = pow(10, urand() * 40 - 20); b = a * pow(10, urand() * urand() * 30); }
-        size_t n = tb_svg_ticks(a, b, 1, t, 32, &lo, &hi);
+        size_t n = chart_ticks(a, b, 1, t, 32, &lo, &hi);
         TST_CHECK(n >= 2 && n <= 9, "[%g, %g]: %zu ticks", a, b, n);
         if (n < 2 || n > 32) continue;
         double dec = log10(t[1]) - log10(t[0]);
@@ -624,12 +624,12 @@ static void test_ticks_log(void)
         TST_CHECK(t[0] <= a && t[n - 1] >= b, "[%g, %g]: %g..%g do not cover", a, b, t[0], t[n - 1]);
         TST_CHECK(lo == t[0] && hi == t[n - 1], "limits are the end ticks");
     }
-    TST_EQ_INT(tb_svg_ticks(1e-7, 3e-2, 1, t, 32, &lo, &hi), 7);   /* every decade */
+    TST_EQ_INT(chart_ticks(1e-7, 3e-2, 1, t, 32, &lo, &hi), 7);   /* every decade */
     TST_NEAR(lo, 1e-7, 1e-20);
     TST_NEAR(hi, 1e-1, 1e-15);
-    TST_EQ_INT(tb_svg_ticks(3, 7, 1, t, 32, &lo, &hi), 2);
-    TST_EQ_INT(tb_svg_ticks(0, 1, 1, t, 32, &lo, &hi), 0);
-    TST_EQ_INT(tb_svg_ticks(-1, 1, 1, t, 32, &lo, &hi), 0);
+    TST_EQ_INT(chart_ticks(3, 7, 1, t, 32, &lo, &hi), 2);
+    TST_EQ_INT(chart_ticks(0, 1, 1, t, 32, &lo, &hi), 0);
+    TST_EQ_INT(chart_ticks(-1, 1, 1, t, 32, &lo, &hi), 0);
 }
 
 static void test_svg_well_formed(void)
@@ -690,18 +690,18 @@ static void test_svg_rsvg(void)
 static void test_svg_escaping(void)
 {
     const char *nasty = "a & b < c > d \"e\" 'f' <script>";
-    tb_chart *c = tb_chart_new(nasty, "x & y", "<y>");
-    int s = tb_chart_series(c, "</text>&amp;", TB_POINTS);
-    tb_chart_point_label(c, s, 1, 1, "w<12>&\"'");
-    tb_chart_point(c, s, 2, 3);
-    tb_chart_hband(c, 1.2, 1.5, "band & <x>");
-    tb_chart_hline(c, 2, "line 'q' \"q\"");
+    chart *c = chart_new(nasty, "x & y", "<y>");
+    int s = chart_series(c, "</text>&amp;", CHART_POINTS);
+    chart_point_label(c, s, 1, 1, "w<12>&\"'");
+    chart_point(c, s, 2, 3);
+    chart_hband(c, 1.2, 1.5, "band & <x>");
+    chart_hline(c, 2, "line 'q' \"q\"");
     /* control characters and broken UTF-8 must not break the XML either */
-    int s2 = tb_chart_series(c, "bad \x01\x1f utf8 \xff\xc3( caf\xc3\xa9", TB_LINE);
-    tb_chart_point(c, s2, 1, 2);
-    tb_chart_point(c, s2, 2, 2.5);
-    if (!write_ok(c, tpath("esc.svg"))) { tb_chart_free(c); return; }
-    tb_chart_free(c);
+    int s2 = chart_series(c, "bad \x01\x1f utf8 \xff\xc3( caf\xc3\xa9", CHART_LINE);
+    chart_point(c, s2, 1, 2);
+    chart_point(c, s2, 2, 2.5);
+    if (!write_ok(c, tpath("esc.svg"))) { chart_free(c); return; }
+    chart_free(c);
     check_file(tpath("esc.svg"));
     char *f = slurp(tpath("esc.svg"), NULL);
     TST_CHECK(f != NULL, "read");
@@ -717,18 +717,18 @@ static void test_svg_escaping(void)
 
 static void test_svg_log_skips(void)
 {
-    tb_chart *c = tb_chart_new("log", "x", "y");
-    tb_chart_log_y(c, 1);
-    int s = tb_chart_series(c, "s", TB_LINE | TB_POINTS);
-    for (int i = 1; i <= 5; i++) tb_chart_point(c, s, i, pow(10, -i));
-    tb_chart_point(c, s, 6, 0);
-    tb_chart_point(c, s, 7, -1);
-    tb_chart_point_label(c, s, 8, -2, "gone");
-    tb_chart_point(c, s, NAN, 1);
-    tb_chart_point(c, s, 9, INFINITY);
-    tb_chart_hline(c, 0, "zero");
-    if (!write_ok(c, tpath("log.svg"))) { tb_chart_free(c); return; }
-    tb_chart_free(c);
+    chart *c = chart_new("log", "x", "y");
+    chart_log_y(c, 1);
+    int s = chart_series(c, "s", CHART_LINE | CHART_POINTS);
+    for (int i = 1; i <= 5; i++) chart_point(c, s, i, pow(10, -i));
+    chart_point(c, s, 6, 0);
+    chart_point(c, s, 7, -1);
+    chart_point_label(c, s, 8, -2, "gone");
+    chart_point(c, s, NAN, 1);
+    chart_point(c, s, 9, INFINITY);
+    chart_hline(c, 0, "zero");
+    if (!write_ok(c, tpath("log.svg"))) { chart_free(c); return; }
+    chart_free(c);
     check_file(tpath("log.svg"));
     char *f = slurp(tpath("log.svg"), NULL);
     if (!f) { TST_CHECK(0, "read"); return; }
@@ -740,14 +740,14 @@ static void test_svg_log_skips(void)
     free(f);
 
     /* log x too, and one point on it is enough to count in the singular */
-    c = tb_chart_new("logx", "x", "y");
-    tb_chart_log_x(c, 1);
-    s = tb_chart_series(c, "s", TB_POINTS);
-    tb_chart_point(c, s, 1, 1);
-    tb_chart_point(c, s, 100, 2);
-    tb_chart_point(c, s, -5, 2);
+    c = chart_new("logx", "x", "y");
+    chart_log_x(c, 1);
+    s = chart_series(c, "s", CHART_POINTS);
+    chart_point(c, s, 1, 1);
+    chart_point(c, s, 100, 2);
+    chart_point(c, s, -5, 2);
     write_ok(c, tpath("logx.svg"));
-    tb_chart_free(c);
+    chart_free(c);
     f = slurp(tpath("logx.svg"), NULL);
     TST_CHECK(f && strstr(f, "1 point &lt;= 0 not shown"), "singular footnote");
     /* two decades: 2 and 5 x 10^k are labelled too, else only 3 numbers */
@@ -758,18 +758,18 @@ static void test_svg_log_skips(void)
 
 static void test_svg_empty(void)
 {
-    tb_chart *c = tb_chart_new(NULL, NULL, NULL);
+    chart *c = chart_new(NULL, NULL, NULL);
     write_ok(c, tpath("e1.svg"));
-    tb_chart_free(c);
-    c = tb_chart_new("only bad points", "x", "y");
-    tb_chart_log_x(c, 1);
-    int s = tb_chart_series(c, "s", TB_LINE);
-    tb_chart_point(c, s, 0, 1);
-    tb_chart_point(c, s, NAN, NAN);
-    tb_chart_hline(c, 3, "t");
-    tb_chart_hband(c, 1, 2, "b");
+    chart_free(c);
+    c = chart_new("only bad points", "x", "y");
+    chart_log_x(c, 1);
+    int s = chart_series(c, "s", CHART_LINE);
+    chart_point(c, s, 0, 1);
+    chart_point(c, s, NAN, NAN);
+    chart_hline(c, 3, "t");
+    chart_hband(c, 1, 2, "b");
     write_ok(c, tpath("e2.svg"));
-    tb_chart_free(c);
+    chart_free(c);
     const char *names[] = { "e1.svg", "e2.svg" };
     for (int i = 0; i < 2; i++) {
         check_file(tpath(names[i]));
@@ -793,40 +793,40 @@ static void test_svg_extremes(void)
     };
     for (size_t k = 0; k < sizeof pts / sizeof pts[0]; k++)
         for (int lg = 0; lg < 4; lg++) {
-            tb_chart *c = tb_chart_new("extreme", "x", "y");
-            tb_chart_log_x(c, lg & 1);
-            tb_chart_log_y(c, lg & 2);
-            int s = tb_chart_series(c, "s", TB_LINE | TB_POINTS);
-            tb_chart_point_label(c, s, pts[k][0], pts[k][1], "a");
-            tb_chart_point_label(c, s, pts[k][2], pts[k][3], "b");
-            tb_chart_hband(c, -INFINITY, INFINITY, "all");
+            chart *c = chart_new("extreme", "x", "y");
+            chart_log_x(c, lg & 1);
+            chart_log_y(c, lg & 2);
+            int s = chart_series(c, "s", CHART_LINE | CHART_POINTS);
+            chart_point_label(c, s, pts[k][0], pts[k][1], "a");
+            chart_point_label(c, s, pts[k][2], pts[k][3], "b");
+            chart_hband(c, -INFINITY, INFINITY, "all");
             char name[32];
             snprintf(name, sizeof name, "x%zu_%d.svg", k, lg);
             if (write_ok(c, tpath(name))) check_file(tpath(name));
-            tb_chart_free(c);
+            chart_free(c);
         }
     /* many points and labels: growth, and the label placement stays sane */
-    tb_chart *c = tb_chart_new("many", "x", "y");
-    int s = tb_chart_series(c, "s", TB_POINTS);
+    chart *c = chart_new("many", "x", "y");
+    int s = chart_series(c, "s", CHART_POINTS);
     rng_state = 99;
     for (int i = 0; i < 20000; i++) {
         double x = urand(), y = urand();   /* in this order on any compiler */
-        if (i % 100) tb_chart_point(c, s, x, y);
-        else tb_chart_point_label(c, s, x, y, "label");
+        if (i % 100) chart_point(c, s, x, y);
+        else chart_point_label(c, s, x, y, "label");
     }
     if (write_ok(c, tpath("many.svg"))) check_file(tpath("many.svg"));
-    tb_chart_free(c);
+    chart_free(c);
 }
 
 static void test_svg_deterministic(void)
 {
     for (size_t i = 0; i < NSAMPLES; i++) {
-        tb_chart *a = samples[i].fn(), *b = samples[i].fn();
+        chart *a = samples[i].fn(), *b = samples[i].fn();
         write_ok(a, tpath("d1.svg"));
         write_ok(b, tpath("d2.svg"));
         write_ok(a, tpath("d3.svg"));       /* writing does not change the chart */
-        tb_chart_free(a);
-        tb_chart_free(b);
+        chart_free(a);
+        chart_free(b);
         size_t n1, n2, n3;
         char *f1 = slurp(tpath("d1.svg"), &n1), *f2 = slurp(tpath("d2.svg"), &n2),
              *f3 = slurp(tpath("d3.svg"), &n3);
@@ -839,12 +839,12 @@ static void test_svg_deterministic(void)
 static void test_svg_write_errors(void)
 {
     char before[2048], after[2048], err[256];
-    tb_chart *c = sample_angle();
+    chart *c = sample_angle();
 
     /* a directory that does not exist */
     dir_list(tdir, before, sizeof before);
     strcpy(err, "x");
-    TST_EQ_INT(tb_chart_write(c, tpath("no/such/dir/x.svg"), err, sizeof err), -1);
+    TST_EQ_INT(chart_write(c, tpath("no/such/dir/x.svg"), err, sizeof err), -1);
     TST_CHECK(err[0] && !strchr(err, '\n') && strstr(err, "no/such/dir/x.svg"), "message: %s", err);
     dir_list(tdir, after, sizeof after);
     TST_EQ_STR(after, before);
@@ -852,31 +852,31 @@ static void test_svg_write_errors(void)
     /* the rename fails (the target is a directory): the temp file must go */
     mkdir(tpath("isdir"), 0755);
     dir_list(tdir, before, sizeof before);
-    TST_EQ_INT(tb_chart_write(c, tpath("isdir"), err, sizeof err), -1);
+    TST_EQ_INT(chart_write(c, tpath("isdir"), err, sizeof err), -1);
     TST_CHECK(err[0] && !strchr(err, '\n'), "message: %s", err);
     dir_list(tdir, after, sizeof after);
     TST_EQ_STR(after, before);
 
     /* a path with a newline still gives a one-line message; NULL err is fine */
-    TST_EQ_INT(tb_chart_write(c, tpath("no\nsuch/x.svg"), err, sizeof err), -1);
+    TST_EQ_INT(chart_write(c, tpath("no\nsuch/x.svg"), err, sizeof err), -1);
     TST_CHECK(!strchr(err, '\n'), "message: %s", err);
-    TST_EQ_INT(tb_chart_write(c, tpath("no/such/x.svg"), NULL, 0), -1);
+    TST_EQ_INT(chart_write(c, tpath("no/such/x.svg"), NULL, 0), -1);
 
     /* replacing an existing chart works and leaves only the chart */
-    TST_EQ_INT(tb_chart_write(c, tpath("ok.svg"), err, sizeof err), 0);
-    TST_EQ_INT(tb_chart_write(c, tpath("ok.svg"), err, sizeof err), 0);
+    TST_EQ_INT(chart_write(c, tpath("ok.svg"), err, sizeof err), 0);
+    TST_EQ_INT(chart_write(c, tpath("ok.svg"), err, sizeof err), 0);
     dir_list(tdir, after, sizeof after);
     TST_CHECK(!strstr(after, ".tmp"), "temp file left: %s", after);
-    tb_chart_free(c);
+    chart_free(c);
 
     /* building errors are reported by write */
-    c = tb_chart_new("t", "x", "y");
-    tb_chart_point(c, 3, 1, 1);
-    TST_EQ_INT(tb_chart_write(c, tpath("bad.svg"), err, sizeof err), -1);
+    c = chart_new("t", "x", "y");
+    chart_point(c, 3, 1, 1);
+    TST_EQ_INT(chart_write(c, tpath("bad.svg"), err, sizeof err), -1);
     TST_CHECK(strstr(err, "series 3") != NULL, "message: %s", err);
     TST_CHECK(access(tpath("bad.svg"), F_OK) != 0, "no file for a bad chart");
-    tb_chart_free(c);
-    TST_EQ_INT(tb_chart_write(NULL, tpath("n.svg"), err, sizeof err), -1);
+    chart_free(c);
+    TST_EQ_INT(chart_write(NULL, tpath("n.svg"), err, sizeof err), -1);
 }
 
 int main(void)

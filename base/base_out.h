@@ -1,4 +1,4 @@
-/* sim_out.h - output files, written so that a reader never sees half of
+/* base_out.h - output files, written so that a reader never sees half of
  * one and nothing that is not ours is replaced.
  *
  *  - a new path, or an existing regular file: written to a temporary file
@@ -9,36 +9,36 @@
  *    as /dev/null or /dev/full, FIFO, socket): written through, in place;
  *  - "-": standard output.
  * Every write error (ENOSPC from /dev/full included) is reported at
- * sim_out_close. Temporaries are registered so that SIGINT, SIGTERM and
- * SIGHUP remove them before the process dies (sim_out_install_signals).
+ * base_out_close. Temporaries are registered so that SIGINT, SIGTERM and
+ * SIGHUP remove them before the process dies (base_out_install_signals).
  */
-#ifndef SIM_OUT_H
-#define SIM_OUT_H
+#ifndef BASE_OUT_H
+#define BASE_OUT_H
 #include <stdio.h>
 #include <stddef.h>
 
-typedef struct sim_out sim_out;
+typedef struct base_out base_out;
 
 /* Open path for writing (binary). NULL with a message on failure. */
-sim_out *sim_out_open(const char *path, char *err, size_t errlen);
+base_out *base_out_open(const char *path, char *err, size_t errlen);
 /* The stream to write to. */
-FILE    *sim_out_file(sim_out *o);
+FILE    *base_out_file(base_out *o);
 /* Flush, check every error, and make the file appear (rename). 0, or -1
  * with a message (the temporary is removed, an existing file is kept).
  * Frees o either way. */
-int      sim_out_close(sim_out *o, char *err, size_t errlen);
+int      base_out_close(base_out *o, char *err, size_t errlen);
 /* Give up: remove the temporary (if any) and free o. */
-void     sim_out_abort(sim_out *o);
+void     base_out_abort(base_out *o);
 /* The whole of buf to path, as open + write + close. 0 or -1. */
-int      sim_out_write_all(const char *path, const void *buf, size_t len, char *err, size_t errlen);
+int      base_out_write_all(const char *path, const void *buf, size_t len, char *err, size_t errlen);
 /* Make folder dir and its parents (mkdir -p; mode 0777 less the umask).
  * and check that a file can be created in it. 0, or -1 with "DIR: cannot
  * create folder P: why", "... is not a folder" or "cannot write in ...". */
-int      sim_out_mkdirs(const char *dir, char *err, size_t errlen);
+int      base_out_mkdirs(const char *dir, char *err, size_t errlen);
 /* Flush standard output and report a write error on it (EPIPE, ENOSPC):
  * 0, or -1 with a message. Every verb that prints results calls it last. */
-int      sim_out_stdout_check(char *err, size_t errlen);
+int      base_out_stdout_check(char *err, size_t errlen);
 /* Remove registered temporaries on SIGINT, SIGTERM, SIGHUP, then die by
  * the same signal. Called once by main. */
-void     sim_out_install_signals(void);
+void     base_out_install_signals(void);
 #endif
