@@ -144,6 +144,15 @@ struct unit_desc {
     int  (*ideal_interval)(const unit_cfg *cfg, const sim_dy *in, sim_dy *lo, sim_dy *hi);
 };
 
+/* The unit's bound per output for formats f (u->bound), or INFINITY (no
+ * bound) for every output when a signal cfg builds has a rounding mode of
+ * its own (sim_fmt) other than cfg->rnd: the bounds are derived for one
+ * rounding mode throughout, and some use its sign (trunc only lowers a
+ * value), so a mix is not covered. Own overflow modes leave the bound as
+ * it is: a bound holds for runs without overflow, and an overflow is
+ * counted whether it wraps or saturates. */
+void unit_bound(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, double *per_out);
+
 /* The registry. */
 size_t           unit_count(void);
 const unit_desc *unit_at(size_t i);
