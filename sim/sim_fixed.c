@@ -128,7 +128,7 @@ int sim_fmt_parse(const char *s, sim_fmt *out, char *err, size_t errlen)
     sim_fmt f;
     if (!s || (s[0] != 's' && s[0] != 'u') || !(p = parse_count(s + 1, &ibits))
         || *p != '.' || !(p = parse_count(p + 1, &fbits)) || (*p && *p != ':')) {
-        snprintf(why, sizeof why, "expected sI.F or uI.F (e.g. s2.14), then optional :ROUND and :OVERFLOW modes");
+        snprintf(why, sizeof why, "expected sI.F or uI.F (e.g. s2.14 or s7.12:half-up:sat)");
     } else if (ibits >= 1000 || fbits >= 1000) {
         /* the count was cut at 1000: don't print it back as a width */
         snprintf(why, sizeof why, "%s bits out of range 0..64",

@@ -321,6 +321,61 @@ static void t_refused(void)
     TST_CHECK(strstr(err, "--fmt mul=s7.12:foo") && strstr(err, "unknown mode 'foo'") && !strchr(err, '\n'), "'%s'", err);
 }
 
+/* Units whose bound is the unet walk (div3, the coefficient units) follow
+ * each signal's own rounding: div3's bound by hand, and random mixes of
+ * modes within their bounds on every vector (tb_run's exact check). */
+static void t_unet_bound(void)
+{
+    const unit_desc *u = unit_find("div3");
+    unit_cfg cfg;
+    unit_cfg_default(&cfg);
+    unit_fmts fm;
+    char err[600];
+    /* W = 16, terms 3: x s1.15, terms and sums s1.17. t1 = x/8, t2 = x/32,
+     * t3 = x/128 drop 1, 3 and 5 bits; y drops 2 of s3's 17. Trunc loses
+     * 2^-F - 2^-src, rounding 2^-(F+1); t2 rounds half-up. */
+    const char *ov[] = { "t2=s1.17:half-up" };
+    TST_EQ_INT(tb_formats(u, &cfg, ov, 1, &fm, err, sizeof err), 0);
+    double b, want = (ldexp(1, -17) - ldexp(1, -18)) + ldexp(1, -18) + (ldexp(1, -17) - ldexp(1, -22))
+                     + (ldexp(1, -15) - ldexp(1, -17));
+    unit_bound(u, &cfg, &fm, &b);
+    TST_NEAR(b, want, 1e-20);
+    static const char *const rn[] = { "trunc", "half-up", "even" };
+    static const char *const units[] = { "div3", "coef3_n1", "coef2" };
+    int runs = 0;
+    for (size_t k = 0; k < 3; k++)
+        for (int rep = 0; rep < 4; rep++) {
+            u = unit_find(units[k]);
+            unit_cfg_default(&cfg);
+            cfg.rnd = (sim_round)(rnd64() % 3);
+            unit_fmts def;
+            TST_EQ_INT(tb_formats(u, &cfg, NULL, 0, &def, err, sizeof err), 0);
+            char buf[UNIT_MAX_SIGS][64];
+            const char *o[UNIT_MAX_SIGS];
+            int n = 0, other = 0;
+            for (int i = 0; i < u->nsigs; i++) {
+                if (!unit_sig_built(u, i, &cfg) || rnd64() % 2) continue;
+                char fb[SIM_FMT_STRLEN];
+                int r = (int)(rnd64() % 3);
+                other |= r != (int)cfg.rnd;
+                snprintf(buf[n], sizeof buf[n], "%s=%s:%s", u->sigs[i].name, sim_fmt_str(def.f[i], fb), rn[r]);
+                o[n] = buf[n]; n++;
+            }
+            tb_result r;
+            vec_set vs;
+            TST_EQ_INT(tb_formats(u, &cfg, o, n, &fm, err, sizeof err), 0);
+            TST_EQ_INT(cli_make_vectors(u, &cfg, 200, 100 + (uint64_t)rep, &vs, err, sizeof err), 0);
+            TST_EQ_INT(tb_run(u, &cfg, &fm, &vs, NULL, &r, err, sizeof err), TB_OK);
+            tb_verdict(&r, NULL);
+            TST_CHECK(r.bound_check == TB_CHECK_OK && r.overflows == r.in_overflows, "%s --round %s with %d own modes: %s",
+                      units[k], rn[cfg.rnd], n, r.why);
+            runs += other;
+            tb_result_free(&r);
+            vec_set_free(&vs);
+        }
+    TST_CHECK(runs >= 6, "only %d runs mixed modes", runs);
+}
+
 /* ---- the Verilog export follows each element's own modes ---- */
 
 static int asan_build(void)
@@ -371,6 +426,7 @@ int main(void)
     TST_RUN(t_unit_all_signals);
     TST_RUN(t_unit_one_signal);
     TST_RUN(t_refused);
+    TST_RUN(t_unet_bound);
     TST_RUN(t_cosim);
     TST_EXIT();
 }

@@ -242,6 +242,7 @@ sim_fmt unit_fmt(int is_signed, int ibits, int fbits)
 double unit_qerr(sim_fmt f, int src_f, sim_round r)
 {
     if (src_f <= f.fbits) return 0.0;
+    r = sim_fmt_round(f, r);
     /* trunc drops at most all-ones below the kept LSB: 2^-F - 2^-src_f
      * (a double rounds it up, never down); not a whole LSB, so that a
      * signal made wider does not make its consumer's bound grow */
@@ -252,6 +253,7 @@ double unit_qerr(sim_fmt f, int src_f, sim_round r)
 void unit_bound(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 {
     u->bound(cfg, f, per_out);
+    if (u->bound_own_modes) return;
     for (int i = 0; i < u->nsigs; i++)
         if (unit_sig_built(u, i, cfg) && sim_fmt_round(f->f[i], cfg->rnd) != cfg->rnd) {
             for (int o = 0, n = unit_n_out(u); o < n; o++) per_out[o] = INFINITY;
