@@ -15,7 +15,7 @@
  * template arguments do ("s7.9:half-up:sat"): a value quantized into it
  * uses them whatever mode the caller passes, so one signal can round or
  * saturate differently from the rest of a design. A format without them
- * (the usual case, and what every initializer and sim_fmt_make give)
+ * (the usual case, and what sim_fmt_make and zeroed memory give)
  * takes the caller's modes, which come from the simulation context
  * (sim_set_quant).
  */
@@ -35,8 +35,9 @@ typedef struct sim_fmt {
     int8_t  fbits;       /* F, 0..64 */
     uint8_t width;       /* I+F, 1..64 */
     /* Own modes: 0 = none (use the caller's), else 1 + sim_round /
-     * 1 + sim_ovf. Zero-initialized formats have none, so positional
-     * initializers of the four fields above stay valid. */
+     * 1 + sim_ovf. Zero means none so that { 0 }, designated
+     * initializers of the four fields above and sim_fmt_make all give
+     * a plain format. */
     uint8_t rnd;
     uint8_t ovf;
 } sim_fmt;

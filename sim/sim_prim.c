@@ -2,8 +2,9 @@
  * shifters and constants as kernel processes.
  *
  * Every element keeps its operands' fraction bits and its quantization modes
- * (its output format's own, else the context's) in its own small struct, so evaluation is: read raws, one exact 128-bit
- * operation, one requantization, one sim_write.
+ * (its output format's own, else the context's) in its own small struct,
+ * so evaluation is: read raws, one exact 128-bit operation, one
+ * requantization, one sim_write.
  */
 #include "sim/sim_prim.h"
 #include "sim/sim_area.h"
