@@ -28,7 +28,7 @@ static void stim(sim_proc *p)
 static void one(int vcd_on, uint64_t clocks)
 {
     sim_ctx *c = sim_new();
-    sim_fmt f16 = { 1, 16, 0, 16 };
+    sim_fmt f16 = { .is_signed = 1, .ibits = 16, .fbits = 0, .width = 16 };
     sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
     sim_scope *sc = sim_scope_new(c, NULL, "pipe");
     sim_signal *in = sim_signal_new(c, sc, "in", f16, SIM_KIND_INPUT);

@@ -65,7 +65,8 @@
  * series         paper|quarter (/3 network)          paper
  * width          W (4..64): default-format width     16
  * fmt *          none | NAME=sI.F|uI.F ... (signal   none
- *                formats in order; "all" for every signal; none clears)
+ *                formats in order; "all" for every signal; none clears;
+ *                a format may end in :ROUND and/or :OVERFLOW, its own modes)
  * round          trunc|half-up|even                  trunc
  * overflow       wrap|sat                            wrap
  * schedule       paper|mac|pipe                      paper
@@ -365,10 +366,35 @@ static int light_of(const char *key, char **t, int n, scn_light *l, char *err, s
     return 0;
 }
 
-/* "NAME=sI.F" with NAME of [a-z0-9_] (signal names are lower case). */
+/* The modes after a format, ":ROUND" and/or ":OVERFLOW" in either order,
+ * each at most once (the testbench's parser reads them; this layer only
+ * checks the text, to report the file's line). p at the first ':' or the
+ * end; 0, or -1 with the reason in why. */
+static int fmt_modes_ok(const char *p, char *why, size_t n)
+{
+    static const char *const rn[] = { "trunc", "half-up", "even" }, *on[] = { "wrap", "sat" };
+    int has_r = 0, has_o = 0;
+    while (*p == ':') {
+        const char *m = p + 1;
+        size_t len = strcspn(m, ":");
+        int r = 0, o = 0;
+        for (int i = 0; i < 3; i++) r |= strlen(rn[i]) == len && !strncmp(m, rn[i], len);
+        for (int i = 0; i < 2; i++) o |= strlen(on[i]) == len && !strncmp(m, on[i], len);
+        if (!len) { snprintf(why, n, "empty mode after ':'"); return -1; }
+        if (!r && !o) { snprintf(why, n, "unknown mode (rounding: trunc, half-up, even; overflow: wrap, sat)"); return -1; }
+        if ((r && has_r) || (o && has_o)) { snprintf(why, n, "%s mode given twice", r ? "rounding" : "overflow"); return -1; }
+        has_r |= r;
+        has_o |= o;
+        p = m + len;
+    }
+    return 0;
+}
+
+/* "NAME=sI.F[:ROUND][:OVERFLOW]" with NAME of [a-z0-9_] (signal names are
+ * lower case). */
 static int fmt_ok(const char *s, char *err, size_t errlen)
 {
-    char b[48];
+    char b[48], why[100];
     const char *p = s;
     while (*p && (islower((unsigned char)*p) || isdigit((unsigned char)*p) || *p == '_')) p++;
     int bad = p == s || *p != '=' || (p[1] != 's' && p[1] != 'u');
@@ -382,7 +408,9 @@ static int fmt_ok(const char *s, char *err, size_t errlen)
             if (*e != '.' || !isdigit((unsigned char)e[1])) bad = 1;
             else {
                 fb = strtol(e + 1, &e, 10);
-                if (*e) bad = 1;
+                if (*e && *e != ':') bad = 1;
+                else if (fmt_modes_ok(e, why, sizeof why))
+                    return fail(err, errlen, "fmt: \"%s\": %s", shown(s, b), why);
             }
         }
     }

@@ -1,7 +1,8 @@
 /* sim_area.c - gate-equivalent area of each element from its widths.
  * The models are the textbook structures (ripple-carry adder, array
- * multiplier, mux tree, D flip-flops); docs/area.md says what they leave
- * out (carry-lookahead, Booth recoding, wiring, rounding incrementers). */
+ * multiplier, mux tree, D flip-flops, and at an element's output the
+ * rounding incrementer and saturation clamp its modes need); docs/area.md
+ * says what they leave out (carry-lookahead, Booth recoding, wiring). */
 #include "sim/sim_area.h"
 
 double sim_area_reg(int w, int has_en, int has_rst)

@@ -8,6 +8,8 @@
  *  - sim_fx_requant accepts any src_fbits, not only 0..128: a negative
  *    value scales up, which is what a constant left shift needs.
  *  - NaN and infinities quantize to 0 with *ovf = 1.
+ *  - A format's own modes are applied at the two public entries
+ *    (sim_fx_requant, sim_fx_from_real), so quant() sees final modes.
  *
  * Everything numeric funnels into quant(): an exact integer times 2^-sh,
  * rounded with integer operations only, so doubles and 128-bit sums share
@@ -54,6 +56,7 @@ int sim_fmt_make(int is_signed, int ibits, int fbits, sim_fmt *out,
     out->ibits = (int8_t)ibits;
     out->fbits = (int8_t)fbits;
     out->width = (uint8_t)(ibits + fbits);
+    out->rnd = out->ovf = 0;
     return 0;
 }
 
@@ -69,29 +72,72 @@ static const char *parse_count(const char *p, int *v)
     return p;
 }
 
+/* Text for a one-line message: at most max characters (then "..."),
+ * control characters shown as '?' (a stray '\n' would split the line). */
+static void shown_text(const char *s, size_t len, char *out, size_t max)
+{
+    size_t k = 0, i = 0;
+    for (; i < len && s[i] && k < max; i++)
+        out[k++] = ((unsigned char)s[i] < 0x20 || s[i] == 0x7f) ? '?' : s[i];
+    if (i < len && s[i]) { out[k++] = '.'; out[k++] = '.'; out[k++] = '.'; }
+    out[k] = 0;
+}
+
+static int round_find(const char *s, size_t n);
+static int ovf_find(const char *s, size_t n);
+
+/* The modes after a format's ":" (p at the first ':'); 0, or -1 with the
+ * reason in why. */
+static int parse_modes(const char *p, sim_fmt *f, char *why, size_t n)
+{
+    while (*p == ':') {
+        const char *m = p + 1;
+        size_t len = strcspn(m, ":");
+        int r = round_find(m, len), o = ovf_find(m, len);
+        char tok[28];
+        shown_text(m, len, tok, 20);
+        if (len == 0) {
+            snprintf(why, n, "empty mode after ':' (rounding: trunc, half-up, even; overflow: wrap, sat)");
+            return -1;
+        }
+        if (r < 0 && o < 0) {
+            snprintf(why, n, "unknown mode '%s' (rounding: trunc, half-up, even; overflow: wrap, sat)", tok);
+            return -1;
+        }
+        if ((r >= 0 && f->rnd) || (o >= 0 && f->ovf)) {
+            snprintf(why, n, "%s mode given twice ('%s')", r >= 0 ? "rounding" : "overflow", tok);
+            return -1;
+        }
+        if (r >= 0) f->rnd = (uint8_t)(1 + r);
+        else f->ovf = (uint8_t)(1 + o);
+        p = m + len;
+    }
+    return 0;
+}
+
 int sim_fmt_parse(const char *s, sim_fmt *out, char *err, size_t errlen)
 {
     /* The offending text goes into a one-line message: cut it short and
-     * hide control characters (a stray '\n' would split the line). */
+     * hide control characters. */
     char shown[44];
-    size_t k = 0;
-    for (const char *p = s ? s : ""; *p && k < 40; p++)
-        shown[k++] = ((unsigned char)*p < 0x20 || *p == 0x7f) ? '?' : *p;
-    if (s && strlen(s) > 40) { shown[k++] = '.'; shown[k++] = '.'; shown[k++] = '.'; }
-    shown[k] = 0;
+    shown_text(s ? s : "", SIZE_MAX, shown, 40);
 
     int ibits = 0, fbits = 0;
     const char *p = s;
     char why[128];
+    sim_fmt f;
     if (!s || (s[0] != 's' && s[0] != 'u') || !(p = parse_count(s + 1, &ibits))
-        || *p != '.' || !(p = parse_count(p + 1, &fbits)) || *p) {
-        snprintf(why, sizeof why, "expected sI.F or uI.F (e.g. s2.14)");
+        || *p != '.' || !(p = parse_count(p + 1, &fbits)) || (*p && *p != ':')) {
+        snprintf(why, sizeof why, "expected sI.F or uI.F (e.g. s2.14 or s7.12:half-up:sat)");
     } else if (ibits >= 1000 || fbits >= 1000) {
         /* the count was cut at 1000: don't print it back as a width */
         snprintf(why, sizeof why, "%s bits out of range 0..64",
                  ibits >= 1000 ? "integer" : "fraction");
-    } else if (fmt_check(s[0] == 's', ibits, fbits, why, sizeof why) == 0) {
-        return sim_fmt_make(s[0] == 's', ibits, fbits, out, err, errlen);
+    } else if (fmt_check(s[0] == 's', ibits, fbits, why, sizeof why) == 0
+               && sim_fmt_make(s[0] == 's', ibits, fbits, &f, NULL, 0) == 0
+               && parse_modes(p, &f, why, sizeof why) == 0) {
+        *out = f;
+        return 0;
     }
     if (err && errlen)
         snprintf(err, errlen, "bad format '%s': %s", shown, why);
@@ -100,8 +146,12 @@ int sim_fmt_parse(const char *s, sim_fmt *out, char *err, size_t errlen)
 
 char *sim_fmt_str(sim_fmt f, char *buf)
 {
-    snprintf(buf, SIM_FMT_STRLEN, "%c%d.%d", f.is_signed ? 's' : 'u',
-             (int)f.ibits, (int)f.fbits);
+    int n = snprintf(buf, SIM_FMT_STRLEN, "%c%d.%d", f.is_signed ? 's' : 'u',
+                     (int)f.ibits, (int)f.fbits);
+    if (n > 0 && n < SIM_FMT_STRLEN && f.rnd)
+        n += snprintf(buf + n, SIM_FMT_STRLEN - (size_t)n, ":%s", sim_round_name(sim_fmt_round(f, SIM_RND_TRUNC)));
+    if (n > 0 && n < SIM_FMT_STRLEN && f.ovf)
+        snprintf(buf + n, SIM_FMT_STRLEN - (size_t)n, ":%s", sim_ovf_name(sim_fmt_ovf(f, SIM_OVF_WRAP)));
     return buf;
 }
 
@@ -118,18 +168,30 @@ const char *sim_ovf_name(sim_ovf o)
     return (unsigned)o < 2 ? ovf_names[o] : "?";
 }
 
+/* Index of the mode named by the n characters at s, or -1. */
+static int name_find(const char *const *names, int count, const char *s, size_t n)
+{
+    for (int i = 0; s && i < count; i++)
+        if (strlen(names[i]) == n && !strncmp(s, names[i], n)) return i;
+    return -1;
+}
+static int round_find(const char *s, size_t n) { return name_find(round_names, 3, s, n); }
+static int ovf_find(const char *s, size_t n) { return name_find(ovf_names, 2, s, n); }
+
 int sim_round_parse(const char *s, sim_round *out)
 {
-    for (int i = 0; s && i < 3; i++)
-        if (!strcmp(s, round_names[i])) { *out = (sim_round)i; return 0; }
-    return -1;
+    int i = s ? round_find(s, strlen(s)) : -1;
+    if (i < 0) return -1;
+    *out = (sim_round)i;
+    return 0;
 }
 
 int sim_ovf_parse(const char *s, sim_ovf *out)
 {
-    for (int i = 0; s && i < 2; i++)
-        if (!strcmp(s, ovf_names[i])) { *out = (sim_ovf)i; return 0; }
-    return -1;
+    int i = s ? ovf_find(s, strlen(s)) : -1;
+    if (i < 0) return -1;
+    *out = (sim_ovf)i;
+    return 0;
 }
 
 int64_t sim_fmt_raw_min(sim_fmt f)
@@ -211,7 +273,7 @@ int64_t sim_fx_requant(sim_wide raw, int src_fbits, sim_fmt f,
      * subtraction below from overflowing an int. */
     if (src_fbits > 256) src_fbits = 256;
     if (src_fbits < -256) src_fbits = -256;
-    return quant(raw, src_fbits - f.fbits, f, r, o, ovf);
+    return quant(raw, src_fbits - f.fbits, f, sim_fmt_round(f, r), sim_fmt_ovf(f, o), ovf);
 }
 
 int64_t sim_fx_from_real(double x, sim_fmt f, sim_round r, sim_ovf o, int *ovf)
@@ -225,6 +287,8 @@ int64_t sim_fx_from_real(double x, sim_fmt f, sim_round r, sim_ovf o, int *ovf)
      * below 2^52, and so is floor(y) + 1/2; rounding half-up adds one
      * when y is at least that (compared, not subtracted: y - floor(y) of a
      * negative y can round). In range, that is the raw. */
+    r = sim_fmt_round(f, r);   /* a format's own modes win over the caller's */
+    o = sim_fmt_ovf(f, o);
     if (r != SIM_RND_EVEN && f.fbits <= 52) {
         double y = ldexp(x, f.fbits);
         if (y > -0x1p52 && y < 0x1p52 && (y == 0 || fabs(x) >= 0x1p-960)) {

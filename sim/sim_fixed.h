@@ -10,6 +10,14 @@
  * Quantization takes an exact value (a double, or a wide raw integer with
  * its own fraction bits) to a format: first rounding (drop fraction bits),
  * then overflow handling (fit the integer range), as sc_fixed does.
+ *
+ * A format may carry its own rounding and overflow modes, as sc_fixed's
+ * template arguments do ("s7.9:half-up:sat"): a value quantized into it
+ * uses them whatever mode the caller passes, so one signal can round or
+ * saturate differently from the rest of a design. A format without them
+ * (the usual case, and what sim_fmt_make and zeroed memory give)
+ * takes the caller's modes, which come from the simulation context
+ * (sim_set_quant).
  */
 #ifndef SIM_FIXED_H
 #define SIM_FIXED_H
@@ -26,18 +34,42 @@ typedef struct sim_fmt {
     int8_t  ibits;       /* I, 0..64 */
     int8_t  fbits;       /* F, 0..64 */
     uint8_t width;       /* I+F, 1..64 */
+    /* Own modes: 0 = none (use the caller's), else 1 + sim_round /
+     * 1 + sim_ovf. Zero means none so that { 0 }, designated
+     * initializers of the four fields above and sim_fmt_make all give
+     * a plain format. */
+    uint8_t rnd;
+    uint8_t ovf;
 } sim_fmt;
+
+/* The modes a quantization into f uses: f's own, else the given default. */
+static inline sim_round sim_fmt_round(sim_fmt f, sim_round dflt)
+{
+    return f.rnd ? (sim_round)(f.rnd - 1) : dflt;
+}
+static inline sim_ovf sim_fmt_ovf(sim_fmt f, sim_ovf dflt)
+{
+    return f.ovf ? (sim_ovf)(f.ovf - 1) : dflt;
+}
+/* 1 if f carries a rounding or an overflow mode of its own. */
+static inline int sim_fmt_has_modes(sim_fmt f) { return f.rnd || f.ovf; }
 
 /* Wide exact intermediate (sums and products before quantization). */
 typedef __int128 sim_wide;
 
-/* Build a format; returns 0, or -1 (with a message in err) when invalid. */
+/* Build a format (without modes of its own); returns 0, or -1 (with a
+ * message in err) when invalid. */
 int sim_fmt_make(int is_signed, int ibits, int fbits, sim_fmt *out,
                  char *err, size_t errlen);
-/* Parse "s2.14" / "u1.15"; 0 on success, -1 with a one-line message. */
+/* Parse "s2.14" / "u1.15", optionally followed by the format's own modes:
+ * ":ROUND" and/or ":OVERFLOW" in either order, each at most once, with the
+ * names below ("s7.12:half-up:sat", "u1.15:sat"). 0 on success, -1 with a
+ * one-line message (nothing written to *out). */
 int sim_fmt_parse(const char *s, sim_fmt *out, char *err, size_t errlen);
-/* "s2.14"; buf of at least SIM_FMT_STRLEN bytes. Returns buf. */
-#define SIM_FMT_STRLEN 12
+/* "s2.14", plus ":ROUND" then ":OVERFLOW" for the modes the format has
+ * ("s7.12:half-up:sat"); what sim_fmt_parse reads back. buf of at least
+ * SIM_FMT_STRLEN bytes. Returns buf. */
+#define SIM_FMT_STRLEN 24
 char *sim_fmt_str(sim_fmt f, char *buf);
 
 /* Names of modes as on the command line: "trunc" "half-up" "even",
@@ -55,7 +87,8 @@ double  sim_fmt_real_min(sim_fmt f);
 double  sim_fmt_real_max(sim_fmt f);
 
 /* Quantize a finite real. *ovf (may be NULL) is set to 1 when the rounded
- * value was outside the format's range (then wrapped or saturated). */
+ * value was outside the format's range (then wrapped or saturated). Here
+ * and in sim_fx_requant, f's own modes (if any) take the place of r / o. */
 int64_t sim_fx_from_real(double x, sim_fmt f, sim_round r, sim_ovf o, int *ovf);
 /* Quantize an exact wide raw value with src_fbits fraction bits. */
 int64_t sim_fx_requant(sim_wide raw, int src_fbits, sim_fmt f,

@@ -193,7 +193,7 @@ sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,
 
 sim_signal *sim_bit_new(sim_ctx *c, sim_scope *sc, const char *name, sim_kind kind)
 {
-    sim_fmt f = { 0, 1, 0, 1 };
+    sim_fmt f = { .is_signed = 0, .ibits = 1, .fbits = 0, .width = 1 };   /* u1.0 */
     return sim_signal_new(c, sc, name, f, kind);
 }
 

@@ -2,8 +2,9 @@
  * shifters and constants as kernel processes.
  *
  * Every element keeps its operands' fraction bits and its quantization modes
- * in its own small struct, so evaluation is: read raws, one exact 128-bit
- * operation, one requantization, one sim_write.
+ * (its output format's own, else the context's) in its own small struct,
+ * so evaluation is: read raws, one exact 128-bit operation, one
+ * requantization, one sim_write.
  */
 #include "sim/sim_prim.h"
 #include "sim/sim_area.h"
@@ -31,6 +32,8 @@ typedef struct prim {
 
 int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, sim_ovf o)
 {
+    r = sim_fmt_round(s->fmt, r);   /* the signal's own modes, if it has them */
+    o = sim_fmt_ovf(s->fmt, o);
     /* Fast path for what datapaths do on almost every clock: drop k < 63
      * low bits of a value that fits 63 bits by truncation or half-up, and
      * land in range. Anything else takes the general path, which is the
@@ -108,8 +111,9 @@ static prim *prim_new(sim_ctx *c, sim_signal *y)
 {
     prim *p = sim_alloc(c, sizeof *p);
     p->y = y;
-    p->r = sim_get_round(c);
-    p->o = sim_get_ovf(c);
+    /* The output format's own modes, else the context's defaults. */
+    p->r = sim_fmt_round(y->fmt, sim_get_round(c));
+    p->o = sim_fmt_ovf(y->fmt, sim_get_ovf(c));
     p->lo = y->raw_min;
     p->hi = y->raw_max;
     return p;

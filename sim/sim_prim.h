@@ -6,7 +6,8 @@
  *
  * Arithmetic is exact before quantization: operands are aligned to a common
  * fraction point in 128-bit integers, summed or multiplied exactly, then
- * quantized once into the output format with the rounding and overflow
+ * quantized once into the output format with the format's own rounding
+ * and overflow modes (sim_fixed.h), or, for a format without them, the
  * modes the context had when the element was built (sim_set_quant).
  * A multiplier's output is quantized to its own format, as a W-bit hardware
  * multiplier's output would be, before anything else sees it.
@@ -81,7 +82,7 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 void sim_logic_verilog(sim_signal *y, const char *text);
 
 /* Quantize an exact wide value with src_fbits into s's format using the
- * element's modes, count an overflow on s; used by the primitives and by
+ * element's modes r, o (s's format's own modes win), count an overflow on s; used by the primitives and by
  * units that model an element the primitives do not cover. */
 int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits,
                        sim_round r, sim_ovf o);

@@ -252,7 +252,9 @@ const cli_opt cli_unit_opt_tab[] = {
          "  --width W            default-format rule width (the unit's range: `shadesim list UNIT`); default 16\n"),
     UOPT("--fmt", u_fmt,
          "  --fmt NAME=sI.F      override one signal's format; --fmt all=sI.F sets every signal;\n"
-         "                       later --fmt arguments override earlier ones (repeatable)\n"),
+         "                       later --fmt arguments override earlier ones (repeatable);\n"
+         "                       NAME=sI.F:ROUND:OVERFLOW gives the signal its own modes\n"
+         "                       (either optional, e.g. mul=s4.12:half-up:sat)\n"),
     UOPT("--round", unit_round, "  --round MODE         trunc (default), half-up, even\n"),
     UOPT("--overflow", unit_overflow, "  --overflow MODE      wrap (default), sat\n"),
     UOPT("--schedule", unit_schedule, "  --schedule NAME      the unit's schedule (default: its first)\n"),

@@ -212,7 +212,8 @@ static const cli_opt sweep_tab[] = {
     SW_CALL("--param", o_param, "--param needs NAME=VALUES",
         "  --param NAME=LIST    a unit parameter's values, e.g. terms=2,3,4 (repeatable)\n"),
     SW_CALL("--fmt", o_fmt, NULL,
-        "  --fmt NAME=sI.F      pin a signal's format in every configuration (repeatable)\n"),
+        "  --fmt NAME=sI.F      pin a signal's format in every configuration (repeatable;\n"
+        "                       sI.F:ROUND:OVERFLOW: its own modes, as for run)\n"),
     { "--vectors", NULL, CLI_OPT_STR, offsetof(sweep_args, o.vectors), 0, 0, NULL, NULL, NULL, 0,
         "  --vectors FILE       golden vectors (default: the unit's file in vectors/)\n" },
     { "-n", NULL, CLI_OPT_LONG, offsetof(sweep_args, nvec), 1, 10000000, "1..10000000 vectors",

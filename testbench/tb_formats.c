@@ -1,10 +1,55 @@
 /* tb_formats.c - a unit's signal formats for one configuration: the unit's
- * own rules, then the user's --fmt NAME=sI.F overrides, checked against the
- * signals this configuration actually builds. */
+ * own rules, then the user's --fmt NAME=sI.F[:ROUND][:OVERFLOW] overrides,
+ * checked against the signals this configuration actually builds. */
 #include "testbench/tb.h"
 #include "base/base_join.h"
 #include <stdio.h>
 #include <string.h>
+
+/* A format's own rounding and overflow modes act where a primitive
+ * quantizes into it (sim_prim.h) or the testbench quantizes an input. A
+ * signal that the unit computes with its own logic (a table, a normalizer:
+ * sim_logic or a process of its own) gets raw bits from that logic, so a
+ * mode on it would be printed and not obeyed: refuse it. Building the unit
+ * once is the only way to see which element drives each signal; only runs
+ * that give modes pay for it. who[i]: the override that set signal i. */
+static int modes_check(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                       const char *const *ov, const int *who, char *err, size_t errlen)
+{
+    int any = 0;
+    for (int i = 0; i < u->nsigs; i++) any |= unit_sig_built(u, i, cfg) && sim_fmt_has_modes(f->f[i]);
+    if (!any) return 0;
+    sim_ctx *c = sim_new();
+    sim_set_quant(c, cfg->rnd, cfg->ovf);
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_scope *sc = sim_scope_new(c, NULL, u->name);
+    unit_io io;
+    memset(&io, 0, sizeof io);
+    char berr[256];
+    int rc = 0;
+    /* a unit that does not build says why when it is run */
+    if (u->build(c, sc, clk, cfg, f, &io, berr, sizeof berr) == 0)
+        for (uint32_t k = 0, n = sim_signal_count(c); k < n && !rc; k++) {
+            sim_signal *s = sim_signal_at(c, k);
+            sim_prim_info in;
+            if (!sim_fmt_has_modes(s->fmt) || s->kind == SIM_KIND_INPUT || s->kind == SIM_KIND_CONST) continue;
+            if (sim_prim_describe(s, &in) == 0 && in.kind != SIM_KIND_LOGIC) continue;
+            /* The override to blame: the signal's own, else one that gave
+             * this very format (an element may take another signal's:
+             * hf_lookup's ROM reads t00..t11 have rom's). */
+            int i = unit_sig_index(u, s->name);
+            if (i < 0 || who[i] < 0)
+                for (int j = 0; j < u->nsigs; j++)
+                    if (who[j] >= 0 && !memcmp(&f->f[j], &s->fmt, sizeof s->fmt)) { i = j; break; }
+            char fb[SIM_FMT_STRLEN];
+            snprintf(err, errlen, "--fmt %s: unit %s computes signal %s (%s) with its own logic, which takes "
+                     "no rounding or overflow mode; give it a plain format", i >= 0 && who[i] >= 0 ? ov[who[i]] : "",
+                     u->name, s->name, sim_fmt_str(s->fmt, fb));
+            rc = -1;
+        }
+    sim_free(c);
+    return rc;
+}
 
 int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, int n,
                unit_fmts *out, char *err, size_t errlen)
@@ -29,16 +74,18 @@ int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, i
         return -1;
     }
     u->formats(cfg, out);
+    int who[UNIT_MAX_SIGS];
+    for (int i = 0; i < UNIT_MAX_SIGS; i++) who[i] = -1;
     for (int k = 0; k < n; k++) {
         const char *eq = strchr(ov[k], '=');
-        if (!eq) { snprintf(err, errlen, "--fmt %s: expected NAME=sI.F (e.g. mul=s4.12 or all=s8.8)", ov[k]); return -1; }
+        if (!eq) { snprintf(err, errlen, "--fmt %s: expected NAME=sI.F[:ROUND][:OVERFLOW] (e.g. mul=s4.12, mul=s4.12:half-up:sat or all=s8.8)", ov[k]); return -1; }
         char name[32];
         snprintf(name, sizeof name, "%.*s", (int)(eq - ov[k]), ov[k]);
         sim_fmt f;
         char ferr[160];
         if (sim_fmt_parse(eq + 1, &f, ferr, sizeof ferr)) { snprintf(err, errlen, "--fmt %s: %s", ov[k], ferr); return -1; }
         if (!strcmp(name, "all")) {
-            for (int i = 0; i < u->nsigs; i++) out->f[i] = f;
+            for (int i = 0; i < u->nsigs; i++) { out->f[i] = f; who[i] = k; }
             continue;
         }
         int i = unit_sig_index(u, name);
@@ -84,6 +131,7 @@ int tb_formats(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, i
             return -1;
         }
         out->f[i] = f;
+        who[i] = k;
     }
-    return 0;
+    return modes_check(u, cfg, out, ov, who, err, errlen);
 }

@@ -304,7 +304,7 @@ static void run_prepare(run_mem *m, const unit_desc *u, const unit_cfg *cfg, con
     }
 
     double bound[UNIT_MAX_IO];
-    u->bound(cfg, fmts, bound);
+    unit_bound(u, cfg, fmts, bound);
     for (int i = 0, oi = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_OUT) {
             snprintf(r->out[oi].name, sizeof r->out[oi].name, "%s", u->sigs[i].name);

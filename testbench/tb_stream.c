@@ -55,7 +55,8 @@ void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_
          * (exact in double: a value of more than 52 bits after the
          * scaling is already a whole number). */
         double y = ldexp(x[i], f.fbits);
-        y = cfg->rnd == SIM_RND_TRUNC ? floor(y) : cfg->rnd == SIM_RND_HALF_UP ? floor(y + 0.5) : nearbyint(y);
+        sim_round rr = sim_fmt_round(f, cfg->rnd);    /* the input's own mode, if it has one */
+        y = rr == SIM_RND_TRUNC ? floor(y) : rr == SIM_RND_HALF_UP ? floor(y + 0.5) : nearbyint(y);
         qr[i] = ldexp(y, -f.fbits);
     }
     u->ideal(cfg, q, it->ideal);
@@ -350,7 +351,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     }
 
     double bound[UNIT_MAX_IO];
-    u->bound(cfg, fmts, bound);
+    unit_bound(u, cfg, fmts, bound);
     for (int i = 0, oi = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_OUT) {
             snprintf(r->out[oi].name, sizeof r->out[oi].name, "%s", u->sigs[i].name);

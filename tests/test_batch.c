@@ -185,7 +185,7 @@ static void t_refusals(void)
     char err[300];
     sim_ctx *c = sim_new();
     sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_fmt f = { 1, 4, 4, 8 };
+    sim_fmt f = { .is_signed = 1, .ibits = 4, .fbits = 4, .width = 8 };
     sim_signal *x = sim_signal_new(c, NULL, "x", f, SIM_KIND_INPUT);
     sim_signal *w = sim_signal_new(c, NULL, "w", f, SIM_KIND_WIRE);
     sim_signal *y = sim_add(c, NULL, "y", f, x, w);
@@ -221,7 +221,7 @@ static void t_accumulator_by_hand(void)
     char err[300];
     sim_ctx *c = sim_new();
     sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_fmt f = { 1, 4, 4, 8 };
+    sim_fmt f = { .is_signed = 1, .ibits = 4, .fbits = 4, .width = 8 };
     sim_signal *x = sim_signal_new(c, NULL, "x", f, SIM_KIND_INPUT);
     sim_signal *k = sim_const(c, NULL, "k", f, 0.75);
     sim_signal *m = sim_mul(c, NULL, "m", f, x, k);

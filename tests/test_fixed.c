@@ -23,7 +23,7 @@ static int rnd_in(int lo, int hi) { return lo + (int)(rnd() % (uint64_t)(hi - lo
 
 static sim_fmt fmt(int is_signed, int ibits, int fbits)
 {
-    sim_fmt f = { 0, 0, 0, 0 };
+    sim_fmt f = { 0 };
     char err[160];
     if (sim_fmt_make(is_signed, ibits, fbits, &f, err, sizeof err))
         tst_fail(__FILE__, __LINE__, "sim_fmt_make(%d,%d,%d): %s", is_signed, ibits, fbits, err);
@@ -102,7 +102,7 @@ static void test_parse_valid(void)
         for (int i = 0; i <= 64; i++)
             for (int f = 0; f <= 64; f++) {
                 int w = i + f, ok = w >= 1 && w <= (sg ? 64 : 63);
-                sim_fmt x = { 9, 9, 9, 9 };
+                sim_fmt x = { 9, 9, 9, 9, 9, 9 };
                 snprintf(s, sizeof s, "%c%d.%d", sg ? 's' : 'u', i, f);
                 err[0] = 0;
                 int rc = sim_fmt_parse(s, &x, err, sizeof err);
@@ -137,7 +137,7 @@ static void test_parse_invalid(void)
         { "s999.1", "'s999.1'", "width 1000 > 64" },
         { "u64.0", "'u64.0'", "limited to 63 bits" },
         { "u1.63", "'u1.63'", "limited to 63 bits" },
-        { "q1.15", "'q1.15'", "expected sI.F or uI.F (e.g. s2.14)" },
+        { "q1.15", "'q1.15'", "expected sI.F or uI.F (e.g. s2.14 or s7.12:half-up:sat)" },
         { "", "''", "expected sI.F" },
         { "s", "'s'", "expected sI.F" },
         { "s1", "'s1'", "expected sI.F" },
@@ -157,7 +157,7 @@ static void test_parse_invalid(void)
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         char err[160] = "";
-        sim_fmt x = { 7, 7, 7, 7 };
+        sim_fmt x = { 7, 7, 7, 7, 7, 7 };
         TST_EQ_INT(sim_fmt_parse(bad[k].s, &x, err, sizeof err), -1);
         TST_CHECK(x.is_signed == 7 && x.width == 7, "'%s' wrote the output", bad[k].s);
         TST_CHECK(strstr(err, bad[k].shown) && strstr(err, bad[k].why),

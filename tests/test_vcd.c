@@ -32,7 +32,8 @@ static char *slurp(const char *path, size_t *n)
 static void small_design(const char *path)
 {
     sim_ctx *c = sim_new();
-    sim_fmt u3 = { 0, 3, 0, 3 }, s4 = { 1, 2, 2, 4 };
+    sim_fmt u3 = { .is_signed = 0, .ibits = 3, .fbits = 0, .width = 3 },
+            s4 = { .is_signed = 1, .ibits = 2, .fbits = 2, .width = 4 };
     sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
     sim_scope *top = sim_scope_new(c, NULL, "counter");
     sim_scope *acc = sim_scope_new(c, top, "acc");

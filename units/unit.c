@@ -227,7 +227,7 @@ int unit_min_width(const unit_desc *u, const unit_cfg *cfg, int *limit_sig)
 
 sim_fmt unit_fmt(int is_signed, int ibits, int fbits)
 {
-    sim_fmt f;
+    sim_fmt f = { 0 };      /* no modes of its own */
     if (fbits < 0) fbits = 0;
     int maxw = is_signed ? 64 : 63;
     if (ibits + fbits > maxw) fbits = maxw - ibits;
@@ -242,9 +242,21 @@ sim_fmt unit_fmt(int is_signed, int ibits, int fbits)
 double unit_qerr(sim_fmt f, int src_f, sim_round r)
 {
     if (src_f <= f.fbits) return 0.0;
+    r = sim_fmt_round(f, r);
     /* trunc drops at most all-ones below the kept LSB: 2^-F - 2^-src_f
      * (a double rounds it up, never down); not a whole LSB, so that a
      * signal made wider does not make its consumer's bound grow */
     if (r == SIM_RND_TRUNC) return ldexp(1.0, -f.fbits) - ldexp(1.0, -src_f);
     return ldexp(0.5, -f.fbits);
+}
+
+void unit_bound(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, double *per_out)
+{
+    u->bound(cfg, f, per_out);
+    if (u->bound_own_modes) return;
+    for (int i = 0; i < u->nsigs; i++)
+        if (unit_sig_built(u, i, cfg) && sim_fmt_round(f->f[i], cfg->rnd) != cfg->rnd) {
+            for (int o = 0, n = unit_n_out(u); o < n; o++) per_out[o] = INFINITY;
+            return;
+        }
 }

@@ -142,7 +142,23 @@ struct unit_desc {
      * power): an interval [lo, hi] that contains the ideal exactly (e.g.
      * products cut down and up to a few hundred fraction bits). 0, or -1. */
     int  (*ideal_interval)(const unit_cfg *cfg, const sim_dy *in, sim_dy *lo, sim_dy *hi);
+    /* 1 if bound takes each signal's own rounding mode (sim_fmt) into
+     * account: a unit whose bound is the unet walk alone, whose every
+     * quantization is an element of the walk with its signal's format
+     * (unit_qerr reads the format's mode). 0: unit_bound gives no bound
+     * when a signal's own rounding differs from cfg->rnd. */
+    int  bound_own_modes;
 };
+
+/* The unit's bound per output for formats f (u->bound), or INFINITY (no
+ * bound) for every output when a signal cfg builds has a rounding mode of
+ * its own (sim_fmt) other than cfg->rnd and the unit's bound does not
+ * follow such modes (bound_own_modes): most bounds are derived for one
+ * rounding mode throughout, and some use its sign (trunc only lowers a
+ * value), so a mix is not covered. Own overflow modes leave the bound as
+ * it is: a bound holds for runs without overflow, and an overflow is
+ * counted whether it wraps or saturates. */
+void unit_bound(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, double *per_out);
 
 /* The registry. */
 size_t           unit_count(void);
@@ -181,6 +197,6 @@ int  unit_min_width(const unit_desc *u, const unit_cfg *cfg, int *limit_sig);
 sim_fmt unit_fmt(int is_signed, int ibits, int fbits);   /* clamps F >= 0, W <= 64 */
 /* Largest error one quantization from src_f fraction bits into f adds:
  * 0 if no bits are dropped, an LSB less 2^-src_f for trunc, half an LSB
- * when rounding. */
+ * when rounding; with f's own rounding mode if it has one, else r. */
 double  unit_qerr(sim_fmt f, int src_f, sim_round r);
 #endif

@@ -214,6 +214,7 @@ const unit_desc unit_coef3_n1 = {
     .nparams = 2, .params = { P_TERMS, P_SERIES },
     .fmt_rule = COEF_RULE,
     .formats = formats_n1, .beats = beats1, .build = build_n1, .ideal = ideal_n1, .bound = bound_n1, .ideal_exact = exact_n1,
+    .bound_own_modes = 1,   /* the unet walk's */
 };
 
 const unit_desc unit_coef3_n2 = {
@@ -228,6 +229,7 @@ const unit_desc unit_coef3_n2 = {
     .nparams = 2, .params = { P_TERMS, P_SERIES },
     .fmt_rule = COEF_RULE,
     .formats = formats_n2, .beats = beats1, .build = build_n2, .ideal = ideal_n2, .bound = bound_n2, .ideal_exact = exact_n2,
+    .bound_own_modes = 1,   /* the unet walk's */
 };
 
 const unit_desc unit_coef2 = {
@@ -245,4 +247,5 @@ const unit_desc unit_coef2 = {
                 "keeps all the fraction bits it produces, with I from its range, unsigned unless it is a "
                 "difference or can be negative",
     .formats = formats_q, .beats = beats1, .build = build_q, .ideal = ideal_q, .bound = bound_q, .ideal_exact = exact_q,
+    .bound_own_modes = 1,   /* the unet walk's */
 };

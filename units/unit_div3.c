@@ -167,4 +167,5 @@ const unit_desc unit_div3 = {
                 "only the terms and sums of the configured network are built",
     .formats = formats, .beats = beats1, .build = build, .ideal = ideal, .bound = bound, .ideal_exact = ideal_exact,
     .sig_used = sig_used,
+    .bound_own_modes = 1,   /* the unet walk's */
 };

@@ -46,8 +46,9 @@ static const h_sched h3_paper = { 3, HORNER_PAPER, 6, 3, {
 } };
 
 /* The same sequence for the quadratic: four clocks per pixel. Its step
- * counter is 3 bits wide as first built (2 would do; kept so that the
- * paper schedule's area and VCD stay as they were). */
+ * counter is 3 bits wide like horner3's (2 bits would do for four steps):
+ * horner2's paper schedule is horner3's controller cut short, and the area
+ * docs/area.md gives for it counts the 3-bit counter. */
 static const h_sched h2_paper = { 2, HORNER_PAPER, 4, 3, {
     { MX1_RG, 1,       0 },   /* RG <= B */
     { MX1_A,  MX2_MUL, 1 },   /* RG <= A t + B */

@@ -4,8 +4,9 @@
  *   powg, pow_n, d_approx, ward_approx   one-multiplier power engine (unit_powg.c)
  *   div, schlick, mschlick               restoring divider (unit_div.c)
  *
- * units_brdf.h declares them (and the power engine's and the divider's
- * shared functions) for the files that use them.
+ * The registry (unit.c) reaches the units through the table units_brdf[]
+ * below; units_brdf.h declares what they share (brdf_*, the power
+ * engine's pw_*, the divider's dv_*) for the files that use it.
  */
 #include "units/units_brdf.h"
 #include "sim/sim_area.h"
