@@ -63,6 +63,12 @@ typedef enum { UNIT_SIG_IN, UNIT_SIG_OUT, UNIT_SIG_INTERNAL } unit_role;
  * unit's ports and belong to every schedule. */
 #define UNIT_SCHED(i) (1u << (i))
 
+/* In a descriptor: UNIT_SIGS(sig, sig, ...) sets .sigs and .nsigs, the
+ * count taken by the compiler from the list itself (the size of the same
+ * list as an array), so that no hand-kept count can drift from the data. */
+#define UNIT_SIGS(...) \
+    .nsigs = (int)(sizeof((unit_sig[]){ __VA_ARGS__ }) / sizeof(unit_sig)), .sigs = { __VA_ARGS__ }
+
 typedef struct unit_sig {
     const char *name;       /* lower case; also the --fmt NAME and VCD name */
     unit_role   role;

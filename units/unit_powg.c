@@ -245,13 +245,12 @@ const unit_desc unit_powg = {
     .name = "powg",
     .summary = "y = x^g, g = 2^k, by repeated squaring: k clocks on one multiplier",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (the power of D_g)",
-    .nsigs = PG_NSIGS,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "x", .role = UNIT_SIG_IN, .what = "base, in [0, 1]" },
         { .name = "y", .role = UNIT_SIG_OUT, .what = "x^g (RG after the last squaring)" },
         { .name = "mx", .role = UNIT_SIG_INTERNAL, .what = "operand mux: x in the first clock, then RG (drives both inputs)" },
         { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX * MX (a squarer), quantized to its own format" },
-        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" } },
+        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" }),
     .nsched = 1,
     .sched = { { "square", "one squaring a clock: log2(g) clocks per item" } },
     .nparams = 1,
