@@ -226,6 +226,7 @@ static void h_inputs(int deg, sim_signal *const *cs, const sim_fmt *cf, sim_sign
     for (int k = 0; k <= deg; k++) coef[k] = unet_wrap(cs ? cs[k] : NULL, cf[k], k);
     *t = unet_wrap(ts, tf, -1);
     t->mag = fmin(t->mag, 1.0);
+    t->imag = fmin(t->imag, 1.0);
 }
 
 void horner_dp_on(sim_ctx *c, sim_scope *sc, sim_signal *clk, horner_hw *hw, sim_signal *run,

@@ -129,7 +129,7 @@ unet_val unet_wrap(sim_signal *s, sim_fmt f, int k)
     v.s = s;
     v.f = f;
     v.eff = f.fbits;
-    v.mag = ldexp(1.0, f.is_signed ? f.ibits - 1 : f.ibits);
+    v.mag = v.imag = ldexp(1.0, f.is_signed ? f.ibits - 1 : f.ibits);
     if (k >= 0 && k < UNET_MAXIN) v.lin[k] = 1;
     return v;
 }
@@ -156,6 +156,7 @@ unet_val unet_shift(unet *n, int sig, const char *name, unet_val x, int k)
     v.eff = imin(v.f.fbits, eff_src);
     v.mag = fmt_maxabs(v.f);
     if (k == 0) v.mag = fmin(v.mag, copy_mag(x, v.f, eff_src, n->r));   /* a view */
+    v.imag = ldexp(x.imag, k);
     v.s = n->c ? sim_shift(n->c, n->sc, name, v.f, x.s, k) : NULL;
     return v;
 }
@@ -171,6 +172,7 @@ static unet_val addsub(unet *n, int sig, const char *name, unet_val a, unet_val 
     v.err = base + unit_qerr(v.f, eff_src, n->r);
     v.eff = imin(v.f.fbits, eff_src);
     v.mag = fmt_maxabs(v.f);
+    v.imag = a.imag + b.imag;
     v.s = !n->c ? NULL : sub ? sim_sub(n->c, n->sc, name, v.f, a.s, b.s)
                              : sim_add(n->c, n->sc, name, v.f, a.s, b.s);
     return v;
@@ -221,13 +223,15 @@ unet_val unet_mul(unet *n, int sig, const char *name, unet_val a, unet_val b)
     unet_val v;
     memset(&v, 0, sizeof v);
     v.f = fmt_nonlin(n, sig, NULL);
-    /* a_hw b_hw - a b = (a_hw - a) b_hw + a_hw (b_hw - b); an exact
-     * operand (err 0) adds nothing, whatever the other's magnitude */
-    double base = a.err * b.mag + (b.err > 0 ? a.mag * b.err : 0);
+    /* a_hw b_hw - a b = (a_hw - a) b + a_hw (b_hw - b), with |b| <=
+     * imag_b and |a_hw| <= min(mag_a, imag_a + err_a); an exact b (err 0)
+     * adds nothing, whatever a's magnitude */
+    double base = a.err * b.imag + (b.err > 0 ? fmin(a.mag, a.imag + a.err) * b.err : 0);
     int src = a.eff + b.eff;
     v.err = base + unit_qerr(v.f, src, n->r);
     v.eff = imin(v.f.fbits, src);
     v.mag = fmt_maxabs(v.f);
+    v.imag = a.imag * b.imag;
     v.s = n->c ? sim_mul(n->c, n->sc, name, v.f, a.s, b.s) : NULL;
     return v;
 }

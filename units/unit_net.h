@@ -46,11 +46,13 @@ typedef struct unet_val {
      * signal moves a quantization downstream rather than adding one
      * (with trunc, the bound never grows). */
     int         eff;
-    /* Bound on |hardware value|: the format's largest magnitude, or less
-     * where the caller knows it (t in [0, 1]) and copies (registers,
-     * multiplexers) keep it. A product's error uses it: a_hw b_hw - a b =
-     * (a_hw - a) b_hw + a (b_hw - b) <= err_a mag_b + mag_a err_b. */
-    double      mag;
+    /* Bounds on |hardware value| (mag: the format's largest magnitude, or
+     * less where the caller knows it, e.g. t in [0, 1], and copies keep
+     * it) and on |ideal value| (imag: from the inputs' through the
+     * operations). A product's error uses them: a_hw b_hw - a b =
+     * (a_hw - a) b + a_hw (b_hw - b), so |.| <= err_a imag_b +
+     * min(mag_a, imag_a + err_a) err_b. */
+    double      mag, imag;
 } unet_val;
 
 typedef struct unet {
