@@ -123,15 +123,14 @@ static void join(char *dst, size_t len, char names[][16], int n)
  * by that oracle for this unit. Returns the file's rows in *vs (0), or -1. */
 static int check_reference(const unit_desc *u, const unit_cfg *cfg, vec_set *vs)
 {
-    const vec_model *m = vec_model_find(u->name);
-    vec_params vp;
-    tb_vec_params(cfg, &vp);
+    const vec_model *m = u->ref;
+    const vec_params *vp = &cfg->model;
     TST_CHECK(m != NULL, "%s: no float reference", u->name);
     if (!m) return -1;
     vec_set want, got;
     tb_expected_header(u, cfg, &want);
     vec_set_init(&got);
-    vec_set_header(&got, m, &vp);
+    vec_set_header(&got, m, vp);
     TST_EQ_STR(got.unit, u->name);
     char a[VEC_MAX_PORTS * 16], b[VEC_MAX_PORTS * 16];
     join(a, sizeof a, got.in_names, got.n_in);
@@ -153,8 +152,8 @@ static int check_reference(const unit_desc *u, const unit_cfg *cfg, vec_set *vs)
      * what the reference generates (inputs and expected outputs). */
     vec_set gen;
     vec_set_init(&gen);
-    vec_set_header(&gen, m, &vp);
-    TST_CHECK(m->gen(&vp, 0, 1, &gen) == 0, "%s: gen", u->name);
+    vec_set_header(&gen, m, vp);
+    TST_CHECK(m->gen(vp, 0, 1, &gen) == 0, "%s: gen", u->name);
     TST_EQ_INT(gen.n_rows, vs->n_rows);
     size_t stride = (size_t)(vs->n_in + vs->n_out);
     for (size_t r = 0; r < HEAD_ROWS && r < gen.n_rows && r < vs->n_rows; r++)

@@ -44,11 +44,7 @@ void unit_cfg_default(unit_cfg *c)
     c->width = 16;
     c->terms = 3;
     c->series = 0;
-    c->L = 8;
-    c->g = 16;
-    c->n = 32;
-    c->m = 0.2;
-    c->alpha = 0.2;
+    vec_params_default(&c->model);      /* L, g, n, m, alpha, nodes */
     c->rnd = SIM_RND_TRUNC;
     c->ovf = SIM_OVF_WRAP;
 }

@@ -204,6 +204,7 @@ COEF_UNIT_FNS(q, unit_coef2, coef_net_q)
 
 const unit_desc unit_coef3_n1 = {
     .name = "coef3_n1",
+    .ref = &ref_model_coef3_n1,
     .summary = "cubic coefficients A B C D from I(0), I(1), I(1/2), I(1/4) by shifts, adders and two /3 networks (Fig. 8)",
     .seed = "Nechyporuk & Romanyuk (2020), Fig. 8, nodes N1: I(0), I(1), I(1/2), I(1/4)",
     UNIT_SIGS(COEF_SIGS_I123, COEF_SIG_I4_N1,
@@ -217,6 +218,7 @@ const unit_desc unit_coef3_n1 = {
 
 const unit_desc unit_coef3_n2 = {
     .name = "coef3_n2",
+    .ref = &ref_model_coef3_n2,
     .summary = "cubic coefficients A B C D from I(0), I(1), I(1/2), I(3/4), same structure as coef3_n1",
     .seed = "Nechyporuk & Romanyuk (2020), nodes N2: I(0), I(1), I(1/2), I(3/4)",
     UNIT_SIGS(COEF_SIGS_I123, COEF_SIG_I4_N2,
@@ -230,6 +232,7 @@ const unit_desc unit_coef3_n2 = {
 
 const unit_desc unit_coef2 = {
     .name = "coef2",
+    .ref = &ref_model_coef2,
     .summary = "quadratic coefficients A B C from I(0), I(1), I(1/2) by shifts and adders (no /3)",
     .seed = "Nechyporuk & Romanyuk (2020), quadratic through I(0), I(1), I(1/2)",
     UNIT_SIGS(COEF_SIGS_I123,

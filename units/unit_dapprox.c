@@ -257,6 +257,7 @@ static void w_bound(const unit_cfg *cfg, const unit_fmts *f, double *o) { da_bou
 
 const unit_desc unit_d_approx = {
     .name = "d_approx",
+    .ref = &ref_model_d_approx,
     .summary = "D_g = (1/(4m^2)) max(0, ((2/m^2-4)/g)(c-1)+1)^g: Beckmann D as one clamped power",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (D4, D8, D16)",
     UNIT_SIGS(
@@ -280,6 +281,7 @@ const unit_desc unit_d_approx = {
 
 const unit_desc unit_ward_approx = {
     .name = "ward_approx",
+    .ref = &ref_model_ward_approx,
     .summary = "e = max(0, (c-1)/(8 alpha^2)+1)^16 ~ exp(-tan^2/alpha^2), Ward's exponential as a power",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (Ward)",
     UNIT_SIGS(

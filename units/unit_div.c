@@ -29,6 +29,7 @@
  */
 #include "units/unit.h"
 #include "units/units_brdf.h"
+#include "vectors/ref_brdf.h"
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stddef.h>
@@ -291,6 +292,7 @@ static void div_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_div = {
     .name = "div",
+    .ref = &ref_model_div,
     .summary = "q = n/d by a restoring divider, one quotient bit a clock (remainder r, flag dz)",
     .seed = "Zavalniuk et al. (2022), the division of F_SH and F_MSH",
     UNIT_SIGS(

@@ -138,6 +138,7 @@ static void bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_div3 = {
     .name = "div3",
+    .ref = &ref_model_div3,
     .summary = "x/3 by the Fig. 7 shift network: x/2 - x/8 - x/32 - ... (or x/4 + x/16 + ...), combinational",
     .seed = "Nechyporuk & Romanyuk (2020), Fig. 7",
     UNIT_SIGS(

@@ -387,6 +387,7 @@ static void hf_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_hf_lookup = {
     .name = "hf_lookup",
+    .ref = &ref_model_hf_lookup,
     .summary = "factorized BRDF lambda(d0) pi(h) lambda(di): parabolic addresses, 3 bilinear ROM lookups, 2 multipliers; one item a clock",
     .seed = "Romanyuk et al. (2020), eqs. 6-7 (homomorphic factorization)",
     UNIT_SIGS(

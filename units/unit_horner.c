@@ -17,6 +17,7 @@
  */
 #include "units/unit_horner.h"
 #include "units/unit_net.h"
+#include "vectors/ref_seed000.h"
 #include <stdio.h>
 #include "sim/sim_area.h"
 #include <math.h>
@@ -377,6 +378,7 @@ HORNER_FNS(2, 2)
 
 const unit_desc unit_horner3 = {
     .name = "horner3",
+    .ref = &ref_model_horner3,
     .summary = "cubic I = ((A t + B) t + C) t + D on the Fig. 9 datapath (RG, MX1, MX2, BK, Sm, MUL)",
     .seed = "Nechyporuk & Romanyuk (2020), Fig. 9",
     UNIT_SIGS(
@@ -394,6 +396,7 @@ const unit_desc unit_horner3 = {
 
 const unit_desc unit_horner2 = {
     .name = "horner2",
+    .ref = &ref_model_horner2,
     .summary = "quadratic I = (A t + B) t + C on the same datapath, four clocks per pixel",
     .seed = "Nechyporuk & Romanyuk (2020), Fig. 9 (degree 2)",
     UNIT_SIGS(

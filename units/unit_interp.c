@@ -575,6 +575,7 @@ static int sig_used_3(const unit_cfg *cfg, int i)
 
 const unit_desc unit_interp3 = {
     .name = "interp3",
+    .ref = &ref_model_interp3,
     .summary = "cubic interpolation of a span interval: coef3_n1 + registers + the Fig. 9 Horner, L pixels per item",
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
     UNIT_SIGS(COEF_SIGS_I123, { .name = "i4", .role = UNIT_SIG_IN, .what = "I4 = I(1/4) (nodes=n1) or I(3/4) (nodes=n2)" },
@@ -595,6 +596,7 @@ const unit_desc unit_interp3 = {
 
 const unit_desc unit_interp2 = {
     .name = "interp2",
+    .ref = &ref_model_interp2,
     .summary = "quadratic interpolation of a span interval: coef2 + registers + the Horner cut to degree 2, L pixels per item",
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
     UNIT_SIGS(COEF_SIGS_I123, Y_SIG,

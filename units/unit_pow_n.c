@@ -10,6 +10,7 @@
  */
 #include "units/unit.h"
 #include "units/units_brdf.h"
+#include "vectors/ref_brdf.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -95,6 +96,7 @@ static void pow_n_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out
 
 const unit_desc unit_pow_n = {
     .name = "pow_n",
+    .ref = &ref_model_pow_n,
     .summary = "y = x^n (Blinn/Phong cos^n), n = 1..1024, square and multiply on one multiplier",
     .seed = "Zavalniuk et al. (2022), eq. 13 (F_B = cos^n x), the exact reference of the Schlick forms",
     UNIT_SIGS(

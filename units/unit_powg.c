@@ -18,6 +18,7 @@
  */
 #include "units/unit_net.h"
 #include "units/units_brdf.h"
+#include "vectors/ref_brdf.h"
 #include <stdio.h>
 #include <math.h>
 #include <stddef.h>
@@ -256,6 +257,7 @@ static void powg_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_powg = {
     .name = "powg",
+    .ref = &ref_model_powg,
     .summary = "y = x^g, g = 2^k, by repeated squaring: k clocks on one multiplier",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (the power of D_g)",
     UNIT_SIGS(

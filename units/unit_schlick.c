@@ -123,6 +123,7 @@ static void sh_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_schlick = {
     .name = "schlick",
+    .ref = &ref_model_schlick,
     .summary = "F_SH = c/(n - n c + c) (Schlick's stand-in for cos^n) on the restoring divider",
     .seed = "Zavalniuk et al. (2022), eq. 2",
     UNIT_SIGS(
@@ -356,6 +357,7 @@ static void ms_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_mschlick = {
     .name = "mschlick",
+    .ref = &ref_model_mschlick,
     .summary = "F_MSH = 2c/(1.25 (n - n c + 1.25 c)^2): normalize, square, divide",
     .seed = "Zavalniuk et al. (2022), eq. 5",
     UNIT_SIGS(

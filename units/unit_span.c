@@ -837,6 +837,7 @@ static int sig_used_23(const unit_cfg *cfg, int i) { return cube_sig_used(&k23, 
 
 const unit_desc unit_span1 = {
     .name = "span1",
+    .ref = &ref_model_span1,
     .summary = "linear I1 + (I2 - I1) t" SPAN_SUMMARY,
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV (degree 1, for comparison)",
     UNIT_SIGS(S_I12, S_NDV, S_Y,
@@ -859,6 +860,7 @@ const unit_desc unit_span1 = {
 
 const unit_desc unit_span2 = {
     .name = "span2",
+    .ref = &ref_model_span2,
     .summary = "quadratic through I(0), I(1), I(1/2)" SPAN_SUMMARY,
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
     UNIT_SIGS(S_I12, S_I3, S_NDV, S_Y,
@@ -877,6 +879,7 @@ const unit_desc unit_span2 = {
 
 const unit_desc unit_span3 = {
     .name = "span3",
+    .ref = &ref_model_span3,
     .summary = "cubic through node set N1 or N2" SPAN_SUMMARY,
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
     UNIT_SIGS(S_I12, S_I3, S_I4, S_NDV, S_Y, S_CUBE, S_REGS3, S_T, HORNER_SIGS3),
@@ -891,6 +894,7 @@ const unit_desc unit_span3 = {
 
 const unit_desc unit_span23 = {
     .name = "span23",
+    .ref = &ref_model_span23,
     .summary = "adaptive: quadratic or cubic per item (input deg), both networks, one Horner" SPAN_SUMMARY,
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9; degree chosen per interval",
     UNIT_SIGS(S_I12, S_I3, S_I4, S_NDV, S_DEG, S_Y, S_CUBE,
