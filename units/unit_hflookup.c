@@ -434,4 +434,3 @@ const unit_desc unit_hf_lookup = {
     .ideal = hf_ideal, .bound = hf_bound,
 };
 
-const unit_desc *const units_factor[] = { &unit_hf_lookup, NULL };

@@ -911,4 +911,3 @@ const unit_desc unit_span23 = {
     .ideal_ratio = ratio_23, .sig_used = sig_used_23,
 };
 
-const unit_desc *const units_span[] = { &unit_span1, &unit_span2, &unit_span3, &unit_span23, NULL };
