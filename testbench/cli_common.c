@@ -309,13 +309,11 @@ const char *cli_default_vectors_path(const char *unit, char *buf, size_t len)
 int cli_make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, uint64_t seed,
                      vec_set *vs, char *err, size_t errlen)
 {
-    const vec_model *m = vec_model_find(u->name);
+    const vec_model *m = u->ref;
     if (!m) { snprintf(err, errlen, "unit %s has no float reference model", u->name); return -1; }
-    vec_params p;
-    tb_vec_params(cfg, &p);
     vec_set_init(vs);
-    vec_set_header(vs, m, &p);
-    if (m->gen(&p, n, seed, vs)) { snprintf(err, errlen, "cannot generate vectors for %s", u->name); return -1; }
+    vec_set_header(vs, m, &cfg->model);
+    if (m->gen(&cfg->model, n, seed, vs)) { snprintf(err, errlen, "cannot generate vectors for %s", u->name); return -1; }
     return 0;
 }
 

@@ -114,8 +114,6 @@ void tb_result_free(tb_result *res);
 /* The vector-set header a unit expects (unit name, inputs, outputs with
  * beats expanded: y0..y{L-1}), for checking files and making vectors. */
 void tb_expected_header(const unit_desc *u, const unit_cfg *cfg, vec_set *hdr);
-/* The reference model's parameters for a unit's configuration. */
-void tb_vec_params(const unit_cfg *cfg, vec_params *p);
 
 /* Formats from cfg->width, then overrides "NAME=sI.F" / "all=sI.F" applied
  * in order; 0, or -1 with a message. */

@@ -95,7 +95,7 @@ int tb_factor_scene(const char *scene, int L, double alpha, int width, int res, 
     b.ax = b.ay = alpha;
     const rf_maps *maps = rf_ward_maps(L, alpha);
     const unit_desc *u = unit_find("hf_lookup");
-    const vec_model *vm = vec_model_find("hf_lookup");
+    const vec_model *vm = u ? u->ref : NULL;
     int W = g.w, H = g.h, rc = -1;
     size_t np = (size_t)W * H;
     double *img[3] = { calloc(np, sizeof(double)), calloc(np, sizeof(double)), calloc(np, sizeof(double)) };

@@ -55,13 +55,6 @@ static void monitor(sim_proc *p)
     if (++s->got == total) sim_stop(p->ctx);
 }
 
-void tb_vec_params(const unit_cfg *cfg, vec_params *p)
-{
-    vec_params_default(p);
-    p->L = cfg->L; p->g = cfg->g; p->n = cfg->n; p->m = cfg->m; p->alpha = cfg->alpha;
-    p->nodes = cfg->nodes;
-}
-
 void tb_expected_header(const unit_desc *u, const unit_cfg *cfg, vec_set *h)
 {
     int beats = u->beats(cfg);

@@ -26,17 +26,16 @@
  * are linear in the nodes: the corners reach their extremes). */
 static int make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, int nodes, vec_set *vs)
 {
-    const vec_model *m = vec_model_find(u->name);
+    const vec_model *m = u->ref;
     if (!m) return -1;
-    vec_params p;
-    tb_vec_params(cfg, &p);
+    const vec_params *p = &cfg->model;
     vec_set_init(vs);
-    vec_set_header(vs, m, &p);
-    if (m->gen(&p, n, 1, vs)) { vec_set_free(vs); return -1; }
+    vec_set_header(vs, m, p);
+    if (m->gen(p, n, 1, vs)) { vec_set_free(vs); return -1; }
     double row[VEC_MAX_PORTS * 2 + 80];
     for (int b = 0; nodes > 0 && b < (1 << nodes); b++) {
         for (int i = 0; i < nodes; i++) row[i] = (double)((b >> i) & 1);
-        m->eval(&p, row, row + vs->n_in);
+        m->eval(p, row, row + vs->n_in);
         if (vec_set_push(vs, row)) { vec_set_free(vs); return -1; }
     }
     return 0;
@@ -196,18 +195,17 @@ static int run_profiles_nodes(int deg, int nodes, const profile *pr, size_t np, 
     cfg.L = PROF_L;
     cfg.terms = PROF_TERMS;
     cfg.nodes = nodes;
-    const vec_model *m = vec_model_find(u->name);
-    vec_params p;
-    tb_vec_params(&cfg, &p);
+    const vec_model *m = u->ref;
+    const vec_params *p = &cfg.model;
     vec_set vs;
     vec_set_init(&vs);
-    vec_set_header(&vs, m, &p);
+    vec_set_header(&vs, m, p);
     static const double tn3[4] = { 0, 1, 0.5, 0.25 }, tn3b[4] = { 0, 1, 0.5, 0.75 }, tn2[3] = { 0, 1, 0.5 };
     const double *tn = deg == 2 ? tn2 : nodes ? tn3b : tn3;
     for (size_t i = 0; i < np; i++) {
         double row[4 + PROF_L];
         for (int j = 0; j <= deg; j++) row[j] = pr[i].f(pr[i].par, tn[j]);
-        m->eval(&p, row, row + deg + 1);
+        m->eval(p, row, row + deg + 1);
         if (vec_set_push(&vs, row)) { vec_set_free(&vs); return -1; }
     }
     tb_result r;

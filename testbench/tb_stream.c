@@ -26,8 +26,8 @@ void tb_prep_init(tb_prep_ctx *p, const unit_desc *u, const unit_cfg *cfg, const
 {
     memset(p, 0, sizeof *p);
     p->u = u; p->cfg = cfg; p->fmts = fmts;
-    p->model = vec_model_find(u->name);
-    tb_vec_params(cfg, &p->vp);
+    p->model = u->ref;
+    p->vp = cfg->model;
     p->n_in = unit_n_in(u);
     p->nv = u->beats(cfg) * unit_n_out(u);
     for (int i = 0, k = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN) p->in_idx[k++] = i;

@@ -10,13 +10,18 @@
 #include "vectors/ref_brdf.h"
 #include "vectors/vectors.h"
 #include "vectors/ref_shading.h"
+#include "units/unit.h"
 #include <stdint.h>
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
 #endif
 
-extern const vec_model *const vec_models_brdf[];
+/* The BRDF units' reference models, in the order of MODEL_NAMES. */
+static const vec_model *const vec_models_brdf[] = {
+    &ref_model_powg, &ref_model_d_approx, &ref_model_ward_approx, &ref_model_pow_n,
+    &ref_model_div, &ref_model_schlick, &ref_model_mschlick, NULL
+};
 
 /* ---- independent formulas ---- */
 
@@ -342,7 +347,6 @@ static void test_models_table(void)
         TST_CHECK(k < 7, "too many models");
         if (k >= 7) break;
         TST_EQ_STR(m->name, MODEL_NAMES[k]);
-        TST_CHECK(m->summary && *m->summary, "summary");
         vec_params p;
         vec_params_default(&p);
         int ni = 0, no = 0;
@@ -353,7 +357,7 @@ static void test_models_table(void)
         TST_EQ_STR(in[0], MODEL_PORTS[k][0]);
         if (ni == 2) TST_EQ_STR(in[1], MODEL_PORTS[k][1]);
         TST_EQ_STR(out[0], MODEL_PORTS[k][2]);
-        TST_CHECK(vec_model_find(m->name) == m, "registered: %s", m->name);
+        TST_CHECK(unit_find(m->name) && unit_find(m->name)->ref == m, "the unit %s points at it", m->name);
     }
     TST_EQ_INT(k, 7);
 }
@@ -421,41 +425,41 @@ static void test_models_eval_and_params(void)
     vec_params_default(&p);
     double in[2], out[1];
     const vec_model *m;
-    m = vec_model_find("powg");      in[0] = 0.5;   m->eval(&p, in, out); TST_NEAR(out[0], 0x1p-16, 0);
-    m = vec_model_find("d_approx");  in[0] = 1.0;   m->eval(&p, in, out); TST_NEAR(out[0], 6.25, 1e-12);
+    m = (&ref_model_powg);      in[0] = 0.5;   m->eval(&p, in, out); TST_NEAR(out[0], 0x1p-16, 0);
+    m = (&ref_model_d_approx);  in[0] = 1.0;   m->eval(&p, in, out); TST_NEAR(out[0], 6.25, 1e-12);
     in[0] = 0.5; m->eval(&p, in, out); TST_NEAR(out[0], 0.0, 0);   /* beyond 49 deg: clamped */
-    m = vec_model_find("ward_approx"); in[0] = 1.0; m->eval(&p, in, out); TST_NEAR(out[0], 1.0, 0);
+    m = (&ref_model_ward_approx); in[0] = 1.0; m->eval(&p, in, out); TST_NEAR(out[0], 1.0, 0);
     in[0] = cos(0.2); m->eval(&p, in, out); TST_NEAR(out[0], t_ward_poly(0.2, 0.2), 1e-15);
-    m = vec_model_find("pow_n");     in[0] = 0.5;   m->eval(&p, in, out); TST_NEAR(out[0], 0x1p-32, 0);
-    m = vec_model_find("div");       in[0] = 0.25; in[1] = 0.75; m->eval(&p, in, out);
+    m = (&ref_model_pow_n);     in[0] = 0.5;   m->eval(&p, in, out); TST_NEAR(out[0], 0x1p-32, 0);
+    m = (&ref_model_div);       in[0] = 0.25; in[1] = 0.75; m->eval(&p, in, out);
     TST_NEAR(out[0], 1.0 / 3, 1e-16);
-    m = vec_model_find("schlick");   in[0] = 0.9;   m->eval(&p, in, out); TST_NEAR(out[0], t_schlick(0.9, 32), 0);
-    m = vec_model_find("mschlick");  in[0] = 1.0;   m->eval(&p, in, out); TST_NEAR(out[0], 1.024, 1e-15);
+    m = (&ref_model_schlick);   in[0] = 0.9;   m->eval(&p, in, out); TST_NEAR(out[0], t_schlick(0.9, 32), 0);
+    m = (&ref_model_mschlick);  in[0] = 1.0;   m->eval(&p, in, out); TST_NEAR(out[0], 1.024, 1e-15);
 
     /* Parameters reach the models; bad ones are refused. */
     vec_set s;
     vec_set_init(&s);
     p.g = 8;
-    TST_EQ_INT(vec_model_find("powg")->gen(&p, 4, 1, &s), 0);
+    TST_EQ_INT((&ref_model_powg)->gen(&p, 4, 1, &s), 0);
     for (size_t i = 0; i < s.n_rows; i++) TST_NEAR(vec_row(&s, i)[1], pow(vec_row(&s, i)[0], 8), 0);
     vec_set_free(&s);
     vec_params_default(&p);
     p.m = 0.0;
-    TST_EQ_INT(vec_model_find("d_approx")->gen(&p, 4, 1, &s), -1);
+    TST_EQ_INT((&ref_model_d_approx)->gen(&p, 4, 1, &s), -1);
     vec_set_free(&s);
     vec_params_default(&p);
     p.alpha = -1;
-    TST_EQ_INT(vec_model_find("ward_approx")->gen(&p, 4, 1, &s), -1);
+    TST_EQ_INT((&ref_model_ward_approx)->gen(&p, 4, 1, &s), -1);
     vec_set_free(&s);
     vec_params_default(&p);
     p.n = 0;
-    TST_EQ_INT(vec_model_find("pow_n")->gen(&p, 4, 1, &s), -1);
+    TST_EQ_INT((&ref_model_pow_n)->gen(&p, 4, 1, &s), -1);
     vec_set_free(&s);
-    TST_EQ_INT(vec_model_find("schlick")->gen(&p, 4, 1, &s), -1);
+    TST_EQ_INT((&ref_model_schlick)->gen(&p, 4, 1, &s), -1);
     vec_set_free(&s);
     vec_params_default(&p);
     p.n = 1024;
-    TST_EQ_INT(vec_model_find("pow_n")->gen(&p, 0, 1, &s), 0);
+    TST_EQ_INT((&ref_model_pow_n)->gen(&p, 0, 1, &s), 0);
     vec_set_free(&s);
 }
 

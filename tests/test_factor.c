@@ -228,7 +228,7 @@ static void t_bad_parameters(void)
 static void t_hf_lookup_wide(void)
 {
     const unit_desc *u = unit_find("hf_lookup");
-    const vec_model *m = vec_model_find("hf_lookup");
+    const vec_model *m = u ? u->ref : NULL;
     if (!u || !m) { TST_CHECK(0, "hf_lookup not registered"); return; }
     static const int L[2] = { 8, 16 }, W[2] = { 24, 32 };
     for (int k = 0; k < 2; k++) {

@@ -213,9 +213,7 @@ static void interp3_n2_is_lagrange(void)
     TST_CHECK(!tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err), "%s", err);
     vec_set vs;
     vec_set_init(&vs);
-    vec_params p;
-    tb_vec_params(&cfg, &p);
-    vec_set_header(&vs, vec_model_find("interp3"), &p);
+    vec_set_header(&vs, u->ref, &cfg.model);
     double I[8][4], row[12];
     for (int it = 0; it < 8; it++) {
         for (int i = 0; i < 4; i++) I[it][i] = row[i] = fmod(0.37 * (it + 1) * (i + 2) + 0.11 * i, 1.0);

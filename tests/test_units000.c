@@ -113,12 +113,11 @@ static void check_ports(const unit_desc *u, const unit_cfg *cfg)
     vec_set_init(&h);
     vec_set_init(&m);
     tb_expected_header(u, cfg, &h);
-    vec_params p;
-    tb_vec_params(cfg, &p);
-    const vec_model *vm = vec_model_find(u->name);
+    const vec_params *p = &cfg->model;
+    const vec_model *vm = u->ref;
     TST_CHECK(vm != NULL, "%s has no reference model", u->name);
     if (!vm) return;
-    vec_set_header(&m, vm, &p);
+    vec_set_header(&m, vm, p);
     TST_EQ_INT(h.n_in, m.n_in);
     TST_EQ_INT(h.n_out, m.n_out);
     for (int i = 0; i < h.n_in && i < m.n_in; i++) TST_EQ_STR(h.in_names[i], m.in_names[i]);

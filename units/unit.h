@@ -2,8 +2,12 @@
  *
  * A unit_desc says everything the command line, the docs and the tests need:
  * its ports and internal signals with a default-format rule from one width
- * W, its schedules, its parameters, how to build it into a simulation, the
- * function it computes in exact arithmetic (ideal), and its error bound.
+ * W, its schedules, its parameters (with their ranges), how to build it
+ * into a simulation, the function it computes in exact arithmetic (ideal),
+ * its error bound, and its float reference (ref: the independent oracle in
+ * vectors/, whose gen is the unit's default stimulus, vectors/NAME.vec).
+ * The registry (unit.c) is the one list of units: adding a unit is its own
+ * file(s) and one registry line (docs/adding-a-unit.md).
  *
  * Handshake of every unit (testbench/ drives it):
  *  - inputs in[] are written by the source; the unit may read them during
@@ -19,6 +23,10 @@
 #define UNIT_H
 #include "sim/sim.h"
 #include "sim/sim_prim.h"
+/* The float reference (the oracle) sits below units/ in the include graph:
+ * vectors/ includes nothing of units/, and each descriptor points at its
+ * reference model (unit_desc.ref), so there is one registry, this one. */
+#include "vectors/vectors.h"
 
 #define UNIT_MAX_SIGS   80    /* interp3: paper's 38 + the pipe's and fwd's own */
 #define UNIT_MAX_IO     10   /* hf_lookup: three directions of three components */
@@ -26,21 +34,25 @@
 #define UNIT_MAX_PARAMS 6
 
 /* Parameters of every unit, one struct; a unit reads the fields it lists in
- * its params[] table. Defaults come from unit_cfg_default. */
+ * its params[] table (their ranges are there). Defaults come from
+ * unit_cfg_default. The reference model's parameters (vectors.h: L, g, n,
+ * m, alpha, nodes) are not copied: cfg->model is them as the model takes
+ * them, and the same storage by name (cfg->L), one anonymous union. */
 typedef struct unit_cfg {
     int    width;       /* W of the default-format rule */
     int    schedule;    /* index into the unit's schedules */
     int    terms;       /* div3: subtracted (paper) or added (quarter) terms */
     int    series;      /* div3: 0 = paper x/2 - x/8 - ..., 1 = quarter x/4 + x/16 + ... */
-    int    L;           /* interp: pixels per interval (power of two); span: 2..64 */
-    int    nodes;       /* span3, span23: cubic node set, 0 = N1, 1 = N2 */
-    int    g;           /* powg, d_approx: power (power of two) */
-    int    n;           /* pow_n exponent; schlick's n */
-    double m;           /* d_approx roughness */
-    double alpha;       /* ward_approx roughness */
+    union {
+        vec_params model;                   /* &cfg->model: the reference's parameters */
+        struct { VEC_PARAMS_FIELDS };       /* cfg->L, cfg->g, ...: the same fields */
+    };
     sim_round rnd;
     sim_ovf   ovf;
 } unit_cfg;
+/* Same members in the same order (the union's common initial sequence):
+ * the same layout, so writing cfg->L is reading cfg->model.L. */
+_Static_assert(sizeof(vec_params) == sizeof(struct { VEC_PARAMS_FIELDS }), "vec_params layout");
 
 /* UNIT_P_POW2: a whole number that must be a power of two (L, g). */
 typedef enum { UNIT_P_INT, UNIT_P_REAL, UNIT_P_ENUM, UNIT_P_POW2 } unit_ptype;
@@ -62,6 +74,12 @@ typedef enum { UNIT_SIG_IN, UNIT_SIG_OUT, UNIT_SIG_INTERNAL } unit_role;
  * show only the selected schedule's signals. Inputs and outputs are the
  * unit's ports and belong to every schedule. */
 #define UNIT_SCHED(i) (1u << (i))
+
+/* In a descriptor: UNIT_SIGS(sig, sig, ...) sets .sigs and .nsigs, the
+ * count taken by the compiler from the list itself (the size of the same
+ * list as an array), so that no hand-kept count can drift from the data. */
+#define UNIT_SIGS(...) \
+    .nsigs = (int)(sizeof((unit_sig[]){ __VA_ARGS__ }) / sizeof(unit_sig)), .sigs = { __VA_ARGS__ }
 
 typedef struct unit_sig {
     const char *name;       /* lower case; also the --fmt NAME and VCD name */
@@ -90,7 +108,7 @@ typedef struct unit_io {
 
 typedef struct unit_desc unit_desc;
 struct unit_desc {
-    const char *name;
+    const char *name;               /* also its reference model's and vector file's */
     const char *summary;            /* one line for `shadesim list` */
     const char *seed;               /* the paper it comes from (docs/references.md): "Nechyporuk & Romanyuk (2020), Fig. 9" */
     int nsigs;
@@ -100,6 +118,10 @@ struct unit_desc {
     int nparams;
     unit_param params[UNIT_MAX_PARAMS];
     const char *fmt_rule;           /* the default-format rule in words */
+    /* The float reference: ports (the unit's, beats expanded), exact
+     * outputs, and the default stimulus (gen with n = 0, seed 1: the
+     * checked-in vectors/NAME.vec). Independent code (vectors/). */
+    const vec_model *ref;
 
     /* Default format of every signal for cfg->width. */
     void (*formats)(const unit_cfg *cfg, unit_fmts *out);

@@ -204,12 +204,12 @@ COEF_UNIT_FNS(q, unit_coef2, coef_net_q)
 
 const unit_desc unit_coef3_n1 = {
     .name = "coef3_n1",
+    .ref = &ref_model_coef3_n1,
     .summary = "cubic coefficients A B C D from I(0), I(1), I(1/2), I(1/4) by shifts, adders and two /3 networks (Fig. 8)",
     .seed = "Nechyporuk & Romanyuk (2020), Fig. 8, nodes N1: I(0), I(1), I(1/2), I(1/4)",
-    .nsigs = 4 + COEF3_N1_NODES,
-    .sigs = { COEF_SIGS_I123, COEF_SIG_I4_N1,
+    UNIT_SIGS(COEF_SIGS_I123, COEF_SIG_I4_N1,
               COEF3_N1_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
-              COEF3_N1_NET(COEF_SIG_INT, COEF_SIG_SKIP) },
+              COEF3_N1_NET(COEF_SIG_INT, COEF_SIG_SKIP)),
     .nsched = 1, .sched = COMB_SCHED,
     .nparams = 2, .params = { P_TERMS, P_SERIES },
     .fmt_rule = COEF_RULE,
@@ -219,12 +219,12 @@ const unit_desc unit_coef3_n1 = {
 
 const unit_desc unit_coef3_n2 = {
     .name = "coef3_n2",
+    .ref = &ref_model_coef3_n2,
     .summary = "cubic coefficients A B C D from I(0), I(1), I(1/2), I(3/4), same structure as coef3_n1",
     .seed = "Nechyporuk & Romanyuk (2020), nodes N2: I(0), I(1), I(1/2), I(3/4)",
-    .nsigs = 4 + COEF3_N2_NODES,
-    .sigs = { COEF_SIGS_I123, COEF_SIG_I4_N2,
+    UNIT_SIGS(COEF_SIGS_I123, COEF_SIG_I4_N2,
               COEF3_N2_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
-              COEF3_N2_NET(COEF_SIG_INT, COEF_SIG_SKIP) },
+              COEF3_N2_NET(COEF_SIG_INT, COEF_SIG_SKIP)),
     .nsched = 1, .sched = COMB_SCHED,
     .nparams = 2, .params = { P_TERMS, P_SERIES },
     .fmt_rule = COEF_RULE,
@@ -234,12 +234,12 @@ const unit_desc unit_coef3_n2 = {
 
 const unit_desc unit_coef2 = {
     .name = "coef2",
+    .ref = &ref_model_coef2,
     .summary = "quadratic coefficients A B C from I(0), I(1), I(1/2) by shifts and adders (no /3)",
     .seed = "Nechyporuk & Romanyuk (2020), quadratic through I(0), I(1), I(1/2)",
-    .nsigs = 3 + COEF2_NODES,
-    .sigs = { COEF_SIGS_I123,
+    UNIT_SIGS(COEF_SIGS_I123,
               COEF2_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
-              COEF2_NET(COEF_SIG_INT, COEF_SIG_SKIP) },
+              COEF2_NET(COEF_SIG_INT, COEF_SIG_SKIP)),
     .nsched = 1, .sched = COMB_SCHED,
     .nparams = 0,
     .fmt_rule = "i* u1.(W-1) (intensities in [0, 1]); a b c sI.(W-I) (c: uI) with I the fewest integer bits "

@@ -257,14 +257,14 @@ static void w_bound(const unit_cfg *cfg, const unit_fmts *f, double *o) { da_bou
 
 const unit_desc unit_d_approx = {
     .name = "d_approx",
+    .ref = &ref_model_d_approx,
     .summary = "D_g = (1/(4m^2)) max(0, ((2/m^2-4)/g)(c-1)+1)^g: Beckmann D as one clamped power",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (D4, D8, D16)",
-    .nsigs = S_NSIGS,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "c", .role = UNIT_SIG_IN, .what = "cos g = N.H, in [0, 1]" },
         { .name = "d", .role = UNIT_SIG_OUT, .what = "D_g, in [0, 1/(4m^2)]" },
         DA_INTERNALS,
-        { .name = "c0", .role = UNIT_SIG_INTERNAL, .what = "constant c0 = 1/(4m^2); d = c0 * RG by a constant multiplier" } },
+        { .name = "c0", .role = UNIT_SIG_INTERNAL, .what = "constant c0 = 1/(4m^2); d = c0 * RG by a constant multiplier" }),
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: log2(g) clocks" } },
     .nparams = 2,
@@ -281,13 +281,13 @@ const unit_desc unit_d_approx = {
 
 const unit_desc unit_ward_approx = {
     .name = "ward_approx",
+    .ref = &ref_model_ward_approx,
     .summary = "e = max(0, (c-1)/(8 alpha^2)+1)^16 ~ exp(-tan^2/alpha^2), Ward's exponential as a power",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (Ward)",
-    .nsigs = S_NSIGS - 1,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "c", .role = UNIT_SIG_IN, .what = "cos g = N.H, in [0, 1]" },
         { .name = "e", .role = UNIT_SIG_OUT, .what = "the 16th power, in [0, 1]" },
-        DA_INTERNALS },
+        DA_INTERNALS),
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: 4 clocks" } },
     .nparams = 1,

@@ -29,6 +29,7 @@
  */
 #include "units/unit.h"
 #include "units/units_brdf.h"
+#include "vectors/ref_brdf.h"
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stddef.h>
@@ -291,15 +292,15 @@ static void div_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_div = {
     .name = "div",
+    .ref = &ref_model_div,
     .summary = "q = n/d by a restoring divider, one quotient bit a clock (remainder r, flag dz)",
     .seed = "Zavalniuk et al. (2022), the division of F_SH and F_MSH",
-    .nsigs = DV_NSIGS,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "n", .role = UNIT_SIG_IN, .what = "dividend, 0 <= n < d" },
         { .name = "d", .role = UNIT_SIG_IN, .what = "divisor, in [1/2, 1] for the golden vectors (any d > 0 works)" },
         { .name = "q", .role = UNIT_SIG_OUT, .what = "quotient register Q: floor(n/d) in q's format after the last clock" },
         { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "remainder register R: (n - q d) 2^F_q at the end" },
-        { .name = "dz", .role = UNIT_SIG_INTERNAL, .what = "divide-by-zero flag register, d == 0, valid with q" } },
+        { .name = "dz", .role = UNIT_SIG_INTERNAL, .what = "divide-by-zero flag register, d == 0, valid with q" }),
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: as many clocks as q has value bits" } },
     .nparams = 0,

@@ -138,10 +138,10 @@ static void bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_div3 = {
     .name = "div3",
+    .ref = &ref_model_div3,
     .summary = "x/3 by the Fig. 7 shift network: x/2 - x/8 - x/32 - ... (or x/4 + x/16 + ...), combinational",
     .seed = "Nechyporuk & Romanyuk (2020), Fig. 7",
-    .nsigs = 43,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "x", .role = UNIT_SIG_IN, .what = "dividend" },
         { .name = "y", .role = UNIT_SIG_OUT, .what = "x/3 by the network (a view of the last partial sum)" },
         { .name = "t0", .role = UNIT_SIG_INTERNAL, .what = "x/2, the paper series' first term" },
@@ -151,8 +151,7 @@ const unit_desc unit_div3 = {
         TERM(16, 33, 32), TERM(17, 35, 34), TERM(18, 37, 36), TERM(19, 39, 38), TERM(20, 41, 40),
         { .name = "s1", .role = UNIT_SIG_INTERNAL, .what = "partial sum s1 = t0 - t1 (paper; the quarter series starts at s2 = t1 + t2)" },
         SUM(2), SUM(3), SUM(4), SUM(5), SUM(6), SUM(7), SUM(8), SUM(9), SUM(10), SUM(11),
-        SUM(12), SUM(13), SUM(14), SUM(15), SUM(16), SUM(17), SUM(18), SUM(19), SUM(20),
-    },
+        SUM(12), SUM(13), SUM(14), SUM(15), SUM(16), SUM(17), SUM(18), SUM(19), SUM(20)),
     .nsched = 1,
     .sched = { { "comb", "combinational: one item per clock" } },
     .nparams = 2,

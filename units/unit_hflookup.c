@@ -387,10 +387,10 @@ static void hf_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_hf_lookup = {
     .name = "hf_lookup",
+    .ref = &ref_model_hf_lookup,
     .summary = "factorized BRDF lambda(d0) pi(h) lambda(di): parabolic addresses, 3 bilinear ROM lookups, 2 multipliers; one item a clock",
     .seed = "Romanyuk et al. (2020), eqs. 6-7 (homomorphic factorization)",
-    .nsigs = HF_NSIGS,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "x0", .role = UNIT_SIG_IN, .what = "d0 (view) x, local frame" },
         { .name = "y0", .role = UNIT_SIG_IN, .what = "d0 y" },
         { .name = "z0", .role = UNIT_SIG_IN, .what = "d0 z (along the normal), in [0, 1]" },
@@ -421,7 +421,7 @@ const unit_desc unit_hf_lookup = {
         { .name = "dy", .role = UNIT_SIG_INTERNAL, .what = "subtractor dy = bot - top" },
         { .name = "my", .role = UNIT_SIG_INTERNAL, .what = "multiplier my = ay dy" },
         { .name = "val", .role = UNIT_SIG_INTERNAL, .what = "adder val = top + my: the bilinear lookup" },
-        { .name = "m1", .role = UNIT_SIG_INTERNAL, .what = "multiplier m1 = val(l0) val(li)" } },
+        { .name = "m1", .role = UNIT_SIG_INTERNAL, .what = "multiplier m1 = val(l0) val(li)" }),
     .nsched = 1,
     .sched = { { "comb", "three lookup paths and two multipliers, combinational: one item a clock" } },
     .nparams = 2,
@@ -434,4 +434,3 @@ const unit_desc unit_hf_lookup = {
     .ideal = hf_ideal, .bound = hf_bound,
 };
 
-const unit_desc *const units_factor[] = { &unit_hf_lookup, NULL };

@@ -16,6 +16,9 @@
  * tables and coefficient counts, so one builder serves both.
  */
 #include "units/unit_horner.h"
+#include "units/unit_net.h"
+#include "vectors/ref_seed000.h"
+#include <stdio.h>
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stddef.h>
@@ -84,17 +87,7 @@ int horner_latency(int deg, int sched)
     return p ? p->nsteps : -1;
 }
 
-static int imax(int a, int b) { return a > b ? a : b; }
-static int imin(int a, int b) { return a < b ? a : b; }
 static int bits_for(int v) { int b = 1; while ((1 << b) <= v) b++; return b; }
-
-/* Format of u's signal `name` in f (the builders and the bound take every
- * format by name: the pipe's signals are not contiguous). A name the unit
- * does not have is a bug here, not a reason for a default format. */
-static sim_fmt fmt_of(const unit_desc *u, const unit_fmts *f, const char *name)
-{
-    return f->f[unit_sig_must(u, name)];
-}
 
 /* ------------------------------------------------------------- controller */
 
@@ -149,86 +142,112 @@ int horner_ctl_on(sim_ctx *c, sim_scope *sc, sim_signal *clk, int deg, int sched
 
 /* ---------------------------------------------------------------- datapath */
 
-static void dp_paper(sim_ctx *c, sim_scope *sc, sim_signal *clk, horner_hw *hw,
-                     sim_signal *const *coef, sim_signal *t, const unit_desc *u, const unit_fmts *f)
+/* The datapath of schedule p, written once and walked three ways
+ * (unit_net.h): building (n->c set) it makes the hardware in n->sc, driven
+ * by hw's controller, and stops after the first clock's walk; in a
+ * fixed-rule walk it gives each signal it has its format; bounding, it
+ * goes through every clock (paper, mac) or stage (pipe) of one pixel, each
+ * value carrying its worst-case error. coef[0..deg] (A, B, ...) and t are
+ * its inputs. Returns the result register's value; *done (building) the
+ * signal that is 1 the clock before it holds a finished pixel.
+ *
+ * paper: per clock, MX1 picks A or RG into the multiplier, MX2 the product
+ * or a coefficient into the adder, BK passes RG or forces 0, RG <= Sm.
+ * mac: RG <= MX1 * t + MX2, MX1 in {A, RG}, MX2 in {B, C, D}: the adder
+ * takes the product directly, so it never passes MX2, RG and BK.
+ * pipe: stage j multiplies the previous stage's result (A for stage 1) by
+ * t as it entered, and adds coefficient j; registers tJ and <coef>J carry
+ * t and the coefficients still to come, so that a new pixel can enter
+ * behind it in the next clock; vJ carries the valid bit. */
+static unet_val h_walk(unet *n, const h_sched *p, const horner_hw *hw, sim_signal *run,
+                       const unet_val *coef, unet_val t, sim_signal **done)
 {
-    int deg = hw->deg;
-    sim_signal *rg = sim_reg(c, sc, "rg", fmt_of(u, f, "rg"), clk, NULL, NULL, NULL, 0);
-    sim_signal *mx1_in[2] = { coef[0], rg };
-    sim_signal *mx1 = sim_mux(c, sc, "mx1", fmt_of(u, f, "mx1"), hw->mx1_sel, 2, mx1_in);
-    sim_signal *mul = sim_mul(c, sc, "mul", fmt_of(u, f, "mul"), mx1, t);
-    sim_signal *mx2_in[4] = { mul, coef[1], coef[2], deg >= 3 ? coef[3] : NULL };
-    sim_signal *mx2 = sim_mux(c, sc, "mx2", fmt_of(u, f, "mx2"), hw->mx2_sel, deg + 1, mx2_in);
-    sim_signal *bk = sim_bk(c, sc, "bk", fmt_of(u, f, "bk"), hw->bk_pass, rg);
-    sim_signal *sm = sim_add(c, sc, "sm", fmt_of(u, f, "sm"), mx2, bk);
-    sim_reg_connect(rg, sm);
-    hw->rg = rg;
-    hw->done = hw->last;
-}
-
-/* One multiply-add a clock: the adder takes the product directly, so the
- * product never passes through MX2, RG and BK as it does in paper. */
-static void dp_mac(sim_ctx *c, sim_scope *sc, sim_signal *clk, horner_hw *hw,
-                   sim_signal *const *coef, sim_signal *t, const unit_desc *u, const unit_fmts *f)
-{
-    sim_signal *rg = sim_reg(c, sc, "rg", fmt_of(u, f, "rg"), clk, NULL, NULL, NULL, 0);
-    sim_signal *mx1_in[2] = { coef[0], rg };
-    sim_signal *mx1 = sim_mux(c, sc, "mx1", fmt_of(u, f, "mx1"), hw->mx1_sel, 2, mx1_in);
-    sim_signal *mul = sim_mul(c, sc, "mul", fmt_of(u, f, "mul"), mx1, t);
-    sim_signal *mx2 = sim_mux(c, sc, "mx2", fmt_of(u, f, "mx2"), hw->mx2_sel, hw->deg, coef + 1);
-    sim_signal *sm = sim_add(c, sc, "sm", fmt_of(u, f, "sm"), mul, mx2);
-    sim_reg_connect(rg, sm);
-    hw->rg = rg;
-    hw->done = hw->last;
-}
-
-/* Stage j (1-based) multiplies the previous stage's result (A for stage 1)
- * by t as it entered, and adds coefficient j; registers tJ and <coef>J
- * carry t and the coefficients still to come, so that a new pixel can
- * enter behind it in the next clock; vJ carries the valid bit. */
-static void dp_pipe(sim_ctx *c, sim_scope *sc, sim_signal *clk, horner_hw *hw, sim_signal *run,
-                    sim_signal *const *coef, sim_signal *t, const unit_desc *u, const unit_fmts *f)
-{
-    const h_sched *p = hw->s;
-    sim_fmt u1 = unit_fmt(0, 1, 0);
-    sim_signal *carry[4], *acc = NULL, *tt = t, *v = run;
-    for (int k = 0; k <= hw->deg; k++) carry[k] = coef[k];
+    int deg = p->deg;
+    char nm[16];
+#define S(name_) unet_sig(n, name_)
+    if (p->sched != HORNER_PIPE) {
+        int paper = p->sched == HORNER_PAPER;
+        unet_val rg = unet_reg(n, S("rg"), "rg");
+        for (int s = 0; s < p->nsteps; s++) {
+            const h_step *st = &p->step[s];
+            unet_val m1[2] = { coef[0], rg };
+            unet_val mx1 = unet_mux(n, S("mx1"), "mx1", hw ? hw->mx1_sel : NULL, 2, m1, st->mx1);
+            unet_val mul = unet_mul(n, S("mul"), "mul", mx1, t);
+            unet_val sm;
+            if (paper) {
+                unet_val m2[4] = { mul, coef[1], coef[2], coef[3] };
+                unet_val mx2 = unet_mux(n, S("mx2"), "mx2", hw ? hw->mx2_sel : NULL, deg + 1, m2, st->mx2);
+                unet_val bk = unet_bk(n, S("bk"), "bk", hw ? hw->bk_pass : NULL, rg, st->bk);
+                sm = unet_add(n, S("sm"), "sm", mx2, bk);
+            } else {
+                unet_val mx2 = unet_mux(n, S("mx2"), "mx2", hw ? hw->mx2_sel : NULL, deg, coef + 1, st->mx2 - 1);
+                sm = unet_add(n, S("sm"), "sm", mul, mx2);
+            }
+            unet_reg_set(n, &rg, sm);
+            if (n->c) break;        /* the hardware: built once */
+        }
+        if (done) *done = hw ? hw->last : NULL;
+        return rg;
+    }
+    unet_val carry[4], acc = coef[0], tt = t;
+    sim_signal *v = run;
+    for (int k = 0; k <= deg; k++) carry[k] = coef[k];
     for (int j = 1; j <= p->nsteps; j++) {
         const h_step *st = &p->step[j - 1];
-        char nm[16];
-        sim_signal *x = st->mx1 == MX1_A ? coef[0] : acc;
+        unet_val x = st->mx1 == MX1_A ? coef[0] : acc;
         snprintf(nm, sizeof nm, "mul%d", j);
-        sim_signal *mul = sim_mul(c, sc, nm, fmt_of(u, f, nm), x, tt);
+        unet_val mul = unet_mul(n, S(nm), nm, x, tt);
         snprintf(nm, sizeof nm, "sm%d", j);
-        sim_signal *sm = sim_add(c, sc, nm, fmt_of(u, f, nm), mul, carry[st->mx2]);
+        unet_val sm = unet_add(n, S(nm), nm, mul, carry[st->mx2]);
         snprintf(nm, sizeof nm, "rg%d", j);
-        acc = sim_reg(c, sc, nm, fmt_of(u, f, nm), clk, sm, NULL, NULL, 0);
+        acc = unet_reg_of(n, S(nm), nm, sm);
         if (j == p->nsteps) break;
         snprintf(nm, sizeof nm, "t%d", j);
-        tt = sim_reg(c, sc, nm, fmt_of(u, f, nm), clk, tt, NULL, NULL, 0);
-        for (int k = st->mx2 + 1; k <= hw->deg; k++) {
+        tt = unet_reg_of(n, S(nm), nm, tt);
+        for (int k = st->mx2 + 1; k <= deg; k++) {
             snprintf(nm, sizeof nm, "%c%d", "abcd"[k], j);
-            carry[k] = sim_reg(c, sc, nm, fmt_of(u, f, nm), clk, carry[k], NULL, NULL, 0);
+            carry[k] = unet_reg_of(n, S(nm), nm, carry[k]);
         }
-        snprintf(nm, sizeof nm, "v%d", j);
-        v = sim_reg(c, sc, nm, u1, clk, v, NULL, NULL, 0);
+        if (n->c) {
+            snprintf(nm, sizeof nm, "v%d", j);
+            v = sim_reg(n->c, n->sc, nm, unit_fmt(0, 1, 0), n->clk, v, NULL, NULL, 0);
+        }
     }
-    hw->rg = acc;
-    hw->done = v;
+#undef S
+    if (done) *done = v;
+    return acc;
+}
+
+/* The walk's inputs: coefficients of formats cf, and t, whose hardware
+ * value lies in [0, 1] (a product's error grows by no more than its other
+ * operand's). Signals when building. */
+static void h_inputs(int deg, sim_signal *const *cs, const sim_fmt *cf, sim_signal *ts, sim_fmt tf,
+                     unet_val *coef, unet_val *t)
+{
+    memset(coef, 0, 4 * sizeof *coef);
+    for (int k = 0; k <= deg; k++) coef[k] = unet_wrap(cs ? cs[k] : NULL, cf[k], k);
+    *t = unet_wrap(ts, tf, -1);
+    t->mag = fmin(t->mag, 1.0);
+    t->imag = fmin(t->imag, 1.0);
 }
 
 void horner_dp_on(sim_ctx *c, sim_scope *sc, sim_signal *clk, horner_hw *hw, sim_signal *run,
                   sim_signal *const *coef, sim_signal *t, const unit_desc *u, const unit_fmts *f)
 {
-    if (hw->sched == HORNER_PAPER) dp_paper(c, sc, clk, hw, coef, t, u, f);
-    else if (hw->sched == HORNER_MAC) dp_mac(c, sc, clk, hw, coef, t, u, f);
-    else dp_pipe(c, sc, clk, hw, run, coef, t, u, f);
+    unet n;
+    unet_init(&n, u, f, SIM_RND_TRUNC);     /* the context's modes quantize */
+    unet_hw(&n, c, sc);
+    unet_clock(&n, clk);
+    sim_fmt cf[4];
+    for (int k = 0; k <= hw->deg; k++) cf[k] = coef[k]->fmt;
+    unet_val co[4], tv;
+    h_inputs(hw->deg, coef, cf, t, t->fmt, co, &tv);
+    hw->rg = h_walk(&n, hw->s, hw, run, co, tv, &hw->done).s;
 }
 
-static int horner_build(const unit_desc *u, int sched, sim_ctx *c, sim_scope *sc, sim_signal *clk,
+static int horner_build(const unit_desc *u, int deg, int sched, sim_ctx *c, sim_scope *sc, sim_signal *clk,
                         const unit_fmts *f, unit_io *io, char *err, size_t errlen)
 {
-    int deg = !strcmp(u->name, "horner3") ? 3 : 2;
     int nin = deg + 2;                          /* coefficients and t */
     for (int i = 0; i < nin; i++)
         io->in[i] = sim_signal_new(c, sc, u->sigs[i].name, f->f[i], SIM_KIND_INPUT);
@@ -252,21 +271,20 @@ static int horner_build(const unit_desc *u, int sched, sim_ctx *c, sim_scope *sc
 
 /* ------------------------------------------------------------------ formats */
 
-/* The datapath's signals and the copies of t (the pipe's t1, t2). */
-static const char *const dp_names[] = { "mx1", "mul", "mx2", "bk", "sm", "rg", "mul1", "sm1", "rg1", "c1", "d1",
-                                        "mul2", "sm2", "rg2", "d2", "mul3", "sm3", "rg3" };
-static const char *const t_names[] = { "t1", "t2" };
-
-void horner_default_fmts(const unit_desc *u, int width, unit_fmts *out)
+/* The fixed rule, from the walk of every schedule: each element the
+ * datapath has s7.(W-7) (dp), a pipeline register its value's format
+ * (the pipe's copies of t u1.(W-1), of the coefficients dp). */
+void horner_default_fmts(const unit_desc *u, int deg, int width, unit_fmts *out)
 {
-    sim_fmt dp = unit_fmt(1, HORNER_IBITS, width - HORNER_IBITS);
-    for (size_t k = 0; k < sizeof dp_names / sizeof dp_names[0]; k++) {
-        int i = unit_sig_index(u, dp_names[k]);
-        if (i >= 0) out->f[i] = dp;
-    }
-    for (size_t k = 0; k < sizeof t_names / sizeof t_names[0]; k++) {
-        int i = unit_sig_index(u, t_names[k]);
-        if (i >= 0) out->f[i] = unit_fmt(0, 1, width - 1);
+    sim_fmt dp = unit_fmt(1, HORNER_IBITS, width - HORNER_IBITS), cf[4] = { dp, dp, dp, dp };
+    for (int sched = 0; sched < HORNER_NSCHED; sched++) {
+        unet n;
+        unet_init(&n, u, out, SIM_RND_TRUNC);
+        unet_fixed(&n, dp);
+        unet_val co[4], t;
+        h_inputs(deg, NULL, cf, NULL, unit_fmt(0, 1, width - 1), co, &t);
+        h_walk(&n, sched_of(deg, sched), NULL, NULL, co, t, NULL);
+        *out = n.fm;
     }
 }
 
@@ -283,7 +301,7 @@ static void horner_formats(const unit_desc *u, const unit_cfg *cfg, unit_fmts *o
     for (int i = 0; i < nin - 1; i++) out->f[i] = dp;      /* coefficients */
     out->f[nin - 1] = unit_fmt(0, 1, W - 1);                /* t in [0, 1] */
     out->f[nin] = dp;                                       /* y */
-    horner_default_fmts(u, W, out);
+    horner_default_fmts(u, deg, W, out);
 }
 
 static int beats1(const unit_cfg *cfg) { (void)cfg; return 1; }
@@ -317,117 +335,20 @@ static int horner_exact(int deg, const sim_dy *in, sim_dy *out)
 static int ideal3_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) { (void)cfg; return horner_exact(3, in, out); }
 static int ideal2_exact(const unit_cfg *cfg, const sim_dy *in, sim_dy *out) { (void)cfg; return horner_exact(2, in, out); }
 
-/* A value as the bound sees it: its format, worst-case error, and the
- * fraction bits it can really have (eff <= f.fbits: a wide register
- * holding a coarser value). Quantizations count only bits dropped below
- * eff, so that widening a signal moves a truncation downstream instead of
- * adding one: with trunc the bound never grows (unit_qerr's 2^-F - 2^-src
- * telescopes). */
-typedef struct h_val { sim_fmt f; double e; int eff; } h_val;
-
-/* Largest |value| a format holds. */
-static double fmt_maxabs(sim_fmt f) { return ldexp(1.0, f.is_signed ? f.ibits - 1 : f.ibits); }
-
-/* An exact input (coefficient, t) of format f. */
-static h_val exact_of(sim_fmt f) { return (h_val){ f, 0, f.fbits }; }
-
-/* v's exact value with src fraction bits (and error e) into format f. */
-static h_val requant(sim_fmt f, double e, int src, sim_round r)
-{
-    return (h_val){ f, e + unit_qerr(f, src, r), imin(f.fbits, src) };
-}
-
-/* A value through a register or multiplexer of format f. */
-static h_val pass(h_val v, sim_fmt f, sim_round r) { return requant(f, v.e, v.eff, r); }
-
-/* One multiply-add acc = x * t + c through the multiplier, the adder and
- * the result register. x_hw t_hw - x t = (x_hw - x) t_hw + x_hw (t_hw - t)
- * with |t_hw| <= 1: x's error passes unchanged, t's is scaled by |x_hw|,
- * which its format bounds (t's error is 0 unless a pipe register of t is
- * narrower than t). */
-static h_val madd(h_val x, h_val t, h_val c, sim_fmt fmul, sim_fmt fsm, sim_fmt frg, sim_round r)
-{
-    h_val mul = requant(fmul, x.e + (t.e > 0 ? fmt_maxabs(x.f) * t.e : 0), x.eff + t.eff, r);
-    h_val sm = requant(fsm, mul.e + c.e, imax(mul.eff, c.eff), r);
-    return pass(sm, frg, r);
-}
-
-/* Walk the paper table accumulating the worst-case error of RG
- * (docs/bounds.md): every element that drops fraction bits adds its
- * quantization error; multiplying by t (|t| <= 1) does not grow an error. */
-static h_val bound_paper(const h_sched *p, const sim_fmt *coef_f, sim_fmt t, const unit_desc *u,
-                         const unit_fmts *f, sim_round r)
-{
-    sim_fmt fmx1 = fmt_of(u, f, "mx1"), fmul = fmt_of(u, f, "mul"), fmx2 = fmt_of(u, f, "mx2"),
-            fbk = fmt_of(u, f, "bk"), fsm = fmt_of(u, f, "sm"), frg = fmt_of(u, f, "rg");
-    h_val rg = { frg, 0, 0 };       /* RG starts at 0 */
-    for (int s = 0; s < p->nsteps; s++) {
-        const h_step *st = &p->step[s];
-        h_val mx2, bk = { fbk, 0, -64 };   /* forced zero: exact, no fraction bits */
-        if (st->mx2 == MX2_MUL) {
-            h_val mx1 = pass(st->mx1 == MX1_A ? exact_of(coef_f[0]) : rg, fmx1, r);
-            h_val mul = requant(fmul, mx1.e, mx1.eff + t.fbits, r);
-            mx2 = pass(mul, fmx2, r);
-        } else {
-            mx2 = pass(exact_of(coef_f[st->mx2]), fmx2, r);
-        }
-        if (st->bk) bk = pass(rg, fbk, r);
-        h_val sm = requant(fsm, mx2.e + bk.e, imax(mx2.eff, bk.eff), r);
-        rg = pass(sm, frg, r);
-    }
-    return rg;
-}
-
-/* mac: each row's operands pass MX1 (A or RG) and MX2 (a coefficient). */
-static h_val bound_mac(const h_sched *p, const sim_fmt *coef_f, sim_fmt t, const unit_desc *u,
-                       const unit_fmts *f, sim_round r)
-{
-    sim_fmt fmx1 = fmt_of(u, f, "mx1"), fmx2 = fmt_of(u, f, "mx2");
-    h_val acc = { fmt_of(u, f, "rg"), 0, 0 };
-    for (int s = 0; s < p->nsteps; s++) {
-        const h_step *st = &p->step[s];
-        h_val x = pass(st->mx1 == MX1_A ? exact_of(coef_f[0]) : acc, fmx1, r);
-        h_val c = pass(exact_of(coef_f[st->mx2]), fmx2, r);
-        acc = madd(x, exact_of(t), c, fmt_of(u, f, "mul"), fmt_of(u, f, "sm"), fmt_of(u, f, "rg"), r);
-    }
-    return acc;
-}
-
-/* pipe: row j is stage j+1; t and the coefficients still to come pass a
- * pipeline register per stage (lossless in the default rule). */
-static h_val bound_pipe(const h_sched *p, const sim_fmt *coef_f, sim_fmt t_f, const unit_desc *u,
-                        const unit_fmts *f, sim_round r)
-{
-    h_val carry[4], acc = exact_of(coef_f[0]), t = exact_of(t_f);
-    for (int k = 0; k <= p->deg; k++) carry[k] = exact_of(coef_f[k]);
-    for (int j = 1; j <= p->nsteps; j++) {
-        const h_step *st = &p->step[j - 1];
-        char m[16], s[16], g[16];
-        snprintf(m, sizeof m, "mul%d", j);
-        snprintf(s, sizeof s, "sm%d", j);
-        snprintf(g, sizeof g, "rg%d", j);
-        h_val x = st->mx1 == MX1_A ? exact_of(coef_f[0]) : acc;
-        acc = madd(x, t, carry[st->mx2], fmt_of(u, f, m), fmt_of(u, f, s), fmt_of(u, f, g), r);
-        if (j == p->nsteps) break;
-        snprintf(m, sizeof m, "t%d", j);
-        t = pass(t, fmt_of(u, f, m), r);
-        for (int k = st->mx2 + 1; k <= p->deg; k++) {
-            snprintf(m, sizeof m, "%c%d", "abcd"[k], j);
-            carry[k] = pass(carry[k], fmt_of(u, f, m), r);
-        }
-    }
-    return acc;
-}
-
+/* The walk's error of RG after one pixel (docs/bounds.md): every element
+ * that drops fraction bits adds its quantization error; multiplying by t
+ * (|t| <= 1) does not grow an error; then RG seen through y's format. */
 double horner_bound_on(int deg, int sched, const sim_fmt *coef_f, sim_fmt t, const unit_desc *u,
                        const unit_fmts *f, sim_fmt y_f, sim_round r)
 {
     const h_sched *p = sched_of(deg, sched);
     if (!p) return INFINITY;
-    h_val v = p->sched == HORNER_PAPER ? bound_paper(p, coef_f, t, u, f, r)
-            : p->sched == HORNER_MAC   ? bound_mac(p, coef_f, t, u, f, r)
-                                       : bound_pipe(p, coef_f, t, u, f, r);
-    return v.e + unit_qerr(y_f, v.eff, r);
+    unet n;
+    unet_init(&n, u, f, r);
+    unet_val co[4], tv;
+    h_inputs(deg, NULL, coef_f, NULL, t, co, &tv);
+    unet_val v = h_walk(&n, p, NULL, NULL, co, tv, NULL);
+    return v.err + unit_qerr(y_f, v.eff, r);
 }
 
 static void horner_bound(const unit_desc *u, int deg, const unit_cfg *cfg, const unit_fmts *f, double *per_out)
@@ -451,22 +372,22 @@ extern const unit_desc unit_horner3, unit_horner2;
     static void bound##sfx(const unit_cfg *cfg, const unit_fmts *f, double *o) { horner_bound(&unit_horner##sfx, deg, cfg, f, o); } \
     static int build##sfx(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *cfg, \
                           const unit_fmts *f, unit_io *io, char *err, size_t errlen) \
-    { return horner_build(&unit_horner##sfx, cfg->schedule, c, sc, clk, f, io, err, errlen); }
+    { return horner_build(&unit_horner##sfx, deg, cfg->schedule, c, sc, clk, f, io, err, errlen); }
 
 HORNER_FNS(3, 3)
 HORNER_FNS(2, 2)
 
 const unit_desc unit_horner3 = {
     .name = "horner3",
+    .ref = &ref_model_horner3,
     .summary = "cubic I = ((A t + B) t + C) t + D on the Fig. 9 datapath (RG, MX1, MX2, BK, Sm, MUL)",
     .seed = "Nechyporuk & Romanyuk (2020), Fig. 9",
-    .nsigs = 6 + HORNER_NSIGS3,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "a", .role = UNIT_SIG_IN, .what = "coefficient A" }, { .name = "b", .role = UNIT_SIG_IN, .what = "coefficient B" },
         { .name = "c", .role = UNIT_SIG_IN, .what = "coefficient C" }, { .name = "d", .role = UNIT_SIG_IN, .what = "coefficient D" },
         { .name = "t", .role = UNIT_SIG_IN, .what = "position in the interval, k/L" },
         { .name = "y", .role = UNIT_SIG_OUT, .what = "intensity I(t) (RG after the last step)" },
-        HORNER_SIGS3 },
+        HORNER_SIGS3),
     .nsched = 3,
     .sched = H_SCHEDS("the paper's sequence, six clocks per pixel", "3", "3"),
     .nparams = 0,
@@ -476,15 +397,15 @@ const unit_desc unit_horner3 = {
 
 const unit_desc unit_horner2 = {
     .name = "horner2",
+    .ref = &ref_model_horner2,
     .summary = "quadratic I = (A t + B) t + C on the same datapath, four clocks per pixel",
     .seed = "Nechyporuk & Romanyuk (2020), Fig. 9 (degree 2)",
-    .nsigs = 5 + HORNER_NSIGS2,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "a", .role = UNIT_SIG_IN, .what = "coefficient A" }, { .name = "b", .role = UNIT_SIG_IN, .what = "coefficient B" },
         { .name = "c", .role = UNIT_SIG_IN, .what = "coefficient C" },
         { .name = "t", .role = UNIT_SIG_IN, .what = "position in the interval, k/L" },
         { .name = "y", .role = UNIT_SIG_OUT, .what = "intensity I(t)" },
-        HORNER_SIGS2 },
+        HORNER_SIGS2),
     .nsched = 3,
     .sched = H_SCHEDS("the paper's sequence cut to degree 2, four clocks per pixel", "2", "2"),
     .nparams = 0,

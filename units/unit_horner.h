@@ -12,8 +12,10 @@
  *    registers carrying t and the coefficients still to come: a pixel per
  *    clock, the result deg clocks after it entered.
  * Each is its own datapath; the unit lists the union of their signals
- * (HORNER_SIGS3 / HORNER_SIGS2), each masked with the schedules that
- * build it, and the builders take every format by signal name.
+ * (HORNER_SIGS3 / HORNER_SIGS2, counted by UNIT_SIGS), each masked with
+ * the schedules that build it. One construction per schedule (a unet
+ * walk, unit_net.h) builds the hardware, gives the default formats and
+ * bounds the error, taking every format by signal name.
  *
  * The datapath reads its coefficients and t from signals the caller owns.
  * paper and mac run whenever `run` is 1 at step 0; once started, a pixel
@@ -60,8 +62,6 @@ enum { HORNER_PAPER = 0, HORNER_MAC = 1, HORNER_PIPE = 2, HORNER_NSCHED = 3 };
 #define HORNER_SIGS2 HORNER_SIGS_SEQ, \
     H_STAGE(1, "A * t"), H_DELAY("t1", "t for stage 2"), H_DELAY("c1", "C for stage 2"), \
     H_STAGE(2, "rg1 * t1")
-#define HORNER_NSIGS3 20
-#define HORNER_NSIGS2 14
 
 typedef struct h_sched h_sched;
 
@@ -97,9 +97,10 @@ int horner_ctl_on(sim_ctx *c, sim_scope *sc, sim_signal *clk, int deg, int sched
 void horner_dp_on(sim_ctx *c, sim_scope *sc, sim_signal *clk, horner_hw *hw, sim_signal *run,
                   sim_signal *const *coef, sim_signal *t, const unit_desc *u, const unit_fmts *f);
 
-/* The default rule of the datapath's signals that u has: s7.(W-7), and
- * u1.(W-1) for the pipe's copies of t. */
-void horner_default_fmts(const unit_desc *u, int width, unit_fmts *out);
+/* The default rule of the degree-deg datapath's signals (every schedule's):
+ * s7.(W-7), and u1.(W-1) for the pipe's copies of t; set by walking each
+ * schedule's construction, so a signal u lacks is a bug (aborts). */
+void horner_default_fmts(const unit_desc *u, int deg, int width, unit_fmts *out);
 
 /* Worst-case |result - exact polynomial| after one pixel of schedule
  * sched, for coefficients held exactly in formats coef_f[0..deg] and t

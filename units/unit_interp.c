@@ -257,7 +257,7 @@ static void formats(const interp_kind *K, const unit_cfg *cfg, unit_fmts *out)
     }
     n.fm.f[unit_sig_must(u, "t")] = unit_fmt(0, 1, W - 1);
     n.fm.f[unit_sig_must(u, "y")] = dp;
-    horner_default_fmts(u, W, &n.fm);
+    horner_default_fmts(u, K->deg, W, &n.fm);
     *out = n.fm;
     fwd_formats(K, cfg, out);
 }
@@ -561,7 +561,6 @@ static int sig_used_3(const unit_cfg *cfg, int i)
     N2_SIG("i2x5", "5 I2 = 4 I2 + I2"), N2_SIG("i3x16", "16 I3"), N2_SIG("i3x14", "14 I3 = 16 I3 - 2 I3"), \
     N2_SIG("uc", "I2 + 4 I3"), N2_SIG("ucx2", "2 (I2 + 4 I3)"), N2_SIG("ucx3", "3 (I2 + 4 I3)"), \
     N2_SIG("i1x4", "4 I1"), N2_SIG("i1x12", "12 I1 = 8 I1 + 4 I1"), N2_SIG("i1x13", "13 I1 = 12 I1 + I1")
-#define N2_NSIGS 12
 #define REG(nm_, wh_) { .name = nm_, .role = UNIT_SIG_INTERNAL, .what = wh_, .scheds = I_HORNER }
 #define T_SIG { .name = "t", .role = UNIT_SIG_INTERNAL, .what = "t = k/L, the pixel counter k with its binary point moved (wiring)", .scheds = I_HORNER }
 #define Y_SIG { .name = "y", .role = UNIT_SIG_OUT, .what = "intensity I(k/L) of pixel k, one beat per pixel (the Horner's result; fwd: fy)" }
@@ -576,16 +575,16 @@ static int sig_used_3(const unit_cfg *cfg, int i)
 
 const unit_desc unit_interp3 = {
     .name = "interp3",
+    .ref = &ref_model_interp3,
     .summary = "cubic interpolation of a span interval: coef3_n1 + registers + the Fig. 9 Horner, L pixels per item",
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
-    .nsigs = 5 + COEF3_N1_NODES + N2_NSIGS + 4 + 1 + HORNER_NSIGS3 + (0 FWD3_NET(FWD_COUNT)) + 4,
-    .sigs = { COEF_SIGS_I123, { .name = "i4", .role = UNIT_SIG_IN, .what = "I4 = I(1/4) (nodes=n1) or I(3/4) (nodes=n2)" },
+    UNIT_SIGS(COEF_SIGS_I123, { .name = "i4", .role = UNIT_SIG_IN, .what = "I4 = I(1/4) (nodes=n1) or I(3/4) (nodes=n2)" },
               Y_SIG,
               COEF3_N1_NET(COEF_SIG_INT, COEF_SIG_INT) N2_SIGS,
               REG("ra", "register of A, loaded when an item is accepted"),
               REG("rb", "register of B"), REG("rc", "register of C"), REG("rd", "register of D"),
               T_SIG, HORNER_SIGS3,
-              FWD3_NET(FWD_SIG) FWD_REGS3 },
+              FWD3_NET(FWD_SIG) FWD_REGS3),
     .nsched = 4,
     .sched = INTERP_SCHEDS("coefficients once per item, then the paper's Horner sequence: 6 clocks per pixel, 6L per item",
                            "3 clocks per pixel, 3L per item", "L per item, first pixel 4 clocks after the accept"),
@@ -597,15 +596,15 @@ const unit_desc unit_interp3 = {
 
 const unit_desc unit_interp2 = {
     .name = "interp2",
+    .ref = &ref_model_interp2,
     .summary = "quadratic interpolation of a span interval: coef2 + registers + the Horner cut to degree 2, L pixels per item",
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
-    .nsigs = 4 + COEF2_NODES + 3 + 1 + HORNER_NSIGS2 + (0 FWD2_NET(FWD_COUNT)) + 3,
-    .sigs = { COEF_SIGS_I123, Y_SIG,
+    UNIT_SIGS(COEF_SIGS_I123, Y_SIG,
               COEF2_NET(COEF_SIG_INT, COEF_SIG_INT)
               REG("ra", "register of A, loaded when an item is accepted"),
               REG("rb", "register of B"), REG("rc", "register of C"),
               T_SIG, HORNER_SIGS2,
-              FWD2_NET(FWD_SIG) FWD_REGS2 },
+              FWD2_NET(FWD_SIG) FWD_REGS2),
     .nsched = 4,
     .sched = INTERP_SCHEDS("coefficients once per item, then the Horner sequence cut to degree 2: 4 clocks per pixel, 4L per item",
                            "2 clocks per pixel, 2L per item", "L per item, first pixel 3 clocks after the accept"),

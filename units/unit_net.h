@@ -1,9 +1,10 @@
-/* unit_net.h - shift-and-add networks, written once, walked three ways.
+/* unit_net.h - datapaths written once, walked three ways.
  *
  * The divide-by-3 network (Fig. 7), the coefficient units (Fig. 8) and the
  * coefficient part of the interpolators are constant shifts, adders and
- * subtractors. A unit's construction code is written once against this API
- * and walked
+ * subtractors; the Horner datapath (Fig. 9) adds multipliers, multiplexers,
+ * a block key and registers. A unit's construction code is written once
+ * against this API and walked
  *  - to build: the elements go into a simulation (unet_hw);
  *  - to bound: no simulation; every value carries its worst-case error
  *    |hardware - ideal| for the formats given (an element's error is its
@@ -17,6 +18,16 @@
  * A value's ideal (exact) meaning is a linear form of the unit's inputs,
  * with /3 replaced by the network's own factor. Its range over a box of
  * input ranges is exact: the max of sum c_i x_i is sum max(c_i lo_i, c_i hi_i).
+ * A product is no linear form: a walk with multipliers chooses formats by
+ * a fixed rule (unet_fixed), not from ranges.
+ *
+ * A sequential datapath is walked the same way, one clock at a time: a
+ * register (unet_reg) is a value the walk updates at unet_reg_set, and a
+ * multiplexer (unet_mux) follows the input the clock's control word
+ * selects. Building, the first clock's walk makes the hardware (the
+ * multiplexer gets every input and its select signal, the register its
+ * input) and the caller stops; bounding, the walk goes through every clock
+ * of an item and each value carries its worst-case error.
  */
 #ifndef UNIT_NET_H
 #define UNIT_NET_H
@@ -35,6 +46,13 @@ typedef struct unet_val {
      * signal moves a quantization downstream rather than adding one
      * (with trunc, the bound never grows). */
     int         eff;
+    /* Bounds on |hardware value| (mag: the format's largest magnitude, or
+     * less where the caller knows it, e.g. t in [0, 1], and copies keep
+     * it) and on |ideal value| (imag: from the inputs' through the
+     * operations). A product's error uses them: a_hw b_hw - a b =
+     * (a_hw - a) b + a_hw (b_hw - b), so |.| <= err_a imag_b +
+     * min(mag_a, imag_a + err_a) err_b. */
+    double      mag, imag;
 } unet_val;
 
 typedef struct unet {
@@ -43,8 +61,12 @@ typedef struct unet {
     const unit_desc *u;             /* signal name -> index into fm */
     unit_fmts        fm;            /* formats by signal index (chosen ones land here) */
     sim_round        r;
-    /* The default rule, when choose is 1: */
+    sim_signal      *clk;           /* registers' clock (unet_clock) */
+    /* The default rule, when choose is 1 (from ranges, shift-and-add
+     * only) or UNET_FIXED (unet_fixed: every element `dflt`, a pipeline
+     * register its source's format): */
     int              choose;
+    sim_fmt          dflt;
     int              width;         /* W: outputs get sI.(W-I) */
     int              fcap;          /* fraction bits a right shift may keep at most */
     double           lo[UNET_MAXIN], hi[UNET_MAXIN];   /* input ranges */
@@ -67,6 +89,13 @@ void unet_hw(unet *n, sim_ctx *c, sim_scope *sc);
  * n->fm by the caller before the walk. */
 void unet_rule(unet *n, int width, const double *lo, const double *hi, int nin);
 
+/* The fixed rule (multiplier datapaths): every element gets format dflt,
+ * a register of a value (unet_reg_of) its value's format. */
+#define UNET_FIXED 2
+void unet_fixed(unet *n, sim_fmt dflt);
+/* The clock of the registers the walk builds. */
+void unet_clock(unet *n, sim_signal *clk);
+
 /* Index of signal name in the unit; a name the unit does not declare is
  * a bug in the unit (unit_sig_must: reported, aborted). */
 int unet_sig(unet *n, const char *name);
@@ -80,6 +109,20 @@ unet_val unet_wrap(sim_signal *s, sim_fmt f, int k);
 unet_val unet_shift(unet *n, int sig, const char *name, unet_val x, int k);   /* x * 2^k */
 unet_val unet_add(unet *n, int sig, const char *name, unet_val a, unet_val b);
 unet_val unet_sub(unet *n, int sig, const char *name, unet_val a, unet_val b);
+/* a * b, quantized to its format (a fixed-rule or given-format walk). */
+unet_val unet_mul(unet *n, int sig, const char *name, unet_val a, unet_val b);
+/* Multiplexer: building, select sel picks among v[0..nv-1]; a walk that
+ * does not build follows v[k], the input this clock selects. */
+unet_val unet_mux(unet *n, int sig, const char *name, sim_signal *sel, int nv, const unet_val *v, int k);
+/* Block key: x where pass is 1, else 0 (the walk: on). */
+unet_val unet_bk(unet *n, int sig, const char *name, sim_signal *pass, unet_val x, int on);
+/* A register with its input connected later (a feedback loop): 0, exact,
+ * before the first clock. unet_reg_set connects d (building) and makes the
+ * walk's r the value r holds after the clock edge. */
+unet_val unet_reg(unet *n, int sig, const char *name);
+void     unet_reg_set(unet *n, unet_val *r, unet_val d);
+/* A pipeline register of d (in the fixed rule: d's format). */
+unet_val unet_reg_of(unet *n, int sig, const char *name, unet_val d);
 
 /* ---- the divide-by-3 network (unit_div3.c) ---- */
 

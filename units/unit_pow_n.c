@@ -10,6 +10,7 @@
  */
 #include "units/unit.h"
 #include "units/units_brdf.h"
+#include "vectors/ref_brdf.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -95,17 +96,17 @@ static void pow_n_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out
 
 const unit_desc unit_pow_n = {
     .name = "pow_n",
+    .ref = &ref_model_pow_n,
     .summary = "y = x^n (Blinn/Phong cos^n), n = 1..1024, square and multiply on one multiplier",
     .seed = "Zavalniuk et al. (2022), eq. 13 (F_B = cos^n x), the exact reference of the Schlick forms",
-    .nsigs = PN_NSIGS,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "x", .role = UNIT_SIG_IN, .what = "base (a cosine), in [0, 1]" },
         { .name = "y", .role = UNIT_SIG_OUT, .what = "x^n (RG after the last step)" },
         { .name = "mx_a", .role = UNIT_SIG_INTERNAL, .what = "operand mux A: x in the first clock, then RG" },
         { .name = "mx_b", .role = UNIT_SIG_INTERNAL, .what = "operand mux B: x (first clock, multiplies) or RG (squarings); "
                                      "absent when n is a power of two" },
         { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX_A * MX_B, quantized to its own format" },
-        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" } },
+        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" }),
     .nsched = 1,
     .sched = { { "sqmul", "left-to-right square and multiply: a squaring per bit of n after the "
                           "leading one, a multiply per further 1 bit" } },

@@ -13,9 +13,13 @@
  * source in the whole program needs no multiplexer, and when A and B always
  * select the same source one multiplexer drives both inputs (a squarer's
  * wiring), so each unit pays only for the muxes its program uses.
+ * One walk of the program (pw_walk, a unet walk) builds the engine and
+ * bounds its error.
  */
-#include "units/unit.h"
+#include "units/unit_net.h"
 #include "units/units_brdf.h"
+#include "vectors/ref_brdf.h"
+#include <stdio.h>
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -75,28 +79,69 @@ int pw_sig_built(const unit_desc *u, const char *prog, int i)
     return 1;
 }
 
-/* ----------------------------------------------------------------- build */
+/* ------------------------------------------------------- build and bound */
 
-static sim_signal *operand(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *name, sim_fmt f,
-                           sim_signal *next, const char *prog, int col, const char *srcs,
-                           int nsteps, sim_signal *in, sim_signal *rg, sim_signal **one)
+/* Whether v's format holds its value: [0, ideal bound + error] (every
+ * value of the engine is >= 0). */
+static int pw_holds(unet_val v) { return brdf_holds(v.f, 0, v.imag + v.err); }
+
+/* The engine's construction, written once and walked (unit_net.h):
+ * building (n->c set), the first clock's walk makes RG, each operand's
+ * multiplexer (where it has more than one source, with the decoder of its
+ * select) and MUL, then stops; bounding, it walks every clock of the
+ * program, every value carrying its worst-case error and the bound on its
+ * ideal value (in [0, M]: a squaring doubles the error, a multiply by IN
+ * adds e_in M), and returns -1 where a format cannot hold its value (an
+ * override that may overflow: no bound). *rg: RG's value. */
+static int pw_walk(unet *n, const pw_plan *p, const char *prog, sim_signal *next, unet_val in, unet_val *rg_out)
 {
-    sim_signal *sig[3];
-    int n = (int)strlen(srcs);
-    for (int i = 0; i < n; i++) {
-        if (srcs[i] == 'I') sig[i] = in;
-        else if (srcs[i] == 'R') sig[i] = rg;
-        else {
-            if (!*one) *one = sim_const_raw(c, sc, "one", unit_fmt(0, 1, 0), 1);
-            sig[i] = *one;
+    const unit_desc *u = n->u;
+    unet_val rg = unet_reg(n, p->irg, "rg"), one;
+    int have_one = 0;
+    for (int s = 0; s < p->nsteps; s++) {
+        unet_val op[2];
+        for (int k = 0; k < 2; k++) {
+            if (k == 1 && p->shared) { op[1] = op[0]; break; }
+            const char *srcs = k ? p->src_b : p->src_a;
+            int ns = (int)strlen(srcs), sig = k ? p->ib : p->ia;
+            unet_val v[3];
+            for (int i = 0; i < ns; i++) {
+                if (srcs[i] == 'I') v[i] = in;
+                else if (srcs[i] == 'R') v[i] = rg;
+                else {
+                    if (!have_one) {        /* the constant 1, made where first used */
+                        sim_fmt f1 = unit_fmt(0, 1, 0);
+                        one = unet_wrap(n->c ? sim_const_raw(n->c, n->sc, "one", f1, 1) : NULL, f1, -1);
+                        one.mag = one.imag = 1;
+                        have_one = 1;
+                    }
+                    v[i] = one;
+                }
+            }
+            int pick = (int)(strchr(srcs, prog[2 * s + k]) - srcs);
+            if (ns == 1) { op[k] = v[0]; continue; }    /* a single source: plain wiring */
+            sim_signal *sel = NULL;
+            if (n->c) {
+                uint8_t table[PW_MAX_STEPS];
+                char sn[32];
+                for (int t = 0; t < p->nsteps; t++) table[t] = (uint8_t)(strchr(srcs, prog[2 * t + k]) - srcs);
+                snprintf(sn, sizeof sn, "%s_sel", u->sigs[sig].name);
+                sel = brdf_decode(n->c, n->sc, n->clk, sn, next, table, p->nsteps);
+            }
+            op[k] = unet_mux(n, sig, u->sigs[sig].name, sel, ns, v, pick);
+            if (!n->c && !pw_holds(op[k])) return -1;
         }
+        /* The bound takes the product as B * A: the same error, with the
+         * terms in the order of docs/brdf.md's e_a (M_b + e_b) + M_a e_b,
+         * so that its rounding is that derivation's. */
+        unet_val mul = n->c ? unet_mul(n, p->imul, "mul", op[0], op[1]) : unet_mul(n, p->imul, "mul", op[1], op[0]);
+        if (!n->c && !pw_holds(mul)) return -1;
+        unet_reg_set(n, &rg, mul);
+        if (n->c) break;            /* the hardware: built once */
+        if (!pw_holds(rg)) return -1;
     }
-    if (n == 1) return sig[0];           /* a single source: plain wiring */
-    uint8_t table[PW_MAX_STEPS];
-    for (int s = 0; s < nsteps; s++) table[s] = (uint8_t)(strchr(srcs, prog[2 * s + col]) - srcs);
-    char sel[32];
-    snprintf(sel, sizeof sel, "%s_sel", name);
-    return sim_mux(c, sc, name, f, brdf_decode(c, sc, clk, sel, next, table, nsteps), n, sig);
+    *rg_out = rg;
+    return 0;
 }
 
 /* Builds the sequencer and the engine around IN; returns RG. */
@@ -105,67 +150,36 @@ sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
 {
     pw_plan p;
     if (pw_make_plan(u, prog, &p)) return NULL;
-    sim_signal *next, *first, *one = NULL;
+    sim_signal *next, *first;
     brdf_seq(c, sc, clk, p.nsteps, io, &next, &first);
     (void)first;
-    sim_signal *rg = sim_reg(c, sc, "rg", f->f[p.irg], clk, NULL, NULL, NULL, 0);
-    sim_signal *a = operand(c, sc, clk, u->sigs[p.ia].name, f->f[p.ia], next, prog, 0, p.src_a,
-                            p.nsteps, in, rg, &one);
-    sim_signal *b = p.shared ? a
-                  : operand(c, sc, clk, u->sigs[p.ib].name, f->f[p.ib], next, prog, 1, p.src_b,
-                            p.nsteps, in, rg, &one);
-    sim_signal *mul = sim_mul(c, sc, "mul", f->f[p.imul], a, b);
-    sim_reg_connect(rg, mul);
-    return rg;
+    unet n;
+    unet_init(&n, u, f, SIM_RND_TRUNC);     /* the context's modes quantize */
+    unet_hw(&n, c, sc);
+    unet_clock(&n, clk);
+    unet_val rg;
+    if (pw_walk(&n, &p, prog, next, unet_wrap(in, in->fmt, 0), &rg)) return NULL;
+    return rg.s;
 }
 
-/* ----------------------------------------------------------------- bound */
-
-/* Worst-case |RG - ideal| after the program (docs/brdf.md, "power engine").
- * Every value is in [0, M] with M tracked per step (m_in bounds IN); an
- * error e_a on A and e_b on B give |ab - AB| <= e_a (M_b + e_b) + M_a e_b,
- * so a squaring doubles the error and a multiply by IN adds e_in M. Each
- * element that drops fraction bits adds its quantization error. Returns
- * INFINITY when some format cannot hold its value (an override that may
- * overflow); *m_out is the largest ideal value of RG. */
+/* Worst-case |RG - ideal| after the program (docs/brdf.md, "power engine"),
+ * from the walk: IN has error e_in and ideal value in [0, m_in], in_fmt's
+ * fbits the bits it really has. INFINITY when some format cannot hold its
+ * value; *m_out is the largest ideal value of RG. */
 double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
                 double e_in, double m_in, const char *prog, double *m_out, int *eff_out)
 {
     pw_plan p;
     if (pw_make_plan(u, prog, &p)) return INFINITY;
-    sim_fmt fa = f->f[p.ia], fb = f->f[p.ib], fm = f->f[p.imul], fr = f->f[p.irg];
-    int mux_a = strlen(p.src_a) > 1, mux_b = !p.shared && strlen(p.src_b) > 1;
-    double e_rg = 0, m_rg = 0;
-    int eff_rg = fr.fbits;      /* fraction bits RG's value really has */
-    for (int s = 0; s < p.nsteps; s++) {
-        double e[2], m[2];
-        int fbits[2];
-        for (int k = 0; k < 2; k++) {
-            char src = prog[2 * s + k];
-            int has_mux = k == 0 ? mux_a : (p.shared ? mux_a : mux_b);
-            sim_fmt fmx = k == 0 || p.shared ? fa : fb;
-            int sf = src == 'I' ? in_fmt.fbits : src == 'R' ? eff_rg : 0;
-            e[k] = src == 'I' ? e_in : src == 'R' ? e_rg : 0;
-            m[k] = src == 'I' ? m_in : src == 'R' ? m_rg : 1;
-            if (has_mux) {
-                e[k] += unit_qerr(fmx, sf, r);
-                if (!brdf_holds(fmx, 0, m[k] + e[k])) return INFINITY;
-                sf = sf < fmx.fbits ? sf : fmx.fbits;
-            }
-            fbits[k] = sf;
-        }
-        double m_mul = m[0] * m[1];
-        double e_mul = e[0] * (m[1] + e[1]) + m[0] * e[1] + unit_qerr(fm, fbits[0] + fbits[1], r);
-        if (!brdf_holds(fm, 0, m_mul + e_mul)) return INFINITY;
-        int eff_mul = fbits[0] + fbits[1] < fm.fbits ? fbits[0] + fbits[1] : fm.fbits;
-        e_rg = e_mul + unit_qerr(fr, eff_mul, r);
-        eff_rg = eff_mul < fr.fbits ? eff_mul : fr.fbits;
-        m_rg = m_mul;
-        if (!brdf_holds(fr, 0, m_rg + e_rg)) return INFINITY;
-    }
-    if (m_out) *m_out = m_rg;
-    if (eff_out) *eff_out = eff_rg;
-    return e_rg;
+    unet n;
+    unet_init(&n, u, f, r);
+    unet_val in = unet_wrap(NULL, in_fmt, 0), rg;
+    in.err = e_in;
+    in.imag = m_in;
+    if (pw_walk(&n, &p, prog, NULL, in, &rg)) return INFINITY;
+    if (m_out) *m_out = rg.imag;
+    if (eff_out) *eff_out = rg.eff;
+    return rg.err;
 }
 
 /* ------------------------------------------------------------------ powg */
@@ -243,15 +257,15 @@ static void powg_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_powg = {
     .name = "powg",
+    .ref = &ref_model_powg,
     .summary = "y = x^g, g = 2^k, by repeated squaring: k clocks on one multiplier",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (the power of D_g)",
-    .nsigs = PG_NSIGS,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "x", .role = UNIT_SIG_IN, .what = "base, in [0, 1]" },
         { .name = "y", .role = UNIT_SIG_OUT, .what = "x^g (RG after the last squaring)" },
         { .name = "mx", .role = UNIT_SIG_INTERNAL, .what = "operand mux: x in the first clock, then RG (drives both inputs)" },
         { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX * MX (a squarer), quantized to its own format" },
-        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" } },
+        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" }),
     .nsched = 1,
     .sched = { { "square", "one squaring a clock: log2(g) clocks per item" } },
     .nparams = 1,

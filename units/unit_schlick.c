@@ -123,17 +123,17 @@ static void sh_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_schlick = {
     .name = "schlick",
+    .ref = &ref_model_schlick,
     .summary = "F_SH = c/(n - n c + c) (Schlick's stand-in for cos^n) on the restoring divider",
     .seed = "Zavalniuk et al. (2022), eq. 2",
-    .nsigs = SH_NSIGS,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "c", .role = UNIT_SIG_IN, .what = "cos x, in [0, 1]" },
         { .name = "f", .role = UNIT_SIG_OUT, .what = "F_SH, in [0, 1]" },
         { .name = "k", .role = UNIT_SIG_INTERNAL, .what = "constant n - 1" },
         { .name = "t", .role = UNIT_SIG_INTERNAL, .what = "constant multiplier T = (n - 1) c (shift-and-add)" },
         { .name = "den", .role = UNIT_SIG_INTERNAL, .what = "subtractor DEN = n - T, in [1, n]" },
         { .name = "q", .role = UNIT_SIG_INTERNAL, .what = "divider's quotient register Q" },
-        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "divider's remainder register R" } },
+        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "divider's remainder register R" }),
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,
@@ -357,10 +357,10 @@ static void ms_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 
 const unit_desc unit_mschlick = {
     .name = "mschlick",
+    .ref = &ref_model_mschlick,
     .summary = "F_MSH = 2c/(1.25 (n - n c + 1.25 c)^2): normalize, square, divide",
     .seed = "Zavalniuk et al. (2022), eq. 5",
-    .nsigs = MS_NSIGS,
-    .sigs = {
+    UNIT_SIGS(
         { .name = "c", .role = UNIT_SIG_IN, .what = "cos x, in [0, 1]" },
         { .name = "f", .role = UNIT_SIG_OUT, .what = "F_MSH, in [0, 1.024]" },
         { .name = "k", .role = UNIT_SIG_INTERNAL, .what = "constant n - 1.25" },
@@ -371,7 +371,7 @@ const unit_desc unit_mschlick = {
         { .name = "v", .role = UNIT_SIG_INTERNAL, .what = "multiplier V = UN * UN" },
         { .name = "den", .role = UNIT_SIG_INTERNAL, .what = "adder DEN = V + V/4 = 1.25 V" },
         { .name = "q", .role = UNIT_SIG_INTERNAL, .what = "divider's quotient register Q = 2c 2^-2E / DEN" },
-        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "divider's remainder register R" } },
+        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "divider's remainder register R" }),
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,

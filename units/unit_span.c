@@ -171,7 +171,7 @@ static void formats(const span_kind *K, const unit_cfg *cfg, unit_fmts *out)
         static const char *const dpn[] = { "mul", "mx2", "bk", "sm", "rg" };
         for (int i = 0; i < 5; i++) n.fm.f[sig(K, dpn[i])] = dp;
     } else {
-        horner_default_fmts(u, W, &n.fm);
+        horner_default_fmts(u, deg, W, &n.fm);
     }
     *out = n.fm;
 }
@@ -837,10 +837,10 @@ static int sig_used_23(const unit_cfg *cfg, int i) { return cube_sig_used(&k23, 
 
 const unit_desc unit_span1 = {
     .name = "span1",
+    .ref = &ref_model_span1,
     .summary = "linear I1 + (I2 - I1) t" SPAN_SUMMARY,
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV (degree 1, for comparison)",
-    .nsigs = 16,
-    .sigs = { S_I12, S_NDV, S_Y,
+    UNIT_SIGS(S_I12, S_NDV, S_Y,
               S_INT("a", "A = I2 - I1 (a subtractor)"), S_INT("b", "B = I1 (wiring)"),
               S_INT("ra", "register of A, loaded when an item is accepted"), S_INT("rb", "register of B"),
               S_T,
@@ -848,7 +848,7 @@ const unit_desc unit_span1 = {
               { "mx2", UNIT_SIG_INTERNAL, "multiplexer MX2: RB or MUL into the adder", H_P },
               { "bk", UNIT_SIG_INTERNAL, "block key BK: passes RG or forces zero", H_P },
               S_INT("sm", "adder Sm: paper MX2 + BK, mac and pipe MUL + RB"),
-              S_INT("rg", "result register RG <= Sm") },
+              S_INT("rg", "result register RG <= Sm")),
     .nsched = 3,
     .sched = SPAN_SCHEDS("the Fig. 9 elements at degree 1, RG <= B then RG <= A t + RG: 2 clocks per pixel",
                          "RG <= A t + B, 1 clock per pixel", "the same single stage as mac at degree 1"),
@@ -860,14 +860,14 @@ const unit_desc unit_span1 = {
 
 const unit_desc unit_span2 = {
     .name = "span2",
+    .ref = &ref_model_span2,
     .summary = "quadratic through I(0), I(1), I(1/2)" SPAN_SUMMARY,
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
-    .nsigs = 6 + COEF2_NODES + 3 + 2 + HORNER_NSIGS2,
-    .sigs = { S_I12, S_I3, S_NDV, S_Y,
+    UNIT_SIGS(S_I12, S_I3, S_NDV, S_Y,
               COEF2_NET(S_NET, S_NET)
               S_INT("ra", "register of A, loaded when an item is accepted"), S_INT("rb", "register of B"),
               S_INT("rc", "register of C"),
-              S_T, HORNER_SIGS2 },
+              S_T, HORNER_SIGS2),
     .nsched = 3,
     .sched = SPAN_SCHEDS("the Horner sequence cut to degree 2: 4 clocks per pixel", "2 clocks per pixel",
                          "result 2 clocks after the pixel entered"),
@@ -879,10 +879,10 @@ const unit_desc unit_span2 = {
 
 const unit_desc unit_span3 = {
     .name = "span3",
+    .ref = &ref_model_span3,
     .summary = "cubic through node set N1 or N2" SPAN_SUMMARY,
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
-    .nsigs = 7 + S_CUBE_N + 4 + 2 + HORNER_NSIGS3,
-    .sigs = { S_I12, S_I3, S_I4, S_NDV, S_Y, S_CUBE, S_REGS3, S_T, HORNER_SIGS3 },
+    UNIT_SIGS(S_I12, S_I3, S_I4, S_NDV, S_Y, S_CUBE, S_REGS3, S_T, HORNER_SIGS3),
     .nsched = 3,
     .sched = SPAN_SCHEDS("the paper's Horner sequence: 6 clocks per pixel", "3 clocks per pixel",
                          "result 3 clocks after the pixel entered"),
@@ -894,12 +894,12 @@ const unit_desc unit_span3 = {
 
 const unit_desc unit_span23 = {
     .name = "span23",
+    .ref = &ref_model_span23,
     .summary = "adaptive: quadratic or cubic per item (input deg), both networks, one Horner" SPAN_SUMMARY,
     .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9; degree chosen per interval",
-    .nsigs = 8 + S_CUBE_N + COEF2_NODES + 4 + 2 + HORNER_NSIGS3,
-    .sigs = { S_I12, S_I3, S_I4, S_NDV, S_DEG, S_Y, S_CUBE,
+    UNIT_SIGS(S_I12, S_I3, S_I4, S_NDV, S_DEG, S_Y, S_CUBE,
               COEF2_NET(SQ_SIG, SQ_SIG)
-              S_REGS3, S_T, HORNER_SIGS3 },
+              S_REGS3, S_T, HORNER_SIGS3),
     .nsched = 3,
     .sched = SPAN_SCHEDS("the paper's Horner sequence, 6 clocks per pixel of a cubic item, its first 4 for a "
                          "quadratic item", "3 clocks per pixel of a cubic item, 2 of a quadratic",
@@ -911,4 +911,3 @@ const unit_desc unit_span23 = {
     .ideal_ratio = ratio_23, .sig_used = sig_used_23,
 };
 
-const unit_desc *const units_span[] = { &unit_span1, &unit_span2, &unit_span3, &unit_span23, NULL };

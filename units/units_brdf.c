@@ -1,5 +1,5 @@
-/* units_brdf.c - the BRDF approximation units of seeds 000/001/004, and the
- * few pieces of hardware and arithmetic they share (prefix brdf_).
+/* units_brdf.c - the few pieces of hardware and arithmetic the BRDF
+ * approximation units of seeds 000/001/004 share (prefix brdf_).
  *
  *   powg, pow_n, d_approx, ward_approx   one-multiplier power engine (unit_powg.c)
  *   div, schlick, mschlick               restoring divider (unit_div.c)
@@ -12,15 +12,6 @@
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stdlib.h>
-
-extern const unit_desc unit_powg, unit_pow_n, unit_d_approx, unit_ward_approx,
-                       unit_div, unit_schlick, unit_mschlick;
-
-const unit_desc *const units_brdf[] = {
-    &unit_powg, &unit_pow_n, &unit_d_approx, &unit_ward_approx,
-    &unit_div, &unit_schlick, &unit_mschlick,
-    NULL
-};
 
 /* ------------------------------------------------------------- sequencer */
 

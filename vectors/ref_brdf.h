@@ -9,6 +9,12 @@
  */
 #ifndef REF_BRDF_H
 #define REF_BRDF_H
+#include "vectors/vectors.h"
+
+/* The reference models (ref_brdf_models.c) of the BRDF units; each unit's
+ * descriptor (units/) points at its own. */
+extern const vec_model ref_model_powg, ref_model_d_approx, ref_model_ward_approx, ref_model_pow_n,
+                       ref_model_div, ref_model_schlick, ref_model_mschlick;
 
 /* ---- Beckmann D (Cook-Torrance), as seeds 000/001 write it: no 1/pi ---- */
 

@@ -153,7 +153,6 @@ static double hot_angle_poly(double A, int g)
     return c > 0.0 ? acos(c) : M_PI / 2;
 }
 
-static const vec_model m_powg, m_d_approx, m_ward_approx, m_pow_n, m_div, m_schlick, m_mschlick;
 
 static int gen_powg(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
@@ -163,7 +162,7 @@ static int gen_powg(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
     plan_fixed(&pl, 0.0, 0);
     plan_fixed(&pl, 0.5, 0);
     plan_fixed(&pl, exp2(-1.0 / p->g), 0);          /* y = 1/2 */
-    return gen_rows(&m_powg, p, n, seed, out, &pl);
+    return gen_rows(&ref_model_powg, p, n, seed, out, &pl);
 }
 
 static int gen_d_approx(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
@@ -177,7 +176,7 @@ static int gen_d_approx(const vec_params *p, size_t n, uint64_t seed, vec_set *o
     plan_cos(&pl, c0);                  /* the clamp point: base = 0 */
     plan_cos(&pl, c0 + 0x1p-10);        /* just inside */
     plan_cos(&pl, c0 - 0x1p-10);        /* just clamped */
-    return gen_rows(&m_d_approx, p, n, seed, out, &pl);
+    return gen_rows(&ref_model_d_approx, p, n, seed, out, &pl);
 }
 
 static int gen_ward_approx(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
@@ -191,7 +190,7 @@ static int gen_ward_approx(const vec_params *p, size_t n, uint64_t seed, vec_set
     plan_cos(&pl, c0);
     plan_cos(&pl, c0 + 0x1p-10);
     plan_cos(&pl, c0 - 0x1p-10);
-    return gen_rows(&m_ward_approx, p, n, seed, out, &pl);
+    return gen_rows(&ref_model_ward_approx, p, n, seed, out, &pl);
 }
 
 static int gen_pow_n(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
@@ -202,7 +201,7 @@ static int gen_pow_n(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
     plan_cos(&pl, 0.0);
     plan_cos(&pl, 0.5);
     plan_cos(&pl, exp2(-1.0 / p->n));               /* y = 1/2 */
-    return gen_rows(&m_pow_n, p, n, seed, out, &pl);
+    return gen_rows(&ref_model_pow_n, p, n, seed, out, &pl);
 }
 
 static int gen_div(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
@@ -215,7 +214,7 @@ static int gen_div(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
     plan_fixed(&pl, 0.5 - DIV_GAP, 0.5);            /* largest q, smallest d */
     plan_fixed(&pl, 1.0 - DIV_GAP, 1.0);
     plan_fixed(&pl, 0.25, 0.75);                    /* q = 1/3: non-terminating */
-    return gen_rows(&m_div, p, n, seed, out, &pl);
+    return gen_rows(&ref_model_div, p, n, seed, out, &pl);
 }
 
 static int gen_schlick_like(const vec_model *self, double hot, const vec_params *p,
@@ -234,39 +233,43 @@ static int gen_schlick_like(const vec_model *self, double hot, const vec_params 
 static int gen_schlick(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
     if (p->n < 1) return -1;
-    return gen_schlick_like(&m_schlick, ref_brdf_cutoff_schlick(p->n, 8), p, n, seed, out);
+    return gen_schlick_like(&ref_model_schlick, ref_brdf_cutoff_schlick(p->n, 8), p, n, seed, out);
 }
 
 static int gen_mschlick(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
     if (p->n < 1) return -1;
-    return gen_schlick_like(&m_mschlick, ref_brdf_cutoff_mschlick(p->n, 8), p, n, seed, out);
+    return gen_schlick_like(&ref_model_mschlick, ref_brdf_cutoff_mschlick(p->n, 8), p, n, seed, out);
 }
 
-/* ---- the table ---- */
+/* ---- the models (ref_brdf.h; each unit's descriptor points at its own) ---- */
 
-static const vec_model m_powg = {
-    "powg", "y = x^g, g = 4/8/16 by repeated squaring; x in [0,1]",
+/* y = x^g, g = 4/8/16 by repeated squaring; x in [0,1] */
+const vec_model ref_model_powg = {
+    "powg",
     ports_x_y, eval_powg, gen_powg };
-static const vec_model m_d_approx = {
-    "d_approx", "D_g = (1/(4m^2)) max(0, ((2/m^2-4)/g)(c-1)+1)^g; c = N.H; d up to 1/(4m^2) (6.25 at m=0.2)",
+/* D_g = (1/(4m^2)) max(0, ((2/m^2-4)/g)(c-1)+1)^g; c = N.H; d up to 1/(4m^2) (6.25 at m=0.2) */
+const vec_model ref_model_d_approx = {
+    "d_approx",
     ports_c_d, eval_d_approx, gen_d_approx };
-static const vec_model m_ward_approx = {
-    "ward_approx", "e = max(0, (c-1)/(8 alpha^2)+1)^16 ~ exp(-tan^2/alpha^2); c = N.H; e in [0,1]",
+/* e = max(0, (c-1)/(8 alpha^2)+1)^16 ~ exp(-tan^2/alpha^2); c = N.H; e in [0,1] */
+const vec_model ref_model_ward_approx = {
+    "ward_approx",
     ports_c_e, eval_ward_approx, gen_ward_approx };
-static const vec_model m_pow_n = {
-    "pow_n", "y = x^n (Blinn/Phong cos^n), n = 1..1024; x in [0,1]",
+/* y = x^n (Blinn/Phong cos^n), n = 1..1024; x in [0,1] */
+const vec_model ref_model_pow_n = {
+    "pow_n",
     ports_x_y, eval_pow_n, gen_pow_n };
-static const vec_model m_div = {
-    "div", "q = n/d, fraction quotient: d in [1/2,1], 0 <= n <= d - 2^-8, q in [0,1)",
+/* q = n/d, fraction quotient: d in [1/2,1], 0 <= n <= d - 2^-8, q in [0,1) */
+const vec_model ref_model_div = {
+    "div",
     ports_nd_q, eval_div, gen_div };
-static const vec_model m_schlick = {
-    "schlick", "f = c/(n - n c + c) (Schlick; Zavalniuk et al. (2022), eq. 2); f in [0,1]",
+/* f = c/(n - n c + c) (Schlick; Zavalniuk et al. (2022), eq. 2); f in [0,1] */
+const vec_model ref_model_schlick = {
+    "schlick",
     ports_c_f, eval_schlick, gen_schlick };
-static const vec_model m_mschlick = {
-    "mschlick", "f = 2c/(1.25 (n - n c + 1.25 c)^2) (Zavalniuk et al. (2022), eq. 5); f in [0,1.024]",
+/* f = 2c/(1.25 (n - n c + 1.25 c)^2) (Zavalniuk et al. (2022), eq. 5); f in [0,1.024] */
+const vec_model ref_model_mschlick = {
+    "mschlick",
     ports_c_f, eval_mschlick, gen_mschlick };
 
-const vec_model *const vec_models_brdf[] = {
-    &m_powg, &m_d_approx, &m_ward_approx, &m_pow_n, &m_div, &m_schlick, &m_mschlick, NULL
-};

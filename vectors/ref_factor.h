@@ -20,6 +20,11 @@
 #define REF_FACTOR_H
 #include <stddef.h>
 #include <stdint.h>
+#include "vectors/vectors.h"
+
+/* The reference model of the hf_lookup unit (ref_hflookup.c), which the
+ * unit's descriptor points at. */
+extern const vec_model ref_model_hf_lookup;
 
 /* ------------------------------------------------------------ BRDFs */
 

@@ -122,10 +122,9 @@ static int hf_gen(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
     return 0;
 }
 
-static const vec_model model_hf_lookup = {
+/* factorized BRDF: lambda(d0) pi(h) lambda(di) by parabolic-map bilinear lookups (Ward maps) */
+const vec_model ref_model_hf_lookup = {
     .name = "hf_lookup",
-    .summary = "factorized BRDF: lambda(d0) pi(h) lambda(di) by parabolic-map bilinear lookups (Ward maps)",
     .ports = hf_ports, .eval = hf_eval, .gen = hf_gen,
 };
 
-const vec_model *const vec_models_factor[] = { &model_hf_lookup, NULL };

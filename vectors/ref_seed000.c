@@ -319,8 +319,6 @@ static int push_row(const vec_model *m, const vec_params *p, vec_set *out, doubl
 static const int splits_all[] = { 4, 2, 8, 1 };
 static const int splits_4[] = { 4 };
 
-static const vec_model m_horner3, m_horner2, m_div3, m_coef3_n1, m_coef3_n2,
-                       m_coef2, m_interp3, m_interp2;
 
 /* Node-set units (coefficients, interpolation): one row per node set. */
 static int gen_nodes(const vec_model *m, const double *tn, int k,
@@ -340,25 +338,25 @@ static int gen_nodes(const vec_model *m, const double *tn, int k,
 
 static int gen_coef3_n1(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
-    return gen_nodes(&m_coef3_n1, ref_nodes_n1, 4, p, n, seed, out);
+    return gen_nodes(&ref_model_coef3_n1, ref_nodes_n1, 4, p, n, seed, out);
 }
 static int gen_coef3_n2(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
-    return gen_nodes(&m_coef3_n2, ref_nodes_n2, 4, p, n, seed, out);
+    return gen_nodes(&ref_model_coef3_n2, ref_nodes_n2, 4, p, n, seed, out);
 }
 static int gen_coef2(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
-    return gen_nodes(&m_coef2, ref_nodes_q, 3, p, n, seed, out);
+    return gen_nodes(&ref_model_coef2, ref_nodes_q, 3, p, n, seed, out);
 }
 static int gen_interp3(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
     if (valid_L(p) < 0) return -1;
-    return gen_nodes(&m_interp3, p->nodes ? ref_nodes_n2 : ref_nodes_n1, 4, p, n, seed, out);
+    return gen_nodes(&ref_model_interp3, p->nodes ? ref_nodes_n2 : ref_nodes_n1, 4, p, n, seed, out);
 }
 static int gen_interp2(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
     if (valid_L(p) < 0) return -1;
-    return gen_nodes(&m_interp2, ref_nodes_q, 3, p, n, seed, out);
+    return gen_nodes(&ref_model_interp2, ref_nodes_q, 3, p, n, seed, out);
 }
 
 /* t values at the range's edges that a pixel grid k/L never reaches: the
@@ -409,12 +407,12 @@ static int gen_horner(const vec_model *m, int cubic, size_t n, uint64_t seed,
 static int gen_horner3(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
     (void)p;
-    return gen_horner(&m_horner3, 1, n, seed, out);
+    return gen_horner(&ref_model_horner3, 1, n, seed, out);
 }
 static int gen_horner2(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
     (void)p;
-    return gen_horner(&m_horner2, 0, n, seed, out);
+    return gen_horner(&ref_model_horner2, 0, n, seed, out);
 }
 
 /* div3: the range picked is x in [-1, 1), a plain s1.F input.
@@ -435,7 +433,7 @@ static const double div3_edges[] = {
 static int gen_div3(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
     (void)p;
-    if (gen_begin(&m_div3, NULL, out)) return -1;
+    if (gen_begin(&ref_model_div3, NULL, out)) return -1;
     if (n == 0) n = 256;
     vec_rng r = { model_seed("div3", seed) };
     node_stream s1, s2;
@@ -461,39 +459,43 @@ static int gen_div3(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
             }
             v[0] = ldexp(sums[q], -6);
         }
-        if (push_row(&m_div3, NULL, out, v)) return -1;
+        if (push_row(&ref_model_div3, NULL, out, v)) return -1;
     }
     return 0;
 }
 
-/* ---- the table --------------------------------------------------------- */
+/* ---- the models (ref_seed000.h; each unit's descriptor points at its own) ---- */
 
-static const vec_model m_horner3 = {
-    "horner3", "cubic Horner ((a t + b) t + c) t + d (Fig. 9)",
+/* cubic Horner ((a t + b) t + c) t + d (Fig. 9) */
+const vec_model ref_model_horner3 = {
+    "horner3",
     ports_horner3, eval_horner3, gen_horner3 };
-static const vec_model m_horner2 = {
-    "horner2", "quadratic Horner (a t + b) t + c",
+/* quadratic Horner (a t + b) t + c */
+const vec_model ref_model_horner2 = {
+    "horner2",
     ports_horner2, eval_horner2, gen_horner2 };
-static const vec_model m_div3 = {
-    "div3", "x/3 by the shift network (Fig. 7), exact x/3 expected",
+/* x/3 by the shift network (Fig. 7), exact x/3 expected */
+const vec_model ref_model_div3 = {
+    "div3",
     ports_div3, eval_div3, gen_div3 };
-static const vec_model m_coef3_n1 = {
-    "coef3_n1", "cubic coefficients from I(0), I(1), I(1/2), I(1/4) (Fig. 8)",
+/* cubic coefficients from I(0), I(1), I(1/2), I(1/4) (Fig. 8) */
+const vec_model ref_model_coef3_n1 = {
+    "coef3_n1",
     ports_coef3, eval_coef3_n1, gen_coef3_n1 };
-static const vec_model m_coef3_n2 = {
-    "coef3_n2", "cubic coefficients from I(0), I(1), I(1/2), I(3/4)",
+/* cubic coefficients from I(0), I(1), I(1/2), I(3/4) */
+const vec_model ref_model_coef3_n2 = {
+    "coef3_n2",
     ports_coef3, eval_coef3_n2, gen_coef3_n2 };
-static const vec_model m_coef2 = {
-    "coef2", "quadratic coefficients from I(0), I(1), I(1/2)",
+/* quadratic coefficients from I(0), I(1), I(1/2) */
+const vec_model ref_model_coef2 = {
+    "coef2",
     ports_coef2, eval_coef2, gen_coef2 };
-static const vec_model m_interp3 = {
-    "interp3", "cubic through N1 (or, param nodes, N2) nodes at the L pixels t = k/L (param L)",
+/* cubic through N1 (or, param nodes, N2) nodes at the L pixels t = k/L (param L) */
+const vec_model ref_model_interp3 = {
+    "interp3",
     ports_interp3, eval_interp3, gen_interp3 };
-static const vec_model m_interp2 = {
-    "interp2", "quadratic through I(0), I(1), I(1/2) at t = k/L (param L)",
+/* quadratic through I(0), I(1), I(1/2) at t = k/L (param L) */
+const vec_model ref_model_interp2 = {
+    "interp2",
     ports_interp2, eval_interp2, gen_interp2 };
 
-const vec_model *const vec_models_seed000[] = {
-    &m_horner3, &m_horner2, &m_div3, &m_coef3_n1, &m_coef3_n2, &m_coef2,
-    &m_interp3, &m_interp2, NULL,
-};

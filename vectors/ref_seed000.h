@@ -1,8 +1,10 @@
 /* ref_seed000.h - exact float reference of the seed-000 hardware (SPEC 2).
  *
- * Plain functions for testbenches and tests; the vec_model table
- * vec_models_seed000 (horner3, horner2, div3, coef3_n1, coef3_n2, coef2,
- * interp3, interp2) is built on them in ref_seed000.c.
+ * Plain functions for testbenches and tests, and the reference models
+ * (vec_model) built on them: ref_seed000.c's horner3, horner2, div3,
+ * coef3_n1, coef3_n2, coef2, interp3, interp2 and ref_span.c's span1,
+ * span2, span3, span23. Each unit's descriptor (units/) points at its
+ * model (unit_desc.ref): there is no registry of models.
  *
  * Node numbering is the paper's: I1 = I(0), I2 = I(1), I3 = I(1/2) and
  * I4 = I(1/4) (node set N1) or I(3/4) (node set N2). Arrays are indexed
@@ -10,6 +12,11 @@
  */
 #ifndef REF_SEED000_H
 #define REF_SEED000_H
+#include "vectors/vectors.h"
+
+extern const vec_model ref_model_horner3, ref_model_horner2, ref_model_div3, ref_model_coef3_n1,
+                       ref_model_coef3_n2, ref_model_coef2, ref_model_interp3, ref_model_interp2,
+                       ref_model_span1, ref_model_span2, ref_model_span3, ref_model_span23;
 
 /* Node positions t of I1..I4 (N1, N2) and I1..I3 (quadratic). */
 extern const double ref_nodes_n1[4], ref_nodes_n2[4], ref_nodes_q[3];

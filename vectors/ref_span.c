@@ -146,8 +146,6 @@ static int gen(int kind, const vec_model *m, const vec_params *p, size_t n, uint
     return 0;
 }
 
-static const vec_model m_span1, m_span2, m_span3, m_span23;
-
 #define SPAN_MODEL_FNS(sfx, KIND, M) \
     static void ports_##sfx(const vec_params *p, int *n_in, char in[][16], int *n_out, char out[][16]) \
     { ports(KIND, p, n_in, in, n_out, out); } \
@@ -155,22 +153,25 @@ static const vec_model m_span1, m_span2, m_span3, m_span23;
     static int gen_##sfx(const vec_params *p, size_t n, uint64_t seed, vec_set *out) \
     { return gen(KIND, &M, p, n, seed, out); }
 
-SPAN_MODEL_FNS(1, SP_LIN, m_span1)
-SPAN_MODEL_FNS(2, SP_QUAD, m_span2)
-SPAN_MODEL_FNS(3, SP_CUBE, m_span3)
-SPAN_MODEL_FNS(23, SP_ADAPT, m_span23)
+SPAN_MODEL_FNS(1, SP_LIN, ref_model_span1)
+SPAN_MODEL_FNS(2, SP_QUAD, ref_model_span2)
+SPAN_MODEL_FNS(3, SP_CUBE, ref_model_span3)
+SPAN_MODEL_FNS(23, SP_ADAPT, ref_model_span23)
 
-static const vec_model m_span1 = {
-    "span1", "linear I1 + (I2 - I1) t at the pixels t = k/dv of an interval (params L)",
+/* linear I1 + (I2 - I1) t at the pixels t = k/dv of an interval (params L) */
+const vec_model ref_model_span1 = {
+    "span1",
     ports_1, eval_1, gen_1 };
-static const vec_model m_span2 = {
-    "span2", "quadratic through I(0), I(1), I(1/2) at t = k/dv (params L)",
+/* quadratic through I(0), I(1), I(1/2) at t = k/dv (params L) */
+const vec_model ref_model_span2 = {
+    "span2",
     ports_2, eval_2, gen_2 };
-static const vec_model m_span3 = {
-    "span3", "cubic through node set N1 or N2 at t = k/dv (params L, nodes)",
+/* cubic through node set N1 or N2 at t = k/dv (params L, nodes) */
+const vec_model ref_model_span3 = {
+    "span3",
     ports_3, eval_3, gen_3 };
-static const vec_model m_span23 = {
-    "span23", "quadratic (deg 2) or cubic (deg 3) through the nodes at t = k/dv (params L, nodes)",
+/* quadratic (deg 2) or cubic (deg 3) through the nodes at t = k/dv (params L, nodes) */
+const vec_model ref_model_span23 = {
+    "span23",
     ports_23, eval_23, gen_23 };
 
-const vec_model *const vec_models_span[] = { &m_span1, &m_span2, &m_span3, &m_span23, NULL };

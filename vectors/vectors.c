@@ -1,39 +1,9 @@
-/* vectors.c - the registry of reference models and vector-set helpers. */
+/* vectors.c - vector-set helpers and the models' default parameters (the
+ * models themselves: ref_*.c; each unit's descriptor points at its own). */
 #include "vectors/vectors.h"
 #include <stdlib.h>
 #include <string.h>
 #include <stdio.h>
-
-/* Each module exports a NULL-terminated table of its models. */
-extern const vec_model *const vec_models_seed000[];   /* ref_seed000.c */
-extern const vec_model *const vec_models_brdf[];      /* ref_brdf_models.c */
-extern const vec_model *const vec_models_span[];      /* ref_span.c */
-extern const vec_model *const vec_models_factor[];    /* ref_hflookup.c */
-
-static const vec_model *const *const tables[] = { vec_models_seed000, vec_models_brdf, vec_models_span, vec_models_factor };
-
-size_t vec_model_count(void)
-{
-    size_t n = 0;
-    for (size_t t = 0; t < sizeof tables / sizeof tables[0]; t++)
-        for (const vec_model *const *m = tables[t]; *m; m++) n++;
-    return n;
-}
-
-const vec_model *vec_model_at(size_t i)
-{
-    for (size_t t = 0; t < sizeof tables / sizeof tables[0]; t++)
-        for (const vec_model *const *m = tables[t]; *m; m++)
-            if (i-- == 0) return *m;
-    return NULL;
-}
-
-const vec_model *vec_model_find(const char *name)
-{
-    for (size_t i = 0, n = vec_model_count(); i < n; i++)
-        if (!strcmp(vec_model_at(i)->name, name)) return vec_model_at(i);
-    return NULL;
-}
 
 void vec_params_default(vec_params *p)
 {

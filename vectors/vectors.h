@@ -1,14 +1,18 @@
 /* vectors.h - the double-precision float reference and golden vectors.
  *
- * Each hardware unit has a reference model here with the same name and the
- * same port names. A model knows its input and output names, computes the
- * exact outputs for given inputs (eval), and generates a deterministic set of
- * golden input vectors (gen) that exercise the unit: real intensity
- * profiles, hard cases, range edges.
+ * Each hardware unit has a reference model here (ref_*.c), the oracle its
+ * hardware is checked against: independent code, written from the
+ * formulas, not from the hardware. A model knows its input and output
+ * names, computes the exact outputs for given inputs (eval), and generates
+ * a deterministic set of golden input vectors (gen) that exercise the
+ * unit: real intensity profiles, hard cases, range edges.
  *
- * This layer knows nothing of the hardware: testbench/ joins a unit and its
- * model by name. Files (the SPEC's vector format) are read and written by
- * vec_file.h.
+ * This layer knows nothing of the hardware and includes nothing of units/:
+ * each unit's descriptor (units/unit.h, unit_desc.ref) points at its model,
+ * so the include graph runs sim <- vectors <- units <- testbench with no
+ * circle, and there is one registry (the units'), not two matched by name.
+ * The model's parameters are the unit's (unit_cfg holds a vec_params).
+ * Files (the SPEC's vector format) are read and written by vec_file.h.
  */
 #ifndef VECTORS_H
 #define VECTORS_H
@@ -17,16 +21,20 @@
 
 #define VEC_MAX_PORTS 64    /* inputs or outputs of one vector (span units: L <= 64 pixels) */
 
-/* Parameters a model may take (same names as the unit's parameters);
- * a model ignores those it does not use. */
-typedef struct vec_params {
-    int L;          /* pixels per interval (interp2/interp3), power of two */
-    int g;          /* power for powg/d_approx (4, 8, 16) */
-    int n;          /* exponent for pow_n; refractive-like n for schlick */
-    double m;       /* Beckmann roughness for d_approx */
-    double alpha;   /* Ward roughness */
-    int nodes;      /* span3, span23: cubic node set, 0 = N1, 1 = N2 */
-} vec_params;
+/* Parameters a model may take, written once: vec_params is these fields,
+ * and units/unit.h's unit_cfg holds the same fields as a vec_params
+ * (cfg->model) and by name (cfg->L), so a unit's configuration is its
+ * model's parameters without a copy. A model ignores those it does not use.
+ *   L      pixels per interval (interp: a power of two; span: 2..64)
+ *   g      power for powg/d_approx (a power of two)
+ *   n      exponent for pow_n; refractive-like n for schlick
+ *   m      Beckmann roughness for d_approx
+ *   alpha  Ward roughness
+ *   nodes  span3, span23, interp3: cubic node set, 0 = N1, 1 = N2 */
+#define VEC_PARAMS_FIELDS int L; int g; int n; double m; double alpha; int nodes;
+typedef struct vec_params { VEC_PARAMS_FIELDS } vec_params;
+/* The defaults (L 8, g 16, n 32, m 0.2, alpha 0.2, nodes N1): the
+ * checked-in vector files are made with them. */
 void vec_params_default(vec_params *p);
 
 
@@ -52,8 +60,7 @@ int  vec_set_push(vec_set *s, const double *v);
 
 /* A reference model. */
 typedef struct vec_model {
-    const char *name;
-    const char *summary;                 /* one line, for `shadesim list` */
+    const char *name;                    /* its unit's name (the file header's "unit:") */
     /* Port names; for multi-output models these may depend on params (e.g.
      * y0..y{L-1}), so they come from a function. Returns counts. */
     void (*ports)(const vec_params *p, int *n_in, char in[][16],
@@ -64,12 +71,6 @@ typedef struct vec_model {
      * n = 0 means the model's default count. Deterministic for (n, seed). */
     int  (*gen)(const vec_params *p, size_t n, uint64_t seed, vec_set *out);
 } vec_model;
-
-/* All models; the lists are assembled in vectors.c from each module's
- * table so that modules stay independent. */
-const vec_model *vec_model_find(const char *name);
-size_t           vec_model_count(void);
-const vec_model *vec_model_at(size_t i);
 
 /* Fill a set's header (unit name, port names) for a model and params. */
 void vec_set_header(vec_set *s, const vec_model *m, const vec_params *p);
