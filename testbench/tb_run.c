@@ -325,7 +325,7 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     uint64_t max_clocks = 1000 + nbeats * 4096;
     sim_status ss = sim_run(c, max_clocks * 10);
     r->stats = *sim_get_stats(c);
-    if (ss == SIM_ERR_LOOP) {
+    if (ss != SIM_OK) {         /* a loop, or a design that is not well formed */
         snprintf(err, errlen, "%s", sim_error(c));
         rc = TB_FAIL;
     } else if (st.got < nbeats) {
