@@ -145,11 +145,13 @@ char     *sim_strdup(sim_ctx *c, const char *s);
 /* Write the value a signal takes in the next update phase. */
 static inline void sim_write(sim_signal *s, int64_t v);
 /* Write a signal from outside any process (before sim_run, between runs,
- * or from a timer): v is queued for the next update phase, so s->cur
- * changes in the next delta cycle, which wakes s's fanout as any change
- * does. Unlike sim_write, v is queued even when it equals s->cur: a time
- * step with a force always has that delta cycle (which changes nothing
- * and wakes nobody when v is the current value). */
+ * or from a timer): s->cur does not change at once; v is queued for the
+ * next update phase (the first delta cycle of the next sim_run, or of
+ * the time step a timer runs in), where s takes it and wakes its fanout
+ * as any change does. Unlike sim_write, v is
+ * queued even when it equals s->cur: a time step with a force always has
+ * that delta cycle (which changes nothing and wakes nobody when v is the
+ * current value). */
 void sim_force(sim_signal *s, int64_t v);
 
 /* A clock toggling every half_period time units, first rising edge at
@@ -182,7 +184,8 @@ double      sim_scope_area(const sim_scope *sc);
  * observers were added. now is the step's time; a sim_run resuming at the
  * time the last one stopped calls them again with the same now. This is
  * how value change dumps and loggers watch a run without the kernel
- * knowing them. Observers read signals; they must not write them.
+ * knowing them. Observers read signals; they must not write them, nor
+ * add or remove observers.
  *
  * flags SIM_OBS_CHANGES: the observer reads sim_changed. The kernel keeps
  * the list of changed signals only while such an observer is added, so a
@@ -202,10 +205,10 @@ sim_signal *const *sim_changed(const sim_ctx *c, uint32_t *n);
 
 /* ---- inline fast path ----
  * The update list is the first member of every sim_ctx (sim_kernel.c
- * asserts it), so that a write,
- * the most frequent operation of all, costs no call. A write of the value
- * a signal already has, when nothing else is pending for it, changes
- * nothing in the update phase, so it is not queued at all. */
+ * asserts it), so that a write, the most frequent operation of all,
+ * costs no call. A write of the value a signal already has, when nothing
+ * else is pending for it, changes nothing in the update phase, so it is
+ * not queued at all. */
 typedef struct sim_updq { sim_signal **upd; uint32_t nupd; } sim_updq;
 static inline void sim_write(sim_signal *s, int64_t v)
 {

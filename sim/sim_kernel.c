@@ -73,7 +73,7 @@ struct sim_ctx {
     uint32_t     max_deltas;
     uint32_t     changed;                    /* signals the last update changed */
     int          started, stop;
-    int          stepped;                    /* a time step was counted, at step_time */
+    int          stepped;                    /* a time step ran, the last at step_time */
     sim_time     step_time;
     sim_obs     *obs;    uint32_t nobs, capobs;
     uint32_t     track;                      /* observers reading sim_changed */
@@ -627,13 +627,8 @@ sim_signal *const *sim_changed(const sim_ctx *c, uint32_t *n)
 /* End of a time step: every observer, then a fresh changed list. */
 static void notify(sim_ctx *c)
 {
-    /* by index: an observer may remove itself */
-    for (uint32_t i = 0; i < c->nobs; i++) {
-        sim_obs o = c->obs[i];
-        o.fn(c, c->now, o.data);
-        if (i < c->nobs && (c->obs[i].fn != o.fn || c->obs[i].data != o.data)) i--;
-    }
-    if (c->nchg) clear_changed(c);
+    for (uint32_t i = 0; i < c->nobs; i++) c->obs[i].fn(c, c->now, c->obs[i].data);
+    clear_changed(c);
 }
 
 /* The start of a time step whose only business is one clock edge (the
@@ -692,6 +687,11 @@ sim_status sim_run(sim_ctx *c, sim_time until)
         }
     }
     c->stop = 0;
+    /* A time step is counted when it starts at a new time: here, unless
+     * this run resumes the step the last one ended in, and below at each
+     * advance of time. */
+    c->stats.time_steps += !(c->stepped && c->now == c->step_time);
+    c->stepped = 1;
     for (;;) {
         uint32_t deltas = 0;
         if (c->nheap && c->heap[0].at <= c->now && clock_step(c)) {
@@ -703,21 +703,17 @@ sim_status sim_run(sim_ctx *c, sim_time until)
             t.fn(c, t.data);
         }
         if ((c->nrun || c->q.nupd) && run_deltas(c, &deltas, 0)) goto loop;
-        if (!c->stepped || c->now != c->step_time) {
-            c->stats.time_steps++;
-            c->stepped = 1;
-            c->step_time = c->now;
-        }
         if (c->novfq) settle_overflows(c);
         if (c->nobs) notify(c);
-        if (c->stop) return SIM_OK;
-        if (!c->nheap || c->heap[0].at > until) {
-            if (until > c->now && until != (sim_time)-1) c->now = until;
-            return SIM_OK;
-        }
+        if (c->stop || !c->nheap || c->heap[0].at > until) break;
         c->now = c->heap[0].at;
+        c->stats.time_steps++;
     }
+    c->step_time = c->now;
+    if (!c->stop && until > c->now && until != (sim_time)-1) c->now = until;
+    return SIM_OK;
 loop:
+    c->step_time = c->now;
     report_loop(c);
     if (c->novfq) settle_overflows(c);
     if (c->nobs) notify(c);

@@ -214,8 +214,9 @@ void sim_assign(sim_ctx *c, sim_signal *dst, sim_signal *src)
         /* Two drivers of one wire: the hardware would short them, and the
          * kernel would keep whichever evaluated last. */
         char path[256], from[256];
-        sim__elab_error(c, "%s: two drivers: sim_assign from %s into a signal already driven (%s)",
+        sim__elab_error(c, "%s: two drivers: sim_assign from %s into a signal already driven by %s%s",
                         sim_signal_path(dst, path, sizeof path), sim_signal_path(src, from, sizeof from),
+                        dst->driver ? "process " : "",
                         dst->driver ? sim_proc_name(dst->driver)
                         : dst->kind == SIM_KIND_CONST ? "a constant" : "a clock");
         return;

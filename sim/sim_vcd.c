@@ -187,9 +187,8 @@ void sim_vcd_window(sim_vcd *v, int mode)
 }
 
 /* "1!" / "b1010 #" and a newline at p; returns the end. */
-static char *put_value(char *p, const sim_signal *s, const char *id, int64_t raw)
+static char *put_value(char *p, int w, const char *id, int64_t raw)
 {
-    int w = s->fmt.width;
     if (w == 1) {
         *p++ = raw & 1 ? '1' : '0';
     } else {
@@ -217,7 +216,7 @@ static char *put_value(char *p, const sim_signal *s, const char *id, int64_t raw
 static void write_value(sim_vcd *v, const sim_signal *s, int64_t raw)
 {
     if (v->n > VCD_BUF - VCD_LINE) flush_buf(v);
-    v->n = (size_t)(put_value(v->buf + v->n, s, v->id[s->index], raw) - v->buf);
+    v->n = (size_t)(put_value(v->buf + v->n, s->fmt.width, v->id[s->index], raw) - v->buf);
 }
 
 static void write_time(sim_vcd *v, sim_time t)
@@ -300,16 +299,26 @@ static void step(sim_ctx *c, sim_time t, void *data)
         d = v->heldl;
         n = v->nheld;
     }
+    /* The hot loop of a dump: what it reads is kept in locals, since the
+     * char stores into buf may alias anything. */
+    int64_t *last = v->last;
+    char (*id)[8] = v->id;
+    uint32_t nsig = v->nsig;
+    char *buf = v->buf;
+    size_t at = v->n;
     for (uint32_t i = 0; i < n; i++) {
-        sim_signal *s = d[i];
+        const sim_signal *s = d[i];
         uint32_t k = s->index;
+        int64_t cur = s->cur;
         /* A value that changed and changed back within the step is no
          * change at all to a waveform viewer. */
-        if (k >= v->nsig || s->cur == v->last[k]) continue;
-        if (!stamped) { write_time(v, t); stamped = 1; }
-        v->last[k] = s->cur;
-        write_value(v, s, s->cur);
+        if (k >= nsig || cur == last[k]) continue;
+        if (!stamped) { v->n = at; write_time(v, t); at = v->n; stamped = 1; }
+        last[k] = cur;
+        if (at > VCD_BUF - VCD_LINE) { v->n = at; flush_buf(v); at = 0; }
+        at = (size_t)(put_value(buf + at, s->fmt.width, id[k], cur) - buf);
     }
+    v->n = at;
     if (v->nheld) drop_held(v);
     for (int i = 0; i < v->nreals; i++) {
         vcd_real *r = &v->reals[i];

@@ -142,7 +142,7 @@ static void t_two_drivers(void)
 {
     /* Every way of driving a wire twice is refused before the run, with
      * the wire named; nothing is evaluated. */
-    for (int how = 0; how < 3; how++) {
+    for (int how = 0; how < 4; how++) {
         sim_ctx *c = sim_new();
         sim_scope *u = sim_scope_new(c, NULL, "u");
         sim_signal *a = sim_signal_new(c, u, "a", F("u4.0"), SIM_KIND_INPUT);
@@ -153,14 +153,15 @@ static void t_two_drivers(void)
             w = sim_signal_new(c, u, "w", F("u4.0"), SIM_KIND_WIRE);
             sim_assign(c, w, a);
             path = "top.u.w";
-        } else if (how == 1) { /* an adder's output */
+        } else if (how == 1 || how == 3) { /* an adder's output; as a clock */
             w = sim_add(c, u, "s", F("u5.0"), a, b);
             path = "top.u.s";
         } else {               /* a constant */
             w = sim_const_raw(c, u, "k", F("u4.0"), 3);
             path = "top.u.k";
         }
-        sim_assign(c, w, b);
+        if (how < 3) sim_assign(c, w, b);
+        else sim_clock(c, w, 5, 5);
         TST_EQ_INT(sim_run(c, 10), SIM_ERR_ELAB);
         const char *e = sim_error(c);
         TST_CHECK(strstr(e, path) != NULL && strstr(e, "two drivers") != NULL, "%s", e);
@@ -200,7 +201,7 @@ static void t_logic_inputs(void)
         sim_scope *u = sim_scope_new(c, NULL, "ctl");
         sim_signal *in[9];
         for (int i = 0; i < n; i++) {
-            char name[8];
+            char name[16];
             snprintf(name, sizeof name, "i%d", i);
             in[i] = sim_bit_new(c, u, name, SIM_KIND_INPUT);
         }
