@@ -56,7 +56,8 @@ struct sim_signal {
      * char type may alias anything, which would make the compiler reload
      * every other pointer and count around it. */
     uint32_t    queued;     /* in the update list */
-    uint16_t    noted;      /* in the list of signals changed this time step (sim_changed) */
+    uint16_t    noted;      /* in the kernel's list of signals changed this time
+                             * step (sim_changed) when it holds the list's epoch */
     uint8_t     kind;       /* sim_kind */
     uint64_t    changes;    /* value changes (events) */
     /* cold */

@@ -63,6 +63,8 @@ struct sim_ctx {
     sim__proc  **run;    uint32_t nrun;      /* runnable this delta; capacity capproc */
     sim__proc  **run2;   uint32_t nrun2;     /* woken for the next delta */
     sim_signal **chg;    uint32_t nchg;      /* changed this time step (sim_changed) */
+    sim_signal **chg_on;                     /* chg while an observer reads it, else NULL */
+    uint32_t     epoch;                      /* a signal is in chg iff its noted is this */
     sim_signal **ovfq;   uint32_t novfq;     /* overflowed this time step (sim__overflow) */
     sim_timer   *heap;   uint32_t nheap, capheap;
     uint64_t     timer_seq;
@@ -89,6 +91,7 @@ _Static_assert(offsetof(sim_signal, changes) + sizeof(uint64_t) <= 64, "a signal
 _Static_assert(offsetof(sim__proc, op_hi) + sizeof(int64_t) <= 64, "the evaluate loop's first reads share one cache line");
 _Static_assert(sizeof(((sim_signal *)0)->noted) >= 2 && sizeof(((sim_signal *)0)->queued) >= 2
                && sizeof(((sim__proc *)0)->queued) >= 2, "flags the kernel writes are not char (aliasing)");
+_Static_assert(sizeof(((sim_signal *)0)->noted) == sizeof(uint16_t), "epochs of the changed list run up to UINT16_MAX");
 
 /* ---------------------------------------------------------------- memory */
 
@@ -133,6 +136,7 @@ sim_ctx *sim_new(void)
     c->rnd = SIM_RND_TRUNC;
     c->ovf = SIM_OVF_WRAP;
     c->max_deltas = 1000;
+    c->epoch = 1;
     c->root.name = "top";
     return c;
 }
@@ -215,6 +219,7 @@ sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,
         c->chg = realloc(c->chg, (size_t)c->capsig * sizeof *c->chg);
         c->ovfq = realloc(c->ovfq, (size_t)c->capsig * sizeof *c->ovfq);
         if (!c->q.upd || !c->chg || !c->ovfq) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+        c->chg_on = c->track ? c->chg : NULL;
     }
     c->sigs[c->nsig++] = s;
     return s;
@@ -441,7 +446,7 @@ static void report_loop(sim_ctx *c)
 static inline void changed(sim_ctx *c, sim_signal *s, int64_t v)
 {
     s->changes++;
-    if (c->track && !s->noted) { s->noted = 1; c->chg[c->nchg++] = s; }
+    if (c->chg_on && s->noted != c->epoch) { s->noted = (uint16_t)c->epoch; c->chg_on[c->nchg++] = s; }
     uint32_t n = s->nwake[v != 0];
     if (n) {
         sim__proc **w = s->wake[v != 0], **run = c->run;
@@ -475,8 +480,9 @@ static inline __attribute__((always_inline)) uint32_t update(sim_ctx *c, sim_sig
     c->q.nupd = 0;
     sim__proc **next = c->run;
     uint32_t nnext = 0;
-    sim_signal **chg = c->track ? c->chg : NULL;
+    sim_signal **chg = c->chg_on;
     uint32_t nchg = c->nchg;
+    uint16_t epoch = (uint16_t)c->epoch;
     for (uint32_t i = 0; i < nupd; i++) {
         sim_signal *s = upd[i];
         s->queued = 0;
@@ -485,7 +491,7 @@ static inline __attribute__((always_inline)) uint32_t update(sim_ctx *c, sim_sig
         s->cur = v;
         upd[nchanged++] = s;
         s->changes++;
-        if (chg && !s->noted) { s->noted = 1; chg[nchg++] = s; }
+        if (chg && s->noted != epoch) { s->noted = epoch; chg[nchg++] = s; }
         sim__proc **w = s->wake[v != 0];
         uint32_t n = s->nwake[v != 0];
         for (uint32_t j = 0; j < n; j++) {
@@ -597,14 +603,21 @@ int sim_observe(sim_ctx *c, sim_observer_fn fn, void *data, unsigned flags)
     }
     c->obs[c->nobs++] = (sim_obs){ fn, data, flags };
     if (flags & SIM_OBS_CHANGES) c->track++;
+    c->chg_on = c->track ? c->chg : NULL;
     return 0;
 }
 
-/* Forget the changed list (and the signals' flags saying they are in it). */
+/* Start a new changed list. A signal is in the list when its noted field
+ * holds the current epoch, so a new epoch empties the list without
+ * touching the signals; when the 16-bit field would wrap, every signal's
+ * is reset once, so an old epoch never matches a new one. */
 static void clear_changed(sim_ctx *c)
 {
-    for (uint32_t i = 0; i < c->nchg; i++) c->chg[i]->noted = 0;
     c->nchg = 0;
+    if (++c->epoch > UINT16_MAX) {
+        for (uint32_t i = 0; i < c->nsig; i++) c->sigs[i]->noted = 0;
+        c->epoch = 1;
+    }
 }
 
 void sim_unobserve(sim_ctx *c, sim_observer_fn fn, void *data)
@@ -612,6 +625,7 @@ void sim_unobserve(sim_ctx *c, sim_observer_fn fn, void *data)
     for (uint32_t i = 0; i < c->nobs; i++) {
         if (c->obs[i].fn != fn || c->obs[i].data != data) continue;
         if ((c->obs[i].flags & SIM_OBS_CHANGES) && !--c->track) clear_changed(c);
+        c->chg_on = c->track ? c->chg : NULL;
         memmove(&c->obs[i], &c->obs[i + 1], (size_t)(c->nobs - i - 1) * sizeof *c->obs);
         c->nobs--;
         return;
@@ -628,7 +642,7 @@ sim_signal *const *sim_changed(const sim_ctx *c, uint32_t *n)
 static void notify(sim_ctx *c)
 {
     for (uint32_t i = 0; i < c->nobs; i++) c->obs[i].fn(c, c->now, c->obs[i].data);
-    clear_changed(c);
+    if (c->chg_on) clear_changed(c);
 }
 
 /* The start of a time step whose only business is one clock edge (the

@@ -92,6 +92,37 @@ static void t_observer_per_step(void)
     sim_free(k.c);
 }
 
+/* Checks every step as it comes: what t_observer_per_step expects. */
+typedef struct stepcheck { const counter *k; long steps, bad; } stepcheck;
+
+static void check_step(sim_ctx *c, sim_time now, void *data)
+{
+    stepcheck *sc = data;
+    const counter *k = sc->k;
+    uint32_t n;
+    sim_signal *const *d = sim_changed(c, &n);
+    int ok;
+    if (now == 0) ok = n == 1 && d[0] == k->n;
+    else if (now % 10 == 5) ok = n == 3 && d[0] == k->clk && d[1] == k->q && d[2] == k->n;
+    else ok = n == 1 && d[0] == k->clk;
+    sc->steps++;
+    sc->bad += !ok;
+}
+
+static void t_observer_many_steps(void)
+{
+    /* Over 140001 steps (more than twice 65536: the list's 16-bit
+     * epochs wrap), every step lists exactly what changed in it. */
+    counter k = counter_new();
+    stepcheck sc = { &k, 0, 0 };
+    sim_observe(k.c, check_step, &sc, SIM_OBS_CHANGES);
+    sim_run(k.c, 700000);
+    TST_EQ_INT(sc.steps, 140001);
+    TST_EQ_INT(sc.bad, 0);
+    TST_EQ_INT(k.q->cur, 70000 % 16);      /* 70000 rising edges, 4-bit wrap */
+    sim_free(k.c);
+}
+
 static void t_two_observers_in_order(void)
 {
     counter k = counter_new();
@@ -276,6 +307,7 @@ static void t_proc_iteration(void)
 int main(void)
 {
     TST_RUN(t_observer_per_step);
+    TST_RUN(t_observer_many_steps);
     TST_RUN(t_two_observers_in_order);
     TST_RUN(t_observer_at_loop);
     TST_RUN(t_two_drivers);
