@@ -6,6 +6,7 @@
 #include "sim/sim.h"
 #include "sim/sim_prim.h"
 #include "sim/sim_vcd.h"
+#include "base/base_out.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <time.h>
@@ -46,11 +47,14 @@ static void one(int vcd_on, uint64_t clocks)
     sim_clock(c, clk, 5, 5);
     char path[] = "/tmp/shadesim_bench_XXXXXX.vcd", err[200];
     sim_vcd *v = NULL;
+    base_out *out = NULL;
     if (vcd_on) {
         int fd = mkstemps(path, 4);
         if (fd >= 0) close(fd);
-        v = sim_vcd_open(c, path, "1ns", err, sizeof err);
-        if (!v) { fprintf(stderr, "bench: %s\n", err); exit(1); }
+        out = base_out_open(path, err, sizeof err);   /* as the testbenches write dumps */
+        if (!out) { fprintf(stderr, "bench: %s\n", err); exit(1); }
+        v = sim_vcd_open(c, base_out_file(out), "1ns");
+        if (!v) { fprintf(stderr, "bench: out of memory\n"); exit(1); }
     }
     double t0 = now_s();
     sim_run(c, clocks * 10);
@@ -59,7 +63,7 @@ static void one(int vcd_on, uint64_t clocks)
     printf("kernel  6-register 16-bit pipeline, VCD %-3s: %8.2f M clocks/s  %8.2f M events/s  (%llu clocks, %llu events, %.3f s)\n",
            vcd_on ? "on" : "off", st->clocks / dt / 1e6, st->events / dt / 1e6,
            (unsigned long long)st->clocks, (unsigned long long)st->events, dt);
-    if (v) { sim_vcd_close(v); unlink(path); }
+    if (v) { sim_vcd_close(v); base_out_close(out, err, sizeof err); unlink(path); }
     sim_free(c);
 }
 

@@ -24,6 +24,7 @@ typedef struct sim_ctx    sim_ctx;
 typedef struct sim_signal sim_signal;
 typedef struct sim_proc   sim_proc;
 typedef struct sim_scope  sim_scope;
+struct sim__proc;                /* the kernel's record of a process (private) */
 typedef uint64_t sim_time;
 
 typedef void (*sim_proc_fn)(sim_proc *p);
@@ -40,7 +41,8 @@ typedef enum {
 struct sim_fanout { sim_proc *proc; uint8_t edge; };
 
 /* The fields a delta cycle touches come first, in one 64-byte line (the
- * kernel allocates signals on a cache-line boundary). */
+ * kernel allocates signals on a cache-line boundary; sim_kernel.c checks
+ * the layout). */
 struct sim_signal {
     int64_t     cur;        /* value now */
     int64_t     nxt;        /* value written this delta */
@@ -48,13 +50,14 @@ struct sim_signal {
     /* Processes a change wakes, in the order they were made sensitive:
      * wake[0] when the new value is 0 (edges ANY and NEG), wake[1] when it
      * is nonzero (ANY and POS). Built by sim_sensitive from fan. */
-    sim_proc  **wake[2];
+    struct sim__proc **wake[2];
     uint32_t    nwake[2];
     /* Flags the kernel writes are not char: a store through a
      * char type may alias anything, which would make the compiler reload
      * every other pointer and count around it. */
     uint32_t    queued;     /* in the update list */
-    uint16_t    vcd_dirty;  /* changed since the last VCD time stamp */
+    uint16_t    noted;      /* in the kernel's list of signals changed this time
+                             * step (sim_changed) when it holds the list's epoch */
     uint8_t     kind;       /* sim_kind */
     uint64_t    changes;    /* value changes (events) */
     /* cold */
@@ -65,43 +68,25 @@ struct sim_signal {
     int64_t     raw_min, raw_max;  /* range of fmt, cached for quantization */
     uint64_t    overflows;  /* time steps that settled on an overflowed quantization */
     int64_t     ovf_raw;    /* the last overflowed result this time step */
-    uint64_t    ovf_run;    /* driver->runs when it overflowed (see sim__overflow) */
+    uint64_t    ovf_run;    /* the driver's evaluations when it overflowed */
     uint32_t    ovf_pending;/* in the kernel's list of overflows to settle */
     double      area_ge;    /* area of the element driving it, NAND2 eq. */
-    sim_proc   *driver;     /* process computing it (NULL: input, constant) */
-    int64_t     vcd_last;   /* last value written to the VCD */
-    char        vcd_id[8];
+    sim_proc   *driver;     /* process computing it (NULL: input, constant, clock) */
     const char *name;
     sim_scope  *scope;
     sim_signal *next_in_scope;
-    uint32_t    index;
+    uint32_t    index;      /* creation order: sim_signal_at(ctx, index) is this */
 };
 
+/* A process: a function the kernel calls when a signal it is sensitive to
+ * changes. The kernel's own record (how it evaluates, how often it ran)
+ * is private; these are the fields users set. */
 struct sim_proc {
-    uint32_t    queued;     /* runnable in the next delta (not char: see sim_signal) */
-    uint8_t     no_init;    /* clocked: not run at initialization (SystemC dont_initialize) */
-    /* Internal: a primitive the kernel evaluates itself (sim_prim.c sets
-     * this up; op 0 = SIM__OP_FN: call fn). For arithmetic the kernel
-     * computes v = op(a, b, c), then y <= (v + op_radd) >> op_k when that
-     * lands in [op_lo, op_hi], and otherwise calls fn, the general
-     * evaluation. Logic: y <= low 64 - op_k bits of op_logic(inputs),
-     * sign-extended (LOGIC_S) or masked with op_radd (LOGIC_U). */
-    uint8_t     op;
-    int8_t      op_k;
-    uint32_t    op_n;       /* mux inputs */
-    sim_signal *op_y, *op_a, *op_b, *op_c;
-    int64_t     op_lo, op_hi, op_radd;
-    sim_signal *const *op_in;
-    int64_t   (*op_logic)(const int64_t *in, void *user);   /* sim_logic_fn */
-    void       *op_user;
-    sim_proc_fn fn;
-    void       *data;       /* the process's own state */
-    uint64_t    runs;
-    sim_ctx    *ctx;
-    const char *name;
+    void       *data;       /* the process's own state (sim_proc_new's data) */
+    sim_ctx    *ctx;        /* its context (read only), e.g. for sim_stop */
+    uint8_t     no_init;    /* set before sim_run: not run at initialization
+                             * (clocked processes; SystemC dont_initialize) */
 };
-enum { SIM__OP_FN = 0, SIM__OP_COPY, SIM__OP_ADD, SIM__OP_SUB, SIM__OP_MUL,
-       SIM__OP_MUX, SIM__OP_BK, SIM__OP_LOGIC_S, SIM__OP_LOGIC_U };
 
 struct sim_scope {
     const char *name;
@@ -115,10 +100,14 @@ typedef struct sim_stats {
     uint64_t events;      /* signal value changes */
     uint64_t deltas;      /* delta cycles */
     uint64_t proc_runs;   /* process evaluations */
-    uint64_t time_steps;  /* distinct times at which something happened */
+    uint64_t time_steps;  /* distinct times the kernel stopped at (a sim_run
+                           * resuming at the time the last one ended continues
+                           * that time step) */
 } sim_stats;
 
-typedef enum { SIM_OK = 0, SIM_ERR_LOOP = 1, SIM_ERR_IO = 2 } sim_status;
+/* SIM_ERR_ELAB: the design is not well formed (a signal with two drivers,
+ * a logic element with too many inputs...); nothing is simulated. */
+typedef enum { SIM_OK = 0, SIM_ERR_LOOP = 1, SIM_ERR_IO = 2, SIM_ERR_ELAB = 3 } sim_status;
 
 sim_ctx   *sim_new(void);
 void       sim_free(sim_ctx *c);
@@ -142,6 +131,12 @@ sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,
 sim_signal *sim_bit_new(sim_ctx *c, sim_scope *sc, const char *name, sim_kind kind);
 
 sim_proc *sim_proc_new(sim_ctx *c, const char *name, sim_proc_fn fn, void *data);
+/* Iterate: every process in creation order. Name as given to sim_proc_new
+ * (primitives: "scope.signal"); runs: evaluations so far. */
+uint32_t    sim_proc_count(const sim_ctx *c);
+sim_proc   *sim_proc_at(const sim_ctx *c, uint32_t i);
+const char *sim_proc_name(const sim_proc *p);
+uint64_t    sim_proc_runs(const sim_proc *p);
 /* Make p run when s changes (edge ANY) or rises/falls (POS/NEG, 1-bit). */
 void      sim_sensitive(sim_proc *p, sim_signal *s, sim_edge e);
 /* Memory owned by the context, freed by sim_free; zeroed. */
@@ -150,8 +145,14 @@ char     *sim_strdup(sim_ctx *c, const char *s);
 
 /* Write the value a signal takes in the next update phase. */
 static inline void sim_write(sim_signal *s, int64_t v);
-/* Set a signal's value now, outside any process (before sim_run or between
- * runs); wakes its fanout as a change would. */
+/* Write a signal from outside any process (before sim_run, between runs,
+ * or from a timer): s->cur does not change at once; v is queued for the
+ * next update phase (the first delta cycle of the next sim_run, or of
+ * the time step a timer runs in), where s takes it and wakes its fanout
+ * as any change does. Unlike sim_write, v is
+ * queued even when it equals s->cur: a time step with a force always has
+ * that delta cycle (which changes nothing and wakes nobody when v is the
+ * current value). */
 void sim_force(sim_signal *s, int64_t v);
 
 /* A clock toggling every half_period time units, first rising edge at
@@ -159,17 +160,16 @@ void sim_force(sim_signal *s, int64_t v);
 void sim_clock(sim_ctx *c, sim_signal *clk, sim_time half_period, sim_time first_rise);
 
 /* Run until time `until` (inclusive), until sim_stop, or until an error.
- * The first call runs every process once (initialization, as SystemC). */
+ * The first call runs every process once (initialization, as SystemC).
+ * After an elaboration error (see SIM_ERR_ELAB) it returns that at once. */
 sim_status sim_run(sim_ctx *c, sim_time until);
 void       sim_stop(sim_ctx *c);           /* from a process: finish this time step and return */
 sim_time   sim_now(const sim_ctx *c);
 const sim_stats *sim_get_stats(const sim_ctx *c);
-/* After SIM_ERR_LOOP: "combinational loop at time T: a -> b -> a" etc. */
+/* The last error, one line: "combinational loop at time T: ... a -> b",
+ * or the first elaboration error, naming the signal's path. */
 const char *sim_error(const sim_ctx *c);
 
-/* Iterate: every process in creation order. */
-uint32_t    sim_proc_count(const sim_ctx *c);
-sim_proc   *sim_proc_at(const sim_ctx *c, uint32_t i);
 /* Iterate: every signal of the design in creation order. */
 uint32_t    sim_signal_count(const sim_ctx *c);
 sim_signal *sim_signal_at(const sim_ctx *c, uint32_t i);
@@ -178,26 +178,38 @@ sim_signal *sim_find(const sim_ctx *c, const sim_scope *sc, const char *path);
 /* Sum of area_ge of every signal in scope and its children. */
 double      sim_scope_area(const sim_scope *sc);
 
-/* Hooks used by the VCD writer (sim_vcd.h). */
-typedef struct sim_vcd sim_vcd;
-void sim_attach_vcd(sim_ctx *c, sim_vcd *v);
-/* The signals changed since the last call (each once); resets the list. */
-sim_signal **sim__vcd_take_dirty(sim_ctx *c, uint32_t *n);
-/* A quantization into s overflowed and gave raw. It is counted in
- * s->overflows only if the evaluation that overflowed is the last one of
- * s's driver in this time step (so s settles on raw): a glitch while a
- * combinational network settles (an operand updated one delta before the
- * other) is not an overflow of the hardware, even when a later,
- * in-range evaluation happens to give the same raw. So the count depends
- * only on settled values, whatever order the kernel evaluates in (a
- * levelized evaluation, sim_batch.h, counts the same). */
-void sim__overflow(sim_signal *s, int64_t raw);
+/* ---- observers ----
+ * An observer is called at the end of every time step, once every signal
+ * has settled and its overflows are counted (and at the step a loop was
+ * found in, before sim_run returns SIM_ERR_LOOP), in the order the
+ * observers were added. now is the step's time; a sim_run resuming at the
+ * time the last one stopped calls them again with the same now. This is
+ * how value change dumps and loggers watch a run without the kernel
+ * knowing them. Observers read signals; they must not write them, nor
+ * add or remove observers.
+ *
+ * flags SIM_OBS_CHANGES: the observer reads sim_changed. The kernel keeps
+ * the list of changed signals only while such an observer is added, so a
+ * run nobody watches pays nothing for it. */
+typedef void (*sim_observer_fn)(sim_ctx *c, sim_time now, void *data);
+enum { SIM_OBS_CHANGES = 1 };
+/* 0, or -1 when out of memory. */
+int  sim_observe(sim_ctx *c, sim_observer_fn fn, void *data, unsigned flags);
+/* Remove the observer added with fn and data (nothing if none). */
+void sim_unobserve(sim_ctx *c, sim_observer_fn fn, void *data);
+/* In an observer: the signals whose value changed in this time step (since
+ * the previous observer call; the first call: since the observer was
+ * added), each once, in the order of their first change. A signal that
+ * changed and changed back is in it too. NULL with *n = 0 when no
+ * SIM_OBS_CHANGES observer is added. */
+sim_signal *const *sim_changed(const sim_ctx *c, uint32_t *n);
 
 /* ---- inline fast path ----
- * The update list is the first member of every sim_ctx, so that a write,
- * the most frequent operation of all, costs no call. A write of the value
- * a signal already has, when nothing else is pending for it, changes
- * nothing in the update phase, so it is not queued at all. */
+ * The update list is the first member of every sim_ctx (sim_kernel.c
+ * asserts it), so that a write, the most frequent operation of all,
+ * costs no call. A write of the value a signal already has, when nothing
+ * else is pending for it, changes nothing in the update phase, so it is
+ * not queued at all. */
 typedef struct sim_updq { sim_signal **upd; uint32_t nupd; } sim_updq;
 static inline void sim_write(sim_signal *s, int64_t v)
 {

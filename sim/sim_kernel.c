@@ -1,6 +1,7 @@
 /* sim_kernel.c - signals, processes, the delta-cycle loop and timed events.
  *
- * One time step runs:   timers due now -> [evaluate -> update]* -> VCD.
+ * One time step runs:   timers due now -> [evaluate -> update]* ->
+ * overflows settled -> observers (sim_observe: value change dumps...).
  * Evaluate runs each runnable process once; processes only write signals'
  * next values (sim_write). Update copies next to current for every written
  * signal, and each signal that really changed wakes its sensitive processes
@@ -11,9 +12,12 @@
  * sim_stats and every signal's `changes` is what the plain algorithm
  * counts; tests/test_kernel.c pins them):
  *  - A primitive (sim_prim.c) whose exact result fits 62 bits is evaluated
- *    by the kernel itself (sim_proc.op): operands, one add or multiply,
- *    one shift, a range check, the write. Anything else, or a result out
- *    of range (an overflow to count), calls the process's own function.
+ *    by the kernel itself (sim__proc.op, sim_internal.h): operands, one
+ *    add or multiply, one shift, a range check, the write. Anything else,
+ *    or a result out of range (an overflow to count), calls the process's
+ *    own function.
+ *  - The list of changed signals observers read (sim_changed) is kept only
+ *    while an observer asks for it: one test of a local per change.
  *  - A write of the value a signal already has is not queued (sim.h).
  *  - A signal keeps the processes to wake per new value (zero / nonzero),
  *    so an edge-sensitive process is never looked at on the other edge.
@@ -24,8 +28,8 @@
  *    writes are not char-typed (a char store may alias anything and would
  *    make the compiler reload every pointer after it).
  */
-#include "sim/sim.h"
-#include "sim/sim_vcd.h"
+#include "sim/sim_internal.h"
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,15 +48,23 @@ typedef struct sim_clockgen {
     sim_time half;
 } sim_clockgen;
 
+typedef struct sim_obs {
+    sim_observer_fn fn;
+    void    *data;
+    unsigned flags;
+} sim_obs;
+
 struct sim_chunk { struct sim_chunk *next; };
 
 struct sim_ctx {
     sim_updq     q;                          /* written this delta (first: see sim_write) */
     sim_signal **sigs;   uint32_t nsig, capsig;
-    sim_proc   **procs;  uint32_t nproc, capproc;
-    sim_proc   **run;    uint32_t nrun;      /* runnable this delta; capacity capproc */
-    sim_proc   **run2;   uint32_t nrun2;     /* woken for the next delta */
-    sim_signal **vdirty; uint32_t nvdirty;   /* changed since the last VCD stamp */
+    sim__proc  **procs;  uint32_t nproc, capproc;
+    sim__proc  **run;    uint32_t nrun;      /* runnable this delta; capacity capproc */
+    sim__proc  **run2;   uint32_t nrun2;     /* woken for the next delta */
+    sim_signal **chg;    uint32_t nchg;      /* changed this time step (sim_changed) */
+    sim_signal **chg_on;                     /* chg while an observer reads it, else NULL */
+    uint32_t     epoch;                      /* a signal is in chg iff its noted is this */
     sim_signal **ovfq;   uint32_t novfq;     /* overflowed this time step (sim__overflow) */
     sim_timer   *heap;   uint32_t nheap, capheap;
     uint64_t     timer_seq;
@@ -63,11 +75,23 @@ struct sim_ctx {
     uint32_t     max_deltas;
     uint32_t     changed;                    /* signals the last update changed */
     int          started, stop;
-    sim_vcd     *vcd;
+    int          stepped;                    /* a time step ran, the last at step_time */
+    sim_time     step_time;
+    sim_obs     *obs;    uint32_t nobs, capobs;
+    uint32_t     track;                      /* observers reading sim_changed */
+    int          elab_err;                   /* err holds an elaboration error */
     sim_scope    root;
     struct sim_chunk *mem;
     char         err[512];
 };
+
+/* The layout the fast paths rely on. */
+_Static_assert(offsetof(struct sim_ctx, q) == 0, "sim_write finds the update list at the start of the context");
+_Static_assert(offsetof(sim_signal, changes) + sizeof(uint64_t) <= 64, "a signal's hot fields share one cache line");
+_Static_assert(offsetof(sim__proc, op_hi) + sizeof(int64_t) <= 64, "the evaluate loop's first reads share one cache line");
+_Static_assert(sizeof(((sim_signal *)0)->noted) >= 2 && sizeof(((sim_signal *)0)->queued) >= 2
+               && sizeof(((sim__proc *)0)->queued) >= 2, "flags the kernel writes are not char (aliasing)");
+_Static_assert(sizeof(((sim_signal *)0)->noted) == sizeof(uint16_t), "epochs of the changed list run up to UINT16_MAX");
 
 /* ---------------------------------------------------------------- memory */
 
@@ -112,6 +136,7 @@ sim_ctx *sim_new(void)
     c->rnd = SIM_RND_TRUNC;
     c->ovf = SIM_OVF_WRAP;
     c->max_deltas = 1000;
+    c->epoch = 1;
     c->root.name = "top";
     return c;
 }
@@ -124,7 +149,7 @@ void sim_free(sim_ctx *c)
     free_fanouts(c);
     while (c->mem) { struct sim_chunk *n = c->mem->next; free(c->mem); c->mem = n; }
     free(c->sigs); free(c->procs); free(c->q.upd); free(c->run); free(c->run2);
-    free(c->vdirty); free(c->ovfq); free(c->heap);
+    free(c->chg); free(c->ovfq); free(c->heap); free(c->obs);
     free(c);
 }
 
@@ -137,10 +162,17 @@ sim_time sim_now(const sim_ctx *c) { return c->now; }
 const sim_stats *sim_get_stats(const sim_ctx *c) { return &c->stats; }
 const char *sim_error(const sim_ctx *c) { return c->err; }
 void sim_stop(sim_ctx *c) { c->stop = 1; }
-void sim_attach_vcd(sim_ctx *c, sim_vcd *v) { c->vcd = v; }
+
+void sim__elab_error(sim_ctx *c, const char *fmt, ...)
+{
+    if (c->elab_err) return;   /* the first is the one to fix */
+    c->elab_err = 1;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(c->err, sizeof c->err, fmt, ap);
+    va_end(ap);
+}
 uint32_t sim_signal_count(const sim_ctx *c) { return c->nsig; }
-uint32_t sim_proc_count(const sim_ctx *c) { return c->nproc; }
-sim_proc *sim_proc_at(const sim_ctx *c, uint32_t i) { return i < c->nproc ? c->procs[i] : NULL; }
 sim_signal *sim_signal_at(const sim_ctx *c, uint32_t i) { return i < c->nsig ? c->sigs[i] : NULL; }
 
 sim_scope *sim_scope_new(sim_ctx *c, sim_scope *parent, const char *name)
@@ -178,14 +210,16 @@ sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,
     else s->scope->first_sig = s;
     s->scope->last_sig = s;
     s->index = c->nsig;
-    /* The update and VCD lists can hold every signal at most once. */
+    /* The update, changed and overflow lists hold every signal at most
+     * once. */
     uint32_t cap = c->capsig;
     c->sigs = grow(c->sigs, &c->capsig, sizeof *c->sigs, c->nsig + 1);
     if (c->capsig != cap) {
         c->q.upd = realloc(c->q.upd, (size_t)c->capsig * sizeof *c->q.upd);
-        c->vdirty = realloc(c->vdirty, (size_t)c->capsig * sizeof *c->vdirty);
+        c->chg = realloc(c->chg, (size_t)c->capsig * sizeof *c->chg);
         c->ovfq = realloc(c->ovfq, (size_t)c->capsig * sizeof *c->ovfq);
-        if (!c->q.upd || !c->vdirty || !c->ovfq) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+        if (!c->q.upd || !c->chg || !c->ovfq) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+        c->chg_on = c->track ? c->chg : NULL;
     }
     c->sigs[c->nsig++] = s;
     return s;
@@ -199,10 +233,10 @@ sim_signal *sim_bit_new(sim_ctx *c, sim_scope *sc, const char *name, sim_kind ki
 
 sim_proc *sim_proc_new(sim_ctx *c, const char *name, sim_proc_fn fn, void *data)
 {
-    sim_proc *p = alloc_line(c, sizeof *p);
+    sim__proc *p = alloc_line(c, sizeof *p);
     p->fn = fn;
-    p->data = data;
-    p->ctx = c;
+    p->pub.data = data;
+    p->pub.ctx = c;
     p->name = sim_strdup(c, name);
     uint32_t cap = c->capproc;
     c->procs = grow(c->procs, &c->capproc, sizeof *c->procs, c->nproc + 1);
@@ -212,13 +246,19 @@ sim_proc *sim_proc_new(sim_ctx *c, const char *name, sim_proc_fn fn, void *data)
         if (!c->run || !c->run2) { fputs("shadesim: out of memory\n", stderr); exit(3); }
     }
     c->procs[c->nproc++] = p;
-    return p;
+    return &p->pub;
 }
 
-void sim_sensitive(sim_proc *p, sim_signal *s, sim_edge e)
+uint32_t sim_proc_count(const sim_ctx *c) { return c->nproc; }
+sim_proc *sim_proc_at(const sim_ctx *c, uint32_t i) { return i < c->nproc ? &c->procs[i]->pub : NULL; }
+const char *sim_proc_name(const sim_proc *p) { return sim__proc_of(p)->name; }
+uint64_t sim_proc_runs(const sim_proc *p) { return sim__proc_of(p)->runs; }
+
+void sim_sensitive(sim_proc *pub, sim_signal *s, sim_edge e)
 {
+    sim__proc *p = sim__proc_of(pub);
     s->fan = grow(s->fan, &s->capfan, sizeof *s->fan, s->nfan + 1);
-    s->fan[s->nfan].proc = p;
+    s->fan[s->nfan].proc = pub;
     s->fan[s->nfan].edge = (uint8_t)e;
     s->nfan++;
     /* The wake lists split fan by the value a change goes to, each in
@@ -344,6 +384,12 @@ static void clock_tick(sim_ctx *c, void *data)
 
 void sim_clock(sim_ctx *c, sim_signal *clk, sim_time half_period, sim_time first_rise)
 {
+    if (clk->driver) {
+        char path[256];
+        sim__elab_error(c, "%s: a clock on a signal that a process drives (two drivers)",
+                        sim_signal_path(clk, path, sizeof path));
+        return;
+    }
     sim_clockgen *g = sim_alloc(c, sizeof *g);
     g->clk = clk;
     g->half = half_period ? half_period : 1;
@@ -356,8 +402,11 @@ void sim_clock(sim_ctx *c, sim_signal *clk, sim_time half_period, sim_time first
 
 void sim_force(sim_signal *s, int64_t v)
 {
-    /* Queued even when unchanged: a forced value is a write the update
-     * phase sees (one delta cycle), as it always was. */
+    /* Queued even when v is the current value, unlike sim_write: the time
+     * step then has its delta cycle whatever was forced, so the counters
+     * (deltas, proc_runs of the initialization) do not depend on the
+     * values a testbench forces. The update finds no change and wakes
+     * nobody. */
     s->nxt = v;
     if (!s->queued) {
         sim_ctx *c = s->ctx;
@@ -392,17 +441,18 @@ static void report_loop(sim_ctx *c)
 }
 
 /* A signal's value changed to v in the update phase: count it, note it for
- * the VCD, and wake the processes waiting for such a change. */
+ * observers that read sim_changed, and wake the processes waiting for such
+ * a change. */
 static inline void changed(sim_ctx *c, sim_signal *s, int64_t v)
 {
     s->changes++;
-    if (c->vcd && !s->vcd_dirty) { s->vcd_dirty = 1; c->vdirty[c->nvdirty++] = s; }
+    if (c->chg_on && s->noted != c->epoch) { s->noted = (uint16_t)c->epoch; c->chg_on[c->nchg++] = s; }
     uint32_t n = s->nwake[v != 0];
     if (n) {
-        sim_proc **w = s->wake[v != 0], **run = c->run;
+        sim__proc **w = s->wake[v != 0], **run = c->run;
         uint32_t nrun = c->nrun;
         for (uint32_t i = 0; i < n; i++) {
-            sim_proc *p = w[i];
+            sim__proc *p = w[i];
             if (!p->queued) { p->queued = 1; run[nrun++] = p; }
         }
         c->nrun = nrun;
@@ -411,10 +461,10 @@ static inline void changed(sim_ctx *c, sim_signal *s, int64_t v)
 
 /* A logic element's user function on its inputs' values (one input: read
  * in place). */
-static inline int64_t logic_call(const sim_proc *p)
+static inline int64_t logic_call(const sim__proc *p)
 {
     if (p->op_n == 1) return p->op_logic(&p->op_a->cur, p->op_user);
-    int64_t in[8];
+    int64_t in[SIM__LOGIC_MAX];
     for (uint32_t i = 0; i < p->op_n; i++) in[i] = p->op_in[i]->cur;
     return p->op_logic(in, p->op_user);
 }
@@ -428,10 +478,11 @@ static inline __attribute__((always_inline)) uint32_t update(sim_ctx *c, sim_sig
 {
     uint32_t nchanged = 0;
     c->q.nupd = 0;
-    sim_proc **next = c->run;
+    sim__proc **next = c->run;
     uint32_t nnext = 0;
-    sim_signal **vdirty = c->vcd ? c->vdirty : NULL;
-    uint32_t nvdirty = c->nvdirty;
+    sim_signal **chg = c->chg_on;
+    uint32_t nchg = c->nchg;
+    uint16_t epoch = (uint16_t)c->epoch;
     for (uint32_t i = 0; i < nupd; i++) {
         sim_signal *s = upd[i];
         s->queued = 0;
@@ -440,16 +491,16 @@ static inline __attribute__((always_inline)) uint32_t update(sim_ctx *c, sim_sig
         s->cur = v;
         upd[nchanged++] = s;
         s->changes++;
-        if (vdirty && !s->vcd_dirty) { s->vcd_dirty = 1; vdirty[nvdirty++] = s; }
-        sim_proc **w = s->wake[v != 0];
+        if (chg && s->noted != epoch) { s->noted = epoch; chg[nchg++] = s; }
+        sim__proc **w = s->wake[v != 0];
         uint32_t n = s->nwake[v != 0];
         for (uint32_t j = 0; j < n; j++) {
-            sim_proc *q = w[j];
+            sim__proc *q = w[j];
             if (!q->queued) { q->queued = 1; next[nnext++] = q; }
         }
     }
     c->nrun = nnext;
-    c->nvdirty = nvdirty;
+    c->nchg = nchg;
     c->stats.events += nchanged;
     return nchanged;
 }
@@ -463,7 +514,7 @@ static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
     uint32_t nd = *deltas;
     int hit = 0;
 next_delta:;
-    sim_proc **run = c->run;
+    sim__proc **run = c->run;
     uint32_t nrun = c->nrun;
     c->run = c->run2; c->nrun = 0;
     c->run2 = run;
@@ -472,7 +523,7 @@ next_delta:;
     /* Evaluate: the primitives the kernel knows inline, anything else (and
      * a primitive whose fast result is out of range) through fn. */
     for (uint32_t i = 0; i < nrun; i++) {
-        sim_proc *p = run[i];
+        sim__proc *p = run[i];
         p->queued = 0;
         p->runs++;
         int64_t v;
@@ -505,7 +556,7 @@ next_delta:;
         }
     general:
         c->q.nupd = nupd;
-        p->fn(p);
+        p->fn(&p->pub);
         nupd = c->q.nupd;
         continue;
     quant:
@@ -539,11 +590,59 @@ static uint32_t delta(sim_ctx *c)
     return c->changed;
 }
 
-sim_signal **sim__vcd_take_dirty(sim_ctx *c, uint32_t *n)
+/* ---------------------------------------------------------------- observers */
+
+int sim_observe(sim_ctx *c, sim_observer_fn fn, void *data, unsigned flags)
 {
-    *n = c->nvdirty;
-    c->nvdirty = 0;
-    return c->vdirty;
+    if (c->nobs == c->capobs) {
+        uint32_t cap = c->capobs ? 2 * c->capobs : 4;
+        sim_obs *o = realloc(c->obs, (size_t)cap * sizeof *o);
+        if (!o) return -1;
+        c->obs = o;
+        c->capobs = cap;
+    }
+    c->obs[c->nobs++] = (sim_obs){ fn, data, flags };
+    if (flags & SIM_OBS_CHANGES) c->track++;
+    c->chg_on = c->track ? c->chg : NULL;
+    return 0;
+}
+
+/* Start a new changed list. A signal is in the list when its noted field
+ * holds the current epoch, so a new epoch empties the list without
+ * touching the signals; when the 16-bit field would wrap, every signal's
+ * is reset once, so an old epoch never matches a new one. */
+static void clear_changed(sim_ctx *c)
+{
+    c->nchg = 0;
+    if (++c->epoch > UINT16_MAX) {
+        for (uint32_t i = 0; i < c->nsig; i++) c->sigs[i]->noted = 0;
+        c->epoch = 1;
+    }
+}
+
+void sim_unobserve(sim_ctx *c, sim_observer_fn fn, void *data)
+{
+    for (uint32_t i = 0; i < c->nobs; i++) {
+        if (c->obs[i].fn != fn || c->obs[i].data != data) continue;
+        if ((c->obs[i].flags & SIM_OBS_CHANGES) && !--c->track) clear_changed(c);
+        c->chg_on = c->track ? c->chg : NULL;
+        memmove(&c->obs[i], &c->obs[i + 1], (size_t)(c->nobs - i - 1) * sizeof *c->obs);
+        c->nobs--;
+        return;
+    }
+}
+
+sim_signal *const *sim_changed(const sim_ctx *c, uint32_t *n)
+{
+    *n = c->track ? c->nchg : 0;
+    return c->track ? c->chg : NULL;
+}
+
+/* End of a time step: every observer, then a fresh changed list. */
+static void notify(sim_ctx *c)
+{
+    for (uint32_t i = 0; i < c->nobs; i++) c->obs[i].fn(c, c->now, c->obs[i].data);
+    if (c->chg_on) clear_changed(c);
 }
 
 /* The start of a time step whose only business is one clock edge (the
@@ -574,7 +673,7 @@ void sim__overflow(sim_signal *s, int64_t raw)
 {
     sim_ctx *c = s->ctx;
     s->ovf_raw = raw;
-    s->ovf_run = s->driver ? s->driver->runs : 0;
+    s->ovf_run = s->driver ? sim__proc_of(s->driver)->runs : 0;
     if (!s->ovf_pending) { s->ovf_pending = 1; c->ovfq[c->novfq++] = s; }
 }
 
@@ -584,21 +683,29 @@ static void settle_overflows(sim_ctx *c)
     for (uint32_t i = 0; i < c->novfq; i++) {
         sim_signal *s = c->ovfq[i];
         s->ovf_pending = 0;
-        s->overflows += s->cur == s->ovf_raw && (!s->driver || s->driver->runs == s->ovf_run);
+        s->overflows += s->cur == s->ovf_raw && (!s->driver || sim__proc_of(s->driver)->runs == s->ovf_run);
     }
     c->novfq = 0;
 }
 
 sim_status sim_run(sim_ctx *c, sim_time until)
 {
+    if (c->elab_err) return SIM_ERR_ELAB;
     if (!c->started) {
         /* Initialization: every process runs once, as in SystemC, so that
          * combinational outputs agree with their inputs before time moves. */
         c->started = 1;
-        for (uint32_t i = 0; i < c->nproc; i++)
-            if (!c->procs[i]->queued && !c->procs[i]->no_init) { c->procs[i]->queued = 1; c->run[c->nrun++] = c->procs[i]; }
+        for (uint32_t i = 0; i < c->nproc; i++) {
+            sim__proc *p = c->procs[i];
+            if (!p->queued && !p->pub.no_init) { p->queued = 1; c->run[c->nrun++] = p; }
+        }
     }
     c->stop = 0;
+    /* A time step is counted when it starts at a new time: here, unless
+     * this run resumes the step the last one ended in, and below at each
+     * advance of time. */
+    c->stats.time_steps += !(c->stepped && c->now == c->step_time);
+    c->stepped = 1;
     for (;;) {
         uint32_t deltas = 0;
         if (c->nheap && c->heap[0].at <= c->now && clock_step(c)) {
@@ -610,19 +717,19 @@ sim_status sim_run(sim_ctx *c, sim_time until)
             t.fn(c, t.data);
         }
         if ((c->nrun || c->q.nupd) && run_deltas(c, &deltas, 0)) goto loop;
-        c->stats.time_steps++;
         if (c->novfq) settle_overflows(c);
-        if (c->vcd) sim_vcd_step(c->vcd, c->now);
-        if (c->stop) return SIM_OK;
-        if (!c->nheap || c->heap[0].at > until) {
-            if (until > c->now && until != (sim_time)-1) c->now = until;
-            return SIM_OK;
-        }
+        if (c->nobs) notify(c);
+        if (c->stop || !c->nheap || c->heap[0].at > until) break;
         c->now = c->heap[0].at;
+        c->stats.time_steps++;
     }
+    c->step_time = c->now;
+    if (!c->stop && until > c->now && until != (sim_time)-1) c->now = until;
+    return SIM_OK;
 loop:
+    c->step_time = c->now;
     report_loop(c);
     if (c->novfq) settle_overflows(c);
-    if (c->vcd) sim_vcd_step(c->vcd, c->now);
+    if (c->nobs) notify(c);
     return SIM_ERR_LOOP;
 }

@@ -8,6 +8,7 @@
  */
 #include "sim/sim_prim.h"
 #include "sim/sim_area.h"
+#include "sim/sim_internal.h"
 #include <string.h>
 
 typedef struct prim {
@@ -86,11 +87,12 @@ static int fast_quant_setup(prim *p, int src_f)
     return 1;
 }
 
-/* Let the kernel evaluate the element itself (sim.h, SIM__OP_*); fn stays
- * the general evaluation, which the kernel calls when the fast result
- * would be out of range. p's fast-path constants must be set. */
-static void set_native(sim_proc *pr, int op, const prim *p)
+/* Let the kernel evaluate the element itself (sim_internal.h, SIM__OP_*);
+ * fn stays the general evaluation, which the kernel calls when the fast
+ * result would be out of range. p's fast-path constants must be set. */
+static void set_native(sim_proc *pub, int op, const prim *p)
 {
+    sim__proc *pr = sim__proc_of(pub);
     pr->op = (uint8_t)op;
     pr->op_y = p->y; pr->op_a = p->a; pr->op_b = p->b; pr->op_c = p->c;
     pr->op_lo = p->lo; pr->op_hi = p->hi; pr->op_radd = p->radd;
@@ -180,7 +182,7 @@ static void copy_slow(sim_proc *pr)
 static void reg_setup(sim_proc *pr)
 {
     prim *p = pr->data;
-    pr->op = SIM__OP_FN;
+    sim__proc_of(pr)->op = SIM__OP_FN;
     if (!p->rst && !p->c && p->a && copy_fits(p->a) && fast_quant_setup(p, p->a->fmt.fbits))
         set_native(pr, SIM__OP_COPY, p);
 }
@@ -212,6 +214,17 @@ int sim_reg_connect(sim_signal *q, sim_signal *d)
 
 void sim_assign(sim_ctx *c, sim_signal *dst, sim_signal *src)
 {
+    if (dst->driver || dst->kind == SIM_KIND_CONST || dst->kind == SIM_KIND_CLOCK) {
+        /* Two drivers of one wire: the hardware would short them, and the
+         * kernel would keep whichever evaluated last. */
+        char path[256], from[256];
+        sim__elab_error(c, "%s: two drivers: sim_assign from %s into a signal already driven by %s%s",
+                        sim_signal_path(dst, path, sizeof path), sim_signal_path(src, from, sizeof from),
+                        dst->driver ? "process " : "",
+                        dst->driver ? sim_proc_name(dst->driver)
+                        : dst->kind == SIM_KIND_CONST ? "a constant" : "a clock");
+        return;
+    }
     prim *p = prim_new(c, dst);
     p->a = src;
     sim_proc *pr = prim_proc(c, dst, copy_slow, p);
@@ -415,7 +428,7 @@ sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 static void logic_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    int64_t v[8];
+    int64_t v[SIM__LOGIC_MAX];
     for (int i = 0; i < p->n; i++) v[i] = p->in[i]->cur;
     sim_write(p->y, canon(p->fn(v, p->user), p->y->fmt));
 }
@@ -424,8 +437,15 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                       int n, sim_signal *const *in, sim_logic_fn fn, void *user,
                       double area_ge)
 {
-    if (n > 8) n = 8;
     sim_signal *y = sim_signal_new(c, sc, name, fmt, SIM_KIND_LOGIC);
+    if (n < 0 || n > SIM__LOGIC_MAX) {
+        /* The element is left without inputs (and its output at 0); the
+         * run will not start. */
+        char path[256];
+        sim__elab_error(c, "%s: sim_logic with %d inputs (at most %d)",
+                        sim_signal_path(y, path, sizeof path), n, SIM__LOGIC_MAX);
+        n = 0;
+    }
     prim *p = prim_new(c, y);
     sim_signal **copy = sim_alloc(c, (size_t)(n ? n : 1) * sizeof *copy);
     for (int i = 0; i < n; i++) copy[i] = in[i];
@@ -433,11 +453,12 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     sim_proc *pr = prim_proc(c, y, logic_eval, p);
     if (n >= 1) {
         set_native(pr, fmt.is_signed ? SIM__OP_LOGIC_S : SIM__OP_LOGIC_U, p);
-        pr->op_a = copy[0];
-        pr->op_k = (int8_t)(64 - fmt.width);
-        pr->op_radd = (int64_t)(UINT64_MAX >> (64 - fmt.width));
-        pr->op_logic = fn;
-        pr->op_user = user;
+        sim__proc *k = sim__proc_of(pr);
+        k->op_a = copy[0];
+        k->op_k = (int8_t)(64 - fmt.width);
+        k->op_radd = (int64_t)(UINT64_MAX >> (64 - fmt.width));
+        k->op_logic = fn;
+        k->op_user = user;
     }
     for (int i = 0; i < n; i++) sim_sensitive(pr, copy[i], SIM_EDGE_ANY);
     y->area_ge = area_ge;
@@ -461,7 +482,7 @@ int sim_prim_describe(const sim_signal *y, sim_prim_info *out)
     memset(out, 0, sizeof *out);
     out->kind = (sim_kind)y->kind;
     if (y->kind == SIM_KIND_CONST) { out->r = SIM_RND_TRUNC; out->o = SIM_OVF_WRAP; return 0; }
-    if (!y->driver || !is_prim_fn(y->driver->fn)) return -1;
+    if (!y->driver || !is_prim_fn(sim__proc_of(y->driver)->fn)) return -1;
     const prim *p = y->driver->data;
     out->a = p->a; out->b = p->b; out->c = p->c;
     out->rst = p->rst; out->rst_raw = p->rst_raw; out->clk = p->clk;
@@ -475,6 +496,6 @@ int sim_prim_describe(const sim_signal *y, sim_prim_info *out)
 
 void sim_logic_verilog(sim_signal *y, const char *text)
 {
-    if (y->kind != SIM_KIND_LOGIC || !y->driver || y->driver->fn != logic_eval) return;
+    if (y->kind != SIM_KIND_LOGIC || !y->driver || sim__proc_of(y->driver)->fn != logic_eval) return;
     ((prim *)y->driver->data)->verilog = sim_strdup(y->ctx, text);
 }

@@ -36,7 +36,10 @@ int sim_reg_connect(sim_signal *q, sim_signal *d);
 
 /* Continuous assignment into an existing wire (Verilog `assign dst = src`):
  * declare a wire with sim_signal_new, use it as an input, drive it later.
- * Costs one process and one delta cycle; registers prefer sim_reg_connect. */
+ * Costs one process and one delta cycle; registers prefer sim_reg_connect.
+ * A wire has one driver: assigning into a signal that already has one (an
+ * element's output, an earlier sim_assign, a constant, a clock) is an
+ * elaboration error (sim_run returns SIM_ERR_ELAB, naming dst). */
 void sim_assign(sim_ctx *c, sim_signal *dst, sim_signal *src);
 
 /* N:1 multiplexer: y = quant(in[sel]); sel out of range gives 0. */
@@ -61,8 +64,9 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                       sim_signal *x, int sh);
 
-/* Combinational logic with a user function over up to 8 inputs' raw values,
- * for small controllers (decoders of a step counter, comparators). The
+/* Combinational logic with a user function over up to 8 inputs' raw values
+ * (more is an elaboration error: sim_run returns SIM_ERR_ELAB), for small
+ * controllers (decoders of a step counter, comparators). The
  * function must be defined for every raw value of its inputs' formats,
  * reachable or not: the Verilog export tabulates it over all of them.
  * area_ge is the caller's estimate of the logic's gates. */

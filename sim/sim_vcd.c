@@ -8,10 +8,12 @@
  * Real variables a testbench declares (`$var real 64`) follow the design's
  * scopes under the root, one `$scope module` per scope name; their values
  * are `r` + %.17g (read back exactly) + space + id.
+ *
+ * What the writer keeps per signal (id, last value written, whether it
+ * changed during a hold) is in its own arrays indexed by sim_signal.index.
  */
 #define _XOPEN_SOURCE 700          /* realpath */
 #include "sim/sim_vcd.h"
-#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -33,9 +35,14 @@ typedef struct vcd_real {
 
 struct sim_vcd {
     sim_ctx *ctx;
-    FILE    *f;           /* base_out_file(out) */
-    base_out *out;         /* temporary + rename, or written through, or stdout */
+    FILE    *f;           /* the caller's */
     char    *timescale;
+    uint32_t nsig;        /* signals dumped: those that existed at open */
+    char   (*id)[8];      /* per signal: identifier code */
+    int64_t *last;        /* per signal: value last written */
+    uint8_t *held;        /* per signal: in heldl */
+    sim_signal **heldl;   /* changed while held, in order of first change */
+    uint32_t nheld;
     int      header;      /* header written */
     int      started;     /* $dumpvars written */
     int      mode;        /* SIM_VCD_WRITE / HOLD / LAST */
@@ -90,10 +97,11 @@ static void write_scope(sim_vcd *v, const sim_scope *sc)
 {
     fprintf(v->f, "$scope module %s $end\n", sc->name);
     for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope) {
+        if (s->index >= v->nsig) continue;
         if (s->fmt.width == 1)
-            fprintf(v->f, "$var wire 1 %s %s $end\n", s->vcd_id, s->name);
+            fprintf(v->f, "$var wire 1 %s %s $end\n", v->id[s->index], s->name);
         else
-            fprintf(v->f, "$var wire %d %s %s [%d:0] $end\n", s->fmt.width, s->vcd_id,
+            fprintf(v->f, "$var wire %d %s %s [%d:0] $end\n", s->fmt.width, v->id[s->index],
                     s->name, s->fmt.width - 1);
     }
     for (const sim_scope *ch = sc->first_child; ch; ch = ch->next_sibling) write_scope(v, ch);
@@ -115,34 +123,28 @@ static void write_header(sim_vcd *v)
     fputs("$enddefinitions $end\n", v->f);
 }
 
-sim_vcd *sim_vcd_open(sim_ctx *c, const char *path, const char *timescale,
-                      char *err, size_t errlen)
+static void step(sim_ctx *c, sim_time t, void *data);
+static void free_vcd(sim_vcd *v);
+
+sim_vcd *sim_vcd_open(sim_ctx *c, FILE *f, const char *timescale)
 {
     sim_vcd *v = calloc(1, sizeof *v);
-    if (!v) {
-        snprintf(err, errlen, "%s: out of memory", path);
-        return NULL;
-    }
-    /* A dump can be hundreds of MB: base_out registers its temporary so
-     * that SIGINT/SIGTERM/SIGHUP remove it; "-" streams to stdout. */
-    if (!(v->out = base_out_open(path, err, errlen))) {
-        free(v);
-        return NULL;
-    }
-    v->f = base_out_file(v->out);
+    if (!v) return NULL;
     v->ctx = c;
-    if (!(v->timescale = strdup(timescale))) {
-        snprintf(err, errlen, "%s: out of memory", path);
-        base_out_abort(v->out);
-        free(v);
+    v->f = f;
+    v->nsig = sim_signal_count(c);
+    size_t n = v->nsig ? v->nsig : 1;
+    v->timescale = strdup(timescale);
+    v->id = malloc(n * sizeof *v->id);
+    v->last = calloc(n, sizeof *v->last);
+    v->held = calloc(n, sizeof *v->held);
+    v->heldl = malloc(n * sizeof *v->heldl);
+    if (!v->timescale || !v->id || !v->last || !v->held || !v->heldl
+        || sim_observe(c, step, v, SIM_OBS_CHANGES)) {
+        free_vcd(v);
         return NULL;
     }
-    for (uint32_t i = 0, ns = sim_signal_count(c); i < ns; i++) {
-        sim_signal *s = sim_signal_at(c, i);
-        make_id(i, s->vcd_id);
-        s->vcd_last = 0;
-    }
-    sim_attach_vcd(c, v);
+    for (uint32_t i = 0; i < v->nsig; i++) make_id(i, v->id[i]);
     return v;
 }
 
@@ -185,9 +187,8 @@ void sim_vcd_window(sim_vcd *v, int mode)
 }
 
 /* "1!" / "b1010 #" and a newline at p; returns the end. */
-static char *put_value(char *p, const sim_signal *s, int64_t raw)
+static char *put_value(char *p, int w, const char *id, int64_t raw)
 {
-    int w = s->fmt.width;
     if (w == 1) {
         *p++ = raw & 1 ? '1' : '0';
     } else {
@@ -207,7 +208,6 @@ static char *put_value(char *p, const sim_signal *s, int64_t raw)
         }
         *p++ = ' ';
     }
-    const char *id = s->vcd_id;
     do *p++ = *id++; while (*id);
     *p++ = '\n';
     return p;
@@ -216,7 +216,7 @@ static char *put_value(char *p, const sim_signal *s, int64_t raw)
 static void write_value(sim_vcd *v, const sim_signal *s, int64_t raw)
 {
     if (v->n > VCD_BUF - VCD_LINE) flush_buf(v);
-    v->n = (size_t)(put_value(v->buf + v->n, s, raw) - v->buf);
+    v->n = (size_t)(put_value(v->buf + v->n, s->fmt.width, v->id[s->index], raw) - v->buf);
 }
 
 static void write_time(sim_vcd *v, sim_time t)
@@ -252,42 +252,74 @@ static void write_real(sim_vcd *v, vcd_real *r)
     r->dirty = 0;
 }
 
-void sim_vcd_step(sim_vcd *v, sim_time t)
+/* Add the signals in d to the held list (each once, first change first). */
+static void hold(sim_vcd *v, sim_signal *const *d, uint32_t n)
 {
+    for (uint32_t i = 0; i < n; i++) {
+        uint32_t k = d[i]->index;
+        if (k < v->nsig && !v->held[k]) { v->held[k] = 1; v->heldl[v->nheld++] = d[i]; }
+    }
+}
+
+static void drop_held(sim_vcd *v)
+{
+    for (uint32_t i = 0; i < v->nheld; i++) v->held[v->heldl[i]->index] = 0;
+    v->nheld = 0;
+}
+
+/* The observer: time step t has finished; dump what changed. */
+static void step(sim_ctx *c, sim_time t, void *data)
+{
+    sim_vcd *v = data;
     if (v->hook) v->hook(v, t, v->hook_data);
-    /* Held: the kernel's list of changed signals keeps growing (each
-     * signal is in it once), so the first step written afterwards
-     * writes what changed meanwhile. */
-    if (v->mode == SIM_VCD_HOLD) return;
+    uint32_t n;
+    sim_signal *const *d = sim_changed(c, &n);
+    /* Held: the changed signals are remembered (each once), so that the
+     * first step written afterwards writes what changed meanwhile. */
+    if (v->mode == SIM_VCD_HOLD) { hold(v, d, n); return; }
     if (v->mode == SIM_VCD_LAST) v->mode = SIM_VCD_HOLD;
     write_header(v);
-    uint32_t n;
-    sim_signal **d = sim__vcd_take_dirty(v->ctx, &n);
     int stamped = 0;
     if (!v->started) {
         v->started = 1;
+        drop_held(v);
         write_time(v, t);
         write_text(v, "$dumpvars\n");
-        for (uint32_t i = 0, ns = sim_signal_count(v->ctx); i < ns; i++) {
-            sim_signal *s = sim_signal_at(v->ctx, i);
-            s->vcd_dirty = 0;
-            s->vcd_last = s->cur;
+        for (uint32_t i = 0; i < v->nsig; i++) {
+            sim_signal *s = sim_signal_at(c, i);
+            v->last[i] = s->cur;
             write_value(v, s, s->cur);
         }
         for (int i = 0; i < v->nreals; i++) write_real(v, &v->reals[i]);
         write_text(v, "$end\n");
         return;
     }
+    if (v->nheld) {
+        hold(v, d, n);
+        d = v->heldl;
+        n = v->nheld;
+    }
+    /* The hot loop of a dump: what it reads is kept in locals, since the
+     * char stores into buf may alias anything. */
+    int64_t *last = v->last;
+    char (*id)[8] = v->id;
+    uint32_t nsig = v->nsig;
+    char *buf = v->buf;
+    size_t at = v->n;
     for (uint32_t i = 0; i < n; i++) {
-        sim_signal *s = d[i];
-        s->vcd_dirty = 0;
+        const sim_signal *s = d[i];
+        uint32_t k = s->index;
+        int64_t cur = s->cur;
         /* A value that changed and changed back within the step is no
          * change at all to a waveform viewer. */
-        if (s->cur == s->vcd_last) continue;
-        if (!stamped) { write_time(v, t); stamped = 1; }
-        s->vcd_last = s->cur;
-        write_value(v, s, s->cur);
+        if (k >= nsig || cur == last[k]) continue;
+        if (!stamped) { v->n = at; write_time(v, t); at = v->n; stamped = 1; }
+        last[k] = cur;
+        if (at > VCD_BUF - VCD_LINE) { v->n = at; flush_buf(v); at = 0; }
+        at = (size_t)(put_value(buf + at, s->fmt.width, id[k], cur) - buf);
     }
+    v->n = at;
+    if (v->nheld) drop_held(v);
     for (int i = 0; i < v->nreals; i++) {
         vcd_real *r = &v->reals[i];
         if (!r->dirty) continue;
@@ -302,6 +334,7 @@ static void free_vcd(sim_vcd *v)
     for (int i = 0; i < v->nreals; i++) { free(v->reals[i].scope); free(v->reals[i].name); }
     free(v->reals);
     free(v->timescale);
+    free(v->id); free(v->last); free(v->held); free(v->heldl);
     free(v);
 }
 
@@ -310,23 +343,18 @@ int sim_vcd_close(sim_vcd *v)
     if (!v) return 0;
     write_header(v);      /* a dump with no time step written still has one */
     flush_buf(v);
-    /* base_out_close checks the stream (a failed fwrite left its error
-     * flag), renames, and on failure removes the temporary and leaves
-     * errno at the cause (ENOSPC...), which is what the caller reports. */
-    char msg[256];
-    int rc = base_out_close(v->out, msg, sizeof msg);
+    int bad = v->io_error || fflush(v->f) != 0 || ferror(v->f);
     int e = errno;
-    sim_attach_vcd(v->ctx, NULL);
+    sim_unobserve(v->ctx, step, v);
     free_vcd(v);
     errno = e;
-    return rc;
+    return bad ? -1 : 0;
 }
 
 void sim_vcd_abort(sim_vcd *v)
 {
     if (!v) return;
-    base_out_abort(v->out);
-    sim_attach_vcd(v->ctx, NULL);
+    sim_unobserve(v->ctx, step, v);
     free_vcd(v);
 }
 
@@ -396,15 +424,11 @@ static char *abs_path(const char *path)
     return out;
 }
 
-int sim_vcd_write_gtkw(sim_ctx *c, const char *dump_path, const char *gtkw_path,
+int sim_vcd_write_gtkw(FILE *f, sim_ctx *c, const char *dump_path, const char *gtkw_path,
                        const char *lead_title, const sim_gtkw_trace *lead, int nlead)
 {
     char *dump = abs_path(dump_path), *save = abs_path(gtkw_path);
     if (!dump || !save) { int e = errno; free(dump); free(save); errno = e; return -1; }
-    char msg[256];
-    base_out *o = base_out_open(gtkw_path, msg, sizeof msg);
-    if (!o) { free(dump); free(save); return -1; }   /* errno from the open */
-    FILE *f = base_out_file(o);
     fprintf(f, "[*] shadesim: open with  gtkwave %s\n[dumpfile] \"%s\"\n[savefile] \"%s\"\n[timestart] 0\n",
             save, dump, save);
     free(dump);
@@ -420,5 +444,5 @@ int sim_vcd_write_gtkw(sim_ctx *c, const char *dump_path, const char *gtkw_path,
         fprintf(f, "@1000200\n-%s\n", lead_title ? lead_title : "check");
     }
     gtkw_scope(f, sim_root(c), "");
-    return base_out_close(o, msg, sizeof msg);   /* errno = the cause on -1 */
+    return 0;
 }

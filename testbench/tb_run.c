@@ -358,7 +358,7 @@ static int run_simulate(run_sim *s, const unit_desc *u, const run_mem *m, tb_res
     uint64_t max_clocks = 1000 + m->nbeats * 4096;
     sim_status ss = sim_run(s->c, max_clocks * 10);
     r->stats = *sim_get_stats(s->c);
-    if (ss == SIM_ERR_LOOP) {
+    if (ss != SIM_OK) {         /* a loop, or a design that is not well formed */
         snprintf(err, errlen, "%s", sim_error(s->c));
         rc = TB_FAIL;
     } else if (s->st.got < m->nbeats) {

@@ -9,6 +9,7 @@
 #include "testbench/tb.h"
 #include "testbench/tb_range.h"
 #include "sim/sim_vcd.h"
+#include "base/base_out.h"
 #include "sim/sim_batch.h"
 #include <stdlib.h>
 #include <math.h>
@@ -177,6 +178,7 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     memset(&io, 0, sizeof io);
     int rc = TB_OK;
     sim_vcd *vcd = NULL;
+    base_out *vout = NULL;
     if (u->build(c, sc, clk, cfg, f, &io, err, errlen)) { rc = TB_BADINPUT; goto done; }
     sim_clock(c, clk, 5, 5);
     s.io = &io; s.ctx = c;
@@ -189,14 +191,21 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     sim_sensitive(mon, clk, SIM_EDGE_POS);
     mon->no_init = 1;
     if (vcd_path) {
-        vcd = sim_vcd_open(c, vcd_path, "1ns", err, errlen);
-        if (!vcd) { rc = TB_BADINPUT; goto done; }
+        /* A dump can be hundreds of MB: base_out writes it to a temporary
+         * that SIGINT/SIGTERM/SIGHUP remove, renamed into place when
+         * complete; "-" streams to stdout. */
+        if (!(vout = base_out_open(vcd_path, err, errlen))) { rc = TB_BADINPUT; goto done; }
+        if (!(vcd = sim_vcd_open(c, base_out_file(vout), "1ns"))) {
+            snprintf(err, errlen, "%s: out of memory", vcd_path);
+            rc = TB_BADINPUT;
+            goto done;
+        }
     }
     /* 6 clocks a pixel at most (paper, cubic), a few per item; a unit that
      * stops answering is a failure, not a hang. */
     uint64_t max_clocks = 1000 + 8 * (uint64_t)total + 8 * (uint64_t)nitems;
     sim_status ss = sim_run(c, max_clocks * 10);
-    if (ss == SIM_ERR_LOOP) {
+    if (ss != SIM_OK) {         /* a loop, or a design that is not well formed */
         snprintf(err, errlen, "%s", sim_error(c));
         rc = TB_FAIL;
     } else if (s.got < total) {
@@ -205,11 +214,15 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
         rc = TB_FAIL;
     }
     if (vcd) {
-        if (sim_vcd_close(vcd) && rc == TB_OK) {
+        char msg[256];
+        int bad = sim_vcd_close(vcd);
+        bad |= base_out_close(vout, msg, sizeof msg);
+        if (bad && rc == TB_OK) {
             snprintf(err, errlen, "%s: write failed", vcd_path);
             rc = TB_BADINPUT;
         }
         vcd = NULL;
+        vout = NULL;
     }
     if (rc == TB_OK) st->clocks = s.last_pixel - s.first_accept;
     st->pixels = s.got;
@@ -217,6 +230,7 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     st->area_ge = sim_scope_area(sc);
 done:
     if (vcd) sim_vcd_abort(vcd);
+    if (vout) base_out_abort(vout);
     sim_free(c);
     return rc;
 }

@@ -392,7 +392,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     }
     r->stats = *sim_get_stats(c);
     r->vectors = st.prepared;
-    if (ss == SIM_ERR_LOOP) {
+    if (ss != SIM_OK) {         /* a loop, or a design that is not well formed */
         snprintf(err, errlen, "%s", sim_error(c));
         rc = TB_FAIL;
     } else if (st.failed) {

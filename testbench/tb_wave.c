@@ -84,10 +84,18 @@ sim_vcd *tb_wave_open(tb_wave *w, sim_ctx *c, const tb_opts *o, const unit_io *i
      * so the conversion's output can be renamed into place) */
     if (o->fst) snprintf(w->dump_path, n, "%s.%ld.tmp.vcd", o->vcd_path, (long)getpid());
     else snprintf(w->dump_path, n, "%s", o->vcd_path);
-    sim_vcd *v = sim_vcd_open(c, w->dump_path, "1ns", err, errlen);
-    if (!v) {
+    /* A dump can be hundreds of MB: base_out writes it to a temporary that
+     * SIGINT/SIGTERM/SIGHUP remove, renamed into place when complete; "-"
+     * streams to stdout. */
+    if (!(w->out = base_out_open(w->dump_path, err, errlen))) {
         /* name the user's path, not our temporary */
         if (o->fst) snprintf(err, errlen, "%s: cannot create: %s", o->vcd_path, strerror(errno));
+        tb_wave_free(w);
+        return NULL;
+    }
+    sim_vcd *v = sim_vcd_open(c, base_out_file(w->out), "1ns");
+    if (!v) {
+        snprintf(err, errlen, "%s: out of memory", w->dump_path);
         tb_wave_free(w);
         return NULL;
     }
@@ -105,6 +113,8 @@ sim_vcd *tb_wave_open(tb_wave *w, sim_ctx *c, const tb_opts *o, const unit_io *i
 
 void tb_wave_free(tb_wave *w)
 {
+    if (w->out) base_out_abort(w->out);
+    w->out = NULL;
     free(w->dump_path);
     w->dump_path = NULL;
 }
@@ -151,7 +161,11 @@ int tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc
 {
     const tb_opts *o = w->o;
     struct stat st;
-    if (sim_vcd_close(v)) {
+    char msg[256];
+    int bad = sim_vcd_close(v);
+    bad |= base_out_close(w->out, msg, sizeof msg);   /* errno: the cause */
+    w->out = NULL;
+    if (bad) {
         if (rc == TB_OK) {
             snprintf(err, errlen, "%s: write failed: %s", o->vcd_path, strerror(errno));
             rc = TB_BADINPUT;
@@ -205,7 +219,17 @@ int tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc
             rc = TB_BADINPUT;
         } else {
             snprintf(g, gl, "%s.gtkw", o->vcd_path);
-            if (sim_vcd_write_gtkw(c, o->vcd_path, g, title, lead, nl)) {
+            base_out *go = base_out_open(g, msg, sizeof msg);   /* errno: the cause */
+            int gbad = !go;
+            if (go && sim_vcd_write_gtkw(base_out_file(go), c, o->vcd_path, g, title, lead, nl)) {
+                int e = errno;
+                base_out_abort(go);
+                errno = e;
+                gbad = 1;
+            } else if (go) {
+                gbad = base_out_close(go, msg, sizeof msg) != 0;
+            }
+            if (gbad) {
                 snprintf(err, errlen, "%s: cannot write: %s", g, strerror(errno));
                 rc = TB_BADINPUT;
             }

@@ -13,6 +13,7 @@
 #define TB_WAVE_H
 #include "testbench/tb.h"
 #include "sim/sim_vcd.h"
+#include "base/base_out.h"
 
 typedef struct tb_wave {
     const tb_opts   *o;
@@ -30,6 +31,7 @@ typedef struct tb_wave {
     int       started;            /* the window has begun */
     int       real_idx[2 * UNIT_MAX_IO];
     char     *dump_path;          /* where sim_vcd writes (a temporary for --fst) */
+    base_out  *out;                /* dump_path, open while the dump is written */
 } tb_wave;
 
 /* Open the dump for tb_run (o->vcd_path, or a temporary beside it with
@@ -42,7 +44,8 @@ sim_vcd *tb_wave_open(tb_wave *w, sim_ctx *c, const tb_opts *o, const unit_io *i
  * status (TB_BADINPUT with a message when a file cannot be written). */
 int      tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc,
                        char *err, size_t errlen);
-/* Free what open allocated after a failure before the run (the dump is aborted by the caller). */
+/* Free what open allocated after a failure before the run, removing the
+ * unfinished dump (the caller aborts the sim_vcd first). */
 void     tb_wave_free(tb_wave *w);
 /* 1 if vcd2fst is on PATH. */
 int      tb_wave_have_vcd2fst(void);

@@ -1,0 +1,66 @@
+/* sim_internal.h - NOT part of the API: the kernel's own record of a
+ * process, with the fast-path fields of the primitives the kernel
+ * evaluates itself, and the hooks between sim_kernel.c and sim_prim.c.
+ * Included by those two files only; anything else uses sim.h.
+ *
+ * A process is one sim__proc. Its public part (struct sim_proc: data,
+ * ctx, no_init) is the last member, and what sim_proc_new hands out is a
+ * pointer to it; sim__proc_of goes back. The fields the evaluate loop
+ * touches come first, in the 64-byte line the record starts on (processes
+ * are allocated on cache-line boundaries).
+ */
+#ifndef SIM_INTERNAL_H
+#define SIM_INTERNAL_H
+#include "sim/sim.h"
+#include <stddef.h>
+
+/* What the kernel computes itself: SIM__OP_FN calls fn. For arithmetic
+ * the kernel computes v = op(a, b, c), then y <= (v + op_radd) >> op_k
+ * when that lands in [op_lo, op_hi], and otherwise calls fn, the general
+ * evaluation (which counts the overflow). Logic: y <= the low 64 - op_k
+ * bits of op_logic(inputs), sign-extended (LOGIC_S) or masked with
+ * op_radd (LOGIC_U). */
+enum { SIM__OP_FN = 0, SIM__OP_COPY, SIM__OP_ADD, SIM__OP_SUB, SIM__OP_MUL,
+       SIM__OP_MUX, SIM__OP_BK, SIM__OP_LOGIC_S, SIM__OP_LOGIC_U };
+
+/* Inputs of a logic element the kernel gathers (sim_logic's limit). */
+#define SIM__LOGIC_MAX 8
+
+typedef struct sim__proc {
+    /* hot: read or written on every evaluation */
+    uint32_t    queued;     /* runnable in the next delta (not char: see sim_signal) */
+    uint8_t     op;         /* SIM__OP_* */
+    int8_t      op_k;
+    uint32_t    op_n;       /* mux or logic inputs */
+    sim_signal *op_y, *op_a, *op_b, *op_c;
+    int64_t     op_lo, op_hi;
+    int64_t     op_radd;
+    uint64_t    runs;       /* evaluations */
+    sim_signal *const *op_in;
+    int64_t   (*op_logic)(const int64_t *in, void *user);   /* sim_logic_fn */
+    void       *op_user;
+    sim_proc_fn fn;         /* the general evaluation */
+    /* cold */
+    const char *name;
+    sim_proc    pub;        /* what users hold */
+} sim__proc;
+
+static inline sim__proc *sim__proc_of(const sim_proc *p)
+{
+    return (sim__proc *)(void *)((char *)(uintptr_t)p - offsetof(sim__proc, pub));
+}
+
+/* Record an elaboration error (the first one is kept): sim_run then
+ * returns SIM_ERR_ELAB without simulating, sim_error gives the text. */
+void sim__elab_error(sim_ctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* A quantization into s overflowed and gave raw. It is counted in
+ * s->overflows only if the evaluation that overflowed is the last one of
+ * s's driver in this time step (so s settles on raw): a glitch while a
+ * combinational network settles (an operand updated one delta before the
+ * other) is not an overflow of the hardware, even when a later,
+ * in-range evaluation happens to give the same raw. So the count depends
+ * only on settled values, whatever order the elements are evaluated in
+ * (the batch mode's levelized evaluation relies on it: sim_batch.h). */
+void sim__overflow(sim_signal *s, int64_t raw);
+#endif
