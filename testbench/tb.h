@@ -103,6 +103,20 @@ typedef struct tb_opts {
 
 enum { TB_OK = 0, TB_FAIL = 1, TB_BADINPUT = 2 };
 
+/* A unit built into a context of its own, as every testbench starts one:
+ * the configuration's rounding and overflow as the context's defaults, a
+ * 1-bit clock "clk", the unit's scope (named after it) and its ports. The
+ * caller adds the clock's timing and its own processes, and frees b->c
+ * with sim_free. Returns 0; or -1 with err when the unit refuses the
+ * configuration (b->c is made all the same: free it). */
+typedef struct tb_built {
+    sim_ctx    *c;
+    sim_signal *clk;
+    sim_scope  *sc;
+    unit_io     io;
+} tb_built;
+int tb_build(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, tb_built *b, char *err, size_t errlen);
+
 /* Run; returns TB_OK, TB_FAIL (the simulation failed: loop, no output in
  * time; message in err) or TB_BADINPUT (vectors do not fit the unit, VCD
  * path unwritable; message in err). A bound violation is TB_OK with

@@ -85,17 +85,17 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
             return TB_BADINPUT;
         }
     }
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
+    tb_built bu;
+    int unbuilt = tb_build(u, cfg, fm, &bu, err, errlen);
+    sim_ctx *c = bu.c;
+    sim_signal *clk = bu.clk;
+    sim_scope *sc = bu.sc;
+    unit_io io = bu.io;
     sim_batch *b = NULL;
     lane_st *S = calloc(n, sizeof *S);
     int rc = TB_OK;
     if (!S) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
-    if (u->build(c, sc, clk, cfg, fm, &io, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (unbuilt) { rc = TB_BADINPUT; goto done; }
     if (!(b = sim_batch_new(c, clk, (uint32_t)n, err, errlen))) { rc = TB_UNSUPPORTED; goto done; }
     uint64_t const_ovf = tb_scope_overflows(sc);
     size_t nv = (size_t)beats * (size_t)n_out;

@@ -19,18 +19,13 @@ static int modes_check(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
     int any = 0;
     for (int i = 0; i < u->nsigs; i++) any |= unit_sig_built(u, i, cfg) && sim_fmt_has_modes(f->f[i]);
     if (!any) return 0;
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
     char berr[256];
+    tb_built bu;
     int rc = 0;
     /* a unit that does not build says why when it is run */
-    if (u->build(c, sc, clk, cfg, f, &io, berr, sizeof berr) == 0)
-        for (uint32_t k = 0, n = sim_signal_count(c); k < n && !rc; k++) {
-            sim_signal *s = sim_signal_at(c, k);
+    if (tb_build(u, cfg, f, &bu, berr, sizeof berr) == 0)
+        for (uint32_t k = 0, n = sim_signal_count(bu.c); k < n && !rc; k++) {
+            sim_signal *s = sim_signal_at(bu.c, k);
             sim_prim_info in;
             if (!sim_fmt_has_modes(s->fmt) || s->kind == SIM_KIND_INPUT || s->kind == SIM_KIND_CONST) continue;
             if (sim_prim_describe(s, &in) == 0 && in.kind != SIM_KIND_LOGIC) continue;
@@ -47,7 +42,7 @@ static int modes_check(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
                      u->name, s->name, sim_fmt_str(s->fmt, fb));
             rc = -1;
         }
-    sim_free(c);
+    sim_free(bu.c);
     return rc;
 }
 

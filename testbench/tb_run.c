@@ -322,11 +322,10 @@ typedef struct run_sim {
 static int run_build(run_sim *s, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, const vec_set *vs,
                      const tb_opts *o, run_mem *m, tb_result *r, char *err, size_t errlen)
 {
-    s->c = sim_new();
-    sim_set_quant(s->c, cfg->rnd, cfg->ovf);
-    s->clk = sim_bit_new(s->c, NULL, "clk", SIM_KIND_CLOCK);
-    s->sc = sim_scope_new(s->c, NULL, u->name);
-    if (u->build(s->c, s->sc, s->clk, cfg, fmts, &s->io, err, errlen)) return TB_BADINPUT;
+    tb_built b;
+    int bad = tb_build(u, cfg, fmts, &b, err, errlen);
+    s->c = b.c; s->clk = b.clk; s->sc = b.sc; s->io = b.io;
+    if (bad) return TB_BADINPUT;
     /* 100 MHz in a 1 ns timescale: rising edges at 5, 15, 25, ... */
     sim_clock(s->c, s->clk, 5, 5);
     tb_state *st = &s->st;

@@ -139,15 +139,9 @@ static int pinned(const scn_desc *d, const char *name)
 static double unit_area(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f)
 {
     char err[256];
-    sim_ctx *c = sim_new();
-    if (!c) return -1;
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
-    double a = u->build(c, sc, clk, cfg, f, &io, err, sizeof err) ? -1 : sim_scope_area(sc);
-    sim_free(c);
+    tb_built b;
+    double a = tb_build(u, cfg, f, &b, err, sizeof err) ? -1 : sim_scope_area(b.sc);
+    sim_free(b.c);
     return a;
 }
 
@@ -177,16 +171,9 @@ static void built_signals(const unit_desc *u, const unit_cfg *cfg, const unit_fm
     char err[256];
     int any = 0;
     memset(built, 0, UNIT_MAX_SIGS);
-    sim_ctx *c = sim_new();
-    if (c) {
-        sim_set_quant(c, cfg->rnd, cfg->ovf);
-        sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-        sim_scope *sc = sim_scope_new(c, NULL, u->name);
-        unit_io io;
-        memset(&io, 0, sizeof io);
-        if (!u->build(c, sc, clk, cfg, f, &io, err, sizeof err)) mark_scope(u, sc, built);
-        sim_free(c);
-    }
+    tb_built b;
+    if (!tb_build(u, cfg, f, &b, err, sizeof err)) mark_scope(u, b.sc, built);
+    sim_free(b.c);
     for (int i = 0; i < u->nsigs; i++) any |= built[i];
     if (!any) memset(built, 1, UNIT_MAX_SIGS);
 }

@@ -170,16 +170,16 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     size_t total = s.total;
     if (!nitems) return TB_OK;
 
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
+    tb_built bu;
+    int unbuilt = tb_build(u, cfg, f, &bu, err, errlen);
+    sim_ctx *c = bu.c;
+    sim_signal *clk = bu.clk;
+    sim_scope *sc = bu.sc;
+    unit_io io = bu.io;
     int rc = TB_OK;
     sim_vcd *vcd = NULL;
     base_out *vout = NULL;
-    if (u->build(c, sc, clk, cfg, f, &io, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (unbuilt) { rc = TB_BADINPUT; goto done; }
     sim_clock(c, clk, 5, 5);
     s.io = &io; s.ctx = c;
     s.y = io.out[0];
@@ -296,14 +296,14 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
                       tb_span_lane *L, lane_tb *T, size_t n, uint32_t nb)
 {
     char err[300];
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
+    tb_built bu;
+    int unbuilt = tb_build(u, cfg, f, &bu, err, sizeof err);
+    sim_ctx *c = bu.c;
+    sim_signal *clk = bu.clk;
+    sim_scope *sc = bu.sc;
+    unit_io io = bu.io;
     sim_batch *b = NULL;
-    if (u->build(c, sc, clk, cfg, f, &io, err, sizeof err) || !(b = sim_batch_new(c, clk, nb, err, sizeof err))) {
+    if (unbuilt || !(b = sim_batch_new(c, clk, nb, err, sizeof err))) {
         for (size_t i = 0; i < n; i++) T[i].in_batch = 0;
         sim_free(c);
         return;

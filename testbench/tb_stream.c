@@ -361,14 +361,14 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
         }
     tb_acc_begin(&st.acc, r);
 
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
+    tb_built bu;
+    int unbuilt = tb_build(u, cfg, fmts, &bu, err, errlen);
+    sim_ctx *c = bu.c;
+    sim_signal *clk = bu.clk;
+    sim_scope *sc = bu.sc;
+    unit_io io = bu.io;
     int rc = TB_OK;
-    if (u->build(c, sc, clk, cfg, fmts, &io, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (unbuilt) { rc = TB_BADINPUT; goto done; }
     sim_clock(c, clk, 5, 5);
     st.io = &io; st.ctx = c;
     if (tb_range_init(&st.rg, c, sc, clk)) {

@@ -53,13 +53,13 @@ char *tb_verilog_module_text(const unit_desc *u, const unit_cfg *cfg, const unit
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     if (!f) { snprintf(err, errlen, "out of memory"); return NULL; }
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
-    int rc = u->build(c, sc, clk, cfg, fm, &io, err, errlen);
+    tb_built bu;
+    int unbuilt = tb_build(u, cfg, fm, &bu, err, errlen);
+    sim_ctx *c = bu.c;
+    sim_signal *clk = bu.clk;
+    sim_scope *sc = bu.sc;
+    unit_io io = bu.io;
+    int rc = unbuilt;
     if (rc == 0) {
         sim_vport ports[2 * UNIT_MAX_IO + 4];
         int np = unit_ports(u, &io, ports);
@@ -295,13 +295,8 @@ done:
 double tb_verilog_area(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
                        char *err, size_t errlen)
 {
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
-    double a = u->build(c, sc, clk, cfg, fm, &io, err, errlen) ? -1 : sim_scope_area(sc);
-    sim_free(c);
+    tb_built bu;
+    double a = tb_build(u, cfg, fm, &bu, err, errlen) ? -1 : sim_scope_area(bu.sc);
+    sim_free(bu.c);
     return a;
 }

@@ -9,15 +9,9 @@ static int builds(const unit_desc *u, const unit_cfg *cfg, char *err, size_t err
 {
     unit_fmts f;
     u->formats(cfg, &f);
-    sim_ctx *c = sim_new();
-    if (!c) { snprintf(err, errlen, "out of memory"); return 0; }
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
-    int ok = !u->build(c, sc, clk, cfg, &f, &io, err, errlen);
-    sim_free(c);
+    tb_built b;
+    int ok = !tb_build(u, cfg, &f, &b, err, errlen);
+    sim_free(b.c);
     return ok;
 }
 

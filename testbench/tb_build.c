@@ -1,0 +1,18 @@
+/* tb_build.c - a unit in a context of its own (tb.h: tb_build), the first
+ * step of every testbench, the batch mode's, the Verilog export's and the
+ * format checks'. */
+#include "testbench/tb.h"
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int tb_build(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, tb_built *b, char *err, size_t errlen)
+{
+    memset(b, 0, sizeof *b);
+    b->c = sim_new();
+    if (!b->c) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+    sim_set_quant(b->c, cfg->rnd, cfg->ovf);
+    b->clk = sim_bit_new(b->c, NULL, "clk", SIM_KIND_CLOCK);
+    b->sc = sim_scope_new(b->c, NULL, u->name);
+    return u->build(b->c, b->sc, b->clk, cfg, f, &b->io, err, errlen) ? -1 : 0;
+}
