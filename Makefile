@@ -19,7 +19,7 @@ LDLIBS  := -lm -lpthread
 
 LAYERS  := base sim chart units vectors scene testbench
 LIBSRC  := $(filter-out testbench/main.c,$(foreach d,$(LAYERS),$(wildcard $(d)/*.c)))
-HDRS    := $(foreach d,$(LAYERS),$(wildcard $(d)/*.h)) $(wildcard tests/*.h)
+HDRS    := $(foreach d,$(LAYERS),$(wildcard $(d)/*.h)) $(wildcard tests/*.h) $(wildcard bench/*.h)
 TESTSRC := $(wildcard tests/test_*.c)
 BENCHSRC:= $(wildcard bench/*.c)
 

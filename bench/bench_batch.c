@@ -9,6 +9,7 @@
  * Outputs are compared (pixels, clocks, overflows): a difference fails the
  * bench. Prints items per second (process CPU time) and the speed-up. */
 #include "testbench/tb_span.h"
+#include "bench/bench_items.h"
 #include "testbench/tb_batch.h"
 #include "testbench/cli.h"
 #include <stdio.h>
@@ -34,23 +35,12 @@ static int spans(void)
     static const char *const units[] = { "span1", "span2", "span3", "span23" };
     static const char *const scheds[] = { "paper", "mac", "pipe" };
     int L = 8;
-    size_t ni = 0, np = 0;
     tb_span_item *it = calloc(PIXELS, sizeof *it);
     double *pix[2];
     pix[0] = malloc(PIXELS * sizeof *pix[0]);
     pix[1] = malloc(PIXELS * sizeof *pix[1]);
     if (!it || !pix[0] || !pix[1]) return 1;
-    uint64_t s = 12345;
-    while (np < PIXELS) {
-        tb_span_item *m = &it[ni++];
-        s = s * 6364136223846793005ull + 1442695040888963407ull;
-        m->n = 1 + (int)((s >> 33) % (uint64_t)L);
-        if (np + (size_t)m->n > PIXELS) m->n = (int)(PIXELS - np);
-        m->dv = (s >> 40) & 1 ? L : (m->n > 1 ? m->n - 1 : 1);
-        m->deg = (s >> 41) & 1 ? 2 : 3;
-        for (int k = 0; k < 4; k++) m->node[k] = (double)((s >> (20 + 5 * k)) & 1023) / 1023;
-        np += (size_t)m->n;
-    }
+    size_t ni = bench_span_items(it, PIXELS, L), np = PIXELS;
     for (int u = 0; u < 4; u++)
         for (int sc = 0; sc < 3; sc++) {
             const unit_desc *ud = unit_find(units[u]);
@@ -140,13 +130,11 @@ static int kernel_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmt
                          int64_t *raw)
 {
     char err[300];
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
-    if (u->build(c, sc, clk, cfg, f, &io, err, sizeof err)) { fprintf(stderr, "%s\n", err); sim_free(c); return -1; }
+    tb_built b;
+    if (tb_build(u, cfg, f, &b, err, sizeof err)) { fprintf(stderr, "%s\n", err); sim_free(b.c); return -1; }
+    sim_ctx *c = b.c;
+    sim_signal *clk = b.clk;
+    unit_io io = b.io;
     sim_clock(c, clk, 5, 5);
     ktb s = { &io, in, unit_n_in(u), unit_n_out(u), n, 0, 0, 0, raw };
     sim_proc *d = sim_proc_new(c, "tb.driver", kdriver, &s);

@@ -3,6 +3,7 @@
  * clocks per second of each span unit and schedule, the build included
  * (a scene builds once per band). Best of 3. */
 #include "testbench/tb_span.h"
+#include "bench/bench_items.h"
 #include "testbench/tb.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,21 +24,10 @@ int main(void)
     static const char *const units[] = { "span1", "span2", "span3", "span23" };
     static const char *const scheds[] = { "paper", "mac", "pipe" };
     int L = 8;
-    size_t cap = PIXELS, ni = 0, np = 0;
-    tb_span_item *it = calloc(cap, sizeof *it);
+    tb_span_item *it = calloc(PIXELS, sizeof *it);
     double *pix = malloc(PIXELS * sizeof *pix);
     if (!it || !pix) return 1;
-    uint64_t s = 12345;
-    while (np < PIXELS) {
-        tb_span_item *m = &it[ni++];
-        s = s * 6364136223846793005ull + 1442695040888963407ull;
-        m->n = 1 + (int)((s >> 33) % (uint64_t)L);
-        if (np + (size_t)m->n > PIXELS) m->n = (int)(PIXELS - np);
-        m->dv = (s >> 40) & 1 ? L : (m->n > 1 ? m->n - 1 : 1);
-        m->deg = (s >> 41) & 1 ? 2 : 3;
-        for (int k = 0; k < 4; k++) m->node[k] = (double)((s >> (20 + 5 * k)) & 1023) / 1023;
-        np += (size_t)m->n;
-    }
+    size_t ni = bench_span_items(it, PIXELS, L);
     for (int u = 0; u < 4; u++)
         for (int sc = 0; sc < 3; sc++) {
             const unit_desc *ud = unit_find(units[u]);

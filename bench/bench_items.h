@@ -1,0 +1,27 @@
+/* bench_items.h - the stream of span intervals the span benches share:
+ * random lengths 1..L (a scene's spans cut into intervals), dv = L or
+ * n - 1, degree 2 or 3, node intensities in [0, 1], `pixels` pixels in
+ * all; the same sequence every time (a fixed LCG). */
+#ifndef BENCH_ITEMS_H
+#define BENCH_ITEMS_H
+#include "testbench/tb_span.h"
+#include <stdint.h>
+
+/* Fills it[] (room for `pixels` items) and returns the number of items. */
+static inline size_t bench_span_items(tb_span_item *it, size_t pixels, int L)
+{
+    size_t ni = 0, np = 0;
+    uint64_t s = 12345;
+    while (np < pixels) {
+        tb_span_item *m = &it[ni++];
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        m->n = 1 + (int)((s >> 33) % (uint64_t)L);
+        if (np + (size_t)m->n > pixels) m->n = (int)(pixels - np);
+        m->dv = (s >> 40) & 1 ? L : (m->n > 1 ? m->n - 1 : 1);
+        m->deg = (s >> 41) & 1 ? 2 : 3;
+        for (int k = 0; k < 4; k++) m->node[k] = (double)((s >> (20 + 5 * k)) & 1023) / 1023;
+        np += (size_t)m->n;
+    }
+    return ni;
+}
+#endif
