@@ -269,8 +269,8 @@ const unit_desc unit_d_approx = {
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: log2(g) clocks" } },
     .nparams = 2,
     .params = {
-        { "m", UNIT_P_REAL, offsetof(unit_cfg, m), 0.05, 1.0, NULL, "Beckmann roughness" },
-        { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, NULL, "power, a power of two" } },
+        { "m", UNIT_P_REAL, offsetof(unit_cfg, m), 0.05, 1.0, 0.2, NULL, "Beckmann roughness" },
+        { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, 16, NULL, "power, a power of two" } },
     .fmt_rule = "c, om u1.(W-1); k uI.(W-I) and p uI.(W-1) with I = integer bits of k (signed "
                 "when m > 1/sqrt 2); base s(I+1).(W-1); clamp, mx, mul, rg uJ.(W-J), J = integer "
                 "bits of the largest power (1 for m <= 1/sqrt 2); c0 and d the same rule for c0 and "
@@ -291,7 +291,7 @@ const unit_desc unit_ward_approx = {
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: 4 clocks" } },
     .nparams = 1,
-    .params = { { "alpha", UNIT_P_REAL, offsetof(unit_cfg, alpha), 0.05, 1.0, NULL, "Ward roughness" } },
+    .params = { { "alpha", UNIT_P_REAL, offsetof(unit_cfg, alpha), 0.05, 1.0, 0.2, NULL, "Ward roughness" } },
     .fmt_rule = "c, om u1.(W-1); k uI.(W-I) and p uI.(W-1) with I = integer bits of 1/(8 alpha^2); "
                 "base s(I+1).(W-1); clamp, mx, mul, rg, e u1.(W-1)",
     .formats = w_formats, .beats = beats1, .build = w_build, .ideal = w_ideal, .bound = w_bound,

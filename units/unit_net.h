@@ -128,6 +128,7 @@ unet_val unet_reg_of(unet *n, int sig, const char *name, unet_val d);
 
 enum { DIV3_PAPER = 0, DIV3_QUARTER = 1 };
 #define DIV3_MAX_TERMS 20
+#define DIV3_PAPER_TERMS 3     /* the paper's network: x/2 - x/8 - x/32 - x/128 */
 
 /* Fraction bits the network's terms keep beyond x's: enough that the
  * truncations of its terms add up to at most one LSB of x. */

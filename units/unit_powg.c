@@ -269,7 +269,7 @@ const unit_desc unit_powg = {
     .nsched = 1,
     .sched = { { "square", "one squaring a clock: log2(g) clocks per item" } },
     .nparams = 1,
-    .params = { { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, NULL, "power, a power of two" } },
+    .params = { { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, 16, NULL, "power, a power of two" } },
     .fmt_rule = "every signal u1.(W-1) (values in [0, 1])",
     .formats = powg_formats, .beats = beats1, .build = powg_build,
     .ideal = powg_ideal, .bound = powg_bound, .ideal_exact = powg_exact, .ideal_interval = powg_interval,

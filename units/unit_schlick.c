@@ -137,7 +137,7 @@ const unit_desc unit_schlick = {
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,
-    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, NULL, "specular exponent n" } },
+    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, 32, NULL, "specular exponent n" } },
     .fmt_rule = "c, f, q u1.(W-1); k u(I).0 for the integer n-1; t, den, r uI.(W-1) with I the "
                 "integer bits of n",
     .formats = sh_formats, .beats = beats1, .build = sh_build, .ideal = sh_ideal, .bound = sh_bound, .ideal_ratio = sh_ratio,
@@ -375,7 +375,7 @@ const unit_desc unit_mschlick = {
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,
-    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, NULL, "specular exponent n" } },
+    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, 32, NULL, "specular exponent n" } },
     .fmt_rule = "c, f, q u1.(W-1); k uI.2, t uI.(W+1) for n - 1.25; u uI.(W+1) with I the integer "
                 "bits of n; e u(bits of I).0; un, v u0.W; den, r u1.(W+2)",
     .formats = ms_formats, .beats = beats1, .build = ms_build, .ideal = ms_ideal, .bound = ms_bound, .ideal_ratio = ms_ratio,
