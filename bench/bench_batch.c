@@ -45,7 +45,7 @@ static int spans(void)
         for (int sc = 0; sc < 3; sc++) {
             const unit_desc *ud = unit_find(units[u]);
             unit_cfg cfg;
-            unit_cfg_default(&cfg);
+            unit_cfg_default(ud, &cfg);
             cfg.L = L;
             cfg.schedule = unit_sched_find(ud, scheds[sc]);
             unit_fmts f;
@@ -151,7 +151,7 @@ static int horner(void)
 {
     const unit_desc *u = unit_find("horner3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     unit_fmts f;
     char err[600];
     tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err);

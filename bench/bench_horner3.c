@@ -34,7 +34,7 @@ int main(void)
 {
     const unit_desc *u = unit_find("horner3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     vec_set vs;
     char err[600];
     if (cli_make_vectors(u, &cfg, PIXELS, 7, &vs, err, sizeof err)) { fprintf(stderr, "%s\n", err); return 1; }

@@ -32,7 +32,7 @@ int main(void)
         for (int sc = 0; sc < 3; sc++) {
             const unit_desc *ud = unit_find(units[u]);
             unit_cfg cfg;
-            unit_cfg_default(&cfg);
+            unit_cfg_default(ud, &cfg);
             cfg.L = L;
             cfg.schedule = unit_sched_find(ud, scheds[sc]);
             unit_fmts f;

@@ -107,7 +107,7 @@ static int speed_ladder(hw_cost *hc)
     int bad = 0;
     for (int i = 0; i < 3; i++) {
         unit_cfg cfg;
-        unit_cfg_default(&cfg);
+        unit_cfg_default(NULL, &cfg);       /* shared by the units below */
         cfg.width = SPEED_WIDTHS[i];
         hw_point d, w, q;
         unit_cfg sq = cfg;
@@ -126,7 +126,7 @@ static void measure_cost(int width, hw_cost *hc)
     memset(hc, 0, sizeof *hc);
     hc->width = width;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(NULL, &cfg);           /* shared by the units below (the model's m, alpha) */
     cfg.width = width;
     const size_t nv = 64;
     int bad = 0;
@@ -369,7 +369,7 @@ static chart *cost_chart(void)
         int s = chart_series(c, COST_UNITS[k].label, CHART_LINE | CHART_POINTS);
         for (size_t w = 0; w < N_COST_WIDTHS; w++) {
             unit_cfg cfg;
-            unit_cfg_default(&cfg);
+            unit_cfg_default(unit_find(COST_UNITS[k].unit), &cfg);
             cfg.width = COST_WIDTHS[w];
             double peak = !strcmp(COST_UNITS[k].unit, "d_approx") ? 1 / (4 * cfg.m * cfg.m) : 1;
             hw_point pt;

@@ -148,8 +148,8 @@ int cli_parse_real(const char *opt, const char *text, double lo, double hi, cons
 int cli_unit_select(cli_unit_opts *o, const char *name)
 {
     memset(o, 0, sizeof *o);
-    unit_cfg_default(&o->cfg);
     o->u = unit_find(name);
+    unit_cfg_default(o->u, &o->cfg);
     if (!o->u) return cli_usage_error("unknown unit '%s' (shadesim list shows the units)", name);
     return CLI_OK;
 }
@@ -322,7 +322,7 @@ int cli_make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, uint64_t
 static int params_default(const unit_desc *u, const unit_cfg *cfg)
 {
     unit_cfg d;
-    unit_cfg_default(&d);
+    unit_cfg_default(u, &d);
     for (int i = 0; i < u->nparams; i++) {
         char a[64], b[64];
         unit_param_get(&u->params[i], cfg, a, sizeof a);

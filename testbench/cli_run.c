@@ -27,7 +27,7 @@ static int stdout_done(int rc)
 /* A unit's default configuration and formats at a width and schedule. */
 static void defaults_at(const unit_desc *u, int width, int sched, unit_cfg *cfg, unit_fmts *fm)
 {
-    unit_cfg_default(cfg);
+    unit_cfg_default(u, cfg);
     cfg->width = width;
     cfg->schedule = sched;
     u->formats(cfg, fm);
@@ -172,7 +172,7 @@ int cli_list(int argc, char **argv)
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_list_spec);
     list_args la;
     memset(&la, 0, sizeof la);
-    unit_cfg_default(&la.o.cfg);
+    unit_cfg_default(NULL, &la.o.cfg);     /* no unit yet: only --width is read */
     la.o.cfg.width = 16;
     void *base[] = { &la, &la.o };
     if (cli_opt_parse(&cli_list_spec, base, argc, argv, 1)) return CLI_USAGE;

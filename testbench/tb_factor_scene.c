@@ -141,7 +141,7 @@ int tb_factor_scene(const char *scene, int L, double alpha, int width, int res, 
     }
     if (nitems) {
         unit_cfg cfg;
-        unit_cfg_default(&cfg);
+        unit_cfg_default(u, &cfg);
         cfg.width = width; cfg.L = L; cfg.alpha = alpha;
         unit_fmts f;
         u->formats(&cfg, &f);

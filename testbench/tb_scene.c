@@ -61,7 +61,7 @@ int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_f
     if ((int)d->policy < 0 || d->policy >= SCN_POL__COUNT) { snprintf(err, errlen, "unknown policy"); return -1; }
     const unit_desc *u = unit_find(uname[d->policy]);
     if (!u) { snprintf(err, errlen, "unit %s is not built into this shadesim", uname[d->policy]); return -1; }
-    unit_cfg_default(cfg);
+    unit_cfg_default(u, cfg);
     cfg->width = d->fmt_width;
     cfg->L = d->L;
     cfg->terms = d->terms;

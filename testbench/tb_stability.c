@@ -72,7 +72,7 @@ double tb_stab_fwd_err(int deg, int L, int F)
     const unit_desc *u = unit_find(deg == 2 ? "interp2" : "interp3");
     if (!u) return -1;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = 24;
     cfg.L = L;
     cfg.schedule = unit_sched_find(u, "fwd");
@@ -110,7 +110,7 @@ static int coef_run(const char *unit, const char *sig, int ibits, int sat, tb_re
     const unit_desc *u = unit_find(unit);
     if (!u || unit_sig_index(u, sig) < 0) return -1;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = 16;
     cfg.ovf = sat ? SIM_OVF_SAT : SIM_OVF_WRAP;
     unit_fmts fm;
@@ -190,7 +190,7 @@ static int run_profiles_nodes(int deg, int nodes, const profile *pr, size_t np, 
     const unit_desc *u = unit_find(deg == 2 ? "interp2" : "interp3");
     if (!u) return -1;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = PROF_W;
     cfg.L = PROF_L;
     cfg.terms = PROF_TERMS;
@@ -358,7 +358,7 @@ double tb_stab_div3_err(int W, int terms)
     const unit_desc *u = unit_find("div3");
     if (!u) return -1;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = W;
     cfg.terms = terms;
     cfg.series = 0;
@@ -417,7 +417,7 @@ int tb_stab_unit(const char *unit, int W, int v, double *err_lsb, double *clocks
     const unit_desc *u = unit_find(unit);
     if (!u) return -1;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = W;
     if (!strcmp(unit, "pow_n")) cfg.n = v;
     if (!strcmp(unit, "powg")) cfg.g = v;
@@ -593,7 +593,7 @@ static int atlas_overshoot(tb_stab *s, int charts)
     /* the clamp's area against the interp3 unit's */
     const unit_desc *u = unit_find("interp3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = PROF_W;
     unit_fmts fm;
     char err[300];

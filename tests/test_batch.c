@@ -48,7 +48,7 @@ static void span_case(const char *name, int L, const char *sched, const char *fm
     TST_CHECK(u != NULL, "%s", name);
     if (!u) return;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.L = L;
     for (int s = 0; s < u->nsched; s++) if (!strcmp(u->sched[s].name, sched)) cfg.schedule = s;
     unit_fmts fm;
@@ -130,7 +130,7 @@ static void t_units_lanes_equal_kernel(void)
     for (size_t ui = 0; ui < unit_count(); ui++) {
         const unit_desc *u = unit_at(ui);
         unit_cfg cfg;
-        unit_cfg_default(&cfg);
+        unit_cfg_default(u, &cfg);
         unit_fmts fm;
         char err[600];
         if (tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); continue; }

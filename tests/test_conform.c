@@ -93,7 +93,7 @@ static void check_desc(const unit_desc *u)
     /* Each parameter's default lies in its range, and its printed form
      * sets it back (what `list` shows is what --param takes). */
     unit_cfg d;
-    unit_cfg_default(&d);
+    unit_cfg_default(u, &d);
     for (int p = 0; p < u->nparams; p++) {
         const unit_param *pp = &u->params[p];
         char val[64], err[256];
@@ -304,7 +304,7 @@ static void conform(void)
     const unit_desc *u = cur;
     check_desc(u);
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     vec_set vs;
     if (check_reference(u, &cfg, &vs)) return;
     for (int s = 0; s < u->nsched; s++) {
@@ -314,6 +314,45 @@ static void conform(void)
         check_run(u, &cfg, &vs, 1);
     }
     vec_set_free(&vs);
+}
+
+/* A unit's defaults are its own: a descriptor whose table gives another
+ * default gets it, and no other unit does; a field a unit does not list
+ * keeps the shared value (the reference's own default for the model's
+ * fields), whatever the other units' tables say. */
+static void defaults_per_unit(void)
+{
+    const unit_desc *sh = unit_find("schlick"), *pn = unit_find("pow_n"), *dv = unit_find("div");
+    TST_CHECK(sh && pn && dv, "schlick, pow_n, div registered");
+    if (!sh || !pn || !dv) return;
+    int k = -1;
+    for (int p = 0; p < sh->nparams; p++) if (!strcmp(sh->params[p].name, "n")) k = p;
+    TST_CHECK(k >= 0, "schlick has a parameter n");
+    if (k < 0) return;
+    static unit_desc mine;          /* large: not on the stack */
+    mine = *sh;
+    int other = (int)sh->params[k].def == 7 ? 9 : 7;
+    mine.params[k].def = other;
+    unit_cfg a, b, c, none;
+    unit_cfg_default(&mine, &a);
+    unit_cfg_default(sh, &b);
+    unit_cfg_default(pn, &c);
+    unit_cfg_default(NULL, &none);
+    TST_EQ_INT(a.n, other);
+    TST_EQ_INT(b.n, (int)sh->params[k].def);
+    TST_EQ_INT(c.n, (int)pn->params[0].def);
+    a.n = b.n;
+    TST_CHECK(!memcmp(&a, &b, sizeof a), "only n differs between the two schlick descriptors");
+    /* div lists no parameter: every field is the shared value */
+    unit_cfg d;
+    unit_cfg_default(dv, &d);
+    TST_CHECK(!memcmp(&d, &none, sizeof d), "div (no parameters) has the shared values");
+    vec_params vp;
+    vec_params_default(&vp);
+    TST_CHECK(!memcmp(&none.model, &vp, sizeof vp), "the model's fields are the reference's defaults");
+    TST_EQ_INT(none.width, 16);
+    TST_EQ_INT(none.terms, 3);          /* the paper's /3 network: x/2 - x/8 - x/32 - x/128 */
+    TST_EQ_INT(none.series, 0);
 }
 
 /* The registry: at least the units the docs describe, each once. */
@@ -332,6 +371,7 @@ int main(void)
 {
     /* The checked-in vectors are read relative to the source tree. */
     TST_RUN(registry);
+    TST_RUN(defaults_per_unit);
     for (size_t i = 0; i < unit_count(); i++) {
         char name[64];
         cur = unit_at(i);

@@ -233,7 +233,7 @@ static void t_hf_lookup_wide(void)
     static const int L[2] = { 8, 16 }, W[2] = { 24, 32 };
     for (int k = 0; k < 2; k++) {
         unit_cfg cfg;
-        unit_cfg_default(&cfg);
+        unit_cfg_default(u, &cfg);
         cfg.width = W[k];
         cfg.L = L[k];
         vec_params p;

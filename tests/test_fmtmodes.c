@@ -189,7 +189,7 @@ static int run_unit(const char *name, const char *round, const char *const *ov, 
 {
     const unit_desc *u = unit_find(name);
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     if (round && sim_round_parse(round, &cfg.rnd)) abort();
     unit_fmts fm;
     memset(r, 0, sizeof *r);
@@ -216,7 +216,7 @@ static void t_unit_all_signals(void)
 {
     const unit_desc *u = unit_find("horner3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     unit_fmts def;
     char err[600];
     TST_EQ_INT(tb_formats(u, &cfg, NULL, 0, &def, err, sizeof err), 0);
@@ -271,7 +271,7 @@ static void t_unit_one_signal(void)
 {
     const unit_desc *u = unit_find("horner3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     char err[600];
     vec_set vs;
     TST_EQ_INT(cli_make_vectors(u, &cfg, 300, 7, &vs, err, sizeof err), 0);
@@ -310,7 +310,7 @@ static void t_refused(void)
 {
     const unit_desc *u = unit_find("hf_lookup");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     unit_fmts fm;
     char err[600];
     const char *o1[] = { "rec=u1.15:half-up" }, *o2[] = { "u=s2.14:half-up" }, *o3[] = { "mul=s7.12:foo" };
@@ -328,7 +328,7 @@ static void t_unet_bound(void)
 {
     const unit_desc *u = unit_find("div3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     unit_fmts fm;
     char err[600];
     /* W = 16, terms 3: x s1.15, terms and sums s1.17. t1 = x/8, t2 = x/32,
@@ -346,7 +346,7 @@ static void t_unet_bound(void)
     for (size_t k = 0; k < 3; k++)
         for (int rep = 0; rep < 4; rep++) {
             u = unit_find(units[k]);
-            unit_cfg_default(&cfg);
+            unit_cfg_default(u, &cfg);
             cfg.rnd = (sim_round)(rnd64() % 3);
             unit_fmts def;
             TST_EQ_INT(tb_formats(u, &cfg, NULL, 0, &def, err, sizeof err), 0);
@@ -398,7 +398,7 @@ static void t_cosim(void)
     for (size_t k = 0; k < sizeof D / sizeof D[0]; k++) {
         const unit_desc *u = unit_find(D[k].u);
         unit_cfg cfg;
-        unit_cfg_default(&cfg);
+        unit_cfg_default(u, &cfg);
         cfg.width = 16;
         unit_fmts fm;
         char err[600], msg[1200];

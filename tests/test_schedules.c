@@ -19,7 +19,7 @@ static const char *const UNITS[] = { "horner3", "horner2", "interp3", "interp2" 
 static unit_cfg cfg_of(const unit_desc *u, const char *sched, int width, int L)
 {
     unit_cfg c;
-    unit_cfg_default(&c);
+    unit_cfg_default(u, &c);
     c.width = width;
     c.L = L;
     c.schedule = unit_sched_find(u, sched);

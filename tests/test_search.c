@@ -11,7 +11,7 @@ static int sweep_h3(tb_sweep *s, vec_set *vs, int lo, int hi, const tb_accept *a
     char err[600];
     memset(&sp, 0, sizeof sp);
     sp.u = unit_find("horner3");
-    unit_cfg_default(&sp.base);
+    unit_cfg_default(sp.u, &sp.base);
     sp.wlo = lo; sp.whi = hi;
     sp.nsched = sp.nrnd = sp.novf = 1;
     if (acc) sp.accept = *acc;

@@ -72,7 +72,7 @@ static void built_signals_are_listed_ones(void)
         for (int s = 0; s < u->nsched; s++)
             for (int v = 0; v < 3; v++) {
                 unit_cfg cfg;
-                unit_cfg_default(&cfg);
+                unit_cfg_default(u, &cfg);
                 cfg.schedule = s;
                 /* defaults, then every parameter at its minimum, then at its maximum */
                 for (int p = 0; v && p < u->nparams; p++) {
@@ -94,7 +94,7 @@ static void div3_builds_its_terms_only(void)
 {
     const unit_desc *u = unit_find("div3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.terms = 3;
     const char *paper[] = { "x", "y", "t0", "t1", "t2", "t3", "s1", "s2", "s3" };
     int n = 0;

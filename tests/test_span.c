@@ -77,7 +77,7 @@ static const unit_desc *setup(const ut *t, int sched, int width, int L, int term
     const unit_desc *u = unit_find(t->name);
     char err[600];
     if (!u) { TST_CHECK(0, "no unit %s", t->name); return NULL; }
-    unit_cfg_default(cfg);
+    unit_cfg_default(u, cfg);
     cfg->width = width;
     cfg->L = L;
     cfg->terms = terms;
@@ -647,7 +647,7 @@ static void t_rejected(void)
     }
     /* not a span unit */
     unit_cfg hc;
-    unit_cfg_default(&hc);
+    unit_cfg_default(unit_find("horner3"), &hc);
     unit_fmts hf;
     unit_find("horner3")->formats(&hc, &hf);
     TST_CHECK(tb_span_run(unit_find("horner3"), &hc, &hf, &ok, 1, pix, &st, NULL, err, sizeof err) == TB_BADINPUT

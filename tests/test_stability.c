@@ -203,7 +203,7 @@ static void interp3_n2_is_lagrange(void)
     TST_CHECK(u != NULL, "interp3");
     if (!u) return;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = 24;
     cfg.terms = 12;
     cfg.L = 8;

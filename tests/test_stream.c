@@ -35,7 +35,7 @@ static char *slurp(const char *path, size_t *n)
 static int same_both_ways(const unit_desc *u, const char *path, const char *tag)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     unit_fmts fm;
     char err[600], csvp[] = "/tmp/shadesim_test_stream_XXXXXX";
     if (tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err)) { TST_CHECK(0, "%s: %s", tag, err); return 0; }
@@ -99,7 +99,7 @@ static void t_many_blocks(void)
      * items than the ring's slots (so slots are reused). */
     const unit_desc *u = unit_find("horner3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     vec_set vs;
     char err[600], path[] = "/tmp/shadesim_test_stream_XXXXXX";
     int fd = mkstemp(path);

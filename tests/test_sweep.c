@@ -31,7 +31,7 @@ static int default_vectors(const unit_desc *u, const unit_cfg *cfg, vec_set *vs)
     tb_expected_header(u, cfg, &hdr);
     snprintf(path, sizeof path, "vectors/%s.vec", u->name);
     unit_cfg d;
-    unit_cfg_default(&d);
+    unit_cfg_default(u, &d);
     if (access(path, R_OK) == 0 && !memcmp(&d, cfg, sizeof d) && !vec_file_read(path, vs, &hdr, err, sizeof err)) return 0;
     return cli_make_vectors(u, cfg, 0, 1, vs, err, sizeof err);
 }
@@ -44,7 +44,7 @@ static int run_sweep(tb_sweep *s, vec_set *vs, const char *unit, int lo, int hi,
     char err[600];
     memset(&sp, 0, sizeof sp);
     sp.u = unit_find(unit);
-    unit_cfg_default(&sp.base);
+    unit_cfg_default(sp.u, &sp.base);
     if (param && unit_param_set(sp.u, &sp.base, "terms", param, err, sizeof err)) return -1;
     sp.wlo = lo; sp.whi = hi;
     sp.nsched = sp.nrnd = sp.novf = 1;
@@ -64,7 +64,7 @@ static void test_sweep_order_and_shards(void)
     char err[600];
     memset(&sp, 0, sizeof sp);
     sp.u = unit_find("horner3");
-    unit_cfg_default(&sp.base);
+    unit_cfg_default(sp.u, &sp.base);
     sp.wlo = 8; sp.whi = 10;
     sp.nsched = 1;
     sp.nrnd = 3; sp.rnd[0] = SIM_RND_TRUNC; sp.rnd[1] = SIM_RND_HALF_UP; sp.rnd[2] = SIM_RND_EVEN;
@@ -97,7 +97,7 @@ static void test_sweep_order_and_shards(void)
     if (!u) return;
     memset(&sp, 0, sizeof sp);
     sp.u = u;
-    unit_cfg_default(&sp.base);
+    unit_cfg_default(sp.u, &sp.base);
     sp.wlo = sp.whi = 12;
     sp.nsched = sp.nrnd = sp.novf = 1;
     sp.npax = 2;

@@ -60,10 +60,10 @@ static void coef_expect(const char *unit, const double *I, double f, double *c)
 
 /* ---- running units ----------------------------------------------------- */
 
-static unit_cfg cfg_of(int width)
+static unit_cfg cfg_of(const unit_desc *u, int width)
 {
     unit_cfg c;
-    unit_cfg_default(&c);
+    unit_cfg_default(u, &c);
     c.width = width;
     return c;
 }
@@ -132,7 +132,7 @@ static void t_ports_match_reference(void)
         const unit_desc *u = unit_find(MINE[k]);
         TST_CHECK(u != NULL, "unit %s missing", MINE[k]);
         if (!u) continue;
-        unit_cfg cfg = cfg_of(16);
+        unit_cfg cfg = cfg_of(u, 16);
         check_ports(u, &cfg);
         cfg.L = 4;
         check_ports(u, &cfg);
@@ -169,7 +169,7 @@ static void t_within_bound_widths(void)
     static const int widths[] = { 8, 12, 16, 20, 24, 32 };
     for (int k = 0; k < NMINE; k++)
         for (size_t w = 0; w < sizeof widths / sizeof widths[0]; w++) {
-            unit_cfg cfg = cfg_of(widths[w]);
+            unit_cfg cfg = cfg_of(unit_find(MINE[k]), widths[w]);
             check_run(MINE[k], &cfg, NULL, 0);
         }
 }
@@ -180,7 +180,7 @@ static void t_within_bound_modes_params(void)
     static const int terms[] = { 1, 2, 5, 20 };
     for (int k = 0; k < NMINE; k++) {
         for (int m = 0; m < 3; m++) {
-            unit_cfg cfg = cfg_of(14);
+            unit_cfg cfg = cfg_of(unit_find(MINE[k]), 14);
             cfg.rnd = rnds[m];
             cfg.ovf = m == 1 ? SIM_OVF_SAT : SIM_OVF_WRAP;
             check_run(MINE[k], &cfg, NULL, 0);
@@ -188,7 +188,7 @@ static void t_within_bound_modes_params(void)
         if (!strcmp(MINE[k], "coef2") || !strcmp(MINE[k], "interp2")) continue;
         for (int s = 0; s < 2; s++)
             for (size_t t = 0; t < sizeof terms / sizeof terms[0]; t++) {
-                unit_cfg cfg = cfg_of(18);
+                unit_cfg cfg = cfg_of(unit_find(MINE[k]), 18);
                 cfg.terms = terms[t];
                 cfg.series = s;
                 check_run(MINE[k], &cfg, NULL, 0);
@@ -197,7 +197,7 @@ static void t_within_bound_modes_params(void)
     /* L = 1 is left out: tb_expected_header names a single beat "y" while
      * the reference model names it "y0", so no vectors fit (reported). */
     for (int L = 2; L <= 32; L *= 2) {
-        unit_cfg cfg = cfg_of(16);
+        unit_cfg cfg = cfg_of(unit_find("interp3"), 16);
         cfg.L = L;
         check_run("interp3", &cfg, NULL, 0);
         check_run("interp2", &cfg, NULL, 0);
@@ -211,7 +211,7 @@ static void t_bound_follows_overrides(void)
 {
     for (int k = 0; k < NMINE; k++) {
         const unit_desc *u = unit_find(MINE[k]);
-        unit_cfg cfg = cfg_of(20);
+        unit_cfg cfg = cfg_of(u, 20);
         unit_fmts def;
         u->formats(&cfg, &def);
         double b0[UNIT_MAX_IO], b1[UNIT_MAX_IO];
@@ -257,7 +257,7 @@ static void t_high_precision_network_error(void)
         const char *name = MINE[k];
         const unit_desc *u = unit_find(name);
         for (int s = 0; s < 2; s++) {
-            unit_cfg cfg = cfg_of(16);
+            unit_cfg cfg = cfg_of(u, 16);
             cfg.series = s;
             double f = factor(cfg.terms, s);
             vec_set vs;
@@ -309,7 +309,7 @@ static void t_high_precision_network_error(void)
 static double div3_at(double x, int terms, int series, double *bound)
 {
     const unit_desc *u = unit_find("div3");
-    unit_cfg cfg = cfg_of(16);
+    unit_cfg cfg = cfg_of(u, 16);
     cfg.terms = terms;
     cfg.series = series;
     vec_set vs;
@@ -361,7 +361,7 @@ static void t_div3_structure(void)
 {
     const unit_desc *u = unit_find("div3");
     for (int s = 0; s < 2; s++) {
-        unit_cfg cfg = cfg_of(16);
+        unit_cfg cfg = cfg_of(u, 16);
         cfg.terms = 4;
         cfg.series = s;
         unit_fmts fm;
@@ -403,7 +403,7 @@ static void check_monomials(const char *name, int terms)
     int cubic = strcmp(name, "coef2") != 0;
     int k = cubic ? 4 : 3;
     const double *tn = !strcmp(name, "coef3_n2") ? T_N2 : cubic ? T_N1 : T_Q;
-    unit_cfg cfg = cfg_of(24);
+    unit_cfg cfg = cfg_of(u, 24);
     cfg.terms = terms;
     double f = factor(terms, 0);
     vec_set vs;
@@ -451,7 +451,7 @@ static void t_coef_vs_vandermonde(void)
     static const char *const units[] = { "coef3_n1", "coef3_n2", "coef2" };
     for (int i = 0; i < 3; i++) {
         const unit_desc *u = unit_find(units[i]);
-        unit_cfg cfg = cfg_of(20);
+        unit_cfg cfg = cfg_of(u, 20);
         vec_set vs;
         char err[300];
         TST_CHECK(cli_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err) == 0, "%s", err);
@@ -480,7 +480,7 @@ static void check_interp(const char *name, int L, int terms, int width)
 {
     const unit_desc *u = unit_find(name);
     int cubic = !strcmp(name, "interp3");
-    unit_cfg cfg = cfg_of(width);
+    unit_cfg cfg = cfg_of(u, width);
     cfg.L = L;
     cfg.terms = terms;
     double f = factor(terms, 0);
@@ -538,7 +538,7 @@ static void t_params_rejected(void)
     char err[300];
     for (int k = 0; k < NMINE; k++) {
         const unit_desc *u = unit_find(MINE[k]);
-        unit_cfg cfg = cfg_of(16);
+        unit_cfg cfg = cfg_of(u, 16);
         int has_terms = strcmp(MINE[k], "coef2") && strcmp(MINE[k], "interp2");
         err[0] = 0;
         TST_CHECK(unit_param_set(u, &cfg, "terms", "0", err, sizeof err) < 0 && strstr(err, "terms"),
@@ -556,7 +556,7 @@ static void t_params_rejected(void)
     static const char *const interps[] = { "interp3", "interp2" };
     for (int k = 0; k < 2; k++) {
         const unit_desc *u = unit_find(interps[k]);
-        unit_cfg cfg = cfg_of(16);
+        unit_cfg cfg = cfg_of(u, 16);
         TST_CHECK(unit_param_set(u, &cfg, "L", "64", err, sizeof err) < 0, "L=64 accepted");
         TST_CHECK(unit_param_set(u, &cfg, "L", "0", err, sizeof err) < 0, "L=0 accepted");
         TST_CHECK(unit_param_set(u, &cfg, "L", "3", err, sizeof err) < 0 && strstr(err, "power of two"), "L=3: '%s'", err);
@@ -596,7 +596,7 @@ static void t_scopes(void)
         char unit[16];
         snprintf(unit, sizeof unit, "%.*s", (int)strcspn(want[i], "."), want[i]);
         const unit_desc *u = unit_find(unit);
-        unit_cfg cfg = cfg_of(16);
+        unit_cfg cfg = cfg_of(u, 16);
         unit_fmts fm;
         u->formats(&cfg, &fm);
         sim_ctx *c = sim_new();
@@ -616,7 +616,7 @@ static void t_scopes(void)
  * the builder unchanged: cycles and area did not move). */
 static void t_horner3_unchanged(void)
 {
-    unit_cfg cfg = cfg_of(16);
+    unit_cfg cfg = cfg_of(unit_find("horner3"), 16);
     tb_result r;
     char err[300];
     if (run("horner3", &cfg, NULL, 0, NULL, &r, err, sizeof err) != TB_OK) { TST_CHECK(0, "%s", err); return; }

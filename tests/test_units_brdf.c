@@ -31,7 +31,7 @@ static int run(const char *name, const unit_cfg *cfg, const char *ov, size_t n, 
     return rc == TB_OK ? 0 : -1;
 }
 
-static void cfg_w(unit_cfg *c, int w) { unit_cfg_default(c); c->width = w; }
+static void cfg_w(const char *unit, unit_cfg *c, int w) { unit_cfg_default(unit_find(unit), c); c->width = w; }
 
 /* ---- bounds ------------------------------------------------------------- */
 
@@ -46,7 +46,7 @@ static void bound_met_and_tight(void)
         for (int w = 0; w < 2; w++)
             for (int m = 0; m < 2; m++) {
                 unit_cfg cfg;
-                cfg_w(&cfg, widths[w]);
+                cfg_w(UNITS[k], &cfg, widths[w]);
                 cfg.rnd = modes[m];
                 tb_result r;
                 if (run(UNITS[k], &cfg, NULL, 0, &r)) { TST_CHECK(0, "%s did not run", UNITS[k]); continue; }
@@ -79,7 +79,7 @@ static void bound_holds_under_overrides(void)
     for (int it = 0; it < 280; it++) {
         const unit_desc *u = unit_find(UNITS[it % NUNITS]);
         unit_cfg cfg;
-        cfg_w(&cfg, ri(6, 40));
+        cfg_w(u->name, &cfg, ri(6, 40));
         cfg.rnd = (sim_round)ri(0, 2);
         cfg.ovf = (sim_ovf)ri(0, 1);
         cfg.n = ri(1, 1024);
@@ -122,7 +122,7 @@ static void high_precision_is_ideal(void)
 {
     for (size_t k = 0; k < NUNITS; k++) {
         unit_cfg cfg;
-        cfg_w(&cfg, 16);
+        cfg_w(UNITS[k], &cfg, 16);
         tb_result r;
         if (run(UNITS[k], &cfg, "all=s8.48", 0, &r)) { TST_CHECK(0, "%s did not run", UNITS[k]); continue; }
         TST_CHECK(r.out[0].max_err_ideal <= 1e-9, "%s: |hw - ideal| = %g", UNITS[k], r.out[0].max_err_ideal);
@@ -148,7 +148,7 @@ static void d_approx_clamp(void)
     for (int mi = 0; mi < 3; mi++)
         for (int wi = 0; wi < 3; wi++) {
             unit_cfg cfg;
-            cfg_w(&cfg, widths[wi]);
+            cfg_w(u->name, &cfg, widths[wi]);
             cfg.m = ms[mi];
             double peak = 1 / (4 * cfg.m * cfg.m), k = (2 / (cfg.m * cfg.m) - 4) / 16, cz = 1 - 1 / k;
             vec_set vs;
@@ -229,7 +229,7 @@ static void div_integer_exhaustive(void)
 {
     const unit_desc *u = unit_find("div");
     unit_cfg cfg;
-    cfg_w(&cfg, 8);
+    cfg_w(u->name, &cfg, 8);
     unit_fmts f;
     char err[600];
     const char *ov[2] = { "all=u8.0", "dz=u1.0" };
@@ -300,7 +300,7 @@ static void clocks_per_item(void)
     static const int ns[] = { 1, 2, 3, 5, 7, 32, 46, 50, 100, 255, 511, 1000, 1023, 1024 };
     for (size_t i = 0; i < sizeof ns / sizeof ns[0]; i++) {
         unit_cfg cfg;
-        cfg_w(&cfg, 16);
+        cfg_w("pow_n", &cfg, 16);
         cfg.n = ns[i];
         tb_result r;
         if (run("pow_n", &cfg, NULL, 16, &r)) { TST_CHECK(0, "pow_n n=%d did not run", ns[i]); continue; }
@@ -312,7 +312,7 @@ static void clocks_per_item(void)
     TST_EQ_INT(sqmul_clocks(1024), 10);
     for (int g = 2; g <= 64; g *= 2) {
         unit_cfg cfg;
-        cfg_w(&cfg, 16);
+        cfg_w("powg", &cfg, 16);
         cfg.g = g;
         int k = 0;
         while ((1 << k) < g) k++;
@@ -326,7 +326,7 @@ static void clocks_per_item(void)
     for (int i = 0; i < 3; i++)
         for (int w = 10; w <= 24; w += 7) {
             unit_cfg cfg;
-            cfg_w(&cfg, w);
+            cfg_w(bitwise[i], &cfg, w);
             tb_result r;
             if (!run(bitwise[i], &cfg, NULL, 16, &r)) TST_NEAR(r.cycles_per_item, w, 0);
             tb_result_free(&r);
@@ -339,7 +339,7 @@ static void bad_parameters_refused(void)
 {
     const unit_desc *pg = unit_find("powg"), *da = unit_find("d_approx");
     unit_cfg cfg;
-    cfg_w(&cfg, 16);
+    cfg_w("powg", &cfg, 16);
     char err[300];
     TST_EQ_INT(unit_param_set(pg, &cfg, "g", "128", err, sizeof err), -1);
     TST_EQ_INT(unit_param_set(pg, &cfg, "g", "12", err, sizeof err), -1);
@@ -366,7 +366,7 @@ static void peaks_fit(void)
     static const int ns[] = { 1, 2, 60, 1024 };
     for (int i = 0; i < 4; i++) {
         unit_cfg cfg;
-        cfg_w(&cfg, 16);
+        cfg_w("mschlick", &cfg, 16);
         cfg.n = ns[i];
         tb_result r;
         if (run("mschlick", &cfg, NULL, 8, &r)) { TST_CHECK(0, "mschlick n=%d", ns[i]); continue; }
@@ -382,7 +382,7 @@ static void peaks_fit(void)
     static const double ms[] = { 0.05, 0.5, 0.8, 1.0 };
     for (int i = 0; i < 4; i++) {
         unit_cfg cfg;
-        cfg_w(&cfg, 16);
+        cfg_w("d_approx", &cfg, 16);
         cfg.m = ms[i];
         double k = (2 / (ms[i] * ms[i]) - 4) / 16, peak = pow(k < 0 ? 1 - k : 1, 16) / (4 * ms[i] * ms[i]);
         tb_result r;
@@ -404,7 +404,7 @@ static void vcd_has_internals(void)
         snprintf(path, sizeof path, "%s/test_units_brdf_%s.vcd", dir ? dir : "/tmp", UNITS[k]);
         const unit_desc *u = unit_find(UNITS[k]);
         unit_cfg cfg;
-        cfg_w(&cfg, 12);
+        cfg_w(u->name, &cfg, 12);
         unit_fmts f;
         vec_set vs;
         char err[600];

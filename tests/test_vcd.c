@@ -221,7 +221,7 @@ static void t_window(void)
      * it has, it shows the whole dump's state. */
     const unit_desc *u = unit_find("horner3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = 24;
     unit_fmts fm;
     char err[300];
@@ -309,7 +309,7 @@ static void t_horner3_readback(void)
      * (At+B)t, (At+B)t+C, ((At+B)t+C)t, I for each pixel in turn. */
     const unit_desc *u = unit_find("horner3");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = 24;
     unit_fmts fm;
     char err[300];

@@ -115,7 +115,7 @@ static void t_exact_wide(void)
     static const char *const fm[] = { NULL, "all=s8.56" };
     for (int i = 0; i < 2; i++) {
         unit_cfg cfg;
-        unit_cfg_default(&cfg);
+        unit_cfg_default(unit_find("horner3"), &cfg);
         cfg.width = i ? 16 : 64;
         tb_result r;
         if (run_ov("horner3", &cfg, fm[i] ? &fm[i] : NULL, fm[i] ? 1 : 0, NULL, &r)) { TST_CHECK(0, "run"); continue; }
@@ -138,7 +138,7 @@ static void t_exact_int128(void)
 {
     static const char *const ov[] = { "all=s8.24", "t=u1.24" };
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(unit_find("horner3"), &cfg);
     vec_set vs;
     char err[600];
     const unit_desc *u = unit_find("horner3");
@@ -172,7 +172,7 @@ static void t_exact_int128(void)
 static void t_unchecked(void)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(unit_find("ward_approx"), &cfg);
     cfg.width = 56;
     tb_result r;
     if (run_ov("ward_approx", &cfg, NULL, 0, NULL, &r)) { TST_CHECK(0, "run"); return; }
@@ -198,7 +198,7 @@ static void t_unchecked(void)
 static void t_overflow_input(void)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(unit_find("div3"), &cfg);
     cfg.rnd = SIM_RND_HALF_UP;
     const unit_desc *u = unit_find("div3");
     vec_set vs;
@@ -238,7 +238,7 @@ static void t_overflow_const(void)
     };
     for (size_t i = 0; i < sizeof c / sizeof c[0]; i++) {
         unit_cfg cfg;
-        unit_cfg_default(&cfg);
+        unit_cfg_default(unit_find(c[i].unit), &cfg);
         if (c[i].n) cfg.n = c[i].n;
         if (c[i].m > 0) cfg.m = c[i].m;
         if (c[i].g) cfg.g = c[i].g;
@@ -259,7 +259,7 @@ static void t_overflow_const(void)
 static void t_ranges(void)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(unit_find("horner3"), &cfg);
     tb_result r;
     if (run_ov("horner3", &cfg, NULL, 0, NULL, &r)) { TST_CHECK(0, "run"); return; }
     TST_CHECK(r.nsigs >= 10, "%d signals", r.nsigs);
@@ -280,7 +280,7 @@ static void t_ranges(void)
 static void t_no_fallback(void)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(unit_find("div"), &cfg);
     cfg.width = 8;
     tb_result r;
     if (run_ov("div", &cfg, NULL, 0, NULL, &r) == 0) {
@@ -301,7 +301,7 @@ static void t_pipe_bound_attained(void)
 {
     static const char *const ov[] = { "t1=u1.6" };
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(unit_find("horner3"), &cfg);
     const unit_desc *u = unit_find("horner3");
     cfg.schedule = unit_sched_find(u, "pipe");
     vec_set vs;
@@ -326,7 +326,7 @@ static void t_pipe_bound_attained(void)
 static void t_golden(void)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(unit_find("horner3"), &cfg);
     const unit_desc *u = unit_find("horner3");
     vec_set vs;
     char err[600];
@@ -352,7 +352,7 @@ static void t_overflow_named(void)
 {
     static const char *const ov = "a=s2.9";
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(unit_find("horner3"), &cfg);
     const unit_desc *u = unit_find("horner3");
     vec_set vs;
     char err[600];
@@ -381,7 +381,7 @@ static void t_overflow_named(void)
 static void t_accept(void)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(unit_find("horner3"), &cfg);
     tb_result r;
     if (run_ov("horner3", &cfg, NULL, 0, NULL, &r)) { TST_CHECK(0, "run"); return; }
     double e = r.max_abs_err, lsb = e / 0x1p-9;
@@ -428,7 +428,7 @@ static void t_random_units(void)
         int no = unit_n_out(u), grew = 0, inherent = 0;
         for (int d = 0; d < 24; d++) {
             unit_cfg cfg;
-            unit_cfg_default(&cfg);
+            unit_cfg_default(u, &cfg);
             cfg.width = 8 + (int)(rnd64() % 17);
             cfg.rnd = (sim_round)(rnd64() % 3);
             cfg.ovf = (sim_ovf)(rnd64() % 2);

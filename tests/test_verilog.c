@@ -45,7 +45,7 @@ static void one_width(int W)
     TST_CHECK(u != NULL, "no horner3 unit");
     if (!u) return;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = W;
     char err[600];
     unit_fmts fm;
@@ -163,7 +163,7 @@ static const char *cosim_one(const unit_desc *u, int sched, int W, sim_round rnd
     static char dir[256];
     static int seq;
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = W; cfg.schedule = sched; cfg.rnd = rnd; cfg.ovf = ovf;
     unit_fmts fm;
     char err[600], msg[1200];
@@ -238,7 +238,7 @@ static void t_cosim_icarus(void)
                         snprintf(p, sizeof p, "%s/icarus.out", dir);
                         count_lines(p, &lines, &distinct);
                         unit_cfg cfg;
-                        unit_cfg_default(&cfg);
+                        unit_cfg_default(u, &cfg);
                         cfg.schedule = s;
                         TST_EQ_INT(lines, 12 * u->beats(&cfg));
                         TST_CHECK(distinct >= 2, "%s: only %d distinct outputs", u->name, distinct);
@@ -263,7 +263,7 @@ static void t_cosim_verilator(void)
 static int export_one(const unit_desc *u, int s, int W, sim_round r, sim_ovf o, const char *dir)
 {
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     cfg.width = W; cfg.schedule = s; cfg.rnd = r; cfg.ovf = o;
     unit_fmts fm;
     char err[600];
@@ -346,7 +346,7 @@ static void t_cosim_params(void)
         TST_CHECK(u != NULL, "no unit %s", P[i].u);
         if (!u) continue;
         unit_cfg cfg;
-        unit_cfg_default(&cfg);
+        unit_cfg_default(u, &cfg);
         cfg.width = 20; cfg.rnd = SIM_RND_HALF_UP; cfg.ovf = SIM_OVF_SAT;
         char err[600], msg[1200], dir[256];
         TST_CHECK(unit_param_set(u, &cfg, P[i].p, P[i].v, err, sizeof err) == 0, "%s", err);

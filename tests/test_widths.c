@@ -18,7 +18,7 @@ static void horner_minimum_is_8(void)
     for (int k = 0; k < 2; k++) {
         const unit_desc *u = unit_find(names[k]);
         unit_cfg cfg;
-        unit_cfg_default(&cfg);
+        unit_cfg_default(u, &cfg);
         int lim;
         TST_EQ_INT(unit_min_width(u, &cfg, &lim), 7 + 1);
         TST_CHECK(lim >= 0 && u->sigs[lim].name[0] != 't', "%s: limited by %s", names[k], lim >= 0 ? u->sigs[lim].name : "-");
@@ -34,7 +34,7 @@ static void every_unit_minimum_is_honest(void)
         const unit_desc *u = unit_at(k);
         for (int s = 0; s < u->nsched; s++) {
             unit_cfg cfg;
-            unit_cfg_default(&cfg);
+            unit_cfg_default(u, &cfg);
             cfg.schedule = s;
             int lim, wmin = unit_min_width(u, &cfg, &lim);
             unit_fmts a, b, f16, f17;
@@ -70,7 +70,7 @@ static void minimum_follows_parameters(void)
 {
     const unit_desc *u = unit_find("d_approx");
     unit_cfg cfg;
-    unit_cfg_default(&cfg);
+    unit_cfg_default(u, &cfg);
     char err[200];
     TST_EQ_INT(unit_param_set(u, &cfg, "m", "0.05", err, sizeof err), 0);
     TST_EQ_INT(unit_param_set(u, &cfg, "g", "2", err, sizeof err), 0);

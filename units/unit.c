@@ -1,5 +1,6 @@
 /* unit.c - the unit registry, parameters and format/bound helpers. */
 #include "units/unit.h"
+#include "units/unit_net.h"     /* the /3 network's paper defaults */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -49,15 +50,26 @@ const unit_desc *unit_find(const char *name)
     return NULL;
 }
 
-void unit_cfg_default(unit_cfg *c)
+/* Store v into parameter p's field (ints and enums: an int). */
+static void param_put(const unit_param *p, unit_cfg *cfg, double v)
+{
+    char *base = (char *)cfg + p->offset;
+    if (p->type == UNIT_P_REAL) *(double *)base = v;
+    else *(int *)base = (int)v;
+}
+
+void unit_cfg_default(const unit_desc *u, unit_cfg *c)
 {
     memset(c, 0, sizeof *c);
     c->width = 16;
-    c->terms = 3;
-    c->series = 0;
-    vec_params_default(&c->model);      /* L, g, n, m, alpha, nodes */
     c->rnd = SIM_RND_TRUNC;
     c->ovf = SIM_OVF_WRAP;
+    /* Fields that are not u's parameters: shared values its code may read */
+    c->terms = DIV3_PAPER_TERMS;
+    c->series = DIV3_PAPER;
+    vec_params_default(&c->model);      /* L, g, n, m, alpha, nodes */
+    /* u's parameters: its own defaults */
+    for (int i = 0; u && i < u->nparams; i++) param_put(&u->params[i], c, u->params[i].def);
 }
 
 static int count_role(const unit_desc *u, unit_role r)
@@ -182,8 +194,7 @@ int unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
         snprintf(err, errlen, "parameter %s: %s is not a power of two", name, value);
         return -1;
     }
-    if (whole) *(int *)base = (int)v;
-    else *(double *)base = v;
+    param_put(p, cfg, v);
     return 0;
 }
 

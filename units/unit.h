@@ -2,10 +2,11 @@
  *
  * A unit_desc says everything the command line, the docs and the tests need:
  * its ports and internal signals with a default-format rule from one width
- * W, its schedules, its parameters (with their ranges), how to build it
- * into a simulation, the function it computes in exact arithmetic (ideal),
- * its error bound, and its float reference (ref: the independent oracle in
- * vectors/, whose gen is the unit's default stimulus, vectors/NAME.vec).
+ * W, its schedules, its parameters (with their ranges and defaults), how
+ * to build it into a simulation, the function it computes in exact
+ * arithmetic (ideal), its error bound, and its float reference (ref: the
+ * independent oracle in vectors/, whose gen is the unit's default
+ * stimulus, vectors/NAME.vec).
  * The registry (unit.c) is the one list of units: adding a unit is its own
  * file(s) and one registry line (docs/adding-a-unit.md).
  *
@@ -34,10 +35,11 @@
 #define UNIT_MAX_PARAMS 6
 
 /* Parameters of every unit, one struct; a unit reads the fields it lists in
- * its params[] table (their ranges are there). Defaults come from
- * unit_cfg_default. The reference model's parameters (vectors.h: L, g, n,
- * m, alpha, nodes) are not copied: cfg->model is them as the model takes
- * them, and the same storage by name (cfg->L), one anonymous union. */
+ * its params[] table (their ranges and defaults are there, so each unit
+ * has its own; unit_cfg_default(u, cfg) sets them). The reference model's
+ * parameters (vectors.h: L, g, n, m, alpha, nodes) are not copied:
+ * cfg->model is them as the model takes them, and the same storage by name
+ * (cfg->L), one anonymous union. */
 typedef struct unit_cfg {
     int    width;       /* W of the default-format rule */
     int    schedule;    /* index into the unit's schedules */
@@ -62,6 +64,7 @@ typedef struct unit_param {
     unit_ptype  type;
     size_t      offset;     /* offsetof(unit_cfg, field) */
     double      min, max;   /* allowed range (ints: inclusive) */
+    double      def;        /* default, in the range (enum: its choice's index) */
     const char *choices;    /* UNIT_P_ENUM: "paper quarter" (index stored) */
     const char *help;
 } unit_param;
@@ -187,7 +190,14 @@ size_t           unit_count(void);
 const unit_desc *unit_at(size_t i);
 const unit_desc *unit_find(const char *name);
 
-void unit_cfg_default(unit_cfg *cfg);
+/* The default configuration of unit u: width 16, its first schedule,
+ * trunc and wrap, and each of its parameters at the default its params[]
+ * table gives. A field u does not list is not a parameter of u but may
+ * still be read by its code or its model: it holds the one value every
+ * unit shares (terms and series: the paper's /3 network; the model's
+ * fields: vec_params_default). u NULL (no unit chosen yet): those shared
+ * values only. */
+void unit_cfg_default(const unit_desc *u, unit_cfg *cfg);
 int  unit_n_in(const unit_desc *u);
 int  unit_n_out(const unit_desc *u);
 int  unit_sig_index(const unit_desc *u, const char *name);   /* -1 if none */

@@ -191,9 +191,9 @@ COEF_UNIT_FNS(n1, unit_coef3_n1, coef_net_n1)
 COEF_UNIT_FNS(n2, unit_coef3_n2, coef_net_n2)
 COEF_UNIT_FNS(q, unit_coef2, coef_net_q)
 
-#define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, NULL, \
+#define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, DIV3_PAPER_TERMS, NULL, \
                   "terms of each /3 network (see div3); 3 is the paper's" }
-#define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, "paper quarter", \
+#define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, DIV3_PAPER, "paper quarter", \
                    "series of each /3 network (see div3)" }
 #define COEF_RULE "i* u1.(W-1) (intensities in [0, 1]); a b c d sI.(W-I) (d: uI) with I the fewest integer bits " \
     "holding the coefficient's exact range over [0, 1]^4 plus its error bound; every shift and adder keeps " \

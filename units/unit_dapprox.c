@@ -21,7 +21,7 @@
  * lacks: beyond the cosine 1 - 1/k (about 49 deg for m = 0.2) their even
  * power of a negative base rises again.
  */
-#include "units/unit.h"
+#include "units/unit_net.h"
 #include "units/units_brdf.h"
 #include "vectors/ref_brdf.h"
 #include <math.h>
@@ -124,6 +124,81 @@ static int beats1(const unit_cfg *cfg) { (void)cfg; return 1; }
  * count). */
 static int64_t f_base_pos(const int64_t *in, void *u) { return in[0] <= *(const int64_t *)u; }
 
+static sim_signal *da_base_pos(sim_ctx *c, sim_scope *sc, sim_fmt fp, sim_signal *p)
+{
+    int64_t *one_p = sim_alloc(c, sizeof *one_p);
+    *one_p = fp.fbits < 62 ? (int64_t)1 << fp.fbits : INT64_MAX;
+    sim_signal *pos = sim_logic(c, sc, "base_pos", unit_fmt(0, 1, 0), 1, &p, f_base_pos, one_p, 0.67);
+    /* the same comparison as RTL, for the Verilog export */
+    char vt[160];
+    if (*one_p > sim_fmt_raw_max(fp)) snprintf(vt, sizeof vt, "assign %%y = 1'b1;");
+    else snprintf(vt, sizeof vt, fp.is_signed ? "assign %%y = $signed(%%0) <= $signed(%d'h%llx);" : "assign %%y = %%0 <= %d'h%llx;",
+                  fp.width, (unsigned long long)*one_p);
+    sim_logic_verilog(pos, vt);
+    return pos;
+}
+
+/* The datapath, written once and walked (unit_net.h): building (n->c
+ * set), it makes the elements into io; bounding, every value carries its
+ * worst-case error and -1 says a format cannot hold its value (no bound).
+ * *out is the output's value. docs/brdf.md, "d_approx and ward_approx":
+ * the base's error (constant k, quantized products), through the
+ * 1-Lipschitz clamp, into the power engine's walk, then the output scale.
+ * The clamp refines the walk: k's error enters P as ek (1 - c), and
+ * beyond 1 - c = t_max both the hardware's and the ideal base are clamped
+ * to 0, so where CLAMP passes BASE its error is ek t_max plus the rest. */
+static int da_walk(unet *n, const da_kind *kd, const unit_cfg *cfg, unit_io *io, unet_val *out)
+{
+    int g;
+    double k, c0;
+    char prog[16];
+    kd->consts(cfg, &k, &c0, &g);
+    if (!da_prog(g, prog, sizeof prog)) return -1;
+    const unit_desc *u = kd->u;
+    const sim_fmt *F = n->fm.f;
+    int hw = n->c != NULL;
+    unet_val c = unet_input(n, u->sigs[S_C].name, 0);
+    if (hw) io->in[0] = c.s;
+    if (!hw && !brdf_holds(F[S_C], 0, 1)) return -1;
+    sim_fmt f1 = unit_fmt(0, 1, 0);
+    unet_val one = unet_wrap(hw ? sim_const_raw(n->c, n->sc, "one", f1, 1) : NULL, f1, -1);
+    unet_val om = unet_sub(n, S_OM, "om", one, c);
+    unet_val kc = brdf_uconst(n, F[S_K], "k", k);
+    unet_val p = unet_cmul(n, S_P, "p", om, kc, brdf_cmul);
+    unet_val base = unet_sub(n, S_BASE, "base", one, p);
+    sim_signal *pos = hw ? da_base_pos(n->c, n->sc, F[S_P], p.s) : NULL;
+    if (!hw) {
+        double e_om = om.err, ek = kc.err, kh = fabs(k) + ek;      /* kh bounds |k_h| */
+        double p_hi = kh * (1 + e_om) + p.q;
+        if (!brdf_holds(F[S_OM], 0, 1 + e_om) || !brdf_holds(F[S_K], fmin(k, 0), fmax(k, 0))
+            || !brdf_holds(F[S_P], k < 0 ? -p_hi : 0, k < 0 ? 0 : p_hi)
+            || !brdf_holds(F[S_BASE], k < 0 ? 1 - base.q : 1 - p_hi - base.q, k < 0 ? 1 + p_hi + base.q : 1))
+            return -1;
+        /* BASE's error away from the k term, and the largest 1 - c where
+         * either base can still be positive */
+        double e0 = kh * e_om + p.q + base.q, t_max = 1.0;
+        if (k > ek) t_max = fmin(1.0, (1.0 + e0) / (k - ek));
+        base.err = ek * t_max + e0;
+    }
+    unet_val clamp = unet_bk(n, S_CLAMP, "clamp", pos, base, 1);
+    /* CLAMP's ideal value is in [0, max(1, 1 - k)]; the engine takes its
+     * magnitude as its format's largest (docs/brdf.md) */
+    clamp.imag = base_max(k);
+    clamp.mag = ldexp(1.0, F[S_CLAMP].is_signed ? F[S_CLAMP].ibits - 1 : F[S_CLAMP].ibits);
+    if (!hw && !brdf_holds(F[S_CLAMP], 0, clamp.imag + clamp.err)) return -1;
+    unet_val rg;
+    if (pw_engine(n, io, prog, clamp, &rg)) return -1;
+    if (kd->has_c0) {
+        if (!hw && !brdf_holds(F[S_C0], 0, c0)) return -1;
+        unet_val c0c = brdf_uconst(n, F[S_C0], "c0", c0);
+        *out = unet_cmul(n, S_OUT, u->sigs[S_OUT].name, rg, c0c, brdf_cmul);
+    } else {
+        *out = unet_shift(n, S_OUT, u->sigs[S_OUT].name, rg, 0);
+    }
+    if (!hw && !brdf_holds(F[S_OUT], 0, c0 * rg.imag + out->err)) return -1;
+    return 0;
+}
+
 static int da_build(const da_kind *kd, sim_ctx *c, sim_scope *sc, sim_signal *clk,
                     const unit_cfg *cfg, const unit_fmts *f, unit_io *io, char *err, size_t errlen)
 {
@@ -135,33 +210,13 @@ static int da_build(const da_kind *kd, sim_ctx *c, sim_scope *sc, sim_signal *cl
         snprintf(err, errlen, "%s: g = %d is not a power of two (2, 4, ..., 64)", kd->u->name, g);
         return -1;
     }
-    const unit_desc *u = kd->u;
-    sim_signal *cin = io->in[0] = sim_signal_new(c, sc, u->sigs[S_C].name, f->f[S_C], SIM_KIND_INPUT);
-    sim_signal *one = sim_const_raw(c, sc, "one", unit_fmt(0, 1, 0), 1);
-    sim_signal *om = sim_sub(c, sc, "om", f->f[S_OM], one, cin);
-    sim_signal *kc = brdf_const(c, sc, "k", f->f[S_K], k);
-    sim_signal *p = brdf_cmul(c, sc, "p", f->f[S_P], om, kc);
-    sim_signal *base = sim_sub(c, sc, "base", f->f[S_BASE], one, p);
-    int64_t *one_p = sim_alloc(c, sizeof *one_p);
-    *one_p = f->f[S_P].fbits < 62 ? (int64_t)1 << f->f[S_P].fbits : INT64_MAX;
-    sim_signal *pos = sim_logic(c, sc, "base_pos", unit_fmt(0, 1, 0), 1, &p, f_base_pos, one_p, 0.67);
-    {   /* the same comparison as RTL, for the Verilog export */
-        sim_fmt fp = f->f[S_P];
-        char vt[160];
-        if (*one_p > sim_fmt_raw_max(fp)) snprintf(vt, sizeof vt, "assign %%y = 1'b1;");
-        else snprintf(vt, sizeof vt, fp.is_signed ? "assign %%y = $signed(%%0) <= $signed(%d'h%llx);" : "assign %%y = %%0 <= %d'h%llx;",
-                      fp.width, (unsigned long long)*one_p);
-        sim_logic_verilog(pos, vt);
-    }
-    sim_signal *clamp = sim_bk(c, sc, "clamp", f->f[S_CLAMP], pos, base);
-    sim_signal *rg = pw_build(u, c, sc, clk, f, io, clamp, prog);
-    if (!rg) { snprintf(err, errlen, "%s: internal: bad engine program", u->name); return -1; }
-    if (kd->has_c0) {
-        sim_signal *c0c = brdf_const(c, sc, "c0", f->f[S_C0], c0);
-        io->out[0] = brdf_cmul(c, sc, u->sigs[S_OUT].name, f->f[S_OUT], rg, c0c);
-    } else {
-        io->out[0] = sim_shift(c, sc, u->sigs[S_OUT].name, f->f[S_OUT], rg, 0);
-    }
+    unet n;
+    unet_init(&n, kd->u, f, SIM_RND_TRUNC);     /* the context's modes quantize */
+    unet_hw(&n, c, sc);
+    unet_clock(&n, clk);
+    unet_val out;
+    if (da_walk(&n, kd, cfg, io, &out)) { snprintf(err, errlen, "%s: internal: bad engine program", kd->u->name); return -1; }
+    io->out[0] = out.s;
     io->scope = sc;
     return 0;
 }
@@ -177,60 +232,18 @@ static int w_build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *c
 static void d_ideal(const unit_cfg *cfg, const double *in, double *out) { out[0] = d_ref(cfg, in[0]); }
 static void w_ideal(const unit_cfg *cfg, const double *in, double *out) { out[0] = w_ref(cfg, in[0]); }
 
-/* docs/brdf.md, "d_approx and ward_approx": the base's error (constant k,
- * quantized products), through the 1-Lipschitz clamp, into the power
- * engine's bound, then the output scale. INFINITY when a format cannot
- * hold its range. */
-static int imin(int a, int b) { return a < b ? a : b; }
-static int imax(int a, int b) { return a > b ? a : b; }
-
+/* The bound is the walk's (da_walk): INFINITY when a format cannot hold
+ * its range. */
 static double da_bound_core(const da_kind *kd, const unit_cfg *cfg, const unit_fmts *f, double *ideal_max)
 {
     int g;
     double k, c0;
-    char prog[16];
     kd->consts(cfg, &k, &c0, &g);
     *ideal_max = c0 * chain_max(k, g);
-    if (!da_prog(g, prog, sizeof prog) || !brdf_holds(f->f[S_C], 0, 1)) return INFINITY;
-    sim_round r = cfg->rnd;
-    const sim_fmt *F = f->f;
-    /* eff_*: the fraction bits each value really has (see unit_net.h) */
-    double e_om = unit_qerr(F[S_OM], F[S_C].fbits, r);
-    int eff_om = imin(F[S_OM].fbits, F[S_C].fbits);
-    if (!brdf_holds(F[S_OM], 0, 1 + e_om)) return INFINITY;
-    if (!brdf_holds(F[S_K], fmin(k, 0), fmax(k, 0))) return INFINITY;
-    double ek = brdf_const_err(k, F[S_K]);
-    double kh = fabs(k) + ek;                                        /* bounds |k_h| */
-    int src_p = eff_om + brdf_const_eff(k, F[S_K]);
-    double q_p = unit_qerr(F[S_P], src_p, r);
-    int eff_p = imax(0, imin(F[S_P].fbits, src_p));                  /* base = 1 -+ p */
-    double q_b = unit_qerr(F[S_BASE], eff_p, r);
-    int eff_b = imin(F[S_BASE].fbits, eff_p);
-    double p_hi = kh * (1 + e_om) + q_p;
-    if (!brdf_holds(F[S_P], k < 0 ? -p_hi : 0, k < 0 ? 0 : p_hi)) return INFINITY;
-    if (!brdf_holds(F[S_BASE], k < 0 ? 1 - q_b : 1 - p_hi - q_b, k < 0 ? 1 + p_hi + q_b : 1)) return INFINITY;
-    /* Error of the base away from the k term, and the largest 1 - c where
-     * either base can still be positive (beyond it both clamp to 0). */
-    double e0 = kh * e_om + q_p + q_b, t_max = 1.0;
-    if (k > ek) t_max = fmin(1.0, (1.0 + e0) / (k - ek));
-    double e_clamp = ek * t_max + e0 + unit_qerr(F[S_CLAMP], eff_b, r);
-    sim_fmt clamp_eff = unit_fmt(F[S_CLAMP].is_signed, F[S_CLAMP].ibits, imin(F[S_CLAMP].fbits, eff_b));
-    double bm = base_max(k);
-    if (!brdf_holds(F[S_CLAMP], 0, bm + e_clamp)) return INFINITY;
-    double m_rg;
-    int eff_rg = F[S_RG].fbits;
-    double e_rg = pw_bound(kd->u, f, r, clamp_eff, e_clamp, bm, prog, &m_rg, &eff_rg);
-    if (!isfinite(e_rg)) return INFINITY;
-    double e_out;
-    if (kd->has_c0) {
-        if (!brdf_holds(F[S_C0], 0, c0)) return INFINITY;
-        double e_c0 = brdf_const_err(c0, F[S_C0]);
-        e_out = (c0 + e_c0) * e_rg + e_c0 * m_rg + unit_qerr(F[S_OUT], eff_rg + brdf_const_eff(c0, F[S_C0]), r);
-    } else {
-        e_out = e_rg + unit_qerr(F[S_OUT], eff_rg, r);
-    }
-    if (!brdf_holds(F[S_OUT], 0, c0 * m_rg + e_out)) return INFINITY;
-    return e_out;
+    unet n;
+    unet_init(&n, kd->u, f, cfg->rnd);
+    unet_val out;
+    return da_walk(&n, kd, cfg, NULL, &out) ? INFINITY : out.err;
 }
 
 static void da_bound(const da_kind *kd, const unit_cfg *cfg, const unit_fmts *f, double *per_out)
@@ -269,8 +282,8 @@ const unit_desc unit_d_approx = {
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: log2(g) clocks" } },
     .nparams = 2,
     .params = {
-        { "m", UNIT_P_REAL, offsetof(unit_cfg, m), 0.05, 1.0, NULL, "Beckmann roughness" },
-        { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, NULL, "power, a power of two" } },
+        { "m", UNIT_P_REAL, offsetof(unit_cfg, m), 0.05, 1.0, 0.2, NULL, "Beckmann roughness" },
+        { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, 16, NULL, "power, a power of two" } },
     .fmt_rule = "c, om u1.(W-1); k uI.(W-I) and p uI.(W-1) with I = integer bits of k (signed "
                 "when m > 1/sqrt 2); base s(I+1).(W-1); clamp, mx, mul, rg uJ.(W-J), J = integer "
                 "bits of the largest power (1 for m <= 1/sqrt 2); c0 and d the same rule for c0 and "
@@ -291,7 +304,7 @@ const unit_desc unit_ward_approx = {
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: 4 clocks" } },
     .nparams = 1,
-    .params = { { "alpha", UNIT_P_REAL, offsetof(unit_cfg, alpha), 0.05, 1.0, NULL, "Ward roughness" } },
+    .params = { { "alpha", UNIT_P_REAL, offsetof(unit_cfg, alpha), 0.05, 1.0, 0.2, NULL, "Ward roughness" } },
     .fmt_rule = "c, om u1.(W-1); k uI.(W-I) and p uI.(W-1) with I = integer bits of 1/(8 alpha^2); "
                 "base s(I+1).(W-1); clamp, mx, mul, rg, e u1.(W-1)",
     .formats = w_formats, .beats = beats1, .build = w_build, .ideal = w_ideal, .bound = w_bound,

@@ -156,9 +156,9 @@ const unit_desc unit_div3 = {
     .sched = { { "comb", "combinational: one item per clock" } },
     .nparams = 2,
     .params = {
-        { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, NULL,
+        { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, DIV3_PAPER_TERMS, NULL,
           "subtracted terms after x/2 (paper) or added terms (quarter); 3 is the paper's network" },
-        { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, "paper quarter",
+        { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, DIV3_PAPER, "paper quarter",
           "paper: x/2 - x/8 - x/32 - ... (from above); quarter: x/4 + x/16 + ... (from below)" },
     },
     .fmt_rule = "x s1.(W-1) (x in [-1, 1)); y s1.(W-1); terms and partial sums s1.(W-1+G), "

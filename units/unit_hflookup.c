@@ -426,8 +426,8 @@ const unit_desc unit_hf_lookup = {
     .sched = { { "comb", "three lookup paths and two multipliers, combinational: one item a clock" } },
     .nparams = 2,
     .params = {
-        { "L", UNIT_P_POW2, offsetof(unit_cfg, L), 4, 32, NULL, "map resolution R (R x R texels)" },
-        { "alpha", UNIT_P_REAL, offsetof(unit_cfg, alpha), 0.1, 0.6, NULL, "roughness of the Ward BRDF the maps factorize" } },
+        { "L", UNIT_P_POW2, offsetof(unit_cfg, L), 4, 32, 8, NULL, "map resolution R (R x R texels)" },
+        { "alpha", UNIT_P_REAL, offsetof(unit_cfg, alpha), 0.1, 0.6, 0.2, NULL, "roughness of the Ward BRDF the maps factorize" } },
     .fmt_rule = "x, y s2.(W-2); z u1.(W-1); zq u1.min(W/2, 12); rec, rom u1.(W-1); u, v s2.(W-2); su, sv "
                 "u(lgR).(W-lgR); filter s2.(W-1); y s2.(W-2)",
     .formats = hf_formats, .beats = beats1, .build = hf_build,

@@ -546,12 +546,12 @@ static int sig_used_3(const unit_cfg *cfg, int i)
     return in_net(cfg->nodes ? &coef_net_n2 : &coef_net_n1, nm);
 }
 
-#define P_L { "L", UNIT_P_POW2, offsetof(unit_cfg, L), 2, 32, NULL, "pixels per interval (beats per item)" }
-#define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, NULL, \
+#define P_L { "L", UNIT_P_POW2, offsetof(unit_cfg, L), 2, 32, 8, NULL, "pixels per interval (beats per item)" }
+#define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, DIV3_PAPER_TERMS, NULL, \
                   "terms of each /3 network (see div3); 3 is the paper's" }
-#define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, "paper quarter", \
+#define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, DIV3_PAPER, "paper quarter", \
                    "series of each /3 network (see div3)" }
-#define P_NODES { "nodes", UNIT_P_ENUM, offsetof(unit_cfg, nodes), 0, 1, "n1 n2", \
+#define P_NODES { "nodes", UNIT_P_ENUM, offsetof(unit_cfg, nodes), 0, 1, 0, "n1 n2", \
                   "node set of the cubic: n1 = I(0), I(1), I(1/2), I(1/4) (the paper's choice); n2 = I(0), I(1), I(1/2), I(3/4)" }
 /* N2's own elements (coef3_n2's network), built only with nodes=n2; the
  * names both sets share are described by N1's formulas. */

@@ -152,7 +152,8 @@ unet_val unet_shift(unet *n, int sig, const char *name, unet_val x, int k)
     int f_nat = k >= 0 ? imax(0, src_f) : imin(src_f, imax(n->fcap, x.f.fbits));
     v.f = fmt_of(n, sig, !x.f.is_signed, v.lin, base, src_f, f_nat);
     int eff_src = x.eff - k;                        /* the bits the shifted value really has */
-    v.err = base + unit_qerr(v.f, eff_src, n->r);
+    v.q = unit_qerr(v.f, eff_src, n->r);
+    v.err = base + v.q;
     v.eff = imin(v.f.fbits, eff_src);
     v.mag = fmt_maxabs(v.f);
     if (k == 0) v.mag = fmin(v.mag, copy_mag(x, v.f, eff_src, n->r));   /* a view */
@@ -169,7 +170,8 @@ static unet_val addsub(unet *n, int sig, const char *name, unet_val a, unet_val 
     int src_f = imax(a.f.fbits, b.f.fbits);         /* the exact sum's fraction bits */
     v.f = fmt_of(n, sig, !sub && !a.f.is_signed && !b.f.is_signed, v.lin, base, src_f, src_f);
     int eff_src = imax(a.eff, b.eff);
-    v.err = base + unit_qerr(v.f, eff_src, n->r);
+    v.q = unit_qerr(v.f, eff_src, n->r);
+    v.err = base + v.q;
     v.eff = imin(v.f.fbits, eff_src);
     v.mag = fmt_maxabs(v.f);
     v.imag = a.imag + b.imag;
@@ -212,13 +214,16 @@ static unet_val requant(unet_val v, sim_fmt f, sim_round r)
     unet_val o = v;
     o.s = NULL;
     o.f = f;
-    o.err = v.err + unit_qerr(f, v.eff, r);
+    o.q = unit_qerr(f, v.eff, r);
+    o.err = v.err + o.q;
     o.eff = imin(f.fbits, v.eff);
     o.mag = fmin(fmt_maxabs(f), copy_mag(v, f, v.eff, r));
     return o;
 }
 
-unet_val unet_mul(unet *n, int sig, const char *name, unet_val a, unet_val b)
+/* a * b, built by make (NULL: a multiplier) from operands ma, mb. */
+static unet_val mul_by(unet *n, int sig, const char *name, unet_val a, unet_val b,
+                       unet_make2 make, sim_signal *ma, sim_signal *mb)
 {
     unet_val v;
     memset(&v, 0, sizeof v);
@@ -228,12 +233,23 @@ unet_val unet_mul(unet *n, int sig, const char *name, unet_val a, unet_val b)
      * adds nothing, whatever a's magnitude */
     double base = a.err * b.imag + (b.err > 0 ? fmin(a.mag, a.imag + a.err) * b.err : 0);
     int src = a.eff + b.eff;
-    v.err = base + unit_qerr(v.f, src, n->r);
+    v.q = unit_qerr(v.f, src, n->r);
+    v.err = base + v.q;
     v.eff = imin(v.f.fbits, src);
     v.mag = fmt_maxabs(v.f);
     v.imag = a.imag * b.imag;
-    v.s = n->c ? sim_mul(n->c, n->sc, name, v.f, a.s, b.s) : NULL;
+    v.s = n->c ? (make ? make : sim_mul)(n->c, n->sc, name, v.f, ma, mb) : NULL;
     return v;
+}
+
+unet_val unet_mul(unet *n, int sig, const char *name, unet_val a, unet_val b)
+{
+    return mul_by(n, sig, name, a, b, NULL, a.s, b.s);
+}
+
+unet_val unet_cmul(unet *n, int sig, const char *name, unet_val x, unet_val k, unet_make2 make)
+{
+    return mul_by(n, sig, name, k, x, make, x.s, k.s);
 }
 
 unet_val unet_mux(unet *n, int sig, const char *name, sim_signal *sel, int nv, const unet_val *v, int k)

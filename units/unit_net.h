@@ -40,6 +40,10 @@ typedef struct unet_val {
     sim_fmt     f;                  /* its format */
     double      lin[UNET_MAXIN];    /* ideal value = sum lin[i] * input i */
     double      err;                /* worst-case |hardware - ideal| */
+    /* The part of err this element added by quantizing its own result
+     * (err = its operands' part + q): what a unit whose bound refines
+     * the walk's (d_approx's clamp) reads of each element. */
+    double      q;
     /* Fraction bits the value can really have: its format's, or fewer
      * when its operands have fewer (a wide register holding a coarse
      * value). A requantization drops bits only below these, so widening a
@@ -111,6 +115,13 @@ unet_val unet_add(unet *n, int sig, const char *name, unet_val a, unet_val b);
 unet_val unet_sub(unet *n, int sig, const char *name, unet_val a, unet_val b);
 /* a * b, quantized to its format (a fixed-rule or given-format walk). */
 unet_val unet_mul(unet *n, int sig, const char *name, unet_val a, unet_val b);
+/* x * k for a constant k, built by make (e.g. brdf_cmul, a shift-and-add
+ * network: make(c, sc, name, format, x, k)) or, when make is NULL, by a
+ * multiplier; bounded as unet_mul(k, x) bounds k * x: k_hw x_hw - k x =
+ * (k_hw - k) x + k_hw (x_hw - x). */
+typedef sim_signal *(*unet_make2)(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f,
+                                  sim_signal *a, sim_signal *b);
+unet_val unet_cmul(unet *n, int sig, const char *name, unet_val x, unet_val k, unet_make2 make);
 /* Multiplexer: building, select sel picks among v[0..nv-1]; a walk that
  * does not build follows v[k], the input this clock selects. */
 unet_val unet_mux(unet *n, int sig, const char *name, sim_signal *sel, int nv, const unet_val *v, int k);
@@ -128,6 +139,7 @@ unet_val unet_reg_of(unet *n, int sig, const char *name, unet_val d);
 
 enum { DIV3_PAPER = 0, DIV3_QUARTER = 1 };
 #define DIV3_MAX_TERMS 20
+#define DIV3_PAPER_TERMS 3     /* the paper's network: x/2 - x/8 - x/32 - x/128 */
 
 /* Fraction bits the network's terms keep beyond x's: enough that the
  * truncations of its terms add up to at most one LSB of x. */

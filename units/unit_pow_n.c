@@ -111,7 +111,7 @@ const unit_desc unit_pow_n = {
     .sched = { { "sqmul", "left-to-right square and multiply: a squaring per bit of n after the "
                           "leading one, a multiply per further 1 bit" } },
     .nparams = 1,
-    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, PN_MAX_N, NULL, "exponent" } },
+    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, PN_MAX_N, 32, NULL, "exponent" } },
     .fmt_rule = "every signal u1.(W-1) (values in [0, 1])",
     .formats = pow_n_formats, .beats = beats1, .build = pow_n_build,
     .ideal = pow_n_ideal, .bound = pow_n_bound, .ideal_exact = pow_n_exact, .ideal_interval = pow_n_interval,

@@ -144,21 +144,28 @@ static int pw_walk(unet *n, const pw_plan *p, const char *prog, sim_signal *next
     return 0;
 }
 
+int pw_engine(unet *n, unit_io *io, const char *prog, unet_val in, unet_val *rg)
+{
+    pw_plan p;
+    if (pw_make_plan(n->u, prog, &p)) return -1;
+    sim_signal *next = NULL, *first;
+    if (n->c) {
+        brdf_seq(n->c, n->sc, n->clk, p.nsteps, io, &next, &first);
+        (void)first;
+    }
+    return pw_walk(n, &p, prog, next, in, rg);
+}
+
 /* Builds the sequencer and the engine around IN; returns RG. */
 sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
                      const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog)
 {
-    pw_plan p;
-    if (pw_make_plan(u, prog, &p)) return NULL;
-    sim_signal *next, *first;
-    brdf_seq(c, sc, clk, p.nsteps, io, &next, &first);
-    (void)first;
     unet n;
     unet_init(&n, u, f, SIM_RND_TRUNC);     /* the context's modes quantize */
     unet_hw(&n, c, sc);
     unet_clock(&n, clk);
     unet_val rg;
-    if (pw_walk(&n, &p, prog, next, unet_wrap(in, in->fmt, 0), &rg)) return NULL;
+    if (pw_engine(&n, io, prog, unet_wrap(in, in->fmt, 0), &rg)) return NULL;
     return rg.s;
 }
 
@@ -169,14 +176,12 @@ sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
 double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_fmt,
                 double e_in, double m_in, const char *prog, double *m_out, int *eff_out)
 {
-    pw_plan p;
-    if (pw_make_plan(u, prog, &p)) return INFINITY;
     unet n;
     unet_init(&n, u, f, r);
     unet_val in = unet_wrap(NULL, in_fmt, 0), rg;
     in.err = e_in;
     in.imag = m_in;
-    if (pw_walk(&n, &p, prog, NULL, in, &rg)) return INFINITY;
+    if (pw_engine(&n, NULL, prog, in, &rg)) return INFINITY;
     if (m_out) *m_out = rg.imag;
     if (eff_out) *eff_out = rg.eff;
     return rg.err;
@@ -269,7 +274,7 @@ const unit_desc unit_powg = {
     .nsched = 1,
     .sched = { { "square", "one squaring a clock: log2(g) clocks per item" } },
     .nparams = 1,
-    .params = { { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, NULL, "power, a power of two" } },
+    .params = { { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 2, 64, 16, NULL, "power, a power of two" } },
     .fmt_rule = "every signal u1.(W-1) (values in [0, 1])",
     .formats = powg_formats, .beats = beats1, .build = powg_build,
     .ideal = powg_ideal, .bound = powg_bound, .ideal_exact = powg_exact, .ideal_interval = powg_interval,

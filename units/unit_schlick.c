@@ -23,7 +23,7 @@
  *
  * F_MSH(1) = 2/1.25^3 = 1.024 for every n, so q and f keep one integer bit.
  */
-#include "units/unit.h"
+#include "units/unit_net.h"
 #include "units/units_brdf.h"
 #include "vectors/ref_brdf.h"
 #include "sim/sim_area.h"
@@ -55,18 +55,55 @@ static void sh_formats(const unit_cfg *cfg, unit_fmts *out)
     out->f[SH_R] = out->f[SH_DEN];
 }
 
+/* The datapath, written once and walked (unit_net.h): building (n->c
+ * set), it makes the elements into io; bounding, every value carries its
+ * worst-case error and -1 says a format cannot hold its value (no bound).
+ * *out is the output's value. docs/brdf.md, "schlick": T and DEN are
+ * walk elements (DEN's error e is 0 in the default formats); the divider
+ * is a loop, not an element the walk knows: c/DEN moves by at most
+ * e/(1 - e), since DEN >= 1 and c <= 1, the quotient is truncated (< 1
+ * LSB of q), and f may requantize q. */
+static int sh_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, char *err, size_t errlen)
+{
+    const sim_fmt *F = n->fm.f;
+    int hw = n->c != NULL;
+    double nd = cfg->n;
+    unet_val c = unet_input(n, "c", 0);
+    c.imag = 1;                                                 /* c in [0, 1] */
+    if (!hw && (!brdf_holds(F[SH_C], 0, 1) || !brdf_holds(F[SH_K], 0, nd - 1))) return -1;
+    unet_val nc = brdf_uconst(n, unit_fmt(0, n_ibits(cfg->n), 0), "nconst", nd);
+    unet_val k = brdf_uconst(n, F[SH_K], "k", nd - 1);
+    unet_val t = unet_cmul(n, SH_T, "t", c, k, brdf_cmul);
+    unet_val den = unet_sub(n, SH_DEN, "den", nc, t);
+    if (hw) {
+        io->in[0] = c.s;
+        sim_signal *q = dv_build(&unit_schlick, n->c, n->sc, n->clk, &n->fm, io, c.s, den.s, NULL, 0, err, errlen);
+        if (!q) return -1;
+        *out = unet_shift(n, SH_F, "f", unet_wrap(q, F[SH_Q], -1), 0);
+        return 0;
+    }
+    sim_round r = n->r;
+    double e_den = den.err;
+    if (e_den >= 0.5 || !brdf_holds(F[SH_T], 0, nd - 1 + t.err) || !brdf_holds(F[SH_DEN], 1 - e_den, nd + e_den))
+        return -1;
+    double e = e_den / (1 - e_den), qmax = 1 + e;
+    if (!brdf_holds(F[SH_Q], 0, qmax)) return -1;
+    e += sim_fmt_lsb(F[SH_Q]) + unit_qerr(F[SH_F], F[SH_Q].fbits, r);
+    if (!brdf_holds(F[SH_F], 0, 1 + e)) return -1;
+    out->err = e;
+    return 0;
+}
+
 static int sh_build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *cfg,
                     const unit_fmts *f, unit_io *io, char *err, size_t errlen)
 {
-    int n = cfg->n;
-    sim_signal *cin = io->in[0] = sim_signal_new(c, sc, "c", f->f[SH_C], SIM_KIND_INPUT);
-    sim_signal *nc = brdf_const(c, sc, "nconst", unit_fmt(0, n_ibits(n), 0), n);
-    sim_signal *k = brdf_const(c, sc, "k", f->f[SH_K], n - 1);
-    sim_signal *t = brdf_cmul(c, sc, "t", f->f[SH_T], cin, k);
-    sim_signal *den = sim_sub(c, sc, "den", f->f[SH_DEN], nc, t);
-    sim_signal *q = dv_build(&unit_schlick, c, sc, clk, f, io, cin, den, NULL, 0, err, errlen);
-    if (!q) return -1;
-    io->out[0] = sim_shift(c, sc, "f", f->f[SH_F], q, 0);
+    unet n;
+    unet_init(&n, &unit_schlick, f, SIM_RND_TRUNC);     /* the context's modes quantize */
+    unet_hw(&n, c, sc);
+    unet_clock(&n, clk);
+    unet_val out;
+    if (sh_walk(&n, cfg, io, &out, err, errlen)) return -1;
+    io->out[0] = out.s;
     io->scope = sc;
     return 0;
 }
@@ -89,27 +126,14 @@ static int sh_ratio(const unit_cfg *cfg, const sim_dy *in, sim_dy *num, sim_dy *
     return den->ovf || sim_dy_cmp(den, &z) <= 0 ? -1 : 0;
 }
 
-/* docs/brdf.md, "schlick": DEN's error e (0 in the default formats) moves
- * c/DEN by at most e/(1 - e), since DEN >= 1 and c <= 1; the quotient is
- * truncated (< 1 LSB of q); f may requantize q. */
+/* The walk's bound (sh_walk); INFINITY when a format cannot hold its
+ * range. */
 static double sh_bound_core(const unit_cfg *cfg, const unit_fmts *f)
 {
-    const sim_fmt *F = f->f;
-    sim_round r = cfg->rnd;
-    double n = cfg->n;
-    if (!brdf_holds(F[SH_C], 0, 1) || !brdf_holds(F[SH_K], 0, n - 1)) return INFINITY;
-    /* the fraction bits T really has: c's plus the constant's (see unit_net.h) */
-    int src_t = F[SH_C].fbits + brdf_const_eff(n - 1, F[SH_K]);
-    int eff_t = src_t < F[SH_T].fbits ? src_t : F[SH_T].fbits;
-    double e_t = brdf_const_err(n - 1, F[SH_K]) + unit_qerr(F[SH_T], src_t, r);
-    double e_den = e_t + unit_qerr(F[SH_DEN], eff_t < 0 ? 0 : eff_t, r);
-    if (e_den >= 0.5 || !brdf_holds(F[SH_T], 0, n - 1 + e_t) || !brdf_holds(F[SH_DEN], 1 - e_den, n + e_den))
-        return INFINITY;
-    double e = e_den / (1 - e_den), qmax = 1 + e;
-    if (!brdf_holds(F[SH_Q], 0, qmax)) return INFINITY;
-    e += sim_fmt_lsb(F[SH_Q]) + unit_qerr(F[SH_F], F[SH_Q].fbits, r);
-    if (!brdf_holds(F[SH_F], 0, 1 + e)) return INFINITY;
-    return e;
+    unet n;
+    unet_init(&n, &unit_schlick, f, cfg->rnd);
+    unet_val out;
+    return sh_walk(&n, cfg, NULL, &out, NULL, 0) ? INFINITY : out.err;
 }
 
 static void sh_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
@@ -137,7 +161,7 @@ const unit_desc unit_schlick = {
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,
-    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, NULL, "specular exponent n" } },
+    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, 32, NULL, "specular exponent n" } },
     .fmt_rule = "c, f, q u1.(W-1); k u(I).0 for the integer n-1; t, den, r uI.(W-1) with I the "
                 "integer bits of n",
     .formats = sh_formats, .beats = beats1, .build = sh_build, .ideal = sh_ideal, .bound = sh_bound, .ideal_ratio = sh_ratio,
@@ -375,7 +399,7 @@ const unit_desc unit_mschlick = {
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,
-    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, NULL, "specular exponent n" } },
+    .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, 1024, 32, NULL, "specular exponent n" } },
     .fmt_rule = "c, f, q u1.(W-1); k uI.2, t uI.(W+1) for n - 1.25; u uI.(W+1) with I the integer "
                 "bits of n; e u(bits of I).0; un, v u0.W; den, r u1.(W+2)",
     .formats = ms_formats, .beats = beats1, .build = ms_build, .ideal = ms_ideal, .bound = ms_bound, .ideal_ratio = ms_ratio,

@@ -766,13 +766,13 @@ SPAN_FNS(23, k23)
 static int sig_used_3(const unit_cfg *cfg, int i) { return cube_sig_used(&k3, cfg, i); }
 static int sig_used_23(const unit_cfg *cfg, int i) { return cube_sig_used(&k23, cfg, i); }
 
-#define P_L { "L", UNIT_P_INT, offsetof(unit_cfg, L), 2, SPAN_LMAX, NULL, \
+#define P_L { "L", UNIT_P_INT, offsetof(unit_cfg, L), 2, SPAN_LMAX, 8, NULL, \
               "pixels per interval, any 2..64: beats per item in `run`, the largest n and dv" }
-#define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, NULL, \
+#define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, DIV3_PAPER_TERMS, NULL, \
                   "terms of each /3 network (see div3); 3 is the paper's" }
-#define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, "paper quarter", \
+#define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, DIV3_PAPER, "paper quarter", \
                    "series of each /3 network (see div3)" }
-#define P_NODES { "nodes", UNIT_P_ENUM, offsetof(unit_cfg, nodes), 0, 1, "n1 n2", \
+#define P_NODES { "nodes", UNIT_P_ENUM, offsetof(unit_cfg, nodes), 0, 1, 0, "n1 n2", \
                   "node set of the cubic: n1 = I(0), I(1), I(1/2), I(1/4); n2 = I(0), I(1), I(1/2), I(3/4)" }
 
 #define S_IN(name, what) { name, UNIT_SIG_IN, what, 0 }

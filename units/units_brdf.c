@@ -193,6 +193,14 @@ int brdf_const_eff(double x, sim_fmt f)
     if (!raw) return -64;
     return f.fbits - __builtin_ctzll((uint64_t)raw);
 }
+unet_val brdf_uconst(unet *n, sim_fmt f, const char *name, double x)
+{
+    unet_val v = unet_wrap(n->c ? brdf_const(n->c, n->sc, name, f, x) : NULL, f, -1);
+    v.err = brdf_const_err(x, f);
+    v.eff = brdf_const_eff(x, f);
+    v.imag = fabs(x);
+    return v;
+}
 /* |x - the constant brdf_const stores|. */
 double brdf_const_err(double x, sim_fmt f)
 {

@@ -6,6 +6,7 @@
 #ifndef UNITS_BRDF_H
 #define UNITS_BRDF_H
 #include "units/unit.h"
+#include "units/unit_net.h"
 
 /* ---- units_brdf.c ---- */
 /* Bits of v (0 for 0). */
@@ -26,12 +27,23 @@ int    brdf_holds(sim_fmt f, double lo, double hi);
 double brdf_range_bound(sim_fmt out, double ideal_max);
 sim_signal *brdf_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f, double x);
 double brdf_const_err(double x, sim_fmt f);
+/* A hard-wired constant x in format f (brdf_const) as a value of a unet
+ * walk: built when the walk builds; its error is the stored value's
+ * distance from x, its fraction bits those its raw really has (a product
+ * with it carries no more), its ideal magnitude |x|. */
+unet_val brdf_uconst(unet *n, sim_fmt f, const char *name, double x);
 /* Fraction bits the constant brdf_const stores really has (fewer than
  * f's when its raw ends in zeros; -64 for 0): what a product with it
  * carries, so that widening the constant's format adds no quantization. */
 int    brdf_const_eff(double x, sim_fmt f);
 
 /* ---- unit_powg.c: the one-multiplier power engine ---- */
+/* The engine running prog on IN, as a step of a unet walk (unit_net.h)
+ * of the unit n->u: building (n->c), the sequencer (into io) and the
+ * engine, *rg its RG; bounding, every clock of the program, *rg RG's
+ * value after it. 0, or -1 (a bad program; bounding: a format that cannot
+ * hold its value). */
+int    pw_engine(unet *n, unit_io *io, const char *prog, unet_val in, unet_val *rg);
 sim_signal *pw_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
                      const unit_fmts *f, unit_io *io, sim_signal *in, const char *prog);
 /* in_fmt: the input's format with fbits the bits it really has; *eff_out

@@ -33,8 +33,10 @@
  *   nodes  span3, span23, interp3: cubic node set, 0 = N1, 1 = N2 */
 #define VEC_PARAMS_FIELDS int L; int g; int n; double m; double alpha; int nodes;
 typedef struct vec_params { VEC_PARAMS_FIELDS } vec_params;
-/* The defaults (L 8, g 16, n 32, m 0.2, alpha 0.2, nodes N1): the
- * checked-in vector files are made with them. */
+/* The reference's own defaults (L 8, g 16, n 32, m 0.2, alpha 0.2, nodes
+ * N1), what a model takes when given no parameters. A unit's defaults are
+ * its descriptor's (units/unit.h, unit_param.def), so far the same values;
+ * the checked-in vector files are made with the unit's. */
 void vec_params_default(vec_params *p);
 
 
