@@ -38,6 +38,7 @@
  * clocks_per_pixel = clocks of all bands' simulations / covered pixels.
  */
 #include "testbench/tb_scene.h"
+#include "base/base_json.h"
 #include "testbench/tb.h"
 #include "units/unit_coef.h"
 #include "units/unit_net.h"
@@ -604,34 +605,14 @@ int tb_scene_err_scale(const tb_scene_result *r)
     return k;
 }
 
-/* JSON has no inf or NaN: such a figure is null. */
-static void jnum(FILE *f, double v)
-{
-    if (isfinite(v)) fprintf(f, "%.17g", v);
-    else fputs("null", f);
-}
-
 static void jops(FILE *f, const double *ops)
 {
     fputc('{', f);
     for (int k = 0; k < SCN_OP__COUNT; k++) {
         fprintf(f, "%s\"%s\": ", k ? ", " : "", scn_op_name[k]);
-        jnum(f, ops[k]);
+        base_json_num(f, ops[k], 17);
     }
     fputc('}', f);
-}
-
-/* A JSON string (paths may hold anything). */
-static void jstr(FILE *f, const char *s)
-{
-    fputc('"', f);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\') fprintf(f, "\\%c", c);
-        else if (c < 0x20) fprintf(f, "\\u%04x", c);
-        else fputc(c, f);
-    }
-    fputc('"', f);
 }
 
 int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
@@ -639,37 +620,37 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     const unit_desc *u = r->unit;
     char fb[SIM_FMT_STRLEN];
     fputs("{\n  \"mesh\": ", f);
-    jstr(f, d->mesh);
+    base_json_str(f, d->mesh);
     fprintf(f, ",\n  \"resolution\": \"%dx%d\",\n  \"view\": \"%s\",\n  \"policy\": \"%s\",\n", r->w, r->h,
             r->heldout ? "heldout" : "main", scn_policy_name(d->policy));
     fprintf(f, "  \"L\": %d,\n  \"terms\": %d,\n  \"series\": \"%s\",\n  \"width\": %d,\n", d->L, d->terms,
             d->series == DIV3_QUARTER ? "quarter" : "paper", d->fmt_width);
     fprintf(f, "  \"cubic_nodes\": \"%s\",\n  \"auto_threshold\": ", nodes_n2(d) ? "n2" : "n1");
-    jnum(f, d->auto_threshold);
+    base_json_num(f, d->auto_threshold, 17);
     fprintf(f, ",\n  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"formats\": {", u->name, u->sched[r->cfg.schedule].name);
     for (int i = 0, n = 0; i < u->nsigs; i++)
         if (unit_sig_built(u, i, &r->cfg))
             fprintf(f, "%s\"%s\": \"%s\"", n++ ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
     fprintf(f, "},\n  \"round\": \"%s\",\n  \"overflow\": \"%s\",\n", sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
-    fprintf(f, "  \"covered\": %zu,\n  \"nmse\": ", r->covered); jnum(f, r->nmse);
-    fputs(",\n  \"psnr\": ", f); jnum(f, r->psnr);
-    fputs(",\n  \"max_abs_err\": ", f); jnum(f, r->max_abs_err);
-    fprintf(f, ",\n  \"max_err8\": %d,\n  \"diff8_share\": ", r->max_err8); jnum(f, r->diff8_share);
+    fprintf(f, "  \"covered\": %zu,\n  \"nmse\": ", r->covered); base_json_num(f, r->nmse, 17);
+    fputs(",\n  \"psnr\": ", f); base_json_num(f, r->psnr, 17);
+    fputs(",\n  \"max_abs_err\": ", f); base_json_num(f, r->max_abs_err, 17);
+    fprintf(f, ",\n  \"max_err8\": %d,\n  \"diff8_share\": ", r->max_err8); base_json_num(f, r->diff8_share, 17);
     fprintf(f, ",\n  \"err_scale\": %d,\n", tb_scene_err_scale(r));
     fprintf(f, "  \"clocks\": %llu,\n  \"pixels\": %llu,\n  \"clocks_per_pixel\": ",
             (unsigned long long)r->hwst.clocks, (unsigned long long)r->hwst.pixels);
-    jnum(f, r->clocks_per_pixel);
-    fputs(",\n  \"area_ge\": ", f); jnum(f, r->hwst.area_ge);
+    base_json_num(f, r->clocks_per_pixel, 17);
+    fputs(",\n  \"area_ge\": ", f); base_json_num(f, r->hwst.area_ge, 17);
     fprintf(f, ",\n  \"overflows\": %llu,\n  \"spans\": %zu,\n  \"intervals\": %zu,\n  \"intervals_deg2\": %zu,\n  \"deg2_share\": ",
             (unsigned long long)r->hwst.overflows, r->spans, r->intervals, r->intervals_deg2);
-    jnum(f, r->deg2_share);
+    base_json_num(f, r->deg2_share, 17);
     fprintf(f, ",\n  \"nodes_shaded\": %zu,\n  \"ops_ref\": ", r->nodes_shaded);
     jops(f, r->ops_ref);
     fputs(",\n  \"ops_hw\": ", f); jops(f, r->ops_hw);
     fputs(",\n  \"cost_weights\": ", f); jops(f, d->cost);
-    fputs(",\n  \"cost_ref\": ", f); jnum(f, r->cost_ref);
-    fputs(",\n  \"cost_hw\": ", f); jnum(f, r->cost_hw);
-    fputs(",\n  \"speedup\": ", f); jnum(f, r->speedup);
+    fputs(",\n  \"cost_ref\": ", f); base_json_num(f, r->cost_ref, 17);
+    fputs(",\n  \"cost_hw\": ", f); base_json_num(f, r->cost_hw, 17);
+    fputs(",\n  \"speedup\": ", f); base_json_num(f, r->speedup, 17);
     fputs("\n}\n", f);
     return ferror(f) ? -1 : 0;
 }

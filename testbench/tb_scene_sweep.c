@@ -20,6 +20,7 @@
  * `jobs` threads, one band each; each result lands in its own slot and
  * the CSV is written in grid order: the same bytes for any jobs.
  */
+#include "base/base_json.h"
 #include "testbench/tb_scene_search.h"
 #include "testbench/tb_sweep.h"
 #include "chart/chart.h"
@@ -451,10 +452,17 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
             fprintf(out, "    \"%s\": ", nm[j]);
             if (sel[j] == (size_t)-1) { fputs("null,\n", out); continue; }
             const pt *q = &p[sel[j]];
+            /* 9 digits; a figure that is not finite (NMSE of a failed
+             * render) is null, as JSON has no inf */
             fprintf(out, "{\"config\": %zu, \"policy\": \"%s\", \"L\": %d, \"terms\": %d, \"width\": %d, "
-                    "\"schedule\": \"%s\", \"nmse\": %.9g, \"cost_per_pixel\": %.9g, \"clocks_per_pixel\": %.9g, "
-                    "\"speedup\": %.9g, \"area_ge\": %.9g},\n", sel[j], scn_policy_name((scn_policy)q->pol), q->L,
-                    q->terms, q->width, q->sched, q->nmse, q->cost_hw, q->cpp, q->speedup, q->area);
+                    "\"schedule\": \"%s\", \"nmse\": ", sel[j], scn_policy_name((scn_policy)q->pol), q->L,
+                    q->terms, q->width, q->sched);
+            base_json_num(out, q->nmse, 9);
+            fputs(", \"cost_per_pixel\": ", out); base_json_num(out, q->cost_hw, 9);
+            fputs(", \"clocks_per_pixel\": ", out); base_json_num(out, q->cpp, 9);
+            fputs(", \"speedup\": ", out); base_json_num(out, q->speedup, 9);
+            fputs(", \"area_ge\": ", out); base_json_num(out, q->area, 9);
+            fputs("},\n", out);
         }
         fputs("    \"files\": [", out);
         for (int j = 0; outdir && j < 3; j++) fprintf(out, "%s\"%s\"", j ? ", " : "", paths[j]);
