@@ -68,6 +68,7 @@ struct sim_batch {
     unsigned char *uni;         /* per signal: 1 if every lane holds the same value */
     uint64_t all[SIM_BATCH_MAX_LANES / 64];   /* every lane */
     int      started;
+    int      reg_inplace;       /* no register reads another's output directly */
 };
 
 /* ------------------------------------------------------------ quantization */
@@ -343,6 +344,42 @@ void sim_batch_start(sim_batch *b)
     b->started = 1;
 }
 
+/* Register p in place, in the lanes of rm (then cleared): its new value
+ * straight into y, the lanes it changed in into om. Right only when no
+ * register reads another's output directly (b->reg_inplace): then no
+ * register's input can see another's new value before the settle. */
+static uint64_t reg_inplace(const bop *p, uint64_t *rm, uint64_t *om, uint32_t nw, unsigned char *ovf)
+{
+    int64_t *y = p->y;
+    const int64_t *a = p->a, lo = p->lo, hi = p->hi;
+    const uint64_t radd = (uint64_t)p->radd;
+    const int k = p->k, plain = p->fast && a && !p->c && !p->rst;
+    uint64_t any = 0;
+    for (uint32_t w = 0; w < nw; w++) {
+        uint64_t mw = rm[w], acc = 0;
+        if (mw == UINT64_MAX && plain) {
+            for (uint32_t l = w * 64; l < w * 64 + 64; l++) {
+                int64_t x = (int64_t)((uint64_t)a[l] + radd) >> k;
+                if (__builtin_expect(x < lo || x > hi, 0)) x = quant(p, a[l], p->fa, &ovf[l]);
+                acc |= (uint64_t)(y[l] != x) << (l & 63);
+                y[l] = x;
+            }
+        } else {
+            while (mw) {
+                uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
+                mw &= mw - 1;
+                int64_t x = reg_next(p, l, ovf);
+                acc |= (uint64_t)(y[l] != x) << (l & 63);
+                y[l] = x;
+            }
+        }
+        om[w] |= acc;
+        any |= acc;
+        rm[w] = 0;
+    }
+    return any;
+}
+
 void sim_batch_cycle(sim_batch *b)
 {
     /* Every register reads the values before the edge, then all change at
@@ -351,6 +388,16 @@ void sim_batch_cycle(sim_batch *b)
      * last edge would load what it holds there: only the other lanes
      * (regm) are evaluated. */
     uint32_t nw = b->nw;
+    if (b->reg_inplace) {
+        for (uint32_t i = 0; i < b->nreg; i++) {
+            bop *p = &b->reg[i];
+            if (reg_inplace(p, b->regm + (size_t)i * nw, b->chg + (size_t)p->sig * nw, nw, b->ovf))
+                b->uni[p->sig] = (unsigned char)same_lanes(p->y, b->lanes);
+        }
+        apply_inputs(b);
+        settle(b);
+        return;
+    }
     for (uint32_t i = 0; i < b->nreg; i++) eval_reg(&b->reg[i], b->regm + (size_t)i * nw, nw, b->ovf);
     for (uint32_t i = 0; i < b->nreg; i++) {
         bop *p = &b->reg[i];
@@ -713,6 +760,11 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
         info[ncomb] = in;
         op_of_sig[i] = ncomb++;
     }
+    /* registers may update in place unless one reads another's output */
+    b->reg_inplace = 1;
+    for (uint32_t i = 0; i < b->nreg; i++)
+        for (int k = 0; k < b->reg[i].ndep; k++)
+            if (sim_signal_at(c, b->reg[i].dep[k])->kind == SIM_KIND_REG) b->reg_inplace = 0;
     if (sim_proc_count(c) != ndriven) {
         snprintf(err, errlen, "the design has %u processes that drive no signal (testbench or user processes)",
                  sim_proc_count(c) - ndriven);

@@ -290,7 +290,7 @@ int64_t sim_fx_from_real(double x, sim_fmt f, sim_round r, sim_ovf o, int *ovf)
     r = sim_fmt_round(f, r);   /* a format's own modes win over the caller's */
     o = sim_fmt_ovf(f, o);
     if (r != SIM_RND_EVEN && f.fbits <= 52) {
-        double y = ldexp(x, f.fbits);
+        double y = x * (double)((uint64_t)1 << f.fbits);   /* exact, as ldexp, without the call */
         if (y > -0x1p52 && y < 0x1p52 && (y == 0 || fabs(x) >= 0x1p-960)) {
             double t = floor(y);
             int64_t v = (int64_t)t + (r == SIM_RND_HALF_UP && y >= t + 0.5);
