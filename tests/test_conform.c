@@ -20,6 +20,7 @@
  * statuses, docs/units.md).
  */
 #include "tests/tst.h"
+#include "tests/tst_scope.h"
 #include "testbench/tb.h"
 #include "vectors/vec_file.h"
 #include <unistd.h>
@@ -40,24 +41,6 @@ static int have(const char *tool)
     char cmd[128];
     snprintf(cmd, sizeof cmd, "command -v %s >/dev/null 2>&1", tool);
     return system(cmd) == 0;
-}
-
-/* Name is a signal or sub-scope anywhere under sc. */
-static int in_tree(const sim_scope *sc, const char *name)
-{
-    if (sc->name && !strcmp(sc->name, name)) return 1;
-    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope)
-        if (!strcmp(s->name, name)) return 1;
-    for (const sim_scope *k = sc->first_child; k; k = k->next_sibling)
-        if (in_tree(k, name)) return 1;
-    return 0;
-}
-
-static int at_top(const sim_scope *sc, const char *name)
-{
-    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope)
-        if (!strcmp(s->name, name)) return 1;
-    return 0;
 }
 
 /* ------------------------------------------------------------ descriptor */
@@ -172,13 +155,12 @@ static void check_build(const unit_desc *u, const unit_cfg *cfg)
     unit_fmts fm;
     char err[800];
     if (tb_formats(u, cfg, NULL, 0, &fm, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); return; }
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
-    if (u->build(c, sc, clk, cfg, &fm, &io, err, sizeof err)) {
+    tb_built bu;
+    int unbuilt = tb_build(u, cfg, &fm, &bu, err, sizeof err);
+    sim_ctx *c = bu.c;
+    sim_scope *sc = bu.sc;
+    unit_io io = bu.io;
+    if (unbuilt) {
         TST_CHECK(0, "%s schedule %s: build: %s", u->name, u->sched[cfg->schedule].name, err);
         sim_free(c);
         return;

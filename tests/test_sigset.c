@@ -3,26 +3,8 @@
  * exactly the unit's signals the build puts in its scope (what the VCD
  * dumps), and --fmt accepts exactly those. */
 #include "tests/tst.h"
+#include "tests/tst_scope.h"
 #include "testbench/tb.h"
-
-/* Name appears as a signal or a sub-scope anywhere under sc. */
-static int in_tree(const sim_scope *sc, const char *name)
-{
-    if (sc->name && !strcmp(sc->name, name)) return 1;
-    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope)
-        if (!strcmp(s->name, name)) return 1;
-    for (const sim_scope *k = sc->first_child; k; k = k->next_sibling)
-        if (in_tree(k, name)) return 1;
-    return 0;
-}
-
-/* Name is a signal of the top scope itself. */
-static int at_top(const sim_scope *sc, const char *name)
-{
-    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope)
-        if (!strcmp(s->name, name)) return 1;
-    return 0;
-}
 
 /* Under ASan (TST_BUILD ending in -asan) the per-signal --fmt check runs
  * for the default parameters only (it is the same code for every
@@ -39,14 +21,11 @@ static int check_cfg(const unit_desc *u, const unit_cfg *cfg, int fmt_checks)
     unit_fmts fm;
     char err[800];
     if (tb_formats(u, cfg, NULL, 0, &fm, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); return 1; }
-    sim_ctx *c = sim_new();
-    sim_set_quant(c, cfg->rnd, cfg->ovf);
-    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
-    sim_scope *sc = sim_scope_new(c, NULL, u->name);
-    unit_io io;
-    memset(&io, 0, sizeof io);
+    tb_built bu;
     int bad = 0;
-    if (u->build(c, sc, clk, cfg, &fm, &io, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); bad = 1; }
+    if (tb_build(u, cfg, &fm, &bu, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); bad = 1; }
+    sim_ctx *c = bu.c;
+    sim_scope *sc = bu.sc;
     for (int i = 0; !bad && i < u->nsigs; i++) {
         const char *nm = u->sigs[i].name;
         int built = unit_sig_built(u, i, cfg);
