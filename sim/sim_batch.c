@@ -68,7 +68,7 @@ struct sim_batch {
     unsigned char *uni;         /* per signal: 1 if every lane holds the same value */
     uint64_t all[SIM_BATCH_MAX_LANES / 64];   /* every lane */
     int      started;
-    int      reg_inplace;       /* no register reads another's output directly */
+    int      reg_inplace;       /* registers update in place, in b->reg's order (order_regs) */
 };
 
 /* ------------------------------------------------------------ quantization */
@@ -133,7 +133,7 @@ static sim_wide align(int64_t raw, int k) { return (sim_wide)raw * ((sim_wide)1 
 #define FAST_Q(s, l) do {                                                      \
         int64_t s_ = (s);                                                      \
         int64_t x_ = (int64_t)((uint64_t)s_ + radd) >> k;                      \
-        if (__builtin_expect(x_ < lo || x_ > hi, 0))                           \
+        if (__builtin_expect((uint64_t)x_ - ulo > span, 0))                    \
             x_ = quant(p, s_, p->src_f, &ovf[l]);                              \
         PUT(l, x_);                                                            \
     } while (0)
@@ -144,7 +144,7 @@ static void eval_comb(const bop *p, const uint64_t *m, uint32_t nw, unsigned cha
 {
     const int64_t *a = p->a, *b = p->b, *c = p->c;
     int64_t *const y = p->y;
-    const int64_t lo = p->lo, hi = p->hi;
+    const uint64_t ulo = (uint64_t)p->lo, span = (uint64_t)p->hi - ulo;   /* in range: x - lo <= span */
     const uint64_t radd = (uint64_t)p->radd;
     const int k = p->k, sa = p->sa, sb = p->sb, fa = p->fa, src_f = p->src_f, n = p->n;
     int64_t *const *in = p->in;
@@ -186,12 +186,49 @@ static void eval_comb(const bop *p, const uint64_t *m, uint32_t nw, unsigned cha
         break;
     case B_LOGIC:
         if (p->tab) {
+            /* the index's pieces in locals (stores to y may alias p's
+             * fields); one and two inputs, the common control logic,
+             * without the inner loop */
             const int64_t *tab = p->tab;
-            FOR_LANES(l, m, nw, {
-                uint64_t ix = 0;
-                for (int i = 0; i < n; i++) ix |= ((uint64_t)in[i][l] & p->tmask[i]) << p->tsh[i];
-                PUT(l, tab[ix]);
-            });
+            const int64_t *i0 = n > 0 ? in[0] : NULL, *i1 = n > 1 ? in[1] : i0;
+            const uint64_t m0 = p->tmask[0], m1 = n > 1 ? p->tmask[1] : 0;
+            const int s1 = n > 1 ? p->tsh[1] : 0;
+            if (n == 1) {
+                FOR_LANES(l, m, nw, PUT(l, tab[(uint64_t)i0[l] & m0]););
+            } else if (n == 2) {
+                FOR_LANES(l, m, nw, PUT(l, tab[((uint64_t)i0[l] & m0) | (((uint64_t)i1[l] & m1) << s1)]););
+            } else {
+                /* more inputs: a full word of lanes builds its 64 indices
+                 * input by input (loops the compiler vectorizes), a sparse
+                 * word lane by lane */
+                uint64_t tm[8];
+                int ts[8];
+                for (int i = 0; i < n; i++) { tm[i] = p->tmask[i]; ts[i] = p->tsh[i]; }
+                for (uint32_t w = 0; w < nw; w++) {
+                    uint64_t mw = m[w], acc_ = 0;
+                    if (mw == UINT64_MAX) {
+                        uint64_t ix[64];
+                        const uint32_t l0 = w * 64;
+                        for (uint32_t j = 0; j < 64; j++) ix[j] = (uint64_t)i0[l0 + j] & tm[0];
+                        for (int i = 1; i < n; i++) {
+                            const int64_t *v = in[i] + l0;
+                            const uint64_t mi = tm[i];
+                            const int si = ts[i];
+                            for (uint32_t j = 0; j < 64; j++) ix[j] |= ((uint64_t)v[j] & mi) << si;
+                        }
+                        for (uint32_t j = 0; j < 64; j++) PUT(l0 + j, tab[ix[j]]);
+                    } else {
+                        while (mw) {
+                            uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
+                            mw &= mw - 1;
+                            uint64_t ix = 0;
+                            for (int i = 0; i < n; i++) ix |= ((uint64_t)in[i][l] & tm[i]) << ts[i];
+                            PUT(l, tab[ix]);
+                        }
+                    }
+                    om[w] |= acc_;
+                }
+            }
             break;
         }
         FOR_LANES(l, m, nw, {
@@ -203,52 +240,76 @@ static void eval_comb(const bop *p, const uint64_t *m, uint32_t nw, unsigned cha
     }
 }
 
-/* A register's value after the edge, from the values before it. */
-/* Register p's value after the edge, in the lanes of mask m, from the
- * values before it. */
-static inline int64_t reg_next(const bop *p, uint32_t l, unsigned char *ovf)
+/* A register's fields the per-lane step reads, copied into locals once
+ * per register: y's stores may alias whatever an int64_t pointer reaches,
+ * so read through p they would be reloaded on every lane. */
+typedef struct regv {
+    const int64_t *a, *en, *rst, *y;
+    int64_t  rst_raw, lo;
+    uint64_t span, radd;      /* in range: (uint64_t)(x - lo) <= span */
+    int      k, fast, fa;
+} regv;
+
+static inline regv reg_view(const bop *p)
 {
-    if (p->rst && p->rst[l]) return p->rst_raw;
-    if ((p->c && !p->c[l]) || !p->a) return p->y[l];
-    if (p->fast) {
-        int64_t x = (int64_t)((uint64_t)p->a[l] + (uint64_t)p->radd) >> p->k;
-        if (x >= p->lo && x <= p->hi) return x;
+    return (regv){ p->a, p->c, p->rst, p->y, p->rst_raw, p->lo, (uint64_t)p->hi - (uint64_t)p->lo,
+                   (uint64_t)p->radd, p->k, p->fast, p->fa };
+}
+
+/* Register p's value after the edge in lane l, from the values before it. */
+static inline int64_t reg_next(const regv *r, const bop *p, uint32_t l, unsigned char *ovf)
+{
+    if (r->rst && r->rst[l]) return r->rst_raw;
+    if ((r->en && !r->en[l]) || !r->a) return r->y[l];
+    if (r->fast) {
+        int64_t x = (int64_t)((uint64_t)r->a[l] + r->radd) >> r->k;
+        if ((uint64_t)x - (uint64_t)r->lo <= r->span) return x;
     }
-    return quant(p, p->a[l], p->fa, &ovf[l]);
+    return quant(p, r->a[l], r->fa, &ovf[l]);
 }
 
 static void eval_reg(const bop *p, const uint64_t *m, uint32_t nw, unsigned char *ovf)
 {
+    const regv r = reg_view(p);
     int64_t *nx = p->nx;
     const int64_t *a = p->a, lo = p->lo, hi = p->hi;
     const uint64_t radd = (uint64_t)p->radd;
     const int k = p->k, plain = p->fast && a && !p->c && !p->rst;
     for (uint32_t w = 0; w < nw; w++) {
         uint64_t mw = m[w];
-        if (mw == UINT64_MAX && plain) {
+        int d = mw == UINT64_MAX;
+        if (d && plain) {
             /* the common register, q <= d, in every lane of the word */
             for (uint32_t l = w * 64; l < w * 64 + 64; l++) {
                 int64_t x = (int64_t)((uint64_t)a[l] + radd) >> k;
                 nx[l] = x >= lo && x <= hi ? x : quant(p, a[l], p->fa, &ovf[l]);
             }
-        } else if (mw == UINT64_MAX) {
-            for (uint32_t l = w * 64; l < w * 64 + 64; l++) nx[l] = reg_next(p, l, ovf);
+        } else if (d) {
+            for (uint32_t l = w * 64; l < w * 64 + 64; l++) nx[l] = reg_next(&r, p, l, ovf);
         } else {
             while (mw) {
                 uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
                 mw &= mw - 1;
-                nx[l] = reg_next(p, l, ovf);
+                nx[l] = reg_next(&r, p, l, ovf);
             }
         }
     }
 }
 
-/* 1 if every lane of v holds v[0]. */
+/* 1 if every lane of v holds v[0]. A data row usually differs within the
+ * first lanes, so the scan stops at the first block of 8 that differs; a
+ * control row in lanes that run in step is read whole. */
 static int same_lanes(const int64_t *v, uint32_t n)
 {
-    uint64_t d = 0;
-    for (uint32_t l = 1; l < n; l++) d |= (uint64_t)(v[l] ^ v[0]);
-    return !d;
+    const int64_t v0 = v[0];
+    uint32_t l = 1;
+    for (; l + 8 <= n; l += 8) {
+        uint64_t d = 0;
+        for (uint32_t j = 0; j < 8; j++) d |= (uint64_t)(v[l + j] ^ v0);
+        if (d) return 0;
+    }
+    for (; l < n; l++) if (v[l] != v0) return 0;
+    return 1;
 }
 
 /* Inputs take the values set for this edge; the lanes each changed in
@@ -262,9 +323,16 @@ static void apply_inputs(sim_batch *b)
         const int64_t *p = b->pend + (size_t)i * L;
         if (!memcmp(v, p, L * sizeof *v)) continue;
         uint64_t *om = b->chg + (size_t)sig * b->nw;
-        for (size_t l = 0; l < L; l++) {
-            om[l >> 6] |= (uint64_t)(v[l] != p[l]) << (l & 63);
-            v[l] = p[l];
+        for (size_t w = 0; w < b->nw; w++) {
+            /* the word's bits in a local: om may alias v and p (int64_t
+             * and uint64_t), so a store through it would reload them */
+            uint64_t acc = 0;
+            size_t end = L < 64 * w + 64 ? L : 64 * w + 64;
+            for (size_t l = 64 * w; l < end; l++) {
+                acc |= (uint64_t)(v[l] != p[l]) << (l & 63);
+                v[l] = p[l];
+            }
+            om[w] |= acc;
         }
         b->uni[sig] = (unsigned char)same_lanes(v, b->lanes);
     }
@@ -345,11 +413,13 @@ void sim_batch_start(sim_batch *b)
 }
 
 /* Register p in place, in the lanes of rm (then cleared): its new value
- * straight into y, the lanes it changed in into om. Right only when no
- * register reads another's output directly (b->reg_inplace): then no
- * register's input can see another's new value before the settle. */
+ * straight into y, the lanes it changed in into om. Right only in
+ * b->reg's order when b->reg_inplace (order_regs): every register reading
+ * p's output directly has sampled it before, and nothing else reads a
+ * register's output before the settle. */
 static uint64_t reg_inplace(const bop *p, uint64_t *rm, uint64_t *om, uint32_t nw, unsigned char *ovf)
 {
+    const regv r = reg_view(p);
     int64_t *y = p->y;
     const int64_t *a = p->a, lo = p->lo, hi = p->hi;
     const uint64_t radd = (uint64_t)p->radd;
@@ -357,10 +427,17 @@ static uint64_t reg_inplace(const bop *p, uint64_t *rm, uint64_t *om, uint32_t n
     uint64_t any = 0;
     for (uint32_t w = 0; w < nw; w++) {
         uint64_t mw = rm[w], acc = 0;
-        if (mw == UINT64_MAX && plain) {
+        int d = mw == UINT64_MAX;
+        if (d && plain) {
             for (uint32_t l = w * 64; l < w * 64 + 64; l++) {
                 int64_t x = (int64_t)((uint64_t)a[l] + radd) >> k;
                 if (__builtin_expect(x < lo || x > hi, 0)) x = quant(p, a[l], p->fa, &ovf[l]);
+                acc |= (uint64_t)(y[l] != x) << (l & 63);
+                y[l] = x;
+            }
+        } else if (d) {
+            for (uint32_t l = w * 64; l < w * 64 + 64; l++) {
+                int64_t x = reg_next(&r, p, l, ovf);
                 acc |= (uint64_t)(y[l] != x) << (l & 63);
                 y[l] = x;
             }
@@ -368,7 +445,7 @@ static uint64_t reg_inplace(const bop *p, uint64_t *rm, uint64_t *om, uint32_t n
             while (mw) {
                 uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
                 mw &= mw - 1;
-                int64_t x = reg_next(p, l, ovf);
+                int64_t x = reg_next(&r, p, l, ovf);
                 acc |= (uint64_t)(y[l] != x) << (l & 63);
                 y[l] = x;
             }
@@ -691,6 +768,53 @@ fail:
     return -1;
 }
 
+/* Registers update in place (each writes its new value straight over the
+ * old) when every register that reads another's output directly comes
+ * before it in b->reg: the reader has then sampled the old value. A
+ * pipeline of registers is put in that order (readers first: a topological
+ * order of "reads" edges, Kahn's algorithm); a register reading itself
+ * samples its own old value anyway. Registers in a ring (two or more
+ * reading each other) have no such order: b->reg_inplace stays 0 and a
+ * cycle computes every new value before storing any. -1 if out of memory. */
+static int order_regs(sim_batch *b)
+{
+    uint32_t n = b->nreg;
+    b->reg_inplace = 1;
+    if (n < 2) return 0;
+    uint32_t *reg_of_sig = malloc((size_t)b->nsig * sizeof *reg_of_sig);
+    uint32_t *indeg = calloc(n, sizeof *indeg), *order = malloc(n * sizeof *order);
+    bop *sorted = malloc(n * sizeof *sorted);
+    if (!reg_of_sig || !indeg || !order || !sorted) {
+        free(reg_of_sig); free(indeg); free(order); free(sorted);
+        return -1;
+    }
+    for (uint32_t i = 0; i < b->nsig; i++) reg_of_sig[i] = UINT32_MAX;
+    for (uint32_t i = 0; i < n; i++) reg_of_sig[b->reg[i].sig] = i;
+    /* edge reader -> read: the read register waits for its readers */
+    for (uint32_t i = 0; i < n; i++)
+        for (int k = 0; k < b->reg[i].ndep; k++) {
+            uint32_t j = reg_of_sig[b->reg[i].dep[k]];
+            if (j != UINT32_MAX && j != i) indeg[j]++;
+        }
+    uint32_t head = 0, tail = 0;
+    for (uint32_t i = 0; i < n; i++) if (!indeg[i]) order[tail++] = i;
+    while (head < tail) {
+        const bop *p = &b->reg[order[head++]];
+        for (int k = 0; k < p->ndep; k++) {
+            uint32_t j = reg_of_sig[p->dep[k]];
+            if (j != UINT32_MAX && j != reg_of_sig[p->sig] && !--indeg[j]) order[tail++] = j;
+        }
+    }
+    if (tail == n) {
+        for (uint32_t i = 0; i < n; i++) sorted[i] = b->reg[order[i]];
+        memcpy(b->reg, sorted, n * sizeof *sorted);
+    } else {
+        b->reg_inplace = 0;
+    }
+    free(reg_of_sig); free(indeg); free(order); free(sorted);
+    return 0;
+}
+
 sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char *err, size_t errlen)
 {
     if (lanes < 1 || lanes > SIM_BATCH_MAX_LANES) {
@@ -760,11 +884,7 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
         info[ncomb] = in;
         op_of_sig[i] = ncomb++;
     }
-    /* registers may update in place unless one reads another's output */
-    b->reg_inplace = 1;
-    for (uint32_t i = 0; i < b->nreg; i++)
-        for (int k = 0; k < b->reg[i].ndep; k++)
-            if (sim_signal_at(c, b->reg[i].dep[k])->kind == SIM_KIND_REG) b->reg_inplace = 0;
+    if (order_regs(b)) goto oom;
     if (sim_proc_count(c) != ndriven) {
         snprintf(err, errlen, "the design has %u processes that drive no signal (testbench or user processes)",
                  sim_proc_count(c) - ndriven);

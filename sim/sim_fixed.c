@@ -276,29 +276,38 @@ int64_t sim_fx_requant(sim_wide raw, int src_fbits, sim_fmt f,
     return quant(raw, src_fbits - f.fbits, f, sim_fmt_round(f, r), sim_fmt_ovf(f, o), ovf);
 }
 
+void sim_fx_conv_init(sim_fx_conv *cv, sim_fmt f, sim_round r, sim_ovf o)
+{
+    cv->f = f;
+    cv->r = r;
+    cv->o = o;
+    r = sim_fmt_round(f, r);
+    cv->scale = r != SIM_RND_EVEN && f.fbits <= 52 ? (double)((uint64_t)1 << f.fbits) : 0;
+    cv->half_up = r == SIM_RND_HALF_UP;
+    cv->lo = sim_fmt_raw_min(f);
+    cv->hi = sim_fmt_raw_max(f);
+}
+
 int64_t sim_fx_from_real(double x, sim_fmt f, sim_round r, sim_ovf o, int *ovf)
 {
     if (!isfinite(x)) {
         if (ovf) *ovf = 1;
         return 0;
     }
-    /* The common case without frexp: x 2^F is exact (a power-of-two
-     * scaling, here never past 2^52 and never subnormal), so is its floor
-     * below 2^52, and so is floor(y) + 1/2; rounding half-up adds one
-     * when y is at least that (compared, not subtracted: y - floor(y) of a
-     * negative y can round). In range, that is the raw. */
+    /* The common case without frexp (sim__fx_fast): x 2^F is exact (a
+     * power-of-two scaling, here never past 2^52 and never subnormal), so
+     * is its floor below 2^52 (taken by truncation toward zero, then one
+     * down if that was above), and so is floor(y) + 1/2; rounding half-up
+     * adds one when y is at least that (compared, not subtracted: y -
+     * floor(y) of a negative y can round). In range, that is the raw. */
     r = sim_fmt_round(f, r);   /* a format's own modes win over the caller's */
     o = sim_fmt_ovf(f, o);
-    if (r != SIM_RND_EVEN && f.fbits <= 52) {
-        double y = x * (double)((uint64_t)1 << f.fbits);   /* exact, as ldexp, without the call */
-        if (y > -0x1p52 && y < 0x1p52 && (y == 0 || fabs(x) >= 0x1p-960)) {
-            double t = floor(y);
-            int64_t v = (int64_t)t + (r == SIM_RND_HALF_UP && y >= t + 0.5);
-            if (v >= sim_fmt_raw_min(f) && v <= sim_fmt_raw_max(f)) {
-                if (ovf) *ovf = 0;
-                return v;
-            }
-        }
+    int64_t v;
+    if (r != SIM_RND_EVEN && f.fbits <= 52
+        && sim__fx_fast(x, (double)((uint64_t)1 << f.fbits), r == SIM_RND_HALF_UP,
+                        sim_fmt_raw_min(f), sim_fmt_raw_max(f), &v)) {
+        if (ovf) *ovf = 0;
+        return v;
     }
     /* x = m * 2^(e-53) exactly, m an integer of at most 53 bits: the
      * double becomes an exact wide raw, with no rounding in floating point

@@ -90,6 +90,47 @@ double  sim_fmt_real_max(sim_fmt f);
  * value was outside the format's range (then wrapped or saturated). Here
  * and in sim_fx_requant, f's own modes (if any) take the place of r / o. */
 int64_t sim_fx_from_real(double x, sim_fmt f, sim_round r, sim_ovf o, int *ovf);
+/* The same conversion prepared once for a format and modes, for a
+ * testbench that quantizes many inputs into one port: sim_fx_conv_real(cv,
+ * x, ovf) is sim_fx_from_real(x, f, r, o, ovf), bit for bit, with the
+ * common case (a value in range, rounded down or half up) inline. */
+typedef struct sim_fx_conv {
+    double   scale;        /* 2^F; 0 when the fast step does not apply */
+    int64_t  lo, hi;       /* the raw range */
+    int      half_up;
+    sim_fmt  f;
+    sim_round r;
+    sim_ovf  o;
+} sim_fx_conv;
+void sim_fx_conv_init(sim_fx_conv *cv, sim_fmt f, sim_round r, sim_ovf o);
+
+/* The fast step (sim_fixed.c says why it is exact): 1 with the raw in *v
+ * when x 2^F, rounded down or half up, is an integer in [lo, hi] below
+ * 2^52 in magnitude; 0 otherwise (NaN, infinities and the rest included:
+ * the general path decides). */
+static inline int sim__fx_fast(double x, double scale, int half_up, int64_t lo, int64_t hi, int64_t *v)
+{
+    double y = x * scale;
+    if (!(y > -0x1p52 && y < 0x1p52 && (y == 0 || __builtin_fabs(x) >= 0x1p-960))) return 0;
+    int64_t i = (int64_t)y;          /* toward zero, exact below 2^52 */
+    double t = (double)i;
+    if (t > y) { i--; t -= 1.0; }    /* floor */
+    i += half_up && y >= t + 0.5;
+    if (i < lo || i > hi) return 0;
+    *v = i;
+    return 1;
+}
+
+static inline int64_t sim_fx_conv_real(const sim_fx_conv *cv, double x, int *ovf)
+{
+    int64_t v;
+    if (cv->scale != 0 && sim__fx_fast(x, cv->scale, cv->half_up, cv->lo, cv->hi, &v)) {
+        if (ovf) *ovf = 0;
+        return v;
+    }
+    return sim_fx_from_real(x, cv->f, cv->r, cv->o, ovf);
+}
+
 /* Quantize an exact wide raw value with src_fbits fraction bits. */
 int64_t sim_fx_requant(sim_wide raw, int src_fbits, sim_fmt f,
                        sim_round r, sim_ovf o, int *ovf);

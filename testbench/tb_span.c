@@ -25,7 +25,7 @@ typedef struct span_tb {
     int started;
     int nin;
     int what[UNIT_MAX_IO];          /* IN_NODE + i, IN_N, IN_DV, IN_DEG per input port */
-    sim_fmt fmt[UNIT_MAX_IO];
+    sim_fx_conv conv[UNIT_MAX_IO];  /* each port's quantization, with the configuration's modes */
     uint64_t in_ovf, first_accept, last_pixel;
     const sim_ctx *ctx;
     /* monitor */
@@ -44,7 +44,7 @@ static void item_raws(const span_tb *s, size_t i, int64_t *raw, uint64_t *ovf)
         int w = s->what[p];
         double v = w < IN_N ? it->node[w] : w == IN_N ? it->n : w == IN_DV ? it->dv : it->deg;
         int ov = 0;
-        raw[p] = sim_fx_from_real(v, s->fmt[p], s->cfg->rnd, s->cfg->ovf, &ov);
+        raw[p] = sim_fx_conv_real(&s->conv[p], v, &ov);
         *ovf += (uint64_t)ov;
     }
 }
@@ -89,7 +89,7 @@ static void monitor(sim_proc *p)
 
 /* Map the unit's input ports to item fields; 0, or -1 if it is not a span
  * unit. */
-static int map_inputs(const unit_desc *u, span_tb *s, const unit_fmts *f)
+static int map_inputs(const unit_desc *u, const unit_cfg *cfg, span_tb *s, const unit_fmts *f)
 {
     int k = 0, has_n = 0, has_dv = 0;
     for (int i = 0; i < u->nsigs && k < UNIT_MAX_IO; i++) {
@@ -100,7 +100,7 @@ static int map_inputs(const unit_desc *u, span_tb *s, const unit_fmts *f)
         else if (!strcmp(nm, "dv")) { s->what[k] = IN_DV; has_dv = 1; }
         else if (!strcmp(nm, "deg")) s->what[k] = IN_DEG;
         else return -1;
-        s->fmt[k++] = f->f[i];
+        sim_fx_conv_init(&s->conv[k++], f->f[i], cfg->rnd, cfg->ovf);
     }
     s->nin = k;
     return has_n && has_dv ? 0 : -1;
@@ -143,7 +143,7 @@ static int prepare(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, 
 {
     memset(st, 0, sizeof *st);
     memset(s, 0, sizeof *s);
-    if (!u || map_inputs(u, s, f)) {
+    if (!u || map_inputs(u, cfg, s, f)) {
         snprintf(err, errlen, "unit %s is not a span unit (inputs i1.., n, dv)", u ? u->name : "(none)");
         return -1;
     }
@@ -261,32 +261,34 @@ static void lane_offer(const lane_io *x, lane_tb *t, size_t i)
     t->s.offered = i;
 }
 
-/* driver() for lane t before edge e, from the values before the edge. */
-static void lane_driver(const lane_io *x, lane_tb *t, uint64_t e)
+/* driver() in the kernel's initialization, which runs it once before any
+ * edge: the first item offered (a lane in the batch has one at least). */
+static void lane_start(const lane_io *x, lane_tb *t)
 {
-    span_tb *s = &t->s;
-    if (s->started && x->in_valid[t->lane] && x->in_ready[t->lane]) {
-        if (s->next == 0) s->first_accept = e;
-        s->next++;
-    }
-    s->started = 1;
-    if (s->next < s->nitems) {
-        if (s->offered != s->next) lane_offer(x, t, s->next);
-        x->valid[t->lane] = 1;
-    } else {
-        x->valid[t->lane] = 0;
-    }
+    t->s.started = 1;
+    lane_offer(x, t, 0);
+    x->valid[t->lane] = 1;
 }
 
-/* monitor() for lane t at edge e; 1 when its last pixel came. */
-static int lane_monitor(const lane_io *x, lane_tb *t, uint64_t e)
+/* monitor() then driver() for lane t at edge e, once started (the driver
+ * has offered the first item): after that the driver has work only when
+ * the offered item is accepted, since valid and the inputs stay set from
+ * edge to edge. 1 when the lane's last pixel came. */
+static inline int lane_edge(const lane_io *x, lane_tb *t, uint64_t e)
 {
     span_tb *s = &t->s;
-    if (!x->out_valid[t->lane] || s->got >= s->total) return 0;
-    s->pix[s->got++] = (double)x->y[t->lane] * s->lsb;
-    if (s->got < s->total) return 0;
-    s->last_pixel = e;
-    return 1;
+    const uint32_t l = t->lane;
+    int last = 0;
+    if (x->out_valid[l] && s->got < s->total) {
+        s->pix[s->got++] = (double)x->y[l] * s->lsb;
+        if (s->got == s->total) { s->last_pixel = e; last = 1; }
+    }
+    if (x->in_valid[l] && x->in_ready[l]) {
+        if (s->next == 0) s->first_accept = e;
+        if (++s->next < s->nitems) lane_offer(x, t, s->next);
+        else x->valid[l] = 0;
+    }
+    return last;
 }
 
 /* The lanes marked in_batch, side by side; a lane the batch cannot give
@@ -318,27 +320,28 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
     x.in_ready = sim_batch_val(b, io.in_ready);
     x.out_valid = sim_batch_val(b, io.out_valid);
     x.y = sim_batch_val(b, io.out[0]);
-    uint32_t active = 0;
-    for (size_t i = 0; i < n; i++) {
+    /* act: the lanes still running, in lane order (a lane leaves the list
+     * when it finishes) */
+    uint32_t *act = malloc(n * sizeof *act), *fin = malloc(n * sizeof *fin), active = 0;
+    for (size_t i = 0; i < n && act && fin; i++) {
         lane_tb *t = &T[i];
         if (!t->in_batch) continue;
         t->s.io = &io; t->s.y = io.out[0]; t->s.lsb = lsb; t->s.pix = L[i].pix;
         t->max_clocks = 1000 + 8 * (uint64_t)t->s.total + 8 * (uint64_t)t->s.nitems;
-        lane_driver(&x, t, 0);   /* the kernel's initialization runs the driver once */
-        active++;
+        lane_start(&x, t);
+        act[active++] = (uint32_t)i;
     }
     sim_batch_start(b);
-    uint32_t *fin = malloc(n * sizeof *fin);
     for (uint64_t e = 1; active && fin; e++) {
-        uint32_t nfin = 0;
-        for (size_t i = 0; i < n; i++) {
-            lane_tb *t = &T[i];
-            if (!t->in_batch || t->done) continue;
-            int last = lane_monitor(&x, t, e);
-            lane_driver(&x, t, e);
-            if (last || e >= t->max_clocks) { fin[nfin++] = (uint32_t)i; t->done = 1; active--; }
+        uint32_t nfin = 0, keep = 0;
+        for (uint32_t k = 0; k < active; k++) {
+            lane_tb *t = &T[act[k]];
+            int last = lane_edge(&x, t, e);
+            if (last || e >= t->max_clocks) { fin[nfin++] = act[k]; t->done = 1; }
+            else act[keep++] = act[k];
             if (!last && e >= t->max_clocks) t->in_batch = 0;   /* tb_span_run says why */
         }
+        active = keep;
         sim_batch_cycle(b);
         /* the last edge's settling belongs to the lane's run too */
         for (uint32_t k = 0; k < nfin; k++) {
@@ -352,7 +355,8 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
             st->area_ge = area;
         }
     }
-    if (!fin) for (size_t i = 0; i < n; i++) T[i].in_batch = 0;
+    if (!fin || !act) for (size_t i = 0; i < n; i++) T[i].in_batch = 0;
+    free(act);
     free(fin);
     sim_batch_free(b);
     sim_free(c);

@@ -292,6 +292,30 @@ static void test_from_real_grid(void)
  * floating point) against the long-double reference: random doubles of
  * every magnitude, and values a tiny step either side of a tie, negative
  * ones included (there y - floor(y) would round). */
+/* The prepared conversion (sim_fx_conv_real) gives the reference's raw
+ * and overflow too: with the modes passed at its setup, and with the
+ * same modes carried by the format itself while the setup passes others
+ * (a format's own modes win). */
+static void check_conv(double x, sim_fmt f, int r, int o, long double want, int rov)
+{
+    sim_fx_conv cv;
+    int ov = -1;
+    sim_fx_conv_init(&cv, f, RND[r], OVF[o]);
+    int64_t got = sim_fx_conv_real(&cv, x, &ov);
+    TST_CHECK(got == want && ov == rov, "conv %c%d.%d x=%a %s/%s: got %lld ovf %d, want %.0Lf ovf %d",
+              f.is_signed ? 's' : 'u', f.ibits, f.fbits, x, sim_round_name(RND[r]), sim_ovf_name(OVF[o]),
+              (long long)got, ov, want, rov);
+    sim_fmt own = f;
+    own.rnd = (uint8_t)(RND[r] + 1);
+    own.ovf = (uint8_t)(OVF[o] + 1);
+    sim_fx_conv_init(&cv, own, RND[(r + 1) % 3], OVF[1 - o]);
+    ov = -1;
+    got = sim_fx_conv_real(&cv, x, &ov);
+    TST_CHECK(got == want && ov == rov, "conv, own modes %c%d.%d x=%a %s/%s: got %lld ovf %d, want %.0Lf ovf %d",
+              f.is_signed ? 's' : 'u', f.ibits, f.fbits, x, sim_round_name(RND[r]), sim_ovf_name(OVF[o]),
+              (long long)got, ov, want, rov);
+}
+
 static void test_from_real_ties_wide(void)
 {
     for (int k = 0; k < 20000; k++) {
@@ -319,6 +343,7 @@ static void test_from_real_ties_wide(void)
                 TST_CHECK(got == want && ov == rov, "%c%d.%d x=%a %s/%s: got %lld ovf %d, want %.0Lf ovf %d",
                           sg ? 's' : 'u', ib, fb, x, sim_round_name(RND[r]), sim_ovf_name(OVF[o]),
                           (long long)got, ov, want, rov);
+                check_conv(x, f, r, o, want, rov);
             }
     }
 }
@@ -350,6 +375,7 @@ static void test_from_real_random_ties(void)
                                       "%c%d.%d x=%a %s/%s: got %lld ovf %d, want %.0Lf ovf %d",
                                       sg ? 's' : 'u', i, fb, x, sim_round_name(RND[r]),
                                       sim_ovf_name(OVF[o]), (long long)got, ov, want, rov);
+                            check_conv(x, f, r, o, want, rov);
                         }
                 }
             }
@@ -677,6 +703,11 @@ static void test_nonfinite(void)
                     TST_EQ_INT(sim_fx_from_real(bad[k], fs[t], RND[r], OVF[o], &ov), 0);
                     TST_EQ_INT(ov, 1);
                     TST_EQ_INT(sim_fx_from_real(bad[k], fs[t], RND[r], OVF[o], NULL), 0);
+                    sim_fx_conv cv;
+                    sim_fx_conv_init(&cv, fs[t], RND[r], OVF[o]);
+                    ov = 0;
+                    TST_EQ_INT(sim_fx_conv_real(&cv, bad[k], &ov), 0);
+                    TST_EQ_INT(ov, 1);
                 }
     /* ovf is assigned, not accumulated */
     int ov = 1;
