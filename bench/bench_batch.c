@@ -165,6 +165,8 @@ static int horner(void)
     }
     int n_in = unit_n_in(u), n_out = unit_n_out(u), idx[UNIT_MAX_IO];
     for (int i = 0, k = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN) idx[k++] = i;
+    sim_fx_conv cv[UNIT_MAX_IO];   /* each port's quantization, as tb_run and tb_batch_run prepare it */
+    for (int i = 0; i < n_in; i++) sim_fx_conv_init(&cv[i], f.f[idx[i]], cfg.rnd, cfg.ovf);
     int64_t *in = malloc(per * (size_t)n_in * sizeof *in), *raw = malloc(per * (size_t)n_out * sizeof *raw);
     double bk = 1e9, bb = 1e9;
     for (int rep = 0; rep < 3; rep++) {
@@ -172,7 +174,7 @@ static int horner(void)
         for (int k = 0; k < LANES; k++) {
             for (size_t r = 0; r < per; r++)
                 for (int i = 0; i < n_in; i++)
-                    in[r * (size_t)n_in + (size_t)i] = sim_fx_from_real(vec_row(&vs[k], r)[i], f.f[idx[i]], cfg.rnd, cfg.ovf, NULL);
+                    in[r * (size_t)n_in + (size_t)i] = sim_fx_conv_real(&cv[i], vec_row(&vs[k], r)[i], NULL);
             if (kernel_stream(u, &cfg, &f, in, per, raw)) return 1;
             if (rep == 0 && k == LANES - 1) {
                 /* compared below with the batch's last lane */

@@ -441,6 +441,15 @@ static uint64_t reg_inplace(const bop *p, uint64_t *rm, uint64_t *om, uint32_t n
                 acc |= (uint64_t)(y[l] != x) << (l & 63);
                 y[l] = x;
             }
+        } else if (plain) {
+            while (mw) {
+                uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
+                mw &= mw - 1;
+                int64_t x = (int64_t)((uint64_t)a[l] + radd) >> k;
+                if (__builtin_expect(x < lo || x > hi, 0)) x = quant(p, a[l], p->fa, &ovf[l]);
+                acc |= (uint64_t)(y[l] != x) << (l & 63);
+                y[l] = x;
+            }
         } else {
             while (mw) {
                 uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);

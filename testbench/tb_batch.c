@@ -19,8 +19,10 @@ typedef struct lane_st {
 /* Quantize lane k's inputs as tb_run does (tb_prep's first step). */
 static int quantize(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, tb_batch_lane *L, lane_st *s)
 {
-    int n_in = unit_n_in(u), idx[UNIT_MAX_IO];
-    for (int i = 0, k = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN) idx[k++] = i;
+    int n_in = unit_n_in(u);
+    sim_fx_conv cv[UNIT_MAX_IO];   /* each input port's quantization */
+    for (int i = 0, k = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_IN) sim_fx_conv_init(&cv[k++], fm->f[i], cfg->rnd, cfg->ovf);
     s->n_items = L->vs->n_rows;
     s->in_raw = malloc((s->n_items ? s->n_items : 1) * (size_t)n_in * sizeof *s->in_raw);
     if (!s->in_raw) return -1;
@@ -28,7 +30,7 @@ static int quantize(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm
         const double *row = vec_row(L->vs, it);
         for (int i = 0; i < n_in; i++) {
             int ov = 0;
-            s->in_raw[it * (size_t)n_in + (size_t)i] = sim_fx_from_real(row[i], fm->f[idx[i]], cfg->rnd, cfg->ovf, &ov);
+            s->in_raw[it * (size_t)n_in + (size_t)i] = sim_fx_conv_real(&cv[i], row[i], &ov);
             L->in_overflows += (uint64_t)ov;
         }
     }
