@@ -254,9 +254,85 @@ static void t_accumulator_by_hand(void)
     sim_free(c);
 }
 
+/* Registers reading registers, lane by lane against the hand formula, in
+ * two designs (a ring anywhere makes the batch update every register
+ * through a copy, so each case has its own): a chain built first stage
+ * first (q1 <= x, q2 <= q1, q3 <= q2), where an update in place in that
+ * order would give q3 = x at once, and a ring (r1 <= r2, r2 <= r1, reset
+ * to 5 and 9) whose values swap every edge, where an update in place in
+ * any order would make them equal. */
+enum { RR_LANES = 70 };   /* a whole 64-lane word and a part of one */
+static void register_case(int ring)
+{
+    char err[300];
+    sim_ctx *c = sim_new();
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_fmt f = { .is_signed = 1, .ibits = 8, .fbits = 0, .width = 8 };
+    sim_fmt u1 = { .is_signed = 0, .ibits = 1, .fbits = 0, .width = 1 };
+    sim_signal *x = sim_signal_new(c, NULL, "x", f, SIM_KIND_INPUT);
+    sim_signal *rs = sim_signal_new(c, NULL, "rs", u1, SIM_KIND_INPUT);
+    sim_signal *q[3] = { NULL, NULL, NULL }, *r1 = NULL, *r2 = NULL;
+    if (!ring) {
+        for (int i = 0; i < 3; i++) {
+            char nm[4] = { 'q', (char)('1' + i), 0, 0 };
+            q[i] = sim_reg(c, NULL, nm, f, clk, i ? q[i - 1] : x, NULL, NULL, 0);
+        }
+    } else {
+        r1 = sim_reg(c, NULL, "r1", f, clk, NULL, NULL, rs, 5);
+        r2 = sim_reg(c, NULL, "r2", f, clk, r1, NULL, rs, 9);
+        sim_reg_connect(r1, r2);
+    }
+    sim_batch *b = sim_batch_new(c, clk, RR_LANES, err, sizeof err);
+    TST_CHECK(b != NULL, "%s", err);
+    if (!b) { sim_free(c); return; }
+    int64_t *nx = sim_batch_next(b, x), *nrs = sim_batch_next(b, rs);
+    for (uint32_t l = 0; l < RR_LANES; l++) { nx[l] = 0; nrs[l] = 1; }
+    sim_batch_start(b);
+    /* set at iteration e, taken at edge e: x = (7e + l) mod 100, and the
+     * ring's reset high at e = 0 only (lane 3: up to e = 2) */
+    int bad = 0;
+    for (int e = 0; e < 12 && !bad; e++) {
+        for (uint32_t l = 0; l < RR_LANES; l++) {
+            nx[l] = (7 * e + (int64_t)l) % 100;
+            nrs[l] = e < (l == 3 ? 3 : 1);
+        }
+        sim_batch_cycle(b);
+        for (uint32_t l = 0; l < RR_LANES && !bad; l++) {
+            if (!ring) {
+                /* after edge e, q1 holds what x was before it: the value
+                 * set at e - 1 (0 from the start); q2 and q3 the two before */
+                for (int d = 0; d < 3 && !bad; d++) {
+                    int64_t want = e - 1 - d >= 0 ? (7 * (e - 1 - d) + (int64_t)l) % 100 : 0;
+                    bad = sim_batch_val(b, q[d])[l] != want;
+                    TST_CHECK(!bad, "chain, edge %d lane %u: q%d = %lld, want %lld", e, l, d + 1,
+                              (long long)sim_batch_val(b, q[d])[l], (long long)want);
+                }
+                continue;
+            }
+            /* rs before edge e is what was set at e - 1 (high from the
+             * start before edge 0): the last reset edge is 1 (lane 3: 3),
+             * and the ring swaps on every edge after it */
+            int last_rst = l == 3 ? 3 : 1, since = e - last_rst;
+            int64_t w1 = e <= last_rst ? 5 : (since % 2 ? 9 : 5);
+            int64_t w2 = e <= last_rst ? 9 : (since % 2 ? 5 : 9);
+            bad = sim_batch_val(b, r1)[l] != w1 || sim_batch_val(b, r2)[l] != w2;
+            TST_CHECK(!bad, "ring, edge %d lane %u: %lld %lld, want %lld %lld", e, l,
+                      (long long)sim_batch_val(b, r1)[l], (long long)sim_batch_val(b, r2)[l],
+                      (long long)w1, (long long)w2);
+        }
+    }
+    sim_batch_free(b);
+    sim_free(c);
+}
+
+static void t_register_chain(void) { register_case(0); }
+static void t_register_ring(void) { register_case(1); }
+
 int main(void)
 {
     TST_RUN(t_accumulator_by_hand);
+    TST_RUN(t_register_chain);
+    TST_RUN(t_register_ring);
     TST_RUN(t_refusals);
     TST_RUN(t_span_lanes_equal_kernel);
     TST_RUN(t_span_overflow_falls_back);
