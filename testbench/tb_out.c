@@ -138,16 +138,20 @@ void tb_csv_row(FILE *f, const tb_result *r, size_t idx, uint64_t cycle, const i
 void tb_print_ranges(FILE *f, const tb_result *r, int all)
 {
     char fb[SIM_FMT_STRLEN];
-    int shown = 0;
+    int shown = 0, fw = 8;   /* the format column, as in tb_print_table */
+    for (int i = 0; i < r->nsigs; i++) {
+        int n = (int)strlen(sim_fmt_str(r->sigs[i].fmt, fb));
+        if ((all || r->sigs[i].overflows) && n > fw) fw = n;
+    }
     for (int i = 0; i < r->nsigs; i++) {
         const tb_sig *g = &r->sigs[i];
         if (!all && !g->overflows) continue;
         if (!shown++)
-            fprintf(f, "%-22s %-8s %10s %21s %21s %21s %21s\n", all ? "signal (range logging)" : "signal (overflowed)",
-                    "format", "overflows", "min raw", "max raw", "format min", "format max");
+            fprintf(f, "%-22s %-*s %10s %21s %21s %21s %21s\n", all ? "signal (range logging)" : "signal (overflowed)",
+                    fw, "format", "overflows", "min raw", "max raw", "format min", "format max");
         char mn[24] = "-", mx[24] = "-";
         if (g->seen) { snprintf(mn, sizeof mn, "%lld", (long long)g->min); snprintf(mx, sizeof mx, "%lld", (long long)g->max); }
-        fprintf(f, "%-22s %-8s %10llu %21s %21s %21lld %21lld\n", g->name, sim_fmt_str(g->fmt, fb),
+        fprintf(f, "%-22s %-*s %10llu %21s %21s %21lld %21lld\n", g->name, fw, sim_fmt_str(g->fmt, fb),
                 (unsigned long long)g->overflows, mn, mx, (long long)sim_fmt_raw_min(g->fmt),
                 (long long)sim_fmt_raw_max(g->fmt));
     }
@@ -173,14 +177,21 @@ void tb_print_table(FILE *f, const tb_result *r)
             r->vectors, (unsigned long long)r->cycles, tnum(x[0], 32, "%.3g", r->cycles_per_item),
             tnum(x[1], 32, "%.3g", r->cycles_per_beat), (unsigned long long)r->latency,
             tnum(x[2], 32, "%.1f", r->area_ge), (unsigned long long)r->overflows);
-    fprintf(f, "%-8s %-8s %12s %12s %12s %12s %10s %12s %12s %-9s %s\n", "output", "format", "max|e|", "mean e",
+    /* the format column as wide as its longest entry (a format with its
+     * own modes, "s7.9:half-up:sat", is longer than the usual 8) */
+    int fw = 8;
+    for (int o = 0; o < r->n_out; o++) {
+        int n = (int)strlen(sim_fmt_str(r->out[o].fmt, fb));
+        if (n > fw) fw = n;
+    }
+    fprintf(f, "%-8s %-*s %12s %12s %12s %12s %10s %12s %12s %-9s %s\n", "output", fw, "format", "max|e|", "mean e",
             "rms e", "nmse", "max LSB", "bound", "max|e-ideal|", "bound", "golden");
     for (int o = 0; o < r->n_out; o++) {
         const tb_metrics *m = &r->out[o];
         char b[16];
         if (m->check == TB_CHECK_NO_BOUND) snprintf(b, sizeof b, "no bound");
         else tnum(b, sizeof b, "%.4g", m->bound);
-        fprintf(f, "%-8s %-8s %12s %12s %12s %12s %10s %12s %12s %-9s %s\n", m->name, sim_fmt_str(m->fmt, fb),
+        fprintf(f, "%-8s %-*s %12s %12s %12s %12s %10s %12s %12s %-9s %s\n", m->name, fw, sim_fmt_str(m->fmt, fb),
                 tnum(x[0], 32, "%.4g", m->max_abs_err), tnum(x[1], 32, "%.4g", m->mean_err),
                 tnum(x[2], 32, "%.4g", m->rms_err), tnum(x[3], 32, "%.4g", m->nmse),
                 tnum(x[4], 32, "%.3g", m->max_err_lsb), b, tnum(x[5], 32, "%.4g", m->max_err_ideal),

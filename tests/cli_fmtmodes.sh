@@ -28,6 +28,17 @@ check run_json_fmt grep -q '"mul": "s7.9:half-up:sat", "mx2": "s7.9"' "$T/out"
 expect run_text 0 "$S" run horner3 --fmt mul=s7.9:sat
 check run_text_fmt grep -q ' mul=s7.9:sat mx2=s7.9 ' "$T/out"
 
+# The table's format column widens to a format with modes: each number
+# ends where its header ends (the output row and the overflowed-signal row).
+aligned() {   # FILE HEADER_START: the header's max|e| column ends where the next row's 3rd field does
+    awk -v h="$2" 'index($0, h) == 1 { e = index($0, "max|e|") + 5; if (e == 5) e = index($0, "overflows") + 8; getline;
+        n = split($0, f, " +"); p = index($0, " " f[3] " ") + length(f[3]); ok = p == e } END { exit !ok }' "$1"
+}
+expect long_fmt_out 1 "$S" run horner3 --fmt y=s7.9:half-up:sat
+check long_fmt_out_aligned aligned "$T/out" output
+expect long_fmt_ovf 1 "$S" run horner3 --fmt a=s2.9:trunc:sat
+check long_fmt_ovf_aligned aligned "$T/out" "signal (overflowed)"
+
 # A rounding mode other than --round on a signal: the unit's bound assumes
 # one mode throughout, so none is claimed (exit 1, "NO BOUND"); the same
 # mode as --round keeps the bound.
