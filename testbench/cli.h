@@ -42,6 +42,10 @@ int cli_synth(int argc, char **argv);
  * Control bytes and bytes that are not UTF-8 go out as \xNN (messages
  * echo user text), so it serves every one-line error message. */
 int cli_usage_error(const char *fmt, ...);
+/* A verb's results went to stdout: a write error there (full disk, closed
+ * pipe) must not pass as success. rc, or CLI_USAGE after the error's line;
+ * every verb that prints results returns through it. */
+int cli_stdout_done(int rc);
 /* Strict numbers for option values: the whole text must be the number
  * (decimal digits, a leading '-' only when lo < 0; reals also a fraction
  * and an exponent; no spaces, '+', hex, inf or nan), within lo..hi.

@@ -51,6 +51,13 @@ int cli_usage_error(const char *fmt, ...)
     return CLI_USAGE;
 }
 
+int cli_stdout_done(int rc)
+{
+    char e[300];
+    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
+    return rc;
+}
+
 int cli_make_dir(const char *dir)
 {
     char err[4400];

@@ -8,15 +8,6 @@
 #include <string.h>
 #include <time.h>
 
-/* Results went to stdout: a write error there (full disk, closed pipe)
- * must not pass as success. */
-static int stdout_done(int rc)
-{
-    char e[300];
-    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
-    return rc;
-}
-
 /* ------------------------------------------------------------- progress */
 
 typedef struct progress { const char *unit; double t0, last; int shown; } progress;
@@ -154,5 +145,5 @@ done:
     free(sets);
     free(a.t.res);
     tb_sweep_free(&s);
-    return rc == CLI_USAGE ? rc : stdout_done(rc);
+    return rc == CLI_USAGE ? rc : cli_stdout_done(rc);
 }

@@ -14,13 +14,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static int stdout_done(int rc)
-{
-    char e[300];
-    if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
-    return rc;
-}
-
 static int have_tool(const char *tool)
 {
     char cmd[200];
@@ -114,7 +107,7 @@ int cli_verilog(int argc, char **argv)
         tb_result_free(&r);
         vec_set_free(&vs);
     }
-    return stdout_done(rc);
+    return cli_stdout_done(rc);
 }
 
 /* ------------------------------------------------------------------- cosim */
@@ -190,7 +183,7 @@ int cli_cosim(int argc, char **argv)
     else { fprintf(stderr, "shadesim: %s\n", msg); rc = CLI_FAIL; }
     vec_set_free(&vs);
     if (!st.keep) rm_tree(dir);
-    return stdout_done(rc);
+    return cli_stdout_done(rc);
 }
 
 /* ------------------------------------------------------------------- synth */
@@ -288,5 +281,5 @@ done:
         snprintf(c2, sizeof c2, "rm -rf '%s'", dir);
         if (system(c2)) { /* best effort */ }
     }
-    return stdout_done(rc);
+    return cli_stdout_done(rc);
 }
