@@ -13,18 +13,23 @@
  * counts; tests/test_kernel.c pins them):
  *  - A primitive (sim_prim.c) whose exact result fits 62 bits is evaluated
  *    by the kernel itself (sim__proc.op, sim_internal.h): operands, one
- *    add or multiply, one shift, a range check, the write. Anything else,
- *    or a result out of range (an overflow to count), calls the process's
- *    own function.
+ *    add or multiply, one shift (none when the result already has the
+ *    output's fraction bits: the *_X operations), a range check, the
+ *    write. Anything else, or a result out of range (an overflow to
+ *    count), calls the process's own function. Dispatch is a computed
+ *    goto (run_deltas).
  *  - The list of changed signals observers read (sim_changed) is kept only
- *    while an observer asks for it: one test of a local per change.
+ *    while an observer asks for it: the update loop has a copy without
+ *    it, and one that leaves the changed signals in order for the loop
+ *    report, so the usual one does neither.
  *  - A write of the value a signal already has is not queued (sim.h).
  *  - A signal keeps the processes to wake per new value (zero / nonzero),
  *    so an edge-sensitive process is never looked at on the other edge.
  *  - A time step that is just a clock edge (clock_step) toggles the clock
  *    and runs the first delta's update without the timer and update
  *    machinery; a falling edge nobody waits for costs a few stores.
- *  - The delta loop keeps the context's lists in locals, and the flags it
+ *  - The delta loop keeps the context's lists in locals (the run lists for
+ *    the whole time step: processes never touch them), and the flags it
  *    writes are not char-typed (a char store may alias anything and would
  *    make the compiler reload every pointer after it).
  */
@@ -523,17 +528,19 @@ uint32_t update(sim_ctx *c, sim_signal **upd, uint32_t nupd, sim__proc **next, u
 static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
 {
     /* Evaluate dispatches on p->op with a computed goto (a GNU C
-     * extension that gcc and clang both have): each operation ends with
-     * its own jump to the next process's operation, so there is no bounds
-     * check of a switch and no shared indirect jump, and the branch
-     * predictor sees one jump per operation. The table follows the
-     * SIM__OP_* order (sim_internal.h). */
+     * extension that gcc and clang both have): a table load and a jump,
+     * without the bounds check and the reload of op a switch costs, and
+     * each operation ends by starting the next process (the compiler may
+     * merge those tails). The table follows the SIM__OP_* order
+     * (sim_internal.h). */
     static const void *const op_label[] = {
         [SIM__OP_FN] = &&general, [SIM__OP_COPY] = &&op_copy, [SIM__OP_ADD] = &&op_add,
         [SIM__OP_SUB] = &&op_sub, [SIM__OP_MUL] = &&op_mul, [SIM__OP_MUX] = &&op_mux,
         [SIM__OP_BK] = &&op_bk, [SIM__OP_LOGIC_S] = &&op_logic_s, [SIM__OP_LOGIC_U] = &&op_logic_u,
+        [SIM__OP_COPY_X] = &&op_copy_x, [SIM__OP_ADD_X] = &&op_add_x, [SIM__OP_SUB_X] = &&op_sub_x,
+        [SIM__OP_MUX_X] = &&op_mux_x, [SIM__OP_BK_X] = &&op_bk_x,
     };
-    _Static_assert(sizeof op_label / sizeof *op_label == SIM__OP_LOGIC_U + 1, "one label per SIM__OP_*");
+    _Static_assert(sizeof op_label / sizeof *op_label == SIM__OP_BK_X + 1, "one label per SIM__OP_*");
     sim__proc **run = c->run, **next = c->run2;
     uint32_t nrun = c->nrun;
     sim_signal **upd = c->q.upd;
@@ -550,6 +557,9 @@ static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
         /* y <= (x + radd) >> k (arithmetic: floor) when in range; out of
          * range, the general evaluation counts the overflow. */
 #define QUANT(x) do { v = (int64_t)((uint64_t)(x) + (uint64_t)p->op_radd) >> p->op_k; \
+                      if (__builtin_expect(v < p->op_lo || v > p->op_hi, 0)) goto general; } while (0)
+        /* The same when radd and k are 0 (the *_X operations). */
+#define RANGE(x) do { v = (int64_t)(x); \
                       if (__builtin_expect(v < p->op_lo || v > p->op_hi, 0)) goto general; } while (0)
         /* y <= v: queued unless it is y's value and nothing else is pending
          * (as sim_write). */
@@ -590,6 +600,25 @@ static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
         if (!p->op_c->cur) { v = 0; WRITE_NEXT(); }
         QUANT(p->op_a->cur);
         WRITE_NEXT();
+    op_copy_x:
+        RANGE(p->op_a->cur);
+        WRITE_NEXT();
+    op_add_x:
+        RANGE((uint64_t)p->op_a->cur + (uint64_t)p->op_b->cur);
+        WRITE_NEXT();
+    op_sub_x:
+        RANGE((uint64_t)p->op_a->cur - (uint64_t)p->op_b->cur);
+        WRITE_NEXT();
+    op_mux_x: {
+            uint64_t sel = (uint64_t)p->op_c->cur;
+            if (sel >= p->op_n) { v = 0; WRITE_NEXT(); }
+            RANGE(p->op_in[sel]->cur);
+            WRITE_NEXT();
+        }
+    op_bk_x:
+        if (!p->op_c->cur) { v = 0; WRITE_NEXT(); }
+        RANGE(p->op_a->cur);
+        WRITE_NEXT();
     op_logic_s:
         v = (int64_t)((uint64_t)logic_call(p) << p->op_k) >> p->op_k;
         WRITE_NEXT();
@@ -599,6 +628,7 @@ static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
 #undef EVAL_AT_I
 #undef EVAL_NEXT
 #undef QUANT
+#undef RANGE
 #undef WRITE_NEXT
     evaluated:
         c->stats.proc_runs += nrun;
