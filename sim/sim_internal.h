@@ -17,11 +17,15 @@
 /* What the kernel computes itself: SIM__OP_FN calls fn. For arithmetic
  * the kernel computes v = op(a, b, c), then y <= (v + op_radd) >> op_k
  * when that lands in [op_lo, op_hi], and otherwise calls fn, the general
- * evaluation (which counts the overflow). Logic: y <= the low 64 - op_k
- * bits of op_logic(inputs), sign-extended (LOGIC_S) or masked with
- * op_radd (LOGIC_U). */
+ * evaluation (which counts the overflow). The *_X variants are the same
+ * operations when op_k and op_radd are 0 (the result already has y's
+ * fraction bits, as in most registers, multiplexers and adders): only the
+ * range check is left. Logic: y <= the low 64 - op_k bits of
+ * op_logic(inputs), sign-extended (LOGIC_S) or masked with op_radd
+ * (LOGIC_U). */
 enum { SIM__OP_FN = 0, SIM__OP_COPY, SIM__OP_ADD, SIM__OP_SUB, SIM__OP_MUL,
-       SIM__OP_MUX, SIM__OP_BK, SIM__OP_LOGIC_S, SIM__OP_LOGIC_U };
+       SIM__OP_MUX, SIM__OP_BK, SIM__OP_LOGIC_S, SIM__OP_LOGIC_U,
+       SIM__OP_COPY_X, SIM__OP_ADD_X, SIM__OP_SUB_X, SIM__OP_MUX_X, SIM__OP_BK_X };
 
 /* Inputs of a logic element the kernel gathers (sim_logic's limit). */
 #define SIM__LOGIC_MAX 8

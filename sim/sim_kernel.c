@@ -13,18 +13,23 @@
  * counts; tests/test_kernel.c pins them):
  *  - A primitive (sim_prim.c) whose exact result fits 62 bits is evaluated
  *    by the kernel itself (sim__proc.op, sim_internal.h): operands, one
- *    add or multiply, one shift, a range check, the write. Anything else,
- *    or a result out of range (an overflow to count), calls the process's
- *    own function.
+ *    add or multiply, one shift (none when the result already has the
+ *    output's fraction bits: the *_X operations), a range check, the
+ *    write. Anything else, or a result out of range (an overflow to
+ *    count), calls the process's own function. Dispatch is a computed
+ *    goto (run_deltas).
  *  - The list of changed signals observers read (sim_changed) is kept only
- *    while an observer asks for it: one test of a local per change.
+ *    while an observer asks for it: the update loop has a copy without
+ *    it, and one that leaves the changed signals in order for the loop
+ *    report, so the usual one does neither.
  *  - A write of the value a signal already has is not queued (sim.h).
  *  - A signal keeps the processes to wake per new value (zero / nonzero),
  *    so an edge-sensitive process is never looked at on the other edge.
  *  - A time step that is just a clock edge (clock_step) toggles the clock
  *    and runs the first delta's update without the timer and update
  *    machinery; a falling edge nobody waits for costs a few stores.
- *  - The delta loop keeps the context's lists in locals, and the flags it
+ *  - The delta loop keeps the context's lists in locals (the run lists for
+ *    the whole time step: processes never touch them), and the flags it
  *    writes are not char-typed (a char store may alias anything and would
  *    make the compiler reload every pointer after it).
  */
@@ -470,16 +475,20 @@ static inline int64_t logic_call(const sim__proc *p)
 }
 
 /* Update phase: apply the writes; each signal that changes wakes its
- * processes for the next delta. Returns the number of signals that
- * changed, left at the front of upd (for the loop report). The context's
- * lists are kept in locals: stores through signal and process pointers
- * would otherwise make the compiler reload them. */
-static inline __attribute__((always_inline)) uint32_t update(sim_ctx *c, sim_signal **upd, uint32_t nupd)
+ * processes into next (*nnext of them). Returns the number of signals
+ * that changed. Two switches, constant at every call site so that each
+ * copy of the loop has only the tests it needs:
+ *  - track: an observer reads sim_changed, so a changed signal is noted
+ *    in the changed list (without one, the loop does not test for it);
+ *  - compact: the signals that changed are left at the front of upd, in
+ *    order (only the loop report reads them).
+ * Lists and counts are in locals: stores through signal and process
+ * pointers would otherwise make the compiler reload them. */
+static inline __attribute__((always_inline))
+uint32_t update(sim_ctx *c, sim_signal **upd, uint32_t nupd, sim__proc **next, uint32_t *nnext,
+                int track, int compact)
 {
-    uint32_t nchanged = 0;
-    c->q.nupd = 0;
-    sim__proc **next = c->run;
-    uint32_t nnext = 0;
+    uint32_t nchanged = 0, nn = *nnext;
     sim_signal **chg = c->chg_on;
     uint32_t nchg = c->nchg;
     uint16_t epoch = (uint16_t)c->epoch;
@@ -489,95 +498,159 @@ static inline __attribute__((always_inline)) uint32_t update(sim_ctx *c, sim_sig
         int64_t v = s->nxt;
         if (v == s->cur) continue;
         s->cur = v;
-        upd[nchanged++] = s;
         s->changes++;
-        if (chg && s->noted != epoch) { s->noted = epoch; chg[nchg++] = s; }
+        if (compact) upd[nchanged] = s;
+        nchanged++;
+        if (track && s->noted != epoch) { s->noted = epoch; chg[nchg++] = s; }
         sim__proc **w = s->wake[v != 0];
         uint32_t n = s->nwake[v != 0];
         for (uint32_t j = 0; j < n; j++) {
             sim__proc *q = w[j];
-            if (!q->queued) { q->queued = 1; next[nnext++] = q; }
+            if (!q->queued) { q->queued = 1; next[nn++] = q; }
         }
     }
-    c->nrun = nnext;
-    c->nchg = nchg;
+    c->q.nupd = 0;
+    if (track) c->nchg = nchg;
     c->stats.events += nchanged;
+    *nnext = nn;
     return nchanged;
 }
 
 /* Delta cycles, evaluate then update, while anything is runnable (one
  * only, if once). *deltas counts them within the time step; returns 1 when
- * the bound was reached with work left (a loop), else 0. c->changed is the
- * number of signals the last update changed. */
+ * the bound was reached with work left (a loop), else 0. With once,
+ * c->changed is the number of signals the update changed, and they are
+ * at the front of the update list (for report_loop).
+ *
+ * The run lists stay in locals for the whole call (no process reads
+ * them: processes only write signals, through c->q), and are handed back
+ * to the context at the end. */
 static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
 {
+    /* Evaluate dispatches on p->op with a computed goto (a GNU C
+     * extension that gcc and clang both have): a table load and a jump,
+     * without the bounds check and the reload of op a switch costs, and
+     * each operation ends by starting the next process (the compiler may
+     * merge those tails). The table follows the SIM__OP_* order
+     * (sim_internal.h). */
+    static const void *const op_label[] = {
+        [SIM__OP_FN] = &&general, [SIM__OP_COPY] = &&op_copy, [SIM__OP_ADD] = &&op_add,
+        [SIM__OP_SUB] = &&op_sub, [SIM__OP_MUL] = &&op_mul, [SIM__OP_MUX] = &&op_mux,
+        [SIM__OP_BK] = &&op_bk, [SIM__OP_LOGIC_S] = &&op_logic_s, [SIM__OP_LOGIC_U] = &&op_logic_u,
+        [SIM__OP_COPY_X] = &&op_copy_x, [SIM__OP_ADD_X] = &&op_add_x, [SIM__OP_SUB_X] = &&op_sub_x,
+        [SIM__OP_MUX_X] = &&op_mux_x, [SIM__OP_BK_X] = &&op_bk_x,
+    };
+    _Static_assert(sizeof op_label / sizeof *op_label == SIM__OP_BK_X + 1, "one label per SIM__OP_*");
+    sim__proc **run = c->run, **next = c->run2;
+    uint32_t nrun = c->nrun;
+    sim_signal **upd = c->q.upd;
     uint32_t nd = *deltas;
     int hit = 0;
-next_delta:;
-    sim__proc **run = c->run;
-    uint32_t nrun = c->nrun;
-    c->run = c->run2; c->nrun = 0;
-    c->run2 = run;
-    sim_signal **upd = c->q.upd;
-    uint32_t nupd = c->q.nupd;
-    /* Evaluate: the primitives the kernel knows inline, anything else (and
-     * a primitive whose fast result is out of range) through fn. */
-    for (uint32_t i = 0; i < nrun; i++) {
-        sim__proc *p = run[i];
-        p->queued = 0;
-        p->runs++;
+    for (;;) {
+        uint32_t nupd = c->q.nupd, i = 0;
+        sim__proc *p;
         int64_t v;
-        switch (p->op) {
-        /* Operands' widths bound the exact result below 2^62 (sim_prim.c
-         * checks); the arithmetic is done unsigned, so that even a raw
-         * forced outside its format cannot overflow. */
-        case SIM__OP_COPY: v = p->op_a->cur; goto quant;
-        case SIM__OP_ADD:  v = (int64_t)((uint64_t)p->op_a->cur + (uint64_t)p->op_b->cur); goto quant;
-        case SIM__OP_SUB:  v = (int64_t)((uint64_t)p->op_a->cur - (uint64_t)p->op_b->cur); goto quant;
-        case SIM__OP_MUL:  v = (int64_t)((uint64_t)p->op_a->cur * (uint64_t)p->op_b->cur); goto quant;
-        case SIM__OP_MUX: {
-            uint64_t sel = (uint64_t)p->op_c->cur;
-            if (sel >= p->op_n) { v = 0; goto write; }
-            v = p->op_in[sel]->cur;
-            goto quant;
-        }
-        case SIM__OP_BK:
-            if (!p->op_c->cur) { v = 0; goto write; }
-            v = p->op_a->cur;
-            goto quant;
-        case SIM__OP_LOGIC_S:
-            v = (int64_t)((uint64_t)logic_call(p) << p->op_k) >> p->op_k;
-            goto write;
-        case SIM__OP_LOGIC_U:
-            v = (int64_t)((uint64_t)logic_call(p) & (uint64_t)p->op_radd);
-            goto write;
-        default:
-            break;
-        }
+        /* Start process i: clear its flag (it may be woken again for the
+         * next delta), count the run, jump to its operation. */
+#define EVAL_AT_I() do { p = run[i]; p->queued = 0; p->runs++; goto *op_label[p->op]; } while (0)
+#define EVAL_NEXT() do { if (++i < nrun) EVAL_AT_I(); goto evaluated; } while (0)
+        /* y <= (x + radd) >> k (arithmetic: floor) when in range; out of
+         * range, the general evaluation counts the overflow. */
+#define QUANT(x) do { v = (int64_t)((uint64_t)(x) + (uint64_t)p->op_radd) >> p->op_k; \
+                      if (__builtin_expect(v < p->op_lo || v > p->op_hi, 0)) goto general; } while (0)
+        /* The same when radd and k are 0 (the *_X operations). */
+#define RANGE(x) do { v = (int64_t)(x); \
+                      if (__builtin_expect(v < p->op_lo || v > p->op_hi, 0)) goto general; } while (0)
+        /* y <= v: queued unless it is y's value and nothing else is pending
+         * (as sim_write). */
+#define WRITE_NEXT() do { sim_signal *y = p->op_y; y->nxt = v; \
+                          if (!y->queued && v != y->cur) { y->queued = 1; upd[nupd++] = y; } \
+                          EVAL_NEXT(); } while (0)
+        if (nrun) EVAL_AT_I();
+        goto evaluated;
     general:
+        /* Anything the kernel does not know inline, and a primitive whose
+         * fast result is out of range. */
         c->q.nupd = nupd;
         p->fn(&p->pub);
         nupd = c->q.nupd;
-        continue;
-    quant:
-        /* y <= (v + radd) >> k (arithmetic: floor) when in range; out of
-         * range, the general evaluation counts the overflow. */
-        v = (int64_t)((uint64_t)v + (uint64_t)p->op_radd) >> p->op_k;
-        if (__builtin_expect(v < p->op_lo || v > p->op_hi, 0)) goto general;
-    write: {
-            sim_signal *y = p->op_y;
-            y->nxt = v;
-            if (!y->queued && v != y->cur) { y->queued = 1; upd[nupd++] = y; }
+        EVAL_NEXT();
+    /* Operands' widths bound the exact result below 2^62 (sim_prim.c
+     * checks); the arithmetic is done unsigned, so that even a raw forced
+     * outside its format cannot overflow. */
+    op_copy:
+        QUANT(p->op_a->cur);
+        WRITE_NEXT();
+    op_add:
+        QUANT((uint64_t)p->op_a->cur + (uint64_t)p->op_b->cur);
+        WRITE_NEXT();
+    op_sub:
+        QUANT((uint64_t)p->op_a->cur - (uint64_t)p->op_b->cur);
+        WRITE_NEXT();
+    op_mul:
+        QUANT((uint64_t)p->op_a->cur * (uint64_t)p->op_b->cur);
+        WRITE_NEXT();
+    op_mux: {
+            uint64_t sel = (uint64_t)p->op_c->cur;
+            if (sel >= p->op_n) { v = 0; WRITE_NEXT(); }
+            QUANT(p->op_in[sel]->cur);
+            WRITE_NEXT();
         }
+    op_bk:
+        if (!p->op_c->cur) { v = 0; WRITE_NEXT(); }
+        QUANT(p->op_a->cur);
+        WRITE_NEXT();
+    op_copy_x:
+        RANGE(p->op_a->cur);
+        WRITE_NEXT();
+    op_add_x:
+        RANGE((uint64_t)p->op_a->cur + (uint64_t)p->op_b->cur);
+        WRITE_NEXT();
+    op_sub_x:
+        RANGE((uint64_t)p->op_a->cur - (uint64_t)p->op_b->cur);
+        WRITE_NEXT();
+    op_mux_x: {
+            uint64_t sel = (uint64_t)p->op_c->cur;
+            if (sel >= p->op_n) { v = 0; WRITE_NEXT(); }
+            RANGE(p->op_in[sel]->cur);
+            WRITE_NEXT();
+        }
+    op_bk_x:
+        if (!p->op_c->cur) { v = 0; WRITE_NEXT(); }
+        RANGE(p->op_a->cur);
+        WRITE_NEXT();
+    op_logic_s:
+        v = (int64_t)((uint64_t)logic_call(p) << p->op_k) >> p->op_k;
+        WRITE_NEXT();
+    op_logic_u:
+        v = (int64_t)((uint64_t)logic_call(p) & (uint64_t)p->op_radd);
+        WRITE_NEXT();
+#undef EVAL_AT_I
+#undef EVAL_NEXT
+#undef QUANT
+#undef RANGE
+#undef WRITE_NEXT
+    evaluated:
+        c->stats.proc_runs += nrun;
+        nd++;
+        uint32_t nnext = 0, changed;
+        if (__builtin_expect(once, 0)) changed = update(c, upd, nupd, next, &nnext, c->chg_on != NULL, 1);
+        else if (c->chg_on) changed = update(c, upd, nupd, next, &nnext, 1, 0);
+        else changed = update(c, upd, nupd, next, &nnext, 0, 0);
+        sim__proc **t = run; run = next; next = t;
+        nrun = nnext;
+        /* Counted after the update (nothing runs in between, so nobody
+         * sees the difference): next to proc_runs's, gcc pairs the two
+         * additions in a vector register, which costs more. */
+        c->stats.deltas++;
+        if (once) { c->changed = changed; break; }
+        /* The update leaves no write pending, so what is left is the
+         * processes it woke. */
+        if (!nrun) break;
+        if (nd >= c->max_deltas) { hit = 1; break; }
     }
-    c->stats.proc_runs += nrun;
-    c->stats.deltas++;
-    c->changed = update(c, upd, nupd);
-    nd++;
-    if (!once && (c->nrun || c->q.nupd)) {
-        if (nd < c->max_deltas) goto next_delta;
-        hit = 1;
-    }
+    c->run = run; c->nrun = nrun;
+    c->run2 = next;
     *deltas = nd;
     return hit;
 }
