@@ -35,20 +35,22 @@ int  tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signa
 void tb_range_widen(tb_range_live *l, int64_t v, int first);
 /* At each rising edge (the monitor calls it). A value inside its range so
  * far, the common case, costs two loads, a subtraction and a compare;
- * two signals a turn, as the loop's own count would cost as much. */
+ * four signals a turn, as the loop's own count would cost as much. */
+#define TB_RANGE_TAKE(l, first) do { \
+        int64_t v_ = (l)->sig->cur; \
+        if ((uint64_t)v_ - (uint64_t)(l)->lo > (l)->span) tb_range_widen((l), v_, (first)); \
+    } while (0)
 static inline void tb_range_sample(tb_range *g)
 {
-    tb_range_live *l = g->lv, *end = l + g->nlive;
+    tb_range_live *l = g->lv, *end = l + g->nlive, *end4 = l + (g->nlive & ~3);
     int first = !g->sampled;
-    for (; l + 1 < end; l += 2) {
-        int64_t v0 = l[0].sig->cur, v1 = l[1].sig->cur;
-        if ((uint64_t)v0 - (uint64_t)l[0].lo > l[0].span) tb_range_widen(&l[0], v0, first);
-        if ((uint64_t)v1 - (uint64_t)l[1].lo > l[1].span) tb_range_widen(&l[1], v1, first);
+    for (; l < end4; l += 4) {
+        TB_RANGE_TAKE(l, first);
+        TB_RANGE_TAKE(l + 1, first);
+        TB_RANGE_TAKE(l + 2, first);
+        TB_RANGE_TAKE(l + 3, first);
     }
-    if (l < end) {
-        int64_t v = l->sig->cur;
-        if ((uint64_t)v - (uint64_t)l->lo > l->span) tb_range_widen(l, v, first);
-    }
+    for (; l < end; l++) TB_RANGE_TAKE(l, first);
     g->sampled = 1;
 }
 /* r->sigs: each signal's name below sc, format, kind, overflows (an input

@@ -265,20 +265,11 @@ static int have_item(st_state *s, size_t idx)
     return 1;
 }
 
-/* Driver, at each rising edge: tb_run's, with items prepared on demand.
- * While the unit holds an item (not ready), the inputs and valid already
- * hold what the driver would write again (its last writes have been
- * applied, and nothing else drives them): such writes would change
- * nothing and are skipped. */
-static void st_driver(sim_proc *p)
+/* Offer item next (preparing it if need be), or drop valid at the end. */
+static __attribute__((noinline)) void st_offer(st_state *s, sim_proc *p)
 {
-    st_state *s = p->data;
     const unit_io *io = s->io;
-    if (s->started && io->in_valid->cur && io->in_ready->cur) s->next++;
-    s->started = 1;
-    if (s->next == s->offered) {
-        /* (failed is set only where items are prepared, below) */
-    } else if (have_item(s, s->next)) {
+    if (have_item(s, s->next)) {
         const int64_t *v = s->R.in_raw + (s->next & (s->R.cap - 1)) * (size_t)s->n_in;
         for (int i = 0; i < s->n_in; i++) sim_write(io->in[i], v[i]);
         sim_write(io->in_valid, 1);
@@ -290,13 +281,25 @@ static void st_driver(sim_proc *p)
     if (s->failed) sim_stop(p->ctx);
 }
 
-/* Monitor, at each rising edge: tb_run's; a finished item goes to the
- * metrics and the caller, and its slot is free again. */
-static void st_monitor(sim_proc *p)
+/* Driver, at each rising edge: tb_run's, with items prepared on demand.
+ * While the unit holds an item (not ready), the inputs and valid already
+ * hold what the driver would write again (its last writes have been
+ * applied, and nothing else drives them): such writes would change
+ * nothing and are skipped, and the clock costs a few compares. */
+static void st_driver(sim_proc *p)
 {
     st_state *s = p->data;
-    tb_range_sample(&s->rg);
-    if (!s->io->out_valid->cur) return;
+    const unit_io *io = s->io;
+    if (s->started && io->in_valid->cur && io->in_ready->cur) s->next++;
+    if (s->started && s->next == s->offered && !s->failed) return;
+    s->started = 1;
+    st_offer(s, p);
+}
+
+/* An output beat is in: keep it; a finished item goes to the metrics and
+ * the caller, and its slot is free again. */
+static __attribute__((noinline)) void st_collect(st_state *s, sim_proc *p)
+{
     size_t it = s->got_item;
     int b = s->got_beat;
     if (it >= s->prepared) return;     /* (at the end: every item is in) */
@@ -317,6 +320,15 @@ static void st_monitor(sim_proc *p)
         s->done++;
     }
     if (s->eof && s->done == s->prepared) { s->finished = 1; sim_stop(p->ctx); }
+}
+
+/* Monitor, at each rising edge: tb_run's (range logging, then the output
+ * beat when there is one). */
+static void st_monitor(sim_proc *p)
+{
+    st_state *s = p->data;
+    tb_range_sample(&s->rg);
+    if (s->io->out_valid->cur) st_collect(s, p);
 }
 
 static int ring_alloc(ring *R, int n_in, int nv, const unit_desc *u)
