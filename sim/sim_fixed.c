@@ -413,9 +413,15 @@ void sim_dy_raw(sim_dy *d, int64_t raw, sim_fmt f) { sim_dy_int(d, raw, f.fbits)
 void sim_dy_double(sim_dy *d, double x)
 {
     if (!isfinite(x)) { memset(d, 0, sizeof *d); d->ovf = 1; return; }
-    int e;
-    double m = ldexp(frexp(x, &e), 53);     /* x = m * 2^(e-53), m integral */
-    sim_dy_int(d, (int64_t)m, 53 - e);
+    /* x = m 2^-e from its fields (sim_dy_int makes m odd, so the result is
+     * the value's one form whichever m is given): a normal x is
+     * (2^52 + frac) 2^(E-1075), a subnormal one frac 2^-1074. */
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int be = (int)(bits >> 52) & 0x7ff;
+    int64_t m = (int64_t)(bits & ((UINT64_C(1) << 52) - 1));
+    if (be) m |= INT64_C(1) << 52;
+    sim_dy_int(d, bits >> 63 ? -m : m, be ? 1075 - be : 1074);
 }
 
 /* a and b brought to a common e (the larger); 0 if that does not fit. */
@@ -429,8 +435,10 @@ static int dy_align(const sim_dy *a, const sim_dy *b, sim_dy *x, sim_dy *y)
     return 1;
 }
 
+static void dy_addsub_words(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate);
+
 /* r = a + (negate b ? -b : b) */
-static void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
+static inline void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
 {
     /* Fast path: one word each, exponents within 62 of each other: the
      * aligned values and their sum fit a signed 128-bit integer. */
@@ -445,6 +453,13 @@ static void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
             return;
         }
     }
+    dy_addsub_words(r, a, b, negate);
+}
+
+/* dy_addsub's general case, out of line so that the fast path saves no
+ * registers. */
+static __attribute__((noinline)) void dy_addsub_words(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
+{
     sim_dy x, y;
     if (a->ovf || b->ovf || !dy_align(a, b, &x, &y)) { memset(r, 0, sizeof *r); r->ovf = 1; return; }
     int yneg = y.neg ^ (negate && !dy_zero(&y));
@@ -480,12 +495,21 @@ static void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
 void sim_dy_add(sim_dy *r, const sim_dy *a, const sim_dy *b) { dy_addsub(r, a, b, 0); }
 void sim_dy_sub(sim_dy *r, const sim_dy *a, const sim_dy *b) { dy_addsub(r, a, b, 1); }
 
+static void dy_mul_words(sim_dy *r, const sim_dy *a, const sim_dy *b);
+
 void sim_dy_mul(sim_dy *r, const sim_dy *a, const sim_dy *b)
 {
     if (!a->ovf && !b->ovf && dy_small(a) && dy_small(b)) {   /* fast path: one word each */
         dy_set128(r, (a->neg ^ b->neg) && a->m[0] && b->m[0], (unsigned __int128)a->m[0] * b->m[0], a->e + b->e);
         return;
     }
+    dy_mul_words(r, a, b);
+}
+
+/* sim_dy_mul's general case, out of line so that the fast path saves no
+ * registers. */
+static __attribute__((noinline)) void dy_mul_words(sim_dy *r, const sim_dy *a, const sim_dy *b)
+{
     uint64_t p[2 * SIM_DY_WORDS];
     memset(p, 0, sizeof p);
     sim_dy o;
