@@ -53,8 +53,9 @@ int tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signal
     return 0;
 }
 
-void tb_range_widen(tb_range_live *l, int64_t v, int first)
+void tb_range_widen(tb_range_live *l, uint64_t d, int first)
 {
+    int64_t v = (int64_t)((uint64_t)l->lo + d);
     if (first) { l->lo = v; l->span = 0; return; }
     int64_t lo = l->lo, hi = (int64_t)((uint64_t)lo + l->span);
     if (v < lo) lo = v;

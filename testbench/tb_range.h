@@ -31,14 +31,15 @@ typedef struct tb_range {
 
 /* The signals of scope sc (and below) but the clock. 0, or -1 (memory). */
 int  tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signal *clk);
-/* Widen l's range to take v; first: it holds nothing yet. */
-void tb_range_widen(tb_range_live *l, int64_t v, int first);
+/* Widen l's range to take the value lo + d (d as the sampling loop has
+ * it, v - lo modulo 2^64); first: it holds nothing yet. */
+void tb_range_widen(tb_range_live *l, uint64_t d, int first);
 /* At each rising edge (the monitor calls it). A value inside its range so
  * far, the common case, costs two loads, a subtraction and a compare;
  * four signals a turn, as the loop's own count would cost as much. */
 #define TB_RANGE_TAKE(l, first) do { \
-        int64_t v_ = (l)->sig->cur; \
-        if ((uint64_t)v_ - (uint64_t)(l)->lo > (l)->span) tb_range_widen((l), v_, (first)); \
+        uint64_t d_ = (uint64_t)(l)->sig->cur - (uint64_t)(l)->lo; \
+        if (d_ > (l)->span) tb_range_widen((l), d_, (first)); \
     } while (0)
 static inline void tb_range_sample(tb_range *g)
 {

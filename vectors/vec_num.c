@@ -66,14 +66,17 @@ static int round_to_double(u128 n, int sticky, int e2, int neg, double *out)
         m = (uint64_t)n << (53 - b);     /* exact (sticky is 0 here) */
         e2 -= 53 - b;
     } else {
-        int sh = b - 53;
-        m = (uint64_t)(n >> sh);
-        u128 rem = n & (((u128)1 << sh) - 1), half = (u128)1 << (sh - 1);
-        if (rem > half || (rem == half && (sticky || (m & 1)))) {
+        /* n with its top bit at bit 127: m is the top 53 bits, the 75
+         * below are the dropped ones (b - 53 of n's, then zeros); half is
+         * the first of them alone (0x400 in hi's low 11 bits, lo 0) */
+        u128 t = n << (128 - b);
+        uint64_t hi = (uint64_t)(t >> 64), lo = (uint64_t)t, rb = hi & 0x7ff;
+        m = hi >> 11;
+        if (rb > 0x400 || (rb == 0x400 && (lo || sticky || (m & 1)))) {
             m++;
             if (m >> 53) { m >>= 1; e2++; }
         }
-        e2 += sh;
+        e2 += b - 53;
     }
     int be = e2 + 52 + 1023;             /* m in [2^52, 2^53) */
     if (be <= 0 || be >= 2047) return 0;
