@@ -110,7 +110,7 @@ static uint64_t mw_div(uint64_t *n, int *len, uint64_t d)
  * one word: N = floor(w 2^s / 5^k), dividing a few words by 5^27 and then
  * by the rest (floor(floor(a / b) / c) is floor(a / (b c)); the sticky bit
  * is any remainder), s chosen so that N lies in [2^63, 2^68). */
-static int small_quotient(uint64_t w, int k, int neg, double *out)
+static __attribute__((noinline)) int small_quotient(uint64_t w, int k, int neg, double *out)
 {
     uint64_t n[BIG_WORDS] = { 0 };
     int bw = 64 - __builtin_clzll(w);
