@@ -445,11 +445,13 @@ static inline void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int ne
     if (!a->ovf && !b->ovf && dy_small(a) && dy_small(b)) {
         int e = a->e > b->e ? a->e : b->e, sa = e - a->e, sb = e - b->e;
         if (sa <= 62 && sb <= 62) {
-            __int128 x = (__int128)a->m[0] << sa, y = (__int128)b->m[0] << sb;
-            if (a->neg) x = -x;
-            if (b->neg != negate) y = -y;
-            __int128 s = x + y;
-            dy_set128(r, s < 0, s < 0 ? (unsigned __int128)(-s) : (unsigned __int128)s, e);
+            /* sign and magnitude: equal signs add, else the larger
+             * magnitude keeps its sign (a zero result has none) */
+            unsigned __int128 x = (unsigned __int128)a->m[0] << sa, y = (unsigned __int128)b->m[0] << sb;
+            int na = a->neg, nb = b->neg ^ negate;
+            if (na == nb) dy_set128(r, na, x + y, e);
+            else if (x >= y) dy_set128(r, na, x - y, e);
+            else dy_set128(r, nb, y - x, e);
             return;
         }
     }
