@@ -339,11 +339,12 @@ static int dy_zero(const sim_dy *a)
 }
 
 /* 1 if only the low word is in use (the fast paths' case). */
+_Static_assert(SIM_DY_WORDS == 8, "dy_small names the words");
 static inline int dy_small(const sim_dy *a)
 {
-    uint64_t hi = 0;
-    for (int i = 1; i < SIM_DY_WORDS; i++) hi |= a->m[i];
-    return hi == 0;
+    /* the seven words written out: gcc's loop took twice the instructions */
+    const uint64_t *m = a->m;
+    return ((m[1] | m[2]) | (m[3] | m[4]) | (m[5] | m[6]) | m[7]) == 0;
 }
 
 /* Set d to sign neg and magnitude v * 2^-e, normalized (v < 2^128). */
@@ -408,10 +409,12 @@ static int mag_cmp(const uint64_t *a, const uint64_t *b)
 void sim_dy_int(sim_dy *d, int64_t v, int e)
 {
     memset(d, 0, sizeof *d);
+    if (!v) return;                 /* zero: m, neg and e all 0, as dy_norm makes it */
+    uint64_t m = v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
+    int tz = __builtin_ctzll(m);    /* dy_norm's odd magnitude, directly */
+    d->m[0] = m >> tz;
+    d->e = e - tz;
     d->neg = v < 0;
-    d->m[0] = v < 0 ? 0 - (uint64_t)v : (uint64_t)v;
-    d->e = e;
-    dy_norm(d);
 }
 
 void sim_dy_raw(sim_dy *d, int64_t raw, sim_fmt f) { sim_dy_int(d, raw, f.fbits); }
@@ -419,9 +422,15 @@ void sim_dy_raw(sim_dy *d, int64_t raw, sim_fmt f) { sim_dy_int(d, raw, f.fbits)
 void sim_dy_double(sim_dy *d, double x)
 {
     if (!isfinite(x)) { memset(d, 0, sizeof *d); d->ovf = 1; return; }
-    int e;
-    double m = ldexp(frexp(x, &e), 53);     /* x = m * 2^(e-53), m integral */
-    sim_dy_int(d, (int64_t)m, 53 - e);
+    /* x = m 2^-e from its fields (sim_dy_int makes m odd, so the result is
+     * the value's one form whichever m is given): a normal x is
+     * (2^52 + frac) 2^(E-1075), a subnormal one frac 2^-1074. */
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int be = (int)(bits >> 52) & 0x7ff;
+    int64_t m = (int64_t)(bits & ((UINT64_C(1) << 52) - 1));
+    if (be) m |= INT64_C(1) << 52;
+    sim_dy_int(d, bits >> 63 ? -m : m, be ? 1075 - be : 1074);
 }
 
 /* a and b brought to a common e (the larger); 0 if that does not fit. */
@@ -435,22 +444,33 @@ static int dy_align(const sim_dy *a, const sim_dy *b, sim_dy *x, sim_dy *y)
     return 1;
 }
 
+static void dy_addsub_words(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate);
+
 /* r = a + (negate b ? -b : b) */
-static void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
+static inline void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
 {
     /* Fast path: one word each, exponents within 62 of each other: the
      * aligned values and their sum fit a signed 128-bit integer. */
     if (!a->ovf && !b->ovf && dy_small(a) && dy_small(b)) {
         int e = a->e > b->e ? a->e : b->e, sa = e - a->e, sb = e - b->e;
         if (sa <= 62 && sb <= 62) {
-            __int128 x = (__int128)a->m[0] << sa, y = (__int128)b->m[0] << sb;
-            if (a->neg) x = -x;
-            if (b->neg != negate) y = -y;
-            __int128 s = x + y;
-            dy_set128(r, s < 0, s < 0 ? (unsigned __int128)(-s) : (unsigned __int128)s, e);
+            /* sign and magnitude: equal signs add, else the larger
+             * magnitude keeps its sign (a zero result has none) */
+            unsigned __int128 x = (unsigned __int128)a->m[0] << sa, y = (unsigned __int128)b->m[0] << sb;
+            int na = a->neg, nb = b->neg ^ negate;
+            if (na == nb) dy_set128(r, na, x + y, e);
+            else if (x >= y) dy_set128(r, na, x - y, e);
+            else dy_set128(r, nb, y - x, e);
             return;
         }
     }
+    dy_addsub_words(r, a, b, negate);
+}
+
+/* dy_addsub's general case, out of line so that the fast path saves no
+ * registers. */
+static __attribute__((noinline)) void dy_addsub_words(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
+{
     sim_dy x, y;
     if (a->ovf || b->ovf || !dy_align(a, b, &x, &y)) { memset(r, 0, sizeof *r); r->ovf = 1; return; }
     int yneg = y.neg ^ (negate && !dy_zero(&y));
@@ -486,12 +506,21 @@ static void dy_addsub(sim_dy *r, const sim_dy *a, const sim_dy *b, int negate)
 void sim_dy_add(sim_dy *r, const sim_dy *a, const sim_dy *b) { dy_addsub(r, a, b, 0); }
 void sim_dy_sub(sim_dy *r, const sim_dy *a, const sim_dy *b) { dy_addsub(r, a, b, 1); }
 
+static void dy_mul_words(sim_dy *r, const sim_dy *a, const sim_dy *b);
+
 void sim_dy_mul(sim_dy *r, const sim_dy *a, const sim_dy *b)
 {
     if (!a->ovf && !b->ovf && dy_small(a) && dy_small(b)) {   /* fast path: one word each */
         dy_set128(r, (a->neg ^ b->neg) && a->m[0] && b->m[0], (unsigned __int128)a->m[0] * b->m[0], a->e + b->e);
         return;
     }
+    dy_mul_words(r, a, b);
+}
+
+/* sim_dy_mul's general case, out of line so that the fast path saves no
+ * registers. */
+static __attribute__((noinline)) void dy_mul_words(sim_dy *r, const sim_dy *a, const sim_dy *b)
+{
     uint64_t p[2 * SIM_DY_WORDS];
     memset(p, 0, sizeof p);
     sim_dy o;
@@ -566,8 +595,22 @@ int sim_dy_cmp(const sim_dy *a, const sim_dy *b)
 double sim_dy_to_double(const sim_dy *a)
 {
     if (a->ovf) return NAN;
-    double v = 0;
-    for (int i = SIM_DY_WORDS - 1; i >= 0; i--) v = v * 0x1p64 + (double)a->m[i];
-    v = ldexp(v, -a->e);
+    /* The words from the top, v = v 2^64 + m[i]; leading zero words leave
+     * v at +0 (0 2^64 + 0), so the sum starts at the first nonzero one. */
+    int i = SIM_DY_WORDS - 1;
+    while (i > 0 && !a->m[i]) i--;
+    double v = (double)a->m[i];
+    while (--i >= 0) v = v * 0x1p64 + (double)a->m[i];
+    int k = -a->e;
+    if (k >= -1022 && k <= 1023) {
+        /* ldexp(v, k) as a product by 2^k, a normal double: exact, or
+         * rounded once as ldexp rounds (overflow, subnormal results) */
+        uint64_t bits = (uint64_t)(k + 1023) << 52;
+        double p;
+        memcpy(&p, &bits, sizeof p);
+        v *= p;
+    } else {
+        v = ldexp(v, k);
+    }
     return a->neg ? -v : v;
 }

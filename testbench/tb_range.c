@@ -35,9 +35,8 @@ int tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signal
     g->mn = calloc(n, sizeof *g->mn);
     g->mx = calloc(n, sizeof *g->mx);
     g->live = calloc(n, sizeof *g->live);
-    g->lsig = calloc(n, sizeof *g->lsig);
-    g->lmm = calloc(2 * n, sizeof *g->lmm);
-    if (!g->smp || !g->mn || !g->mx || !g->live || !g->lsig || !g->lmm) return -1;
+    g->lv = calloc(n, sizeof *g->lv);
+    if (!g->smp || !g->mn || !g->mx || !g->live || !g->lv) return -1;
     for (uint32_t i = 0, ns = sim_signal_count(c); i < ns; i++) {
         sim_signal *sg = sim_signal_at(c, i);
         if (sg == clk || !in_scope(sg, sc)) continue;
@@ -46,9 +45,7 @@ int tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signal
         g->mn[g->nsmp] = cst ? sg->cur : INT64_MAX;
         g->mx[g->nsmp] = cst ? sg->cur : INT64_MIN;
         if (!cst) {
-            g->lsig[g->nlive] = sg;
-            g->lmm[2 * g->nlive] = INT64_MAX;
-            g->lmm[2 * g->nlive + 1] = INT64_MIN;
+            g->lv[g->nlive].sig = sg;           /* its range is set by the first sample */
             g->live[g->nlive++] = g->nsmp;
         }
         g->smp[g->nsmp++] = sg;
@@ -56,12 +53,24 @@ int tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signal
     return 0;
 }
 
+void tb_range_widen(tb_range_live *l, uint64_t d, int first)
+{
+    int64_t v = (int64_t)((uint64_t)l->lo + d);
+    if (first) { l->lo = v; l->span = 0; return; }
+    int64_t lo = l->lo, hi = (int64_t)((uint64_t)lo + l->span);
+    if (v < lo) lo = v;
+    if (v > hi) hi = v;
+    l->lo = lo;
+    l->span = (uint64_t)hi - (uint64_t)lo;
+}
+
 void tb_range_finish(tb_range *g, const sim_scope *sc, const unit_io *io, const uint64_t *in_ovf,
                      tb_result *r)
 {
+    /* never sampled: min > max, "not seen", as for no value at all */
     for (int j = 0; j < g->nlive; j++) {
-        g->mn[g->live[j]] = g->lmm[2 * j];
-        g->mx[g->live[j]] = g->lmm[2 * j + 1];
+        g->mn[g->live[j]] = g->sampled ? g->lv[j].lo : INT64_MAX;
+        g->mx[g->live[j]] = g->sampled ? (int64_t)((uint64_t)g->lv[j].lo + g->lv[j].span) : INT64_MIN;
     }
     r->sigs = calloc(g->nsmp ? (size_t)g->nsmp : 1, sizeof *r->sigs);
     if (!r->sigs) return;
@@ -86,8 +95,7 @@ void tb_range_free(tb_range *g)
     free(g->mn);
     free(g->mx);
     free(g->live);
-    free(g->lsig);
-    free(g->lmm);
+    free(g->lv);
     memset(g, 0, sizeof *g);
 }
 

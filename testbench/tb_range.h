@@ -11,27 +11,48 @@
 #define TB_RANGE_H
 #include "testbench/tb.h"
 
+/* A signal that can change and its range so far, lo <= v <= lo + span,
+ * span an unsigned width: one subtraction and one unsigned compare tell
+ * whether a value is inside (tb_range_widen moves the ends when not). */
+typedef struct tb_range_live {
+    const sim_signal *sig;
+    int64_t  lo;
+    uint64_t span;
+} tb_range_live;
+
 typedef struct tb_range {
     sim_signal **smp;           /* every logged signal */
     int64_t     *mn, *mx;       /* their min and max (after tb_range_finish) */
     int          nsmp;
     int         *live, nlive;   /* the entries that can change (not constants) */
-    sim_signal **lsig;          /* smp[live[j]], packed for the per-clock loop */
-    int64_t     *lmm;           /* its min, max pairs */
+    tb_range_live *lv;          /* smp[live[j]] and its range, packed for the per-clock loop */
+    int          sampled;       /* tb_range_sample has run (the ranges hold values) */
 } tb_range;
 
 /* The signals of scope sc (and below) but the clock. 0, or -1 (memory). */
 int  tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signal *clk);
-/* At each rising edge (the monitor calls it). */
+/* Widen l's range to take the value lo + d (d as the sampling loop has
+ * it, v - lo modulo 2^64); first: it holds nothing yet. */
+void tb_range_widen(tb_range_live *l, uint64_t d, int first);
+/* At each rising edge (the monitor calls it). A value inside its range so
+ * far, the common case, costs two loads, a subtraction and a compare;
+ * four signals a turn, as the loop's own count would cost as much. */
+#define TB_RANGE_TAKE(l, first) do { \
+        uint64_t d_ = (uint64_t)(l)->sig->cur - (uint64_t)(l)->lo; \
+        if (d_ > (l)->span) tb_range_widen((l), d_, (first)); \
+    } while (0)
 static inline void tb_range_sample(tb_range *g)
 {
-    sim_signal *const *ls = g->lsig;
-    int64_t *mm = g->lmm;
-    for (int j = 0, n = g->nlive; j < n; j++, mm += 2) {
-        int64_t v = ls[j]->cur;
-        mm[0] = v < mm[0] ? v : mm[0];
-        mm[1] = v > mm[1] ? v : mm[1];
+    tb_range_live *l = g->lv, *end = l + g->nlive, *end4 = l + (g->nlive & ~3);
+    int first = !g->sampled;
+    for (; l < end4; l += 4) {
+        TB_RANGE_TAKE(l, first);
+        TB_RANGE_TAKE(l + 1, first);
+        TB_RANGE_TAKE(l + 2, first);
+        TB_RANGE_TAKE(l + 3, first);
     }
+    for (; l < end; l++) TB_RANGE_TAKE(l, first);
+    g->sampled = 1;
 }
 /* r->sigs: each signal's name below sc, format, kind, overflows (an input
  * adds its quantization's, in_ovf[] in io's input order) and range. */

@@ -17,6 +17,7 @@
 #include "testbench/tb_stream.h"
 #include "testbench/tb_range.h"
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -31,6 +32,13 @@ void tb_prep_init(tb_prep_ctx *p, const unit_desc *u, const unit_cfg *cfg, const
     p->n_in = unit_n_in(u);
     p->nv = u->beats(cfg) * unit_n_out(u);
     for (int i = 0, k = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN) p->in_idx[k++] = i;
+    for (int i = 0; i < p->n_in; i++) {
+        sim_fmt f = fmts->f[p->in_idx[i]];
+        p->in_fmt[i] = f;
+        p->in_rnd[i] = sim_fmt_round(f, cfg->rnd);    /* the input's own mode, if it has one */
+        p->in_up[i] = ldexp(1.0, f.fbits);
+        p->in_down[i] = ldexp(1.0, -f.fbits);
+    }
 }
 
 void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_t *in_ovf)
@@ -45,19 +53,21 @@ void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_
     sim_dy qd[UNIT_MAX_IO];
     for (int i = 0; i < p->n_in; i++) {
         int ov = 0;
-        sim_fmt f = p->fmts->f[p->in_idx[i]];
+        sim_fmt f = p->in_fmt[i];
         x[i] = row[i];
         it->in_raw[i] = sim_fx_from_real(x[i], f, cfg->rnd, cfg->ovf, &ov);
         in_ovf[i] += (uint64_t)ov;
-        q[i] = sim_fx_to_real(it->in_raw[i], f);
+        /* sim_fx_to_real: a product by a power of two is exact or
+         * correctly rounded, as ldexp is */
+        q[i] = (double)it->in_raw[i] * p->in_down[i];
         sim_dy_raw(&qd[i], it->in_raw[i], f);
         /* Rounded to f's fraction bits with an unlimited integer part
          * (exact in double: a value of more than 52 bits after the
          * scaling is already a whole number). */
-        double y = ldexp(x[i], f.fbits);
-        sim_round rr = sim_fmt_round(f, cfg->rnd);    /* the input's own mode, if it has one */
+        double y = x[i] * p->in_up[i];
+        sim_round rr = p->in_rnd[i];
         y = rr == SIM_RND_TRUNC ? floor(y) : rr == SIM_RND_HALF_UP ? floor(y + 0.5) : nearbyint(y);
-        qr[i] = ldexp(y, -f.fbits);
+        qr[i] = y * p->in_down[i];
     }
     u->ideal(cfg, q, it->ideal);
     u->ideal(cfg, qr, it->ideal_r);
@@ -89,6 +99,8 @@ void tb_acc_begin(tb_acc *a, tb_result *r)
         a->has_bound[o] = isfinite(m->bound) && m->bound >= 0;
         m->check = a->has_bound[o] ? TB_CHECK_OK : TB_CHECK_NO_BOUND;
         sim_dy_double(&a->b[o], a->has_bound[o] ? m->bound : 0);
+        a->bd[o] = sim_dy_to_double(&a->b[o]);
+        a->lsb[o] = sim_fmt_lsb(m->fmt);
         a->out_scale[o] = fmax(fabs(sim_fmt_real_min(m->fmt)), fabs(sim_fmt_real_max(m->fmt)));
     }
 }
@@ -102,11 +114,12 @@ void tb_acc_item(tb_acc *a, tb_result *r, size_t idx, const int64_t *raw, const 
         tb_metrics *m = &r->out[o];
         for (int bt = 0; bt < nb; bt++) {
             int k = bt * no + o;
-            double hw = sim_fx_to_real(raw[k], m->fmt);
+            double hw = (double)raw[k] * a->lsb[o];     /* sim_fx_to_real: exact, a product by 2^-F */
             double ref = expected[k];
             double e = hw - ref, ei;
-            int c = tb_check_value(raw[k], m->fmt, ex ? &it->exact[k] : NULL, ex && !iv && it->den ? &it->den[k] : NULL,
-                                   iv ? &it->hi[k] : NULL, it->ideal[k], &a->b[o], &ei);
+            int c = tb_check_value_at(raw[k], m->fmt, a->lsb[o], ex ? &it->exact[k] : NULL,
+                                      ex && !iv && it->den ? &it->den[k] : NULL, iv ? &it->hi[k] : NULL, it->ideal[k],
+                                      &a->b[o], a->bd[o], &ei);
             a->se[o] += e;
             m->sum_e2 += e * e;
             m->sum_ref2 += ref * ref;
@@ -187,6 +200,9 @@ typedef struct st_state {
     const vec_set *rows;
     size_t row_at;              /* next row of rows to prepare */
     size_t prepared, next, done, got;   /* items prepared, offered, finished; beats got */
+    size_t offered;             /* the item on the inputs with valid set (SIZE_MAX: none) */
+    size_t got_item;            /* got as item and beat: got / beats, got % beats */
+    int    got_beat;
     int started, eof, failed, finished;
     uint64_t in_ovf[UNIT_MAX_IO];
     const sim_ctx *ctx;
@@ -249,32 +265,43 @@ static int have_item(st_state *s, size_t idx)
     return 1;
 }
 
-/* Driver, at each rising edge: tb_run's, with items prepared on demand. */
+/* Offer item next (preparing it if need be), or drop valid at the end. */
+static __attribute__((noinline)) void st_offer(st_state *s, sim_proc *p)
+{
+    const unit_io *io = s->io;
+    if (have_item(s, s->next)) {
+        const int64_t *v = s->R.in_raw + (s->next & (s->R.cap - 1)) * (size_t)s->n_in;
+        for (int i = 0; i < s->n_in; i++) sim_write(io->in[i], v[i]);
+        sim_write(io->in_valid, 1);
+        s->offered = s->next;
+    } else {
+        sim_write(io->in_valid, 0);
+        s->offered = SIZE_MAX;
+    }
+    if (s->failed) sim_stop(p->ctx);
+}
+
+/* Driver, at each rising edge: tb_run's, with items prepared on demand.
+ * While the unit holds an item (not ready), the inputs and valid already
+ * hold what the driver would write again (its last writes have been
+ * applied, and nothing else drives them): such writes would change
+ * nothing and are skipped, and the clock costs a few compares. */
 static void st_driver(sim_proc *p)
 {
     st_state *s = p->data;
     const unit_io *io = s->io;
     if (s->started && io->in_valid->cur && io->in_ready->cur) s->next++;
+    if (s->started && s->next == s->offered && !s->failed) return;
     s->started = 1;
-    if (have_item(s, s->next)) {
-        const int64_t *v = ring_item(s, s->next).in_raw;
-        for (int i = 0; i < s->n_in; i++) sim_write(io->in[i], v[i]);
-        sim_write(io->in_valid, 1);
-    } else {
-        sim_write(io->in_valid, 0);
-    }
-    if (s->failed) sim_stop(p->ctx);
+    st_offer(s, p);
 }
 
-/* Monitor, at each rising edge: tb_run's; a finished item goes to the
- * metrics and the caller, and its slot is free again. */
-static void st_monitor(sim_proc *p)
+/* An output beat is in: keep it; a finished item goes to the metrics and
+ * the caller, and its slot is free again. */
+static __attribute__((noinline)) void st_collect(st_state *s, sim_proc *p)
 {
-    st_state *s = p->data;
-    tb_range_sample(&s->rg);
-    if (!s->io->out_valid->cur) return;
-    size_t it = s->got / (size_t)s->beats;
-    int b = (int)(s->got % (size_t)s->beats);
+    size_t it = s->got_item;
+    int b = s->got_beat;
     if (it >= s->prepared) return;     /* (at the end: every item is in) */
     uint64_t cyc = sim_get_stats(s->ctx)->clocks - 1;
     size_t k = it & (s->R.cap - 1);
@@ -284,6 +311,7 @@ static void st_monitor(sim_proc *p)
     s->last_cycle = cyc;
     for (int o = 0; o < s->n_out; o++) raw[b * s->n_out + o] = s->io->out[o]->cur;
     s->got++;
+    if (++s->got_beat == s->beats) { s->got_beat = 0; s->got_item++; }
     if (b == s->beats - 1) {
         tb_item ti = ring_item(s, it);
         const double *expected = s->R.expected + k * (size_t)s->nv;
@@ -292,6 +320,15 @@ static void st_monitor(sim_proc *p)
         s->done++;
     }
     if (s->eof && s->done == s->prepared) { s->finished = 1; sim_stop(p->ctx); }
+}
+
+/* Monitor, at each rising edge: tb_run's (range logging, then the output
+ * beat when there is one). */
+static void st_monitor(sim_proc *p)
+{
+    st_state *s = p->data;
+    tb_range_sample(&s->rg);
+    if (s->io->out_valid->cur) st_collect(s, p);
 }
 
 static int ring_alloc(ring *R, int n_in, int nv, const unit_desc *u)
@@ -335,6 +372,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     tb_prep_init(&st.pc, u, cfg, fmts);
     st.n_in = r->n_in; st.n_out = r->n_out; st.beats = r->beats; st.nv = st.pc.nv;
     st.src = vs; st.r = r; st.row = row; st.row_data = row_data;
+    st.offered = SIZE_MAX;
     static const vec_set none;
     st.rows = &none;
     if (ring_alloc(&st.R, st.n_in, st.nv, u)) {

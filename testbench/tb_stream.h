@@ -30,6 +30,12 @@ typedef struct tb_prep_ctx {
     vec_params vp;
     int n_in, nv;               /* inputs; output values per item (beats x outputs) */
     int in_idx[UNIT_MAX_IO];    /* signal index of input i */
+    /* Input i's format and rounding, and 2^F and 2^-F of its F fraction
+     * bits (0..64: normal doubles, so that a product by one is ldexp's
+     * value, exactly and without the call). */
+    sim_fmt   in_fmt[UNIT_MAX_IO];
+    sim_round in_rnd[UNIT_MAX_IO];
+    double    in_up[UNIT_MAX_IO], in_down[UNIT_MAX_IO];
 } tb_prep_ctx;
 
 /* One item's figures, nv values each (beat-major) unless noted. */
@@ -49,6 +55,7 @@ void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_
  * be set before tb_acc_begin. */
 typedef struct tb_acc {
     double se[UNIT_MAX_IO], out_scale[UNIT_MAX_IO];
+    double lsb[UNIT_MAX_IO], bd[UNIT_MAX_IO];   /* sim_fmt_lsb(fmt); b as a double */
     sim_dy b[UNIT_MAX_IO];
     int    has_bound[UNIT_MAX_IO];
     int    any_unchecked[UNIT_MAX_IO], any_exceeded[UNIT_MAX_IO];
@@ -64,6 +71,10 @@ void tb_acc_end(tb_acc *a, tb_result *r);
  * UNCHECKED, and |hw - ideal| in *err. */
 int tb_check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
                    double ideal_d, const sim_dy *bound, double *err);
+/* The same with what is fixed per output worked out once: lsb is
+ * sim_fmt_lsb(f), bound_d sim_dy_to_double(bound). */
+int tb_check_value_at(int64_t raw, sim_fmt f, double lsb, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
+                      double ideal_d, const sim_dy *bound, double bound_d, double *err);
 
 /* The --out CSV (tb_out.c): its header, and one item's row. */
 void tb_csv_header(FILE *f, int n_out, const char names[][16]);

@@ -8,8 +8,11 @@
  * Rounding N (and the sticky bit) to 53 bits, to nearest with ties to
  * even, is then the correctly rounded double of the decimal, which is what
  * glibc's strtod gives; the binary exponent 2^q or 2^(q-s) is put in the
- * result's exponent field (the values reachable here, 10^-27 to 10^46,
- * are far from subnormals and infinity). Before that, Clinger's fast path:
+ * result's exponent field (the values reachable here, 10^-127 to 10^46,
+ * are far from subnormals and infinity). For -108 <= q < -27 (vector
+ * files hold many tiny values) 5^-q takes more than a word: N is the
+ * same floor, w * 2^s held in a few words and divided by 5^27 and then
+ * by the rest of 5^-q, one word at a time. Before that, Clinger's fast path:
  * w <= 2^53 and |q| <= 22 make w and 10^|q| exact doubles, so one IEEE
  * multiply or divide rounds correctly.
  *
@@ -38,6 +41,11 @@ static const double pow10d[23] = {
 
 __extension__ typedef unsigned __int128 u128;
 
+/* Decimal exponents down to -BIG_Q take the exact path through a few
+ * words (small_quotient); w 2^s then has at most 65 + 2.33 BIG_Q bits. */
+#define BIG_Q 108
+#define BIG_WORDS 7
+
 static int is_digit(char c) { return c >= '0' && c <= '9'; }
 
 /* Significant bits of n > 0. */
@@ -58,14 +66,17 @@ static int round_to_double(u128 n, int sticky, int e2, int neg, double *out)
         m = (uint64_t)n << (53 - b);     /* exact (sticky is 0 here) */
         e2 -= 53 - b;
     } else {
-        int sh = b - 53;
-        m = (uint64_t)(n >> sh);
-        u128 rem = n & (((u128)1 << sh) - 1), half = (u128)1 << (sh - 1);
-        if (rem > half || (rem == half && (sticky || (m & 1)))) {
+        /* n with its top bit at bit 127: m is the top 53 bits, the 75
+         * below are the dropped ones (b - 53 of n's, then zeros); half is
+         * the first of them alone (0x400 in hi's low 11 bits, lo 0) */
+        u128 t = n << (128 - b);
+        uint64_t hi = (uint64_t)(t >> 64), lo = (uint64_t)t, rb = hi & 0x7ff;
+        m = hi >> 11;
+        if (rb > 0x400 || (rb == 0x400 && (lo || sticky || (m & 1)))) {
             m++;
             if (m >> 53) { m >>= 1; e2++; }
         }
-        e2 += sh;
+        e2 += b - 53;
     }
     int be = e2 + 52 + 1023;             /* m in [2^52, 2^53) */
     if (be <= 0 || be >= 2047) return 0;
@@ -74,30 +85,79 @@ static int round_to_double(u128 n, int sticky, int e2, int neg, double *out)
     return 1;
 }
 
+/* n (len words, little-endian, the top one nonzero) /= d; the remainder. */
+static uint64_t mw_div(uint64_t *n, int *len, uint64_t d)
+{
+    uint64_t r = 0;
+    for (int i = *len - 1; i >= 0; i--) {
+        /* (r 2^64 + n[i]) / d with r < d: the quotient fits a word */
+#if defined(__x86_64__)
+        uint64_t q, lo = n[i];
+        __asm__("divq %[d]" : "=a"(q), "=d"(r) : [d] "rm"(d), "a"(lo), "d"(r) : "cc");
+        n[i] = q;
+#else
+        u128 c = ((u128)r << 64) | n[i];
+        uint64_t q = (uint64_t)(c / d);
+        r = (uint64_t)(c - (u128)q * d);
+        n[i] = q;
+#endif
+    }
+    while (*len > 1 && !n[*len - 1]) (*len)--;
+    return r;
+}
+
+/* w 10^-k for 27 < k <= BIG_Q, as the k <= 27 case but with 5^k over
+ * one word: N = floor(w 2^s / 5^k), dividing a few words by 5^27 and then
+ * by the rest (floor(floor(a / b) / c) is floor(a / (b c)); the sticky bit
+ * is any remainder), s chosen so that N lies in [2^63, 2^68). */
+static __attribute__((noinline)) int small_quotient(uint64_t w, int k, int neg, double *out)
+{
+    uint64_t n[BIG_WORDS] = { 0 };
+    int bw = 64 - __builtin_clzll(w);
+    int b5 = k * 2322 / 1000 + 1;           /* bits of 5^k, give or take one */
+    int s = 65 + b5 - bw;                   /* w 2^s has 65 + b5 bits */
+    int ws = s / 64, bs = s % 64;
+    n[ws] = w << bs;
+    if (bs) n[ws + 1] = w >> (64 - bs);
+    int len = ws + 2;
+    while (len > 1 && !n[len - 1]) len--;
+    int sticky = 0;
+    for (int left = k; left > 0; ) {
+        int j = left > 27 ? 27 : left;
+        sticky |= mw_div(n, &len, pow5[j]) != 0;
+        left -= j;
+    }
+    if (len > 2) return 0;
+    u128 q = ((u128)n[1] << 64) | n[0];
+    return round_to_double(q, sticky, -k - s, neg, out);
+}
+
 double vec_num_strtod(const char *s, char **end)
 {
     const char *p = s;
     int neg = 0;
     if (*p == '-' || *p == '+') { neg = *p == '-'; p++; }
     uint64_t w = 0;
-    int nd = 0, frac = 0, any = 0;
-    while (*p == '0') { p++; any = 1; }            /* leading zeros are not significant */
-    for (; is_digit(*p); p++) {
-        if (++nd > 19) goto slow;
-        w = w * 10 + (uint64_t)(*p - '0');
-        any = 1;
-    }
+    long frac = 0;
+    const char *d0 = p;
+    while (*p == '0') p++;                          /* leading zeros are not significant */
+    /* The digits are summed first and counted after: more than 19
+     * (where w would wrap) go to strtod anyway. */
+    const char *ds = p;
+    for (; is_digit(*p); p++) w = w * 10 + (uint64_t)(*p - '0');
+    long nd = p - ds;
+    if (nd > 19) goto slow;
     if (*p == '.') {
-        p++;
-        if (!nd) while (*p == '0') { p++; frac++; any = 1; }
-        for (; is_digit(*p); p++) {
-            if (++nd > 19) goto slow;
-            w = w * 10 + (uint64_t)(*p - '0');
-            frac++;
-            any = 1;
-        }
+        const char *f0 = ++p;
+        if (!nd) while (*p == '0') p++;
+        const char *fs = p;
+        for (; is_digit(*p); p++) w = w * 10 + (uint64_t)(*p - '0');
+        if (nd + (p - fs) > 19) goto slow;
+        frac = p - f0;
+        if (p - d0 == 1) goto slow;                 /* a lone point: no digit at all */
+    } else if (p == d0) {
+        goto slow;                                  /* no digit at all */
     }
-    if (!any) goto slow;
     long e = 0;
     if (*p == 'e' || *p == 'E') {
         const char *q = p + 1;
@@ -136,6 +196,8 @@ double vec_num_strtod(const char *s, char **end)
         int s = 127 - (64 - __builtin_clzll(w));   /* w 2^s just below 2^127 */
         u128 n0 = (u128)w << s, n = n0 / d;
         if (!round_to_double(n, n0 - n * d != 0, (int)q10 - s, neg, &r)) goto slow;
+    } else if (q10 < -27 && q10 >= -BIG_Q) {
+        if (!small_quotient(w, (int)-q10, neg, &r)) goto slow;
     } else {
         goto slow;
     }
