@@ -22,6 +22,30 @@ static void t_corpus(void)
     TST_EQ_INT(bad, 0);
 }
 
+/* Mantissas of 1 to 19 digits with decimal exponents from -112 to -24:
+ * the range the parser divides exactly through a few words (between its
+ * one-word quotient and strtod), and its edges. Digits from a fixed LCG. */
+static void t_small_exponents(void)
+{
+    char buf[64], why[300];
+    long bad = 0;
+    uint64_t x = 0x2545f4914f6cdd1dull;
+    for (int i = 0; i < 60000; i++) {
+        x = x * 6364136223846793005ull + 1442695040888963407ull;
+        int nd = 1 + (int)((x >> 59) % 19), e = -112 + (int)((x >> 20) % 89);
+        uint64_t y = x;
+        char digits[24];
+        for (int d = 0; d < nd; d++) {
+            y = y * 6364136223846793005ull + 1442695040888963407ull;
+            digits[d] = (char)('0' + (d == 0 ? 1 + (y >> 60) % 9 : (y >> 60) % 10));
+        }
+        digits[nd] = 0;
+        snprintf(buf, sizeof buf, "%s%se%d", (x >> 7) & 1 ? "-" : "", digits, e);
+        if (tst_num_check(buf, why, sizeof why) && bad++ < 10) TST_CHECK(0, "%s", why);
+    }
+    TST_EQ_INT(bad, 0);
+}
+
 /* Known roundings, from the definition: ties go to the even neighbour. */
 static void t_halfway(void)
 {
@@ -46,5 +70,6 @@ int main(void)
 {
     TST_RUN(t_corpus);
     TST_RUN(t_halfway);
+    TST_RUN(t_small_exponents);
     TST_EXIT();
 }

@@ -91,16 +91,10 @@ static uint64_t mw_div(uint64_t *n, int *len, uint64_t d)
     uint64_t r = 0;
     for (int i = *len - 1; i >= 0; i--) {
         /* (r 2^64 + n[i]) / d with r < d: the quotient fits a word */
-#if defined(__x86_64__)
-        uint64_t q, lo = n[i];
-        __asm__("divq %[d]" : "=a"(q), "=d"(r) : [d] "rm"(d), "a"(lo), "d"(r) : "cc");
-        n[i] = q;
-#else
         u128 c = ((u128)r << 64) | n[i];
         uint64_t q = (uint64_t)(c / d);
         r = (uint64_t)(c - (u128)q * d);
         n[i] = q;
-#endif
     }
     while (*len > 1 && !n[*len - 1]) (*len)--;
     return r;
