@@ -40,6 +40,8 @@ typedef struct bop {
     int      n;           /* mux, logic: inputs */
     int64_t **in;
     int     *in_f;        /* mux: each input's fraction bits */
+    int     *in_k;        /* mux, fast: each input's right shift to y, */
+    int64_t *in_radd;     /* and what is added before it (inputs may differ in fraction bits) */
     sim_logic_fn fn;
     void    *user;
     int64_t *tab;         /* logic: y for every input value (see logic_table), or NULL */
@@ -177,10 +179,25 @@ static void eval_comb(const bop *p, const uint64_t *m, uint32_t nw, unsigned cha
         });
         break;
     case B_MUX:
+        if (p->fast) {
+            /* each input's own shift: a multiplexer of operands with
+             * different fraction bits (the adaptive unit's coefficient
+             * select) stays on the fast path */
+            const int *ik = p->in_k;
+            const int64_t *ir = p->in_radd;
+            FOR_LANES(l, m, nw, {
+                uint64_t sel = (uint64_t)c[l];
+                if (sel >= (uint64_t)n) { PUT(l, 0); continue; }
+                int64_t raw = in[sel][l];
+                int64_t x = (int64_t)((uint64_t)raw + (uint64_t)ir[sel]) >> ik[sel];
+                if (__builtin_expect((uint64_t)x - ulo > span, 0)) x = quant(p, raw, p->in_f[sel], &ovf[l]);
+                PUT(l, x);
+            });
+            break;
+        }
         FOR_LANES(l, m, nw, {
             int64_t sel = c[l];
             if (sel < 0 || sel >= n) PUT(l, 0);
-            else if (p->fast) FAST_Q(in[sel][l], l);
             else PUT(l, quant(p, in[sel][l], p->in_f[sel], &ovf[l]));
         });
         break;
@@ -636,14 +653,20 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         p->n = in->n;
         p->in = malloc((size_t)(in->n ? in->n : 1) * sizeof *p->in);
         p->in_f = malloc((size_t)(in->n ? in->n : 1) * sizeof *p->in_f);
-        if (!p->in || !p->in_f) { snprintf(err, errlen, "out of memory"); return -1; }
-        int same = in->n > 0;
+        p->in_k = malloc((size_t)(in->n ? in->n : 1) * sizeof *p->in_k);
+        p->in_radd = malloc((size_t)(in->n ? in->n : 1) * sizeof *p->in_radd);
+        if (!p->in || !p->in_f || !p->in_k || !p->in_radd) { snprintf(err, errlen, "out of memory"); return -1; }
+        /* fast when every input is (as fast_setup for each one's fraction bits) */
+        int fast = in->n > 0 && p->r != SIM_RND_EVEN;
         for (int i = 0; i < in->n; i++) {
             p->in[i] = ROW(in->in[i]);
             p->in_f[i] = in->in[i]->fmt.fbits;
-            same &= in->in[i]->fmt.fbits == in->in[0]->fmt.fbits && raw_bits(in->in[i]) <= 62;
+            int k = in->in[i]->fmt.fbits - p->fy.fbits;
+            fast &= raw_bits(in->in[i]) <= 62 && k >= 0 && k <= 61;
+            p->in_k[i] = k >= 0 && k <= 61 ? k : 0;
+            p->in_radd[i] = p->r == SIM_RND_HALF_UP && k > 0 && k <= 61 ? (int64_t)1 << (k - 1) : 0;
         }
-        p->fast = same && fast_setup(p, in->in[0]->fmt.fbits);
+        p->fast = fast;
         for (int i = 0; i < in->n; i++) {
             if (in->in[i] == clk) goto reads_clock;
         }
@@ -701,7 +724,9 @@ static int comb_reads(const sim_prim_info *in, const sim_signal **r)
 
 static void free_ops(bop *ops, uint32_t n)
 {
-    for (uint32_t i = 0; i < n; i++) { free(ops[i].in); free(ops[i].in_f); free(ops[i].dep); free(ops[i].tab); }
+    for (uint32_t i = 0; i < n; i++) {
+        free(ops[i].in); free(ops[i].in_f); free(ops[i].in_k); free(ops[i].in_radd); free(ops[i].dep); free(ops[i].tab);
+    }
     free(ops);
 }
 
