@@ -204,8 +204,50 @@ static int horner(void)
     return 0;
 }
 
-int main(void)
+/* `bench_batch one UNIT SCHEDULE kernel|batch`: the bench's span streams
+ * through one side once, nothing timed or compared, for counting
+ * instructions (valgrind --tool=callgrind), which unlike seconds do not
+ * depend on the machine's load: docs/batch.md's table. */
+static int one(const char *unit, const char *sched, const char *side)
 {
+    const unit_desc *ud = unit_find(unit);
+    int batch = !strcmp(side, "batch");
+    if (!ud || (!batch && strcmp(side, "kernel"))) {
+        fprintf(stderr, "usage: bench_batch [one SPAN_UNIT SCHEDULE kernel|batch]\n");
+        return 2;
+    }
+    int L = 8;
+    unit_cfg cfg;
+    unit_cfg_default(ud, &cfg);
+    cfg.L = L;
+    cfg.schedule = unit_sched_find(ud, sched);
+    if (cfg.schedule < 0) { fprintf(stderr, "bench_batch: %s has no schedule %s\n", unit, sched); return 2; }
+    unit_fmts f;
+    ud->formats(&cfg, &f);
+    tb_span_item *it = calloc(PIXELS, sizeof *it);
+    double *pix = malloc(PIXELS * sizeof *pix);
+    tb_span_lane *lanes = calloc(LANES, sizeof *lanes);
+    if (!it || !pix || !lanes) return 1;
+    size_t ni = bench_span_items(it, PIXELS, L), p0 = 0;
+    for (int k = 0; k < LANES; k++) {
+        size_t a = ni * (size_t)k / LANES, b = ni * (size_t)(k + 1) / LANES;
+        lanes[k] = (tb_span_lane){ .items = it + a, .nitems = b - a, .pix = pix + p0 };
+        for (size_t i = a; i < b; i++) p0 += (size_t)it[i].n;
+    }
+    tb_span_run_lanes(ud, &cfg, &f, lanes, LANES, batch);
+    int rc = 0;
+    for (int k = 0; k < LANES; k++) rc |= lanes[k].rc != TB_OK;
+    printf("batch   %s %s %s: %zu items in %d lanes%s\n", unit, sched, side, ni, LANES, rc ? ", FAILED" : "");
+    free(it);
+    free(pix);
+    free(lanes);
+    return rc;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 5 && !strcmp(argv[1], "one")) return one(argv[2], argv[3], argv[4]);
+    if (argc != 1) { fprintf(stderr, "usage: bench_batch [one SPAN_UNIT SCHEDULE kernel|batch]\n"); return 2; }
     if (horner() || spans()) return 1;
     printf("batch   speed-up over the kernel, same items, one core: %.1fx to %.1fx (target 4x)\n", lo_x, hi_x);
     return 0;
