@@ -45,20 +45,12 @@ static int spans(void)
         for (int sc = 0; sc < 3; sc++) {
             const unit_desc *ud = unit_find(units[u]);
             unit_cfg cfg;
-            unit_cfg_default(ud, &cfg);
-            cfg.L = L;
-            cfg.schedule = unit_sched_find(ud, scheds[sc]);
             unit_fmts f;
-            ud->formats(&cfg, &f);
+            bench_span_unit(ud, scheds[sc], L, &cfg, &f);
             tb_span_lane lanes[2][LANES];
             double best[2] = { 1e9, 1e9 };
             for (int mode = 0; mode < 2; mode++) {
-                size_t p0 = 0;
-                for (int k = 0; k < LANES; k++) {
-                    size_t a = ni * (size_t)k / LANES, b = ni * (size_t)(k + 1) / LANES;
-                    lanes[mode][k] = (tb_span_lane){ .items = it + a, .nitems = b - a, .pix = pix[mode] + p0 };
-                    for (size_t i = a; i < b; i++) p0 += (size_t)it[i].n;
-                }
+                bench_span_lanes(it, ni, pix[mode], lanes[mode], LANES);
                 for (int rep = 0; rep < 3; rep++) {
                     double t0 = now_s();
                     tb_span_run_lanes(ud, &cfg, &f, lanes[mode], LANES, mode);
@@ -218,22 +210,14 @@ static int one(const char *unit, const char *sched, const char *side)
     }
     int L = 8;
     unit_cfg cfg;
-    unit_cfg_default(ud, &cfg);
-    cfg.L = L;
-    cfg.schedule = unit_sched_find(ud, sched);
-    if (cfg.schedule < 0) { fprintf(stderr, "bench_batch: %s has no schedule %s\n", unit, sched); return 2; }
     unit_fmts f;
-    ud->formats(&cfg, &f);
+    if (bench_span_unit(ud, sched, L, &cfg, &f)) { fprintf(stderr, "bench_batch: %s has no schedule %s\n", unit, sched); return 2; }
     tb_span_item *it = calloc(PIXELS, sizeof *it);
     double *pix = malloc(PIXELS * sizeof *pix);
     tb_span_lane *lanes = calloc(LANES, sizeof *lanes);
     if (!it || !pix || !lanes) return 1;
-    size_t ni = bench_span_items(it, PIXELS, L), p0 = 0;
-    for (int k = 0; k < LANES; k++) {
-        size_t a = ni * (size_t)k / LANES, b = ni * (size_t)(k + 1) / LANES;
-        lanes[k] = (tb_span_lane){ .items = it + a, .nitems = b - a, .pix = pix + p0 };
-        for (size_t i = a; i < b; i++) p0 += (size_t)it[i].n;
-    }
+    size_t ni = bench_span_items(it, PIXELS, L);
+    bench_span_lanes(it, ni, pix, lanes, LANES);
     tb_span_run_lanes(ud, &cfg, &f, lanes, LANES, batch);
     int rc = 0;
     for (int k = 0; k < LANES; k++) rc |= lanes[k].rc != TB_OK;

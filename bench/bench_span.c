@@ -32,11 +32,8 @@ int main(void)
         for (int sc = 0; sc < 3; sc++) {
             const unit_desc *ud = unit_find(units[u]);
             unit_cfg cfg;
-            unit_cfg_default(ud, &cfg);
-            cfg.L = L;
-            cfg.schedule = unit_sched_find(ud, scheds[sc]);
             unit_fmts f;
-            ud->formats(&cfg, &f);
+            bench_span_unit(ud, scheds[sc], L, &cfg, &f);
             double best = 1e9;
             tb_span_stats st;
             char err[300];
