@@ -1,6 +1,8 @@
 /* bench_sweep.c - wall time of the default interp3 sweep over widths 8..32
  * on two threads (`shadesim sweep interp3 --widths 8:32 -j 2`), the whole
- * process timed from outside, and of horner3's target search. Goal: the
+ * process timed from outside, and of horner3's target search with one bit
+ * of margin (without it the search's result fails its held-out check and
+ * the sweep exits 1, as docs/sweeps.md shows). Goal: the
  * sweep under 10 s (a miss is printed, not an error: the bench measures).
  * Falls back to horner3 where interp3 is not built. */
 #include "units/unit.h"
@@ -48,10 +50,10 @@ int main(void)
     if (t < 0) return 1;
     printf("sweep %s --widths 8:32 -j 2 (25 configurations, CSV + charts): %.3f s (best of 3; goal < 10 s%s)%s\n",
            unit, t, t < 10 ? "" : ": MISSED", unit[0] == 'h' ? " [interp3 not built: horner3 instead]" : "");
-    snprintf(cmd, sizeof cmd, "%s sweep horner3 --widths 8:24 -j 2 --target-error 1e-3 -o /tmp/shadesim_bench_sweep > /dev/null", bin);
+    snprintf(cmd, sizeof cmd, "%s sweep horner3 --widths 8:24 -j 2 --target-error 1e-3 --margin 1 -o /tmp/shadesim_bench_sweep > /dev/null", bin);
     double tt = best_of_3(cmd);
     if (tt < 0) return 1;
-    printf("sweep horner3 --widths 8:24 -j 2 --target-error 1e-3 (sweep + per-signal search): %.3f s (best of 3)\n", tt);
+    printf("sweep horner3 --widths 8:24 -j 2 --target-error 1e-3 --margin 1 (sweep + per-signal search): %.3f s (best of 3)\n", tt);
     if (vec[0]) unlink(vpath);
     if (system("rm -rf /tmp/shadesim_bench_sweep") != 0) return 1;
     return 0;

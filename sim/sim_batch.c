@@ -14,44 +14,10 @@
  * (as the kernel's fast path); the rest, and any lane whose fast result
  * falls out of range, take the exact 128-bit path.
  */
-#include "sim/sim_batch.h"
+#include "sim/sim_batch_int.h"
 #include "sim/sim_prim.h"
 #include <stdlib.h>
 #include <string.h>
-
-enum { B_COPY, B_ADD, B_SUB, B_MUL, B_SHIFT, B_MUX, B_BK, B_LOGIC, B_REG };
-
-/* One element of the schedule. Operand pointers are the lane arrays of
- * the signals it reads. */
-typedef struct bop {
-    int      kind;
-    int      fast;        /* the int64_t path applies (see op_setup) */
-    int      sa, sb;      /* left shifts aligning a, b to src_f */
-    int      src_f;       /* fraction bits of the exact result */
-    int      k;           /* fast path: right shift from src_f to y */
-    int64_t  radd;        /* fast path: added before the shift (half-up) */
-    int64_t  lo, hi;      /* y's raw range */
-    sim_fmt  fy;
-    sim_round r;
-    sim_ovf  o;
-    int64_t *y, *a, *b, *c, *rst;
-    int      fa;          /* fraction bits of a (copy, register, block key) */
-    int64_t  rst_raw;
-    int      n;           /* mux, logic: inputs */
-    int64_t **in;
-    int     *in_f;        /* mux: each input's fraction bits */
-    int     *in_k;        /* mux, fast: each input's right shift to y, */
-    int64_t *in_radd;     /* and what is added before it (inputs may differ in fraction bits) */
-    sim_logic_fn fn;
-    void    *user;
-    int64_t *tab;         /* logic: y for every input value (see logic_table), or NULL */
-    int      tsh[8];      /* logic: where input i's bits go in the table index */
-    uint64_t tmask[8];
-    int64_t *nx;          /* register: value after the edge */
-    uint32_t sig;         /* y's signal index */
-    uint32_t *dep;        /* combinational: the signals it reads */
-    int      ndep;
-} bop;
 
 struct sim_batch {
     uint32_t lanes, nsig;
@@ -71,7 +37,19 @@ struct sim_batch {
     uint64_t all[SIM_BATCH_MAX_LANES / 64];   /* every lane */
     int      started;
     int      reg_inplace;       /* registers update in place, in b->reg's order (order_regs) */
+    int      vec;               /* full words of at most 64 lanes (a multiple of 4) take the AVX2 loops */
+    uint64_t vec_groups, vec_fell;   /* groups of four lanes they did, and handed back (sim_batch_vector_stats) */
 };
+
+/* Vector loops where the CPU has them, unless a caller (the tests) turned
+ * them off; read when a batch is made. */
+static int vec_allowed = 1;
+
+int sim_batch_vector(int on)
+{
+    vec_allowed = on;
+    return sim__batch_vec_ok();
+}
 
 /* ------------------------------------------------------------ quantization */
 
@@ -340,6 +318,11 @@ static void apply_inputs(sim_batch *b)
         const int64_t *p = b->pend + (size_t)i * L;
         if (!memcmp(v, p, L * sizeof *v)) continue;
         uint64_t *om = b->chg + (size_t)sig * b->nw;
+        if (b->vec) {
+            *om |= sim__batch_vec_take(v, p, b->lanes);
+            b->uni[sig] = (unsigned char)same_lanes(v, b->lanes);
+            continue;
+        }
         for (size_t w = 0; w < b->nw; w++) {
             /* the word's bits in a local: om may alias v and p (int64_t
              * and uint64_t), so a store through it would reload them */
@@ -383,6 +366,19 @@ static int eval_uniform(sim_batch *b, const bop *p)
     return 1;
 }
 
+/* At least a quarter of the lanes are in m: the vector loops then take
+ * all of them (four lanes an instruction beat one lane at a time even with
+ * three in four computing what they hold). The bits are counted without
+ * the popcnt instruction, which the baseline x86-64 lacks (the compiler
+ * would call a library function). */
+static inline int wide_enough(uint64_t m, uint32_t lanes)
+{
+    m = m - ((m >> 1) & 0x5555555555555555ull);
+    m = (m & 0x3333333333333333ull) + ((m >> 2) & 0x3333333333333333ull);
+    m = (m + (m >> 4)) & 0x0f0f0f0f0f0f0f0full;
+    return (uint32_t)((m * 0x0101010101010101ull) >> 56) * 4 >= lanes;
+}
+
 /* Settle: each element in order, in the lanes where one of its inputs
  * changed (the others would compute what they hold). */
 /* settle for at most 64 lanes once started (a scene's bands, the bench's
@@ -403,7 +399,10 @@ static void settle1(sim_batch *b)
         for (int k = 0; k < p->ndep; k++) m |= chg[dep[k]];
         if (!m) continue;
         if ((m & (m - 1)) && p->ndep && eval_uniform(b, p)) continue;
-        eval_comb(p, &m, 1, b->ovf, chg + p->sig);
+        if (b->vec && wide_enough(m, b->lanes) && sim__batch_vec_comb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
+            b->vec_groups += b->lanes / 4;
+        else
+            eval_comb(p, &m, 1, b->ovf, chg + p->sig);
         b->uni[p->sig] = 0;
     }
     for (uint32_t i = 0; i < b->nreg; i++) {
@@ -514,6 +513,12 @@ static uint64_t reg_inplace(const bop *p, uint64_t *rm, uint64_t *om, uint32_t n
     return any;
 }
 
+void sim__batch_lanes(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om)
+{
+    if (p->kind == B_REG) reg_inplace(p, &m, om, 1, ovf);
+    else eval_comb(p, &m, 1, ovf, om);
+}
+
 void sim_batch_cycle(sim_batch *b)
 {
     /* Every register reads the values before the edge, then all change at
@@ -525,6 +530,16 @@ void sim_batch_cycle(sim_batch *b)
     if (b->reg_inplace) {
         for (uint32_t i = 0; i < b->nreg; i++) {
             bop *p = &b->reg[i];
+            if (b->vec && wide_enough(b->regm[i], b->lanes)) {
+                uint64_t om = 0;
+                if (sim__batch_vec_reg(p, b->lanes, b->ovf, &om, &b->vec_fell)) {
+                    b->vec_groups += b->lanes / 4;
+                    b->regm[i] = 0;
+                    b->chg[p->sig] |= om;
+                    if (om) b->uni[p->sig] = (unsigned char)same_lanes(p->y, b->lanes);
+                    continue;
+                }
+            }
             if (reg_inplace(p, b->regm + (size_t)i * nw, b->chg + (size_t)p->sig * nw, nw, b->ovf))
                 b->uni[p->sig] = (unsigned char)same_lanes(p->y, b->lanes);
         }
@@ -579,6 +594,19 @@ static int fast_setup(bop *p, int src_f)
 }
 
 static int imax(int a, int b) { return a > b ? a : b; }
+
+/* An exact result with fewer fraction bits than y (an adder's or a
+ * shift's, whose operands are aligned by left shifts sa, sb) is aligned
+ * to y's fraction bits at once: the same value, so the same quantization,
+ * and the fast path (which only shifts right) then applies. */
+static void widen_src(bop *p)
+{
+    int d = p->fy.fbits - p->src_f;
+    if (d <= 0) return;
+    p->sa += d;
+    p->sb += d;
+    p->src_f += d;
+}
 
 /* A logic element whose inputs have at most LOGIC_TAB_BITS bits in all is
  * tabulated once (its function is defined for every raw value of its
@@ -654,6 +682,7 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         p->src_f = imax(in->a->fmt.fbits, in->b->fmt.fbits);
         p->sa = p->src_f - in->a->fmt.fbits;
         p->sb = p->src_f - in->b->fmt.fbits;
+        widen_src(p);
         p->fast = raw_bits(in->a) + p->sa <= 61 && raw_bits(in->b) + p->sb <= 61 && fast_setup(p, p->src_f);
         reads[nreads++] = in->a;
         reads[nreads++] = in->b;
@@ -673,6 +702,7 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         int f = in->a->fmt.fbits - in->shift;
         p->sa = f < 0 ? -f : 0;
         p->src_f = f < 0 ? 0 : f;
+        widen_src(p);
         p->fast = raw_bits(in->a) + p->sa <= 61 && fast_setup(p, p->src_f);
         reads[nreads++] = in->a;
         break;
@@ -950,6 +980,8 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
         op_of_sig[i] = ncomb++;
     }
     if (order_regs(b)) goto oom;
+    /* the vector loops: one word of lanes, four at a time, registers in place */
+    b->vec = vec_allowed && lanes <= 64 && lanes % 4 == 0 && b->reg_inplace && sim__batch_vec_ok();
     if (sim_proc_count(c) != ndriven) {
         snprintf(err, errlen, "the design has %u processes that drive no signal (testbench or user processes)",
                  sim_proc_count(c) - ndriven);
@@ -980,6 +1012,12 @@ fail:
 }
 
 uint32_t sim_batch_lanes(const sim_batch *b) { return b->lanes; }
+
+void sim_batch_vector_stats(const sim_batch *b, uint64_t *groups, uint64_t *fell)
+{
+    *groups = b->vec_groups;
+    *fell = b->vec_fell;
+}
 uint32_t sim_batch_elements(const sim_batch *b) { return b->ncomb + b->nreg; }
 int sim_batch_overflowed(const sim_batch *b, uint32_t lane) { return lane < b->lanes && b->ovf[lane]; }
 

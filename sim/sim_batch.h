@@ -75,6 +75,17 @@ void sim_batch_start(sim_batch *b);
  * last edge take their values, the combinational network settles. */
 void sim_batch_cycle(sim_batch *b);
 
+/* Batches made from now on use the vector loops (AVX2, four lanes an
+ * instruction) where the CPU has them and the batch has 4 to 64 lanes, a
+ * multiple of 4 (on, the default), or the scalar loops only (off). Their
+ * results are the same bit for bit; the tests run both. Returns 1 if this
+ * CPU has the vector loops. Not to be called while another thread makes a
+ * batch. */
+int  sim_batch_vector(int on);
+/* Groups of four lanes the vector loops evaluated so far, and how many of
+ * them they handed to the scalar loop (a fast result out of range). */
+void sim_batch_vector_stats(const sim_batch *b, uint64_t *groups, uint64_t *fell);
+
 /* 1 if some quantization in lane `lane` overflowed since the start (its
  * overflow counts must come from the kernel). */
 int  sim_batch_overflowed(const sim_batch *b, uint32_t lane);

@@ -55,7 +55,7 @@ static void span_case(const char *name, int L, const char *sched, const char *fm
     char err[300];
     const char *ov[1] = { fmt };
     TST_CHECK(tb_formats(u, &cfg, ov, fmt ? 1 : 0, &fm, err, sizeof err) == 0, "%s", err);
-    enum { N = 7 };
+    enum { N = 8 };   /* a multiple of 4: the vector loops apply when on */
     tb_span_lane lanes[N];
     tb_span_item *items[N];
     double *pix[N];
@@ -103,8 +103,12 @@ static void t_span_lanes_equal_kernel(void)
             int has = 0;
             for (int k = 0; u && k < u->nsched; k++) has |= !strcmp(u->sched[k].name, scheds[s]);
             if (!has) continue;
+            /* the vector loops (where the CPU has them) and the scalar ones */
+            sim_batch_vector(1);
             span_case(units[i], 8, scheds[s], NULL, 1.0, &batched, &fell);
+            sim_batch_vector(0);
             span_case(units[i], 5, scheds[s], NULL, 1.0, &batched, &fell);
+            sim_batch_vector(1);
         }
     /* every default lane in [0, 1] is the batch's: no overflow there */
     TST_EQ_INT(fell, 0);
@@ -134,13 +138,13 @@ static void t_units_lanes_equal_kernel(void)
         unit_fmts fm;
         char err[600];
         if (tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); continue; }
-        enum { NL = 3 };
+        enum { NL = 4 };   /* a multiple of 4: the vector loops apply */
         vec_set vs[NL];
         tb_batch_lane lanes[NL];
         memset(lanes, 0, sizeof lanes);
         int ok = 1;
         for (int k = 0; k < NL && ok; k++) {
-            size_t n = 3 + (size_t)k * 4;
+            size_t n = 3 + (size_t)k * 3;
             if (cli_make_vectors(u, &cfg, n, 11 + (uint64_t)k, &vs[k], err, sizeof err)) {
                 TST_CHECK(0, "%s: %s", u->name, err);
                 ok = 0;
@@ -325,6 +329,123 @@ static void register_case(int ring)
     sim_free(c);
 }
 
+/* The vector loops against the scalar ones (tests above hold the scalar
+ * ones to the kernel): a design with every element kind they cover, wide
+ * formats (products up to 2^59, a 64-bit product's high halves in play),
+ * fraction bits that differ between operands and outputs, half-up and
+ * truncating rounding, wrapping and saturation, and values that overflow
+ * now and then (those groups of four lanes take the scalar loop). Some
+ * lanes hold their inputs for a few edges, so that the element masks are
+ * partial. Every signal in every lane at every edge, and the overflow
+ * flags, must be the same. */
+static int64_t lg3(const int64_t *in, void *u) { (void)u; return (in[0] * 3 + in[1] * 5 + in[2]) & 7; }
+
+static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, int vec, int64_t *trace, unsigned char *ovf,
+                      int edges, uint32_t *nsig)
+{
+    char err[300];
+    sim_batch_vector(vec);
+    sim_ctx *c = sim_new();
+    sim_set_quant(c, rm, om);
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+#define F(sg, i, f) ((sim_fmt){ .is_signed = (sg), .ibits = (i), .fbits = (f), .width = (i) + (f) })
+    sim_signal *x = sim_signal_new(c, NULL, "x", F(1, 30, 10), SIM_KIND_INPUT);
+    sim_signal *w = sim_signal_new(c, NULL, "w", F(1, 12, 8), SIM_KIND_INPUT);
+    sim_signal *sl = sim_signal_new(c, NULL, "s", F(0, 2, 0), SIM_KIND_INPUT);
+    sim_signal *en = sim_signal_new(c, NULL, "e", F(0, 1, 0), SIM_KIND_INPUT);
+    sim_signal *g = sim_signal_new(c, NULL, "g", F(0, 3, 0), SIM_KIND_INPUT);
+    sim_signal *m = sim_mul(c, NULL, "m", F(1, 36, 6), x, w);         /* k = 12 */
+    sim_signal *a = sim_add(c, NULL, "a", F(1, 20, 12), x, w);        /* wider fraction than both */
+    sim_signal *d = sim_sub(c, NULL, "d", F(1, 24, 4), x, w);         /* k = 6 */
+    sim_signal *sh = sim_shift(c, NULL, "sh", F(1, 10, 14), w, -3);
+    sim_signal *mi[2] = { x, a };
+    sim_signal *mx = sim_mux(c, NULL, "mx", F(1, 24, 9), sl, 2, mi); /* k = 1 and 3; s = 2, 3: 0 */
+    sim_signal *bk = sim_bk(c, NULL, "bk", F(1, 28, 6), en, x);
+    sim_signal *li[3] = { sl, en, g };
+    sim_signal *t = sim_logic(c, NULL, "t", F(0, 3, 0), 3, li, lg3, NULL, 1);
+    sim_signal *cp = sim_signal_new(c, NULL, "cp", F(1, 36, 2), SIM_KIND_WIRE);
+    sim_assign(c, cp, m);
+    sim_signal *r1 = sim_reg(c, NULL, "r1", F(1, 30, 10), clk, x, en, NULL, 0);
+    sim_signal *r2 = sim_reg(c, NULL, "r2", F(1, 36, 4), clk, m, NULL, NULL, 0);
+    sim_signal *r3 = sim_reg(c, NULL, "r3", F(1, 30, 9), clk, mx, NULL, en, 3);
+    sim_signal *y = sim_add(c, NULL, "y", F(1, 40, 8), r2, r1);
+    sim_signal *z = sim_mul(c, NULL, "z", F(1, 20, 4), r3, t);
+#undef F
+    (void)d; (void)sh; (void)bk; (void)cp; (void)y; (void)z;
+    sim_batch *b = sim_batch_new(c, clk, lanes, err, sizeof err);
+    TST_CHECK(b != NULL, "%s", err);
+    if (!b) { sim_free(c); return -1; }
+    *nsig = sim_signal_count(c);
+    uint64_t st = 0x243f6a8885a308d3ull;   /* the same stimuli in both runs */
+#define RND() (st ^= st << 13, st ^= st >> 7, st ^= st << 17, st)
+    int64_t *in[5] = { sim_batch_next(b, x), sim_batch_next(b, w), sim_batch_next(b, sl), sim_batch_next(b, en),
+                       sim_batch_next(b, g) };
+    for (int e = 0; e <= edges; e++) {
+        for (uint32_t l = 0; l < lanes; l++) {
+            if (e && (RND() % 3) == 0) continue;   /* this lane holds its inputs */
+            uint64_t r = RND();
+            /* lanes 3, 7, ...: now and then an x whose product overflows m */
+            in[0][l] = l % 4 == 3 && r % 17 == 0 ? (int64_t)(RND() >> 25) - ((int64_t)1 << 38)
+                                                 : (int64_t)(r % 2000001) - 1000000;
+            in[1][l] = (int64_t)(RND() % 1048575) - 524287;
+            in[2][l] = (int64_t)(RND() % 4);
+            in[3][l] = (int64_t)(RND() % 2);
+            in[4][l] = (int64_t)(RND() % 8);
+        }
+        if (!e) sim_batch_start(b);
+        else sim_batch_cycle(b);
+        for (uint32_t i = 0; i < *nsig; i++)
+            memcpy(trace + ((size_t)e * *nsig + i) * lanes, sim_batch_val(b, sim_signal_at(c, i)), lanes * sizeof *trace);
+    }
+#undef RND
+    for (uint32_t l = 0; l < lanes; l++) ovf[l] = (unsigned char)sim_batch_overflowed(b, l);
+    uint64_t groups, fell;
+    sim_batch_vector_stats(b, &groups, &fell);
+    if (!vec) TST_CHECK(groups == 0 && fell == 0, "scalar run: %llu vector groups", (unsigned long long)groups);
+    /* the vector loops did the work: some lanes' overflows send a few
+     * groups to the scalar loop, the rest stay */
+    else TST_CHECK(groups > 500 && fell > 0 && fell * 20 < groups, "%u lanes: %llu groups, %llu handed back", lanes,
+                   (unsigned long long)groups, (unsigned long long)fell);
+    sim_batch_free(b);
+    sim_free(c);
+    return 0;
+}
+
+static void t_vector_loops_equal_scalar(void)
+{
+    int has = sim_batch_vector(1);
+    if (!has) TST_SKIP("this CPU has no AVX2: the vector loops are not used");
+    enum { EDGES = 60, MAXL = 64, MAXSIG = 32 };
+    static const uint32_t lanes_of[] = { 4, 12, 64 };
+    int64_t *tr[2];
+    tr[0] = malloc((size_t)(EDGES + 1) * MAXSIG * MAXL * sizeof *tr[0]);
+    tr[1] = malloc((size_t)(EDGES + 1) * MAXSIG * MAXL * sizeof *tr[1]);
+    int any_ovf = 0, any_clean = 0;
+    for (int mode = 0; mode < 2; mode++)
+        for (int li = 0; li < 3; li++) {
+            uint32_t L = lanes_of[li], ns[2] = { 0, 0 };
+            unsigned char of[2][MAXL];
+            sim_round rm = mode ? SIM_RND_HALF_UP : SIM_RND_TRUNC;
+            sim_ovf om = mode ? SIM_OVF_SAT : SIM_OVF_WRAP;
+            if (vector_run(rm, om, L, 0, tr[0], of[0], EDGES, &ns[0]) || vector_run(rm, om, L, 1, tr[1], of[1], EDGES, &ns[1]))
+                break;
+            TST_EQ_INT(ns[0], ns[1]);
+            TST_CHECK(ns[0] <= MAXSIG, "%u signals", ns[0]);
+            size_t n = (size_t)(EDGES + 1) * ns[0] * L, k = 0;
+            while (k < n && tr[0][k] == tr[1][k]) k++;
+            TST_CHECK(k == n, "mode %d, %u lanes: edge %zu, signal %zu, lane %zu: scalar %lld, vector %lld", mode, L,
+                      k / L / ns[0], k / L % ns[0], k % L, (long long)(k < n ? tr[0][k] : 0), (long long)(k < n ? tr[1][k] : 0));
+            TST_CHECK(!memcmp(of[0], of[1], L), "mode %d, %u lanes: overflow flags differ", mode, L);
+            for (uint32_t l = 0; l < L; l++) { any_ovf |= of[0][l]; any_clean |= !of[0][l]; }
+        }
+    sim_batch_vector(1);
+    /* both kinds of lane were there: ones with an overflow (the scalar
+     * fallback ran) and ones without */
+    TST_CHECK(any_ovf && any_clean, "overflowed lanes %d, clean lanes %d", any_ovf, any_clean);
+    free(tr[0]);
+    free(tr[1]);
+}
+
 static void t_register_chain(void) { register_case(0); }
 static void t_register_ring(void) { register_case(1); }
 
@@ -334,6 +455,7 @@ int main(void)
     TST_RUN(t_register_chain);
     TST_RUN(t_register_ring);
     TST_RUN(t_refusals);
+    TST_RUN(t_vector_loops_equal_scalar);
     TST_RUN(t_span_lanes_equal_kernel);
     TST_RUN(t_span_overflow_falls_back);
     TST_RUN(t_units_lanes_equal_kernel);

@@ -1,0 +1,61 @@
+/* sim_batch_int.h - what sim_batch.c shares with its vector loops
+ * (sim_batch_avx2.c): one element of the schedule and the entry points of
+ * each side. Not for other layers. */
+#ifndef SIM_BATCH_INT_H
+#define SIM_BATCH_INT_H
+#include "sim/sim_batch.h"
+#include "sim/sim_prim.h"
+
+enum { B_COPY, B_ADD, B_SUB, B_MUL, B_SHIFT, B_MUX, B_BK, B_LOGIC, B_REG };
+
+/* One element of the schedule. Operand pointers are the lane arrays of
+ * the signals it reads. */
+typedef struct bop {
+    int      kind;
+    int      fast;        /* the int64_t path applies (see op_setup) */
+    int      sa, sb;      /* left shifts aligning a, b to src_f */
+    int      src_f;       /* fraction bits of the exact result */
+    int      k;           /* fast path: right shift from src_f to y */
+    int64_t  radd;        /* fast path: added before the shift (half-up) */
+    int64_t  lo, hi;      /* y's raw range */
+    sim_fmt  fy;
+    sim_round r;
+    sim_ovf  o;
+    int64_t *y, *a, *b, *c, *rst;
+    int      fa;          /* fraction bits of a (copy, register, block key) */
+    int64_t  rst_raw;
+    int      n;           /* mux, logic: inputs */
+    int64_t **in;
+    int     *in_f;        /* mux: each input's fraction bits */
+    int     *in_k;        /* mux, fast: each input's right shift to y, */
+    int64_t *in_radd;     /* and what is added before it (inputs may differ in fraction bits) */
+    sim_logic_fn fn;
+    void    *user;
+    int64_t *tab;         /* logic: y for every input value (see logic_table), or NULL */
+    int      tsh[8];      /* logic: where input i's bits go in the table index */
+    uint64_t tmask[8];
+    int64_t *nx;          /* register: value after the edge */
+    uint32_t sig;         /* y's signal index */
+    uint32_t *dep;        /* combinational: the signals it reads */
+    int      ndep;
+} bop;
+
+/* Vector loops (sim_batch_avx2.c). Each evaluates p in lanes 0..nl-1
+ * (nl a multiple of 4, at most 64) exactly as the scalar loop would (also
+ * the lanes none of p's inputs changed in: they compute what they hold,
+ * see sim_batch.c), the
+ * lanes its output changed in ORed into *om, and returns 1; 0 when it has
+ * no loop for p (the caller runs the scalar one). A group of four lanes in
+ * which the fast result leaves y's range (an overflow, or a value the
+ * fast path does not cover) is handed to sim__batch_lanes and counted in
+ * *fell. */
+int sim__batch_vec_ok(void);
+int sim__batch_vec_comb(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
+int sim__batch_vec_reg(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
+/* v[l] = p[l] for l < nl; the lanes where that changed v (an input's new
+ * values). */
+uint64_t sim__batch_vec_take(int64_t *v, const int64_t *p, uint32_t nl);
+/* The scalar loop of p (combinational or register, in place) in the lanes
+ * of the one-word mask m (sim_batch.c). */
+void sim__batch_lanes(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);
+#endif
