@@ -37,18 +37,21 @@ struct sim_batch {
     uint64_t all[SIM_BATCH_MAX_LANES / 64];   /* every lane */
     int      started;
     int      reg_inplace;       /* registers update in place, in b->reg's order (order_regs) */
-    int      vec;               /* full words of at most 64 lanes (a multiple of 4) take the AVX2 loops */
+    uint32_t vw;                /* lanes per vector of the vector loops (0: none; sim_batch_new) */
+    int    (*vcomb)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
+    int    (*vreg)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
+    uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t);
     uint64_t vec_groups, vec_fell;   /* groups of four lanes they did, and handed back (sim_batch_vector_stats) */
 };
 
-/* Vector loops where the CPU has them, unless a caller (the tests) turned
- * them off; read when a batch is made. */
-static int vec_allowed = 1;
+/* The widest vector loops a batch may use (the tests lower it); read
+ * when a batch is made. */
+static uint32_t vec_most = 8;
 
-int sim_batch_vector(int on)
+uint32_t sim_batch_vector(uint32_t most)
 {
-    vec_allowed = on;
-    return sim__batch_vec_ok();
+    vec_most = most;
+    return sim__batch_vec_width(most);
 }
 
 /* ------------------------------------------------------------ quantization */
@@ -318,8 +321,8 @@ static void apply_inputs(sim_batch *b)
         const int64_t *p = b->pend + (size_t)i * L;
         if (!memcmp(v, p, L * sizeof *v)) continue;
         uint64_t *om = b->chg + (size_t)sig * b->nw;
-        if (b->vec) {
-            *om |= sim__batch_vec_take(v, p, b->lanes);
+        if (b->vw) {
+            *om |= b->vtake(v, p, b->lanes);
             b->uni[sig] = (unsigned char)same_lanes(v, b->lanes);
             continue;
         }
@@ -399,8 +402,8 @@ static void settle1(sim_batch *b)
         for (int k = 0; k < p->ndep; k++) m |= chg[dep[k]];
         if (!m) continue;
         if ((m & (m - 1)) && p->ndep && eval_uniform(b, p)) continue;
-        if (b->vec && wide_enough(m, b->lanes) && sim__batch_vec_comb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
-            b->vec_groups += b->lanes / 4;
+        if (b->vw && wide_enough(m, b->lanes) && b->vcomb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
+            b->vec_groups += b->lanes / b->vw;
         else
             eval_comb(p, &m, 1, b->ovf, chg + p->sig);
         b->uni[p->sig] = 0;
@@ -530,10 +533,10 @@ void sim_batch_cycle(sim_batch *b)
     if (b->reg_inplace) {
         for (uint32_t i = 0; i < b->nreg; i++) {
             bop *p = &b->reg[i];
-            if (b->vec && wide_enough(b->regm[i], b->lanes)) {
+            if (b->vw && wide_enough(b->regm[i], b->lanes)) {
                 uint64_t om = 0;
-                if (sim__batch_vec_reg(p, b->lanes, b->ovf, &om, &b->vec_fell)) {
-                    b->vec_groups += b->lanes / 4;
+                if (b->vreg(p, b->lanes, b->ovf, &om, &b->vec_fell)) {
+                    b->vec_groups += b->lanes / b->vw;
                     b->regm[i] = 0;
                     b->chg[p->sig] |= om;
                     if (om) b->uni[p->sig] = (unsigned char)same_lanes(p->y, b->lanes);
@@ -980,8 +983,19 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
         op_of_sig[i] = ncomb++;
     }
     if (order_regs(b)) goto oom;
-    /* the vector loops: one word of lanes, four at a time, registers in place */
-    b->vec = vec_allowed && lanes <= 64 && lanes % 4 == 0 && b->reg_inplace && sim__batch_vec_ok();
+    /* the vector loops: one word of lanes, a multiple of the vector's,
+     * registers in place */
+    uint32_t vw = lanes <= 64 && b->reg_inplace ? sim__batch_vec_width(vec_most) : 0;
+    if (vw == 8 && lanes % 8) vw = sim__batch_vec_width(4);
+    if (vw && lanes % vw) vw = 0;
+#if SIM_BATCH_X86
+    if (vw == 8) {
+        b->vcomb = sim__batch_vec_comb_avx512; b->vreg = sim__batch_vec_reg_avx512; b->vtake = sim__batch_vec_take_avx512;
+    } else if (vw == 4) {
+        b->vcomb = sim__batch_vec_comb_avx2; b->vreg = sim__batch_vec_reg_avx2; b->vtake = sim__batch_vec_take_avx2;
+    }
+#endif
+    b->vw = b->vcomb ? vw : 0;
     if (sim_proc_count(c) != ndriven) {
         snprintf(err, errlen, "the design has %u processes that drive no signal (testbench or user processes)",
                  sim_proc_count(c) - ndriven);

@@ -75,15 +75,16 @@ void sim_batch_start(sim_batch *b);
  * last edge take their values, the combinational network settles. */
 void sim_batch_cycle(sim_batch *b);
 
-/* Batches made from now on use the vector loops (AVX2, four lanes an
- * instruction) where the CPU has them and the batch has 4 to 64 lanes, a
- * multiple of 4 (on, the default), or the scalar loops only (off). Their
- * results are the same bit for bit; the tests run both. Returns 1 if this
- * CPU has the vector loops. Not to be called while another thread makes a
- * batch. */
-int  sim_batch_vector(int on);
-/* Groups of four lanes the vector loops evaluated so far, and how many of
- * them they handed to the scalar loop (a fast result out of range). */
+/* Batches made from now on use vector loops of at most `most` lanes an
+ * instruction where the CPU has them: 8 (the default) AVX-512, else AVX2;
+ * 4 AVX2 only; 0 the scalar loops only. A batch takes them when its lanes
+ * (at most 64) are a multiple of the vector's. Their results are the same
+ * bit for bit; the tests run each. Returns the width this CPU gives (0,
+ * 4 or 8). Not to be called while another thread makes a batch. */
+uint32_t sim_batch_vector(uint32_t most);
+/* Groups of lanes (one vector each) the vector loops evaluated so far,
+ * and how many of them they handed to the scalar loop (a fast result out
+ * of range). */
 void sim_batch_vector_stats(const sim_batch *b, uint64_t *groups, uint64_t *fell);
 
 /* 1 if some quantization in lane `lane` overflowed since the start (its

@@ -40,21 +40,30 @@ typedef struct bop {
     int      ndep;
 } bop;
 
-/* Vector loops (sim_batch_avx2.c). Each evaluates p in lanes 0..nl-1
- * (nl a multiple of 4, at most 64) exactly as the scalar loop would (also
- * the lanes none of p's inputs changed in: they compute what they hold,
- * see sim_batch.c), the
- * lanes its output changed in ORed into *om, and returns 1; 0 when it has
- * no loop for p (the caller runs the scalar one). A group of four lanes in
- * which the fast result leaves y's range (an overflow, or a value the
- * fast path does not cover) is handed to sim__batch_lanes and counted in
- * *fell. */
-int sim__batch_vec_ok(void);
-int sim__batch_vec_comb(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
-int sim__batch_vec_reg(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
-/* v[l] = p[l] for l < nl; the lanes where that changed v (an input's new
- * values). */
-uint64_t sim__batch_vec_take(int64_t *v, const int64_t *p, uint32_t nl);
+/* Vector loops (sim_batch_vec.h, built for AVX2 in sim_batch_avx2.c and
+ * for AVX-512 in sim_batch_avx512.c) on x86-64 with gcc or clang. */
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define SIM_BATCH_X86 1
+#else
+#define SIM_BATCH_X86 0
+#endif
+/* The widest vector loops (8: AVX-512, 4: AVX2, 0: none) this CPU runs,
+ * of at most `most` lanes. */
+uint32_t sim__batch_vec_width(uint32_t most);
+/* Each evaluates p in lanes 0..nl-1 (nl a multiple of the width, at most
+ * 64) exactly as the scalar loop would (also in the lanes none of p's
+ * inputs changed in: they compute what they hold, see sim_batch.c), ORs
+ * the lanes its output changed in into *om and returns 1; 0 when it has
+ * no loop for p (the caller runs the scalar one). A group of lanes in
+ * which a fast result leaves y's range (an overflow, or a value the fast
+ * path does not cover) is handed to sim__batch_lanes and counted in
+ * *fell. vec_take: v[l] = p[l], the lanes where that changed v. */
+int sim__batch_vec_comb_avx2(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
+int sim__batch_vec_reg_avx2(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
+uint64_t sim__batch_vec_take_avx2(int64_t *v, const int64_t *p, uint32_t nl);
+int sim__batch_vec_comb_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
+int sim__batch_vec_reg_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
+uint64_t sim__batch_vec_take_avx512(int64_t *v, const int64_t *p, uint32_t nl);
 /* The scalar loop of p (combinational or register, in place) in the lanes
  * of the one-word mask m (sim_batch.c). */
 void sim__batch_lanes(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);

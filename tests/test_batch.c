@@ -103,12 +103,13 @@ static void t_span_lanes_equal_kernel(void)
             int has = 0;
             for (int k = 0; u && k < u->nsched; k++) has |= !strcmp(u->sched[k].name, scheds[s]);
             if (!has) continue;
-            /* the vector loops (where the CPU has them) and the scalar ones */
-            sim_batch_vector(1);
+            /* the vector loops the CPU has, 8 and 4 lanes wide in turns,
+             * and the scalar ones */
+            sim_batch_vector((i + s) % 2 ? 4 : 8);
             span_case(units[i], 8, scheds[s], NULL, 1.0, &batched, &fell);
             sim_batch_vector(0);
             span_case(units[i], 5, scheds[s], NULL, 1.0, &batched, &fell);
-            sim_batch_vector(1);
+            sim_batch_vector(8);
         }
     /* every default lane in [0, 1] is the batch's: no overflow there */
     TST_EQ_INT(fell, 0);
@@ -340,7 +341,7 @@ static void register_case(int ring)
  * flags, must be the same. */
 static int64_t lg3(const int64_t *in, void *u) { (void)u; return (in[0] * 3 + in[1] * 5 + in[2]) & 7; }
 
-static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, int vec, int64_t *trace, unsigned char *ovf,
+static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, int64_t *trace, unsigned char *ovf,
                       int edges, uint32_t *nsig)
 {
     char err[300];
@@ -413,32 +414,37 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, int vec, int64_t
 
 static void t_vector_loops_equal_scalar(void)
 {
-    int has = sim_batch_vector(1);
-    if (!has) TST_SKIP("this CPU has no AVX2: the vector loops are not used");
+    uint32_t widest = sim_batch_vector(8);
+    if (!widest) TST_SKIP("this CPU has neither AVX2 nor AVX-512: the vector loops are not used");
     enum { EDGES = 60, MAXL = 64, MAXSIG = 32 };
-    static const uint32_t lanes_of[] = { 4, 12, 64 };
+    static const uint32_t lanes_of[] = { 4, 8, 24, 64 };
     int64_t *tr[2];
     tr[0] = malloc((size_t)(EDGES + 1) * MAXSIG * MAXL * sizeof *tr[0]);
     tr[1] = malloc((size_t)(EDGES + 1) * MAXSIG * MAXL * sizeof *tr[1]);
     int any_ovf = 0, any_clean = 0;
-    for (int mode = 0; mode < 2; mode++)
-        for (int li = 0; li < 3; li++) {
-            uint32_t L = lanes_of[li], ns[2] = { 0, 0 };
-            unsigned char of[2][MAXL];
-            sim_round rm = mode ? SIM_RND_HALF_UP : SIM_RND_TRUNC;
-            sim_ovf om = mode ? SIM_OVF_SAT : SIM_OVF_WRAP;
-            if (vector_run(rm, om, L, 0, tr[0], of[0], EDGES, &ns[0]) || vector_run(rm, om, L, 1, tr[1], of[1], EDGES, &ns[1]))
-                break;
-            TST_EQ_INT(ns[0], ns[1]);
-            TST_CHECK(ns[0] <= MAXSIG, "%u signals", ns[0]);
-            size_t n = (size_t)(EDGES + 1) * ns[0] * L, k = 0;
-            while (k < n && tr[0][k] == tr[1][k]) k++;
-            TST_CHECK(k == n, "mode %d, %u lanes: edge %zu, signal %zu, lane %zu: scalar %lld, vector %lld", mode, L,
-                      k / L / ns[0], k / L % ns[0], k % L, (long long)(k < n ? tr[0][k] : 0), (long long)(k < n ? tr[1][k] : 0));
-            TST_CHECK(!memcmp(of[0], of[1], L), "mode %d, %u lanes: overflow flags differ", mode, L);
-            for (uint32_t l = 0; l < L; l++) { any_ovf |= of[0][l]; any_clean |= !of[0][l]; }
-        }
-    sim_batch_vector(1);
+    /* each width the CPU has: AVX2 (4), AVX-512 (8; a batch of 4 lanes
+     * takes AVX2) */
+    for (uint32_t vw = 4; vw <= widest; vw *= 2)
+        for (int mode = 0; mode < 2; mode++)
+            for (int li = 0; li < 4; li++) {
+                uint32_t L = lanes_of[li], ns[2] = { 0, 0 };
+                unsigned char of[2][MAXL];
+                sim_round rm = mode ? SIM_RND_HALF_UP : SIM_RND_TRUNC;
+                sim_ovf om = mode ? SIM_OVF_SAT : SIM_OVF_WRAP;
+                if (vector_run(rm, om, L, 0, tr[0], of[0], EDGES, &ns[0])
+                    || vector_run(rm, om, L, vw, tr[1], of[1], EDGES, &ns[1]))
+                    break;
+                TST_EQ_INT(ns[0], ns[1]);
+                TST_CHECK(ns[0] <= MAXSIG, "%u signals", ns[0]);
+                size_t n = (size_t)(EDGES + 1) * ns[0] * L, k = 0;
+                while (k < n && tr[0][k] == tr[1][k]) k++;
+                TST_CHECK(k == n, "width %u, mode %d, %u lanes: edge %zu, signal %zu, lane %zu: scalar %lld, vector %lld",
+                          vw, mode, L, k / L / ns[0], k / L % ns[0], k % L, (long long)(k < n ? tr[0][k] : 0),
+                          (long long)(k < n ? tr[1][k] : 0));
+                TST_CHECK(!memcmp(of[0], of[1], L), "width %u, mode %d, %u lanes: overflow flags differ", vw, mode, L);
+                for (uint32_t l = 0; l < L; l++) { any_ovf |= of[0][l]; any_clean |= !of[0][l]; }
+            }
+    sim_batch_vector(8);
     /* both kinds of lane were there: ones with an overflow (the scalar
      * fallback ran) and ones without */
     TST_CHECK(any_ovf && any_clean, "overflowed lanes %d, clean lanes %d", any_ovf, any_clean);

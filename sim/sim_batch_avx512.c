@@ -1,0 +1,41 @@
+/* sim_batch_avx512.c - the batch mode's vector loops eight lanes at a
+ * time (AVX-512F and DQ: 64-bit arithmetic shifts and products, and
+ * compares into mask registers, all native). The loops themselves are
+ * sim_batch_vec.h's; sim_batch_avx2.c says why their results are the
+ * scalar loop's and when they are used. */
+#include "sim/sim_batch_int.h"
+
+#if SIM_BATCH_X86
+#include <immintrin.h>
+
+#define VTARGET __attribute__((target("avx512f,avx512dq")))
+#define VNAME(f) f##_avx512
+#define W 8
+#define VEC __m512i
+#define MASK __mmask8
+#define V_LD(p) _mm512_loadu_si512((const void *)(p))
+#define V_ST(p, x) _mm512_storeu_si512((void *)(p), (x))
+#define V_SET1(x) _mm512_set1_epi64(x)
+#define V_ZERO _mm512_setzero_si512()
+#define V_ADD _mm512_add_epi64
+#define V_SUB _mm512_sub_epi64
+#define V_AND _mm512_and_si512
+#define V_OR _mm512_or_si512
+#define V_SLL(x, c) _mm512_sll_epi64((x), (c))
+#define V_SRA(x, c, c64) ((void)(c64), _mm512_sra_epi64((x), (c)))   /* native: c64 unused */
+#define V_MUL _mm512_mullo_epi64
+#define V_GT _mm512_cmpgt_epi64_mask
+#define V_EQ _mm512_cmpeq_epi64_mask
+#define M_AND(a, b) ((MASK)((a) & (b)))
+#define M_OR(a, b) ((MASK)((a) | (b)))
+#define M_NOT(m) ((MASK)~(m))
+#define M_NONE ((MASK)0)
+#define M_ANY(m) ((m) != 0)
+#define M_BITS(m) ((unsigned)(m))
+#define V_BLEND(m, a, b) _mm512_mask_blend_epi64((m), (a), (b))
+#define V_MASKZ(m, x) _mm512_maskz_mov_epi64((m), (x))
+#define V_GATHER(tab, ix) _mm512_i64gather_epi64((ix), (const void *)(tab), 8)
+
+#include "sim/sim_batch_vec.h"
+
+#endif

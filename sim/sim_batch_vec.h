@@ -1,0 +1,180 @@
+/* sim_batch_vec.h - the body of the batch mode's vector loops, written
+ * once over a small vocabulary that sim_batch_avx2.c and
+ * sim_batch_avx512.c each define for their instruction set and then
+ * include this file (it is not a header of its own):
+ *
+ *   VEC, MASK        a vector of W int64_t lanes; a mask of its lanes
+ *   VTARGET          the function attribute that enables the instructions
+ *   VNAME(f)         f with the set's suffix (f_avx2, f_avx512)
+ *   V_LD(p) V_ST(p, x) V_SET1(x) V_ZERO
+ *   V_ADD V_SUB V_SLL(x, c) V_SRA(x, c, c64) V_MUL V_AND V_OR
+ *                    c, c64: shift counts k and 64 - k in an __m128i
+ *   V_GT(a, b) V_EQ(a, b)          lanes where a > b, a == b (a MASK)
+ *   M_AND M_OR M_NOT M_NONE M_ANY(m) M_BITS(m)   masks; M_BITS: bit i is lane i
+ *   V_BLEND(m, a, b) V_MASKZ(m, x)        m ? b : a; m ? x : 0
+ *   V_GATHER(tab, ix)                     tab[ix] in every lane
+ *
+ * Every loop computes what sim_batch.c's scalar loop computes for the
+ * element, lane for lane (see sim_batch_avx2.c for why the results are
+ * the same bits).
+ */
+
+/* Store x over y[l..l+W-1]; the lanes it changed, as bits l.. of a word. */
+static VTARGET inline uint64_t VNAME(put)(int64_t *y, uint32_t l, VEC x)
+{
+    VEC old = V_LD(y + l);
+    V_ST(y + l, x);
+    return (uint64_t)M_BITS(M_NOT(V_EQ(old, x))) << (l & 63);
+}
+
+static VTARGET inline MASK VNAME(outside)(VEC x, VEC lo, VEC hi)
+{
+    return M_OR(V_GT(lo, x), V_GT(x, hi));
+}
+
+#define GROUP ((uint64_t)((1u << W) - 1) << (l & 63))   /* the lanes l..l+W-1 of a word */
+
+/* The common tail: q = (s + radd) >> k (s itself when k0: no rounding
+ * shift, most registers, adders and keys) checked against y's range in
+ * the lanes of `live`; stored, or the group done by the scalar loop. */
+#define TAIL(s, live) do {                                                     \
+        VEC q_ = (s);                                                          \
+        if (!k0) q_ = V_SRA(V_ADD(q_, radd), kk, kk64);                        \
+        MASK o_ = M_AND(VNAME(outside)(q_, lo, hi), (live));                   \
+        if (__builtin_expect(M_ANY(o_), 0)) {                                  \
+            sim__batch_lanes(p, GROUP, ovf, &acc);                             \
+            ++*fell;                                                           \
+        } else {                                                               \
+            acc |= VNAME(put)(y, l, V_MASKZ((live), q_));                      \
+        }                                                                      \
+    } while (0)
+
+VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell)
+{
+    const int64_t *a = p->a, *b = p->b, *c = p->c;
+    int64_t *y = p->y;
+    const VEC lo = V_SET1(p->lo), hi = V_SET1(p->hi), radd = V_SET1(p->radd), zero = V_ZERO;
+    const MASK all = V_EQ(zero, zero);
+    const __m128i kk = _mm_cvtsi32_si128(p->k), kk64 = _mm_cvtsi32_si128(64 - p->k);
+    const __m128i ssa = _mm_cvtsi32_si128(p->sa), ssb = _mm_cvtsi32_si128(p->sb);
+    const int k0 = p->k == 0 && p->radd == 0;
+    uint64_t acc = 0;
+    uint32_t l;
+    switch (p->kind) {
+    case B_COPY:
+        if (!p->fast) return 0;
+        for (l = 0; l < nl; l += W) TAIL(V_LD(a + l), all);
+        break;
+    case B_ADD:
+        if (!p->fast) return 0;
+        for (l = 0; l < nl; l += W) TAIL(V_ADD(V_SLL(V_LD(a + l), ssa), V_SLL(V_LD(b + l), ssb)), all);
+        break;
+    case B_SUB:
+        if (!p->fast) return 0;
+        for (l = 0; l < nl; l += W) TAIL(V_SUB(V_SLL(V_LD(a + l), ssa), V_SLL(V_LD(b + l), ssb)), all);
+        break;
+    case B_SHIFT:
+        if (!p->fast) return 0;
+        for (l = 0; l < nl; l += W) TAIL(V_SLL(V_LD(a + l), ssa), all);
+        break;
+    case B_MUL:
+        if (!p->fast) return 0;
+        for (l = 0; l < nl; l += W) TAIL(V_MUL(V_LD(a + l), V_LD(b + l)), all);
+        break;
+    case B_BK:
+        /* key 0: y is 0 (no range check there) */
+        if (!p->fast) return 0;
+        for (l = 0; l < nl; l += W) TAIL(V_LD(a + l), M_NOT(V_EQ(V_LD(c + l), zero)));
+        break;
+    case B_MUX: {
+        /* each input's own shift; a select past the inputs gives 0 */
+        if (!p->fast || p->n > 8) return 0;
+        int n = p->n;
+        __m128i ik[8], ik64[8];
+        VEC ir[8];
+        for (int i = 0; i < n; i++) {
+            ik[i] = _mm_cvtsi32_si128(p->in_k[i]);
+            ik64[i] = _mm_cvtsi32_si128(64 - p->in_k[i]);
+            ir[i] = V_SET1(p->in_radd[i]);
+        }
+        for (l = 0; l < nl; l += W) {
+            VEC sel = V_LD(c + l), q = zero;
+            MASK o = M_NONE;
+            for (int i = 0; i < n; i++) {
+                MASK hit = V_EQ(sel, V_SET1(i));
+                if (!M_ANY(hit)) continue;
+                VEC qi = V_SRA(V_ADD(V_LD(p->in[i] + l), ir[i]), ik[i], ik64[i]);
+                q = V_BLEND(hit, q, qi);
+                o = M_OR(o, M_AND(VNAME(outside)(qi, lo, hi), hit));
+            }
+            if (__builtin_expect(M_ANY(o), 0)) {
+                sim__batch_lanes(p, GROUP, ovf, &acc);
+                ++*fell;
+            } else {
+                acc |= VNAME(put)(y, l, q);
+            }
+        }
+        break;
+    }
+    case B_LOGIC: {
+        /* a table: the index built input by input, then a gather */
+        if (!p->tab || p->n < 1 || p->n > 8) return 0;
+        const long long *tab = (const long long *)p->tab;
+        int n = p->n;
+        VEC mk[8];
+        __m128i sh[8];
+        for (int i = 0; i < n; i++) {
+            mk[i] = V_SET1((int64_t)p->tmask[i]);
+            sh[i] = _mm_cvtsi32_si128(p->tsh[i]);
+        }
+        for (l = 0; l < nl; l += W) {
+            VEC ix = V_AND(V_LD(p->in[0] + l), mk[0]);
+            for (int i = 1; i < n; i++) ix = V_OR(ix, V_SLL(V_AND(V_LD(p->in[i] + l), mk[i]), sh[i]));
+            acc |= VNAME(put)(y, l, V_GATHER(tab, ix));
+        }
+        break;
+    }
+    default:
+        return 0;
+    }
+    *om |= acc;
+    return 1;
+}
+
+VTARGET int VNAME(sim__batch_vec_reg)(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell)
+{
+    /* q <= d, or with an enable: q <= en ? d : q (a reset: the scalar loop) */
+    if (!p->fast || !p->a || p->rst) return 0;
+    const int64_t *a = p->a, *en = p->c;
+    int64_t *y = p->y;
+    const VEC lo = V_SET1(p->lo), hi = V_SET1(p->hi), radd = V_SET1(p->radd), zero = V_ZERO;
+    const MASK all = V_EQ(zero, zero);
+    const __m128i kk = _mm_cvtsi32_si128(p->k), kk64 = _mm_cvtsi32_si128(64 - p->k);
+    const int k0 = p->k == 0 && p->radd == 0;
+    uint64_t acc = 0;
+    for (uint32_t l = 0; l < nl; l += W) {
+        VEC q = V_LD(a + l);
+        MASK on = en ? M_NOT(V_EQ(V_LD(en + l), zero)) : all;
+        if (!k0) q = V_SRA(V_ADD(q, radd), kk, kk64);
+        MASK o = M_AND(VNAME(outside)(q, lo, hi), on);
+        if (__builtin_expect(M_ANY(o), 0)) {
+            sim__batch_lanes(p, GROUP, ovf, &acc);
+            ++*fell;
+            continue;
+        }
+        if (en) q = V_BLEND(on, V_LD(y + l), q);
+        acc |= VNAME(put)(y, l, q);
+    }
+    *om |= acc;
+    return 1;
+}
+
+VTARGET uint64_t VNAME(sim__batch_vec_take)(int64_t *v, const int64_t *p, uint32_t nl)
+{
+    uint64_t acc = 0;
+    for (uint32_t l = 0; l < nl; l += W) acc |= VNAME(put)(v, l, V_LD(p + l));
+    return acc;
+}
+
+#undef GROUP
+#undef TAIL
