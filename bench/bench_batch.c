@@ -12,6 +12,7 @@
 #include "testbench/tb_span.h"
 #include "bench/bench_items.h"
 #include "testbench/tb_batch.h"
+#include "sim/sim_batch.h"
 #include "testbench/cli.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -208,7 +209,7 @@ static int one(const char *unit, const char *sched, const char *side)
     const unit_desc *ud = unit_find(unit);
     int batch = !strcmp(side, "batch");
     if (!ud || (!batch && strcmp(side, "kernel"))) {
-        fprintf(stderr, "usage: bench_batch [one SPAN_UNIT SCHEDULE kernel|batch]\n");
+        fprintf(stderr, "usage: bench_batch [--vector 0|4|8] [one SPAN_UNIT SCHEDULE kernel|batch]\n");
         return 2;
     }
     int L = 8;
@@ -231,10 +232,28 @@ static int one(const char *unit, const char *sched, const char *side)
     return rc;
 }
 
+static const char *vector_name(uint32_t w)
+{
+    return w == 8 ? "AVX-512, 8 lanes an instruction" : w == 4 ? "AVX2, 4 lanes an instruction" : "none (scalar loops)";
+}
+
 int main(int argc, char **argv)
 {
+    /* --vector N: the widest vector loops the batch may use (8, 4 or 0),
+     * to compare them on one CPU */
+    uint32_t most = 8;
+    if (argc >= 3 && !strcmp(argv[1], "--vector")) {
+        char *end;
+        unsigned long v = strtoul(argv[2], &end, 10);
+        if (*end || (v != 0 && v != 4 && v != 8)) { fprintf(stderr, "bench_batch: --vector takes 0, 4 or 8\n"); return 2; }
+        most = (uint32_t)v;
+        argc -= 2;
+        argv += 2;
+    }
+    uint32_t w = sim_batch_vector(most);
     if (argc == 5 && !strcmp(argv[1], "one")) return one(argv[2], argv[3], argv[4]);
-    if (argc != 1) { fprintf(stderr, "usage: bench_batch [one SPAN_UNIT SCHEDULE kernel|batch]\n"); return 2; }
+    if (argc != 1) { fprintf(stderr, "usage: bench_batch [--vector 0|4|8] [one SPAN_UNIT SCHEDULE kernel|batch]\n"); return 2; }
+    printf("batch   vector loops: %s\n", vector_name(w));
     if (horner() || spans()) return 1;
     printf("batch   speed-up over the kernel, same items, one core: %.1fx to %.1fx (target 4x)\n", lo_x, hi_x);
     return 0;
