@@ -369,17 +369,19 @@ static int eval_uniform(sim_batch *b, const bop *p)
     return 1;
 }
 
-/* At least a quarter of the lanes are in m: the vector loops then take
- * all of them (four lanes an instruction beat one lane at a time even with
- * three in four computing what they hold). The bits are counted without
- * the popcnt instruction, which the baseline x86-64 lacks (the compiler
- * would call a library function). */
-static inline int wide_enough(uint64_t m, uint32_t lanes)
+/* At least one lane in vw of the batch's (vw: the vector's lanes) is in
+ * m: the vector loops then take all of them (four lanes an instruction
+ * beat one lane at a time even with three in four computing what they
+ * hold; eight, with seven in eight: measured on the span units, where a
+ * coefficient network wakes in the few lanes whose interval was just
+ * accepted). The bits are counted without the popcnt instruction, which
+ * the baseline x86-64 lacks (the compiler would call a library function). */
+static inline int wide_enough(uint64_t m, uint32_t lanes, uint32_t vw)
 {
     m = m - ((m >> 1) & 0x5555555555555555ull);
     m = (m & 0x3333333333333333ull) + ((m >> 2) & 0x3333333333333333ull);
     m = (m + (m >> 4)) & 0x0f0f0f0f0f0f0f0full;
-    return (uint32_t)((m * 0x0101010101010101ull) >> 56) * 4 >= lanes;
+    return (uint32_t)((m * 0x0101010101010101ull) >> 56) * vw >= lanes;
 }
 
 /* Settle: each element in order, in the lanes where one of its inputs
@@ -402,7 +404,7 @@ static void settle1(sim_batch *b)
         for (int k = 0; k < p->ndep; k++) m |= chg[dep[k]];
         if (!m) continue;
         if ((m & (m - 1)) && p->ndep && eval_uniform(b, p)) continue;
-        if (b->vw && wide_enough(m, b->lanes) && b->vcomb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
+        if (b->vw && wide_enough(m, b->lanes, b->vw) && b->vcomb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
             b->vec_groups += b->lanes / b->vw;
         else
             eval_comb(p, &m, 1, b->ovf, chg + p->sig);
@@ -533,7 +535,7 @@ void sim_batch_cycle(sim_batch *b)
     if (b->reg_inplace) {
         for (uint32_t i = 0; i < b->nreg; i++) {
             bop *p = &b->reg[i];
-            if (b->vw && wide_enough(b->regm[i], b->lanes)) {
+            if (b->vw && wide_enough(b->regm[i], b->lanes, b->vw)) {
                 uint64_t om = 0;
                 if (b->vreg(p, b->lanes, b->ovf, &om, &b->vec_fell)) {
                     b->vec_groups += b->lanes / b->vw;
