@@ -41,7 +41,7 @@ struct sim_batch {
     int    (*vcomb)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
     int    (*vreg)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
     uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t);
-    uint64_t vec_groups, vec_fell;   /* groups of four lanes they did, and handed back (sim_batch_vector_stats) */
+    uint64_t vec_groups, vec_fell;   /* groups of lanes (a vector each) they did, and handed back (sim_batch_vector_stats) */
 };
 
 /* The widest vector loops a batch may use (the tests lower it); read
@@ -601,13 +601,15 @@ static int fast_setup(bop *p, int src_f)
 static int imax(int a, int b) { return a > b ? a : b; }
 
 /* An exact result with fewer fraction bits than y (an adder's or a
- * shift's, whose operands are aligned by left shifts sa, sb) is aligned
- * to y's fraction bits at once: the same value, so the same quantization,
- * and the fast path (which only shifts right) then applies. */
-static void widen_src(bop *p)
+ * shift's, whose operands of wa and wb bits are aligned by left shifts
+ * sa, sb; wb 0: no second operand) is aligned to y's fraction bits at
+ * once: the same value, so the same quantization, and the fast path
+ * (which only shifts right) then applies. Only when the aligned operands
+ * stay within the fast path's 61 bits; otherwise nothing changes. */
+static void widen_src(bop *p, int wa, int wb)
 {
     int d = p->fy.fbits - p->src_f;
-    if (d <= 0) return;
+    if (d <= 0 || wa + p->sa + d > 61 || (wb && wb + p->sb + d > 61)) return;
     p->sa += d;
     p->sb += d;
     p->src_f += d;
@@ -687,7 +689,7 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         p->src_f = imax(in->a->fmt.fbits, in->b->fmt.fbits);
         p->sa = p->src_f - in->a->fmt.fbits;
         p->sb = p->src_f - in->b->fmt.fbits;
-        widen_src(p);
+        widen_src(p, raw_bits(in->a), raw_bits(in->b));
         p->fast = raw_bits(in->a) + p->sa <= 61 && raw_bits(in->b) + p->sb <= 61 && fast_setup(p, p->src_f);
         reads[nreads++] = in->a;
         reads[nreads++] = in->b;
@@ -707,7 +709,7 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         int f = in->a->fmt.fbits - in->shift;
         p->sa = f < 0 ? -f : 0;
         p->src_f = f < 0 ? 0 : f;
-        widen_src(p);
+        widen_src(p, raw_bits(in->a), 0);
         p->fast = raw_bits(in->a) + p->sa <= 61 && fast_setup(p, p->src_f);
         reads[nreads++] = in->a;
         break;
