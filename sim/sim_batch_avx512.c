@@ -38,4 +38,6 @@
 
 #include "sim/sim_batch_vec.h"
 
+#else
+typedef int sim_batch_avx512_none;   /* ISO C wants a declaration in every file */
 #endif

@@ -41,11 +41,15 @@ typedef struct bop {
 } bop;
 
 /* Vector loops (sim_batch_vec.h, built for AVX2 in sim_batch_avx2.c and
- * for AVX-512 in sim_batch_avx512.c) on x86-64 with gcc or clang. */
+ * for AVX-512 in sim_batch_avx512.c) on x86-64 with gcc or clang;
+ * CFLAGS=-DSIM_BATCH_X86=0 builds without them (the scalar loops only, as
+ * on other CPUs). */
+#ifndef SIM_BATCH_X86
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define SIM_BATCH_X86 1
 #else
 #define SIM_BATCH_X86 0
+#endif
 #endif
 /* The widest vector loops (8: AVX-512, 4: AVX2, 0: none) this CPU runs,
  * of at most `most` lanes. */

@@ -415,7 +415,7 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
 static void t_vector_loops_equal_scalar(void)
 {
     uint32_t widest = sim_batch_vector(8);
-    if (!widest) TST_SKIP("this CPU has neither AVX2 nor AVX-512: the vector loops are not used");
+    if (!widest) TST_SKIP("no vector loops here (a CPU without AVX2, or a build without them): the scalar loops only");
     enum { EDGES = 60, MAXL = 64, MAXSIG = 32 };
     static const uint32_t lanes_of[] = { 4, 8, 24, 64 };
     int64_t *tr[2];
