@@ -26,9 +26,10 @@
 #if SIM_BATCH_X86
 #include <immintrin.h>
 
+/* (The CPU's features are read by the compiler's runtime before main, so
+ * no __builtin_cpu_init: batches are made from several threads.) */
 uint32_t sim__batch_vec_width(uint32_t most)
 {
-    __builtin_cpu_init();
     if (most >= 8 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) return 8;
     if (most >= 4 && __builtin_cpu_supports("avx2")) return 4;
     return 0;
