@@ -56,6 +56,13 @@ static void item_raws(const span_tb *s, size_t i, int64_t *raw, uint64_t *ovf)
     }
 }
 
+/* The clocks a stream may take: 6 a pixel at most (paper, cubic), a few
+ * per item; a unit that stops answering is a failure, not a hang. */
+static uint64_t clock_budget(size_t pixels, size_t items)
+{
+    return 1000 + 8 * (uint64_t)pixels + 8 * (uint64_t)items;
+}
+
 static void offer(span_tb *s, size_t i)
 {
     int64_t raw[UNIT_MAX_IO];
@@ -208,10 +215,7 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
             goto done;
         }
     }
-    /* 6 clocks a pixel at most (paper, cubic), a few per item; a unit that
-     * stops answering is a failure, not a hang. */
-    uint64_t max_clocks = 1000 + 8 * (uint64_t)total + 8 * (uint64_t)nitems;
-    sim_status ss = sim_run(c, max_clocks * 10);
+    sim_status ss = sim_run(c, clock_budget(total, nitems) * 10);
     if (ss != SIM_OK) {         /* a loop, or a design that is not well formed */
         snprintf(err, errlen, "%s", sim_error(c));
         rc = TB_FAIL;
@@ -249,7 +253,6 @@ done:
 typedef struct lane_tb {
     span_tb  s;
     uint32_t lane;        /* index in the batch */
-    uint64_t max_clocks;
     int      in_batch, done;
 } lane_tb;
 
@@ -345,9 +348,9 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
         lane_tb *t = &T[i];
         if (!t->in_batch) continue;
         t->s.io = &io; t->s.y = io.out[0]; t->s.lsb = lsb; t->s.pix = L[i].pix;
-        t->max_clocks = 1000 + 8 * (uint64_t)t->s.total + 8 * (uint64_t)t->s.nitems;
         lane_start(&x, t);
-        act[active++] = (lane_hot){ L[i].pix, t->lane, (uint32_t)i, t->s.got, t->s.total, t->max_clocks };
+        act[active++] = (lane_hot){ L[i].pix, t->lane, (uint32_t)i, t->s.got, t->s.total,
+                                    clock_budget(t->s.total, t->s.nitems) };
     }
     sim_batch_start(b);
     for (uint64_t e = 1; active && fin; e++) {
