@@ -22,17 +22,30 @@
  * fraction bits, as in most registers, multiplexers and adders): only the
  * range check is left. Logic: y <= the low 64 - op_k bits of
  * op_logic(inputs), sign-extended (LOGIC_S) or masked with op_radd
- * (LOGIC_U). */
+ * (LOGIC_U). A logic element with few input bits is tabulated when the
+ * simulation starts (sim_kernel.c): LUT1, one input, y <= op_tab[a -
+ * op_lo] when a - op_lo <= op_hi (its format's span); LUTN, the inputs'
+ * offsets side by side (op_tin); an input outside its format calls fn. */
 enum { SIM__OP_FN = 0, SIM__OP_COPY, SIM__OP_ADD, SIM__OP_SUB, SIM__OP_MUL,
        SIM__OP_MUX, SIM__OP_BK, SIM__OP_LOGIC_S, SIM__OP_LOGIC_U,
-       SIM__OP_COPY_X, SIM__OP_ADD_X, SIM__OP_SUB_X, SIM__OP_MUX_X, SIM__OP_BK_X };
+       SIM__OP_COPY_X, SIM__OP_ADD_X, SIM__OP_SUB_X, SIM__OP_MUX_X, SIM__OP_BK_X,
+       SIM__OP_LUT1, SIM__OP_LUTN };
+
+/* One input of a tabulated logic element: its offset from lo, at most
+ * span, is at bit sh of the index. */
+typedef struct sim__lut_in {
+    int64_t  lo;
+    uint64_t span;
+    int      sh;
+} sim__lut_in;
 
 /* Inputs of a logic element the kernel gathers (sim_logic's limit). */
 #define SIM__LOGIC_MAX 8
 
 typedef struct sim__proc {
     /* hot: read or written on every evaluation */
-    uint32_t    queued;     /* runnable in the next delta (not char: see sim_signal) */
+    uint64_t    listed;     /* in the run list being built while it equals the
+                             * context's generation (sim_kernel.c) */
     uint8_t     op;         /* SIM__OP_* */
     int8_t      op_k;
     uint32_t    op_n;       /* mux or logic inputs */
@@ -44,6 +57,8 @@ typedef struct sim__proc {
     int64_t   (*op_logic)(const int64_t *in, void *user);   /* sim_logic_fn */
     void       *op_user;
     sim_proc_fn fn;         /* the general evaluation */
+    const int64_t *op_tab;  /* LUT1, LUTN: the table */
+    const sim__lut_in *op_tin;  /* LUTN: op_n inputs */
     /* cold */
     const char *name;
     sim_proc    pub;        /* what users hold */

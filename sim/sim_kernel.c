@@ -25,9 +25,15 @@
  *  - A write of the value a signal already has is not queued (sim.h).
  *  - A signal keeps the processes to wake per new value (zero / nonzero),
  *    so an edge-sensitive process is never looked at on the other edge.
+ *  - A process is in the run list being built when its `listed` holds the
+ *    list's generation, one number per delta: starting a new list is one
+ *    increment, and a process costs no store when it runs.
  *  - A time step that is just a clock edge (clock_step) toggles the clock
  *    and runs the first delta's update without the timer and update
- *    machinery; a falling edge nobody waits for costs a few stores.
+ *    machinery; a falling edge nobody waits for costs a few stores. While
+ *    the only timer is one clock, whole time steps run in clock_steps,
+ *    which leaves out the general loop's tests.
+ *  - A logic element with a few input bits is a table (tabulate).
  *  - The delta loop keeps the context's lists in locals (the run lists for
  *    the whole time step: processes never touch them), and the flags it
  *    writes are not char-typed (a char store may alias anything and would
@@ -70,6 +76,8 @@ struct sim_ctx {
     sim_signal **chg;    uint32_t nchg;      /* changed this time step (sim_changed) */
     sim_signal **chg_on;                     /* chg while an observer reads it, else NULL */
     uint32_t     epoch;                      /* a signal is in chg iff its noted is this */
+    uint64_t     gen;                        /* a process is in the run list being built iff
+                                              * its listed is this (one per delta: never wraps) */
     sim_signal **ovfq;   uint32_t novfq;     /* overflowed this time step (sim__overflow) */
     sim_timer   *heap;   uint32_t nheap, capheap;
     uint64_t     timer_seq;
@@ -94,8 +102,8 @@ struct sim_ctx {
 _Static_assert(offsetof(struct sim_ctx, q) == 0, "sim_write finds the update list at the start of the context");
 _Static_assert(offsetof(sim_signal, changes) + sizeof(uint64_t) <= 64, "a signal's hot fields share one cache line");
 _Static_assert(offsetof(sim__proc, op_hi) + sizeof(int64_t) <= 64, "the evaluate loop's first reads share one cache line");
-_Static_assert(sizeof(((sim_signal *)0)->noted) >= 2 && sizeof(((sim_signal *)0)->queued) >= 2
-               && sizeof(((sim__proc *)0)->queued) >= 2, "flags the kernel writes are not char (aliasing)");
+_Static_assert(sizeof(((sim_signal *)0)->noted) >= 2 && sizeof(((sim_signal *)0)->queued) >= 2,
+               "flags the kernel writes are not char (aliasing)");
 _Static_assert(sizeof(((sim_signal *)0)->noted) == sizeof(uint16_t), "epochs of the changed list run up to UINT16_MAX");
 
 /* ---------------------------------------------------------------- memory */
@@ -142,6 +150,7 @@ sim_ctx *sim_new(void)
     c->ovf = SIM_OVF_WRAP;
     c->max_deltas = 1000;
     c->epoch = 1;
+    c->gen = 1;
     c->root.name = "top";
     return c;
 }
@@ -456,9 +465,10 @@ static inline void changed(sim_ctx *c, sim_signal *s, int64_t v)
     if (n) {
         sim__proc **w = s->wake[v != 0], **run = c->run;
         uint32_t nrun = c->nrun;
+        uint64_t gen = c->gen;
         for (uint32_t i = 0; i < n; i++) {
             sim__proc *p = w[i];
-            if (!p->queued) { p->queued = 1; run[nrun++] = p; }
+            if (p->listed != gen) { p->listed = gen; run[nrun++] = p; }
         }
         c->nrun = nrun;
     }
@@ -475,7 +485,8 @@ static inline int64_t logic_call(const sim__proc *p)
 }
 
 /* Update phase: apply the writes; each signal that changes wakes its
- * processes into next (*nnext of them). Returns the number of signals
+ * processes into next (*nnext of them), the list of generation gen.
+ * Returns the number of signals
  * that changed. Two switches, constant at every call site so that each
  * copy of the loop has only the tests it needs:
  *  - track: an observer reads sim_changed, so a changed signal is noted
@@ -486,7 +497,7 @@ static inline int64_t logic_call(const sim__proc *p)
  * pointers would otherwise make the compiler reload them. */
 static inline __attribute__((always_inline))
 uint32_t update(sim_ctx *c, sim_signal **upd, uint32_t nupd, sim__proc **next, uint32_t *nnext,
-                int track, int compact)
+                uint64_t gen, int track, int compact)
 {
     uint32_t nchanged = 0, nn = *nnext;
     sim_signal **chg = c->chg_on;
@@ -506,7 +517,7 @@ uint32_t update(sim_ctx *c, sim_signal **upd, uint32_t nupd, sim__proc **next, u
         uint32_t n = s->nwake[v != 0];
         for (uint32_t j = 0; j < n; j++) {
             sim__proc *q = w[j];
-            if (!q->queued) { q->queued = 1; next[nn++] = q; }
+            if (q->listed != gen) { q->listed = gen; next[nn++] = q; }
         }
     }
     c->q.nupd = 0;
@@ -539,10 +550,12 @@ static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
         [SIM__OP_BK] = &&op_bk, [SIM__OP_LOGIC_S] = &&op_logic_s, [SIM__OP_LOGIC_U] = &&op_logic_u,
         [SIM__OP_COPY_X] = &&op_copy_x, [SIM__OP_ADD_X] = &&op_add_x, [SIM__OP_SUB_X] = &&op_sub_x,
         [SIM__OP_MUX_X] = &&op_mux_x, [SIM__OP_BK_X] = &&op_bk_x,
+        [SIM__OP_LUT1] = &&op_lut1, [SIM__OP_LUTN] = &&op_lutn,
     };
-    _Static_assert(sizeof op_label / sizeof *op_label == SIM__OP_BK_X + 1, "one label per SIM__OP_*");
+    _Static_assert(sizeof op_label / sizeof *op_label == SIM__OP_LUTN + 1, "one label per SIM__OP_*");
     sim__proc **run = c->run, **next = c->run2;
     uint32_t nrun = c->nrun;
+    uint64_t gen = c->gen;
     sim_signal **upd = c->q.upd;
     uint32_t nd = *deltas;
     int hit = 0;
@@ -550,9 +563,10 @@ static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
         uint32_t nupd = c->q.nupd, i = 0;
         sim__proc *p;
         int64_t v;
-        /* Start process i: clear its flag (it may be woken again for the
-         * next delta), count the run, jump to its operation. */
-#define EVAL_AT_I() do { p = run[i]; p->queued = 0; p->runs++; goto *op_label[p->op]; } while (0)
+        /* Start process i: count the run, jump to its operation. (It
+         * may be woken again for the next delta: that list has the next
+         * generation, which no process is listed under yet.) */
+#define EVAL_AT_I() do { p = run[i]; p->runs++; goto *op_label[p->op]; } while (0)
 #define EVAL_NEXT() do { if (++i < nrun) EVAL_AT_I(); goto evaluated; } while (0)
         /* y <= (x + radd) >> k (arithmetic: floor) when in range; out of
          * range, the general evaluation counts the overflow. */
@@ -625,6 +639,23 @@ static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
     op_logic_u:
         v = (int64_t)((uint64_t)logic_call(p) & (uint64_t)p->op_radd);
         WRITE_NEXT();
+    op_lut1: {
+            uint64_t ix = (uint64_t)p->op_a->cur - (uint64_t)p->op_lo;
+            if (__builtin_expect(ix > (uint64_t)p->op_hi, 0)) goto general;
+            v = p->op_tab[ix];
+            WRITE_NEXT();
+        }
+    op_lutn: {
+            uint64_t ix = 0;
+            for (uint32_t j = 0; j < p->op_n; j++) {
+                const sim__lut_in *t = &p->op_tin[j];
+                uint64_t d = (uint64_t)p->op_in[j]->cur - (uint64_t)t->lo;
+                if (__builtin_expect(d > t->span, 0)) goto general;
+                ix |= d << t->sh;
+            }
+            v = p->op_tab[ix];
+            WRITE_NEXT();
+        }
 #undef EVAL_AT_I
 #undef EVAL_NEXT
 #undef QUANT
@@ -634,9 +665,10 @@ static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
         c->stats.proc_runs += nrun;
         nd++;
         uint32_t nnext = 0, changed;
-        if (__builtin_expect(once, 0)) changed = update(c, upd, nupd, next, &nnext, c->chg_on != NULL, 1);
-        else if (c->chg_on) changed = update(c, upd, nupd, next, &nnext, 1, 0);
-        else changed = update(c, upd, nupd, next, &nnext, 0, 0);
+        gen++;
+        if (__builtin_expect(once, 0)) changed = update(c, upd, nupd, next, &nnext, gen, c->chg_on != NULL, 1);
+        else if (c->chg_on) changed = update(c, upd, nupd, next, &nnext, gen, 1, 0);
+        else changed = update(c, upd, nupd, next, &nnext, gen, 0, 0);
         sim__proc **t = run; run = next; next = t;
         nrun = nnext;
         /* Counted after the update (nothing runs in between, so nobody
@@ -651,6 +683,7 @@ static int run_deltas(sim_ctx *c, uint32_t *deltas, int once)
     }
     c->run = run; c->nrun = nrun;
     c->run2 = next;
+    c->gen = gen;
     *deltas = nd;
     return hit;
 }
@@ -718,28 +751,68 @@ static void notify(sim_ctx *c)
     if (c->chg_on) clear_changed(c);
 }
 
+/* A clock's tick done in place: the clock toggles and its update, the
+ * time step's first delta cycle, wakes its processes; the timer, heap[0],
+ * becomes the next tick (the caller restores the heap's order if other
+ * timers share it). Counts exactly what clock_tick and the general update
+ * count. */
+static inline void tick_in_place(sim_ctx *c)
+{
+    sim_timer *t = &c->heap[0];
+    sim_clockgen *g = t->data;
+    sim_signal *clk = g->clk;
+    int64_t v = !clk->cur;
+    t->at = c->now + g->half;
+    t->seq = c->timer_seq++;
+    c->stats.clocks += (uint64_t)v;
+    clk->nxt = clk->cur = v;
+    c->stats.deltas++;
+    c->stats.events++;
+    changed(c, clk, v);
+}
+
 /* The start of a time step whose only business is one clock edge (the
  * earliest timer is a clock tick, no other timer is due at the same time
- * and nothing is pending): the tick and the first delta cycle, which only
- * updates the clock, done without the general machinery. Counts exactly
- * what the general path counts. Returns 0 if the step is not of this kind. */
+ * and nothing is pending): the tick without the timer and update
+ * machinery. Returns 0 if the step is not of this kind. */
 static int clock_step(sim_ctx *c)
 {
     sim_timer *t = &c->heap[0];
     if (t->fn != clock_tick || c->nrun || c->q.nupd) return 0;
     if ((c->nheap > 1 && c->heap[1].at <= c->now) || (c->nheap > 2 && c->heap[2].at <= c->now)) return 0;
-    sim_clockgen *g = t->data;
-    sim_signal *clk = g->clk;
-    int64_t v = !clk->cur;
-    t->at = c->now + g->half;   /* the next tick replaces this one */
-    t->seq = c->timer_seq++;
+    tick_in_place(c);
     if (c->nheap > 1) timer_sift_root(c, *t);
-    if (v) c->stats.clocks++;
-    clk->nxt = clk->cur = v;
-    c->stats.deltas++;
-    c->stats.events++;
-    changed(c, clk, v);
     return 1;
+}
+
+/* End of a time step: count the overflows the settled values carry. */
+static void settle_overflows(sim_ctx *c);
+
+/* Whole time steps while each is one clock edge and nothing else (the
+ * only timer is a clock; nothing pending), the common testbench: the
+ * tick, the deltas, the end of the step and the advance to the next edge,
+ * without the general loop's tests for timers and writes that cannot be
+ * there. Entered when one_clock_due holds. Returns SIM_CLK_NEXT when the
+ * next step needs the general loop (time advanced to it), SIM_CLK_END
+ * when the run is over, SIM_CLK_LOOP at a combinational loop. */
+enum { SIM_CLK_NEXT, SIM_CLK_END, SIM_CLK_LOOP };
+static inline int one_clock_due(const sim_ctx *c)
+{
+    return c->nheap == 1 && c->heap[0].fn == clock_tick && c->heap[0].at <= c->now && !c->nrun && !c->q.nupd;
+}
+static int clock_steps(sim_ctx *c, sim_time until)
+{
+    do {
+        tick_in_place(c);
+        uint32_t deltas = 1;   /* the tick's update; it queued no write */
+        if (c->nrun && (deltas >= c->max_deltas || run_deltas(c, &deltas, 0))) return SIM_CLK_LOOP;
+        if (c->novfq) settle_overflows(c);
+        if (c->nobs) notify(c);
+        if (c->stop || !c->nheap || c->heap[0].at > until) return SIM_CLK_END;
+        c->now = c->heap[0].at;
+        c->stats.time_steps++;
+    } while (one_clock_due(c));
+    return SIM_CLK_NEXT;
 }
 
 void sim__overflow(sim_signal *s, int64_t raw)
@@ -750,7 +823,6 @@ void sim__overflow(sim_signal *s, int64_t raw)
     if (!s->ovf_pending) { s->ovf_pending = 1; c->ovfq[c->novfq++] = s; }
 }
 
-/* End of a time step: count the overflows the settled values carry. */
 static void settle_overflows(sim_ctx *c)
 {
     for (uint32_t i = 0; i < c->novfq; i++) {
@@ -759,6 +831,46 @@ static void settle_overflows(sim_ctx *c)
         s->overflows += s->cur == s->ovf_raw && (!s->driver || sim__proc_of(s->driver)->runs == s->ovf_run);
     }
     c->novfq = 0;
+}
+
+/* A logic element whose inputs have at most LUT_BITS bits in all becomes
+ * a table, made once when the simulation starts: an index and a load
+ * instead of a call. Its function is defined for every raw value of its
+ * inputs' formats (sim_prim.h), and what it gives for a value in range is
+ * what the call would: the same function, the same canonical form of the
+ * result. A value outside its input's format (a raw forced from outside)
+ * still goes to the call. */
+#define LUT_BITS 8
+static void tabulate(sim_ctx *c, sim__proc *p)
+{
+    uint32_t n = p->op_n;
+    if (n < 1 || n > SIM__LOGIC_MAX) return;
+    sim__lut_in *tin = sim_alloc(c, n * sizeof *tin);
+    int bits = 0;
+    for (uint32_t j = 0; j < n; j++) {
+        const sim_signal *in = n == 1 ? p->op_a : p->op_in[j];
+        tin[j].lo = in->raw_min;
+        tin[j].span = (uint64_t)in->raw_max - (uint64_t)in->raw_min;
+        tin[j].sh = bits;
+        bits += in->fmt.width;
+        if (bits > LUT_BITS) return;
+    }
+    int64_t *tab = sim_alloc(c, ((size_t)1 << bits) * sizeof *tab);
+    for (uint64_t ix = 0; ix < ((uint64_t)1 << bits); ix++) {
+        int64_t v[SIM__LOGIC_MAX];
+        for (uint32_t j = 0; j < n; j++) v[j] = tin[j].lo + (int64_t)((ix >> tin[j].sh) & tin[j].span);
+        uint64_t y = (uint64_t)p->op_logic(v, p->op_user);
+        tab[ix] = p->op == SIM__OP_LOGIC_S ? (int64_t)(y << p->op_k) >> p->op_k : (int64_t)(y & (uint64_t)p->op_radd);
+    }
+    p->op_tab = tab;
+    p->op_tin = tin;
+    if (n == 1) {
+        p->op_lo = tin[0].lo;
+        p->op_hi = (int64_t)tin[0].span;
+        p->op = SIM__OP_LUT1;
+    } else {
+        p->op = SIM__OP_LUTN;
+    }
 }
 
 sim_status sim_run(sim_ctx *c, sim_time until)
@@ -770,7 +882,8 @@ sim_status sim_run(sim_ctx *c, sim_time until)
         c->started = 1;
         for (uint32_t i = 0; i < c->nproc; i++) {
             sim__proc *p = c->procs[i];
-            if (!p->queued && !p->pub.no_init) { p->queued = 1; c->run[c->nrun++] = p; }
+            if (p->op == SIM__OP_LOGIC_S || p->op == SIM__OP_LOGIC_U) tabulate(c, p);
+            if (p->listed != c->gen && !p->pub.no_init) { p->listed = c->gen; c->run[c->nrun++] = p; }
         }
     }
     c->stop = 0;
@@ -780,6 +893,12 @@ sim_status sim_run(sim_ctx *c, sim_time until)
     c->stats.time_steps += !(c->stepped && c->now == c->step_time);
     c->stepped = 1;
     for (;;) {
+        if (one_clock_due(c)) {
+            int k = clock_steps(c, until);
+            if (k == SIM_CLK_NEXT) continue;
+            if (k == SIM_CLK_END) break;
+            goto loop;
+        }
         uint32_t deltas = 0;
         if (c->nheap && c->heap[0].at <= c->now && clock_step(c)) {
             deltas = 1;

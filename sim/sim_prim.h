@@ -68,8 +68,11 @@ sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
  * (more is an elaboration error: sim_run returns SIM_ERR_ELAB), for small
  * controllers (decoders of a step counter, comparators). The
  * function must be defined for every raw value of its inputs' formats,
- * reachable or not: the Verilog export tabulates it over all of them.
- * area_ge is the caller's estimate of the logic's gates. */
+ * reachable or not, and depend on nothing else: the Verilog export and the
+ * batch mode tabulate it over all of them, and so does the kernel when the
+ * first sim_run starts, for an element of at most 8 input bits in all
+ * (it then calls the function only for a raw forced outside its input's
+ * format). area_ge is the caller's estimate of the logic's gates. */
 typedef int64_t (*sim_logic_fn)(const int64_t *in, void *user);
 sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                       int n, sim_signal *const *in, sim_logic_fn fn, void *user,

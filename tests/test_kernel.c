@@ -345,6 +345,76 @@ static void t_overflow_glitch_same_raw(void)
     sim_free(c);
 }
 
+/* A logic function with a result wider than the elements' outputs, that
+ * counts its calls (user points at the counter). */
+static int64_t lut_fn(const int64_t *in, void *u)
+{
+    ++*(int *)u;
+    return in[0] * 37 - in[1] * 11 + (in[0] ^ in[1]) * 5;
+}
+static int64_t lut_fn1(const int64_t *in, void *u)
+{
+    int64_t two[2] = { in[0], 3 };
+    return lut_fn(two, u);
+}
+/* The element's output: the low W bits, sign-extended or not (written out
+ * here, not the kernel's). */
+static int64_t low_bits(int64_t v, sim_fmt f)
+{
+    uint64_t m = f.width >= 64 ? UINT64_MAX : (((uint64_t)1 << f.width) - 1), b = (uint64_t)v & m;
+    if (f.is_signed && (b >> (f.width - 1)) & 1) b |= ~m;
+    return (int64_t)b;
+}
+
+static void t_logic_table(void)
+{
+    /* Logic elements with 3 and 3 + 3 input bits are tables made when the
+     * simulation starts: their functions are called once per input value
+     * then, never while simulating, and give what a call gives; one with
+     * 9 input bits is called at each evaluation. A raw forced outside its
+     * input's format is outside the table: that evaluation calls. */
+    sim_ctx *c = sim_new();
+    sim_signal *x = sim_signal_new(c, NULL, "x", F("u3.0"), SIM_KIND_INPUT);
+    sim_signal *z = sim_signal_new(c, NULL, "z", F("s2.1"), SIM_KIND_INPUT);
+    sim_signal *w = sim_signal_new(c, NULL, "w", F("u6.0"), SIM_KIND_INPUT);
+    int n1 = 0, n2 = 0, nb = 0;
+    sim_signal *xz[2] = { x, z }, *xw[2] = { x, w };
+    sim_signal *y1 = sim_logic(c, NULL, "y1", F("s4.0"), 1, &x, lut_fn1, &n1, 1.0);
+    sim_signal *y2 = sim_logic(c, NULL, "y2", F("u5.0"), 2, xz, lut_fn, &n2, 1.0);
+    sim_signal *yb = sim_logic(c, NULL, "yb", F("s6.0"), 2, xw, lut_fn, &nb, 1.0);
+    TST_EQ_INT(sim_run(c, 0), SIM_OK);
+    TST_EQ_INT(n1, 8);
+    TST_EQ_INT(n2, 8 * 8);
+    TST_EQ_INT(nb, 1);      /* its initialization run */
+    sim_time t = 1;
+    int bad = 0;
+    for (int64_t xv = 0; xv <= 7; xv++)
+        for (int64_t zv = -4; zv <= 3; zv++) {
+            int64_t wv = (xv * 8 + zv + 4) * 3 % 64;
+            sim_force(x, xv); sim_force(z, zv); sim_force(w, wv);
+            sim_run(c, t++);
+            int dummy = 0;
+            int64_t e1 = low_bits(lut_fn1((int64_t[]){ xv }, &dummy), y1->fmt);
+            int64_t e2 = low_bits(lut_fn((int64_t[]){ xv, zv }, &dummy), y2->fmt);
+            int64_t eb = low_bits(lut_fn((int64_t[]){ xv, wv }, &dummy), yb->fmt);
+            bad += y1->cur != e1 || y2->cur != e2 || yb->cur != eb;
+        }
+    TST_EQ_INT(bad, 0);
+    TST_EQ_INT(n1, 8);
+    TST_EQ_INT(n2, 8 * 8);
+    TST_EQ_INT(nb, (int)sim_proc_runs(yb->driver));
+    TST_CHECK(nb > 60, "the untabulated element ran: %d", nb);
+    /* x = 9 does not fit u3.0: y1 and y2 call their functions. */
+    sim_force(x, 9); sim_force(z, -1);
+    sim_run(c, t++);
+    int dummy = 0;
+    TST_EQ_INT(y1->cur, low_bits(lut_fn1((int64_t[]){ 9 }, &dummy), y1->fmt));
+    TST_EQ_INT(y2->cur, low_bits(lut_fn((int64_t[]){ 9, -1 }, &dummy), y2->fmt));
+    TST_EQ_INT(n1, 8 + 1);
+    TST_EQ_INT(n2, 8 * 8 + 1);
+    sim_free(c);
+}
+
 int main(void)
 {
     TST_RUN(t_shift_register);
@@ -358,5 +428,6 @@ int main(void)
     TST_RUN(t_find_and_paths);
     TST_RUN(t_overflow_settled_only);
     TST_RUN(t_overflow_glitch_same_raw);
+    TST_RUN(t_logic_table);
     TST_EXIT();
 }
