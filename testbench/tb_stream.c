@@ -38,7 +38,19 @@ void tb_prep_init(tb_prep_ctx *p, const unit_desc *u, const unit_cfg *cfg, const
         p->in_rnd[i] = sim_fmt_round(f, cfg->rnd);    /* the input's own mode, if it has one */
         p->in_up[i] = ldexp(1.0, f.fbits);
         p->in_down[i] = ldexp(1.0, -f.fbits);
+        sim_fx_conv_init(&p->in_cv[i], f, cfg->rnd, cfg->ovf);
     }
+}
+
+/* floor(z), without the call when z is below 2^52 in magnitude (the
+ * conversions to and from int64_t are then exact); a whole z, -0 among
+ * them, is its own floor. */
+static inline double floor_fast(double z)
+{
+    if (!(__builtin_fabs(z) < 0x1p52)) return floor(z);
+    double t = (double)(int64_t)z;
+    if (t == z) return z;
+    return t > z ? t - 1.0 : t;
 }
 
 void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_t *in_ovf)
@@ -55,7 +67,7 @@ void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_
         int ov = 0;
         sim_fmt f = p->in_fmt[i];
         x[i] = row[i];
-        it->in_raw[i] = sim_fx_from_real(x[i], f, cfg->rnd, cfg->ovf, &ov);
+        it->in_raw[i] = sim_fx_conv_real(&p->in_cv[i], x[i], &ov);
         in_ovf[i] += (uint64_t)ov;
         /* sim_fx_to_real: a product by a power of two is exact or
          * correctly rounded, as ldexp is */
@@ -66,7 +78,7 @@ void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_
          * scaling is already a whole number). */
         double y = x[i] * p->in_up[i];
         sim_round rr = p->in_rnd[i];
-        y = rr == SIM_RND_TRUNC ? floor(y) : rr == SIM_RND_HALF_UP ? floor(y + 0.5) : nearbyint(y);
+        y = rr == SIM_RND_TRUNC ? floor_fast(y) : rr == SIM_RND_HALF_UP ? floor_fast(y + 0.5) : nearbyint(y);
         qr[i] = y * p->in_down[i];
     }
     u->ideal(cfg, q, it->ideal);

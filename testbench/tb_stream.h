@@ -36,6 +36,7 @@ typedef struct tb_prep_ctx {
     sim_fmt   in_fmt[UNIT_MAX_IO];
     sim_round in_rnd[UNIT_MAX_IO];
     double    in_up[UNIT_MAX_IO], in_down[UNIT_MAX_IO];
+    sim_fx_conv in_cv[UNIT_MAX_IO];   /* its quantization (sim_fx_from_real's) */
 } tb_prep_ctx;
 
 /* One item's figures, nv values each (beat-major) unless noted. */
