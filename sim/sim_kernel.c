@@ -845,15 +845,15 @@ static void tabulate(sim_ctx *c, sim__proc *p)
 {
     uint32_t n = p->op_n;
     if (n < 1 || n > SIM__LOGIC_MAX) return;
-    sim__lut_in *tin = sim_alloc(c, n * sizeof *tin);
     int bits = 0;
-    for (uint32_t j = 0; j < n; j++) {
-        const sim_signal *in = n == 1 ? p->op_a : p->op_in[j];
+    for (uint32_t j = 0; j < n; j++) bits += p->op_in[j]->fmt.width;
+    if (bits > LUT_BITS) return;
+    sim__lut_in *tin = sim_alloc(c, n * sizeof *tin);
+    for (uint32_t j = 0, sh = 0; j < n; sh += p->op_in[j]->fmt.width, j++) {
+        const sim_signal *in = p->op_in[j];
         tin[j].lo = in->raw_min;
         tin[j].span = (uint64_t)in->raw_max - (uint64_t)in->raw_min;
-        tin[j].sh = bits;
-        bits += in->fmt.width;
-        if (bits > LUT_BITS) return;
+        tin[j].sh = (int)sh;
     }
     int64_t *tab = sim_alloc(c, ((size_t)1 << bits) * sizeof *tab);
     for (uint64_t ix = 0; ix < ((uint64_t)1 << bits); ix++) {
