@@ -49,9 +49,25 @@ typedef struct tb_sig {
     sim_fmt  fmt;
     int      kind;          /* sim_kind */
     uint64_t overflows;     /* inputs: quantization of the vectors; constants: at build */
+    uint64_t toggles;       /* settled bit changes over the run (docs/timing.md) */
     int64_t  min, max;      /* observed raw values (valid if seen) */
     int      seen;
 } tb_sig;
+
+/* Speed and energy in hardware terms (docs/timing.md): the critical path
+ * of the built design between registers (or ports), the clock it allows,
+ * and the switching activity of the run. */
+#define TB_PATH_MAX 64
+typedef struct tb_ppa {
+    int      levels;            /* gate levels on the critical path */
+    double   crit_ps;           /* its delay: clock-to-q + logic + setup, ps */
+    int      npath;             /* signals on it, from its start to its end */
+    char     path[TB_PATH_MAX][48];
+    double   fmax_mhz;          /* 1e6 / crit_ps */
+    double   items_per_s;       /* fmax / cycles per item */
+    uint64_t toggles;           /* settled bit changes of every unit signal */
+    double   energy_pj_per_item;
+} tb_ppa;
 
 /* What the user accepts (0 / negative: not set). */
 typedef struct tb_accept {
@@ -74,6 +90,7 @@ typedef struct tb_result {
     double     max_abs_err, mean_err, rms_err, nmse, max_err_lsb;  /* over all outputs */
     uint64_t   overflows;        /* inputs' quantization + every unit signal */
     double     area_ge;
+    tb_ppa     ppa;
     int        within_bound;     /* 1 if every beat met its bound */
     size_t     first_violation;  /* item index, if !within_bound */
     tb_metrics out[UNIT_MAX_IO];

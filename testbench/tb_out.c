@@ -37,6 +37,29 @@ static void jmetrics(FILE *f, const tb_metrics *m, const char *ind)
     fprintf(f, "\n%s}", ind);
 }
 
+/* Speed and energy (tb_ppa): the critical path, f_max, items per second,
+ * the settled bit toggles per signal and the energy per item. */
+static void jppa(FILE *f, const tb_result *r)
+{
+    const tb_ppa *p = &r->ppa;
+    fprintf(f, ",\n  \"critical_path\": {\"levels\": %d, \"ps\": ", p->levels);
+    base_json_num(f, p->crit_ps, 17);
+    fputs(", \"signals\": [", f);
+    for (int i = 0; i < p->npath; i++) {
+        fputs(i ? ", " : "", f);
+        base_json_str(f, p->path[i]);
+    }
+    fputs("]},\n  \"fmax_mhz\": ", f); base_json_num(f, p->fmax_mhz, 17);
+    fputs(",\n  \"items_per_s\": ", f); base_json_num(f, p->items_per_s, 17);
+    fprintf(f, ",\n  \"toggles\": {\"total\": %llu, \"per_signal\": {", (unsigned long long)p->toggles);
+    for (int i = 0; i < r->nsigs; i++) {
+        fputs(i ? ", " : "", f);
+        base_json_str(f, r->sigs[i].name);
+        fprintf(f, ": %llu", (unsigned long long)r->sigs[i].toggles);
+    }
+    fputs("}},\n  \"energy_pj_per_item\": ", f); base_json_num(f, p->energy_pj_per_item, 17);
+}
+
 int tb_write_json(FILE *f, const tb_result *r)
 {
     const unit_desc *u = r->unit;
@@ -68,6 +91,7 @@ int tb_write_json(FILE *f, const tb_result *r)
     fputs(",\n  \"max_err_lsb\": ", f); base_json_num(f, r->max_err_lsb, 17);
     fprintf(f, ",\n  \"overflows\": %llu,\n  \"area_ge\": ", (unsigned long long)r->overflows);
     base_json_num(f, r->area_ge, 17);
+    jppa(f, r);
     fprintf(f, ",\n  \"within_bound\": %s,\n  \"bound_check\": \"%s\",\n  \"golden_check\": \"%s\",\n",
             r->within_bound ? "true" : "false", tb_check_name(r->bound_check), r->golden_ok ? "ok" : "exceeded");
     fprintf(f, "  \"input_overflows\": %llu,\n  \"target\": \"%s\",\n  \"verdict\": \"%s\",\n  \"why\": \"%s\",\n",
