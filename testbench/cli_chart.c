@@ -40,8 +40,10 @@ const cli_optspec cli_chart_spec = {
     "  error_vs_width.svg   max |e| (line) and RMS e (dashed) against width\n"
     "  area_vs_error.svg    area against max error, the Pareto front ringed\n"
     "  cycles_vs_error.svg  clocks per pixel against max error (when they vary)\n"
+    "  throughput_vs_error.svg  pixels per second at f_max against max error\n"
+    "  energy_vs_error.svg  energy per pixel against max error\n"
     "The Pareto front: configurations that no other matches in max error, area\n"
-    "and clocks per pixel while beating it in one. Up to 7 settings groups get a\n"
+    "and pixels per second while beating it in one. Up to 7 settings groups get a\n"
     "colour each; more are coloured by the setting with the most values (a scale\n"
     "when it has more than 7) and shaped by a second one.\n\n"
     "options:\n",

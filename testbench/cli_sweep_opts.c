@@ -233,6 +233,13 @@ static const cli_opt sweep_tab[] = {
     SW_ACCEPT("--max-lsb", max_lsb,
         "  --max-lsb K          ... when max |error| <= K LSB of the output format;\n"
         "                       the CSV's meets_target says which rows do\n"),
+    { "--min-throughput", NULL, CLI_OPT_REAL, offsetof(sweep_args, sp.ppa.min_items_per_s), 0, HUGE_VAL,
+      "a number > 0, e.g. 2e8", "%s : expected items per second > 0, e.g. 2e8", NULL, CLI_OPT_GT_LO,
+        "  --min-throughput R   the target search keeps only designs of at least R items\n"
+        "                       per second at their f_max (docs/timing.md)\n" },
+    { "--max-energy", NULL, CLI_OPT_REAL, offsetof(sweep_args, sp.ppa.max_energy_pj), 0, HUGE_VAL,
+      "a number > 0, e.g. 5", "%s : expected picojoules per item > 0, e.g. 5", NULL, CLI_OPT_GT_LO,
+        "  --max-energy PJ      ... and at most PJ picojoules per item (held-out too)\n" },
     { "-j", NULL, CLI_OPT_INT, offsetof(sweep_args, threads), 1, 256, "1..256 threads", "%s : expected 1..256 threads",
         NULL, 0, "  -j N                 run on N threads (default 1); the output is the same\n" },
     SW_CALL("--shard", o_shard, "%s : expected K/N, e.g. 1/4",
@@ -252,8 +259,10 @@ const cli_optspec cli_sweep_spec = {
     "  error_vs_width.svg   max and RMS error against width (log scale)\n"
     "  area_vs_error.svg    area against max error, the Pareto front ringed\n"
     "  cycles_vs_error.svg  clocks per pixel against max error (when they vary)\n"
+    "  throughput_vs_error.svg  pixels per second at f_max against max error\n"
+    "  energy_vs_error.svg  energy per pixel against max error\n"
     "                       (the front: no other configuration is as good in\n"
-    "                       max error, area and clocks per pixel and better in one;\n"
+    "                       max error, area and pixels per second and better in one;\n"
     "                       `shadesim chart` draws the charts from any sweep CSV)\n"
     "  summary.txt          what is printed on stdout\n"
     "  target.json          with --target-error/--target-nmse: the chosen formats\n"
@@ -278,6 +287,8 @@ static int sweep_check(const sweep_args *a)
     if (a->nvec > 0 && a->o.vectors) return cli_usage_error("sweep: -n makes vectors; --vectors reads them: give one");
     if (a->shard_n && a->t.on) return cli_usage_error("sweep: the target search needs the whole sweep, not a shard");
     if (a->t.margin > 0 && !a->t.on) return cli_usage_error("sweep: --margin goes with --target-error or --target-nmse");
+    if ((a->sp.ppa.min_items_per_s > 0 || a->sp.ppa.max_energy_pj > 0) && !a->t.on)
+        return cli_usage_error("sweep: --min-throughput and --max-energy go with --target-error or --target-nmse");
     return 0;
 }
 

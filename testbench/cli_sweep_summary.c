@@ -14,19 +14,23 @@ static double pnan(double v) { return isnan(v) ? NAN : v; }
 
 static int row_ok(const tb_sweep *s, size_t i) { return s->row[i].status == TB_OK; }
 
-/* Pareto front of the successful rows over max error, area and clocks
- * per pixel (per output beat: an interpolation unit's item is L pixels),
- * as the charts draw it (tb_sweep_chart.h). */
+/* Pareto front of the successful rows over max error, area and seconds
+ * per pixel at f_max (per output beat: an interpolation unit's item is L
+ * pixels), as the charts draw it (tb_sweep_chart.h). */
 static unsigned char *front_of(const tb_sweep *s, size_t *nfront)
 {
     double *x = malloc(s->n * sizeof *x), *y = malloc(s->n * sizeof *y), *z = malloc(s->n * sizeof *z);
     unsigned char *on = calloc(s->n ? s->n : 1, 1);
     *nfront = 0;
     if (!x || !y || !z || !on) { free(x); free(y); free(z); free(on); return NULL; }
+    /* Without timing in some row (as an older CSV without pixels_per_s
+     * gives the charts), clocks per pixel stand for the speed. */
+    int pps = 1;
+    for (size_t i = 0; i < s->n; i++) pps &= !row_ok(s, i) || tb_pixels_per_s(&s->row[i].r) > 0;
     for (size_t i = 0; i < s->n; i++) {
         x[i] = row_ok(s, i) ? s->row[i].r.max_abs_err : NAN;
         y[i] = row_ok(s, i) ? s->row[i].r.area_ge : NAN;
-        z[i] = row_ok(s, i) ? s->row[i].r.cycles_per_beat : NAN;
+        z[i] = !row_ok(s, i) ? NAN : pps ? 1.0 / tb_pixels_per_s(&s->row[i].r) : s->row[i].r.cycles_per_beat;
     }
     *nfront = chart_pareto3(x, y, z, s->n, on);
     free(x);
@@ -61,7 +65,7 @@ static int write_chart(chart *c, oset *os, const char *name, char *files, size_t
 
 /* The charts, drawn from the CSV text as `shadesim chart` draws them
  * (tb_sweep_chart.h), so both give the same bytes; the sweep adds the
- * target search's designs. *drawn: the clocks chart was drawn. */
+ * target search's designs. drawn[k]: chart k was drawn. */
 static int write_charts(const tb_sweep *s, const target_info *t, oset *os, char *files, size_t flen, int *drawn)
 {
     char *text = NULL, err[600];
@@ -88,10 +92,9 @@ static int write_charts(const tb_sweep *s, const target_info *t, oset *os, char 
         tg.area = ta;
     }
     int rc = 0;
-    *drawn = 0;
     for (int k = 0; k < TB_SC_NCHARTS && !rc; k++) {
-        if (!tb_sc_chart_drawn(sc, k)) continue;
-        if (k == TB_SC_CLOCKS_ERROR) *drawn = 1;
+        drawn[k] = tb_sc_chart_drawn(sc, k);
+        if (!drawn[k]) continue;
         rc = write_chart(tb_sc_chart(sc, k, t->on ? &tg : NULL), os, tb_sc_chart_file[k], files, flen);
     }
     free(te);
@@ -104,8 +107,8 @@ static int write_charts(const tb_sweep *s, const target_info *t, oset *os, char 
 
 static void print_table(FILE *f, const tb_sweep *s, const unsigned char *on)
 {
-    fprintf(f, "%5s  %-22s %11s %11s %11s %9s %10s %8s %5s %-6s %s\n", "width", "settings", "max|e|", "rms e",
-            "nmse", "max LSB", "area GE", "clk/item", "ovf", "bound", "front");
+    fprintf(f, "%5s  %-22s %11s %11s %11s %9s %10s %8s %7s %9s %8s %5s %-6s %s\n", "width", "settings", "max|e|",
+            "rms e", "nmse", "max LSB", "area GE", "clk/item", "MHz", "Mpx/s", "pJ/px", "ovf", "bound", "front");
     for (size_t i = 0; i < s->n; i++) {
         char gl[200];
         const tb_result *r = &s->row[i].r;
@@ -116,8 +119,10 @@ static void print_table(FILE *f, const tb_sweep *s, const unsigned char *on)
                     s->row[i].status == TB_BADINPUT ? "not buildable" : "failed", s->row[i].err);
             continue;
         }
-        fprintf(f, "%5d  %-22s %11.4g %11.4g %11.4g %9.3g %10.1f %8.3g %5llu %-6s %s\n", s->cfg[i].cfg.width, gl,
-                pnan(r->max_abs_err), pnan(r->rms_err), pnan(r->nmse), pnan(r->max_err_lsb), r->area_ge, r->cycles_per_item,
+        fprintf(f, "%5d  %-22s %11.4g %11.4g %11.4g %9.3g %10.1f %8.3g %7.0f %9.4g %8.3g %5llu %-6s %s\n",
+                s->cfg[i].cfg.width, gl, pnan(r->max_abs_err), pnan(r->rms_err), pnan(r->nmse), pnan(r->max_err_lsb),
+                r->area_ge, r->cycles_per_item, pnan(r->ppa.fmax_mhz), pnan(tb_pixels_per_s(r) / 1e6),
+                pnan(tb_energy_pj_per_pixel(r)),
                 (unsigned long long)r->overflows, r->within_bound ? "ok" : "EXCEED", on && on[i] ? "*" : "");
     }
 }
@@ -158,11 +163,11 @@ static void print_front(FILE *f, const tb_sweep *s, const unsigned char *on, siz
 {
     size_t nok = 0;
     for (size_t i = 0; i < s->n; i++) nok += row_ok(s, i);
-    fprintf(f, "Pareto front (max |e|, area, clocks per pixel), %zu of %zu configurations:", nfront, nok);
+    fprintf(f, "Pareto front (max |e|, area, pixels per second), %zu of %zu configurations:", nfront, nok);
     print_ranges(f, s, on, 1);
     fputc('\n', f);
     if (nfront < nok) {
-        fputs("  dominated (another is no worse in error, area and clocks per pixel, and better in one):", f);
+        fputs("  dominated (another is no worse in error, area and pixels per second, and better in one):", f);
         print_ranges(f, s, on, 0);
         fputc('\n', f);
     }
@@ -249,18 +254,19 @@ int sweep_outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     if (a->t.on && sweep_target_search(a, s, tty)) { sweep_oset_abort(&os); return CLI_USAGE; }
     size_t nfront = 0;
     unsigned char *on = front_of(s, &nfront);
-    int drawn = 0;
+    int drawn[TB_SC_NCHARTS] = { 0 };
     if (!on) { sweep_oset_abort(&os); return cli_usage_error("sweep: out of memory"); }
-    if (write_charts(s, &a->t, &os, files, sizeof files, &drawn)) {
+    if (write_charts(s, &a->t, &os, files, sizeof files, drawn)) {
         free(on);
         sweep_oset_abort(&os);
         return CLI_USAGE;
     }
     /* Files of an earlier sweep in DIR that this one does not write would
      * contradict its sweep.csv: they go, when this set moves in. */
-    const char *gone[3];
+    const char *gone[2 + TB_SC_NCHARTS];
     int ngone = 0;
-    if (!drawn) gone[ngone++] = "cycles_vs_error.svg";
+    for (int k = 0; k < TB_SC_NCHARTS; k++)
+        if (!drawn[k]) gone[ngone++] = tb_sc_chart_file[k];
     if (a->t.on) {
         if (sweep_write_target_json(s, &a->t, &os) || sweep_write_target_csv(s, &a->t, &os)) { free(on); sweep_oset_abort(&os); return CLI_USAGE; }
         strncat(files, ", target.json, target.csv", sizeof files - strlen(files) - 1);

@@ -27,8 +27,18 @@ static double metric_of(tb_target_kind k, const tb_result *r) { return k == TB_T
 static size_t uniform_at(const tb_sweep *s, size_t g, tb_target_kind k, double target)
 {
     for (size_t i = g; i < s->n; i += s->ngroups)
-        if (tb_target_holds(&s->row[i].r, s->row[i].status, k, target, UINT64_MAX)) return i;
+        if (tb_sweep_holds(s, &s->row[i].r, s->row[i].status, k, target, UINT64_MAX)) return i;
     return s->n;
+}
+
+/* The search's speed and energy limits in words into b, "" without any. */
+static const char *limits_text(const tb_sweep *s, char *b, size_t n)
+{
+    const tb_ppa_limits *l = &s->spec.ppa;
+    b[0] = 0;
+    if (l->min_items_per_s > 0) snprintf(b, n, ", at least %.6g items per second at f_max", l->min_items_per_s);
+    if (l->max_energy_pj > 0) snprintf(b + strlen(b), n - strlen(b), ", at most %.6g pJ per item", l->max_energy_pj);
+    return b;
 }
 
 void sweep_print_target(FILE *f, const tb_sweep *s, const target_info *t)
@@ -44,10 +54,14 @@ void sweep_print_target(FILE *f, const tb_sweep *s, const target_info *t)
         }
         const tb_result *ru = &s->row[x->uniform].r;
         double saved = ru->area_ge - x->r.area_ge;
+        char lb[160];
         fprintf(f, "uniform width %d: %.1f GE, %s %.4g; per-signal formats: %.1f GE, %s %.4g, saving %.1f GE (%.1f%%), %zu runs\n",
                 s->cfg[x->uniform].cfg.width, ru->area_ge, metric_name(t->kind), metric_of(t->kind, ru), x->r.area_ge,
                 metric_name(t->kind), metric_of(t->kind, &x->r), saved, ru->area_ge > 0 ? 100 * saved / ru->area_ge : 0.0,
                 x->runs);
+        fprintf(f, "  speed and energy: uniform %.0f MHz, %.4g M items/s, %.3g pJ/item; chosen %.0f MHz, %.4g M items/s, "
+                "%.3g pJ/item%s\n", ru->ppa.fmax_mhz, ru->ppa.items_per_s / 1e6, ru->ppa.energy_pj_per_item,
+                x->r.ppa.fmax_mhz, x->r.ppa.items_per_s / 1e6, x->r.ppa.energy_pj_per_item, limits_text(s, lb, sizeof lb));
         fputs("  formats:", f);
         fmt_list(f, s->spec.u, &s->cfg[x->uniform].cfg, &x->fmts, " ", "");
         fputc('\n', f);
@@ -78,8 +92,9 @@ int sweep_write_target_csv(const tb_sweep *s, const target_info *t, oset *os)
     fputs("group,unit,schedule", f);
     for (int i = 0; i < u->nparams; i++) fprintf(f, ",%s", u->params[i].name);
     fputs(",round,overflow,metric,target,margin_bits,goal,met,uniform_width,uniform_area_ge,uniform_metric,"
-          "chosen_area_ge,chosen_metric,area_saved_ge,area_saved_pct,runs,heldout_seed,heldout_vectors,"
-          "heldout_metric,heldout_uniform_metric,heldout_overflows,heldout_passed,formats\n", f);
+          "chosen_area_ge,chosen_metric,area_saved_ge,area_saved_pct,runs,uniform_fmax_mhz,uniform_items_per_s,"
+          "uniform_energy_pj_per_item,chosen_fmax_mhz,chosen_items_per_s,chosen_energy_pj_per_item,heldout_seed,"
+          "heldout_vectors,heldout_metric,heldout_uniform_metric,heldout_overflows,heldout_passed,formats\n", f);
     for (size_t g = 0; g < s->ngroups; g++) {
         const tb_target_res *x = &t->res[g];
         const unit_cfg *c = &s->cfg[g].cfg;
@@ -92,14 +107,17 @@ int sweep_write_target_csv(const tb_sweep *s, const target_info *t, oset *os)
         fprintf(f, ",%s,%s,%s,%.17g,%g,%.17g,%s", sim_round_name(c->rnd), sim_ovf_name(c->ovf),
                 t->kind == TB_TARGET_NMSE ? "nmse" : "max_abs_err", t->value, t->margin, t->goal,
                 x->met ? "true" : "false");
-        if (!x->met) { fputs(",,,,,,,,,,,,,,,,\n", f); continue; }
+        if (!x->met) { fputs(",,,,,,,,,,,,,,,,,,,,,,\n", f); continue; }
         const tb_result *ru = &s->row[x->uniform].r;
         double saved = ru->area_ge - x->r.area_ge;
-        fprintf(f, ",%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu,%llu,%zu,%.17g,%.17g,%llu,%s,",
-                s->cfg[x->uniform].cfg.width, ru->area_ge, metric_of(t->kind, ru), x->r.area_ge,
-                metric_of(t->kind, &x->r), saved, ru->area_ge > 0 ? 100 * saved / ru->area_ge : 0.0, x->runs,
-                t->ho_seed, t->ho_rows, metric_of(t->kind, &x->heldout_r), metric_of(t->kind, &x->heldout_u),
-                (unsigned long long)x->heldout_r.overflows, x->heldout_ok ? "true" : "false");
+        fprintf(f, ",%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%zu", s->cfg[x->uniform].cfg.width, ru->area_ge,
+                metric_of(t->kind, ru), x->r.area_ge, metric_of(t->kind, &x->r), saved,
+                ru->area_ge > 0 ? 100 * saved / ru->area_ge : 0.0, x->runs);
+        fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", ru->ppa.fmax_mhz, ru->ppa.items_per_s,
+                ru->ppa.energy_pj_per_item, x->r.ppa.fmax_mhz, x->r.ppa.items_per_s, x->r.ppa.energy_pj_per_item);
+        fprintf(f, ",%llu,%zu,%.17g,%.17g,%llu,%s,", t->ho_seed, t->ho_rows, metric_of(t->kind, &x->heldout_r),
+                metric_of(t->kind, &x->heldout_u), (unsigned long long)x->heldout_r.overflows,
+                x->heldout_ok ? "true" : "false");
         fmt_list(f, u, c, &x->fmts, "", " ");
         fputc('\n', f);
     }
@@ -126,6 +144,9 @@ static void jdesign(FILE *f, const unit_desc *u, const unit_cfg *cfg, const unit
     fputs(", \"rms_err\": ", f); base_json_num(f, r->rms_err, 17);
     fputs(", \"nmse\": ", f); base_json_num(f, r->nmse, 17);
     fputs(", \"area_ge\": ", f); base_json_num(f, r->area_ge, 17);
+    fputs(", \"fmax_mhz\": ", f); base_json_num(f, r->ppa.fmax_mhz, 17);
+    fputs(", \"items_per_s\": ", f); base_json_num(f, r->ppa.items_per_s, 17);
+    fputs(", \"energy_pj_per_item\": ", f); base_json_num(f, r->ppa.energy_pj_per_item, 17);
     fprintf(f, ", \"overflows\": %llu, \"within_bound\": %s}", (unsigned long long)r->overflows,
             r->within_bound ? "true" : "false");
 }
@@ -135,6 +156,8 @@ int sweep_write_target_json(const tb_sweep *s, const target_info *t, oset *os)
     const unit_desc *u = s->spec.u;
     FILE *f = sweep_oset_open(os, "target.json");
     if (!f) return CLI_USAGE;
+    char lb[160];
+    limits_text(s, lb, sizeof lb);
     fprintf(f, "{\n  \"unit\": \"%s\",\n  \"target\": {\"metric\": \"%s\", \"value\": ", u->name,
             t->kind == TB_TARGET_NMSE ? "nmse" : "max_abs_err");
     base_json_num(f, t->value, 17);
@@ -143,9 +166,9 @@ int sweep_write_target_json(const tb_sweep *s, const target_info *t, oset *os)
     fputs(", \"goal\": ", f);
     base_json_num(f, t->goal, 17);
     fprintf(f, "},\n  \"rule\": \"metric <= goal (the target less the margin), every output within its bound, no more "
-               "overflows than the uniform design\",\n  \"held_out\": {\"seed\": %llu, \"vectors\": %zu, \"rule\": "
+               "overflows than the uniform design%s\",\n  \"held_out\": {\"seed\": %llu, \"vectors\": %zu, \"rule\": "
                "\"metric <= target, every output within its bound, no more overflows than the uniform design on the "
-               "same stimuli\"},\n  \"groups\": [", t->ho_seed, t->ho_rows);
+               "same stimuli%s\"},\n  \"groups\": [", lb, t->ho_seed, t->ho_rows, lb);
     for (size_t g = 0; g < s->ngroups; g++) {
         const tb_target_res *x = &t->res[g];
         const unit_cfg *c = &s->cfg[g].cfg;

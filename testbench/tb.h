@@ -110,6 +110,18 @@ typedef struct tb_result {
     int64_t   *raw;              /* [item][beat][port] */
 } tb_result;
 
+/* Figures derived from tb_ppa (tb_ppa.c): output beats (pixels) per
+ * second at f_max, and energy per beat; NaN where unknown. */
+double tb_pixels_per_s(const tb_result *r);
+double tb_energy_pj_per_pixel(const tb_result *r);
+/* Limits on speed and energy (0: none): --min-throughput, --max-energy. */
+typedef struct tb_ppa_limits {
+    double min_items_per_s;
+    double max_energy_pj;     /* per item */
+} tb_ppa_limits;
+/* 1 if r meets l (NULL: no limits); else 0 and why ("... items/s < ..."). */
+int tb_ppa_meets(const tb_result *r, const tb_ppa_limits *l, char *why, size_t len);
+
 typedef struct tb_opts {
     const char *vcd_path;        /* NULL: no dump */
     int         gtkw;            /* also write VCD_PATH with .gtkw */

@@ -278,14 +278,15 @@ static void cnum(FILE *f, double v)
 static const char *const out_fields[] = { "max_abs_err", "mean_err", "rms_err", "nmse", "max_err_lsb",
                                           "bound", "max_err_vs_ideal" };
 #define N_OUT_FIELDS 7
-#define N_FIGURES 15   /* vectors .. meets_target */
+#define N_FIGURES 22   /* vectors .. meets_target */
 
 static void csv_header(FILE *f, const unit_desc *u)
 {
     fputs("config,n_configs,sweep_id,unit,schedule,width", f);
     for (int p = 0; p < u->nparams; p++) fprintf(f, ",%s", u->params[p].name);
     fputs(",round,overflow,status,vectors,beats_per_item,cycles,cycles_per_item,cycles_per_beat,latency,"
-          "max_abs_err,mean_err,rms_err,nmse,max_err_lsb,overflows,area_ge,within_bound,meets_target", f);
+          "max_abs_err,mean_err,rms_err,nmse,max_err_lsb,overflows,area_ge,crit_levels,crit_ps,fmax_mhz,items_per_s,"
+          "pixels_per_s,energy_pj_per_item,energy_pj_per_pixel,within_bound,meets_target", f);
     for (int i = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_OUT)
             for (int k = 0; k < N_OUT_FIELDS; k++) fprintf(f, ",%s_%s", u->sigs[i].name, out_fields[k]);
@@ -312,6 +313,10 @@ static void csv_row(FILE *f, const tb_sweep *s, size_t i)
         cnum(f, r->nmse); cnum(f, r->max_err_lsb);
         fprintf(f, ",%llu", (unsigned long long)r->overflows);
         cnum(f, r->area_ge);
+        /* Speed and energy (docs/timing.md): a pixel is an output beat. */
+        fprintf(f, ",%d", r->ppa.levels);
+        cnum(f, r->ppa.crit_ps); cnum(f, r->ppa.fmax_mhz); cnum(f, r->ppa.items_per_s);
+        cnum(f, tb_pixels_per_s(r)); cnum(f, r->ppa.energy_pj_per_item); cnum(f, tb_energy_pj_per_pixel(r));
         fputs(r->within_bound ? ",true" : ",false", f);
         /* Empty without --max-error/--max-nmse/--max-lsb: no target to meet. */
         fputs(!r->target_set ? "," : r->target_met ? ",true" : ",false", f);
@@ -537,6 +542,12 @@ int tb_target_holds(const tb_result *r, int status, tb_target_kind k, double tar
     return v <= target;
 }
 
+int tb_sweep_holds(const tb_sweep *s, const tb_result *r, int status, tb_target_kind k, double target,
+                   uint64_t max_ovf)
+{
+    return tb_target_holds(r, status, k, target, max_ovf) && tb_ppa_meets(r, &s->spec.ppa, NULL, 0);
+}
+
 typedef struct cand_job {
     const tb_sweep *s;
     const tb_sweep_cfg *c;
@@ -605,7 +616,7 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
     memset(out, 0, sizeof *out);
     out->group = group;
     for (size_t i = group; i < s->n; i += s->ngroups)
-        if (tb_target_holds(&s->row[i].r, s->row[i].status, k, target, UINT64_MAX)) {
+        if (tb_sweep_holds(s, &s->row[i].r, s->row[i].status, k, target, UINT64_MAX)) {
             out->met = 1;
             out->uniform = i;
             break;
@@ -671,7 +682,7 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
             base_par_for((size_t)nb, threads, cand_run, jobs);
             for (int b = 0; b < nb; b++) {
                 out->runs++;
-                if (tb_target_holds(&jobs[b].r, jobs[b].status, k, target, max_ovf)) {
+                if (tb_sweep_holds(s, &jobs[b].r, jobs[b].status, k, target, max_ovf)) {
                     out->fmts = jobs[b].f;
                     out->r = jobs[b].r;
                     next = pos[b] + 1;
@@ -720,6 +731,11 @@ int tb_sweep_target_heldout(const tb_sweep *s, const vec_set *ho, tb_target_kind
     else if (r->overflows > uo)
         snprintf(out->heldout_why, sizeof out->heldout_why, "%llu overflows, the uniform design %llu",
                  (unsigned long long)r->overflows, (unsigned long long)uo);
+    else {
+        char why[160];
+        if (!tb_ppa_meets(r, &s->spec.ppa, why, sizeof why))
+            snprintf(out->heldout_why, sizeof out->heldout_why, "%s", why);
+    }
     out->heldout_ok = !out->heldout_why[0];
     return 0;
 }

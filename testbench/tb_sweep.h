@@ -42,6 +42,7 @@ typedef struct tb_sweep_spec {
     const char *const *fmt;               /* --fmt overrides, applied to every configuration */
     int        nfmt;
     tb_accept  accept;                    /* --max-error/--max-nmse/--max-lsb: each row's meets_target */
+    tb_ppa_limits ppa;                    /* --min-throughput/--max-energy: the target search's limits */
 } tb_sweep_spec;
 
 typedef struct tb_sweep_cfg {
@@ -128,8 +129,12 @@ typedef struct tb_target_res {
 
 /* The acceptance rule of the search (docs/sweeps.md): the run succeeded,
  * every output is within its bound, the metric meets the target, and there
- * are no more overflows than max_ovf (those of the uniform design). */
+ * are no more overflows than max_ovf (those of the uniform design); the
+ * search also asks for the sweep's speed and energy limits (tb_sweep_holds). */
 int  tb_target_holds(const tb_result *r, int status, tb_target_kind k, double target, uint64_t max_ovf);
+/* tb_target_holds, and the sweep's speed and energy limits (spec.ppa) met. */
+int  tb_sweep_holds(const tb_sweep *s, const tb_result *r, int status, tb_target_kind k, double target,
+                    uint64_t max_ovf);
 /* Cheapest formats for one group: start from the smallest uniform width of
  * the (already run) sweep that holds, then greedy passes, each trying to
  * drop one fraction bit and one integer bit of every signal in turn

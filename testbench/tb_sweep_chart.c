@@ -26,6 +26,7 @@ struct tb_sc {
     sc_col     id[SC_MAXID];
     unsigned char (*gval)[SC_MAXID];   /* [group][column]: value index */
     char      (*glabel)[160];          /* [group] */
+    int        have_pps, have_energy;  /* every ok row has pixels/s, energy per pixel */
 };
 
 static void sc_err(char *err, size_t errlen, const char *fmt, ...)
@@ -106,7 +107,7 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
     tb_sc *sc = calloc(1, sizeof *sc);
     char *buf = malloc(len + 1);
     char **f = malloc(4096 * sizeof *f);
-    int col[C_N], idcol[SC_MAXID];
+    int col[C_N], idcol[SC_MAXID], col_pps = -1, col_e = -1;
     sc_hash ht = { 0, NULL };
     size_t rowcap = 0, gcap = 0;
     if (!sc || !buf || !f) { sc_err(err, errlen, "%s: out of memory", what); goto bad; }
@@ -127,6 +128,11 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
             sc_err(err, errlen, "%s:1: not a sweep CSV (no column '%s')", what, sc_need[k]);
             goto bad;
         }
+    /* Speed and energy: optional (a CSV made before them has neither). */
+    col_pps = sc_find(hdr, nh, "pixels_per_s");
+    col_e = sc_find(hdr, nh, "energy_pj_per_pixel");
+    sc->have_pps = col_pps >= 0;
+    sc->have_energy = col_e >= 0;
     if (col[C_ROUND] <= col[C_WIDTH] || col[C_ROUND] - col[C_WIDTH] - 1 + 3 > SC_MAXID) {
         sc_err(err, errlen, "%s:1: not a sweep CSV (columns out of order)", what);
         goto bad;
@@ -195,6 +201,15 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
                     sc_err(err, errlen, "%s:%d: %s '%s' is not a number", what, lineno, sc_need[nc[k]], f[col[nc[k]]]);
                     goto bad;
                 }
+            /* Empty or non-positive: unknown (no timing or energy for this row). */
+            if (col_pps < 0 || sc_num(f[col_pps], &r->pixels_per_s) || !(r->pixels_per_s > 0)) {
+                r->pixels_per_s = NAN;
+                sc->have_pps = 0;
+            }
+            if (col_e < 0 || sc_num(f[col_e], &r->energy_pp) || !(r->energy_pp > 0)) {
+                r->energy_pp = NAN;
+                sc->have_energy = 0;
+            }
         }
         /* Identity values: the group is found later, in config order. */
         unsigned char v[SC_MAXID];
@@ -316,7 +331,7 @@ size_t tb_sc_front(const tb_sc *sc, unsigned char *on)
             const tb_sc_row *r = &sc->row[i];
             x[i] = r->ok ? r->max_err : NAN;
             y[i] = r->ok ? r->area : NAN;
-            z[i] = r->ok ? r->clocks_per_pixel : NAN;
+            z[i] = !r->ok ? NAN : sc->have_pps ? 1.0 / r->pixels_per_s : r->clocks_per_pixel;
         }
         nf = chart_pareto3(x, y, z, sc->n, on);
     } else memset(on, 0, sc->n);
@@ -435,10 +450,13 @@ static int sc_series(chart *c, const tb_sc *sc, const sc_look *l, size_t g, int 
 
 /* -------------------------------------------------------------- charts */
 
-const char *const tb_sc_chart_file[TB_SC_NCHARTS] = { "error_vs_width.svg", "area_vs_error.svg", "cycles_vs_error.svg" };
+const char *const tb_sc_chart_file[TB_SC_NCHARTS] = { "error_vs_width.svg", "area_vs_error.svg", "cycles_vs_error.svg",
+                                                      "throughput_vs_error.svg", "energy_vs_error.svg" };
 
 int tb_sc_chart_drawn(const tb_sc *sc, int which)
 {
+    if (which == TB_SC_SPEED_ERROR) return sc->have_pps;
+    if (which == TB_SC_ENERGY_ERROR) return sc->have_energy;
     if (which != TB_SC_CLOCKS_ERROR) return which >= 0 && which < TB_SC_NCHARTS;
     double c0 = NAN;
     for (size_t i = 0; i < sc->n; i++)
@@ -489,8 +507,19 @@ static chart *sc_error_width(const tb_sc *sc, const sc_look *l, const tb_sc_targ
     return c;
 }
 
+/* The y value of a row on chart `which` (area, clocks, pixels/s, energy). */
+static double sc_y(const tb_sc_row *r, int which)
+{
+    switch (which) {
+    case TB_SC_CLOCKS_ERROR: return r->clocks_per_pixel;
+    case TB_SC_SPEED_ERROR: return r->pixels_per_s;
+    case TB_SC_ENERGY_ERROR: return r->energy_pp;
+    default: return r->area;
+    }
+}
+
 /* Ring the front's points and label a few with their width. */
-static void sc_front(chart *c, const tb_sc *sc, const unsigned char *on, int clocks)
+static void sc_front(chart *c, const tb_sc *sc, const unsigned char *on, int which)
 {
     int sf = chart_series(c, "Pareto front", CHART_POINTS | CHART_HOLLOW);
     chart_series_look(c, sf, "#000000", 0, -1);
@@ -502,23 +531,45 @@ static void sc_front(chart *c, const tb_sc *sc, const unsigned char *on, int clo
         const tb_sc_row *r = &sc->row[i];
         char lab[32];
         snprintf(lab, sizeof lab, "width %d", r->width);
-        chart_point_label(c, sf, r->max_err, clocks ? r->clocks_per_pixel : r->area, k++ % every == 0 ? lab : NULL);
+        chart_point_label(c, sf, r->max_err, sc_y(r, which), k++ % every == 0 ? lab : NULL);
     }
-    chart_legend_key(c, "(error, area, clocks/pixel)", NULL, -1, 0);
+    chart_legend_key(c, sc->have_pps ? "(error, area, pixels/s)" : "(error, area, clocks/pixel)", NULL, -1, 0);
 }
 
-static chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_target *t, int clocks)
+/* Whether the front is the two-dimensional one of the area chart: the
+ * speed (pixels per second, or clocks per pixel without timing) is the
+ * same in every row. */
+static int sc_speed_flat(const tb_sc *sc)
+{
+    int which = sc->have_pps ? TB_SC_SPEED_ERROR : TB_SC_CLOCKS_ERROR;
+    double v0 = NAN;
+    for (size_t i = 0; i < sc->n; i++)
+        if (sc->row[i].ok) {
+            double v = sc_y(&sc->row[i], which);
+            if (isnan(v0)) v0 = v;
+            else if (v != v0) return 0;
+        }
+    return 1;
+}
+
+static const char *const sc_title[TB_SC_NCHARTS] = {
+    NULL, "%s: area against max error", "%s: clocks per pixel against max error",
+    "%s: pixels per second at f_max against max error", "%s: energy per pixel against max error" };
+static const char *const sc_ylabel[TB_SC_NCHARTS] = {
+    NULL, "area (GE, NAND2 gate equivalents)", "clocks per pixel (output beat), steady state",
+    "pixels (output beats) per second at f_max", "energy per pixel (pJ, switching and clock)" };
+
+static chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_target *t, int which)
 {
     char title[200];
-    snprintf(title, sizeof title, clocks ? "%s: clocks per pixel against max error" : "%s: area against max error", sc->unit);
-    chart *c = chart_new(title, "max |e| vs float reference (output units)",
-                               clocks ? "clocks per pixel (output beat), steady state" : "area (GE, NAND2 gate equivalents)");
+    snprintf(title, sizeof title, sc_title[which], sc->unit);
+    chart *c = chart_new(title, "max |e| vs float reference (output units)", sc_ylabel[which]);
     if (!c) return NULL;
     chart_log_x(c, 1);
     double lo = INFINITY, hi = 0;
     for (size_t i = 0; i < sc->n; i++)
         if (sc->row[i].ok) {
-            double v = clocks ? sc->row[i].clocks_per_pixel : sc->row[i].area;
+            double v = sc_y(&sc->row[i], which);
             lo = fmin(lo, v);
             hi = fmax(hi, v);
         }
@@ -527,16 +578,16 @@ static chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_targe
         int s = sc_series(c, sc, l, g, CHART_POINTS, 1);
         for (size_t i = 0; i < sc->n; i++) {
             const tb_sc_row *r = &sc->row[i];
-            if (r->group == g && r->ok) chart_point(c, s, r->max_err, clocks ? r->clocks_per_pixel : r->area);
+            if (r->group == g && r->ok) chart_point(c, s, r->max_err, sc_y(r, which));
         }
     }
     unsigned char *on = calloc(sc->n, 1);
     if (!on) { chart_free(c); return NULL; }
     tb_sc_front(sc, on);
-    /* When the clocks do not vary the front is the two-dimensional one of
+    /* When the speed does not vary the front is the two-dimensional one of
      * this plane: a staircase through it reads as the best area at each
      * error. */
-    if (!clocks && !tb_sc_chart_drawn(sc, TB_SC_CLOCKS_ERROR)) {
+    if (which == TB_SC_AREA_ERROR && sc_speed_flat(sc)) {
         int st = chart_series(c, NULL, CHART_STEP);
         chart_series_look(c, st, "#000000", -1, 0);
         /* the front in order of error */
@@ -557,9 +608,9 @@ static chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_targe
         }
     }
     sc_keys(c, sc, l, CHART_POINTS);
-    sc_front(c, sc, on, clocks);
+    sc_front(c, sc, on, which);
     free(on);
-    if (t && t->on && !clocks) {
+    if (t && t->on && which == TB_SC_AREA_ERROR) {
         int st = chart_series(c, "target search", CHART_POINTS);
         chart_series_look(c, st, "#000000", 3, -1);
         for (size_t k = 0; k < t->n; k++) chart_point(c, st, t->err[k], t->area[k]);
@@ -577,8 +628,8 @@ chart *tb_sc_chart(const tb_sc *sc, int which, const tb_sc_target *t)
     sc_look l = sc_look_of(sc);
     switch (which) {
     case TB_SC_ERROR_WIDTH: return sc_error_width(sc, &l, t);
-    case TB_SC_AREA_ERROR: return sc_area_error(sc, &l, t, 0);
-    case TB_SC_CLOCKS_ERROR: return sc_area_error(sc, &l, t, 1);
+    case TB_SC_AREA_ERROR: case TB_SC_CLOCKS_ERROR: case TB_SC_SPEED_ERROR: case TB_SC_ENERGY_ERROR:
+        return sc_area_error(sc, &l, t, which);
     default: return NULL;
     }
 }

@@ -18,10 +18,13 @@
  * named in the legend), marker shape by a second one of at most 5 values;
  * the legend names the dimensions, not the groups, so it stays short.
  *
- * Throughput is clocks per pixel: the CSV's cycles_per_beat (an
- * interpolation unit gives L pixels, one per beat, per item; the other
- * units one result per item). The Pareto front is over max |error|, area
- * and clocks per pixel, all three minimised.
+ * Throughput is pixels per second at the design's f_max: the CSV's
+ * pixels_per_s (an interpolation unit gives L pixels, one per beat, per
+ * item; the other units one result per item), from its clocks per pixel
+ * (cycles_per_beat) and its critical path (docs/timing.md). The Pareto
+ * front is over max |error|, area and seconds per pixel, all three
+ * minimised; a CSV without pixels_per_s (an older one) gives the front
+ * over clocks per pixel instead, and no speed or energy chart.
  */
 #ifndef TB_SWEEP_CHART_H
 #define TB_SWEEP_CHART_H
@@ -40,6 +43,7 @@ typedef struct tb_sc_row {
     size_t config, group;
     int    width, ok;
     double max_err, rms_err, area, clocks_per_pixel;
+    double pixels_per_s, energy_pp;    /* NaN when the CSV has no such column */
 } tb_sc_row;
 size_t           tb_sc_rows(const tb_sc *sc);
 const tb_sc_row *tb_sc_row_at(const tb_sc *sc, size_t i);
@@ -48,8 +52,9 @@ const char      *tb_sc_unit(const tb_sc *sc);
  * "" when nothing varies. */
 const char      *tb_sc_group_label(const tb_sc *sc, size_t group);
 
-/* Pareto front over (max |e|, area, clocks per pixel) of the ok rows:
- * on[i] for row i; returns its size. */
+/* Pareto front over (max |e|, area, seconds per pixel) of the ok rows
+ * (clocks per pixel where the CSV gives no pixels per second): on[i] for
+ * row i; returns its size. */
 size_t tb_sc_front(const tb_sc *sc, unsigned char *on);
 
 /* What the sweep adds to its own charts (not in the CSV): the target
@@ -61,11 +66,14 @@ typedef struct tb_sc_target {
     const double *err, *area;
 } tb_sc_target;
 
-enum { TB_SC_ERROR_WIDTH, TB_SC_AREA_ERROR, TB_SC_CLOCKS_ERROR, TB_SC_NCHARTS };
-/* File names: error_vs_width.svg, area_vs_error.svg, cycles_vs_error.svg. */
+enum { TB_SC_ERROR_WIDTH, TB_SC_AREA_ERROR, TB_SC_CLOCKS_ERROR, TB_SC_SPEED_ERROR, TB_SC_ENERGY_ERROR,
+       TB_SC_NCHARTS };
+/* File names: error_vs_width.svg, area_vs_error.svg, cycles_vs_error.svg,
+ * throughput_vs_error.svg, energy_vs_error.svg. */
 extern const char *const tb_sc_chart_file[TB_SC_NCHARTS];
 /* Is chart `which` drawn? The clocks chart only when clocks per pixel
- * differ between rows (else it is one flat row of points). */
+ * differ between rows (else it is one flat row of points); the speed and
+ * energy charts when the CSV has their columns. */
 int    tb_sc_chart_drawn(const tb_sc *sc, int which);
 /* The chart (caller frees), NULL when out of memory. */
 chart *tb_sc_chart(const tb_sc *sc, int which, const tb_sc_target *t);
