@@ -7,9 +7,12 @@
 # as one failure of its own.
 #
 # TST_JOBS tests run at a time (default 2: the suite's CPU time is spread
-# over two cores); each one's output is kept and printed in the fixed order
-# (flavour by flavour, binaries then scripts), so the output is the same
-# bytes whatever the order they finish in. TST_JOBS=1 runs them one by one.
+# over two cores); each one's output is kept and printed, as one block
+# under its name, as soon as it finishes, so a long suite shows progress
+# from its first minute; the blocks come in the order the tests finish.
+# The closing count does not depend on that order. TST_JOBS=1 runs them
+# one by one (then in the fixed order: flavour by flavour, binaries then
+# scripts, the slow sanitizer flavour first).
 cd "$(dirname "$0")/.." || exit 2
 jobs=${TST_JOBS:-2}
 case $jobs in ''|*[!0-9]*|0) echo "tests/run.sh: TST_JOBS must be a whole number >= 1" >&2; exit 2;; esac
@@ -36,36 +39,53 @@ export SHADESIM="$b/shadesim" TST_BUILD="$b"
 if [ "$kind" = bin ]; then "$t" >"$d/$i.out" 2>&1; else sh "$t" >"$d/$i.out" 2>&1; fi
 echo $? >"$d/$i.tmp" && mv "$d/$i.tmp" "$d/$i.rc"
 EOF
-# The printer, in the background: each job's output in the fixed order as
-# soon as it is there. (The jobs themselves run in the foreground: a
-# background command of a script ignores SIGINT, and so would every test
-# it runs, which test_out checks.)
+# The printer, in the background: each job's block as soon as it is done
+# (its N.rc is there), in the order they finish. (The jobs themselves run
+# in the foreground: a background command of a script ignores SIGINT, and
+# so would every test it runs, which test_out checks.)
+print_one() {
+    i=$1 b=$2 kind=$3 t=$4
+    name=$t
+    [ "$kind" = cli ] && name="$t [$b]"
+    echo "== $name"
+    if [ -f "$dir/$i.rc" ]; then
+        rc=$(cat "$dir/$i.rc")
+        sed 's|^|  |' "$dir/$i.out"
+        cat "$dir/$i.out" >>"$dir/log"
+    else
+        rc="none (not run: the runner stopped)"
+    fi
+    if [ "$rc" != 0 ] && ! grep -q '^FAIL ' "$dir/$i.out" 2>/dev/null; then
+        echo "FAIL $name: exit status $rc" | tee -a "$dir/log"
+    fi
+}
 print_all() {
     : >"$dir/log"
-    while read -r i b kind t; do
-        name=$t
-        [ "$kind" = cli ] && name="$t [$b]"
-        # wait for it (when the runner stopped early, e.g. xargs after a
-        # killed job, the rest never ran: they count as failures)
-        while [ ! -f "$dir/$i.rc" ] && [ ! -f "$dir/done" ]; do sleep 1; done
-        echo "== $name"
-        if [ -f "$dir/$i.rc" ]; then
-            rc=$(cat "$dir/$i.rc")
-            sed 's|^|  |' "$dir/$i.out"
-            cat "$dir/$i.out" >>"$dir/log"
-        else
-            rc="none (not run: the runner stopped)"
-        fi
-        if [ "$rc" != 0 ] && ! grep -q '^FAIL ' "$dir/$i.out" 2>/dev/null; then
-            echo "FAIL $name: exit status $rc" | tee -a "$dir/log"
-        fi
-    done <"$dir/jobs"
+    cp "$dir/jobs" "$dir/left"
+    while [ -s "$dir/left" ]; do
+        # when the runner stopped early (xargs after a killed job), the
+        # rest never ran: they count as failures
+        stopped=0
+        [ -f "$dir/done" ] && stopped=1
+        printed=0
+        : >"$dir/left.new"
+        while read -r i b kind t; do
+            if [ -f "$dir/$i.rc" ] || [ $stopped = 1 ]; then
+                print_one "$i" "$b" "$kind" "$t"
+                printed=1
+            else
+                echo "$i $b $kind $t" >>"$dir/left.new"
+            fi
+        done <"$dir/left"
+        mv "$dir/left.new" "$dir/left"
+        [ $printed = 1 ] || sleep 0.5
+    done
 }
 print_all &
 printer=$!
 
 # Longest first: the ASan flavour's jobs (slower) lead, so that the
-# workers finish close together; the print order does not change.
+# workers finish close together.
 { grep -- '-asan ' "$dir/jobs"; grep -v -- '-asan ' "$dir/jobs"; } \
     | awk -v d="$dir" '{ print d, $1, $2, $3, $4 }' \
     | xargs -n 5 -P "$jobs" sh "$dir/one.sh"
