@@ -99,6 +99,7 @@
 #include "scene/scene.h"
 #include "sim/sim_fixed.h"      /* the sim_round / sim_ovf values only */
 #include "base/base_join.h"
+#include "base/base_near.h"
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -441,38 +442,11 @@ const char *const scn_desc_keys[K__COUNT + 1] = {
     "fresnel", "fresnel-n", "policy", "region-degree", "auto-threshold", "auto-nodes", "L",
     "terms", "series", "width", "fmt", "round", "overflow", "schedule", "cost", NULL };
 
-static int edit_distance(const char *a, const char *b)
-{
-    size_t la = strlen(a), lb = strlen(b);
-    if (la > 40 || lb > 40) return 99;
-    int row[41];
-    for (size_t j = 0; j <= lb; j++) row[j] = (int)j;
-    for (size_t i = 1; i <= la; i++) {
-        int diag = row[0];
-        row[0] = (int)i;
-        for (size_t j = 1; j <= lb; j++) {
-            int up = row[j];
-            int sub = diag + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
-            int best = up + 1 < row[j - 1] + 1 ? up + 1 : row[j - 1] + 1;
-            row[j] = sub < best ? sub : best;
-            diag = up;
-        }
-    }
-    return row[lb];
-}
-
 static int unknown_key(const char *key, char *err, size_t errlen)
 {
     char b[48];
-    int best = -1, bd = 99;
-    for (int k = 0; k < K__COUNT; k++) {
-        int dd = edit_distance(key, scn_desc_keys[k]);
-        if (dd < bd) { bd = dd; best = k; }
-    }
-    size_t kl = strlen(key);
-    if (best >= 0 && (bd <= 2 || (size_t)bd * 3 <= kl))
-        return fail(err, errlen, "unknown key \"%s\" (did you mean \"%s\"?)", shown(key, b),
-                    scn_desc_keys[best]);
+    const char *near = base_near(key, scn_desc_keys, K__COUNT);
+    if (near) return fail(err, errlen, "unknown key \"%s\" (did you mean \"%s\"?)", shown(key, b), near);
     return fail(err, errlen, "unknown key \"%s\"", shown(key, b));
 }
 

@@ -77,6 +77,9 @@ typedef struct cli_unit_opts {
 
 /* Select the unit (and its defaults) by name; CLI_USAGE with a message. */
 int cli_unit_select(cli_unit_opts *o, const char *name);
+/* The usage error for a unit name that is none: exit status 2, the
+ * nearest unit suggested when the name is a likely typo. */
+int cli_unknown_unit(const char *name);
 /* The shared options themselves (--width, --fmt, ...) are the table
  * cli_unit_opt_tab of cli_opt.h. */
 

@@ -1,4 +1,5 @@
 /* cli_common.c - options shared by the verbs, and where vectors come from. */
+#include "base/base_near.h"
 #include "testbench/cli.h"
 #include "base/base_join.h"
 #include "testbench/cli_opt.h"
@@ -152,12 +153,22 @@ int cli_parse_real(const char *opt, const char *text, double lo, double hi, cons
     return 0;
 }
 
+int cli_unknown_unit(const char *name)
+{
+    const char *names[64];
+    size_t n = 0;
+    for (size_t k = 0; k < unit_count() && n < 64; k++) names[n++] = unit_at(k)->name;
+    const char *near = base_near(name, names, n);
+    if (near) return cli_usage_error("unknown unit '%s' (did you mean '%s'? shadesim list shows the units)", name, near);
+    return cli_usage_error("unknown unit '%s' (shadesim list shows the units)", name);
+}
+
 int cli_unit_select(cli_unit_opts *o, const char *name)
 {
     memset(o, 0, sizeof *o);
     o->u = unit_find(name);
     unit_cfg_default(o->u, &o->cfg);
-    if (!o->u) return cli_usage_error("unknown unit '%s' (shadesim list shows the units)", name);
+    if (!o->u) return cli_unknown_unit(name);
     return CLI_OK;
 }
 

@@ -161,7 +161,7 @@ int cli_list(int argc, char **argv)
     if (cli_opt_parse(&cli_list_spec, base, argc, argv, 1)) return CLI_USAGE;
     const char *only = la.only, *sched = la.sched;
     int width = la.o.cfg.width, md = la.md;
-    if (only && !unit_find(only)) return cli_usage_error("unknown unit '%s'", only);
+    if (only && !unit_find(only)) return cli_unknown_unit(only);
     int si = -1;
     if (sched) {
         if (!only) return cli_usage_error("list: --schedule %s needs a unit (shadesim list UNIT --schedule NAME)", sched);

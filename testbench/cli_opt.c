@@ -1,4 +1,5 @@
 /* cli_opt.c - the option parser every verb uses (cli_opt.h). */
+#include "base/base_near.h"
 #include "testbench/cli_opt.h"
 #include "testbench/cli.h"
 #include "base/base_out.h"
@@ -122,10 +123,28 @@ int cli_opt_step(const cli_opt *tab, void *base, int argc, char **argv, int *i)
     return 0;
 }
 
+/* An unknown argument; an option near one the verb has (a typo) gets
+ * "did you mean" (hidden options are not suggested). */
 static int unknown(const cli_optspec *sp, const char *arg)
 {
     char m[1200];
     snprintf(m, sizeof m, sp->unknown, arg);
+    if (arg[0] == '-' && arg[1]) {
+        const char *names[256];
+        size_t n = 0;
+        char opt[64];
+        snprintf(opt, sizeof opt, "%.*s", (int)strcspn(arg, "="), arg);
+        for (int g = 0; g < CLI_OPT_GROUPS && sp->tab[g]; g++)
+            for (const cli_opt *o = sp->tab[g]; o->name && n < 254; o++)
+                if (!(o->flags & CLI_OPT_HIDDEN)) { names[n++] = o->name; names[n++] = o->alias; }
+        const char *near = base_near(opt, names, n);
+        /* Into the message's closing parenthesis, "(see ... --help)", if any. */
+        char *par = strrchr(m, '(');
+        size_t ml = strlen(m);
+        if (near && strcmp(near, opt) && par && ml && m[ml - 1] == ')')
+            return cli_usage_error("%.*sdid you mean '%s'? %s", (int)(par + 1 - m), m, near, par + 1);
+        if (near && strcmp(near, opt)) return cli_usage_error("%s (did you mean '%s'?)", m, near);
+    }
     return cli_usage_error("%s", m);
 }
 

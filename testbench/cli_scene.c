@@ -3,11 +3,14 @@
  * search (--target-nmse), the sweep (--sweep) and the side-by-side of the
  * paper's configuration and a corrected one (--compare). */
 #include "testbench/cli.h"
+#include "base/base_join.h"
+#include "base/base_near.h"
 #include "testbench/cli_opt.h"
 #include "testbench/tb_scene.h"
 #include "testbench/tb_scene_search.h"
 #include "base/base_out.h"
 #include "units/unit_net.h"
+#include <sys/stat.h>
 #include <errno.h>
 #include <math.h>
 #include <stddef.h>
@@ -277,6 +280,18 @@ int cli_scene(int argc, char **argv)
     if (is_builtin(what)) {
         scn_desc_builtin(what, &d);
     } else if (scn_desc_read(what, &d, err, sizeof err)) {
+        /* A bare word that is no file was meant as a built-in scene. */
+        struct stat st;
+        if (!strchr(what, '/') && !strchr(what, '.') && stat(what, &st) != 0) {
+            char list[200] = "";
+            for (const char *const *n = scn_desc_builtin_names; *n; n++) base_join_add(list, sizeof list, ", ", *n);
+            size_t nb = 0;
+            while (scn_desc_builtin_names[nb]) nb++;
+            const char *near = base_near(what, scn_desc_builtin_names, nb);
+            if (near) return cli_usage_error("scene: no built-in scene or scene file '%s' (did you mean '%s'? built-in: %s)",
+                                             what, near, list);
+            return cli_usage_error("scene: no built-in scene or scene file '%s' (built-in: %s)", what, list);
+        }
         return cli_usage_error("%s", err);
     }
     for (int k = 0; k < nsets; k++) {

@@ -1,4 +1,5 @@
 /* main.c - bin/shadesim: dispatch to a verb. */
+#include "base/base_near.h"
 #include "testbench/cli.h"
 #include "testbench/cli_man.h"
 #include "base/base_out.h"
@@ -64,5 +65,10 @@ int main(int argc, char **argv)
         return top_level(argv[1]);
     for (const cli_verb *v = cli_verbs; v->name; v++)
         if (!strcmp(argv[1], v->name)) return v->fn(argc - 1, argv + 1);
+    const char *names[64];
+    size_t n = 0;
+    for (const cli_verb *v = cli_verbs; v->name && n < 64; v++) names[n++] = v->name;
+    const char *near = base_near(argv[1], names, n);
+    if (near) return cli_usage_error("unknown verb '%s' (did you mean '%s'? shadesim --help lists them)", argv[1], near);
     return cli_usage_error("unknown verb '%s' (try shadesim --help)", argv[1]);
 }

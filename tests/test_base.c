@@ -10,6 +10,7 @@
 #include "tst.h"
 #include "base/base_json.h"
 #include "base/base_join.h"
+#include "base/base_near.h"
 #include "base/base_par.h"
 #include <float.h>
 #include <stdatomic.h>
@@ -112,6 +113,36 @@ static void json_string_escapes(void)
     }
 }
 
+/* Edit distances worked by hand: kitten -> sitting is k->s, e->i and an
+ * added g (3); a transposition is two edits; case is ignored; the empty
+ * word is as far as the other word is long. */
+static void near_distance_by_hand(void)
+{
+    TST_CHECK(base_near_distance("kitten", "sitting") == 3, "kitten/sitting");
+    TST_CHECK(base_near_distance("widht", "width") == 2, "transposition");
+    TST_CHECK(base_near_distance("Horner3", "horner3") == 0, "case");
+    TST_CHECK(base_near_distance("", "abc") == 3 && base_near_distance("abc", "") == 3, "empty");
+    TST_CHECK(base_near_distance("run", "run") == 0, "same");
+    char longw[60];
+    memset(longw, 'a', sizeof longw - 1);
+    longw[sizeof longw - 1] = 0;
+    TST_CHECK(base_near_distance(longw, "a") == 99, "over 40 characters");
+}
+
+/* The nearest name: within 2 edits or a third of the word; ties go to
+ * the first listed; NULL entries are skipped; nothing near gives NULL. */
+static void near_choice(void)
+{
+    const char *const names[] = { "run", NULL, "sweep", "scene", "synth" };
+    TST_CHECK(base_near("rnu", names, 5) == names[0], "rnu -> run");
+    TST_CHECK(base_near("swep", names, 5) == names[2], "swep -> sweep");
+    TST_CHECK(base_near("scena", names, 5) == names[3], "scena -> scene (before synth)");
+    TST_CHECK(base_near("qqqqqqq", names, 5) == NULL, "nothing near");
+    TST_CHECK(base_near("x", names, 0) == NULL, "empty list");
+    const char *const ties[] = { "ab", "ba" };
+    TST_CHECK(base_near("aa", ties, 2) == ties[0], "tie: the first");
+}
+
 /* Joining: the first item without a separator, the next with one. */
 static void join_empty_and_one(void)
 {
@@ -209,6 +240,8 @@ int main(void)
     TST_RUN(json_17_digits_round_trip);
     TST_RUN(json_fewer_digits_within_half_unit);
     TST_RUN(json_string_escapes);
+    TST_RUN(near_distance_by_hand);
+    TST_RUN(near_choice);
     TST_RUN(join_empty_and_one);
     TST_RUN(join_truncation);
     TST_RUN(par_every_item_once);
