@@ -29,12 +29,28 @@ else
         && cmp -s "$T/par/sweep.csv" "$T/whole/sweep.csv"; then
         ok parallel_merge_equals_whole
     else fail parallel_merge_equals_whole "$(tail -3 "$T/par.log")"; fi
+    # a missed acceptance is data: every shard runs, the merge is written,
+    # the same bytes as the whole sweep's CSV, and the status is 1
+    # shellcheck disable=SC2086
+    "$S" sweep $SWEEP --max-error 0.05 -o "$T/wholeacc" >/dev/null 2>&1
+    # shellcheck disable=SC2086
+    timeout 120 scripts/sweep-parallel.sh 2 "$T/paracc" $SWEEP --max-error 0.05 >"$T/paracc.log" 2>&1
+    rc=$?
+    if [ $rc -eq 1 ] && cmp -s "$T/paracc/sweep.csv" "$T/wholeacc/sweep.csv"; then ok parallel_missed_target_is_data
+    else fail parallel_missed_target_is_data "exit $rc; $(tail -2 "$T/paracc.log" | tr '\n' ' ')"; fi
     # a failing shard fails the script and leaves no merged CSV
     if scripts/sweep-parallel.sh 2 "$T/parbad" horner3 --widths 8:11 --no-such-option >/dev/null 2>&1; then
         fail parallel_shard_failure "exit 0"
     elif [ -e "$T/parbad/sweep.csv" ]; then fail parallel_shard_failure "sweep.csv written"
     else ok parallel_shard_failure; fi
 fi
+
+# Both scripts explain themselves.
+for sc in sweep-parallel sweep-slurm; do
+    if sh "scripts/$sc.sh" --help >"$T/help" 2>&1 && grep -q "^usage\|^  scripts/$sc.sh" "$T/help" \
+        && grep -q "Exit status" "$T/help"; then ok "${sc}_help"
+    else fail "${sc}_help" "$(head -2 "$T/help")"; fi
+done
 
 # --- Slurm ------------------------------------------------------------------
 slurm_skip() { echo "skip cli_cluster.slurm_merge_equals_whole: $1"; exit 0; }
