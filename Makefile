@@ -183,9 +183,13 @@ install:
 	    && mv -f "$(DEST)/share/man/man1/shadesim.1.tmp" "$(DEST)/share/man/man1/shadesim.1"
 	$(Q)install -m 644 README.md LICENSE docs/*.md "$(DEST)/share/doc/shadesim/"
 
+# Uninstall removes what install put there, then the folders install may
+# have made, each only if nothing else is left in it (rmdir refuses).
 uninstall:
 	rm -f "$(DEST)/bin/shadesim" "$(DEST)/share/man/man1/shadesim.1"
 	rm -rf "$(DEST)/share/shadesim" "$(DEST)/share/doc/shadesim"
+	-@for d in "$(DEST)/bin" "$(DEST)/share/man/man1" "$(DEST)/share/man" "$(DEST)/share/doc" "$(DEST)/share" "$(DEST)"; do \
+	    rmdir "$$d" 2>/dev/null || true; done
 
 clean:
 	rm -rf build build-asan build-clang build-clang-asan bin

@@ -98,3 +98,12 @@ check man_deterministic cmp -s "$man1" "$T/man2"
 # ---- uninstall ----
 env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory uninstall PREFIX="$P" >/dev/null 2>&1
 check uninstall_removes [ ! -e "$P/bin/shadesim" -a ! -e "$P/share/shadesim" -a ! -e "$man1" ]
+# ... and the folders it made, now empty (the prefix itself too); a folder
+# that holds something else stays.
+check uninstall_removes_empty_folders [ ! -e "$P" ]
+mkdir -p "$T/keep/bin" "$T/keep/share/doc"
+: >"$T/keep/bin/other-tool"
+env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory install INSTALL_BIN="$S" PREFIX="$T/keep" \
+    >/dev/null 2>&1
+env -u MAKEFLAGS -u MFLAGS -u MAKELEVEL make -s --no-print-directory uninstall PREFIX="$T/keep" >/dev/null 2>&1
+check uninstall_keeps_other_files [ -f "$T/keep/bin/other-tool" -a ! -e "$T/keep/bin/shadesim" -a ! -e "$T/keep/share" ]
