@@ -9,6 +9,7 @@
 #include "testbench/tb.h"
 #include "testbench/tb_range.h"
 #include "sim/sim_vcd.h"
+#include "testbench/tb_wave.h"
 #include "base/base_out.h"
 #include "sim/sim_batch.h"
 #include <stdlib.h>
@@ -234,6 +235,11 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
         }
         vcd = NULL;
         vout = NULL;
+        /* The GTKWave save file beside it, as run writes: valid, pixel. */
+        sim_gtkw_trace lead[2] = { { io.out_valid, NULL }, { io.out[0], NULL } };
+        char title[96];
+        snprintf(title, sizeof title, "%s: pixels out", u->name);
+        if (rc == TB_OK && tb_wave_gtkw(c, vcd_path, title, lead, 2, err, errlen)) rc = TB_BADINPUT;
     }
     if (rc == TB_OK) st->clocks = s.last_pixel - s.first_accept;
     st->pixels = s.got;

@@ -156,11 +156,41 @@ static int copy_out(const char *from, const char *to)
     return base_out_close(o, e, sizeof e);
 }
 
+int tb_wave_gtkw(sim_ctx *c, const char *vcd_path, const char *title, const sim_gtkw_trace *lead, int nlead,
+                 char *err, size_t errlen)
+{
+    struct stat st;
+    char msg[256];
+    /* The companion goes beside a dump in a file (not stdout, not
+     * /dev/null: no /dev/null.gtkw), any path length; a companion that
+     * cannot be written is an error, not a silent omission. */
+    if (stat(vcd_path, &st) != 0 || !S_ISREG(st.st_mode)) return 0;
+    size_t gl = strlen(vcd_path) + sizeof ".gtkw";
+    char *g = malloc(gl);
+    if (!g) {
+        snprintf(err, errlen, "%s.gtkw: out of memory", vcd_path);
+        return -1;
+    }
+    snprintf(g, gl, "%s.gtkw", vcd_path);
+    base_out *go = base_out_open(g, msg, sizeof msg);   /* errno: the cause */
+    int gbad = !go;
+    if (go && sim_vcd_write_gtkw(base_out_file(go), c, vcd_path, g, title, lead, nlead)) {
+        int e = errno;
+        base_out_abort(go);
+        errno = e;
+        gbad = 1;
+    } else if (go) {
+        gbad = base_out_close(go, msg, sizeof msg) != 0;
+    }
+    if (gbad) snprintf(err, errlen, "%s: cannot write: %s", g, strerror(errno));
+    free(g);
+    return gbad ? -1 : 0;
+}
+
 int tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc,
                   char *err, size_t errlen)
 {
     const tb_opts *o = w->o;
-    struct stat st;
     char msg[256];
     int bad = sim_vcd_close(v);
     bad |= base_out_close(w->out, msg, sizeof msg);   /* errno: the cause */
@@ -195,12 +225,7 @@ int tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc
             rc = TB_BADINPUT;
         }
     }
-    if (o->gtkw && rc == TB_OK && stat(o->vcd_path, &st) == 0 && S_ISREG(st.st_mode)) {
-        /* The companion goes beside a dump in a file (not stdout, not
-         * /dev/null: no /dev/null.gtkw), any path length; a companion
-         * that cannot be written is an error, not a silent omission. */
-        size_t gl = strlen(o->vcd_path) + sizeof ".gtkw";
-        char *g = malloc(gl);
+    if (o->gtkw && rc == TB_OK) {
         sim_gtkw_trace lead[1 + 3 * UNIT_MAX_IO];
         char names[2 * UNIT_MAX_IO][80];
         int nl = 0;
@@ -214,27 +239,7 @@ int tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc
         }
         char title[96];
         snprintf(title, sizeof title, "%s outputs, expected, error", u->name);
-        if (!g) {
-            snprintf(err, errlen, "%s.gtkw: out of memory", o->vcd_path);
-            rc = TB_BADINPUT;
-        } else {
-            snprintf(g, gl, "%s.gtkw", o->vcd_path);
-            base_out *go = base_out_open(g, msg, sizeof msg);   /* errno: the cause */
-            int gbad = !go;
-            if (go && sim_vcd_write_gtkw(base_out_file(go), c, o->vcd_path, g, title, lead, nl)) {
-                int e = errno;
-                base_out_abort(go);
-                errno = e;
-                gbad = 1;
-            } else if (go) {
-                gbad = base_out_close(go, msg, sizeof msg) != 0;
-            }
-            if (gbad) {
-                snprintf(err, errlen, "%s: cannot write: %s", g, strerror(errno));
-                rc = TB_BADINPUT;
-            }
-            free(g);
-        }
+        if (tb_wave_gtkw(c, o->vcd_path, title, lead, nl, err, errlen)) rc = TB_BADINPUT;
     }
     tb_wave_free(w);
     return rc;

@@ -44,6 +44,11 @@ sim_vcd *tb_wave_open(tb_wave *w, sim_ctx *c, const tb_opts *o, const unit_io *i
  * status (TB_BADINPUT with a message when a file cannot be written). */
 int      tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc,
                        char *err, size_t errlen);
+/* Write VCD_PATH.gtkw, a GTKWave save file opening the dump with the
+ * traces lead[0..nlead-1] first (sim_vcd.h), when vcd_path is a regular
+ * file (not stdout or a device); 0, or -1 with a message. */
+int      tb_wave_gtkw(sim_ctx *c, const char *vcd_path, const char *title, const sim_gtkw_trace *lead,
+                      int nlead, char *err, size_t errlen);
 /* Free what open allocated after a failure before the run, removing the
  * unfinished dump (the caller aborts the sim_vcd first). */
 void     tb_wave_free(tb_wave *w);

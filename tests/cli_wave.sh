@@ -122,3 +122,22 @@ if command -v vcd2fst >/dev/null 2>&1 && command -v fst2vcd >/dev/null 2>&1; the
 else
     echo "skip cli_wave.fst_reads_back: vcd2fst/fst2vcd not installed (Debian package gtkwave)"
 fi
+
+# scene --vcd writes the GTKWave save file beside its dump, as run does:
+# it names the dump, opens with the span unit's valid and pixel traces,
+# and every trace it names is a variable of the dump.
+"$S" scene sphere --set resolution=24x24 --vcd "$T/sc.vcd" -o "$T/sc" >/dev/null 2>&1
+rc=$?
+if [ $rc -eq 0 ] && grep -q "^\[dumpfile\] \".*/sc.vcd\"\$" "$T/sc.vcd.gtkw" 2>/dev/null; then ok scene_vcd_gtkw
+else fail scene_vcd_gtkw "exit $rc; $(head -3 "$T/sc.vcd.gtkw" 2>&1)"; fi
+first=$(grep '^top\.' "$T/sc.vcd.gtkw" | head -2 | sed 's/\[.*//' | tr '\n' ' ')
+case $first in "top.span"*".out_valid top.span"*".y ") ok scene_gtkw_leads_with_pixels ;;
+    *) fail scene_gtkw_leads_with_pixels "first traces: $first" ;; esac
+missing=
+for tr in $(grep '^top\.' "$T/sc.vcd.gtkw" | sed 's/\[.*//' | sort -u); do
+    v=${tr##*.}
+    grep -q " $v \$end\| $v \[" "$T/sc.vcd" || missing="$missing $tr"
+done
+[ -z "$missing" ] && ok scene_gtkw_traces_in_dump || fail scene_gtkw_traces_in_dump "$missing"
+"$S" scene sphere --set resolution=24x24 --vcd - -o "$T/sc2" >/dev/null 2>&1
+[ ! -e "./-.gtkw" ] && ok scene_vcd_stdout_no_gtkw || fail scene_vcd_stdout_no_gtkw
