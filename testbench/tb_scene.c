@@ -141,12 +141,13 @@ static int nodes_n2(const scn_desc *d)
  *  V = eye - P, normalized                     perspective                 5   6   1   1   0
  *  L = light - P, normalized                   point light                 5   6   1   1   0
  *  N.L                                         light                       2   3   0   0   0
- *  (I0 kd) N.L, added to the sum (from ambient) light                      1   1   0   0   0
+ *  (I0 kd) N.L, summed (from the ambient)     light                       1   1   0   0   0
  *  (I0 ks) spec, added                         specular                    1   1   0   0   0
  *  phong R.V = 2 (N.L)(N.V) - L.V: N.V, 1 mul  phong, L and V constant     3   4   0   0   0
  *  phong R = 2 (N.L) N - L, R.V                phong, L or V varies        5   6   0   0   0
  *  (R.V)^n or (N.H)^n                          phong, blinn                0   0   0   0   1
- *  H = normalize(L + V)                        blinn/cook/ward, L or V varies 5 6  1   1   0
+ *  H = normalize(L + V)                        half-vector BRDF, L or V    5   6   1   1   0
+ *                                              varies (blinn, cook, ward)
  *  N.H                                         blinn, cook, ward           2   3   0   0   0
  *  N.V                                         cook, ward                  2   3   0   0   0
  *  L.H (= V.H)                                 cook, L or V varies         2   3   0   0   0
@@ -160,8 +161,9 @@ static int nodes_n2(const scn_desc *d)
  *  Schlick F = c / (n + (1 - n) c)             the same, schlick           1   1   1   0   0
  *  modified Schlick 1.6 c / u^2,
  *    u = n + (1.25 - n) c                      the same, mschlick          1   2   1   0   0
- *  Ward exact e: c^2, 1/c^2, - 1, x (-1/a^2), exp  ward exact              1   2   1   0   1
- *  Ward polynomial e: k c + (1 - k), ^16 (4 mul)   ward poly16             1   5   0   0   0
+ *  Ward exact e: c^2, 1/c^2, - 1, x (-1/a^2),
+ *    exp                                       ward exact                  1   2   1   0   1
+ *  Ward polynomial e: k c + (1 - k), ^16       ward poly16                 1   5   0   0   0
  *  e / sqrt((N.L)(N.V))                        ward                        0   1   1   1   0
  * (s: the squarings and multiplies of x^g, floor(log2 g) + popcount(g) - 1:
  * 2, 3, 4 for g = 4, 8, 16.)
