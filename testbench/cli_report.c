@@ -516,7 +516,9 @@ static int section_scene(FILE *f, const char *dir)
     fprintf(f, "<tr><td>area</td><td class=\"n\">%.0f GE</td><td>gate equivalents of the instantiated unit</td></tr>\n",
             r.hwst.area_ge);
     fprintf(f, "<tr><td>speed-up</td><td class=\"n\">%.2fx</td><td>weighted operations of per-pixel shading over the "
-               "method's (%.4g / %.4g per pixel)</td></tr>\n</table>\n", r.speedup, r.cost_ref, r.cost_hw);
+               "method's (%.4g / %.4g per pixel)</td></tr>\n", r.speedup, r.cost_ref, r.cost_hw);
+    fprintf(f, "<tr><td>speed-up, long ops</td><td class=\"n\">%.2fx</td><td>divides, square roots and powers alone "
+               "(%.4g / %.4g per pixel)</td></tr>\n</table>\n", r.speedup_long, r.long_ref, r.long_hw);
     tb_scene_free(&r);
     return scene_compare(f);
 }

@@ -112,8 +112,10 @@ const cli_optspec cli_scene_spec = {
     "exactly; the span unit of the scene's policy (linear, quadratic, cubic with\n"
     "node set N1 or N2, or degree 2/3 adaptive) interpolates every pixel clock by\n"
     "clock at the scene's fixed-point formats. Prints NMSE, PSNR, errors on 8 bits,\n"
-    "clocks per pixel, area, and the operations per pixel of the method against\n"
-    "per-pixel shading (the speed-up).\n\n"
+    "clocks per pixel, area, and the operations per pixel, by kind, of the method\n"
+    "and of an efficient per-pixel shader (work constant over the frame done once),\n"
+    "with two speed-ups: all operations weighted, and the long ones (div, sqrt,\n"
+    "pow) alone.\n\n"
     "NAME is a built-in scene: face (default), sphere, torus. Anything else is a\n"
     "scene file (key value lines, docs/scenes.md); write ./face for a file of that\n"
     "name.\n\n"
@@ -161,6 +163,31 @@ static void fmt_psnr(char *buf, size_t len, double v)
     else snprintf(buf, len, "inf");
 }
 
+/* The operations per pixel of the reference and of the method, the cost
+ * weights, and the two speed-ups, each the ratio of the figures printed
+ * above it (docs/scenes.md, "Operation counts"). */
+static void print_ops(FILE *f, const scn_desc *d, const tb_scene_result *r)
+{
+    const double *row[3] = { r->ops_ref, r->ops_hw, d->cost };
+    static const char *const name[3] = { "reference", "method", "weight" };
+    fprintf(f, "  %-20s", "operations / pixel");
+    for (int k = 0; k < SCN_OP__COUNT; k++) fprintf(f, " %8s", scn_op_name[k]);
+    fprintf(f, " %10s %9s\n", "weighted", "long ops");
+    for (int i = 0; i < 3; i++) {
+        fprintf(f, "    %-18s", name[i]);
+        for (int k = 0; k < SCN_OP__COUNT; k++) fprintf(f, i < 2 ? " %8.3f" : " %8g", row[i][k]);
+        if (i < 2) fprintf(f, " %10.3f %9.3f", i ? r->cost_hw : r->cost_ref, i ? r->long_hw : r->long_ref);
+        fputc('\n', f);
+    }
+    char a[32];
+    snprintf(a, sizeof a, "%.2fx", r->speedup);
+    fprintf(f, "  %-22s %-14s weighted cost, reference / method: %.3f / %.3f\n", "speed-up (weighted)", a,
+            r->cost_ref, r->cost_hw);
+    snprintf(a, sizeof a, "%.2fx", r->speedup_long);
+    fprintf(f, "  %-22s %-14s div + sqrt + pow, unweighted, reference / method: %.3f / %.3f\n",
+            "speed-up (long ops)", a, r->long_ref, r->long_hw);
+}
+
 static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, const char *dir, double max_nmse)
 {
     char a[64], b[64];
@@ -191,11 +218,7 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
             (unsigned long long)r->hwst.clocks, u->name, (unsigned long long)r->hwst.overflows);
     snprintf(a, sizeof a, "%.0f GE", r->hwst.area_ge);
     fprintf(f, "  %-22s %-14s %s\n", "area", a, "gate equivalents of the instantiated unit");
-    fprintf(f, "  %-22s", "ops / pixel");
-    for (int k = 0; k < SCN_OP__COUNT; k++) fprintf(f, " %s %.3g/%.3g", scn_op_name[k], r->ops_ref[k], r->ops_hw[k]);
-    fputs("   (reference/method)\n", f);
-    snprintf(a, sizeof a, "%.2fx", r->speedup);
-    fprintf(f, "  %-22s %-14s weighted cost %.4g (reference) / %.4g (method)\n", "speed-up", a, r->cost_ref, r->cost_hw);
+    print_ops(f, d, r);
     if (dir) fprintf(f, "  %-22s %s/ (ref.png hw.png err-x%d.png degree.png region.png scene.json)\n", "images", dir,
                      tb_scene_err_scale(r));
 }
@@ -225,7 +248,8 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
     };
     int n = (int)(sizeof cfgs / sizeof cfgs[0]);
     if (json) puts("[");
-    else printf("%-10s %-46s %11s %10s %9s %13s %9s\n", "config", "policy, divide-by-3 network", "NMSE", "PSNR", "speed-up", "clocks/pixel", "area GE");
+    else printf("%-10s %-46s %11s %10s %9s %9s %13s %9s\n", "config", "policy, divide-by-3 network", "NMSE", "PSNR",
+                "speed-up", "long ops", "clocks/pixel", "area GE");
     for (int i = 0; i < n; i++) {
         scn_desc d = *d0;
         d.policy = (scn_policy)cfgs[i].policy;
@@ -248,8 +272,8 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
             fmt_nmse(a, sizeof a, r.nmse);
             fmt_psnr(b, sizeof b, r.psnr);
             snprintf(what, sizeof what, "%s, /3 network %d terms", scn_policy_name(d.policy), d.terms);
-            printf("%-10s %-46s %11s %10s %8.2fx %13.3f %9.0f  %s\n", cfgs[i].name, what, a, b, r.speedup,
-                   r.clocks_per_pixel, r.hwst.area_ge, r.nmse <= COMPARE_TARGET ? "NMSE <= 1e-4" : "NMSE > 1e-4");
+            printf("%-10s %-46s %11s %10s %8.2fx %8.2fx %13.3f %9.0f  %s\n", cfgs[i].name, what, a, b, r.speedup,
+                   r.speedup_long, r.clocks_per_pixel, r.hwst.area_ge, r.nmse <= COMPARE_TARGET ? "NMSE <= 1e-4" : "NMSE > 1e-4");
         }
         tb_scene_free(&r);
     }

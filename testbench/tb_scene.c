@@ -114,38 +114,59 @@ static int nodes_n2(const scn_desc *d)
 /* --------------------------------------------------- operation counts */
 
 /* The operations of one evaluation of the lighting model at a point, from
- * the interpolated (not normalized) normal and the position: the reference
- * does this at every covered pixel, the method at every shaded node. One
- * table, one row per step; a row counts when its condition holds, once or
- * per light. Comparisons, max(0, .), clamps, constant factors known
- * before the frame (ks, kd, I0 products, m^2, 1/pi) and shifts are free.
+ * the interpolated (not normalized) normal and the position, counted as an
+ * efficient per-pixel shader does them: the reference does this at every
+ * covered pixel, the method at every shaded node, by the same rules.
  *
- *  step                                       when                  add mul div sqrt pow
- *  normalize N: N.N, sqrt, 1/|N|, 3 mul       always                  2   6   1   1   0
- *  ambient term                               always                  1   0   0   0   0
- *  V = eye - P, normalized                    perspective camera      5   6   1   1   0
- *  L = light - P, normalized                  point light, per light  5   6   1   1   0
- *  N.L                                        per light               2   3   0   0   0
- *  kd N.L                                     per light               0   1   0   0   0
- *  I0 (diffuse + specular), summed            per light               2   1   0   0   0
- *  phong: R = 2(N.L)N - L, R.V, ^n, ks        phong, per light        5   7   0   0   1
- *  H = normalize(L + V), N.H                  blinn/cook/ward, light  7   9   1   1   0
- *  blinn: (N.H)^n, ks                         blinn, per light        0   1   0   0   1
- *  cook: N.V, L.H, V.H                        cook, per light         6   9   0   0   0
- *  cook D Beckmann: c^2, tan^2 = (1-c^2)/c^2,
- *    /m^2, exp, c^4, the division             cook dg = 0, light      1   3   2   0   1
- *  cook D_g: k (c - 1) + 1, ^g, 1/(4m^2)      cook dg > 0, light      2   2   0   0   1
- *  cook G: (N.H)(N.V), (N.H)(N.L), min, /V.H  cook, per light         0   2   1   0   0
- *  cook F D G / (pi (N.L)(N.V)), ks           cook, per light         0   5   1   0   0
- *  Schlick F = c/(n - n c + c)                cook schlick, light     2   1   1   0   0
- *  modified Schlick 2c/(1.25 (n-nc+1.25c)^2)  cook mschlick, light    2   4   1   0   0
- *  ward: N.V                                  ward, per light         2   3   0   0   0
- *  ward exact: tan^2, /a^2, exp,
- *    sqrt((N.L)(N.V)), division, ks           ward dg = 0, light      1   4   2   1   1
- *  ward polynomial: k (c - 1) + 1, ^16,
- *    sqrt((N.L)(N.V)), division, ks           ward dg > 0, light      2   3   1   1   1
- * (a power x^n, x^g, exp: one "pow"; c = N.H for D, L.H for F. The
- * specular rows count only when ks != 0.)
+ * What varies over the frame is the normal N and the position P. Work on
+ * frame constants alone is done once per frame and not counted per point
+ * (both sides alike; spread over the covered pixels it is a few dozen
+ * operations / pixels): L of a directional light, V of an orthographic
+ * camera, and from them H = normalize(L + V), L.V, L.H = V.H, a Fresnel
+ * factor of L.H, 2/V.H; products of constants (I0 kd, I0 ks with the
+ * BRDF's own factors 1/pi, 1/(4 m^2), 1/(4 pi a^2), the Schlick forms'
+ * constants). So L is normalized per point only for a point light, V only
+ * for a perspective camera, H only where one of them varies. Further:
+ * comparisons, max(0, .), min, clamps and shifts (a factor 2) are free;
+ * a value used twice is computed once (L.H = V.H; N.V; c^2 and 1/c^2);
+ * a vector normalized is its dot with itself (2 add, 3 mul), a sqrt, a
+ * reciprocal (div) and 3 mul; x^n with the material's real exponent and
+ * exp are one "pow", x^g with the fixed integer g of D_g (4, 8, 16) and
+ * Ward's ^16 are multiplies by repeated squaring. One table, a row per
+ * step; a row counts when its condition holds, once or per light; the
+ * specular rows only when ks != 0. c = N.H in D and Ward, L.H in F.
+ *
+ *  step                                        when                      add mul div sqrt pow
+ *  normalize N: N.N, sqrt, 1/|N|, 3 mul        always                      2   6   1   1   0
+ *  V = eye - P, normalized                     perspective                 5   6   1   1   0
+ *  L = light - P, normalized                   point light                 5   6   1   1   0
+ *  N.L                                         light                       2   3   0   0   0
+ *  (I0 kd) N.L, summed (from the ambient)     light                       1   1   0   0   0
+ *  (I0 ks) spec, added                         specular                    1   1   0   0   0
+ *  phong R.V = 2 (N.L)(N.V) - L.V: N.V, 1 mul  phong, L and V constant     3   4   0   0   0
+ *  phong R = 2 (N.L) N - L, R.V                phong, L or V varies        5   6   0   0   0
+ *  (R.V)^n or (N.H)^n                          phong, blinn                0   0   0   0   1
+ *  H = normalize(L + V)                        half-vector BRDF, L or V    5   6   1   1   0
+ *                                              varies (blinn, cook, ward)
+ *  N.H                                         blinn, cook, ward           2   3   0   0   0
+ *  N.V                                         cook, ward                  2   3   0   0   0
+ *  L.H (= V.H)                                 cook, L or V varies         2   3   0   0   0
+ *  Beckmann D: c^2, r = 1/c^2, tan^2 = r - 1,
+ *    x (-1/m^2), exp, x r^2                    cook, exact D               1   4   1   0   1
+ *  D_g: k c + (1 - k), ^g by squaring          cook, D_g                   1   1+s 0   0   0
+ *  G = min(1, 2 (N.H) min(N.V, N.L) / V.H)     cook, L or V varies         0   1   1   0   0
+ *    the same, x (2/V.H) a constant            cook, L and V constant      0   2   0   0   0
+ *  D G / ((N.L)(N.V))                          cook                        0   2   1   0   0
+ *  x F                                         cook with F, L or V varies  0   1   0   0   0
+ *  Schlick F = c / (n + (1 - n) c)             the same, schlick           1   1   1   0   0
+ *  modified Schlick 1.6 c / u^2,
+ *    u = n + (1.25 - n) c                      the same, mschlick          1   2   1   0   0
+ *  Ward exact e: c^2, 1/c^2, - 1, x (-1/a^2),
+ *    exp                                       ward exact                  1   2   1   0   1
+ *  Ward polynomial e: k c + (1 - k), ^16       ward poly16                 1   5   0   0   0
+ *  e / sqrt((N.L)(N.V))                        ward                        0   1   1   1   0
+ * (s: the squarings and multiplies of x^g, floor(log2 g) + popcount(g) - 1:
+ * 2, 3, 4 for g = 4, 8, 16.)
  *
  * The method, per covered pixel: (shaded nodes x the same per-point cost)
  * / pixels; the coefficient network's adders per interval / pixels (every
@@ -153,56 +174,88 @@ static int nodes_n2(const scn_desc *d)
  * network its terms' subtractors: `terms` for the paper series, terms - 1
  * for the quarter series; shifts are wiring); Horner per pixel: deg mul +
  * deg add; t = k * (1/dv): 1 mul per pixel (the reciprocal is a ROM).
- * Costs weigh the counts with the description's weights (cost key). */
-typedef enum { W_ALWAYS, W_PERSP, W_POINT, W_LIGHT, W_PHONG, W_HALF, W_BLINN, W_COOK,
-               W_COOK_EXACT, W_COOK_DG, W_SCHLICK, W_MSCHLICK, W_WARD, W_WARD_EXACT, W_WARD_POLY } ops_when;
+ * Costs weigh the counts with the description's weights (cost key); the
+ * long operations are div + sqrt + pow, unweighted. */
+typedef enum { W_ALWAYS, W_PERSP, W_POINT, W_LIGHT, W_SPEC, W_PHONG_CONST, W_PHONG_VAR, W_POW,
+               W_H_VAR, W_HALF, W_NV, W_LH_VAR, W_COOK_EXACT, W_COOK_DG, W_G_VAR, W_G_CONST, W_COOK,
+               W_F_VAR, W_SCHLICK_VAR, W_MSCHLICK_VAR, W_WARD_EXACT, W_WARD_POLY, W_WARD } ops_when;
 typedef struct ops_row { ops_when when; int per_light; double n[SCN_OP__COUNT]; } ops_row;
 static const ops_row ops_table[] = {
-    /*  when           per light  add mul div sqrt pow */
-    { W_ALWAYS,     0, { 2, 6, 1, 1, 0 } },   /* normalize N */
-    { W_ALWAYS,     0, { 1, 0, 0, 0, 0 } },   /* ambient */
-    { W_PERSP,      0, { 5, 6, 1, 1, 0 } },   /* V */
-    { W_POINT,      1, { 5, 6, 1, 1, 0 } },   /* L of a point light */
-    { W_LIGHT,      1, { 2, 3, 0, 0, 0 } },   /* N.L */
-    { W_LIGHT,      1, { 0, 1, 0, 0, 0 } },   /* kd N.L */
-    { W_LIGHT,      1, { 2, 1, 0, 0, 0 } },   /* I0 (d + s), sum */
-    { W_PHONG,      1, { 5, 7, 0, 0, 1 } },   /* R, R.V, ^n, ks */
-    { W_HALF,       1, { 7, 9, 1, 1, 0 } },   /* H normalized, N.H */
-    { W_BLINN,      1, { 0, 1, 0, 0, 1 } },   /* (N.H)^n ks */
-    { W_COOK,       1, { 6, 9, 0, 0, 0 } },   /* N.V, L.H, V.H */
-    { W_COOK_EXACT, 1, { 1, 3, 2, 0, 1 } },   /* Beckmann D */
-    { W_COOK_DG,    1, { 2, 2, 0, 0, 1 } },   /* D_g */
-    { W_COOK,       1, { 0, 2, 1, 0, 0 } },   /* G */
-    { W_COOK,       1, { 0, 5, 1, 0, 0 } },   /* F D G / (pi N.L N.V), ks */
-    { W_SCHLICK,    1, { 2, 1, 1, 0, 0 } },   /* Schlick */
-    { W_MSCHLICK,   1, { 2, 4, 1, 0, 0 } },   /* modified Schlick */
-    { W_WARD,       1, { 2, 3, 0, 0, 0 } },   /* N.V */
-    { W_WARD_EXACT, 1, { 1, 4, 2, 1, 1 } },   /* exact Ward */
-    { W_WARD_POLY,  1, { 2, 3, 1, 1, 1 } },   /* polynomial Ward */
+    /*  when              per light  add mul div sqrt pow */
+    { W_ALWAYS,         0, { 2, 6, 1, 1, 0 } },   /* normalize N */
+    { W_PERSP,          0, { 5, 6, 1, 1, 0 } },   /* V */
+    { W_POINT,          1, { 5, 6, 1, 1, 0 } },   /* L of a point light */
+    { W_LIGHT,          1, { 2, 3, 0, 0, 0 } },   /* N.L */
+    { W_LIGHT,          1, { 1, 1, 0, 0, 0 } },   /* (I0 kd) N.L, summed */
+    { W_SPEC,           1, { 1, 1, 0, 0, 0 } },   /* (I0 ks) spec, added */
+    { W_PHONG_CONST,    1, { 3, 4, 0, 0, 0 } },   /* N.V, 2 (N.L)(N.V) - L.V */
+    { W_PHONG_VAR,      1, { 5, 6, 0, 0, 0 } },   /* R, R.V */
+    { W_POW,            1, { 0, 0, 0, 0, 1 } },   /* ^n */
+    { W_H_VAR,          1, { 5, 6, 1, 1, 0 } },   /* H normalized */
+    { W_HALF,           1, { 2, 3, 0, 0, 0 } },   /* N.H */
+    { W_NV,             1, { 2, 3, 0, 0, 0 } },   /* N.V */
+    { W_LH_VAR,         1, { 2, 3, 0, 0, 0 } },   /* L.H = V.H */
+    { W_COOK_EXACT,     1, { 1, 4, 1, 0, 1 } },   /* Beckmann D */
+    { W_COOK_DG,        1, { 1, 1, 0, 0, 0 } },   /* D_g base; + the squarings of ^g */
+    { W_G_VAR,          1, { 0, 1, 1, 0, 0 } },   /* G, / V.H */
+    { W_G_CONST,        1, { 0, 2, 0, 0, 0 } },   /* G, x 2/V.H */
+    { W_COOK,           1, { 0, 2, 1, 0, 0 } },   /* D G / ((N.L)(N.V)) */
+    { W_F_VAR,          1, { 0, 1, 0, 0, 0 } },   /* x F */
+    { W_SCHLICK_VAR,    1, { 1, 1, 1, 0, 0 } },   /* Schlick */
+    { W_MSCHLICK_VAR,   1, { 1, 2, 1, 0, 0 } },   /* modified Schlick */
+    { W_WARD_EXACT,     1, { 1, 2, 1, 0, 1 } },   /* exact Ward e */
+    { W_WARD_POLY,      1, { 1, 5, 0, 0, 0 } },   /* polynomial Ward e, ^16 in 4 mul */
+    { W_WARD,           1, { 0, 1, 1, 1, 0 } },   /* e / sqrt((N.L)(N.V)) */
 };
+
+/* Multiplies of x^g by repeated squaring (g >= 1). */
+static int pow_muls(int g)
+{
+    int n = -1;
+    for (int k = g; k > 0; k >>= 1) n += 1 + (k > 1 && (k & 1));
+    return n > 0 ? n : 0;
+}
 
 static int ops_applies(ops_when w, const scn_material *m, const scn_view *v, const scn_light *l)
 {
-    int cook = m->spec == SCN_SPEC_COOK, ward = m->spec == SCN_SPEC_WARD;
-    if (w >= W_PHONG && m->ks == 0) return 0;     /* no specular term is evaluated */
+    int cook = m->spec == SCN_SPEC_COOK, ward = m->spec == SCN_SPEC_WARD, phong = m->spec == SCN_SPEC_PHONG;
+    int half = m->spec == SCN_SPEC_BLINN || cook || ward;
+    int fresnel = cook && m->fresnel != SCN_FRESNEL_NONE;
+    /* L or V varies over the frame, so do H, L.V, L.H (per light) */
+    int var = v->cam.perspective || (l && l->point);
+    if (w >= W_SPEC && m->ks == 0) return 0;     /* no specular term is evaluated */
     switch (w) {
     case W_ALWAYS: return 1;
     case W_PERSP: return v->cam.perspective;
     case W_POINT: return l && l->point;
     case W_LIGHT: return 1;
-    case W_PHONG: return m->spec == SCN_SPEC_PHONG;
-    case W_HALF: return m->spec != SCN_SPEC_PHONG;
-    case W_BLINN: return m->spec == SCN_SPEC_BLINN;
-    case W_COOK: return cook;
+    case W_SPEC: return phong || half;
+    case W_PHONG_CONST: return phong && !var;
+    case W_PHONG_VAR: return phong && var;
+    case W_POW: return phong || m->spec == SCN_SPEC_BLINN;
+    case W_H_VAR: return half && var;
+    case W_HALF: return half;
+    case W_NV: return cook || ward;
+    case W_LH_VAR: return cook && var;
     case W_COOK_EXACT: return cook && m->dg == 0;
     case W_COOK_DG: return cook && m->dg > 0;
-    case W_SCHLICK: return cook && m->fresnel == SCN_FRESNEL_SCHLICK;
-    case W_MSCHLICK: return cook && m->fresnel == SCN_FRESNEL_MSCHLICK;
-    case W_WARD: return ward;
+    case W_G_VAR: return cook && var;
+    case W_G_CONST: return cook && !var;
+    case W_COOK: return cook;
+    case W_F_VAR: return fresnel && var;
+    case W_SCHLICK_VAR: return cook && var && m->fresnel == SCN_FRESNEL_SCHLICK;
+    case W_MSCHLICK_VAR: return cook && var && m->fresnel == SCN_FRESNEL_MSCHLICK;
     case W_WARD_EXACT: return ward && m->dg == 0;
     case W_WARD_POLY: return ward && m->dg > 0;
+    case W_WARD: return ward;
     }
     return 0;
+}
+
+static void ops_add_row(const ops_row *r, const scn_material *m, double ops[SCN_OP__COUNT])
+{
+    for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] += r->n[k];
+    if (r->when == W_COOK_DG) ops[SCN_OP_MUL] += pow_muls(m->dg);
 }
 
 void tb_scene_point_ops(const scn_desc *d, const scn_view *v, double ops[SCN_OP__COUNT])
@@ -211,14 +264,17 @@ void tb_scene_point_ops(const scn_desc *d, const scn_view *v, double ops[SCN_OP_
     for (size_t i = 0; i < sizeof ops_table / sizeof ops_table[0]; i++) {
         const ops_row *r = &ops_table[i];
         if (!r->per_light) {
-            if (ops_applies(r->when, &d->mat, v, NULL))
-                for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] += r->n[k];
+            if (ops_applies(r->when, &d->mat, v, NULL)) ops_add_row(r, &d->mat, ops);
             continue;
         }
         for (int l = 0; l < v->nlights; l++)
-            if (ops_applies(r->when, &d->mat, v, &v->light[l]))
-                for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] += r->n[k];
+            if (ops_applies(r->when, &d->mat, v, &v->light[l])) ops_add_row(r, &d->mat, ops);
     }
+}
+
+double tb_scene_long_ops(const double ops[SCN_OP__COUNT])
+{
+    return ops[SCN_OP_DIV] + ops[SCN_OP_SQRT] + ops[SCN_OP_POW];
 }
 
 /* Adders of a coefficient network (ADD and SUB elements; a /3 network is
@@ -568,6 +624,9 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
         r->cost_hw += r->ops_hw[k] * d->cost[k];
     }
     r->speedup = r->cost_hw > 0 ? r->cost_ref / r->cost_hw : 0;
+    r->long_ref = tb_scene_long_ops(r->ops_ref);
+    r->long_hw = tb_scene_long_ops(r->ops_hw);
+    r->speedup_long = r->long_hw > 0 ? r->long_ref / r->long_hw : 0;
     return TB_OK;
 }
 
@@ -651,6 +710,9 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     fputs(",\n  \"cost_ref\": ", f); base_json_num(f, r->cost_ref, 17);
     fputs(",\n  \"cost_hw\": ", f); base_json_num(f, r->cost_hw, 17);
     fputs(",\n  \"speedup\": ", f); base_json_num(f, r->speedup, 17);
+    fputs(",\n  \"long_ops_ref\": ", f); base_json_num(f, r->long_ref, 17);
+    fputs(",\n  \"long_ops_hw\": ", f); base_json_num(f, r->long_hw, 17);
+    fputs(",\n  \"speedup_long\": ", f); base_json_num(f, r->speedup_long, 17);
     fputs("\n}\n", f);
     return ferror(f) ? -1 : 0;
 }

@@ -45,9 +45,12 @@ typedef struct tb_scene_result {
     double    clocks_per_pixel;
     size_t    spans, intervals, intervals_deg2;
     double    deg2_share;
-    /* Operations per covered pixel, and their weighted costs. */
+    /* Operations per covered pixel (frame constants hoisted, both sides
+     * alike: tb_scene.c), their weighted costs, and the long operations
+     * (div + sqrt + pow, unweighted). */
     double    ops_ref[SCN_OP__COUNT], ops_hw[SCN_OP__COUNT];
     double    cost_ref, cost_hw, speedup;   /* speedup = cost_ref / cost_hw */
+    double    long_ref, long_hw, speedup_long;   /* speedup_long = long_ref / long_hw */
     size_t    nodes_shaded;
     int       heldout;                /* 1: the held-out view was rendered */
 } tb_scene_result;
@@ -71,8 +74,13 @@ typedef double (*tb_scene_shader)(void *ctx, const double pos[3], const double n
 int  tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
                           const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen);
 /* Operations of one evaluation of d's lighting model at a point of view v
- * (the per-pixel cost of the reference; each shaded node costs the same). */
+ * (the per-pixel cost of the reference; each shaded node costs the same),
+ * as an efficient per-pixel shader does it: what is constant over the
+ * frame (L of a directional light, V of an orthographic camera, H, L.V,
+ * L.H from them) is computed once per frame and not counted. */
 void tb_scene_point_ops(const scn_desc *d, const scn_view *v, double ops[SCN_OP__COUNT]);
+/* The long operations among counts: div + sqrt + pow. */
+double tb_scene_long_ops(const double ops[SCN_OP__COUNT]);
 /* Scale K of the error heat map: full white is an error of 1/K, K from
  * the ladder 1, 4, 16, ..., 4096 (the largest that shows the maximum). */
 int  tb_scene_err_scale(const tb_scene_result *r);

@@ -10,10 +10,15 @@
  *                     3, 4, 5, 6, 8, 12 at L 8, then the same at L 4;
  *   scene_nmse_auto   adaptive-auto (degree from the node differences)
  *                     at L 8 with 3 terms, and at the setting found;
- *   scene_speedup     cost of per-pixel Phong over the method's cost
- *                     (weighted operation counts, docs/scenes.md) at L 8;
- *                     when below 3, the longer intervals 16 and 32 are
- *                     tried (3 terms), with their NMSE.
+ *   scene_speedup     operations per pixel of an efficient per-pixel
+ *                     Phong/Blinn shader over the method's (frame
+ *                     constants hoisted on both sides, docs/scenes.md),
+ *                     read two ways: all operations weighted, and the long
+ *                     operations (div, sqrt, pow) alone; at L 8, and when
+ *                     the weighted figure is below 3 at the longer
+ *                     intervals 16 and 32 too (3 terms), with their NMSE.
+ *                     The verdict takes the shortest L at which a reading
+ *                     reaches 3, the weighted one first.
  */
 #include "testbench/tb_scene_claims.h"
 #include "testbench/tb_scene.h"
@@ -34,7 +39,7 @@ static const char *const VERDICT[N_L * N_T] = {
     VT(8, 3), VT(8, 4), VT(8, 5), VT(8, 6), VT(8, 8), VT(8, 12),
     VT(4, 3), VT(4, 4), VT(4, 5), VT(4, 6), VT(4, 8), VT(4, 12) };
 
-typedef struct meas { int ok; double nmse, speedup, deg2, cost_ref, cost_hw; } meas;
+typedef struct meas { int ok; double nmse, speedup, speedup_long, deg2, cost_ref, cost_hw, long_ref; } meas;
 
 static int measure(const scn_desc *d0, const scn_gbuf *g, scn_policy pol, int L, int terms, int jobs, meas *out,
                    char *err, size_t errlen)
@@ -52,6 +57,8 @@ static int measure(const scn_desc *d0, const scn_gbuf *g, scn_policy pol, int L,
         out->ok = 1;
         out->nmse = r.nmse;
         out->speedup = r.speedup;
+        out->speedup_long = r.speedup_long;
+        out->long_ref = r.long_ref;
         out->deg2 = r.deg2_share;
         out->cost_ref = r.cost_ref;
         out->cost_hw = r.cost_hw;
@@ -157,31 +164,54 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
     r->id = "scene_speedup";
     r->seed = where;
     r->claim = "compared with Phong, up to 3 times faster on a face by fewer costly operations "
-               "(here: weighted operation counts per pixel)";
+               "(here: operations per pixel against an efficient per-pixel shader, weighted, and long ones alone)";
     r->claimed = 3;
-    double best = pa.speedup;
-    int bestL = 8;
-    if (sp16.speedup > best) { best = sp16.speedup; bestL = 16; }
-    if (sp32.speedup > best) { best = sp32.speedup; bestL = 32; }
-    r->measured = best;
-    char at_k[96] = "";
-    if (KL && !(KL == 8 && KT == 3))
-        snprintf(at_k, sizeof at_k, "; %.3gx where NMSE meets 1e-4 (L %d, %d terms)", pk.speedup, KL, KT);
-    if (bestL == 8)
-        tb_settext(r->measured_text, sizeof r->measured_text, "%.3gx at L 8 (Phong %.3g, method %.3g per pixel)%s",
-                pa.speedup, pa.cost_ref, pa.cost_hw, at_k);
-    else
-        tb_settext(r->measured_text, sizeof r->measured_text, "%.3gx at L 8 (NMSE %.3g); %.3gx at L %d (NMSE %.3g)%s",
-                pa.speedup, pa.nmse, best, bestL, bestL == 16 ? sp16.nmse : sp32.nmse, at_k);
-    const meas *bm = bestL == 8 ? &pa : bestL == 16 ? &sp16 : &sp32;
-    r->verdict = pa.speedup >= 3 ? CLAIM_HOLDS
-               : best >= 3 && bm->nmse <= CLAIM_NMSE ? CLAIM_HOLDS_ONLY "longer intervals than L 8 (see measured)"
-               : best >= 3 ? CLAIM_HOLDS_ONLY "intervals longer than L 8, where NMSE exceeds 0.0001"
-               : best > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up than 3x"
-                          : CLAIM_FAILS;
-    tb_settext(r->note, sizeof r->note, "face %dx%d, adaptive-region, 3 terms; a shaded node costs what a Phong "
-            "pixel costs, plus the coefficient network per interval and Horner per pixel; default weights "
-            "add 1 mul 1 div 4 sqrt 4 pow 8 (docs/scenes.md)", res, res);
+    {
+        /* the settings measured, shortest L first; the verdict's: the
+         * first that reaches 3 in a reading, weighted before long */
+        const meas *at[3] = { &pa, &sp16, &sp32 };
+        static const int atL[3] = { 8, 16, 32 };
+        int hit = -1, hit_long = 0;
+        double best = 0;
+        for (int i = 0; i < 3; i++) {
+            if (!at[i]->ok) continue;
+            if (at[i]->speedup > best) best = at[i]->speedup;
+            if (at[i]->speedup_long > best) best = at[i]->speedup_long;
+            if (hit < 0 && (at[i]->speedup >= 3 || at[i]->speedup_long >= 3)) {
+                hit = i;
+                hit_long = at[i]->speedup < 3;
+            }
+        }
+        r->measured = hit < 0 ? best : hit_long ? at[hit]->speedup_long : at[hit]->speedup;
+        char buf[256] = "", one[128];
+        for (int i = 0; i < 3; i++) {
+            if (!at[i]->ok) continue;
+            snprintf(one, sizeof one, i ? "%s%.3gx/%.3gx at L %d (%.3g)" : "%s%.3gx/%.3gx at L %d (NMSE %.3g)",
+                     i ? ", " : "weighted/long ops: ", at[i]->speedup, at[i]->speedup_long, atL[i], at[i]->nmse);
+            strncat(buf, one, sizeof buf - strlen(buf) - 1);
+        }
+        if (KL && !(KL == 8 && KT == 3)) {
+            snprintf(one, sizeof one, "; %.3gx/%.3gx at L %d, %d terms (NMSE met)", pk.speedup, pk.speedup_long,
+                     KL, KT);
+            strncat(buf, one, sizeof buf - strlen(buf) - 1);
+        }
+        tb_settext(r->measured_text, sizeof r->measured_text, "%s", buf);
+        int meets = hit >= 0 && at[hit]->nmse <= CLAIM_NMSE;
+        r->verdict = hit == 0 && !hit_long ? CLAIM_HOLDS
+                   : hit == 0 ? CLAIM_HOLDS_ONLY "the long operations alone (div, sqrt, pow; weighted: below 3x)"
+                   : hit > 0 && !hit_long && meets ? CLAIM_HOLDS_ONLY "longer intervals than L 8 (see measured)"
+                   : hit > 0 && !hit_long ? CLAIM_HOLDS_ONLY "intervals longer than L 8, where NMSE exceeds 0.0001"
+                   : hit > 0 && meets ? CLAIM_HOLDS_ONLY "the long operations alone (div, sqrt, pow) and intervals "
+                                        "longer than L 8 (see measured)"
+                   : hit > 0 ? CLAIM_HOLDS_ONLY "the long operations alone (div, sqrt, pow) and intervals longer "
+                               "than L 8, where NMSE exceeds 0.0001"
+                   : best > 1 ? CLAIM_HOLDS_ONLY "a smaller speed-up than 3x"
+                              : CLAIM_FAILS;
+    }
+    tb_settext(r->note, sizeof r->note, "face %dx%d, adaptive-region, 3 terms; a Phong pixel costs %.3g weighted, %.3g long "
+            "ops (L, V, H once per frame: directional light, orthographic), a node the same, plus network and "
+            "Horner; weights add 1 mul 1 div 4 sqrt 4 pow 8 (docs/scenes.md)",
+            res, res, pa.cost_ref, pa.long_ref);
 done:
     scn_gbuf_free(&g);
     scn_mesh_free(&m);

@@ -258,14 +258,73 @@ static void test_metrics(void)
     double cr = 0, ch = 0;
     for (int k = 0; k < SCN_OP__COUNT; k++) { cr += r.ops_ref[k] * d.cost[k]; ch += r.ops_hw[k] * d.cost[k]; }
     TST_NEAR(r.speedup, cr / ch, 1e-12);
+    double lr = r.ops_ref[SCN_OP_DIV] + r.ops_ref[SCN_OP_SQRT] + r.ops_ref[SCN_OP_POW];
+    double lh = r.ops_hw[SCN_OP_DIV] + r.ops_hw[SCN_OP_SQRT] + r.ops_hw[SCN_OP_POW];
+    TST_NEAR(r.long_ref, lr, 0);
+    TST_NEAR(r.long_hw, lh, 1e-12);
+    TST_NEAR(r.speedup_long, lr / lh, 1e-12);
     TST_CHECK(r.speedup > 1, "interpolation is cheaper than shading every pixel: %g", r.speedup);
     TST_CHECK(r.hwst.area_ge > 0, "area");
     tb_scene_free(&r);
 }
 
-/* The operation counts: the reference's by hand from the documented
- * steps (docs/scenes.md), the method's from the nodes, intervals and
- * pixels the render reports. */
+/* The operation counts of the reference, derived here by hand from the
+ * operations an efficient per-pixel shader does, built from primitives:
+ *   DOT   a.b of 3-vectors: 3 mul, 2 add;
+ *   NORM  v / |v| given v: DOT(v, v), 1 sqrt, 1 reciprocal (div), 3 mul;
+ *   SUB   a - b or a + b of 3-vectors: 3 add.
+ * What varies over the frame is N and P. L of a directional light, V of
+ * an orthographic camera, and everything made of them alone (H, L.V,
+ * L.H = V.H, 2/V.H, a Fresnel factor of L.H) and every product of
+ * constants (I0 kd, I0 ks, 1/pi, 1/(4 m^2), ...) are made once per frame
+ * and cost nothing per pixel. A factor 2 is a shift, min/max/clamps free.
+ * Every pixel: N normalized (NORM). Per light:
+ *   N.L (DOT); (I0 kd) N.L added to the sum that starts at the ambient
+ *   term (1 mul, 1 add); with ks != 0, (I0 ks) spec added (1 mul, 1 add);
+ *   a point light: L = light - P (SUB) normalized (NORM);
+ *   a perspective camera (once, not per light): V = eye - P, SUB + NORM;
+ *   blinn: H = L + V (SUB) normalized (NORM) only when L or V varies;
+ *     N.H (DOT); (N.H)^n one pow (n is any real: no squarings);
+ *   phong, L and V constant: R.V = 2 (N.L)(N.V) - L.V with L.V a frame
+ *     constant: N.V (DOT), 1 mul, 1 add; then ^n, one pow;
+ *   phong, L or V varies: R = 2 (N.L) N - L (3 mul, SUB), R.V (DOT), pow;
+ *   cook: N.H, N.V (DOT each); L.H (DOT) only when H varies;
+ *     Beckmann D on c = N.H: c^2 (mul), r = 1/c^2 (div), tan^2 = r - 1
+ *     (add), times -1/m^2 (mul), exp (pow), times r^2 (2 mul);
+ *     D16: k c + (1 - k) (mul, add), ^16 by 4 squarings (4 mul);
+ *     G = min(1, 2 (N.H) min(N.V, N.L) / V.H): 1 mul and a div, or with
+ *     V.H constant 2 mul (times the constant 2/V.H);
+ *     D G / ((N.L)(N.V)): 2 mul, 1 div; F varies only with H: then times F
+ *     (mul) and Schlick c / (n + (1 - n) c) on c = L.H (mul, add, div);
+ *   ward exact: N.H, N.V (DOT each); e on c = N.H: c^2 (mul), 1/c^2 (div),
+ *     - 1 (add), times -1/a^2 (mul), exp (pow); e / sqrt((N.L)(N.V)): mul,
+ *     sqrt, div. */
+typedef struct opc { double add, mul, div, sqrt, pow; } opc;
+static opc op_sum(opc a, opc b) { return (opc){ a.add + b.add, a.mul + b.mul, a.div + b.div, a.sqrt + b.sqrt, a.pow + b.pow }; }
+static const opc DOT = { 2, 3, 0, 0, 0 }, NORM = { 2, 6, 1, 1, 0 }, SUB = { 3, 0, 0, 0, 0 };
+static const opc MUL = { 0, 1, 0, 0, 0 }, ADD = { 1, 0, 0, 0, 0 }, DIV = { 0, 0, 1, 0, 0 };
+static const opc SQRT = { 0, 0, 0, 1, 0 }, POW = { 0, 0, 0, 0, 1 };
+
+static opc ops_of(const opc *parts, int n)
+{
+    opc t = { 0, 0, 0, 0, 0 };
+    for (int i = 0; i < n; i++) t = op_sum(t, parts[i]);
+    return t;
+}
+
+static void check_ops(const char *what, const scn_desc *d, opc want)
+{
+    double p[SCN_OP__COUNT];
+    tb_scene_point_ops(d, &d->view, p);
+    double w[SCN_OP__COUNT] = { want.add, want.mul, want.div, want.sqrt, want.pow };
+    for (int k = 0; k < SCN_OP__COUNT; k++)
+        TST_CHECK(p[k] == w[k], "%s: %s %g, by hand %g", what, scn_op_name[k], p[k], w[k]);
+    TST_NEAR(tb_scene_long_ops(p), want.div + want.sqrt + want.pow, 0);
+}
+
+/* The reference's counts in eleven configurations against the derivation
+ * above; the method's from the nodes, intervals and pixels a render
+ * reports. */
 static void test_op_counts(void)
 {
     if (!load_face()) { tst_fail(__FILE__, __LINE__, "no face mesh"); return; }
@@ -278,10 +337,79 @@ static void test_op_counts(void)
     d.view.light[0].point = 0;
     d.mat.spec = SCN_SPEC_BLINN;
     d.mat.ks = 0.3;
-    /* Blinn, orthographic, one directional light: normalize N (2 add,
-     * 6 mul, div, sqrt), ambient (1 add), N.L (2, 3), kd (0, 1), combine
-     * (2, 1), H normalized and N.H (7, 9, div, sqrt), (N.H)^n ks (0, 1, pow) */
-    double want[SCN_OP__COUNT] = { 14, 21, 2, 2, 1 };
+    /* light: N.L, kd term summed; spec: ks term added */
+    const opc LIGHT[] = { DOT, MUL, ADD }, SPEC[] = { MUL, ADD };
+    opc light = ops_of(LIGHT, 3), spec = ops_of(SPEC, 2);
+    /* (1) Blinn, directional light, orthographic: H constant: 8 add 14 mul
+     * 1 div 1 sqrt 1 pow */
+    const opc A[] = { NORM, light, spec, DOT, POW };
+    opc a = ops_of(A, 5);
+    TST_CHECK(a.add == 8 && a.mul == 14 && a.div == 1 && a.sqrt == 1 && a.pow == 1, "the derivation adds up");
+    check_ops("blinn directional ortho", &d, a);
+    /* (2) a point light: L = light - P normalized, and H per pixel */
+    d.view.light[0].point = 1;
+    d.view.light[0].v[0] = 1; d.view.light[0].v[1] = 2; d.view.light[0].v[2] = 4;
+    const opc B[] = { NORM, SUB, NORM, light, spec, SUB, NORM, DOT, POW };
+    check_ops("blinn point ortho", &d, ops_of(B, 9));
+    /* (3) a perspective camera, directional light: V = eye - P, H */
+    d.view.light[0].point = 0;
+    d.view.cam.perspective = 1;
+    const opc C[] = { NORM, SUB, NORM, light, spec, SUB, NORM, DOT, POW };
+    check_ops("blinn directional perspective", &d, ops_of(C, 9));
+    /* (4) both: V and L per pixel, H */
+    d.view.light[0].point = 1;
+    const opc D[] = { NORM, SUB, NORM, SUB, NORM, light, spec, SUB, NORM, DOT, POW };
+    check_ops("blinn point perspective", &d, ops_of(D, 11));
+    /* (5) two directional lights, orthographic: each its own N.L, N.H */
+    d.view.cam.perspective = 0;
+    d.view.light[0].point = 0;
+    d.view.nlights = 2;
+    d.view.light[1] = d.view.light[0];
+    const opc E[] = { NORM, light, spec, DOT, POW, light, spec, DOT, POW };
+    check_ops("blinn two directional ortho", &d, ops_of(E, 9));
+    d.view.nlights = 1;
+    /* (6) phong, directional, orthographic: N.V, 2 (N.L)(N.V) - L.V */
+    d.mat.spec = SCN_SPEC_PHONG;
+    const opc F[] = { NORM, light, spec, DOT, MUL, ADD, POW };
+    check_ops("phong directional ortho", &d, ops_of(F, 7));
+    /* (7) phong, point light: L, R = 2 (N.L) N - L, R.V */
+    d.view.light[0].point = 1;
+    const opc G[] = { NORM, SUB, NORM, light, spec, MUL, MUL, MUL, SUB, DOT, POW };
+    check_ops("phong point ortho", &d, ops_of(G, 11));
+    /* (8) cook, exact Beckmann, no Fresnel factor, directional, ortho */
+    d.view.light[0].point = 0;
+    d.mat.spec = SCN_SPEC_COOK;
+    d.mat.dg = 0;
+    d.mat.fresnel = SCN_FRESNEL_NONE;
+    const opc H[] = { NORM, light, spec, DOT, DOT, /* N.H, N.V */
+                      MUL, DIV, ADD, MUL, POW, MUL, MUL, /* D */
+                      MUL, MUL, /* G */ MUL, MUL, DIV };
+    check_ops("cook beckmann directional ortho", &d, ops_of(H, 17));
+    /* (9) cook D16 with Schlick's F, point light: H, L.H, G and F vary */
+    d.mat.dg = 16;
+    d.mat.fresnel = SCN_FRESNEL_SCHLICK;
+    d.view.light[0].point = 1;
+    const opc I[] = { NORM, SUB, NORM, light, spec, SUB, NORM, DOT, DOT, DOT, /* H; N.H, N.V, L.H */
+                      MUL, ADD, MUL, MUL, MUL, MUL, /* D16 */ MUL, DIV, /* G */ MUL, MUL, DIV,
+                      MUL, /* x F */ MUL, ADD, DIV /* Schlick */ };
+    check_ops("cook d16 schlick point ortho", &d, ops_of(I, 25));
+    /* (10) ward exact, directional, orthographic */
+    d.view.light[0].point = 0;
+    d.mat.spec = SCN_SPEC_WARD;
+    d.mat.dg = 0;
+    d.mat.fresnel = SCN_FRESNEL_NONE;
+    const opc J[] = { NORM, light, spec, DOT, DOT, MUL, DIV, ADD, MUL, POW, MUL, SQRT, DIV };
+    check_ops("ward exact directional ortho", &d, ops_of(J, 13));
+    /* (11) no specular term: N, N.L, the kd term */
+    d.mat.ks = 0;
+    const opc K[] = { NORM, light };
+    check_ops("diffuse only", &d, ops_of(K, 2));
+
+    /* The method on a render of (1). */
+    d.mat.spec = SCN_SPEC_BLINN;
+    d.mat.ks = 0.3;
+    d.mat.dg = 0;
+    double want[SCN_OP__COUNT] = { a.add, a.mul, a.div, a.sqrt, a.pow };
     tb_scene_opts o = { 1, 0, NULL, NULL, 0 };
     tb_scene_result r;
     char err[600];
@@ -294,17 +422,13 @@ static void test_op_counts(void)
     TST_NEAR(r.ops_hw[SCN_OP_ADD], nodes * want[SCN_OP_ADD] + r.intervals / px + 1, 1e-12);
     TST_NEAR(r.ops_hw[SCN_OP_MUL], nodes * want[SCN_OP_MUL] + 2, 1e-12);
     TST_NEAR(r.ops_hw[SCN_OP_DIV], nodes * want[SCN_OP_DIV], 1e-12);
+    TST_NEAR(r.ops_hw[SCN_OP_SQRT], nodes * want[SCN_OP_SQRT], 1e-12);
     TST_NEAR(r.ops_hw[SCN_OP_POW], nodes * want[SCN_OP_POW], 1e-12);
+    /* long operations: 3 per pixel; the method's only at its nodes */
+    TST_NEAR(r.long_ref, 3, 0);
+    TST_NEAR(r.long_hw, 3 * nodes, 1e-12);
+    TST_NEAR(r.speedup_long, px / (double)r.nodes_shaded, 1e-12);
     tb_scene_free(&r);
-    /* a point light and a perspective camera: each adds a vector
-     * normalized per point (5 add, 6 mul, div, sqrt) */
-    d.view.cam.perspective = 1;
-    d.view.light[0].point = 1;
-    d.view.light[0].v[0] = 1; d.view.light[0].v[1] = 2; d.view.light[0].v[2] = 4;
-    double p[SCN_OP__COUNT];
-    tb_scene_point_ops(&d, &d.view, p);
-    double want2[SCN_OP__COUNT] = { 24, 33, 4, 4, 1 };
-    for (int k = 0; k < SCN_OP__COUNT; k++) TST_NEAR(p[k], want2[k], 0);
 }
 
 static char *slurp(const char *path, size_t *len)
