@@ -268,9 +268,9 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
 
 int tb_span_run_energy(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
                        const tb_span_item *items, size_t nitems, double *pix,
-                       tb_span_stats *st, char *err, size_t errlen)
+                       tb_span_stats *st, const char *vcd_path, char *err, size_t errlen)
 {
-    return span_run(u, cfg, f, items, nitems, pix, st, NULL, 1, err, errlen);
+    return span_run(u, cfg, f, items, nitems, pix, st, vcd_path, 1, err, errlen);
 }
 
 /* One lane's counts of the batch, for tb_energy_pj. */

@@ -43,11 +43,10 @@ typedef struct tb_span_stats {
 int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
                 const tb_span_item *items, size_t nitems, double *pix,
                 tb_span_stats *st, const char *vcd_path, char *err, size_t errlen);
-/* tb_span_run (without a dump) that also counts st->toggles and
- * st->energy_pj. */
+/* tb_span_run that also counts st->toggles and st->energy_pj. */
 int tb_span_run_energy(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
                        const tb_span_item *items, size_t nitems, double *pix,
-                       tb_span_stats *st, char *err, size_t errlen);
+                       tb_span_stats *st, const char *vcd_path, char *err, size_t errlen);
 /* Batch mode: several independent streams (lanes) at once, each lane's
  * pixels, figures and error exactly what tb_span_run gives for its stream
  * alone. The lanes run side by side through one levelized evaluation of

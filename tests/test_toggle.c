@@ -18,6 +18,7 @@
 #include "testbench/tb.h"
 #include "testbench/tb_batch.h"
 #include "testbench/tb_span.h"
+#include "testbench/tb_scene.h"
 #include "testbench/cli.h"
 #include <unistd.h>
 
@@ -334,7 +335,7 @@ static void t_span_lanes_equal_kernel(void)
         for (int k = 0; k < N; k++) {
             double *ref = calloc((size_t)NI * (size_t)cfg.L, sizeof *ref);
             tb_span_stats st;
-            TST_EQ_INT(tb_span_run_energy(u, &cfg, &fm, items[k], NI, ref, &st, err, sizeof err), TB_OK);
+            TST_EQ_INT(tb_span_run_energy(u, &cfg, &fm, items[k], NI, ref, &st, NULL, err, sizeof err), TB_OK);
             TST_EQ_INT(lanes[k].rc, TB_OK);
             TST_EQ_INT(lanes[k].st.toggles, st.toggles);
             TST_CHECK(lanes[k].st.energy_pj == st.energy_pj, "%s lane %d: %.17g pJ, kernel %.17g", u->name, k,
@@ -370,6 +371,39 @@ static void t_energy_model(void)
     sim_free(c);
 }
 
+/* A scene render: energy counted on the batch lanes equals the kernel's
+ * band by band (no_batch), and asking for it changes no image or figure. */
+static void t_scene_energy(void)
+{
+    scn_mesh face;
+    char err[600];
+    if (scn_mesh_builtin("face", 1, &face, err, sizeof err)) { TST_CHECK(0, "face: %s", err); return; }
+    scn_desc d;
+    scn_desc_default(&d);
+    d.width = d.height = 64;
+    tb_scene_result r[3];
+    for (int k = 0; k < 3; k++) {
+        /* 0: plain; 1: energy on the batch; 2: energy on the kernel alone */
+        tb_scene_opts o = { 2, 0, NULL, NULL, k == 2, k > 0 };
+        TST_EQ_INT(tb_scene_render(&d, &face, &o, &r[k], err, sizeof err), TB_OK);
+    }
+    size_t n = (size_t)r[0].w * (size_t)r[0].h;
+    for (int k = 1; k < 3; k++) {
+        TST_CHECK(!memcmp(r[0].hw, r[k].hw, n * sizeof *r[0].hw), "render %d: the image changed", k);
+        TST_EQ_INT(r[k].hwst.clocks, r[0].hwst.clocks);
+        TST_EQ_INT(r[k].hwst.pixels, r[0].hwst.pixels);
+    }
+    TST_EQ_INT(r[0].hwst.toggles, 0);
+    TST_CHECK(r[0].hwst.energy_pj == 0 && r[0].energy_pj_per_pixel == 0, "energy counted while not asked for");
+    TST_CHECK(r[1].hwst.toggles > 0, "no toggles");
+    TST_EQ_INT(r[1].hwst.toggles, r[2].hwst.toggles);
+    TST_CHECK(r[1].hwst.energy_pj == r[2].hwst.energy_pj, "batch %.17g pJ, kernel %.17g", r[1].hwst.energy_pj,
+              r[2].hwst.energy_pj);
+    TST_NEAR(r[1].energy_pj_per_pixel, r[1].hwst.energy_pj / (double)r[1].hwst.pixels, 1e-12);
+    for (int k = 0; k < 3; k++) tb_scene_free(&r[k]);
+    scn_mesh_free(&face);
+}
+
 int main(void)
 {
     TST_RUN(t_counter);
@@ -378,5 +412,6 @@ int main(void)
     TST_RUN(t_vcd_matches_toggles);
     TST_RUN(t_batch_lanes_equal_kernel);
     TST_RUN(t_span_lanes_equal_kernel);
+    TST_RUN(t_scene_energy);
     TST_EXIT();
 }
