@@ -13,6 +13,8 @@ struct sim_toggle {
     int       started;      /* the first step's values are the baseline */
     int64_t  *last;         /* per signal: its value at the last step */
     uint64_t *count;        /* per signal: its toggles */
+    uint64_t *mask;         /* per signal: its format's bits (sim_toggle_mask), read
+                             * here rather than from the signal's cold fields */
 };
 
 static void step(sim_ctx *c, sim_time now, void *data)
@@ -28,12 +30,15 @@ static void step(sim_ctx *c, sim_time now, void *data)
     sim_signal *const *d = sim_changed(c, &n);
     int64_t *last = t->last;
     uint64_t *count = t->count;
+    const uint64_t *mask = t->mask;
+    const uint32_t nsig = t->nsig;
     for (uint32_t i = 0; i < n; i++) {
         const sim_signal *s = d[i];
         uint32_t k = s->index;
-        if (k >= t->nsig || s->cur == last[k]) continue;
-        count[k] += sim_toggle_popcount(((uint64_t)s->cur ^ (uint64_t)last[k]) & sim_toggle_mask(s));
-        last[k] = s->cur;
+        int64_t v = s->cur;
+        if (k >= nsig || v == last[k]) continue;
+        count[k] += sim_toggle_popcount(((uint64_t)v ^ (uint64_t)last[k]) & mask[k]);
+        last[k] = v;
     }
 }
 
@@ -46,10 +51,12 @@ sim_toggle *sim_toggle_new(sim_ctx *c)
     size_t n = t->nsig ? t->nsig : 1;
     t->last = calloc(n, sizeof *t->last);
     t->count = calloc(n, sizeof *t->count);
-    if (!t->last || !t->count || sim_observe(c, step, t, SIM_OBS_CHANGES)) {
-        free(t->last); free(t->count); free(t);
+    t->mask = malloc(n * sizeof *t->mask);
+    if (!t->last || !t->count || !t->mask || sim_observe(c, step, t, SIM_OBS_CHANGES)) {
+        free(t->last); free(t->count); free(t->mask); free(t);
         return NULL;
     }
+    for (uint32_t i = 0; i < t->nsig; i++) t->mask[i] = sim_toggle_mask(sim_signal_at(c, i));
     return t;
 }
 
@@ -59,6 +66,7 @@ void sim_toggle_free(sim_toggle *t)
     sim_unobserve(t->ctx, step, t);
     free(t->last);
     free(t->count);
+    free(t->mask);
     free(t);
 }
 
