@@ -251,8 +251,9 @@ static void t_batch_lanes_equal_kernel(void)
 {
     size_t compared = 0;
     /* the vector loops the CPU has, then the scalar ones */
-    for (int pass = 0; pass < 2; pass++)
-    for (size_t ui = (sim_batch_vector(pass ? 0 : 8), 0); ui < unit_count(); ui++) {
+    for (size_t step = 0; step < 2 * unit_count(); step++) {
+        size_t ui = step % unit_count();
+        if (ui == 0) sim_batch_vector(step ? 0 : 8);
         const unit_desc *u = unit_at(ui);
         unit_cfg cfg;
         unit_cfg_default(u, &cfg);
