@@ -16,6 +16,7 @@
  */
 #include "sim/sim_batch_int.h"
 #include "sim/sim_prim.h"
+#include "sim/sim_toggle.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -42,6 +43,10 @@ struct sim_batch {
     int    (*vreg)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
     uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t);
     uint64_t vec_groups, vec_fell;   /* groups of lanes (a vector each) they did, and handed back (sim_batch_vector_stats) */
+    /* toggle counting (sim_batch_toggles_on), NULL when off */
+    uint64_t *tog;              /* nsig x lanes: bit toggles so far */
+    int64_t  *tprev;            /* nsig x lanes: the values they are counted from */
+    uint64_t *fmask;            /* per signal: its format's bits (sim_toggle_mask) */
 };
 
 /* The widest vector loops a batch may use (the tests lower it); read
@@ -384,6 +389,32 @@ static inline int wide_enough(uint64_t m, uint32_t lanes, uint32_t vw)
     return (uint32_t)((m * 0x0101010101010101ull) >> 56) * vw >= lanes;
 }
 
+/* After a settle, before the change masks are cleared: each signal's
+ * toggles in the lanes it changed in since the last count (every value
+ * change of a cycle is in chg: the registers', the inputs' and the
+ * combinational elements'). */
+static void count_toggles(sim_batch *b)
+{
+    const uint32_t nw = b->nw;
+    const size_t L = b->lanes;
+    for (uint32_t i = 0; i < b->nsig; i++) {
+        const uint64_t *m = b->chg + (size_t)i * nw;
+        const int64_t *v = b->val + (size_t)i * L;
+        int64_t *pv = b->tprev + (size_t)i * L;
+        uint64_t *t = b->tog + (size_t)i * L;
+        const uint64_t mask = b->fmask[i];
+        for (uint32_t w = 0; w < nw; w++) {
+            uint64_t mw = m[w];
+            while (mw) {
+                uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
+                mw &= mw - 1;
+                t[l] += sim_toggle_popcount(((uint64_t)v[l] ^ (uint64_t)pv[l]) & mask);
+                pv[l] = v[l];
+            }
+        }
+    }
+}
+
 /* Settle: each element in order, in the lanes where one of its inputs
  * changed (the others would compute what they hold). */
 /* settle for at most 64 lanes once started (a scene's bands, the bench's
@@ -416,6 +447,7 @@ static void settle1(sim_batch *b)
         for (int k = 0; k < r->ndep; k++) rm |= chg[r->dep[k]];
         b->regm[i] = rm;
     }
+    if (b->tog) count_toggles(b);
     memset(chg, 0, (size_t)b->nsig * sizeof *chg);
 }
 
@@ -453,6 +485,7 @@ static void settle(sim_batch *b)
             for (uint32_t w = 0; w < nw; w++) rm[w] |= dm[w];
         }
     }
+    if (b->tog && b->started) count_toggles(b);
     memset(chg, 0, (size_t)b->nsig * nw * sizeof *chg);
 }
 
@@ -462,6 +495,27 @@ void sim_batch_start(sim_batch *b)
     apply_inputs(b);
     settle(b);
     b->started = 1;
+    if (b->tog) memcpy(b->tprev, b->val, (size_t)b->nsig * b->lanes * sizeof *b->tprev);
+}
+
+int sim_batch_toggles_on(sim_batch *b)
+{
+    if (b->tog) return 0;
+    size_t n = (size_t)(b->nsig ? b->nsig : 1) * b->lanes;
+    b->tog = calloc(n, sizeof *b->tog);
+    b->tprev = malloc(n * sizeof *b->tprev);
+    if (!b->tog || !b->tprev) {
+        free(b->tog); free(b->tprev);
+        b->tog = NULL; b->tprev = NULL;
+        return -1;
+    }
+    memcpy(b->tprev, b->val, (size_t)b->nsig * b->lanes * sizeof *b->tprev);
+    return 0;
+}
+
+const uint64_t *sim_batch_toggles(const sim_batch *b, const sim_signal *s)
+{
+    return b->tog && s->index < b->nsig ? b->tog + (size_t)s->index * b->lanes : NULL;
 }
 
 /* Register p in place, in the lanes of rm (then cleared): its new value
@@ -804,6 +858,7 @@ void sim_batch_free(sim_batch *b)
     free_ops(b->comb, b->ncomb);
     free_ops(b->reg, b->nreg);
     free(b->val); free(b->pend); free(b->inslot); free(b->in_sig); free(b->regnx); free(b->regm); free(b->ovf); free(b->chg); free(b->uni);
+    free(b->tog); free(b->tprev); free(b->fmask);
     free(b);
 }
 
@@ -944,13 +999,15 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
     op_of_sig = malloc((nsig ? nsig : 1) * sizeof *op_of_sig);
     b->reg = calloc(nsig ? nsig : 1, sizeof *b->reg);
     b->in_sig = malloc((nsig ? nsig : 1) * sizeof *b->in_sig);
-    if (!b->val || !b->inslot || !b->ovf || !b->chg || !b->uni || !comb || !info || !op_of_sig || !b->reg || !b->in_sig) goto oom;
+    b->fmask = malloc((nsig ? nsig : 1) * sizeof *b->fmask);
+    if (!b->val || !b->inslot || !b->ovf || !b->chg || !b->uni || !comb || !info || !op_of_sig || !b->reg || !b->in_sig || !b->fmask) goto oom;
 
     /* Every signal's value now in every lane; classify the drivers. */
     char path[256];
     for (uint32_t i = 0; i < nsig; i++) {
         sim_signal *s = sim_signal_at(c, i);
         for (uint32_t l = 0; l < lanes; l++) b->val[(size_t)i * lanes + l] = s->cur;
+        b->fmask[i] = sim_toggle_mask(s);
         op_of_sig[i] = UINT32_MAX;
         b->inslot[i] = -1;
         if (s->kind == SIM_KIND_CONST) continue;

@@ -87,6 +87,16 @@ uint32_t sim_batch_vector(uint32_t most);
  * of range). */
 void sim_batch_vector_stats(const sim_batch *b, uint64_t *groups, uint64_t *fell);
 
+/* Switching activity (sim_toggle.h), off unless asked for: from the
+ * values after sim_batch_start (or, asked later, from the values now),
+ * each signal's bit toggles per lane, counted after each settle: what the
+ * kernel's sim_toggle counts for that lane's stimulus run alone. The
+ * clock is not simulated by the batch: its count stays 0. 0, or -1 when
+ * out of memory. */
+int  sim_batch_toggles_on(sim_batch *b);
+/* The toggles of s so far, one per lane; NULL when not counting. */
+const uint64_t *sim_batch_toggles(const sim_batch *b, const sim_signal *s);
+
 /* 1 if some quantization in lane `lane` overflowed since the start (its
  * overflow counts must come from the kernel). */
 int  sim_batch_overflowed(const sim_batch *b, uint32_t lane);

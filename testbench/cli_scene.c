@@ -255,7 +255,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
         d.policy = (scn_policy)cfgs[i].policy;
         d.terms = cfgs[i].terms;
         if (i == 0) d.series = DIV3_PAPER;     /* the paper's x/2 - x/8 - x/32 - x/128 */
-        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch };
+        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 0 };
         tb_scene_result r;
         char err[600], sub[4200];
         progress(cfgs[i].name);
@@ -348,7 +348,7 @@ int cli_scene(int argc, char **argv)
         if (t == TB_BADINPUT) rc = cli_usage_error("%s", err);
         else if (t == TB_FAIL) { if (err[0]) (void)cli_usage_error("%s", err); rc = CLI_FAIL; }
     } else {
-        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch };
+        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 0 };
         tb_scene_result r;
         progress("rendering...");
         int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);

@@ -7,6 +7,7 @@
 #include "testbench/tb_batch.h"
 #include "sim/sim_batch.h"
 #include "testbench/tb_range.h"
+#include "testbench/tb_energy.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -68,8 +69,45 @@ static int from_kernel(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
     L->overflows = r.overflows - r.in_overflows;
     L->in_overflows = r.in_overflows;
     L->batched = 0;
+    if (L->energy) {
+        free(L->sig_toggles);
+        L->sig_toggles = malloc((size_t)(r.nsigs ? r.nsigs : 1) * sizeof *L->sig_toggles);
+        if (!L->sig_toggles) { tb_result_free(&r); snprintf(err, errlen, "out of memory"); return TB_FAIL; }
+        for (int i = 0; i < r.nsigs; i++) L->sig_toggles[i] = r.sigs[i].toggles;
+        L->nsig = r.nsigs;
+        L->toggles = r.ppa.toggles;
+        L->energy_pj_per_item = r.ppa.energy_pj_per_item;
+    }
     tb_result_free(&r);
     return TB_OK;
+}
+
+/* One lane's counts of the batch, for tb_energy_pj. */
+typedef struct lane_count { const sim_batch *b; uint32_t lane; } lane_count;
+static uint64_t lane_toggles(const sim_signal *s, void *data)
+{
+    const lane_count *x = data;
+    const uint64_t *t = sim_batch_toggles(x->b, s);
+    return t ? t[x->lane] : 0;
+}
+
+/* Lane k's toggles per signal (tb_range's signals: tb_run's r->sigs),
+ * their sum and the energy per item, from the batch's counts. */
+static int lane_energy(const sim_batch *b, sim_ctx *c, const sim_scope *sc, const sim_signal *clk,
+                       tb_batch_lane *L, uint32_t k)
+{
+    tb_range g;
+    if (tb_range_init(&g, c, sc, clk)) { tb_range_free(&g); return -1; }
+    free(L->sig_toggles);
+    L->sig_toggles = malloc((size_t)(g.nsmp ? g.nsmp : 1) * sizeof *L->sig_toggles);
+    if (!L->sig_toggles) { tb_range_free(&g); return -1; }
+    for (int i = 0; i < g.nsmp; i++) L->sig_toggles[i] = sim_batch_toggles(b, g.smp[i])[k];
+    L->nsig = g.nsmp;
+    lane_count x = { b, k };
+    double pj = tb_energy_pj(c, sc, lane_toggles, &x, L->clocks, &L->toggles);
+    L->energy_pj_per_item = L->vs->n_rows ? pj / (double)L->vs->n_rows : 0;
+    tb_range_free(&g);
+    return 0;
 }
 
 int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
@@ -99,6 +137,9 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
     if (!S) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
     if (unbuilt) { rc = TB_BADINPUT; goto done; }
     if (!(b = sim_batch_new(c, clk, (uint32_t)n, err, errlen))) { rc = TB_UNSUPPORTED; goto done; }
+    int energy = 0;
+    for (size_t k = 0; k < n; k++) energy |= lanes[k].energy;
+    if (energy && sim_batch_toggles_on(b)) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
     uint64_t const_ovf = tb_scope_overflows(sc);
     size_t nv = (size_t)beats * (size_t)n_out;
     int64_t *nin[UNIT_MAX_IO], *nvalid = sim_batch_next(b, io.in_valid);
@@ -145,6 +186,11 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
             if (S[k].done == 1 && lanes[k].clocks == e) {
                 lanes[k].batched = !sim_batch_overflowed(b, (uint32_t)k);
                 lanes[k].overflows = const_ovf;
+                /* counted through the last edge's settling, where tb_run stops */
+                if (energy && lanes[k].batched && lane_energy(b, c, sc, clk, &lanes[k], (uint32_t)k)) {
+                    snprintf(err, errlen, "out of memory");
+                    rc = TB_FAIL;
+                }
             }
     }
     for (size_t k = 0; k < n && rc == TB_OK; k++)

@@ -24,6 +24,13 @@ typedef struct tb_batch_lane {
     uint64_t  overflows;     /* out: the unit's own (constants and simulation) */
     uint64_t  in_overflows;  /* out: the inputs' quantization */
     int       batched;       /* out: 1 if the batch gave the lane, 0 the kernel */
+    /* Switching activity (docs/timing.md), counted when `energy` is set in
+     * any lane (off: the batch pays nothing for it): */
+    int       energy;        /* in: count toggles and energy */
+    uint64_t *sig_toggles;   /* out: per signal of the unit, in tb_run's r->sigs order, malloc'd */
+    int       nsig;          /* out: entries of sig_toggles */
+    uint64_t  toggles;       /* out: their sum (tb_run's ppa.toggles) */
+    double    energy_pj_per_item;   /* out: tb_run's ppa.energy_pj_per_item */
 } tb_batch_lane;
 
 /* TB_OK; TB_UNSUPPORTED, TB_BADINPUT (vectors for another unit) or

@@ -201,6 +201,8 @@ void tb_print_table(FILE *f, const tb_result *r)
             r->vectors, (unsigned long long)r->cycles, tnum(x[0], 32, "%.3g", r->cycles_per_item),
             tnum(x[1], 32, "%.3g", r->cycles_per_beat), (unsigned long long)r->latency,
             tnum(x[2], 32, "%.1f", r->area_ge), (unsigned long long)r->overflows);
+    fprintf(f, "switching %llu bit toggles, %s pJ/item (docs/timing.md)\n", (unsigned long long)r->ppa.toggles,
+            tnum(x[3], 32, "%.3g", r->ppa.energy_pj_per_item));
     /* the format column as wide as its longest entry (a format with its
      * own modes, "s7.9:half-up:sat", is longer than the usual 8) */
     int fw = 8;

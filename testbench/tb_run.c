@@ -4,6 +4,7 @@
 #include "testbench/tb_stream.h"
 #include "testbench/tb_range.h"
 #include "testbench/tb_wave.h"
+#include "testbench/tb_energy.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -337,6 +338,7 @@ typedef struct run_sim {
     tb_state st;
     sim_vcd *vcd;
     tb_wave wave;
+    sim_toggle *tog;             /* switching activity (tb_energy.h) */
 } run_sim;
 
 static int run_build(run_sim *s, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, const vec_set *vs,
@@ -360,6 +362,11 @@ static int run_build(run_sim *s, const unit_desc *u, const unit_cfg *cfg, const 
     sim_proc *mon = sim_proc_new(s->c, "tb.monitor", monitor, st);
     sim_sensitive(mon, s->clk, SIM_EDGE_POS);
     mon->no_init = 1;
+    /* every signal exists now: toggles counted from initialization on */
+    if (!(s->tog = sim_toggle_new(s->c))) {
+        snprintf(err, errlen, "out of memory");
+        return TB_FAIL;
+    }
     if (o && o->vcd_path) {
         s->vcd = tb_wave_open(&s->wave, s->c, o, &s->io, s->clk, u, cfg, vs, err, errlen);
         if (!s->vcd) return TB_BADINPUT;
@@ -406,6 +413,7 @@ static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
     r->overflows = tb_scope_overflows(s->sc);
     for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
     tb_range_finish(&s->st.rg, s->sc, &s->io, m->in_ovf, r);
+    tb_energy_fill(r, &s->st.rg, s->tog, s->c, r->stats.clocks);
     metrics(r, vs, m->ideal, m->exact, m->exact_den, m->exact_hi, m->exact_ok, &m->gold);
     tb_verdict(r, NULL);
 }
@@ -432,6 +440,7 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     if (rc == TB_OK) rc = run_simulate(&s, u, &m, r, err, errlen);
     if (rc == TB_OK) run_collect(&s, &m, vs, r);
     if (s.vcd) { sim_vcd_abort(s.vcd); tb_wave_free(&s.wave); }
+    sim_toggle_free(s.tog);
     sim_free(s.c);
     run_mem_free(&m);
     tb_range_free(&s.st.rg);

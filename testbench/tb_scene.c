@@ -326,6 +326,7 @@ typedef struct job {
     int nbands, vcd_band;
     const char *vcd_path;
     int batch;                     /* simulate bands side by side (tb_span_run_lanes) */
+    int energy;                    /* count toggles and energy (tb_scene_opts) */
     int ngroups;                   /* the batch: bands in this many groups, one a thread */
     tb_scene_result *r;
 } job;
@@ -449,7 +450,8 @@ static void run_band(job *J, band *b)
         b->pix = pix;
         return;
     }
-    b->rc = tb_span_run(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err);
+    b->rc = J->energy ? tb_span_run_energy(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err)
+                      : tb_span_run(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err);
     if (b->rc == TB_OK) band_pixels(J, b, pix);
     free(items);
     free(pix);
@@ -466,7 +468,7 @@ static void run_group(job *J, int g)
         band *b = &J->bands[k];
         if (!b->items) continue;
         which[n] = k;
-        lanes[n++] = (tb_span_lane){ .items = b->items, .nitems = b->nitems, .pix = b->pix };
+        lanes[n++] = (tb_span_lane){ .items = b->items, .nitems = b->nitems, .pix = b->pix, .energy = J->energy };
     }
     if (!n) return;
     tb_span_run_lanes(J->u, J->cfg, J->fmts, lanes, (size_t)n, 1);
@@ -531,7 +533,7 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
                          const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
-    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0 };
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
     if (!o) o = &dflt;
     r->heldout = o->heldout;
     if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen)) return TB_BADINPUT;
@@ -559,7 +561,7 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     /* bands of equal rows; spans are in row order */
     job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
               .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
-              .vcd_path = o->vcd_path, .batch = !o->no_batch, .r = r };
+              .vcd_path = o->vcd_path, .batch = !o->no_batch, .energy = o->energy, .r = r };
     size_t s = 0;
     for (int k = 0; k < nb; k++) {
         band *b = &bands[k];
@@ -595,6 +597,8 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
         r->hwst.items_deg2 += b->st.items_deg2;
         r->hwst.overflows += b->st.overflows;
         if (b->st.area_ge > r->hwst.area_ge) r->hwst.area_ge = b->st.area_ge;
+        r->hwst.toggles += b->st.toggles;
+        r->hwst.energy_pj += b->st.energy_pj;
         r->intervals += b->intervals;
         r->intervals_deg2 += b->deg2;
         r->nodes_shaded += b->nodes;
@@ -607,6 +611,7 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     metrics(g, r);
     size_t px = r->covered;
     r->clocks_per_pixel = px ? (double)r->hwst.clocks / px : 0;
+    r->energy_pj_per_pixel = r->hwst.pixels ? r->hwst.energy_pj / (double)r->hwst.pixels : 0;
     r->deg2_share = r->intervals ? (double)r->intervals_deg2 / r->intervals : 0;
     /* operation counts per covered pixel */
     double pt[SCN_OP__COUNT];

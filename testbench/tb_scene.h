@@ -22,6 +22,9 @@ typedef struct tb_scene_opts {
     const unit_fmts *fmts;   /* NULL: the scene's formats (width rule + fmt overrides) */
     int         no_batch;    /* 1: every band on the event-driven kernel alone; 0: bands as
                               * lanes of the batch mode (same bytes, faster) */
+    int         energy;      /* 1: count the hardware's switching activity (r->hwst.toggles,
+                              * r->hwst.energy_pj, r->energy_pj_per_pixel); 0: not counted,
+                              * and the render pays nothing for it */
 } tb_scene_opts;
 
 typedef struct tb_scene_result {
@@ -43,6 +46,7 @@ typedef struct tb_scene_result {
     unit_fmts fmts;
     tb_span_stats hwst;
     double    clocks_per_pixel;
+    double    energy_pj_per_pixel;    /* hwst.energy_pj / hwst.pixels (opts.energy; else 0) */
     size_t    spans, intervals, intervals_deg2;
     double    deg2_share;
     /* Operations per covered pixel (frame constants hoisted, both sides

@@ -74,7 +74,7 @@ static int holds(const search *s, const eval *e)
  * the held-out view with `threads` bands. */
 static void render(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, eval *e)
 {
-    tb_scene_opts o = { threads, heldout, NULL, f, s->no_batch };
+    tb_scene_opts o = { threads, heldout, NULL, f, s->no_batch, 0 };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     memset(e, 0, sizeof *e);

@@ -12,6 +12,8 @@
 #include "testbench/tb_wave.h"
 #include "base/base_out.h"
 #include "sim/sim_batch.h"
+#include "sim/sim_toggle.h"
+#include "testbench/tb_energy.h"
 #include <stdlib.h>
 #include <math.h>
 #include <string.h>
@@ -176,9 +178,12 @@ static int prepare(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, 
     return 0;
 }
 
-int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
-                const tb_span_item *items, size_t nitems, double *pix,
-                tb_span_stats *st, const char *vcd_path, char *err, size_t errlen)
+/* The kernel's counts, for tb_energy_pj. */
+static uint64_t kernel_toggles(const sim_signal *s, void *data) { return sim_toggle_count(data, s); }
+
+static int span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                    const tb_span_item *items, size_t nitems, double *pix,
+                    tb_span_stats *st, const char *vcd_path, int energy, char *err, size_t errlen)
 {
     span_tb s;
     if (prepare(u, cfg, f, items, nitems, &s, st, err, errlen)) return TB_BADINPUT;
@@ -194,6 +199,7 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     int rc = TB_OK;
     sim_vcd *vcd = NULL;
     base_out *vout = NULL;
+    sim_toggle *tog = NULL;
     if (unbuilt) { rc = TB_BADINPUT; goto done; }
     sim_clock(c, clk, 5, 5);
     s.io = &io; s.ctx = c;
@@ -205,6 +211,11 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     sim_proc *mon = sim_proc_new(c, "tb.monitor", monitor, &s);
     sim_sensitive(mon, clk, SIM_EDGE_POS);
     mon->no_init = 1;
+    if (energy && !(tog = sim_toggle_new(c))) {
+        snprintf(err, errlen, "out of memory");
+        rc = TB_FAIL;
+        goto done;
+    }
     if (vcd_path) {
         /* A dump can be hundreds of MB: base_out writes it to a temporary
          * that SIGINT/SIGTERM/SIGHUP remove, renamed into place when
@@ -245,11 +256,36 @@ int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     st->pixels = s.got;
     st->overflows = s.in_ovf + tb_scope_overflows(sc);
     st->area_ge = sim_scope_area(sc);
+    if (tog) st->energy_pj = tb_energy_pj(c, sc, kernel_toggles, tog, s.last_pixel, &st->toggles);
 done:
+    sim_toggle_free(tog);
     if (vcd) sim_vcd_abort(vcd);
     if (vout) base_out_abort(vout);
     sim_free(c);
     return rc;
+}
+
+int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                const tb_span_item *items, size_t nitems, double *pix,
+                tb_span_stats *st, const char *vcd_path, char *err, size_t errlen)
+{
+    return span_run(u, cfg, f, items, nitems, pix, st, vcd_path, 0, err, errlen);
+}
+
+int tb_span_run_energy(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                       const tb_span_item *items, size_t nitems, double *pix,
+                       tb_span_stats *st, const char *vcd_path, char *err, size_t errlen)
+{
+    return span_run(u, cfg, f, items, nitems, pix, st, vcd_path, 1, err, errlen);
+}
+
+/* One lane's counts of the batch, for tb_energy_pj. */
+typedef struct lane_count { const sim_batch *b; uint32_t lane; } lane_count;
+static uint64_t lane_toggles(const sim_signal *s, void *data)
+{
+    const lane_count *x = data;
+    const uint64_t *t = sim_batch_toggles(x->b, s);
+    return t ? t[x->lane] : 0;
 }
 
 /* ------------------------------------------------------------- batch mode */
@@ -321,7 +357,7 @@ static inline int lane_edge(const lane_io *x, lane_hot *h, lane_tb *T, uint64_t 
  * exactly (an overflow, or no answer within its clock budget) is left
  * in_batch = 0 for tb_span_run. */
 static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
-                      tb_span_lane *L, lane_tb *T, size_t n, uint32_t nb)
+                      tb_span_lane *L, lane_tb *T, size_t n, uint32_t nb, int energy)
 {
     char err[300];
     tb_built bu;
@@ -333,6 +369,12 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
     sim_batch *b = NULL;
     if (unbuilt || !(b = sim_batch_new(c, clk, nb, err, sizeof err))) {
         for (size_t i = 0; i < n; i++) T[i].in_batch = 0;
+        sim_free(c);
+        return;
+    }
+    if (energy && sim_batch_toggles_on(b)) {
+        for (size_t i = 0; i < n; i++) T[i].in_batch = 0;
+        sim_batch_free(b);
         sim_free(c);
         return;
     }
@@ -386,6 +428,10 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
             st->pixels = t->s.got;
             st->overflows = t->s.in_ovf + const_ovf;
             st->area_ge = area;
+            if (L[fin[k]].energy) {
+                lane_count lc = { b, t->lane };
+                st->energy_pj = tb_energy_pj(c, sc, lane_toggles, &lc, t->s.last_pixel, &st->toggles);
+            }
         }
     }
     if (!fin || !act) for (size_t i = 0; i < n; i++) T[i].in_batch = 0;
@@ -400,6 +446,8 @@ void tb_span_run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
 {
     lane_tb *T = batch && n ? calloc(n, sizeof *T) : NULL;
     uint32_t nb = 0;
+    int energy = 0;
+    for (size_t i = 0; i < n; i++) energy |= L[i].energy;
     for (size_t i = 0; i < n && T; i++) {
         L[i].rc = TB_OK;
         L[i].err[0] = 0;
@@ -410,11 +458,12 @@ void tb_span_run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
         T[i].in_batch = 1;
         T[i].lane = nb++;
     }
-    if (nb) run_batch(u, cfg, f, L, T, n, nb);
+    if (nb) run_batch(u, cfg, f, L, T, n, nb, energy);
     for (size_t i = 0; i < n; i++) {
         if (T && T[i].in_batch) { L[i].batched = 1; continue; }
         L[i].batched = 0;
-        L[i].rc = tb_span_run(u, cfg, f, L[i].items, L[i].nitems, L[i].pix, &L[i].st, NULL, L[i].err, sizeof L[i].err);
+        L[i].rc = span_run(u, cfg, f, L[i].items, L[i].nitems, L[i].pix, &L[i].st, NULL, L[i].energy, L[i].err,
+                           sizeof L[i].err);
     }
     free(T);
 }

@@ -28,6 +28,12 @@ typedef struct tb_span_stats {
     uint64_t items, items_deg2;
     uint64_t overflows;      /* input quantization + every signal of the unit */
     double   area_ge;
+    /* Switching activity, only when asked for (tb_span_run_energy, or a
+     * lane's `energy`; else 0): the unit's settled bit toggles and its
+     * energy over the whole run, every clock from the first
+     * (docs/timing.md). */
+    uint64_t toggles;
+    double   energy_pj;
 } tb_span_stats;
 
 /* Simulate items[0..nitems-1] back to back through unit u (one of the
@@ -37,6 +43,10 @@ typedef struct tb_span_stats {
 int tb_span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
                 const tb_span_item *items, size_t nitems, double *pix,
                 tb_span_stats *st, const char *vcd_path, char *err, size_t errlen);
+/* tb_span_run that also counts st->toggles and st->energy_pj. */
+int tb_span_run_energy(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                       const tb_span_item *items, size_t nitems, double *pix,
+                       tb_span_stats *st, const char *vcd_path, char *err, size_t errlen);
 /* Batch mode: several independent streams (lanes) at once, each lane's
  * pixels, figures and error exactly what tb_span_run gives for its stream
  * alone. The lanes run side by side through one levelized evaluation of
@@ -51,6 +61,8 @@ typedef struct tb_span_lane {
     tb_span_stats st;            /* out */
     int rc;                      /* out: TB_OK, TB_FAIL or TB_BADINPUT */
     int batched;                 /* out: 1 if the batch gave this lane */
+    int energy;                  /* in: count st.toggles and st.energy_pj (the batch counts
+                                  * when any lane asks; off, it pays nothing) */
     char err[300];               /* out: rc's message */
 } tb_span_lane;
 void tb_span_run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,

@@ -16,6 +16,7 @@
  */
 #include "testbench/tb_stream.h"
 #include "testbench/tb_range.h"
+#include "testbench/tb_energy.h"
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -418,6 +419,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     sim_scope *sc = bu.sc;
     unit_io io = bu.io;
     int rc = TB_OK;
+    sim_toggle *tog = NULL;      /* switching activity (tb_energy.h) */
     if (unbuilt) { rc = TB_BADINPUT; goto done; }
     sim_clock(c, clk, 5, 5);
     st.io = &io; st.ctx = c;
@@ -431,6 +433,12 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     sim_proc *mon = sim_proc_new(c, "tb.monitor", st_monitor, &st);
     sim_sensitive(mon, clk, SIM_EDGE_POS);
     mon->no_init = 1;
+    /* every signal exists now: toggles counted from initialization on */
+    if (!(tog = sim_toggle_new(c))) {
+        snprintf(err, errlen, "out of memory");
+        rc = TB_FAIL;
+        goto done;
+    }
     /* tb_run's bound, 1000 clocks + 4096 per beat, over the items read so
      * far: it grows while the file is read, and is tb_run's at its end. */
     sim_status ss;
@@ -465,10 +473,12 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
         r->overflows = tb_scope_overflows(sc);
         for (int i = 0; i < r->n_in; i++) { r->in_overflows += st.in_ovf[i]; r->overflows += st.in_ovf[i]; }
         tb_range_finish(&st.rg, sc, &io, st.in_ovf, r);
+        tb_energy_fill(r, &st.rg, tog, c, r->stats.clocks);
         tb_acc_end(&st.acc, r);
         tb_verdict(r, NULL);
     }
 done:
+    sim_toggle_free(tog);
     sim_free(c);
     ring_free(&st.R);
     tb_range_free(&st.rg);

@@ -56,7 +56,7 @@ static double nmse_of(const tb_scene_result *r)
 static int render(const scn_desc *d, const unit_fmts *f, int heldout, double *nmse, uint64_t *ovf)
 {
     char err[300];
-    tb_scene_opts o = { 1, heldout, NULL, f, 0 };
+    tb_scene_opts o = { 1, heldout, NULL, f, 0, 0 };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     int rc = tb_scene_render(d, &M, &o, &r, err, sizeof err);
@@ -349,7 +349,7 @@ static void test_scene_claims(void)
     d.policy = SCN_POL_ADAPTIVE_REGION; d.L = 8; d.terms = 3; d.fmt_width = 16;
     snprintf(d.schedule, sizeof d.schedule, "paper");
     TST_EQ_INT(scn_mesh_builtin(d.mesh, d.detail, &m, err, sizeof err), 0);
-    tb_scene_opts o = { 1, 0, NULL, NULL, 0 };
+    tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0 };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     TST_EQ_INT(tb_scene_render(&d, &m, &o, &r, err, sizeof err), TB_OK);
