@@ -20,6 +20,7 @@
 #define TB_SWEEP_H
 #include <stdio.h>
 #include "testbench/tb.h"
+#include "testbench/tb_derive.h"
 
 #define TB_SWEEP_MAX_VALUES  64        /* values of one axis */
 #define TB_SWEEP_MAX_CONFIGS 1000000   /* a bigger grid is a usage error */
@@ -42,6 +43,8 @@ typedef struct tb_sweep_spec {
     const char *const *fmt;               /* --fmt overrides, applied to every configuration */
     int        nfmt;
     tb_accept  accept;                    /* --max-error/--max-nmse/--max-lsb: each row's meets_target */
+    const tb_ranges *ranges;              /* --ranges derived: the target search's integer bits
+                                           * come from derived ranges (NULL: observed) */
 } tb_sweep_spec;
 
 typedef struct tb_sweep_cfg {
@@ -144,6 +147,18 @@ int  tb_target_holds(const tb_result *r, int status, tb_target_kind k, double ta
  * -1 with a message (out of memory). */
 int  tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double target,
                      int threads, tb_target_res *out, char *err, size_t errlen);
+
+/* --ranges derived (tb_sweep_ranges.c). f with every signal's integer
+ * bits derived for configuration c's settings (keep[i]: signal i pinned):
+ * 0, or -1 with a message. */
+int  tb_sweep_derive(const tb_sweep *s, const tb_sweep_cfg *c, const unsigned char *keep, unit_fmts *f,
+                     char *err, size_t errlen);
+/* The search's start under derived ranges: the smallest width of group
+ * whose default design with derived integer bits holds the target with
+ * no overflow, those formats and their result in out (out->uniform
+ * that width's row). 0 (out->met 0 if none holds), or -1 with a message. */
+int  tb_sweep_derived_start(const tb_sweep *s, size_t group, tb_target_kind k, double target,
+                            const unsigned char *keep, tb_target_res *out, char *err, size_t errlen);
 
 /* The target with a margin of `bits` bits: max |e| target / 2^bits, NMSE
  * target / 4^bits (NMSE is a squared error). The search aims at this; the
