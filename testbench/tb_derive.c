@@ -159,6 +159,22 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
     int bad = 0;
     for (uint32_t i = 0; i < d.n && !bad; i++) bad = visit(&d, sim_signal_at(b.c, i), err, errlen);
     if (bad) { free(is_in); goto done; }
+    /* The signals that depend on the data (is_in grows to them): only
+     * their registers' states are joined at acceptances; control state
+     * (step counters, pipeline valid bits) stays a point, and the state
+     * has settled when it repeats. */
+    for (int changed = 1; changed;) {
+        changed = 0;
+        for (uint32_t i = 0; i < d.n; i++) {
+            const sim_signal *y = sim_signal_at(b.c, i);
+            sim_prim_info pi;
+            if (is_in[i] || sim_prim_describe(y, &pi) || pi.kind == SIM_KIND_CONST) continue;
+            int dep = (pi.a && is_in[pi.a->index]) || (pi.b && is_in[pi.b->index]) || (pi.c && is_in[pi.c->index])
+                      || (pi.rst && is_in[pi.rst->index]);
+            for (int k = 0; k < pi.n && !dep; k++) dep = is_in[pi.in[k]->index];
+            if (dep) { is_in[i] = 1; changed = 1; }
+        }
+    }
 
     int beats = u->beats(cfg), valid = 1, have_bound = 0;
     size_t accepted = 0, got = 0;
@@ -215,7 +231,7 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
         }
         for (uint32_t k = 0; k < d.nregs; k++) {
             uint32_t i = d.regs[k];
-            if (have_bound) d.val[i] = sim_ival_hull(d.val[i], d.bound[i]);
+            if (have_bound && is_in[i]) d.val[i] = sim_ival_hull(d.val[i], d.bound[i]);
             d.bound[i] = d.val[i];
         }
         have_bound = 1;
