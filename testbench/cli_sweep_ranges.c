@@ -2,6 +2,7 @@
  * NAME=LO:HI: the options, and the observed and derived interval of every
  * signal of each group's chosen design (docs/sweeps.md, "Derived ranges"). */
 #include "testbench/cli_sweep.h"
+#include "base/base_json.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -64,6 +65,12 @@ void sweep_ranges_print(FILE *f, const target_info *t, size_t g)
     fprintf(f, "  ranges of the chosen formats: derived for inputs in their declared ranges (%d items, %llu clocks "
                "to settle), observed on the sweep's stimuli:\n", d->items, (unsigned long long)d->clocks);
     tb_derived_print(f, d, &t->dobs[g], 1);
+    const tb_result *r = &t->dobs[g];
+    for (int o = 0; o < r->n_out; o++)
+        fprintf(f, "  error of %s: <= %.4g for any input the box stimuli stand for: its bound %.4g (any input) + input "
+                   "rounding %.4g + method %.4g (the largest on the box stimuli)\n", r->out[o].name,
+                r->out[o].bound + r->out[o].max_input_err + r->out[o].max_method_err, r->out[o].bound,
+                r->out[o].max_input_err, r->out[o].max_method_err);
 }
 
 void sweep_ranges_json(FILE *f, const target_info *t, size_t g)
@@ -71,6 +78,8 @@ void sweep_ranges_json(FILE *f, const target_info *t, size_t g)
     if (!t->dres || !t->dres[g].sigs) return;
     fputs(",\n     \"ranges\": ", f);
     tb_derived_json(f, &t->dres[g], &t->dobs[g]);
+    fputs(",\n     \"error_box\": ", f);
+    base_json_num(f, tb_derived_err(&t->dobs[g]), 17);
 }
 
 void sweep_ranges_free(target_info *t, size_t ngroups)
@@ -86,13 +95,24 @@ void sweep_ranges_free(target_info *t, size_t ngroups)
 /* Stimuli over the declared ranges, appended to each parameter set's
  * vectors under --ranges derived, so that the search chooses fraction bits
  * on inputs anywhere in the ranges the formats are made for, not only the
- * workload's: every corner of the input box (up to 256 of them, then
- * corners at random), then inputs drawn uniformly; expected outputs from
- * the float reference. An input without --range spans what it spans in
- * the sweep's own vectors (its format's whole range would take the unit
- * where its error bound does not apply: horner's t in [1, 2)); the
- * derivation still takes the format's whole range for it. */
+ * workload's. First the corners of the input box, each input at four
+ * levels: its ends and just inside them (by 2^-40 of the range: below any
+ * LSB, so that truncating or rounding the input errs by almost a whole
+ * LSB, as at an end it errs by none); all 4^n of them up to 1024, else
+ * the two ends (2^n up to 1024), else corners at random. Then inputs
+ * drawn uniformly. Expected outputs from the float reference. An input
+ * without --range spans what it spans in the sweep's own vectors (its
+ * format's whole range would take the unit where its error bound does not
+ * apply: horner's t in [1, 2)); the derivation still takes the format's
+ * whole range for it. */
 #define RANGE_STIMULI 4000
+#define RANGE_CORNERS 1024
+
+static double level(double lo, double hi, unsigned k)
+{
+    double in = (hi - lo) * 0x1p-40;
+    return k == 0 ? lo : k == 1 ? hi : k == 2 ? lo + in : hi - in;
+}
 
 int sweep_ranges_stimuli(sweep_args *a, tb_sweep *s, vec_set *sets)
 {
@@ -116,11 +136,15 @@ int sweep_ranges_stimuli(sweep_args *a, tb_sweep *s, vec_set *sets)
             nin++;
         }
         vec_rng rng = { a->seed ^ 0x5eedULL };
-        size_t corners = nin <= 8 ? (size_t)1 << nin : 256;
+        /* levels per input: 4 (ends and just inside), 2 (ends), or 0 (random corners) */
+        int lv = 2 * nin <= 10 ? 4 : nin <= 10 ? 2 : 0;
+        size_t corners = lv == 4 ? (size_t)1 << (2 * nin) : lv == 2 ? (size_t)1 << nin : RANGE_CORNERS;
         for (size_t k = 0; k < corners + RANGE_STIMULI; k++) {
-            uint64_t bits = nin <= 8 ? k : vec_rng_next(&rng);
-            for (int j = 0; j < nin; j++)
-                v[j] = k < corners ? ((bits >> j) & 1 ? hi[j] : lo[j]) : vec_rng_range(&rng, lo[j], hi[j]);
+            uint64_t bits = lv ? k : vec_rng_next(&rng);
+            for (int j = 0; j < nin; j++) {
+                unsigned l = lv == 4 ? (unsigned)(bits >> (2 * j)) & 3 : (unsigned)(bits >> j) & 1;
+                v[j] = k < corners ? level(lo[j], hi[j], l) : vec_rng_range(&rng, lo[j], hi[j]);
+            }
             u->ref->eval(&cfg.model, v, v + vs->n_in);
             if (vec_set_push(vs, v)) return cli_usage_error("sweep: out of memory");
         }

@@ -625,7 +625,7 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
         if (!out->met) return 0;
     }
     const tb_sweep_cfg *c = &s->cfg[out->uniform];
-    uint64_t max_ovf = dkeep ? 0 : s->row[out->uniform].r.overflows;
+    uint64_t max_ovf = s->row[out->uniform].r.overflows;   /* derived ranges: none (tb_target_holds_derived) */
     if (!dkeep) {
         out->fmts = c->fmts;
         out->r = s->row[out->uniform].r;
@@ -688,7 +688,8 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
             base_par_for((size_t)nb, threads, cand_run, jobs);
             for (int b = 0; b < nb; b++) {
                 out->runs++;
-                if (tb_target_holds(&jobs[b].r, jobs[b].status, k, target, max_ovf)) {
+                if (dkeep ? tb_target_holds_derived(&jobs[b].r, jobs[b].status, k, target)
+                          : tb_target_holds(&jobs[b].r, jobs[b].status, k, target, max_ovf)) {
                     out->fmts = jobs[b].f;
                     out->r = jobs[b].r;
                     next = pos[b] + 1;

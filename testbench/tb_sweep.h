@@ -160,6 +160,16 @@ int  tb_sweep_derive(const tb_sweep *s, const tb_sweep_cfg *c, const unsigned ch
 int  tb_sweep_derived_start(const tb_sweep *s, size_t group, tb_target_kind k, double target,
                             const unsigned char *keep, tb_target_res *out, char *err, size_t errlen);
 
+/* The acceptance rule under derived ranges: tb_target_holds with no
+ * overflow, and for max |e| also each output's worst case on the box
+ * stimuli, tb_derived_err, within the target. */
+int  tb_target_holds_derived(const tb_result *r, int status, tb_target_kind k, double target);
+/* The largest over the outputs of bound + max_input_err + max_method_err:
+ * the datapath's error for any input (the derived bound) plus what
+ * rounding the inputs and the method moved the ideal by on r's stimuli;
+ * inf when an output has no bound. */
+double tb_derived_err(const tb_result *r);
+
 /* The target with a margin of `bits` bits: max |e| target / 2^bits, NMSE
  * target / 4^bits (NMSE is a squared error). The search aims at this; the
  * held-out check asks for the target itself. */
