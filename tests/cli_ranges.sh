@@ -42,3 +42,15 @@ awk 'BEGIN { srand(9); print "# shadesim vectors 1\n# unit: horner3\n# inputs: a
 # shellcheck disable=SC2086
 eval "\"\$S\" run horner3 --vectors \"\$T/box.vec\" $fmts" >"$T/box.txt" 2>&1
 check box_no_overflow grep -q 'overflows 0$' "$T/box.txt"
+
+# The acceptance: the formats of `sweep horner3 --widths 8:24 --target-error
+# 1e-3 --ranges derived`, on stimuli independent of the search: each
+# coefficient uniform over what the default file spans, t uniform in
+# [0, 1) (tests/data/horner3_indep.awk). No
+# overflow, and max |e| <= 1e-3.
+expect accept_sweep 0 "$S" sweep horner3 --widths 8:24 --target-error 1e-3 --ranges derived -o "$T/acc"
+fmts=$(sed -n 's/.*"run_args": "\(.*\)",*$/\1/p' "$T/acc/target.json")
+awk -v n=20000 -v seed=31 -f tests/data/horner3_indep.awk "$SHADESIM_HOME/vectors/horner3.vec" >"$T/indep.vec"
+eval "\"\$S\" run horner3 --vectors \"\$T/indep.vec\" $fmts" >"$T/indep.txt" 2>&1
+check accept_no_overflow grep -q 'overflows 0$' "$T/indep.txt"
+check accept_max_error awk '$1 == "y" && $3 + 0 <= 1e-3 { ok = 1 } END { exit !ok }' "$T/indep.txt"
