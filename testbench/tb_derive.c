@@ -117,6 +117,37 @@ static void dsim_free(dsim *d)
 
 static int pt(sim_ival v) { return v.lo == v.hi; }
 
+/* One clock: the inputs (valid as given; the data inputs keep their
+ * intervals), the combinational elements in order, each one's value
+ * before overflow handling into its hull; then the rising edge. Returns
+ * 1 if an item is accepted at the edge, + 2 if an output beat is valid in
+ * the cycle; -1 with a message when the handshake is not a point. */
+static int clock_step(dsim *d, const unit_io *io, int valid, char *err, size_t errlen)
+{
+    d->val[io->in_valid->index] = (sim_ival){ valid, valid };
+    d->hull[io->in_valid->index] = sim_ival_hull(d->hull[io->in_valid->index], (sim_ival){ valid, valid });
+    for (uint32_t k = 0; k < d->norder; k++) {
+        uint32_t i = d->order[k];
+        sim_ival pre, post;
+        sim_ival_eval(sim_signal_at(d->c, i), d->val, &pre, &post);
+        d->val[i] = post;
+        d->hull[i] = sim_ival_hull(d->hull[i], pre);
+    }
+    sim_ival rdy = d->val[io->in_ready->index], ov = d->val[io->out_valid->index];
+    if (!pt(rdy) || !pt(ov)) {
+        snprintf(err, errlen, "derived ranges: %s's handshake (%s) depends on the data; not supported",
+                 io->scope ? io->scope->name : "the unit", !pt(rdy) ? "in_ready" : "out_valid");
+        return -1;
+    }
+    for (uint32_t k = 0; k < d->nregs; k++) {
+        uint32_t i = d->regs[k];
+        sim_ival_eval(sim_signal_at(d->c, i), d->val, &d->nxt_pre[i], &d->nxt_post[i]);
+        d->hull[i] = sim_ival_hull(d->hull[i], d->nxt_pre[i]);
+    }
+    for (uint32_t k = 0; k < d->nregs; k++) d->val[d->regs[k]] = d->nxt_post[d->regs[k]];
+    return (valid && rdy.lo ? 1 : 0) + (ov.lo ? 2 : 0);
+}
+
 int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const tb_ranges *rg,
               tb_derived *out, char *err, size_t errlen)
 {
@@ -134,6 +165,8 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
     d.bound = calloc(n, sizeof *d.bound);
     d.order = calloc(n, sizeof *d.order); d.regs = calloc(n, sizeof *d.regs); d.mark = calloc(n, 1);
     int rc = -1;
+    sim_ival *snap = NULL;
+    size_t *snap_got = NULL;
     if (!d.val || !d.hull || !d.nxt_pre || !d.nxt_post || !d.bound || !d.order || !d.regs || !d.mark) {
         snprintf(err, errlen, "derived ranges: out of memory");
         goto done;
@@ -176,42 +209,22 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
         }
     }
 
-    int beats = u->beats(cfg), valid = 1, have_bound = 0;
-    size_t accepted = 0, got = 0;
+    int beats = u->beats(cfg), valid = 1, have_bound = 0, st;
+    size_t accepted = 0, got = 0, nsnap = 0;
     uint64_t clk = 0;
+    /* The state after each acceptance but the last, where a run of that
+     * many items stops offering and drains (below). */
+    size_t capsnap = 0;
     for (;; clk++) {
         if (clk >= DERIVE_MAX_CLOCKS) {
             snprintf(err, errlen, "derived ranges: %s did not finish in %d clocks", u->name, DERIVE_MAX_CLOCKS);
             free(is_in);
             goto done;
         }
-        d.val[b.io.in_valid->index] = (sim_ival){ valid, valid };
-        d.hull[b.io.in_valid->index] = sim_ival_hull(d.hull[b.io.in_valid->index], (sim_ival){ valid, valid });
-        for (uint32_t k = 0; k < d.norder; k++) {
-            uint32_t i = d.order[k];
-            sim_ival pre, post;
-            sim_ival_eval(sim_signal_at(b.c, i), d.val, &pre, &post);
-            d.val[i] = post;
-            d.hull[i] = sim_ival_hull(d.hull[i], pre);
-        }
-        sim_ival rdy = d.val[b.io.in_ready->index], ov = d.val[b.io.out_valid->index];
-        if (!pt(rdy) || !pt(ov)) {
-            snprintf(err, errlen, "derived ranges: %s's handshake (%s) depends on the data; not supported", u->name,
-                     !pt(rdy) ? "in_ready" : "out_valid");
-            free(is_in);
-            goto done;
-        }
-        int acc = valid && rdy.lo;
-        if (ov.lo) got++;
+        if ((st = clock_step(&d, &b.io, valid, err, errlen)) < 0) { free(is_in); goto done; }
+        got += (size_t)(st & 2) / 2;
         if (!valid && got >= accepted * (size_t)beats) break;   /* the last beat: tb_run stops here */
-        /* the rising edge */
-        for (uint32_t k = 0; k < d.nregs; k++) {
-            uint32_t i = d.regs[k];
-            sim_ival_eval(sim_signal_at(b.c, i), d.val, &d.nxt_pre[i], &d.nxt_post[i]);
-            d.hull[i] = sim_ival_hull(d.hull[i], d.nxt_pre[i]);
-        }
-        for (uint32_t k = 0; k < d.nregs; k++) d.val[d.regs[k]] = d.nxt_post[d.regs[k]];
-        if (!acc) continue;
+        if (!(st & 1)) continue;
         accepted++;
         /* An item accepted: the state now, joined with the state at the
          * last acceptance. Within it (and a few items in): settled. */
@@ -219,7 +232,7 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
         for (uint32_t k = 0; k < d.nregs && inside; k++)
             inside = sim_ival_within(d.val[d.regs[k]], d.bound[d.regs[k]]);
         if (inside && accepted >= 3) { valid = 0; continue; }
-        if (accepted > DERIVE_MAX_ITEMS) {
+        if (accepted >= DERIVE_MAX_ITEMS) {
             uint32_t w = 0;
             for (uint32_t k = 0; k < d.nregs; k++)
                 if (!sim_ival_within(d.val[d.regs[k]], d.bound[d.regs[k]])) { w = d.regs[k]; break; }
@@ -229,12 +242,37 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
             free(is_in);
             goto done;
         }
+        if (nsnap == capsnap) {
+            capsnap = capsnap ? 2 * capsnap : 8;
+            sim_ival *ns = realloc(snap, capsnap * n * sizeof *snap);
+            size_t *ng = realloc(snap_got, capsnap * sizeof *snap_got);
+            if (ns) snap = ns;
+            if (ng) snap_got = ng;
+            if (!ns || !ng) { snprintf(err, errlen, "derived ranges: out of memory"); free(is_in); goto done; }
+        }
+        memcpy(snap + nsnap * n, d.val, n * sizeof *snap);
+        snap_got[nsnap++] = got;
         for (uint32_t k = 0; k < d.nregs; k++) {
             uint32_t i = d.regs[k];
             if (have_bound && is_in[i]) d.val[i] = sim_ival_hull(d.val[i], d.bound[i]);
             d.bound[i] = d.val[i];
         }
         have_bound = 1;
+    }
+    /* Runs of fewer items: from the state after their last acceptance,
+     * offering nothing more, to their last beat (a pipelined schedule
+     * drains differently with fewer items in flight). */
+    for (size_t j = 0; j < nsnap; j++) {
+        memcpy(d.val, snap + j * n, n * sizeof *snap);
+        size_t g = snap_got[j];
+        for (uint64_t c = 0; g < (j + 1) * (size_t)beats; c++) {
+            if (c >= DERIVE_MAX_CLOCKS || (st = clock_step(&d, &b.io, 0, err, errlen)) < 0) {
+                if (c >= DERIVE_MAX_CLOCKS) snprintf(err, errlen, "derived ranges: %s did not drain", u->name);
+                free(is_in);
+                goto done;
+            }
+            g += (size_t)(st & 2) / 2;
+        }
     }
     free(is_in);
     out->items = (int)accepted;
@@ -260,6 +298,8 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
     }
     rc = 0;
 done:
+    free(snap);
+    free(snap_got);
     dsim_free(&d);
     sim_free(b.c);
     if (rc) tb_derived_free(out);
