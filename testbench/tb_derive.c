@@ -365,9 +365,16 @@ void tb_derived_print(FILE *f, const tb_derived *d, const tb_result *r, int all)
         const tb_dsig *t = &d->sigs[i];
         if (!all && t->fits) continue;
         if (t->kind == SIM_KIND_CONST) continue;
-        observed(ob, sizeof ob, r, t->name);
-        fprintf(f, "  %-14s %-12s derived [%.6g, %.6g]  observed %-28s %s\n", t->name, sim_fmt_str(t->fmt, fb),
-                t->lo, t->hi, ob, t->fits ? "fits" : "DOES NOT FIT");
+        char db[80];
+        snprintf(db, sizeof db, "[%.6g, %.6g]", t->lo, t->hi);
+        if (r && r->sigs) {
+            observed(ob, sizeof ob, r, t->name);
+            fprintf(f, "  %-14s %-12s derived %-28s observed %-28s %s\n", t->name, sim_fmt_str(t->fmt, fb), db, ob,
+                    t->fits ? "fits" : "DOES NOT FIT");
+        } else {
+            fprintf(f, "  %-14s %-12s derived %-28s %s\n", t->name, sim_fmt_str(t->fmt, fb), db,
+                    t->fits ? "fits" : "DOES NOT FIT");
+        }
     }
 }
 
