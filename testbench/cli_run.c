@@ -6,6 +6,7 @@
 #include "testbench/tb_stream.h"
 #include "testbench/tb_wave.h"
 #include "testbench/tb_widths.h"
+#include "testbench/tb_derive.h"
 #include <limits.h>
 #include <math.h>
 #include <stddef.h>
@@ -15,7 +16,43 @@ typedef struct run_args {
     const char *vcd, *csv;
     int json, fst, ranges;
     long vfrom, vto;
+    /* --ranges derived, --range NAME=LO:HI (static check) */
+    int derived, nrange, want_mode;
+    const unit_desc *u;
+    tb_ranges rg;
 } run_args;
+
+/* --ranges [observed|derived]: alone (or observed), every signal's
+ * observed range; derived, the static check. The mode may be the next
+ * argument, which the parser hands to run_pos. */
+static run_args *run_cur;
+static int run_o_ranges(void *base, const char *opt, const char *val)
+{
+    run_args *ra = base;
+    (void)opt;
+    if (!val || !strcmp(val, "observed")) { ra->ranges = 1; ra->want_mode = !val; return 0; }
+    if (!strcmp(val, "derived")) { ra->derived = 1; return 0; }
+    return cli_usage_error("--ranges %s: expected observed or derived", val);
+}
+
+static int run_pos(void *base, const char *arg)
+{
+    (void)base;
+    if (!run_cur || !run_cur->want_mode || (strcmp(arg, "derived") && strcmp(arg, "observed"))) return CLI_OPT_UNKNOWN;
+    run_cur->want_mode = 0;
+    if (!strcmp(arg, "derived")) { run_cur->derived = 1; run_cur->ranges = 0; }
+    return 0;
+}
+
+static int run_o_range(void *base, const char *opt, const char *val)
+{
+    run_args *ra = base;
+    char err[400];
+    (void)opt;
+    if (tb_ranges_parse(ra->u, val, &ra->rg, err, sizeof err)) return cli_usage_error("%s", err);
+    ra->nrange++;
+    return 0;
+}
 
 #define ACC_OPT(NAME, FIELD, HELP) { NAME, NULL, CLI_OPT_REAL, offsetof(tb_accept, FIELD), 0, 1e300, \
     "a positive number", "%s needs a number", NULL, CLI_OPT_GT_LO, HELP }
@@ -32,8 +69,13 @@ static const cli_opt accept_tab[] = {
 #define VCD_ITEM(NAME, FIELD, HELP) { NAME, NULL, CLI_OPT_LONG, offsetof(run_args, FIELD), 0, (double)LONG_MAX, \
     "an item number (0, 1, ...)", "%s needs an item number", NULL, 0, HELP }
 static const cli_opt run_tab[] = {
-    { "--ranges", NULL, CLI_OPT_FLAG, offsetof(run_args, ranges), 0, 0, NULL, NULL, NULL, 0,
-      "  --ranges             list every signal's observed raw range, not only those that overflowed\n" },
+    { "--ranges", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, run_o_ranges, CLI_OPT_MAYBE,
+      "  --ranges             list every signal's observed raw range, not only those that overflowed\n"
+      "  --ranges derived     first check statically that every signal's format holds its\n"
+      "                       interval for any input in the declared ranges (docs/sweeps.md)\n" },
+    { "--range", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s : expected NAME=LO:HI", run_o_range, 0,
+      "  --range NAME=LO:HI   an input's declared range for --ranges derived (default: its\n"
+      "                       format's; repeatable)\n" },
     { "--json", NULL, CLI_OPT_FLAG, offsetof(run_args, json), 0, 0, NULL, NULL, NULL, 0,
       "  --json               print the result as one JSON object\n" },
     { "--out", NULL, CLI_OPT_STR, offsetof(run_args, csv), 0, 0, NULL, "%s needs a file name", NULL, 0,
@@ -55,7 +97,7 @@ static const cli_opt run_tab[] = {
 };
 
 const cli_optspec cli_run_spec = {
-    "run", { cli_unit_opt_tab, accept_tab, run_tab }, NULL, 0,
+    "run", { cli_unit_opt_tab, accept_tab, run_tab }, run_pos, 0,
     "run: unknown option '%s' (see shadesim run --help)",
     "usage: shadesim run UNIT [options]\n"
     "       shadesim run all [acceptance options]   every unit on its default vectors, one summary table\n\n"
@@ -138,6 +180,31 @@ static int run_all(const tb_accept *acc)
     return cli_stdout_done(rc);
 }
 
+/* run --ranges derived: every signal's interval for inputs in the
+ * declared ranges against its format, before any vector. 1 when some
+ * format cannot hold its interval, 0 when all can, -1 after a message.
+ * With --json, opens the object the run's result is a member of. */
+static int check_derived(const cli_unit_opts *o, const unit_fmts *fm, const tb_ranges *rg, int json, FILE *report)
+{
+    tb_derived d;
+    char err[600];
+    if (tb_derive(o->u, &o->cfg, fm, rg, &d, err, sizeof err)) { cli_usage_error("%s", err); return -1; }
+    if (json) {
+        printf("{\"ranges_derived\": {\"ok\": %s, \"cannot_hold\": %d, \"signals\": ", d.nfail ? "false" : "true", d.nfail);
+        tb_derived_json(stdout, &d, NULL);
+        fputs("},\n\"run\": ", stdout);
+    } else if (d.nfail) {
+        fprintf(report, "ranges derived: %d signal(s) CANNOT HOLD their interval for inputs in the declared ranges:\n",
+                d.nfail);
+        tb_derived_print(report, &d, NULL, 0);
+    } else {
+        fprintf(report, "ranges derived: ok: every signal's format holds its interval for inputs in the declared ranges\n");
+    }
+    int bad = d.nfail > 0;
+    tb_derived_free(&d);
+    return bad;
+}
+
 static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, const int64_t *raw,
                     const double *expected)
 {
@@ -205,9 +272,14 @@ int cli_run(int argc, char **argv)
         return run_all(&acc);
     }
     if (cli_unit_select(&o, unit)) return CLI_USAGE;
-    run_args ra = { NULL, NULL, 0, 0, 0, -1, -1 };
+    run_args ra = { NULL, NULL, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
+    ra.u = o.u;
+    run_cur = &ra;
     void *base[] = { &o, &acc, &ra };
-    if (cli_opt_parse(&cli_run_spec, base, argc, argv, 2)) return CLI_USAGE;
+    int bad = cli_opt_parse(&cli_run_spec, base, argc, argv, 2);
+    run_cur = NULL;
+    if (bad) return CLI_USAGE;
+    if (ra.nrange && !ra.derived) return cli_usage_error("run: --range goes with --ranges derived");
     const char *vcd = ra.vcd, *csv = ra.csv;
     int json = ra.json, fst = ra.fst, ranges = ra.ranges;
     long long vfrom = ra.vfrom, vto = ra.vto;
@@ -234,6 +306,8 @@ int cli_run(int argc, char **argv)
             return cli_usage_error("--width %d: unit %s builds with its default formats at widths %d..%d only (%s)",
                                    o.cfg.width, o.u->name, unit_min_width(o.u, &o.cfg, NULL), wmax, err);
     }
+    int static_bad = 0;
+    if (ra.derived && (static_bad = check_derived(&o, &fm, &ra.rg, json, report)) < 0) return CLI_USAGE;
     /* Without a dump, a vector file is read a block at a time: memory
      * does not grow with the number of vectors. */
     char vpath[4200];
@@ -241,7 +315,11 @@ int cli_run(int argc, char **argv)
     if (!vcd) {
         int f = cli_vectors_file(&o, vpath, sizeof vpath, &vfile);
         if (f < 0) return CLI_USAGE;
-        if (f) return run_streamed(&o, &fm, vfile, csv, json, ranges, report, &acc);
+        if (f) {
+            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, report, &acc);
+            if (json && ra.derived) fputs("}\n", stdout);
+            return rs == CLI_OK && static_bad ? cli_stdout_done(CLI_FAIL) : rs;
+        }
     }
     vec_set vs;
     if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
@@ -278,5 +356,7 @@ int cli_run(int argc, char **argv)
     }
     tb_result_free(&r);
     vec_set_free(&vs);
+    if (json && ra.derived) fputs("}\n", stdout);
+    if (rc == CLI_OK && static_bad) rc = CLI_FAIL;
     return rc == CLI_USAGE ? rc : cli_stdout_done(rc);
 }

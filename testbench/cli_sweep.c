@@ -51,7 +51,7 @@ static int load_vectors(sweep_args *a, tb_sweep *s, vec_set *sets)
         }
         s->vs[p] = &sets[p];
     }
-    return 0;
+    return sweep_ranges_stimuli(a, s, sets);
 }
 
 /* No silent widening: widths below what the unit's integer part needs
@@ -143,6 +143,7 @@ int cli_sweep(int argc, char **argv)
 done:
     for (size_t p = 0; p < s.npsets; p++) vec_set_free(&sets[p]);
     free(sets);
+    sweep_ranges_free(&a.t, s.ngroups);
     free(a.t.res);
     tb_sweep_free(&s);
     return rc == CLI_USAGE ? rc : cli_stdout_done(rc);

@@ -30,6 +30,10 @@ typedef struct target_info {
     unsigned long long ho_seed;   /* seed of the held-out stimuli */
     size_t ho_rows;         /* their vectors per parameter set */
     tb_target_res *res;     /* [ngroups] */
+    /* --ranges derived (cli_sweep_ranges.c): per group, the chosen design's
+     * derived intervals and its run with observed ranges */
+    tb_derived *dres;       /* [ngroups] */
+    tb_result  *dobs;       /* [ngroups] */
 } target_info;
 
 typedef struct sweep_args {
@@ -43,6 +47,9 @@ typedef struct sweep_args {
     target_info t;
     int ho_failed;          /* some group's held-out check failed */
     size_t misses;          /* rows that miss --max-error/--max-nmse/--max-lsb */
+    int derived;            /* --ranges derived */
+    int nrange;             /* --range NAME=LO:HI given */
+    tb_ranges ranges;
 } sweep_args;
 
 /* The options (argv[1] the unit): 0, or CLI_USAGE after the message. */
@@ -69,4 +76,18 @@ int sweep_target_search(sweep_args *a, tb_sweep *s, int tty);
 void sweep_print_target(FILE *f, const tb_sweep *s, const target_info *t);
 int sweep_write_target_csv(const tb_sweep *s, const target_info *t, oset *os);
 int sweep_write_target_json(const tb_sweep *s, const target_info *t, oset *os);
+/* --ranges and --range (cli_sweep_ranges.c): the option calls; the
+ * check after every option; after the target search, each group's chosen
+ * design derived and run again for its observed ranges; the table of both
+ * (text) and the array (JSON) for group g. */
+int  sweep_o_ranges(void *base, const char *opt, const char *val);
+int  sweep_o_range(void *base, const char *opt, const char *val);
+int  sweep_ranges_check(sweep_args *a);
+int  sweep_ranges_collect(sweep_args *a, tb_sweep *s);
+void sweep_ranges_print(FILE *f, const target_info *t, size_t g);
+void sweep_ranges_json(FILE *f, const target_info *t, size_t g);
+void sweep_ranges_free(target_info *t, size_t ngroups);
+/* --ranges derived: stimuli over the declared ranges added to the
+ * sweep's vectors (each parameter set's). */
+int  sweep_ranges_stimuli(sweep_args *a, tb_sweep *s, vec_set *sets);
 #endif

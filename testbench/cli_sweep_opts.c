@@ -240,6 +240,13 @@ static const cli_opt sweep_tab[] = {
     { "--max-energy", NULL, CLI_OPT_REAL, offsetof(sweep_args, sp.ppa.max_energy_pj), 0, HUGE_VAL,
       "a number > 0, e.g. 5", "%s : expected picojoules per item > 0, e.g. 5", NULL, CLI_OPT_GT_LO,
         "  --max-energy PJ      ... and at most PJ picojoules per item (held-out too)\n" },
+    SW_CALL("--ranges", sweep_o_ranges, "%s : expected observed or derived",
+        "  --ranges MODE        the target search's integer bits: observed (default: from\n"
+        "                       the ranges seen on the stimuli) or derived (hold every\n"
+        "                       value for any input in the declared ranges; no overflow)\n"),
+    SW_CALL("--range", sweep_o_range, "%s : expected NAME=LO:HI",
+        "  --range NAME=LO:HI   an input's declared range for --ranges derived (default:\n"
+        "                       its format's; repeatable)\n"),
     { "-j", NULL, CLI_OPT_INT, offsetof(sweep_args, threads), 1, 256, "1..256 threads", "%s : expected 1..256 threads",
         NULL, 0, "  -j N                 run on N threads (default 1); the output is the same\n" },
     SW_CALL("--shard", o_shard, "%s : expected K/N, e.g. 1/4",
@@ -315,7 +322,7 @@ int sweep_parse(int argc, char **argv, sweep_args *a)
     if (cli_unit_select(&a->o, argv[1])) return CLI_USAGE;
     a->sp.u = a->o.u;
     void *base[] = { a };
-    if (cli_opt_parse(&cli_sweep_spec, base, argc, argv, 2) || sweep_check(a)) return CLI_USAGE;
+    if (cli_opt_parse(&cli_sweep_spec, base, argc, argv, 2) || sweep_check(a) || sweep_ranges_check(a)) return CLI_USAGE;
     sweep_defaults(a);
     return 0;
 }

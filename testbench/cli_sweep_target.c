@@ -80,6 +80,7 @@ void sweep_print_target(FILE *f, const tb_sweep *s, const target_info *t)
                     t->ho_seed, t->ho_rows, metric_name(t->kind), metric_of(t->kind, &x->heldout_r),
                     s->cfg[x->uniform].cfg.width, metric_of(t->kind, &x->heldout_u),
                     x->heldout_ok ? "passed" : "FAILED: ", x->heldout_why);
+        sweep_ranges_print(f, t, g);
     }
 }
 
@@ -203,6 +204,7 @@ int sweep_write_target_json(const tb_sweep *s, const target_info *t, oset *os)
                 if (*q == '"' || *q == '\\') fprintf(f, "\\%c", *q);
                 else if ((unsigned char)*q >= 0x20) fputc(*q, f);
             fputs("\"}", f);
+            sweep_ranges_json(f, t, g);
         }
         fputc('}', f);
     }
@@ -254,5 +256,6 @@ int sweep_target_search(sweep_args *a, tb_sweep *s, int tty)
         if (tty) fputs("\r\033[K", stderr);
         if (bad) return cli_usage_error("%s", err);
     }
-    return heldout_check(a, s);
+    int rc = heldout_check(a, s);
+    return rc ? rc : sweep_ranges_collect(a, s);
 }

@@ -40,6 +40,7 @@ typedef struct tb_metrics {
     size_t  golden_first;
     double  golden_err, golden_allowed;
     double  max_method_err; /* max |ideal(inputs) - ref(inputs)|: the method's own approximation */
+    double  max_input_err;  /* max |ideal(rounded inputs) - ideal(inputs)|: rounding the inputs */
 } tb_metrics;
 
 /* Range logging of one signal of the unit: settled values sampled at every

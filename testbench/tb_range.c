@@ -4,14 +4,14 @@
 #include <string.h>
 
 /* 1 if s is in scope sc or below it. */
-static int in_scope(const sim_signal *s, const sim_scope *sc)
+int tb_range_in_scope(const sim_signal *s, const sim_scope *sc)
 {
     for (const sim_scope *p = s->scope; p; p = p->parent) if (p == sc) return 1;
     return 0;
 }
 
 /* s's dotted path below scope sc: "y", "div3_a.t1". */
-static void rel_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len)
+void tb_range_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len)
 {
     const sim_scope *chain[16];
     int n = 0;
@@ -39,7 +39,7 @@ int tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signal
     if (!g->smp || !g->mn || !g->mx || !g->live || !g->lv) return -1;
     for (uint32_t i = 0, ns = sim_signal_count(c); i < ns; i++) {
         sim_signal *sg = sim_signal_at(c, i);
-        if (sg == clk || !in_scope(sg, sc)) continue;
+        if (sg == clk || !tb_range_in_scope(sg, sc)) continue;
         /* a constant never changes: its range is its value, not sampled */
         int cst = sg->kind == SIM_KIND_CONST;
         g->mn[g->nsmp] = cst ? sg->cur : INT64_MAX;
@@ -77,7 +77,7 @@ void tb_range_finish(tb_range *g, const sim_scope *sc, const unit_io *io, const 
     for (int i = 0; i < g->nsmp; i++) {
         const sim_signal *sg = g->smp[i];
         tb_sig *t = &r->sigs[i];
-        rel_name(sg, sc, t->name, sizeof t->name);
+        tb_range_name(sg, sc, t->name, sizeof t->name);
         t->fmt = sg->fmt;
         t->kind = sg->kind;
         t->overflows = sg->overflows;

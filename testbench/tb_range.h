@@ -60,6 +60,11 @@ void tb_range_finish(tb_range *g, const sim_scope *sc, const unit_io *io, const 
                      tb_result *r);
 void tb_range_free(tb_range *g);
 
+/* s's dotted path below scope sc ("y", "div3_a.t1"), as the table names
+ * it; 1 if s is in sc or below it. */
+void tb_range_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len);
+int  tb_range_in_scope(const sim_signal *s, const sim_scope *sc);
+
 /* Overflows counted on every signal of sc and below. */
 uint64_t tb_scope_overflows(const sim_scope *sc);
 #endif

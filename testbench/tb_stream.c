@@ -105,7 +105,7 @@ void tb_acc_begin(tb_acc *a, tb_result *r)
     r->max_abs_err = r->max_err_lsb = 0;
     for (int o = 0; o < r->n_out; o++) {
         tb_metrics *m = &r->out[o];
-        m->max_abs_err = m->max_err_ideal = m->max_method_err = 0;
+        m->max_abs_err = m->max_err_ideal = m->max_method_err = m->max_input_err = 0;
         m->sum_e2 = m->sum_ref2 = 0;
         m->n = 0;
         m->golden_ok = 1;
@@ -146,6 +146,7 @@ void tb_acc_item(tb_acc *a, tb_result *r, size_t idx, const int64_t *raw, const 
              * those three, relative to the terms' size (docs/bounds.md). */
             double dq = fabs(it->ideal_r[k] - it->ideal_u[k]), dm = fabs(it->ideal_u[k] - it->ref_u[k]);
             if (dm > m->max_method_err) m->max_method_err = dm;
+            if (dq > m->max_input_err) m->max_input_err = dq;
             double slack = TB_DOUBLE_IDEAL_REL * (fabs(it->ideal_r[k]) + fabs(it->ideal_u[k]) + fabs(it->ref_u[k])
                                                   + fabs(ref) + a->out_scale[o]);
             double allowed = m->bound + dq + dm + slack;

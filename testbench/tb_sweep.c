@@ -555,12 +555,15 @@ typedef struct cand_job {
     tb_result r;
     int status;
     char err[240];
+    const unsigned char *keep;   /* --ranges derived: the pinned signals; NULL: observed */
 } cand_job;
 
 static void cand_run(void *ctx, size_t i)
 {
     cand_job *j = (cand_job *)ctx + i;
     if (!j->c) return;     /* nothing to remove */
+    /* --ranges derived: the candidate's integer bits follow its fraction bits */
+    if (j->keep && tb_sweep_derive(j->s, j->c, j->keep, &j->f, j->err, sizeof j->err)) { j->status = TB_FAIL; return; }
     j->status = tb_run(j->s->spec.u, &j->c->cfg, &j->f, j->s->vs[j->c->pset], NULL, &j->r, j->err, sizeof j->err);
     tb_result_free(&j->r);
 }
@@ -621,11 +624,23 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
             out->uniform = i;
             break;
         }
-    if (!out->met) return 0;
+    if (!out->met && !s->spec.ranges) return 0;
+    /* Under derived ranges the start has derived integer bits, only
+     * fraction bits are searched, and no overflow is accepted. */
+    unsigned char keep[UNIT_MAX_SIGS] = { 0 };
+    const unsigned char *dkeep = NULL;
+    if (s->spec.ranges) {
+        for (int i = 0; i < u->nsigs; i++) keep[i] = (unsigned char)pinned(s, i);
+        dkeep = keep;
+        if (tb_sweep_derived_start(s, group, k, target, keep, out, err, errlen)) return -1;
+        if (!out->met) return 0;
+    }
     const tb_sweep_cfg *c = &s->cfg[out->uniform];
-    uint64_t max_ovf = s->row[out->uniform].r.overflows;
-    out->fmts = c->fmts;
-    out->r = s->row[out->uniform].r;
+    uint64_t max_ovf = s->row[out->uniform].r.overflows;   /* derived ranges: none (tb_target_holds_derived) */
+    if (!dkeep) {
+        out->fmts = c->fmts;
+        out->r = s->row[out->uniform].r;
+    }
     if (threads < 1) threads = 1;
     if (threads > 64) threads = 64;
     int nc = 2 * u->nsigs;
@@ -647,9 +662,10 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
         jobs[q].c = c;
         jobs[q].f = out->fmts;
         jobs[q].status = TB_SWEEP_NOT_RUN;
+        jobs[q].keep = dkeep;
         /* Pinned signals stay; signals the schedule does not build have
-         * nothing to trim. */
-        if (pinned(s, q / 2) || !unit_sig_built(u, q / 2, &c->cfg)) cand[q].sig = -1;
+         * nothing to trim; derived integer bits are not searched. */
+        if (pinned(s, q / 2) || !unit_sig_built(u, q / 2, &c->cfg) || (dkeep && q % 2)) cand[q].sig = -1;
         if (cand[q].sig < 0 || shorter(out->fmts.f[q / 2], q % 2, &jobs[q].f.f[q / 2])) jobs[q].c = NULL;
     }
     base_par_for((size_t)nc, threads, cand_run, jobs);
@@ -674,6 +690,7 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
                     jobs[nb].c = c;
                     jobs[nb].f = out->fmts;
                     jobs[nb].f.f[cand[next].sig] = f;
+                    jobs[nb].keep = dkeep;
                     pos[nb++] = next;
                 }
                 next++;
@@ -682,7 +699,9 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
             base_par_for((size_t)nb, threads, cand_run, jobs);
             for (int b = 0; b < nb; b++) {
                 out->runs++;
-                if (tb_sweep_holds(s, &jobs[b].r, jobs[b].status, k, target, max_ovf)) {
+                if (dkeep ? tb_target_holds_derived(&jobs[b].r, jobs[b].status, k, target)
+                              && tb_ppa_meets(&jobs[b].r, &s->spec.ppa, NULL, 0)
+                          : tb_sweep_holds(s, &jobs[b].r, jobs[b].status, k, target, max_ovf)) {
                     out->fmts = jobs[b].f;
                     out->r = jobs[b].r;
                     next = pos[b] + 1;

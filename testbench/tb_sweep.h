@@ -20,6 +20,7 @@
 #define TB_SWEEP_H
 #include <stdio.h>
 #include "testbench/tb.h"
+#include "testbench/tb_derive.h"
 
 #define TB_SWEEP_MAX_VALUES  64        /* values of one axis */
 #define TB_SWEEP_MAX_CONFIGS 1000000   /* a bigger grid is a usage error */
@@ -43,6 +44,8 @@ typedef struct tb_sweep_spec {
     int        nfmt;
     tb_accept  accept;                    /* --max-error/--max-nmse/--max-lsb: each row's meets_target */
     tb_ppa_limits ppa;                    /* --min-throughput/--max-energy: the target search's limits */
+    const tb_ranges *ranges;              /* --ranges derived: the target search's integer bits
+                                           * come from derived ranges (NULL: observed) */
 } tb_sweep_spec;
 
 typedef struct tb_sweep_cfg {
@@ -149,6 +152,28 @@ int  tb_sweep_holds(const tb_sweep *s, const tb_result *r, int status, tb_target
  * -1 with a message (out of memory). */
 int  tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double target,
                      int threads, tb_target_res *out, char *err, size_t errlen);
+
+/* --ranges derived (tb_sweep_ranges.c). f with every signal's integer
+ * bits derived for configuration c's settings (keep[i]: signal i pinned):
+ * 0, or -1 with a message. */
+int  tb_sweep_derive(const tb_sweep *s, const tb_sweep_cfg *c, const unsigned char *keep, unit_fmts *f,
+                     char *err, size_t errlen);
+/* The search's start under derived ranges: the smallest width of group
+ * whose default design with derived integer bits holds the target with
+ * no overflow, those formats and their result in out (out->uniform
+ * that width's row). 0 (out->met 0 if none holds), or -1 with a message. */
+int  tb_sweep_derived_start(const tb_sweep *s, size_t group, tb_target_kind k, double target,
+                            const unsigned char *keep, tb_target_res *out, char *err, size_t errlen);
+
+/* The acceptance rule under derived ranges: tb_target_holds with no
+ * overflow, and for max |e| also each output's worst case on the box
+ * stimuli, tb_derived_err, within the target. */
+int  tb_target_holds_derived(const tb_result *r, int status, tb_target_kind k, double target);
+/* The largest over the outputs of bound + max_input_err + max_method_err:
+ * the datapath's error for any input (the derived bound) plus what
+ * rounding the inputs and the method moved the ideal by on r's stimuli;
+ * inf when an output has no bound. */
+double tb_derived_err(const tb_result *r);
 
 /* The target with a margin of `bits` bits: max |e| target / 2^bits, NMSE
  * target / 4^bits (NMSE is a squared error). The search aims at this; the

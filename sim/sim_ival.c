@@ -1,0 +1,190 @@
+/* sim_ival.c - interval evaluation of the primitives: each element's
+ * exact result over its operands' intervals, rounded as the element
+ * rounds (sim_prim.c's evaluations, on the ends of intervals). */
+#include "sim/sim_ival.h"
+
+sim_wide sim_ival_round(sim_wide x, int src_f, int dst_f, sim_round r)
+{
+    int sh = src_f - dst_f;
+    if (sh <= 0) return sh <= -126 ? x : x * ((sim_wide)1 << -sh);
+    if (sh >= 127) return (r == SIM_RND_TRUNC && x < 0) ? -1 : 0;
+    sim_wide q = x >> sh;       /* arithmetic on gcc/clang: floor */
+    if (r != SIM_RND_TRUNC) {
+        unsigned __int128 rem = (unsigned __int128)x & (((unsigned __int128)1 << sh) - 1);
+        unsigned __int128 half = (unsigned __int128)1 << (sh - 1);
+        if (rem > half || (rem == half && (r == SIM_RND_HALF_UP || (q & 1)))) q++;
+    }
+    return q;
+}
+
+sim_ival sim_ival_fit(sim_ival v, sim_fmt f, sim_ovf o)
+{
+    sim_wide lo = sim_fmt_raw_min(f), hi = sim_fmt_raw_max(f);
+    if (v.lo >= lo && v.hi <= hi) return v;
+    if (o == SIM_OVF_SAT) {
+        sim_ival s = { v.lo < lo ? lo : v.lo > hi ? hi : v.lo, v.hi < lo ? lo : v.hi > hi ? hi : v.hi };
+        return s;
+    }
+    /* Wrap: the ends wrapped, when the set lies within one period. */
+    sim_wide period = hi - lo + 1;
+    if (v.hi - v.lo < period) {
+        sim_wide a = ((v.lo - lo) % period + period) % period + lo;
+        sim_wide b = a + (v.hi - v.lo);
+        if (b <= hi) return (sim_ival){ a, b };
+    }
+    return (sim_ival){ lo, hi };
+}
+
+int sim_ival_ibits(sim_ival v, sim_fmt f)
+{
+    if (!f.is_signed && v.lo < 0) return -1;
+    for (int ib = f.is_signed ? 1 : 0; ib + f.fbits <= (f.is_signed ? 64 : 63); ib++) {
+        if (ib + f.fbits < 1) continue;
+        int w = ib + f.fbits;
+        sim_wide lo = f.is_signed ? -((sim_wide)1 << (w - 1)) : 0;
+        sim_wide hi = f.is_signed ? ((sim_wide)1 << (w - 1)) - 1 : ((sim_wide)1 << w) - 1;
+        if (v.lo >= lo && v.hi <= hi) return ib;
+    }
+    return -1;
+}
+
+/* x (raw with fbits sf) quantized into y: pre and post. */
+static void into(const sim_signal *y, sim_ival x, int sf, sim_round r, sim_ovf o, sim_ival *pre, sim_ival *post)
+{
+    pre->lo = sim_ival_round(x.lo, sf, y->fmt.fbits, r);
+    pre->hi = sim_ival_round(x.hi, sf, y->fmt.fbits, r);
+    *post = sim_ival_fit(*pre, y->fmt, o);
+}
+
+static int has_zero(sim_ival v) { return v.lo <= 0 && v.hi >= 0; }
+static int has_nonzero(sim_ival v) { return v.lo != 0 || v.hi != 0; }
+
+/* Accumulate a part of an element's outcome. */
+static void take(int *any, sim_ival *pre, sim_ival *post, sim_ival p, sim_ival q)
+{
+    if (!*any) { *pre = p; *post = q; *any = 1; return; }
+    *pre = sim_ival_hull(*pre, p);
+    *post = sim_ival_hull(*post, q);
+}
+
+/* A logic element: its function over every combination of the inputs'
+ * values when there are at most this many, else its whole format. */
+#define LOGIC_ENUM_MAX 4096
+
+static int64_t canon(int64_t v, sim_fmt f)
+{
+    int sh = 64 - f.width;
+    if (f.is_signed) return (int64_t)((uint64_t)v << sh) >> sh;
+    return (int64_t)((uint64_t)v & (UINT64_MAX >> sh));
+}
+
+static sim_ival logic_eval(const sim_signal *y, const sim_prim_info *pi, const sim_ival *vals)
+{
+    sim_ival full = { sim_fmt_raw_min(y->fmt), sim_fmt_raw_max(y->fmt) };
+    int64_t lo[8], v[8];
+    double combos = 1;
+    if (pi->n > 8) return full;
+    for (int i = 0; i < pi->n; i++) {
+        sim_ival x = vals[pi->in[i]->index];
+        combos *= (double)(x.hi - x.lo) + 1;
+        lo[i] = v[i] = (int64_t)x.lo;
+    }
+    if (combos > LOGIC_ENUM_MAX) return full;
+    sim_ival out = { 0, 0 };
+    for (int first = 1;;) {
+        int64_t r = canon(pi->fn(v, pi->user), y->fmt);
+        if (first) { out.lo = out.hi = r; first = 0; }
+        else out = sim_ival_hull(out, (sim_ival){ r, r });
+        int i = 0;
+        for (; i < pi->n; i++) {           /* odometer over the inputs */
+            if (v[i] < (int64_t)vals[pi->in[i]->index].hi) { v[i]++; break; }
+            v[i] = lo[i];
+        }
+        if (i == pi->n) break;
+    }
+    return out;
+}
+
+int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_ival *post)
+{
+    sim_prim_info pi;
+    if (sim_prim_describe(y, &pi)) return -1;
+    sim_round r = sim_fmt_round(y->fmt, pi.r);
+    sim_ovf o = sim_fmt_ovf(y->fmt, pi.o);
+    int any = 0;
+    sim_ival p, q;
+    switch (pi.kind) {
+    case SIM_KIND_CONST:
+        pre->lo = pre->hi = y->cur;
+        *post = *pre;
+        return 0;
+    case SIM_KIND_WIRE:
+        if (!pi.a) return -1;
+        into(y, vals[pi.a->index], pi.a->fmt.fbits, r, o, pre, post);
+        return 0;
+    case SIM_KIND_REG: {
+        sim_ival cur = vals[y->index];
+        sim_ival rst = pi.rst ? vals[pi.rst->index] : (sim_ival){ 0, 0 };
+        sim_ival en = pi.c ? vals[pi.c->index] : (sim_ival){ 1, 1 };
+        if (has_nonzero(rst)) take(&any, pre, post, (sim_ival){ pi.rst_raw, pi.rst_raw }, (sim_ival){ pi.rst_raw, pi.rst_raw });
+        if (has_zero(rst)) {
+            if (has_zero(en) || !pi.a) take(&any, pre, post, cur, cur);
+            if (has_nonzero(en) && pi.a) {
+                into(y, vals[pi.a->index], pi.a->fmt.fbits, r, o, &p, &q);
+                take(&any, pre, post, p, q);
+            }
+        }
+        return 0;
+    }
+    case SIM_KIND_MUX: {
+        sim_ival sel = vals[pi.c->index];
+        if (sel.lo < 0 || sel.hi >= pi.n) take(&any, pre, post, (sim_ival){ 0, 0 }, (sim_ival){ 0, 0 });
+        sim_wide a = sel.lo < 0 ? 0 : sel.lo, b = sel.hi >= pi.n ? pi.n - 1 : sel.hi;
+        for (sim_wide s = a; s <= b; s++) {
+            const sim_signal *x = pi.in[(int)s];
+            into(y, vals[x->index], x->fmt.fbits, r, o, &p, &q);
+            take(&any, pre, post, p, q);
+        }
+        return 0;
+    }
+    case SIM_KIND_BK: {
+        sim_ival pass = vals[pi.c->index];
+        if (has_zero(pass)) take(&any, pre, post, (sim_ival){ 0, 0 }, (sim_ival){ 0, 0 });
+        if (has_nonzero(pass)) {
+            into(y, vals[pi.a->index], pi.a->fmt.fbits, r, o, &p, &q);
+            take(&any, pre, post, p, q);
+        }
+        return 0;
+    }
+    case SIM_KIND_ADD: case SIM_KIND_SUB: {
+        int fa = pi.a->fmt.fbits, fb = pi.b->fmt.fbits, sf = fa > fb ? fa : fb;
+        sim_wide ka = (sim_wide)1 << (sf - fa), kb = (sim_wide)1 << (sf - fb);
+        sim_ival x = vals[pi.a->index], z = vals[pi.b->index], s;
+        if (pi.kind == SIM_KIND_ADD) s = (sim_ival){ x.lo * ka + z.lo * kb, x.hi * ka + z.hi * kb };
+        else s = (sim_ival){ x.lo * ka - z.hi * kb, x.hi * ka - z.lo * kb };
+        into(y, s, sf, r, o, pre, post);
+        return 0;
+    }
+    case SIM_KIND_MUL: {
+        sim_ival x = vals[pi.a->index], z = vals[pi.b->index];
+        sim_wide c[4] = { x.lo * z.lo, x.lo * z.hi, x.hi * z.lo, x.hi * z.hi };
+        sim_ival s = { c[0], c[0] };
+        for (int i = 1; i < 4; i++) s = sim_ival_hull(s, (sim_ival){ c[i], c[i] });
+        into(y, s, pi.a->fmt.fbits + pi.b->fmt.fbits, r, o, pre, post);
+        return 0;
+    }
+    case SIM_KIND_SHIFT: {
+        /* as sim_shift: f = fbits(x) - sh; a negative f scales the raw up */
+        int f = pi.a->fmt.fbits - pi.shift, sa = f < 0 ? -f : 0;
+        sim_ival x = vals[pi.a->index];
+        sim_wide k = (sim_wide)1 << sa;
+        into(y, (sim_ival){ x.lo * k, x.hi * k }, f < 0 ? 0 : f, r, o, pre, post);
+        return 0;
+    }
+    case SIM_KIND_LOGIC:
+        *pre = *post = logic_eval(y, &pi, vals);
+        return 0;
+    default:
+        return -1;
+    }
+}

@@ -1,0 +1,399 @@
+/* tb_derive.c - derived ranges: the unit's schedule simulated on
+ * intervals (sim_ival.h), driven as tb_run drives it (tb_derive.h). */
+#include "testbench/tb_derive.h"
+#include "testbench/tb_range.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Items simulated before the state must have settled, and clocks in all. */
+#define DERIVE_MAX_ITEMS  256
+#define DERIVE_MAX_CLOCKS 2000000
+
+int tb_ranges_parse(const unit_desc *u, const char *spec, tb_ranges *rg, char *err, size_t errlen)
+{
+    const char *eq = strchr(spec, '='), *colon = eq ? strchr(eq + 1, ':') : NULL;
+    if (!eq || !colon) {
+        snprintf(err, errlen, "--range %s: expected NAME=LO:HI", spec);
+        return -1;
+    }
+    int sig = -1;
+    for (int i = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_IN && strlen(u->sigs[i].name) == (size_t)(eq - spec)
+            && !strncmp(u->sigs[i].name, spec, (size_t)(eq - spec))) sig = i;
+    if (sig < 0) {
+        snprintf(err, errlen, "--range %s: '%.*s' is not an input of %s", spec, (int)(eq - spec), spec, u->name);
+        return -1;
+    }
+    char lo_s[64], *end;
+    size_t n = (size_t)(colon - eq - 1);
+    snprintf(lo_s, sizeof lo_s, "%.*s", (int)(n < sizeof lo_s ? n : sizeof lo_s - 1), eq + 1);
+    errno = 0;
+    double lo = strtod(lo_s, &end);
+    int bad = !*lo_s || *end || n >= sizeof lo_s || !isfinite(lo) || errno;
+    double hi = bad ? 0 : strtod(colon + 1, &end);
+    bad = bad || !colon[1] || *end || !isfinite(hi) || errno;
+    if (bad) {
+        snprintf(err, errlen, "--range %s: LO and HI must be finite numbers", spec);
+        return -1;
+    }
+    if (lo > hi) {
+        snprintf(err, errlen, "--range %s: LO %g is above HI %g", spec, lo, hi);
+        return -1;
+    }
+    rg->set[sig] = 1;
+    rg->lo[sig] = lo;
+    rg->hi[sig] = hi;
+    return 0;
+}
+
+/* x quantized to f's fraction bits with rounding r, no overflow handling
+ * (inputs are quantized as tb_prep does: sim_fx_from_real's rounding). */
+static sim_wide round_real(double x, sim_fmt f, sim_round r)
+{
+    double y = ldexp(x, f.fbits), q;
+    r = sim_fmt_round(f, r);
+    if (r == SIM_RND_TRUNC) q = floor(y);
+    else if (r == SIM_RND_HALF_UP) { q = floor(y); if (y - q >= 0.5) q += 1; }
+    else q = nearbyint(y);
+    if (q > 0x1p125) q = 0x1p125;
+    if (q < -0x1p125) q = -0x1p125;
+    return (sim_wide)q;
+}
+
+static double wide_real(sim_wide v, int fbits) { return ldexp((double)v, -fbits); }
+
+/* The schedule's state: one interval per signal (what it settles to),
+ * the hull of each one's value before overflow handling, and the
+ * combinational elements in an order where operands come first. */
+typedef struct dsim {
+    sim_ctx *c;
+    uint32_t n;
+    sim_ival *val, *hull, *nxt_pre, *nxt_post, *bound;
+    uint32_t *order, norder;        /* combinational elements */
+    uint32_t *regs, nregs;
+    unsigned char *mark;
+} dsim;
+
+/* The operands an element's value depends on within one clock. */
+static int operands(const sim_signal *y, const sim_signal **ops, int max)
+{
+    sim_prim_info pi;
+    int k = 0;
+    if (sim_prim_describe(y, &pi) || pi.kind == SIM_KIND_REG || pi.kind == SIM_KIND_CONST) return 0;
+    if (pi.a && k < max) ops[k++] = pi.a;
+    if (pi.b && k < max) ops[k++] = pi.b;
+    if (pi.c && k < max) ops[k++] = pi.c;
+    for (int i = 0; i < pi.n && k < max; i++) ops[k++] = pi.in[i];
+    return k;
+}
+
+/* Depth-first, operands first; a combinational loop is an error. */
+static int visit(dsim *d, const sim_signal *y, char *err, size_t errlen)
+{
+    if (d->mark[y->index] == 2) return 0;
+    if (d->mark[y->index] == 1) {
+        char p[200];
+        snprintf(err, errlen, "derived ranges: combinational loop through %s", sim_signal_path(y, p, sizeof p));
+        return -1;
+    }
+    d->mark[y->index] = 1;
+    const sim_signal *ops[80];
+    int k = operands(y, ops, 80);
+    for (int i = 0; i < k; i++) if (visit(d, ops[i], err, errlen)) return -1;
+    d->mark[y->index] = 2;
+    sim_prim_info pi;
+    if (!sim_prim_describe(y, &pi) && pi.kind != SIM_KIND_REG && pi.kind != SIM_KIND_CONST)
+        d->order[d->norder++] = y->index;
+    return 0;
+}
+
+static void dsim_free(dsim *d)
+{
+    free(d->val); free(d->hull); free(d->nxt_pre); free(d->nxt_post); free(d->bound);
+    free(d->order); free(d->regs); free(d->mark);
+}
+
+static int pt(sim_ival v) { return v.lo == v.hi; }
+
+/* One clock: the inputs (valid as given; the data inputs keep their
+ * intervals), the combinational elements in order, each one's value
+ * before overflow handling into its hull; then the rising edge. Returns
+ * 1 if an item is accepted at the edge, + 2 if an output beat is valid in
+ * the cycle; -1 with a message when the handshake is not a point. */
+static int clock_step(dsim *d, const unit_io *io, int valid, char *err, size_t errlen)
+{
+    d->val[io->in_valid->index] = (sim_ival){ valid, valid };
+    d->hull[io->in_valid->index] = sim_ival_hull(d->hull[io->in_valid->index], (sim_ival){ valid, valid });
+    for (uint32_t k = 0; k < d->norder; k++) {
+        uint32_t i = d->order[k];
+        sim_ival pre, post;
+        sim_ival_eval(sim_signal_at(d->c, i), d->val, &pre, &post);
+        d->val[i] = post;
+        d->hull[i] = sim_ival_hull(d->hull[i], pre);
+    }
+    sim_ival rdy = d->val[io->in_ready->index], ov = d->val[io->out_valid->index];
+    if (!pt(rdy) || !pt(ov)) {
+        snprintf(err, errlen, "derived ranges: %s's handshake (%s) depends on the data; not supported",
+                 io->scope ? io->scope->name : "the unit", !pt(rdy) ? "in_ready" : "out_valid");
+        return -1;
+    }
+    for (uint32_t k = 0; k < d->nregs; k++) {
+        uint32_t i = d->regs[k];
+        sim_ival_eval(sim_signal_at(d->c, i), d->val, &d->nxt_pre[i], &d->nxt_post[i]);
+        d->hull[i] = sim_ival_hull(d->hull[i], d->nxt_pre[i]);
+    }
+    for (uint32_t k = 0; k < d->nregs; k++) d->val[d->regs[k]] = d->nxt_post[d->regs[k]];
+    return (valid && rdy.lo ? 1 : 0) + (ov.lo ? 2 : 0);
+}
+
+int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const tb_ranges *rg,
+              tb_derived *out, char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    for (int i = 0; i < UNIT_MAX_SIGS; i++) out->at[i] = -1;
+    tb_built b;
+    if (tb_build(u, cfg, f, &b, err, errlen)) { sim_free(b.c); return -1; }
+    dsim d;
+    memset(&d, 0, sizeof d);
+    d.c = b.c;
+    d.n = sim_signal_count(b.c);
+    size_t n = d.n ? d.n : 1;
+    d.val = calloc(n, sizeof *d.val); d.hull = calloc(n, sizeof *d.hull);
+    d.nxt_pre = calloc(n, sizeof *d.nxt_pre); d.nxt_post = calloc(n, sizeof *d.nxt_post);
+    d.bound = calloc(n, sizeof *d.bound);
+    d.order = calloc(n, sizeof *d.order); d.regs = calloc(n, sizeof *d.regs); d.mark = calloc(n, 1);
+    int rc = -1;
+    sim_ival *snap = NULL;
+    size_t *snap_got = NULL;
+    if (!d.val || !d.hull || !d.nxt_pre || !d.nxt_post || !d.bound || !d.order || !d.regs || !d.mark) {
+        snprintf(err, errlen, "derived ranges: out of memory");
+        goto done;
+    }
+    /* Everything starts at its value after elaboration (registers their
+     * reset value); the data inputs hold their declared interval. */
+    unsigned char *is_in = calloc(n, 1);
+    if (!is_in) { snprintf(err, errlen, "derived ranges: out of memory"); goto done; }
+    for (uint32_t i = 0; i < d.n; i++) {
+        sim_signal *s = sim_signal_at(b.c, i);
+        d.val[i] = d.hull[i] = (sim_ival){ s->cur, s->cur };
+        if (s->kind == SIM_KIND_REG) d.regs[d.nregs++] = i;
+    }
+    for (int i = 0, k = 0; i < u->nsigs; i++) {
+        if (u->sigs[i].role != UNIT_SIG_IN) continue;
+        sim_signal *s = b.io.in[k++];
+        sim_ival pre = { s->raw_min, s->raw_max };
+        if (rg && rg->set[i]) pre = (sim_ival){ round_real(rg->lo[i], s->fmt, cfg->rnd), round_real(rg->hi[i], s->fmt, cfg->rnd) };
+        d.hull[s->index] = pre;
+        d.val[s->index] = sim_ival_fit(pre, s->fmt, sim_fmt_ovf(s->fmt, cfg->ovf));
+        is_in[s->index] = 1;
+    }
+    int bad = 0;
+    for (uint32_t i = 0; i < d.n && !bad; i++) bad = visit(&d, sim_signal_at(b.c, i), err, errlen);
+    if (bad) { free(is_in); goto done; }
+    /* The signals that depend on the data (is_in grows to them): only
+     * their registers' states are joined at acceptances; control state
+     * (step counters, pipeline valid bits) stays a point, and the state
+     * has settled when it repeats. */
+    for (int changed = 1; changed;) {
+        changed = 0;
+        for (uint32_t i = 0; i < d.n; i++) {
+            const sim_signal *y = sim_signal_at(b.c, i);
+            sim_prim_info pi;
+            if (is_in[i] || sim_prim_describe(y, &pi) || pi.kind == SIM_KIND_CONST) continue;
+            int dep = (pi.a && is_in[pi.a->index]) || (pi.b && is_in[pi.b->index]) || (pi.c && is_in[pi.c->index])
+                      || (pi.rst && is_in[pi.rst->index]);
+            for (int k = 0; k < pi.n && !dep; k++) dep = is_in[pi.in[k]->index];
+            if (dep) { is_in[i] = 1; changed = 1; }
+        }
+    }
+
+    int beats = u->beats(cfg), valid = 1, have_bound = 0, st;
+    size_t accepted = 0, got = 0, nsnap = 0;
+    uint64_t clk = 0;
+    /* The state after each acceptance but the last, where a run of that
+     * many items stops offering and drains (below). */
+    size_t capsnap = 0;
+    for (;; clk++) {
+        if (clk >= DERIVE_MAX_CLOCKS) {
+            snprintf(err, errlen, "derived ranges: %s did not finish in %d clocks", u->name, DERIVE_MAX_CLOCKS);
+            free(is_in);
+            goto done;
+        }
+        if ((st = clock_step(&d, &b.io, valid, err, errlen)) < 0) { free(is_in); goto done; }
+        got += (size_t)(st & 2) / 2;
+        if (!valid && got >= accepted * (size_t)beats) break;   /* the last beat: tb_run stops here */
+        if (!(st & 1)) continue;
+        accepted++;
+        /* An item accepted: the state now, joined with the state at the
+         * last acceptance. Within it (and a few items in): settled. */
+        int inside = have_bound;
+        for (uint32_t k = 0; k < d.nregs && inside; k++)
+            inside = sim_ival_within(d.val[d.regs[k]], d.bound[d.regs[k]]);
+        if (inside && accepted >= 3) { valid = 0; continue; }
+        if (accepted >= DERIVE_MAX_ITEMS) {
+            uint32_t w = 0;
+            for (uint32_t k = 0; k < d.nregs; k++)
+                if (!sim_ival_within(d.val[d.regs[k]], d.bound[d.regs[k]])) { w = d.regs[k]; break; }
+            char p[200];
+            snprintf(err, errlen, "derived ranges: %s keeps growing over %d items (an accumulator never cleared?)",
+                     sim_signal_path(sim_signal_at(b.c, w), p, sizeof p), DERIVE_MAX_ITEMS);
+            free(is_in);
+            goto done;
+        }
+        if (nsnap == capsnap) {
+            capsnap = capsnap ? 2 * capsnap : 8;
+            sim_ival *ns = realloc(snap, capsnap * n * sizeof *snap);
+            size_t *ng = realloc(snap_got, capsnap * sizeof *snap_got);
+            if (ns) snap = ns;
+            if (ng) snap_got = ng;
+            if (!ns || !ng) { snprintf(err, errlen, "derived ranges: out of memory"); free(is_in); goto done; }
+        }
+        memcpy(snap + nsnap * n, d.val, n * sizeof *snap);
+        snap_got[nsnap++] = got;
+        for (uint32_t k = 0; k < d.nregs; k++) {
+            uint32_t i = d.regs[k];
+            if (have_bound && is_in[i]) d.val[i] = sim_ival_hull(d.val[i], d.bound[i]);
+            d.bound[i] = d.val[i];
+        }
+        have_bound = 1;
+    }
+    /* Runs of fewer items: from the state after their last acceptance,
+     * offering nothing more, to their last beat (a pipelined schedule
+     * drains differently with fewer items in flight). */
+    for (size_t j = 0; j < nsnap; j++) {
+        memcpy(d.val, snap + j * n, n * sizeof *snap);
+        size_t g = snap_got[j];
+        for (uint64_t c = 0; g < (j + 1) * (size_t)beats; c++) {
+            if (c >= DERIVE_MAX_CLOCKS || (st = clock_step(&d, &b.io, 0, err, errlen)) < 0) {
+                if (c >= DERIVE_MAX_CLOCKS) snprintf(err, errlen, "derived ranges: %s did not drain", u->name);
+                free(is_in);
+                goto done;
+            }
+            g += (size_t)(st & 2) / 2;
+        }
+    }
+    free(is_in);
+    out->items = (int)accepted;
+    out->clocks = clk + 1;
+
+    out->sigs = calloc(n, sizeof *out->sigs);
+    if (!out->sigs) { snprintf(err, errlen, "derived ranges: out of memory"); goto done; }
+    for (uint32_t i = 0; i < d.n; i++) {
+        sim_signal *s = sim_signal_at(b.c, i);
+        if (s == b.clk || !tb_range_in_scope(s, b.sc)) continue;
+        tb_dsig *t = &out->sigs[out->nsigs];
+        tb_range_name(s, b.sc, t->name, sizeof t->name);
+        t->fmt = s->fmt;
+        t->kind = s->kind;
+        t->pre = d.hull[i];
+        t->lo = wide_real(t->pre.lo, s->fmt.fbits);
+        t->hi = wide_real(t->pre.hi, s->fmt.fbits);
+        t->fits = sim_ival_within(t->pre, (sim_ival){ s->raw_min, s->raw_max });
+        out->nfail += !t->fits;
+        for (int k = 0; k < u->nsigs; k++)
+            if (!strcmp(u->sigs[k].name, t->name)) out->at[k] = out->nsigs;
+        out->nsigs++;
+    }
+    rc = 0;
+done:
+    free(snap);
+    free(snap_got);
+    dsim_free(&d);
+    sim_free(b.c);
+    if (rc) tb_derived_free(out);
+    return rc;
+}
+
+void tb_derived_free(tb_derived *d)
+{
+    free(d->sigs);
+    d->sigs = NULL;
+    d->nsigs = 0;
+}
+
+int tb_derive_fmts(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *in, const tb_ranges *rg,
+                   const unsigned char *keep, unit_fmts *out, char *err, size_t errlen)
+{
+    unit_fmts wide = *in;
+    /* Integer parts wide enough that nothing overflows (40 bits: values
+     * up to 2^39; a signal needing more is reported as not fitting). */
+    for (int i = 0; i < u->nsigs; i++) {
+        if (u->sigs[i].role == UNIT_SIG_IN || (keep && keep[i])) continue;
+        sim_fmt *g = &wide.f[i];
+        int max = (g->is_signed ? 64 : 63) - g->fbits, ib = max < 40 ? max : 40;
+        if (ib > g->ibits) { g->ibits = (int8_t)ib; g->width = (uint8_t)(ib + g->fbits); }
+    }
+    tb_derived d;
+    if (tb_derive(u, cfg, &wide, rg, &d, err, errlen)) return -1;
+    *out = *in;
+    int rc = 0;
+    for (int i = 0; i < u->nsigs && !rc; i++) {
+        if ((keep && keep[i]) || d.at[i] < 0) continue;
+        if (u->sigs[i].role == UNIT_SIG_IN && !(rg && rg->set[i])) continue;
+        const tb_dsig *t = &d.sigs[d.at[i]];
+        int ib = sim_ival_ibits(t->pre, in->f[i]);
+        if (ib < 0) {
+            snprintf(err, errlen, "derived ranges: %s's interval [%g, %g] fits no %s format of %d fraction bits",
+                     u->sigs[i].name, t->lo, t->hi, in->f[i].is_signed ? "signed" : "unsigned", in->f[i].fbits);
+            rc = -1;
+            break;
+        }
+        out->f[i].ibits = (int8_t)ib;
+        out->f[i].width = (uint8_t)(ib + in->f[i].fbits);
+    }
+    tb_derived_free(&d);
+    return rc;
+}
+
+/* The observed range of signal name in r ("-" when none). */
+static void observed(char *buf, size_t len, const tb_result *r, const char *name)
+{
+    snprintf(buf, len, "-");
+    if (!r || !r->sigs) return;
+    for (int i = 0; i < r->nsigs; i++)
+        if (!strcmp(r->sigs[i].name, name) && r->sigs[i].seen)
+            snprintf(buf, len, "[%.6g, %.6g]", sim_fx_to_real(r->sigs[i].min, r->sigs[i].fmt),
+                     sim_fx_to_real(r->sigs[i].max, r->sigs[i].fmt));
+}
+
+void tb_derived_print(FILE *f, const tb_derived *d, const tb_result *r, int all)
+{
+    char fb[SIM_FMT_STRLEN], ob[80];
+    for (int i = 0; i < d->nsigs; i++) {
+        const tb_dsig *t = &d->sigs[i];
+        if (!all && t->fits) continue;
+        if (t->kind == SIM_KIND_CONST) continue;
+        char db[80];
+        snprintf(db, sizeof db, "[%.6g, %.6g]", t->lo, t->hi);
+        if (r && r->sigs) {
+            observed(ob, sizeof ob, r, t->name);
+            fprintf(f, "  %-14s %-12s derived %-28s observed %-28s %s\n", t->name, sim_fmt_str(t->fmt, fb), db, ob,
+                    t->fits ? "fits" : "DOES NOT FIT");
+        } else {
+            fprintf(f, "  %-14s %-12s derived %-28s %s\n", t->name, sim_fmt_str(t->fmt, fb), db,
+                    t->fits ? "fits" : "DOES NOT FIT");
+        }
+    }
+}
+
+void tb_derived_json(FILE *f, const tb_derived *d, const tb_result *r)
+{
+    char fb[SIM_FMT_STRLEN];
+    fputc('[', f);
+    for (int i = 0, first = 1; i < d->nsigs; i++) {
+        const tb_dsig *t = &d->sigs[i];
+        if (t->kind == SIM_KIND_CONST) continue;
+        fprintf(f, "%s{\"name\": \"%s\", \"format\": \"%s\", \"derived\": [%.17g, %.17g], \"fits\": %s", first ? "" : ", ",
+                t->name, sim_fmt_str(t->fmt, fb), t->lo, t->hi, t->fits ? "true" : "false");
+        first = 0;
+        if (r && r->sigs)
+            for (int k = 0; k < r->nsigs; k++)
+                if (!strcmp(r->sigs[k].name, t->name) && r->sigs[k].seen)
+                    fprintf(f, ", \"observed\": [%.17g, %.17g]", sim_fx_to_real(r->sigs[k].min, r->sigs[k].fmt),
+                            sim_fx_to_real(r->sigs[k].max, r->sigs[k].fmt));
+        fputc('}', f);
+    }
+    fputc(']', f);
+}

@@ -1,0 +1,56 @@
+#!/bin/sh
+# cli_ranges.sh - derived ranges: run --ranges derived's static verdict
+# (exit 1 with the list when a format cannot hold its interval), bad
+# --range options (exit 2, one line), and sweep --ranges derived's formats
+# on independent stimuli over the declared ranges: no overflow.
+PREFIX=cli_ranges.
+. tests/lib_cli.sh
+
+# horner3 at width 16 with a..d over their formats' range [-64, 64) and t
+# over [0, 2): mul = mx1 * t reaches -64 (2 - 2^-15) = -127.998 (by hand), which s7.9 cannot hold.
+expect run_default_cannot_hold 1 "$S" run horner3 --ranges derived
+check run_lists_mul grep -q '^  mul  *s7\.9  *derived \[-127\.99' "$T/out"
+# Declared ranges small enough: |y| <= 4 with a..d in [-1, 1], t in [0, 1].
+expect run_declared_ok 0 "$S" run horner3 --ranges derived --range a=-1:1 --range b=-1:1 --range c=-1:1 --range d=-1:1 --range t=0:1
+check run_says_ok grep -q '^ranges derived: ok' "$T/out"
+expect run_json 1 "$S" run horner3 --ranges derived --json
+check run_json_field grep -q '"ranges_derived": {"ok": false' "$T/out"
+# --ranges alone still lists observed ranges
+expect run_observed 0 "$S" run horner3 --ranges
+check run_observed_table grep -q 'mul' "$T/out"
+
+expect bad_name 2 "$S" run horner3 --ranges derived --range q=0:1
+expect bad_order 2 "$S" run horner3 --ranges derived --range a=2:1
+expect bad_number 2 "$S" run horner3 --ranges derived --range a=x:1
+expect bad_form 2 "$S" run horner3 --ranges derived --range a=1
+expect range_needs_derived 2 "$S" run horner3 --range a=0:1
+expect sweep_bad_mode 2 "$S" sweep horner3 --widths 12:14 --ranges maybe
+expect sweep_bad_range 2 "$S" sweep horner3 --widths 12:14 --target-error 1e-2 --ranges derived --range t=1:0
+expect sweep_needs_target 2 "$S" sweep horner3 --widths 12:14 --ranges derived
+
+# The search with derived ranges, then its formats on stimuli of another
+# seed: corners and uniform draws over the declared box (made here with
+# awk; the expected output is the cubic in double).
+expect sweep_derived 0 "$S" sweep horner3 --widths 10:20 --target-error 1e-2 --ranges derived \
+    --range a=-24:24 --range b=-34:34 --range c=-11:11 --range d=0:1 --range t=0:1 -o "$T/sw"
+fmts=$(sed -n 's/.*"run_args": "\(.*\)",*$/\1/p' "$T/sw/target.json")
+check sweep_ranges_json grep -q '"ranges": \[{"name": "a"' "$T/sw/target.json"
+awk 'BEGIN { srand(9); print "# shadesim vectors 1\n# unit: horner3\n# inputs: a b c d t\n# outputs: y";
+  lo[1]=-24; hi[1]=24; lo[2]=-34; hi[2]=34; lo[3]=-11; hi[3]=11; lo[4]=0; hi[4]=1; lo[5]=0; hi[5]=0.9999999;
+  for (k = 0; k < 3032; k++) { for (j = 1; j <= 5; j++) v[j] = k < 32 ? (int(k / 2^(j-1)) % 2 ? hi[j] : lo[j]) : lo[j] + (hi[j] - lo[j]) * rand();
+    printf "%.17g %.17g %.17g %.17g %.17g | %.17g\n", v[1], v[2], v[3], v[4], v[5], ((v[1]*v[5]+v[2])*v[5]+v[3])*v[5]+v[4] } }' >"$T/box.vec"
+# shellcheck disable=SC2086
+eval "\"\$S\" run horner3 --vectors \"\$T/box.vec\" $fmts" >"$T/box.txt" 2>&1
+check box_no_overflow grep -q 'overflows 0$' "$T/box.txt"
+
+# The acceptance: the formats of `sweep horner3 --widths 8:24 --target-error
+# 1e-3 --ranges derived`, on stimuli independent of the search: each
+# coefficient uniform over what the default file spans, t uniform in
+# [0, 1) (tests/data/horner3_indep.awk). No
+# overflow, and max |e| <= 1e-3.
+expect accept_sweep 0 "$S" sweep horner3 --widths 8:24 --target-error 1e-3 --ranges derived -o "$T/acc"
+fmts=$(sed -n 's/.*"run_args": "\(.*\)",*$/\1/p' "$T/acc/target.json")
+awk -v n=20000 -v seed=31 -f tests/data/horner3_indep.awk "$SHADESIM_HOME/vectors/horner3.vec" >"$T/indep.vec"
+eval "\"\$S\" run horner3 --vectors \"\$T/indep.vec\" $fmts" >"$T/indep.txt" 2>&1
+check accept_no_overflow grep -q 'overflows 0$' "$T/indep.txt"
+check accept_max_error awk '$1 == "y" && $3 + 0 <= 1e-3 { ok = 1 } END { exit !ok }' "$T/indep.txt"

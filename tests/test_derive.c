@@ -1,0 +1,261 @@
+/* test_derive.c - derived ranges (sim_ival, tb_derive): an element's
+ * interval against brute force over every operand raw, quantized by
+ * sim_fx_requant; and, for several units, that the derived intervals
+ * contain every value a run settles to on random and corner stimuli over
+ * the declared ranges, and that formats with derived integer bits never
+ * overflow there. */
+#include "tests/tst.h"
+#include "testbench/tb_derive.h"
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* mul, add, sub and shift on small formats, every rounding mode: the
+ * interval (before overflow handling) is exactly the hull of the element's
+ * rounded values over every pair of raws in the operand intervals. */
+static void ival_matches_brute_force(void)
+{
+    for (int rm = 0; rm < 3; rm++)
+        for (int kind = 0; kind < 4; kind++) {
+            sim_ctx *c = sim_new();
+            sim_set_quant(c, (sim_round)rm, SIM_OVF_WRAP);
+            sim_fmt fa, fb, fy;
+            sim_fmt_make(1, 3, 3, &fa, NULL, 0);
+            sim_fmt_make(0, 2, 4, &fb, NULL, 0);
+            sim_fmt_make(1, 3, 2, &fy, NULL, 0);
+            sim_signal *a = sim_signal_new(c, NULL, "a", fa, SIM_KIND_INPUT);
+            sim_signal *b = sim_signal_new(c, NULL, "b", fb, SIM_KIND_INPUT);
+            sim_signal *y = kind == 0 ? sim_mul(c, NULL, "y", fy, a, b) : kind == 1 ? sim_add(c, NULL, "y", fy, a, b)
+                          : kind == 2 ? sim_sub(c, NULL, "y", fy, a, b) : sim_shift(c, NULL, "y", fy, a, -3);
+            sim_ival v[8];
+            int64_t alo = -23, ahi = 17, blo = 5, bhi = 41;
+            v[a->index] = (sim_ival){ alo, ahi };
+            v[b->index] = (sim_ival){ blo, bhi };
+            sim_ival pre, post;
+            TST_EQ_INT(sim_ival_eval(y, v, &pre, &post), 0);
+            sim_wide lo = 0, hi = 0;
+            int first = 1;
+            for (int64_t x = alo; x <= ahi; x++)
+                for (int64_t z = blo; z <= bhi; z++) {
+                    sim_wide e;
+                    int sf;
+                    if (kind == 0) { e = (sim_wide)x * z; sf = 7; }
+                    else if (kind == 1) { e = (sim_wide)x * 2 + z; sf = 4; }
+                    else if (kind == 2) { e = (sim_wide)x * 2 - z; sf = 4; }
+                    else { e = x; sf = 6; }
+                    /* a wide format: rounding only, no overflow */
+                    sim_fmt w;
+                    sim_fmt_make(1, 40, 2, &w, NULL, 0);
+                    sim_wide q = sim_fx_requant(e, sf, w, (sim_round)rm, SIM_OVF_WRAP, NULL);
+                    if (first || q < lo) lo = q;
+                    if (first || q > hi) hi = q;
+                    first = 0;
+                }
+            TST_CHECK(pre.lo == lo && pre.hi == hi, "kind %d round %d: [%lld, %lld], brute force [%lld, %lld]", kind, rm,
+                      (long long)pre.lo, (long long)pre.hi, (long long)lo, (long long)hi);
+            sim_free(c);
+        }
+}
+
+/* Mux with a data select, block key with a data pass, register with an
+ * unknown enable: the hull of the outcomes; with known ones, exactly the
+ * chosen one. */
+static void ival_selects(void)
+{
+    sim_ctx *c = sim_new();
+    sim_fmt f8, u2, u1;
+    sim_fmt_make(1, 4, 4, &f8, NULL, 0);
+    sim_fmt_make(0, 2, 0, &u2, NULL, 0);
+    sim_fmt_make(0, 1, 0, &u1, NULL, 0);
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_signal *x = sim_signal_new(c, NULL, "x", f8, SIM_KIND_INPUT);
+    sim_signal *z = sim_signal_new(c, NULL, "z", f8, SIM_KIND_INPUT);
+    sim_signal *sel = sim_signal_new(c, NULL, "sel", u2, SIM_KIND_INPUT);
+    sim_signal *en = sim_signal_new(c, NULL, "en", u1, SIM_KIND_INPUT);
+    sim_signal *in[3] = { x, z, x };
+    sim_signal *m = sim_mux(c, NULL, "m", f8, sel, 3, in);
+    sim_signal *k = sim_bk(c, NULL, "k", f8, en, x);
+    sim_signal *q = sim_reg(c, NULL, "q", f8, clk, z, en, NULL, 0);
+    sim_ival v[16], pre, post;
+    memset(v, 0, sizeof v);
+    v[x->index] = (sim_ival){ 10, 20 };
+    v[z->index] = (sim_ival){ -30, -25 };
+    v[q->index] = (sim_ival){ 3, 3 };
+    v[sel->index] = (sim_ival){ 1, 1 };
+    sim_ival_eval(m, v, &pre, &post);
+    TST_CHECK(pre.lo == -30 && pre.hi == -25, "mux sel 1: [%lld, %lld]", (long long)pre.lo, (long long)pre.hi);
+    v[sel->index] = (sim_ival){ 1, 3 };     /* 3 is out of range: 0 */
+    sim_ival_eval(m, v, &pre, &post);
+    TST_CHECK(pre.lo == -30 && pre.hi == 20, "mux sel 1..3: [%lld, %lld]", (long long)pre.lo, (long long)pre.hi);
+    v[en->index] = (sim_ival){ 0, 1 };
+    sim_ival_eval(k, v, &pre, &post);
+    TST_CHECK(pre.lo == 0 && pre.hi == 20, "bk: [%lld, %lld]", (long long)pre.lo, (long long)pre.hi);
+    sim_ival_eval(q, v, &pre, &post);
+    TST_CHECK(pre.lo == -30 && pre.hi == 3, "reg en 0..1: [%lld, %lld]", (long long)pre.lo, (long long)pre.hi);
+    v[en->index] = (sim_ival){ 0, 0 };
+    sim_ival_eval(q, v, &pre, &post);
+    TST_CHECK(pre.lo == 3 && pre.hi == 3, "reg en 0: [%lld, %lld]", (long long)pre.lo, (long long)pre.hi);
+    /* wrap of a set that straddles the top: the whole format; sat: clamped */
+    sim_ival w = sim_ival_fit((sim_ival){ 120, 130 }, f8, SIM_OVF_WRAP);
+    TST_CHECK(w.lo == -128 && w.hi == 127, "wrap: [%lld, %lld]", (long long)w.lo, (long long)w.hi);
+    w = sim_ival_fit((sim_ival){ 130, 140 }, f8, SIM_OVF_WRAP);
+    TST_CHECK(w.lo == -126 && w.hi == -116, "wrap within a period: [%lld, %lld]", (long long)w.lo, (long long)w.hi);
+    w = sim_ival_fit((sim_ival){ 120, 130 }, f8, SIM_OVF_SAT);
+    TST_CHECK(w.lo == 120 && w.hi == 127, "sat: [%lld, %lld]", (long long)w.lo, (long long)w.hi);
+    TST_EQ_INT(sim_ival_ibits((sim_ival){ -129, 127 }, f8), 5);   /* s5.4 holds -256..255 */
+    TST_EQ_INT(sim_ival_ibits((sim_ival){ -1, 3 }, u2), -1);
+    sim_free(c);
+}
+
+/* The declared range of each input: what the unit's default stimuli span. */
+static void default_ranges(const unit_desc *u, const unit_cfg *cfg, tb_ranges *rg, vec_set *vs)
+{
+    memset(rg, 0, sizeof *rg);
+    vec_set_init(vs);
+    vec_set_header(vs, u->ref, &cfg->model);
+    u->ref->gen(&cfg->model, 0, 1, vs);
+    for (int i = 0, k = 0; i < u->nsigs; i++) {
+        if (u->sigs[i].role != UNIT_SIG_IN) continue;
+        rg->set[i] = 1;
+        rg->lo[i] = rg->hi[i] = vec_row(vs, 0)[k];
+        for (size_t r = 1; r < vs->n_rows; r++) {
+            double x = vec_row(vs, r)[k];
+            if (x < rg->lo[i]) rg->lo[i] = x;
+            if (x > rg->hi[i]) rg->hi[i] = x;
+        }
+        k++;
+    }
+}
+
+/* Stimuli over the box: every corner, then uniform draws; expected
+ * outputs from the float reference. */
+static void box_stimuli(const unit_desc *u, const unit_cfg *cfg, const tb_ranges *rg, size_t n, uint64_t seed, vec_set *vs)
+{
+    vec_set_init(vs);
+    vec_set_header(vs, u->ref, &cfg->model);
+    vec_rng rng = { seed };
+    double v[2 * VEC_MAX_PORTS];
+    int nin = vs->n_in, idx[VEC_MAX_PORTS];
+    for (int i = 0, k = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN) idx[k++] = i;
+    size_t corners = nin <= 8 ? (size_t)1 << nin : 0;
+    for (size_t r = 0; r < corners + n; r++) {
+        for (int j = 0; j < nin; j++) {
+            double lo = rg->lo[idx[j]], hi = rg->hi[idx[j]];
+            v[j] = r < corners ? ((r >> j) & 1 ? hi : lo) : vec_rng_range(&rng, lo, hi);
+        }
+        u->ref->eval(&cfg->model, v, v + nin);
+        vec_set_push(vs, v);
+    }
+}
+
+/* One unit and schedule: formats with derived integer bits, a run on
+ * stimuli over the ranges, every observed value within its derived
+ * interval and no overflow. */
+static void check_unit(const char *name, int sched, int width)
+{
+    const unit_desc *u = unit_find(name);
+    TST_CHECK(u != NULL, "no unit %s", name);
+    if (!u) return;
+    unit_cfg cfg;
+    unit_cfg_default(u, &cfg);
+    cfg.schedule = sched;
+    cfg.width = width;
+    tb_ranges rg;
+    vec_set def, box;
+    default_ranges(u, &cfg, &rg, &def);
+    unit_fmts f0, f;
+    char err[600];
+    TST_CHECK(!tb_formats(u, &cfg, NULL, 0, &f0, err, sizeof err), "%s", err);
+    int bad = tb_derive_fmts(u, &cfg, &f0, &rg, NULL, &f, err, sizeof err);
+    TST_CHECK(!bad, "%s: %s", name, err);
+    box_stimuli(u, &cfg, &rg, 3000, 77, &box);
+    tb_derived d;
+    tb_result r;
+    if (!bad && !tb_derive(u, &cfg, &f, &rg, &d, err, sizeof err)) {
+        TST_EQ_INT(d.nfail, 0);
+        /* the default stimuli, the box's, and runs of 1 and 2 items (a
+         * pipeline drains differently with fewer items in flight) */
+        vec_set few = box;
+        for (int pass = 0; pass < 4; pass++) {
+            few.n_rows = (size_t)pass - 1;
+            int st = tb_run(u, &cfg, &f, pass == 0 ? &def : pass == 1 ? &box : &few, NULL, &r, err, sizeof err);
+            TST_CHECK(st == TB_OK, "%s: %s", name, err);
+            if (st != TB_OK) continue;
+            TST_CHECK(r.overflows == 0, "%s %s: %llu overflows", name, u->sched[sched].name, (unsigned long long)r.overflows);
+            TST_EQ_INT(r.nsigs, d.nsigs);
+            for (int i = 0; i < r.nsigs && i < d.nsigs; i++) {
+                const tb_sig *s = &r.sigs[i];
+                TST_EQ_STR(s->name, d.sigs[i].name);
+                if (!s->seen) continue;
+                TST_CHECK(s->min >= d.sigs[i].pre.lo && s->max <= d.sigs[i].pre.hi,
+                          "%s %s: %s observed [%lld, %lld] outside derived [%lld, %lld]", name, u->sched[sched].name,
+                          s->name, (long long)s->min, (long long)s->max, (long long)d.sigs[i].pre.lo,
+                          (long long)d.sigs[i].pre.hi);
+            }
+            tb_result_free(&r);
+        }
+        tb_derived_free(&d);
+    } else if (!bad) {
+        TST_CHECK(0, "%s: %s", name, err);
+    }
+    vec_set_free(&def);
+    vec_set_free(&box);
+}
+
+static void horner3_every_schedule(void)
+{
+    const unit_desc *u = unit_find("horner3");
+    for (int s = 0; s < u->nsched; s++) check_unit("horner3", s, 16);
+}
+static void horner2_contains(void) { check_unit("horner2", 0, 16); }
+static void coef3_n1_contains(void) { check_unit("coef3_n1", 0, 16); }
+static void div3_contains(void) { check_unit("div3", 0, 16); }
+/* A span unit's handshake depends on its data (the span's pixel count):
+ * not derived, refused with a message rather than a wrong interval. */
+static void span3_refused(void)
+{
+    const unit_desc *u = unit_find("span3");
+    unit_cfg cfg;
+    unit_cfg_default(u, &cfg);
+    unit_fmts f;
+    char err[600] = "";
+    tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err);
+    tb_derived d;
+    TST_CHECK(tb_derive(u, &cfg, &f, NULL, &d, err, sizeof err) == -1, "span3 derived");
+    TST_CHECK(strstr(err, "depends on the data") != NULL, "message: %s", err);
+}
+
+/* The default horner3 at width 16 with a..d over [-64, 64) (their formats)
+ * and t over [0, 2): the multiplier's interval is known by hand,
+ * |mx1 * t| <= 64 * 2 = 128 (corner products), so s7.9 cannot hold it. */
+static void horner3_format_ranges_by_hand(void)
+{
+    const unit_desc *u = unit_find("horner3");
+    unit_cfg cfg;
+    unit_cfg_default(u, &cfg);
+    unit_fmts f;
+    char err[600];
+    tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err);
+    tb_derived d;
+    TST_CHECK(!tb_derive(u, &cfg, &f, NULL, &d, err, sizeof err), "%s", err);
+    int mul = d.at[7];
+    TST_EQ_STR(u->sigs[7].name, "mul");
+    /* mx1 in [-64, 64 - 2^-9], t in [0, 2 - 2^-15]: (-64)(2 - 2^-15) truncated to 9 fraction bits */
+    TST_NEAR(d.sigs[mul].lo, floor(-64 * (2 - ldexp(1, -15)) * 512) / 512, 0);
+    TST_NEAR(d.sigs[mul].hi, floor((64 - ldexp(1, -9)) * (2 - ldexp(1, -15)) * 512) / 512, 0);
+    TST_CHECK(!d.sigs[mul].fits, "mul s7.9 holds [%g, %g]?", d.sigs[mul].lo, d.sigs[mul].hi);
+    tb_derived_free(&d);
+}
+
+int main(void)
+{
+    TST_RUN(ival_matches_brute_force);
+    TST_RUN(ival_selects);
+    TST_RUN(horner3_format_ranges_by_hand);
+    TST_RUN(horner3_every_schedule);
+    TST_RUN(horner2_contains);
+    TST_RUN(coef3_n1_contains);
+    TST_RUN(div3_contains);
+    TST_RUN(span3_refused);
+    TST_EXIT();
+}
