@@ -39,6 +39,12 @@ if expect bug_fails 1 "$S" cosim horner3 --rtl $R/horner3_bug.v; then
         || fail bug_off_by_half "expected $e, got $g"
 fi
 
+# a design that never says out_valid: stopped, the first item reported
+sed "s/out_valid <= step\[5\];/out_valid <= 1'b0;/" $R/horner3_hand.v >"$T/stuck.v"
+expect stuck_fails 1 "$S" cosim horner3 --rtl "$T/stuck.v" -n 20
+grep -q '^MISMATCH at item 0 (inputs .*): expected y=.* at clock 6, icarus gave nothing' "$T/out" \
+    && ok stuck_reported || fail stuck_reported "$(cat "$T/out")"
+
 # ports: a width, a missing port, an extra input, the reset choice
 expect width_refused 2 "$S" cosim horner3 --rtl $R/horner3_width.v
 grep -q 'port t has 12 bits, expected 16' "$T/err" && ok width_names_port || fail width_names_port "$(cat "$T/err")"
