@@ -225,7 +225,7 @@ int tb_rtl_ports(const char *const *files, int nfiles, const char *want_top, con
     size_t cl = 2048;
     for (int i = 0; i < nfiles; i++) cl += 4 * strlen(files[i]) + 4;
     cl += 4 * strlen(dir) + (want_top ? 4 * strlen(want_top) : 0);
-    char *cmd = calloc(1, cl), out[200], log[200];
+    char *cmd = calloc(1, cl), out[PATH_MAX + 32], log[PATH_MAX + 32];
     if (!cmd) { snprintf(err, errlen, "out of memory"); return -1; }
     const char *sname = sim == TB_SIM_ICARUS ? "icarus" : "verilator";
     strcpy(cmd, "cd ");
@@ -360,6 +360,7 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
     char top[256];
     if (!in || !ex || !res || !cmd || !files) { snprintf(msg, msglen, "out of memory"); goto done; }
     const char *n = u->name;
+    if (base_out_mkdirs(dir, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
     if (o->nrtl) {
         /* the user's files by their absolute paths (the tools run in dir) */
         int ng = -1;
@@ -411,7 +412,7 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
                  words, n, n, n, files, n, vs->n_rows, limit);
     if (system(cmd) != 0) {
         if (o->nrtl) {
-            char line[400], log[300];
+            char line[400], log[PATH_MAX + 32];
             snprintf(log, sizeof log, "%s/%s", dir, sim == TB_SIM_ICARUS ? "iverilog.log" : "verilator.log");
             log_line(log, line, sizeof line);
             snprintf(msg, msglen, "cosim: %s failed on the RTL: %s", sname, line);
