@@ -17,6 +17,7 @@ typedef struct vgen {
     const sim_scope *sc;
     char **name;            /* by signal index: Verilog name, NULL if not ours */
     uint32_t nsig;
+    sim_vreset reset;
     char *err;
     size_t errlen;
 } vgen;
@@ -33,7 +34,7 @@ static const char *const keywords[] = {
     "forever", "function", "generate", "genvar", "if", "initial", "inout", "input", "integer",
     "localparam", "module", "nand", "negedge", "nor", "not", "or", "output", "parameter",
     "posedge", "real", "reg", "repeat", "signed", "task", "time", "tri", "unsigned", "wait",
-    "while", "wire", "xor", "xnor", "clk", "bit", "logic", "int", "byte", "do", "final",
+    "while", "wire", "xor", "xnor", "clk", "rst", "bit", "logic", "int", "byte", "do", "final",
     NULL };
 
 static int is_keyword(const char *s)
@@ -387,14 +388,24 @@ static int emit_sig(vgen *g, const sim_signal *y, const sim_signal *clk, int is_
         if (in.clk != clk) { snprintf(g->err, g->errlen, "register %s has a clock of its own", nm); return -1; }
         char rl[64];
         lit(rl, sizeof rl, y->fmt.width, in.rst_raw);
-        fprintf(f, "    initial %s = %s;\n", nm, rl);
-        if (!in.a) return 0;    /* never loaded: keeps its initial value */
-        snprintf(pre, sizeof pre, "%s__d", nm);
-        fprintf(f, "    wire [%d:0] %s;\n", y->fmt.width - 1, pre);
-        quant_sig(g, pre, in.a, y->fmt, in.r, in.o, pre);
-        fprintf(f, "    always @(posedge clk)\n");
-        if (in.rst) fprintf(f, "        if (|%s) %s <= %s;\n        else ", N(g, in.rst), nm, rl);
-        else fprintf(f, "        ");
+        if (g->reset == SIM_VRESET_NONE) {
+            fprintf(f, "    initial %s = %s;\n", nm, rl);
+            if (!in.a) return 0;    /* never loaded: keeps its initial value */
+        }
+        if (in.a) {
+            snprintf(pre, sizeof pre, "%s__d", nm);
+            fprintf(f, "    wire [%d:0] %s;\n", y->fmt.width - 1, pre);
+            quant_sig(g, pre, in.a, y->fmt, in.r, in.o, pre);
+        }
+        /* the module's reset first, then the unit's own synchronous one,
+         * then the enable */
+        fprintf(f, "    always @(posedge clk%s)\n        ", g->reset == SIM_VRESET_ASYNC ? " or posedge rst" : "");
+        if (g->reset != SIM_VRESET_NONE) {
+            fprintf(f, "if (rst) %s <= %s;\n", nm, rl);
+            if (!in.a) return 0;    /* never loaded: keeps its reset value */
+            fprintf(f, "        else ");
+        }
+        if (in.rst) fprintf(f, "if (|%s) %s <= %s;\n        else ", N(g, in.rst), nm, rl);
         if (in.c) fprintf(f, "if (|%s) ", N(g, in.c));
         fprintf(f, "%s <= %s;\n", nm, pre);
         return 0;
@@ -421,10 +432,10 @@ static int emit_sig(vgen *g, const sim_signal *y, const sim_signal *clk, int is_
 }
 
 int sim_verilog_module(FILE *f, const sim_ctx *c, const sim_scope *sc, const char *module,
-                       const sim_signal *clk, const sim_vport *ports, int nports,
+                       const sim_signal *clk, sim_vreset reset, const sim_vport *ports, int nports,
                        char *err, size_t errlen)
 {
-    vgen g = { f, c, sc, NULL, sim_signal_count(c), err, errlen };
+    vgen g = { f, c, sc, NULL, sim_signal_count(c), reset, err, errlen };
     g.name = calloc(g.nsig ? g.nsig : 1, sizeof *g.name);
     signed char *port_of = calloc(g.nsig ? g.nsig : 1, 1);   /* 1 input port, 2 output port */
     int rc = -1;
@@ -455,6 +466,7 @@ int sim_verilog_module(FILE *f, const sim_ctx *c, const sim_scope *sc, const cha
     }
 
     fprintf(f, "module %s (\n    input  wire clk", module);
+    if (reset != SIM_VRESET_NONE) fprintf(f, ",\n    input  wire rst");
     for (int i = 0; i < nports; i++) {
         const sim_signal *s = ports[i].sig;
         int is_reg = ports[i].is_output && s->kind == SIM_KIND_REG && !strcmp(g.name[s->index], ports[i].name);

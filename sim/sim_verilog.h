@@ -13,8 +13,12 @@
  * construction; inputs of more than SIM_VERILOG_MAX_LOGIC_BITS bits in
  * total are refused.
  *
- * Registers start at their reset value (an initial block: FPGA flows and
- * simulators honour it; an ASIC flow would use the reset input).
+ * Every register has a reset value, the value the simulation starts it
+ * at. With a reset input (SIM_VRESET_SYNC or _ASYNC: port `rst`, active
+ * high, right after clk) rst puts every register at that value, on the
+ * clock's edge or at once; an ASIC flow needs it, since synthesis ignores
+ * initial blocks. With SIM_VRESET_NONE there is no rst port and registers
+ * start from initial blocks (FPGA flows and simulators honour them).
  */
 #ifndef SIM_VERILOG_H
 #define SIM_VERILOG_H
@@ -23,6 +27,8 @@
 
 #define SIM_VERILOG_MAX_LOGIC_BITS 12
 
+typedef enum { SIM_VRESET_SYNC = 0, SIM_VRESET_ASYNC = 1, SIM_VRESET_NONE = 2 } sim_vreset;
+
 typedef struct sim_vport {
     const char *name;       /* port name */
     sim_signal *sig;
@@ -30,11 +36,12 @@ typedef struct sim_vport {
 } sim_vport;
 
 /* Write module `module` for the signals in scope sc, clocked by clk (a
- * signal outside sc), with the given ports (clk first, implicitly). Every
+ * signal outside sc), with the given ports (clk first, then rst unless
+ * reset is SIM_VRESET_NONE, implicitly). Every
  * signal in sc must be a port input, a constant or driven by a primitive.
  * 0, or -1 with a one-line message (nothing useful written). */
 int sim_verilog_module(FILE *f, const sim_ctx *c, const sim_scope *sc, const char *module,
-                       const sim_signal *clk, const sim_vport *ports, int nports,
+                       const sim_signal *clk, sim_vreset reset, const sim_vport *ports, int nports,
                        char *err, size_t errlen);
 
 

@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#define CLI_MAX_RTL 64
+
 static int have_tool(const char *tool)
 {
     char cmd[200];
@@ -49,9 +51,26 @@ static int formats(cli_unit_opts *o, unit_fmts *fm)
 
 /* ----------------------------------------------------------------- verilog */
 
-typedef struct verilog_st { const char *dir, *hex; } verilog_st;
+/* --reset sync|async|none, into the sim_vreset that starts the verb's
+ * own struct (verilog_st, cosim_st). */
+static int reset_opt(void *base, const char *opt, const char *v)
+{
+    static const char *const names[] = { "sync", "async", "none" };
+    for (int i = 0; i < 3; i++)
+        if (!strcmp(v, names[i])) { *(sim_vreset *)base = (sim_vreset)i; return 0; }
+    return cli_usage_error("%s %s: expected sync, async or none", opt, v);
+}
+
+#define RESET_OPT \
+    { "--reset", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs sync, async or none", reset_opt, 0, \
+      "  --reset KIND         the reset input rst (active high): sync (default; at a\n" \
+      "                       rising edge), async (at once), or none (no rst port;\n" \
+      "                       registers start from initial blocks, FPGA only)\n" }
+
+typedef struct verilog_st { sim_vreset reset; const char *dir, *hex; } verilog_st;
 
 static const cli_opt verilog_tab[] = {
+    RESET_OPT,
     { "-o", NULL, CLI_OPT_STR, offsetof(verilog_st, dir), 0, 0, NULL, "%s needs a folder", NULL, 0,
       "  -o DIR               output folder (made if missing)\n" },
     { "--stimulus-hex", NULL, CLI_OPT_STR, offsetof(verilog_st, hex), 0, 0, NULL, "%s needs a file", NULL, 0,
@@ -71,9 +90,10 @@ const cli_optspec cli_verilog_spec = {
     "verilog: unexpected argument '%s' (see shadesim verilog --help)",
     "usage: shadesim verilog UNIT [options] -o DIR\n"
     "Write DIR/UNIT.v, synthesizable Verilog-2001 of the unit exactly as shadesim\n"
-    "builds it (same formats, rounding, overflow, schedule and handshake), and\n"
-    "DIR/UNIT_tb.v, a testbench that reads the stimulus (--stimulus-hex) with\n"
-    "$readmemh and writes each output beat with its cycle.\n"
+    "builds it (same formats, rounding, overflow, schedule and handshake), with a\n"
+    "reset input rst, and DIR/UNIT_tb.v, a testbench that resets it, reads the\n"
+    "stimulus (--stimulus-hex) with $readmemh and writes each output beat with its\n"
+    "cycle. Prints a line per file written.\n"
     "options:\n", NULL
 };
 
@@ -81,14 +101,15 @@ int cli_verilog(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_verilog_spec);
     cli_unit_opts o;
-    verilog_st st = { NULL, NULL };
+    verilog_st st = { SIM_VRESET_SYNC, NULL, NULL };
     int rc = parse(&cli_verilog_spec, argc, argv, &o, &st);
     if (rc) return rc;
     if (!st.dir) return cli_usage_error("verilog: -o DIR is required");
     unit_fmts fm;
     if (formats(&o, &fm)) return CLI_USAGE;
-    char err[600];
-    if (tb_verilog_export(o.u, &o.cfg, &fm, st.dir, err, sizeof err)) return cli_usage_error("%s", err);
+    char err[600], *paths[2];
+    if (tb_verilog_write(o.u, &o.cfg, &fm, st.reset, st.dir, paths, err, sizeof err)) return cli_usage_error("%s", err);
+    for (int i = 0; i < 2; i++) { printf("wrote %s\n", paths[i]); free(paths[i]); }
     if (st.hex) {
         vec_set vs;
         if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
@@ -101,7 +122,7 @@ int cli_verilog(int argc, char **argv)
         else {
             snprintf(ex, pl, "%s.expect", st.hex);
             if (tb_stimulus_write(o.u, &o.cfg, &fm, &vs, &r, st.hex, ex, err, sizeof err)) rc = cli_usage_error("%s", err);
-            else if (cli_stderr_tty()) fprintf(stderr, "%zu items: +items=%zu\n", vs.n_rows, vs.n_rows);
+            else printf("wrote %s (%zu items: +items=%zu)\nwrote %s\n", st.hex, vs.n_rows, vs.n_rows, ex);
         }
         free(ex);
         tb_result_free(&r);
@@ -112,7 +133,22 @@ int cli_verilog(int argc, char **argv)
 
 /* ------------------------------------------------------------------- cosim */
 
-typedef struct cosim_st { const char *sim, *keep; long n; uint64_t seed; } cosim_st;
+typedef struct cosim_st {
+    sim_vreset reset;
+    const char *sim, *keep, *top;
+    long n;                 /* 0: not given */
+    uint64_t seed;
+    const char *rtl[CLI_MAX_RTL];
+    int nrtl;
+} cosim_st;
+
+static int cosim_rtl(void *base, const char *opt, const char *v)
+{
+    cosim_st *st = base;
+    if (st->nrtl == CLI_MAX_RTL) return cli_usage_error("%s %s: at most %d files", opt, v, CLI_MAX_RTL);
+    st->rtl[st->nrtl++] = v;
+    return 0;
+}
 
 static int cosim_sim(void *base, const char *opt, const char *v)
 {
@@ -123,11 +159,21 @@ static int cosim_sim(void *base, const char *opt, const char *v)
 }
 
 static const cli_opt cosim_tab[] = {
+    { "--rtl", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs a Verilog file", cosim_rtl, CLI_OPT_NONEMPTY,
+      "  --rtl FILE           your own RTL instead of the export (repeat for more\n"
+      "                       files): its top module must have the export's ports\n"
+      "                       and handshake (docs/verilog.md); checked on the unit's\n"
+      "                       default vectors unless -n or --vectors\n" },
+    { "--top", NULL, CLI_OPT_STR, offsetof(cosim_st, top), 0, 0, NULL, "%s needs a module name", NULL, CLI_OPT_NONEMPTY,
+      "  --top NAME           the top module of the --rtl files (default: the only\n"
+      "                       top-level one, or the one named like the unit)\n" },
+    RESET_OPT,
     { "--sim", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, cosim_sim, 0,
       "  --sim NAME           icarus (default; Debian package iverilog) or verilator\n" },
     { "-n", NULL, CLI_OPT_LONG, offsetof(cosim_st, n), 1, 1000000, NULL, NULL, NULL, 0,
-      "  -n N                 items (default 50), generated from the float reference,\n"
-      "                       unless --vectors FILE is given\n" },
+      "  -n N                 items (default 50, with --rtl the unit's default\n"
+      "                       vectors), generated from the float reference, unless\n"
+      "                       --vectors FILE is given\n" },
     { "--seed", NULL, CLI_OPT_U64, offsetof(cosim_st, seed), 0, 0, "a whole number", NULL, NULL, 0,
       "  --seed S             seed of the generated items (default 1)\n" },
     { "--keep", NULL, CLI_OPT_STR, offsetof(cosim_st, keep), 0, 0, NULL, NULL, NULL, 0,
@@ -138,10 +184,12 @@ static const cli_opt cosim_tab[] = {
 const cli_optspec cli_cosim_spec = {
     "cosim", { no_opts, cosim_tab, cli_unit_opt_tab }, unit_arg, 0,
     "cosim: unexpected argument '%s' (see shadesim cosim --help)",
-    "usage: shadesim cosim UNIT [options] [--sim icarus|verilator] [-n N] [--keep DIR]\n"
-    "Export the unit (as `shadesim verilog`), run the same stimulus in shadesim and in\n"
-    "the external simulator, and compare every output raw and the cycle of every beat.\n"
-    "Prints \"bit-exact, N items, M clocks\" or the first mismatch; exit 1 on a mismatch.\n"
+    "usage: shadesim cosim UNIT [options] [--rtl FILE.v ...] [--sim icarus|verilator] [-n N]\n"
+    "Export the unit (as `shadesim verilog`), or take your own RTL (--rtl), run the\n"
+    "same stimulus in shadesim and in the external simulator, and compare every\n"
+    "output raw and the cycle of every beat. Prints \"bit-exact, N items, M clocks\"\n"
+    "or the first mismatch (the item, its inputs, the expected and the actual raws\n"
+    "and clock); exit 1 on a mismatch, 2 when the RTL's ports differ from the unit's.\n"
     "options:\n", NULL
 };
 
@@ -157,9 +205,10 @@ int cli_cosim(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_cosim_spec);
     cli_unit_opts o;
-    cosim_st st = { "icarus", NULL, 50, 1 };
+    cosim_st st = { SIM_VRESET_SYNC, "icarus", NULL, NULL, 0, 1, { NULL }, 0 };
     int rc = parse(&cli_cosim_spec, argc, argv, &o, &st);
     if (rc) return rc;
+    if (st.top && !st.nrtl) return cli_usage_error("cosim: --top needs --rtl FILE");
     int icarus = !strcmp(st.sim, "icarus");
     if (icarus && (!have_tool("iverilog") || !have_tool("vvp")))
         return cli_usage_error("cosim: iverilog not found (install the Debian package iverilog)");
@@ -169,14 +218,16 @@ int cli_cosim(int argc, char **argv)
     if (formats(&o, &fm)) return CLI_USAGE;
     char err[600];
     vec_set vs;
-    if (o.vectors) { if (cli_load_vectors(&o, &vs)) return CLI_USAGE; }
-    else if (cli_make_vectors(o.u, &o.cfg, (size_t)st.n, st.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
+    /* the export: 50 generated items; the user's RTL: the unit's vectors */
+    if (o.vectors || (st.nrtl && !st.n)) { if (cli_load_vectors(&o, &vs)) return CLI_USAGE; }
+    else if (cli_make_vectors(o.u, &o.cfg, (size_t)(st.n ? st.n : 50), st.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
     char tmpl[] = "/tmp/shadesim_cosim_XXXXXX";
     const char *dir = st.keep;
     if (!dir && !mkdtemp(tmpl)) { vec_set_free(&vs); return cli_usage_error("cosim: cannot make a temporary folder"); }
     if (!dir) dir = tmpl;
     char msg[1200];
-    int t = tb_cosim(o.u, &o.cfg, &fm, &vs, icarus ? TB_SIM_ICARUS : TB_SIM_VERILATOR, dir, msg, sizeof msg);
+    tb_cosim_opts co = { st.reset, st.rtl, st.nrtl, st.top };
+    int t = tb_cosim_opt(o.u, &o.cfg, &fm, &vs, &co, icarus ? TB_SIM_ICARUS : TB_SIM_VERILATOR, dir, msg, sizeof msg);
     if (t == TB_COSIM_EXACT) { printf("%s\n", msg); rc = CLI_OK; }
     else if (t == TB_COSIM_MISMATCH) { printf("%s\n", msg); rc = CLI_FAIL; }
     else if (t == TB_COSIM_BADINPUT) rc = cli_usage_error("%s", msg);
@@ -210,7 +261,8 @@ const cli_optspec cli_synth_spec = {
 
 /* A Yosys generic cell in NAND2 gate equivalents, with the constants of
  * sim/sim_area.h (NanGate 45 nm): flip-flops with an enable add a MUX2,
- * with a synchronous reset an AND2. */
+ * with a synchronous reset ($_SDFF*) an AND2; one with an asynchronous
+ * reset ($_DFF_PP0_, $_DFFE_PP0P_: a reset value in its name) is a DFFR. */
 static double cell_ge(const char *c)
 {
     if (!strncmp(c, "NAND", 4) || !strncmp(c, "NOR", 3)) return SIM_GE_NAND2;
@@ -220,7 +272,9 @@ static double cell_ge(const char *c)
     if (!strncmp(c, "MUX", 3)) return SIM_GE_MUX2;
     if (strstr(c, "DFF")) {
         double g = SIM_GE_DFF;
+        const char *pol = strchr(c, '_');
         if (c[0] == 'S') g += SIM_GE_AND2;
+        else if (pol && strpbrk(pol, "01")) g = SIM_GE_DFFR;
         if (strstr(c, "DFFE") || strstr(c, "DFFCE")) g += SIM_GE_MUX2;
         return g;
     }

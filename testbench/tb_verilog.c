@@ -46,7 +46,24 @@ static void header(FILE *f, const unit_desc *u, const unit_cfg *cfg, const unit_
     fprintf(f, "\n");
 }
 
-char *tb_verilog_module_text(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
+/* What the module's reset does, for its header comment. */
+static const char *reset_doc(sim_vreset reset)
+{
+    switch (reset) {
+    case SIM_VRESET_ASYNC:
+        return "// Reset: rst, active high, asynchronous (every register takes its reset value\n"
+               "// as soon as rst is 1); release it synchronously to clk, with in_valid 0.\n";
+    case SIM_VRESET_NONE:
+        return "// No reset input: registers start at their reset value (initial blocks, which\n"
+               "// simulators and FPGA flows honour and ASIC synthesis ignores).\n";
+    default:
+        return "// Reset: rst, active high, synchronous: every register takes its reset value\n"
+               "// at a rising edge where rst is 1. Hold it for at least one edge, with\n"
+               "// in_valid 0, before the first item.\n";
+    }
+}
+
+char *tb_verilog_module_text(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, sim_vreset reset,
                              char *err, size_t errlen)
 {
     char *buf = NULL;
@@ -66,13 +83,12 @@ char *tb_verilog_module_text(const unit_desc *u, const unit_cfg *cfg, const unit
         header(f, u, cfg, fm);
         fprintf(f, "//\n// Valid/ready handshake: an item is accepted at a rising edge where in_valid\n"
                    "// and in_ready are 1 (hold the inputs until then); outputs are valid in the\n"
-                   "// cycles where out_valid is 1, one beat per cycle.\n"
-                   "// Registers start at their reset value (initial blocks).\n"
+                   "// cycles where out_valid is 1, one beat per cycle.\n%s"
                    "//\n// Lint waiver, on purpose: quantization computes exact intermediates and\n"
                    "// keeps some of their bits (rounding drops low bits, wrapping high ones),\n"
                    "// so those bits are never read.\n"
-                   "// verilator lint_off UNUSED\n`default_nettype none\n");
-        rc = sim_verilog_module(f, c, sc, u->name, clk, ports, np, err, errlen);
+                   "// verilator lint_off UNUSED\n`timescale 1ns/1ps\n`default_nettype none\n", reset_doc(reset));
+        rc = sim_verilog_module(f, c, sc, u->name, clk, reset, ports, np, err, errlen);
         fprintf(f, "`default_nettype wire\n");
     }
     sim_free(c);
@@ -80,102 +96,164 @@ char *tb_verilog_module_text(const unit_desc *u, const unit_cfg *cfg, const unit
     return buf;
 }
 
-static char *tb_text(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm)
+int tb_verilog_ports(const unit_desc *u, const unit_fmts *fm, sim_vreset reset, tb_port *p)
+{
+    int n = 0;
+    p[n++] = (tb_port){ "clk", 1, 0 };
+    if (reset != SIM_VRESET_NONE) p[n++] = (tb_port){ "rst", 1, 0 };
+    for (int i = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_IN) p[n++] = (tb_port){ u->sigs[i].name, fm->f[i].width, 0 };
+    p[n++] = (tb_port){ "in_valid", 1, 0 };
+    p[n++] = (tb_port){ "in_ready", 1, 1 };
+    for (int i = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_OUT) p[n++] = (tb_port){ u->sigs[i].name, fm->f[i].width, 1 };
+    p[n++] = (tb_port){ "out_valid", 1, 1 };
+    return n;
+}
+
+/* Every input port set to item `idx`'s raws, with `op` ("=" or "<="). */
+static void tb_offer(FILE *f, const unit_desc *u, const unit_fmts *fm, const char *indent, const char *idx,
+                     const char *op)
+{
+    for (int i = 0, k = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_IN) {
+            fprintf(f, "%s%s %s mem[%s * NIN + %d][%d:0];\n", indent, u->sigs[i].name, op, idx, k, fm->f[i].width - 1);
+            k++;
+        }
+    fprintf(f, "%sin_valid %s 1'b1;\n", indent, op);
+}
+
+/* The testbench. Lint-clean under `verilator --lint-only -Wall --timing`:
+ * the clocked process assigns with <= only (next_idx is a wire), the
+ * initial block with = only. */
+char *tb_verilog_tb_text(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, sim_vreset reset,
+                         const char *dut)
 {
     char *buf = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     if (!f) return NULL;
-    int nin = unit_n_in(u), nout = unit_n_out(u), beats = u->beats(cfg), mw = 1;
+    int nin = unit_n_in(u), beats = u->beats(cfg), mw = 1, has_rst = reset != SIM_VRESET_NONE;
     for (int i = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN && fm->f[i].width > mw) mw = fm->f[i].width;
     header(f, u, cfg, fm);
     fprintf(f, "//\n// Testbench: reads the stimulus (+in=FILE, +items=N: one line of input raws\n"
-               "// per item, hex), offers item after item through the handshake and writes\n"
-               "// one line per output beat to +out=FILE: the cycle (decimal) and each output's\n"
-               "// raw bits (hex). `shadesim verilog %s -o DIR --stimulus-hex FILE` writes the\n"
-               "// stimulus and FILE.expect, what this must write.\n", u->name);
+               "// per item, hex), %soffers item after item through the handshake\n"
+               "// and writes one line per output beat to +out=FILE: the cycle (decimal, 0 the\n"
+               "// cycle that ends at the first rising edge%s) and each output's raw bits\n"
+               "// (hex). +limit=N: give up after N cycles. `shadesim verilog %s -o DIR\n"
+               "// --stimulus-hex FILE` writes the stimulus and FILE.expect, what this must write.\n",
+            has_rst ? "holds rst for RESET_CLOCKS rising edges, then\n// " : "", has_rst ? " after the reset" : "", u->name);
     fprintf(f, "`timescale 1ns/1ps\nmodule %s_tb;\n", u->name);
     fprintf(f, "    parameter NIN = %d;\n    parameter BEATS = %d;\n    parameter MAXWORDS = 65536;\n", nin, beats);
-    fprintf(f, "    reg clk = 1'b0;\n    reg [%d:0] mem [0:MAXWORDS-1];\n", mw - 1);
+    if (has_rst) fprintf(f, "    parameter RESET_CLOCKS = %d;\n", TB_RESET_CLOCKS);
+    fprintf(f, "    reg clk = 1'b0;\n");
+    /* the testbench's own copy of rst: Verilator -Wall warns of a signal
+     * used both as an asynchronous reset and in synchronous logic */
+    if (has_rst) fprintf(f, "    reg rst = 1'b1, resetting = 1'b1;\n");
+    fprintf(f, "    reg [%d:0] mem [0:MAXWORDS-1];\n", mw - 1);
     for (int i = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_IN)
             fprintf(f, "    reg  [%d:0] %s = %d'b0;\n", fm->f[i].width - 1, u->sigs[i].name, fm->f[i].width);
     fprintf(f, "    reg  in_valid = 1'b0;\n    wire in_ready, out_valid;\n");
     for (int i = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_OUT) fprintf(f, "    wire [%d:0] %s;\n", fm->f[i].width - 1, u->sigs[i].name);
-    fprintf(f, "    %s dut (.clk(clk)", u->name);
+    fprintf(f, "    %s dut (.clk(clk)%s", dut, has_rst ? ", .rst(rst)" : "");
     for (int i = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_IN) fprintf(f, ", .%s(%s)", u->sigs[i].name, u->sigs[i].name);
     fprintf(f, ", .in_valid(in_valid), .in_ready(in_ready)");
     for (int i = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_OUT) fprintf(f, ", .%s(%s)", u->sigs[i].name, u->sigs[i].name);
     fprintf(f, ", .out_valid(out_valid));\n");
-    fprintf(f, "    integer items, idx, got, cycle, fo, limit;\n    reg [8*1024-1:0] fin, fout;\n");
-    fprintf(f, "    task offer;\n        begin\n");
-    for (int i = 0, k = 0; i < u->nsigs; i++)
-        if (u->sigs[i].role == UNIT_SIG_IN) {
-            fprintf(f, "            %s <= mem[idx * NIN + %d][%d:0];\n", u->sigs[i].name, k, fm->f[i].width - 1);
-            k++;
-        }
-    fprintf(f, "            in_valid <= 1'b1;\n        end\n    endtask\n");
+    fprintf(f, "    integer items = 0, idx = 0, got = 0, cycle = 0, fo = 0, limit = 0%s;\n"
+               "    reg [8*1024-1:0] fin, fout;\n", has_rst ? ", resets = 0" : "");
+    fprintf(f, "    wire [31:0] next_idx = idx + ((in_valid && in_ready) ? 32'd1 : 32'd0);\n");
+    fprintf(f, "    task offer;\n        input integer i;\n        begin\n");
+    tb_offer(f, u, fm, "            ", "i", "<=");
+    fprintf(f, "        end\n    endtask\n");
     fprintf(f, "    initial begin\n"
                "        if (!$value$plusargs(\"in=%%s\", fin) || !$value$plusargs(\"out=%%s\", fout)\n"
                "            || !$value$plusargs(\"items=%%d\", items)) begin\n"
-               "            $display(\"usage: +in=STIMULUS +items=N +out=RESULTS\");\n            $finish;\n        end\n"
+               "            $display(\"usage: +in=STIMULUS +items=N +out=RESULTS [+limit=CYCLES]\");\n            $finish;\n        end\n"
                "        if (items * NIN > MAXWORDS) begin\n"
                "            $display(\"%%0d items need MAXWORDS >= %%0d\", items, items * NIN);\n            $finish;\n        end\n"
+               "        if (!$value$plusargs(\"limit=%%d\", limit)) limit = 1000 + items * BEATS * 4096;\n"
                "        $readmemh(fin, mem, 0, items * NIN - 1);\n"
-               "        fo = $fopen(fout, \"w\");\n"
-               "        idx = 0; got = 0; cycle = 0;\n"
-               "        limit = 1000 + items * BEATS * 4096;\n"
-               "        if (items > 0) offer;\n"
-               "    end\n");
-    fprintf(f, "    always #5 clk = ~clk;\n");
+               "        fo = $fopen(fout, \"w\");\n");
+    if (!has_rst) {
+        fprintf(f, "        if (items > 0) begin\n");
+        tb_offer(f, u, fm, "            ", "0", "=");
+        fprintf(f, "        end\n");
+    }
+    fprintf(f, "    end\n");
+    fprintf(f, "    initial forever #5 clk = ~clk;\n");
     fprintf(f, "    // At each rising edge the values before it are those of the cycle that ends.\n"
-               "    always @(posedge clk) begin\n"
-               "        if (out_valid) begin\n"
-               "            $fwrite(fo, \"%%0d\", cycle);\n");
+               "    always @(posedge clk) begin\n");
+    const char *in = "        ";
+    if (has_rst) {
+        fprintf(f, "        if (resetting) begin\n"
+                   "            resets <= resets + 1;\n"
+                   "            if (resets + 1 == RESET_CLOCKS) begin\n"
+                   "                rst <= 1'b0;\n"
+                   "                resetting <= 1'b0;\n"
+                   "                if (items > 0) offer(0);\n"
+                   "            end\n"
+                   "        end else begin\n");
+        in = "            ";
+    }
+    fprintf(f, "%sif (out_valid) begin\n%s    $fwrite(fo, \"%%0d\", cycle);\n", in, in);
     for (int i = 0; i < u->nsigs; i++)
-        if (u->sigs[i].role == UNIT_SIG_OUT) fprintf(f, "            $fwrite(fo, \" %%h\", %s);\n", u->sigs[i].name);
-    fprintf(f, "            $fwrite(fo, \"\\n\");\n"
-               "            got = got + 1;\n"
-               "            if (got == items * BEATS) begin $fclose(fo); $finish; end\n"
-               "        end\n"
-               "        if (in_valid && in_ready) idx = idx + 1;\n"
-               "        if (idx < items) offer; else in_valid <= 1'b0;\n"
-               "        cycle = cycle + 1;\n"
-               "        if (cycle > limit) begin\n"
-               "            $display(\"%s_tb: %%0d of %%0d beats in %%0d cycles\", got, items * BEATS, cycle);\n"
-               "            $fclose(fo); $finish;\n"
-               "        end\n"
-               "    end\nendmodule\n", u->name);
-    (void)nout;
+        if (u->sigs[i].role == UNIT_SIG_OUT) fprintf(f, "%s    $fwrite(fo, \" %%h\", %s);\n", in, u->sigs[i].name);
+    fprintf(f, "%s    $fwrite(fo, \"\\n\");\n"
+               "%s    got <= got + 1;\n"
+               "%s    if (got + 1 == items * BEATS) begin $fclose(fo); $finish; end\n"
+               "%send\n"
+               "%sidx <= next_idx;\n"
+               "%sif (next_idx < items) offer(next_idx); else in_valid <= 1'b0;\n"
+               "%scycle <= cycle + 1;\n"
+               "%sif (cycle + 1 > limit) begin\n"
+               "%s    $display(\"%s_tb: %%0d of %%0d beats in %%0d cycles\", got, items * BEATS, cycle + 1);\n"
+               "%s    $fclose(fo); $finish;\n"
+               "%send\n",
+            in, in, in, in, in, in, in, in, in, u->name, in, in);
+    if (has_rst) fprintf(f, "        end\n");
+    fprintf(f, "    end\nendmodule\n");
     if (fclose(f)) { free(buf); return NULL; }
     return buf;
+}
+
+int tb_verilog_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, sim_vreset reset,
+                     const char *dir, char *paths[2], char *err, size_t errlen)
+{
+    char *mod = tb_verilog_module_text(u, cfg, fm, reset, err, errlen);
+    if (!mod) return -1;
+    char *tb = tb_verilog_tb_text(u, cfg, fm, reset, u->name);
+    char *p[2] = { NULL, NULL };
+    int rc = -1;
+    size_t pl = strlen(dir) + strlen(u->name) + 16;
+    if (!tb || !(p[0] = malloc(pl)) || !(p[1] = malloc(pl))) { snprintf(err, errlen, "out of memory"); goto done; }
+    snprintf(p[0], pl, "%s/%s.v", dir, u->name);
+    snprintf(p[1], pl, "%s/%s_tb.v", dir, u->name);
+    if (base_out_mkdirs(dir, err, errlen)) goto done;
+    if (base_out_write_all(p[0], mod, strlen(mod), err, errlen) == 0)
+        rc = base_out_write_all(p[1], tb, strlen(tb), err, errlen);
+done:
+    if (rc == 0 && paths) { paths[0] = p[0]; paths[1] = p[1]; }
+    else { free(p[0]); free(p[1]); }
+    free(mod);
+    free(tb);
+    return rc;
 }
 
 int tb_verilog_export(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
                       const char *dir, char *err, size_t errlen)
 {
-    char *mod = tb_verilog_module_text(u, cfg, fm, err, errlen);
-    if (!mod) return -1;
-    char *tb = tb_text(u, cfg, fm);
-    if (!tb) { free(mod); snprintf(err, errlen, "out of memory"); return -1; }
-    int rc = -1;
-    if (base_out_mkdirs(dir, err, errlen)) goto done;
-    size_t pl = strlen(dir) + strlen(u->name) + 16;
-    char *p = malloc(pl);
-    if (!p) { snprintf(err, errlen, "out of memory"); goto done; }
-    snprintf(p, pl, "%s/%s.v", dir, u->name);
-    if (base_out_write_all(p, mod, strlen(mod), err, errlen) == 0) {
-        snprintf(p, pl, "%s/%s_tb.v", dir, u->name);
-        rc = base_out_write_all(p, tb, strlen(tb), err, errlen);
-    }
-    free(p);
-done:
-    free(mod);
-    free(tb);
-    return rc;
+    return tb_verilog_write(u, cfg, fm, SIM_VRESET_SYNC, dir, NULL, err, errlen);
+}
+
+int64_t tb_stimulus_raw(const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs, size_t item, int sig, int k)
+{
+    /* as tb_run quantizes the vectors' inputs */
+    return sim_fx_from_real(vec_row(vs, item)[k], fm->f[sig], cfg->rnd, cfg->ovf, NULL);
 }
 
 int tb_stimulus_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
@@ -193,8 +271,7 @@ int tb_stimulus_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
     for (size_t it = 0; it < vs->n_rows; it++)
         for (int i = 0; i < nin; i++) {
             sim_fmt q = fm->f[in_idx[i]];
-            /* as tb_run quantizes the vectors' inputs */
-            int64_t raw = sim_fx_from_real(vec_row(vs, it)[i], q, cfg->rnd, cfg->ovf, NULL);
+            int64_t raw = tb_stimulus_raw(cfg, fm, vs, it, in_idx[i], i);
             uint64_t m = q.width >= 64 ? UINT64_MAX : (((uint64_t)1 << q.width) - 1);
             fprintf(f, "%0*llx%c", (q.width + 3) / 4, (unsigned long long)((uint64_t)raw & m), i + 1 < nin ? ' ' : '\n');
         }
@@ -214,82 +291,6 @@ int tb_stimulus_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
         fputc('\n', f);
     }
     return base_out_close(o, err, errlen);
-}
-
-/* First differing line of two files: 0 same, -1 a file missing, else its
- * number (1-based); both lines (without newline) and the lines read. */
-static long first_diff(const char *pa, const char *pb, char *la, char *lb, size_t len, long *lines)
-{
-    FILE *a = fopen(pa, "r"), *b = fopen(pb, "r");
-    long n = 0, bad = 0;
-    la[0] = lb[0] = 0;
-    while (a && b) {
-        char *x = fgets(la, (int)len, a), *y = fgets(lb, (int)len, b);
-        if (!x && !y) break;
-        n++;
-        if (!x) la[0] = 0;
-        if (!y) lb[0] = 0;
-        if (!x || !y || strcmp(la, lb)) { bad = n; break; }
-    }
-    if (!a || !b) bad = -1;
-    if (a) fclose(a);
-    if (b) fclose(b);
-    la[strcspn(la, "\n")] = 0;
-    lb[strcspn(lb, "\n")] = 0;
-    *lines = n;
-    return bad;
-}
-
-int tb_cosim(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
-             int sim, const char *dir, char *msg, size_t msglen)
-{
-    tb_result r;
-    char err[600];
-    int t = tb_run(u, cfg, fm, vs, NULL, &r, err, sizeof err);
-    if (t != TB_OK) { snprintf(msg, msglen, "%s", err); return t == TB_BADINPUT ? TB_COSIM_BADINPUT : TB_COSIM_FAILED; }
-    int rc = TB_COSIM_FAILED;
-    const char *sname = sim == TB_SIM_ICARUS ? "icarus" : "verilator";
-    size_t pl = strlen(dir) + 64, cl = 4 * pl + 1024;
-    char *in = malloc(pl), *ex = malloc(pl), *res = malloc(pl), *cmd = malloc(cl);
-    if (!in || !ex || !res || !cmd) { snprintf(msg, msglen, "out of memory"); goto done; }
-    if (tb_verilog_export(u, cfg, fm, dir, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
-    snprintf(in, pl, "%s/stimulus.hex", dir);
-    snprintf(ex, pl, "%s/stimulus.hex.expect", dir);
-    snprintf(res, pl, "%s/%s.out", dir, sname);
-    if (tb_stimulus_write(u, cfg, fm, vs, &r, in, ex, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
-    remove(res);
-    size_t words = vs->n_rows * (size_t)unit_n_in(u);
-    const char *n = u->name;
-    if (sim == TB_SIM_ICARUS)
-        snprintf(cmd, cl,
-                 "cd '%s' && iverilog -g2005 -P %s_tb.MAXWORDS=%zu -o %s_tb.vvp %s_tb.v %s.v >iverilog.log 2>&1 && "
-                 "vvp -n %s_tb.vvp +in=stimulus.hex +items=%zu +out=icarus.out >vvp.log 2>&1",
-                 dir, n, words, n, n, n, n, vs->n_rows);
-    else
-        snprintf(cmd, cl,
-                 "cd '%s' && verilator --binary -j 2 -Wno-fatal -Wno-lint -Wno-style -GMAXWORDS=%zu --top-module %s_tb "
-                 "-o %s_vtb --Mdir obj_verilator %s_tb.v %s.v >verilator.log 2>&1 && "
-                 "obj_verilator/%s_vtb +in=stimulus.hex +items=%zu +out=verilator.out >vtb.log 2>&1",
-                 dir, words, n, n, n, n, n, vs->n_rows);
-    if (system(cmd) != 0) { snprintf(msg, msglen, "cosim: %s failed (its log is in the folder: use --keep DIR)", sname); goto done; }
-    char la[512], lb[512];
-    long lines = 0, bad = first_diff(ex, res, la, lb, sizeof la, &lines);
-    size_t nb = r.vectors * (size_t)r.beats;
-    if (bad == 0 && (size_t)lines == nb) {
-        snprintf(msg, msglen, "bit-exact, %zu items, %llu clocks (%s)", r.vectors, (unsigned long long)r.cycles, sname);
-        rc = TB_COSIM_EXACT;
-    } else if (bad < 0) {
-        snprintf(msg, msglen, "cosim: %s wrote no results", sname);
-    } else {
-        long beat = bad ? bad - 1 : lines;
-        snprintf(msg, msglen, "MISMATCH at item %ld beat %ld: shadesim \"%s\", %s \"%s\" (cycle, then the output raws in hex)",
-                 beat / r.beats, beat % r.beats, la, sname, lb[0] ? lb : "nothing");
-        rc = TB_COSIM_MISMATCH;
-    }
-done:
-    free(in); free(ex); free(res); free(cmd);
-    tb_result_free(&r);
-    return rc;
 }
 
 double tb_verilog_area(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,

@@ -28,6 +28,9 @@ check nothing_written [ ! -e "$T/x" ]
 expect dir_unwritable 2 "$S" verilog horner3 -o /dev/null/x
 : >"$T/file"
 expect dir_is_file 2 "$S" verilog horner3 -o "$T/file"
+expect bad_reset 2 "$S" verilog horner3 --reset later -o "$T/x"
+check nothing_written_reset [ ! -e "$T/x" ]
+expect cosim_bad_reset 2 "$S" cosim horner3 --reset
 expect cosim_bad_sim 2 "$S" cosim horner3 --sim modelsim
 expect cosim_bad_n 2 "$S" cosim horner3 -n 0
 
@@ -50,6 +53,20 @@ for p in "input  wire [11:0] a" "input  wire [11:0] t" "output wire [11:0] y" "i
 done
 if [ -z "$missing" ]; then ok export_ports; else fail export_ports "missing$missing"; fi
 check export_tb [ -s "$T/rtl/horner3_tb.v" ]
+# what it wrote, a line a file
+printf 'wrote %s\n' "$T/rtl/horner3.v" "$T/rtl/horner3_tb.v" >"$T/want"
+n=$(grep -vc '^#' vectors/horner3.vec)
+printf 'wrote %s (%s items: +items=%s)\nwrote %s\n' "$T/rtl/s.hex" "$n" "$n" "$T/rtl/s.hex.expect" >>"$T/want"
+cmp -s "$T/want" "$T/out" && ok export_says_files || fail export_says_files "$(cat "$T/out")"
+# the reset: a port after clk (sync, async), a register reset; initial
+# blocks only without it
+for r in sync async none; do "$S" verilog horner3 --width 12 --reset $r -o "$T/r$r" >/dev/null 2>&1; done
+grep -q '^    input  wire rst,$' "$T/rsync/horner3.v" && ! grep -q 'initial' "$T/rsync/horner3.v" \
+    && grep -q '^        if (rst) rg <= 12.h0;$' "$T/rsync/horner3.v" && ok reset_sync || fail reset_sync
+grep -q '^    always @(posedge clk or posedge rst)$' "$T/rasync/horner3.v" && ! grep -q 'initial' "$T/rasync/horner3.v" \
+    && ok reset_async || fail reset_async
+! grep -q 'rst' "$T/rnone/horner3.v" && grep -q '^    initial rg = 12.h0;$' "$T/rnone/horner3.v" && ok reset_none || fail reset_none
+cmp -s "$T/rsync/horner3.v" "$T/rtl/horner3.v" && ok reset_default_sync || fail reset_default_sync
 # stimulus: 5 hex fields of 3 digits a line, an expected line per item
 check stimulus_lines [ "$(wc -l <"$T/rtl/s.hex")" -ge 1 ]
 check stimulus_fields [ "$(awk '{ if (NF != 5 || length($1) != 3) bad = 1 } END { print bad + 0 }' "$T/rtl/s.hex")" = 0 ]

@@ -11,8 +11,15 @@
  *    Icarus gives every output raw at the same cycle as shadesim; the
  *    units it refuses are exactly the known ones, with the reason.
  *  - t_cosim_verilator, t_lint, t_yosys: a subset in Verilator; every
- *    export lint-clean under `verilator --lint-only -Wall`; every export
- *    parsed and coarse-synthesized by Yosys (a small one fully).
+ *    export with its testbench lint-clean under `verilator --lint-only
+ *    -Wall --timing` (Verilator 5 needs --timing or --no-timing for any
+ *    delay, the testbench's clock); every export read alone, parsed and
+ *    coarse-synthesized by Yosys (a small one fully).
+ *  - t_cosim_resets, t_reset_flops: the asynchronous reset and no reset
+ *    (initial blocks) bit-exact too, on units with registers that reset to
+ *    1 and registers with an enable; Yosys finds every one of horner3's 20
+ *    register bits (3 step, 16 RG, 1 out_valid: counted by hand from the
+ *    datapath) with the reset asked for.
  * The tool-driven tests run in the plain build only, and are skipped when
  * their tool is not installed. */
 #include "tests/tst.h"
@@ -250,17 +257,32 @@ static void t_cosim_icarus(void)
     printf("  %d designs bit-exact in Icarus\n", designs);
 }
 
+/* Verilator on horner3 with the asynchronous reset (the synchronous one:
+ * tests/cli_rtl.sh, the hand-written design in Verilator). */
 static void t_cosim_verilator(void)
 {
     if (asan_build()) TST_SKIP("runs in the plain build only");
     if (!have("verilator")) TST_SKIP("verilator not installed");
-    int exact;
-    const char *dir = cosim_one(unit_find("horner3"), 0, 16, SIM_RND_EVEN, SIM_OVF_SAT, TB_SIM_VERILATOR, 12, &exact);
-    if (dir) rm_rf(dir);
+    const unit_desc *u = unit_find("horner3");
+    unit_cfg cfg;
+    unit_cfg_default(u, &cfg);
+    cfg.rnd = SIM_RND_EVEN; cfg.ovf = SIM_OVF_SAT;
+    unit_fmts fm;
+    char err[600], msg[1200], dir[256];
+    TST_CHECK(tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err) == 0, "%s", err);
+    vec_set vs;
+    if (cli_make_vectors(u, &cfg, 12, 3, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
+    snprintf(dir, sizeof dir, "%s/va", tmpdir);
+    mkdir(dir, 0777);
+    tb_cosim_opts co = { SIM_VRESET_ASYNC, NULL, 0, NULL };
+    int rc = tb_cosim_opt(u, &cfg, &fm, &vs, &co, TB_SIM_VERILATOR, dir, msg, sizeof msg);
+    TST_CHECK(rc == TB_COSIM_EXACT && strstr(msg, "(verilator)"), "%s", msg);
+    vec_set_free(&vs);
+    rm_rf(dir);
 }
 
 /* Export (unit, schedule) at W into dir; 0 on success. */
-static int export_one(const unit_desc *u, int s, int W, sim_round r, sim_ovf o, const char *dir)
+static int export_one_reset(const unit_desc *u, int s, int W, sim_round r, sim_ovf o, sim_vreset reset, const char *dir)
 {
     unit_cfg cfg;
     unit_cfg_default(u, &cfg);
@@ -268,7 +290,27 @@ static int export_one(const unit_desc *u, int s, int W, sim_round r, sim_ovf o, 
     unit_fmts fm;
     char err[600];
     if (tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err)) return -1;
-    return tb_verilog_export(u, &cfg, &fm, dir, err, sizeof err);
+    return tb_verilog_write(u, &cfg, &fm, reset, dir, NULL, err, sizeof err);
+}
+
+static int export_one(const unit_desc *u, int s, int W, sim_round r, sim_ovf o, const char *dir)
+{
+    return export_one_reset(u, s, W, r, o, SIM_VRESET_SYNC, dir);
+}
+
+/* verilator --lint-only -Wall --timing on the module and its testbench:
+ * no line at all. */
+static int lint_clean(const unit_desc *u, const char *sched, const char *dir, const char *what)
+{
+    char cmd[800], log[300];
+    snprintf(cmd, sizeof cmd, "cd %s && verilator --lint-only -Wall --timing %s.v %s_tb.v >lint.log 2>&1",
+             dir, u->name, u->name);
+    int rc = system(cmd);
+    snprintf(log, sizeof log, "%s/lint.log", dir);
+    int lines, distinct;
+    count_lines(log, &lines, &distinct);
+    TST_CHECK(rc == 0 && lines == 0, "%s %s %s: verilator -Wall gave %d lines (rc %d)", u->name, sched, what, lines, rc);
+    return rc == 0 && lines == 0;
 }
 
 static void t_lint(void)
@@ -278,26 +320,24 @@ static void t_lint(void)
     int n = 0;
     for (size_t k = 0; k < unit_count(); k++) {
         const unit_desc *u = unit_at(k);
-        for (int s = 0; s < u->nsched; s++)
-            for (int m = 1; m < 2; m++) {   /* even/sat: the most logic */
-                char dir[200], cmd[800];
+        for (int s = 0; s < u->nsched; s++) {
+            /* even/sat: the most logic; the default synchronous reset, and
+             * for the first schedule of each unit the other two */
+            for (int rs = 0; rs < 3; rs++) {
+                if (rs && s) continue;
+                char dir[200];
                 snprintf(dir, sizeof dir, "%s/lint", tmpdir);
-                if (export_one(u, s, 16, m ? SIM_RND_EVEN : SIM_RND_TRUNC, m ? SIM_OVF_SAT : SIM_OVF_WRAP, dir)) {
+                if (export_one_reset(u, s, 16, SIM_RND_EVEN, SIM_OVF_SAT, (sim_vreset)rs, dir)) {
                     TST_CHECK(no_rtl_yet(u->name), "%s: export failed", u->name);
                     continue;
                 }
-                snprintf(cmd, sizeof cmd, "verilator --lint-only -Wall %s/%s.v >%s/lint.log 2>&1", dir, u->name, dir);
-                int rc = system(cmd);
-                char log[300];
-                snprintf(log, sizeof log, "%s/lint.log", dir);
-                int lines, distinct;
-                count_lines(log, &lines, &distinct);
-                TST_CHECK(rc == 0 && lines == 0, "%s %s: verilator -Wall gave %d lines (rc %d)", u->name, u->sched[s].name, lines, rc);
-                n++;
+                static const char *const rn[] = { "sync", "async", "none" };
+                n += lint_clean(u, u->sched[s].name, dir, rn[rs]);
                 rm_rf(dir);
             }
+        }
     }
-    TST_CHECK(n >= 30, "only %d exports linted", n);
+    TST_CHECK(n >= 50, "only %d exports linted clean", n);
 }
 
 static void t_yosys(void)
@@ -330,6 +370,73 @@ static void t_yosys(void)
         }
     }
     TST_CHECK(n >= 30, "only %d exports synthesized", n);
+}
+
+/* The asynchronous reset and no reset: bit-exact too, in Icarus
+ * (t_cosim_verilator: the asynchronous one in Verilator), on horner3, a unit whose registers reset to 1 and to a
+ * control word (pow_n: brdf_seq's "first" and decoders) and one whose
+ * registers have enables (interp3 fwd). */
+static void t_cosim_resets(void)
+{
+    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (!have("iverilog") || !have("vvp")) TST_SKIP("iverilog not installed");
+    static const char *const names[] = { "horner3", "pow_n", "interp3" };
+    for (size_t i = 0; i < 3; i++)
+        for (int rs = SIM_VRESET_ASYNC; rs <= SIM_VRESET_NONE; rs++) {
+            const unit_desc *u = unit_find(names[i]);
+            TST_CHECK(u != NULL, "no unit %s", names[i]);
+            if (!u) continue;
+            unit_cfg cfg;
+            unit_cfg_default(u, &cfg);
+            int s = 0;
+            while (s < u->nsched && strcmp(u->sched[s].name, "fwd")) s++;
+            cfg.schedule = s < u->nsched ? s : 0;
+            unit_fmts fm;
+            char err[600], msg[1200], dir[256];
+            TST_CHECK(tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err) == 0, "%s", err);
+            vec_set vs;
+            if (cli_make_vectors(u, &cfg, 12, 9, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
+            snprintf(dir, sizeof dir, "%s/r%zu_%d", tmpdir, i, rs);
+            mkdir(dir, 0777);
+            tb_cosim_opts co = { (sim_vreset)rs, NULL, 0, NULL };
+            int rc = tb_cosim_opt(u, &cfg, &fm, &vs, &co, TB_SIM_ICARUS, dir, msg, sizeof msg);
+            TST_CHECK(rc == TB_COSIM_EXACT, "%s reset %d: %s", names[i], rs, msg);
+            vec_set_free(&vs);
+            rm_rf(dir);
+        }
+}
+
+/* Yosys on horner3 alone, each reset: its flip-flop cells by type. */
+static void t_reset_flops(void)
+{
+    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (!have("yosys")) TST_SKIP("yosys not installed");
+    const unit_desc *u = unit_find("horner3");
+    for (int rs = 0; rs < 3; rs++) {
+        char dir[200], cmd[1400], st[300], line[300];
+        snprintf(dir, sizeof dir, "%s/yr%d", tmpdir, rs);
+        TST_CHECK(export_one_reset(u, 0, 16, SIM_RND_TRUNC, SIM_OVF_WRAP, (sim_vreset)rs, dir) == 0, "export");
+        snprintf(cmd, sizeof cmd, "yosys -q -p 'read_verilog %s/horner3.v; synth -top horner3; tee -o %s/stat.txt stat' >%s/ys.log 2>&1",
+                 dir, dir, dir);
+        TST_CHECK(system(cmd) == 0, "reset %d: yosys failed (%s/ys.log)", rs, dir);
+        snprintf(st, sizeof st, "%s/stat.txt", dir);
+        FILE *f = fopen(st, "r");
+        long sdff = 0, adff = 0, all = 0;
+        while (f && fgets(line, sizeof line, f)) {
+            char cell[100];
+            long n;
+            if (sscanf(line, " %99s %ld", cell, &n) != 2 || !strstr(cell, "DFF")) continue;
+            all += n;
+            if (!strncmp(cell, "$_SDFF", 6)) sdff += n;
+            else if (strpbrk(strchr(cell + 2, '_'), "01")) adff += n;   /* $_DFF_PP0_: a reset value */
+        }
+        if (f) fclose(f);
+        TST_EQ_INT(all, 20);
+        if (rs == SIM_VRESET_SYNC) TST_EQ_INT(sdff, 20);
+        if (rs == SIM_VRESET_ASYNC) TST_EQ_INT(adff, 20);
+        if (rs == SIM_VRESET_NONE) TST_EQ_INT(adff, 0);
+        rm_rf(dir);
+    }
 }
 
 /* Parameters change the built design (div3's terms, interp's L, the
@@ -381,7 +488,7 @@ static void t_logic_table(void)
     char *buf = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
-    int rc = sim_verilog_module(f, c, sc, "u", clk, ports, 3, err, sizeof err);
+    int rc = sim_verilog_module(f, c, sc, "u", clk, SIM_VRESET_SYNC, ports, 3, err, sizeof err);
     fclose(f);
     TST_CHECK(rc == -1 && strstr(err, "logic element y has 18 input bits"), "rc %d, err '%s'", rc, err);
     free(buf);
@@ -398,7 +505,7 @@ static void t_logic_table(void)
     ports[0].sig = a; ports[1].sig = b; ports[2].sig = y;
     buf = NULL;
     f = open_memstream(&buf, &len);
-    rc = sim_verilog_module(f, c, sc, "u", clk, ports, 3, err, sizeof err);
+    rc = sim_verilog_module(f, c, sc, "u", clk, SIM_VRESET_SYNC, ports, 3, err, sizeof err);
     fclose(f);
     TST_EQ_INT(rc, 0);
     int checked = 0;
@@ -431,6 +538,8 @@ int main(void)
     TST_RUN(t_logic_table);
     TST_RUN(t_cosim_icarus);
     TST_RUN(t_cosim_params);
+    TST_RUN(t_cosim_resets);
+    TST_RUN(t_reset_flops);
     TST_RUN(t_cosim_verilator);
     TST_RUN(t_lint);
     TST_RUN(t_yosys);

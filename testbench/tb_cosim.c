@@ -1,0 +1,450 @@
+/* tb_cosim.c - co-simulation against shadesim (see tb_verilog.h): the
+ * export, or the user's own RTL whose top module and ports the external
+ * simulator itself reports (so parameters, macros and both port-list
+ * styles are resolved as the simulator resolves them). */
+#define _XOPEN_SOURCE 700          /* realpath */
+#include "testbench/tb_verilog.h"
+#include "base/base_out.h"
+#include <errno.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* First differing line of two files: 0 same, -1 a file missing, else its
+ * number (1-based); both lines (without newline) and the lines read. */
+static long first_diff(const char *pa, const char *pb, char *la, char *lb, size_t len, long *lines)
+{
+    FILE *a = fopen(pa, "r"), *b = fopen(pb, "r");
+    long n = 0, bad = 0;
+    la[0] = lb[0] = 0;
+    while (a && b) {
+        char *x = fgets(la, (int)len, a), *y = fgets(lb, (int)len, b);
+        if (!x && !y) break;
+        n++;
+        if (!x) la[0] = 0;
+        if (!y) lb[0] = 0;
+        if (!x || !y || strcmp(la, lb)) { bad = n; break; }
+    }
+    if (!a || !b) bad = -1;
+    if (a) fclose(a);
+    if (b) fclose(b);
+    la[strcspn(la, "\n")] = 0;
+    lb[strcspn(lb, "\n")] = 0;
+    *lines = n;
+    return bad;
+}
+
+/* s single-quoted for sh, appended to buf (no room: the text cut, which
+ * the caller's bounded buffers make a failed command, never a wrong one). */
+static void sq(char *buf, size_t len, const char *s)
+{
+    size_t o = strlen(buf);
+    if (o + 1 < len) buf[o++] = '\'';
+    for (; *s && o + 5 < len; s++) {
+        if (*s == '\'') { memcpy(buf + o, "'\\''", 4); o += 4; }
+        else buf[o++] = *s;
+    }
+    if (o + 1 < len) buf[o++] = '\'';
+    buf[o < len ? o : len - 1] = 0;
+}
+
+/* The first line of a log that says "error" (else its first line), for a
+ * one-line message. */
+static void log_line(const char *path, char *out, size_t len)
+{
+    FILE *f = fopen(path, "r");
+    char line[400], first[400] = "";
+    out[0] = 0;
+    while (f && fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = 0;
+        if (!first[0]) snprintf(first, sizeof first, "%s", line);
+        if (strstr(line, "rror")) { snprintf(out, len, "%s", line); break; }
+    }
+    if (f) fclose(f);
+    if (!out[0]) snprintf(out, len, "%s", first[0] ? first : "no message");
+}
+
+static int ext_sv(const char *const *files, int n)
+{
+    for (int i = 0; i < n; i++) {
+        size_t l = strlen(files[i]);
+        if (l > 3 && !strcmp(files[i] + l - 3, ".sv")) return 1;
+    }
+    return 0;
+}
+
+/* The value of attribute `key` in an XML tag (copied to buf), or NULL. */
+static const char *xml_attr(const char *tag, const char *key, char *buf, size_t len)
+{
+    char pat[40];
+    snprintf(pat, sizeof pat, " %s=\"", key);
+    const char *p = strstr(tag, pat), *end = strchr(tag, '>');
+    if (!p || (end && p > end)) return NULL;
+    p += strlen(pat);
+    size_t n = strcspn(p, "\"");
+    if (n >= len) n = len - 1;
+    memcpy(buf, p, n);
+    buf[n] = 0;
+    return buf;
+}
+
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return NULL;
+    char *buf = NULL;
+    size_t cap = 0, n = 0;
+    for (;;) {
+        if (n + 4096 + 1 > cap) {
+            cap = cap ? 2 * cap : 65536;
+            char *nb = realloc(buf, cap);
+            if (!nb) { free(buf); fclose(f); return NULL; }
+            buf = nb;
+        }
+        size_t r = fread(buf + n, 1, 4096, f);
+        n += r;
+        if (r == 0) break;
+    }
+    fclose(f);
+    buf[n] = 0;
+    return buf;
+}
+
+/* The module to check among the top-level ones the simulator found: the
+ * one asked for, else one named like the unit, else the only one. Its
+ * index, or -1 with a message. */
+static int choose_top(char roots[][128], int nroots, const char *want, const char *unit, char *err, size_t errlen)
+{
+    if (want && *want) {
+        for (int i = 0; i < nroots; i++) if (!strcmp(roots[i], want)) return i;
+        snprintf(err, errlen, "cosim: no top-level module %s in the RTL", want);
+        return -1;
+    }
+    for (int i = 0; i < nroots; i++) if (!strcmp(roots[i], unit)) return i;
+    if (nroots == 1) return 0;
+    if (nroots == 0) { snprintf(err, errlen, "cosim: the RTL has no module"); return -1; }
+    size_t o = (size_t)snprintf(err, errlen, "cosim: %d top-level modules in the RTL (", nroots);
+    for (int i = 0; i < nroots && o < errlen; i++)
+        o += (size_t)snprintf(err + o, errlen - o, "%s%s", i ? ", " : "", roots[i]);
+    if (o < errlen) snprintf(err + o, errlen - o, "): choose one with --top NAME");
+    return -1;
+}
+
+#define MAX_ROOTS 16
+
+static int add_port(tb_port *p, char **names, int n, int maxp, const char *name, int width, int is_output,
+                    char *err, size_t errlen)
+{
+    if (n >= maxp) { snprintf(err, errlen, "cosim: the RTL's top module has more than %d ports", maxp); return -1; }
+    names[n] = strdup(name);
+    if (!names[n]) { snprintf(err, errlen, "out of memory"); return -1; }
+    p[n] = (tb_port){ names[n], width, is_output };
+    return n + 1;
+}
+
+/* One line of txt from *at (copied, without its newline); 0 at the end. */
+static int next_line(const char **at, char *line, size_t len)
+{
+    if (!**at) return 0;
+    size_t n = strcspn(*at, "\n");
+    snprintf(line, len, "%.*s", (int)(n < len ? n : len - 1), *at);
+    *at += n + ((*at)[n] == '\n');
+    return 1;
+}
+
+/* Icarus's compiled file: ".scope module, "inst" "type" FILE LINE;" for a
+ * root (a child's ends ", S_parent;"), then its ".port_info K /INPUT
+ * WIDTH "name";" lines, before the next scope. */
+static int ports_icarus(const char *txt, const char *want, const char *unit, char *top, size_t toplen,
+                        tb_port *p, char **names, int maxp, char *err, size_t errlen)
+{
+    char roots[MAX_ROOTS][128], line[512];
+    const char *after[MAX_ROOTS];
+    int nroots = 0, n = 0;
+    for (const char *at = txt; next_line(&at, line, sizeof line); ) {
+        const char *sc = strstr(line, " .scope module, \"");
+        char inst[128];
+        if (sc && !strstr(sc, ", S_") && nroots < MAX_ROOTS
+            && sscanf(sc, " .scope module, \"%127[^\"]\" \"%127[^\"]\"", inst, roots[nroots]) == 2)
+            after[nroots++] = at;
+    }
+    int t = choose_top(roots, nroots, want, unit, err, errlen);
+    if (t < 0) return -1;
+    snprintf(top, toplen, "%s", roots[t]);
+    for (const char *at = after[t]; next_line(&at, line, sizeof line) && !strstr(line, ".scope "); ) {
+        char dir[16], name[128];
+        int k, w;
+        if (sscanf(line, " .port_info %d /%15s %d \"%127[^\"]\"", &k, dir, &w, name) != 4) continue;
+        n = add_port(p, names, n, maxp, name, w, !strcmp(dir, "INPUT") ? 0 : !strcmp(dir, "OUTPUT") ? 1 : 2, err, errlen);
+        if (n < 0) return -1;
+    }
+    return n;
+}
+
+/* Verilator's --xml-only file: top-level cells (hier without a dot) name
+ * the roots; the module's <var dir=...> tags its ports, their dtype's
+ * left and right bounds their widths. */
+static int ports_verilator(const char *txt, const char *want, const char *unit, char *top, size_t toplen,
+                           tb_port *p, char **names, int maxp, char *err, size_t errlen)
+{
+    char roots[MAX_ROOTS][128], buf[128], hier[256];
+    int nroots = 0, n = 0;
+    for (const char *c = strstr(txt, "<cell "); c; c = strstr(c + 1, "<cell "))
+        if (xml_attr(c, "hier", hier, sizeof hier) && !strchr(hier, '.') && nroots < MAX_ROOTS
+            && xml_attr(c, "submodname", buf, sizeof buf))
+            snprintf(roots[nroots++], 128, "%s", buf);
+    int t = choose_top(roots, nroots, want, unit, err, errlen);
+    if (t < 0) return -1;
+    snprintf(top, toplen, "%s", roots[t]);
+    const char *m = txt;
+    while ((m = strstr(m, "<module ")) && !(xml_attr(m, "name", buf, sizeof buf) && !strcmp(buf, top))) m++;
+    if (!m) { snprintf(err, errlen, "cosim: verilator did not describe module %s", top); return -1; }
+    const char *end = strstr(m, "</module>");
+    for (const char *v = strstr(m, "<var "); v && (!end || v < end); v = strstr(v + 1, "<var ")) {
+        char name[128], dir[16], id[32];
+        if (!xml_attr(v, "dir", dir, sizeof dir) || !xml_attr(v, "name", name, sizeof name)
+            || !xml_attr(v, "dtype_id", id, sizeof id)) continue;
+        int w = -1;
+        for (const char *d = strstr(txt, "<basicdtype "); d; d = strstr(d + 1, "<basicdtype ")) {
+            char did[32], lb[32], rb[32];
+            if (!xml_attr(d, "id", did, sizeof did) || strcmp(did, id)) continue;
+            if (xml_attr(d, "left", lb, sizeof lb) && xml_attr(d, "right", rb, sizeof rb)) w = abs(atoi(lb) - atoi(rb)) + 1;
+            else w = 1;
+            break;
+        }
+        n = add_port(p, names, n, maxp, name, w, !strcmp(dir, "input") ? 0 : !strcmp(dir, "output") ? 1 : 2, err, errlen);
+        if (n < 0) return -1;
+    }
+    return n;
+}
+
+int tb_rtl_ports(const char *const *files, int nfiles, const char *want_top, const char *unit,
+                 int sim, const char *dir, char *topbuf, size_t toplen, tb_port *p, char **names, int maxp,
+                 char *err, size_t errlen)
+{
+    size_t cl = 2048;
+    for (int i = 0; i < nfiles; i++) cl += 4 * strlen(files[i]) + 4;
+    cl += 4 * strlen(dir) + (want_top ? 4 * strlen(want_top) : 0);
+    char *cmd = calloc(1, cl), out[PATH_MAX + 32], log[PATH_MAX + 32];
+    if (!cmd) { snprintf(err, errlen, "out of memory"); return -1; }
+    const char *sname = sim == TB_SIM_ICARUS ? "icarus" : "verilator";
+    strcpy(cmd, "cd ");
+    sq(cmd, cl, dir);
+    if (sim == TB_SIM_ICARUS) {
+        snprintf(cmd + strlen(cmd), cl - strlen(cmd), " && iverilog -g%s -o rtlports.vvp", ext_sv(files, nfiles) ? "2012" : "2005");
+        if (want_top && *want_top) { strcat(cmd, " -s "); sq(cmd, cl, want_top); }
+    } else {
+        snprintf(cmd + strlen(cmd), cl - strlen(cmd), " && verilator --xml-only -Wno-fatal -Wno-lint -Wno-style "
+                 "--timescale 1ns/1ps --Mdir obj_rtlports --xml-output rtlports.xml");
+        if (want_top && *want_top) { strcat(cmd, " --top-module "); sq(cmd, cl, want_top); }
+    }
+    for (int i = 0; i < nfiles; i++) { strcat(cmd, " "); sq(cmd, cl, files[i]); }
+    strcat(cmd, " >rtlports.log 2>&1");
+    snprintf(out, sizeof out, "%s/%s", dir, sim == TB_SIM_ICARUS ? "rtlports.vvp" : "rtlports.xml");
+    snprintf(log, sizeof log, "%s/rtlports.log", dir);
+    remove(out);
+    int rc = system(cmd);
+    free(cmd);
+    if (rc != 0) {
+        char line[400];
+        log_line(log, line, sizeof line);
+        snprintf(err, errlen, "cosim: %s cannot read the RTL: %s", sname, line);
+        return -1;
+    }
+    char *txt = slurp(out);
+    if (!txt) { snprintf(err, errlen, "cosim: %s described no design", sname); return -1; }
+    int n = sim == TB_SIM_ICARUS ? ports_icarus(txt, want_top, unit, topbuf, toplen, p, names, maxp, err, errlen)
+                                 : ports_verilator(txt, want_top, unit, topbuf, toplen, p, names, maxp, err, errlen);
+    free(txt);
+    return n;
+}
+
+/* The user's top module against the unit's ports: every port there with
+ * its direction and width; more outputs are allowed (left unconnected),
+ * more inputs are not (they would float). 0, or -1 with a message. */
+static int check_ports(const unit_desc *u, const unit_fmts *fm, sim_vreset reset, const char *top,
+                       const tb_port *got, int ngot, char *err, size_t errlen)
+{
+    tb_port want[TB_MAX_PORTS];
+    int nw = tb_verilog_ports(u, fm, reset, want);
+    static const char *const dirs[] = { "an input", "an output", "an inout" };
+    for (int i = 0; i < nw; i++) {
+        int k = 0;
+        while (k < ngot && strcmp(got[k].name, want[i].name)) k++;
+        if (k == ngot) {
+            snprintf(err, errlen, "cosim: module %s has no port %s (%s of %d bit%s)%s", top, want[i].name,
+                     dirs[want[i].is_output], want[i].width, want[i].width == 1 ? "" : "s",
+                     !strcmp(want[i].name, "rst") ? "; --reset none for a design without reset" : "");
+            return -1;
+        }
+        if (got[k].is_output != want[i].is_output) {
+            snprintf(err, errlen, "cosim: module %s: port %s is %s, expected %s", top, want[i].name,
+                     dirs[got[k].is_output], dirs[want[i].is_output]);
+            return -1;
+        }
+        if (got[k].width != want[i].width) {
+            snprintf(err, errlen, "cosim: module %s: port %s has %d bit%s, expected %d (its format at these options)",
+                     top, want[i].name, got[k].width, got[k].width == 1 ? "" : "s", want[i].width);
+            return -1;
+        }
+    }
+    for (int k = 0; k < ngot; k++) {
+        if (got[k].is_output == 1) continue;
+        int i = 0;
+        while (i < nw && strcmp(got[k].name, want[i].name)) i++;
+        if (i == nw) {
+            snprintf(err, errlen, "cosim: module %s has %s port %s that the unit does not have", top,
+                     dirs[got[k].is_output], got[k].name);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* The user's RTL mismatch, spelled out: the item, its input raws (and
+ * values), each output's expected and actual raw and the clock. */
+static void rtl_mismatch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
+                         long beat, int beats, const char *exp, const char *got, const char *sname,
+                         char *msg, size_t msglen)
+{
+    size_t item = (size_t)(beat / beats), o = 0;
+    #define ADD(...) do { if (o < msglen) o += (size_t)snprintf(msg + o, msglen - o, __VA_ARGS__); } while (0)
+    ADD("MISMATCH at item %zu", item);
+    if (beats > 1) ADD(" beat %ld", beat % beats);
+    ADD(" (inputs");
+    for (int i = 0, k = 0; i < u->nsigs && item < vs->n_rows; i++) {
+        if (u->sigs[i].role != UNIT_SIG_IN) continue;
+        sim_fmt q = fm->f[i];
+        int64_t raw = tb_stimulus_raw(cfg, fm, vs, item, i, k++);
+        uint64_t m = q.width >= 64 ? UINT64_MAX : (((uint64_t)1 << q.width) - 1);
+        ADD(" %s=%0*llx (%.6g)", u->sigs[i].name, (q.width + 3) / 4, (unsigned long long)((uint64_t)raw & m),
+            sim_fx_to_real(raw, q));
+    }
+    ADD("): expected");
+    /* "CYCLE RAW..." both */
+    char e[512], g[512];
+    snprintf(e, sizeof e, "%s", exp);
+    snprintf(g, sizeof g, "%s", got);
+    char *se, *sg, *te = strtok_r(e, " ", &se), *tg = strtok_r(g, " ", &sg);
+    const char *ecyc = te ? te : "?", *gcyc = tg;
+    char gv[300] = "";
+    size_t go = 0;
+    for (int i = 0; i < u->nsigs; i++) {
+        if (u->sigs[i].role != UNIT_SIG_OUT) continue;
+        te = strtok_r(NULL, " ", &se);
+        tg = gcyc ? strtok_r(NULL, " ", &sg) : NULL;
+        ADD(" %s=%s", u->sigs[i].name, te ? te : "?");
+        if (go < sizeof gv) go += (size_t)snprintf(gv + go, sizeof gv - go, " %s=%s", u->sigs[i].name, tg ? tg : "?");
+    }
+    ADD(" at clock %s, %s", ecyc, sname);
+    if (gcyc) ADD(" gave%s at clock %s", gv, gcyc);
+    else ADD(" gave nothing (no more output beats)");
+    #undef ADD
+}
+
+int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
+                 const tb_cosim_opts *o, int sim, const char *dir, char *msg, size_t msglen)
+{
+    static const tb_cosim_opts dflt = { SIM_VRESET_SYNC, NULL, 0, NULL };
+    if (!o) o = &dflt;
+    tb_result r;
+    char err[600];
+    int t = tb_run(u, cfg, fm, vs, NULL, &r, err, sizeof err);
+    if (t != TB_OK) { snprintf(msg, msglen, "%s", err); return t == TB_BADINPUT ? TB_COSIM_BADINPUT : TB_COSIM_FAILED; }
+    int rc = TB_COSIM_FAILED;
+    const char *sname = sim == TB_SIM_ICARUS ? "icarus" : "verilator";
+    size_t pl = strlen(dir) + 64, cl = 4 * pl + 1024;
+    for (int i = 0; i < o->nrtl; i++) cl += 4 * (strlen(o->rtl[i]) + PATH_MAX) + 4;   /* each quoted absolute path */
+    char *in = malloc(pl), *ex = malloc(pl), *res = malloc(pl), *cmd = calloc(1, cl), *files = calloc(1, cl);
+    char *names[64] = { NULL };
+    char top[256];
+    if (!in || !ex || !res || !cmd || !files) { snprintf(msg, msglen, "out of memory"); goto done; }
+    const char *n = u->name;
+    if (base_out_mkdirs(dir, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
+    if (o->nrtl) {
+        /* the user's files by their absolute paths (the tools run in dir) */
+        int ng = -1;
+        tb_port got[64];
+        char **absv = calloc((size_t)o->nrtl, sizeof *absv);
+        if (!absv) { snprintf(msg, msglen, "out of memory"); goto done; }
+        for (int i = 0; i < o->nrtl && ng == -1; i++) {
+            absv[i] = realpath(o->rtl[i], NULL);
+            if (!absv[i]) { snprintf(msg, msglen, "cosim: --rtl %s: %s", o->rtl[i], strerror(errno)); ng = -2; break; }
+            strcat(files, " ");
+            sq(files, cl, absv[i]);
+        }
+        if (ng == -1)
+            ng = tb_rtl_ports((const char *const *)absv, o->nrtl, o->top, n, sim, dir, top, sizeof top, got, names, 64, msg, msglen);
+        for (int i = 0; i < o->nrtl; i++) free(absv[i]);
+        free(absv);
+        if (ng < 0 || check_ports(u, fm, o->reset, top, got, ng, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
+        char *tb = tb_verilog_tb_text(u, cfg, fm, o->reset, top);
+        snprintf(in, pl, "%s/%s_tb.v", dir, n);
+        int w = tb ? base_out_write_all(in, tb, strlen(tb), msg, msglen) : (snprintf(msg, msglen, "out of memory"), -1);
+        free(tb);
+        if (w) { rc = TB_COSIM_BADINPUT; goto done; }
+    } else {
+        if (tb_verilog_write(u, cfg, fm, o->reset, dir, NULL, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
+        snprintf(files, cl, " %s.v", n);
+        snprintf(top, sizeof top, "%s", n);
+    }
+    snprintf(in, pl, "%s/stimulus.hex", dir);
+    snprintf(ex, pl, "%s/stimulus.hex.expect", dir);
+    snprintf(res, pl, "%s/%s.out", dir, sname);
+    if (tb_stimulus_write(u, cfg, fm, vs, &r, in, ex, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
+    remove(res);
+    size_t words = vs->n_rows * (size_t)unit_n_in(u);
+    /* a design slower than shadesim's by more than 2x, or stuck, stops */
+    unsigned long long limit = 2 * (unsigned long long)r.cycles + 1000;
+    strcpy(cmd, "cd ");
+    sq(cmd, cl, dir);
+    size_t at = strlen(cmd);
+    if (sim == TB_SIM_ICARUS)
+        snprintf(cmd + at, cl - at,
+                 " && iverilog -g%s -s %s_tb -P %s_tb.MAXWORDS=%zu -o %s_tb.vvp %s_tb.v%s >iverilog.log 2>&1 && "
+                 "vvp -n %s_tb.vvp +in=stimulus.hex +items=%zu +limit=%llu +out=icarus.out >vvp.log 2>&1",
+                 o->nrtl && ext_sv(o->rtl, o->nrtl) ? "2012" : "2005", n, n, words, n, n, files, n, vs->n_rows, limit);
+    else
+        snprintf(cmd + at, cl - at,
+                 " && verilator --binary -j 2 -Wno-fatal -Wno-lint -Wno-style --timescale 1ns/1ps -GMAXWORDS=%zu "
+                 "--top-module %s_tb -o %s_vtb --Mdir obj_verilator %s_tb.v%s >verilator.log 2>&1 && "
+                 "obj_verilator/%s_vtb +in=stimulus.hex +items=%zu +limit=%llu +out=verilator.out >vtb.log 2>&1",
+                 words, n, n, n, files, n, vs->n_rows, limit);
+    if (system(cmd) != 0) {
+        if (o->nrtl) {
+            char line[400], log[PATH_MAX + 32];
+            snprintf(log, sizeof log, "%s/%s", dir, sim == TB_SIM_ICARUS ? "iverilog.log" : "verilator.log");
+            log_line(log, line, sizeof line);
+            snprintf(msg, msglen, "cosim: %s failed on the RTL: %s", sname, line);
+        } else
+            snprintf(msg, msglen, "cosim: %s failed (its log is in the folder: use --keep DIR)", sname);
+        goto done;
+    }
+    char la[512], lb[512];
+    long lines = 0, bad = first_diff(ex, res, la, lb, sizeof la, &lines);
+    size_t nb = r.vectors * (size_t)r.beats;
+    if (bad == 0 && (size_t)lines == nb) {
+        snprintf(msg, msglen, "bit-exact, %zu items, %llu clocks (%s)", r.vectors, (unsigned long long)r.cycles, sname);
+        rc = TB_COSIM_EXACT;
+    } else if (bad < 0) {
+        snprintf(msg, msglen, "cosim: %s wrote no results", sname);
+    } else {
+        long beat = bad ? bad - 1 : lines;
+        if (o->nrtl) rtl_mismatch(u, cfg, fm, vs, beat, r.beats, la, lb, sname, msg, msglen);
+        else
+            snprintf(msg, msglen, "MISMATCH at item %ld beat %ld: shadesim \"%s\", %s \"%s\" (cycle, then the output raws in hex)",
+                     beat / r.beats, beat % r.beats, la, sname, lb[0] ? lb : "nothing");
+        rc = TB_COSIM_MISMATCH;
+    }
+done:
+    for (int i = 0; i < 64; i++) free(names[i]);
+    free(in); free(ex); free(res); free(cmd); free(files);
+    tb_result_free(&r);
+    return rc;
+}
+
+int tb_cosim(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
+             int sim, const char *dir, char *msg, size_t msglen)
+{
+    return tb_cosim_opt(u, cfg, fm, vs, NULL, sim, dir, msg, msglen);
+}

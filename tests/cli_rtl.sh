@@ -1,0 +1,78 @@
+#!/bin/sh
+# cosim --rtl: the user's own RTL against shadesim. tests/rtl/horner3_hand.v
+# (written by hand from the paper's datapath, not by the exporter) is
+# bit-exact on the default vectors; horner3_bug.v (bit 8 of D stuck at 0)
+# fails naming the first item whose quantized D has that bit set, found
+# here from the vector file with awk, with y short by exactly 0x100 at
+# clock 6 K + 6 (six clocks an item); horner3_width.v (t 12 bits wide) and
+# other port mismatches are exit 2 before simulating. Needs iverilog (plain
+# build only); one check in Verilator when it is installed.
+PREFIX=cli_rtl.
+. tests/lib_cli.sh
+R=tests/rtl
+
+expect rtl_missing_file 2 "$S" cosim horner3 --rtl "$T/nosuch.v"
+expect top_without_rtl 2 "$S" cosim horner3 --top horner3_hand
+case "${TST_BUILD:-}" in *-asan) echo "skip ${PREFIX}tools: runs in the plain build only"; exit 0 ;; esac
+if ! command -v iverilog >/dev/null 2>&1; then echo "skip ${PREFIX}icarus: iverilog not installed"; exit 0; fi
+
+# bit-exact on the unit's default vectors: every item, 6 clocks each and
+# one more for the last beat (the paper's six-step sequence)
+items=$(grep -vc '^#' vectors/horner3.vec)
+if expect hand_exact 0 "$S" cosim horner3 --rtl $R/horner3_hand.v; then
+    want="bit-exact, $items items, $((6 * items + 1)) clocks (icarus)"
+    [ "$(cat "$T/out")" = "$want" ] && ok hand_counts || fail hand_counts "got '$(cat "$T/out")', expected '$want'"
+fi
+expect hand_top_n 0 "$S" cosim horner3 --rtl $R/horner3_hand.v --top horner3_hand -n 20
+grep -q '^bit-exact, 20 items, 121 clocks' "$T/out" && ok hand_n_items || fail hand_n_items "$(cat "$T/out")"
+
+# the broken copy: the item, its inputs, expected and actual y, the clock
+k=$(grep -v '^#' vectors/horner3.vec | awk '{ r = int($4 * 512); if (int(r / 256) % 2) { print NR - 1; exit } }')
+if expect bug_fails 1 "$S" cosim horner3 --rtl $R/horner3_bug.v; then
+    line=$(cat "$T/out")
+    case "$line" in "MISMATCH at item $k (inputs a="*" t="*"): expected y="*" at clock $((6 * k + 6)), icarus gave y="*" at clock $((6 * k + 6))")
+        ok bug_names_item ;;
+    *) fail bug_names_item "item $k expected: $line" ;; esac
+    e=$(echo "$line" | sed -n 's/.*expected y=\([0-9a-f]*\) .*/\1/p')
+    g=$(echo "$line" | sed -n 's/.*gave y=\([0-9a-f]*\) .*/\1/p')
+    [ -n "$e" ] && [ -n "$g" ] && [ $(( (0x$e - 0x$g + 65536) % 65536 )) -eq 256 ] && ok bug_off_by_half \
+        || fail bug_off_by_half "expected $e, got $g"
+fi
+
+# a design that never says out_valid: stopped, the first item reported
+sed "s/out_valid <= step\[5\];/out_valid <= 1'b0;/" $R/horner3_hand.v >"$T/stuck.v"
+expect stuck_fails 1 "$S" cosim horner3 --rtl "$T/stuck.v" -n 20
+grep -q '^MISMATCH at item 0 (inputs .*): expected y=.* at clock 6, icarus gave nothing' "$T/out" \
+    && ok stuck_reported || fail stuck_reported "$(cat "$T/out")"
+
+# ports: a width, a missing port, an extra input, the reset choice
+expect width_refused 2 "$S" cosim horner3 --rtl $R/horner3_width.v
+grep -q 'port t has 12 bits, expected 16' "$T/err" && ok width_names_port || fail width_names_port "$(cat "$T/err")"
+# without rst: registers start from initial blocks (what --reset none means)
+sed -e 's/^    input  wire        rst,$//' -e 's/if (rst)/if (1'"'"'b0)/' \
+    -e 's/^    reg  \[15:0\] rg;$/    reg  [15:0] rg = 16'"'"'d0;\n    initial begin step = 6'"'"'b000001; out_valid = 1'"'"'b0; end/' \
+    $R/horner3_hand.v >"$T/norst.v"
+expect no_rst_refused 2 "$S" cosim horner3 --rtl "$T/norst.v"
+grep -q 'has no port rst' "$T/err" && ok no_rst_named || fail no_rst_named "$(cat "$T/err")"
+expect no_rst_reset_none 0 "$S" cosim horner3 --rtl "$T/norst.v" --reset none -n 20
+expect extra_rst_refused 2 "$S" cosim horner3 --rtl $R/horner3_hand.v --reset none
+sed 's/input  wire \[15:0\] d,/input  wire [15:0] d, input wire [15:0] e,/' $R/horner3_hand.v >"$T/extra.v"
+expect extra_input_refused 2 "$S" cosim horner3 --rtl "$T/extra.v"
+grep -q 'input port e' "$T/err" && ok extra_input_named || fail extra_input_named "$(cat "$T/err")"
+expect width_at_other_width 2 "$S" cosim horner3 --rtl $R/horner3_hand.v --width 12
+grep -q 'port a has 16 bits, expected 12' "$T/err" && ok width_follows_options || fail width_follows_options "$(cat "$T/err")"
+# two top-level modules: ask which, or take the one asked for
+expect two_tops 2 "$S" cosim horner3 --rtl $R/horner3_hand.v --rtl $R/horner3_bug.v
+grep -q 'top-level modules in the RTL (.*horner3_hand.*): choose one with --top' "$T/err" && ok two_tops_named || fail two_tops_named "$(cat "$T/err")"
+expect two_tops_chosen 1 "$S" cosim horner3 --rtl $R/horner3_hand.v --rtl $R/horner3_bug.v --top horner3_bug
+expect no_such_top 2 "$S" cosim horner3 --rtl $R/horner3_hand.v --top nosuch
+printf 'module broken(input wire clk);\n  assign = ;\nendmodule\n' >"$T/broken.v"
+expect syntax_error 2 "$S" cosim horner3 --rtl "$T/broken.v"
+
+if command -v verilator >/dev/null 2>&1; then
+    expect verilator_width 2 "$S" cosim horner3 --rtl $R/horner3_width.v --sim verilator
+    grep -q 'port t has 12 bits, expected 16' "$T/err" && ok verilator_width_named || fail verilator_width_named "$(cat "$T/err")"
+    expect verilator_hand 0 "$S" cosim horner3 --rtl $R/horner3_hand.v --sim verilator -n 12
+else
+    echo "skip ${PREFIX}verilator: verilator not installed"
+fi
