@@ -10,8 +10,7 @@ static int in_scope(const sim_signal *s, const sim_scope *sc)
     return 0;
 }
 
-/* s's dotted path below scope sc: "y", "div3_a.t1". */
-static void rel_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len)
+void tb_rel_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len)
 {
     const sim_scope *chain[16];
     int n = 0;
@@ -77,7 +76,7 @@ void tb_range_finish(tb_range *g, const sim_scope *sc, const unit_io *io, const 
     for (int i = 0; i < g->nsmp; i++) {
         const sim_signal *sg = g->smp[i];
         tb_sig *t = &r->sigs[i];
-        rel_name(sg, sc, t->name, sizeof t->name);
+        tb_rel_name(sg, sc, t->name, sizeof t->name);
         t->fmt = sg->fmt;
         t->kind = sg->kind;
         t->overflows = sg->overflows;

@@ -29,6 +29,9 @@ typedef struct tb_range {
     int          sampled;       /* tb_range_sample has run (the ranges hold values) */
 } tb_range;
 
+/* s's dotted path below scope sc: "y", "div3_a.t1" (tb_timing.c names
+ * the critical path's signals so too). */
+void tb_rel_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len);
 /* The signals of scope sc (and below) but the clock. 0, or -1 (memory). */
 int  tb_range_init(tb_range *g, sim_ctx *c, const sim_scope *sc, const sim_signal *clk);
 /* Widen l's range to take the value lo + d (d as the sampling loop has

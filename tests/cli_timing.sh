@@ -1,0 +1,79 @@
+#!/bin/sh
+# cli_timing.sh - the critical path against Yosys (docs/timing.md): over
+# every unit at widths 8, 16 and 24 (default schedule and parameters),
+# Yosys's longest topological path (`ltp -noff` after the same `synth; abc
+# -g ...; flatten` as `shadesim synth`) and shadesim's critical-path gate
+# levels order the designs alike (Spearman rank correlation >= 0.8) and
+# their ratio stays in the band docs/timing.md states (0.8 to 2.4).
+# The designs go to two Yosys processes side by side (one per core), each
+# synthesizing its half in turn (design -reset between), instead of a
+# Yosys per design. TIMING_TABLE=FILE also writes the comparison table
+# (markdown) to FILE: docs/timing.md's is made so.
+PREFIX=cli_timing.
+. tests/lib_cli.sh
+
+command -v yosys >/dev/null 2>&1 || { echo "skip ${PREFIX}synth_paths: yosys not installed"; echo "skip ${PREFIX}yosys_rank: yosys not installed"; exit 0; }
+case "${TST_BUILD:-}" in *-asan) echo "skip ${PREFIX}yosys: runs in the plain build only"; exit 0 ;; esac
+
+# synth prints both path lengths and their ratio
+"$S" synth div3 --width 8 >"$T/out" 2>"$T/err"
+grep -q '^  Yosys  *[1-9][0-9]* gates$' "$T/out" && grep -q '^  shadesim  *[1-9][0-9]* levels, [0-9]* ps' "$T/out" &&
+    grep -q '^  ratio  .*shadesim levels / Yosys gates' "$T/out" && ok synth_paths || fail synth_paths "$(cat "$T/out" "$T/err")"
+
+units=$("$S" list 2>/dev/null | sed -n 's/^\([a-z0-9_]*\) — .*/\1/p')
+: >"$T/designs"
+for w in 8 16 24; do
+    mkdir -p "$T/w$w"
+    for u in $units; do
+        # a design the export refuses (a logic element too wide to tabulate) is left out
+        "$S" verilog "$u" --width "$w" -o "$T/w$w" >/dev/null 2>&1 && echo "$u $w" >>"$T/designs"
+    done
+done
+i=0
+: >"$T/y0.ys"; : >"$T/y1.ys"
+while read -r u w; do
+    echo "design -reset; read_verilog $T/w$w/$u.v; synth -top $u; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; opt_clean; flatten; tee -q -o $T/w$w/$u.ltp ltp -noff" >>"$T/y$((i % 2)).ys"
+    i=$((i + 1))
+done <"$T/designs"
+yosys -q -s "$T/y0.ys" >"$T/y0.log" 2>&1 & p0=$!
+yosys -q -s "$T/y1.ys" >"$T/y1.log" 2>&1 & p1=$!
+wait $p0; r0=$?; wait $p1; r1=$?
+if [ $r0 -ne 0 ] || [ $r1 -ne 0 ]; then fail yosys_rank "yosys failed: $(tail -3 "$T/y0.log" "$T/y1.log")"; exit 0; fi
+
+: >"$T/pairs"
+while read -r u w; do
+    y=$(sed -n 's/.*Longest topological path in .* (length=\([0-9]*\)).*/\1/p' "$T/w$w/$u.ltp")
+    "$S" run "$u" --width "$w" --json >"$T/j" 2>/dev/null
+    l=$(sed -n 's/.*"critical_path": {"levels": \([0-9]*\), "ps": \([0-9.e+]*\),.*/\1 \2/p' "$T/j")
+    echo "$u $w ${y:-?} ${l:-? ?}" >>"$T/pairs"
+done <"$T/designs"
+
+# Spearman's rho (ranks with ties averaged) and the ratio's range
+awk -v table="${TIMING_TABLE:-}" '
+function rank(v, r, n,   i, j, k, t, idx) {
+    for (i = 1; i <= n; i++) idx[i] = i
+    for (i = 2; i <= n; i++) for (j = i; j > 1 && v[idx[j - 1]] > v[idx[j]]; j--) { t = idx[j]; idx[j] = idx[j - 1]; idx[j - 1] = t }
+    for (i = 1; i <= n; i = j + 1) {
+        for (j = i; j < n && v[idx[j + 1]] == v[idx[i]]; j++) ;
+        for (k = i; k <= j; k++) r[idx[k]] = (i + j) / 2
+    }
+}
+$3 !~ /^[0-9]+$/ || $4 !~ /^[0-9]+$/ { bad = bad " " $1 "@" $2; next }
+{ n++; u[n] = $1; w[n] = $2; y[n] = $3; s[n] = $4; ps[n] = $5; q = $4 / $3
+  if (n == 1 || q < lo) lo = q; if (n == 1 || q > hi) hi = q }
+END {
+    if (bad != "" || n < 3) { printf "FAIL cli_timing.yosys_rank: no figures for%s\n", bad; exit }
+    rank(y, ry, n); rank(s, rs, n)
+    for (i = 1; i <= n; i++) { my += ry[i] / n; ms += rs[i] / n }
+    for (i = 1; i <= n; i++) { c += (ry[i] - my) * (rs[i] - ms); a += (ry[i] - my) ^ 2; b += (rs[i] - ms) ^ 2 }
+    rho = c / sqrt(a * b)
+    if (table != "") {
+        printf "| unit | width | Yosys ltp | shadesim levels | shadesim ps | levels / ltp |\n|---|---:|---:|---:|---:|---:|\n" >table
+        for (i = 1; i <= n; i++) printf "| %s | %d | %d | %d | %.0f | %.2f |\n", u[i], w[i], y[i], s[i], ps[i], s[i] / y[i] >table
+        printf "\n%d designs: Spearman rank correlation %.3f, levels / ltp %.2f to %.2f\n", n, rho, lo, hi >table
+    }
+    if (rho >= 0.8) printf "ok cli_timing.yosys_rank\n"
+    else printf "FAIL cli_timing.yosys_rank: Spearman %.3f over %d designs (needs >= 0.8)\n", rho, n
+    if (lo >= 0.8 && hi <= 2.4) printf "ok cli_timing.yosys_ratio_band\n"
+    else printf "FAIL cli_timing.yosys_ratio_band: levels / ltp %.2f to %.2f, outside 0.8 to 2.4\n", lo, hi
+}' "$T/pairs"
