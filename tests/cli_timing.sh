@@ -12,8 +12,26 @@
 PREFIX=cli_timing.
 . tests/lib_cli.sh
 
-command -v yosys >/dev/null 2>&1 || { echo "skip ${PREFIX}synth_paths: yosys not installed"; echo "skip ${PREFIX}yosys_rank: yosys not installed"; exit 0; }
-case "${TST_BUILD:-}" in *-asan) echo "skip ${PREFIX}yosys: runs in the plain build only"; exit 0 ;; esac
+# run --json: f_max is 1e6 / ps and items/s f_max / cycles per item;
+# the streamed run (a vector file) and the in-memory one (with a dump)
+# give the same path
+"$S" run horner3 --json >"$T/j1" 2>"$T/err"
+"$S" run horner3 --json --vcd "$T/h.vcd" >"$T/j2" 2>>"$T/err"
+awk '/"critical_path"/ { n = split($0, a, /[:,]/); lv = a[3] + 0; ps = a[5] + 0; cp = $0 }
+     /"cycles_per_item"/ { split($0, a, ":"); cpi = a[2] + 0 }
+     /"fmax_mhz"/ { split($0, a, ":"); f = a[2] + 0 }
+     /"items_per_s"/ { split($0, a, ":"); ips = a[2] + 0 }
+     END { ok = lv > 0 && ps > 0 && cp ~ /"signals": \["[a-z]/ && f > 0 && (f - 1e6 / ps) ^ 2 < 1e-12 * f * f &&
+                (ips - f * 1e6 / cpi) ^ 2 < 1e-12 * ips * ips
+           exit ok ? 0 : 1 }' "$T/j1" && ok run_json_fields || fail run_json_fields "$(grep -A3 critical_path "$T/j1") $(cat "$T/err")"
+[ "$(grep '"critical_path"' "$T/j1")" = "$(grep '"critical_path"' "$T/j2")" ] && [ -n "$(grep '"critical_path"' "$T/j1")" ] &&
+    ok run_stream_same_path || fail run_stream_same_path "$(grep critical_path "$T/j1" "$T/j2")"
+"$S" run horner3 >"$T/out" 2>"$T/err"
+grep -q '^critical path [1-9][0-9]* levels, [0-9]* ps (.* -> .*), f_max [0-9]* MHz, .* M items/s$' "$T/out" &&
+    ok run_table_line || fail run_table_line "$(sed -n 1,5p "$T/out")"
+
+command -v yosys >/dev/null 2>&1 || { for t in synth_paths yosys_rank yosys_ratio_band; do echo "skip ${PREFIX}$t: yosys not installed"; done; exit 0; }
+case "${TST_BUILD:-}" in *-asan) echo "skip ${PREFIX}yosys_rank: runs in the plain build only"; exit 0 ;; esac
 
 # synth prints both path lengths and their ratio
 "$S" synth div3 --width 8 >"$T/out" 2>"$T/err"

@@ -70,8 +70,8 @@ static void t_mux_tree(void)
     sim_signal *xs = sim_signal_new(c, NULL, "xs", U3, SIM_KIND_INPUT);
     sim_signal *sel = sim_reg(c, NULL, "sel", U3, clk, xs, NULL, NULL, 0);
     sim_signal *q[5];
-    char nm[8];
-    for (int i = 0; i < 5; i++) { snprintf(nm, sizeof nm, "q%d", i); q[i] = sim_reg(c, NULL, nm, F8, clk, x, NULL, NULL, 0); }
+    static const char *const qn[5] = { "q0", "q1", "q2", "q3", "q4" };
+    for (int i = 0; i < 5; i++) q[i] = sim_reg(c, NULL, qn[i], F8, clk, x, NULL, NULL, 0);
     sim_signal *m = sim_mux(c, NULL, "m", F8, sel, 5, q);
     sim_reg(c, NULL, "out", F8, clk, m, NULL, NULL, 0);
     sim_timing t;
