@@ -71,6 +71,12 @@ struct sim_signal {
     uint64_t    ovf_run;    /* the driver's evaluations when it overflowed */
     uint32_t    ovf_pending;/* in the kernel's list of overflows to settle */
     double      area_ge;    /* area of the element driving it, NAND2 eq. */
+    /* Its delay (sim_delay.h, sim_arcs): from an input's least or most
+     * significant bit to its own, [ll, lm, ml, mm], in ps and in gate
+     * levels, < 0 where one does not depend on the other; a register's
+     * are its clock-to-q. */
+    double      dly_ps[4];
+    int         dly_lv[4];
     sim_proc   *driver;     /* process computing it (NULL: input, constant, clock) */
     const char *name;
     sim_scope  *scope;

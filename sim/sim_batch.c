@@ -821,29 +821,6 @@ reads_clock:
 #undef ROW
 }
 
-/* The signals a combinational element reads. */
-static int comb_reads(const sim_prim_info *in, const sim_signal **r)
-{
-    int n = 0;
-    switch (in->kind) {
-    case SIM_KIND_MUX:
-        r[n++] = in->c;
-        for (int i = 0; i < in->n; i++) r[n++] = in->in[i];
-        break;
-    case SIM_KIND_LOGIC:
-        for (int i = 0; i < in->n && i < 8; i++) r[n++] = in->in[i];
-        break;
-    case SIM_KIND_BK:
-        r[n++] = in->c;
-        /* fall through */
-    default:
-        if (in->a) r[n++] = in->a;
-        if (in->b) r[n++] = in->b;
-        break;
-    }
-    return n;
-}
-
 static void free_ops(bop *ops, uint32_t n)
 {
     for (uint32_t i = 0; i < n; i++) {
@@ -886,7 +863,7 @@ static int levelize(sim_batch *b, const sim_ctx *c, bop *ops, uint32_t nops, con
         for (uint32_t i = 0; i < nops; i++) {
             const sim_signal *r[10 + 256];
             const sim_prim_info *in = &info[i];
-            int nr = in->kind == SIM_KIND_MUX && in->n > 256 ? -1 : comb_reads(in, r);
+            int nr = in->kind == SIM_KIND_MUX && in->n > 256 ? -1 : sim_prim_reads(in, r);
             if (nr < 0) { free(fill); snprintf(err, errlen, "a multiplexer with more than 256 inputs"); goto fail; }
             for (int j = 0; j < nr; j++) {
                 uint32_t src = op_of_sig[r[j]->index];
@@ -1035,7 +1012,7 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
             continue;
         }
         const sim_signal *r[10 + 256];
-        int nr = in.kind == SIM_KIND_MUX && in.n > 256 ? 0 : comb_reads(&in, r);
+        int nr = in.kind == SIM_KIND_MUX && in.n > 256 ? 0 : sim_prim_reads(&in, r);
         p->dep = malloc((size_t)(nr ? nr : 1) * sizeof *p->dep);
         if (!p->dep) goto oom;
         for (int k = 0; k < nr; k++) p->dep[k] = r[k]->index;

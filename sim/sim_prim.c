@@ -8,6 +8,7 @@
  */
 #include "sim/sim_prim.h"
 #include "sim/sim_area.h"
+#include "sim/sim_delay.h"
 #include "sim/sim_internal.h"
 #include <string.h>
 
@@ -146,14 +147,35 @@ static inline sim_wide align(int64_t raw, int k) { return (sim_wide)raw * ((sim_
 static int imax(int a, int b) { return a > b ? a : b; }
 
 /* The logic an element's quantization needs besides truncation and wrap,
- * for an exact result with src_f fraction and src_i integer bits. */
-static double quant_area(const prim *p, sim_fmt y, int src_f, int src_i)
+ * for an exact result with src_f fraction and src_i integer bits:
+ * rounding to nearest where it drops fraction bits, saturation where it
+ * drops integer bits. Its area into *area, its arcs after dl's. */
+static sim_arcs quant_cost(const prim *p, sim_fmt f, int src_f, int src_i, double *area, sim_arcs dl)
 {
-    double a = 0;
-    if (src_f > y.fbits && p->r != SIM_RND_TRUNC) a += sim_area_round(y.width);
-    if (src_i > y.ibits && p->o == SIM_OVF_SAT) a += sim_area_sat(y.width, src_i - y.ibits);
-    return a;
+    double q = 0;
+    if (src_f > f.fbits && p->r != SIM_RND_TRUNC) {
+        q += sim_area_round(f.width);
+        dl = sim_arcs_then(dl, sim_delay_round(f.width));
+    }
+    if (src_i > f.ibits && p->o == SIM_OVF_SAT) {
+        q += sim_area_sat(f.width, src_i - f.ibits);
+        dl = sim_arcs_then(dl, sim_delay_sat(src_i - f.ibits));
+    }
+    *area = q;
+    return dl;
 }
+
+/* Set the element's area and delay: its own logic (area, dl), then its
+ * quantization's. */
+static void set_cost(sim_signal *y, const prim *p, double area, sim_arcs dl, int src_f, int src_i)
+{
+    double q;
+    dl = quant_cost(p, y->fmt, src_f, src_i, &q, dl);
+    y->area_ge = area + q;
+    sim_arcs_set(y, dl);
+}
+
+static sim_arcs no_delay(void) { sim_delay z = { 0, 0.0 }; return sim_arcs_bitwise(z); }
 
 /* ---------------------------------------------------------------- constant */
 
@@ -212,6 +234,7 @@ sim_signal *sim_reg(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     sim_sensitive(pr, clk, SIM_EDGE_POS);
     pr->no_init = 1;   /* a register changes on edges only */
     y->area_ge = sim_area_reg(fmt.width, en != NULL, rst != NULL);
+    sim_arcs_set(y, sim_arcs_all(sim_delay_reg_cq()));
     return y;
 }
 
@@ -271,7 +294,7 @@ sim_signal *sim_mux(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     for (int i = 0; i < n; i++) sim_sensitive(pr, copy[i], SIM_EDGE_ANY);
     int mf = 0, mi = 0;
     for (int i = 0; i < n; i++) { mf = imax(mf, in[i]->fmt.fbits); mi = imax(mi, in[i]->fmt.ibits); }
-    y->area_ge = sim_area_mux(fmt.width, n) + quant_area(p, fmt, mf, mi);
+    set_cost(y, p, sim_area_mux(fmt.width, n), sim_delay_mux(n), mf, mi);
     return y;
 }
 
@@ -293,7 +316,7 @@ sim_signal *sim_bk(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     if (copy_fits(x) && fast_quant_setup(p, x->fmt.fbits)) set_native(pr, SIM__OP_BK, p);
     sim_sensitive(pr, pass, SIM_EDGE_ANY);
     sim_sensitive(pr, x, SIM_EDGE_ANY);
-    y->area_ge = sim_area_bk(fmt.width) + quant_area(p, fmt, x->fmt.fbits, x->fmt.ibits);
+    set_cost(y, p, sim_area_bk(fmt.width), sim_delay_bk(), x->fmt.fbits, x->fmt.ibits);
     return y;
 }
 
@@ -358,8 +381,8 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     int w = adder_width(a->fmt, b->fmt, fmt);
-    y->area_ge = (sub ? sim_area_sub(w) : sim_area_add(w))
-                 + quant_area(p, fmt, p->src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
+    set_cost(y, p, sub ? sim_area_sub(w) : sim_area_add(w), sub ? sim_delay_sub(w) : sim_delay_add(w),
+             p->src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
     return y;
 }
 
@@ -396,8 +419,8 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     if (raw_bits(a) + raw_bits(b) <= 62 && fast_quant_setup(p, p->src_f)) set_native(pr, SIM__OP_MUL, p);
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
-    y->area_ge = sim_area_mul(a->fmt.width, b->fmt.width)
-                 + quant_area(p, fmt, p->src_f, a->fmt.ibits + b->fmt.ibits);
+    set_cost(y, p, sim_area_mul(a->fmt.width, b->fmt.width), sim_delay_mul(a->fmt.width, b->fmt.width, fmt.width),
+             p->src_f, a->fmt.ibits + b->fmt.ibits);
     return y;
 }
 
@@ -430,7 +453,7 @@ sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     sim_proc *pr = prim_proc(c, y, fast && p->sa ? shift_fast : shift_eval, p);
     if (fast && !p->sa) set_native(pr, SIM__OP_COPY, p);
     sim_sensitive(pr, x, SIM_EDGE_ANY);
-    y->area_ge = quant_area(p, fmt, f, x->fmt.ibits + sh);   /* the shift itself is wires */
+    set_cost(y, p, 0.0, no_delay(), f, x->fmt.ibits + sh);   /* the shift itself is wires */
     return y;
 }
 
@@ -473,6 +496,9 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     }
     for (int i = 0; i < n; i++) sim_sensitive(pr, copy[i], SIM_EDGE_ANY);
     y->area_ge = area_ge;
+    int bits = 0;
+    for (int i = 0; i < n; i++) bits += copy[i]->fmt.width;
+    sim_arcs_set(y, sim_delay_logic(bits));
     return y;
 }
 
@@ -503,6 +529,37 @@ int sim_prim_describe(const sim_signal *y, sim_prim_info *out)
     /* sim_shift kept f = fbits(x) - sh as src_f - sa (one of them 0) */
     if (y->kind == SIM_KIND_SHIFT) out->shift = p->a->fmt.fbits - (p->src_f - p->sa);
     return 0;
+}
+
+int sim_mul_network_delay(sim_signal *y, sim_arcs net)
+{
+    if (y->kind != SIM_KIND_MUL || !y->driver || sim__proc_of(y->driver)->fn != mul_eval) return -1;
+    const prim *p = y->driver->data;
+    double q;
+    sim_arcs_set(y, quant_cost(p, y->fmt, p->src_f, p->a->fmt.ibits + p->b->fmt.ibits, &q, net));
+    return 0;
+}
+
+int sim_prim_reads(const sim_prim_info *in, const sim_signal **r)
+{
+    int n = 0;
+    switch (in->kind) {
+    case SIM_KIND_MUX:
+        r[n++] = in->c;
+        for (int i = 0; i < in->n; i++) r[n++] = in->in[i];
+        break;
+    case SIM_KIND_LOGIC:
+        for (int i = 0; i < in->n && i < SIM__LOGIC_MAX; i++) r[n++] = in->in[i];
+        break;
+    case SIM_KIND_BK:
+        r[n++] = in->c;
+        /* fall through */
+    default:
+        if (in->a) r[n++] = in->a;
+        if (in->b) r[n++] = in->b;
+        break;
+    }
+    return n;
 }
 
 void sim_logic_verilog(sim_signal *y, const char *text)

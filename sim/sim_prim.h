@@ -17,6 +17,7 @@
 #ifndef SIM_PRIM_H
 #define SIM_PRIM_H
 #include "sim/sim.h"
+#include "sim/sim_delay.h"
 
 /* A constant of format fmt holding the quantized value of x. */
 sim_signal *sim_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt, double x);
@@ -59,6 +60,11 @@ sim_signal *sim_sub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 /* Multiplier: y = quant(a * b), the product exact before quantization. */
 sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                     sim_signal *a, sim_signal *b);
+
+/* A multiplier by a constant built as another network (units model a
+ * shift-and-add one): its own delay arcs net replace the array
+ * multiplier's, its quantization's stay. -1 if y is not a sim_mul. */
+int sim_mul_network_delay(sim_signal *y, sim_arcs net);
 
 /* Constant shift (wiring): y = quant(x * 2^sh); sh < 0 shifts right. */
 sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
@@ -117,4 +123,10 @@ typedef struct sim_prim_info {
 /* 0 and *out filled for a signal driven by a primitive (or a constant);
  * -1 for an input, a clock, or a signal a user process drives. */
 int sim_prim_describe(const sim_signal *y, sim_prim_info *out);
+/* The signals a combinational element reads (mux: select, then inputs;
+ * logic: its inputs; block key: pass, then x; others: a, b), into r,
+ * which must hold 10 + in->n entries; returns how many. Not for registers
+ * (they sample a, c and rst at the edge). The batch mode levelizes by it,
+ * the timing analysis walks it. */
+int sim_prim_reads(const sim_prim_info *in, const sim_signal **r);
 #endif

@@ -254,7 +254,8 @@ const cli_optspec cli_synth_spec = {
     "Export the unit and synthesize it with Yosys to generic gates (synth; abc -g\n"
     "AND,NAND,OR,NOR,XOR,XNOR,MUX; no cell library): prints Yosys's cells by type\n"
     "and in total, weighted with the area model's NAND2 gate equivalents per gate,\n"
-    "beside shadesim's area estimate.\n"
+    "beside shadesim's area estimate; then Yosys's longest topological path (ltp\n"
+    "-noff after flatten) beside shadesim's critical path in gate levels and ps.\n"
     "Needs yosys (Debian package yosys).\n"
     "options:\n", NULL
 };
@@ -281,6 +282,33 @@ static double cell_ge(const char *c)
     return SIM_GE_NAND2;
 }
 
+/* Yosys's longest topological path (ltp -noff: flip-flops cut it, so it
+ * is the most gates between registers or ports) beside shadesim's
+ * critical path in gate levels (docs/timing.md compares them). */
+static void synth_paths(const char *dir, const cli_unit_opts *o, const unit_fmts *fm)
+{
+    char path[1200], line[400], err[600];
+    snprintf(path, sizeof path, "%s/ltp.txt", dir);
+    FILE *f = fopen(path, "r");
+    long len = -1;
+    while (f && fgets(line, sizeof line, f)) {
+        const char *l = strstr(line, "(length=");
+        if (strstr(line, "Longest topological path") && l) len = atol(l + 8);
+    }
+    if (f) fclose(f);
+    tb_ppa p;
+    memset(&p, 0, sizeof p);
+    int bad = tb_unit_timing(o->u, &o->cfg, fm, &p, err, sizeof err);
+    printf("Yosys longest topological path (ltp -noff) against shadesim's critical path:\n");
+    if (len >= 0) printf("  Yosys        %6ld gates\n", len);
+    else printf("  Yosys        (no ltp result: see yosys.log with --keep DIR)\n");
+    if (bad) { printf("  shadesim     (no critical path: %s)\n", err); return; }
+    printf("  shadesim     %6d levels, %.0f ps, f_max %.0f MHz (", p.levels, p.crit_ps, p.fmax_mhz);
+    for (int i = 0; i < p.npath; i++) printf("%s%s", i ? " -> " : "", p.path[i]);
+    printf(")\n");
+    if (len > 0) printf("  ratio        %.2f (shadesim levels / Yosys gates)\n", p.levels / (double)len);
+}
+
 int cli_synth(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_synth_spec);
@@ -304,7 +332,7 @@ int cli_synth(int argc, char **argv)
     char *cmd = malloc(cl);
     if (!cmd) { rc = cli_usage_error("out of memory"); goto done; }
     snprintf(cmd, cl, "cd '%s' && yosys -q -p 'read_verilog %s.v; synth -top %s; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; "
-             "opt_clean; tee -o stat.txt stat' >yosys.log 2>&1", dir, o.u->name, o.u->name);
+             "opt_clean; tee -o stat.txt stat; flatten; tee -o ltp.txt ltp -noff' >yosys.log 2>&1", dir, o.u->name, o.u->name);
     int sr = system(cmd);
     free(cmd);
     if (sr != 0) { fprintf(stderr, "shadesim: synth: yosys failed (see yosys.log: use --keep DIR)\n"); rc = CLI_FAIL; goto done; }
@@ -329,6 +357,7 @@ int cli_synth(int argc, char **argv)
     printf("  cells        %6ld  = %.0f GE with the area model's gate constants\n", total, yge);
     printf("  shadesim     %.0f GE (area model)\n", ge);
     if (yge > 0) printf("  ratio        %.2f (shadesim / Yosys)\n", ge / yge);
+    synth_paths(dir, &o, &fm);
 done:
     if (!keep) {
         char c2[1200];

@@ -70,6 +70,20 @@ typedef struct tb_ppa {
     double   energy_pj_per_item;
 } tb_ppa;
 
+/* The critical path of a built design (c, the unit's scope sc: names are
+ * relative to it), its f_max, and items_per_s = f_max / cycles_per_item
+ * (not set when cycles_per_item <= 0); toggles and energy untouched.
+ * 0, or -1 with a message (a combinational loop). tb_run and the
+ * streamed run fill their result's ppa with it. */
+int  tb_ppa_timing(const sim_ctx *c, const sim_scope *sc, double cycles_per_item, tb_ppa *p,
+                   char *err, size_t errlen);
+/* The same for a unit built with tb_build and freed (sweeps, scenes):
+ * items_per_s is left 0, as the cycles per item need a run
+ * (tb_ppa_rate sets it from them). 0, or -1 with a message. */
+int  tb_unit_timing(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, tb_ppa *p,
+                    char *err, size_t errlen);
+void tb_ppa_rate(tb_ppa *p, double cycles_per_item);
+
 /* What the user accepts (0 / negative: not set). */
 typedef struct tb_accept {
     double max_error;       /* --max-error: max |hw - expected| */

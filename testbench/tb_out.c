@@ -60,6 +60,26 @@ static void jppa(FILE *f, const tb_result *r)
     fputs("}},\n  \"energy_pj_per_item\": ", f); base_json_num(f, p->energy_pj_per_item, 17);
 }
 
+/* "critical path 34 levels, 812 ps (rg -> mul -> sm -> rg), f_max 1231 MHz,
+ * 205 M items/s"; a path of more than ten signals shows its first and
+ * last four. */
+static void print_crit(FILE *f, const tb_ppa *p)
+{
+    if (p->npath <= 0) return;
+    fprintf(f, "critical path %d levels, %.0f ps (", p->levels, p->crit_ps);
+    for (int i = 0; i < p->npath; i++) {
+        if (p->npath > 10 && i == 4) {
+            fprintf(f, " -> ... (%d more)", p->npath - 8);
+            i = p->npath - 5;
+            continue;
+        }
+        fprintf(f, "%s%s", i ? " -> " : "", p->path[i]);
+    }
+    fprintf(f, "), f_max %.0f MHz", p->fmax_mhz);
+    if (p->items_per_s > 0) fprintf(f, ", %.4g M items/s", p->items_per_s / 1e6);
+    fputc('\n', f);
+}
+
 int tb_write_json(FILE *f, const tb_result *r)
 {
     const unit_desc *u = r->unit;
@@ -201,6 +221,7 @@ void tb_print_table(FILE *f, const tb_result *r)
             r->vectors, (unsigned long long)r->cycles, tnum(x[0], 32, "%.3g", r->cycles_per_item),
             tnum(x[1], 32, "%.3g", r->cycles_per_beat), (unsigned long long)r->latency,
             tnum(x[2], 32, "%.1f", r->area_ge), (unsigned long long)r->overflows);
+    print_crit(f, &r->ppa);
     fprintf(f, "switching %llu bit toggles, %s pJ/item (docs/timing.md)\n", (unsigned long long)r->ppa.toggles,
             tnum(x[3], 32, "%.3g", r->ppa.energy_pj_per_item));
     /* the format column as wide as its longest entry (a format with its

@@ -61,7 +61,8 @@ void tb_range_finish(tb_range *g, const sim_scope *sc, const unit_io *io, const 
 void tb_range_free(tb_range *g);
 
 /* s's dotted path below scope sc ("y", "div3_a.t1"), as the table names
- * it; 1 if s is in sc or below it. */
+ * it (and tb_timing.c the critical path's signals); 1 if s is in sc or
+ * below it. */
 void tb_range_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len);
 int  tb_range_in_scope(const sim_signal *s, const sim_scope *sc);
 

@@ -410,6 +410,8 @@ static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
     r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
                                     : (double)r->cycles;
     r->area_ge = sim_scope_area(s->sc);
+    char terr[300];
+    if (tb_ppa_timing(s->c, s->sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
     r->overflows = tb_scope_overflows(s->sc);
     for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
     tb_range_finish(&s->st.rg, s->sc, &s->io, m->in_ovf, r);

@@ -471,6 +471,8 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
         r->cycles_per_beat = nbeats > 1 ? (double)(st.last_cycle - st.first_cycle) / (double)(nbeats - 1)
                                         : (double)r->cycles;
         r->area_ge = sim_scope_area(sc);
+        char terr[300];
+        if (tb_ppa_timing(c, sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
         r->overflows = tb_scope_overflows(sc);
         for (int i = 0; i < r->n_in; i++) { r->in_overflows += st.in_ovf[i]; r->overflows += st.in_ovf[i]; }
         tb_range_finish(&st.rg, sc, &io, st.in_ovf, r);

@@ -10,6 +10,7 @@
  */
 #include "units/units_brdf.h"
 #include "sim/sim_area.h"
+#include "sim/sim_delay.h"
 #include <math.h>
 #include <stdlib.h>
 
@@ -137,6 +138,12 @@ sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
     double net = kr < 0 ? sim_area_sub(w) + (adders > 1 ? (adders - 1) * sim_area_add(w) : 0.0)
                         : adders > 0 ? adders * sim_area_add(w) : 0.0;
     y->area_ge = net + quant;
+    /* The delay likewise: the network's adders as a balanced tree (a
+     * negative k: an inverter on one branch, or the negator). */
+    sim_arcs dn = sim_arcs_bitwise((sim_delay){ 0, 0.0 });
+    for (int a = adders; a > 0; a = a / 2) dn = sim_arcs_then(dn, sim_delay_add(w));
+    if (kr < 0) dn = sim_arcs_then(dn, adders == 0 ? sim_delay_sub(w) : sim_arcs_bitwise((sim_delay){ 1, SIM_PS_XOR2 }));
+    sim_mul_network_delay(y, dn);
     return y;
 }
 

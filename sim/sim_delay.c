@@ -1,0 +1,132 @@
+/* sim_delay.c - gate levels and picoseconds of each element from its
+ * widths. The structures are the area model's (sim_area.c): ripple-carry
+ * adders, the array multiplier, MUX2 trees, D flip-flops, and the
+ * rounding incrementer and saturation clamp at an element's output. The
+ * adder is a ripple carry because that is what Yosys's `synth` and ABC
+ * leave of `$add` (docs/timing.md measures it: 2(w-1) levels, linear in
+ * w). */
+#include "sim/sim_delay.h"
+#include "sim/sim.h"
+
+const sim_delay SIM_DELAY_NONE = { -1, -1.0 };
+
+static sim_delay d(int lv, double ps) { sim_delay r = { lv, ps }; return r; }
+
+static int clog2(int n)
+{
+    int k = 0;
+    while (k < 31 && (1 << k) < n) k++;
+    return k;
+}
+
+sim_delay sim_delay_then(sim_delay a, sim_delay b)
+{
+    if (a.lv < 0 || b.lv < 0) return SIM_DELAY_NONE;
+    return d(a.lv + b.lv, a.ps + b.ps);
+}
+
+/* The later of two ways (by ps; at a tie, more levels); NONE loses. */
+static sim_delay later(sim_delay a, sim_delay b)
+{
+    if (a.lv < 0) return b;
+    if (b.lv < 0) return a;
+    return b.ps > a.ps || (b.ps == a.ps && b.lv > a.lv) ? b : a;
+}
+
+sim_arcs sim_arcs_then(sim_arcs a, sim_arcs b)
+{
+    sim_arcs r;
+    r.ll = later(sim_delay_then(a.ll, b.ll), sim_delay_then(a.lm, b.ml));
+    r.lm = later(sim_delay_then(a.ll, b.lm), sim_delay_then(a.lm, b.mm));
+    r.ml = later(sim_delay_then(a.ml, b.ll), sim_delay_then(a.mm, b.ml));
+    r.mm = later(sim_delay_then(a.ml, b.lm), sim_delay_then(a.mm, b.mm));
+    return r;
+}
+
+sim_arcs sim_arcs_bitwise(sim_delay x) { sim_arcs r = { x, x, SIM_DELAY_NONE, x }; return r; }
+sim_arcs sim_arcs_all(sim_delay x) { sim_arcs r = { x, x, x, x }; return r; }
+
+sim_arcs sim_arcs_of(const sim_signal *s)
+{
+    sim_delay a[4];
+    for (int i = 0; i < 4; i++) a[i] = s->dly_lv[i] < 0 ? SIM_DELAY_NONE : d(s->dly_lv[i], s->dly_ps[i]);
+    sim_arcs r = { a[0], a[1], a[2], a[3] };
+    return r;
+}
+
+void sim_arcs_set(sim_signal *s, sim_arcs a)
+{
+    const sim_delay x[4] = { a.ll, a.lm, a.ml, a.mm };
+    for (int i = 0; i < 4; i++) { s->dly_lv[i] = x[i].lv; s->dly_ps[i] = x[i].lv < 0 ? -1.0 : x[i].ps; }
+}
+
+sim_delay sim_delay_reg_cq(void) { return d(0, SIM_PS_DFF_CQ); }
+sim_delay sim_delay_reg_d(int has_en) { return has_en ? d(1, SIM_PS_MUX2 + SIM_PS_DFF_SU) : d(0, SIM_PS_DFF_SU); }
+sim_delay sim_delay_reg_en(void) { return d(1, SIM_PS_MUX2_S + SIM_PS_DFF_SU); }
+sim_delay sim_delay_reg_rst(void) { return d(1, SIM_PS_AND2 + SIM_PS_DFF_SU); }
+
+sim_arcs sim_delay_mux(int n)
+{
+    int k = clog2(n);
+    return sim_arcs_bitwise(k ? d(k, SIM_PS_MUX2_S + (k - 1) * SIM_PS_MUX2) : d(0, 0));
+}
+
+sim_arcs sim_delay_bk(void) { return sim_arcs_bitwise(d(1, SIM_PS_AND2)); }
+
+sim_arcs sim_delay_add(int w)
+{
+    if (w <= 1) return sim_arcs_bitwise(d(1, SIM_PS_XOR2));
+    sim_arcs r;
+    r.ll = d(1, SIM_PS_XOR2);          /* bit 0: the operands' XOR */
+    /* bit 0's carry from its operands, w-2 carries rippling, the top sum */
+    r.lm = d(2 * (w - 1), SIM_PS_FA_AB_CO + (w - 2) * SIM_PS_FA_CO + SIM_PS_FA_S);
+    r.ml = SIM_DELAY_NONE;             /* low sum bits do not see high operand bits */
+    r.mm = d(2, SIM_PS_FA_S);          /* the top operand bits into the top sum */
+    return r;
+}
+
+sim_arcs sim_delay_sub(int w) { return sim_arcs_then(sim_arcs_bitwise(d(1, SIM_PS_XOR2)), sim_delay_add(w)); }
+
+sim_arcs sim_delay_mul(int wa, int wb, int wy)
+{
+    if (wa < 1) wa = 1;
+    if (wb < 1) wb = 1;
+    if (wy < 1) wy = 1;
+    /* Every output bit sees every operand bit; the last one settles after
+     * the partial product, wa-1 rows and the wb-1 bit ripple; the output's
+     * bits are the ripple's top ones (quantization keeps the high part),
+     * its lowest up to wy-1 carries earlier. */
+    sim_delay full = d(1 + 2 * (wa - 1) + 2 * (wb - 1),
+                       SIM_PS_AND2 + (wa - 1) * SIM_PS_FA_S + (wb - 1) * SIM_PS_FA_CO);
+    int rip = wy - 1 < wb - 1 ? wy - 1 : wb - 1;
+    sim_delay low = d(full.lv - 2 * rip, full.ps - rip * SIM_PS_FA_CO);
+    sim_arcs r = { low, full, low, full };
+    return r;
+}
+
+sim_arcs sim_delay_round(int w)
+{
+    if (w < 1) w = 1;
+    sim_arcs r;
+    r.ll = d(1, SIM_PS_HA_S);                                  /* the rounding bit into bit 0 */
+    r.lm = d(w, (w - 1) * SIM_PS_AND2 + SIM_PS_HA_S);          /* its carry up the chain */
+    r.ml = SIM_DELAY_NONE;
+    r.mm = d(1, SIM_PS_HA_S);
+    return r;
+}
+
+sim_arcs sim_delay_sat(int extra)
+{
+    if (extra <= 0) return sim_arcs_bitwise(d(0, 0));
+    int k = clog2(extra);
+    /* overflow found from the top bits, then it selects every bit */
+    sim_delay det = d(1 + k + 1, SIM_PS_XOR2 + k * SIM_PS_AND2 + SIM_PS_MUX2_S);
+    sim_arcs r = { d(1, SIM_PS_MUX2), d(1, SIM_PS_MUX2), det, det };
+    return r;
+}
+
+sim_arcs sim_delay_logic(int bits)
+{
+    int lv = bits <= 1 ? 1 : clog2(bits) + 1;
+    return sim_arcs_all(d(lv, lv * SIM_PS_AND2));
+}

@@ -1,0 +1,84 @@
+/* sim_delay.h - delay of each element from its bit widths, in gate levels
+ * and in picoseconds, beside the area model (sim_area.h).
+ *
+ * A gate level is one 2-input cell (AND2, XOR2, MUX2; an adder cell's
+ * carry counts two, the AND and the OR of its majority): the unit of
+ * Yosys's `ltp` over generic gates, so the two can be compared. The
+ * picoseconds are those of the NanGate 45 nm Open Cell Library, typical
+ * corner (1.10 V, 25 C), X1 cells, read from its Liberty file
+ * (NangateOpenCellLibrary_typical.lib) at one table point: input slew
+ * index_1[2] = 17.2 ps and the load index_2 point nearest a fanout of
+ * four (about 7.5 fF; 6.3-6.5 fF in the tables of the small cells that
+ * stop at 25 fF). Each constant is the worse of cell_rise and cell_fall
+ * of the named arc. docs/timing.md has the table and what the model
+ * leaves out.
+ *
+ * Bits of a word need not arrive together: a ripple-carry adder's sum
+ * bits settle from the least significant up, and an adder fed by another
+ * starts on its low bits while the high ones still ripple (so two chained
+ * W-bit adders take about 2W levels, not 4W, as in synthesized gates).
+ * So a signal has two arrival times, of its least (L) and most (M)
+ * significant bit, and an element four arcs: from an input's L or M to
+ * its own L or M.
+ */
+#ifndef SIM_DELAY_H
+#define SIM_DELAY_H
+
+#define SIM_PS_AND2      49.2   /* AND2_X1  A2 -> ZN, rise, 7.57 fF */
+#define SIM_PS_XOR2      59.8   /* XNOR2_X1 B -> ZN (A = 0), rise, 6.50 fF (stands for XOR2_X1) */
+#define SIM_PS_MUX2      64.5   /* MUX2_X1  B -> Z (A = S = 1), fall, 7.55 fF */
+#define SIM_PS_MUX2_S    80.9   /* MUX2_X1  S -> Z (A = 1, B = 0), fall, 7.55 fF */
+#define SIM_PS_FA_CO     83.9   /* FA_X1    CI -> CO (A = 1, B = 0), fall, 7.51 fF */
+#define SIM_PS_FA_AB_CO  93.0   /* FA_X1    B -> CO (A = 0, CI = 1), fall, 7.51 fF */
+#define SIM_PS_FA_S      78.0   /* FA_X1    CI -> S (A = B = 1), fall, 7.53 fF */
+#define SIM_PS_HA_S      71.1   /* HA_X1    B -> S (A = 0), rise, 6.31 fF */
+#define SIM_PS_DFF_CQ   104.7   /* DFF_X1   CK -> Q, rise, 7.59 fF */
+#define SIM_PS_DFF_SU    39.8   /* DFF_X1   setup_rising on D, fall_constraint, D and CK slew 44.9 ps */
+
+/* Levels and picoseconds along an arc; lv < 0: no arc. */
+typedef struct sim_delay { int lv; double ps; } sim_delay;
+extern const sim_delay SIM_DELAY_NONE;
+/* a then b, in series (NONE if either is). */
+sim_delay sim_delay_then(sim_delay a, sim_delay b);
+
+/* An element's four arcs: ll from an input's least significant bit to
+ * the output's, lm to the output's most significant bit, ml and mm from
+ * the input's most significant bit. */
+typedef struct sim_arcs { sim_delay ll, lm, ml, mm; } sim_arcs;
+/* a then b: the max-plus product (each arc the later of the two ways
+ * through the middle signal's bits). */
+sim_arcs sim_arcs_then(sim_arcs a, sim_arcs b);
+/* d from every bit to the same bit (multiplexers, block keys: bitwise). */
+sim_arcs sim_arcs_bitwise(sim_delay d);
+/* d from every bit to every bit (logic that mixes them). */
+sim_arcs sim_arcs_all(sim_delay d);
+/* The arcs on a signal (sim_signal.dly_*), and set them. */
+struct sim_signal;
+sim_arcs sim_arcs_of(const struct sim_signal *s);
+void     sim_arcs_set(struct sim_signal *s, sim_arcs a);
+
+/* Register: from the clock edge to q (clock-to-q, no level, every bit);
+ * and the extra time its inputs need before the edge: D (through the
+ * load-enable MUX2 when it has one), the enable (the MUX2's select), a
+ * synchronous reset (one AND2 forcing D), each plus the flip-flop's
+ * setup. */
+sim_delay sim_delay_reg_cq(void);
+sim_delay sim_delay_reg_d(int has_en);
+sim_delay sim_delay_reg_en(void);
+sim_delay sim_delay_reg_rst(void);
+
+sim_arcs sim_delay_mux(int n);             /* ceil(log2 n) MUX2, the first from its select */
+sim_arcs sim_delay_bk(void);               /* an AND2 */
+sim_arcs sim_delay_add(int w);             /* ripple carry, w bits: 2(w-1) levels from L to M */
+sim_arcs sim_delay_sub(int w);             /* a conditional inverter (XOR2), then the adder */
+/* Array multiplier wa x wb quantized to wy bits: a partial product
+ * (AND2), wa-1 carry-save rows, a wb-1 bit ripple-carry adder whose sum
+ * bits, the output's, settle from L up. */
+sim_arcs sim_delay_mul(int wa, int wb, int wy);
+sim_arcs sim_delay_round(int w);           /* incrementer: a w-bit half-adder chain */
+sim_arcs sim_delay_sat(int extra);         /* detect (XOR2, OR tree) from the top bits, clamp (MUX2 select) */
+/* A logic element of `bits` input bits in all: a balanced tree of 2-input
+ * gates over them, ceil(log2 bits) + 1 levels of AND2 (an estimate: the
+ * elements are small decoders and comparators). */
+sim_arcs sim_delay_logic(int bits);
+#endif

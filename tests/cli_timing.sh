@@ -1,0 +1,89 @@
+#!/bin/sh
+# cli_timing.sh - the critical path against Yosys (docs/timing.md): over
+# every unit at widths 8, 16 and 24 (default schedule and parameters),
+# Yosys's longest topological path (`ltp -noff` after the same `synth; abc
+# -g ...; flatten` as `shadesim synth`) and shadesim's critical-path gate
+# levels order the designs alike (Spearman rank correlation >= 0.8) and
+# their ratio stays in the band docs/timing.md states (0.8 to 2.4).
+# `shadesim synth` runs two at a time (one per core); a design whose
+# export the Verilog writer refuses is left out. TIMING_TABLE=FILE also
+# writes the comparison table (markdown) to FILE: docs/timing.md's is made
+# so.
+PREFIX=cli_timing.
+. tests/lib_cli.sh
+
+# run --json: f_max is 1e6 / ps and items/s f_max / cycles per item;
+# the streamed run (a vector file) and the in-memory one (with a dump)
+# give the same path
+"$S" run horner3 --json >"$T/j1" 2>"$T/err"
+"$S" run horner3 --json --vcd "$T/h.vcd" >"$T/j2" 2>>"$T/err"
+awk '/"critical_path"/ { n = split($0, a, /[:,]/); lv = a[3] + 0; ps = a[5] + 0; cp = $0 }
+     /"cycles_per_item"/ { split($0, a, ":"); cpi = a[2] + 0 }
+     /"fmax_mhz"/ { split($0, a, ":"); f = a[2] + 0 }
+     /"items_per_s"/ { split($0, a, ":"); ips = a[2] + 0 }
+     END { ok = lv > 0 && ps > 0 && cp ~ /"signals": \["[a-z]/ && f > 0 && (f - 1e6 / ps) ^ 2 < 1e-12 * f * f &&
+                (ips - f * 1e6 / cpi) ^ 2 < 1e-12 * ips * ips
+           exit ok ? 0 : 1 }' "$T/j1" && ok run_json_fields || fail run_json_fields "$(grep -A3 critical_path "$T/j1") $(cat "$T/err")"
+[ "$(grep '"critical_path"' "$T/j1")" = "$(grep '"critical_path"' "$T/j2")" ] && [ -n "$(grep '"critical_path"' "$T/j1")" ] &&
+    ok run_stream_same_path || fail run_stream_same_path "$(grep critical_path "$T/j1" "$T/j2")"
+"$S" run horner3 >"$T/out" 2>"$T/err"
+grep -q '^critical path [1-9][0-9]* levels, [0-9]* ps (.* -> .*), f_max [0-9]* MHz, .* M items/s$' "$T/out" &&
+    ok run_table_line || fail run_table_line "$(sed -n 1,5p "$T/out")"
+
+command -v yosys >/dev/null 2>&1 || { for t in synth_paths yosys_rank yosys_ratio_band; do echo "skip ${PREFIX}$t: yosys not installed"; done; exit 0; }
+case "${TST_BUILD:-}" in *-asan) echo "skip ${PREFIX}yosys_rank: runs in the plain build only"; exit 0 ;; esac
+
+# synth prints both path lengths and their ratio
+"$S" synth div3 --width 8 >"$T/out" 2>"$T/err"
+grep -q '^  Yosys  *[1-9][0-9]* gates$' "$T/out" && grep -q '^  shadesim  *[1-9][0-9]* levels, [0-9]* ps' "$T/out" &&
+    grep -q '^  ratio  .*shadesim levels / Yosys gates' "$T/out" && ok synth_paths || fail synth_paths "$(cat "$T/out" "$T/err")"
+
+units=$("$S" list 2>/dev/null | sed -n 's/^\([a-z0-9_]*\) — .*/\1/p')
+: >"$T/designs"
+for w in 8 16 24; do
+    mkdir -p "$T/w$w"
+    for u in $units; do
+        # a design the export refuses (a logic element too wide to tabulate) is left out
+        "$S" verilog "$u" --width "$w" -o "$T/w$w" >/dev/null 2>&1 && echo "$u $w" >>"$T/designs"
+    done
+done
+# `shadesim synth` itself, two at a time (one per core): it prints both
+# path lengths, Yosys's exactly as a user's `synth` run gets it.
+xargs -P 2 -L 1 sh -c '"$0" synth "$2" --width "$3" >"$1/s_$2_$3.txt" 2>&1' "$S" "$T" <"$T/designs"
+: >"$T/pairs"
+while read -r u w; do
+    f="$T/s_${u}_$w.txt"
+    y=$(sed -n 's/^  Yosys  *\([0-9]*\) gates$/\1/p' "$f")
+    l=$(sed -n 's/^  shadesim  *\([0-9]*\) levels, \([0-9]*\) ps.*/\1 \2/p' "$f")
+    echo "$u $w ${y:-?} ${l:-? ?}" >>"$T/pairs"
+done <"$T/designs"
+
+# Spearman's rho (ranks with ties averaged) and the ratio's range
+awk -v table="${TIMING_TABLE:-}" '
+function rank(v, r, n,   i, j, k, t, idx) {
+    for (i = 1; i <= n; i++) idx[i] = i
+    for (i = 2; i <= n; i++) for (j = i; j > 1 && v[idx[j - 1]] > v[idx[j]]; j--) { t = idx[j]; idx[j] = idx[j - 1]; idx[j - 1] = t }
+    for (i = 1; i <= n; i = j + 1) {
+        for (j = i; j < n && v[idx[j + 1]] == v[idx[i]]; j++) ;
+        for (k = i; k <= j; k++) r[idx[k]] = (i + j) / 2
+    }
+}
+$3 !~ /^[0-9]+$/ || $4 !~ /^[0-9]+$/ { bad = bad " " $1 "@" $2; next }
+{ n++; u[n] = $1; w[n] = $2; y[n] = $3; s[n] = $4; ps[n] = $5; q = $4 / $3
+  if (n == 1 || q < lo) lo = q; if (n == 1 || q > hi) hi = q }
+END {
+    if (bad != "" || n < 3) { printf "FAIL cli_timing.yosys_rank: no figures for%s\n", bad; exit }
+    rank(y, ry, n); rank(s, rs, n)
+    for (i = 1; i <= n; i++) { my += ry[i] / n; ms += rs[i] / n }
+    for (i = 1; i <= n; i++) { c += (ry[i] - my) * (rs[i] - ms); a += (ry[i] - my) ^ 2; b += (rs[i] - ms) ^ 2 }
+    rho = c / sqrt(a * b)
+    if (table != "") {
+        printf "| unit | width | Yosys ltp | shadesim levels | shadesim ps | levels / ltp |\n|---|---:|---:|---:|---:|---:|\n" >table
+        for (i = 1; i <= n; i++) printf "| %s | %d | %d | %d | %d | %.2f |\n", u[i], w[i], y[i], s[i], ps[i], s[i] / y[i] >table
+        printf "\n%d designs: Spearman rank correlation %.3f, levels / ltp %.2f to %.2f\n", n, rho, lo, hi >table
+    }
+    if (rho >= 0.8) printf "ok cli_timing.yosys_rank\n"
+    else printf "FAIL cli_timing.yosys_rank: Spearman %.3f over %d designs (needs >= 0.8)\n", rho, n
+    if (lo >= 0.8 && hi <= 2.4) printf "ok cli_timing.yosys_ratio_band\n"
+    else printf "FAIL cli_timing.yosys_ratio_band: levels / ltp %.2f to %.2f, outside 0.8 to 2.4\n", lo, hi
+}' "$T/pairs"

@@ -1,0 +1,186 @@
+/* test_timing.c - sim_timing_analyze on small designs built by hand, each
+ * against levels, picoseconds and paths worked out here from the delay
+ * model's definitions (docs/timing.md) and the cell constants read from
+ * the Liberty file (sim/sim_delay.h). */
+#include "tests/tst.h"
+#include "sim/sim_prim.h"
+#include "sim/sim_timing.h"
+
+static const sim_fmt F8 = { .is_signed = 1, .ibits = 4, .fbits = 4, .width = 8 };   /* s4.4 */
+static const sim_fmt U1 = { .is_signed = 0, .ibits = 1, .fbits = 0, .width = 1 };
+static const sim_fmt U3 = { .is_signed = 0, .ibits = 3, .fbits = 0, .width = 3 };
+
+/* An 8-bit ripple-carry adder from its operands' low bits to its top sum
+ * bit: bit 0's carry (B -> CO), six carries (CI -> CO), the top sum (CI -> S). */
+#define ADD8_PS (SIM_PS_FA_AB_CO + 6 * SIM_PS_FA_CO + SIM_PS_FA_S)
+
+static void path_is(const sim_timing *t, int n, const char *const *names)
+{
+    TST_EQ_INT(t->npath, n);
+    for (int i = 0; i < n && i < t->npath; i++) TST_EQ_STR(t->path[i]->name, names[i]);
+}
+
+static sim_ctx *fresh(sim_signal **clk)
+{
+    sim_ctx *c = sim_new();
+    *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    return c;
+}
+
+/* r1, r2 -> y = r1 + r2 (s4.4: 8 bits, the carry out dropped) -> r3. */
+static void t_reg_add_reg(void)
+{
+    sim_signal *clk;
+    sim_ctx *c = fresh(&clk);
+    sim_signal *x = sim_signal_new(c, NULL, "x", F8, SIM_KIND_INPUT);
+    sim_signal *r1 = sim_reg(c, NULL, "r1", F8, clk, x, NULL, NULL, 0);
+    sim_signal *r2 = sim_reg(c, NULL, "r2", F8, clk, x, NULL, NULL, 0);
+    sim_signal *y = sim_add(c, NULL, "y", F8, r1, r2);
+    sim_reg(c, NULL, "r3", F8, clk, y, NULL, NULL, 0);
+    sim_timing t;
+    char err[200];
+    TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
+    TST_EQ_INT(t.levels, 2 * (8 - 1));
+    TST_NEAR(t.ps, SIM_PS_DFF_CQ + ADD8_PS + SIM_PS_DFF_SU, 1e-9);
+    TST_NEAR(t.fmax_mhz, 1e6 / (SIM_PS_DFF_CQ + ADD8_PS + SIM_PS_DFF_SU), 1e-9);
+    path_is(&t, 3, (const char *const[]){ "r1", "y", "r3" });
+    sim_free(c);
+
+    /* the same with a load enable on r3: its MUX2 before D */
+    c = fresh(&clk);
+    x = sim_signal_new(c, NULL, "x", F8, SIM_KIND_INPUT);
+    sim_signal *e = sim_signal_new(c, NULL, "e", U1, SIM_KIND_INPUT);
+    r1 = sim_reg(c, NULL, "r1", F8, clk, x, NULL, NULL, 0);
+    r2 = sim_reg(c, NULL, "r2", F8, clk, x, NULL, NULL, 0);
+    y = sim_add(c, NULL, "y", F8, r1, r2);
+    sim_reg(c, NULL, "r3", F8, clk, y, e, NULL, 0);
+    TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
+    TST_EQ_INT(t.levels, 2 * (8 - 1) + 1);
+    TST_NEAR(t.ps, SIM_PS_DFF_CQ + ADD8_PS + SIM_PS_MUX2 + SIM_PS_DFF_SU, 1e-9);
+    sim_free(c);
+}
+
+/* A 5:1 multiplexer from registers, select from a register: three MUX2
+ * levels, the first from the select. */
+static void t_mux_tree(void)
+{
+    sim_signal *clk;
+    sim_ctx *c = fresh(&clk);
+    sim_signal *x = sim_signal_new(c, NULL, "x", F8, SIM_KIND_INPUT);
+    sim_signal *xs = sim_signal_new(c, NULL, "xs", U3, SIM_KIND_INPUT);
+    sim_signal *sel = sim_reg(c, NULL, "sel", U3, clk, xs, NULL, NULL, 0);
+    sim_signal *q[5];
+    static const char *const qn[5] = { "q0", "q1", "q2", "q3", "q4" };
+    for (int i = 0; i < 5; i++) q[i] = sim_reg(c, NULL, qn[i], F8, clk, x, NULL, NULL, 0);
+    sim_signal *m = sim_mux(c, NULL, "m", F8, sel, 5, q);
+    sim_reg(c, NULL, "out", F8, clk, m, NULL, NULL, 0);
+    sim_timing t;
+    char err[200];
+    TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
+    TST_EQ_INT(t.levels, 3);
+    TST_NEAR(t.ps, SIM_PS_DFF_CQ + SIM_PS_MUX2_S + 2 * SIM_PS_MUX2 + SIM_PS_DFF_SU, 1e-9);
+    path_is(&t, 3, (const char *const[]){ "sel", "m", "out" });
+    sim_free(c);
+}
+
+/* An 8 x 8 array multiplier between registers: AND2, 7 carry-save rows
+ * (sum outputs), a 7-bit ripple; truncated and wrapped, no other logic.
+ * Rounded to nearest, the incrementer's top sum bit after it (its carry
+ * chain starts on the product's low bits, 14 levels earlier, and ends
+ * sooner). */
+static void t_multiplier(void)
+{
+    for (int rnd = 0; rnd < 2; rnd++) {
+        sim_signal *clk;
+        sim_ctx *c = fresh(&clk);
+        sim_set_quant(c, rnd ? SIM_RND_HALF_UP : SIM_RND_TRUNC, SIM_OVF_WRAP);
+        sim_signal *x = sim_signal_new(c, NULL, "x", F8, SIM_KIND_INPUT);
+        sim_signal *a = sim_reg(c, NULL, "a", F8, clk, x, NULL, NULL, 0);
+        sim_signal *b = sim_reg(c, NULL, "b", F8, clk, x, NULL, NULL, 0);
+        sim_signal *m = sim_mul(c, NULL, "m", F8, a, b);
+        sim_reg(c, NULL, "p", F8, clk, m, NULL, NULL, 0);
+        sim_timing t;
+        char err[200];
+        TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
+        double mul = SIM_PS_AND2 + 7 * SIM_PS_FA_S + 7 * SIM_PS_FA_CO;
+        TST_EQ_INT(t.levels, 1 + 2 * 7 + 2 * 7 + rnd);
+        TST_NEAR(t.ps, SIM_PS_DFF_CQ + mul + (rnd ? SIM_PS_HA_S : 0) + SIM_PS_DFF_SU, 1e-9);
+        path_is(&t, 3, (const char *const[]){ "a", "m", "p" });
+        sim_free(c);
+    }
+}
+
+/* Two chained adders and a short branch into a 2:1 mux and a register:
+ * a = x + y, b = a + y, s = p ? x : 0, z = sel ? s : b. The second adder
+ * starts on a's low bits while a's carry still ripples, so b's top bit is
+ * a's top bit plus one full adder's sum (2 levels), not plus a whole
+ * adder: 14 + 2 levels. */
+static void t_branches(void)
+{
+    sim_signal *clk;
+    sim_ctx *c = fresh(&clk);
+    sim_signal *x = sim_signal_new(c, NULL, "x", F8, SIM_KIND_INPUT);
+    sim_signal *y = sim_signal_new(c, NULL, "y", F8, SIM_KIND_INPUT);
+    sim_signal *p = sim_signal_new(c, NULL, "p", U1, SIM_KIND_INPUT);
+    sim_signal *sel = sim_signal_new(c, NULL, "sel", U1, SIM_KIND_INPUT);
+    sim_signal *a = sim_add(c, NULL, "a", F8, x, y);
+    sim_signal *b = sim_add(c, NULL, "b", F8, a, y);
+    sim_signal *s = sim_bk(c, NULL, "s", F8, p, x);
+    sim_signal *z = sim_mux(c, NULL, "z", F8, sel, 2, (sim_signal *const[]){ b, s });
+    sim_reg(c, NULL, "out", F8, clk, z, NULL, NULL, 0);
+    sim_timing t;
+    char err[200];
+    TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
+    TST_EQ_INT(t.levels, 14 + 2 + 1);
+    TST_NEAR(t.ps, ADD8_PS + SIM_PS_FA_S + SIM_PS_MUX2_S + SIM_PS_DFF_SU, 1e-9);
+    path_is(&t, 5, (const char *const[]){ "x", "a", "b", "z", "out" });
+    sim_free(c);
+}
+
+/* y = x + w with w = y: a combinational loop is an error naming it. */
+static void t_loop(void)
+{
+    sim_signal *clk;
+    sim_ctx *c = fresh(&clk);
+    sim_signal *x = sim_signal_new(c, NULL, "x", F8, SIM_KIND_INPUT);
+    sim_signal *w = sim_signal_new(c, NULL, "w", F8, SIM_KIND_WIRE);
+    sim_signal *y = sim_add(c, NULL, "y", F8, x, w);
+    sim_assign(c, w, y);
+    sim_timing t;
+    char err[200] = "";
+    TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), -1);
+    TST_CHECK(strstr(err, "combinational loop") != NULL, "%s", err);
+    sim_free(c);
+}
+
+/* Port to port, no register: x and x/2 (a shift: wires) into an adder,
+ * its output a port. No clock-to-q, no setup; a constant starts no path. */
+static void t_port_to_port(void)
+{
+    sim_signal *clk;
+    sim_ctx *c = fresh(&clk);
+    sim_signal *x = sim_signal_new(c, NULL, "x", F8, SIM_KIND_INPUT);
+    sim_signal *h = sim_shift(c, NULL, "h", F8, x, -1);
+    sim_signal *y = sim_add(c, NULL, "y", F8, x, h);
+    sim_signal *k1 = sim_const(c, NULL, "k1", F8, 1.5), *k2 = sim_const(c, NULL, "k2", F8, 2.0);
+    sim_signal *kk = sim_mul(c, NULL, "kk", F8, k1, k2);     /* constants only: no path */
+    (void)y; (void)kk;
+    sim_timing t;
+    char err[200];
+    TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
+    TST_EQ_INT(t.levels, 14);
+    TST_NEAR(t.ps, ADD8_PS, 1e-9);
+    path_is(&t, 2, (const char *const[]){ "x", "y" });
+    sim_free(c);
+}
+
+int main(void)
+{
+    TST_RUN(t_reg_add_reg);
+    TST_RUN(t_mux_tree);
+    TST_RUN(t_multiplier);
+    TST_RUN(t_branches);
+    TST_RUN(t_loop);
+    TST_RUN(t_port_to_port);
+    TST_EXIT();
+}
