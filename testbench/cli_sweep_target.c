@@ -166,6 +166,11 @@ int sweep_write_target_json(const tb_sweep *s, const target_info *t, oset *os)
     base_json_num(f, t->margin, 17);
     fputs(", \"goal\": ", f);
     base_json_num(f, t->goal, 17);
+    /* --min-throughput, --max-energy: null when not given */
+    fputs("},\n  \"limits\": {\"min_items_per_s\": ", f);
+    base_json_num(f, s->spec.ppa.min_items_per_s > 0 ? s->spec.ppa.min_items_per_s : NAN, 17);
+    fputs(", \"max_energy_pj_per_item\": ", f);
+    base_json_num(f, s->spec.ppa.max_energy_pj > 0 ? s->spec.ppa.max_energy_pj : NAN, 17);
     fprintf(f, "},\n  \"rule\": \"metric <= goal (the target less the margin), every output within its bound, no more "
                "overflows than the uniform design%s\",\n  \"held_out\": {\"seed\": %llu, \"vectors\": %zu, \"rule\": "
                "\"metric <= target, every output within its bound, no more overflows than the uniform design on the "

@@ -75,8 +75,11 @@ met=$(sed -n 2p "$T/t1/target.csv" | cut -d, -f"$(head -1 "$T/t1/target.csv" | t
 got=$(sed -n 2p "$T/t1/target.csv" | cut -d, -f"$cx")
 check min_throughput_honoured [ "$rc" -le 1 ] && { [ "$met" = false ] || awk -v g="$got" -v l="$lim" 'BEGIN { exit !(g >= l) }'; } \
     && ok min_throughput_chosen_meets_it || fail min_throughput_chosen_meets_it "met=$met items/s=$got limit=$lim"
-grep -q "at least $lim items per second" "$T/t1/target.json" && ok min_throughput_in_json_rule \
-    || fail min_throughput_in_json_rule
+jl=$(sed -n 's/.*"limits": {"min_items_per_s": \([^,]*\),.*/\1/p' "$T/t1/target.json")
+awk -v a="$jl" -v b="$lim" 'BEGIN { exit !(a == b) }' && grep -q '"rule": ".*at least .* items per second' "$T/t1/target.json" \
+    && ok min_throughput_in_json || fail min_throughput_in_json "limits: '$jl', asked $lim"
+grep -q '"limits": {"min_items_per_s": null, "max_energy_pj_per_item": null}' "$T/t0/target.json" \
+    && ok no_limits_null_in_json || fail no_limits_null_in_json
 # An impossible limit: nothing meets it.
 "$S" sweep horner3 --widths 8:24 --target-error 1e-3 --min-throughput 1e15 -o "$T/t2" >"$T/t2.out" 2>&1
 check min_throughput_impossible_none_met grep -q "no width in 8..24 meets it" "$T/t2.out"
