@@ -218,6 +218,7 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
             (unsigned long long)r->hwst.clocks, u->name, (unsigned long long)r->hwst.overflows);
     snprintf(a, sizeof a, "%.0f GE", r->hwst.area_ge);
     fprintf(f, "  %-22s %-14s %s\n", "area", a, "gate equivalents of the instantiated unit");
+    tb_scene_speed_print(f, r);
     print_ops(f, d, r);
     if (dir) fprintf(f, "  %-22s %s/ (ref.png hw.png err-x%d.png degree.png region.png scene.json)\n", "images", dir,
                      tb_scene_err_scale(r));
@@ -248,20 +249,28 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
     };
     int n = (int)(sizeof cfgs / sizeof cfgs[0]);
     if (json) puts("[");
-    else printf("%-10s %-46s %11s %10s %9s %9s %13s %9s\n", "config", "policy, divide-by-3 network", "NMSE", "PSNR",
-                "speed-up", "long ops", "clocks/pixel", "area GE");
+    else printf("%-10s %-46s %11s %10s %9s %9s %13s %9s %8s %9s %7s\n", "config", "policy, divide-by-3 network", "NMSE",
+                "PSNR", "speed-up", "long ops", "clocks/pixel", "area GE", "f_max", "Mpx/s", "pJ/px");
+    double ref_max = NAN, ref_e = NAN;
     for (int i = 0; i < n; i++) {
         scn_desc d = *d0;
         d.policy = (scn_policy)cfgs[i].policy;
         d.terms = cfgs[i].terms;
         if (i == 0) d.series = DIV3_PAPER;     /* the paper's x/2 - x/8 - x/32 - x/128 */
-        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 0 };
+        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 1 };
         tb_scene_result r;
         char err[600], sub[4200];
         progress(cfgs[i].name);
         int t = tb_scene_render(&d, m, &o, &r, err, sizeof err);
         progress("");
         if (t != TB_OK) { cli_usage_error("%s", err); return t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL; }
+        if (tb_scene_speed_of(&r, d.fmt_width, err, sizeof err)) {
+            tb_scene_free(&r);
+            (void)cli_usage_error("%s", err);
+            return CLI_FAIL;
+        }
+        ref_max = r.speed.ref_pixels_per_s_max;
+        ref_e = r.speed.ref_energy_pj_per_pixel_min;
         snprintf(sub, sizeof sub, "%s/%s", dir, cfgs[i].name);
         if (tb_scene_write(&d, &r, sub, err, sizeof err)) { tb_scene_free(&r); return cli_usage_error("%s", err); }
         if (json) {
@@ -272,13 +281,20 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
             fmt_nmse(a, sizeof a, r.nmse);
             fmt_psnr(b, sizeof b, r.psnr);
             snprintf(what, sizeof what, "%s, /3 network %d terms", scn_policy_name(d.policy), d.terms);
-            printf("%-10s %-46s %11s %10s %8.2fx %8.2fx %13.3f %9.0f  %s\n", cfgs[i].name, what, a, b, r.speedup,
-                   r.speedup_long, r.clocks_per_pixel, r.hwst.area_ge, r.nmse <= COMPARE_TARGET ? "NMSE <= 1e-4" : "NMSE > 1e-4");
+            printf("%-10s %-46s %11s %10s %8.2fx %8.2fx %13.3f %9.0f %4.0f MHz %9.4g %7.3g  %s\n", cfgs[i].name, what, a,
+                   b, r.speedup, r.speedup_long, r.clocks_per_pixel, r.hwst.area_ge, r.speed.hw.fmax_mhz,
+                   r.speed.pixels_per_s / 1e6, r.speed.energy_pj_per_pixel,
+                   r.nmse <= COMPARE_TARGET ? "NMSE <= 1e-4" : "NMSE > 1e-4");
         }
         tb_scene_free(&r);
     }
     if (json) puts("]");
-    else printf("images: %s/{paper,corrected,auto}/ (ref.png hw.png err-x*.png degree.png region.png scene.json)\n", dir);
+    else {
+        /* The same reference for every row: the divider bounds it. */
+        printf("reference: <= %.4g M pixels/s, >= %.3g pJ/pixel (its divides on unit div; docs/scenes.md)\n",
+               ref_max / 1e6, ref_e);
+        printf("images: %s/{paper,corrected,auto}/ (ref.png hw.png err-x*.png degree.png region.png scene.json)\n", dir);
+    }
     return CLI_OK;
 }
 
@@ -348,10 +364,14 @@ int cli_scene(int argc, char **argv)
         if (t == TB_BADINPUT) rc = cli_usage_error("%s", err);
         else if (t == TB_FAIL) { if (err[0]) (void)cli_usage_error("%s", err); rc = CLI_FAIL; }
     } else {
-        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 0 };
+        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 1 };
         tb_scene_result r;
         progress("rendering...");
         int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
+        if (t == TB_OK && tb_scene_speed_of(&r, d.fmt_width, err, sizeof err)) {
+            tb_scene_free(&r);
+            t = TB_FAIL;
+        }
         progress("");
         if (t != TB_OK) {
             (void)cli_usage_error("%s", err);

@@ -718,6 +718,7 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     fputs(",\n  \"long_ops_ref\": ", f); base_json_num(f, r->long_ref, 17);
     fputs(",\n  \"long_ops_hw\": ", f); base_json_num(f, r->long_hw, 17);
     fputs(",\n  \"speedup_long\": ", f); base_json_num(f, r->speedup_long, 17);
+    tb_scene_speed_json(f, r);
     fputs("\n}\n", f);
     return ferror(f) ? -1 : 0;
 }

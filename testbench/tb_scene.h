@@ -14,6 +14,7 @@
 #define TB_SCENE_H
 #include "scene/scene.h"
 #include "testbench/tb_span.h"
+#include "testbench/tb.h"
 
 typedef struct tb_scene_opts {
     int         jobs;        /* threads (rows split into bands); output identical for any value */
@@ -27,6 +28,27 @@ typedef struct tb_scene_opts {
                               * and the render pays nothing for it */
 } tb_scene_opts;
 
+/* Speed and energy of a render in hardware terms (docs/timing.md,
+ * docs/scenes.md "Speed and energy"): the span unit's critical path and
+ * f_max, pixels per second at it, energy per pixel (when the render
+ * counted it: tb_scene_opts.energy); and for the per-pixel reference, what
+ * the tool can build of it: the divider (unit div at the scene's width),
+ * which bounds a per-pixel shader that divides as often as the reference
+ * does from above in speed and from below in energy (its square roots and
+ * powers, which no unit builds, would only add to them). */
+typedef struct tb_scene_speed {
+    tb_ppa   hw;                   /* the span unit: levels, crit_ps, path, fmax_mhz */
+    double   pixels_per_s;         /* f_max / clocks per pixel */
+    double   energy_pj_per_pixel;  /* NaN when the render did not count it */
+    /* the reference's bound */
+    double   ref_divs;             /* divides per covered pixel (ops_ref) */
+    double   div_clocks;           /* the div unit's clocks per division */
+    tb_ppa   div;                  /* its critical path, f_max, energy per division */
+    double   ref_pixels_per_s_max;         /* div's divisions per second / ref_divs */
+    double   ref_energy_pj_per_pixel_min;  /* div's energy per division x ref_divs */
+    /* the method's shaded nodes divide too (ops_hw): on the same divider */
+    double   node_divs, node_pixels_per_s_max;
+} tb_scene_speed;
 typedef struct tb_scene_result {
     int       w, h;
     size_t    covered;                /* pixels covered by the mesh */
@@ -57,7 +79,18 @@ typedef struct tb_scene_result {
     double    long_ref, long_hw, speedup_long;   /* speedup_long = long_ref / long_hw */
     size_t    nodes_shaded;
     int       heldout;                /* 1: the held-out view was rendered */
+    int       have_speed;             /* speed filled (tb_scene_speed_of) */
+    tb_scene_speed speed;
 } tb_scene_result;
+
+/* Fill r->speed for render r (the unit it instantiated) at the scene's
+ * width, and set r->have_speed; the text table, --compare, --sweep and
+ * scene.json show it then. 0, or -1 with a message. */
+int  tb_scene_speed_of(tb_scene_result *r, int width, char *err, size_t errlen);
+/* Its lines in the scene table, and its members of scene.json (each
+ * after a comma; nothing without r->have_speed). */
+void tb_scene_speed_print(FILE *f, const tb_scene_result *r);
+void tb_scene_speed_json(FILE *f, const tb_scene_result *r);
 
 /* The span unit, configuration and formats a description's policy needs.
  * 0, or -1 with a message. */

@@ -1,7 +1,8 @@
 /* tb_scene_sweep.c - a scene over interval length, degree policy, terms of
- * the divide-by-3 network, width and schedule: sweep.csv, two charts
- * (NMSE against operations per pixel and against clocks per pixel, each
- * with its Pareto front) and a summary.
+ * the divide-by-3 network, width and schedule: sweep.csv, four charts
+ * (NMSE against operations per pixel, clocks per pixel, pixels per second
+ * at the span unit's f_max and energy per pixel, each with its Pareto
+ * front) and a summary.
  *
  * The grid (docs/scenes.md): the product of the axes, in the order
  * schedule, width, policy, L, terms (the last fastest). Default axes:
@@ -56,10 +57,22 @@ typedef struct pt {
     char err[200];
     char unit[32];
     double nmse, psnr, max_abs, cpp, cost_hw, cost_ref, speedup, area, deg2, ops_hw;
+    double fmax, pps, epp;      /* f_max (MHz), pixels per second at it, energy per pixel (pJ) */
     int max_err8;
     uint64_t ovf;
-    int front_ops, front_clk, jump_ops, jump_clk;
+    int front[4], jump[4];      /* by metric (M_*) */
 } pt;
+
+/* What a chart and a front set NMSE against. */
+enum { M_OPS, M_CLK, M_SPEED, M_ENERGY, M_N };
+
+/* The metric as drawn, and as minimised (pixels per second: its inverse,
+ * seconds per pixel, so that every front minimises both coordinates). */
+static double m_val(const pt *p, int m)
+{
+    return m == M_OPS ? p->cost_hw : m == M_CLK ? p->cpp : m == M_SPEED ? p->pps : p->epp;
+}
+static double m_key(const pt *p, int m) { return m == M_SPEED ? 1.0 / p->pps : m_val(p, m); }
 
 /* ------------------------------------------------------------------ spec */
 
@@ -181,11 +194,17 @@ static void run_pt(void *ctx, size_t k)
     pt *p = &s->p[s->todo[k]];
     scn_desc dd;
     desc_of(s->d, p, &dd);
-    tb_scene_opts o = { 1, 0, NULL, NULL, s->no_batch, 0 };
+    tb_scene_opts o = { 1, 0, NULL, NULL, s->no_batch, 1 };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     p->status = tb_scene_render_gbuf(&dd, s->g, NULL, NULL, &o, &r, p->err, sizeof p->err);
+    tb_ppa pp;
+    if (p->status == TB_OK && tb_unit_timing(r.unit, &r.cfg, &r.fmts, &pp, p->err, sizeof p->err))
+        p->status = TB_FAIL;
     if (p->status == TB_OK) {
+        p->fmax = pp.fmax_mhz;
+        p->pps = r.clocks_per_pixel > 0 ? pp.fmax_mhz * 1e6 / r.clocks_per_pixel : NAN;
+        p->epp = r.energy_pj_per_pixel;
         p->nmse = r.nmse;
         p->psnr = r.psnr;
         p->max_abs = r.max_abs_err;
@@ -212,9 +231,10 @@ static void run_pt(void *ctx, size_t k)
 
 /* ----------------------------------------------------------------- front */
 
-/* Pareto front of the usable distinct points on (x, nmse), and the points
- * whose NMSE jumps above 10x the front's staircase at their cost. */
-static void fronts(pt *p, size_t n, int clocks)
+/* Pareto front of the usable distinct points on (metric m, nmse), and
+ * the points whose NMSE jumps above 10x the front's staircase at their
+ * cost. */
+static void fronts(pt *p, size_t n, int m)
 {
     if (!n) return;
     double *x = calloc(n, sizeof *x), *y = calloc(n, sizeof *y);
@@ -222,17 +242,16 @@ static void fronts(pt *p, size_t n, int clocks)
     if (!x || !y || !on) { free(x); free(y); free(on); return; }
     for (size_t i = 0; i < n; i++) {
         int use = p[i].same_as < 0 && p[i].status == TB_OK && p[i].ovf == 0;
-        x[i] = use ? (clocks ? p[i].cpp : p[i].cost_hw) : NAN;
+        x[i] = use ? m_key(&p[i], m) : NAN;
         y[i] = use ? p[i].nmse : NAN;
     }
     chart_pareto(x, y, n, on);
     for (size_t i = 0; i < n; i++) {
-        double xi = clocks ? p[i].cpp : p[i].cost_hw, best = INFINITY;
+        double xi = m_key(&p[i], m), best = INFINITY;
         for (size_t j = 0; j < n; j++)
             if (on[j] && x[j] <= xi && y[j] < best) best = y[j];
-        int jump = p[i].status == TB_OK && isfinite(best) && p[i].nmse > 10 * best;
-        if (clocks) { p[i].front_clk = on[i]; p[i].jump_clk = jump; }
-        else { p[i].front_ops = on[i]; p[i].jump_ops = jump; }
+        p[i].front[m] = on[i];
+        p[i].jump[m] = p[i].status == TB_OK && isfinite(best) && p[i].nmse > 10 * best;
     }
     free(x); free(y); free(on);
 }
@@ -245,17 +264,18 @@ static int is_paper(const pt *p)
 
 static int pt_ok(const pt *p) { return p->status == TB_OK; }
 
-static void draw_chart(const scn_desc *d, const pt *p, size_t n, int clocks, const char *path, char *err, size_t errlen,
+static void draw_chart(const scn_desc *d, const pt *p, size_t n, int m, const char *path, char *err, size_t errlen,
                   int *rc)
 {
+    static const char *const what[M_N] = { "operations per pixel", "clocks per pixel", "pixels per second",
+                                           "energy per pixel" };
+    static const char *const xlabel[M_N] = {
+        "operation cost per pixel (weighted, method)", "clocks per pixel of the simulated span unit",
+        "pixels per second at the span unit's f_max", "energy per pixel of the span unit (pJ)" };
     char title[200];
     const char *b = strrchr(d->mesh, '/');
-    snprintf(title, sizeof title, "%.60s %dx%d: NMSE against %s per pixel", b ? b + 1 : d->mesh, d->width, d->height,
-             clocks ? "clocks" : "operations");
-    chart *c = chart_new(title,
-                               clocks ? "clocks per pixel of the simulated span unit"
-                                      : "operation cost per pixel (weighted, method)",
-                               "NMSE vs per-pixel reference");
+    snprintf(title, sizeof title, "%.60s %dx%d: NMSE against %s", b ? b + 1 : d->mesh, d->width, d->height, what[m]);
+    chart *c = chart_new(title, xlabel[m], "NMSE vs per-pixel reference");
     if (!c) { snprintf(err, errlen, "%s: out of memory", path); *rc = -1; return; }
     chart_log_y(c, 1);
     /* The front first (a line under the points), then the marked kinds,
@@ -265,28 +285,26 @@ static void draw_chart(const scn_desc *d, const pt *p, size_t n, int clocks, con
     int s_break = chart_series(c, "breaks: ovf or >10x front", CHART_POINTS);
     int s_pol[SCN_POL__COUNT];
     for (int q = 0; q < SCN_POL__COUNT; q++) s_pol[q] = chart_series(c, scn_policy_name((scn_policy)q), CHART_POINTS);
-    /* Front points in increasing cost. */
+    /* Front points in increasing x as drawn. */
     size_t *idx = malloc((n ? n : 1) * sizeof *idx), nf = 0;
     if (idx) {
         for (size_t i = 0; i < n; i++)
-            if (clocks ? p[i].front_clk : p[i].front_ops) idx[nf++] = i;
+            if (p[i].front[m]) idx[nf++] = i;
         for (size_t a = 1; a < nf; a++)
             for (size_t b = a; b > 0; b--) {
-                double xa = clocks ? p[idx[b]].cpp : p[idx[b]].cost_hw;
-                double xb = clocks ? p[idx[b - 1]].cpp : p[idx[b - 1]].cost_hw;
+                double xa = m_val(&p[idx[b]], m), xb = m_val(&p[idx[b - 1]], m);
                 if (xa < xb || (xa == xb && p[idx[b]].nmse > p[idx[b - 1]].nmse)) {
                     size_t t = idx[b]; idx[b] = idx[b - 1]; idx[b - 1] = t;
                 } else break;
             }
-        for (size_t k = 0; k < nf; k++)
-            chart_point(c, s_front, clocks ? p[idx[k]].cpp : p[idx[k]].cost_hw, p[idx[k]].nmse);
+        for (size_t k = 0; k < nf; k++) chart_point(c, s_front, m_val(&p[idx[k]], m), p[idx[k]].nmse);
         free(idx);
     }
     for (size_t i = 0; i < n; i++) {
         const pt *q = &p[i];
         if (q->same_as >= 0 || !pt_ok(q)) continue;
-        double x = clocks ? q->cpp : q->cost_hw;
-        int brk = q->ovf > 0 || (clocks ? q->jump_clk : q->jump_ops);
+        double x = m_val(q, m);
+        int brk = q->ovf > 0 || q->jump[m];
         if (is_paper(q)) chart_point_label(c, s_paper, x, q->nmse, "paper");
         else if (brk) chart_point(c, s_break, x, q->nmse);
         else if (q->extra) {
@@ -313,7 +331,8 @@ static void write_csv(FILE *f, const pt *p, size_t n)
 {
     fputs("config,policy,L,terms,width,schedule,unit,status,same_as,nmse,psnr,max_abs_err,max_err8,"
           "clocks_per_pixel,ops_per_pixel,cost_per_pixel,cost_ref_per_pixel,speedup,area_ge,overflows,deg2_share,"
-          "front_ops,front_clocks,breaks_ops,breaks_clocks,paper\n", f);
+          "front_ops,front_clocks,breaks_ops,breaks_clocks,paper,fmax_mhz,pixels_per_s,energy_pj_per_pixel,"
+          "front_speed,front_energy\n", f);
     for (size_t i = 0; i < n; i++) {
         const pt *q = &p[i];
         const pt *r = q->same_as >= 0 ? &p[q->same_as] : q;
@@ -326,10 +345,12 @@ static void write_csv(FILE *f, const pt *p, size_t n)
             cnum(f, r->cpp); cnum(f, r->ops_hw); cnum(f, r->cost_hw); cnum(f, r->cost_ref); cnum(f, r->speedup); cnum(f, r->area);
             fprintf(f, ",%llu", (unsigned long long)r->ovf);
             cnum(f, r->deg2);
-            fprintf(f, ",%d,%d,%d,%d,%d\n", q->front_ops, q->front_clk, r->ovf > 0 || r->jump_ops,
-                    r->ovf > 0 || r->jump_clk, is_paper(q));
+            fprintf(f, ",%d,%d,%d,%d,%d", q->front[M_OPS], q->front[M_CLK], r->ovf > 0 || r->jump[M_OPS],
+                    r->ovf > 0 || r->jump[M_CLK], is_paper(q));
+            cnum(f, r->fmax); cnum(f, r->pps); cnum(f, r->epp);
+            fprintf(f, ",%d,%d\n", q->front[M_SPEED], q->front[M_ENERGY]);
         } else {
-            fprintf(f, ",,,,,,,,,,,,,,,,%d\n", is_paper(q));
+            fprintf(f, ",,,,,,,,,,,,,,,,%d,,,,,\n", is_paper(q));
         }
     }
 }
@@ -411,8 +432,7 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
     sw.g = &g;
     base_par_for(sw.ntodo, jobs, run_pt, &sw);
     if (sw.tty) fputs("\r\033[K", stderr);
-    fronts(p, n, 0);
-    fronts(p, n, 1);
+    for (int m = 0; m < M_N; m++) fronts(p, n, m);
 
     size_t nfail = 0, paper = (size_t)-1, best = (size_t)-1, cheap = (size_t)-1;
     for (size_t i = 0; i < n; i++) {
@@ -427,18 +447,17 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
             cheap = i;
     }
 
-    char paths[3][1100];
+    static const char *const files[1 + M_N] = { "sweep.csv", "sweep_ops.svg", "sweep_clocks.svg", "sweep_speed.svg",
+                                                "sweep_energy.svg" };
+    char paths[1 + M_N][1100];
     if (outdir) {
-        snprintf(paths[0], sizeof paths[0], "%s/sweep.csv", outdir);
-        snprintf(paths[1], sizeof paths[1], "%s/sweep_ops.svg", outdir);
-        snprintf(paths[2], sizeof paths[2], "%s/sweep_clocks.svg", outdir);
+        for (int j = 0; j < 1 + M_N; j++) snprintf(paths[j], sizeof paths[j], "%s/%s", outdir, files[j]);
         base_out *o = base_out_open(paths[0], err, errlen);
         if (!o) { rc = TB_BADINPUT; goto done; }
         write_csv(base_out_file(o), p, n);
         if (base_out_close(o, err, errlen)) { rc = TB_BADINPUT; goto done; }
         int crc = 0;
-        draw_chart(d, p, n, 0, paths[1], err, errlen, &crc);
-        if (!crc) draw_chart(d, p, n, 1, paths[2], err, errlen, &crc);
+        for (int m = 0; m < M_N && !crc; m++) draw_chart(d, p, n, m, paths[1 + m], err, errlen, &crc);
         if (crc) { rc = TB_BADINPUT; goto done; }
     }
 
@@ -462,36 +481,38 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
             fputs(", \"clocks_per_pixel\": ", out); base_json_num(out, q->cpp, 9);
             fputs(", \"speedup\": ", out); base_json_num(out, q->speedup, 9);
             fputs(", \"area_ge\": ", out); base_json_num(out, q->area, 9);
+            fputs(", \"fmax_mhz\": ", out); base_json_num(out, q->fmax, 9);
+            fputs(", \"pixels_per_s\": ", out); base_json_num(out, q->pps, 9);
+            fputs(", \"energy_pj_per_pixel\": ", out); base_json_num(out, q->epp, 9);
             fputs("},\n", out);
         }
         fputs("    \"files\": [", out);
-        for (int j = 0; outdir && j < 3; j++) fprintf(out, "%s\"%s\"", j ? ", " : "", paths[j]);
+        for (int j = 0; outdir && j < 1 + M_N; j++) fprintf(out, "%s\"%s\"", j ? ", " : "", paths[j]);
         fputs("]\n  }\n}\n", out);
     } else {
         fprintf(out, "scene sweep: %s %dx%d, %zu grid points, %zu distinct renders\n", d->mesh, d->width,
                 d->height, n, sw.ntodo);
         if (nfail) fprintf(out, "  %zu renders failed (their rows say so)\n", nfail);
-        fprintf(out, "  %-16s %3s %5s %5s %-6s %11s %9s %9s %8s %9s %5s\n", "policy", "L", "terms", "width",
-                "sched", "NMSE", "cost/px", "clk/px", "speedup", "area GE", "ovf");
+        fprintf(out, "  %-16s %3s %5s %5s %-6s %11s %9s %9s %8s %9s %5s %6s %7s %6s\n", "policy", "L", "terms",
+                "width", "sched", "NMSE", "cost/px", "clk/px", "speedup", "area GE", "ovf", "MHz", "Mpx/s", "pJ/px");
         const size_t sel[3] = { paper, cheap, best };
         const char *const nm[3] = { "paper", "cheapest <=1e-4", "lowest NMSE" };
         for (int j = 0; j < 3; j++) {
             if (sel[j] == (size_t)-1) { fprintf(out, "  %s: not in the grid\n", nm[j]); continue; }
             const pt *q = &p[sel[j]];
-            fprintf(out, "  %-16s %3d %5d %5d %-6s %11.4g %9.3g %9.3g %8.3g %9.0f %5llu  %s\n",
+            fprintf(out, "  %-16s %3d %5d %5d %-6s %11.4g %9.3g %9.3g %8.3g %9.0f %5llu %6.0f %7.4g %6.3g  %s\n",
                     scn_policy_name((scn_policy)q->pol), q->L, q->terms, q->width, q->sched, q->nmse, q->cost_hw,
-                    q->cpp, q->speedup, q->area, (unsigned long long)q->ovf, nm[j]);
+                    q->cpp, q->speedup, q->area, (unsigned long long)q->ovf, q->fmax, q->pps / 1e6, q->epp, nm[j]);
         }
-        size_t nfo = 0, nfc = 0, nb = 0;
+        size_t nf[M_N] = { 0 }, nb = 0;
         for (size_t i = 0; i < n; i++) {
             if (p[i].same_as >= 0 || p[i].status != TB_OK) continue;
-            nfo += (size_t)p[i].front_ops;
-            nfc += (size_t)p[i].front_clk;
-            nb += p[i].ovf > 0 || p[i].jump_ops;
+            for (int m = 0; m < M_N; m++) nf[m] += (size_t)p[i].front[m];
+            nb += p[i].ovf > 0 || p[i].jump[M_OPS];
         }
-        fprintf(out, "  Pareto front: %zu points (operations), %zu (clocks); %zu points break "
-                "(overflow or NMSE > 10x the front)\n", nfo, nfc, nb);
-        for (int j = 0; outdir && j < 3; j++) fprintf(out, "wrote %s\n", paths[j]);
+        fprintf(out, "  Pareto front: %zu points (operations), %zu (clocks), %zu (pixels/s), %zu (energy); %zu points "
+                "break (overflow or NMSE > 10x the front)\n", nf[M_OPS], nf[M_CLK], nf[M_SPEED], nf[M_ENERGY], nb);
+        for (int j = 0; outdir && j < 1 + M_N; j++) fprintf(out, "wrote %s\n", paths[j]);
     }
     if (nfail) {
         rc = TB_FAIL;
