@@ -12,6 +12,7 @@
 #include "chart/chart.h"
 #include "vectors/claims.h"
 #include "testbench/tb_scene_claims.h"
+#include "testbench/tb_factor_claims.h"
 #include "vectors/ref_brdf.h"
 #include <errno.h>
 #include <stdarg.h>
@@ -400,7 +401,7 @@ static int write_charts(const char *dir, char paths[][600], int *np)
 
 typedef struct report {
     claim_result rows[CLAIMS_MAX];
-    const char *kind[CLAIMS_MAX];     /* "accuracy", "speed_hw", "scene" */
+    const char *kind[CLAIMS_MAX];     /* "accuracy", "speed_hw", "factor", "scene" */
     size_t n;
     hw_cost hc;
     bands fb[N_APPROX];
@@ -446,6 +447,12 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
           "  intermediate cos^(2/m^2-4) and cos^(2/a^2) forms computed exactly.\n\n", f);
     for (size_t i = 0; i < rp->n; i++)
         if (!strcmp(rp->kind[i], "speed_hw")) print_row(f, &rp->rows[i]);
+
+    fprintf(f, "Claims of the factorization paper: Ward (isotropic) factorized at 32x32, as `shadesim factor\n"
+               "ward --claims --scene %s --scene-res %d` measures them\n\n", TB_FACTOR_CLAIMS_SCENE,
+            TB_FACTOR_CLAIMS_RES);
+    for (size_t i = 0; i < rp->n; i++)
+        if (!strcmp(rp->kind[i], "factor")) print_row(f, &rp->rows[i]);
 
     fprintf(f, "Claims on the face scene (%dx%d) through the simulated hardware path\n\n", TB_SCENE_CLAIMS_RES,
             TB_SCENE_CLAIMS_RES);
@@ -541,7 +548,8 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
 /* ------------------------------------------------------------------ rows */
 
 /* Every row of the claims table: accuracy, the hardware speed claims at
- * width, the face scene's; kinds "accuracy", "speed_hw", "scene". */
+ * width, the factorization paper's, the face scene's; kinds "accuracy",
+ * "speed_hw", "factor", "scene". */
 static size_t claims_rows(claim_result *rows, const char **kind, int width, hw_cost *hc, char *err, size_t errlen)
 {
     size_t n = claims_compute(rows, CLAIMS_MAX);
@@ -550,6 +558,13 @@ static size_t claims_rows(claim_result *rows, const char **kind, int width, hw_c
     if (n + 2 <= CLAIMS_MAX) {
         size_t k = speed_hw_rows(hc, &rows[n]);
         for (size_t i = 0; i < k; i++) kind[n + i] = "speed_hw";
+        n += k;
+    }
+    if (n + TB_FACTOR_CLAIMS_ROWS <= CLAIMS_MAX) {
+        char ferr[300];
+        size_t k = tb_factor_claims(&rows[n], CLAIMS_MAX - n, ferr, sizeof ferr);
+        if (!k) { snprintf(err, errlen, "factorization: %s", ferr); return 0; }
+        for (size_t i = 0; i < k; i++) kind[n + i] = "factor";
         n += k;
     }
     if (n + TB_SCENE_CLAIMS_ROWS <= CLAIMS_MAX) {
@@ -605,7 +620,9 @@ const cli_optspec cli_claims_spec = {
     "than D, the Ward approximation more than 2x), measured as clocks and area of\n"
     "our hardware units against a cost model of the exact functions. Last, where\n"
     "each approximation fails: relative error above 10% where the exact value is\n"
-    "above 1% of its peak. The face scene's claims (NMSE against per-pixel Phong,\n"
+    "above 1% of its peak. The factorization paper's claims are those of\n"
+    "`shadesim factor ward --claims --scene sphere --scene-res 256`.\n"
+    "The face scene's claims (NMSE against per-pixel Phong,\n"
     "operation-count speed-up) are measured at 256x256 through the simulated\n"
     "span hardware. The output is the same bytes on every run and machine;\n"
     "CPU timings of the float kernels are machine-dependent and live in `make\n"
