@@ -60,6 +60,8 @@ void tb_range_finish(tb_range *g, const sim_scope *sc, const unit_io *io, const 
                      tb_result *r);
 void tb_range_free(tb_range *g);
 
-/* Overflows counted on every signal of sc and below. */
+/* Overflows counted on every signal of sc and below (of values used). */
 uint64_t tb_scope_overflows(const sim_scope *sc);
+/* The overflows on discarded values there (sim_prim.h, "used values"). */
+uint64_t tb_scope_ovf_discarded(const sim_scope *sc);
 #endif

@@ -404,6 +404,7 @@ static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
                                     : (double)r->cycles;
     r->area_ge = sim_scope_area(s->sc);
     r->overflows = tb_scope_overflows(s->sc);
+    r->ovf_discarded = tb_scope_ovf_discarded(s->sc);
     for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
     tb_range_finish(&s->st.rg, s->sc, &s->io, m->in_ovf, r);
     metrics(r, vs, m->ideal, m->exact, m->exact_den, m->exact_hi, m->exact_ok, &m->gold);

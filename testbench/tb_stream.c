@@ -463,6 +463,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
                                         : (double)r->cycles;
         r->area_ge = sim_scope_area(sc);
         r->overflows = tb_scope_overflows(sc);
+        r->ovf_discarded = tb_scope_ovf_discarded(sc);
         for (int i = 0; i < r->n_in; i++) { r->in_overflows += st.in_ovf[i]; r->overflows += st.in_ovf[i]; }
         tb_range_finish(&st.rg, sc, &io, st.in_ovf, r);
         tb_acc_end(&st.acc, r);
