@@ -4,11 +4,14 @@
  * (tb_speed_hw.c; docs/brdf.md, "Speed claims in hardware").
  *
  * The approximations are units (d_approx, ward_approx). The exact
- * functions are chains of units run one after another, each stage
- * simulated on its own vectors, its clocks per item and area measured:
+ * functions are chains of units:
  *   exact D   c^2 (powg g=2) -> (1 - c^2)/c^2 (div) -> [exp] ->
  *             c^4 (powg g=2 on c^2) -> exp(.)/c^4 (div)
  *   Ward exp  c^2 (powg g=2) -> (1 - c^2)/c^2 (div) -> [exp]
+ * The first two stages are wired into one design (operand registers and a
+ * valid flag between them) and simulated end to end; exact D adds the
+ * last two stages' clocks and areas, each unit simulated alone (their glue
+ * not counted).
  * The exponential is the one piece without a unit: it is left out of the
  * measured figures (so they are lower bounds for the exact functions) and
  * only named beside them. The subtractor 1 - c^2 and the constant factors
@@ -38,6 +41,8 @@ extern const int tb_speed_widths[TB_SPEED_NW];
 typedef struct tb_speed_hw {
     int width, n_d, n_w;                 /* pow_n's exponents: 2/m^2 - 4 and 2/a^2 */
     tb_hw_point d16, ward16, sq, div, pow_d, pow_w;
+    tb_hw_point wired;                   /* Ward's exp argument wired (tb_speed_ward_chain) */
+    double wired_err_lsb;                /* its largest error, quotient LSBs */
     /* the exact functions' chains without the exponential, measured */
     double exact_d_clocks, exact_d_area, exact_w_clocks, exact_w_area;
     double lad_d[TB_SPEED_NW], lad_w[TB_SPEED_NW];   /* clock ratios at tb_speed_widths */
@@ -47,6 +52,12 @@ typedef struct tb_speed_hw {
     int ok;
 } tb_speed_hw;
 
+/* Ward's exp argument (1 - c^2)/c^2 as one wired design: powg g=2 and
+ * div joined by a subtractor, operand registers and a valid flag, driven
+ * one item at a time on c in [0.75, 1): its clocks per item and area (the
+ * glue included) into pt, and its largest error against (1 - c^2)/c^2 of
+ * the quantized c in quotient LSBs. 0, or -1. */
+int    tb_speed_ward_chain(int width, tb_hw_point *pt, double *max_err_lsb);
 /* Measure everything above at width (the ladder at its own widths). */
 void   tb_speed_hw_measure(int width, tb_speed_hw *h);
 /* The two claims rows (d16_speed_hw, ward_speed_hw) into out[0..1]; 2. */
