@@ -66,7 +66,9 @@ struct sim_signal {
     uint32_t    nfan, capfan;
     uint32_t    capwake[2];
     int64_t     raw_min, raw_max;  /* range of fmt, cached for quantization */
-    uint64_t    overflows;  /* time steps that settled on an overflowed quantization */
+    uint64_t    overflows;  /* time steps that settled on an overflowed quantization
+                             * whose value is used (sim_prim.h, "used values") */
+    uint64_t    ovf_discarded; /* the same on values no consumer took that clock */
     int64_t     ovf_raw;    /* the last overflowed result this time step */
     uint64_t    ovf_run;    /* the driver's evaluations when it overflowed */
     uint32_t    ovf_pending;/* in the kernel's list of overflows to settle */
@@ -82,6 +84,11 @@ struct sim_signal {
     sim_scope  *scope;
     sim_signal *next_in_scope;
     uint32_t    index;      /* creation order: sim_signal_at(ctx, index) is this */
+    uint8_t     is_output;  /* sim_signal_output: its value leaves the design */
+    int8_t      use_memo;   /* sim_prim.c: is the settled value used, at use_epoch */
+    uint64_t    use_epoch;
+    struct sim__use *uses;  /* the elements reading it (built at the first overflow) */
+    uint32_t    nuses;
 };
 
 /* A process: a function the kernel calls when a signal it is sensitive to
@@ -175,6 +182,10 @@ const sim_stats *sim_get_stats(const sim_ctx *c);
 /* The last error, one line: "combinational loop at time T: ... a -> b",
  * or the first elaboration error, naming the signal's path. */
 const char *sim_error(const sim_ctx *c);
+
+/* Mark s as an output of the design (a unit's port): an overflowed value
+ * settled on it is always used (sim_prim.h, "used values"). */
+void        sim_signal_output(sim_signal *s);
 
 /* Iterate: every signal of the design in creation order. */
 uint32_t    sim_signal_count(const sim_ctx *c);

@@ -82,4 +82,20 @@ void sim__elab_error(sim_ctx *c, const char *fmt, ...) __attribute__((format(pri
  * only on settled values, whatever order the elements are evaluated in
  * (the batch mode's levelized evaluation relies on it: sim_batch.h). */
 void sim__overflow(sim_signal *s, int64_t raw);
+
+/* Used values (sim_prim.h): one element reading a signal; prim NULL for a
+ * process that is not a primitive (its use cannot be seen into: used). */
+struct sim__use { const void *prim; };
+/* Build every signal's list of readers (sim_prim.c); the kernel calls it
+ * before the first overflow it settles, and again when the design grew or
+ * a register's D was connected since (sim__uses_stale). */
+void sim__uses_build(sim_ctx *c);
+void sim__uses_stale(sim_ctx *c);
+/* Whether the value s settled on in this time step is used: held by a
+ * register (s is one, or an enabled register takes it at the next edge),
+ * an output, read by a process that is not a primitive, or passed on by
+ * a combinational element (a multiplexer that selects it, a block key
+ * that passes it, any other) to a used value. epoch: one per settling,
+ * for the memo every signal carries. */
+int  sim__value_used(sim_signal *s, uint64_t epoch);
 #endif

@@ -79,6 +79,8 @@ struct sim_ctx {
     uint64_t     gen;                        /* a process is in the run list being built iff
                                               * its listed is this (one per delta: never wraps) */
     sim_signal **ovfq;   uint32_t novfq;     /* overflowed this time step (sim__overflow) */
+    uint32_t     uses_nsig;                  /* signals when the readers were listed (0: not) */
+    uint64_t     use_epoch;                  /* one per settling that met an overflow */
     sim_timer   *heap;   uint32_t nheap, capheap;
     uint64_t     timer_seq;
     sim_time     now;
@@ -823,15 +825,29 @@ void sim__overflow(sim_signal *s, int64_t raw)
     if (!s->ovf_pending) { s->ovf_pending = 1; c->ovfq[c->novfq++] = s; }
 }
 
+void sim__uses_stale(sim_ctx *c) { c->uses_nsig = 0; }
+
+/* A settled overflow counts in overflows when its value is used that
+ * clock, else in ovf_discarded (sim__value_used). */
 static void settle_overflows(sim_ctx *c)
 {
+    int fresh = 0;
     for (uint32_t i = 0; i < c->novfq; i++) {
         sim_signal *s = c->ovfq[i];
         s->ovf_pending = 0;
-        s->overflows += s->cur == s->ovf_raw && (!s->driver || sim__proc_of(s->driver)->runs == s->ovf_run);
+        if (s->cur != s->ovf_raw || (s->driver && sim__proc_of(s->driver)->runs != s->ovf_run)) continue;
+        if (!fresh) {
+            if (c->uses_nsig != c->nsig) { sim__uses_build(c); c->uses_nsig = c->nsig; }
+            c->use_epoch++;
+            fresh = 1;
+        }
+        if (sim__value_used(s, c->use_epoch)) s->overflows++;
+        else s->ovf_discarded++;
     }
     c->novfq = 0;
 }
+
+void sim_signal_output(sim_signal *s) { s->is_output = 1; }
 
 /* A logic element whose inputs have at most LUT_BITS bits in all becomes
  * a table, made once when the simulation starts: an index and a load

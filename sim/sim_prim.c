@@ -243,6 +243,7 @@ int sim_reg_connect(sim_signal *q, sim_signal *d)
     if (q->kind != SIM_KIND_REG || !q->driver) return -1;
     ((prim *)q->driver->data)->a = d;
     reg_setup(q->driver);
+    sim__uses_stale(q->ctx);
     return 0;
 }
 
@@ -566,4 +567,69 @@ void sim_logic_verilog(sim_signal *y, const char *text)
 {
     if (y->kind != SIM_KIND_LOGIC || !y->driver || sim__proc_of(y->driver)->fn != logic_eval) return;
     ((prim *)y->driver->data)->verilog = sim_strdup(y->ctx, text);
+}
+
+/* ------------------------------------------------------------ used values */
+
+static void add_use(sim_signal *s, const void *pr, int fill)
+{
+    if (fill) s->uses[s->nuses].prim = pr;
+    s->nuses++;
+}
+
+void sim__uses_build(sim_ctx *c)
+{
+    uint32_t ns = sim_signal_count(c);
+    for (int fill = 0; fill < 2; fill++) {
+        for (uint32_t i = 0; i < ns; i++) {
+            sim_signal *s = sim_signal_at(c, i);
+            if (fill) s->uses = s->nuses ? sim_alloc(c, s->nuses * sizeof *s->uses) : NULL;
+            s->nuses = 0;
+        }
+        for (uint32_t i = 0; i < ns; i++) {
+            sim_signal *y = sim_signal_at(c, i);
+            /* every primitive reading a signal, the registers (sensitive to
+             * their clock only) among them */
+            if (y->driver && is_prim_fn(sim__proc_of(y->driver)->fn)) {
+                const prim *p = y->driver->data;
+                sim_signal *fixed[4] = { p->a, p->b, p->c, p->rst };   /* a register's clock aside */
+                for (int j = 0; j < 4; j++) if (fixed[j]) add_use(fixed[j], p, fill);
+                for (int j = 0; j < p->n; j++) if (p->in[j]) add_use((sim_signal *)(uintptr_t)p->in[j], p, fill);
+            }
+            /* and every other process woken by it */
+            for (uint32_t j = 0; j < y->nfan; j++)
+                if (!is_prim_fn(sim__proc_of(y->fan[j].proc)->fn)) add_use(y, NULL, fill);
+        }
+    }
+}
+
+int sim__value_used(sim_signal *s, uint64_t epoch)
+{
+    if (s->kind == SIM_KIND_REG || s->is_output || !s->nuses) return 1;   /* state, a port, an end */
+    if (s->use_epoch == epoch) return s->use_memo;
+    int used = 0;
+    for (uint32_t i = 0; i < s->nuses && !used; i++) {
+        const prim *p = s->uses[i].prim;
+        if (!p) { used = 1; break; }
+        switch (p->y->kind) {
+        case SIM_KIND_REG:      /* D: taken at the next edge if enabled and not reset */
+            used = s != p->a || ((!p->c || p->c->cur) && !(p->rst && p->rst->cur));
+            break;
+        case SIM_KIND_MUX:
+            if (s == p->c) used = sim__value_used(p->y, epoch);
+            else {
+                int64_t sel = p->c->cur;
+                used = sel >= 0 && sel < p->n && p->in[sel] == s && sim__value_used(p->y, epoch);
+            }
+            break;
+        case SIM_KIND_BK:
+            used = (s == p->c || p->c->cur) && sim__value_used(p->y, epoch);
+            break;
+        default:
+            used = sim__value_used(p->y, epoch);
+        }
+    }
+    s->use_epoch = epoch;
+    s->use_memo = (int8_t)used;
+    return used;
 }

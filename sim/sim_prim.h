@@ -13,6 +13,13 @@
  * multiplier's output would be, before anything else sees it.
  *
  * Overflows are counted on the output signal (sim_signal.overflows).
+ * Used values: an overflow counts in overflows only when the value it
+ * settled on is used that clock (sim__value_used in sim_internal.h: a
+ * register holds it or an enabled one takes it, it is an output
+ * (sim_signal_output), a process that is not a primitive reads it, or a
+ * selecting mux, a passing block key or any other element passes it on to
+ * a used value); otherwise in ovf_discarded. The batch mode flags a lane
+ * with any overflow, used or not, and the caller reruns it on the kernel.
  */
 #ifndef SIM_PRIM_H
 #define SIM_PRIM_H

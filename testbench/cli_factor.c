@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include "vectors/ref_factor.h"
 #include "testbench/tb_factor_scene.h"
+#include "testbench/tb_factor_claims.h"
 #include "scene/scene.h"
 #include "base/base_out.h"
 #include <errno.h>
@@ -91,72 +92,28 @@ static int fact_rows(rf_brdf *b, const rf_opts *o, long heldout, double flr, FIL
     return 0;
 }
 
-/* One claim row: id, the paper's statement, what we measure, the verdict. */
-static void claim(FILE *f, const char *id, const char *said, const char *measured, int holds, int *fails)
-{
-    fprintf(f, "%s,\"%s\",\"%s\",%s\n", id, said, measured, holds ? "holds" : "does not hold");
-    printf("  %-22s %-13s %s\n", id, holds ? "holds" : "DOES NOT HOLD", measured);
-    if (!holds) ++*fails;
-}
-
-/* Operations per light of the exact Ward specular term as the reference
- * evaluates it (vectors/ref_factor.c): h = norm(d0 + di) (1 sqrt, 1
- * divide), the exponent (2 divides by ax, ay, 1 by (h.n)^2), exp, and
- * 1/(4 pi ax ay sqrt(N.L N.V)) (1 sqrt, 1 divide): 2 sqrt, 5 divides, 1 exp. */
-#define WARD_SQRT 2
-#define WARD_DIV 5
-#define WARD_EXP 1
-
+/* The claims (tb_factor_claims_rows, shared with the claims verb): a line
+ * each on stdout, DIR/claims.csv. */
 static int write_claims(rf_brdf *b, const rf_fact *f, const rf_opts *o, long heldout, const char *dir,
                         const tb_factor_scene_result *sr, char *err, size_t errlen, int *fails)
 {
+    claim_result rows[TB_FACTOR_CLAIMS_ROWS];
+    size_t n = tb_factor_claims_rows(b, f, o, heldout, sr, rows, TB_FACTOR_CLAIMS_ROWS, err, errlen);
+    if (!n) return -1;
     char *buf = NULL;
     size_t len = 0;
     FILE *cf = open_memstream(&buf, &len);
     if (!cf) { snprintf(err, errlen, "out of memory"); return -1; }
     fputs("claim,paper,measured,verdict\n", cf);
-    rf_err fe, fl, s1;
-    uint64_t hs = o->seed + 1000;
-    rf_error(rf_brdf_fn, b, rf_fact_fn, (void *)f, heldout, hs, o->floor, &fe);
-    rf_error(rf_brdf_fn, b, rf_fact_log_fn, (void *)f, heldout, hs, o->floor, &fl);
-    rf_svd s;
-    int rs = o->R < 32 ? o->R : 32;
-    if (rf_svd_fit(rf_brdf_fn, b, rs, 4, &s, err, errlen)) { fclose(cf); free(buf); return -1; }
-    double neg_svd = 0, recip_svd = 0;
-    for (int k = 1; k <= 4; k++) {
-        rf_err e;
-        s.k_used = k;
-        rf_error(rf_brdf_fn, b, rf_svd_fn, &s, heldout, hs, o->floor, &e);
-        if (e.neg_share > neg_svd) neg_svd = e.neg_share;
-        if (e.recip_max > recip_svd) recip_svd = e.recip_max;
-    }
-    s.k_used = 1;
-    rf_error(rf_brdf_fn, b, rf_svd_fn, &s, heldout, hs, o->floor, &s1);
-    rf_svd_free(&s);
-    char m[400];
     printf("claims (%dx%d maps, %ld held-out pairs):\n", o->R, o->R, heldout);
-    snprintf(m, sizeof m, "smallest texel lambda %.3g pi %.3g; negative values: factorization %.2f%%, "
-             "sum of products rank 1..4 up to %.3f%%", f->lam_min, f->pi_min, 100 * fe.neg_share, 100 * neg_svd);
-    claim(cf, "positive_factors", "the factorization has only positive factors (the SVD has negative values)", m,
-          f->lam_min > 0 && f->pi_min > 0 && fe.neg_share == 0, fails);
-    snprintf(m, sizeof m, "max |f(a,b) - f(b,a)| / max f: factorization %.3g, sum of products %.3g", fe.recip_max, recip_svd);
-    claim(cf, "reciprocity", "the approximation always satisfies Helmholtz reciprocity", m, fe.recip_max == 0, fails);
-    snprintf(m, sizeof m, "relative RMS %.4f (fitted model %.4f) against %.4f for the rank-1 sum of products; "
-             "NRMS %.4f against %.4f", fe.rel_rms, fl.rel_rms, s1.rel_rms, fe.nrms, s1.nrms);
-    claim(cf, "relative_error", "it minimizes relative rather than absolute error (two 2D maps, one term)", m,
-          fl.rel_rms < s1.rel_rms, fails);
-    snprintf(m, sizeof m, "per light: 3 bilinear lookups and 2 multiplications, no sqrt, divide or exp "
-             "(the exact Ward: %d sqrt, %d divides, %d exp); in hf_lookup the addresses and filters add "
-             "6 multipliers a lookup, one evaluation a clock (counts from the structure, not a timing)",
-             WARD_SQRT, WARD_DIV, WARD_EXP);
-    claim(cf, "few_operations", "a BRDF from a few texture lookups and multiplications", m,
-          b->kind == RF_WARD, fails);
-    if (sr) {
-        snprintf(m, sizeof m, "specular NMSE against exact per pixel: factorized per pixel (hf_lookup) %.3e, "
-                 "exact at vertices interpolated %.3e (%dx%d)", sr->nmse_factor, sr->nmse_vertex, sr->w, sr->h);
-        claim(cf, "fig1_vertex_vs_pixel", "factorized per pixel looks closer to the BRDF than its exact values at "
-              "the vertices interpolated (Fig. 1)", m, sr->nmse_factor < sr->nmse_vertex, fails);
-    } else {
+    for (size_t i = 0; i < n; i++) {
+        const claim_result *r = &rows[i];
+        int holds = claims_verdict_kind(r->verdict) == 1;
+        fprintf(cf, "%s,\"%s\",\"%s\",%s\n", r->id, r->claim, r->measured_text, r->verdict);
+        printf("  %-22s %-13s %s\n", r->id, holds ? "holds" : "DOES NOT HOLD", r->measured_text);
+        if (!holds) ++*fails;
+    }
+    if (!sr) {
         fputs("fig1_vertex_vs_pixel,\"factorized per pixel looks closer to the BRDF than its exact values at the "
               "vertices interpolated (Fig. 1)\",\"not measured: give --scene NAME\",not measured\n", cf);
         printf("  %-22s %-13s %s\n", "fig1_vertex_vs_pixel", "not measured", "give --scene NAME");
@@ -283,7 +240,7 @@ int cli_factor(int argc, char **argv)
     rf_opts_default(&fa.o);
     fa.b = &b;
     fa.svd_k = 4;
-    fa.heldout = 20000;
+    fa.heldout = TB_FACTOR_HELDOUT;
     fa.hw_width = 16;
     void *base[] = { &fa };
     if (cli_opt_parse(&cli_factor_spec, base, argc, argv, 2)) return CLI_USAGE;

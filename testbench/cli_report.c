@@ -233,7 +233,8 @@ static int section_claims(FILE *f)
           "<p>Each numerical claim of the papers beside what we measure, with a verdict: <span class=\"ok\">holds</span>, "
           "<span class=\"cond\">holds only for</span> a condition, or <span class=\"bad\">does not hold</span>. "
           "Accuracy claims are measured on the double-precision references; speed claims as clocks and area of our "
-          "hardware units (width 16) against a cost model of the exact functions; the face scene's claims through the "
+          "hardware units (width 16) against chains of our units for the exact functions (their exponential left out); "
+          "the factorization paper's as <code>shadesim factor ward --claims</code> measures them; the face scene's claims through the "
           "simulated span hardware at 256x256. Rerun: <code>shadesim claims</code> (<code>--json</code> for the same "
           "rows as data).</p>\n", f);
     fprintf(f, "<p class=\"summary\">%zu claims: %d hold, %d hold only under a condition, %d do not hold.</p>\n", n, nh, no, nf);

@@ -49,7 +49,9 @@ typedef struct tb_sig {
     char     name[48];      /* path below the unit's scope: "y", "div3_a.t1" */
     sim_fmt  fmt;
     int      kind;          /* sim_kind */
-    uint64_t overflows;     /* inputs: quantization of the vectors; constants: at build */
+    uint64_t overflows;     /* inputs: quantization of the vectors; constants: at build;
+                             * elements: of values used that clock (sim_prim.h) */
+    uint64_t ovf_discarded; /* overflows on values no consumer took that clock */
     uint64_t toggles;       /* settled bit changes over the run (docs/timing.md) */
     int64_t  min, max;      /* observed raw values (valid if seen) */
     int      seen;
@@ -103,7 +105,8 @@ typedef struct tb_result {
     double     cycles_per_beat;
     uint64_t   latency;          /* cycles until the first beat is valid */
     double     max_abs_err, mean_err, rms_err, nmse, max_err_lsb;  /* over all outputs */
-    uint64_t   overflows;        /* inputs' quantization + every unit signal */
+    uint64_t   overflows;        /* inputs' quantization + every unit signal (values used) */
+    uint64_t   ovf_discarded;    /* more overflows, on values no consumer took that clock */
     double     area_ge;
     tb_ppa     ppa;
     int        within_bound;     /* 1 if every beat met its bound */

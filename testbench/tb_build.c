@@ -14,5 +14,10 @@ int tb_build(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, tb_bui
     sim_set_quant(b->c, cfg->rnd, cfg->ovf);
     b->clk = sim_bit_new(b->c, NULL, "clk", SIM_KIND_CLOCK);
     b->sc = sim_scope_new(b->c, NULL, u->name);
-    return u->build(b->c, b->sc, b->clk, cfg, f, &b->io, err, errlen) ? -1 : 0;
+    if (u->build(b->c, b->sc, b->clk, cfg, f, &b->io, err, errlen)) return -1;
+    /* The ports' values leave the unit: an overflow on one is used even
+     * on a clock the unit's own elements ignore it (sim_prim.h). */
+    for (int i = 0; i < UNIT_MAX_IO; i++)
+        if (b->io.out[i]) sim_signal_output(b->io.out[i]);
+    return 0;
 }

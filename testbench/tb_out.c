@@ -109,7 +109,8 @@ int tb_write_json(FILE *f, const tb_result *r)
     fputs(",\n  \"rms_err\": ", f); base_json_num(f, r->rms_err, 17);
     fputs(",\n  \"nmse\": ", f); base_json_num(f, r->nmse, 17);
     fputs(",\n  \"max_err_lsb\": ", f); base_json_num(f, r->max_err_lsb, 17);
-    fprintf(f, ",\n  \"overflows\": %llu,\n  \"area_ge\": ", (unsigned long long)r->overflows);
+    fprintf(f, ",\n  \"overflows\": %llu,\n  \"overflows_discarded\": %llu,\n  \"area_ge\": ",
+            (unsigned long long)r->overflows, (unsigned long long)r->ovf_discarded);
     base_json_num(f, r->area_ge, 17);
     jppa(f, r);
     fprintf(f, ",\n  \"within_bound\": %s,\n  \"bound_check\": \"%s\",\n  \"golden_check\": \"%s\",\n",
@@ -124,8 +125,9 @@ int tb_write_json(FILE *f, const tb_result *r)
                 sim_fmt_str(g->fmt, fb), (unsigned long long)g->overflows);
         if (g->seen) fprintf(f, "\"min\": %lld, \"max\": %lld, ", (long long)g->min, (long long)g->max);
         else fputs("\"min\": null, \"max\": null, ", f);
-        fprintf(f, "\"range_min\": %lld, \"range_max\": %lld}", (long long)sim_fmt_raw_min(g->fmt),
-                (long long)sim_fmt_raw_max(g->fmt));
+        fprintf(f, "\"range_min\": %lld, \"range_max\": %lld, \"overflows_discarded\": %llu}",
+                (long long)sim_fmt_raw_min(g->fmt), (long long)sim_fmt_raw_max(g->fmt),
+                (unsigned long long)g->ovf_discarded);
     }
     fputs(r->nsigs ? "\n  ],\n  \"outputs\": {" : "],\n  \"outputs\": {", f);
     for (int o = 0; o < r->n_out; o++) {
@@ -221,6 +223,9 @@ void tb_print_table(FILE *f, const tb_result *r)
             r->vectors, (unsigned long long)r->cycles, tnum(x[0], 32, "%.3g", r->cycles_per_item),
             tnum(x[1], 32, "%.3g", r->cycles_per_beat), (unsigned long long)r->latency,
             tnum(x[2], 32, "%.1f", r->area_ge), (unsigned long long)r->overflows);
+    if (r->ovf_discarded)
+        fprintf(f, "  (and %llu overflows on values no element took that clock, not counted: docs/formats.md)\n",
+                (unsigned long long)r->ovf_discarded);
     print_crit(f, &r->ppa);
     fprintf(f, "switching %llu bit toggles, %s pJ/item (docs/timing.md)\n", (unsigned long long)r->ppa.toggles,
             tnum(x[3], 32, "%.3g", r->ppa.energy_pj_per_item));

@@ -81,6 +81,7 @@ void tb_range_finish(tb_range *g, const sim_scope *sc, const unit_io *io, const 
         t->fmt = sg->fmt;
         t->kind = sg->kind;
         t->overflows = sg->overflows;
+        t->ovf_discarded = sg->ovf_discarded;
         for (int j = 0; j < r->n_in; j++) if (io->in[j] == sg) t->overflows += in_ovf[j];
         t->seen = g->mn[i] <= g->mx[i];
         t->min = g->mn[i];
@@ -97,6 +98,14 @@ void tb_range_free(tb_range *g)
     free(g->live);
     free(g->lv);
     memset(g, 0, sizeof *g);
+}
+
+uint64_t tb_scope_ovf_discarded(const sim_scope *sc)
+{
+    uint64_t n = 0;
+    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope) n += s->ovf_discarded;
+    for (const sim_scope *ch = sc->first_child; ch; ch = ch->next_sibling) n += tb_scope_ovf_discarded(ch);
+    return n;
 }
 
 uint64_t tb_scope_overflows(const sim_scope *sc)

@@ -66,6 +66,8 @@ void tb_range_free(tb_range *g);
 void tb_range_name(const sim_signal *s, const sim_scope *sc, char *buf, size_t len);
 int  tb_range_in_scope(const sim_signal *s, const sim_scope *sc);
 
-/* Overflows counted on every signal of sc and below. */
+/* Overflows counted on every signal of sc and below (of values used). */
 uint64_t tb_scope_overflows(const sim_scope *sc);
+/* The overflows on discarded values there (sim_prim.h, "used values"). */
+uint64_t tb_scope_ovf_discarded(const sim_scope *sc);
 #endif

@@ -413,6 +413,7 @@ static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
     char terr[300];
     if (tb_ppa_timing(s->c, s->sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
     r->overflows = tb_scope_overflows(s->sc);
+    r->ovf_discarded = tb_scope_ovf_discarded(s->sc);
     for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
     tb_range_finish(&s->st.rg, s->sc, &s->io, m->in_ovf, r);
     tb_energy_fill(r, &s->st.rg, s->tog, s->c, r->stats.clocks);

@@ -57,7 +57,8 @@ typedef struct tb_scene_result {
     uint8_t  *deg;                    /* [w*h] degree used (1, 2, 3; 0 uncovered) */
     uint8_t  *region;                 /* [w*h] region label */
     /* Metrics over covered pixels (docs/scenes.md defines them). */
-    double    nmse;                   /* sum (hw - ref)^2 / sum ref^2 */
+    double    nmse;                   /* sum (hw - ref)^2 / sum ref^2, raw output (the verdicts' NMSE) */
+    double    nmse8;                  /* the same on the 8-bit values written to ref.png and hw.png */
     double    psnr;                   /* on 8 bits, dB */
     double    max_abs_err;
     int       max_err8;               /* max |hw8 - ref8|, 8-bit values */

@@ -85,7 +85,10 @@ double tb_stab_lin_threshold(double target);
 /* div3 at width W (output s1.(W-1)) with `terms` paper-series terms: max
  * |hw - x/3| over its vectors. <0 on failure. */
 double tb_stab_div3_err(int W, int terms);
-/* Fewest terms with tb_stab_div3_err <= one output LSB (2^-(W-1)); -1. */
+/* 1 if every item has |hw - x/3| <= one output LSB (2^-(W-1)), decided
+ * exactly on the dyadic values (|3 hw - x| <= 3 LSB); 0 if not; -1. */
+int    tb_stab_div3_holds(int W, int terms);
+/* Fewest terms for which tb_stab_div3_holds; -1. */
 int    tb_stab_div3_terms(int W);
 
 /* A BRDF approximation's relative error (fraction) against its exact

@@ -474,6 +474,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
         char terr[300];
         if (tb_ppa_timing(c, sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
         r->overflows = tb_scope_overflows(sc);
+        r->ovf_discarded = tb_scope_ovf_discarded(sc);
         for (int i = 0; i < r->n_in; i++) { r->in_overflows += st.in_ovf[i]; r->overflows += st.in_ovf[i]; }
         tb_range_finish(&st.rg, sc, &io, st.in_ovf, r);
         tb_energy_fill(r, &st.rg, tog, c, r->stats.clocks);

@@ -35,6 +35,27 @@ check claims_hardware_speed_rows grep -q '^d16_speed_hw (' "$T/text"
 check claims_verdict_words [ "$(grep -c -E '^[a-z0-9_.]+ \(.*\): (holds|holds only for .+|does not hold)$' "$T/text")" -eq "$n" ]
 check claims_failure_regions grep -q '^Failure regions' "$T/text"
 
+# The factorization paper's claims: rows of the table, and the same
+# measurements, word for word, as the factor verb prints for the
+# configuration the claims verb states.
+for id in positive_factors reciprocity relative_error few_operations fig1_vertex_vs_pixel; do
+    grep -q "^$id (Romanyuk et al. (2020)" "$T/text" && grep -q "{\"id\": \"$id\", \"kind\": \"factor\"" "$T/json" \
+        && ok "claims_factor_$id" || fail "claims_factor_$id" "no factor row $id"
+done
+cfg=$(sed -n 's/^ward --claims --scene \([a-z]*\) --scene-res \([0-9]*\)` measures them$/\1 \2/p' "$T/text")
+# (exit 1: a claim does not hold, Fig. 1's)
+"$S" factor ward --claims --scene ${cfg% *} --scene-res ${cfg#* } -o "$T/fac" >"$T/fac.out" 2>&1
+rc=$?
+if [ -n "$cfg" ] && [ $rc -le 1 ]; then
+    sed -n 's/^  \([a-z0-9_]*\)  *\(holds\|DOES NOT HOLD\)  *\(.*\)$/\1|\3/p' "$T/fac.out" >"$T/fac.rows"
+    awk '/^[a-z0-9_]+ \(Romanyuk et al. \(2020\)/ { id = $1 } id && /^  ours: / { sub(/^  ours: +/, ""); print id "|" $0; id = "" }' \
+        "$T/text" >"$T/cl.rows"
+    [ "$(wc -l <"$T/fac.rows")" -eq 5 ] && cmp -s "$T/fac.rows" "$T/cl.rows" && ok claims_factor_same_as_factor_verb \
+        || fail claims_factor_same_as_factor_verb "$(diff "$T/fac.rows" "$T/cl.rows" | head -4)"
+else
+    fail claims_factor_same_as_factor_verb "factor ward --claims --scene ... failed or no configuration line: $cfg"
+fi
+
 if command -v python3 >/dev/null 2>&1; then
     if python3 -c 'import json,sys; d=json.load(sys.stdin); assert len(d["claims"]) >= 20
 ok = ("holds", "does not hold")

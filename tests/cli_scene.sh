@@ -14,7 +14,7 @@ grep -q -- '--target-nmse' "$T/out" && grep -q -- '--sweep' "$T/out" && grep -q 
 # A render: every JSON field, every file of the folder.
 expect json 0 "$S" scene face $R --json -o "$T/face"
 for k in mesh resolution view policy L terms series width unit schedule formats round overflow covered nmse \
-         psnr max_abs_err max_err8 diff8_share err_scale clocks pixels clocks_per_pixel area_ge overflows spans \
+         nmse8 psnr max_abs_err max_err8 diff8_share err_scale clocks pixels clocks_per_pixel area_ge overflows spans \
          intervals intervals_deg2 deg2_share nodes_shaded ops_ref ops_hw cost_ref cost_hw speedup; do
     grep -q "^  \"$k\": " "$T/out" && ok "json_$k" || fail "json_$k" "field $k missing"
 done
@@ -34,6 +34,48 @@ for f in ref.png hw.png "err-x$k.png" degree.png region.png scene.json; do
     [ -s "$T/face/$f" ] && ok "file_$f" || fail "file_$f" "missing in the output folder"
 done
 [ "$(ls "$T/face" | wc -l)" -eq 6 ] && ok files_only || fail files_only "$(ls "$T/face")"
+# NMSE 8-bit from the PNG files' pixels, decoded here (chunks, zlib,
+# filter bytes), against scene.json's nmse8; uncovered pixels are 0 in both
+# images, so the sums over every pixel are those over the covered ones.
+if command -v python3 >/dev/null 2>&1; then
+    python3 - "$T/face" <<'PY' && ok nmse8_from_pngs || fail nmse8_from_pngs "scene.json's nmse8 is not that of ref.png/hw.png"
+import json, struct, sys, zlib
+def gray(path):
+    b = open(path, 'rb').read()
+    assert b[:8] == b'\x89PNG\r\n\x1a\n'
+    i, idat, w, h = 8, b'', 0, 0
+    while i < len(b):
+        n, t = struct.unpack('>I4s', b[i:i + 8])
+        d = b[i + 8:i + 8 + n]
+        if t == b'IHDR':
+            w, h, depth, ctype = struct.unpack('>IIBB', d[:10])
+            assert depth == 8 and ctype == 0
+        elif t == b'IDAT':
+            idat += d
+        i += 12 + n
+    raw, px, prev = zlib.decompress(idat), [], [0] * w
+    for y in range(h):
+        f, row = raw[y * (w + 1)], list(raw[y * (w + 1) + 1:(y + 1) * (w + 1)])
+        for x in range(w):
+            a = row[x - 1] if x else 0
+            if f == 1: row[x] = (row[x] + a) & 255
+            elif f == 2: row[x] = (row[x] + prev[x]) & 255
+            else: assert f == 0
+        px += row
+        prev = row
+    return px
+d = sys.argv[1]
+ref, hw = gray(d + '/ref.png'), gray(d + '/hw.png')
+se = sum((a - b) ** 2 for a, b in zip(hw, ref))
+sr = sum(a * a for a in ref)
+got = json.load(open(d + '/scene.json'))
+assert sr > 0 and se > 0, (se, sr)
+assert abs(got['nmse8'] - se / sr) <= 1e-12 * (se / sr), (got['nmse8'], se / sr)
+assert got['nmse8'] != got['nmse']
+PY
+else
+    echo "skip cli_scene.nmse8_from_pngs: python3 not installed"
+fi
 if command -v pngcheck >/dev/null 2>&1; then
     for f in "$T"/face/*.png; do
         pngcheck -q "$f" >/dev/null 2>&1 && ok "pngcheck_$(basename "$f")" || fail "pngcheck_$(basename "$f")" "$(pngcheck "$f" 2>&1 | head -2)"

@@ -345,6 +345,67 @@ static void t_overflow_glitch_same_raw(void)
     sim_free(c);
 }
 
+static void t_overflow_used_values(void)
+{
+    /* mul = 2x in s2.0 (range -2..1): x = 3 gives 6, an overflow. Its
+     * readers: q <= (sel ? k : mul), q2 <= (pass ? mul : 0) and r <= mul
+     * when en, all clocked. The value is used on a clock where one of them
+     * takes it (sel 0, pass 1 or en 1), and discarded otherwise. Inputs
+     * change between edges (times 10 i), the registers take them at 10 i
+     * + 5. */
+    sim_ctx *c = sim_new();
+    sim_signal *clk = clock(c);
+    sim_signal *x = sim_signal_new(c, NULL, "x", F("s4.0"), SIM_KIND_INPUT);
+    sim_signal *sel = sim_bit_new(c, NULL, "sel", SIM_KIND_INPUT);
+    sim_signal *pass = sim_bit_new(c, NULL, "pass", SIM_KIND_INPUT);
+    sim_signal *en = sim_bit_new(c, NULL, "en", SIM_KIND_INPUT);
+    sim_signal *two = sim_const_raw(c, NULL, "two", F("u2.0"), 2);
+    sim_signal *k = sim_const_raw(c, NULL, "k", F("s2.0"), 1);
+    sim_signal *mul = sim_mul(c, NULL, "mul", F("s2.0"), x, two);
+    sim_signal *in[2] = { mul, k };
+    sim_signal *m = sim_mux(c, NULL, "m", F("s2.0"), sel, 2, in);
+    sim_signal *q = sim_reg(c, NULL, "q", F("s2.0"), clk, m, NULL, NULL, 0);
+    sim_signal *bk = sim_bk(c, NULL, "bk", F("s2.0"), pass, mul);
+    sim_signal *q2 = sim_reg(c, NULL, "q2", F("s2.0"), clk, bk, NULL, NULL, 0);
+    sim_signal *r = sim_reg(c, NULL, "r", F("s2.0"), clk, mul, en, NULL, 0);
+    /* x, sel, pass, en; then the used and discarded counts after it */
+    static const int steps[][6] = {
+        { 3, 1, 0, 0, 0, 1 },   /* k selected, BK closed, r disabled: discarded */
+        { 0, 1, 0, 0, 0, 1 },
+        { 3, 0, 0, 0, 1, 1 },   /* the mux takes it */
+        { 0, 1, 0, 0, 1, 1 },
+        { 3, 1, 1, 0, 2, 1 },   /* the block key passes it */
+        { 0, 1, 0, 0, 2, 1 },
+        { 3, 1, 0, 1, 3, 1 },   /* r is enabled */
+        { 0, 1, 0, 0, 3, 1 },
+        { 3, 1, 0, 0, 3, 2 },   /* discarded again */
+    };
+    for (size_t i = 0; i < sizeof steps / sizeof steps[0]; i++) {
+        sim_force(x, steps[i][0]);
+        sim_force(sel, steps[i][1]);
+        sim_force(pass, steps[i][2]);
+        sim_force(en, steps[i][3]);
+        sim_run(c, (sim_time)(10 * i));
+        TST_CHECK(mul->overflows == (uint64_t)steps[i][4] && mul->ovf_discarded == (uint64_t)steps[i][5],
+                  "step %zu: used %llu discarded %llu, expected %d %d", i, (unsigned long long)mul->overflows,
+                  (unsigned long long)mul->ovf_discarded, steps[i][4], steps[i][5]);
+        if (i == 2) {
+            sim_run(c, (sim_time)(10 * i + 5));
+            TST_EQ_INT(q->cur, 6 - 8);          /* the wrapped product reached q */
+        }
+    }
+    TST_EQ_INT(q2->overflows + r->overflows + m->overflows + bk->overflows, 0);
+    /* an output port's value leaves the design: used on any clock */
+    sim_signal_output(mul);
+    sim_force(x, 0);
+    sim_run(c, 100);
+    sim_force(x, 3);
+    sim_run(c, 110);
+    TST_CHECK(mul->overflows == 4 && mul->ovf_discarded == 2, "output: used %llu discarded %llu",
+              (unsigned long long)mul->overflows, (unsigned long long)mul->ovf_discarded);
+    sim_free(c);
+}
+
 /* A logic function with a result wider than the elements' outputs, that
  * counts its calls (user points at the counter). */
 static int64_t lut_fn(const int64_t *in, void *u)
@@ -428,6 +489,7 @@ int main(void)
     TST_RUN(t_find_and_paths);
     TST_RUN(t_overflow_settled_only);
     TST_RUN(t_overflow_glitch_same_raw);
+    TST_RUN(t_overflow_used_values);
     TST_RUN(t_logic_table);
     TST_EXIT();
 }

@@ -230,6 +230,52 @@ static void t_pipe_narrow_t_copies(void)
     vec_set_free(&vs);
 }
 
+/* horner3, paper schedule, mul at s0.16 ([-0.5, 0.5)), t = 0.75, B = C = 0.
+ * In step 0 of each pixel the multiplier computes RG t from the last
+ * pixel's I while MX2 takes B: with D = 1.5 (A = 0) that product, 1.125,
+ * overflows on every pixel after the first, and nothing takes it (every
+ * other product is 0; y is exact). With A = 1.5 (D = 0) step 1's A t =
+ * 1.125 overflows and MX2 takes it: used, and y is wrong. */
+static void t_overflow_used_horner(void)
+{
+    const unit_desc *u = unit_find("horner3");
+    unit_cfg cfg = cfg_of(u, "paper", 16, 8);
+    const char *ov[1] = { "mul=s0.16" };
+    unit_fmts fm;
+    char err[600];
+    TST_CHECK(tb_formats(u, &cfg, ov, 1, &fm, err, sizeof err) == 0, "%s", err);
+    for (int used = 0; used < 2; used++) {
+        vec_set vs;
+        vec_set_init(&vs);
+        tb_expected_header(u, &cfg, &vs);
+        const double a = used ? 1.5 : 0, d = used ? 0 : 1.5, t = 0.75;
+        double row[6] = { a, 0, 0, d, t, a * t * t * t + d };
+        const int n = 4;
+        for (int i = 0; i < n; i++) vec_set_push(&vs, row);
+        tb_result r;
+        TST_EQ_INT(tb_run(u, &cfg, &fm, &vs, NULL, &r, err, sizeof err), TB_OK);
+        uint64_t sig_used = 0, sig_disc = 0;
+        for (int i = 0; i < r.nsigs; i++)
+            if (!strcmp(r.sigs[i].name, "mul")) { sig_used = r.sigs[i].overflows; sig_disc = r.sigs[i].ovf_discarded; }
+            else TST_CHECK(r.sigs[i].overflows + r.sigs[i].ovf_discarded == 0, "%s overflowed", r.sigs[i].name);
+        if (used) {
+            TST_CHECK(r.overflows == (uint64_t)n && sig_used == (uint64_t)n && r.ovf_discarded == 0,
+                      "A t: used %llu discarded %llu", (unsigned long long)r.overflows,
+                      (unsigned long long)r.ovf_discarded);
+            TST_CHECK(r.max_abs_err > 0.1, "a used overflow spoils y: error %g", r.max_abs_err);
+        } else {
+            TST_CHECK(r.overflows == 0 && sig_used == 0, "RG t in step 0: %llu counted as used",
+                      (unsigned long long)r.overflows);
+            TST_CHECK(sig_disc >= (uint64_t)n - 1 && sig_disc <= (uint64_t)n && r.ovf_discarded == sig_disc,
+                      "discarded %llu (mul %llu), expected %d or %d", (unsigned long long)r.ovf_discarded,
+                      (unsigned long long)sig_disc, n - 1, n);
+            TST_CHECK(r.max_abs_err == 0, "y is exact: error %g", r.max_abs_err);
+        }
+        tb_result_free(&r);
+        vec_set_free(&vs);
+    }
+}
+
 /* ---- clocks ----------------------------------------------------------------- */
 
 /* cycles per item and latency exactly, and every beat on its cycle: no
@@ -475,5 +521,6 @@ int main(void)
     TST_RUN(t_fwd_accumulates);
     TST_RUN(t_fwd_breaks_where_horner_holds);
     TST_RUN(t_fmt_of_other_schedule);
+    TST_RUN(t_overflow_used_horner);
     TST_EXIT();
 }

@@ -138,14 +138,53 @@ static void degree_thresholds(void)
     TST_CHECK(tb_stab_deg_threshold(4 * TGT, NULL) >= c2, "monotone in the target");
 }
 
+/* The largest |3 hw - x| in output LSBs over the stability vectors of div3
+ * at width W with t terms, x the input quantized by floor (the default
+ * rounding, trunc) to s1.(W-1), in integers: hw and x share the output's
+ * LSB, so |hw - x/3| <= 1 LSB is exactly |3 hw - x| <= 3. */
+static long div3_worst3(int W, int t)
+{
+    const unit_desc *u = unit_find("div3");
+    unit_cfg cfg;
+    unit_cfg_default(u, &cfg);
+    cfg.width = W;
+    cfg.terms = t;
+    cfg.series = 0;
+    vec_set vs;
+    vec_set_init(&vs);
+    vec_set_header(&vs, u->ref, &cfg.model);
+    if (u->ref->gen(&cfg.model, 64, 1, &vs)) return -1;
+    unit_fmts f;
+    tb_result r;
+    char err[400];
+    long worst = -1;
+    if (!tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err) &&
+        tb_run(u, &cfg, &f, &vs, NULL, &r, err, sizeof err) == TB_OK) {
+        if (r.out[0].fmt.fbits == W - 1)
+            for (size_t i = 0; i < r.vectors; i++) {
+                long x = (long)floor(ldexp(vec_row(&vs, i)[0], W - 1));
+                long d = labs(3 * (long)r.raw[i * (size_t)r.n_out] - x);
+                if (d > worst) worst = d;
+            }
+        tb_result_free(&r);
+    }
+    vec_set_free(&vs);
+    return worst;
+}
+
 static void div3_terms(void)
 {
-    for (int W = 8; W <= 24; W += 8) {
+    for (int W = 8; W <= 24; W += 4) {
         int t = tb_stab_div3_terms(W);
-        double lsb = ldexp(1, -(W - 1));
         TST_CHECK(t > 1, "W=%d terms %d", W, t);
-        TST_CHECK(tb_stab_div3_err(W, t) <= lsb, "W=%d: %d terms hold", W, t);
-        TST_CHECK(tb_stab_div3_err(W, t - 1) > lsb, "W=%d: %d terms fail", W, t - 1);
+        /* the stated rule, decided here in integers */
+        long at = div3_worst3(W, t), below = div3_worst3(W, t - 1);
+        TST_CHECK(at >= 0 && at <= 3, "W=%d: %d terms hold (3 x error %ld LSB)", W, t, at);
+        TST_CHECK(below > 3, "W=%d: %d terms fail (3 x error %ld LSB)", W, t - 1, below);
+        TST_CHECK(tb_stab_div3_holds(W, t) == 1 && tb_stab_div3_holds(W, t - 1) == 0, "W=%d: holds", W);
+        /* the reported error is that measure */
+        TST_CHECK(tb_stab_div3_err(W, t) == ldexp(at / 3.0, -(W - 1)), "W=%d: error %g vs %ld/3 LSB",
+                  W, tb_stab_div3_err(W, t), at);
         /* the series' own error 4^-t/6 (|x| < 1) must reach one LSB, plus
          * up to one term for the truncations */
         int a = (int)ceil((W - 1 - log2(6.0)) / 2);
