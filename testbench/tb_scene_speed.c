@@ -86,11 +86,11 @@ void tb_scene_speed_print(FILE *f, const tb_scene_result *r)
             "energy / pixel", a, r->unit->name);
     snprintf(a, sizeof a, "%.4g M", sp->ref_pixels_per_s_max / 1e6);
     fprintf(f, "  %-22s <= %-11s %.3g divide%s per pixel on unit div: %.0f clocks each at %.0f MHz, %.3g pJ\n",
-            "reference pixels / s", a, sp->ref_divs, sp->ref_divs == 1 ? "" : "s", sp->div_clocks, sp->div.fmax_mhz,
+            "ref. pixels / s", a, sp->ref_divs, sp->ref_divs == 1 ? "" : "s", sp->div_clocks, sp->div.fmax_mhz,
             sp->div.energy_pj_per_item);
     snprintf(a, sizeof a, "%.3g pJ", sp->ref_energy_pj_per_pixel_min);
     fprintf(f, "  %-22s >= %-11s (its square roots and powers would add to both; no unit builds them)\n",
-            "reference energy / px", a);
+            "ref. energy / pixel", a);
     /* The method's shaded nodes divide too: on the same divider they
      * bound its rate as the reference's divides bound the reference's. */
     snprintf(a, sizeof a, "%.4g M", sp->node_pixels_per_s_max / 1e6);
