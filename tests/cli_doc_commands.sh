@@ -160,6 +160,7 @@ while read -r kind file line dollar cmd; do
         sub(/ +$/, "", k); sub(/^(=>|==)  +/, substr(v, 1, 3), v)
         if (k == a) { print v; exit }
     }')
+    [ -n "$rule" ] && printf '%s\n' "$args" >>"$T/used"
     want=
     run=$args
     case $rule in
@@ -203,3 +204,10 @@ while read -r kind file line dollar cmd; do
     fi
 done <"$T/doc"
 echo "  $n_cmd doc commands: $ran run ($mapped with smaller arguments), $skipped skipped"
+
+# A rule whose command no doc shows any more is stale: a doc's command was
+# edited and now runs as written (perhaps slowly), or was removed.
+stale=$(printf '%s\n' "$rules" | sed -e 's/ *=> .*$//' -e 's/ *== .*$//' | while read -r k; do
+    grep -qxF -- "$k" "$T/used" 2>/dev/null || printf ' [%s]' "$k"; done)
+check rules_all_used [ -z "$stale" ]
+[ -n "$stale" ] && echo "  rules matching no doc command (update the table):$stale"
