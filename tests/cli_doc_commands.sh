@@ -21,8 +21,9 @@
 # the doc at once.
 #
 # Commands too slow for the suite run with smaller arguments (the table's
-# "=>" lines); their documented output came from the full arguments, so it
-# is compared only when a command runs as written. A few commands cannot
+# "=>" lines; the whole test takes about 10 s of CPU); their documented
+# output came from the full arguments, so it is compared only when a
+# command runs as written. A few commands cannot
 # run here (placeholders, the reader's own files, tools not installed):
 # each is listed with its reason, and printed as a "skip" line.
 . tests/lib_cli.sh
@@ -37,7 +38,8 @@ SHADESIM_HOME=$(cd "$SHADESIM_HOME" && pwd)
 
 # The table: a doc's command (without "$ ", its shadesim and its "# ..."
 # comment, blanks squeezed), then
-#   => ARGS       run these arguments instead (too slow as written)
+#   => ARGS       run these arguments instead (too slow as written, or a
+#                 placeholder filled in); the shown output is not compared
 #   == skip: WHY  do not run it, say why
 #   == status N   the doc shows it failing with exit status N
 rules=$(cat <<'EOF'
@@ -157,7 +159,7 @@ while read -r kind file line dollar cmd; do
         if (i) { k = substr($0, 1, i - 1); v = "=> " substr($0, i + 4) }
         else if (j) { k = substr($0, 1, j - 1); v = "== " substr($0, j + 4) }
         else next
-        sub(/ +$/, "", k); sub(/^(=>|==)  +/, substr(v, 1, 3), v)
+        sub(/ +$/, "", k)
         if (k == a) { print v; exit }
     }')
     [ -n "$rule" ] && printf '%s\n' "$args" >>"$T/used"
@@ -210,4 +212,4 @@ echo "  $n_cmd doc commands: $ran run ($mapped with smaller arguments), $skipped
 stale=$(printf '%s\n' "$rules" | sed -e 's/ *=> .*$//' -e 's/ *== .*$//' | while read -r k; do
     grep -qxF -- "$k" "$T/used" 2>/dev/null || printf ' [%s]' "$k"; done)
 check rules_all_used [ -z "$stale" ]
-[ -n "$stale" ] && echo "  rules matching no doc command (update the table):$stale"
+if [ -n "$stale" ]; then echo "  rules matching no doc command (update the table):$stale"; fi
