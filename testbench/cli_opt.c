@@ -123,13 +123,14 @@ int cli_opt_step(const cli_opt *tab, void *base, int argc, char **argv, int *i)
     return 0;
 }
 
-/* An unknown argument; an option near one the verb has (a typo) gets
+/* An unknown argument; a long option near one the verb has (a typo) gets
  * "did you mean" (hidden options are not suggested). */
 static int unknown(const cli_optspec *sp, const char *arg)
 {
     char m[1200];
     snprintf(m, sizeof m, sp->unknown, arg);
-    if (arg[0] == '-' && arg[1]) {
+    /* Long options only: a one-letter option is one edit from any other. */
+    if (arg[0] == '-' && arg[1] == '-' && arg[2]) {
         const char *names[256];
         size_t n = 0;
         char opt[64];

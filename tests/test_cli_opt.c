@@ -161,7 +161,7 @@ static void unknown_and_missing(void)
     TST_EQ_INT(PARSE(c, "--flag=1"), CLI_USAGE);        /* a flag takes no value */
     TST_EQ_STR(cap_text, "shadesim: t: unknown option '--flag=1'\n");
     TST_EQ_INT(PARSE(c, "--nn", "1"), CLI_USAGE);       /* no prefixes */
-    TST_EQ_STR(cap_text, "shadesim: t: unknown option '--nn'\n");
+    TST_EQ_STR(cap_text, "shadesim: t: unknown option '--nn' (did you mean '--n'?)\n");
     TST_EQ_INT(PARSE(c, "--refuse", "v"), CLI_USAGE);   /* a call that says "not mine" */
     TST_EQ_STR(cap_text, "shadesim: t: unknown option '--refuse'\n");
     TST_EQ_INT(PARSE(c, "--n"), CLI_USAGE);
