@@ -1,12 +1,11 @@
 /* scene_png.c - PNG encoder and colour maps.
  *
- * The encoder writes the smallest valid PNG that needs no compressor: the
- * signature, IHDR (8-bit greyscale or RGB, no interlace), one IDAT holding a
- * zlib stream of *stored* deflate blocks (each at most 65535 bytes, as the
- * 16-bit LEN field allows) and the Adler-32 of the raw scanlines, then IEND.
- * Every scanline starts with filter byte 0 (None). Images are therefore
- * about as large as the raw pixels; they are written for inspection, not
- * for size.
+ * The encoder writes the signature, IHDR (8-bit greyscale or RGB, no
+ * interlace), one IDAT holding a zlib stream (scene_deflate.c's DEFLATE at
+ * its fast level, then the Adler-32 of the filtered scanlines), and IEND.
+ * Each scanline gets the filter (None, Sub, Up, Average, Paeth) whose
+ * output has the least sum of absolute values taken as signed bytes, the
+ * heuristic the PNG specification suggests (ties to the lower filter).
  *
  * CRC-32 (the polynomial 0xEDB88320, reflected, as PNG and zlib use) comes
  * from a 256-entry table built into a local array at each call: that costs
@@ -50,21 +49,97 @@ static size_t chunk_close(const uint32_t t[256], uint8_t *out, const char type[4
     return n + 12;
 }
 
+static uint32_t adler32(const uint8_t *p, size_t n)
+{
+    uint32_t s1 = 1, s2 = 0;
+    while (n) {
+        size_t k = n < 5552 ? n : 5552;         /* no 32-bit overflow before the modulo */
+        n -= k;
+        while (k--) { s1 += *p++; s2 += s1; }
+        s1 %= 65521;
+        s2 %= 65521;
+    }
+    return s2 << 16 | s1;
+}
+
+/* Paeth's predictor with p - a = b - c and so on worked out, written with
+ * plain selects so that the compiler needs no branches. */
+static inline int paeth(int a, int b, int c)
+{
+    int pa = abs(b - c), pb = abs(a - c), pc = abs(a + b - 2 * c);
+    int ab = pb <= pc ? b : c;
+    return pa <= pb && pa <= pc ? a : ab;
+}
+
+/* |v| of a filtered byte read as signed */
+static inline unsigned mag(int v)
+{
+    int t = (int8_t)(uint8_t)v;
+    return (unsigned)(t < 0 ? -t : t);
+}
+
+/* The filter (0 None, 1 Sub, 2 Up, 3 Average, 4 Paeth) of least sum of
+ * |signed byte| for row cur (prev: the row above, zeros for the first
+ * row; bpp bytes per pixel), all five summed in one pass; ties to the
+ * lower number. */
+static int filter_pick(const uint8_t *cur, const uint8_t *prev, size_t n, size_t bpp)
+{
+    unsigned long s0 = 0, s1 = 0, s2 = 0, s3 = 0, s4 = 0;
+    for (size_t i = 0; i < n; i++) {
+        int x = cur[i], b = prev[i], a = 0, c = 0;
+        if (i >= bpp) { a = cur[i - bpp]; c = prev[i - bpp]; }
+        s0 += mag(x);
+        s1 += mag(x - a);
+        s2 += mag(x - b);
+        s3 += mag(x - ((a + b) >> 1));
+        s4 += mag(x - paeth(a, b, c));
+    }
+    unsigned long s[5] = { s0, s1, s2, s3, s4 };
+    int best = 0;
+    for (int f = 1; f < 5; f++)
+        if (s[f] < s[best]) best = f;
+    return best;
+}
+
+static void filter_row(int f, const uint8_t *cur, const uint8_t *prev, size_t n, size_t bpp, uint8_t *out)
+{
+    for (size_t i = 0; i < n; i++) {
+        int b = prev[i], a = 0, c = 0;
+        if (i >= bpp) { a = cur[i - bpp]; c = prev[i - bpp]; }
+        int pred = f == 0 ? 0 : f == 1 ? a : f == 2 ? b : f == 3 ? (a + b) >> 1 : paeth(a, b, c);
+        out[i] = (uint8_t)(cur[i] - pred);
+    }
+}
+
 int scn_png_encode(int w, int h, int channels, const uint8_t *pix, uint8_t **out, size_t *len)
 {
     *out = NULL;
     *len = 0;
     if (w <= 0 || h <= 0 || (channels != 1 && channels != 3) || !pix) return -1;
-    /* Raw scanlines: a filter byte and w*channels bytes per row. */
-    size_t row = (size_t)w * (size_t)channels + 1;
-    if (row - 1 > SIZE_MAX / (size_t)h / 2) return -1;
+    /* Filtered scanlines: a filter byte and w*channels bytes per row. */
+    size_t rb = (size_t)w * (size_t)channels, row = rb + 1;
+    if (rb > SIZE_MAX / (size_t)h / 2) return -1;
     size_t raw = row * (size_t)h;
-    size_t nblocks = raw / 65535 + (raw % 65535 != 0);
-    size_t zlen = 2 + raw + 5 * nblocks + 4;            /* header, blocks, Adler-32 */
-    if (zlen > 0x7FFFFFFFu) return -1;                  /* PNG chunk length limit */
+    uint8_t *f = malloc(raw), *zero = calloc(rb, 1);
+    if (!f || !zero) { free(f); free(zero); return -1; }
+    for (int y = 0; y < h; y++) {
+        const uint8_t *cur = pix + (size_t)y * rb, *prev = y ? cur - rb : zero;
+        uint8_t *dst = f + (size_t)y * row;
+        dst[0] = (uint8_t)filter_pick(cur, prev, rb, (size_t)channels);
+        filter_row(dst[0], cur, prev, rb, (size_t)channels, dst + 1);
+    }
+    free(zero);
+    uint8_t *z = NULL;
+    size_t zn = 0;
+    int rc = scn_deflate(f, raw, 1, &z, &zn);
+    uint32_t ad = adler32(f, raw);
+    free(f);
+    if (rc) return -1;
+    size_t zlen = 2 + zn + 4;                   /* header, deflate, Adler-32 */
+    if (zlen > 0x7FFFFFFFu) { free(z); return -1; }     /* PNG chunk length limit */
     size_t total = 8 + (12 + 13) + (12 + zlen) + 12;
     uint8_t *b = malloc(total);
-    if (!b) return -1;
+    if (!b) { free(z); return -1; }
     uint32_t t[256];
     crc_table(t);
 
@@ -81,37 +156,15 @@ int scn_png_encode(int w, int h, int channels, const uint8_t *pix, uint8_t **out
     ih[10] = 0; ih[11] = 0; ih[12] = 0;         /* deflate, adaptive filtering, no interlace */
     o += chunk_close(t, b + o, "IHDR", 13);
 
-    /* IDAT: zlib header 0x78 0x01 (deflate, 32K window, no dictionary,
-     * "fastest"; 0x7801 is a multiple of 31 as the header check demands). */
-    uint8_t *z = b + o + 8;
-    size_t zo = 0;
-    z[zo++] = 0x78;
-    z[zo++] = 0x01;
-    uint32_t s1 = 1, s2 = 0;                    /* Adler-32 */
-    size_t done = 0;                            /* raw bytes emitted */
-    size_t x = 0;                               /* position in the current scanline */
-    const uint8_t *src = pix;
-    while (done < raw) {
-        size_t n = raw - done < 65535 ? raw - done : 65535;
-        z[zo++] = done + n == raw;              /* BFINAL, BTYPE = 00 (stored) */
-        z[zo++] = (uint8_t)n;
-        z[zo++] = (uint8_t)(n >> 8);
-        z[zo++] = (uint8_t)~n;
-        z[zo++] = (uint8_t)(~n >> 8);
-        for (size_t k = 0; k < n; k++) {
-            uint8_t byte = x == 0 ? 0 : *src++;
-            if (++x == row) x = 0;
-            z[zo++] = byte;
-            s1 += byte;
-            if (s1 >= 65521) s1 -= 65521;
-            s2 += s1;
-            if (s2 >= 65521) s2 -= 65521;
-        }
-        done += n;
-    }
-    put32(z + zo, (s2 << 16) | s1);
-    zo += 4;
-    o += chunk_close(t, b + o, "IDAT", zo);
+    /* IDAT: zlib header 0x78 0x5E (deflate, 32K window, no dictionary,
+     * level "fast"; 0x785E is a multiple of 31 as the header check demands). */
+    uint8_t *zd = b + o + 8;
+    zd[0] = 0x78;
+    zd[1] = 0x5E;
+    memcpy(zd + 2, z, zn);
+    put32(zd + 2 + zn, ad);
+    free(z);
+    o += chunk_close(t, b + o, "IDAT", zlen);
     o += chunk_close(t, b + o, "IEND", 0);
     *out = b;
     *len = o;
