@@ -419,6 +419,9 @@ int scn_deflate(const uint8_t *in, size_t n, int level, uint8_t **out, size_t *o
         if (l) {
             t[nt].len = (uint16_t)l;
             t[nt].dist = (uint16_t)d;
+            /* Fast level: the inside of a long match (a run of background)
+             * is not hashed, as zlib's fast levels do; its last strings are. */
+            if (level == 1 && l > z->nice && !cached && z->ins < p + (size_t)l - 3) z->ins = p + (size_t)l - 3;
             p += (size_t)l;
         } else {
             t[nt].len = in[p];

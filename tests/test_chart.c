@@ -1019,7 +1019,7 @@ static chart *sample_front_labels(void)
         double e = 3.5 * ldexp(1.0, -w + 1), area = 8.0 * w * w + 150 * w;
         chart_point(c, a, e * 1.9, area * 1.05);
         chart_point(c, b, e, area);
-        char lab[16];
+        char lab[32];
         snprintf(lab, sizeof lab, "width %d", w);
         chart_point_label(c, f, e, area, lab);
     }

@@ -217,6 +217,8 @@ static int unpaeth(int a, int b, int c)
     return pb <= pc ? b : c;
 }
 
+static uint8_t last_filters[4096];          /* decode(): each row's filter type */
+
 /* Decode a PNG as the encoder must write it. Returns 0 and the pixels
  * (malloc'ed), or -1 with why. nblk: deflate blocks of each type. */
 static int decode(const uint8_t *b, size_t n, int *w, int *h, int *ch, uint8_t **pix,
@@ -287,6 +289,7 @@ static int decode(const uint8_t *b, size_t n, int *w, int *h, int *ch, uint8_t *
     *pix = malloc(raw ? raw : 1);
     for (int y = 0; y < *h; y++) {
         int f = r[y * row];
+        if (y < 4096) last_filters[y] = (uint8_t)f;
         if (f > 4) { snprintf(why, wl, "filter %d", f); free(*pix); *pix = NULL; goto bad; }
         uint8_t *cur = *pix + y * rb;
         const uint8_t *up = y ? cur - rb : NULL, *src = r + y * row + 1;
@@ -340,6 +343,33 @@ static uint8_t *slurp_file(const char *path, size_t *n)
     return b;
 }
 
+/* Rows of the last decoded image whose filter is not the one of least
+ * sum of |residual as a signed byte| (ties to the lower type): the sums
+ * recomputed here from the pixels, per filter, by PNG's definitions. */
+static int min_sum_rows(const uint8_t *p, int w, int h, int ch)
+{
+    int bad = 0;
+    size_t rb = (size_t)w * ch;
+    for (int y = 0; y < h && y < 4096; y++) {
+        long sum[5] = { 0 };
+        for (int f = 0; f < 5; f++)
+            for (size_t i = 0; i < rb; i++) {
+                int x = p[y * rb + i];
+                int a = i >= (size_t)ch ? p[y * rb + i - ch] : 0;
+                int b = y ? p[(y - 1) * rb + i] : 0;
+                int c = y && i >= (size_t)ch ? p[(y - 1) * rb + i - ch] : 0;
+                int pred = f == 0 ? 0 : f == 1 ? a : f == 2 ? b : f == 3 ? (a + b) / 2 : unpaeth(a, b, c);
+                int r = (int8_t)(uint8_t)(x - pred);
+                sum[f] += r < 0 ? -r : r;
+            }
+        int best = 0;
+        for (int f = 1; f < 5; f++)
+            if (sum[f] < sum[best]) best = f;
+        bad += last_filters[y] != best;
+    }
+    return bad;
+}
+
 static void png_roundtrip(void)
 {
     static const int sz[][3] = {
@@ -364,6 +394,7 @@ static void png_roundtrip(void)
             TST_EQ_INT(dh, h);
             TST_EQ_INT(dch, ch);
             TST_CHECK(!memcmp(dec, p, (size_t)w * h * ch), "%dx%dx%d: pixels differ", w, h, ch);
+            TST_EQ_INT(min_sum_rows(p, w, h, ch), 0);
             /* never much above the stored form (a block of at most 32768
              * tokens falls back to stored bytes: 5 bytes and a partial one
              * per block); the pattern is 6/7 a ramp, so big images shrink
@@ -387,10 +418,37 @@ static void png_roundtrip(void)
     char fwhy[128] = "";
     TST_CHECK(decode(fo, fl, &fw, &fh, &fch, &fd, fnb, fwhy, sizeof fwhy) == 0, "flat: %s", fwhy);
     TST_CHECK(fd && !memcmp(fd, flat, 512 * 512 * 3), "flat: pixels differ");
+    TST_EQ_INT(min_sum_rows(flat, 512, 512, 3), 0);
     TST_CHECK(fl < 4000, "flat 512x512: %zu bytes", fl);
     free(flat);
     free(fo);
     free(fd);
+    /* A render's shape: black around a shaded disc with some noise (rows
+     * all black, rows black at both ends, rows alike), grey and RGB. */
+    for (int ch = 1; ch <= 3; ch += 2) {
+        int w = 301, h = 203;
+        uint8_t *d = calloc((size_t)w * h * ch, 1), *o = NULL, *dd = NULL;
+        uint32_t st = 5;
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {
+                double dx = (x - 150) / 120.0, dy = (y - 100) / 80.0;
+                if (dx * dx + dy * dy > 1) continue;
+                st = st * 1664525u + 1013904223u;
+                for (int k = 0; k < ch; k++)
+                    d[((size_t)y * w + x) * ch + k] = (uint8_t)(40 + 150 * (1 - dx * dx - dy * dy) + 30 * k + (st >> 30));
+            }
+        size_t ol = 0;
+        TST_EQ_INT(scn_png_encode(w, h, ch, d, &o, &ol), 0);
+        int dw, dh, dch, dnb[3];
+        char dwhy[128] = "";
+        TST_CHECK(decode(o, ol, &dw, &dh, &dch, &dd, dnb, dwhy, sizeof dwhy) == 0, "disc: %s", dwhy);
+        TST_CHECK(dd && dw == w && dh == h && !memcmp(dd, d, (size_t)w * h * ch), "disc %d: pixels differ", ch);
+        TST_EQ_INT(min_sum_rows(d, w, h, ch), 0);
+        TST_CHECK(ol < (size_t)w * h * ch / 3, "disc %d: %zu bytes", ch, ol);
+        free(d);
+        free(o);
+        free(dd);
+    }
     /* Same input, same bytes. */
     uint8_t *p = pattern(7, 5, 3, 9), *a, *b;
     size_t la, lb;
