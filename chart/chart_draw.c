@@ -291,14 +291,16 @@ static double chart_px(const chart_lay *l, size_t s, size_t i)
     return l->dodge ? x + l->dodge[l->doff[s] + i] : x;
 }
 
-/* The series before s with exactly s's points, or -1. */
+/* The series before s with exactly s's points, or -1. Rings and
+ * staircases repeat other series' points on purpose: never twins. */
 static int chart_same_series(const chart *c, size_t s)
 {
+    const int marks = CHART_HOLLOW | CHART_STEP;
     const chart_ser *a = &c->ser[s];
-    if (a->key || !a->n) return -1;
+    if (a->key || !a->n || (a->style & marks)) return -1;
     for (size_t t = 0; t < s; t++) {
         const chart_ser *b = &c->ser[t];
-        if (b->key || b->n != a->n) continue;
+        if (b->key || b->n != a->n || (b->style & marks)) continue;
         size_t i = 0;
         for (; i < a->n; i++) {
             double ax = a->pt[i].x, ay = a->pt[i].y, bx = b->pt[i].x, by = b->pt[i].y;

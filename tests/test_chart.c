@@ -987,6 +987,7 @@ static void test_svg_equal_series(void)
     for (int i = 1; i <= 5; i++) { chart_point(c, p, i, 10 - i); chart_point(c, r, i, 10 - i); }
     svg = write_read(c, "rings.svg");
     TST_CHECK(svg && !strstr(svg, "side by side"), "rings moved");
+    TST_CHECK(svg && strstr(svg, ">front<") && !strstr(svg, "(= "), "rings called a twin");
     free(svg);
 }
 
