@@ -220,7 +220,8 @@ int  scn_png_encode(int w, int h, int channels, const uint8_t *pix, uint8_t **ou
 /* Compress in[0..n) as a raw DEFLATE stream (RFC 1951, no zlib frame):
  * level 0 codes literals only, 1 is fast (short hash chains), 2 searches
  * longer. Each block is dynamic, fixed or stored, whichever is smallest.
- * Deterministic. *out is malloc'ed. 0, or -1 (out of memory). */
+ * Deterministic. *out is malloc'ed. 0, or -1 (out of memory, or n of
+ * 2^32 - 1 bytes or more). */
 int  scn_deflate(const uint8_t *in, size_t n, int level, uint8_t **out, size_t *outlen);
 /* Colour map for an error heat map: v in [0, 1] -> black, blue, red, yellow, white. */
 void scn_heat_rgb(double v, uint8_t rgb[3]);

@@ -393,7 +393,7 @@ int scn_deflate(const uint8_t *in, size_t n, int level, uint8_t **out, size_t *o
 {
     *out = NULL;
     *outlen = 0;
-    if (!in && n) return -1;
+    if ((!in && n) || n >= UINT32_MAX) return -1;     /* chains hold positions + 1 in 32 bits */
     zout o = { 0 };
     lz *z = calloc(1, sizeof *z);
     ztok *t = malloc(BLK_SYMS * sizeof *t);
