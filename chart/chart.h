@@ -18,6 +18,11 @@
  * What is not drawn is said: points that are NaN/inf, or <= 0 on a log
  * axis, are skipped and counted in a footnote ("3 points <= 0 not shown");
  * a chart with nothing to draw still writes a valid SVG saying "no data".
+ * Nothing hides silently either: markers of different series on the same
+ * spot are set a few pixels apart side by side (the footnote counts them),
+ * a series that repeats another's points whole says "(= other)" in the
+ * legend, point labels keep off grid lines where they can, and a long
+ * legend text wraps onto up to three lines before it is cut.
  *
  * Errors while building (out of memory, a bad series index) are sticky:
  * the building calls return nothing, and chart_write reports the first
@@ -48,8 +53,9 @@ enum { CHART_LINE = 1, CHART_POINTS = 2, CHART_STEP = 4, CHART_HOLLOW = 8 };
 chart *chart_new(const char *title, const char *xlabel, const char *ylabel);
 void   chart_free(chart *c);
 
-/* Logarithmic axes: ticks at decades labelled 10^k, minor ticks between
- * (on an axis of one or two decades, 2 and 5 x 10^k are labelled too). */
+/* Logarithmic axes: limits at the 1, 2 or 5 x 10^k nearest the data, ticks
+ * at the decades between labelled 10^k, minor ticks between (on an axis of
+ * up to two decades, 2 and 5 x 10^k are labelled too). */
 void chart_log_x(chart *c, int on);
 void chart_log_y(chart *c, int on);
 /* Whole-number x data (e.g. bit widths): ticks at whole numbers only. */
@@ -115,8 +121,11 @@ size_t chart_pareto3(const double *x, const double *y, const double *z, size_t n
 /* The axis ticks the charts use, exposed for tests and for callers that
  * want the same scale elsewhere. For the data range [dmin, dmax]:
  * linear: steps of 1, 2 or 5 x 10^k, at most 8 intervals, the first tick
- * <= dmin and the last >= dmax; log (dmin > 0): decades 10^k (every
- * second, third... decade when there are more than 8), covering the data.
+ * <= dmin and the last >= dmax; log (dmin > 0): limits lo <= dmin and
+ * hi >= dmax at the nearest 1, 2 or 5 x 10^k (the decades around the data
+ * when no decade would lie between those), ticks the decades 10^k within
+ * them (every second, third... decade when there are more than 8); at
+ * least one.
  * Writes up to cap ascending major ticks to ticks and the axis limits to
  * lo and hi (either may be NULL); returns the number of ticks (0 when the
  * range is unusable: NaN, inf, or dmin <= 0 on a log axis). At the ends

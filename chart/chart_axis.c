@@ -66,9 +66,13 @@ int chart_lin_fit(chart_axis *a, double dmin, double dmax, int maxint)
     return 0;
 }
 
-/* Log ticks: decades covering the data; every s-th decade when there are
- * more than maxint. Minor ticks at 2..9 x 10^k, or, when majors skip
- * decades, at every decade (every s/5-th for strides of 10 and more). */
+/* Log axes: the limits are the nearest 1, 2 or 5 x 10^k around the data
+ * (so no axis spends most of a decade on each side with nothing in it:
+ * 4..32 gets 2..50, not 1..100), the major ticks the decades inside them,
+ * every s-th decade when there are more than maxint. Where those limits
+ * would hold no decade at all (3..7), the axis is the decade around the
+ * data. Minor ticks at 2..9 x 10^k, or, when majors skip decades, at every
+ * decade (every s/5-th for strides of 10 and more). */
 int chart_log_fit(chart_axis *a, double dmin, double dmax, int maxint)
 {
     if (dmin > dmax) { double t = dmin; dmin = dmax; dmax = t; }
@@ -80,26 +84,45 @@ int chart_log_fit(chart_axis *a, double dmin, double dmax, int maxint)
     if (e1 > -330 && chart_pow10(e1 - 1) >= dmax) e1--;
     if (chart_pow10(e1) < dmax) e1++;
     if (e0 >= e1) { e0--; e1++; }           /* a single power of ten */
+    /* the tight limits: 10^e0 <= dmin and 10^e1 >= dmax hold here */
+    double lo = e0, hi = e1, lov = chart_pow10(e0), hiv = chart_pow10(e1);
+    if (5 * chart_pow10(e0) <= dmin) { lo = e0 + log10(5.0); lov = 5 * chart_pow10(e0); }
+    else if (2 * chart_pow10(e0) <= dmin) { lo = e0 + log10(2.0); lov = 2 * chart_pow10(e0); }
+    if (2 * chart_pow10(e1 - 1) >= dmax) { hi = e1 - 1 + log10(2.0); hiv = 2 * chart_pow10(e1 - 1); }
+    else if (5 * chart_pow10(e1 - 1) >= dmax) { hi = e1 - 1 + log10(5.0); hiv = 5 * chart_pow10(e1 - 1); }
+    if (ceil(lo) > floor(hi)) { lo = e0; hi = e1; lov = chart_pow10(e0); hiv = chart_pow10(e1); }
     static const int strides[] = { 1, 2, 3, 5, 10, 20, 50, 100, 200, 500 };
     int s = 1;
     for (size_t i = 0; i < sizeof strides / sizeof *strides; i++) {
         s = strides[i];
         int f0 = (int)floor((double)e0 / s), f1 = (int)ceil((double)e1 / s);
-        if (f1 - f0 <= maxint) { e0 = f0 * s; e1 = f1 * s; break; }
+        if (f1 - f0 <= maxint) break;
+    }
+    /* with a stride, the limits widen to its multiples only where no
+     * multiple lies inside (the axis needs two major ticks) */
+    int m0 = (int)ceil(lo / s - 1e-9), m1 = (int)floor(hi / s + 1e-9);
+    if (s > 1 && m1 - m0 < 1) {
+        int f0 = (int)floor((double)e0 / s), f1 = (int)ceil((double)e1 / s);
+        lo = f0 * s; hi = f1 * s; lov = chart_pow10(f0 * s); hiv = chart_pow10(f1 * s);
+        m0 = f0; m1 = f1;
     }
     a->log = 1;
     a->step = s;
-    a->lo = e0;
-    a->hi = e1;
+    a->lo = lo;
+    a->hi = hi;
+    a->lov = lov;
+    a->hiv = hiv;
     a->nmaj = 0;
     a->nmin = 0;
-    for (int e = e0; e <= e1 && a->nmaj < CHART_MAXMAJ; e += s) a->maj[a->nmaj++] = e;
+    for (int m = m0; m <= m1 && a->nmaj < CHART_MAXMAJ; m++) a->maj[a->nmaj++] = m * s;
     int ms = s <= 5 ? 1 : s / 5;
-    for (int e = e0; e < e1; e++) {
+    for (int e = (int)floor(lo); e < (int)ceil(hi); e++) {
         if (s == 1) {
-            for (int m = 2; m <= 9 && a->nmin < CHART_MAXMIN; m++)
-                a->min[a->nmin++] = e + log10((double)m);
-        } else if (e % s != 0 && e % ms == 0 && a->nmin < CHART_MAXMIN) {
+            for (int m = 2; m <= 9 && a->nmin < CHART_MAXMIN; m++) {
+                double t = e + log10((double)m);
+                if (t >= lo - 1e-9 && t <= hi + 1e-9) a->min[a->nmin++] = t;
+            }
+        } else if (e % s != 0 && e % ms == 0 && e >= lo && a->nmin < CHART_MAXMIN) {
             a->min[a->nmin++] = e;
         }
     }
@@ -115,8 +138,8 @@ size_t chart_ticks(double dmin, double dmax, int log_scale,
     if (r) return 0;
     for (size_t i = 0; i < a.nmaj && i < cap && ticks; i++)
         ticks[i] = a.log ? chart_pow10((int)a.maj[i]) : a.maj[i];
-    if (lo) *lo = a.log ? chart_pow10((int)a.lo) : a.lo;
-    if (hi) *hi = a.log ? chart_pow10((int)a.hi) : a.hi;
+    if (lo) *lo = a.log ? a.lov : a.lo;
+    if (hi) *hi = a.log ? a.hiv : a.hi;
     return a.nmaj;
 }
 
@@ -169,10 +192,12 @@ void chart_labels(chart_axis *a)
         static const int m1[] = { 2, 3, 5 }, m2[] = { 2, 5 };
         const int *m = a->hi - a->lo <= 1 ? m1 : m2;
         size_t nm = a->hi - a->lo <= 1 ? 3 : 2;
-        for (int e = (int)a->lo; e < (int)a->hi; e++)
+        for (int e = (int)floor(a->lo); e < (int)ceil(a->hi); e++)
             for (size_t j = 0; j < nm && a->nmlab < CHART_MAXMLAB; j++) {
+                double t = e + log10((double)m[j]);
+                if (t < a->lo - 1e-9 || t > a->hi + 1e-9) continue;
                 chart_lab *l = &a->mlab[a->nmlab];
-                a->mlabpos[a->nmlab++] = e + log10((double)m[j]);
+                a->mlabpos[a->nmlab++] = t;
                 snprintf(l->base, sizeof l->base, "%d\xC3\x97" "10", m[j]);
                 snprintf(l->sup, sizeof l->sup, "%d", e);
                 chart_minus(l->sup, sizeof l->sup);

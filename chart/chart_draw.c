@@ -149,10 +149,16 @@ typedef struct {
     size_t flen;
     double *bx0, *bx1;      /* per band: its pixels, cut to the frame */
     int   *brow;            /* per band: label row above the plot, or -1 */
+    double *dodge;          /* per point (series s from doff[s]): x offset in pixels */
+    size_t *doff;
+    int   *same;            /* per series: an earlier series of the same points, or -1 */
 } chart_lay;
 
 #define CHART_PAD      10  /* end ticks this far inside the frame */
-#define CHART_LEGMAX   26  /* legend text cut to this many characters */
+#define CHART_LEGMAX   26  /* legend text wrapped at this many characters */
+#define CHART_LEGLINES 3   /* ... onto at most this many lines, the last cut */
+#define CHART_DODGE    5   /* markers of equal value in different series: this far apart */
+#define CHART_DQ       2000 /* "equal" position: the same 1/2000 of the data range */
 #define CHART_BANDMAX  30  /* band labels likewise */
 #define CHART_PLMAX    20  /* point labels likewise */
 #define CHART_BANDROWS 4   /* rows for band labels; a label that fits none is dropped */
@@ -194,6 +200,194 @@ static int chart_layout_bands(chart_lay *l)
     return nrows;
 }
 
+/* ---- series of equal values --------------------------------------------- */
+
+/* Where points of different series fall on the same spot, one hides the
+ * other (a sweep over overflow modes where wrap and sat never differ).
+ * Such points, at the same 1/CHART_DQ of the data range each way, are set
+ * side by side, CHART_DODGE pixels apart in x (closer when more than three
+ * meet, to stay within the frame's padding), in series order: markers,
+ * and the lines of series that repeat another whole (chart_twin); the
+ * footnote says how many points moved. Rings (CHART_HOLLOW)
+ * and staircases (CHART_STEP) mark other series' points on purpose and
+ * stay where they are. Returns the number of points moved. */
+typedef struct { long long qx, qy; size_t s, i; } chart_dkey;
+
+static int chart_dcmp(const void *pa, const void *pb)
+{
+    const chart_dkey *a = pa, *b = pb;
+    if (a->qx != b->qx) return a->qx < b->qx ? -1 : 1;
+    if (a->qy != b->qy) return a->qy < b->qy ? -1 : 1;
+    if (a->s != b->s) return a->s < b->s ? -1 : 1;
+    return a->i < b->i ? -1 : a->i > b->i;
+}
+
+static double chart_q(double v, double lo, double span, int lg)
+{
+    return ((lg ? log10(v) : v) - lo) / span * CHART_DQ;
+}
+
+/* Is series s one of a set of series with the same points? Their lines
+ * are moved with their markers (in parallel, where nothing else meets
+ * them); other lines stay where they are, so that partly equal series get
+ * no kinks, and only their markers step aside. */
+static int chart_twin(const chart_lay *l, size_t s)
+{
+    if (!l->same) return 0;
+    if (l->same[s] >= 0) return 1;
+    for (size_t t = s + 1; t < l->c->nser; t++)
+        if (l->same[t] == (int)s) return 1;
+    return 0;
+}
+
+static size_t chart_layout_dodge(chart_lay *l, double xmin, double xmax, double ymin, double ymax)
+{
+    const chart *c = l->c;
+    size_t tot = 0, moved = 0;
+    l->doff = calloc(c->nser + 1, sizeof *l->doff);
+    for (size_t s = 0; l->doff && s < c->nser; s++) { l->doff[s] = tot; tot += c->ser[s].n; }
+    l->dodge = calloc(tot ? tot : 1, sizeof *l->dodge);
+    chart_dkey *k = malloc((tot ? tot : 1) * sizeof *k);
+    if (!l->doff || !l->dodge || !k) { l->b->oom = 1; free(k); return 0; }
+    double x0 = c->log_x ? log10(xmin) : xmin, y0 = c->log_y ? log10(ymin) : ymin;
+    double sx = (c->log_x ? log10(xmax) : xmax) - x0, sy = (c->log_y ? log10(ymax) : ymax) - y0;
+    if (!(sx > 0) || !isfinite(sx)) sx = 1;
+    if (!(sy > 0) || !isfinite(sy)) sy = 1;
+    size_t nk = 0;
+    for (size_t s = 0; s < c->nser; s++) {
+        const chart_ser *se = &c->ser[s];
+        if (se->key || (se->style & (CHART_HOLLOW | CHART_STEP)) || !((se->style & CHART_POINTS) || chart_twin(l, s)))
+            continue;
+        for (size_t i = 0; i < se->n; i++) {
+            if (chart_visible(c, se->pt[i].x, se->pt[i].y) != CHART_SHOWN) continue;
+            k[nk].qx = llround(chart_q(se->pt[i].x, x0, sx, c->log_x));
+            k[nk].qy = llround(chart_q(se->pt[i].y, y0, sy, c->log_y));
+            k[nk].s = s;
+            k[nk++].i = i;
+        }
+    }
+    qsort(k, nk, sizeof *k, chart_dcmp);
+    for (size_t a = 0, b; a < nk; a = b) {
+        size_t nd = 1;
+        for (b = a + 1; b < nk && k[b].qx == k[a].qx && k[b].qy == k[a].qy; b++) nd += k[b].s != k[b - 1].s;
+        if (nd < 2) continue;
+        /* many series at one spot: closer, within the frame's padding */
+        double step = fmin(CHART_DODGE, 2.0 * (CHART_PAD - 2) / (double)(nd - 1));
+        size_t r = 0;
+        for (size_t j = a; j < b; j++) {
+            if (j > a && k[j].s != k[j - 1].s) r++;
+            l->dodge[l->doff[k[j].s] + k[j].i] = ((double)r - (double)(nd - 1) / 2) * step;
+        }
+        moved += b - a;
+    }
+    free(k);
+    return moved;
+}
+
+/* x pixel of point i of series s, set aside when it shares its spot. */
+static double chart_px(const chart_lay *l, size_t s, size_t i)
+{
+    double x = chart_pix(&l->ax, l->c->ser[s].pt[i].x);
+    return l->dodge ? x + l->dodge[l->doff[s] + i] : x;
+}
+
+/* The series before s with exactly s's points, or -1. Rings and
+ * staircases repeat other series' points on purpose: never twins. */
+static int chart_same_series(const chart *c, size_t s)
+{
+    const int marks = CHART_HOLLOW | CHART_STEP;
+    const chart_ser *a = &c->ser[s];
+    if (a->key || !a->n || (a->style & marks)) return -1;
+    for (size_t t = 0; t < s; t++) {
+        const chart_ser *b = &c->ser[t];
+        if (b->key || b->n != a->n || (b->style & marks)) continue;
+        size_t i = 0;
+        for (; i < a->n; i++) {
+            double ax = a->pt[i].x, ay = a->pt[i].y, bx = b->pt[i].x, by = b->pt[i].y;
+            if (!((ax == bx || (isnan(ax) && isnan(bx))) && (ay == by || (isnan(ay) && isnan(by))))) break;
+        }
+        if (i == a->n) return (int)t;
+    }
+    return -1;
+}
+
+/* ---- legend text ---------------------------------------------------------- */
+
+/* Series s's legend text: its label, and "(= other)" when it repeats the
+ * points of an earlier labelled series, which then hides it. */
+static void chart_leg_text(const chart_lay *l, size_t s, char *buf, size_t cap)
+{
+    const chart *c = l->c;
+    int t = l->same ? l->same[s] : -1;
+    if (t >= 0 && c->ser[t].label && *c->ser[t].label)
+        snprintf(buf, cap, "%s (= %s)", c->ser[s].label, c->ser[t].label);
+    else snprintf(buf, cap, "%s", c->ser[s].label);
+}
+
+/* Byte offset of code point k of s (or of its end). */
+static size_t chart_cpoff(const char *s, size_t k)
+{
+    size_t b = 0;
+    for (size_t n = 0; s[b] && n < k; n++) {
+        b++;
+        while (((unsigned char)s[b] & 0xC0) == 0x80) b++;
+    }
+    return b;
+}
+
+/* s in lines of at most max code points, broken at spaces where it can,
+ * at most CHART_LEGLINES (the last one keeps the rest, to be cut with an
+ * ellipsis). Line k is s[st[k] .. st[k] + ln[k]). Returns the count. */
+static int chart_wrap(const char *s, size_t max, size_t st[CHART_LEGLINES], size_t ln[CHART_LEGLINES])
+{
+    size_t pos = 0;
+    int n = 0;
+    while (n < CHART_LEGLINES) {
+        const char *r = s + pos;
+        size_t end = chart_cpoff(r, max);
+        if (!r[end] || n == CHART_LEGLINES - 1) { st[n] = pos; ln[n++] = strlen(r); break; }
+        size_t cut = 0;
+        for (size_t b = 0; b <= end; b++)
+            if (r[b] == ' ') cut = b;
+        if (!cut) cut = end;
+        st[n] = pos;
+        ln[n++] = cut;
+        pos += cut;
+        while (s[pos] == ' ') pos++;
+        if (!s[pos]) break;
+    }
+    return n;
+}
+
+/* A piece of a label (at most a line and a bit) as XML text, cut to maxcp. */
+static void chart_text_n(chart_buf *b, const char *s, size_t n, size_t maxcp)
+{
+    char tmp[512];
+    if (n >= sizeof tmp) {
+        n = sizeof tmp - 1;
+        while (n && ((unsigned char)s[n] & 0xC0) == 0x80) n--;
+    }
+    memcpy(tmp, s, n);
+    tmp[n] = 0;
+    chart_text(b, tmp, maxcp);
+}
+
+/* Width of the widest line of the wrapped text at font size. */
+static double chart_wrapw(const char *s, size_t max, double size)
+{
+    size_t st[CHART_LEGLINES], ln[CHART_LEGLINES];
+    int n = chart_wrap(s, max, st, ln);
+    double w = 0;
+    char tmp[512];
+    for (int k = 0; k < n; k++) {
+        size_t m = ln[k] < sizeof tmp ? ln[k] : sizeof tmp - 1;
+        memcpy(tmp, s + st[k], m);
+        tmp[m] = 0;
+        w = fmax(w, chart_textw(tmp, size, max));
+    }
+    return w;
+}
+
 /* Decide everything before drawing anything: axes, margins, legend. */
 static void chart_layout(chart_lay *l)
 {
@@ -220,6 +414,11 @@ static void chart_layout(chart_lay *l)
         else if (c->log_y && y <= 0) lnonpos++;
         else if (nshown) { ymin = fmin(ymin, y); ymax = fmax(ymax, y); }
     }
+    l->same = malloc((c->nser ? c->nser : 1) * sizeof *l->same);
+    if (!l->same) l->b->oom = 1;
+    for (size_t s = 0; l->same && s < c->nser; s++) l->same[s] = chart_same_series(c, s);
+    size_t ndodge = nshown ? chart_layout_dodge(l, xmin, xmax, ymin, ymax) : 0;
+    chart_footnote(l->foot, sizeof l->foot, &l->flen, ndodge, "point", "of equal value in two series or more set side by side");
     chart_footnote(l->foot, sizeof l->foot, &l->flen, nnonpos, "point", "<= 0 not shown");
     chart_footnote(l->foot, sizeof l->foot, &l->flen, nnonfin, "point", "NaN/inf not shown");
     chart_footnote(l->foot, sizeof l->foot, &l->flen, lnonpos, "line", "at y <= 0 not shown");
@@ -239,9 +438,11 @@ static void chart_layout(chart_lay *l)
     double legtw = 0;
     for (size_t s = 0; s < c->nser; s++)
         if (c->ser[s].label && chart_draws(c, s)) {
+            char t[512];
+            chart_leg_text(l, s, t, sizeof t);
             l->nleg++;
-            legtw = fmax(legtw, c->ser[s].key == 2 ? chart_textw(c->ser[s].label, CHART_FS_TICK, CHART_LEGMAX + 6) - 32
-                                                  : chart_textw(c->ser[s].label, CHART_FS_TICK, CHART_LEGMAX));
+            legtw = fmax(legtw, c->ser[s].key == 2 ? chart_wrapw(t, CHART_LEGMAX + 6, CHART_FS_TICK) - 32
+                                                  : chart_wrapw(t, CHART_LEGMAX, CHART_FS_TICK));
         }
     l->legw = l->nleg ? 10 + 24 + 8 + legtw + 10 : 0;
 
@@ -335,14 +536,15 @@ static void chart_draw_series(const chart_lay *l)
         const chart_ser *se = &c->ser[s];
         if (se->style & (CHART_LINE | CHART_STEP)) {
             d.n = 0;
-            int pen = 0;
+            int pen = 0, twin = chart_twin(l, s);
             double px = 0, py = 0;
             for (size_t i = 0; i < se->n; i++) {
                 if (chart_visible(c, se->pt[i].x, se->pt[i].y) != CHART_SHOWN) {
                     pen = 0;            /* a skipped point breaks the line */
                     continue;
                 }
-                double x = chart_pix(&l->ax, se->pt[i].x), y = chart_pix(&l->ay, se->pt[i].y);
+                double x = twin ? chart_px(l, s, i) : chart_pix(&l->ax, se->pt[i].x);
+                double y = chart_pix(&l->ay, se->pt[i].y);
                 if (!pen) chart_f(&d, "M%f %f", x, y);
                 else if (se->style & CHART_STEP) {
                     if (x != px) chart_f(&d, "H%f", x);
@@ -363,7 +565,7 @@ static void chart_draw_series(const chart_lay *l)
             double r = chart_marker_r(se->style);
             for (size_t i = 0; i < se->n; i++)
                 if (chart_visible(c, se->pt[i].x, se->pt[i].y) == CHART_SHOWN)
-                    chart_marker(&d, chart_shape(c, s), chart_pix(&l->ax, se->pt[i].x),
+                    chart_marker(&d, chart_shape(c, s), chart_px(l, s, i),
                                   chart_pix(&l->ay, se->pt[i].y), r);
             if (d.n) chart_marker_paint(l->b, c, s, d.p);
         }
@@ -387,7 +589,7 @@ static void chart_draw_plabels(const chart_lay *l)
         for (size_t i = 0; i < c->ser[s].n; i++) {
             const chart_pt *pt = &c->ser[s].pt[i];
             if (chart_visible(c, pt->x, pt->y) != CHART_SHOWN) continue;
-            double x = chart_pix(&l->ax, pt->x), y = chart_pix(&l->ay, pt->y);
+            double x = chart_px(l, s, i), y = chart_pix(&l->ay, pt->y);
             chart_box bx = { x - 4, y - 4, x + 4, y + 4 };
             chart_addbox(&obst, bx, b);
         }
@@ -401,33 +603,57 @@ static void chart_draw_plabels(const chart_lay *l)
         chart_box bx = { l->R - 4 - w, ty - fs, l->R - 4, ty + 0.3 * fs };
         chart_addbox(&lab, bx, b);
     }
+    /* the grid lines a label should not sit on (chart_draw_grid's) */
+    double gx[CHART_MAXMAJ], gy[CHART_MAXMAJ];
+    size_t ngx = 0, ngy = 0;
+    for (size_t i = 0; i < l->ax.nmaj; i++) {
+        double p = chart_snap(chart_upix(&l->ax, l->ax.maj[i]));
+        if (p > l->L + 1 && p < l->R - 1) gx[ngx++] = p;
+    }
+    for (size_t i = 0; i < l->ay.nmaj; i++) {
+        double p = chart_snap(chart_upix(&l->ay, l->ay.maj[i]));
+        if (p > l->T + 1 && p < l->B - 1) gy[ngy++] = p;
+    }
+    /* nudges of a spot, nearest first: dx away from the point (towards
+     * it when negative; right and left for a centred spot), dy up or down */
+    static const double nudge[][2] = { { 0, 0 }, { 0, -3 }, { 0, 3 }, { 3, 0 }, { 0, -6 }, { 0, 6 },
+                                       { 3, -3 }, { 3, 3 }, { 6, 0 }, { 0, -9 }, { 0, 9 }, { -3, 0 } };
+    const int nn = (int)(sizeof nudge / sizeof nudge[0]);
     for (size_t k = 0; k < c->npl && !b->oom; k++) {
-        const chart_pt *pt = &c->ser[c->pl[k].series].pt[c->pl[k].idx];
+        size_t ps = (size_t)c->pl[k].series;
+        const chart_pt *pt = &c->ser[ps].pt[c->pl[k].idx];
         if (chart_visible(c, pt->x, pt->y) != CHART_SHOWN) continue;
-        double x = chart_pix(&l->ax, pt->x), y = chart_pix(&l->ay, pt->y);
+        double x = chart_px(l, ps, c->pl[k].idx), y = chart_pix(&l->ay, pt->y);
         double w = chart_textw(c->pl[k].text, fs, CHART_PLMAX);
-        /* per spot: offset of the text's left edge, of its baseline */
-        const double spot[6][2] = {
-            { gap, -gap }, { gap, gap + asc }, { -gap - w, -gap },
-            { -gap - w, gap + asc }, { -w / 2, -gap - 3 }, { -w / 2, gap + 3 + asc },
+        /* per spot: offset of the text's left edge, of its baseline; the
+         * side it lies on (+1 right, -1 left, 0 centred) */
+        const double spot[6][3] = {
+            { gap, -gap, 1 }, { gap, gap + asc, 1 }, { -gap - w, -gap, -1 },
+            { -gap - w, gap + asc, -1 }, { -w / 2, -gap - 3, 0 }, { -w / 2, gap + 3 + asc, 0 },
         };
-        int best = 0;
+        /* score: outside the frame 1000, on a placed text 100 each, on a
+         * grid line 10 each, on a marker 1 each; the first best wins */
+        double bestx = 0, besty = 0;
         size_t bestscore = SIZE_MAX;
-        for (int q = 0; q < 6 && bestscore; q++) {
-            chart_box bx = { x + spot[q][0], y + spot[q][1] - asc,
-                              x + spot[q][0] + w, y + spot[q][1] + dsc };
-            size_t score = 0;
-            if (bx.x0 < l->L || bx.x1 > l->R || bx.y0 < l->T || bx.y1 > l->B) score += 1000;
-            for (size_t j = 0; j < lab.n; j++) score += 100 * (size_t)chart_overlap(bx, lab.v[j]);
-            for (size_t j = 0; j < obst.n; j++) score += (size_t)chart_overlap(bx, obst.v[j]);
-            if (score < bestscore) { bestscore = score; best = q; }
-        }
+        for (int m = 0; m < nn && bestscore; m++)
+            for (int q = 0; q < 6 && bestscore; q++) {
+                double ox = spot[q][0] + (spot[q][2] != 0 ? spot[q][2] : 1) * nudge[m][0];
+                double oy = spot[q][1] + nudge[m][1];
+                chart_box bx = { x + ox, y + oy - asc, x + ox + w, y + oy + dsc };
+                size_t score = 0;
+                if (bx.x0 < l->L || bx.x1 > l->R || bx.y0 < l->T || bx.y1 > l->B) score += 1000;
+                for (size_t j = 0; j < lab.n; j++) score += 100 * (size_t)chart_overlap(bx, lab.v[j]);
+                /* a pixel of margin: a reader's box of the glyphs is a bit taller */
+                for (size_t j = 0; j < ngx; j++) score += 10 * (size_t)(gx[j] > bx.x0 - 1 && gx[j] < bx.x1 + 1);
+                for (size_t j = 0; j < ngy; j++) score += 10 * (size_t)(gy[j] > bx.y0 - 1 && gy[j] < bx.y1 + 1);
+                for (size_t j = 0; j < obst.n; j++) score += (size_t)chart_overlap(bx, obst.v[j]);
+                if (score < bestscore) { bestscore = score; bestx = ox; besty = oy; }
+            }
         if (bestscore >= 100) continue;       /* on another text or outside: dropped */
-        chart_box bx = { x + spot[best][0], y + spot[best][1] - asc,
-                          x + spot[best][0] + w, y + spot[best][1] + dsc };
+        chart_box bx = { x + bestx, y + besty - asc, x + bestx + w, y + besty + dsc };
         chart_addbox(&lab, bx, b);
         chart_f(b, "<text x=\"%f\" y=\"%f\" font-size=\"%d\" fill=\"#333\" " CHART_HALO ">",
-                 bx.x0, y + spot[best][1], CHART_FS_SMALL);
+                 bx.x0, y + besty, CHART_FS_SMALL);
         chart_text(b, c->pl[k].text, CHART_PLMAX);
         chart_puts(b, "</text>\n");
     }
@@ -510,52 +736,71 @@ static void chart_draw_texts(const chart_lay *l)
 }
 
 /* Legend right of the plot, top-aligned with it: as many entries as fit
- * its height, then "+N more". */
+ * its height, then "+N more". A long text takes more lines (chart_wrap),
+ * 13 pixels each below an entry's first. */
 static void chart_draw_legend(const chart_lay *l)
 {
     const chart *c = l->c;
     chart_buf *b = l->b;
-    const double rowh = 18;
-    size_t fit = (size_t)((l->B - l->T - 12) / rowh), shown = l->nleg;
-    if (fit < 1) fit = 1;
-    if (shown > fit) shown = fit - 1;
+    const double rowh = 18, lineh = 13, avail = l->B - l->T - 12;
+    char t[512];
+    size_t st[CHART_LEGLINES], ln[CHART_LEGLINES];
+    /* how many entries fit, with a row kept for "+N more" when not all do */
+    double used = 0, h[64];
+    size_t shown = 0, n = 0;
+    for (size_t s = 0; s < c->nser; s++) {
+        if (!c->ser[s].label || !chart_draws(c, s)) continue;
+        chart_leg_text(l, s, t, sizeof t);
+        double hh = rowh + lineh * (chart_wrap(t, c->ser[s].key == 2 ? CHART_LEGMAX + 6 : CHART_LEGMAX, st, ln) - 1);
+        if (n < 64) h[n] = hh;
+        n++;
+        if (used + hh <= avail && shown + 1 == n) { used += hh; shown++; }
+    }
+    if (shown < l->nleg) {
+        while (shown > 0 && used + rowh > avail) used -= h[--shown < 64 ? shown : 63];
+    }
     double lx = l->R + 15, ly = l->T;
-    double lh = 8 + rowh * (double)(shown + (shown < l->nleg)) + 2;
+    double lh = 8 + used + rowh * (shown < l->nleg) + 2;
     chart_f(b, "<rect x=\"%f\" y=\"%f\" width=\"%f\" height=\"%f\" fill=\"#fff\" "
              "stroke=\"#ccc\" stroke-width=\"1\" rx=\"3\"/>\n",
              chart_snap(lx), chart_snap(ly), floor(l->legw), floor(lh));
     size_t row = 0;
+    double top = ly + 4;                /* top of the next entry */
     for (size_t s = 0; s < c->nser && row < shown; s++) {
         const chart_ser *se = &c->ser[s];
         if (!se->label || !chart_draws(c, s)) continue;
-        double cy = ly + 4 + rowh * (double)row + rowh / 2;
-        if (se->key == 2) {             /* a heading: the text from the left edge */
-            chart_f(b, "<text x=\"%f\" y=\"%f\" fill=\"#555\">", lx + 10, cy + 4);
-            chart_text(b, se->label, CHART_LEGMAX + 6);
+        double cy = top + rowh / 2;
+        int head = se->key == 2;
+        size_t max = head ? CHART_LEGMAX + 6 : CHART_LEGMAX;
+        chart_leg_text(l, s, t, sizeof t);
+        int nl = chart_wrap(t, max, st, ln);
+        if (!head) {
+            if (se->style & (CHART_LINE | CHART_STEP)) {
+                chart_f(b, "<path d=\"M%f %fh24\" ", lx + 10, cy);
+                chart_linestyle(b, c, s);
+                chart_puts(b, "/>\n");
+            }
+            if (se->style & CHART_POINTS) {
+                chart_buf d = { 0 };
+                chart_marker(&d, chart_shape(c, s), lx + 22, cy, chart_marker_r(se->style));
+                if (d.oom) b->oom = 1;
+                else chart_marker_paint(b, c, s, d.p);
+                free(d.p);
+            }
+        }
+        /* a heading's text from the left edge, in grey */
+        for (int k = 0; k < nl; k++) {
+            chart_f(b, "<text x=\"%f\" y=\"%f\"%s>", lx + (head ? 10 : 42), cy + 4 + lineh * k,
+                    head ? " fill=\"#555\"" : "");
+            chart_text_n(b, t + st[k], ln[k], max);
             chart_puts(b, "</text>\n");
-            row++;
-            continue;
         }
-        if (se->style & (CHART_LINE | CHART_STEP)) {
-            chart_f(b, "<path d=\"M%f %fh24\" ", lx + 10, cy);
-            chart_linestyle(b, c, s);
-            chart_puts(b, "/>\n");
-        }
-        if (se->style & CHART_POINTS) {
-            chart_buf d = { 0 };
-            chart_marker(&d, chart_shape(c, s), lx + 22, cy, chart_marker_r(se->style));
-            if (d.oom) b->oom = 1;
-            else chart_marker_paint(b, c, s, d.p);
-            free(d.p);
-        }
-        chart_f(b, "<text x=\"%f\" y=\"%f\">", lx + 42, cy + 4);
-        chart_text(b, se->label, CHART_LEGMAX);
-        chart_puts(b, "</text>\n");
+        top += rowh + lineh * (nl - 1);
         row++;
     }
     if (shown < l->nleg)
         chart_f(b, "<text x=\"%f\" y=\"%f\" fill=\"#666\">+%d more</text>\n",
-                 lx + 42, ly + 4 + rowh * (double)shown + rowh / 2 + 4, (int)(l->nleg - shown));
+                 lx + 42, top + rowh / 2 + 4, (int)(l->nleg - shown));
 }
 
 void chart_render(const chart *c, chart_buf *b)
@@ -593,4 +838,7 @@ void chart_render(const chart *c, chart_buf *b)
     free(l.bx0);
     free(l.bx1);
     free(l.brow);
+    free(l.dodge);
+    free(l.doff);
+    free(l.same);
 }

@@ -87,6 +87,7 @@ typedef struct { char base[40]; char sup[16]; } chart_lab;
 typedef struct {
     int    log;
     double lo, hi;                /* limits; for log axes in decades (log10) */
+    double lov, hiv;              /* log axes: the limits as values (1, 2 or 5 x 10^k) */
     double step;                  /* linear step, or decades per major tick */
     int    k;                     /* linear: step = m * 10^k */
     size_t nmaj, nmin;

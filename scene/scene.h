@@ -13,7 +13,8 @@
  *   scene_span.c    spans of a surface buffer and attributes along them
  *   scene_shade.c   reference shading (lights, materials, BRDF models)
  *   scene_file.c    the scene description format (key value lines)
- *   scene_png.c     PNG encoder (stored deflate, CRC-32, Adler-32), colour maps
+ *   scene_png.c     PNG encoder (filters, zlib stream, CRC-32), colour maps
+ *   scene_deflate.c DEFLATE compressor (LZ77 + Huffman) for the PNGs
  */
 #ifndef SCENE_H
 #define SCENE_H
@@ -213,9 +214,15 @@ double scn_shade(const scn_material *mat, const scn_view *v, const double pos[3]
 /* ----------------------------------------------------------- images */
 
 /* Encode an 8-bit image (channels 1 = grey, 3 = RGB) as PNG in memory:
- * stored (uncompressed) deflate blocks, CRC-32 and Adler-32 computed here.
- * *out is malloc'ed. 0, or -1 (out of memory). */
+ * a filter per row, compressed by scn_deflate (level 1). The same pixels
+ * give the same bytes. *out is malloc'ed. 0, or -1 (out of memory). */
 int  scn_png_encode(int w, int h, int channels, const uint8_t *pix, uint8_t **out, size_t *len);
+/* Compress in[0..n) as a raw DEFLATE stream (RFC 1951, no zlib frame):
+ * level 0 codes literals only, 1 is fast (short hash chains), 2 searches
+ * longer. Each block is dynamic, fixed or stored, whichever is smallest.
+ * Deterministic. *out is malloc'ed. 0, or -1 (out of memory, or n of
+ * 2^32 - 1 bytes or more). */
+int  scn_deflate(const uint8_t *in, size_t n, int level, uint8_t **out, size_t *outlen);
 /* Colour map for an error heat map: v in [0, 1] -> black, blue, red, yellow, white. */
 void scn_heat_rgb(double v, uint8_t rgb[3]);
 /* A distinct colour per label (region and degree maps). */

@@ -487,12 +487,16 @@ static int section_scene(FILE *f, const char *dir)
             r.w, r.h, d.L, r.unit ? r.unit->name : "span", scn_policy_name(d.policy), d.terms, d.fmt_width, r.w, r.h);
     fputs("<div class=\"scene\">\n", f);
     int K = tb_scene_err_scale(&r);
-    char errname[32], errcap[96];
+    char errname[32], errcap[160];
     snprintf(errname, sizeof errname, "err-x%d.png", K);
-    snprintf(errcap, sizeof errcap, "|error| x %d (white: 1/%d or more)", K, K);
+    snprintf(errcap, sizeof errcap, "|error| x %d: black 0, blue 0.25/%d, red 0.5/%d, yellow 0.75/%d, "
+             "white 1/%d or more", K, K, K, K, K);
     const char *files[5] = { "ref.png", "hw.png", errname, "degree.png", "region.png" };
+    /* the colours are scn_label_rgb's (scene.json's "legend" lists them) */
     const char *caps[5] = { "reference (per-pixel, double)", "hardware (interpolated)", errcap,
-                            "degree per interval (2 or 3)", "face regions" };
+                            "degree per interval: red 1, green 2, yellow 3",
+                            "face regions: grey rest, red brows, green forehead, yellow eyes, blue cheeks, "
+                            "orange nose, purple lips, cyan chin" };
     for (int k = 0; k < 5; k++) {
         char p[4300];
         size_t n = 0;

@@ -76,7 +76,8 @@ static const cli_opt scene_tab[] = {
       "                   err-xK.png (|hw - ref| heat map, full white = 1/K; K in\n"
       "                   4^0..4^6, the largest that shows the maximum error),\n"
       "                   degree.png (degree of each interval), region.png (mesh\n"
-      "                   regions) and scene.json (the figures)\n" },
+      "                   regions) and scene.json (the figures, and under\n"
+      "                   \"legend\" the colours of the maps)\n" },
     SC_FLAG("--json", json, "  --json           print the JSON summary on stdout instead of the table\n"),
     { "-j", NULL, CLI_OPT_INT, offsetof(scene_args, jobs), 1, 256, NULL, "%s needs a number of threads", NULL, 0,
       "  -j N             threads (default 1); the output is the same for any N\n" },

@@ -683,6 +683,52 @@ static void jops(FILE *f, const double *ops)
     fputc('}', f);
 }
 
+static void jrgb(FILE *f, const uint8_t c[3])
+{
+    fprintf(f, "\"#%02x%02x%02x\"", c[0], c[1], c[2]);
+}
+
+/* The key of the maps tb_scene_write draws, from the same colour functions:
+ * the uncovered background, the colour of each degree (all three) and of
+ * each region label present, and the heat map's five stops as errors
+ * |hw - ref| at the render's scale K (full white: 1/K or more). */
+static void legend_json(FILE *f, const tb_scene_result *r)
+{
+    uint8_t c[3] = { 0, 0, 0 };
+    int K = tb_scene_err_scale(r);
+    fputs(",\n  \"legend\": {\n    \"background\": ", f);
+    jrgb(f, c);
+    fputs(",\n    \"degree\": {", f);
+    for (int g = 1; g <= 3; g++) {
+        scn_label_rgb(g, c);
+        fprintf(f, "%s\"%d\": ", g > 1 ? ", " : "", g);
+        jrgb(f, c);
+    }
+    fputs("},\n    \"region\": {", f);
+    int seen[256] = { 0 }, n = 0;
+    size_t np = (size_t)r->w * r->h;
+    for (size_t i = 0; i < np; i++)
+        if (r->deg[i]) seen[r->region[i]] = 1;
+    for (int k = 0; k < 256; k++) {
+        if (!seen[k]) continue;
+        scn_label_rgb(k, c);
+        fprintf(f, "%s\"%d\": ", n++ ? ", " : "", k);
+        jrgb(f, c);
+    }
+    fprintf(f, "},\n    \"error\": {\"file\": \"err-x%d.png\", \"white\": ", K);
+    base_json_num(f, 1.0 / K, 17);
+    fputs(", \"stops\": [", f);
+    for (int k = 0; k <= 4; k++) {
+        scn_heat_rgb(k / 4.0, c);
+        fputs(k ? ", [" : "[", f);
+        base_json_num(f, k / 4.0 / K, 17);
+        fputs(", ", f);
+        jrgb(f, c);
+        fputc(']', f);
+    }
+    fputs("]}\n  }", f);
+}
+
 int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
 {
     const unit_desc *u = r->unit;
@@ -724,6 +770,7 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     fputs(",\n  \"long_ops_hw\": ", f); base_json_num(f, r->long_hw, 17);
     fputs(",\n  \"speedup_long\": ", f); base_json_num(f, r->speedup_long, 17);
     tb_scene_speed_json(f, r);
+    legend_json(f, r);
     fputs("\n}\n", f);
     return ferror(f) ? -1 : 0;
 }

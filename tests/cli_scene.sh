@@ -29,6 +29,44 @@ if command -v python3 >/dev/null 2>&1; then
 else
     echo "skip cli_scene.json_parses: python3 not installed"
 fi
+# The maps' key in scene.json against the images' own pixels (python3
+# inflates and unfilters the PNGs): degree.png and region.png use exactly
+# the listed colours and the background; the error key names the heat map
+# written and full white is 1/err_scale.
+if command -v python3 >/dev/null 2>&1; then
+    cat >"$T/key.py" <<'PY'
+import json, struct, sys, zlib
+def pixels(path):
+    b = open(path, 'rb').read(); o, z = 8, b''
+    while o < len(b):
+        n, = struct.unpack('>I', b[o:o+4]); t = b[o+4:o+8]
+        if t == b'IHDR': w, h, bd, ct = struct.unpack('>IIBB', b[o+8:o+18])
+        if t == b'IDAT': z += b[o+8:o+8+n]
+        o += 12 + n
+    r = zlib.decompress(z); bpp = 3 if ct == 2 else 1; rb = w * bpp; up = bytearray(rb); px = set()
+    for y in range(h):
+        f = r[y*(rb+1)]; cur = bytearray(r[y*(rb+1)+1:(y+1)*(rb+1)])
+        for i in range(rb):
+            a = cur[i-bpp] if i >= bpp else 0; u = up[i]; c = up[i-bpp] if i >= bpp else 0
+            p = a + u - c; pa, pb, pc = abs(p - a), abs(p - u), abs(p - c)
+            q = [0, a, u, (a + u) // 2, a if pa <= pb and pa <= pc else (u if pb <= pc else c)][f]
+            cur[i] = (cur[i] + q) & 255
+        px |= {'#%02x%02x%02x' % tuple(cur[i:i+3]) for i in range(0, rb, 3)}
+        up = cur
+    return px
+d = json.load(open(sys.argv[1] + '/scene.json')); L = d['legend']
+deg, reg = pixels(sys.argv[1] + '/degree.png'), pixels(sys.argv[1] + '/region.png')
+assert L['background'] == '#000000'
+assert deg - {L['background']} <= set(L['degree'].values()) and len(deg) >= 2, deg
+assert reg == set(L['region'].values()) | {L['background']}, (reg, L['region'])
+assert L['error']['file'] == 'err-x%d.png' % d['err_scale'] and abs(L['error']['white'] * d['err_scale'] - 1) < 1e-15
+assert [s[0] for s in L['error']['stops']] == [L['error']['white'] * k / 4 for k in range(5)]
+assert L['error']['stops'][-1][1] == '#ffffff' and L['error']['stops'][0][1] == '#000000'
+PY
+    python3 "$T/key.py" "$T/face" 2>"$T/err" && ok json_legend_matches_images || fail json_legend_matches_images "$(tail -1 "$T/err")"
+else
+    echo "skip cli_scene.json_legend_matches_images: python3 not installed"
+fi
 k=$(sed -n 's/^  "err_scale": \([0-9]*\),$/\1/p' "$T/out")
 for f in ref.png hw.png "err-x$k.png" degree.png region.png scene.json; do
     [ -s "$T/face/$f" ] && ok "file_$f" || fail "file_$f" "missing in the output folder"

@@ -612,22 +612,44 @@ static void test_ticks_log(void)
         if (k < sizeof ranges / sizeof ranges[0]) { a = ranges[k][0]; b = ranges[k][1]; }
         else { a = pow(10, urand() * 40 - 20); b = a * pow(10, urand() * urand() * 30); }
         size_t n = chart_ticks(a, b, 1, t, 32, &lo, &hi);
-        TST_CHECK(n >= 2 && n <= 9, "[%g, %g]: %zu ticks", a, b, n);
-        if (n < 2 || n > 32) continue;
-        double dec = log10(t[1]) - log10(t[0]);
+        TST_CHECK(n >= 1 && n <= 9, "[%g, %g]: %zu ticks", a, b, n);
+        if (n < 1 || n > 32) continue;
+        double dec = n > 1 ? log10(t[1]) - log10(t[0]) : 1;
         TST_CHECK(dec >= 1 - 1e-9 && fabs(dec - nearbyint(dec)) < 1e-6, "[%g, %g]: %g decades apart", a, b, dec);
         for (size_t i = 0; i < n; i++) {
             double e = log10(t[i]);
             TST_CHECK(t[i] == 0 || fabs(e - nearbyint(e)) < 1e-9, "[%g, %g]: tick %g not a decade", a, b, t[i]);
             if (i) TST_CHECK(t[i] == 0 || fabs(log10(t[i]) - log10(t[i - 1]) - dec) < 1e-6, "uneven decades");
         }
-        TST_CHECK(t[0] <= a && t[n - 1] >= b, "[%g, %g]: %g..%g do not cover", a, b, t[0], t[n - 1]);
-        TST_CHECK(lo == t[0] && hi == t[n - 1], "limits are the end ticks");
+        /* the limits cover the data, hold the ticks, are 1, 2 or 5 x 10^k,
+         * and leave less than half a decade empty at either end (one with
+         * every other decade or more labelled, or where the data hold no
+         * whole decade, as [3, 7]) */
+        TST_CHECK(lo <= a && hi >= b, "[%g, %g]: limits %g..%g do not cover", a, b, lo, hi);
+        TST_CHECK(lo <= t[0] * (1 + 1e-12) && hi >= t[n - 1] * (1 - 1e-12), "[%g, %g]: ticks outside the limits", a, b);
+        for (int end = 0; end < 2; end++) {
+            double v = end ? hi : lo, m = v / pow(10, floor(log10(v) + 1e-12));
+            TST_CHECK(fabs(m - 1) < 1e-9 || fabs(m - 2) < 1e-9 || fabs(m - 5) < 1e-9 || fabs(m - 10) < 1e-9,
+                      "[%g, %g]: limit %g not 1, 2 or 5 x 10^k", a, b, v);
+        }
+        int tight = dec == 1 && floor(log10(b) + 1e-12) - ceil(log10(a) - 1e-12) >= 1;
+        double gap = tight ? 0.41 : 1.0 * dec;
+        if (lo > 0 && isfinite(hi) && a > 1e-290 && b < 1e290)
+            TST_CHECK(log10(a / lo) < gap && log10(hi / b) < gap, "[%g, %g]: limits %g..%g: more than %g decade empty",
+                      a, b, lo, hi, gap);
     }
-    TST_EQ_INT(chart_ticks(1e-7, 3e-2, 1, t, 32, &lo, &hi), 7);   /* every decade */
+    TST_EQ_INT(chart_ticks(1e-7, 3e-2, 1, t, 32, &lo, &hi), 6);   /* every decade */
     TST_NEAR(lo, 1e-7, 1e-20);
-    TST_NEAR(hi, 1e-1, 1e-15);
-    TST_EQ_INT(chart_ticks(3, 7, 1, t, 32, &lo, &hi), 2);
+    TST_NEAR(hi, 5e-2, 1e-15);                                    /* not 1e-1 */
+    TST_EQ_INT(chart_ticks(4, 32, 1, t, 32, &lo, &hi), 1);         /* stability_fwd's L: 2..50 */
+    TST_NEAR(lo, 2, 1e-15);
+    TST_NEAR(hi, 50, 1e-13);
+    TST_EQ_INT(chart_ticks(3, 7, 1, t, 32, &lo, &hi), 1);          /* 2..10: 10^1 and 2, 3, 5 x 10^0 */
+    TST_NEAR(lo, 2, 1e-15);
+    TST_NEAR(hi, 10, 1e-15);
+    TST_EQ_INT(chart_ticks(2.1, 4.9, 1, t, 32, &lo, &hi), 2);      /* no decade in 2..5: 1..10 */
+    TST_NEAR(lo, 1, 1e-15);
+    TST_NEAR(hi, 10, 1e-15);
     TST_EQ_INT(chart_ticks(0, 1, 1, t, 32, &lo, &hi), 0);
     TST_EQ_INT(chart_ticks(-1, 1, 1, t, 32, &lo, &hi), 0);
 }
@@ -879,6 +901,235 @@ static void test_svg_write_errors(void)
     TST_EQ_INT(chart_write(NULL, tpath("n.svg"), err, sizeof err), -1);
 }
 
+/* ---- readability: equal series, labels off the grid, legend, log axes -- */
+
+/* Write c to name and read it back (NULL on failure). */
+static char *write_read(chart *c, const char *name)
+{
+    if (!c || !write_ok(c, tpath(name))) { chart_free(c); return NULL; }
+    chart_free(c);
+    size_t len;
+    return slurp(tpath(name), &len);
+}
+
+/* The marker centres drawn in colour col: the path after fill="col" holds
+ * one circle per marker, "M x-r y a r r ...", r read from the arc. */
+static int marker_centres(const char *svg, const char *col, double (*xy)[2], int cap)
+{
+    char key[64];
+    snprintf(key, sizeof key, "<path fill=\"%s\" stroke=\"#fff\"", col);
+    const char *p = strstr(svg, key);
+    if (!p || !(p = strstr(p, " d=\""))) return 0;
+    p += 4;
+    int n = 0;
+    while (*p && *p != '"') {
+        if (*p == 'M') {
+            double x, y, r;
+            if (sscanf(p + 1, "%lf %lfa%lf", &x, &y, &r) == 3 && n < cap) { xy[n][0] = x + r; xy[n][1] = y; n++; }
+        }
+        p++;
+    }
+    return n;
+}
+
+/* Series of equal values: wrap and sat with the same points, a third that
+ * meets them at one width. No two markers of different series at the same
+ * spot; the moved ones stay within 16 pixels of each other (the frame's
+ * padding), at the same height;
+ * the footnote says so and the legend names the twin. */
+static void test_svg_equal_series(void)
+{
+    chart *c = chart_new("Equal series", "width (bits)", "max |e|");
+    chart_log_y(c, 1);
+    chart_int_x(c, 1);
+    static const char *col[3] = { "#111111", "#222222", "#333333" };
+    const char *name[3] = { "wrap", "sat", "other" };
+    int s[3];
+    for (int k = 0; k < 3; k++) {
+        s[k] = chart_series(c, name[k], CHART_LINE | CHART_POINTS);
+        chart_series_look(c, s[k], col[k], 0, 0);
+    }
+    for (int w = 8; w <= 16; w++) {
+        double e = ldexp(3.0, -w);
+        chart_point(c, s[0], w, e);
+        chart_point(c, s[1], w, e);
+        chart_point(c, s[2], w, w == 12 ? e : 2 * e);
+    }
+    char *svg = write_read(c, "equal.svg");
+    TST_CHECK(svg != NULL, "equal.svg");
+    if (!svg) return;
+    double m[3][16][2];
+    int n[3];
+    for (int k = 0; k < 3; k++) n[k] = marker_centres(svg, col[k], m[k], 16);
+    TST_CHECK(n[0] == 9 && n[1] == 9 && n[2] == 9, "markers %d %d %d", n[0], n[1], n[2]);
+    int same = 0, far = 0;
+    for (int a = 0; a < 3; a++)
+        for (int b = a + 1; b < 3; b++)
+            for (int i = 0; i < n[a]; i++)
+                for (int j = 0; j < n[b]; j++) {
+                    if (fabs(m[a][i][0] - m[b][j][0]) < 0.5 && fabs(m[a][i][1] - m[b][j][1]) < 0.5) same++;
+                    /* the twin of point i: at the same height, a few pixels aside */
+                    if (i == j && fabs(m[a][i][1] - m[b][j][1]) < 0.01 && fabs(m[a][i][0] - m[b][j][0]) > 16.01) far++;
+                }
+    TST_EQ_INT(same, 0);
+    TST_EQ_INT(far, 0);
+    /* 9 + 9 wrap/sat points, and the third series' point at width 12 */
+    TST_CHECK(strstr(svg, ">19 points of equal value in two series or more set side by side<") != NULL,
+              "no footnote for the moved points");
+    TST_CHECK(strstr(svg, ">sat (= wrap)<") != NULL && strstr(svg, ">wrap<") && strstr(svg, ">other<"),
+              "the legend does not name sat's twin");
+    free(svg);
+    /* Rings and staircases mark other points on purpose: not moved. */
+    c = chart_new("Front", "e", "area");
+    int p = chart_series(c, "points", CHART_POINTS);
+    chart_series_look(c, p, col[0], 0, 0);
+    int r = chart_series(c, "front", CHART_POINTS | CHART_HOLLOW);
+    for (int i = 1; i <= 5; i++) { chart_point(c, p, i, 10 - i); chart_point(c, r, i, 10 - i); }
+    svg = write_read(c, "rings.svg");
+    TST_CHECK(svg && !strstr(svg, "side by side"), "rings moved");
+    TST_CHECK(svg && strstr(svg, ">front<") && !strstr(svg, "(= "), "rings called a twin");
+    free(svg);
+}
+
+/* The grid lines of an SVG (chart_draw_grid's path): x of the vertical,
+ * y of the horizontal ones. */
+static void grid_lines(const char *svg, double *gx, int *ngx, double *gy, int *ngy)
+{
+    *ngx = *ngy = 0;
+    const char *p = strstr(svg, "stroke=\"#e3e3e3\"");
+    if (!p || !(p = strstr(p, " d=\""))) return;
+    for (p += 4; *p && *p != '"'; p++) {
+        double x, y, z;
+        char k;
+        if (*p == 'M' && sscanf(p + 1, "%lf %lf%c%lf", &x, &y, &k, &z) == 4) {
+            if (k == 'V' && *ngx < 64) gx[(*ngx)++] = x;
+            if (k == 'H' && *ngy < 64) gy[(*ngy)++] = y;
+        }
+    }
+}
+
+/* A staircase front with a label per point on a log x axis, as the
+ * sweep's area chart draws it. */
+static chart *sample_front_labels(void)
+{
+    chart *c = chart_new("horner3: area against max error", "max |e|", "area (GE)");
+    chart_log_x(c, 1);
+    int a = chart_series(c, "trunc", CHART_POINTS), b = chart_series(c, "half-up", CHART_POINTS);
+    int f = chart_series(c, "Pareto front", CHART_POINTS | CHART_HOLLOW);
+    for (int w = 8; w <= 24; w++) {
+        double e = 3.5 * ldexp(1.0, -w + 1), area = 8.0 * w * w + 150 * w;
+        chart_point(c, a, e * 1.9, area * 1.05);
+        chart_point(c, b, e, area);
+        char lab[32];
+        snprintf(lab, sizeof lab, "width %d", w);
+        chart_point_label(c, f, e, area, lab);
+    }
+    return c;
+}
+
+/* Point labels (10 px, #333, no anchor) do not cross a grid line: boxes
+ * by tst_svgtext.h's reading of the file. */
+static void test_svg_labels_off_grid(void)
+{
+    const struct { const char *name; sample_fn fn; } ch[] = {
+        { "front_labels.svg", sample_front_labels }, { "area_pareto2.svg", sample_area_pareto } };
+    for (size_t k = 0; k < sizeof ch / sizeof ch[0]; k++) {
+        char *svg = write_read(ch[k].fn(), ch[k].name);
+        TST_CHECK(svg != NULL, "%s", ch[k].name);
+        if (!svg) continue;
+        double gx[64], gy[64];
+        int ngx, ngy, nlab = 0, bad = 0;
+        grid_lines(svg, gx, &ngx, gy, &ngy);
+        TST_CHECK(ngx >= 3 && ngy >= 3, "%s: %d and %d grid lines", ch[k].name, ngx, ngy);
+        const char *root = "<svg font-size=\"11\">";
+        for (const char *p = strstr(svg, "<text"); p; p = strstr(p + 1, "<text")) {
+            const char *e = strstr(p, "</text>");
+            if (!e) break;
+            const char *gt = strchr(p, '>');
+            const char *fs = strstr(p, "font-size=\"10\" fill=\"#333\""), *ta = strstr(p, "text-anchor");
+            if (!fs || fs > gt || (ta && ta < gt)) continue;
+            char one[400];
+            snprintf(one, sizeof one, "%s%.*s</svg>", root, (int)(e + 7 - p), p);
+            tst_tbox b;
+            if (tst_svg_text_boxes(one, &b, 1) != 1) continue;
+            nlab++;
+            for (int i = 0; i < ngx; i++)
+                if (gx[i] > b.x0 && gx[i] < b.x1) { bad++; TST_CHECK(0, "%s: '%s' on x = %g", ch[k].name, b.text, gx[i]); }
+            for (int i = 0; i < ngy; i++)
+                if (gy[i] > b.y0 && gy[i] < b.y1) { bad++; TST_CHECK(0, "%s: '%s' on y = %g", ch[k].name, b.text, gy[i]); }
+        }
+        TST_CHECK(nlab >= 5, "%s: %d point labels", ch[k].name, nlab);
+        TST_EQ_INT(bad, 0);
+        free(svg);
+    }
+}
+
+/* Legend texts stay inside the picture and whole: a long label wraps
+ * onto more lines instead of losing its end (stability_fwd's model line
+ * "8 + log2(sum C(L,j)), cubic" lost "ic"). */
+static void test_svg_legend_whole(void)
+{
+    chart *c = chart_new("Forward differencing", "interval length L (pixels)", "fraction bits");
+    chart_log_x(c, 1);
+    const char *lab[3] = { "interp3 fwd (measured)", "8 + log2(sum C(L,j)), cubic",
+                           "a very long series label that will not fit the legend box" };
+    for (int k = 0; k < 3; k++) {
+        int s = chart_series(c, lab[k], CHART_LINE | CHART_POINTS);
+        for (int L = 4; L <= 32; L *= 2) chart_point(c, s, L, 10 + k + log2(L) * (1 + k));
+    }
+    char *svg = write_read(c, "legend_whole.svg");
+    TST_CHECK(svg != NULL, "legend_whole.svg");
+    if (!svg) return;
+    /* the legend box: <rect x=".." ... stroke="#ccc"; its texts lie right of it */
+    const char *leg = strstr(svg, "stroke=\"#ccc\""), *r = leg;
+    while (r && r > svg && strncmp(r, "<rect", 5)) r--;
+    double lx = r ? atof(strstr(r, "x=\"") + 3) : 1e9;
+    TST_CHECK(leg != NULL && lx > 400 && lx < 800, "no legend box");
+    tst_tbox b[200];
+    int n = tst_svg_text_boxes(svg, b, 200);
+    char all[600] = "";
+    for (int i = 0; i < n && i < 200; i++) {
+        if (b[i].x0 <= lx || b[i].y0 < 40) continue;          /* not a legend text */
+        TST_CHECK(b[i].x1 <= 800 && b[i].x0 >= 0, "'%s' ends at x = %.1f of 800", b[i].text, b[i].x1);
+        TST_CHECK(!strstr(b[i].text, "\xE2\x80\xA6"), "'%s' cut", b[i].text);
+        if (strlen(all) + strlen(b[i].text) + 2 < sizeof all) { if (*all) strcat(all, " "); strcat(all, b[i].text); }
+    }
+    for (int k = 0; k < 3; k++) TST_CHECK(strstr(all, lab[k]) != NULL, "'%s' not whole in: %s", lab[k], all);
+    free(svg);
+}
+
+/* A log axis fits the data: L from 4 to 32 gets 2..50 (labels 2x10^0,
+ * 5x10^0, 10^1, 2x10^1, 5x10^1), not 10^0..10^2 with half of it empty; the
+ * pixels of the ticks put 4 and 32 within the labelled range. */
+static void test_svg_log_fit(void)
+{
+    chart *c = chart_new("L", "L (pixels)", "bits");
+    chart_log_x(c, 1);
+    int s = chart_series(c, "fwd", CHART_LINE | CHART_POINTS);
+    for (int L = 4; L <= 32; L *= 2) chart_point(c, s, L, log2(L));
+    char *svg = write_read(c, "logfit.svg");
+    TST_CHECK(svg != NULL, "logfit.svg");
+    if (!svg) return;
+    /* decade labels are "10<tspan ...>k</tspan>", the others "m×10<tspan>k" */
+    TST_CHECK(!strstr(svg, "\">10<tspan dy=\"-5\" font-size=\"8.25\">0<") &&
+              !strstr(svg, "\">10<tspan dy=\"-5\" font-size=\"8.25\">2<"), "a decade with no data labelled");
+    TST_CHECK(strstr(svg, ">2\xC3\x97" "10<tspan dy=\"-5\" font-size=\"8.25\">0<") &&
+              strstr(svg, ">5\xC3\x97" "10<tspan dy=\"-5\" font-size=\"8.25\">1<") &&
+              strstr(svg, "\">10<tspan dy=\"-5\" font-size=\"8.25\">1<"), "labels 2x10^0 .. 5x10^1 missing");
+    free(svg);
+    /* every log axis stays within half a decade of its data at each end,
+     * over many ranges (chart_ticks gives the limits the charts use) */
+    rng_state = 99;
+    for (int k = 0; k < 2000; k++) {
+        double a = pow(10, urand() * 20 - 10), b = a * pow(10, 0.5 + urand() * 7), lo, hi, t[16];
+        size_t nt = chart_ticks(a, b, 1, t, 16, &lo, &hi);
+        TST_CHECK(nt >= 1 && lo <= a && hi >= b && log10(a / lo) < 1 && log10(hi / b) < 1,
+                  "[%g, %g]: axis %g..%g", a, b, lo, hi);
+        if (nt && t[1] / t[0] < 11)
+            TST_CHECK(log10(a / lo) < 0.41 && log10(hi / b) < 0.41, "[%g, %g]: axis %g..%g", a, b, lo, hi);
+    }
+}
+
 int main(void)
 {
     const char *keep = getenv("TST_SVG_KEEP");
@@ -905,6 +1156,10 @@ int main(void)
     TST_RUN(test_svg_extremes);
     TST_RUN(test_svg_deterministic);
     TST_RUN(test_svg_write_errors);
+    TST_RUN(test_svg_equal_series);
+    TST_RUN(test_svg_labels_off_grid);
+    TST_RUN(test_svg_legend_whole);
+    TST_RUN(test_svg_log_fit);
     if (!(keep && *keep)) { tst_rmtree(tdir); rmdir(tdir); }
     TST_EXIT();
 }
