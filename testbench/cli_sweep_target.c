@@ -48,6 +48,10 @@ void sweep_print_target(FILE *f, const tb_sweep *s, const target_info *t)
         char gl[200];
         tb_sweep_group_label(s, g, gl, sizeof gl);
         fprintf(f, "target %s <= %g%s%s%s: ", metric_name(t->kind), t->value, *gl ? " (" : "", gl, *gl ? ")" : "");
+        if (!x->met && x->limits_why[0]) {
+            fprintf(f, "the cheapest per-signal formats that meet it miss the limits: %s\n", x->limits_why);
+            continue;
+        }
         if (!x->met) {
             fprintf(f, "no width in %d..%d meets it within the error bound\n", s->spec.wlo, s->spec.whi);
             continue;
@@ -59,9 +63,11 @@ void sweep_print_target(FILE *f, const tb_sweep *s, const target_info *t)
                 s->cfg[x->uniform].cfg.width, ru->area_ge, metric_name(t->kind), metric_of(t->kind, ru), x->r.area_ge,
                 metric_name(t->kind), metric_of(t->kind, &x->r), saved, ru->area_ge > 0 ? 100 * saved / ru->area_ge : 0.0,
                 x->runs);
+        limits_text(s, lb, sizeof lb);
         fprintf(f, "  speed and energy: uniform %.0f MHz, %.4g M items/s, %.3g pJ/item; chosen %.0f MHz, %.4g M items/s, "
-                "%.3g pJ/item%s\n", ru->ppa.fmax_mhz, ru->ppa.items_per_s / 1e6, ru->ppa.energy_pj_per_item,
-                x->r.ppa.fmax_mhz, x->r.ppa.items_per_s / 1e6, x->r.ppa.energy_pj_per_item, limits_text(s, lb, sizeof lb));
+                "%.3g pJ/item%s%s%s\n", ru->ppa.fmax_mhz, ru->ppa.items_per_s / 1e6, ru->ppa.energy_pj_per_item,
+                x->r.ppa.fmax_mhz, x->r.ppa.items_per_s / 1e6, x->r.ppa.energy_pj_per_item, lb[0] ? " (limits: " : "",
+                lb[0] ? lb + 2 : "", lb[0] ? ")" : "");
         fputs("  formats:", f);
         fmt_list(f, s->spec.u, &s->cfg[x->uniform].cfg, &x->fmts, " ", "");
         fputc('\n', f);

@@ -618,8 +618,12 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
     const unit_desc *u = s->spec.u;
     memset(out, 0, sizeof *out);
     out->group = group;
+    /* The start: the smallest uniform width that meets the error rule.
+     * The speed and energy limits are not asked of it: bits the search
+     * removes shorten paths and save toggles, so a design that meets them
+     * may lie below a start that does not. */
     for (size_t i = group; i < s->n; i += s->ngroups)
-        if (tb_sweep_holds(s, &s->row[i].r, s->row[i].status, k, target, UINT64_MAX)) {
+        if (tb_target_holds(&s->row[i].r, s->row[i].status, k, target, UINT64_MAX)) {
             out->met = 1;
             out->uniform = i;
             break;
@@ -699,9 +703,13 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
             base_par_for((size_t)nb, threads, cand_run, jobs);
             for (int b = 0; b < nb; b++) {
                 out->runs++;
-                if (dkeep ? tb_target_holds_derived(&jobs[b].r, jobs[b].status, k, target)
-                              && tb_ppa_meets(&jobs[b].r, &s->spec.ppa, NULL, 0)
-                          : tb_sweep_holds(s, &jobs[b].r, jobs[b].status, k, target, max_ovf)) {
+                /* While the design misses the limits, any removal that
+                 * keeps the error rule is taken; once it meets them, only
+                 * one that keeps them met too. */
+                int lim = tb_ppa_meets(&out->r, &s->spec.ppa, NULL, 0);
+                if ((dkeep ? tb_target_holds_derived(&jobs[b].r, jobs[b].status, k, target)
+                           : tb_target_holds(&jobs[b].r, jobs[b].status, k, target, max_ovf))
+                    && (!lim || tb_ppa_meets(&jobs[b].r, &s->spec.ppa, NULL, 0))) {
                     out->fmts = jobs[b].f;
                     out->r = jobs[b].r;
                     next = pos[b] + 1;
@@ -713,6 +721,8 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
     }
     free(jobs);
     free(cand);
+    /* The limits are met by the result, or nothing is: met says so. */
+    if (!tb_ppa_meets(&out->r, &s->spec.ppa, out->limits_why, sizeof out->limits_why)) out->met = 0;
     return 0;
 }
 

@@ -116,7 +116,10 @@ typedef enum { TB_TARGET_MAX_ABS_ERR, TB_TARGET_NMSE } tb_target_kind;
 
 typedef struct tb_target_res {
     size_t    group;
-    int       met;            /* some uniform width of the sweep met the target */
+    int       met;            /* some uniform width of the sweep met the target, and the
+                               * chosen formats meet the speed and energy limits */
+    char      limits_why[160];/* met 0 with a uniform start: the limit the result missed
+                               * ("" otherwise) */
     size_t    uniform;        /* its row index: the smallest such width */
     unit_fmts fmts;           /* the chosen per-signal formats */
     tb_result r;              /* their result (raw freed) */
@@ -132,8 +135,11 @@ typedef struct tb_target_res {
 
 /* The acceptance rule of the search (docs/sweeps.md): the run succeeded,
  * every output is within its bound, the metric meets the target, and there
- * are no more overflows than max_ovf (those of the uniform design); the
- * search also asks for the sweep's speed and energy limits (tb_sweep_holds). */
+ * are no more overflows than max_ovf (those of the uniform design). The
+ * search starts from the smallest uniform width that meets it, and asks
+ * for the sweep's speed and energy limits of its result (tb_sweep_holds):
+ * until its design meets them it takes any bit removal that keeps the
+ * rule, then only those that keep them met. */
 int  tb_target_holds(const tb_result *r, int status, tb_target_kind k, double target, uint64_t max_ovf);
 /* tb_target_holds, and the sweep's speed and energy limits (spec.ppa) met. */
 int  tb_sweep_holds(const tb_sweep *s, const tb_result *r, int status, tb_target_kind k, double target,

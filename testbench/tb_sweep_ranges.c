@@ -31,7 +31,7 @@ int tb_sweep_derived_start(const tb_sweep *s, size_t group, tb_target_kind k, do
         tb_result_free(&r);
         if (st == TB_BADINPUT) { snprintf(err, errlen, "derived ranges: %s", e); return -1; }
         out->runs++;
-        if (!tb_target_holds_derived(&r, st, k, target) || !tb_ppa_meets(&r, &s->spec.ppa, NULL, 0)) continue;
+        if (!tb_target_holds_derived(&r, st, k, target)) continue;
         out->met = 1;
         out->uniform = i;
         out->fmts = f;

@@ -49,6 +49,8 @@ help VERB                                             => help run
 scene my.scene --set resolution=256x256 -j 2          == skip: my.scene is the reader's own scene file
 stability -o DIR                                      => stability -o out/stability
 merge DIR/sweep-*-of-N.csv -o DIR/sweep.csv           == skip: DIR and N are placeholders (README's merge runs)
+cosim horner3 --rtl my/horner3.v [--rtl my/more.v ...] [--top NAME] == skip: synopsis (my/horner3.v is the reader's own design)
+run horner3 --vectors indep.vec --fmt a=s7.13 --fmt b=s7.13 --fmt c=s7.14 --fmt d=s7.14 --fmt t=u1.19 --fmt y=s11.14 --fmt mx1=s11.13 --fmt mul=s12.14 --fmt mx2=s11.14 --fmt bk=s11.14 --fmt sm=s11.14 --fmt rg=s11.14 == skip: indep.vec is made by the awk line before it (tests/cli_ranges.sh runs the same check)
 run horner3 --fmt mul=s7.12:foo                       == status 2
 run horner3 --width 4                                 == status 2
 scene face --sweep                                    => scene face --sweep "L=4,8;terms=3,5" --set resolution=128x128
@@ -61,7 +63,7 @@ EOF
 # The commands and their shown output, from every doc, as lines
 #   C FILE LINE ISDOLLAR COMMAND     and     O FILE LINE TEXT
 awk '
-FNR == 1 { fence = 0; blank = 1; ind = 0; cmd = 0 }
+FNR == 1 { fence = 0; blank = 1; ind = 0; cmd = 0; cont = ""; contline = 0 }
 {
     if ($0 ~ /^ *```/) { fence = !fence; cmd = 0; blank = 0; next }
     if (fence) text = $0
@@ -69,10 +71,17 @@ FNR == 1 { fence = 0; blank = 1; ind = 0; cmd = 0 }
     else if ($0 ~ /^[ \t]*$/) { blank = 1; if (!ind) cmd = 0; next }
     else { ind = 0; cmd = 0; blank = 0; next }
     blank = 0
+    # a command continued on the next line (a trailing backslash): joined
+    if (cont != "") { text = cont " " text; sub(/^[ \t]+/, "", text); gsub(/  +/, " ", text) }
+    if (text ~ /\\$/ && (cont != "" || text ~ /^(\$ )?(bin\/)?shadesim /)) {
+        cont = substr(text, 1, length(text) - 1); sub(/[ \t]+$/, "", cont); contline = contline ? contline : FNR; next
+    }
+    cline = contline ? contline : FNR
+    cont = ""; contline = 0
     dollar = 0
     if (text ~ /^\$ /) { dollar = 1; text = substr(text, 3) }
     if (text ~ /^(bin\/)?shadesim( |$)/ || text ~ /^mkdir -p [^ ]+$/) {
-        print "C " FILENAME " " FNR " " dollar " " text
+        print "C " FILENAME " " cline " " dollar " " text
         cmd = dollar
         next
     }
@@ -144,6 +153,10 @@ while read -r kind file line dollar cmd; do
         # a fresh scratch folder per doc
         W=$T/run/$(echo "$file" | tr '/.' '__')
         mkdir -p "$W"
+        # the docs' commands run from a checkout: its tests/ and vectors/
+        # files (tests/rtl/horner3_hand.v, vectors/horner3.vec) are there
+        ln -s "$SHADESIM_HOME/tests" "$W/tests"
+        ln -s "$SHADESIM_HOME/vectors" "$W/vectors"
         prev=$file
     fi
     case $cmd in

@@ -80,9 +80,21 @@ awk -v a="$jl" -v b="$lim" 'BEGIN { exit !(a == b) }' && grep -q '"rule": ".*at 
     && ok min_throughput_in_json || fail min_throughput_in_json "limits: '$jl', asked $lim"
 grep -q '"limits": {"min_items_per_s": null, "max_energy_pj_per_item": null}' "$T/t0/target.json" \
     && ok no_limits_null_in_json || fail no_limits_null_in_json
-# An impossible limit: nothing meets it.
+# An impossible limit: nothing meets it, and the output says which limit.
 "$S" sweep horner3 --widths 8:24 --target-error 1e-3 --min-throughput 1e15 -o "$T/t2" >"$T/t2.out" 2>&1
-check min_throughput_impossible_none_met grep -q "no width in 8..24 meets it" "$T/t2.out"
+check min_throughput_impossible_none_met grep -q "meet it miss the limits: .* items/s < 1e+15" "$T/t2.out"
+# A limit between the uniform start's rate and the unconstrained choice's:
+# the start misses it, the search goes on below it and must end meeting it.
+uips=$(sed -n 2p "$tc" | cut -d, -f"$cu")
+mid=$(awk -v a="$uips" -v b="$ips" 'BEGIN { printf "%.17g", (a + b) / 2 }')
+if awk -v a="$uips" -v b="$ips" 'BEGIN { exit !(a < b) }'; then
+    "$S" sweep horner3 --widths 8:24 --target-error 1e-3 --margin 1 --min-throughput "$mid" -o "$T/t4" >/dev/null 2>&1
+    got=$(sed -n 2p "$T/t4/target.csv" | cut -d, -f"$cx")
+    awk -v g="$got" -v l="$mid" 'BEGIN { exit !(g >= l) }' && ok min_throughput_met_below_start \
+        || fail min_throughput_met_below_start "items/s '$got', limit $mid (start $uips)"
+else
+    echo "skip cli_ppa.min_throughput_met_below_start: the choice is not faster than its start here"
+fi
 lim=$(awk -v v="$epi" 'BEGIN { printf "%.17g", v * 0.98 }')
 "$S" sweep horner3 --widths 8:24 --target-error 1e-3 --margin 1 --max-energy "$lim" -o "$T/t3" >/dev/null 2>&1
 met=$(sed -n 2p "$T/t3/target.csv" | cut -d, -f"$(head -1 "$T/t3/target.csv" | tr ',' '\n' | grep -n -x met | cut -d: -f1)")
