@@ -95,9 +95,18 @@ def gray(path):
     for y in range(h):
         f, row = raw[y * (w + 1)], list(raw[y * (w + 1) + 1:(y + 1) * (w + 1)])
         for x in range(w):
+            # the five PNG filters (one byte a pixel): none, sub, up,
+            # average, Paeth
             a = row[x - 1] if x else 0
+            u = prev[x]
+            c = prev[x - 1] if x else 0
             if f == 1: row[x] = (row[x] + a) & 255
-            elif f == 2: row[x] = (row[x] + prev[x]) & 255
+            elif f == 2: row[x] = (row[x] + u) & 255
+            elif f == 3: row[x] = (row[x] + (a + u) // 2) & 255
+            elif f == 4:
+                p = a + u - c
+                pa, pb, pc = abs(p - a), abs(p - u), abs(p - c)
+                row[x] = (row[x] + (a if pa <= pb and pa <= pc else (u if pb <= pc else c))) & 255
             else: assert f == 0
         px += row
         prev = row
