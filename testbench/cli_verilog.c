@@ -303,9 +303,9 @@ static void synth_paths(const char *dir, const cli_unit_opts *o, const unit_fmts
     if (len >= 0) printf("  Yosys        %6ld gates\n", len);
     else printf("  Yosys        (no ltp result: see yosys.log with --keep DIR)\n");
     if (bad) { printf("  shadesim     (no critical path: %s)\n", err); return; }
-    printf("  shadesim     %6d levels, %.0f ps, f_max %.0f MHz (", p.levels, p.crit_ps, p.fmax_mhz);
-    for (int i = 0; i < p.npath; i++) printf("%s%s", i ? " -> " : "", p.path[i]);
-    printf(")\n");
+    char ptext[1200];
+    tb_ppa_path_text(&p, ptext, sizeof ptext);
+    printf("  shadesim     %6d levels, %.0f ps, f_max %.0f MHz (%s)\n", p.levels, p.crit_ps, p.fmax_mhz, ptext);
     if (len > 0) printf("  ratio        %.2f (shadesim levels / Yosys gates)\n", p.levels / (double)len);
 }
 

@@ -139,6 +139,11 @@ typedef struct tb_ppa_limits {
 } tb_ppa_limits;
 /* 1 if r meets l (NULL: no limits); else 0 and why ("... items/s < ..."). */
 int tb_ppa_meets(const tb_result *r, const tb_ppa_limits *l, char *why, size_t len);
+/* The critical path's signals as "a -> b -> c" (a path of more than ten:
+ * its first and last four around "... (N more)"), cut to fit buf; and as
+ * the JSON object {"levels": L, "ps": P, "signals": [...]}. */
+void tb_ppa_path_text(const tb_ppa *p, char *buf, size_t len);
+void tb_ppa_json_path(FILE *f, const tb_ppa *p);
 
 typedef struct tb_opts {
     const char *vcd_path;        /* NULL: no dump */

@@ -42,14 +42,9 @@ static void jmetrics(FILE *f, const tb_metrics *m, const char *ind)
 static void jppa(FILE *f, const tb_result *r)
 {
     const tb_ppa *p = &r->ppa;
-    fprintf(f, ",\n  \"critical_path\": {\"levels\": %d, \"ps\": ", p->levels);
-    base_json_num(f, p->crit_ps, 17);
-    fputs(", \"signals\": [", f);
-    for (int i = 0; i < p->npath; i++) {
-        fputs(i ? ", " : "", f);
-        base_json_str(f, p->path[i]);
-    }
-    fputs("]},\n  \"fmax_mhz\": ", f); base_json_num(f, p->fmax_mhz, 17);
+    fputs(",\n  \"critical_path\": ", f);
+    tb_ppa_json_path(f, p);
+    fputs(",\n  \"fmax_mhz\": ", f); base_json_num(f, p->fmax_mhz, 17);
     fputs(",\n  \"items_per_s\": ", f); base_json_num(f, p->items_per_s, 17);
     fprintf(f, ",\n  \"toggles\": {\"total\": %llu, \"per_signal\": {", (unsigned long long)p->toggles);
     for (int i = 0; i < r->nsigs; i++) {
@@ -66,15 +61,9 @@ static void jppa(FILE *f, const tb_result *r)
 static void print_crit(FILE *f, const tb_ppa *p)
 {
     if (p->npath <= 0) return;
-    fprintf(f, "critical path %d levels, %.0f ps (", p->levels, p->crit_ps);
-    for (int i = 0; i < p->npath; i++) {
-        if (p->npath > 10 && i == 4) {
-            fprintf(f, " -> ... (%d more)", p->npath - 8);
-            i = p->npath - 5;
-            continue;
-        }
-        fprintf(f, "%s%s", i ? " -> " : "", p->path[i]);
-    }
+    char path[1200];
+    tb_ppa_path_text(p, path, sizeof path);
+    fprintf(f, "critical path %d levels, %.0f ps (%s", p->levels, p->crit_ps, path);
     fprintf(f, "), f_max %.0f MHz", p->fmax_mhz);
     if (p->items_per_s > 0) fprintf(f, ", %.4g M items/s", p->items_per_s / 1e6);
     fputc('\n', f);

@@ -4,6 +4,7 @@
  * beat: an interpolation unit's item is L pixels, any other unit's item
  * one result. */
 #include "testbench/tb.h"
+#include "base/base_json.h"
 #include <math.h>
 
 double tb_pixels_per_s(const tb_result *r)
@@ -30,4 +31,33 @@ int tb_ppa_meets(const tb_result *r, const tb_ppa_limits *l, char *why, size_t l
         return 0;
     }
     return 1;
+}
+
+void tb_ppa_path_text(const tb_ppa *p, char *buf, size_t len)
+{
+    size_t k = 0;
+    if (!len) return;
+    buf[0] = 0;
+    for (int i = 0; i < p->npath && k + 1 < len; i++) {
+        int m;
+        /* a long path: its first four and last four signals */
+        if (p->npath > 10 && i == 4) {
+            m = snprintf(buf + k, len - k, " -> ... (%d more)", p->npath - 8);
+            i = p->npath - 5;
+        } else m = snprintf(buf + k, len - k, "%s%s", i ? " -> " : "", p->path[i]);
+        if (m < 0) break;
+        k += (size_t)m;
+    }
+}
+
+void tb_ppa_json_path(FILE *f, const tb_ppa *p)
+{
+    fprintf(f, "{\"levels\": %d, \"ps\": ", p->levels);
+    base_json_num(f, p->crit_ps, 17);
+    fputs(", \"signals\": [", f);
+    for (int i = 0; i < p->npath; i++) {
+        fputs(i ? ", " : "", f);
+        base_json_str(f, p->path[i]);
+    }
+    fputs("]}", f);
 }

@@ -57,24 +57,12 @@ int tb_scene_speed_of(tb_scene_result *r, int width, char *err, size_t errlen)
     return 0;
 }
 
-/* A path's signals as "a -> b -> c" into buf. */
-static void path_text(const tb_ppa *p, char *buf, size_t len)
-{
-    size_t k = 0;
-    buf[0] = 0;
-    for (int i = 0; i < p->npath && k + 1 < len; i++) {
-        int m = snprintf(buf + k, len - k, "%s%s", i ? " -> " : "", p->path[i]);
-        if (m < 0) break;
-        k += (size_t)m;
-    }
-}
-
 void tb_scene_speed_print(FILE *f, const tb_scene_result *r)
 {
     if (!r->have_speed) return;
     const tb_scene_speed *sp = &r->speed;
     char a[64], path[600];
-    path_text(&sp->hw, path, sizeof path);
+    tb_ppa_path_text(&sp->hw, path, sizeof path);
     snprintf(a, sizeof a, "%.0f MHz", sp->hw.fmax_mhz);
     fprintf(f, "  %-22s %-14s critical path %d levels, %.0f ps (%s)\n", "f_max", a, sp->hw.levels,
             sp->hw.crit_ps, path);
@@ -102,14 +90,9 @@ void tb_scene_speed_json(FILE *f, const tb_scene_result *r)
 {
     if (!r->have_speed) return;
     const tb_scene_speed *sp = &r->speed;
-    fprintf(f, ",\n  \"critical_path\": {\"levels\": %d, \"ps\": ", sp->hw.levels);
-    base_json_num(f, sp->hw.crit_ps, 17);
-    fputs(", \"signals\": [", f);
-    for (int i = 0; i < sp->hw.npath; i++) {
-        fputs(i ? ", " : "", f);
-        base_json_str(f, sp->hw.path[i]);
-    }
-    fputs("]},\n  \"fmax_mhz\": ", f); base_json_num(f, sp->hw.fmax_mhz, 17);
+    fputs(",\n  \"critical_path\": ", f);
+    tb_ppa_json_path(f, &sp->hw);
+    fputs(",\n  \"fmax_mhz\": ", f); base_json_num(f, sp->hw.fmax_mhz, 17);
     fputs(",\n  \"pixels_per_s\": ", f); base_json_num(f, sp->pixels_per_s, 17);
     fputs(",\n  \"energy_pj_per_pixel\": ", f); base_json_num(f, sp->energy_pj_per_pixel, 17);
     fputs(",\n  \"reference_bound\": {\"divides_per_pixel\": ", f); base_json_num(f, sp->ref_divs, 17);
