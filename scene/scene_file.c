@@ -99,6 +99,7 @@
 #include "scene/scene.h"
 #include "sim/sim_fixed.h"      /* the sim_round / sim_ovf values only */
 #include "base/base_join.h"
+#include "base/base_line.h"
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -797,28 +798,6 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
     return 0;
 }
 
-/* One line into buf (without the newline). Returns the length, -1 at end
- * of file, -2 for a line longer than LINE_MAX_BYTES (consumed), -3 for a
- * NUL byte (line consumed). */
-static long read_line(FILE *f, char *buf)
-{
-    int c;
-    long n = 0;
-    int nul = 0, any = 0;
-    while ((c = getc(f)) != EOF) {
-        any = 1;
-        if (c == '\n') break;
-        if (c == 0) nul = 1;
-        if (n < LINE_MAX_BYTES) buf[n] = (char)c;
-        n++;
-    }
-    if (!any) return -1;
-    if (nul) return -3;
-    if (n > LINE_MAX_BYTES) return -2;
-    buf[n] = 0;
-    return n;
-}
-
 /* Cut a comment: '#' at the start or after a blank. */
 static void cut_comment(char *s)
 {
@@ -847,11 +826,11 @@ int scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen)
     long ln = 0;
     int have_version = 0, rc = 0, cam_line = 0;
     for (;;) {
-        long n = read_line(f, line);
-        if (n == -1) break;
+        long n = base_line_read(f, line, LINE_MAX_BYTES);
+        if (n == BASE_LINE_EOF || n == BASE_LINE_ERR) break;
         ln++;
-        if (n == -2) { snprintf(err, errlen, "%s:%ld: line longer than %d bytes", path, ln, LINE_MAX_BYTES); rc = -1; break; }
-        if (n == -3) { snprintf(err, errlen, "%s:%ld: NUL byte: not a text file", path, ln); rc = -1; break; }
+        if (n == BASE_LINE_LONG) { snprintf(err, errlen, "%s:%ld: line longer than %d bytes", path, ln, LINE_MAX_BYTES); rc = -1; break; }
+        if (n == BASE_LINE_NUL) { snprintf(err, errlen, "%s:%ld: NUL byte: not a text file", path, ln); rc = -1; break; }
         cut_comment(line);
         char *s = trim(line);
         if (!*s) continue;

@@ -4,6 +4,8 @@
 #include "testbench/cli_opt.h"
 #include <stddef.h>
 #include "testbench/tb_sweep_chart.h"
+#include "testbench/tb_sweep.h"
+#include "base/base_line.h"
 #include "base/base_out.h"
 #include <errno.h>
 #include <stdlib.h>
@@ -51,32 +53,6 @@ const cli_optspec cli_chart_spec = {
     "unwritable DIR or a failed PNG conversion\n"
 };
 
-
-/* The whole file; NULL after printing the error. */
-static char *slurp(const char *path, size_t *len)
-{
-    FILE *f = !strcmp(path, "-") ? stdin : fopen(path, "rb");
-    if (!f) { cli_usage_error("%s: cannot open: %s", path, strerror(errno)); return NULL; }
-    size_t cap = 1 << 16, n = 0;
-    char *b = malloc(cap);
-    while (b) {
-        if (n == cap) {
-            char *nb = cap < ((size_t)1 << 40) ? realloc(b, cap * 2) : NULL;
-            if (!nb) { free(b); b = NULL; break; }
-            b = nb;
-            cap *= 2;
-        }
-        size_t k = fread(b + n, 1, cap - n, f);
-        n += k;
-        if (k == 0) break;
-    }
-    int bad = ferror(f);
-    if (f != stdin) fclose(f);
-    if (!b) { cli_usage_error("%s: out of memory", path); return NULL; }
-    if (bad) { free(b); cli_usage_error("%s: read error", path); return NULL; }
-    *len = n;
-    return b;
-}
 
 /* Is prog on PATH? */
 static int on_path(const char *prog)
@@ -137,8 +113,9 @@ int cli_chart(int argc, char **argv)
         dir = defdir;
     }
     size_t len = 0;
-    char *text = slurp(csv, &len), err[800];
-    if (!text) return CLI_USAGE;
+    char err[800];
+    char *text = base_text_read(csv, TB_SWEEP_MAX_LINE, &len, err, sizeof err);
+    if (!text) return cli_usage_error("%s", err);
     tb_sc *sc = tb_sc_read(text, len, csv, err, sizeof err);
     free(text);
     if (!sc) return cli_usage_error("%s", err);
