@@ -100,6 +100,7 @@
 #include "sim/sim_fixed.h"      /* the sim_round / sim_ovf values only */
 #include "base/base_join.h"
 #include "base/base_line.h"
+#include "base/base_num.h"
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -289,12 +290,10 @@ static int num(const char *key, const char *s, double lo, double hi, double *out
                char *err, size_t errlen)
 {
     char b[48];
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end || !isfinite(v))
-        return fail(err, errlen, "%s: \"%s\" is not a finite number", key, shown(s, b));
-    if (v < lo || v > hi)
+    double v;
+    if (base_num_real(s, 1, &v))
+        return fail(err, errlen, "%s: \"%s\" is not a finite number (decimal)", key, shown(s, b));
+    if (v < lo || v > hi || (*s == '-' && lo >= 0))     /* -0 too */
         return fail(err, errlen, "%s: %s is out of range [%g, %g]", key, shown(s, b), lo, hi);
     *out = v;
     return 0;
@@ -304,12 +303,10 @@ static int inum(const char *key, const char *s, long lo, long hi, int *out,
                 char *err, size_t errlen)
 {
     char b[48];
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end || errno)
+    long long v;
+    if (base_num_whole(s, 1, &v))
         return fail(err, errlen, "%s: \"%s\" is not an integer", key, shown(s, b));
-    if (v < lo || v > hi)
+    if (v < lo || v > hi || (*s == '-' && lo >= 0))     /* -0 too */
         return fail(err, errlen, "%s: %s is out of range %ld..%ld", key, shown(s, b), lo, hi);
     *out = (int)v;
     return 0;
