@@ -262,6 +262,7 @@ typedef struct ctx {
     int         light_seen;         /* a light line was read from this file */
     const char *dir;                /* scene file's folder (dirlen bytes), NULL: none */
     size_t      dirlen;             /* 0 with dir set: the root, "/" */
+    int         line;               /* the line being applied (SCN_LINE_SET: --set) */
 } ctx;
 
 /* Error text without the "PATH:LINE: " / "KEY: " prefix. */
@@ -491,6 +492,7 @@ static int apply(scn_desc *d, ctx *cx, const char *key, char **t, int n, const c
     for (k = 0; k < K__COUNT; k++)
         if (!strcmp(key, scn_desc_keys[k])) break;
     if (k == K__COUNT) return unknown_key(key, err, errlen);
+    d->key_line[k] = cx->line;
     scn_camera *cam = &d->view.cam;
     int i;
     double x;
@@ -775,7 +777,7 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
     char v[LINE_MAX_BYTES + 1], msg[512];
     memcpy(v, value, vl + 1);
     scn_desc t = *d;
-    ctx cx = { 0, 0, NULL, 0 };
+    ctx cx = { 0, 0, NULL, 0, SCN_LINE_SET };
     if (apply_text(&t, &cx, key, v, msg, sizeof msg)) {
         /* Messages of value errors start with the key already. */
         size_t kl = strlen(key);
@@ -792,6 +794,37 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
     }
     scn_desc_sync(&t);
     *d = t;
+    return 0;
+}
+
+_Static_assert(K__COUNT <= SCN_DESC_NKEYS, "scn_desc.key_line is too small");
+
+const char *scn_desc_where(const scn_desc *d, const char *const *keys, char *buf, size_t len)
+{
+    int best = 0, bk = -1;
+    for (; *keys; keys++)
+        for (int k = 0; k < K__COUNT; k++)
+            if (!strcmp(*keys, scn_desc_keys[k]) && d->key_line[k] > best) { best = d->key_line[k]; bk = k; }
+    if (bk < 0) snprintf(buf, len, "%s", "");
+    else if (best == SCN_LINE_SET) snprintf(buf, len, "--set %s: ", scn_desc_keys[bk]);
+    else snprintf(buf, len, "%s:%d: ", d->src, best);
+    return buf;
+}
+
+int scn_desc_check_camera(const scn_desc *d, char *err, size_t errlen)
+{
+    static const char *const view[] = { "camera", "eye", "target", "up", "fov", "ortho-height", NULL };
+    static const char *const held[] = { "camera", "eye", "target", "up", "fov", "ortho-height",
+                                        "heldout-eye", "heldout-target", NULL };
+    char msg[300], where[300];
+    if (scn_camera_check(&d->view.cam, msg, sizeof msg)) {
+        snprintf(err, errlen, "%s%s", scn_desc_where(d, view, where, sizeof where), msg);
+        return -1;
+    }
+    if (scn_camera_check(&d->heldout.cam, msg, sizeof msg)) {
+        snprintf(err, errlen, "%sheld-out view: %s", scn_desc_where(d, held, where, sizeof where), msg);
+        return -1;
+    }
     return 0;
 }
 
@@ -818,7 +851,8 @@ int scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen)
     }
     scn_desc_default(t);
     const char *slash = strrchr(path, '/');
-    ctx cx = { 1, 0, slash ? path : NULL, slash ? (size_t)(slash - path) : 0 };
+    ctx cx = { 1, 0, slash ? path : NULL, slash ? (size_t)(slash - path) : 0, 0 };
+    snprintf(t->src, sizeof t->src, "%s", path);
     char msg[512];
     long ln = 0;
     int have_version = 0, rc = 0, cam_line = 0;
@@ -863,6 +897,7 @@ int scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen)
             rc = -1;
             break;
         }
+        cx.line = (int)(ln < SCN_LINE_SET ? ln : SCN_LINE_SET - 1);
         if (apply_text(t, &cx, s, value, msg, sizeof msg)) {
             snprintf(err, errlen, "%s:%ld: %s", path, ln, msg);
             rc = -1;
