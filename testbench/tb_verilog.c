@@ -166,11 +166,15 @@ int tb_verilog_export(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
     size_t pl = strlen(dir) + strlen(u->name) + 16;
     char *p = malloc(pl);
     if (!p) { snprintf(err, errlen, "out of memory"); goto done; }
+    /* the module and its testbench are one set: both appear, or neither */
+    base_outset *set = base_outset_new();
     snprintf(p, pl, "%s/%s.v", dir, u->name);
-    if (base_out_write_all(p, mod, strlen(mod), err, errlen) == 0) {
+    if (base_outset_write(set, p, mod, strlen(mod), err, errlen) == 0) {
         snprintf(p, pl, "%s/%s_tb.v", dir, u->name);
-        rc = base_out_write_all(p, tb, strlen(tb), err, errlen);
+        rc = base_outset_write(set, p, tb, strlen(tb), err, errlen);
     }
+    if (rc == 0) rc = base_outset_commit(set, err, errlen);
+    else base_outset_abort(set);
     free(p);
 done:
     free(mod);

@@ -195,7 +195,7 @@ int tb_wave_close(tb_wave *w, sim_ctx *c, sim_vcd *v, const unit_desc *u, int rc
             rc = TB_BADINPUT;
         }
     }
-    if (o->gtkw && rc == TB_OK && stat(o->vcd_path, &st) == 0 && S_ISREG(st.st_mode)) {
+    if (o->gtkw && rc == TB_OK && stat(base_out_pending(o->vcd_path), &st) == 0 && S_ISREG(st.st_mode)) {
         /* The companion goes beside a dump in a file (not stdout, not
          * /dev/null: no /dev/null.gtkw), any path length; a companion
          * that cannot be written is an error, not a silent omission. */
