@@ -448,6 +448,8 @@ struct base_outset {
     int n, cap;
     base_out **o;
     base_outset *parent;        /* the set current before base_outset_begin */
+    char **made;                /* folders base_out_mkdirs made for it, in order */
+    int nmade;
 };
 
 /* The set base_outset_begin made current in this thread: outputs closed
@@ -547,8 +549,19 @@ void base_outset_abort(base_outset *s)
     if (!s) return;
     set_pop(s);
     for (int i = 0; i < s->n; i++) base_out_abort(s->o[i]);
+    /* the folders made for it go too, the last made first, if empty */
+    for (int i = s->nmade - 1; i >= 0; i--) { rmdir(s->made[i]); free(s->made[i]); }
+    free(s->made);
     free(s->o);
     free(s);
+}
+
+static void set_forget_made(base_outset *s)
+{
+    for (int i = 0; i < s->nmade; i++) free(s->made[i]);
+    free(s->made);
+    s->made = NULL;
+    s->nmade = 0;
 }
 
 int base_outset_commit(base_outset *s, char *err, size_t errlen)
@@ -568,10 +581,18 @@ int base_outset_commit(base_outset *s, char *err, size_t errlen)
             rc = -1;
             base_out_abort(s->o[i]);
         }
+        for (int i = 0; i < s->nmade; i++) {     /* the folders, to the outer set */
+            char **nm = realloc(cur_set->made, (size_t)(cur_set->nmade + 1) * sizeof *nm);
+            if (!nm) { free(s->made[i]); continue; }
+            cur_set->made = nm;
+            nm[cur_set->nmade++] = s->made[i];
+        }
+        free(s->made);
         free(s->o);
         free(s);
         return rc;
     }
+    set_forget_made(s);
     /* Every member complete: the links' copies (which can fail: ENOSPC)
      * before the renames (which, within one folder, do not). */
     for (int i = 0; i < s->n; i++)
@@ -627,7 +648,16 @@ int base_out_mkdirs(const char *dir, char *err, size_t errlen)
         if (ch == '/' || ch == 0) {
             *s = 0;
             struct stat st;
-            if (mkdir(p, 0777) && errno != EEXIST) {
+            if (mkdir(p, 0777) == 0) {
+                /* a folder a current set's abort should take back */
+                if (cur_set) {
+                    char **nm = realloc(cur_set->made, (size_t)(cur_set->nmade + 1) * sizeof *nm);
+                    if (nm) {
+                        cur_set->made = nm;
+                        if ((nm[cur_set->nmade] = strdup(p))) cur_set->nmade++;
+                    }
+                }
+            } else if (errno != EEXIST) {
                 snprintf(err, errlen, "%s: cannot create folder %s: %s", dir, p, strerror(errno));
                 return -1;
             }

@@ -33,8 +33,9 @@ int      base_out_close(base_out *o, char *err, size_t errlen);
 void     base_out_abort(base_out *o);
 /* The whole of buf to path, as open + write + close. 0 or -1. */
 int      base_out_write_all(const char *path, const void *buf, size_t len, char *err, size_t errlen);
-/* Make folder dir and its parents (mkdir -p; mode 0777 less the umask).
- * and check that a file can be created in it. 0, or -1 with "DIR: cannot
+/* Make folder dir and its parents (mkdir -p; mode 0777 less the umask)
+ * and check that a file can be created in it; the folders made while a
+ * set is current are removed by its abort (when empty). 0, or -1 with "DIR: cannot
  * create folder P: why", "... is not a folder" or "cannot write in ...". */
 int      base_out_mkdirs(const char *dir, char *err, size_t errlen);
 /* Flush standard output and report a write error on it (EPIPE, ENOSPC):

@@ -83,7 +83,7 @@ static int to_png(const char *svg, const char *png)
     if (pid < 0) { base_out_abort(o); return cli_usage_error("%s: cannot start rsvg-convert: %s", png, strerror(errno)); }
     if (pid == 0) {
         if (dup2(fileno(f), 1) < 0) _exit(126);
-        execlp("rsvg-convert", "rsvg-convert", svg, (char *)NULL);
+        execlp("rsvg-convert", "rsvg-convert", base_out_pending(svg), (char *)NULL);
         _exit(127);
     }
     int st;
@@ -121,6 +121,9 @@ int cli_chart(int argc, char **argv)
     if (!sc) return cli_usage_error("%s", err);
     if (cli_make_dir(dir)) { tb_sc_free(sc); return CLI_USAGE; }
     int rc = CLI_OK;
+    /* the charts (and PNGs) are one set: all appear, or none */
+    base_outset *set = base_outset_begin();
+    if (!set) { tb_sc_free(sc); return cli_usage_error("chart: out of memory"); }
     for (int k = 0; k < TB_SC_NCHARTS && rc == CLI_OK; k++) {
         if (!tb_sc_chart_drawn(sc, k)) continue;
         char path[4200], ppath[4200];
@@ -138,6 +141,8 @@ int cli_chart(int argc, char **argv)
         }
     }
     tb_sc_free(sc);
+    if (rc == CLI_OK && base_outset_commit(set, err, sizeof err)) rc = cli_usage_error("%s", err);
+    else if (rc != CLI_OK) base_outset_abort(set);
     char e[300];
     if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
     return rc;

@@ -26,7 +26,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 typedef struct report_args { const char *dir; } report_args;
 
@@ -623,10 +622,6 @@ int cli_report(int argc, char **argv)
      * is one set: they appear together at the end, or none of them. */
     base_outset *set = base_outset_begin();
     if (!set) { fclose(f); free(html); return cli_usage_error("report: out of memory"); }
-    char sdir[4200];
-    struct stat sst;
-    snprintf(sdir, sizeof sdir, "%s/scene", dir);
-    int had_sdir = stat(sdir, &sst) == 0;
     fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
                "<title>shadesim report</title>\n<style>\n%s</style>\n</head>\n<body>\n", css);
@@ -656,10 +651,7 @@ int cli_report(int argc, char **argv)
     free(html);
     if (!rc && base_outset_commit(set, err, sizeof err)) rc = cli_usage_error("%s", err);
     else if (rc) base_outset_abort(set);
-    if (rc) {
-        if (!had_sdir) rmdir(sdir);     /* the scene folder this run made, if empty */
-        return rc;
-    }
+    if (rc) return rc;          /* (the abort also took back the scene folder it made) */
     printf("wrote %s (%d units, %d failing their verdict)\n", path, (int)unit_count(), nfail);
     char e[300];
     if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);

@@ -316,6 +316,10 @@ int cli_scene(int argc, char **argv)
     scn_mesh m;
     if (load_mesh(&d, &m)) return CLI_USAGE;
     int rc = CLI_OK;
+    /* Every file of the run (--compare's three folders, --sweep's and
+     * --target-nmse's files, a render's images and VCD) is one set. */
+    base_outset *set = base_outset_begin();
+    if (!set) { scn_mesh_free(&m); return cli_usage_error("scene: out of memory"); }
     if (cmp) {
         rc = compare(&d, &m, jobs, no_batch, dir, json);
     } else if (target > 0 || sweep) {
@@ -344,6 +348,9 @@ int cli_scene(int argc, char **argv)
             tb_scene_free(&r);
         }
     }
+    /* a missed target (exit 1) still writes its files: they are data */
+    if (rc == CLI_USAGE) base_outset_abort(set);
+    else if (base_outset_commit(set, err, sizeof err)) rc = cli_usage_error("%s", err);
     scn_mesh_free(&m);
     if (base_out_stdout_check(err, sizeof err)) return cli_usage_error("%s", err);
     return rc;

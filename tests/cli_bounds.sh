@@ -15,7 +15,9 @@ have_timeout=0; command -v timeout >/dev/null 2>&1 && have_timeout=1
 # A sanitizer build reserves terabytes of address space: there the memory
 # bound cannot be set (and the time bound is widened).
 have_ulimit=0
-if (ulimit -v $MEM_KB && "$S" --version) >/dev/null 2>&1; then have_ulimit=1; else SECS=$((SECS * 6)); fi
+# (the probe runs in a shell of its own, so that its abort under the
+# limit is not reported on this script's stderr)
+if sh -c 'ulimit -v "$1" && "$2" --version' sh $MEM_KB "$S" >/dev/null 2>&1; then have_ulimit=1; else SECS=$((SECS * 6)); fi
 [ $have_timeout = 1 ] || echo "skip ${PREFIX}time_bound: timeout not installed"
 [ $have_ulimit = 1 ] || echo "skip ${PREFIX}memory_bound: ulimit -v unusable here (sanitizer build)"
 

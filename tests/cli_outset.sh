@@ -115,3 +115,22 @@ fi
 rc=$(cat "$T/prc")
 if [ "$rc" = 2 ] && grep -q '^shadesim: standard output: write failed: Broken pipe' "$T/perr"; then ok closed_pipe
 else fail closed_pipe "exit $rc: $(cat "$T/perr")"; fi
+
+# --- the other multi-file outputs: claims' charts, chart's charts, a
+# scene --compare's three folders
+D=$T/cl
+mkdir -p "$D" && ln -s /dev/full "$D/claims_cost.svg"
+snap "$D" >"$T/before"
+expect claims_full_member 2 "$S" claims -o "$D"
+same claims_folder_unchanged "$D" "$T/before"
+D=$T/ch
+"$S" sweep horner3 --widths 10:11 -o "$T/chsrc" >/dev/null
+mkdir -p "$D" && ln -s /dev/full "$D/area_vs_error.svg"
+snap "$D" >"$T/before"
+expect chart_full_member 2 "$S" chart "$T/chsrc/sweep.csv" -o "$D"
+same chart_folder_unchanged "$D" "$T/before"
+D=$T/cmp
+mkdir -p "$D/auto" && ln -s /dev/full "$D/auto/scene.json"
+snap "$D" >"$T/before"
+expect compare_full_member 2 "$S" scene sphere --compare --set resolution=16x16 -o "$D"
+same compare_folder_unchanged "$D" "$T/before"
