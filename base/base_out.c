@@ -14,6 +14,17 @@
  *    stay what it is.
  *  - Symbolic links are followed one hop at a time (readlink), not with
  *    realpath, so a dangling link still names where the file will go.
+ *  - A link to a regular file (or a dangling one) is written through, but
+ *    only once the output is complete: the bytes go to a temporary beside
+ *    the link, and are copied into the file the link names (opened
+ *    through the link, O_TRUNC) at the close or the set's commit. So the
+ *    file keeps its inode (its other links, owner, mode) and an output
+ *    that fails before its end leaves it untouched; only a failure during
+ *    the copy itself (ENOSPC) leaves it cut, as any write-through would.
+ *  - A set (base_outset) finishes every member first - flush, fsync,
+ *    close, write-through ones checked (ENOSPC of /dev/full) - and only
+ *    when all are complete copies the links and renames the temporaries
+ *    in, so a failure anywhere before that changes none of its paths.
  *  - The registry of temporaries is a fixed array that a signal handler
  *    may read at any moment: the path is copied in before the slot's flag
  *    is raised, and the flag is lowered before the slot is reused. The
@@ -35,7 +46,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-enum { OUT_TEMP, OUT_THROUGH, OUT_STDOUT };
+enum { OUT_TEMP, OUT_THROUGH, OUT_STDOUT, OUT_LINK };
 
 struct base_out {
     FILE *f;
@@ -43,8 +54,9 @@ struct base_out {
     int   slot;       /* registry slot of tmp, or -1 */
     char *shown;      /* the path as given (messages) */
     char *target;     /* where the file goes (symlinks resolved) */
-    char *tmp;        /* OUT_TEMP: the temporary */
+    char *tmp;        /* OUT_TEMP, OUT_LINK: the temporary */
     int   werr;       /* errno of a failed write seen by base_out_write_all */
+    int   finished;   /* out_finish done: f closed, the temporary complete */
 };
 
 /* ---- registry of temporaries ------------------------------------------ */
@@ -108,9 +120,23 @@ static void read_umask(void)
     new_mode = 0666 & ~m;
 }
 
+/* SIGPIPE is caught, not ignored: a write to a closed pipe then fails
+ * with EPIPE, reported like any write error (exit status 2, not death by
+ * the signal), and the programs shadesim starts (rsvg-convert, iverilog)
+ * get the default action back at their exec, as an ignored signal would
+ * not. */
+static void on_pipe(int sig) { (void)sig; }
+
 void base_out_install_signals(void)
 {
     pthread_once(&mode_once, read_umask);
+    struct sigaction pa, pold;
+    if (sigaction(SIGPIPE, NULL, &pold) == 0 && pold.sa_handler != SIG_IGN) {
+        memset(&pa, 0, sizeof pa);
+        pa.sa_handler = on_pipe;
+        sigemptyset(&pa.sa_mask);
+        sigaction(SIGPIPE, &pa, NULL);
+    }
     static const int sigs[] = { SIGINT, SIGTERM, SIGHUP };
     for (size_t i = 0; i < sizeof sigs / sizeof sigs[0]; i++) {
         struct sigaction sa, old;
@@ -208,9 +234,8 @@ static void out_free(base_out *o)
     errno = saved;
 }
 
-static int open_temp(base_out *o, const struct stat *st, int exists, char *err, size_t errlen)
+static int open_temp(base_out *o, const char *t, const struct stat *st, int exists, char *err, size_t errlen)
 {
-    const char *t = o->target;
     size_t tl = strlen(t);
     if (tl && t[tl - 1] == '/') {
         errno = EISDIR;
@@ -243,7 +268,7 @@ static int open_temp(base_out *o, const struct stat *st, int exists, char *err, 
         msg(err, errlen, o->shown, "cannot create: %s", strerror(e));
         return -1;
     }
-    (void)fchmod(fd, exists ? (st->st_mode & 07777) : new_mode);
+    (void)fchmod(fd, exists ? (st->st_mode & 07777) : st ? new_mode : 0600);
     o->f = fdopen(fd, "wb");
     if (!o->f) {
         e = errno;
@@ -294,8 +319,16 @@ base_out *base_out_open(const char *path, char *err, size_t errlen)
         out_free(o);
         return NULL;
     }
+    struct stat lst;
+    int is_link = lstat(path, &lst) == 0 && S_ISLNK(lst.st_mode);
+    if (is_link && (!exists || S_ISREG(st.st_mode))) {
+        /* written through at the close, from a temporary beside the link */
+        if (open_temp(o, path, NULL, 0, err, errlen)) { out_free(o); return NULL; }
+        o->kind = OUT_LINK;
+        return o;
+    }
     if (!exists || S_ISREG(st.st_mode)) {
-        if (open_temp(o, &st, exists, err, errlen)) { out_free(o); return NULL; }
+        if (open_temp(o, o->target, &st, exists, err, errlen)) { out_free(o); return NULL; }
         return o;
     }
     /* Device, FIFO, socket: write through, never replace. */
@@ -343,35 +376,125 @@ static int flush_err(FILE *f, int entry_errno)
     }
 }
 
-int base_out_close(base_out *o, char *err, size_t errlen)
+/* The file complete and closed, every error seen; nothing moved yet.
+ * 0, or -1 with the message (the temporary removed). */
+static int out_finish(base_out *o, char *err, size_t errlen)
 {
-    if (!o) return 0;
+    if (o->finished) return 0;
+    o->finished = 1;
     int e = flush_err(o->f, o->werr ? o->werr : errno);
     if (o->kind == OUT_STDOUT) {
-        if (e) msg(err, errlen, "standard output", "write failed: %s", strerror(e));
-        out_free(o);
-        if (e) errno = e;
+        if (e) { msg(err, errlen, "standard output", "write failed: %s", strerror(e)); errno = e; }
         return e ? -1 : 0;
     }
-    const char *what = "write failed";
     if (!e && o->kind == OUT_TEMP && fsync(fileno(o->f)) != 0 &&
         errno != EINVAL && errno != EROFS && errno != ENOTSUP) {
         e = errno;
     }
     if (fclose(o->f) != 0 && !e) e = errno ? errno : EIO;
     o->f = NULL;
-    if (o->kind == OUT_TEMP) {
-        if (!e && rename(o->tmp, o->target) != 0) {
-            e = errno;
-            what = "cannot rename into place";
-        }
-        if (e) unlink(o->tmp);
-        reg_remove(o->slot);
+    if (e) {
+        if (o->tmp) { unlink(o->tmp); reg_remove(o->slot); o->slot = -1; free(o->tmp); o->tmp = NULL; }
+        msg(err, errlen, o->shown, "write failed: %s", strerror(e));
+        errno = e;
+        return -1;
     }
-    if (e) msg(err, errlen, o->shown, "%s: %s", what, strerror(e));
-    out_free(o);
-    if (e) errno = e;           /* for callers that only get -1 */
+    return 0;
+}
+
+/* OUT_LINK: the temporary's bytes into the file the link names. */
+static int copy_through(base_out *o, char *err, size_t errlen)
+{
+    int in = open(o->tmp, O_RDONLY | O_CLOEXEC), e = 0;
+    int out = in < 0 ? -1 : open(o->shown, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, (mode_t)new_mode);
+    const char *what = "cannot open";
+    if (in < 0 || out < 0) e = errno;
+    char buf[1 << 16];
+    for (ssize_t k; !e && (k = read(in, buf, sizeof buf)) != 0;) {
+        if (k < 0) { if (errno == EINTR) continue; e = errno; what = "read back failed"; break; }
+        for (ssize_t w = 0; w < k;) {
+            ssize_t r = write(out, buf + w, (size_t)(k - w));
+            if (r < 0) { if (errno == EINTR) continue; e = errno; what = "write failed"; break; }
+            w += r;
+        }
+    }
+    if (out >= 0 && close(out) != 0 && !e) { e = errno; what = "write failed"; }
+    if (in >= 0) close(in);
+    if (e) { msg(err, errlen, o->shown, "%s: %s", what, strerror(e)); errno = e; }
     return e ? -1 : 0;
+}
+
+/* After out_finish: make the file appear (rename, or the link's copy),
+ * and free o. 0, or -1 with the message. */
+static int out_publish(base_out *o, char *err, size_t errlen)
+{
+    int rc = 0;
+    if (o->kind == OUT_TEMP && rename(o->tmp, o->target) != 0) {
+        int e = errno;
+        msg(err, errlen, o->shown, "cannot rename into place: %s", strerror(e));
+        errno = e;
+        rc = -1;
+    }
+    if (o->kind == OUT_LINK) rc = copy_through(o, err, errlen);
+    if (o->tmp && (rc || o->kind == OUT_LINK)) unlink(o->tmp);
+    if (o->tmp) reg_remove(o->slot);
+    int saved = errno;
+    out_free(o);
+    errno = saved;
+    return rc;
+}
+
+struct base_outset {
+    int n, cap;
+    base_out **o;
+    base_outset *parent;        /* the set current before base_outset_begin */
+    char **made;                /* folders base_out_mkdirs made for it, in order */
+    int nmade;
+};
+
+/* The set base_outset_begin made current in this thread: outputs closed
+ * meanwhile join it instead of appearing. */
+static _Thread_local base_outset *cur_set;
+
+static int set_add(base_outset *s, base_out *o)
+{
+    if (s->n == s->cap) {
+        int nc = s->cap ? 2 * s->cap : 8;
+        base_out **no = realloc(s->o, (size_t)nc * sizeof *no);
+        if (!no) return -1;
+        s->o = no;
+        s->cap = nc;
+    }
+    s->o[s->n++] = o;
+    return 0;
+}
+
+base_outset *base_outset_begin(void)
+{
+    base_outset *s = calloc(1, sizeof *s);
+    if (!s) return NULL;
+    s->parent = cur_set;
+    cur_set = s;
+    return s;
+}
+
+const char *base_out_pending(const char *path)
+{
+    for (base_outset *s = cur_set; s; s = s->parent)
+        for (int i = s->n - 1; i >= 0; i--)
+            if (s->o[i]->kind == OUT_TEMP && s->o[i]->tmp && !strcmp(s->o[i]->shown, path)) return s->o[i]->tmp;
+    return path;
+}
+
+int base_out_close(base_out *o, char *err, size_t errlen)
+{
+    if (!o) return 0;
+    if (out_finish(o, err, errlen)) { int e = errno; out_free(o); errno = e; return -1; }
+    if (cur_set && o->kind != OUT_STDOUT) {
+        if (set_add(cur_set, o)) { msg(err, errlen, o->shown, "out of memory"); base_out_abort(o); return -1; }
+        return 0;
+    }
+    return out_publish(o, err, errlen);
 }
 
 void base_out_abort(base_out *o)
@@ -381,12 +504,118 @@ void base_out_abort(base_out *o)
         fflush(stdout);
     } else {
         if (o->f) fclose(o->f);
-        if (o->kind == OUT_TEMP) {
+        if (o->tmp) {
             unlink(o->tmp);
             reg_remove(o->slot);
         }
     }
     out_free(o);
+}
+
+/* ---- sets --------------------------------------------------------------- */
+
+base_outset *base_outset_new(void)
+{
+    base_outset *s = calloc(1, sizeof *s);
+    return s;
+}
+
+/* s out of the current chain if it is there (its own begin). */
+static void set_pop(base_outset *s)
+{
+    if (cur_set == s) cur_set = s->parent;
+}
+
+FILE *base_outset_open(base_outset *s, const char *path, char *err, size_t errlen)
+{
+    if (!s) { if (err && errlen) snprintf(err, errlen, "%s: out of memory", path); return NULL; }
+    base_out *o = base_out_open(path, err, errlen);
+    if (!o) return NULL;
+    if (set_add(s, o)) { base_out_abort(o); msg(err, errlen, path, "out of memory"); return NULL; }
+    return o->f;
+}
+
+int base_outset_write(base_outset *s, const char *path, const void *buf, size_t len, char *err, size_t errlen)
+{
+    FILE *f = base_outset_open(s, path, err, errlen);
+    if (!f) return -1;
+    errno = 0;
+    if (len && fwrite(buf, 1, len, f) != len) s->o[s->n - 1]->werr = errno ? errno : EIO;
+    return 0;
+}
+
+void base_outset_abort(base_outset *s)
+{
+    if (!s) return;
+    set_pop(s);
+    for (int i = 0; i < s->n; i++) base_out_abort(s->o[i]);
+    /* the folders made for it go too, the last made first, if empty */
+    for (int i = s->nmade - 1; i >= 0; i--) { rmdir(s->made[i]); free(s->made[i]); }
+    free(s->made);
+    free(s->o);
+    free(s);
+}
+
+static void set_forget_made(base_outset *s)
+{
+    for (int i = 0; i < s->nmade; i++) free(s->made[i]);
+    free(s->made);
+    s->made = NULL;
+    s->nmade = 0;
+}
+
+int base_outset_commit(base_outset *s, char *err, size_t errlen)
+{
+    if (!s) return 0;
+    set_pop(s);
+    int rc = 0;
+    for (int i = 0; i < s->n && !rc; i++)
+        if (out_finish(s->o[i], err, errlen)) rc = -1;
+    if (rc) { base_outset_abort(s); return -1; }
+    /* Within a set still current (a verb's, around this one): the members
+     * join it and appear with it. */
+    if (cur_set) {
+        for (int i = 0; i < s->n; i++) {
+            if (!rc && set_add(cur_set, s->o[i]) == 0) continue;
+            if (!rc) msg(err, errlen, s->o[i]->shown, "out of memory");
+            rc = -1;
+            base_out_abort(s->o[i]);
+        }
+        for (int i = 0; i < s->nmade; i++) {     /* the folders, to the outer set */
+            char **nm = realloc(cur_set->made, (size_t)(cur_set->nmade + 1) * sizeof *nm);
+            if (!nm) { free(s->made[i]); continue; }
+            cur_set->made = nm;
+            nm[cur_set->nmade++] = s->made[i];
+        }
+        free(s->made);
+        free(s->o);
+        free(s);
+        return rc;
+    }
+    set_forget_made(s);
+    /* Every member complete: the links' copies (which can fail: ENOSPC)
+     * before the renames (which, within one folder, do not). */
+    for (int i = 0; i < s->n; i++)
+        if (s->o[i]->kind == OUT_LINK) {
+            if (out_publish(s->o[i], rc ? NULL : err, errlen)) rc = -1;
+            s->o[i] = NULL;
+        }
+    for (int i = 0; i < s->n; i++) {
+        if (!s->o[i]) continue;
+        if (rc) { base_out_abort(s->o[i]); continue; }
+        if (out_publish(s->o[i], err, errlen)) rc = -1;
+    }
+    free(s->o);
+    free(s);
+    return rc;
+}
+
+int base_out_remove_stale(const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0) return errno == ENOENT ? 0 : -1;
+    if (!S_ISREG(st.st_mode)) return 0;         /* a link, FIFO, device: not ours */
+    return unlink(path);
 }
 
 int base_out_write_all(const char *path, const void *buf, size_t len, char *err, size_t errlen)
@@ -419,7 +648,16 @@ int base_out_mkdirs(const char *dir, char *err, size_t errlen)
         if (ch == '/' || ch == 0) {
             *s = 0;
             struct stat st;
-            if (mkdir(p, 0777) && errno != EEXIST) {
+            if (mkdir(p, 0777) == 0) {
+                /* a folder a current set's abort should take back */
+                if (cur_set) {
+                    char **nm = realloc(cur_set->made, (size_t)(cur_set->nmade + 1) * sizeof *nm);
+                    if (nm) {
+                        cur_set->made = nm;
+                        if ((nm[cur_set->nmade] = strdup(p))) cur_set->nmade++;
+                    }
+                }
+            } else if (errno != EEXIST) {
                 snprintf(err, errlen, "%s: cannot create folder %s: %s", dir, p, strerror(errno));
                 return -1;
             }

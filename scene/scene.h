@@ -112,6 +112,7 @@ extern const char *const scn_op_name[SCN_OP__COUNT];     /* "add" "mul" "div" "s
 
 /* Everything a scene file says. Every field has a default
  * (scn_desc_default: the face scene). Strings are owned by the struct. */
+#define SCN_DESC_NKEYS  40       /* room for the keys of scn_desc_keys */
 typedef struct scn_desc {
     int          version;        /* "shadesim-scene 1" */
     char         mesh[256];      /* built-in name or OBJ path (relative to the file) */
@@ -137,8 +138,14 @@ typedef struct scn_desc {
                                         one of mat.spec (so key order does not matter) */
     unsigned     heldout_given;      /* SCN_HELD_* bits: held-out keys set explicitly; the
                                         others follow the view (scn_desc_sync) */
+    /* Where each key was last set, for errors found after reading (a
+     * missing mesh, a camera or formats that cannot work): */
+    char         src[256];           /* the scene file read ("" none; cut if longer) */
+    int          key_line[SCN_DESC_NKEYS];   /* its line in src; SCN_LINE_SET: by
+                                        scn_desc_set (--set), after every line; 0: default */
 } scn_desc;
 
+#define SCN_LINE_SET    0x7fffffff
 #define SCN_HELD_EYE    1u
 #define SCN_HELD_TARGET 2u
 #define SCN_HELD_LIGHT  4u
@@ -162,6 +169,14 @@ extern const char *const scn_desc_builtin_names[];
  * (held-out camera type, up, fov, height always; held-out eye, target,
  * lights unless set explicitly). scn_desc_set and scn_desc_read call it. */
 void scn_desc_sync(scn_desc *d);
+/* The prefix of an error in a value that keys (NULL-terminated) set:
+ * "FILE:LINE: " of the one set last, "--set KEY: " when that was
+ * scn_desc_set, "" when all are defaults. Returns buf. */
+const char *scn_desc_where(const scn_desc *d, const char *const *keys, char *buf, size_t len);
+/* The view's and the held-out view's cameras can be drawn with (up not
+ * along the view direction, ...): 0, or -1 with "WHERE: camera: what",
+ * WHERE the line of the camera key set last. */
+int  scn_desc_check_camera(const scn_desc *d, char *err, size_t errlen);
 /* The scene file keys, NULL-terminated (for help texts). */
 extern const char *const scn_desc_keys[];
 
@@ -187,6 +202,9 @@ typedef struct scn_gbuf {
  * (a pixel centre on a shared edge belongs to exactly one triangle).
  * Attributes are interpolated perspective-correctly. 0, or -1 (out of
  * memory). */
+/* The checks scn_raster makes of a camera, alone: 0, or -1 with
+ * "camera: what". */
+int  scn_camera_check(const scn_camera *c, char *err, size_t errlen);
 int  scn_raster(const scn_mesh *m, const scn_camera *cam, int w, int h, scn_gbuf *g,
                 char *err, size_t errlen);
 void scn_gbuf_free(scn_gbuf *g);

@@ -99,6 +99,8 @@
 #include "scene/scene.h"
 #include "sim/sim_fixed.h"      /* the sim_round / sim_ovf values only */
 #include "base/base_join.h"
+#include "base/base_line.h"
+#include "base/base_num.h"
 #include "base/base_near.h"
 #include <ctype.h>
 #include <errno.h>
@@ -261,6 +263,7 @@ typedef struct ctx {
     int         light_seen;         /* a light line was read from this file */
     const char *dir;                /* scene file's folder (dirlen bytes), NULL: none */
     size_t      dirlen;             /* 0 with dir set: the root, "/" */
+    int         line;               /* the line being applied (SCN_LINE_SET: --set) */
 } ctx;
 
 /* Error text without the "PATH:LINE: " / "KEY: " prefix. */
@@ -289,12 +292,10 @@ static int num(const char *key, const char *s, double lo, double hi, double *out
                char *err, size_t errlen)
 {
     char b[48];
-    char *end;
-    errno = 0;
-    double v = strtod(s, &end);
-    if (end == s || *end || !isfinite(v))
-        return fail(err, errlen, "%s: \"%s\" is not a finite number", key, shown(s, b));
-    if (v < lo || v > hi)
+    double v;
+    if (base_num_real(s, 1, &v))
+        return fail(err, errlen, "%s: \"%s\" is not a finite number (decimal)", key, shown(s, b));
+    if (v < lo || v > hi || (*s == '-' && lo >= 0))     /* -0 too */
         return fail(err, errlen, "%s: %s is out of range [%g, %g]", key, shown(s, b), lo, hi);
     *out = v;
     return 0;
@@ -304,12 +305,10 @@ static int inum(const char *key, const char *s, long lo, long hi, int *out,
                 char *err, size_t errlen)
 {
     char b[48];
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (end == s || *end || errno)
+    long long v;
+    if (base_num_whole(s, 1, &v))
         return fail(err, errlen, "%s: \"%s\" is not an integer", key, shown(s, b));
-    if (v < lo || v > hi)
+    if (v < lo || v > hi || (*s == '-' && lo >= 0))     /* -0 too */
         return fail(err, errlen, "%s: %s is out of range %ld..%ld", key, shown(s, b), lo, hi);
     *out = (int)v;
     return 0;
@@ -467,6 +466,7 @@ static int apply(scn_desc *d, ctx *cx, const char *key, char **t, int n, const c
     for (k = 0; k < K__COUNT; k++)
         if (!strcmp(key, scn_desc_keys[k])) break;
     if (k == K__COUNT) return unknown_key(key, err, errlen);
+    d->key_line[k] = cx->line;
     scn_camera *cam = &d->view.cam;
     int i;
     double x;
@@ -751,7 +751,7 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
     char v[LINE_MAX_BYTES + 1], msg[512];
     memcpy(v, value, vl + 1);
     scn_desc t = *d;
-    ctx cx = { 0, 0, NULL, 0 };
+    ctx cx = { 0, 0, NULL, 0, SCN_LINE_SET };
     if (apply_text(&t, &cx, key, v, msg, sizeof msg)) {
         /* Messages of value errors start with the key already. */
         size_t kl = strlen(key);
@@ -771,26 +771,35 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
     return 0;
 }
 
-/* One line into buf (without the newline). Returns the length, -1 at end
- * of file, -2 for a line longer than LINE_MAX_BYTES (consumed), -3 for a
- * NUL byte (line consumed). */
-static long read_line(FILE *f, char *buf)
+_Static_assert(K__COUNT <= SCN_DESC_NKEYS, "scn_desc.key_line is too small");
+
+const char *scn_desc_where(const scn_desc *d, const char *const *keys, char *buf, size_t len)
 {
-    int c;
-    long n = 0;
-    int nul = 0, any = 0;
-    while ((c = getc(f)) != EOF) {
-        any = 1;
-        if (c == '\n') break;
-        if (c == 0) nul = 1;
-        if (n < LINE_MAX_BYTES) buf[n] = (char)c;
-        n++;
+    int best = 0, bk = -1;
+    for (; *keys; keys++)
+        for (int k = 0; k < K__COUNT; k++)
+            if (!strcmp(*keys, scn_desc_keys[k]) && d->key_line[k] > best) { best = d->key_line[k]; bk = k; }
+    if (bk < 0) snprintf(buf, len, "%s", "");
+    else if (best == SCN_LINE_SET) snprintf(buf, len, "--set %s: ", scn_desc_keys[bk]);
+    else snprintf(buf, len, "%s:%d: ", d->src, best);
+    return buf;
+}
+
+int scn_desc_check_camera(const scn_desc *d, char *err, size_t errlen)
+{
+    static const char *const view[] = { "camera", "eye", "target", "up", "fov", "ortho-height", NULL };
+    static const char *const held[] = { "camera", "eye", "target", "up", "fov", "ortho-height",
+                                        "heldout-eye", "heldout-target", NULL };
+    char msg[300], where[300];
+    if (scn_camera_check(&d->view.cam, msg, sizeof msg)) {
+        snprintf(err, errlen, "%s%s", scn_desc_where(d, view, where, sizeof where), msg);
+        return -1;
     }
-    if (!any) return -1;
-    if (nul) return -3;
-    if (n > LINE_MAX_BYTES) return -2;
-    buf[n] = 0;
-    return n;
+    if (scn_camera_check(&d->heldout.cam, msg, sizeof msg)) {
+        snprintf(err, errlen, "%sheld-out view: %s", scn_desc_where(d, held, where, sizeof where), msg);
+        return -1;
+    }
+    return 0;
 }
 
 /* Cut a comment: '#' at the start or after a blank. */
@@ -816,16 +825,17 @@ int scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen)
     }
     scn_desc_default(t);
     const char *slash = strrchr(path, '/');
-    ctx cx = { 1, 0, slash ? path : NULL, slash ? (size_t)(slash - path) : 0 };
+    ctx cx = { 1, 0, slash ? path : NULL, slash ? (size_t)(slash - path) : 0, 0 };
+    snprintf(t->src, sizeof t->src, "%s", path);
     char msg[512];
     long ln = 0;
     int have_version = 0, rc = 0, cam_line = 0;
     for (;;) {
-        long n = read_line(f, line);
-        if (n == -1) break;
+        long n = base_line_read(f, line, LINE_MAX_BYTES);
+        if (n == BASE_LINE_EOF || n == BASE_LINE_ERR) break;
         ln++;
-        if (n == -2) { snprintf(err, errlen, "%s:%ld: line longer than %d bytes", path, ln, LINE_MAX_BYTES); rc = -1; break; }
-        if (n == -3) { snprintf(err, errlen, "%s:%ld: NUL byte: not a text file", path, ln); rc = -1; break; }
+        if (n == BASE_LINE_LONG) { snprintf(err, errlen, "%s:%ld: line longer than %d bytes", path, ln, LINE_MAX_BYTES); rc = -1; break; }
+        if (n == BASE_LINE_NUL) { snprintf(err, errlen, "%s:%ld: NUL byte: not a text file", path, ln); rc = -1; break; }
         cut_comment(line);
         char *s = trim(line);
         if (!*s) continue;
@@ -861,6 +871,7 @@ int scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen)
             rc = -1;
             break;
         }
+        cx.line = (int)(ln < SCN_LINE_SET ? ln : SCN_LINE_SET - 1);
         if (apply_text(t, &cx, s, value, msg, sizeof msg)) {
             snprintf(err, errlen, "%s:%ld: %s", path, ln, msg);
             rc = -1;

@@ -20,9 +20,11 @@
  * with fewer than 3 numbers, a face with fewer than 3 corners, a NUL or
  * control byte (binary data), fewer than 3 vertices or no face at all.
  * Files over 256 MiB are refused before reading (by size for regular
- * files, while reading for pipes).
+ * files, while reading for pipes), and so is a line over 1 MiB (reading
+ * stops there: a stream without LF costs no more).
  */
 #include "scene/scene_geom.h"
+#include "base/base_line.h"
 #include <errno.h>
 #include <limits.h>
 #include <stdarg.h>
@@ -35,6 +37,9 @@
 #include <unistd.h>
 
 #define OBJ_MAX_BYTES ((off_t)256 << 20)
+/* A line is a few dozen bytes; a face with thousands of corners fits. A
+ * stream with no LF (/dev/zero, a binary file) stops here. */
+#define OBJ_MAX_LINE (1 << 20)
 #define NONE UINT32_MAX
 
 /* A growing array of fixed-size elements. */
@@ -169,49 +174,58 @@ static int face(ctx *c, char *s, size_t nv, size_t nvt, size_t nvn, vec *tris)
     return 0;
 }
 
+/* Position/normal pairs seen so far: an open-addressing hash from the
+ * pair to its output vertex, so that each corner costs O(1) however many
+ * normals one position is used with. Vertices are numbered in the order
+ * of their first corner. */
+typedef struct { uint32_t v, n, out; } pair;
+
+static size_t pair_hash(uint32_t v, uint32_t n, size_t mask)
+{
+    uint64_t h = ((uint64_t)v << 32 | n) * 0x9e3779b97f4a7c15ull;
+    return (size_t)(h >> 32) & mask;
+}
+
 /* Build the mesh: split positions by normal index, compute missing normals. */
 static int build(ctx *c, const vec *vp, const vec *vn, const vec *tris, scn_mesh *m)
 {
     const double (*P)[3] = vp->p, (*N)[3] = vn->p;
     const otri *T = tris->p;
     size_t nt = tris->n, np = vp->n;
+    size_t slots = 16;
+    while (slots < 6 * nt) slots *= 2;  /* at most 3 nt pairs: load <= 1/2 */
     double (*auto_n)[3] = malloc((np ? np : 1) * sizeof *auto_n);
     uint32_t (*tv)[3] = malloc((nt ? nt : 1) * sizeof *tv);
-    size_t *head = malloc((np ? np : 1) * sizeof *head);
-    /* Entries of a per-position list: (normal index, output vertex, next). */
-    struct ent { uint32_t n, out; size_t next; } *ent = malloc(3 * (nt ? nt : 1) * sizeof *ent);
+    pair *tab = malloc(slots * sizeof *tab);
+    pair *outs = malloc(3 * (nt ? nt : 1) * sizeof *outs);   /* [out]: its pair */
     int rc = -1;
-    if (!auto_n || !tv || !head || !ent) goto oom;
+    if (!auto_n || !tv || !tab || !outs) goto oom;
     for (size_t t = 0; t < nt; t++) memcpy(tv[t], T[t].v, sizeof tv[t]);
     scn_vertex_normals(P, np, (const uint32_t (*)[3])tv, nt, auto_n);
-    for (size_t i = 0; i < np; i++) head[i] = SIZE_MAX;
-    size_t nout = 0;
+    for (size_t i = 0; i < slots; i++) tab[i].out = NONE;
+    size_t nout = 0, mask = slots - 1;
     for (size_t t = 0; t < nt; t++)
         for (int k = 0; k < 3; k++) {
             uint32_t v = T[t].v[k], n = T[t].n[k];
-            size_t e = head[v];
-            while (e != SIZE_MAX && ent[e].n != n) e = ent[e].next;
-            if (e == SIZE_MAX) {
-                e = nout;
-                ent[e].n = n;
-                ent[e].out = (uint32_t)nout++;
-                ent[e].next = head[v];
-                head[v] = e;
+            size_t h = pair_hash(v, n, mask);
+            while (tab[h].out != NONE && (tab[h].v != v || tab[h].n != n)) h = (h + 1) & mask;
+            if (tab[h].out == NONE) {
+                tab[h] = (pair){ v, n, (uint32_t)nout };
+                outs[nout++] = tab[h];
             }
-            tv[t][k] = ent[e].out;
+            tv[t][k] = tab[h].out;
         }
     if (nout > UINT32_MAX || scn_mesh_alloc(m, nout, nt)) goto oom;
-    for (size_t v = 0; v < np; v++)
-        for (size_t e = head[v]; e != SIZE_MAX; e = ent[e].next) {
-            uint32_t o = ent[e].out;
-            memcpy(m->pos[o], P[v], sizeof m->pos[o]);
-            if (ent[e].n == NONE) {
-                memcpy(m->nrm[o], auto_n[v], sizeof m->nrm[o]);
-            } else {
-                memcpy(m->nrm[o], N[ent[e].n], sizeof m->nrm[o]);
-                scn_normalize_or(m->nrm[o], auto_n[v]);
-            }
+    for (size_t o = 0; o < nout; o++) {
+        uint32_t v = outs[o].v, n = outs[o].n;
+        memcpy(m->pos[o], P[v], sizeof m->pos[o]);
+        if (n == NONE) {
+            memcpy(m->nrm[o], auto_n[v], sizeof m->nrm[o]);
+        } else {
+            memcpy(m->nrm[o], N[n], sizeof m->nrm[o]);
+            scn_normalize_or(m->nrm[o], auto_n[v]);
         }
+    }
     memcpy(m->tri, tv, nt * sizeof *tv);
     rc = 0;
     goto done;
@@ -221,8 +235,8 @@ oom:
 done:
     free(auto_n);
     free(tv);
-    free(head);
-    free(ent);
+    free(tab);
+    free(outs);
     return rc;
 }
 
@@ -255,30 +269,35 @@ int scn_mesh_obj(const char *path, scn_mesh *m, char *err, size_t errlen)
     vec tris = { NULL, 0, 0, sizeof(otri) };
     size_t nvt = 0, ignored = 0;
     long long total = 0;
-    char *line = NULL;
-    size_t cap = 0;
-    ssize_t len;
+    char *line = malloc(OBJ_MAX_LINE + 1);
+    long len;
     int rc = -1;
-    errno = 0;
-    while ((len = getline(&line, &cap, f)) >= 0) {
+    if (!line) { fail(&c, "out of memory"); goto out; }
+    while ((len = base_line_read(f, line, OBJ_MAX_LINE)) >= 0 || len == BASE_LINE_LONG || len == BASE_LINE_NUL) {
         c.line++;
-        total += len;
+        if (len == BASE_LINE_LONG) {
+            fail(&c, "line longer than %d bytes", OBJ_MAX_LINE);
+            goto out;
+        }
+        if (len == BASE_LINE_NUL) {
+            fail(&c, "binary data (byte 0x00): not an OBJ file");
+            goto out;
+        }
+        total += len + 1;
         if (total > (long long)OBJ_MAX_BYTES) {
             fail(&c, "more than %lld MiB: OBJ files over that are refused",
                  (long long)(OBJ_MAX_BYTES >> 20));
             goto out;
         }
-        for (ssize_t i = 0; i < len; i++) {
+        for (long i = 0; i < len; i++) {
             unsigned char ch = (unsigned char)line[i];
-            if (ch < 0x20 && ch != '\n' && !is_space((char)ch)) {
+            if (ch < 0x20 && !is_space((char)ch)) {
                 fail(&c, "binary data (byte 0x%02x): not an OBJ file", ch);
                 goto out;
             }
         }
         char *hash = strchr(line, '#');
         if (hash) *hash = 0;
-        char *nl = strchr(line, '\n');
-        if (nl) *nl = 0;
         char *s = line, *kw = token(&s);
         if (!kw) continue;
         if (!strcmp(kw, "v") || !strcmp(kw, "vn")) {
@@ -299,9 +318,8 @@ int scn_mesh_obj(const char *path, scn_mesh *m, char *err, size_t errlen)
             if (!strcmp(kw, "vt")) nvt++;
             ignored++;
         }
-        errno = 0;
     }
-    if (ferror(f)) {
+    if (len == BASE_LINE_ERR) {
         c.line = 0;
         fail(&c, "read error: %s", strerror(errno ? errno : EIO));
         goto out;

@@ -33,8 +33,15 @@
  * z = 1e-4 |target - eye| (perspective) or z = 0 (orthographic: nothing
  * behind the eye is drawn); the clipped polygon (3 or 4 vertices) is
  * fanned into triangles. A triangle with a vertex projecting farther
- * than 2^40 pixels from the image, or a non-finite coordinate, is
- * dropped (only possible for geometry grazing the near plane).
+ * than 2^40 pixels from the image (large coordinates, a tiny fov or
+ * ortho height, geometry grazing the near plane) is clipped in screen
+ * space to a guard band 2^20 pixels around the image, its new vertices'
+ * attributes interpolated perspective-correct, and drawn: its pixels are
+ * those of the unclipped triangle (the band's edges never cross the
+ * image). A clipped edge's point is computed from its lower end
+ * (lexicographic X, Y), so two triangles sharing that edge get the same
+ * point and the shared-edge rule still holds. Only a non-finite
+ * coordinate (or one whose interpolation overflows) drops a triangle.
  *
  * The z-test is strict (<): of two fragments at equal depth the one of
  * the lower triangle index stays. Deterministic: one thread, mesh order.
@@ -57,6 +64,7 @@
 
 #define SUB 256                         /* subpixel grid: 1/256 pixel */
 #define MAX_SCREEN 1099511627776.0      /* 2^40 pixels */
+#define GUARD      1048576.0            /* 2^20 pixels: the clip band around the image */
 
 typedef __int128 i128;
 
@@ -90,6 +98,14 @@ static int unit3(double v[3])
     if (!(l > 0) || !isfinite(l)) return -1;
     v[0] /= l; v[1] /= l; v[2] /= l;
     return 0;
+}
+
+static int xform_init(const scn_camera *c, int w, int h, xform *x, char *err, size_t errlen);
+
+int scn_camera_check(const scn_camera *c, char *err, size_t errlen)
+{
+    xform x;
+    return xform_init(c, 64, 64, &x, err, errlen);
 }
 
 static int xform_init(const scn_camera *c, int w, int h, xform *x, char *err, size_t errlen)
@@ -206,12 +222,88 @@ static int weights(int persp, const double l[3], const double iz[3], const rvert
     return 1;
 }
 
+static void draw(rctx *c, const rvert *v0, const rvert *v1, const rvert *v2,
+                 int32_t tri, uint8_t region);
+
+static void snap(rvert *v)
+{
+    v->ok = fabs(v->X) < MAX_SCREEN && fabs(v->Y) < MAX_SCREEN;
+    if (v->ok) {
+        v->ix = (int64_t)floor(v->X * SUB + 0.5);
+        v->iy = (int64_t)floor(v->Y * SUB + 0.5);
+    }
+}
+
+/* The point of edge ab on the line (axis 0: X, 1: Y) = bound; attributes
+ * perspective-correct (1/z is linear on screen). From the lower end, so
+ * that the edge gives the same point whichever way it is walked. 0 when
+ * something overflows. */
+static int cut(int persp, const rvert *a, const rvert *b, int axis, double bound, rvert *o)
+{
+    if (b->X < a->X || (b->X == a->X && b->Y < a->Y)) { const rvert *t = a; a = b; b = t; }
+    double ca = axis ? a->Y : a->X, cb = axis ? b->Y : b->X;
+    double s = (bound - ca) / (cb - ca);
+    if (!(s >= 0 && s <= 1)) s = s > 1 ? 1 : 0;
+    double t = s, z;
+    if (persp) {
+        double ia = (1 - s) / a->z, ib = s / b->z;
+        z = 1 / (ia + ib);
+        t = ib * z;
+    } else {
+        z = a->z + s * (b->z - a->z);
+    }
+    o->X = axis ? a->X + s * (b->X - a->X) : bound;
+    o->Y = axis ? bound : a->Y + s * (b->Y - a->Y);
+    o->z = z;
+    int fin = isfinite(o->X) && isfinite(o->Y) && isfinite(z) && isfinite(t);
+    for (int e = 0; e < 3; e++) {
+        o->p[e] = a->p[e] + t * (b->p[e] - a->p[e]);
+        o->n[e] = a->n[e] + t * (b->n[e] - a->n[e]);
+        fin = fin && isfinite(o->p[e]) && isfinite(o->n[e]);
+    }
+    snap(o);
+    return fin;
+}
+
+/* A triangle with a vertex beyond the 2^40 bound: Sutherland-Hodgman
+ * against the guard band's four sides (at most 7 vertices), fanned. */
+static void draw_clipped(rctx *c, const rvert *v0, const rvert *v1, const rvert *v2,
+                         int32_t tri, uint8_t region)
+{
+    const rvert *t3[3] = { v0, v1, v2 };
+    for (int k = 0; k < 3; k++)
+        if (!isfinite(t3[k]->X) || !isfinite(t3[k]->Y)) return;
+    rvert poly[2][8];
+    int n = 3, cur = 0;
+    for (int k = 0; k < 3; k++) poly[0][k] = *t3[k];
+    const double lim[4] = { -GUARD, c->g->w + GUARD, -GUARD, c->g->h + GUARD };
+    for (int side = 0; side < 4 && n >= 3; side++) {
+        int axis = side / 2, upper = side & 1, m = 0;
+        const rvert *in = poly[cur];
+        rvert *out = poly[!cur];
+        for (int k = 0; k < n; k++) {
+            const rvert *a = &in[k], *b = &in[(k + 1) % n];
+            double ca = axis ? a->Y : a->X, cb = axis ? b->Y : b->X;
+            int ina = upper ? ca <= lim[side] : ca >= lim[side];
+            int inb = upper ? cb <= lim[side] : cb >= lim[side];
+            if (ina) out[m++] = *a;
+            if (ina != inb && !cut(c->persp, a, b, axis, lim[side], &out[m++])) return;
+        }
+        n = m;
+        cur = !cur;
+    }
+    for (int k = 1; k + 1 < n; k++) draw(c, &poly[cur][0], &poly[cur][k], &poly[cur][k + 1], tri, region);
+}
+
 /* Rasterize one triangle (any orientation on screen; back faces culled). */
 static void draw(rctx *c, const rvert *v0, const rvert *v1, const rvert *v2,
                  int32_t tri, uint8_t region)
 {
     scn_gbuf *g = c->g;
-    if (!v0->ok || !v1->ok || !v2->ok) return;
+    if (!v0->ok || !v1->ok || !v2->ok) {
+        draw_clipped(c, v0, v1, v2, tri, region);
+        return;
+    }
     i128 D = (i128)(v1->ix - v0->ix) * (v2->iy - v0->iy) - (i128)(v2->ix - v0->ix) * (v1->iy - v0->iy);
     /* Counter-clockwise in a y-up view is D < 0 with y down: front. */
     if (D >= 0) return;

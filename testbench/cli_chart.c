@@ -4,6 +4,8 @@
 #include "testbench/cli_opt.h"
 #include <stddef.h>
 #include "testbench/tb_sweep_chart.h"
+#include "testbench/tb_sweep.h"
+#include "base/base_line.h"
 #include "base/base_out.h"
 #include <errno.h>
 #include <stdlib.h>
@@ -52,32 +54,6 @@ const cli_optspec cli_chart_spec = {
 };
 
 
-/* The whole file; NULL after printing the error. */
-static char *slurp(const char *path, size_t *len)
-{
-    FILE *f = !strcmp(path, "-") ? stdin : fopen(path, "rb");
-    if (!f) { cli_usage_error("%s: cannot open: %s", path, strerror(errno)); return NULL; }
-    size_t cap = 1 << 16, n = 0;
-    char *b = malloc(cap);
-    while (b) {
-        if (n == cap) {
-            char *nb = cap < ((size_t)1 << 40) ? realloc(b, cap * 2) : NULL;
-            if (!nb) { free(b); b = NULL; break; }
-            b = nb;
-            cap *= 2;
-        }
-        size_t k = fread(b + n, 1, cap - n, f);
-        n += k;
-        if (k == 0) break;
-    }
-    int bad = ferror(f);
-    if (f != stdin) fclose(f);
-    if (!b) { cli_usage_error("%s: out of memory", path); return NULL; }
-    if (bad) { free(b); cli_usage_error("%s: read error", path); return NULL; }
-    *len = n;
-    return b;
-}
-
 /* Is prog on PATH? */
 static int on_path(const char *prog)
 {
@@ -107,7 +83,7 @@ static int to_png(const char *svg, const char *png)
     if (pid < 0) { base_out_abort(o); return cli_usage_error("%s: cannot start rsvg-convert: %s", png, strerror(errno)); }
     if (pid == 0) {
         if (dup2(fileno(f), 1) < 0) _exit(126);
-        execlp("rsvg-convert", "rsvg-convert", svg, (char *)NULL);
+        execlp("rsvg-convert", "rsvg-convert", base_out_pending(svg), (char *)NULL);
         _exit(127);
     }
     int st;
@@ -137,13 +113,17 @@ int cli_chart(int argc, char **argv)
         dir = defdir;
     }
     size_t len = 0;
-    char *text = slurp(csv, &len), err[800];
-    if (!text) return CLI_USAGE;
+    char err[800];
+    char *text = base_text_read(csv, TB_SWEEP_MAX_LINE, &len, err, sizeof err);
+    if (!text) return cli_usage_error("%s", err);
     tb_sc *sc = tb_sc_read(text, len, csv, err, sizeof err);
     free(text);
     if (!sc) return cli_usage_error("%s", err);
     if (cli_make_dir(dir)) { tb_sc_free(sc); return CLI_USAGE; }
     int rc = CLI_OK;
+    /* the charts (and PNGs) are one set: all appear, or none */
+    base_outset *set = base_outset_begin();
+    if (!set) { tb_sc_free(sc); return cli_usage_error("chart: out of memory"); }
     for (int k = 0; k < TB_SC_NCHARTS && rc == CLI_OK; k++) {
         if (!tb_sc_chart_drawn(sc, k)) continue;
         char path[4200], ppath[4200];
@@ -161,6 +141,8 @@ int cli_chart(int argc, char **argv)
         }
     }
     tb_sc_free(sc);
+    if (rc == CLI_OK && base_outset_commit(set, err, sizeof err)) rc = cli_usage_error("%s", err);
+    else if (rc != CLI_OK) base_outset_abort(set);
     char e[300];
     if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);
     return rc;

@@ -228,13 +228,20 @@ static chart *cost_chart(void)
 static int write_charts(const char *dir, char paths[][600], int *np)
 {
     if (cli_make_dir(dir)) return CLI_USAGE;
+    /* the charts are one set: all appear, or none */
+    base_outset *set = base_outset_begin();
+    char err[600];
+    if (!set) return cli_usage_error("claims: out of memory");
     if (write_chart(error_chart("D16 (clamped) against Beckmann D", 0, 3), dir, "claims_d16.svg", paths, np) ||
         write_chart(error_chart("Ward's exponential as a 16th power", 4, 7), dir, "claims_ward.svg", paths, np) ||
         write_chart(error_chart("Schlick and modified Schlick against Blinn cos^n", 8, 11), dir,
                     "claims_schlick.svg", paths, np) ||
         write_chart(clamp_chart(), dir, "claims_d16_clamp.svg", paths, np) ||
-        write_chart(cost_chart(), dir, "claims_cost.svg", paths, np))
+        write_chart(cost_chart(), dir, "claims_cost.svg", paths, np)) {
+        base_outset_abort(set);
         return CLI_USAGE;
+    }
+    if (base_outset_commit(set, err, sizeof err)) return cli_usage_error("%s", err);
     return CLI_OK;
 }
 

@@ -2,6 +2,7 @@
 #include "base/base_near.h"
 #include "testbench/cli.h"
 #include "base/base_join.h"
+#include "base/base_num.h"
 #include "testbench/cli_opt.h"
 #include "base/base_out.h"
 #include "vectors/vec_file.h"
@@ -84,25 +85,7 @@ const char *cli_esc(const char *text, char *buf, size_t len)
     return buf;
 }
 
-/* Length of the run of decimal digits at s. */
-static size_t digits(const char *s) { size_t n = 0; while (s[n] >= '0' && s[n] <= '9') n++; return n; }
-
-int cli_is_real(const char *s)
-{
-    if (*s == '-') s++;
-    size_t a = digits(s), b = 0;
-    s += a;
-    if (*s == '.') { b = digits(++s); s += b; }
-    if (!a && !b) return 0;
-    if (*s == 'e' || *s == 'E') {
-        s++;
-        if (*s == '-' || *s == '+') s++;
-        size_t e = digits(s);
-        if (!e) return 0;
-        s += e;
-    }
-    return !*s;
-}
+int cli_is_real(const char *s) { return base_num_is_real(s); }
 
 static int num_error(const char *opt, const char *text, const char *what, const char *dflt)
 {
@@ -114,15 +97,10 @@ int cli_parse_long(const char *opt, const char *text, long lo, long hi, const ch
 {
     char d[80];
     snprintf(d, sizeof d, "a whole number %ld..%ld", lo, hi);
+    long long v;
     if (!text) return num_error(opt, "", what, d);
-    const char *s = text + (*text == '-' && lo < 0);
-    size_t n = digits(s);
-    if (!n || s[n]) return num_error(opt, text, what, d);
-    char *end;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    if (errno || *end || v < lo || v > hi) return num_error(opt, text, what, d);
-    *out = v;
+    if (base_num_whole(text, 1, &v) || v < lo || v > hi || (*text == '-' && lo >= 0)) return num_error(opt, text, what, d);
+    *out = (long)v;
     return 0;
 }
 
@@ -130,8 +108,9 @@ int cli_parse_u64(const char *opt, const char *text, const char *what, uint64_t 
 {
     const char *d = "a whole number 0..18446744073709551615";
     if (!text) return num_error(opt, "", what, d);
-    size_t n = digits(text);
-    if (!n || text[n]) return num_error(opt, text, what, d);
+    const char *p = text;
+    while (*p >= '0' && *p <= '9') p++;
+    if (p == text || *p) return num_error(opt, text, what, d);
     char *end;
     errno = 0;
     unsigned long long v = strtoull(text, &end, 10);
@@ -140,15 +119,15 @@ int cli_parse_u64(const char *opt, const char *text, const char *what, uint64_t 
     return 0;
 }
 
+/* A '-' only where the range has negative values: "-0" for a value >= 0
+ * is refused like any other sign. */
 int cli_parse_real(const char *opt, const char *text, double lo, double hi, const char *what, double *out)
 {
     char d[80];
     snprintf(d, sizeof d, "a number %g..%g", lo, hi);
-    if (!text || !cli_is_real(text)) return num_error(opt, text ? text : "", what, d);
-    errno = 0;
-    double v = strtod(text, NULL);
-    if (errno == ERANGE && fabs(v) > 1) return num_error(opt, text, what, d);
-    if (!isfinite(v) || v < lo || v > hi) return num_error(opt, text, what, d);
+    double v;
+    if (!text) return num_error(opt, "", what, d);
+    if (base_num_real(text, 1, &v) || v < lo || v > hi || (*text == '-' && lo >= 0)) return num_error(opt, text, what, d);
     *out = v;
     return 0;
 }

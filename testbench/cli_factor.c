@@ -230,6 +230,7 @@ const cli_optspec cli_factor_spec = {
 
 int cli_factor(int argc, char **argv)
 {
+    base_outset *set = NULL;
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_factor_spec);
     if (argc < 2) return cli_usage_error("factor: missing BRDF (blinn, ct, ward, ward-aniso; see shadesim factor --help)");
     char err[600];
@@ -296,6 +297,10 @@ int cli_factor(int argc, char **argv)
         rf_svd_free(&s);
     }
     double llo, lhi, plo, phi;
+    /* Every file from here on is one set: they appear together at the
+     * commit below, or (any failure) none of them. */
+    set = base_outset_begin();
+    if (!set) { rc = cli_usage_error("out of memory"); goto done; }
     snprintf(path, sizeof path, "%s/lambda.png", dir);
     if (write_map_png(path, f.llam, o.R, &llo, &lhi, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
     snprintf(path, sizeof path, "%s/pi.png", dir);
@@ -347,11 +352,15 @@ int cli_factor(int argc, char **argv)
     csv = NULL;
     snprintf(path, sizeof path, "%s/report.csv", dir);
     if (base_out_write_all(path, csvbuf, csvlen, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    rc = base_outset_commit(set, err, sizeof err) ? cli_usage_error("%s", err) : rc;
+    set = NULL;
+    if (rc) goto done;
     printf("  wrote %s/{lambda.png, pi.png, factors.f32, report.csv%s%s%s}\n", dir, study ? ", study.csv" : "",
            claims ? ", claims.csv" : "", scene ? ", vertex.png, factorized.png, exact.png" : "");
     if (base_out_stdout_check(err, sizeof err)) rc = cli_usage_error("%s", err);
     else if (fails) rc = CLI_FAIL;
 done:
+    base_outset_abort(set);
     if (csv) fclose(csv);
     free(csvbuf);
     rf_fact_free(&f);

@@ -132,7 +132,10 @@ int cli_man(FILE *f, const char *version)
     roff_text(f,
         "A regular output file is written under a temporary name and renamed when\n"
         "complete, so it is never half-written; a device, FIFO or symbolic link is\n"
-        "written through, not replaced; - is standard output where a verb allows it.\n"
+        "written through, not replaced (a link keeps pointing at the same file, which\n"
+        "gets the bytes once the output is complete); - is standard output where a\n"
+        "verb allows it. The files of one run (sweep, scene, report, factor,\n"
+        "stability, verilog) appear together or, on a failure, not at all.\n"
         "The same inputs give the same bytes: no time stamps, no timings.");
     fputs(".SH SEE ALSO\n", f);
     roff_text(f,

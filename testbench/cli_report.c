@@ -102,7 +102,7 @@ static void img(FILE *f, const char *mime, const void *p, size_t n, const char *
 
 static unsigned char *read_all(const char *path, size_t *n)
 {
-    FILE *f = fopen(path, "rb");
+    FILE *f = fopen(base_out_pending(path), "rb");    /* written, not yet moved in */
     if (!f) return NULL;
     size_t cap = 1 << 16, len = 0;
     unsigned char *b = malloc(cap);
@@ -625,6 +625,10 @@ int cli_report(int argc, char **argv)
     size_t len = 0;
     FILE *f = open_memstream(&html, &len);
     if (!f) return cli_usage_error("report: out of memory");
+    /* Every file of the report (sweep CSVs, the scene's images, the page)
+     * is one set: they appear together at the end, or none of them. */
+    base_outset *set = base_outset_begin();
+    if (!set) { fclose(f); free(html); return cli_usage_error("report: out of memory"); }
     fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
                "<title>shadesim report</title>\n<style>\n%s</style>\n</head>\n<body>\n", css);
@@ -652,7 +656,9 @@ int cli_report(int argc, char **argv)
     snprintf(path, sizeof path, "%s/report.html", dir);
     if (!rc && base_out_write_all(path, html, len, err, sizeof err)) rc = cli_usage_error("%s", err);
     free(html);
-    if (rc) return rc;
+    if (!rc && base_outset_commit(set, err, sizeof err)) rc = cli_usage_error("%s", err);
+    else if (rc) base_outset_abort(set);
+    if (rc) return rc;          /* (the abort also took back the scene folder it made) */
     printf("wrote %s (%d units, %d failing their verdict)\n", path, (int)unit_count(), nfail);
     char e[300];
     if (base_out_stdout_check(e, sizeof e)) return cli_usage_error("%s", e);

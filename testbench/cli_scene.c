@@ -234,7 +234,9 @@ static int load_mesh(const scn_desc *d, scn_mesh *m)
     char err[600];
     int rc = mesh_is_builtin(d->mesh) ? scn_mesh_builtin(d->mesh, d->detail, m, err, sizeof err)
                                       : scn_mesh_obj(d->mesh, m, err, sizeof err);
-    if (rc) { cli_usage_error("%s", err); return -1; }
+    static const char *const keys[] = { "mesh", "detail", NULL };
+    char where[300];
+    if (rc) { cli_usage_error("%s%s", scn_desc_where(d, keys, where, sizeof where), err); return -1; }
     return 0;
 }
 
@@ -355,11 +357,30 @@ int cli_scene(int argc, char **argv)
     const unit_desc *u;
     unit_cfg cfg;
     unit_fmts fm;
-    if (tb_scene_unit(&d, &u, &cfg, &fm, err, sizeof err)) return cli_usage_error("%s", err);
+    if (scn_desc_check_camera(&d, err, sizeof err)) return cli_usage_error("%s", err);
+    int bad = tb_scene_unit(&d, &u, &cfg, &fm, err, sizeof err);
+    if (!bad) {
+        /* the unit built once, so that what it refuses (t must hold 1, ...)
+         * is named at the scene line too, before any work */
+        tb_built b;
+        bad = tb_build(u, &cfg, &fm, &b, err, sizeof err);
+        sim_free(b.c);
+    }
+    if (bad) {
+        /* named at the line of the key that set the value last */
+        static const char *const sched[] = { "schedule", "policy", NULL };
+        static const char *const fmts[] = { "fmt", "width", "L", "terms", "series", "policy", NULL };
+        char where[300];
+        return cli_usage_error("%s%s", scn_desc_where(&d, strstr(err, "schedule") ? sched : fmts, where, sizeof where), err);
+    }
 
     scn_mesh m;
     if (load_mesh(&d, &m)) return CLI_USAGE;
     int rc = CLI_OK;
+    /* Every file of the run (--compare's three folders, --sweep's and
+     * --target-nmse's files, a render's images and VCD) is one set. */
+    base_outset *set = base_outset_begin();
+    if (!set) { scn_mesh_free(&m); return cli_usage_error("scene: out of memory"); }
     if (cmp) {
         rc = compare(&d, &m, jobs, no_batch, dir, json);
     } else if (target > 0 || sweep) {
@@ -392,6 +413,9 @@ int cli_scene(int argc, char **argv)
             tb_scene_free(&r);
         }
     }
+    /* a missed target (exit 1) still writes its files: they are data */
+    if (rc == CLI_USAGE) base_outset_abort(set);
+    else if (base_outset_commit(set, err, sizeof err)) rc = cli_usage_error("%s", err);
     scn_mesh_free(&m);
     if (base_out_stdout_check(err, sizeof err)) return cli_usage_error("%s", err);
     return rc;

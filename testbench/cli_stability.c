@@ -16,13 +16,19 @@
 static int write_charts(const tb_stab *s, const char *dir, char paths[][600], int *np)
 {
     if (cli_make_dir(dir)) return CLI_USAGE;
+    /* the charts are one set: all appear, or none */
+    base_outset *set = base_outset_begin();
+    char err[800];
+    if (!set) return cli_usage_error("stability: out of memory");
     for (int i = 0; i < s->ncharts; i++) {
-        char err[800];
         snprintf(paths[*np], 600, "%s/%s", dir, s->chart_files[i]);
-        if (chart_write(s->charts[i], paths[*np], err, sizeof err))
+        if (chart_write(s->charts[i], paths[*np], err, sizeof err)) {
+            base_outset_abort(set);
             return cli_usage_error("stability: %s", err);
+        }
         (*np)++;
     }
+    if (base_outset_commit(set, err, sizeof err)) return cli_usage_error("stability: %s", err);
     return CLI_OK;
 }
 

@@ -12,13 +12,12 @@
 #include "testbench/tb_sweep.h"
 #include "base/base_out.h"
 
-/* The files of one sweep, written to temporaries and moved into DIR
- * together (cli_sweep_files.c). */
-#define OSET_MAX 8
+/* The files of one sweep, a base_outset moved into DIR together
+ * (cli_sweep_files.c); set is made at the first open. */
 typedef struct oset {
     const char *dir;
     int n;
-    base_out *o[OSET_MAX];
+    base_outset *set;
 } oset;
 
 typedef struct target_info {

@@ -11,21 +11,24 @@
  * interrupted sweep changes nothing in DIR, and two sweeps into one folder
  * move their sets in turn: the folder ends up with the whole set of the
  * one that finished last (a file the other wrote and this one does not,
- * e.g. target.json, is removed under the same lock). */
+ * e.g. target.json, is removed under the same lock, if it is a regular
+ * file). base_outset finishes every file (write errors of a device such
+ * as a link to /dev/full included) before it moves any in. */
 FILE *sweep_oset_open(oset *os, const char *name)
 {
     char path[4200], err[600];
     snprintf(path, sizeof path, "%s/%s", os->dir, name);
-    if (os->n == OSET_MAX) { cli_usage_error("%s: too many output files", path); return NULL; }
-    base_out *o = base_out_open(path, err, sizeof err);
-    if (!o) { cli_usage_error("%s", err); return NULL; }
-    os->o[os->n++] = o;
-    return base_out_file(o);
+    if (!os->set && !(os->set = base_outset_new())) { cli_usage_error("%s: out of memory", path); return NULL; }
+    FILE *f = base_outset_open(os->set, path, err, sizeof err);
+    if (!f) { cli_usage_error("%s", err); return NULL; }
+    os->n++;
+    return f;
 }
 
 void sweep_oset_abort(oset *os)
 {
-    for (int i = 0; i < os->n; i++) base_out_abort(os->o[i]);
+    base_outset_abort(os->set);
+    os->set = NULL;
     os->n = 0;
 }
 
@@ -46,14 +49,14 @@ int sweep_oset_commit(oset *os, const char *const *gone, int ngone)
      * without the guarantee against a concurrent sweep. */
     while (fcntl(fd, F_SETLKW, &lk) == -1 && errno == EINTR) {}
     int rc = 0;
-    for (int i = 0; i < os->n; i++) {
-        if (rc) base_out_abort(os->o[i]);
-        else if (base_out_close(os->o[i], err, sizeof err)) rc = cli_usage_error("%s", err);
-    }
+    if (base_outset_commit(os->set, err, sizeof err)) rc = cli_usage_error("%s", err);
+    os->set = NULL;
     os->n = 0;
+    /* Files of an earlier sweep this one does not write: removed only
+     * when they are regular files (a user's link or FIFO stays). */
     for (int k = 0; k < ngone && !rc; k++) {
         snprintf(path, sizeof path, "%s/%s", os->dir, gone[k]);
-        unlink(path);
+        base_out_remove_stale(path);
     }
     close(fd);                  /* releases the lock */
     return rc;

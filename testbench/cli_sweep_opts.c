@@ -4,6 +4,7 @@
  * `shadesim sweep --help`. */
 #include "testbench/cli_sweep.h"
 #include "testbench/cli_opt.h"
+#include "base/base_num.h"
 #include <errno.h>
 #include <math.h>
 #include <stddef.h>
@@ -66,11 +67,7 @@ static int split_list(const char *opt_name, const char *shown, const char *list,
 
 static int parse_real(const char *s, double *v)
 {
-    char *end;
-    errno = 0;
-    if (!cli_is_real(s)) return -1;
-    *v = strtod(s, &end);
-    return !*s || *end || errno || !isfinite(*v) || *v < 0 ? -1 : 0;
+    return base_num_real(s, 0, v);
 }
 
 /* ---------------------------------------------------------------- options */
@@ -180,8 +177,9 @@ static int o_margin(void *b, const char *opt, const char *v)
 {
     sweep_args *a = b;
     (void)opt;
-    if (parse_real(v, &a->t.margin) || a->t.margin > 32 || a->t.margin != floor(a->t.margin))
-        return cli_usage_error("--margin %s: expected whole bits 0..32", v);
+    long m;
+    if (cli_parse_long("--margin", v, 0, 32, "whole bits 0..32", &m)) return CLI_USAGE;
+    a->t.margin = (double)m;
     return 0;
 }
 

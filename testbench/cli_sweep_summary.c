@@ -247,7 +247,7 @@ static char *summary_text(sweep_args *a, const tb_sweep *s, const unsigned char 
 int sweep_outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
 {
     char files[600] = "sweep.csv";
-    oset os = { a->dir, 0, { 0 } };
+    oset os = { a->dir, 0, NULL };
     FILE *csv = sweep_oset_open(&os, "sweep.csv");
     if (!csv) return CLI_USAGE;
     tb_sweep_print_csv(s, csv, 0, 0);

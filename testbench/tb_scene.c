@@ -775,7 +775,7 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     return ferror(f) ? -1 : 0;
 }
 
-static int write_png(const char *dir, const char *name, int w, int h, int ch, const uint8_t *pix,
+static int write_png(base_outset *set, const char *dir, const char *name, int w, int h, int ch, const uint8_t *pix,
                      char *err, size_t errlen)
 {
     char path[4200];
@@ -783,22 +783,26 @@ static int write_png(const char *dir, const char *name, int w, int h, int ch, co
     uint8_t *buf;
     size_t len;
     if (scn_png_encode(w, h, ch, pix, &buf, &len)) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
-    int rc = base_out_write_all(path, buf, len, err, errlen);
+    int rc = base_outset_write(set, path, buf, len, err, errlen);
     free(buf);
     return rc;
 }
 
+/* The images and scene.json are one set (base_outset): all of them move
+ * in together or, on a failure or an interruption, none. */
 int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir, char *err, size_t errlen)
 {
     if (base_out_mkdirs(dir, err, errlen)) return -1;
     size_t np = (size_t)r->w * r->h;
     uint8_t *g8 = calloc(np ? np : 1, 1), *rgb = calloc(np ? np * 3 : 1, 1);
     if (!g8 || !rgb) { free(g8); free(rgb); snprintf(err, errlen, "out of memory"); return -1; }
-    int rc = 0;
+    base_outset *set = base_outset_new();
+    int rc = set ? 0 : -1;
+    if (!set) snprintf(err, errlen, "%s: out of memory", dir);
     for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? to8(r->ref[i]) : 0;
-    rc = rc ? rc : write_png(dir, "ref.png", r->w, r->h, 1, g8, err, errlen);
+    rc = rc ? rc : write_png(set, dir, "ref.png", r->w, r->h, 1, g8, err, errlen);
     for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? to8(r->hw[i]) : 0;
-    rc = rc ? rc : write_png(dir, "hw.png", r->w, r->h, 1, g8, err, errlen);
+    rc = rc ? rc : write_png(set, dir, "hw.png", r->w, r->h, 1, g8, err, errlen);
     int K = tb_scene_err_scale(r);
     for (size_t i = 0; i < np; i++) {
         if (!r->deg[i]) { memset(rgb + 3 * i, 0, 3); continue; }
@@ -807,31 +811,31 @@ int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir,
     }
     char name[64];
     snprintf(name, sizeof name, "err-x%d.png", K);
-    rc = rc ? rc : write_png(dir, name, r->w, r->h, 3, rgb, err, errlen);
+    rc = rc ? rc : write_png(set, dir, name, r->w, r->h, 3, rgb, err, errlen);
     for (size_t i = 0; i < np; i++) {
         if (r->deg[i]) scn_label_rgb(r->deg[i], rgb + 3 * i);
         else memset(rgb + 3 * i, 0, 3);
     }
-    rc = rc ? rc : write_png(dir, "degree.png", r->w, r->h, 3, rgb, err, errlen);
+    rc = rc ? rc : write_png(set, dir, "degree.png", r->w, r->h, 3, rgb, err, errlen);
     for (size_t i = 0; i < np; i++) {
         if (r->deg[i]) scn_label_rgb(r->region[i], rgb + 3 * i);
         else memset(rgb + 3 * i, 0, 3);
     }
-    rc = rc ? rc : write_png(dir, "region.png", r->w, r->h, 3, rgb, err, errlen);
+    rc = rc ? rc : write_png(set, dir, "region.png", r->w, r->h, 3, rgb, err, errlen);
     free(g8);
     free(rgb);
-    if (rc) return -1;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/scene.json", dir);
+    FILE *jf = rc ? NULL : base_outset_open(set, path, err, errlen);
+    if (!jf) { base_outset_abort(set); return -1; }
+    tb_scene_json(jf, d, r);
+    if (base_outset_commit(set, err, errlen)) return -1;
     /* the heat maps of earlier renders at other scales would mislead */
     for (int k = 1; k <= 4096; k *= 4) {
         if (k == K) continue;
         char old[4200];
         snprintf(old, sizeof old, "%s/err-x%d.png", dir, k);
-        unlink(old);
+        base_out_remove_stale(old);
     }
-    char path[4200];
-    snprintf(path, sizeof path, "%s/scene.json", dir);
-    base_out *o = base_out_open(path, err, errlen);
-    if (!o) return -1;
-    tb_scene_json(base_out_file(o), d, r);
-    return base_out_close(o, err, errlen);
+    return 0;
 }

@@ -1,6 +1,7 @@
 /* tb_sweep.c - the sweep engine: configurations, threads, shards, the CSV,
  * merging shards, and the per-signal format search. */
 #include "testbench/tb_sweep.h"
+#include "base/base_line.h"
 #include "base/base_out.h"
 #include "base/base_par.h"
 #include <errno.h>
@@ -368,59 +369,6 @@ static int mrow_cmp(const void *a, const void *b)
     return x->line - y->line;
 }
 
-/* A sweep CSV's line is a few hundred bytes; anything near this is not
- * one (merge /dev/zero, a binary file) and is refused as it is read. */
-#define MERGE_MAX_LINE ((size_t)1 << 20)
-
-/* The whole file, NUL-terminated; NULL with a message. Checked while it
- * is read, so that a device or a huge binary is refused at its first bad
- * block instead of being held in memory: a NUL byte, or a line longer
- * than MERGE_MAX_LINE, stops the reading. */
-static char *slurp(const char *path, size_t *len, char *err, size_t errlen)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f) { snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno)); return NULL; }
-    size_t cap = 1 << 16, n = 0, line_start = 0, lineno = 1;
-    char *b = malloc(cap);
-    for (;;) {
-        if (!b) { fclose(f); snprintf(err, errlen, "%s: out of memory", path); return NULL; }
-        size_t k = fread(b + n, 1, cap - n - 1, f);
-        /* Check what just arrived: NULs, and each line's length. */
-        for (size_t i = n; i < n + k; i++) {
-            if (b[i] == 0) {
-                fclose(f); free(b);
-                snprintf(err, errlen, "%s:%zu: not a text file (NUL byte)", path, lineno);
-                return NULL;
-            }
-            if (b[i] == '\n') { line_start = i + 1; lineno++; }
-        }
-        n += k;
-        if (n - line_start > MERGE_MAX_LINE) {
-            fclose(f); free(b);
-            snprintf(err, errlen, "%s:%zu: line longer than %zu bytes: not a sweep CSV", path, lineno, MERGE_MAX_LINE);
-            return NULL;
-        }
-        if (k == 0 || n < cap - 1) {
-            if (ferror(f)) {
-                int e = errno;
-                fclose(f); free(b);
-                snprintf(err, errlen, "%s: read error: %s", path, strerror(e));
-                return NULL;
-            }
-            if (feof(f)) break;
-            continue;               /* a short read from a pipe or FIFO */
-        }
-        char *nb = realloc(b, cap * 2);
-        if (!nb) free(b);
-        b = nb;
-        cap *= 2;
-    }
-    fclose(f);
-    b[n] = 0;
-    *len = n;
-    return b;
-}
-
 static size_t count_commas(const char *s)
 {
     size_t n = 0;
@@ -456,7 +404,7 @@ int tb_sweep_merge(const char *const *paths, int n, const char *out, char *err, 
     for (int fi = 0; fi < n; fi++) {
         size_t len;
         const char *p = paths[fi];
-        if (!(text[fi] = slurp(p, &len, err, errlen))) goto done;
+        if (!(text[fi] = base_text_read(p, TB_SWEEP_MAX_LINE, &len, err, errlen))) goto done;
         char *line = text[fi];
         for (int ln = 1; *line; ln++) {
             char *nl = strchr(line, '\n');

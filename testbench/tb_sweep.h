@@ -24,6 +24,9 @@
 
 #define TB_SWEEP_MAX_VALUES  64        /* values of one axis */
 #define TB_SWEEP_MAX_CONFIGS 1000000   /* a bigger grid is a usage error */
+/* A sweep CSV's line is a few hundred bytes; a longer one is not one
+ * (merge or chart of /dev/zero, a binary file) and stops the reading. */
+#define TB_SWEEP_MAX_LINE    ((size_t)1 << 20)
 
 /* One swept unit parameter: --param NAME=V1,V2,... */
 typedef struct tb_sweep_paxis {

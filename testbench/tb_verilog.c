@@ -234,8 +234,13 @@ int tb_verilog_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f
     snprintf(p[0], pl, "%s/%s.v", dir, u->name);
     snprintf(p[1], pl, "%s/%s_tb.v", dir, u->name);
     if (base_out_mkdirs(dir, err, errlen)) goto done;
-    if (base_out_write_all(p[0], mod, strlen(mod), err, errlen) == 0)
-        rc = base_out_write_all(p[1], tb, strlen(tb), err, errlen);
+    /* the module and its testbench are one set: both appear, or neither */
+    base_outset *set = base_outset_new();
+    if (!set) { snprintf(err, errlen, "out of memory"); goto done; }
+    if (base_outset_write(set, p[0], mod, strlen(mod), err, errlen) == 0)
+        rc = base_outset_write(set, p[1], tb, strlen(tb), err, errlen);
+    if (rc == 0) rc = base_outset_commit(set, err, errlen);
+    else base_outset_abort(set);
 done:
     if (rc == 0 && paths) { paths[0] = p[0]; paths[1] = p[1]; }
     else { free(p[0]); free(p[1]); }

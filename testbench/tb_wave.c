@@ -164,7 +164,8 @@ int tb_wave_gtkw(sim_ctx *c, const char *vcd_path, const char *title, const sim_
     /* The companion goes beside a dump in a file (not stdout, not
      * /dev/null: no /dev/null.gtkw), any path length; a companion that
      * cannot be written is an error, not a silent omission. */
-    if (stat(vcd_path, &st) != 0 || !S_ISREG(st.st_mode)) return 0;
+    /* (a dump still waiting in an output set is at its temporary name) */
+    if (stat(base_out_pending(vcd_path), &st) != 0 || !S_ISREG(st.st_mode)) return 0;
     size_t gl = strlen(vcd_path) + sizeof ".gtkw";
     char *g = malloc(gl);
     if (!g) {

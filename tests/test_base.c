@@ -12,6 +12,8 @@
 #include "base/base_join.h"
 #include "base/base_near.h"
 #include "base/base_par.h"
+#include "base/base_num.h"
+#include "base/base_line.h"
 #include <float.h>
 #include <stdatomic.h>
 
@@ -234,9 +236,74 @@ static void par_same_result_any_threads(void)
     }
 }
 
+
+/* The one number syntax: each text with what it must give, by hand. */
+static void num_strict_syntax(void)
+{
+    static const struct { const char *s; int neg_ok, ok; double v; } R[] = {
+        { "0.35", 0, 1, 0.35 }, { "-1e-3", 1, 1, -1e-3 }, { ".5", 0, 1, 0.5 }, { "5.", 0, 1, 5 },
+        { "1E+2", 0, 1, 100 }, { "1e-999", 0, 1, 0 },
+        { "0x0.8", 0, 0, 0 }, { "0x10", 1, 0, 0 }, { "+1", 0, 0, 0 }, { " 1", 0, 0, 0 }, { "1 ", 0, 0, 0 },
+        { "inf", 1, 0, 0 }, { "nan", 1, 0, 0 }, { "1e999", 0, 0, 0 }, { "", 0, 0, 0 }, { "-", 1, 0, 0 },
+        { ".", 0, 0, 0 }, { "1e", 0, 0, 0 }, { "e5", 0, 0, 0 }, { "-0", 0, 0, 0 }, { "-0", 1, 1, 0 },
+        { "-2", 0, 0, 0 },
+    };
+    for (size_t i = 0; i < sizeof R / sizeof R[0]; i++) {
+        double v = -12345;
+        int rc = base_num_real(R[i].s, R[i].neg_ok, &v);
+        TST_CHECK(rc == (R[i].ok ? 0 : -1), "real '%s' neg_ok %d: rc %d", R[i].s, R[i].neg_ok, rc);
+        if (R[i].ok && !rc) TST_CHECK(v == R[i].v, "real '%s' = %.17g", R[i].s, v);
+    }
+    static const struct { const char *s; int neg_ok, ok; long long v; } W[] = {
+        { "10", 0, 1, 10 }, { "016", 0, 1, 16 }, { "-7", 1, 1, -7 }, { "9223372036854775807", 0, 1, 9223372036854775807LL },
+        { "9223372036854775808", 0, 0, 0 }, { "1e1", 0, 0, 0 }, { "10.0", 0, 0, 0 }, { "0.1e2", 0, 0, 0 },
+        { "8e0", 0, 0, 0 }, { "-0", 0, 0, 0 }, { "-1", 0, 0, 0 }, { "+1", 0, 0, 0 }, { "0x8", 0, 0, 0 },
+        { " 8", 0, 0, 0 }, { "", 0, 0, 0 }, { "-", 1, 0, 0 },
+    };
+    for (size_t i = 0; i < sizeof W / sizeof W[0]; i++) {
+        long long v = -12345;
+        int rc = base_num_whole(W[i].s, W[i].neg_ok, &v);
+        TST_CHECK(rc == (W[i].ok ? 0 : -1), "whole '%s' neg_ok %d: rc %d", W[i].s, W[i].neg_ok, rc);
+        if (W[i].ok && !rc) TST_CHECK(v == W[i].v, "whole '%s' = %lld", W[i].s, v);
+    }
+}
+
+/* Lines: the limit is max bytes, a longer line or a NUL stops the
+ * reading there (the bytes after it are still unread). */
+static void line_bounded(void)
+{
+    char text[] = "abc\n\nxyzw\nlast";
+    FILE *f = fmemopen(text, strlen(text), "r");
+    char buf[8];
+    TST_EQ_INT(base_line_read(f, buf, 4), 3); TST_EQ_STR(buf, "abc");
+    TST_EQ_INT(base_line_read(f, buf, 4), 0); TST_EQ_STR(buf, "");
+    TST_EQ_INT(base_line_read(f, buf, 4), 4); TST_EQ_STR(buf, "xyzw");
+    TST_EQ_INT(base_line_read(f, buf, 4), 4); TST_EQ_STR(buf, "last");
+    TST_EQ_INT(base_line_read(f, buf, 4), BASE_LINE_EOF);
+    fclose(f);
+    char longer[] = "abcdefgh\n";
+    f = fmemopen(longer, strlen(longer), "r");
+    TST_EQ_INT(base_line_read(f, buf, 4), BASE_LINE_LONG);
+    TST_EQ_INT(ftell(f), 5);        /* max + 1 bytes read, no more */
+    fclose(f);
+    char nul[] = "ab\0cd\n";
+    f = fmemopen(nul, 6, "r");
+    TST_EQ_INT(base_line_read(f, buf, 4), BASE_LINE_NUL);
+    TST_EQ_INT(ftell(f), 3);
+    fclose(f);
+    /* A stream that never ends: the reading stops at the limit. */
+    f = fopen("/dev/zero", "r");
+    if (f) {
+        TST_EQ_INT(base_line_read(f, buf, 4), BASE_LINE_NUL);
+        fclose(f);
+    }
+}
+
 int main(void)
 {
     TST_RUN(json_nonfinite_is_null);
+    TST_RUN(num_strict_syntax);
+    TST_RUN(line_bounded);
     TST_RUN(json_17_digits_round_trip);
     TST_RUN(json_fewer_digits_within_half_unit);
     TST_RUN(json_string_escapes);

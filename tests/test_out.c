@@ -454,6 +454,94 @@ static void t_threads(void)
     TST_EQ_INT(entries(), N);
 }
 
+/* A set: nothing appears until every member is complete; a member that
+ * fails (a link to /dev/full) leaves every path as it was; a set made
+ * current gathers base_out_write_all and takes back the folders it made. */
+static void t_set(void)
+{
+    tst_rmtree(dir);
+    char a[400], b[400], full[400], sub[400], inner[400], buf[256], err[300];
+    path_in(a, sizeof a, "a.csv");
+    path_in(b, sizeof b, "b.csv");
+    path_in(full, sizeof full, "full.csv");
+    put(a, "old a\n", 0644);
+    TST_CHECK(symlink("/dev/full", full) == 0, "symlink");
+    base_outset *s = base_outset_new();
+    FILE *f = base_outset_open(s, a, err, sizeof err);
+    TST_CHECK(f != NULL, "%s", err);
+    if (f) fputs("new a\n", f);
+    TST_EQ_INT(base_outset_write(s, b, "new b\n", 6, err, sizeof err), 0);
+    TST_EQ_INT(base_outset_write(s, full, "x", 1, err, sizeof err), 0);
+    TST_EQ_INT(base_outset_commit(s, err, sizeof err), -1);
+    TST_CHECK(strstr(err, "No space left") != NULL, "err = %s", err);
+    TST_EQ_INT(slurp(a, buf, sizeof buf), 6);
+    TST_EQ_STR(buf, "old a\n");
+    TST_CHECK(access(b, F_OK) != 0, "b.csv did not appear");
+    TST_CHECK(!has_temp(), "no temporary left");
+    /* the same set without the failing member: both appear */
+    s = base_outset_new();
+    TST_EQ_INT(base_outset_write(s, a, "new a\n", 6, err, sizeof err), 0);
+    TST_EQ_INT(base_outset_write(s, b, "new b\n", 6, err, sizeof err), 0);
+    TST_CHECK(access(b, F_OK) != 0, "not before the commit");
+    TST_EQ_INT(base_outset_commit(s, err, sizeof err), 0);
+    TST_EQ_INT(slurp(a, buf, sizeof buf), 6);
+    TST_EQ_STR(buf, "new a\n");
+    TST_EQ_INT(slurp(b, buf, sizeof buf), 6);
+    /* a current set: write_all joins it, its bytes readable where they
+     * wait, the folder it made taken back by the abort */
+    path_in(sub, sizeof sub, "made");
+    path_in(inner, sizeof inner, "made/c.csv");
+    s = base_outset_begin();
+    TST_EQ_INT(base_out_mkdirs(sub, err, sizeof err), 0);
+    TST_EQ_INT(base_out_write_all(inner, "c\n", 2, err, sizeof err), 0);
+    TST_CHECK(access(inner, F_OK) != 0, "c.csv waits for the commit");
+    TST_CHECK(strcmp(base_out_pending(inner), inner) != 0 && slurp(base_out_pending(inner), buf, sizeof buf) == 2,
+              "pending bytes readable");
+    base_outset_abort(s);
+    TST_CHECK(access(sub, F_OK) != 0, "the folder made for the set is gone");
+    TST_EQ_STR(base_out_pending(inner), inner);
+    /* stale outputs: a regular file goes, a link or FIFO stays */
+    char fifo[400], lnk[400];
+    path_in(fifo, sizeof fifo, "fifo");
+    path_in(lnk, sizeof lnk, "lnk");
+    TST_CHECK(mkfifo(fifo, 0600) == 0 && symlink("a.csv", lnk) == 0, "fifo, link");
+    TST_EQ_INT(base_out_remove_stale(fifo), 0);
+    TST_EQ_INT(base_out_remove_stale(lnk), 0);
+    TST_EQ_INT(base_out_remove_stale(b), 0);
+    struct stat st;
+    TST_CHECK(lstat(fifo, &st) == 0 && S_ISFIFO(st.st_mode), "FIFO kept");
+    TST_CHECK(lstat(lnk, &st) == 0 && S_ISLNK(st.st_mode), "link kept");
+    TST_CHECK(access(a, F_OK) == 0 && access(b, F_OK) != 0, "a kept, b removed");
+}
+
+/* A link to a regular file is written through: same inode, a hard link
+ * sees the bytes, and nothing changes before the output is complete. */
+static void t_symlink_through(void)
+{
+    tst_rmtree(dir);
+    char tgt[400], hard[400], lnk[400], buf[256], err[300];
+    path_in(tgt, sizeof tgt, "t.csv");
+    path_in(hard, sizeof hard, "h.csv");
+    path_in(lnk, sizeof lnk, "l.csv");
+    put(tgt, "before\n", 0640);
+    TST_CHECK(link(tgt, hard) == 0 && symlink("t.csv", lnk) == 0, "links");
+    struct stat s0, s1;
+    stat(tgt, &s0);
+    base_out *o = base_out_open(lnk, err, sizeof err);
+    TST_CHECK(o != NULL, "%s", err);
+    if (!o) return;
+    fputs("after\n", base_out_file(o));
+    fflush(base_out_file(o));
+    TST_EQ_INT(slurp(hard, buf, sizeof buf), 7);     /* untouched until the close */
+    TST_EQ_INT(base_out_close(o, err, sizeof err), 0);
+    stat(tgt, &s1);
+    TST_CHECK(s0.st_ino == s1.st_ino, "same inode");
+    TST_CHECK((s1.st_mode & 0777) == 0640, "mode kept: %o", (unsigned)(s1.st_mode & 0777));
+    TST_EQ_INT(slurp(hard, buf, sizeof buf), 6);
+    TST_EQ_STR(buf, "after\n");
+    TST_CHECK(!has_temp(), "no temporary left");
+}
+
 int main(void)
 {
     umask(UMASK);
@@ -462,6 +550,8 @@ int main(void)
     TST_RUN(t_new_path);
     TST_RUN(t_replace_regular);
     TST_RUN(t_symlink);
+    TST_RUN(t_symlink_through);
+    TST_RUN(t_set);
     TST_RUN(t_devnull);
     TST_RUN(t_devfull);
     TST_RUN(t_fifo);

@@ -959,6 +959,65 @@ static void t_raster_hostile(void)
     scn_mesh_free(&m);
 }
 
+/* Vertices far beyond the 2^40-pixel bound: the triangle is clipped, not
+ * dropped. Reference: each pixel centre tested against the exact
+ * (world) triangle by hand; centres on the edge are left out. */
+static void t_raster_far(void)
+{
+    scn_mesh m;
+    mesh_new(&m, 8, 4);
+    /* Below the diagonal y = x of the view, corners at +-1e12. */
+    uint32_t a = add_v(&m, -1e12, -1e12, 0), c = add_v(&m, 1e12, -1e12, 0), b = add_v(&m, 1e12, 1e12, 0);
+    add_t(&m, a, c, b);
+    scn_camera cam = ortho_cam(2);
+    scn_gbuf g;
+    if (raster(&m, &cam, 32, 32, &g)) { TST_CHECK(0, "raster"); scn_mesh_free(&m); return; }
+    int wrong = 0, far = 0, n = 0;
+    for (int py = 0; py < 32; py++)
+        for (int px = 0; px < 32; px++) {
+            if (px + py == 31) continue;                 /* on the edge */
+            double x = (px + 0.5 - 16) / 16, y = (16 - py - 0.5) / 16;
+            size_t i = (size_t)py * 32 + px;
+            int want = y < x;
+            if ((g.tri[i] == 0) != want) wrong++;
+            if (g.tri[i] == 0) {
+                n++;
+                if (!(fabs(g.pos[i][0] - x) < 1e-6 && fabs(g.pos[i][1] - y) < 1e-6 && fabs(g.pos[i][2]) < 1e-6))
+                    far++;
+            }
+        }
+    TST_CHECK(wrong == 0, "%d pixel centres decided against the exact triangle", wrong);
+    TST_CHECK(far == 0, "%d of %d positions off the pixel's point of the plane", far, n);
+    TST_EQ_INT(n, 32 * 31 / 2);
+    scn_gbuf_free(&g);
+    /* The other half: the two share the clipped diagonal, and every
+     * centre (those on it too) is taken exactly once. */
+    uint32_t d = add_v(&m, -1e12, 1e12, 0);
+    add_t(&m, a, b, d);
+    if (raster(&m, &cam, 32, 32, &g)) { TST_CHECK(0, "raster"); scn_mesh_free(&m); return; }
+    int twice = 0;
+    for (int i = 0; i < 32 * 32; i++) twice += g.frags[i] != 1;
+    TST_CHECK(twice == 0, "%d centres not taken exactly once", twice);
+    scn_gbuf_free(&g);
+    /* Perspective with a tiny field of view on a unit quad at z = 0: the
+     * view (1e-11 wide) is all inside it, at depth 5, points ~ (0, 0, 0). */
+    m.nv = m.nt = 0;
+    uint32_t q0 = add_v(&m, -1, -1, 0), q1 = add_v(&m, 1, -1, 0), q2 = add_v(&m, 1, 1, 0), q3 = add_v(&m, -1, 1, 0);
+    add_t(&m, q0, q1, q2);
+    add_t(&m, q0, q2, q3);
+    scn_camera pc = { 1, { 0, 0, 5 }, { 0, 0, 0 }, { 0, 1, 0 }, 1e-10, 0 };
+    if (raster(&m, &pc, 16, 16, &g)) { TST_CHECK(0, "raster"); scn_mesh_free(&m); return; }
+    int unc = 0, off = 0;
+    for (int i = 0; i < 16 * 16; i++) {
+        if (g.tri[i] < 0) { unc++; continue; }
+        if (!(fabs(g.depth[i] - 5) < 1e-9 && fabs(g.pos[i][0]) < 1e-9 && fabs(g.pos[i][1]) < 1e-9)) off++;
+    }
+    TST_EQ_INT(unc, 0);
+    TST_EQ_INT(off, 0);
+    scn_gbuf_free(&g);
+    scn_mesh_free(&m);
+}
+
 /* ------------------------------------------------------------- spans */
 
 static void check_spans_partition(const scn_gbuf *g, const scn_span *s, size_t n, const char *what)
@@ -1147,5 +1206,6 @@ int main(void)
     TST_RUN(t_spans_rendered);
     TST_RUN(t_raster_bad);
     TST_RUN(t_raster_hostile);
+    TST_RUN(t_raster_far);
     TST_EXIT();
 }

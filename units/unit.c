@@ -1,6 +1,7 @@
 /* unit.c - the unit registry, parameters and format/bound helpers. */
 #include "units/unit.h"
 #include "units/unit_net.h"     /* the /3 network's paper defaults */
+#include "base/base_num.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -131,26 +132,6 @@ static int choice_index(const char *list, const char *w)
     return -1;
 }
 
-/* A plain decimal number: [-]digits[.digits][e[+-]digits], nothing else
- * (strtod alone would take spaces, '+', hex, inf and nan). */
-static int plain_real(const char *s)
-{
-    size_t a, b = 0;
-    if (*s == '-') s++;
-    a = strspn(s, "0123456789");
-    s += a;
-    if (*s == '.') { b = strspn(++s, "0123456789"); s += b; }
-    if (!a && !b) return 0;
-    if (*s == 'e' || *s == 'E') {
-        s++;
-        if (*s == '-' || *s == '+') s++;
-        size_t e = strspn(s, "0123456789");
-        if (!e) return 0;
-        s += e;
-    }
-    return !*s;
-}
-
 int unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
                    const char *value, char *err, size_t errlen)
 {
@@ -174,18 +155,23 @@ int unit_param_set(const unit_desc *u, unit_cfg *cfg, const char *name,
         *(int *)base = k;
         return 0;
     }
-    char *end;
-    errno = 0;
-    double v = strtod(value, &end);
-    if (!plain_real(value) || end == value || *end || errno || !isfinite(v)) {
+    /* One syntax of numbers (base_num.h): a whole-number parameter takes
+     * digits only ("1e1", "10.0" are refused); a '-' where the range
+     * does not go below 0 is outside it, "-0" too. */
+    int whole = p->type == UNIT_P_INT || p->type == UNIT_P_POW2;
+    double v;
+    if (whole) {
+        long long w;
+        if (base_num_whole(value, 1, &w)) {
+            snprintf(err, errlen, "parameter %s: '%s' is not a whole number", name, value);
+            return -1;
+        }
+        v = w < -(1LL << 53) ? -HUGE_VAL : w > (1LL << 53) ? HUGE_VAL : (double)w;
+    } else if (base_num_real(value, 1, &v)) {
         snprintf(err, errlen, "parameter %s: '%s' is not a number", name, value);
         return -1;
     }
-    int whole = p->type == UNIT_P_INT || p->type == UNIT_P_POW2;
-    if (whole && v != floor(v)) {
-        snprintf(err, errlen, "parameter %s: '%s' is not a whole number", name, value);
-        return -1;
-    }
+    if (*value == '-' && p->min >= 0) v = -HUGE_VAL;    /* "-0": outside, below */
     if (v < p->min || v > p->max) {
         snprintf(err, errlen, "parameter %s: %s is outside %g..%g", name, value, p->min, p->max);
         return -1;

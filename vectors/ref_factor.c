@@ -2,6 +2,7 @@
  * and the SVD baseline (see ref_factor.h). */
 #include "vectors/ref_factor.h"
 #include "vectors/ref_brdf.h"
+#include "base/base_num.h"
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -72,10 +73,8 @@ int rf_brdf_param(rf_brdf *b, const char *kv, char *err, size_t len)
         b->fresnel = i;
         return 0;
     }
-    char *end;
-    errno = 0;
-    double x = strtod(v, &end);
-    if (*end || errno || !isfinite(x)) { snprintf(err, len, "--param %s: not a finite number", kv); return -1; }
+    double x;
+    if (base_num_real(v, 1, &x)) { snprintf(err, len, "--param %s: not a finite number", kv); return -1; }
     struct { const char *k; double *p; double lo, hi; } t[] = {
         { "e", &b->e, 1, 10000 }, { "m", &b->m, 0.05, 0.7 }, { "n", &b->n, 1.5, 10000 },
         { "f0", &b->f0, 0.001, 1 }, { "ax", &b->ax, 0.02, 1 }, { "ay", &b->ay, 0.02, 1 },
