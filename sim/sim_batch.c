@@ -47,6 +47,8 @@ struct sim_batch {
     uint64_t *tog;              /* nsig x lanes: bit toggles so far */
     int64_t  *tprev;            /* nsig x lanes: the values they are counted from */
     uint64_t *fmask;            /* per signal: its format's bits (sim_toggle_mask) */
+    /* range tracking (sim_batch_ranges_on), NULL when off */
+    int64_t  *rmin, *rmax;      /* nsig x lanes: smallest and largest settled value */
 };
 
 /* The widest vector loops a batch may use (the tests lower it); read
@@ -412,6 +414,18 @@ static void count_toggles(sim_batch *b)
                 pv[l] = v[l];
             }
         }
+        if (!b->rmin) continue;
+        /* a value a lane settles on is one it holds before the next edge */
+        int64_t *lo = b->rmin + (size_t)i * L, *hi = b->rmax + (size_t)i * L;
+        for (uint32_t w = 0; w < nw; w++) {
+            uint64_t mw = m[w];
+            while (mw) {
+                uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
+                mw &= mw - 1;
+                if (v[l] < lo[l]) lo[l] = v[l];
+                if (v[l] > hi[l]) hi[l] = v[l];
+            }
+        }
     }
 }
 
@@ -511,6 +525,38 @@ int sim_batch_toggles_on(sim_batch *b)
     }
     memcpy(b->tprev, b->val, (size_t)b->nsig * b->lanes * sizeof *b->tprev);
     return 0;
+}
+
+int sim_batch_ranges_on(sim_batch *b)
+{
+    if (b->rmin) return 0;
+    if (sim_batch_toggles_on(b)) return -1;
+    size_t n = (size_t)(b->nsig ? b->nsig : 1) * b->lanes;
+    b->rmin = malloc(n * sizeof *b->rmin);
+    b->rmax = malloc(n * sizeof *b->rmax);
+    if (!b->rmin || !b->rmax) {
+        free(b->rmin); free(b->rmax);
+        b->rmin = b->rmax = NULL;
+        return -1;
+    }
+    for (uint32_t l = 0; l < b->lanes; l++) sim_batch_range_reset(b, l);
+    return 0;
+}
+
+void sim_batch_range_reset(sim_batch *b, uint32_t lane)
+{
+    if (!b->rmin) return;
+    for (uint32_t i = 0; i < b->nsig; i++) {
+        size_t at = (size_t)i * b->lanes + lane;
+        b->rmin[at] = b->rmax[at] = b->val[at];
+    }
+}
+
+void sim_batch_range(const sim_batch *b, const sim_signal *s, uint32_t lane, int64_t *mn, int64_t *mx)
+{
+    size_t at = (size_t)s->index * b->lanes + lane;
+    *mn = b->rmin ? b->rmin[at] : b->val[at];
+    *mx = b->rmax ? b->rmax[at] : b->val[at];
 }
 
 const uint64_t *sim_batch_toggles(const sim_batch *b, const sim_signal *s)
@@ -835,7 +881,7 @@ void sim_batch_free(sim_batch *b)
     free_ops(b->comb, b->ncomb);
     free_ops(b->reg, b->nreg);
     free(b->val); free(b->pend); free(b->inslot); free(b->in_sig); free(b->regnx); free(b->regm); free(b->ovf); free(b->chg); free(b->uni);
-    free(b->tog); free(b->tprev); free(b->fmask);
+    free(b->tog); free(b->tprev); free(b->fmask); free(b->rmin); free(b->rmax);
     free(b);
 }
 

@@ -14,7 +14,7 @@
 
 typedef struct run_args {
     const char *vcd, *csv;
-    int json, fst, ranges;
+    int json, fst, ranges, kernel;
     long vfrom, vto;
     /* --ranges derived, --range NAME=LO:HI (static check) */
     int derived, nrange, want_mode;
@@ -80,6 +80,12 @@ static const cli_opt run_tab[] = {
       "  --json               print the result as one JSON object\n" },
     { "--out", NULL, CLI_OPT_STR, offsetof(run_args, csv), 0, 0, NULL, "%s needs a file name", NULL, 0,
       "  --out FILE.csv       one row per vector: index, cycle, NAME_raw/_real/_expected/_err\n" },
+    { "--kernel", NULL, CLI_OPT_FLAG, offsetof(run_args, kernel), 0, 0, NULL, NULL, NULL, 0,
+      "  --kernel             simulate on the event-driven kernel alone, and report its events,\n"
+      "                       delta cycles and process runs (default: the batch's lanes where\n"
+      "                       they give the same results; docs/batch.md; --vcd implies it)\n" },
+    { "--no-batch", NULL, CLI_OPT_FLAG, offsetof(run_args, kernel), 0, 0, NULL, NULL, NULL, 0,
+      "  --no-batch           the same as --kernel\n" },
     { "--vcd", NULL, CLI_OPT_STR, offsetof(run_args, vcd), 0, 0, NULL, "%s needs a file name", NULL, 0,
       "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD)\n"
       "                       and each output beat's expected value and error (tb.expected_NAME,\n"
@@ -138,7 +144,8 @@ static int run_all(const tb_accept *acc)
         char err[600];
         tb_result r;
         tb_formats(o.u, &o.cfg, NULL, 0, &fm, err, sizeof err);
-        int t = tb_run(o.u, &o.cfg, &fm, &vs, NULL, &r, err, sizeof err);
+        tb_opts lanes = { .lanes = 1 };
+        int t = tb_run(o.u, &o.cfg, &fm, &vs, &lanes, &r, err, sizeof err);
         if (t != TB_OK) {
             (void)cli_usage_error("%s: %s", o.u->name, err);
             rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
@@ -272,7 +279,7 @@ int cli_run(int argc, char **argv)
         return run_all(&acc);
     }
     if (cli_unit_select(&o, unit)) return CLI_USAGE;
-    run_args ra = { NULL, NULL, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
+    run_args ra = { NULL, NULL, 0, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
     ra.u = o.u;
     run_cur = &ra;
     void *base[] = { &o, &acc, &ra };
@@ -308,11 +315,13 @@ int cli_run(int argc, char **argv)
     }
     int static_bad = 0;
     if (ra.derived && (static_bad = check_derived(&o, &fm, &ra.rg, json, report)) < 0) return CLI_USAGE;
-    /* Without a dump, a vector file is read a block at a time: memory
-     * does not grow with the number of vectors. */
+    /* On the kernel without a dump, a vector file is read a block at a
+     * time: memory does not grow with the number of vectors. The batch's
+     * lanes take the whole file in memory (docs/batch.md). */
+    int lanes = !ra.kernel && !vcd;
     char vpath[4200];
     const char *vfile = NULL;
-    if (!vcd) {
+    if (!vcd && !lanes) {
         int f = cli_vectors_file(&o, vpath, sizeof vpath, &vfile);
         if (f < 0) return CLI_USAGE;
         if (f) {
@@ -323,7 +332,7 @@ int cli_run(int argc, char **argv)
     }
     vec_set vs;
     if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
-    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst };
+    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst, .lanes = lanes };
     if (vfrom >= 0 || vto >= 0) {
         int bad_from = vfrom >= 0 && (size_t)vfrom >= vs.n_rows;
         if (bad_from || (vto >= 0 && (size_t)vto >= vs.n_rows)) {

@@ -5,6 +5,7 @@
 #include "testbench/tb_range.h"
 #include "testbench/tb_wave.h"
 #include "testbench/tb_energy.h"
+#include "testbench/tb_lanes.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -421,6 +422,57 @@ static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
     tb_verdict(r, NULL);
 }
 
+/* The items on the batch's lanes (tb_lanes.h): TB_OK with the figures
+ * run_collect gives, or 1 with r->engine_why when the lanes do not give
+ * the kernel's results (the kernel runs then), or TB_FAIL (memory). */
+static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, const vec_set *vs,
+                     run_mem *m, tb_result *r, char *err, size_t errlen)
+{
+    tb_built b;
+    char why[300];
+    if (tb_build(u, cfg, fmts, &b, why, sizeof why)) { sim_free(b.c); return 1; }  /* the kernel says it */
+    tb_range rg;
+    uint64_t *tog = NULL;
+    int rc = TB_FAIL;
+    if (tb_range_init(&rg, b.c, b.sc, b.clk) || !(tog = calloc((size_t)rg.nsmp + 1, sizeof *tog))) goto done;
+    tb_lanes_job j = { b.c, b.clk, &b.io, r->n_in, r->n_out, r->beats, m->n, m->in_raw,
+                       r->beat_cycle, r->raw, &rg, tog, 0, 0 };
+    int t = tb_lanes_run(&j, why, sizeof why);
+    if (t < 0) goto done;
+    if (t > 0) {
+        snprintf(r->engine_why, sizeof r->engine_why, "%.150s", why);
+        rc = 1;
+        goto done;
+    }
+    r->lanes = j.lanes;
+    r->stats.clocks = j.clocks;
+    size_t n = m->n, nbeats = m->nbeats, nb = (size_t)r->beats;
+    r->latency = r->beat_cycle[0];
+    r->cycles = r->beat_cycle[nbeats - 1] + 1;
+    r->cycles_per_item = n > 1 ? (double)(r->beat_cycle[(n - 1) * nb] - r->beat_cycle[0]) / (double)(n - 1)
+                               : (double)r->cycles;
+    r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
+                                    : (double)r->cycles;
+    r->area_ge = sim_scope_area(b.sc);
+    char terr[300];
+    if (tb_ppa_timing(b.c, b.sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the batch found no loop */ }
+    /* no lane overflowed: the unit's counts are its constants' (at build) */
+    r->overflows = tb_scope_overflows(b.sc);
+    r->ovf_discarded = tb_scope_ovf_discarded(b.sc);
+    for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
+    tb_range_finish(&rg, b.sc, &b.io, m->in_ovf, r);
+    tb_energy_fill_counts(r, &rg, tog, NULL, b.c, r->stats.clocks);
+    metrics(r, vs, m->ideal, m->exact, m->exact_den, m->exact_hi, m->exact_ok, &m->gold);
+    tb_verdict(r, NULL);
+    rc = TB_OK;
+done:
+    if (rc == TB_FAIL) snprintf(err, errlen, "out of memory");
+    free(tog);
+    tb_range_free(&rg);
+    sim_free(b.c);
+    return rc;
+}
+
 int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
            const vec_set *vs, const tb_opts *o, tb_result *r, char *err, size_t errlen)
 {
@@ -437,6 +489,13 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     run_mem m;
     if (run_mem_alloc(&m, u, r, vs->n_rows, err, errlen)) return TB_FAIL;
     run_prepare(&m, u, cfg, fmts, vs, r);
+    if (o && o->lanes && !o->vcd_path) {
+        int t = run_lanes(u, cfg, fmts, vs, &m, r, err, errlen);
+        if (t != 1) { run_mem_free(&m); return t; }
+        /* the kernel from a clean slate: the lanes may have written some */
+        memset(r->raw, 0, m.nvals * sizeof *r->raw);
+        memset(r->beat_cycle, 0, m.nbeats * sizeof *r->beat_cycle);
+    }
     run_sim s;
     memset(&s, 0, sizeof s);
     int rc = run_build(&s, u, cfg, fmts, vs, o, &m, r, err, errlen);
