@@ -47,6 +47,7 @@ struct sim_batch {
     uint64_t *tog;              /* nsig x lanes: bit toggles so far */
     int64_t  *tprev;            /* nsig x lanes: the values they are counted from */
     uint64_t *fmask;            /* per signal: its format's bits (sim_toggle_mask) */
+    sim__batch_count_fn *vcount;   /* the count in every lane at once (sim_batch_int.h) */
     /* range tracking (sim_batch_ranges_on), NULL when off */
     int64_t  *rmin, *rmax;      /* nsig x lanes: smallest and largest settled value */
 };
@@ -395,6 +396,8 @@ static inline int wide_enough(uint64_t m, uint32_t lanes, uint32_t vw)
  * toggles in the lanes it changed in since the last count (every value
  * change of a cycle is in chg: the registers', the inputs' and the
  * combinational elements'). */
+SIM__BATCH_COUNT_DENSE(, sim__batch_count_dense)
+
 static void count_toggles(sim_batch *b)
 {
     const uint32_t nw = b->nw;
@@ -404,7 +407,13 @@ static void count_toggles(sim_batch *b)
         const int64_t *v = b->val + (size_t)i * L;
         int64_t *pv = b->tprev + (size_t)i * L;
         uint64_t *t = b->tog + (size_t)i * L;
+        int64_t *lo = b->rmin ? b->rmin + (size_t)i * L : NULL, *hi = b->rmax ? b->rmax + (size_t)i * L : NULL;
         const uint64_t mask = b->fmask[i];
+        if (nw == 1) {
+            /* many lanes changed: every lane, with no mask (a datapath busy every clock) */
+            if (!m[0]) continue;
+            if (wide_enough(m[0], b->lanes, 4)) { b->vcount(v, pv, t, mask, lo, hi, (uint32_t)L); continue; }
+        }
         for (uint32_t w = 0; w < nw; w++) {
             uint64_t mw = m[w];
             while (mw) {
@@ -412,18 +421,11 @@ static void count_toggles(sim_batch *b)
                 mw &= mw - 1;
                 t[l] += sim_toggle_popcount(((uint64_t)v[l] ^ (uint64_t)pv[l]) & mask);
                 pv[l] = v[l];
-            }
-        }
-        if (!b->rmin) continue;
-        /* a value a lane settles on is one it holds before the next edge */
-        int64_t *lo = b->rmin + (size_t)i * L, *hi = b->rmax + (size_t)i * L;
-        for (uint32_t w = 0; w < nw; w++) {
-            uint64_t mw = m[w];
-            while (mw) {
-                uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
-                mw &= mw - 1;
-                if (v[l] < lo[l]) lo[l] = v[l];
-                if (v[l] > hi[l]) hi[l] = v[l];
+                /* a value a lane settles on is one it holds before the next edge */
+                if (lo) {
+                    if (v[l] < lo[l]) lo[l] = v[l];
+                    if (v[l] > hi[l]) hi[l] = v[l];
+                }
             }
         }
     }
@@ -1080,6 +1082,12 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
     }
 #endif
     b->vw = b->vcomb ? vw : 0;
+    b->vcount = sim__batch_count_dense;
+#if SIM_BATCH_X86
+    uint32_t cw = sim__batch_vec_width(vec_most);
+    if (cw == 8) b->vcount = sim__batch_count_dense_avx512;
+    else if (cw == 4) b->vcount = sim__batch_count_dense_avx2;
+#endif
     if (sim_proc_count(c) != ndriven) {
         snprintf(err, errlen, "the design has %u processes that drive no signal (testbench or user processes)",
                  sim_proc_count(c) - ndriven);

@@ -6,6 +6,7 @@
 #include "testbench/tb_wave.h"
 #include "testbench/tb_energy.h"
 #include "testbench/tb_lanes.h"
+#include "base/base_par.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -306,13 +307,13 @@ static int run_mem_alloc(run_mem *m, const unit_desc *u, tb_result *r, size_t n,
  * unit should give for exactly those inputs and the golden check's
  * figures (tb_prep); name each output with its format and bound. */
 static void run_prepare(run_mem *m, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
-                        const vec_set *vs, tb_result *r)
+                        const vec_set *vs, tb_result *r, int64_t *in_scratch)
 {
     tb_prep_ctx pc;
     tb_prep_init(&pc, u, cfg, fmts);
     for (size_t it = 0; it < m->n; it++) {
         size_t at = it * (size_t)r->beats * (size_t)r->n_out;
-        tb_item ti = { m->in_raw + it * (size_t)r->n_in, m->ideal + at, (double *)m->gold.ideal_r + at,
+        tb_item ti = { in_scratch ? in_scratch : m->in_raw + it * (size_t)r->n_in, m->ideal + at, (double *)m->gold.ideal_r + at,
                        (double *)m->gold.ideal_u + at, (double *)m->gold.ref_u + at, m->exact ? m->exact + at : NULL,
                        m->exact_den ? m->exact_den + at : NULL, m->exact_hi ? m->exact_hi + at : NULL, m->exact_ok + it };
         tb_prep(&pc, vec_row(vs, it), &ti, m->in_ovf);
@@ -422,25 +423,63 @@ static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
     tb_verdict(r, NULL);
 }
 
-/* The items on the batch's lanes (tb_lanes.h): TB_OK with the figures
- * run_collect gives, or 1 with r->engine_why when the lanes do not give
- * the kernel's results (the kernel runs then), or TB_FAIL (memory). */
+/* The items on the batch's lanes (tb_lanes.h), while the expected values
+ * are prepared on a second thread (run_prepare needs nothing of the
+ * simulation, the simulation only the quantized inputs): TB_OK with the
+ * figures run_collect gives, or 1 with r->engine_why when the lanes do
+ * not give the kernel's results (the kernel runs then, on the prepared
+ * values), or TB_FAIL (memory). */
+typedef struct lanes_par {
+    run_mem *m;
+    const unit_desc *u;
+    const unit_cfg *cfg;
+    const unit_fmts *fmts;
+    const vec_set *vs;
+    tb_result *r;
+    tb_lanes_job *j;
+    int rc;
+    char why[300];
+} lanes_par;
+
+static void lanes_item(void *ctx, size_t i)
+{
+    lanes_par *x = ctx;
+    if (i == 0) {
+        int64_t scratch[UNIT_MAX_IO];   /* the inputs again: the simulation has them already */
+        run_prepare(x->m, x->u, x->cfg, x->fmts, x->vs, x->r, scratch);
+    } else if (x->j) {
+        x->rc = tb_lanes_run(x->j, x->why, sizeof x->why);
+    }
+}
+
 static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, const vec_set *vs,
                      run_mem *m, tb_result *r, char *err, size_t errlen)
 {
+    /* the inputs as tb_prep quantizes them (its in_ovf counts come from it) */
+    sim_fx_conv cv[UNIT_MAX_IO];
+    for (int i = 0, k = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_IN) sim_fx_conv_init(&cv[k++], fmts->f[i], cfg->rnd, cfg->ovf);
+    for (size_t it = 0; it < m->n; it++) {
+        const double *row = vec_row(vs, it);
+        for (int i = 0; i < r->n_in; i++) m->in_raw[it * (size_t)r->n_in + (size_t)i] = sim_fx_conv_real(&cv[i], row[i], NULL);
+    }
     tb_built b;
     char why[300];
-    if (tb_build(u, cfg, fmts, &b, why, sizeof why)) { sim_free(b.c); return 1; }  /* the kernel says it */
+    int built = !tb_build(u, cfg, fmts, &b, why, sizeof why);
     tb_range rg;
+    memset(&rg, 0, sizeof rg);
     uint64_t *tog = NULL;
-    int rc = TB_FAIL;
-    if (tb_range_init(&rg, b.c, b.sc, b.clk) || !(tog = calloc((size_t)rg.nsmp + 1, sizeof *tog))) goto done;
+    int rc = TB_FAIL, oom = 0;
     tb_lanes_job j = { b.c, b.clk, &b.io, r->n_in, r->n_out, r->beats, m->n, m->in_raw,
-                       r->beat_cycle, r->raw, &rg, tog, 0, 0 };
-    int t = tb_lanes_run(&j, why, sizeof why);
-    if (t < 0) goto done;
-    if (t > 0) {
-        snprintf(r->engine_why, sizeof r->engine_why, "%.150s", why);
+                       r->beat_cycle, r->raw, &rg, NULL, 0, 0 };
+    if (built && (tb_range_init(&rg, b.c, b.sc, b.clk) || !(tog = calloc((size_t)rg.nsmp + 1, sizeof *tog)))) oom = 1;
+    j.toggles = tog;
+    lanes_par x = { m, u, cfg, fmts, vs, r, built && !oom ? &j : NULL, 1, "" };
+    if (!built) snprintf(x.why, sizeof x.why, "the unit does not build");   /* the kernel says why */
+    base_par_for(2, 2, lanes_item, &x);
+    if (oom || x.rc < 0) goto done;
+    if (x.rc > 0) {
+        snprintf(r->engine_why, sizeof r->engine_why, "%.150s", x.why);
         rc = 1;
         goto done;
     }
@@ -488,13 +527,14 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
 
     run_mem m;
     if (run_mem_alloc(&m, u, r, vs->n_rows, err, errlen)) return TB_FAIL;
-    run_prepare(&m, u, cfg, fmts, vs, r);
     if (o && o->lanes && !o->vcd_path) {
-        int t = run_lanes(u, cfg, fmts, vs, &m, r, err, errlen);
+        int t = run_lanes(u, cfg, fmts, vs, &m, r, err, errlen);   /* prepares too */
         if (t != 1) { run_mem_free(&m); return t; }
         /* the kernel from a clean slate: the lanes may have written some */
         memset(r->raw, 0, m.nvals * sizeof *r->raw);
         memset(r->beat_cycle, 0, m.nbeats * sizeof *r->beat_cycle);
+    } else {
+        run_prepare(&m, u, cfg, fmts, vs, r, NULL);
     }
     run_sim s;
     memset(&s, 0, sizeof s);
