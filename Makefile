@@ -125,6 +125,17 @@ test:
 	@echo "testing..."
 	@sh tests/run.sh $(TB) $(TB)-asan
 
+# The edit loop's suite: the plain build only, without the slow tests
+# tests/slow.list names (tool-driven, scene renders, every doc command);
+# under a minute on 2 cores. make test runs everything, both flavours.
+.PHONY: test-quick
+test-quick:
+	@echo "building $(TB)/ ($(CC) $(OPT))..."
+	@$(SUBMAKE) $(TESTJ) testbins B=$(TB)
+	@$(SUBMAKE) bin/shadesim
+	@echo "testing (quick: $(TB)/ only, tests/slow.list left out)..."
+	@TST_QUICK=1 sh tests/run.sh $(TB)
+
 .PHONY: test-clang
 test-clang:
 	@echo "building build-clang/ ($(CLANG) $(OPT))..."
