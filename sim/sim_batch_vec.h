@@ -103,8 +103,7 @@ VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char 
             for (int i = 0; i < n; i++) {
                 MASK hit = V_EQ(sel, V_SET1(i));
                 if (!M_ANY(hit)) continue;
-                VEC qi = V_LD(p->in[i] + l);
-                if (p->in_k[i] || p->in_radd[i]) qi = V_SRA(V_ADD(qi, ir[i]), ik[i], ik64[i]);
+                VEC qi = V_SRA(V_ADD(V_LD(p->in[i] + l), ir[i]), ik[i], ik64[i]);
                 q = V_BLEND(hit, q, qi);
                 o = M_OR(o, M_AND(VNAME(outside)(qi, lo, hi), hit));
             }
