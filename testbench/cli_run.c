@@ -11,6 +11,11 @@
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
+#include <sys/stat.h>
+
+/* The batch's lanes hold the vectors in memory (a few times the file's
+ * size); past this the kernel streams the file (docs/batch.md). */
+#define RUN_LANES_MAX_BYTES ((off_t)64 << 20)
 
 typedef struct run_args {
     const char *vcd, *csv;
@@ -222,7 +227,7 @@ static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, 
  * --out rows written as items complete. The header and first rows are
  * read first, so a bad file is reported before anything is written. */
 static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char *path, const char *csv,
-                        int json, int ranges, FILE *report, const tb_accept *acc)
+                        int json, int ranges, FILE *report, const tb_accept *acc, const char *why)
 {
     char err[600];
     vec_set hdr;
@@ -254,6 +259,7 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
     } else {
         if (out && base_out_close(out, err, sizeof err)) rc = cli_usage_error("%s", err);
         tb_verdict(&r, acc);
+        if (why) snprintf(r.engine_why, sizeof r.engine_why, "%s", why);
         if (json) tb_write_json(stdout, &r);
         else {
             tb_print_table(report, &r);
@@ -321,11 +327,17 @@ int cli_run(int argc, char **argv)
     int lanes = !ra.kernel && !vcd;
     char vpath[4200];
     const char *vfile = NULL;
-    if (!vcd && !lanes) {
+    if (!vcd) {
         int f = cli_vectors_file(&o, vpath, sizeof vpath, &vfile);
         if (f < 0) return CLI_USAGE;
-        if (f) {
-            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, report, &acc);
+        /* a file too large to hold (a regular file; "-" and pipes are
+         * read whole) is streamed on the kernel all the same */
+        struct stat st;
+        const char *why = NULL;
+        if (f && lanes && strcmp(vfile, "-") && !stat(vfile, &st) && S_ISREG(st.st_mode) && st.st_size > RUN_LANES_MAX_BYTES)
+            why = "a vector file over 64 MiB, read a block at a time";
+        if (f && (!lanes || why)) {
+            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, report, &acc, why);
             if (json && ra.derived) fputs("}\n", stdout);
             return rs == CLI_OK && static_bad ? cli_stdout_done(CLI_FAIL) : rs;
         }
