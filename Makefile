@@ -109,6 +109,9 @@ CLANG ?= clang
 ASAN_FLAGS = OPT="-O1 -g -fno-omit-frame-pointer" \
 	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
 TB := $(if $(filter clang%,$(notdir $(CC))),build-clang,build)
+# The portable flavour (as on a CPU other than x86-64): the batch's tests,
+# plain, and tests/cli_engine.sh on its shadesim.
+PORTABLE_BINS = $(TB)-portable/tests/test_batch $(TB)-portable/tests/test_toggle $(TB)-portable/shadesim
 
 # Sub-makes build quietly (BRIEF=1: no per-file lines) under one line per
 # step; V=1 shows every command.
@@ -121,9 +124,22 @@ test:
 	@$(SUBMAKE) $(TESTJ) testbins B=$(TB)
 	@echo "building $(TB)-asan/ ($(CC) ASan+UBSan)..."
 	@$(SUBMAKE) $(TESTJ) testbins B=$(TB)-asan $(ASAN_FLAGS)
+	@echo "building $(TB)-portable/ ($(CC), -DSIM_BATCH_X86=0: the batch without its vector loops)..."
+	@$(SUBMAKE) $(TESTJ) $(PORTABLE_BINS) B=$(TB)-portable CFLAGS=-DSIM_BATCH_X86=0
 	@$(SUBMAKE) bin/shadesim
 	@echo "testing..."
-	@sh tests/run.sh $(TB) $(TB)-asan
+	@sh tests/run.sh $(TB) $(TB)-asan $(TB)-portable
+
+# The edit loop's suite: the plain build only, without the slow tests
+# tests/slow.list names (tool-driven, scene renders, every doc command);
+# under a minute on 2 cores. make test runs everything, both flavours.
+.PHONY: test-quick
+test-quick:
+	@echo "building $(TB)/ ($(CC) $(OPT))..."
+	@$(SUBMAKE) $(TESTJ) testbins B=$(TB)
+	@$(SUBMAKE) bin/shadesim
+	@echo "testing (quick: $(TB)/ only, tests/slow.list left out)..."
+	@TST_QUICK=1 sh tests/run.sh $(TB)
 
 .PHONY: test-clang
 test-clang:
@@ -139,8 +155,12 @@ test-clang:
 fuzz:
 	@sh tests/fuzz/run.sh
 
+# bench_batch runs again with AVX2 alone (--vector 4): the machines this
+# runs on may lack AVX-512 (on one without, the two tables are the same).
 bench: $(BENCHBIN) bin/shadesim
 	@for b in $(BENCHBIN); do $$b || exit 1; done
+	@echo "bench_batch --vector 4 (AVX2 alone):"
+	@$(B)/bench/bench_batch --vector 4
 
 # Every unit on its default vectors, then the default face scene through
 # the hardware: the paper's configuration next to corrected ones (a table;
@@ -192,4 +212,4 @@ uninstall:
 	    rmdir "$$d" 2>/dev/null || true; done
 
 clean:
-	rm -rf build build-asan build-clang build-clang-asan bin
+	rm -rf build build-asan build-portable build-clang build-clang-asan build-clang-portable bin

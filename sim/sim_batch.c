@@ -47,6 +47,9 @@ struct sim_batch {
     uint64_t *tog;              /* nsig x lanes: bit toggles so far */
     int64_t  *tprev;            /* nsig x lanes: the values they are counted from */
     uint64_t *fmask;            /* per signal: its format's bits (sim_toggle_mask) */
+    sim__batch_count_fn *vcount;   /* the count in every lane at once (sim_batch_int.h) */
+    /* range tracking (sim_batch_ranges_on), NULL when off */
+    int64_t  *rmin, *rmax;      /* nsig x lanes: smallest and largest settled value */
 };
 
 /* The widest vector loops a batch may use (the tests lower it); read
@@ -393,6 +396,8 @@ static inline int wide_enough(uint64_t m, uint32_t lanes, uint32_t vw)
  * toggles in the lanes it changed in since the last count (every value
  * change of a cycle is in chg: the registers', the inputs' and the
  * combinational elements'). */
+SIM__BATCH_COUNT_DENSE(, sim__batch_count_dense)
+
 static void count_toggles(sim_batch *b)
 {
     const uint32_t nw = b->nw;
@@ -402,7 +407,13 @@ static void count_toggles(sim_batch *b)
         const int64_t *v = b->val + (size_t)i * L;
         int64_t *pv = b->tprev + (size_t)i * L;
         uint64_t *t = b->tog + (size_t)i * L;
+        int64_t *lo = b->rmin ? b->rmin + (size_t)i * L : NULL, *hi = b->rmax ? b->rmax + (size_t)i * L : NULL;
         const uint64_t mask = b->fmask[i];
+        if (nw == 1) {
+            /* many lanes changed: every lane, with no mask (a datapath busy every clock) */
+            if (!m[0]) continue;
+            if (wide_enough(m[0], b->lanes, 4)) { b->vcount(v, pv, t, mask, lo, hi, (uint32_t)L); continue; }
+        }
         for (uint32_t w = 0; w < nw; w++) {
             uint64_t mw = m[w];
             while (mw) {
@@ -410,6 +421,11 @@ static void count_toggles(sim_batch *b)
                 mw &= mw - 1;
                 t[l] += sim_toggle_popcount(((uint64_t)v[l] ^ (uint64_t)pv[l]) & mask);
                 pv[l] = v[l];
+                /* a value a lane settles on is one it holds before the next edge */
+                if (lo) {
+                    if (v[l] < lo[l]) lo[l] = v[l];
+                    if (v[l] > hi[l]) hi[l] = v[l];
+                }
             }
         }
     }
@@ -511,6 +527,38 @@ int sim_batch_toggles_on(sim_batch *b)
     }
     memcpy(b->tprev, b->val, (size_t)b->nsig * b->lanes * sizeof *b->tprev);
     return 0;
+}
+
+int sim_batch_ranges_on(sim_batch *b)
+{
+    if (b->rmin) return 0;
+    if (sim_batch_toggles_on(b)) return -1;
+    size_t n = (size_t)(b->nsig ? b->nsig : 1) * b->lanes;
+    b->rmin = malloc(n * sizeof *b->rmin);
+    b->rmax = malloc(n * sizeof *b->rmax);
+    if (!b->rmin || !b->rmax) {
+        free(b->rmin); free(b->rmax);
+        b->rmin = b->rmax = NULL;
+        return -1;
+    }
+    for (uint32_t l = 0; l < b->lanes; l++) sim_batch_range_reset(b, l);
+    return 0;
+}
+
+void sim_batch_range_reset(sim_batch *b, uint32_t lane)
+{
+    if (!b->rmin) return;
+    for (uint32_t i = 0; i < b->nsig; i++) {
+        size_t at = (size_t)i * b->lanes + lane;
+        b->rmin[at] = b->rmax[at] = b->val[at];
+    }
+}
+
+void sim_batch_range(const sim_batch *b, const sim_signal *s, uint32_t lane, int64_t *mn, int64_t *mx)
+{
+    size_t at = (size_t)s->index * b->lanes + lane;
+    *mn = b->rmin ? b->rmin[at] : b->val[at];
+    *mx = b->rmax ? b->rmax[at] : b->val[at];
 }
 
 const uint64_t *sim_batch_toggles(const sim_batch *b, const sim_signal *s)
@@ -835,7 +883,7 @@ void sim_batch_free(sim_batch *b)
     free_ops(b->comb, b->ncomb);
     free_ops(b->reg, b->nreg);
     free(b->val); free(b->pend); free(b->inslot); free(b->in_sig); free(b->regnx); free(b->regm); free(b->ovf); free(b->chg); free(b->uni);
-    free(b->tog); free(b->tprev); free(b->fmask);
+    free(b->tog); free(b->tprev); free(b->fmask); free(b->rmin); free(b->rmax);
     free(b);
 }
 
@@ -1034,6 +1082,12 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
     }
 #endif
     b->vw = b->vcomb ? vw : 0;
+    b->vcount = sim__batch_count_dense;
+#if SIM_BATCH_X86
+    uint32_t cw = sim__batch_vec_width(vec_most);
+    if (cw == 8) b->vcount = sim__batch_count_dense_avx512;
+    else if (cw == 4) b->vcount = sim__batch_count_dense_avx2;
+#endif
     if (sim_proc_count(c) != ndriven) {
         snprintf(err, errlen, "the design has %u processes that drive no signal (testbench or user processes)",
                  sim_proc_count(c) - ndriven);

@@ -97,6 +97,15 @@ int  sim_batch_toggles_on(sim_batch *b);
 /* The toggles of s so far, one per lane; NULL when not counting. */
 const uint64_t *sim_batch_toggles(const sim_batch *b, const sim_signal *s);
 
+/* Range tracking (tb_range's logging), off unless asked for (it turns
+ * toggle counting on too): per signal and lane the smallest and largest
+ * value settled on since the lane's last sim_batch_range_reset (or since
+ * it was asked for), the value then included. 0, or -1 when out of
+ * memory. */
+int  sim_batch_ranges_on(sim_batch *b);
+void sim_batch_range_reset(sim_batch *b, uint32_t lane);
+void sim_batch_range(const sim_batch *b, const sim_signal *s, uint32_t lane, int64_t *mn, int64_t *mx);
+
 /* 1 if some quantization in lane `lane` overflowed since the start (its
  * overflow counts must come from the kernel). */
 int  sim_batch_overflowed(const sim_batch *b, uint32_t lane);

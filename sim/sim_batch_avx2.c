@@ -82,6 +82,31 @@ static VTARGET inline __m256i mul_avx2(__m256i a, __m256i b)
 
 #include "sim/sim_batch_vec.h"
 
+/* sim__batch_count_dense (sim_batch_int.h), four lanes an instruction: the
+ * bits counted per byte, the bytes summed by vpsadbw; the range by
+ * compare and blend (AVX2 has no 64-bit min and max). */
+VTARGET void sim__batch_count_dense_avx2(const int64_t *v, int64_t *pv, uint64_t *t, uint64_t mask, int64_t *lo,
+                                         int64_t *hi, uint32_t nl)
+{
+    const __m256i m55 = _mm256_set1_epi64x(0x5555555555555555ll), m33 = _mm256_set1_epi64x(0x3333333333333333ll);
+    const __m256i m0f = _mm256_set1_epi64x(0x0f0f0f0f0f0f0f0fll), mk = _mm256_set1_epi64x((long long)mask);
+    uint32_t l = 0;
+    for (; l + 4 <= nl; l += 4) {
+        __m256i a = V_LD(v + l), x = _mm256_and_si256(_mm256_xor_si256(a, V_LD(pv + l)), mk);
+        x = _mm256_sub_epi64(x, _mm256_and_si256(_mm256_srli_epi64(x, 1), m55));
+        x = _mm256_add_epi64(_mm256_and_si256(x, m33), _mm256_and_si256(_mm256_srli_epi64(x, 2), m33));
+        x = _mm256_and_si256(_mm256_add_epi64(x, _mm256_srli_epi64(x, 4)), m0f);
+        V_ST(t + l, _mm256_add_epi64(V_LD(t + l), _mm256_sad_epu8(x, _mm256_setzero_si256())));
+        V_ST(pv + l, a);
+        if (lo) {
+            __m256i b = V_LD(lo + l), c = V_LD(hi + l);
+            V_ST(lo + l, _mm256_blendv_epi8(b, a, _mm256_cmpgt_epi64(b, a)));
+            V_ST(hi + l, _mm256_blendv_epi8(c, a, _mm256_cmpgt_epi64(a, c)));
+        }
+    }
+    if (l < nl) sim__batch_count_dense(v + l, pv + l, t + l, mask, lo ? lo + l : NULL, hi ? hi + l : NULL, nl - l);
+}
+
 #else   /* not x86-64: the scalar loops everywhere */
 
 uint32_t sim__batch_vec_width(uint32_t most) { (void)most; return 0; }

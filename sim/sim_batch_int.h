@@ -68,6 +68,35 @@ uint64_t sim__batch_vec_take_avx2(int64_t *v, const int64_t *p, uint32_t nl);
 int sim__batch_vec_comb_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 int sim__batch_vec_reg_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 uint64_t sim__batch_vec_take_avx512(int64_t *v, const int64_t *p, uint32_t nl);
+/* Toggles and ranges of one signal in every lane 0..nl-1 at once
+ * (sim_batch.c's count after a settle, when many lanes changed): t[l] +=
+ * the bits of `mask` in which v[l] differs from pv[l], pv[l] = v[l], and
+ * lo/hi (when not NULL) widened to take v[l]. In a lane where v did not
+ * change, v[l] == pv[l] and v[l] is already in its range: nothing moves,
+ * so no mask of lanes is needed. The population count is the SWAR one
+ * (no multiply: SSE2 and AVX2 have no 64-bit product), so that the
+ * compiler can vectorize the loop for each target that includes this. */
+#define SIM__BATCH_COUNT_DENSE(ATTR, NAME) \
+ATTR void NAME(const int64_t *v, int64_t *pv, uint64_t *t, uint64_t mask, int64_t *lo, int64_t *hi, uint32_t nl) \
+{ \
+    for (uint32_t l = 0; l < nl; l++) { \
+        uint64_t x = ((uint64_t)v[l] ^ (uint64_t)pv[l]) & mask; \
+        x = x - ((x >> 1) & 0x5555555555555555ull); \
+        x = (x & 0x3333333333333333ull) + ((x >> 2) & 0x3333333333333333ull); \
+        x = (x + (x >> 4)) & 0x0f0f0f0f0f0f0f0full; \
+        x += x >> 8; x += x >> 16; x += x >> 32; \
+        t[l] += x & 0x7f; \
+        pv[l] = v[l]; \
+    } \
+    if (!lo) return; \
+    for (uint32_t l = 0; l < nl; l++) { \
+        lo[l] = v[l] < lo[l] ? v[l] : lo[l]; \
+        hi[l] = v[l] > hi[l] ? v[l] : hi[l]; \
+    } \
+}
+typedef void sim__batch_count_fn(const int64_t *v, int64_t *pv, uint64_t *t, uint64_t mask, int64_t *lo, int64_t *hi,
+                                 uint32_t nl);
+sim__batch_count_fn sim__batch_count_dense, sim__batch_count_dense_avx2, sim__batch_count_dense_avx512;
 /* The scalar loop of p (combinational or register, in place) in the lanes
  * of the one-word mask m (sim_batch.c). */
 void sim__batch_lanes(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);

@@ -11,10 +11,15 @@
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
+#include <sys/stat.h>
+
+/* The batch's lanes hold the vectors in memory (a few times the file's
+ * size); past this the kernel streams the file (docs/batch.md). */
+#define RUN_LANES_MAX_BYTES ((off_t)64 << 20)
 
 typedef struct run_args {
     const char *vcd, *csv;
-    int json, fst, ranges;
+    int json, fst, ranges, kernel;
     long vfrom, vto;
     /* --ranges derived, --range NAME=LO:HI (static check) */
     int derived, nrange, want_mode;
@@ -80,6 +85,12 @@ static const cli_opt run_tab[] = {
       "  --json               print the result as one JSON object\n" },
     { "--out", NULL, CLI_OPT_STR, offsetof(run_args, csv), 0, 0, NULL, "%s needs a file name", NULL, 0,
       "  --out FILE.csv       one row per vector: index, cycle, NAME_raw/_real/_expected/_err\n" },
+    { "--kernel", NULL, CLI_OPT_FLAG, offsetof(run_args, kernel), 0, 0, NULL, NULL, NULL, 0,
+      "  --kernel             simulate on the event-driven kernel alone, and report its events,\n"
+      "                       delta cycles and process runs (default: the batch's lanes where\n"
+      "                       they give the same results; docs/batch.md; --vcd implies it)\n" },
+    { "--no-batch", NULL, CLI_OPT_FLAG, offsetof(run_args, kernel), 0, 0, NULL, NULL, NULL, 0,
+      "  --no-batch           the same as --kernel\n" },
     { "--vcd", NULL, CLI_OPT_STR, offsetof(run_args, vcd), 0, 0, NULL, "%s needs a file name", NULL, 0,
       "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD)\n"
       "                       and each output beat's expected value and error (tb.expected_NAME,\n"
@@ -138,7 +149,8 @@ static int run_all(const tb_accept *acc)
         char err[600];
         tb_result r;
         tb_formats(o.u, &o.cfg, NULL, 0, &fm, err, sizeof err);
-        int t = tb_run(o.u, &o.cfg, &fm, &vs, NULL, &r, err, sizeof err);
+        tb_opts lanes = { .lanes = 1 };
+        int t = tb_run(o.u, &o.cfg, &fm, &vs, &lanes, &r, err, sizeof err);
         if (t != TB_OK) {
             (void)cli_usage_error("%s: %s", o.u->name, err);
             rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
@@ -215,7 +227,7 @@ static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, 
  * --out rows written as items complete. The header and first rows are
  * read first, so a bad file is reported before anything is written. */
 static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char *path, const char *csv,
-                        int json, int ranges, FILE *report, const tb_accept *acc)
+                        int json, int ranges, FILE *report, const tb_accept *acc, const char *why)
 {
     char err[600];
     vec_set hdr;
@@ -247,6 +259,7 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
     } else {
         if (out && base_out_close(out, err, sizeof err)) rc = cli_usage_error("%s", err);
         tb_verdict(&r, acc);
+        if (why) snprintf(r.engine_why, sizeof r.engine_why, "%s", why);
         if (json) tb_write_json(stdout, &r);
         else {
             tb_print_table(report, &r);
@@ -272,7 +285,7 @@ int cli_run(int argc, char **argv)
         return run_all(&acc);
     }
     if (cli_unit_select(&o, unit)) return CLI_USAGE;
-    run_args ra = { NULL, NULL, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
+    run_args ra = { NULL, NULL, 0, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
     ra.u = o.u;
     run_cur = &ra;
     void *base[] = { &o, &acc, &ra };
@@ -308,22 +321,30 @@ int cli_run(int argc, char **argv)
     }
     int static_bad = 0;
     if (ra.derived && (static_bad = check_derived(&o, &fm, &ra.rg, json, report)) < 0) return CLI_USAGE;
-    /* Without a dump, a vector file is read a block at a time: memory
-     * does not grow with the number of vectors. */
+    /* On the kernel without a dump, a vector file is read a block at a
+     * time: memory does not grow with the number of vectors. The batch's
+     * lanes take the whole file in memory (docs/batch.md). */
+    int lanes = !ra.kernel && !vcd;
     char vpath[4200];
     const char *vfile = NULL;
     if (!vcd) {
         int f = cli_vectors_file(&o, vpath, sizeof vpath, &vfile);
         if (f < 0) return CLI_USAGE;
-        if (f) {
-            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, report, &acc);
+        /* a file too large to hold (a regular file; "-" and pipes are
+         * read whole) is streamed on the kernel all the same */
+        struct stat st;
+        const char *why = NULL;
+        if (f && lanes && strcmp(vfile, "-") && !stat(vfile, &st) && S_ISREG(st.st_mode) && st.st_size > RUN_LANES_MAX_BYTES)
+            why = "a vector file over 64 MiB, read a block at a time";
+        if (f && (!lanes || why)) {
+            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, report, &acc, why);
             if (json && ra.derived) fputs("}\n", stdout);
             return rs == CLI_OK && static_bad ? cli_stdout_done(CLI_FAIL) : rs;
         }
     }
     vec_set vs;
     if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
-    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst };
+    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst, .lanes = lanes };
     if (vfrom >= 0 || vto >= 0) {
         int bad_from = vfrom >= 0 && (size_t)vfrom >= vs.n_rows;
         if (bad_from || (vto >= 0 && (size_t)vto >= vs.n_rows)) {

@@ -112,7 +112,9 @@ typedef struct tb_result {
     int        within_bound;     /* 1 if every beat met its bound */
     size_t     first_violation;  /* item index, if !within_bound */
     tb_metrics out[UNIT_MAX_IO];
-    sim_stats  stats;
+    sim_stats  stats;            /* the kernel's; only clocks when the batch ran */
+    uint32_t   lanes;            /* the batch's lanes that simulated it (tb_lanes.h); 0: the kernel */
+    char       engine_why[160];  /* lanes asked for but the kernel ran: why ("" otherwise) */
     /* The verdict (tb_verdict): */
     int        bound_check;      /* worst TB_CHECK_* over the outputs */
     int        golden_ok;        /* every output within its golden allowance */
@@ -151,6 +153,8 @@ typedef struct tb_opts {
     int         vcd_window;      /* dump only items vcd_from..vcd_to (testbench/tb_wave.h) */
     size_t      vcd_from, vcd_to;
     int         fst;             /* VCD_PATH is an FST file, converted by vcd2fst */
+    int         lanes;           /* simulate on the batch's lanes where they give the kernel's
+                                  * results (tb_lanes.h; not with a dump), else the kernel */
 } tb_opts;
 
 enum { TB_OK = 0, TB_FAIL = 1, TB_BADINPUT = 2 };

@@ -26,10 +26,16 @@ double tb_energy_pj(const sim_ctx *c, const sim_scope *sc, tb_energy_count tog, 
 
 void tb_energy_fill(tb_result *r, const tb_range *g, const sim_toggle *t, const sim_ctx *c, uint64_t clocks)
 {
+    tb_energy_fill_counts(r, g, NULL, t, c, clocks);
+}
+
+void tb_energy_fill_counts(tb_result *r, const tb_range *g, const uint64_t *count, const sim_toggle *t,
+                           const sim_ctx *c, uint64_t clocks)
+{
     double fj = (double)clocks * sim_energy_clock_fj(c);
     uint64_t n = 0;
     for (int i = 0; i < g->nsmp; i++) {
-        uint64_t k = sim_toggle_count(t, g->smp[i]);
+        uint64_t k = count ? count[i] : sim_toggle_count(t, g->smp[i]);
         if (r->sigs && i < r->nsigs) r->sigs[i].toggles = k;
         n += k;
         fj += (double)k * sim_energy_toggle_fj(g->smp[i]);

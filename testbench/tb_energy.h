@@ -12,6 +12,10 @@
 /* r->sigs[i].toggles (r->sigs in g's order, tb_range_finish), r->ppa.toggles
  * and r->ppa.energy_pj_per_item over r->vectors items and `clocks` cycles. */
 void tb_energy_fill(tb_result *r, const tb_range *g, const sim_toggle *t, const sim_ctx *c, uint64_t clocks);
+/* The same from counts given per signal of g (count[i] for g->smp[i]),
+ * as the batch's lanes give them (tb_lanes.h); count NULL: t's. */
+void tb_energy_fill_counts(tb_result *r, const tb_range *g, const uint64_t *count, const sim_toggle *t,
+                           const sim_ctx *c, uint64_t clocks);
 /* Energy of `clocks` cycles of c's design in which signal i of scope sc
  * (and below) toggled tog(i) times, pJ; the toggles summed into *toggles.
  * tog reads one lane of the batch's counts (or any count by signal). */

@@ -123,9 +123,14 @@ int tb_write_json(FILE *f, const tb_result *r)
         fprintf(f, "%s\n    \"%s\": ", o ? "," : "", r->out[o].name);
         jmetrics(f, &r->out[o], "    ");
     }
-    fprintf(f, "\n  },\n  \"sim\": {\"clocks\": %llu, \"events\": %llu, \"delta_cycles\": %llu, \"process_runs\": %llu}\n}\n",
-            (unsigned long long)r->stats.clocks, (unsigned long long)r->stats.events,
-            (unsigned long long)r->stats.deltas, (unsigned long long)r->stats.proc_runs);
+    /* the engine that ran; the kernel's own counters only when it did */
+    if (r->lanes)
+        fprintf(f, "\n  },\n  \"sim\": {\"engine\": \"batch\", \"lanes\": %u, \"clocks\": %llu}\n}\n", (unsigned)r->lanes,
+                (unsigned long long)r->stats.clocks);
+    else
+        fprintf(f, "\n  },\n  \"sim\": {\"engine\": \"kernel\", \"clocks\": %llu, \"events\": %llu, \"delta_cycles\": %llu, \"process_runs\": %llu}\n}\n",
+                (unsigned long long)r->stats.clocks, (unsigned long long)r->stats.events,
+                (unsigned long long)r->stats.deltas, (unsigned long long)r->stats.proc_runs);
     return ferror(f) ? -1 : 0;
 }
 
@@ -218,6 +223,15 @@ void tb_print_table(FILE *f, const tb_result *r)
     print_crit(f, &r->ppa);
     fprintf(f, "switching %llu bit toggles, %s pJ/item (docs/timing.md)\n", (unsigned long long)r->ppa.toggles,
             tnum(x[3], 32, "%.3g", r->ppa.energy_pj_per_item));
+    /* the engine that ran (docs/batch.md); the kernel's own counters only when it did */
+    if (r->lanes)
+        fprintf(f, "engine batch: %u lanes, levelized, the kernel's results (--kernel: its event counts)\n",
+                (unsigned)r->lanes);
+    else
+        fprintf(f, "engine kernel: %llu events, %llu delta cycles, %llu process runs%s%s%s\n",
+                (unsigned long long)r->stats.events, (unsigned long long)r->stats.deltas,
+                (unsigned long long)r->stats.proc_runs, r->engine_why[0] ? " (not on lanes: " : "",
+                r->engine_why, r->engine_why[0] ? ")" : "");
     /* the format column as wide as its longest entry (a format with its
      * own modes, "s7.9:half-up:sat", is longer than the usual 8) */
     int fw = 8;

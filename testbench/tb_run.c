@@ -5,6 +5,8 @@
 #include "testbench/tb_range.h"
 #include "testbench/tb_wave.h"
 #include "testbench/tb_energy.h"
+#include "testbench/tb_lanes.h"
+#include "base/base_par.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -305,13 +307,13 @@ static int run_mem_alloc(run_mem *m, const unit_desc *u, tb_result *r, size_t n,
  * unit should give for exactly those inputs and the golden check's
  * figures (tb_prep); name each output with its format and bound. */
 static void run_prepare(run_mem *m, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
-                        const vec_set *vs, tb_result *r)
+                        const vec_set *vs, tb_result *r, int64_t *in_scratch)
 {
     tb_prep_ctx pc;
     tb_prep_init(&pc, u, cfg, fmts);
     for (size_t it = 0; it < m->n; it++) {
         size_t at = it * (size_t)r->beats * (size_t)r->n_out;
-        tb_item ti = { m->in_raw + it * (size_t)r->n_in, m->ideal + at, (double *)m->gold.ideal_r + at,
+        tb_item ti = { in_scratch ? in_scratch : m->in_raw + it * (size_t)r->n_in, m->ideal + at, (double *)m->gold.ideal_r + at,
                        (double *)m->gold.ideal_u + at, (double *)m->gold.ref_u + at, m->exact ? m->exact + at : NULL,
                        m->exact_den ? m->exact_den + at : NULL, m->exact_hi ? m->exact_hi + at : NULL, m->exact_ok + it };
         tb_prep(&pc, vec_row(vs, it), &ti, m->in_ovf);
@@ -421,6 +423,95 @@ static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
     tb_verdict(r, NULL);
 }
 
+/* The items on the batch's lanes (tb_lanes.h), while the expected values
+ * are prepared on a second thread (run_prepare needs nothing of the
+ * simulation, the simulation only the quantized inputs): TB_OK with the
+ * figures run_collect gives, or 1 with r->engine_why when the lanes do
+ * not give the kernel's results (the kernel runs then, on the prepared
+ * values), or TB_FAIL (memory). */
+typedef struct lanes_par {
+    run_mem *m;
+    const unit_desc *u;
+    const unit_cfg *cfg;
+    const unit_fmts *fmts;
+    const vec_set *vs;
+    tb_result *r;
+    tb_lanes_job *j;
+    int rc;
+    char why[300];
+} lanes_par;
+
+static void lanes_item(void *ctx, size_t i)
+{
+    lanes_par *x = ctx;
+    if (i == 0) {
+        int64_t scratch[UNIT_MAX_IO];   /* the inputs again: the simulation has them already */
+        run_prepare(x->m, x->u, x->cfg, x->fmts, x->vs, x->r, scratch);
+    } else if (x->j) {
+        x->rc = tb_lanes_run(x->j, x->why, sizeof x->why);
+    }
+}
+
+static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, const vec_set *vs,
+                     run_mem *m, tb_result *r, char *err, size_t errlen)
+{
+    /* the inputs as tb_prep quantizes them (its in_ovf counts come from it) */
+    sim_fx_conv cv[UNIT_MAX_IO];
+    for (int i = 0, k = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_IN) sim_fx_conv_init(&cv[k++], fmts->f[i], cfg->rnd, cfg->ovf);
+    for (size_t it = 0; it < m->n; it++) {
+        const double *row = vec_row(vs, it);
+        for (int i = 0; i < r->n_in; i++) m->in_raw[it * (size_t)r->n_in + (size_t)i] = sim_fx_conv_real(&cv[i], row[i], NULL);
+    }
+    tb_built b;
+    char why[300];
+    int built = !tb_build(u, cfg, fmts, &b, why, sizeof why);
+    tb_range rg;
+    memset(&rg, 0, sizeof rg);
+    uint64_t *tog = NULL;
+    int rc = TB_FAIL, oom = 0;
+    tb_lanes_job j = { b.c, b.clk, &b.io, r->n_in, r->n_out, r->beats, m->n, m->in_raw,
+                       r->beat_cycle, r->raw, &rg, NULL, 0, 0 };
+    if (built && (tb_range_init(&rg, b.c, b.sc, b.clk) || !(tog = calloc((size_t)rg.nsmp + 1, sizeof *tog)))) oom = 1;
+    j.toggles = tog;
+    lanes_par x = { m, u, cfg, fmts, vs, r, built && !oom ? &j : NULL, 1, "" };
+    if (!built) snprintf(x.why, sizeof x.why, "the unit does not build");   /* the kernel says why */
+    base_par_for(2, 2, lanes_item, &x);
+    if (oom || x.rc < 0) goto done;
+    if (x.rc > 0) {
+        snprintf(r->engine_why, sizeof r->engine_why, "%.150s", x.why);
+        rc = 1;
+        goto done;
+    }
+    r->lanes = j.lanes;
+    r->stats.clocks = j.clocks;
+    size_t n = m->n, nbeats = m->nbeats, nb = (size_t)r->beats;
+    r->latency = r->beat_cycle[0];
+    r->cycles = r->beat_cycle[nbeats - 1] + 1;
+    r->cycles_per_item = n > 1 ? (double)(r->beat_cycle[(n - 1) * nb] - r->beat_cycle[0]) / (double)(n - 1)
+                               : (double)r->cycles;
+    r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
+                                    : (double)r->cycles;
+    r->area_ge = sim_scope_area(b.sc);
+    char terr[300];
+    if (tb_ppa_timing(b.c, b.sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the batch found no loop */ }
+    /* no lane overflowed: the unit's counts are its constants' (at build) */
+    r->overflows = tb_scope_overflows(b.sc);
+    r->ovf_discarded = tb_scope_ovf_discarded(b.sc);
+    for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
+    tb_range_finish(&rg, b.sc, &b.io, m->in_ovf, r);
+    tb_energy_fill_counts(r, &rg, tog, NULL, b.c, r->stats.clocks);
+    metrics(r, vs, m->ideal, m->exact, m->exact_den, m->exact_hi, m->exact_ok, &m->gold);
+    tb_verdict(r, NULL);
+    rc = TB_OK;
+done:
+    if (rc == TB_FAIL) snprintf(err, errlen, "out of memory");
+    free(tog);
+    tb_range_free(&rg);
+    sim_free(b.c);
+    return rc;
+}
+
 int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
            const vec_set *vs, const tb_opts *o, tb_result *r, char *err, size_t errlen)
 {
@@ -436,7 +527,15 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
 
     run_mem m;
     if (run_mem_alloc(&m, u, r, vs->n_rows, err, errlen)) return TB_FAIL;
-    run_prepare(&m, u, cfg, fmts, vs, r);
+    if (o && o->lanes && !o->vcd_path) {
+        int t = run_lanes(u, cfg, fmts, vs, &m, r, err, errlen);   /* prepares too */
+        if (t != 1) { run_mem_free(&m); return t; }
+        /* the kernel from a clean slate: the lanes may have written some */
+        memset(r->raw, 0, m.nvals * sizeof *r->raw);
+        memset(r->beat_cycle, 0, m.nbeats * sizeof *r->beat_cycle);
+    } else {
+        run_prepare(&m, u, cfg, fmts, vs, r, NULL);
+    }
     run_sim s;
     memset(&s, 0, sizeof s);
     int rc = run_build(&s, u, cfg, fmts, vs, o, &m, r, err, errlen);

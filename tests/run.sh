@@ -20,13 +20,23 @@ dir=$(mktemp -d) || exit 2
 trap 'rm -rf "$dir"' EXIT
 trap 'exit 130' INT TERM
 
+# TST_QUICK=1 (make test-quick) leaves out the tests tests/slow.list
+# names: the edit loop's suite, in well under a minute.
+slow=
+if [ "${TST_QUICK:-0}" = 1 ]; then slow=$(sed 's/#.*//' tests/slow.list); fi
+is_slow() { for x in $slow; do [ "$x" = "$1" ] && return 0; done; return 1; }
+
 # The job list: one line "N BUILD KIND PATH" per test, in print order.
 n=0
 for b in "$@"; do
     for t in "$b"/tests/test_*; do
+        is_slow "$(basename "$t")" && continue
         [ -x "$t" ] && { n=$((n + 1)); echo "$n $b bin $t"; }
     done
     for t in tests/cli_*.sh; do
+        is_slow "$(basename "$t" .sh)" && continue
+        # the portable flavour (no vector loops): the batch's tests only
+        case $b in *-portable) [ "$t" = tests/cli_engine.sh ] || continue ;; esac
         [ -f "$t" ] && { n=$((n + 1)); echo "$n $b cli $t"; }
     done
 done >"$dir/jobs"

@@ -1,0 +1,204 @@
+/* tb_lanes.c - one stream of items on the batch's lanes (tb_lanes.h).
+ *
+ * Lane k drives items [from - warm, end) from reset, with tb_run's driver
+ * and monitor (tb_batch.c's, per lane): offer the next item once the unit
+ * accepted the last, record each beat the unit marks valid. Its junction
+ * in is the edge at which it offers item `from`, its junction out the one
+ * at which it offers `end` (the next lane's `from`). What the kernel does
+ * at an edge (sample the values before it, collect a beat, offer an item)
+ * belongs to the lane whose piece holds that edge: the junction out's to
+ * lane k, edges after the junction in to lane k + 1 (the two edges are
+ * the same edge of the stream).
+ */
+#include "testbench/tb_lanes.h"
+#include "sim/sim_batch.h"
+#include <stdlib.h>
+#include <string.h>
+
+/* Lanes of at least this many items of their own: the warm-up is paid
+ * once per lane. */
+#define LANES_MIN_ITEMS 32
+#define LANES_MAX       64
+/* Items before a lane's own, from reset: enough for every unit's items
+ * in flight; a unit that needs more fails the junction check (kernel). */
+#define LANES_WARM      16
+
+typedef struct lane {
+    size_t   begin, from, end;  /* items driven: [begin, end); its own from `from` */
+    size_t   next;              /* item offered */
+    size_t   got;               /* beats collected, counted from begin's first */
+    int      phase;             /* 0 warm-up, 1 its piece, 2 done */
+    uint64_t e_in, e_out;       /* the junction edges (lane 0: 0, and its last edge) */
+    size_t   beat_in, beat_out; /* stream beats before its piece, and at its end */
+    int64_t  *state_in, *state_out;   /* every signal's value at the junctions */
+    uint64_t *tog_in, *tog_out;       /* each logged signal's toggles at the junctions */
+    int64_t  *mn, *mx;                /* each live signal's range over its piece */
+} lane;
+
+static void drive(int64_t *const *nin, int64_t *nvalid, const tb_lanes_job *j, const lane *s, uint32_t l)
+{
+    if (s->next < s->end) {
+        const int64_t *v = j->in_raw + s->next * (size_t)j->n_in;
+        for (int i = 0; i < j->n_in; i++) nin[i][l] = v[i];
+        nvalid[l] = 1;
+    } else {
+        nvalid[l] = 0;
+    }
+}
+
+static void snap_state(const sim_batch *b, const sim_ctx *c, uint32_t l, int64_t *to)
+{
+    for (uint32_t i = 0, n = sim_signal_count(c); i < n; i++) to[i] = sim_batch_val(b, sim_signal_at(c, i))[l];
+}
+
+static void snap_tog(const sim_batch *b, const tb_range *g, uint32_t l, uint64_t *to)
+{
+    for (int i = 0; i < g->nsmp; i++) to[i] = sim_batch_toggles(b, g->smp[i])[l];
+}
+
+static void snap_range(const sim_batch *b, const tb_range *g, uint32_t l, int64_t *mn, int64_t *mx)
+{
+    for (int i = 0; i < g->nlive; i++) sim_batch_range(b, g->lv[i].sig, l, &mn[i], &mx[i]);
+}
+
+int tb_lanes_run(tb_lanes_job *j, char *why, size_t len)
+{
+    size_t n = j->n_items, beats = (size_t)j->beats, nout = (size_t)j->n_out;
+    size_t L = n / LANES_MIN_ITEMS;
+    if (L > LANES_MAX) L = LANES_MAX;
+    if (L >= 8) L &= ~(size_t)7;        /* the vector loops take multiples of their width */
+    if (L < 2) { snprintf(why, len, "%zu items: too few for lanes", n); return 1; }
+    char err[300];
+    sim_batch *b = sim_batch_new(j->c, j->clk, (uint32_t)L, err, sizeof err);
+    if (!b) { snprintf(why, len, "%s", err); return 1; }
+    tb_range *g = j->rg;
+    uint32_t nsig = sim_signal_count(j->c);
+    lane *S = calloc(L, sizeof *S);
+    int rc = -1;
+    if (!S || sim_batch_ranges_on(b)) goto done;
+    for (size_t k = 0; k < L; k++) {
+        lane *s = &S[k];
+        s->from = k * n / L;
+        s->end = (k + 1) * n / L;
+        s->begin = k ? s->from - LANES_WARM : 0;
+        s->next = s->begin;
+        s->phase = k ? 0 : 1;
+        s->state_in = malloc(((size_t)nsig + 1) * sizeof *s->state_in);
+        s->state_out = malloc(((size_t)nsig + 1) * sizeof *s->state_out);
+        s->tog_in = calloc((size_t)g->nsmp + 1, sizeof *s->tog_in);
+        s->tog_out = calloc((size_t)g->nsmp + 1, sizeof *s->tog_out);
+        s->mn = malloc(((size_t)g->nlive + 1) * sizeof *s->mn);
+        s->mx = malloc(((size_t)g->nlive + 1) * sizeof *s->mx);
+        if (!s->state_in || !s->state_out || !s->tog_in || !s->tog_out || !s->mn || !s->mx) goto done;
+    }
+    int64_t *nin[UNIT_MAX_IO], *nvalid = sim_batch_next(b, j->io->in_valid);
+    const int64_t *out[UNIT_MAX_IO];
+    for (int i = 0; i < j->n_in; i++) nin[i] = sim_batch_next(b, j->io->in[i]);
+    for (size_t o = 0; o < nout; o++) out[o] = sim_batch_val(b, j->io->out[o]);
+    for (size_t k = 0; k < L; k++) drive(nin, nvalid, j, &S[k], (uint32_t)k);
+    sim_batch_start(b);
+    for (size_t k = 0; k < L; k++) sim_batch_range_reset(b, (uint32_t)k);   /* lane 0's piece starts here */
+    const int64_t *iv = sim_batch_val(b, j->io->in_valid), *ir = sim_batch_val(b, j->io->in_ready);
+    const int64_t *ov = sim_batch_val(b, j->io->out_valid);
+    size_t active = L, total = n * beats;
+    uint64_t e = 0, budget = 1000 + (uint64_t)total * 4096;
+    int late = 0;
+    while (active) {
+        e++;
+        for (size_t k = 0; k < L; k++) {
+            lane *s = &S[k];
+            if (s->phase == 2) continue;
+            /* monitor: the cycle that just ended */
+            if (ov[k]) {
+                size_t at = s->begin * beats + s->got;
+                if (s->phase == 1 && at < total) {
+                    j->beat_cycle[at] = e - 1;
+                    for (size_t o = 0; o < nout; o++) j->raw[at * nout + o] = out[o][k];
+                }
+                s->got++;
+                if (k == L - 1 && at + 1 == total) {
+                    /* the stream's last beat: tb_run stops after this edge, its driver's
+                     * writes at it taken (a combinational unit's valid falls) */
+                    s->phase = 2;
+                    s->e_out = e;
+                    s->beat_out = total;
+                    snap_range(b, g, (uint32_t)k, s->mn, s->mx);
+                    active--;
+                    if (iv[k] && ir[k]) { s->next++; drive(nin, nvalid, j, s, (uint32_t)k); }
+                    continue;
+                }
+            }
+            /* driver */
+            if (iv[k] && ir[k]) {
+                s->next++;
+                if (s->phase == 0 && s->next == s->from) {
+                    s->phase = 1;
+                    s->e_in = e;
+                    s->beat_in = s->begin * beats + s->got;
+                    snap_state(b, j->c, (uint32_t)k, s->state_in);
+                    snap_tog(b, g, (uint32_t)k, s->tog_in);
+                    sim_batch_range_reset(b, (uint32_t)k);
+                } else if (s->phase == 1 && k < L - 1 && s->next == s->end) {
+                    s->phase = 2;
+                    s->e_out = e;
+                    s->beat_out = s->begin * beats + s->got;
+                    snap_state(b, j->c, (uint32_t)k, s->state_out);
+                    snap_tog(b, g, (uint32_t)k, s->tog_out);
+                    snap_range(b, g, (uint32_t)k, s->mn, s->mx);
+                    active--;
+                    continue;
+                }
+                drive(nin, nvalid, j, s, (uint32_t)k);
+            }
+            if (e >= budget) { late = 1; s->phase = 2; active--; }
+        }
+        sim_batch_cycle(b);
+    }
+    /* the last lane's toggles through the last edge's settling, where tb_run stops */
+    snap_tog(b, g, (uint32_t)(L - 1), S[L - 1].tog_out);
+    rc = 1;
+    if (late) { snprintf(why, len, "a lane gave no answer in time"); goto done; }
+    for (size_t k = 0; k < L; k++)
+        if (sim_batch_overflowed(b, (uint32_t)k)) { snprintf(why, len, "an overflow (the kernel counts it)"); goto done; }
+    for (size_t k = 1; k < L; k++) {
+        const lane *p = &S[k - 1], *s = &S[k];
+        if (p->beat_out != s->beat_in || memcmp(p->state_out, s->state_in, (size_t)nsig * sizeof *s->state_in)) {
+            snprintf(why, len, "item %zu depends on more than the %d items before it", s->from, LANES_WARM);
+            goto done;
+        }
+    }
+    /* joined: each piece's clocks shifted by the stream's before it */
+    uint64_t at_edge = 0;       /* the stream's edge at lane k's junction in */
+    for (size_t k = 0; k < L; k++) {
+        const lane *s = &S[k];
+        for (size_t x = s->beat_in; x < s->beat_out; x++) j->beat_cycle[x] += at_edge - s->e_in;
+        at_edge += s->e_out - s->e_in;
+    }
+    j->clocks = at_edge;
+    for (int i = 0; i < g->nsmp; i++) {
+        uint64_t t = 0;
+        for (size_t k = 0; k < L; k++) t += S[k].tog_out[i] - S[k].tog_in[i];
+        j->toggles[i] = t;
+    }
+    for (int i = 0; i < g->nlive; i++) {
+        int64_t lo = S[0].mn[i], hi = S[0].mx[i];
+        for (size_t k = 1; k < L; k++) {
+            if (S[k].mn[i] < lo) lo = S[k].mn[i];
+            if (S[k].mx[i] > hi) hi = S[k].mx[i];
+        }
+        g->lv[i].lo = lo;
+        g->lv[i].span = (uint64_t)hi - (uint64_t)lo;
+    }
+    g->sampled = 1;
+    j->lanes = (uint32_t)L;
+    rc = 0;
+done:
+    if (S)
+        for (size_t k = 0; k < L; k++) {
+            free(S[k].state_in); free(S[k].state_out); free(S[k].tog_in); free(S[k].tog_out);
+            free(S[k].mn); free(S[k].mx);
+        }
+    free(S);
+    sim_batch_free(b);
+    return rc;
+}

@@ -1,0 +1,75 @@
+#!/bin/sh
+# cli_engine.sh - `run` on the batch's lanes (the default) gives the same
+# report as on the event-driven kernel (--kernel), for every unit and
+# schedule: the JSON, byte for byte but for its "sim" line (the engine,
+# and the kernel's own counters, printed only when the kernel ran), the
+# text table but for its engine line, the --out CSV. Then the cases that
+# must fall back to the kernel: --vcd, an overflow.
+. tests/lib_cli.sh
+PREFIX=cli_engine.
+
+# every unit and schedule, as `list` names them
+$S list >"$T/list" 2>&1
+units=$(sed -n 's/^\([a-z0-9_]*\) — .*/\1/p' "$T/list")
+[ -n "$units" ] || fail units "list names no unit"
+for u in $units; do
+    scheds=$($S list "$u" | sed -n 's/^  schedules: //p' | grep -oE '(^|, )[a-z0-9_-]+ \(' | tr -d ',( ')
+    for sc in $scheds; do
+        n="$u.$sc"
+        $S run "$u" --schedule "$sc" --json >"$T/b.json" 2>"$T/b.err"; rb=$?
+        $S run "$u" --schedule "$sc" --json --kernel >"$T/k.json" 2>"$T/k.err"; rk=$?
+        if [ "$rb" -ne "$rk" ]; then fail "$n" "exit $rb on lanes, $rk on the kernel"; continue; fi
+        if ! grep -q '"sim": {"engine": "batch", "lanes": [0-9]*, "clocks": [0-9]*}$' "$T/b.json"; then
+            fail "$n" "did not run on lanes: $(grep '"sim"' "$T/b.json")"; continue
+        fi
+        if ! grep -q '"sim": {"engine": "kernel", "clocks": [0-9]*, "events": [0-9]*, "delta_cycles"' "$T/k.json"; then
+            fail "$n" "--kernel: $(grep '"sim"' "$T/k.json")"; continue
+        fi
+        grep -v '"sim": ' "$T/b.json" >"$T/b.rest"
+        grep -v '"sim": ' "$T/k.json" >"$T/k.rest"
+        # the clocks of the sim line too
+        cb=$(sed -n 's/.*"clocks": \([0-9]*\).*/\1/p' "$T/b.json")
+        ck=$(sed -n 's/.*"sim".*"clocks": \([0-9]*\),.*/\1/p' "$T/k.json")
+        if ! cmp -s "$T/b.rest" "$T/k.rest"; then
+            fail "$n" "JSON differs: $(diff "$T/b.rest" "$T/k.rest" | head -4 | tr '\n' ' ')"
+        elif [ "$cb" != "$ck" ]; then
+            fail "$n" "clocks $cb on lanes, $ck on the kernel"
+        else
+            ok "$n"
+        fi
+    done
+done
+
+# the text table: one engine line each, the rest the same
+$S run horner3 >"$T/b.txt"; $S run horner3 --no-batch >"$T/k.txt"
+if grep -q '^engine batch: [0-9]* lanes' "$T/b.txt" && grep -q '^engine kernel: [0-9]* events, [0-9]* delta cycles' "$T/k.txt" &&
+   [ "$(grep -v '^engine ' "$T/b.txt")" = "$(grep -v '^engine ' "$T/k.txt")" ]; then ok table; else fail table "$(diff "$T/b.txt" "$T/k.txt" | head -6 | tr '\n' ' ')"; fi
+
+# a longer file (several items a lane, 64 lanes) and its --out rows
+$S vectors span23 -n 5000 --seed 3 -o "$T/s.vec" 2>/dev/null
+$S run span23 --schedule mac --vectors "$T/s.vec" --json --out "$T/b.csv" >"$T/b.json"; rb=$?
+$S run span23 --schedule mac --vectors "$T/s.vec" --json --kernel --out "$T/k.csv" >"$T/k.json"; rk=$?
+if [ "$rb" = "$rk" ] && grep -q '"engine": "batch", "lanes": 64' "$T/b.json" && cmp -s "$T/b.csv" "$T/k.csv" &&
+   [ "$(grep -v '"sim"' "$T/b.json")" = "$(grep -v '"sim"' "$T/k.json")" ]; then ok long-csv; else fail long-csv; fi
+
+# --vcd runs the kernel
+$S run horner3 --vcd "$T/h.vcd" >"$T/v.txt"
+if grep -q '^engine kernel: ' "$T/v.txt"; then ok vcd-kernel; else fail vcd-kernel "$(grep engine "$T/v.txt")"; fi
+
+# an overflow: the kernel counts it, and says why it ran
+$S run horner3 --fmt mul=s3.12 --json >"$T/b.json"; rb=$?
+$S run horner3 --fmt mul=s3.12 --json --kernel >"$T/k.json"; rk=$?
+$S run horner3 --fmt mul=s3.12 >"$T/o.txt"
+if [ "$rb" = 1 ] && [ "$rk" = 1 ] && cmp -s "$T/b.json" "$T/k.json" && grep -q '"overflows": [1-9]' "$T/k.json" &&
+   grep -q '^engine kernel: .*(not on lanes: an overflow' "$T/o.txt"; then ok overflow; else fail overflow; fi
+
+# a vector file over 64 MiB (here mostly comment lines) is streamed on the
+# kernel, with the same report
+{ sed -n '/^#/p' vectors/horner3.vec; yes '# a comment line, to make the file larger than the lanes hold..............' | head -n 900000
+  sed '/^#/d' vectors/horner3.vec; } >"$T/big.vec"
+$S run horner3 --vectors "$T/big.vec" --json >"$T/b.json"; rb=$?
+$S run horner3 --vectors "$T/big.vec" >"$T/b.txt"
+$S run horner3 --json --kernel >"$T/k.json"
+if [ "$rb" = 0 ] && grep -q '"engine": "kernel"' "$T/b.json" && grep -q '(not on lanes: a vector file over 64 MiB' "$T/b.txt" &&
+   cmp -s "$T/b.json" "$T/k.json"; then ok big-file-streamed; else fail big-file-streamed; fi
+rm -f "$T/big.vec"
