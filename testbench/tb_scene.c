@@ -51,9 +51,20 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define TB_SCENE_BANDS 16
+
+/* CPU seconds of the calling thread: a render's time accounting
+ * (tb_scene_result.cpu_sim, cpu_render) sums what each of its threads
+ * spends, so that it reads the same on a busy machine and for any -j. */
+static double cpu_now(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts)) return 0;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 /* ------------------------------------------------- the unit of a policy */
 
@@ -310,6 +321,7 @@ typedef struct band {
     tb_span_stats st;
     size_t intervals, deg2, nodes;
     double coef_adds, horner_deg;  /* sums over intervals / pixels */
+    double cpu_sim, cpu_other;     /* CPU seconds: simulating its intervals; the rest of its work */
     int rc;
     char err[300];
 } band;
@@ -330,6 +342,7 @@ typedef struct job {
     int batch;                     /* simulate bands side by side (tb_span_run_lanes) */
     int energy;                    /* count toggles and energy (tb_scene_opts) */
     int ngroups;                   /* the batch: bands in this many groups, one a thread */
+    double gcpu_sim[TB_SCENE_BANDS], gcpu_other[TB_SCENE_BANDS];   /* per group, as band's */
     tb_scene_result *r;
 } job;
 
@@ -377,6 +390,7 @@ static void run_band(job *J, band *b)
     const scn_gbuf *g = J->g;
     tb_scene_result *r = J->r;
     int W = g->w, L = d->L, n2 = nodes_n2(d);
+    double c0 = cpu_now();
     /* reference */
     for (int y = b->y0; y < b->y1; y++)
         for (int x = 0; x < W; x++) {
@@ -394,13 +408,14 @@ static void run_band(job *J, band *b)
         nitems += (size_t)(n + L - 1) / L;
         npix += (size_t)n;
     }
-    if (!nitems) return;
+    if (!nitems) { b->cpu_other += cpu_now() - c0; return; }
     tb_span_item *items = calloc(nitems, sizeof *items);
     double *pix = malloc(npix * sizeof *pix);
     if (!items || !pix) {
         free(items); free(pix);
         b->rc = TB_FAIL;
         snprintf(b->err, sizeof b->err, "out of memory");
+        b->cpu_other += cpu_now() - c0;
         return;
     }
     size_t it = 0;
@@ -450,13 +465,18 @@ static void run_band(job *J, band *b)
         b->items = items;
         b->nitems = nitems;
         b->pix = pix;
+        b->cpu_other += cpu_now() - c0;
         return;
     }
+    double c1 = cpu_now();
     b->rc = J->energy ? tb_span_run_energy(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err)
                       : tb_span_run(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err);
+    double c2 = cpu_now();
     if (b->rc == TB_OK) band_pixels(J, b, pix);
     free(items);
     free(pix);
+    b->cpu_sim += c2 - c1;
+    b->cpu_other += (c1 - c0) + (cpu_now() - c2);
 }
 
 /* Bands [g * nb / ngroups, (g + 1) * nb / ngroups) whose intervals wait,
@@ -473,7 +493,9 @@ static void run_group(job *J, int g)
         lanes[n++] = (tb_span_lane){ .items = b->items, .nitems = b->nitems, .pix = b->pix, .energy = J->energy };
     }
     if (!n) return;
+    double c0 = cpu_now();
     tb_span_run_lanes(J->u, J->cfg, J->fmts, lanes, (size_t)n, 1);
+    double c1 = cpu_now();
     for (int i = 0; i < n; i++) {
         band *b = &J->bands[which[i]];
         b->st = lanes[i].st;
@@ -485,6 +507,8 @@ static void run_group(job *J, int g)
         b->items = NULL;
         b->pix = NULL;
     }
+    J->gcpu_sim[g] = c1 - c0;
+    J->gcpu_other[g] = cpu_now() - c1;
 }
 
 static void band_item(void *arg, size_t b)
@@ -536,6 +560,7 @@ static void metrics(const scn_gbuf *g, tb_scene_result *r)
 int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
                          const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen)
 {
+    double c0 = cpu_now();
     memset(r, 0, sizeof *r);
     tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
     if (!o) o = &dflt;
@@ -579,12 +604,14 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     }
     int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
     if (jobs > nb) jobs = nb;
+    double c1 = cpu_now();
     base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
     if (J.batch) {
         /* then the bands' hardware, a group of lanes a thread */
         J.ngroups = jobs;
         base_par_for((size_t)J.ngroups, jobs, group_item, &J);
     }
+    double c2 = cpu_now();
 
     /* sums in band order */
     int rc = TB_OK;
@@ -608,6 +635,12 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
         r->nodes_shaded += b->nodes;
         adds += b->coef_adds;
         hdeg += b->horner_deg;
+        r->cpu_sim += b->cpu_sim;
+        r->cpu_render += b->cpu_sim + b->cpu_other;
+    }
+    for (int k = 0; J.batch && k < J.ngroups; k++) {
+        r->cpu_sim += J.gcpu_sim[k];
+        r->cpu_render += J.gcpu_sim[k] + J.gcpu_other[k];
     }
     free(bands);
     free(spans);
@@ -636,6 +669,7 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     r->long_ref = tb_scene_long_ops(r->ops_ref);
     r->long_hw = tb_scene_long_ops(r->ops_hw);
     r->speedup_long = r->long_hw > 0 ? r->long_ref / r->long_hw : 0;
+    r->cpu_render += (c1 - c0) + (cpu_now() - c2);
     return TB_OK;
 }
 
@@ -643,14 +677,17 @@ int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o
                     tb_scene_result *r, char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
+    double c0 = cpu_now();
     const scn_view *view = o && o->heldout ? &d->heldout : &d->view;
     scn_gbuf g;
     /* the rasterizer fails for a camera it cannot use (bad input) or
      * out of memory */
     if (scn_raster(m, &view->cam, d->width, d->height, &g, err, errlen))
         return strstr(err, "memory") ? TB_FAIL : TB_BADINPUT;
+    double c1 = cpu_now();
     int rc = tb_scene_render_gbuf(d, &g, NULL, NULL, o, r, err, errlen);
     scn_gbuf_free(&g);
+    if (rc == TB_OK) r->cpu_render += c1 - c0;    /* the rasterization */
     return rc;
 }
 

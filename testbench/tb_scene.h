@@ -82,6 +82,14 @@ typedef struct tb_scene_result {
     int       heldout;                /* 1: the held-out view was rendered */
     int       have_speed;             /* speed filled (tb_scene_speed_of) */
     tb_scene_speed speed;
+    /* Where the render's time went, in CPU seconds summed over its
+     * threads (each thread's own clock): cpu_sim simulating the span unit
+     * (tb_span_run / the batch lanes: the unit's build and levelization,
+     * the inputs' quantization, every clock); cpu_render the whole render
+     * (rasterization in tb_scene_render, reference and node shading,
+     * intervals, simulation, metrics, operation counts). Measured, so not
+     * part of any output; bench/bench_scene.c prints them. */
+    double    cpu_sim, cpu_render;
 } tb_scene_result;
 
 /* Fill r->speed for render r (the unit it instantiated) at the scene's

@@ -107,7 +107,7 @@ static void test_search_smallest_and_heldout(void)
     tst_rmtree(SCRATCH);
     char err[300];
     FILE *out = fopen("/dev/null", "w");
-    int rc = tb_scene_search(&D, &M, 2, 0, target, SCRATCH, 1, out, err, sizeof err);
+    int rc = tb_scene_search(&D, &M, 2, 0, target, SCRATCH, 1, out, NULL, err, sizeof err);
     fclose(out);
     TST_CHECK(rc == TB_OK || rc == TB_FAIL, "rc %d: %s", rc, err);
     char *js = slurp(scr("/search.json"));
@@ -220,7 +220,7 @@ static void test_search_jobs(void)
         char dir[128], p[160];
         snprintf(dir, sizeof dir, "%s/j%d", SCRATCH, j);
         FILE *out = fopen("/dev/null", "w");
-        int rc = tb_scene_search(&d, &M, j, 0, 1.5 * e, dir, 1, out, err, sizeof err);
+        int rc = tb_scene_search(&d, &M, j, 0, 1.5 * e, dir, 1, out, NULL, err, sizeof err);
         fclose(out);
         TST_CHECK(rc == TB_OK || rc == TB_FAIL, "rc %d: %s", rc, err);
         snprintf(p, sizeof p, "%s/search.json", dir);
@@ -240,11 +240,11 @@ static void test_search_unmeetable(void)
     /* Below the method's own error no width helps: TB_FAIL, said plainly. */
     char err[300], buf[4096] = "";
     FILE *out = fmemopen(buf, sizeof buf - 1, "w");
-    int rc = tb_scene_search(&D, &M, 1, 0, 1e-30, NULL, 0, out, err, sizeof err);
+    int rc = tb_scene_search(&D, &M, 1, 0, 1e-30, NULL, 0, out, NULL, err, sizeof err);
     fclose(out);
     TST_EQ_INT(rc, TB_FAIL);
     TST_CHECK(strstr(buf, "no uniform width") != NULL, "summary: %s", buf);
-    TST_EQ_INT(tb_scene_search(&D, &M, 1, 0, -1, NULL, 0, stdout, err, sizeof err), TB_BADINPUT);
+    TST_EQ_INT(tb_scene_search(&D, &M, 1, 0, -1, NULL, 0, stdout, NULL, err, sizeof err), TB_BADINPUT);
 }
 
 static size_t count_lines(const char *s)
@@ -264,7 +264,7 @@ static void test_sweep_csv(void)
         char dir[128];
         snprintf(dir, sizeof dir, "%s/sweep%d", SCRATCH, j);
         mkdir(SCRATCH, 0777);
-        int rc = tb_scene_sweep(&D, &M, j, 0, spec, dir, 0, out, err, sizeof err);
+        int rc = tb_scene_sweep(&D, &M, j, 0, spec, dir, 0, out, NULL, err, sizeof err);
         TST_EQ_INT(rc, TB_OK);
         char p[160];
         snprintf(p, sizeof p, "%s/sweep.csv", dir);
@@ -313,8 +313,8 @@ static void test_sweep_csv(void)
     }
     free(a);
     free(b);
-    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, 0, "L=4;bogus=1", NULL, 0, stdout, err, sizeof err), TB_BADINPUT);
-    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, 0, "policy=cubic", NULL, 0, stdout, err, sizeof err), TB_BADINPUT);
+    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, 0, "L=4;bogus=1", NULL, 0, stdout, NULL, err, sizeof err), TB_BADINPUT);
+    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, 0, "policy=cubic", NULL, 0, stdout, NULL, err, sizeof err), TB_BADINPUT);
 }
 
 static void test_scene_claims(void)
