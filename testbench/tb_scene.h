@@ -119,6 +119,26 @@ void tb_scene_free(tb_scene_result *r);
 typedef double (*tb_scene_shader)(void *ctx, const double pos[3], const double nrm[3]);
 int  tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
                           const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen);
+/* What every render of one view of a description shares whatever its
+ * formats (a format search renders the same scene hundreds of times): the
+ * reference image, the degree and region images, the spans, and the
+ * intervals with their exactly shaded nodes. tb_scene_prep_new makes it
+ * for d's view (heldout 0) or held-out view on surface buffer g (which
+ * must outlive it) on `jobs` threads; TB_OK, or TB_FAIL / TB_BADINPUT with
+ * a message. tb_scene_render_prep renders as tb_scene_render_gbuf(d, g,
+ * NULL, NULL, o with p's view) does, to the same bytes, doing only the
+ * simulation and what follows it: d may differ from p's description in
+ * its width, formats, rounding, overflow, schedule and cost weights (any
+ * other difference is rendered from scratch); no VCD. Several threads may
+ * render from one p at once. tb_scene_prep_cpu: the CPU seconds making p
+ * took. */
+typedef struct tb_scene_prep tb_scene_prep;
+int    tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int jobs, tb_scene_prep **p,
+                         char *err, size_t errlen);
+int    tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o,
+                            tb_scene_result *r, char *err, size_t errlen);
+double tb_scene_prep_cpu(const tb_scene_prep *p);
+void   tb_scene_prep_free(tb_scene_prep *p);
 /* Operations of one evaluation of d's lighting model at a point of view v
  * (the per-pixel cost of the reference; each shaded node costs the same),
  * as an efficient per-pixel shader does it: what is constant over the

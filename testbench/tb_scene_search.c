@@ -61,6 +61,7 @@ typedef struct search {
     const scn_desc *d;
     const scn_desc *dr;           /* what renders use: d, from step 2 on d at the uniform width W */
     const scn_gbuf *gv, *gh;      /* view, held-out view */
+    tb_scene_prep *pv, *ph;       /* their references and intervals, made once */
     int      jobs;
     int      no_batch;    /* tb_scene_opts.no_batch of every render */
     double   target;
@@ -113,7 +114,7 @@ static void render(const search *s, const scn_desc *d, const unit_fmts *f, int h
     memset(&r, 0, sizeof r);
     if (keep) memset(keep, 0, sizeof *keep);
     memset(e, 0, sizeof *e);
-    e->status = tb_scene_render_gbuf(d, heldout ? s->gh : s->gv, NULL, NULL, &o, &r, e->err, sizeof e->err);
+    e->status = tb_scene_render_prep(d, heldout ? s->ph : s->pv, &o, &r, e->err, sizeof e->err);
     if (e->status == TB_OK) {
         e->nmse = r.nmse;
         e->psnr = r.psnr;
@@ -470,6 +471,13 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     cand *cj = calloc((size_t)jobs, sizeof *cj);
     int rc = TB_FAIL;
     if (!rp || !cj) { snprintf(err, errlen, "scene search: out of memory"); rc = TB_BADINPUT; goto done; }
+    /* What no format changes, once for each view: the reference, the
+     * nodes and intervals (every render reads them; none recomputes). */
+    rc = tb_scene_prep_new(d, &gv, 0, jobs, &s.pv, err, errlen);
+    if (rc == TB_OK) rc = tb_scene_prep_new(d, &gh, 1, jobs, &s.ph, err, errlen);
+    if (rc != TB_OK) goto done;
+    s.cpu_render += tb_scene_prep_cpu(s.pv) + tb_scene_prep_cpu(s.ph);
+    rc = TB_FAIL;
     rp->d = d;
     rp->target = target_nmse;
     unit_cfg cfg;
@@ -701,6 +709,8 @@ report:
     }
 done:
     tb_scene_free(&s.found_r);
+    tb_scene_prep_free(s.pv);
+    tb_scene_prep_free(s.ph);
     free(rp);
     free(cj);
     scn_gbuf_free(&gv);

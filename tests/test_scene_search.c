@@ -234,6 +234,68 @@ static void test_search_jobs(void)
     free(a);
 }
 
+/* Two renders are the same: images, figures, clocks. */
+static int same_render(const tb_scene_result *a, const tb_scene_result *b)
+{
+    size_t n = (size_t)a->w * a->h;
+    return a->w == b->w && a->h == b->h && !memcmp(a->hw, b->hw, n * sizeof *a->hw) &&
+           !memcmp(a->ref, b->ref, n * sizeof *a->ref) && !memcmp(a->deg, b->deg, n) &&
+           !memcmp(a->region, b->region, n) && a->nmse == b->nmse && a->psnr == b->psnr &&
+           a->hwst.clocks == b->hwst.clocks && a->hwst.overflows == b->hwst.overflows &&
+           a->hwst.area_ge == b->hwst.area_ge && a->nodes_shaded == b->nodes_shaded &&
+           a->intervals == b->intervals && a->cost_hw == b->cost_hw && a->covered == b->covered;
+}
+
+/* A render from a prep (the search's: reference and intervals made once)
+ * is the render from scratch, for other widths and formats, on either
+ * view, batched or not; a description the prep does not fit (another L)
+ * is rendered from scratch. */
+static void test_prep_exact(void)
+{
+    if (!setup()) TST_SKIP("no built-in sphere scene");
+    char err[300];
+    scn_desc d = D;
+    d.policy = SCN_POL_ADAPTIVE_AUTO;
+    for (int held = 0; held < 2; held++) {
+        scn_gbuf g;
+        const scn_view *v = held ? &d.heldout : &d.view;
+        TST_EQ_INT(scn_raster(&M, &v->cam, d.width, d.height, &g, err, sizeof err), 0);
+        tb_scene_prep *p = NULL;
+        TST_EQ_INT(tb_scene_prep_new(&d, &g, held, 2, &p, err, sizeof err), TB_OK);
+        int cases = 0;
+        for (int k = 0; k < 5 && p; k++) {
+            scn_desc e = d;
+            unit_fmts f, *fp = NULL;
+            const unit_desc *u;
+            unit_cfg cfg;
+            if (k == 1) e.fmt_width = 12;
+            if (k == 2 || k == 3) {
+                /* two fraction bits off every signal that has them */
+                TST_EQ_INT(tb_scene_unit(&e, &u, &cfg, &f, err, sizeof err), 0);
+                for (int i = 0; i < u->nsigs; i++)
+                    if (f.f[i].width && f.f[i].fbits > 3) { f.f[i].fbits -= 2; f.f[i].width -= 2; }
+                fp = &f;
+            }
+            if (k == 4) e.L = 4;          /* not the prep's intervals */
+            tb_scene_opts o = { 2, held, NULL, fp, k == 3, 0 };
+            tb_scene_result a, b;
+            memset(&a, 0, sizeof a);
+            memset(&b, 0, sizeof b);
+            TST_EQ_INT(tb_scene_render_gbuf(&e, &g, NULL, NULL, &o, &a, err, sizeof err), TB_OK);
+            TST_EQ_INT(tb_scene_render_prep(&e, p, &o, &b, err, sizeof err), TB_OK);
+            TST_CHECK(same_render(&a, &b), "view %d case %d: the prep's render differs", held, k);
+            TST_CHECK(b.cpu_render >= b.cpu_sim && b.cpu_sim > 0, "case %d: CPU %g of which simulating %g", k,
+                      b.cpu_render, b.cpu_sim);
+            cases++;
+            tb_scene_free(&a);
+            tb_scene_free(&b);
+        }
+        TST_EQ_INT(cases, 5);
+        tb_scene_prep_free(p);
+        scn_gbuf_free(&g);
+    }
+}
+
 static void test_search_unmeetable(void)
 {
     if (!setup()) TST_SKIP("no built-in sphere scene");
@@ -365,6 +427,7 @@ int main(void)
     TST_RUN(test_search_smallest_and_heldout);
     TST_RUN(test_search_jobs);
     TST_RUN(test_search_unmeetable);
+    TST_RUN(test_prep_exact);
     TST_RUN(test_sweep_csv);
     TST_RUN(test_scene_claims);
     if (have_scene) scn_mesh_free(&M);
