@@ -550,6 +550,11 @@ struct tb_scene_prep {
     uint8_t *deg, *region;
     band bands[TB_SCENE_BANDS];    /* items kept (pix NULL) */
     double cpu;
+    /* tb_scene_prep_unit: the unit and configuration of ud */
+    int have_unit;
+    scn_desc ud;
+    const unit_desc *u;
+    unit_cfg cfg;
 };
 
 /* d renders like p's description but for its width and formats (and
@@ -620,8 +625,12 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
     tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
     if (!o) o = &dflt;
     r->heldout = p ? p->heldout : o->heldout;
-    /* (making a prep simulates nothing: it needs no unit) */
-    if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make) return TB_BADINPUT;
+    if (p && p->have_unit && o->fmts && !memcmp(&p->ud, d, sizeof *d)) {
+        /* the formats are given: the rule's would be thrown away */
+        r->unit = p->u;
+        r->cfg = p->cfg;
+    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make)
+        return TB_BADINPUT;      /* (making a prep simulates nothing: it needs no unit) */
     if (o->fmts) r->fmts = *o->fmts;
     const scn_view *view = r->heldout ? &d->heldout : &d->view;
     size_t np = (size_t)g->w * g->h;
@@ -804,6 +813,17 @@ int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int job
     if (rc != TB_OK) { tb_scene_prep_free(p); return rc; }
     *out = p;
     return TB_OK;
+}
+
+int tb_scene_prep_unit(tb_scene_prep *p, const scn_desc *d, char *err, size_t errlen)
+{
+    unit_fmts f;
+    p->have_unit = 0;
+    if (!prep_fits(p, d)) { snprintf(err, errlen, "tb_scene_prep_unit: the description does not fit the prep"); return -1; }
+    if (tb_scene_unit(d, &p->u, &p->cfg, &f, err, errlen)) return -1;
+    p->ud = *d;
+    p->have_unit = 1;
+    return 0;
 }
 
 double tb_scene_prep_cpu(const tb_scene_prep *p)

@@ -138,6 +138,11 @@ int    tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int 
 int    tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o,
                             tb_scene_result *r, char *err, size_t errlen);
 double tb_scene_prep_cpu(const tb_scene_prep *p);
+/* Renders from p of exactly d (which must fit p) with the formats given
+ * (tb_scene_opts.fmts) take d's unit and configuration from p instead of
+ * working out the format rule's formats, which they replace anyway. Not
+ * while other threads render from p. 0, or -1 with a message. */
+int    tb_scene_prep_unit(tb_scene_prep *p, const scn_desc *d, char *err, size_t errlen);
 void   tb_scene_prep_free(tb_scene_prep *p);
 /* Operations of one evaluation of d's lighting model at a point of view v
  * (the per-pixel cost of the reference; each shaded node costs the same),

@@ -564,6 +564,10 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     scn_desc dwu = *d;
     dwu.fmt_width = rp->wu;
     s.dr = &dwu;
+    if (tb_scene_prep_unit(s.pv, &dwu, err, errlen) || tb_scene_prep_unit(s.ph, &dwu, err, errlen)) {
+        rc = TB_BADINPUT;
+        goto done;
+    }
     const unit_desc *u = rp->u;
     unit_fmts cur = rp->uni.fmts;
     rp->found = rp->uni;

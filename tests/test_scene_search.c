@@ -248,8 +248,9 @@ static int same_render(const tb_scene_result *a, const tb_scene_result *b)
 
 /* A render from a prep (the search's: reference and intervals made once)
  * is the render from scratch, for other widths and formats, on either
- * view, batched or not; a description the prep does not fit (another L)
- * is rendered from scratch. */
+ * view, batched or not, with the unit taken from the prep or not; a
+ * description the prep does not fit (another L) is rendered from
+ * scratch. */
 static void test_prep_exact(void)
 {
     if (!setup()) TST_SKIP("no built-in sphere scene");
@@ -277,6 +278,8 @@ static void test_prep_exact(void)
                 fp = &f;
             }
             if (k == 4) e.L = 4;          /* not the prep's intervals */
+            /* from here, with formats given, the unit comes from the prep */
+            if (k == 2) TST_EQ_INT(tb_scene_prep_unit(p, &e, err, sizeof err), 0);
             tb_scene_opts o = { 2, held, NULL, fp, k == 3, 0 };
             tb_scene_result a, b;
             memset(&a, 0, sizeof a);
