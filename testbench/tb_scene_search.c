@@ -27,7 +27,16 @@
  * Signals pinned by the description's fmt overrides keep their formats.
  *
  * Every render uses the scene's own resolution; the surface buffers of the
- * view and of the held-out view are rasterized once and reused.
+ * view and of the held-out view are rasterized once, and what no format
+ * changes (the reference image, the shaded nodes, the intervals) is made
+ * once for each (tb_scene_prep): a render only simulates and measures.
+ * From step 2 on every render is of the description at width W with the
+ * formats given, as `scene --set width=W --set fmt=...` renders them; the
+ * accepted render of the found formats is kept and written with its
+ * images into DIR/found/ (tests/cli_scene_exact.sh renders it so again).
+ * "renders" counts what a one-at-a-time search renders (the speculative
+ * candidates of step 3 not among them), so the output is the same for any
+ * jobs; tb_scene_work has the renders run and their CPU time.
  */
 #include "testbench/tb_scene_search.h"
 #include "testbench/tb_sweep.h"
@@ -430,6 +439,23 @@ static int write_found(search *s, const report *rp, const char *outdir, char *er
     return tb_scene_write(s->dr, &s->found_r, dir, err, errlen);
 }
 
+/* No formats found: an earlier search's DIR/found/ would mislead. */
+static void remove_found(const char *outdir)
+{
+    static const char *const files[] = { "ref.png", "hw.png", "degree.png", "region.png", "scene.json" };
+    char path[1200];
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        snprintf(path, sizeof path, "%s/found/%s", outdir, files[i]);
+        unlink(path);
+    }
+    for (int k = 1; k <= 4096; k *= 4) {
+        snprintf(path, sizeof path, "%s/found/err-x%d.png", outdir, k);
+        unlink(path);
+    }
+    snprintf(path, sizeof path, "%s/found", outdir);
+    rmdir(path);
+}
+
 /* ---------------------------------------------------------------- search */
 
 /* The renders expected after step 2's signals ord[from..no-1] (formats
@@ -703,6 +729,7 @@ report:
     rp->verdict = rc;
     if (outdir && write_report(rp, outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
     if (outdir && rp->met && write_found(&s, rp, outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (outdir && !rp->met) remove_found(outdir);
     if (json) print_json(out, rp);
     else print_text(out, rp);
     if (rc == TB_FAIL) {

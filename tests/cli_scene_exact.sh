@@ -5,7 +5,8 @@
 # search.json and rendered plainly with `scene --set width=W --set fmt=...`,
 # and every image must be the same bytes, scene.json the same lines (its
 # NMSE to all 17 digits) but the energy per pixel, which the search does
-# not count. Also: the same found/ for -j 1 and -j 2. Small images.
+# not count. Also: the same found/ for -j 1 and -j 2, and no stale found/
+# after a search that finds nothing. Small images.
 PREFIX=cli_scene_exact.
 . tests/lib_cli.sh
 
@@ -58,3 +59,8 @@ same=1
 for f in "$T"/sphere/found/*; do cmp -s "$f" "$T/j1/found/${f##*/}" || same=0; done
 cmp -s "$T/sphere/search.json" "$T/j1/search.json" || same=0
 [ $same -eq 1 ] && ok jobs_same_found || fail jobs_same_found "-j 1 and -j 2 differ"
+
+# A search that finds nothing leaves no found/ of an earlier one.
+"$S" scene sphere --set resolution=48x48 --set terms=8 --target-nmse 1e-30 -o "$T/j1" >/dev/null 2>&1
+[ $? -eq 1 ] && [ -s "$T/j1/search.json" ] && [ ! -e "$T/j1/found" ] && ok no_stale_found \
+    || fail no_stale_found "found/ left behind by a search that found nothing"
