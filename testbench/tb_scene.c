@@ -318,6 +318,7 @@ typedef struct band {
     tb_span_item *items;           /* its intervals, for the batch (NULL: simulated already) */
     size_t nitems, npix;
     int borrowed;                  /* items belong to a tb_scene_prep: not freed here */
+    double *refpix;                /* a prep's: the reference at the band's pixels, in their order */
     double *pix;
     tb_span_stats st;
     size_t intervals, deg2, nodes;
@@ -344,6 +345,7 @@ typedef struct job {
     int energy;                    /* count toggles and energy (tb_scene_opts) */
     int ngroups;                   /* the batch: bands in this many groups, one a thread */
     double gcpu_sim[TB_SCENE_BANDS], gcpu_other[TB_SCENE_BANDS];   /* per group, as band's */
+    double max_se;                 /* the batch stops past this squared error (INFINITY: never) */
     tb_scene_result *r;
 } job;
 
@@ -492,11 +494,12 @@ static void run_group(job *J, int g)
         band *b = &J->bands[k];
         if (!b->items) continue;
         which[n] = k;
-        lanes[n++] = (tb_span_lane){ .items = b->items, .nitems = b->nitems, .pix = b->pix, .energy = J->energy };
+        lanes[n++] = (tb_span_lane){ .items = b->items, .nitems = b->nitems, .pix = b->pix, .energy = J->energy,
+                                     .ref = b->refpix };
     }
     if (!n) return;
     double c0 = cpu_now();
-    tb_span_run_lanes(J->u, J->cfg, J->fmts, lanes, (size_t)n, 1);
+    tb_span_run_lanes_budget(J->u, J->cfg, J->fmts, lanes, (size_t)n, 1, J->max_se);
     double c1 = cpu_now();
     for (int i = 0; i < n; i++) {
         band *b = &J->bands[which[i]];
@@ -548,7 +551,8 @@ struct tb_scene_prep {
     scn_span *spans;
     double *ref;
     uint8_t *deg, *region;
-    band bands[TB_SCENE_BANDS];    /* items kept (pix NULL) */
+    band bands[TB_SCENE_BANDS];    /* items kept (pix NULL), refpix made */
+    double sum_ref2;               /* sum ref^2 over covered pixels: NMSE's denominator */
     double cpu;
     /* tb_scene_prep_unit: the unit and configuration of ud */
     int have_unit;
@@ -618,7 +622,8 @@ static void metrics(const scn_gbuf *g, tb_scene_result *r)
  * NULL, or the reference, degrees and intervals are moved into it and no
  * simulation is done (r is left empty). */
 static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx, const tb_scene_opts *o,
-                  const tb_scene_prep *p, tb_scene_prep *make, tb_scene_result *r, char *err, size_t errlen)
+                  const tb_scene_prep *p, tb_scene_prep *make, double max_nmse, tb_scene_result *r, char *err,
+                  size_t errlen)
 {
     double c0 = cpu_now();
     memset(r, 0, sizeof *r);
@@ -670,7 +675,11 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
     job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
               .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
               .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
-              .r = r };
+              .r = r, .max_se = INFINITY };
+    /* a budget only with a prep (its reference in band order); a margin
+     * far above the rounding of sums in another order, so that a render
+     * within max_nmse is never stopped */
+    if (p && max_nmse >= 0 && isfinite(max_nmse)) J.max_se = max_nmse * p->sum_ref2 * (1 + 1e-6);
     size_t s = 0;
     for (int k = 0; !p && k < nb; k++) {
         band *b = &bands[k];
@@ -698,6 +707,8 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
         make->ref = r->ref;
         make->deg = r->deg;
         make->region = r->region;
+        for (size_t i = 0; i < np; i++)
+            if (g->tri[i] >= 0) make->sum_ref2 += make->ref[i] * make->ref[i];
         r->ref = NULL;
         r->deg = r->region = NULL;
         for (int k = 0; k < nb; k++) {
@@ -709,6 +720,13 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
                 rc = b->rc;
                 snprintf(err, errlen, "%s", b->err);
             }
+            if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix)) && rc == TB_OK) {
+                rc = TB_FAIL;
+                snprintf(err, errlen, "out of memory");
+            }
+            for (size_t q = 0, j = b->s0; b->refpix && j < b->s1; j++)
+                for (int x = spans[j].x0; x < spans[j].x1; x++)
+                    b->refpix[q++] = make->ref[(size_t)spans[j].y * g->w + x];
             make->bands[k] = *b;
         }
         free(bands);
@@ -786,13 +804,16 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
 int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
                          const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen)
 {
-    return render(d, g, fn, ctx, o, NULL, NULL, r, err, errlen);
+    return render(d, g, fn, ctx, o, NULL, NULL, INFINITY, r, err, errlen);
 }
 
 void tb_scene_prep_free(tb_scene_prep *p)
 {
     if (!p) return;
-    for (int k = 0; k < p->nb; k++) free(p->bands[k].items);
+    for (int k = 0; k < p->nb; k++) {
+        free(p->bands[k].items);
+        free(p->bands[k].refpix);
+    }
     free(p->spans);
     free(p->ref);
     free(p->deg);
@@ -809,7 +830,7 @@ int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int job
     p->d = *d;
     tb_scene_opts o = { jobs, heldout, NULL, NULL, 0, 0 };
     tb_scene_result r;
-    int rc = render(d, g, NULL, NULL, &o, NULL, p, &r, err, errlen);
+    int rc = render(d, g, NULL, NULL, &o, NULL, p, INFINITY, &r, err, errlen);
     if (rc != TB_OK) { tb_scene_prep_free(p); return rc; }
     *out = p;
     return TB_OK;
@@ -831,14 +852,20 @@ double tb_scene_prep_cpu(const tb_scene_prep *p)
     return p ? p->cpu : 0;
 }
 
-int tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o, tb_scene_result *r,
-                         char *err, size_t errlen)
+int tb_scene_render_prep_budget(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o, double max_nmse,
+                                tb_scene_result *r, char *err, size_t errlen)
 {
     tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
     tb_scene_opts q = o ? *o : dflt;
     q.heldout = p->heldout;
-    if (!prep_fits(p, d)) return render(d, p->g, NULL, NULL, &q, NULL, NULL, r, err, errlen);
-    return render(d, p->g, NULL, NULL, &q, p, NULL, r, err, errlen);
+    if (!prep_fits(p, d)) return render(d, p->g, NULL, NULL, &q, NULL, NULL, INFINITY, r, err, errlen);
+    return render(d, p->g, NULL, NULL, &q, p, NULL, max_nmse, r, err, errlen);
+}
+
+int tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o, tb_scene_result *r,
+                         char *err, size_t errlen)
+{
+    return tb_scene_render_prep_budget(d, p, o, INFINITY, r, err, errlen);
 }
 
 int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,

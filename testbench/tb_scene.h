@@ -137,6 +137,13 @@ int    tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int 
                          char *err, size_t errlen);
 int    tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o,
                             tb_scene_result *r, char *err, size_t errlen);
+/* tb_scene_render_prep that stops, failing (TB_FAIL, a message), as soon
+ * as the render's NMSE is sure to pass max_nmse (its squared error so far
+ * is over the budget, with a margin for rounding): for a caller that only
+ * needs to know whether a render meets max_nmse. A render that meets it
+ * runs to its end and is exact. */
+int    tb_scene_render_prep_budget(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o,
+                                   double max_nmse, tb_scene_result *r, char *err, size_t errlen);
 double tb_scene_prep_cpu(const tb_scene_prep *p);
 /* Renders from p of exactly d (which must fit p) with the formats given
  * (tb_scene_opts.fmts) take d's unit and configuration from p instead of

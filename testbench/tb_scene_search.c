@@ -114,16 +114,21 @@ static int holds(const search *s, const eval *e)
 
 /* Render description d (its own formats when f is NULL) on the view or
  * the held-out view with `threads` bands. keep: NULL, or where the render
- * goes (its images; empty when it failed), the caller's to free. */
-static void render(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, eval *e,
-                   tb_scene_result *keep)
+ * goes (its images; empty when it failed), the caller's to free. budget:
+ * INFINITY, or the render stops, failed, as soon as its NMSE is sure to
+ * pass it (where only whether it holds matters: steps 2 and 3, whose
+ * failed renders' figures are never shown). */
+static void render_b(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, double budget,
+                     eval *e, tb_scene_result *keep)
 {
     tb_scene_opts o = { threads, heldout, NULL, f, s->no_batch, 0 };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     if (keep) memset(keep, 0, sizeof *keep);
     memset(e, 0, sizeof *e);
-    e->status = tb_scene_render_prep(d, heldout ? s->ph : s->pv, &o, &r, e->err, sizeof e->err);
+    e->status = tb_scene_render_prep_budget(d, heldout ? s->ph : s->pv, &o, budget, &r, e->err, sizeof e->err);
+    e->cpu_sim = r.cpu_sim;          /* a failed render's too */
+    e->cpu_render = r.cpu_render;
     if (e->status == TB_OK) {
         e->nmse = r.nmse;
         e->psnr = r.psnr;
@@ -131,14 +136,18 @@ static void render(const search *s, const scn_desc *d, const unit_fmts *f, int h
         e->max_err8 = r.max_err8;
         e->ovf = r.hwst.overflows;
         e->fmts = r.fmts;
-        e->cpu_sim = r.cpu_sim;
-        e->cpu_render = r.cpu_render;
         if (keep) {
             *keep = r;
             return;
         }
     }
     tb_scene_free(&r);
+}
+
+static void render(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, eval *e,
+                   tb_scene_result *keep)
+{
+    render_b(s, d, f, heldout, threads, INFINITY, e, keep);
 }
 
 /* "about 1 min 5 s left" from the time per render so far and the
@@ -192,7 +201,7 @@ typedef struct cand {
 static void cand_run(void *ctx, size_t i)
 {
     cand *c = (cand *)ctx + i;
-    render(c->s, c->s->dr, &c->f, 0, 1, &c->e, &c->r);
+    render_b(c->s, c->s->dr, &c->f, 0, 1, c->s->target, &c->e, &c->r);
 }
 
 /* A signal the description fixes with an fmt override (NAME=... or all=). */
@@ -627,7 +636,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
         t.f[i] = with_fbits(fi, good - 1);
         progress(&s, what);
         tb_scene_result r;
-        render(&s, s.dr, &t, 0, jobs, &e, &r);
+        render_b(&s, s.dr, &t, 0, jobs, target_nmse, &e, &r);
         s.renders++;
         account(&s, &e);
         s.expected = s.renders + est_rest(ord, k + 1, no, &cur);
@@ -640,7 +649,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
         if (good - bad > 1) {
             t.f[i] = with_fbits(fi, bad + 1);
             progress(&s, what);
-            render(&s, s.dr, &t, 0, jobs, &e, &r);
+            render_b(&s, s.dr, &t, 0, jobs, target_nmse, &e, &r);
             s.renders++;
             account(&s, &e);
             if (holds(&s, &e)) { good = bad + 1; rp->found = e; keep_found(&s, &r); }
@@ -651,7 +660,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
             int mid = bad + (good - bad) / 2;
             t.f[i] = with_fbits(fi, mid);
             progress(&s, what);
-            render(&s, s.dr, &t, 0, jobs, &e, &r);
+            render_b(&s, s.dr, &t, 0, jobs, target_nmse, &e, &r);
             s.renders++;
             account(&s, &e);
             if (holds(&s, &e)) { good = mid; rp->found = e; keep_found(&s, &r); }

@@ -289,6 +289,20 @@ static void test_prep_exact(void)
             TST_CHECK(same_render(&a, &b), "view %d case %d: the prep's render differs", held, k);
             TST_CHECK(b.cpu_render >= b.cpu_sim && b.cpu_sim > 0, "case %d: CPU %g of which simulating %g", k,
                       b.cpu_render, b.cpu_sim);
+            /* with a budget: a render that meets it runs to the end, the
+             * same bytes; one with 4 times the allowed error fails (in the
+             * batch, stopped early) */
+            if (k != 3 && k != 4) {
+                tb_scene_result c;
+                memset(&c, 0, sizeof c);
+                TST_EQ_INT(tb_scene_render_prep_budget(&e, p, &o, a.nmse, &c, err, sizeof err), TB_OK);
+                TST_CHECK(same_render(&a, &c), "view %d case %d: the render within the budget differs", held, k);
+                tb_scene_free(&c);
+                memset(&c, 0, sizeof c);
+                TST_EQ_INT(tb_scene_render_prep_budget(&e, p, &o, a.nmse / 4, &c, err, sizeof err), TB_FAIL);
+                TST_CHECK(strstr(err, "budget") != NULL, "case %d: %s", k, err);
+                tb_scene_free(&c);
+            }
             cases++;
             tb_scene_free(&a);
             tb_scene_free(&b);
