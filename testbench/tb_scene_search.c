@@ -30,6 +30,10 @@
  * view and of the held-out view are rasterized once, and what no format
  * changes (the reference image, the shaded nodes, the intervals) is made
  * once for each (tb_scene_prep): a render only simulates and measures.
+ * Steps 2 and 3 only ask whether a render holds, so their renders stop as
+ * soon as their error is sure to pass the target
+ * (tb_scene_render_prep_budget): a failed render's figures are never
+ * shown, and a render that holds runs to its end.
  * From step 2 on every render is of the description at width W with the
  * formats given, as `scene --set width=W --set fmt=...` renders them; the
  * accepted render of the found formats is kept and written with its
