@@ -95,7 +95,9 @@ static const cli_opt scene_tab[] = {
     { "--target-nmse", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs a number", o_target, 0,
       "  --target-nmse X  find the smallest per-signal formats that keep the NMSE\n"
       "                   under X, check them on the held-out view, report the area\n"
-      "                   saved against the smallest uniform width (exit 1: not met)\n" },
+      "                   saved against the smallest uniform width (exit 1: not met);\n"
+      "                   DIR gets search.txt, search.json and found/ (the images\n"
+      "                   and scene.json of the render at the found formats)\n" },
     { "--sweep", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, o_sweep, CLI_OPT_MAYBE,
       "  --sweep [GRID]   sweep L, policy, terms, width, schedule: CSV and SVG charts\n"
       "                   of NMSE against operations and clocks per pixel, Pareto\n"
