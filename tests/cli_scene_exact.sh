@@ -5,8 +5,8 @@
 # search.json and rendered plainly with `scene --set width=W --set fmt=...`,
 # and every image must be the same bytes, scene.json the same lines (its
 # NMSE to all 17 digits) but the energy per pixel, which the search does
-# not count. Also: the same found/ for -j 1 and -j 2, and no stale found/
-# after a search that finds nothing. Small images.
+# not count. Also: the same found/ for -j 1, -j 2 and --no-batch, and no
+# stale found/ after a search that finds nothing. Small images.
 PREFIX=cli_scene_exact.
 . tests/lib_cli.sh
 
@@ -59,6 +59,14 @@ same=1
 for f in "$T"/sphere/found/*; do cmp -s "$f" "$T/j1/found/${f##*/}" || same=0; done
 cmp -s "$T/sphere/search.json" "$T/j1/search.json" || same=0
 [ $same -eq 1 ] && ok jobs_same_found || fail jobs_same_found "-j 1 and -j 2 differ"
+
+# ... nor on the batch mode (--no-batch: every band on the kernel alone,
+# no render stopped early).
+"$S" scene sphere --set resolution=48x48 --set terms=8 --target-nmse 3e-3 --no-batch -o "$T/nb" >/dev/null 2>&1
+same=1
+for f in "$T"/sphere/found/*; do cmp -s "$f" "$T/nb/found/${f##*/}" || same=0; done
+cmp -s "$T/sphere/search.json" "$T/nb/search.json" || same=0
+[ $same -eq 1 ] && ok no_batch_same_found || fail no_batch_same_found "--no-batch differs"
 
 # A search that finds nothing leaves no found/ of an earlier one.
 "$S" scene sphere --set resolution=48x48 --set terms=8 --target-nmse 1e-30 -o "$T/j1" >/dev/null 2>&1
