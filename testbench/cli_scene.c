@@ -16,6 +16,7 @@
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* The divide-by-3 network's terms that the corrected configuration of
  * --compare uses: the fewest that keep the default face scene's NMSE under
@@ -80,7 +81,8 @@ static const cli_opt scene_tab[] = {
       "                   \"legend\" the colours of the maps)\n" },
     SC_FLAG("--json", json, "  --json           print the JSON summary on stdout instead of the table\n"),
     { "-j", NULL, CLI_OPT_INT, offsetof(scene_args, jobs), 1, 256, NULL, "%s needs a number of threads", NULL, 0,
-      "  -j N             threads (default 1); the output is the same for any N\n" },
+      "  -j N             threads (default: the machine's cores); the output is the\n"
+      "                   same for any N\n" },
     SC_FLAG("--no-batch", no_batch,
       "  --no-batch       simulate each band of rows on the event-driven kernel alone\n"
       "                   (default: the bands side by side as lanes of the batch\n"
@@ -93,7 +95,9 @@ static const cli_opt scene_tab[] = {
     { "--target-nmse", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs a number", o_target, 0,
       "  --target-nmse X  find the smallest per-signal formats that keep the NMSE\n"
       "                   under X, check them on the held-out view, report the area\n"
-      "                   saved against the smallest uniform width (exit 1: not met)\n" },
+      "                   saved against the smallest uniform width (exit 1: not met);\n"
+      "                   DIR gets search.txt, search.json and found/ (the images\n"
+      "                   and scene.json of the render at the found formats)\n" },
     { "--sweep", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, o_sweep, CLI_OPT_MAYBE,
       "  --sweep [GRID]   sweep L, policy, terms, width, schedule: CSV and SVG charts\n"
       "                   of NMSE against operations and clocks per pixel, Pareto\n"
@@ -306,12 +310,20 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
     return CLI_OK;
 }
 
+/* -j when not given: one thread a core online (the output is the same
+ * for any -j), at most the option's own limit. */
+static int default_jobs(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > 256 ? 256 : (int)n;
+}
+
 int cli_scene(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_scene_spec);
     scene_args sa;
     memset(&sa, 0, sizeof sa);
-    sa.jobs = 1;
+    sa.jobs = default_jobs();
     sa.max_nmse = sa.target = -1;
     void *base[] = { &sa };
     if (cli_opt_parse(&cli_scene_spec, base, argc, argv, 1)) return CLI_USAGE;
@@ -385,8 +397,8 @@ int cli_scene(int argc, char **argv)
         rc = compare(&d, &m, jobs, no_batch, dir, json);
     } else if (target > 0 || sweep) {
         progress(sweep ? "sweeping..." : "searching formats...");
-        int t = sweep ? tb_scene_sweep(&d, &m, jobs, no_batch, sweep_spec, dir, json, stdout, err, sizeof err)
-                      : tb_scene_search(&d, &m, jobs, no_batch, target, dir, json, stdout, err, sizeof err);
+        int t = sweep ? tb_scene_sweep(&d, &m, jobs, no_batch, sweep_spec, dir, json, stdout, NULL, err, sizeof err)
+                      : tb_scene_search(&d, &m, jobs, no_batch, target, dir, json, stdout, NULL, err, sizeof err);
         progress("");
         if (t == TB_BADINPUT) rc = cli_usage_error("%s", err);
         else if (t == TB_FAIL) { if (err[0]) (void)cli_usage_error("%s", err); rc = CLI_FAIL; }

@@ -51,9 +51,20 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define TB_SCENE_BANDS 16
+
+/* CPU seconds of the calling thread: a render's time accounting
+ * (tb_scene_result.cpu_sim, cpu_render) sums what each of its threads
+ * spends, so that it reads the same on a busy machine and for any -j. */
+static double cpu_now(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts)) return 0;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 /* ------------------------------------------------- the unit of a policy */
 
@@ -305,11 +316,14 @@ typedef struct band {
     int y0, y1;
     size_t s0, s1;                 /* its spans */
     tb_span_item *items;           /* its intervals, for the batch (NULL: simulated already) */
-    size_t nitems;
+    size_t nitems, npix;
+    int borrowed;                  /* items belong to a tb_scene_prep: not freed here */
+    double *refpix;                /* a prep's: the reference at the band's pixels, in their order */
     double *pix;
     tb_span_stats st;
     size_t intervals, deg2, nodes;
     double coef_adds, horner_deg;  /* sums over intervals / pixels */
+    double cpu_sim, cpu_other;     /* CPU seconds: simulating its intervals; the rest of its work */
     int rc;
     char err[300];
 } band;
@@ -330,6 +344,8 @@ typedef struct job {
     int batch;                     /* simulate bands side by side (tb_span_run_lanes) */
     int energy;                    /* count toggles and energy (tb_scene_opts) */
     int ngroups;                   /* the batch: bands in this many groups, one a thread */
+    double gcpu_sim[TB_SCENE_BANDS], gcpu_other[TB_SCENE_BANDS];   /* per group, as band's */
+    double max_se;                 /* the batch stops past this squared error (INFINITY: never) */
     tb_scene_result *r;
 } job;
 
@@ -377,6 +393,7 @@ static void run_band(job *J, band *b)
     const scn_gbuf *g = J->g;
     tb_scene_result *r = J->r;
     int W = g->w, L = d->L, n2 = nodes_n2(d);
+    double c0 = cpu_now();
     /* reference */
     for (int y = b->y0; y < b->y1; y++)
         for (int x = 0; x < W; x++) {
@@ -394,13 +411,15 @@ static void run_band(job *J, band *b)
         nitems += (size_t)(n + L - 1) / L;
         npix += (size_t)n;
     }
-    if (!nitems) return;
+    b->npix = npix;
+    if (!nitems) { b->cpu_other += cpu_now() - c0; return; }
     tb_span_item *items = calloc(nitems, sizeof *items);
     double *pix = malloc(npix * sizeof *pix);
     if (!items || !pix) {
         free(items); free(pix);
         b->rc = TB_FAIL;
         snprintf(b->err, sizeof b->err, "out of memory");
+        b->cpu_other += cpu_now() - c0;
         return;
     }
     size_t it = 0;
@@ -450,13 +469,18 @@ static void run_band(job *J, band *b)
         b->items = items;
         b->nitems = nitems;
         b->pix = pix;
+        b->cpu_other += cpu_now() - c0;
         return;
     }
+    double c1 = cpu_now();
     b->rc = J->energy ? tb_span_run_energy(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err)
                       : tb_span_run(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err);
+    double c2 = cpu_now();
     if (b->rc == TB_OK) band_pixels(J, b, pix);
     free(items);
     free(pix);
+    b->cpu_sim += c2 - c1;
+    b->cpu_other += (c1 - c0) + (cpu_now() - c2);
 }
 
 /* Bands [g * nb / ngroups, (g + 1) * nb / ngroups) whose intervals wait,
@@ -470,27 +494,87 @@ static void run_group(job *J, int g)
         band *b = &J->bands[k];
         if (!b->items) continue;
         which[n] = k;
-        lanes[n++] = (tb_span_lane){ .items = b->items, .nitems = b->nitems, .pix = b->pix, .energy = J->energy };
+        lanes[n++] = (tb_span_lane){ .items = b->items, .nitems = b->nitems, .pix = b->pix, .energy = J->energy,
+                                     .ref = b->refpix };
     }
     if (!n) return;
-    tb_span_run_lanes(J->u, J->cfg, J->fmts, lanes, (size_t)n, 1);
+    double c0 = cpu_now();
+    tb_span_run_lanes_budget(J->u, J->cfg, J->fmts, lanes, (size_t)n, 1, J->max_se);
+    double c1 = cpu_now();
     for (int i = 0; i < n; i++) {
         band *b = &J->bands[which[i]];
         b->st = lanes[i].st;
         b->rc = lanes[i].rc;
         snprintf(b->err, sizeof b->err, "%s", lanes[i].err);
         if (b->rc == TB_OK) band_pixels(J, b, b->pix);
-        free(b->items);
+        if (!b->borrowed) free(b->items);
         free(b->pix);
         b->items = NULL;
         b->pix = NULL;
     }
+    J->gcpu_sim[g] = c1 - c0;
+    J->gcpu_other[g] = cpu_now() - c1;
 }
 
 static void band_item(void *arg, size_t b)
 {
     job *J = arg;
     run_band(J, &J->bands[b]);
+}
+
+/* A band of a prepared render (its intervals made already) on the kernel
+ * alone: run_band's simulation. */
+static void sim_band_item(void *arg, size_t k)
+{
+    job *J = arg;
+    band *b = &J->bands[k];
+    if (!b->items) return;
+    double c0 = cpu_now();
+    b->rc = J->energy ? tb_span_run_energy(J->u, J->cfg, J->fmts, b->items, b->nitems, b->pix, &b->st, NULL, b->err, sizeof b->err)
+                      : tb_span_run(J->u, J->cfg, J->fmts, b->items, b->nitems, b->pix, &b->st, NULL, b->err, sizeof b->err);
+    double c1 = cpu_now();
+    if (b->rc == TB_OK) band_pixels(J, b, b->pix);
+    free(b->pix);
+    b->pix = NULL;
+    b->cpu_sim += c1 - c0;
+    b->cpu_other += cpu_now() - c1;
+}
+
+/* What every render of one view of a description shares, whatever its
+ * formats: the reference image, the degree and region images, the spans
+ * and each band's intervals with their node intensities and counts. */
+struct tb_scene_prep {
+    scn_desc d;                    /* the description it was made from */
+    const scn_gbuf *g;
+    int heldout, nb;
+    size_t nspans;
+    scn_span *spans;
+    double *ref;
+    uint8_t *deg, *region;
+    band bands[TB_SCENE_BANDS];    /* items kept (pix NULL), refpix made */
+    double sum_ref2;               /* sum ref^2 over covered pixels: NMSE's denominator */
+    double cpu;
+    /* tb_scene_prep_unit: the unit and configuration of ud */
+    int have_unit;
+    scn_desc ud;
+    const unit_desc *u;
+    unit_cfg cfg;
+};
+
+/* d renders like p's description but for its width and formats (and
+ * what only the unit or the operation weights read): the prepared
+ * intervals are d's. */
+static int prep_fits(const tb_scene_prep *p, const scn_desc *d)
+{
+    scn_desc a = *d, b = p->d;
+    a.fmt_width = b.fmt_width;
+    a.nfmt = b.nfmt;
+    memcpy(a.fmt, b.fmt, sizeof a.fmt);
+    a.rnd = b.rnd;
+    a.ovf = b.ovf;
+    memcpy(a.schedule, b.schedule, sizeof a.schedule);
+    memcpy(a.cost, b.cost, sizeof a.cost);
+    return !memcmp(&a, &b, sizeof a);
 }
 
 static void group_item(void *arg, size_t g)
@@ -533,41 +617,71 @@ static void metrics(const scn_gbuf *g, tb_scene_result *r)
     r->psnr = se8 > 0 ? 10 * log10(255.0 * 255.0 / (se8 / n)) : INFINITY;
 }
 
-int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
-                         const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen)
+/* The render. p: NULL, or the reference, degrees and intervals prepared
+ * already (then only the simulation and what follows; no VCD). make:
+ * NULL, or the reference, degrees and intervals are moved into it and no
+ * simulation is done (r is left empty). */
+static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx, const tb_scene_opts *o,
+                  const tb_scene_prep *p, tb_scene_prep *make, double max_nmse, tb_scene_result *r, char *err,
+                  size_t errlen)
 {
+    double c0 = cpu_now();
     memset(r, 0, sizeof *r);
     tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
     if (!o) o = &dflt;
-    r->heldout = o->heldout;
-    if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen)) return TB_BADINPUT;
+    r->heldout = p ? p->heldout : o->heldout;
+    if (p && p->have_unit && o->fmts && !memcmp(&p->ud, d, sizeof *d)) {
+        /* the formats are given: the rule's would be thrown away */
+        r->unit = p->u;
+        r->cfg = p->cfg;
+    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make)
+        return TB_BADINPUT;      /* (making a prep simulates nothing: it needs no unit) */
     if (o->fmts) r->fmts = *o->fmts;
-    const scn_view *view = o->heldout ? &d->heldout : &d->view;
+    const scn_view *view = r->heldout ? &d->heldout : &d->view;
     size_t np = (size_t)g->w * g->h;
     r->w = g->w;
     r->h = g->h;
-    r->ref = calloc(np ? np : 1, sizeof *r->ref);
+    r->ref = p ? malloc((np ? np : 1) * sizeof *r->ref) : calloc(np ? np : 1, sizeof *r->ref);
     r->hw = calloc(np ? np : 1, sizeof *r->hw);
-    r->deg = calloc(np ? np : 1, 1);
-    r->region = calloc(np ? np : 1, 1);
+    r->deg = p ? malloc(np ? np : 1) : calloc(np ? np : 1, 1);
+    r->region = p ? malloc(np ? np : 1) : calloc(np ? np : 1, 1);
     scn_span *spans = NULL;
-    size_t nspans = scn_spans(g, &spans);
-    int nb = g->h < TB_SCENE_BANDS ? g->h : TB_SCENE_BANDS;
+    size_t nspans = p ? p->nspans : scn_spans(g, &spans);
+    if (p) spans = p->spans;
+    int nb = g->h < TB_SCENE_BANDS ? g->h : TB_SCENE_BANDS, pixok = 1;
     band *bands = calloc(nb > 0 ? nb : 1, sizeof *bands);
-    if (!r->ref || !r->hw || !r->deg || !r->region || !bands || (nspans && !spans)) {
-        free(bands); free(spans);
+    for (int k = 0; p && bands && k < nb; k++) {
+        bands[k] = p->bands[k];
+        bands[k].borrowed = 1;
+        bands[k].cpu_sim = bands[k].cpu_other = 0;
+        if (bands[k].items && !(bands[k].pix = malloc(bands[k].npix * sizeof *bands[k].pix))) pixok = 0;
+    }
+    if (!r->ref || !r->hw || !r->deg || !r->region || !bands || !pixok || (nspans && !spans)) {
+        for (int k = 0; p && bands && k < nb; k++) free(bands[k].pix);
+        free(bands);
+        if (!p) free(spans);
         tb_scene_free(r);
         snprintf(err, errlen, "out of memory (%dx%d image)", g->w, g->h);
         return TB_FAIL;
     }
-    for (size_t i = 0; i < np; i++) if (g->tri[i] >= 0) r->region[i] = g->region[i];
+    if (p) {
+        memcpy(r->ref, p->ref, np * sizeof *r->ref);
+        memcpy(r->deg, p->deg, np);
+        memcpy(r->region, p->region, np);
+    } else
+        for (size_t i = 0; i < np; i++) if (g->tri[i] >= 0) r->region[i] = g->region[i];
     r->spans = nspans;
     /* bands of equal rows; spans are in row order */
     job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
               .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
-              .vcd_path = o->vcd_path, .batch = !o->no_batch, .energy = o->energy, .r = r };
+              .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
+              .r = r, .max_se = INFINITY };
+    /* a budget only with a prep (its reference in band order); a margin
+     * far above the rounding of sums in another order, so that a render
+     * within max_nmse is never stopped */
+    if (p && max_nmse >= 0 && isfinite(max_nmse)) J.max_se = max_nmse * p->sum_ref2 * (1 + 1e-6);
     size_t s = 0;
-    for (int k = 0; k < nb; k++) {
+    for (int k = 0; !p && k < nb; k++) {
         band *b = &bands[k];
         b->y0 = (int)((long long)g->h * k / nb);
         b->y1 = (int)((long long)g->h * (k + 1) / nb);
@@ -579,12 +693,53 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     }
     int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
     if (jobs > nb) jobs = nb;
-    base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
+    double c1 = cpu_now();
+    if (!p) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
+    else if (!J.batch) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, sim_band_item, &J);
+    if (make) {
+        /* keep what the simulation would read, and the images */
+        int rc = TB_OK;
+        make->g = g;
+        make->heldout = r->heldout;
+        make->nb = nb;
+        make->nspans = nspans;
+        make->spans = spans;
+        make->ref = r->ref;
+        make->deg = r->deg;
+        make->region = r->region;
+        for (size_t i = 0; i < np; i++)
+            if (g->tri[i] >= 0) make->sum_ref2 += make->ref[i] * make->ref[i];
+        r->ref = NULL;
+        r->deg = r->region = NULL;
+        for (int k = 0; k < nb; k++) {
+            band *b = &bands[k];
+            make->cpu += b->cpu_sim + b->cpu_other;
+            free(b->pix);
+            b->pix = NULL;
+            if (b->rc != TB_OK && rc == TB_OK) {
+                rc = b->rc;
+                snprintf(err, errlen, "%s", b->err);
+            }
+            if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix)) && rc == TB_OK) {
+                rc = TB_FAIL;
+                snprintf(err, errlen, "out of memory");
+            }
+            for (size_t q = 0, j = b->s0; b->refpix && j < b->s1; j++)
+                for (int x = spans[j].x0; x < spans[j].x1; x++)
+                    b->refpix[q++] = make->ref[(size_t)spans[j].y * g->w + x];
+            make->bands[k] = *b;
+        }
+        free(bands);
+        tb_scene_free(r);
+        make->cpu += c1 - c0;
+        return rc;
+    }
     if (J.batch) {
         /* then the bands' hardware, a group of lanes a thread */
         J.ngroups = jobs;
         base_par_for((size_t)J.ngroups, jobs, group_item, &J);
     }
+    double c2 = cpu_now();
 
     /* sums in band order */
     int rc = TB_OK;
@@ -608,9 +763,15 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
         r->nodes_shaded += b->nodes;
         adds += b->coef_adds;
         hdeg += b->horner_deg;
+        r->cpu_sim += b->cpu_sim;
+        r->cpu_render += b->cpu_sim + b->cpu_other;
+    }
+    for (int k = 0; J.batch && k < J.ngroups; k++) {
+        r->cpu_sim += J.gcpu_sim[k];
+        r->cpu_render += J.gcpu_sim[k] + J.gcpu_other[k];
     }
     free(bands);
-    free(spans);
+    if (!p) free(spans);
     if (rc != TB_OK) { tb_scene_free(r); return rc; }
     metrics(g, r);
     size_t px = r->covered;
@@ -636,21 +797,92 @@ int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader f
     r->long_ref = tb_scene_long_ops(r->ops_ref);
     r->long_hw = tb_scene_long_ops(r->ops_hw);
     r->speedup_long = r->long_hw > 0 ? r->long_ref / r->long_hw : 0;
+    r->cpu_render += (c1 - c0) + (cpu_now() - c2);
     return TB_OK;
+}
+
+int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
+                         const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen)
+{
+    return render(d, g, fn, ctx, o, NULL, NULL, INFINITY, r, err, errlen);
+}
+
+void tb_scene_prep_free(tb_scene_prep *p)
+{
+    if (!p) return;
+    for (int k = 0; k < p->nb; k++) {
+        free(p->bands[k].items);
+        free(p->bands[k].refpix);
+    }
+    free(p->spans);
+    free(p->ref);
+    free(p->deg);
+    free(p->region);
+    free(p);
+}
+
+int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int jobs, tb_scene_prep **out,
+                      char *err, size_t errlen)
+{
+    *out = NULL;
+    tb_scene_prep *p = calloc(1, sizeof *p);
+    if (!p) { snprintf(err, errlen, "out of memory"); return TB_FAIL; }
+    p->d = *d;
+    tb_scene_opts o = { jobs, heldout, NULL, NULL, 0, 0 };
+    tb_scene_result r;
+    int rc = render(d, g, NULL, NULL, &o, NULL, p, INFINITY, &r, err, errlen);
+    if (rc != TB_OK) { tb_scene_prep_free(p); return rc; }
+    *out = p;
+    return TB_OK;
+}
+
+int tb_scene_prep_unit(tb_scene_prep *p, const scn_desc *d, char *err, size_t errlen)
+{
+    unit_fmts f;
+    p->have_unit = 0;
+    if (!prep_fits(p, d)) { snprintf(err, errlen, "tb_scene_prep_unit: the description does not fit the prep"); return -1; }
+    if (tb_scene_unit(d, &p->u, &p->cfg, &f, err, errlen)) return -1;
+    p->ud = *d;
+    p->have_unit = 1;
+    return 0;
+}
+
+double tb_scene_prep_cpu(const tb_scene_prep *p)
+{
+    return p ? p->cpu : 0;
+}
+
+int tb_scene_render_prep_budget(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o, double max_nmse,
+                                tb_scene_result *r, char *err, size_t errlen)
+{
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
+    tb_scene_opts q = o ? *o : dflt;
+    q.heldout = p->heldout;
+    if (!prep_fits(p, d)) return render(d, p->g, NULL, NULL, &q, NULL, NULL, INFINITY, r, err, errlen);
+    return render(d, p->g, NULL, NULL, &q, p, NULL, max_nmse, r, err, errlen);
+}
+
+int tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o, tb_scene_result *r,
+                         char *err, size_t errlen)
+{
+    return tb_scene_render_prep_budget(d, p, o, INFINITY, r, err, errlen);
 }
 
 int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,
                     tb_scene_result *r, char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
+    double c0 = cpu_now();
     const scn_view *view = o && o->heldout ? &d->heldout : &d->view;
     scn_gbuf g;
     /* the rasterizer fails for a camera it cannot use (bad input) or
      * out of memory */
     if (scn_raster(m, &view->cam, d->width, d->height, &g, err, errlen))
         return strstr(err, "memory") ? TB_FAIL : TB_BADINPUT;
+    double c1 = cpu_now();
     int rc = tb_scene_render_gbuf(d, &g, NULL, NULL, o, r, err, errlen);
     scn_gbuf_free(&g);
+    if (rc == TB_OK) r->cpu_render += c1 - c0;    /* the rasterization */
     return rc;
 }
 

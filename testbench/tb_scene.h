@@ -82,6 +82,14 @@ typedef struct tb_scene_result {
     int       heldout;                /* 1: the held-out view was rendered */
     int       have_speed;             /* speed filled (tb_scene_speed_of) */
     tb_scene_speed speed;
+    /* Where the render's time went, in CPU seconds summed over its
+     * threads (each thread's own clock): cpu_sim simulating the span unit
+     * (tb_span_run / the batch lanes: the unit's build and levelization,
+     * the inputs' quantization, every clock); cpu_render the whole render
+     * (rasterization in tb_scene_render, reference and node shading,
+     * intervals, simulation, metrics, operation counts). Measured, so not
+     * part of any output; bench/bench_scene.c prints them. */
+    double    cpu_sim, cpu_render;
 } tb_scene_result;
 
 /* Fill r->speed for render r (the unit it instantiated) at the scene's
@@ -111,6 +119,38 @@ void tb_scene_free(tb_scene_result *r);
 typedef double (*tb_scene_shader)(void *ctx, const double pos[3], const double nrm[3]);
 int  tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
                           const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen);
+/* What every render of one view of a description shares whatever its
+ * formats (a format search renders the same scene hundreds of times): the
+ * reference image, the degree and region images, the spans, and the
+ * intervals with their exactly shaded nodes. tb_scene_prep_new makes it
+ * for d's view (heldout 0) or held-out view on surface buffer g (which
+ * must outlive it) on `jobs` threads; TB_OK, or TB_FAIL / TB_BADINPUT with
+ * a message. tb_scene_render_prep renders as tb_scene_render_gbuf(d, g,
+ * NULL, NULL, o with p's view) does, to the same bytes, doing only the
+ * simulation and what follows it: d may differ from p's description in
+ * its width, formats, rounding, overflow, schedule and cost weights (any
+ * other difference is rendered from scratch); no VCD. Several threads may
+ * render from one p at once. tb_scene_prep_cpu: the CPU seconds making p
+ * took. */
+typedef struct tb_scene_prep tb_scene_prep;
+int    tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int jobs, tb_scene_prep **p,
+                         char *err, size_t errlen);
+int    tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o,
+                            tb_scene_result *r, char *err, size_t errlen);
+/* tb_scene_render_prep that stops, failing (TB_FAIL, a message), as soon
+ * as the render's NMSE is sure to pass max_nmse (its squared error so far
+ * is over the budget, with a margin for rounding): for a caller that only
+ * needs to know whether a render meets max_nmse. A render that meets it
+ * runs to its end and is exact. */
+int    tb_scene_render_prep_budget(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o,
+                                   double max_nmse, tb_scene_result *r, char *err, size_t errlen);
+double tb_scene_prep_cpu(const tb_scene_prep *p);
+/* Renders from p of exactly d (which must fit p) with the formats given
+ * (tb_scene_opts.fmts) take d's unit and configuration from p instead of
+ * working out the format rule's formats, which they replace anyway. Not
+ * while other threads render from p. 0, or -1 with a message. */
+int    tb_scene_prep_unit(tb_scene_prep *p, const scn_desc *d, char *err, size_t errlen);
+void   tb_scene_prep_free(tb_scene_prep *p);
 /* Operations of one evaluation of d's lighting model at a point of view v
  * (the per-pixel cost of the reference; each shaded node costs the same),
  * as an efficient per-pixel shader does it: what is constant over the

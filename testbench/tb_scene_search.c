@@ -27,7 +27,20 @@
  * Signals pinned by the description's fmt overrides keep their formats.
  *
  * Every render uses the scene's own resolution; the surface buffers of the
- * view and of the held-out view are rasterized once and reused.
+ * view and of the held-out view are rasterized once, and what no format
+ * changes (the reference image, the shaded nodes, the intervals) is made
+ * once for each (tb_scene_prep): a render only simulates and measures.
+ * Steps 2 and 3 only ask whether a render holds, so their renders stop as
+ * soon as their error is sure to pass the target
+ * (tb_scene_render_prep_budget): a failed render's figures are never
+ * shown, and a render that holds runs to its end.
+ * From step 2 on every render is of the description at width W with the
+ * formats given, as `scene --set width=W --set fmt=...` renders them; the
+ * accepted render of the found formats is kept and written with its
+ * images into DIR/found/ (tests/cli_scene_exact.sh renders it so again).
+ * "renders" counts what a one-at-a-time search renders (the speculative
+ * candidates of step 3 not among them), so the output is the same for any
+ * jobs; tb_scene_work has the renders run and their CPU time.
  */
 #include "testbench/tb_scene_search.h"
 #include "testbench/tb_sweep.h"
@@ -39,6 +52,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define W_MIN 4
@@ -52,18 +66,50 @@ typedef struct eval {
     int      max_err8;
     uint64_t ovf;
     unit_fmts fmts;
+    double   cpu_sim, cpu_render;   /* the render's (tb_scene_result) */
     char     err[256];
 } eval;
 
 typedef struct search {
     const scn_desc *d;
+    const scn_desc *dr;           /* what renders use: d, from step 2 on d at the uniform width W */
     const scn_gbuf *gv, *gh;      /* view, held-out view */
+    tb_scene_prep *pv, *ph;       /* their references and intervals, made once */
     int      jobs;
     int      no_batch;    /* tb_scene_opts.no_batch of every render */
     double   target;
-    size_t   renders;
+    size_t   renders;     /* the renders the result needs (a one-at-a-time search's) */
     int      tty;
+    /* measured, never in the output: tb_scene_work, and the progress line */
+    size_t   renders_run;
+    double   cpu_sim, cpu_render;
+    double   t0;          /* monotonic seconds at the start */
+    size_t   expected;    /* estimate of renders in all (the progress line) */
+    tb_scene_result found_r;      /* the images of the render rp->found came from */
 } search;
+
+/* r is the render of the formats found so far: keep its images. */
+static void keep_found(search *s, tb_scene_result *r)
+{
+    tb_scene_free(&s->found_r);
+    s->found_r = *r;
+    memset(r, 0, sizeof *r);
+}
+
+static double mono_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* A render run (the result's or a speculative one), in the work figures. */
+static void account(search *s, const eval *e)
+{
+    s->renders_run++;
+    s->cpu_sim += e->cpu_sim;
+    s->cpu_render += e->cpu_render;
+}
 
 static int holds(const search *s, const eval *e)
 {
@@ -71,14 +117,22 @@ static int holds(const search *s, const eval *e)
 }
 
 /* Render description d (its own formats when f is NULL) on the view or
- * the held-out view with `threads` bands. */
-static void render(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, eval *e)
+ * the held-out view with `threads` bands. keep: NULL, or where the render
+ * goes (its images; empty when it failed), the caller's to free. budget:
+ * INFINITY, or the render stops, failed, as soon as its NMSE is sure to
+ * pass it (where only whether it holds matters: steps 2 and 3, whose
+ * failed renders' figures are never shown). */
+static void render_b(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, double budget,
+                     eval *e, tb_scene_result *keep)
 {
     tb_scene_opts o = { threads, heldout, NULL, f, s->no_batch, 0 };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
+    if (keep) memset(keep, 0, sizeof *keep);
     memset(e, 0, sizeof *e);
-    e->status = tb_scene_render_gbuf(d, heldout ? s->gh : s->gv, NULL, NULL, &o, &r, e->err, sizeof e->err);
+    e->status = tb_scene_render_prep_budget(d, heldout ? s->ph : s->pv, &o, budget, &r, e->err, sizeof e->err);
+    e->cpu_sim = r.cpu_sim;          /* a failed render's too */
+    e->cpu_render = r.cpu_render;
     if (e->status == TB_OK) {
         e->nmse = r.nmse;
         e->psnr = r.psnr;
@@ -86,14 +140,40 @@ static void render(const search *s, const scn_desc *d, const unit_fmts *f, int h
         e->max_err8 = r.max_err8;
         e->ovf = r.hwst.overflows;
         e->fmts = r.fmts;
+        if (keep) {
+            *keep = r;
+            return;
+        }
     }
     tb_scene_free(&r);
+}
+
+static void render(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, eval *e,
+                   tb_scene_result *keep)
+{
+    render_b(s, d, f, heldout, threads, INFINITY, e, keep);
+}
+
+/* "about 1 min 5 s left" from the time per render so far and the
+ * renders still expected (an estimate: the search's length depends on what
+ * holds); empty until two renders are done. */
+void tb_scene_eta(char *buf, size_t len, double elapsed, size_t done, size_t total)
+{
+    buf[0] = 0;
+    if (done < 2 || total <= done || !(elapsed > 0)) return;
+    double left = elapsed / (double)done * (double)(total - done);
+    long t = (long)(left + 0.5);
+    if (t >= 60) snprintf(buf, len, "about %ld min %02ld s left", t / 60, t % 60);
+    else snprintf(buf, len, "about %ld s left", t < 1 ? 1 : t);
 }
 
 static void progress(search *s, const char *what)
 {
     if (!s->tty) return;
-    fprintf(stderr, "\rscene search: %zu renders, %-40.40s", s->renders, what);
+    char eta[64];
+    size_t tot = s->expected > s->renders ? s->expected : s->renders + 1;
+    tb_scene_eta(eta, sizeof eta, mono_now() - s->t0, s->renders, tot);
+    fprintf(stderr, "\rscene search: %zu of about %zu renders, %-18.18s %-26s\033[K", s->renders, tot, what, eta);
     fflush(stderr);
 }
 
@@ -105,8 +185,12 @@ static void at_width(search *s, int w, eval *e)
     char what[64];
     snprintf(what, sizeof what, "uniform width %d", w);
     progress(s, what);
-    render(s, &dw, NULL, 0, s->jobs, e);
+    tb_scene_result r;
+    render(s, &dw, NULL, 0, s->jobs, e, &r);
     s->renders++;
+    account(s, e);
+    if (holds(s, e)) keep_found(s, &r);
+    tb_scene_free(&r);
 }
 
 /* Candidate renders of a pass, run together. */
@@ -114,13 +198,14 @@ typedef struct cand {
     const search *s;
     unit_fmts f;
     eval e;
+    tb_scene_result r;
     int sig, pos;
 } cand;
 
 static void cand_run(void *ctx, size_t i)
 {
     cand *c = (cand *)ctx + i;
-    render(c->s, c->s->d, &c->f, 0, 1, &c->e);
+    render_b(c->s, c->s->dr, &c->f, 0, 1, c->s->target, &c->e, &c->r);
 }
 
 /* A signal the description fixes with an fmt override (NAME=... or all=). */
@@ -186,6 +271,15 @@ static sim_fmt with_fbits(sim_fmt f, int fb)
     f.fbits = (int8_t)fb;
     f.width = (uint8_t)(f.ibits + fb);
     return f;
+}
+
+/* The renders step 2 takes for a signal of format f, about: one bit
+ * less, none at all, then bisection of the bits between. */
+static size_t est_signal(sim_fmt f)
+{
+    size_t n = 2;
+    for (int span = f.fbits - fmin_of(f); span > 1; span = (span + 1) / 2) n++;
+    return n;
 }
 
 typedef struct order_t { int sig; double saving; } order_t;
@@ -346,12 +440,53 @@ static int write_report(const report *rp, const char *outdir, char *err, size_t 
     return 0;
 }
 
+/* DIR/found/: the images and scene.json of the accepted render of the
+ * found formats, as `scene --set width=W --set fmt=...` writes them
+ * (without its energy per pixel: the search does not count switching). */
+static int write_found(search *s, const report *rp, const char *outdir, char *err, size_t errlen)
+{
+    char dir[1100];
+    snprintf(dir, sizeof dir, "%s/found", outdir);
+    if (!s->found_r.hw) { snprintf(err, errlen, "scene search: no images of the found formats"); return -1; }
+    if (tb_scene_speed_of(&s->found_r, rp->wu, err, errlen)) return -1;
+    return tb_scene_write(s->dr, &s->found_r, dir, err, errlen);
+}
+
+/* No formats found: an earlier search's DIR/found/ would mislead. */
+static void remove_found(const char *outdir)
+{
+    static const char *const files[] = { "ref.png", "hw.png", "degree.png", "region.png", "scene.json" };
+    char path[1200];
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        snprintf(path, sizeof path, "%s/found/%s", outdir, files[i]);
+        unlink(path);
+    }
+    for (int k = 1; k <= 4096; k *= 4) {
+        snprintf(path, sizeof path, "%s/found/err-x%d.png", outdir, k);
+        unlink(path);
+    }
+    snprintf(path, sizeof path, "%s/found", outdir);
+    rmdir(path);
+}
+
 /* ---------------------------------------------------------------- search */
 
+/* The renders expected after step 2's signals ord[from..no-1] (formats
+ * cur): theirs, then step 3, about two passes over the signals (one that
+ * removes bits, one that finds none to remove), then the two held-out
+ * renders. For the progress line only. */
+static size_t est_rest(const order_t *ord, int from, int no, const unit_fmts *cur)
+{
+    size_t n = 2 + 2 * (size_t)no;
+    for (int k = from; k < no; k++) n += est_signal(cur->f[ord[k].sig]);
+    return n;
+}
+
 int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, double target_nmse,
-                    const char *outdir, int json, FILE *out, char *err, size_t errlen)
+                    const char *outdir, int json, FILE *out, tb_scene_work *work, char *err, size_t errlen)
 {
     if (errlen) err[0] = 0;
+    if (work) memset(work, 0, sizeof *work);
     if (!(target_nmse > 0) || !isfinite(target_nmse)) {
         snprintf(err, errlen, "--target-nmse: needs a positive number");
         return TB_BADINPUT;
@@ -369,11 +504,19 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
         scn_gbuf_free(&gh);
         return TB_BADINPUT;
     }
-    search s = { d, &gv, &gh, jobs, no_batch, target_nmse, 0, isatty(2) };
+    search s = { .d = d, .dr = d, .gv = &gv, .gh = &gh, .jobs = jobs, .no_batch = no_batch, .target = target_nmse,
+                 .tty = isatty(2), .t0 = mono_now() };
     report *rp = calloc(1, sizeof *rp);
     cand *cj = calloc((size_t)jobs, sizeof *cj);
     int rc = TB_FAIL;
     if (!rp || !cj) { snprintf(err, errlen, "scene search: out of memory"); rc = TB_BADINPUT; goto done; }
+    /* What no format changes, once for each view: the reference, the
+     * nodes and intervals (every render reads them; none recomputes). */
+    rc = tb_scene_prep_new(d, &gv, 0, jobs, &s.pv, err, errlen);
+    if (rc == TB_OK) rc = tb_scene_prep_new(d, &gh, 1, jobs, &s.ph, err, errlen);
+    if (rc != TB_OK) goto done;
+    s.cpu_render += tb_scene_prep_cpu(s.pv) + tb_scene_prep_cpu(s.ph);
+    rc = TB_FAIL;
     rp->d = d;
     rp->target = target_nmse;
     unit_cfg cfg;
@@ -381,7 +524,19 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     if (tb_scene_unit(d, &rp->u, &cfg, &f0, err, errlen)) { rc = TB_BADINPUT; goto done; }
     rp->sched = cfg.schedule;
 
-    /* 1. The smallest uniform width. */
+    /* 1. The smallest uniform width. Expected: a few steps and the
+     * bisection, then the rest as at the scene's own width. */
+    if (s.tty) {
+        order_t o0[UNIT_MAX_SIGS];
+        unsigned char b0[UNIT_MAX_SIGS];
+        int n0 = 0;
+        built_signals(rp->u, &cfg, &f0, b0);
+        for (int i = 0; i < rp->u->nsigs; i++)
+            if (f0.f[i].width && b0[i] && unit_sig_used(rp->u, i, cfg.schedule) && !pinned(d, rp->u->sigs[i].name) &&
+                f0.f[i].fbits > fmin_of(f0.f[i]))
+                o0[n0++] = (order_t){ i, 0 };
+        s.expected = 5 + est_rest(o0, 0, n0, &f0);
+    }
     eval e;
     int w = d->fmt_width < W_MIN ? W_MIN : d->fmt_width > W_MAX ? W_MAX : d->fmt_width;
     at_width(&s, w, &e);
@@ -443,6 +598,15 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
         if (tb_scene_unit(&dw, &u2, &c2, &fw, err, errlen)) { rc = TB_BADINPUT; goto done; }
         cfg = c2;
     }
+    /* From here every render is of the description at width W with the
+     * formats given, as `scene --set width=W --set fmt=...` renders them. */
+    scn_desc dwu = *d;
+    dwu.fmt_width = rp->wu;
+    s.dr = &dwu;
+    if (tb_scene_prep_unit(s.pv, &dwu, err, errlen) || tb_scene_prep_unit(s.ph, &dwu, err, errlen)) {
+        rc = TB_BADINPUT;
+        goto done;
+    }
     const unit_desc *u = rp->u;
     unit_fmts cur = rp->uni.fmts;
     rp->found = rp->uni;
@@ -461,6 +625,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
         ord[no++] = (order_t){ i, a >= 0 && a0 >= 0 ? a0 - a : 0 };
     }
     qsort(ord, (size_t)no, sizeof *ord, order_cmp);
+    s.expected = s.renders + est_rest(ord, 0, no, &cur);
     /* The description with the unit's formats given explicitly. */
     for (int k = 0; k < no; k++) {
         int i = ord[k].sig;
@@ -474,31 +639,40 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
         unit_fmts t = cur;
         t.f[i] = with_fbits(fi, good - 1);
         progress(&s, what);
-        render(&s, d, &t, 0, jobs, &e);
+        tb_scene_result r;
+        render_b(&s, s.dr, &t, 0, jobs, target_nmse, &e, &r);
         s.renders++;
-        if (!holds(&s, &e)) continue;
+        account(&s, &e);
+        s.expected = s.renders + est_rest(ord, k + 1, no, &cur);
+        if (!holds(&s, &e)) { tb_scene_free(&r); continue; }
         good--;
         rp->found = e;
+        keep_found(&s, &r);
         /* Then none at all (a signal this view hardly uses, such as the
          * quadratic network where every interval is cubic): one render. */
         if (good - bad > 1) {
             t.f[i] = with_fbits(fi, bad + 1);
             progress(&s, what);
-            render(&s, d, &t, 0, jobs, &e);
+            render_b(&s, s.dr, &t, 0, jobs, target_nmse, &e, &r);
             s.renders++;
-            if (holds(&s, &e)) { good = bad + 1; rp->found = e; }
+            account(&s, &e);
+            if (holds(&s, &e)) { good = bad + 1; rp->found = e; keep_found(&s, &r); }
             else bad++;
+            tb_scene_free(&r);
         }
         while (good - bad > 1) {
             int mid = bad + (good - bad) / 2;
             t.f[i] = with_fbits(fi, mid);
             progress(&s, what);
-            render(&s, d, &t, 0, jobs, &e);
+            render_b(&s, s.dr, &t, 0, jobs, target_nmse, &e, &r);
             s.renders++;
-            if (holds(&s, &e)) { good = mid; rp->found = e; }
+            account(&s, &e);
+            if (holds(&s, &e)) { good = mid; rp->found = e; keep_found(&s, &r); }
             else bad = mid;
+            tb_scene_free(&r);
         }
         cur.f[i] = with_fbits(fi, good);
+        s.expected = s.renders + est_rest(ord, k + 1, no, &cur);
     }
 
     /* 3. Passes of single-bit removals until none holds. */
@@ -517,8 +691,18 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
                 nb++;
             }
             if (!nb) break;
-            progress(&s, "final pass");
+            /* expected: this pass's candidates left, a whole pass more if
+             * this one removed a bit (the last pass removes none) */
+            size_t left = 0, all = 0;
+            for (int k = 0; k < no; k++) {
+                int i = ord[k].sig, can = cur.f[i].fbits > fmin_of(cur.f[i]);
+                all += (size_t)can;
+                left += (size_t)(can && k >= cj[0].pos);
+            }
+            s.expected = s.renders + left + (changed ? all : 0) + 2;
+            progress(&s, "final passes");
             base_par_for((size_t)nb, jobs, cand_run, cj);
+            for (int b = 0; b < nb; b++) account(&s, &cj[b].e);
             /* The first that holds wins; the pass goes on after it, as a
              * one-at-a-time pass would. */
             for (int b = 0; b < nb; b++) {
@@ -526,27 +710,39 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
                 if (holds(&s, &cj[b].e)) {
                     cur = cj[b].f;
                     rp->found = cj[b].e;
+                    keep_found(&s, &cj[b].r);
                     changed = 1;
                     next = cj[b].pos + 1;
                     break;
                 }
             }
+            for (int b = 0; b < nb; b++) tb_scene_free(&cj[b].r);
         }
     }
 
     /* 4. The held-out view, with the found formats and with uniform W. */
     progress(&s, "held-out view");
-    render(&s, d, &cur, 1, jobs, &rp->found_held);
-    render(&s, d, &rp->uni.fmts, 1, jobs, &rp->uni_held);
+    render(&s, s.dr, &cur, 1, jobs, &rp->found_held, NULL);
+    render(&s, s.dr, &rp->uni.fmts, 1, jobs, &rp->uni_held, NULL);
     s.renders += 2;
+    account(&s, &rp->found_held);
+    account(&s, &rp->uni_held);
     rp->found.fmts = cur;
     rc = holds(&s, &rp->found_held) ? TB_OK : TB_FAIL;
 
 report:
     if (s.tty) fputs("\r\033[K", stderr);
     rp->renders = s.renders;
+    if (work) {
+        work->renders = s.renders;
+        work->renders_run = s.renders_run;
+        work->cpu_sim = s.cpu_sim;
+        work->cpu_render = s.cpu_render;
+    }
     rp->verdict = rc;
     if (outdir && write_report(rp, outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (outdir && rp->met && write_found(&s, rp, outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (outdir && !rp->met) remove_found(outdir);
     if (json) print_json(out, rp);
     else print_text(out, rp);
     if (rc == TB_FAIL) {
@@ -556,6 +752,9 @@ report:
         snprintf(err, errlen, "scene search: %s", strncmp(v, "FAIL: ", 6) ? v : v + 6);
     }
 done:
+    tb_scene_free(&s.found_r);
+    tb_scene_prep_free(s.pv);
+    tb_scene_prep_free(s.ph);
     free(rp);
     free(cj);
     scn_gbuf_free(&gv);

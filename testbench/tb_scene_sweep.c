@@ -33,6 +33,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define AX_MAX 16
@@ -176,7 +177,16 @@ typedef struct sweep {
     pthread_mutex_t mu;
     int tty;
     int no_batch;     /* tb_scene_opts.no_batch of every render */
+    double t0;        /* monotonic seconds at the start (the progress line) */
+    double cpu_sim, cpu_render;   /* tb_scene_work's */
 } sweep;
+
+static double mono_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 static void desc_of(const scn_desc *d, const pt *p, scn_desc *out)
 {
@@ -222,8 +232,12 @@ static void run_pt(void *ctx, size_t k)
     tb_scene_free(&r);
     pthread_mutex_lock(&s->mu);
     s->done++;
+    s->cpu_sim += r.cpu_sim;
+    s->cpu_render += r.cpu_render;
     if (s->tty) {
-        fprintf(stderr, "\rscene sweep: %zu/%zu renders", s->done, s->ntodo);
+        char eta[64];
+        tb_scene_eta(eta, sizeof eta, mono_now() - s->t0, s->done, s->ntodo);
+        fprintf(stderr, "\rscene sweep: %zu/%zu renders, %s\033[K", s->done, s->ntodo, eta);
         fflush(stderr);
     }
     pthread_mutex_unlock(&s->mu);
@@ -358,10 +372,11 @@ static void write_csv(FILE *f, const pt *p, size_t n)
 /* ------------------------------------------------------------------ verb */
 
 int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, const char *spec,
-                   const char *outdir, int json, FILE *out, char *err, size_t errlen)
+                   const char *outdir, int json, FILE *out, tb_scene_work *work, char *err, size_t errlen)
 {
     axes a;
     if (errlen) err[0] = 0;
+    if (work) memset(work, 0, sizeof *work);
     axes_default(&a);
     if (spec && *spec && parse_spec(spec, &a, err, errlen)) return TB_BADINPUT;
     if (jobs < 1) jobs = 1;
@@ -396,7 +411,8 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
     /* Check every point's hardware before rendering anything, and find
      * the points that build the same hardware. */
     int rc = TB_OK;
-    sweep sw = { d, m, NULL, p, n, NULL, 0, 0, PTHREAD_MUTEX_INITIALIZER, isatty(2), no_batch };
+    sweep sw = { .d = d, .m = m, .p = p, .n = n, .mu = PTHREAD_MUTEX_INITIALIZER, .tty = isatty(2),
+                 .no_batch = no_batch, .t0 = mono_now() };
     scn_gbuf g;
     memset(&g, 0, sizeof g);
     sw.todo = malloc((n ? n : 1) * sizeof *sw.todo);
@@ -432,6 +448,11 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
     sw.g = &g;
     base_par_for(sw.ntodo, jobs, run_pt, &sw);
     if (sw.tty) fputs("\r\033[K", stderr);
+    if (work) {
+        work->renders = work->renders_run = sw.ntodo;
+        work->cpu_sim = sw.cpu_sim;
+        work->cpu_render = sw.cpu_render;
+    }
     for (int m = 0; m < M_N; m++) fronts(p, n, m);
 
     size_t nfail = 0, paper = (size_t)-1, best = (size_t)-1, cheap = (size_t)-1;

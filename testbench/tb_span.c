@@ -326,6 +326,7 @@ static void lane_start(const lane_io *x, lane_tb *t)
  * cache line): the rest of lane_tb is read at an accept only. */
 typedef struct lane_hot {
     double  *pix;
+    const double *ref;     /* tb_span_lane's (NULL: not compared) */
     uint32_t lane, i;      /* index in the batch; in T */
     size_t   got, total;   /* span_tb's, while the lane runs */
     uint64_t max_clocks;
@@ -335,12 +336,17 @@ typedef struct lane_hot {
  * has offered the first item): after that the driver has work only when
  * the offered item is accepted, since valid and the inputs stay set from
  * edge to edge. 1 when the lane's last pixel came. */
-static inline int lane_edge(const lane_io *x, lane_hot *h, lane_tb *T, uint64_t e, double lsb)
+static inline int lane_edge(const lane_io *x, lane_hot *h, lane_tb *T, uint64_t e, double lsb, double *se)
 {
     const uint32_t l = h->lane;
     int last = 0;
     if (x->out_valid[l] && h->got < h->total) {
-        h->pix[h->got++] = (double)x->y[l] * lsb;
+        double v = (double)x->y[l] * lsb;
+        if (h->ref) {
+            double d = v - h->ref[h->got];
+            *se += d * d;
+        }
+        h->pix[h->got++] = v;
         if (h->got == h->total) { T[h->i].s.last_pixel = e; last = 1; }
     }
     if (x->in_valid[l] && x->in_ready[l]) {
@@ -357,7 +363,7 @@ static inline int lane_edge(const lane_io *x, lane_hot *h, lane_tb *T, uint64_t 
  * exactly (an overflow, or no answer within its clock budget) is left
  * in_batch = 0 for tb_span_run. */
 static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
-                      tb_span_lane *L, lane_tb *T, size_t n, uint32_t nb, int energy)
+                      tb_span_lane *L, lane_tb *T, size_t n, uint32_t nb, int energy, double max_se)
 {
     char err[300];
     tb_built bu;
@@ -397,15 +403,27 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
         if (!t->in_batch) continue;
         t->s.io = &io; t->s.y = io.out[0]; t->s.lsb = lsb; t->s.pix = L[i].pix;
         lane_start(&x, t);
-        act[active++] = (lane_hot){ L[i].pix, t->lane, (uint32_t)i, t->s.got, t->s.total,
+        act[active++] = (lane_hot){ L[i].pix, L[i].ref, t->lane, (uint32_t)i, t->s.got, t->s.total,
                                     clock_budget(t->s.total, t->s.nitems) };
     }
+    double se = 0;     /* squared error of the pixels so far against the lanes' ref */
     sim_batch_start(b);
     for (uint64_t e = 1; active && fin; e++) {
         uint32_t nfin = 0, keep = 0;
+        if (se > max_se) {
+            /* past the budget: the lanes still running stop, failed */
+            for (uint32_t k = 0; k < active; k++) {
+                tb_span_lane *ln = &L[act[k].i];
+                ln->rc = TB_FAIL;
+                ln->stopped = 1;
+                snprintf(ln->err, sizeof ln->err, "stopped: the squared error passed the budget");
+                T[act[k].i].done = 1;
+            }
+            break;
+        }
         for (uint32_t k = 0; k < active; k++) {
             lane_hot *h = &act[k];
-            int last = lane_edge(&x, h, T, e, lsb);
+            int last = lane_edge(&x, h, T, e, lsb, &se);
             if (last || e >= h->max_clocks) {
                 lane_tb *t = &T[h->i];
                 fin[nfin++] = h->i;
@@ -444,6 +462,12 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
 void tb_span_run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
                        tb_span_lane *L, size_t n, int batch)
 {
+    tb_span_run_lanes_budget(u, cfg, f, L, n, batch, INFINITY);
+}
+
+void tb_span_run_lanes_budget(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                              tb_span_lane *L, size_t n, int batch, double max_se)
+{
     lane_tb *T = batch && n ? calloc(n, sizeof *T) : NULL;
     uint32_t nb = 0;
     int energy = 0;
@@ -451,6 +475,7 @@ void tb_span_run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
     for (size_t i = 0; i < n && T; i++) {
         L[i].rc = TB_OK;
         L[i].err[0] = 0;
+        L[i].stopped = 0;
         /* bad input and empty streams: tb_span_run's answer as it is */
         if (nb >= SIM_BATCH_MAX_LANES || !L[i].nitems
             || prepare(u, cfg, f, L[i].items, L[i].nitems, &T[i].s, &L[i].st, L[i].err, sizeof L[i].err))
@@ -458,9 +483,10 @@ void tb_span_run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
         T[i].in_batch = 1;
         T[i].lane = nb++;
     }
-    if (nb) run_batch(u, cfg, f, L, T, n, nb, energy);
+    if (nb) run_batch(u, cfg, f, L, T, n, nb, energy, max_se);
     for (size_t i = 0; i < n; i++) {
         if (T && T[i].in_batch) { L[i].batched = 1; continue; }
+        if (T && L[i].stopped) { L[i].batched = 1; continue; }   /* failed: nothing to simulate again */
         L[i].batched = 0;
         L[i].rc = span_run(u, cfg, f, L[i].items, L[i].nitems, L[i].pix, &L[i].st, NULL, L[i].energy, L[i].err,
                            sizeof L[i].err);

@@ -64,7 +64,18 @@ typedef struct tb_span_lane {
     int energy;                  /* in: count st.toggles and st.energy_pj (the batch counts
                                   * when any lane asks; off, it pays nothing) */
     char err[300];               /* out: rc's message */
+    const double *ref;           /* in: NULL, or sum(items[i].n) values the pixels are compared
+                                  * with (tb_span_run_lanes_budget) */
+    int stopped;                 /* out: 1 if the budget stopped the lane (rc TB_FAIL) */
 } tb_span_lane;
 void tb_span_run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
                        tb_span_lane *lanes, size_t nlanes, int batch);
+/* The same, stopping as soon as the squared differences of the pixels from
+ * their lanes' ref, summed over every lane of the batch, pass max_se: the
+ * lanes still running then fail (rc TB_FAIL, stopped 1), as a caller that
+ * only needs to know that the total error is over a budget wants; the
+ * lanes that finished before are exact. A lane simulated outside the batch
+ * (batch 0, an overflow) is not stopped. */
+void tb_span_run_lanes_budget(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
+                              tb_span_lane *lanes, size_t nlanes, int batch, double max_se);
 #endif

@@ -107,7 +107,7 @@ static void test_search_smallest_and_heldout(void)
     tst_rmtree(SCRATCH);
     char err[300];
     FILE *out = fopen("/dev/null", "w");
-    int rc = tb_scene_search(&D, &M, 2, 0, target, SCRATCH, 1, out, err, sizeof err);
+    int rc = tb_scene_search(&D, &M, 2, 0, target, SCRATCH, 1, out, NULL, err, sizeof err);
     fclose(out);
     TST_CHECK(rc == TB_OK || rc == TB_FAIL, "rc %d: %s", rc, err);
     char *js = slurp(scr("/search.json"));
@@ -220,7 +220,7 @@ static void test_search_jobs(void)
         char dir[128], p[160];
         snprintf(dir, sizeof dir, "%s/j%d", SCRATCH, j);
         FILE *out = fopen("/dev/null", "w");
-        int rc = tb_scene_search(&d, &M, j, 0, 1.5 * e, dir, 1, out, err, sizeof err);
+        int rc = tb_scene_search(&d, &M, j, 0, 1.5 * e, dir, 1, out, NULL, err, sizeof err);
         fclose(out);
         TST_CHECK(rc == TB_OK || rc == TB_FAIL, "rc %d: %s", rc, err);
         snprintf(p, sizeof p, "%s/search.json", dir);
@@ -234,17 +234,96 @@ static void test_search_jobs(void)
     free(a);
 }
 
+/* Two renders are the same: images, figures, clocks. */
+static int same_render(const tb_scene_result *a, const tb_scene_result *b)
+{
+    size_t n = (size_t)a->w * a->h;
+    return a->w == b->w && a->h == b->h && !memcmp(a->hw, b->hw, n * sizeof *a->hw) &&
+           !memcmp(a->ref, b->ref, n * sizeof *a->ref) && !memcmp(a->deg, b->deg, n) &&
+           !memcmp(a->region, b->region, n) && a->nmse == b->nmse && a->psnr == b->psnr &&
+           a->hwst.clocks == b->hwst.clocks && a->hwst.overflows == b->hwst.overflows &&
+           a->hwst.area_ge == b->hwst.area_ge && a->nodes_shaded == b->nodes_shaded &&
+           a->intervals == b->intervals && a->cost_hw == b->cost_hw && a->covered == b->covered;
+}
+
+/* A render from a prep (the search's: reference and intervals made once)
+ * is the render from scratch, for other widths and formats, on either
+ * view, batched or not, with the unit taken from the prep or not; a
+ * description the prep does not fit (another L) is rendered from
+ * scratch. */
+static void test_prep_exact(void)
+{
+    if (!setup()) TST_SKIP("no built-in sphere scene");
+    char err[300];
+    scn_desc d = D;
+    d.policy = SCN_POL_ADAPTIVE_AUTO;
+    for (int held = 0; held < 2; held++) {
+        scn_gbuf g;
+        const scn_view *v = held ? &d.heldout : &d.view;
+        TST_EQ_INT(scn_raster(&M, &v->cam, d.width, d.height, &g, err, sizeof err), 0);
+        tb_scene_prep *p = NULL;
+        TST_EQ_INT(tb_scene_prep_new(&d, &g, held, 2, &p, err, sizeof err), TB_OK);
+        int cases = 0;
+        for (int k = 0; k < 5 && p; k++) {
+            scn_desc e = d;
+            unit_fmts f, *fp = NULL;
+            const unit_desc *u;
+            unit_cfg cfg;
+            if (k == 1) e.fmt_width = 12;
+            if (k == 2 || k == 3) {
+                /* two fraction bits off every signal that has them */
+                TST_EQ_INT(tb_scene_unit(&e, &u, &cfg, &f, err, sizeof err), 0);
+                for (int i = 0; i < u->nsigs; i++)
+                    if (f.f[i].width && f.f[i].fbits > 3) { f.f[i].fbits -= 2; f.f[i].width -= 2; }
+                fp = &f;
+            }
+            if (k == 4) e.L = 4;          /* not the prep's intervals */
+            /* from here, with formats given, the unit comes from the prep */
+            if (k == 2) TST_EQ_INT(tb_scene_prep_unit(p, &e, err, sizeof err), 0);
+            tb_scene_opts o = { 2, held, NULL, fp, k == 3, 0 };
+            tb_scene_result a, b;
+            memset(&a, 0, sizeof a);
+            memset(&b, 0, sizeof b);
+            TST_EQ_INT(tb_scene_render_gbuf(&e, &g, NULL, NULL, &o, &a, err, sizeof err), TB_OK);
+            TST_EQ_INT(tb_scene_render_prep(&e, p, &o, &b, err, sizeof err), TB_OK);
+            TST_CHECK(same_render(&a, &b), "view %d case %d: the prep's render differs", held, k);
+            TST_CHECK(b.cpu_render >= b.cpu_sim && b.cpu_sim > 0, "case %d: CPU %g of which simulating %g", k,
+                      b.cpu_render, b.cpu_sim);
+            /* with a budget: a render that meets it runs to the end, the
+             * same bytes; one with 4 times the allowed error fails (in the
+             * batch, stopped early) */
+            if (k != 3 && k != 4) {
+                tb_scene_result c;
+                memset(&c, 0, sizeof c);
+                TST_EQ_INT(tb_scene_render_prep_budget(&e, p, &o, a.nmse, &c, err, sizeof err), TB_OK);
+                TST_CHECK(same_render(&a, &c), "view %d case %d: the render within the budget differs", held, k);
+                tb_scene_free(&c);
+                memset(&c, 0, sizeof c);
+                TST_EQ_INT(tb_scene_render_prep_budget(&e, p, &o, a.nmse / 4, &c, err, sizeof err), TB_FAIL);
+                TST_CHECK(strstr(err, "budget") != NULL, "case %d: %s", k, err);
+                tb_scene_free(&c);
+            }
+            cases++;
+            tb_scene_free(&a);
+            tb_scene_free(&b);
+        }
+        TST_EQ_INT(cases, 5);
+        tb_scene_prep_free(p);
+        scn_gbuf_free(&g);
+    }
+}
+
 static void test_search_unmeetable(void)
 {
     if (!setup()) TST_SKIP("no built-in sphere scene");
     /* Below the method's own error no width helps: TB_FAIL, said plainly. */
     char err[300], buf[4096] = "";
     FILE *out = fmemopen(buf, sizeof buf - 1, "w");
-    int rc = tb_scene_search(&D, &M, 1, 0, 1e-30, NULL, 0, out, err, sizeof err);
+    int rc = tb_scene_search(&D, &M, 1, 0, 1e-30, NULL, 0, out, NULL, err, sizeof err);
     fclose(out);
     TST_EQ_INT(rc, TB_FAIL);
     TST_CHECK(strstr(buf, "no uniform width") != NULL, "summary: %s", buf);
-    TST_EQ_INT(tb_scene_search(&D, &M, 1, 0, -1, NULL, 0, stdout, err, sizeof err), TB_BADINPUT);
+    TST_EQ_INT(tb_scene_search(&D, &M, 1, 0, -1, NULL, 0, stdout, NULL, err, sizeof err), TB_BADINPUT);
 }
 
 static size_t count_lines(const char *s)
@@ -264,7 +343,7 @@ static void test_sweep_csv(void)
         char dir[128];
         snprintf(dir, sizeof dir, "%s/sweep%d", SCRATCH, j);
         mkdir(SCRATCH, 0777);
-        int rc = tb_scene_sweep(&D, &M, j, 0, spec, dir, 0, out, err, sizeof err);
+        int rc = tb_scene_sweep(&D, &M, j, 0, spec, dir, 0, out, NULL, err, sizeof err);
         TST_EQ_INT(rc, TB_OK);
         char p[160];
         snprintf(p, sizeof p, "%s/sweep.csv", dir);
@@ -313,8 +392,8 @@ static void test_sweep_csv(void)
     }
     free(a);
     free(b);
-    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, 0, "L=4;bogus=1", NULL, 0, stdout, err, sizeof err), TB_BADINPUT);
-    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, 0, "policy=cubic", NULL, 0, stdout, err, sizeof err), TB_BADINPUT);
+    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, 0, "L=4;bogus=1", NULL, 0, stdout, NULL, err, sizeof err), TB_BADINPUT);
+    TST_EQ_INT(tb_scene_sweep(&D, &M, 1, 0, "policy=cubic", NULL, 0, stdout, NULL, err, sizeof err), TB_BADINPUT);
 }
 
 static void test_scene_claims(void)
@@ -365,6 +444,7 @@ int main(void)
     TST_RUN(test_search_smallest_and_heldout);
     TST_RUN(test_search_jobs);
     TST_RUN(test_search_unmeetable);
+    TST_RUN(test_prep_exact);
     TST_RUN(test_sweep_csv);
     TST_RUN(test_scene_claims);
     if (have_scene) scn_mesh_free(&M);
