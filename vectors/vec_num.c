@@ -23,6 +23,7 @@
 #include "vectors/vec_num.h"
 #include <float.h>
 #include <pthread.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -148,6 +149,7 @@ static __attribute__((noinline)) int small_quotient(uint64_t w, int k, int neg, 
 struct vec_recip { uint64_t hi, lo; int e; };
 static struct vec_recip recip[BIG_Q + 1];
 static pthread_once_t recip_once = PTHREAD_ONCE_INIT;
+static atomic_int recip_ready;      /* set (release) once the table is made */
 
 static void recip_init(void)
 {
@@ -174,6 +176,7 @@ static void recip_init(void)
         recip[k].lo = n[0];
         recip[k].e = S;
     }
+    atomic_store_explicit(&recip_ready, 1, memory_order_release);
 }
 
 static int lemire_neg(uint64_t w, int k, int neg, double *out)
@@ -196,7 +199,7 @@ static int lemire_neg(uint64_t w, int k, int neg, double *out)
     return pack_double(m, e2, neg, out);
 }
 
-int vec_num_fast(uint64_t w, long q, int neg, double *out)
+static inline __attribute__((always_inline)) int fast_steps(uint64_t w, long q, int neg, double *out)
 {
 #if FLT_EVAL_METHOD == 0
     if (w <= (UINT64_C(1) << 53) && q >= -22 && q <= 22) {
@@ -207,14 +210,61 @@ int vec_num_fast(uint64_t w, long q, int neg, double *out)
     }
 #endif
     if (q < 0 && q >= -BIG_Q) {
-        pthread_once(&recip_once, recip_init);
+        if (!atomic_load_explicit(&recip_ready, memory_order_acquire))
+            pthread_once(&recip_once, recip_init);
         return lemire_neg(w, (int)-q, neg, out);
     }
     return 0;
 }
 
-/* The parse, and with fast set the fast steps before the exact ones. */
-static inline __attribute__((always_inline)) double parse(const char *s, char **end, int fast)
+int vec_num_fast(uint64_t w, long q, int neg, double *out) { return fast_steps(w, q, neg, out); }
+
+/* Eight digits at once (little-endian loads): whether the eight bytes at
+ * p are all digits, and their value. The usual SWAR forms: a byte is a
+ * digit when its high nibble is 3 and adding 6 keeps it so; the value by
+ * pairs, quads, then the two halves. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define SWAR 1
+static inline uint64_t load8(const char *p) { uint64_t v; memcpy(&v, p, 8); return v; }
+static inline int all8_digits(uint64_t v)
+{
+    return ((v & UINT64_C(0xF0F0F0F0F0F0F0F0)) |
+            (((v + UINT64_C(0x0606060606060606)) & UINT64_C(0xF0F0F0F0F0F0F0F0)) >> 4))
+           == UINT64_C(0x3333333333333333);
+}
+static inline uint64_t value8(uint64_t v)
+{
+    const uint64_t mask = UINT64_C(0x000000FF000000FF);
+    v -= UINT64_C(0x3030303030303030);
+    v = v * 10 + (v >> 8);                          /* pairs */
+    return ((v & mask) * (100 + (UINT64_C(1000000) << 32)) +
+            ((v >> 16) & mask) * (1 + (UINT64_C(10000) << 32))) >> 32;
+}
+#else
+#define SWAR 0
+#endif
+
+/* The digits at p into w (which wraps past 19 digits: the caller counts
+ * them and sends such numbers to strtod); the first non-digit. With pad,
+ * eight bytes at a time while they are all digits (reading up to seven
+ * bytes past the first non-digit, which the caller allows). */
+static inline __attribute__((always_inline)) const char *digits(const char *p, uint64_t *w, int pad)
+{
+    uint64_t v = *w;
+#if SWAR
+    if (pad)
+        for (uint64_t x; all8_digits(x = load8(p)); p += 8) v = v * 100000000u + value8(x);
+#else
+    (void)pad;
+#endif
+    for (; is_digit(*p); p++) v = v * 10 + (uint64_t)(*p - '0');
+    *w = v;
+    return p;
+}
+
+/* The parse, and with fast set the fast steps before the exact ones;
+ * pad: the caller allows reads of VEC_NUM_PAD bytes past the string. */
+static inline __attribute__((always_inline)) double parse(const char *s, char **end, int fast, int pad)
 
 {
     const char *p = s;
@@ -227,14 +277,14 @@ static inline __attribute__((always_inline)) double parse(const char *s, char **
     /* The digits are summed first and counted after: more than 19
      * (where w would wrap) go to strtod anyway. */
     const char *ds = p;
-    for (; is_digit(*p); p++) w = w * 10 + (uint64_t)(*p - '0');
+    p = digits(p, &w, pad);
     long nd = p - ds;
     if (nd > 19) goto slow;
     if (*p == '.') {
         const char *f0 = ++p;
         if (!nd) while (*p == '0') p++;
         const char *fs = p;
-        for (; is_digit(*p); p++) w = w * 10 + (uint64_t)(*p - '0');
+        p = digits(p, &w, pad);
         if (nd + (p - fs) > 19) goto slow;
         frac = p - f0;
         if (p - d0 == 1) goto slow;                 /* a lone point: no digit at all */
@@ -264,7 +314,7 @@ static inline __attribute__((always_inline)) double parse(const char *s, char **
         return neg ? -0.0 : 0.0;
     }
     double r;
-    if (fast && vec_num_fast(w, q10, neg, &r)) {
+    if (fast && fast_steps(w, q10, neg, &r)) {
         if (end) *end = (char *)p;
         return r;
     }
@@ -286,5 +336,6 @@ slow:
     return strtod(s, end);
 }
 
-double vec_num_strtod(const char *s, char **end) { return parse(s, end, 1); }
-double vec_num_strtod_exact(const char *s, char **end) { return parse(s, end, 0); }
+double vec_num_strtod(const char *s, char **end) { return parse(s, end, 1, 0); }
+double vec_num_strtod_padded(const char *s, char **end) { return parse(s, end, 1, 1); }
+double vec_num_strtod_exact(const char *s, char **end) { return parse(s, end, 0, 0); }

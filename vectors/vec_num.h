@@ -19,6 +19,12 @@
 
 double vec_num_strtod(const char *s, char **end);
 
+/* The same, reading digits eight at a time: for a string after whose
+ * terminating NUL at least VEC_NUM_PAD more bytes may be read (a buffer
+ * allocated that much longer; vectors/vec_file.c's). */
+#define VEC_NUM_PAD 8
+double vec_num_strtod_padded(const char *s, char **end);
+
 /* For tests: the same parse without the fast steps (every number in the
  * common case through the exact integer path), and the fast steps alone
  * on w 10^q: Clinger's (w <= 2^53, |q| <= 22) and for -108 <= q < 0 an
