@@ -135,7 +135,8 @@ static __attribute__((noinline)) int small_quotient(uint64_t w, int k, int neg, 
     return round_to_double(q, sticky, -k - s, neg, out);
 }
 
-/* The Eisel-Lemire step for w 10^-k, 1 <= k <= BIG_Q: recip[k] is
+/* The Eisel-Lemire step for w 10^-k, 1 <= k <= LEM_Q (every exponent
+ * of a nonzero double with at most 19 digits): recip[k] is
  * R = floor(2^E / 5^k) with R in [2^127, 2^128), computed once from exact
  * integers (the same division by 5^27-sized pieces as small_quotient).
  * With wn = w 2^sh normalized to [2^63, 2^64), T = wn 2^E / 5^k / 2^64 is
@@ -146,15 +147,17 @@ static __attribute__((noinline)) int small_quotient(uint64_t w, int k, int neg, 
  * in units of the 75 bits rounding drops. When every value in [X, X + 4)
  * of those bits lies on one side of half, rounding T is decided; else
  * (about 2^-72 of random input, and every exact tie) the exact path. */
+#define LEM_Q 342
+#define LEM_WORDS 16                        /* 2^(129 + 796) */
 struct vec_recip { uint64_t hi, lo; int e; };
-static struct vec_recip recip[BIG_Q + 1];
+static struct vec_recip recip[LEM_Q + 1];
 static pthread_once_t recip_once = PTHREAD_ONCE_INIT;
 static atomic_int recip_ready;      /* set (release) once the table is made */
 
 static void recip_init(void)
 {
-    for (int k = 1; k <= BIG_Q; k++) {
-        uint64_t n[BIG_WORDS] = { 0 };
+    for (int k = 1; k <= LEM_Q; k++) {
+        uint64_t n[LEM_WORDS] = { 0 };
         int b5 = k * 2322 / 1000 + 1;       /* bits of 5^k, or one more */
         int S = 129 + b5;                   /* 2^S / 5^k has 130 to 132 bits */
         n[S / 64] = UINT64_C(1) << (S % 64);
@@ -209,7 +212,7 @@ static inline __attribute__((always_inline)) int fast_steps(uint64_t w, long q, 
         return 1;
     }
 #endif
-    if (q < 0 && q >= -BIG_Q) {
+    if (q < 0 && q >= -LEM_Q) {
         if (!atomic_load_explicit(&recip_ready, memory_order_acquire))
             pthread_once(&recip_once, recip_init);
         return lemire_neg(w, (int)-q, neg, out);
