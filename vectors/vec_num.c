@@ -182,7 +182,7 @@ static void recip_init(void)
     atomic_store_explicit(&recip_ready, 1, memory_order_release);
 }
 
-static int lemire_neg(uint64_t w, int k, int neg, double *out)
+static inline __attribute__((always_inline)) int lemire_neg(uint64_t w, int k, int neg, double *out)
 {
     const struct vec_recip *t = &recip[k];
     int sh = __builtin_clzll(w);
