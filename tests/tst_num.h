@@ -151,18 +151,34 @@ static void tst_num_make(uint64_t seed, uint64_t i, char *buf, size_t len)
     if (i < TST_NUM_NFIXED) snprintf(buf, len, "%s", tst_num_fixed[i]);
 }
 
-/* Compare one string: 0 when vec_num_strtod and strtod agree on the
- * value's bits and the end pointer, else a message in why. */
+/* Compare one string: 0 when vec_num_strtod, its exact path alone
+ * (vec_num_strtod_exact), its padded reading (vec_num_strtod_padded) and
+ * strtod agree on the value's bits and the end
+ * pointer, else a message in why. */
 static int tst_num_check(const char *s, char *why, size_t len)
 {
-    char *e1, *e2;
+    char *e1, *e2, *e3;
     double a = vec_num_strtod(s, &e1);
     double b = strtod(s, &e2);
-    uint64_t ba, bb;
+    double c = vec_num_strtod_exact(s, &e3);
+    /* the padded reading on a copy in a buffer exactly VEC_NUM_PAD bytes
+     * longer than the string (ASan sees a read past it) */
+    size_t n = strlen(s) + 1;
+    char *cp = malloc(n + VEC_NUM_PAD), *e4;
+    if (!cp) { snprintf(why, len, "out of memory"); return -1; }
+    memcpy(cp, s, n);
+    memset(cp + n, '9', VEC_NUM_PAD);     /* digits: must not be read as such */
+    double d = vec_num_strtod_padded(cp, &e4);
+    long o4 = e4 - cp;
+    free(cp);
+    uint64_t ba, bb, bc, bd;
     memcpy(&ba, &a, sizeof a);
     memcpy(&bb, &b, sizeof b);
-    if (ba == bb && e1 == e2) return 0;
-    snprintf(why, len, "'%s': %a (end +%d) against strtod's %a (end +%d)", s, a, (int)(e1 - s), b, (int)(e2 - s));
+    memcpy(&bc, &c, sizeof c);
+    memcpy(&bd, &d, sizeof d);
+    if (ba == bb && bc == bb && bd == bb && e1 == e2 && e3 == e2 && o4 == e2 - s) return 0;
+    snprintf(why, len, "'%s': %a (end +%d), exact path %a (end +%d), padded %a (end +%ld), against strtod's %a (end +%d)",
+             s, a, (int)(e1 - s), c, (int)(e3 - s), d, o4, b, (int)(e2 - s));
     return -1;
 }
 #endif

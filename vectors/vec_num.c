@@ -22,6 +22,8 @@
  */
 #include "vectors/vec_num.h"
 #include <float.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -55,6 +57,17 @@ static int bits128(u128 n)
     return hi ? 128 - __builtin_clzll(hi) : 64 - __builtin_clzll((uint64_t)n);
 }
 
+/* m * 2^e2, m in [2^52, 2^53), as a double; 0 when it would not be a
+ * normal one (the caller then asks strtod). */
+static int pack_double(uint64_t m, int e2, int neg, double *out)
+{
+    int be = e2 + 52 + 1023;
+    if (be <= 0 || be >= 2047) return 0;
+    uint64_t bits = ((uint64_t)neg << 63) | ((uint64_t)be << 52) | (m & ((UINT64_C(1) << 52) - 1));
+    memcpy(out, &bits, sizeof *out);
+    return 1;
+}
+
 /* n * 2^e2 (+ a fraction of 2^e2 below n's last bit when sticky), n > 0,
  * rounded to nearest even; 0 when the result would not be a normal double
  * (the caller then asks strtod). */
@@ -78,11 +91,7 @@ static int round_to_double(u128 n, int sticky, int e2, int neg, double *out)
         }
         e2 += b - 53;
     }
-    int be = e2 + 52 + 1023;             /* m in [2^52, 2^53) */
-    if (be <= 0 || be >= 2047) return 0;
-    uint64_t bits = ((uint64_t)neg << 63) | ((uint64_t)be << 52) | (m & ((UINT64_C(1) << 52) - 1));
-    memcpy(out, &bits, sizeof *out);
-    return 1;
+    return pack_double(m, e2, neg, out);
 }
 
 /* n (len words, little-endian, the top one nonzero) /= d; the remainder. */
@@ -126,7 +135,140 @@ static __attribute__((noinline)) int small_quotient(uint64_t w, int k, int neg, 
     return round_to_double(q, sticky, -k - s, neg, out);
 }
 
-double vec_num_strtod(const char *s, char **end)
+/* The Eisel-Lemire step for w 10^-k, 1 <= k <= LEM_Q (every exponent
+ * of a nonzero double with at most 19 digits): recip[k] is
+ * R = floor(2^E / 5^k) with R in [2^127, 2^128), computed once from exact
+ * integers (the same division by 5^27-sized pieces as small_quotient).
+ * With wn = w 2^sh normalized to [2^63, 2^64), T = wn 2^E / 5^k / 2^64 is
+ * the decimal times a power of two (w 10^-k = T 2^(64 - E - sh - k)), and
+ * X = floor(wn R / 2^64) satisfies X <= T < X + 2 (R is below 2^E / 5^k
+ * by less than one, and the floor loses less than one more). X >= 2^126;
+ * shifting X (and T) to a top bit at 127 at most doubles that margin to 4
+ * in units of the 75 bits rounding drops. When every value in [X, X + 4)
+ * of those bits lies on one side of half, rounding T is decided; else
+ * (about 2^-72 of random input, and every exact tie) the exact path. */
+#define LEM_Q 342
+#define LEM_WORDS 16                        /* 2^(129 + 796) */
+struct vec_recip { uint64_t hi, lo; int e; };
+static struct vec_recip recip[LEM_Q + 1];
+static pthread_once_t recip_once = PTHREAD_ONCE_INIT;
+static atomic_int recip_ready;      /* set (release) once the table is made */
+
+static void recip_init(void)
+{
+    for (int k = 1; k <= LEM_Q; k++) {
+        uint64_t n[LEM_WORDS] = { 0 };
+        int b5 = k * 2322 / 1000 + 1;       /* bits of 5^k, or one more */
+        int S = 129 + b5;                   /* 2^S / 5^k has 130 to 132 bits */
+        n[S / 64] = UINT64_C(1) << (S % 64);
+        int len = S / 64 + 1;
+        for (int left = k; left > 0; ) {
+            int j = left > 27 ? 27 : left;
+            mw_div(n, &len, pow5[j]);
+            left -= j;
+        }
+        /* floor(floor(x) / 2) = floor(x / 2): halve down to 128 bits */
+        while (len > 2) {
+            n[0] = (n[0] >> 1) | (n[1] << 63);
+            n[1] = (n[1] >> 1) | (n[2] << 63);
+            n[2] >>= 1;
+            S--;
+            if (!n[2]) len = 2;
+        }
+        recip[k].hi = n[1];
+        recip[k].lo = n[0];
+        recip[k].e = S;
+    }
+    atomic_store_explicit(&recip_ready, 1, memory_order_release);
+}
+
+static inline __attribute__((always_inline)) int lemire_neg(uint64_t w, int k, int neg, double *out)
+{
+    const struct vec_recip *t = &recip[k];
+    int sh = __builtin_clzll(w);
+    uint64_t wn = w << sh;
+    u128 x = (u128)wn * t->hi + (((u128)wn * t->lo) >> 64);
+    int l = !(x >> 127);
+    x <<= l;
+    uint64_t hi = (uint64_t)(x >> 64), lo = (uint64_t)x;
+    uint64_t m = hi >> 11, rb = hi & 0x7ff;
+    int e2 = 75 - l + 64 - t->e - sh - k;
+    if (rb > 0x400 || (rb == 0x400 && lo)) {            /* all above half */
+        m++;
+        if (m >> 53) { m >>= 1; e2++; }
+    } else if (!(rb < 0x3ff || (rb == 0x3ff && lo <= UINT64_MAX - 3))) {
+        return 0;                                       /* near half: undecided */
+    }
+    return pack_double(m, e2, neg, out);
+}
+
+static inline __attribute__((always_inline)) int fast_steps(uint64_t w, long q, int neg, double *out)
+{
+#if FLT_EVAL_METHOD == 0
+    if (w <= (UINT64_C(1) << 53) && q >= -22 && q <= 22) {
+        double r = (double)w;
+        r = q >= 0 ? r * pow10d[q] : r / pow10d[-q];
+        *out = neg ? -r : r;
+        return 1;
+    }
+#endif
+    if (q < 0 && q >= -LEM_Q) {
+        if (!atomic_load_explicit(&recip_ready, memory_order_acquire))
+            pthread_once(&recip_once, recip_init);
+        return lemire_neg(w, (int)-q, neg, out);
+    }
+    return 0;
+}
+
+int vec_num_fast(uint64_t w, long q, int neg, double *out) { return fast_steps(w, q, neg, out); }
+
+/* Eight digits at once (little-endian loads): whether the eight bytes at
+ * p are all digits, and their value. The usual SWAR forms: a byte is a
+ * digit when its high nibble is 3 and adding 6 keeps it so; the value by
+ * pairs, quads, then the two halves. */
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define SWAR 1
+static inline uint64_t load8(const char *p) { uint64_t v; memcpy(&v, p, 8); return v; }
+static inline int all8_digits(uint64_t v)
+{
+    return ((v & UINT64_C(0xF0F0F0F0F0F0F0F0)) |
+            (((v + UINT64_C(0x0606060606060606)) & UINT64_C(0xF0F0F0F0F0F0F0F0)) >> 4))
+           == UINT64_C(0x3333333333333333);
+}
+static inline uint64_t value8(uint64_t v)
+{
+    const uint64_t mask = UINT64_C(0x000000FF000000FF);
+    v -= UINT64_C(0x3030303030303030);
+    v = v * 10 + (v >> 8);                          /* pairs */
+    return ((v & mask) * (100 + (UINT64_C(1000000) << 32)) +
+            ((v >> 16) & mask) * (1 + (UINT64_C(10000) << 32))) >> 32;
+}
+#else
+#define SWAR 0
+#endif
+
+/* The digits at p into w (which wraps past 19 digits: the caller counts
+ * them and sends such numbers to strtod); the first non-digit. With pad,
+ * eight bytes at a time while they are all digits (reading up to seven
+ * bytes past the first non-digit, which the caller allows). */
+static inline __attribute__((always_inline)) const char *digits(const char *p, uint64_t *w, int pad)
+{
+    uint64_t v = *w;
+#if SWAR
+    if (pad)
+        for (uint64_t x; all8_digits(x = load8(p)); p += 8) v = v * 100000000u + value8(x);
+#else
+    (void)pad;
+#endif
+    for (; is_digit(*p); p++) v = v * 10 + (uint64_t)(*p - '0');
+    *w = v;
+    return p;
+}
+
+/* The parse, and with fast set the fast steps before the exact ones;
+ * pad: the caller allows reads of VEC_NUM_PAD bytes past the string. */
+static inline __attribute__((always_inline)) double parse(const char *s, char **end, int fast, int pad)
+
 {
     const char *p = s;
     int neg = 0;
@@ -138,14 +280,14 @@ double vec_num_strtod(const char *s, char **end)
     /* The digits are summed first and counted after: more than 19
      * (where w would wrap) go to strtod anyway. */
     const char *ds = p;
-    for (; is_digit(*p); p++) w = w * 10 + (uint64_t)(*p - '0');
+    p = digits(p, &w, pad);
     long nd = p - ds;
     if (nd > 19) goto slow;
     if (*p == '.') {
         const char *f0 = ++p;
         if (!nd) while (*p == '0') p++;
         const char *fs = p;
-        for (; is_digit(*p); p++) w = w * 10 + (uint64_t)(*p - '0');
+        p = digits(p, &w, pad);
         if (nd + (p - fs) > 19) goto slow;
         frac = p - f0;
         if (p - d0 == 1) goto slow;                 /* a lone point: no digit at all */
@@ -175,14 +317,10 @@ double vec_num_strtod(const char *s, char **end)
         return neg ? -0.0 : 0.0;
     }
     double r;
-#if FLT_EVAL_METHOD == 0
-    if (w <= (UINT64_C(1) << 53) && q10 >= -22 && q10 <= 22) {
-        r = (double)w;
-        r = q10 >= 0 ? r * pow10d[q10] : r / pow10d[-q10];
+    if (fast && fast_steps(w, q10, neg, &r)) {
         if (end) *end = (char *)p;
-        return neg ? -r : r;
+        return r;
     }
-#endif
     if (q10 >= 0 && q10 <= 27) {
         if (!round_to_double((u128)w * pow5[q10], 0, (int)q10, neg, &r)) goto slow;
     } else if (q10 < 0 && q10 >= -27) {
@@ -200,3 +338,7 @@ double vec_num_strtod(const char *s, char **end)
 slow:
     return strtod(s, end);
 }
+
+double vec_num_strtod(const char *s, char **end) { return parse(s, end, 1, 0); }
+double vec_num_strtod_padded(const char *s, char **end) { return parse(s, end, 1, 1); }
+double vec_num_strtod_exact(const char *s, char **end) { return parse(s, end, 0, 0); }

@@ -4,14 +4,32 @@
  * vec_num_strtod(s, &end) gives exactly what strtod(s, &end) gives (value
  * and end pointer) in the "C" locale. The common case -- an optional sign,
  * at most 19 significant decimal digits, a decimal exponent q with
- * -108 <= q <= 27 (5^|q| in one word, or for q < -27 in a few),
- * followed by a space, tab, '|', newline or the end of the string -- is
- * converted with exact integer arithmetic and one correctly rounded step;
- * every other input is handed to strtod itself.
+ * -342 <= q <= 27, followed by a space, tab, '|', newline or the end of
+ * the string -- is converted by Clinger's fast path, or for negative q
+ * an Eisel-Lemire product that proves its rounding (normal results);
+ * else, for -108 <= q <= 27 (5^|q| in one word, or for q < -27 in a
+ * few), exact integer arithmetic and one correctly rounded step; every
+ * other input is handed to strtod itself.
  * tests/test_vec_num.c and bench/bench_vec_num.c compare the two.
  */
 #ifndef VEC_NUM_H
 #define VEC_NUM_H
 
+#include <stdint.h>
+
 double vec_num_strtod(const char *s, char **end);
+
+/* The same, reading digits eight at a time: for a string after whose
+ * terminating NUL at least VEC_NUM_PAD more bytes may be read (a buffer
+ * allocated that much longer; vectors/vec_file.c's). */
+#define VEC_NUM_PAD 8
+double vec_num_strtod_padded(const char *s, char **end);
+
+/* For tests: the same parse without the fast steps (every number in the
+ * common case through the exact integer path), and the fast steps alone
+ * on w 10^q: Clinger's (w <= 2^53, |q| <= 22) and for -342 <= q < 0 an
+ * Eisel-Lemire product with a 128-bit 5^-q (normal results only); 1 and *out set when they
+ * decide the correctly rounded double, 0 when the exact path must. */
+double vec_num_strtod_exact(const char *s, char **end);
+int vec_num_fast(uint64_t w, long q, int neg, double *out);
 #endif
