@@ -401,8 +401,10 @@ static int run_simulate(run_sim *s, const unit_desc *u, const run_mem *m, tb_res
     return rc;
 }
 
-/* Timing, area, overflows, ranges, error metrics and the verdict. */
-static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
+/* What both engines derive alike from the beats' cycles and the built
+ * design: clocks, area, the critical path and the overflow counts (the
+ * unit's, and the inputs' quantization). */
+static void run_figures(const run_mem *m, sim_ctx *c, const sim_scope *sc, tb_result *r)
 {
     size_t n = m->n, nbeats = m->nbeats, nb = (size_t)r->beats;
     r->latency = r->beat_cycle[0];
@@ -411,12 +413,18 @@ static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
                                : (double)r->cycles;
     r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
                                     : (double)r->cycles;
-    r->area_ge = sim_scope_area(s->sc);
+    r->area_ge = sim_scope_area(sc);
     char terr[300];
-    if (tb_ppa_timing(s->c, s->sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
-    r->overflows = tb_scope_overflows(s->sc);
-    r->ovf_discarded = tb_scope_ovf_discarded(s->sc);
+    if (tb_ppa_timing(c, sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
+    r->overflows = tb_scope_overflows(sc);
+    r->ovf_discarded = tb_scope_ovf_discarded(sc);
     for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
+}
+
+/* Timing, area, overflows, ranges, error metrics and the verdict. */
+static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
+{
+    run_figures(m, s->c, s->sc, r);
     tb_range_finish(&s->st.rg, s->sc, &s->io, m->in_ovf, r);
     tb_energy_fill(r, &s->st.rg, s->tog, s->c, r->stats.clocks);
     metrics(r, vs, m->ideal, m->exact, m->exact_den, m->exact_hi, m->exact_ok, &m->gold);
@@ -485,20 +493,8 @@ static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f
     }
     r->lanes = j.lanes;
     r->stats.clocks = j.clocks;
-    size_t n = m->n, nbeats = m->nbeats, nb = (size_t)r->beats;
-    r->latency = r->beat_cycle[0];
-    r->cycles = r->beat_cycle[nbeats - 1] + 1;
-    r->cycles_per_item = n > 1 ? (double)(r->beat_cycle[(n - 1) * nb] - r->beat_cycle[0]) / (double)(n - 1)
-                               : (double)r->cycles;
-    r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
-                                    : (double)r->cycles;
-    r->area_ge = sim_scope_area(b.sc);
-    char terr[300];
-    if (tb_ppa_timing(b.c, b.sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the batch found no loop */ }
     /* no lane overflowed: the unit's counts are its constants' (at build) */
-    r->overflows = tb_scope_overflows(b.sc);
-    r->ovf_discarded = tb_scope_ovf_discarded(b.sc);
-    for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
+    run_figures(m, b.c, b.sc, r);
     tb_range_finish(&rg, b.sc, &b.io, m->in_ovf, r);
     tb_energy_fill_counts(r, &rg, tog, NULL, b.c, r->stats.clocks);
     metrics(r, vs, m->ideal, m->exact, m->exact_den, m->exact_hi, m->exact_ok, &m->gold);
