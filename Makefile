@@ -5,7 +5,10 @@
 #   files, JSON numbers, parallel-for, name lists) at the bottom;
 #   chart/ (SVG charts) and vectors/ (float reference) on base/;
 #   units/ on sim/ and vectors/; scene/ on vectors/ (and sim/'s rounding
-#   names); testbench/ (testbenches and the CLI) on top of them all.
+#   names); testbench/ (the testbench engine: run, stream, batch, PPA,
+#   Verilog) on top of them all, testbench/study/ (sweeps, scenes through
+#   the hardware, stability, the papers' claims) on the engine, and
+#   testbench/cli/ (main.c and one file per verb) on top.
 # `make test` runs the suite twice: plain (-O2) and under ASan+UBSan;
 # `make test-clang` runs the same two flavours built by clang (build-clang*).
 
@@ -17,8 +20,8 @@ CFLAGS  ?=
 ALLCFLAGS = $(CSTD) $(WARN) $(OPT) -I. $(CFLAGS)
 LDLIBS  := -lm -lpthread
 
-LAYERS  := base sim chart units vectors scene testbench
-LIBSRC  := $(filter-out testbench/main.c,$(foreach d,$(LAYERS),$(wildcard $(d)/*.c)))
+LAYERS  := base sim chart units vectors scene testbench testbench/study testbench/cli
+LIBSRC  := $(filter-out testbench/cli/main.c,$(foreach d,$(LAYERS),$(wildcard $(d)/*.c)))
 HDRS    := $(foreach d,$(LAYERS),$(wildcard $(d)/*.h)) $(wildcard tests/*.h) $(wildcard bench/*.h)
 TESTSRC := $(wildcard tests/test_*.c)
 BENCHSRC:= $(wildcard bench/*.c)
@@ -48,7 +51,7 @@ bin/shadesim: $(B)/shadesim
 	@mkdir -p bin
 	$(Q)cp $< $@.tmp && mv -f $@.tmp $@
 
-$(B)/shadesim: $(B)/testbench/main.o $(B)/libshadesim.a
+$(B)/shadesim: $(B)/testbench/cli/main.o $(B)/libshadesim.a
 	$(say) LD $@
 	$(Q)$(CC) $(ALLCFLAGS) -o $@ $^ $(LDLIBS)
 
@@ -67,7 +70,7 @@ $(B)/version.h: FORCE
 	@echo '#define SHADESIM_VERSION "$(VERSION_STR)"' | cmp -s - $@ \
 	    || echo '#define SHADESIM_VERSION "$(VERSION_STR)"' > $@
 
-$(B)/testbench/main.o: testbench/main.c $(B)/version.h $(HDRS) Makefile $(FLAGSTAMP)
+$(B)/testbench/cli/main.o: testbench/cli/main.c $(B)/version.h $(HDRS) Makefile $(FLAGSTAMP)
 	@mkdir -p $(dir $@)
 	$(say) CC $<
 	$(Q)$(CC) $(ALLCFLAGS) -I$(B) -c -o $@ $<

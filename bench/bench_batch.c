@@ -13,7 +13,7 @@
 #include "bench/bench_items.h"
 #include "testbench/tb_batch.h"
 #include "sim/sim_batch.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>

@@ -3,7 +3,7 @@
  * (`shadesim run horner3 --vectors FILE`, parsing included) timed from
  * outside; also the vector file's reading alone (vec_file_read). The
  * vectors are the float reference's, written to /tmp once. */
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include "vectors/vec_file.h"
 #include <stdio.h>
 #include <stdlib.h>

@@ -20,8 +20,8 @@
  * One run each (a search takes tens of seconds): wall time swings with
  * the machine's load, printed beside it; CPU time and the share much
  * less. */
-#include "testbench/tb_scene.h"
-#include "testbench/tb_scene_search.h"
+#include "testbench/study/tb_scene.h"
+#include "testbench/study/tb_scene_search.h"
 #include "testbench/tb.h"
 #include <stdio.h>
 #include <stdlib.h>

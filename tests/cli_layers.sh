@@ -5,7 +5,12 @@
 #   sim/ (kernel, fixed point, primitives) and base/ (output files, JSON,
 #   parallel-for, name lists) at the bottom, using nothing else;
 #   chart/ and vectors/ on base/; units/ on sim/ and vectors/; scene/ on
-#   vectors/ and sim/'s rounding names; testbench/ (and the CLI) on top.
+#   vectors/ and sim/'s rounding names; testbench/ (the engine: run,
+#   stream, batch, PPA, Verilog) on top of them, testbench/study/ (sweeps,
+#   scenes through the hardware, stability, claims) on the engine, and
+#   testbench/cli/ (main.c, one file per verb) on the studies.
+# A layer is a folder; an include names the folder its header is in
+# ("testbench/study/tb_sweep.h" is testbench/study's, not testbench's).
 # Each line of the table only points down, so the graph has no circle.
 # The checker is first run on a small tree with wrong includes planted, so
 # this test shows on every run that it can fail.
@@ -22,10 +27,12 @@ uses() {
     units)     echo "units sim vectors base" ;;
     scene)     echo "scene sim vectors base" ;;
     testbench) echo "testbench sim base chart vectors units scene" ;;
+    testbench/study) echo "testbench/study testbench sim base chart vectors units scene" ;;
+    testbench/cli) echo "testbench/cli testbench/study testbench sim base chart vectors units scene" ;;
     *)         echo "" ;;
     esac
 }
-ALL="sim base chart vectors units scene testbench"
+ALL="sim base chart vectors units scene testbench testbench/study testbench/cli"
 
 # Includes allowed for now, "FILE INCLUDE" per line, each with its reason
 # (none: the VCD writer takes a FILE* its caller opened, so sim/ includes
@@ -42,7 +49,7 @@ wrong() {
         for f in "$root/$layer"/*.c "$root/$layer"/*.h; do
             [ -f "$f" ] || continue
             sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f" | while IFS= read -r inc; do
-                case $inc in */*) top=${inc%%/*} ;; *) top=$layer ;; esac
+                case $inc in */*) top=${inc%/*} ;; *) top=$layer ;; esac
                 case $allowed in *" $top "*) continue ;; esac
                 rel=${f#"$root"/}
                 case "
@@ -65,14 +72,22 @@ printf '#include "units/unit.h"\n' >"$M/sim/up.c"                 # sim -> units
 printf '#include "base/base_out.h"\n' >"$M/sim/side.h"             # sim -> base
 printf '#include "sim/sim.h"\n' >"$M/base/down.c"                  # base -> sim
 printf '#  include "testbench/tb.h"\n' >"$M/chart/up.c"             # chart -> testbench
-printf '#include "testbench/cli.h"\n' >"$M/units/up.c"             # units -> testbench
+printf '#include "testbench/cli/cli.h"\n' >"$M/units/up.c"         # units -> testbench/cli
 printf '#include "units/unit.h"\n' >"$M/vectors/up.c"              # vectors -> units (a circle)
 printf '#include "tests/tst.h"\n' >"$M/testbench/t.c"              # testbench -> tests
+printf '#include "testbench/study/tb_sweep.h"\n' >"$M/testbench/up.h"  # engine -> study
+printf '#include "testbench/cli/cli.h"\n' >"$M/testbench/up2.c"     # engine -> cli
+printf '#include "testbench/tb.h"\n#include "testbench/cli/cli_opt.h"\n' >"$M/testbench/study/up.c"  # study -> cli
+printf '#include "testbench/tb.h"\n#include "testbench/study/tb_sweep.h"\n#include "sim/sim.h"\n' \
+    >"$M/testbench/cli/ok.c"                                        # cli -> study, engine, sim: fine
+printf '#include "testbench/cli/cli.h"\n' >"$M/base/up.c"           # base -> testbench/cli
 got=$(wrong "$M" | sort)
 want=$(printf '%s\n' "base/down.c: includes sim/sim.h" "chart/up.c: includes testbench/tb.h" \
     "sim/side.h: includes base/base_out.h" "sim/up.c: includes units/unit.h" \
-    "testbench/t.c: includes tests/tst.h" "units/up.c: includes testbench/cli.h" \
-    "vectors/up.c: includes units/unit.h" | sort)
+    "testbench/t.c: includes tests/tst.h" "units/up.c: includes testbench/cli/cli.h" \
+    "vectors/up.c: includes units/unit.h" "testbench/up.h: includes testbench/study/tb_sweep.h" \
+    "testbench/up2.c: includes testbench/cli/cli.h" "testbench/study/up.c: includes testbench/cli/cli_opt.h" \
+    "base/up.c: includes testbench/cli/cli.h" | sort)
 [ "$got" = "$want" ] && ok checker_finds_wrong_includes \
     || fail checker_finds_wrong_includes "$(printf 'found:\n%s\nexpected:\n%s' "$got" "$want" | tr '\n' '|')"
 
@@ -82,6 +97,17 @@ missing=""
 for l in $layers; do [ -n "$(uses "$l")" ] || missing="$missing $l"; done
 [ -n "$layers" ] && [ -z "$missing" ] && ok every_layer_has_rules \
     || fail every_layer_has_rules "Makefile LAYERS '$layers'; not in the table:$missing"
+
+# 2b. Every folder of the tree that holds C sources (tests/ and bench/
+#     aside: they may use any layer) is a layer, so a new sub-folder is
+#     not left out of the check.
+unlisted=""
+for d in $(find . -path ./tests -prune -o -path ./bench -prune -o -path './build*' -prune -o -path ./bin -prune \
+        -o -path ./.git -prune -o -name '*.[ch]' -print | sed 's|^\./||; s|/[^/]*$||' | sort -u); do
+    case " $layers " in *" $d "*) ;; *) unlisted="$unlisted $d" ;; esac
+done
+[ -z "$unlisted" ] && ok every_source_folder_is_a_layer \
+    || fail every_source_folder_is_a_layer "folders with C sources not in the Makefile's LAYERS:$unlisted"
 
 # 3. The tree itself.
 bad=$(wrong .)

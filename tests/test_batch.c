@@ -13,7 +13,7 @@
 #include "testbench/tb.h"
 #include "testbench/tb_span.h"
 #include "testbench/tb_batch.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 
 static uint64_t rng = 0x9e3779b97f4a7c15ull;
 static uint64_t rnd(void)

@@ -1,9 +1,9 @@
-/* test_cli_opt.c - the option parser every verb uses (testbench/cli_opt.h):
+/* test_cli_opt.c - the option parser every verb uses (testbench/cli/cli_opt.h):
  * values, missing and bad values, repeats, both spellings of a value, and
  * that every verb's --help lists exactly the options of its tables. */
 #include "tests/tst.h"
-#include "testbench/cli.h"
-#include "testbench/cli_opt.h"
+#include "testbench/cli/cli.h"
+#include "testbench/cli/cli_opt.h"
 #include <limits.h>
 #include <stddef.h>
 #include <unistd.h>

@@ -7,7 +7,7 @@
  * (floor division, clamping, wrapping modulo 2^W), not with sim_fixed.c. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include "testbench/tb_verilog.h"
 #include <stdint.h>
 #include <sys/stat.h>

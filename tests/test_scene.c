@@ -1,4 +1,4 @@
-/* test_scene.c - the scene testbench (testbench/tb_scene.c) against
+/* test_scene.c - the scene testbench (testbench/study/tb_scene.c) against
  * references written here: the interval cutting and node placement redone
  * from the rules of docs/scenes.md with a Lagrange evaluation of its own,
  * a synthetic surface whose intensity is exactly quadratic (and cubic)
@@ -6,7 +6,7 @@
  * the outputs for one thread and several. */
 #include "tst.h"
 #include "tst_ref.h"
-#include "testbench/tb_scene.h"
+#include "testbench/study/tb_scene.h"
 #include "testbench/tb.h"
 #include <stdint.h>
 

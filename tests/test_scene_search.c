@@ -6,8 +6,8 @@
  * "smallest" property checked by removing one more bit from each signal,
  * the held-out verdict by rendering the held-out view ourselves. */
 #include "tests/tst.h"
-#include "testbench/tb_scene_search.h"
-#include "testbench/tb_scene_claims.h"
+#include "testbench/study/tb_scene_search.h"
+#include "testbench/study/tb_scene_claims.h"
 #include "testbench/tb.h"
 #include <sys/stat.h>
 

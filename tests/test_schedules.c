@@ -7,7 +7,7 @@
  * the unit's ideal function of the inputs as the hardware holds them. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include "units/unit_horner.h"
 #include <stdint.h>
 #include <sys/wait.h>

@@ -2,8 +2,8 @@
  * sweep's acceptance flags, through the engine (tb_sweep.h): each figure
  * recomputed here by running the same design on the same stimuli. */
 #include "tests/tst.h"
-#include "testbench/tb_sweep.h"
-#include "testbench/cli.h"
+#include "testbench/study/tb_sweep.h"
+#include "testbench/cli/cli.h"
 
 static int sweep_h3(tb_sweep *s, vec_set *vs, int lo, int hi, const tb_accept *acc)
 {

@@ -10,7 +10,7 @@
 #include "tests/tst_ref.h"
 #include "testbench/tb.h"
 #include "testbench/tb_span.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include "sim/sim_area.h"
 #include <stdint.h>
 #include <unistd.h>

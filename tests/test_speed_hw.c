@@ -1,4 +1,4 @@
-/* test_speed_hw.c - the hardware speed claims (testbench/tb_speed_hw.c)
+/* test_speed_hw.c - the hardware speed claims (testbench/study/tb_speed_hw.c)
  * against the algebra of the units they are built from: the restoring
  * divider takes a clock per quotient bit (W at width W), a power x^g on
  * the one-multiplier engine log2 g clocks (1 for the squarer, 4 for
@@ -8,7 +8,7 @@
  * a divider, 1 + W more; with the stages overlapped an item every W
  * clocks. The verdicts follow from those. */
 #include "tests/tst.h"
-#include "testbench/tb_speed_hw.h"
+#include "testbench/study/tb_speed_hw.h"
 
 static void chains_match_algebra(void)
 {

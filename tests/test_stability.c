@@ -2,7 +2,7 @@
  * sides (one step before it fails, at it holds) by running the units, and
  * placed against an independent algebraic estimate computed here. */
 #include "tests/tst.h"
-#include "testbench/tb_stability.h"
+#include "testbench/study/tb_stability.h"
 #include "testbench/tb.h"
 #include <stdint.h>
 

@@ -5,7 +5,7 @@
  * items than the ring holds); a bad row past the first block is the
  * reader's message, as a whole read gives it. */
 #include "tests/tst.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include "testbench/tb_stream.h"
 #include "vectors/vec_file.h"
 #include <unistd.h>

@@ -1,4 +1,4 @@
-/* test_sweep.c - the sweep engine (testbench/tb_sweep.c) and the sweep
+/* test_sweep.c - the sweep engine (testbench/study/tb_sweep.c) and the sweep
  * verb's files: configuration order and shards, thread independence of the
  * CSV, error against width, the target search's tightness, the charts as
  * XML (and rendered, where rsvg-convert is installed), merge's refusals.
@@ -6,8 +6,8 @@
  * binary) is tests/cli_sweep.sh.
  */
 #include "tests/tst.h"
-#include "testbench/cli.h"
-#include "testbench/tb_sweep.h"
+#include "testbench/cli/cli.h"
+#include "testbench/study/tb_sweep.h"
 #include "vectors/vec_file.h"
 #include "tests/tst_svgtext.h"
 

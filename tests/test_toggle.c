@@ -18,8 +18,8 @@
 #include "testbench/tb.h"
 #include "testbench/tb_batch.h"
 #include "testbench/tb_span.h"
-#include "testbench/tb_scene.h"
-#include "testbench/cli.h"
+#include "testbench/study/tb_scene.h"
+#include "testbench/cli/cli.h"
 #include <unistd.h>
 
 static int bits_of(uint64_t x)

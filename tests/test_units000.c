@@ -9,7 +9,7 @@
 #include "tests/tst.h"
 #include "tests/tst_ref.h"
 #include "testbench/tb.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include <stdint.h>
 #include <sys/wait.h>
 #include <unistd.h>

@@ -6,7 +6,7 @@
  * n's bits, the peak 1/(4m^2) of D. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include "vectors/claims.h"
 #include <stdint.h>
 

@@ -4,7 +4,7 @@
  * computed here: 128-bit integer arithmetic, rounding by hand. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include <stdint.h>
 
 /* Run unit name with cfg and overrides ov[0..nov-1] on vs (NULL: the

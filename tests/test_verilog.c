@@ -23,7 +23,7 @@
  * The tool-driven tests run in the plain build only, and are skipped when
  * their tool is not installed. */
 #include "tests/tst.h"
-#include "testbench/cli.h"
+#include "testbench/cli/cli.h"
 #include "testbench/tb_verilog.h"
 #include "sim/sim_verilog.h"
 #include <sys/stat.h>

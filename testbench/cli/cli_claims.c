@@ -1,0 +1,516 @@
+/* cli_claims.c - the verb claims: every numerical claim of the seeds next
+ * to what we measure, with a verdict (vectors/claims.c computes them), the
+ * seeds' speed claims measured as hardware clocks and area of our units
+ * against chains of our units for the exact functions (testbench/
+ * tb_speed_hw.c; deterministic: the same
+ * bytes on every machine; CPU timings of float code are `make bench`'s,
+ * bench/bench_claims.c), the failure region of each approximation, and
+ * with -o DIR the charts (docs/brdf.md). */
+#include "testbench/cli/cli.h"
+#include "testbench/cli/cli_opt.h"
+#include "base/base_out.h"
+#include "base/base_json.h"
+#include "chart/chart.h"
+#include "vectors/claims.h"
+#include "testbench/study/tb_scene_claims.h"
+#include "testbench/study/tb_factor_claims.h"
+#include "testbench/study/tb_speed_hw.h"
+#include "vectors/ref_brdf.h"
+#include <errno.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+#define DEG (M_PI / 180.0)
+
+#define FAIL_REL 0.10          /* a failure: relative error above 10% ... */
+#define FAIL_FLOOR 0.01        /* ... where the exact value is above 1% of its peak */
+
+/* ----------------------------------------------------------- JSON output */
+
+/* Text into a claim_result field (fixed size): formatted in full, then cut. */
+/* ------------------------------------------------- hardware cost figures */
+
+typedef double (*phys_fn)(double c, const unit_cfg *cfg);
+static double phys_beckmann(double c, const unit_cfg *cfg) { return ref_brdf_beckmann(c, cfg->m); }
+static double phys_ward(double c, const unit_cfg *cfg) { return ref_brdf_ward_exp(c, cfg->alpha); }
+static double phys_blinn(double c, const unit_cfg *cfg) { return ref_brdf_cos_pow(c, cfg->n); }
+
+/* ----------------------------------------------------- failure regions */
+
+typedef double (*fn_cp)(double c, double p);
+static double d16c(double c, double m) { return ref_brdf_dg_clamped(c, m, 16); }
+static double d16u(double c, double m) { return ref_brdf_dg(c, m, 16); }
+static double beck(double c, double m) { return ref_brdf_beckmann(c, m); }
+static double wpoly(double c, double a) { return ref_brdf_ward_exp_approx_clamped(c, a); }
+static double wexp(double c, double a) { return ref_brdf_ward_exp(c, a); }
+static double fsh(double c, double n) { return ref_brdf_schlick(c, n); }
+static double fmsh(double c, double n) { return ref_brdf_mschlick(c, n); }
+static double blinn(double c, double n) { return ref_brdf_cos_pow(c, n); }
+
+/* An approximation at one parameter value against its exact function. */
+typedef struct approx {
+    const char *name;      /* "D16" */
+    const char *pname;     /* "m" */
+    double p;
+    fn_cp f, exact;
+    double peak;           /* of the exact function (at 0 deg) */
+} approx;
+
+#define N_ANG 1800             /* 0.05 deg steps over [0, 90] */
+#define MAX_BANDS 8
+
+typedef struct bands { int n; double lo[MAX_BANDS], hi[MAX_BANDS]; double worst; } bands;
+
+static double ang_at(int i) { return 90.0 * i / N_ANG; }
+
+static int failing(const approx *a, int i)
+{
+    double c = cos(ang_at(i) * DEG), e = a->exact(c, a->p);
+    return e > FAIL_FLOOR * a->peak && fabs(a->f(c, a->p) / e - 1) > FAIL_REL;
+}
+
+/* Contiguous runs of failing angles, and the worst relative error where the
+ * exact value is above 1% of its peak. */
+static void failure_bands(const approx *a, bands *b)
+{
+    memset(b, 0, sizeof *b);
+    int start = -1;
+    for (int i = 0; i <= N_ANG + 1; i++) {
+        int fl = i <= N_ANG && failing(a, i);
+        if (i <= N_ANG) {
+            double c = cos(ang_at(i) * DEG), e = a->exact(c, a->p);
+            if (e > FAIL_FLOOR * a->peak) b->worst = fmax(b->worst, fabs(a->f(c, a->p) / e - 1));
+        }
+        if (fl && start < 0) start = i;
+        if (!fl && start >= 0) {
+            if (b->n < MAX_BANDS) {
+                b->lo[b->n] = ang_at(start);
+                b->hi[b->n] = ang_at(i - 1);
+                b->n++;
+            }
+            start = -1;
+        }
+    }
+}
+
+static const approx APPROX[] = {
+    { "D16", "m", 0.2, d16c, beck, 1 / (4 * 0.04) },
+    { "D16", "m", 0.3, d16c, beck, 1 / (4 * 0.09) },
+    { "D16", "m", 0.4, d16c, beck, 1 / (4 * 0.16) },
+    { "D16", "m", 0.6, d16c, beck, 1 / (4 * 0.36) },
+    { "Ward poly16", "a", 0.1, wpoly, wexp, 1 },
+    { "Ward poly16", "a", 0.2, wpoly, wexp, 1 },
+    { "Ward poly16", "a", 0.3, wpoly, wexp, 1 },
+    { "Ward poly16", "a", 0.4, wpoly, wexp, 1 },
+    { "F_SH", "n", 60, fsh, blinn, 1 },
+    { "F_MSH", "n", 60, fmsh, blinn, 1 },
+    { "F_SH", "n", 500, fsh, blinn, 1 },
+    { "F_MSH", "n", 500, fmsh, blinn, 1 },
+};
+#define N_APPROX (sizeof APPROX / sizeof APPROX[0])
+
+/* --------------------------------------------------------------- charts */
+
+static int write_chart(chart *c, const char *dir, const char *file, char paths[][600], int *np)
+{
+    char path[600], err[700];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    int rc = c ? chart_write(c, path, err, sizeof err) : -1;
+    if (!c) snprintf(err, sizeof err, "%s: out of memory", path);
+    chart_free(c);
+    if (rc) return cli_usage_error("%s", err);
+    snprintf(paths[(*np)++], 600, "%s", path);
+    return CLI_OK;
+}
+
+/* |relative error| in percent against angle, where the exact value is
+ * above 0.1% of its peak; failure bands shaded. first..last index APPROX. */
+static chart *error_chart(const char *title, size_t first, size_t last)
+{
+    chart *c = chart_new(title, "angle between N and H (deg)", "|relative error| (%)");
+    if (!c) return NULL;
+    chart_log_y(c, 1);
+    for (size_t k = first; k <= last; k++) {
+        const approx *a = &APPROX[k];
+        char label[64];
+        snprintf(label, sizeof label, "%s, %s = %g", a->name, a->pname, a->p);
+        int s = chart_series(c, label, CHART_LINE);
+        for (int i = 0; i <= N_ANG; i += 4) {
+            double cc = cos(ang_at(i) * DEG), e = a->exact(cc, a->p);
+            if (e > 1e-3 * a->peak) chart_point(c, s, ang_at(i), 100 * fabs(a->f(cc, a->p) / e - 1));
+        }
+        bands b;
+        failure_bands(a, &b);
+        for (int j = 0; j < b.n; j++) {
+            snprintf(label, sizeof label, "%s=%g fails", a->pname, a->p);
+            chart_hband(c, b.lo[j], b.hi[j], label);
+        }
+    }
+    chart_hline(c, 100 * FAIL_REL, "10%");
+    return c;
+}
+
+/* Why d_approx clamps: D, D16 clamped and D16 as the seeds print it, as
+ * fractions of D's peak, m = 0.2; past the cosine where the base turns
+ * negative the printed even power rises again, to 2.3e4 x the peak. */
+static chart *clamp_chart(void)
+{
+    const double m = 0.2, peak = 1 / (4 * m * m);
+    chart *c = chart_new("D16 with and without the clamp, m = 0.2", "angle between N and H (deg)",
+                               "value / peak of D");
+    if (!c) return NULL;
+    chart_log_y(c, 1);
+    int s_d = chart_series(c, "Beckmann D", CHART_LINE);
+    int s_u = chart_series(c, "D16 as printed", CHART_LINE);
+    int s_c = chart_series(c, "D16 clamped (d_approx)", CHART_LINE);   /* drawn over the printed */
+    /* Values below 1e-12 of the peak are left out (D reaches 1e-300), as
+     * NaN so that the lines break there. */
+    for (int i = 0; i <= N_ANG; i += 4) {
+        double a = ang_at(i), cc = cos(a * DEG);
+        double v[3] = { beck(cc, m) / peak, d16c(cc, m) / peak, d16u(cc, m) / peak };
+        int s[3] = { s_d, s_c, s_u };
+        for (int k = 0; k < 3; k++)
+            chart_point(c, s[k], a, v[k] >= 1e-12 ? v[k] : NAN);
+    }
+    double c0 = ref_brdf_dg_base_zero_cos(m, 16);
+    char lab[64];
+    snprintf(lab, sizeof lab, "base < 0 from %.1f deg", acos(c0) / DEG);
+    if (c0 > 0) chart_hband(c, acos(c0) / DEG, 90, lab);
+    chart_hline(c, 1, "peak");
+    return c;
+}
+
+/* Clocks x area against error for the specular units at several widths. */
+typedef struct cost_unit { const char *unit, *label; phys_fn phys; } cost_unit;
+static const cost_unit COST_UNITS[] = {
+    { "d_approx", "d_approx vs D, m=0.2", phys_beckmann },
+    { "ward_approx", "ward_approx vs exp, a=0.2", phys_ward },
+    { "pow_n", "pow_n vs cos^32", phys_blinn },
+    { "schlick", "schlick vs cos^32", phys_blinn },
+    { "mschlick", "mschlick vs cos^32", phys_blinn },
+};
+#define N_COST_UNITS (sizeof COST_UNITS / sizeof COST_UNITS[0])
+static const int COST_WIDTHS[] = { 8, 12, 16, 20, 24 };
+#define N_COST_WIDTHS (sizeof COST_WIDTHS / sizeof COST_WIDTHS[0])
+
+static chart *cost_chart(void)
+{
+    chart *c = chart_new("Which specular model buys the most accuracy per clock",
+                               "clocks per item x area (GE x clocks)", "max |error| / peak of the exact function");
+    if (!c) return NULL;
+    chart_log_x(c, 1);
+    chart_log_y(c, 1);
+    for (size_t k = 0; k < N_COST_UNITS; k++) {
+        int s = chart_series(c, COST_UNITS[k].label, CHART_LINE | CHART_POINTS);
+        for (size_t w = 0; w < N_COST_WIDTHS; w++) {
+            unit_cfg cfg;
+            unit_cfg_default(unit_find(COST_UNITS[k].unit), &cfg);
+            cfg.width = COST_WIDTHS[w];
+            double peak = !strcmp(COST_UNITS[k].unit, "d_approx") ? 1 / (4 * cfg.m * cfg.m) : 1;
+            tb_hw_point pt;
+            if (tb_hw_point_run(COST_UNITS[k].unit, &cfg, 0, COST_UNITS[k].phys, peak, &pt)) continue;
+            char lab[16];
+            snprintf(lab, sizeof lab, "width %d", COST_WIDTHS[w]);
+            if (w == 0 || w == N_COST_WIDTHS - 1) chart_point_label(c, s, pt.clocks * pt.area, pt.max_err_peak, lab);
+            else chart_point(c, s, pt.clocks * pt.area, pt.max_err_peak);
+        }
+    }
+    return c;
+}
+
+static int write_charts(const char *dir, char paths[][600], int *np)
+{
+    if (cli_make_dir(dir)) return CLI_USAGE;
+    /* the charts are one set: all appear, or none */
+    base_outset *set = base_outset_begin();
+    char err[600];
+    if (!set) return cli_usage_error("claims: out of memory");
+    if (write_chart(error_chart("D16 (clamped) against Beckmann D", 0, 3), dir, "claims_d16.svg", paths, np) ||
+        write_chart(error_chart("Ward's exponential as a 16th power", 4, 7), dir, "claims_ward.svg", paths, np) ||
+        write_chart(error_chart("Schlick and modified Schlick against Blinn cos^n", 8, 11), dir,
+                    "claims_schlick.svg", paths, np) ||
+        write_chart(clamp_chart(), dir, "claims_d16_clamp.svg", paths, np) ||
+        write_chart(cost_chart(), dir, "claims_cost.svg", paths, np)) {
+        base_outset_abort(set);
+        return CLI_USAGE;
+    }
+    if (base_outset_commit(set, err, sizeof err)) return cli_usage_error("%s", err);
+    return CLI_OK;
+}
+
+/* ---------------------------------------------------------------- output */
+
+typedef struct report {
+    claim_result rows[CLAIMS_MAX];
+    const char *kind[CLAIMS_MAX];     /* "accuracy", "speed_hw", "factor", "scene" */
+    size_t n;
+    tb_speed_hw hc;
+    bands fb[N_APPROX];
+} report;
+
+static void print_row(FILE *f, const claim_result *r)
+{
+    fprintf(f, "%s (%s): %s\n", r->id, r->seed, r->verdict);
+    fprintf(f, "  claim:    %s\n", r->claim);
+    if (isfinite(r->claimed)) fprintf(f, "  paper:    %g    measured: %.4g\n", r->claimed, r->measured);
+    else fprintf(f, "  paper:    (no number)    measured: %.4g\n", r->measured);
+    fprintf(f, "  ours:     %s\n", r->measured_text);
+    fprintf(f, "  note:     %s\n\n", r->note);
+}
+
+static void print_text(FILE *f, const report *rp, char paths[][600], int np)
+{
+    fputs("The papers' numerical claims next to what the double-precision references measure.\n"
+          "Verdicts: holds / holds only for <condition> / does not hold.\n\n", f);
+    for (size_t i = 0; i < rp->n; i++)
+        if (!strcmp(rp->kind[i], "accuracy")) print_row(f, &rp->rows[i]);
+
+    const tb_speed_hw *h = &rp->hc;
+    fprintf(f, "Speed claims in hardware: our units at width %d, each simulated (clocks per item, area in GE)\n",
+            h->width);
+    if (!h->ok) fputs("  (some unit failed to run; figures may be missing)\n", f);
+    fprintf(f, "  %-40s %8s %10s %14s\n", "", "clocks", "area", "clocks x area");
+    struct { const char *name; double cl, ar; } t[] = {
+        { "d_approx (D16, m=0.2)", h->d16.clocks, h->d16.area },
+        { "exact D without its exp", h->exact_d_clocks, h->exact_d_area },
+        { h->pow_d.label, h->pow_d.clocks, h->pow_d.area },
+        { "ward_approx (a=0.2)", h->ward16.clocks, h->ward16.area },
+        { "Ward exp term without its exp (wired)", h->exact_w_clocks, h->exact_w_area },
+        { h->pow_w.label, h->pow_w.clocks, h->pow_w.area },
+        { "  stage: powg g=2 (squarer)", h->sq.clocks, h->sq.area },
+        { "  stage: div (restoring divider)", h->div.clocks, h->div.area },
+    };
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++)
+        fprintf(f, "  %-40s %8.0f %10.0f %14.0f\n", t[i].name, t[i].cl, t[i].ar, t[i].cl * t[i].ar);
+    fprintf(f, "  exact D = c^2 (squarer) -> (1-c^2)/c^2 (divider) -> exp -> c^4 (squarer on c^2) ->\n"
+          "  exp/c^4 (divider). The first two stages are wired into one design (1 - c^2 by a\n"
+          "  subtractor, operand registers, a valid flag) and simulated end to end, one item\n"
+          "  at a time: Ward's exp term (max error %.2f quotient LSBs on c in [0.75, 1)); exact\n"
+          "  D adds the squarer's and the divider's own clocks and areas, each simulated alone\n"
+          "  (their glue not counted). The exponential has no unit: it is not counted, so both\n"
+          "  exact figures are lower bounds. pow_n rows: the papers' intermediate cos^(2/m^2-4)\n"
+          "  and cos^(2/a^2) forms computed exactly.\n\n", h->wired_err_lsb);
+    for (size_t i = 0; i < rp->n; i++)
+        if (!strcmp(rp->kind[i], "speed_hw")) print_row(f, &rp->rows[i]);
+
+    fprintf(f, "Claims of the factorization paper: Ward (isotropic) factorized at 32x32, as `shadesim factor\n"
+               "ward --claims --scene %s --scene-res %d` measures them\n\n", TB_FACTOR_CLAIMS_SCENE,
+            TB_FACTOR_CLAIMS_RES);
+    for (size_t i = 0; i < rp->n; i++)
+        if (!strcmp(rp->kind[i], "factor")) print_row(f, &rp->rows[i]);
+
+    fprintf(f, "Claims on the face scene (%dx%d) through the simulated hardware path\n\n", TB_SCENE_CLAIMS_RES,
+            TB_SCENE_CLAIMS_RES);
+    for (size_t i = 0; i < rp->n; i++)
+        if (!strcmp(rp->kind[i], "scene")) print_row(f, &rp->rows[i]);
+
+    fputs("Speed on a CPU (float code) depends on the machine, compiler and libm: `make bench`\n"
+          "times it (bench/bench_claims); it is not part of these verdicts.\n\n", f);
+
+    fputs("Failure regions: relative error above 10% where the exact value is above 1% of its peak\n", f);
+    for (size_t k = 0; k < N_APPROX; k++) {
+        const approx *a = &APPROX[k];
+        const bands *b = &rp->fb[k];
+        fprintf(f, "  %-12s %s = %-4g worst %7.3g%%  ", a->name, a->pname, a->p, 100 * b->worst);
+        if (!b->n) fputs("no failure", f);
+        for (int j = 0; j < b->n; j++) fprintf(f, "%s%.2f..%.2f deg", j ? ", " : "fails at ", b->lo[j], b->hi[j]);
+        fputc('\n', f);
+    }
+
+    int nh = 0, no = 0, nf = 0;
+    for (size_t i = 0; i < rp->n; i++) {
+        int k = claims_verdict_kind(rp->rows[i].verdict);
+        nh += k == 1; no += k == 0; nf += k == -1;
+    }
+    fprintf(f, "\n%zu claims: %d hold, %d hold only under a condition, %d do not hold\n", rp->n, nh, no, nf);
+    for (int i = 0; i < np; i++) fprintf(f, "wrote %s\n", paths[i]);
+}
+
+static void json_row(FILE *f, const claim_result *r, const char *kind)
+{
+    fputs("    {\"id\": ", f); base_json_str(f, r->id);
+    fputs(", \"kind\": ", f); base_json_str(f, kind);
+    fputs(", \"source\": ", f); base_json_str(f, r->seed);
+    fputs(",\n     \"claim\": ", f); base_json_str(f, r->claim);
+    fputs(",\n     \"claimed\": ", f); base_json_num(f, r->claimed, 10);
+    fputs(", \"measured\": ", f); base_json_num(f, r->measured, 10);
+    fputs(", \"verdict\": ", f); base_json_str(f, r->verdict);
+    fputs(",\n     \"measured_text\": ", f); base_json_str(f, r->measured_text);
+    fputs(",\n     \"note\": ", f); base_json_str(f, r->note);
+    fputs("}", f);
+}
+
+static void json_hw(FILE *f, const char *name, double cl, double ar, int n, int last)
+{
+    fputs("      ", f); base_json_str(f, name);
+    fputs(": {\"clocks_per_item\": ", f); base_json_num(f, cl, 10);
+    fputs(", \"area_ge\": ", f); base_json_num(f, ar, 10);
+    if (n) fprintf(f, ", \"n\": %d", n);
+    fprintf(f, "}%s\n", last ? "" : ",");
+}
+
+static void print_json(FILE *f, const report *rp, char paths[][600], int np)
+{
+    fputs("{\n  \"claims\": [\n", f);
+    for (size_t i = 0; i < rp->n; i++) {
+        json_row(f, &rp->rows[i], rp->kind[i]);
+        fputs(i + 1 < rp->n ? ",\n" : "\n", f);
+    }
+    const tb_speed_hw *h = &rp->hc;
+    fprintf(f, "  ],\n  \"hardware\": {\n    \"width\": %d,\n    \"units\": {\n", h->width);
+    json_hw(f, "d_approx", h->d16.clocks, h->d16.area, 0, 0);
+    json_hw(f, "ward_approx", h->ward16.clocks, h->ward16.area, 0, 0);
+    json_hw(f, "powg_g2", h->sq.clocks, h->sq.area, 0, 0);
+    json_hw(f, "div", h->div.clocks, h->div.area, 0, 0);
+    json_hw(f, "pow_n_cos_power_d", h->pow_d.clocks, h->pow_d.area, h->n_d, 0);
+    json_hw(f, "pow_n_cos_power_ward", h->pow_w.clocks, h->pow_w.area, h->n_w, 0);
+    json_hw(f, "exact_d_without_exp", h->exact_d_clocks, h->exact_d_area, 0, 0);
+    json_hw(f, "ward_exp_term_without_exp", h->exact_w_clocks, h->exact_w_area, 0, 1);
+    fputs("    },\n    \"model\": ", f);
+    base_json_str(f, "built units: Ward's exp term = squarer and divider wired into one design and simulated; "
+            "exact D = that design, then a squarer and a divider each simulated alone; the exponential (no unit) "
+            "not counted: lower bounds");
+    fputs("\n  },\n  \"failure_regions\": [\n", f);
+    for (size_t k = 0; k < N_APPROX; k++) {
+        const approx *a = &APPROX[k];
+        const bands *b = &rp->fb[k];
+        fputs("    {\"approximation\": ", f); base_json_str(f, a->name);
+        fputs(", \"param\": ", f); base_json_str(f, a->pname);
+        fputs(", \"value\": ", f); base_json_num(f, a->p, 10);
+        fputs(", \"worst_rel_err\": ", f); base_json_num(f, b->worst, 10);
+        fputs(", \"fails_deg\": [", f);
+        for (int j = 0; j < b->n; j++) {
+            fprintf(f, "%s[", j ? ", " : "");
+            base_json_num(f, b->lo[j], 10); fputs(", ", f); base_json_num(f, b->hi[j], 10);
+            fputs("]", f);
+        }
+        fprintf(f, "]}%s\n", k + 1 < N_APPROX ? "," : "");
+    }
+    fputs("  ],\n  \"charts\": [", f);
+    for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); base_json_str(f, paths[i]); }
+    fputs("]\n}\n", f);
+}
+
+/* ------------------------------------------------------------------ rows */
+
+/* Every row of the claims table: accuracy, the hardware speed claims at
+ * width, the factorization paper's, the face scene's; kinds "accuracy",
+ * "speed_hw", "factor", "scene". */
+static size_t claims_rows(claim_result *rows, const char **kind, int width, tb_speed_hw *hc, char *err, size_t errlen)
+{
+    size_t n = claims_compute(rows, CLAIMS_MAX);
+    for (size_t i = 0; i < n; i++) kind[i] = "accuracy";
+    tb_speed_hw_measure(width, hc);
+    if (n + 2 <= CLAIMS_MAX) {
+        size_t k = tb_speed_hw_rows(hc, &rows[n]);
+        for (size_t i = 0; i < k; i++) kind[n + i] = "speed_hw";
+        n += k;
+    }
+    if (n + TB_FACTOR_CLAIMS_ROWS <= CLAIMS_MAX) {
+        char ferr[300];
+        size_t k = tb_factor_claims(&rows[n], CLAIMS_MAX - n, ferr, sizeof ferr);
+        if (!k) { snprintf(err, errlen, "factorization: %s", ferr); return 0; }
+        for (size_t i = 0; i < k; i++) kind[n + i] = "factor";
+        n += k;
+    }
+    if (n + TB_SCENE_CLAIMS_ROWS <= CLAIMS_MAX) {
+        char serr[300];
+        size_t k = tb_scene_claims(&rows[n], CLAIMS_MAX - n, TB_SCENE_CLAIMS_RES, 2, serr, sizeof serr);
+        if (!k) { snprintf(err, errlen, "face scene: %s", serr); return 0; }
+        for (size_t i = 0; i < k; i++) kind[n + i] = "scene";
+        n += k;
+    }
+    return n;
+}
+
+size_t cli_claims_table(claim_result *rows, const char **kind, int width, char *err, size_t errlen)
+{
+    tb_speed_hw hc;
+    return claims_rows(rows, kind, width, &hc, err, errlen);
+}
+
+/* ------------------------------------------------------------------ verb */
+
+typedef struct claims_args { int json, width; const char *dir; } claims_args;
+
+static int o_cpu_seconds(void *base, const char *opt, const char *v)
+{
+    (void)base, (void)opt, (void)v;
+    return cli_usage_error("claims: --cpu-seconds is gone: CPU timings are machine-dependent and not "
+                           "verdicts; make bench times them (bench/bench_claims)");
+}
+
+static const cli_opt claims_tab[] = {
+    { "--json", NULL, CLI_OPT_FLAG, offsetof(claims_args, json), 0, 0, NULL, NULL, NULL, 0,
+      "  --json               one JSON object instead of text\n" },
+    { "-o", NULL, CLI_OPT_STR, offsetof(claims_args, dir), 0, 0, NULL, "claims: -o needs a folder", NULL, CLI_OPT_NONEMPTY,
+      "  -o DIR               also write the charts into DIR (made if missing):\n"
+      "                       claims_d16.svg, claims_ward.svg, claims_schlick.svg\n"
+      "                       (error against angle, failure regions shaded),\n"
+      "                       claims_d16_clamp.svg (why d_approx clamps its base) and\n"
+      "                       claims_cost.svg (clocks x area against error, our units)\n" },
+    { "--width", NULL, CLI_OPT_INT, offsetof(claims_args, width), 4, 48, NULL, "claims: --width needs a whole number 4..48",
+      NULL, 0,
+      "  --width W            width of the hardware units for the speed and cost\n"
+      "                       figures (default 16)\n" },
+    { "--cpu-seconds", NULL, CLI_OPT_CALL0, 0, 0, 0, NULL, NULL, o_cpu_seconds, CLI_OPT_HIDDEN, NULL },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_claims_spec = {
+    "claims", { claims_tab }, NULL, 0, "claims: unknown argument '%s' (see shadesim claims --help)",
+    "usage: shadesim claims [--json] [-o DIR] [--width W]\n\n"
+    "Prints each numerical claim of the papers (docs/references.md) beside what the\n"
+    "double-precision references measure, and a verdict: holds, holds only for\n"
+    "<condition>, or does not hold. Then the papers' speed claims (D16 4.34x faster\n"
+    "than D, the Ward approximation more than 2x), measured as clocks and area of\n"
+    "our hardware units against chains of our units computing the exact functions\n"
+    "(their exponential, which has no unit, left out). Last, where\n"
+    "each approximation fails: relative error above 10% where the exact value is\n"
+    "above 1% of its peak. The factorization paper's claims are those of\n"
+    "`shadesim factor ward --claims --scene sphere --scene-res 256`.\n"
+    "The face scene's claims (NMSE against per-pixel Phong,\n"
+    "operation-count speed-up) are measured at 256x256 through the simulated\n"
+    "span hardware. The output is the same bytes on every run and machine;\n"
+    "CPU timings of the float kernels are machine-dependent and live in `make\n"
+    "bench` (bench/bench_claims), not in these verdicts.\n\noptions:\n",
+    "\nexit status: 0 done (a claim that does not hold is a finding, not an error),\n"
+    "2 bad usage or an unwritable DIR\n"
+};
+
+int cli_claims(int argc, char **argv)
+{
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_claims_spec);
+    claims_args ca = { 0, 16, NULL };
+    void *base[] = { &ca };
+    if (cli_opt_parse(&cli_claims_spec, base, argc, argv, 1)) return CLI_USAGE;
+    int json = ca.json, width = ca.width;
+    const char *dir = ca.dir;
+
+    report *rp = calloc(1, sizeof *rp);
+    if (!rp) return cli_usage_error("claims: out of memory");
+    char serr[300];
+    rp->n = claims_rows(rp->rows, rp->kind, width, &rp->hc, serr, sizeof serr);
+    if (!rp->n) { free(rp); return cli_usage_error("claims: %s", serr); }
+    for (size_t k = 0; k < N_APPROX; k++) failure_bands(&APPROX[k], &rp->fb[k]);
+
+    char paths[8][600];
+    int np = 0, rc = CLI_OK;
+    if (dir) rc = write_charts(dir, paths, &np);
+    if (rc == CLI_OK) {
+        if (json) print_json(stdout, rp, paths, np);
+        else print_text(stdout, rp, paths, np);
+        /* fflush alone misses an error whose write happened earlier. */
+        char e[300];
+        if (base_out_stdout_check(e, sizeof e)) rc = cli_usage_error("claims: %s", e);
+    }
+    free(rp);
+    return rc;
+}

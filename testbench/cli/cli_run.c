@@ -1,0 +1,383 @@
+/* cli_run.c - `shadesim run`: a unit (or every unit) on its vectors,
+ * checked, with its report. */
+#include "testbench/cli/cli.h"
+#include "testbench/cli/cli_opt.h"
+#include "base/base_out.h"
+#include "testbench/tb_stream.h"
+#include "testbench/tb_wave.h"
+#include "testbench/tb_widths.h"
+#include "testbench/tb_derive.h"
+#include <limits.h>
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* The batch's lanes hold the vectors in memory (a few times the file's
+ * size); past this the kernel streams the file (docs/batch.md). */
+#define RUN_LANES_MAX_BYTES ((off_t)64 << 20)
+
+typedef struct run_args {
+    const char *vcd, *csv;
+    int json, fst, ranges, kernel;
+    long vfrom, vto;
+    /* --ranges derived, --range NAME=LO:HI (static check) */
+    int derived, nrange, want_mode;
+    const unit_desc *u;
+    tb_ranges rg;
+} run_args;
+
+/* --ranges [observed|derived]: alone (or observed), every signal's
+ * observed range; derived, the static check. The mode may be the next
+ * argument, which the parser hands to run_pos. */
+static run_args *run_cur;
+static int run_o_ranges(void *base, const char *opt, const char *val)
+{
+    run_args *ra = base;
+    (void)opt;
+    if (!val || !strcmp(val, "observed")) { ra->ranges = 1; ra->want_mode = !val; return 0; }
+    if (!strcmp(val, "derived")) { ra->derived = 1; return 0; }
+    return cli_usage_error("--ranges %s: expected observed or derived", val);
+}
+
+static int run_pos(void *base, const char *arg)
+{
+    (void)base;
+    if (!run_cur || !run_cur->want_mode || (strcmp(arg, "derived") && strcmp(arg, "observed"))) return CLI_OPT_UNKNOWN;
+    run_cur->want_mode = 0;
+    if (!strcmp(arg, "derived")) { run_cur->derived = 1; run_cur->ranges = 0; }
+    return 0;
+}
+
+static int run_o_range(void *base, const char *opt, const char *val)
+{
+    run_args *ra = base;
+    char err[400];
+    (void)opt;
+    if (tb_ranges_parse(ra->u, val, &ra->rg, err, sizeof err)) return cli_usage_error("%s", err);
+    ra->nrange++;
+    return 0;
+}
+
+#define ACC_OPT(NAME, FIELD, HELP) { NAME, NULL, CLI_OPT_REAL, offsetof(tb_accept, FIELD), 0, 1e300, \
+    "a positive number", "%s needs a number", NULL, CLI_OPT_GT_LO, HELP }
+/* The acceptance options (run UNIT and run all). */
+static const cli_opt accept_tab[] = {
+    ACC_OPT("--max-error", max_error, "  --max-error E        target: max |hardware - expected| <= E\n"),
+    ACC_OPT("--max-nmse", max_nmse, "  --max-nmse X         target: NMSE against the expected outputs <= X\n"),
+    ACC_OPT("--max-lsb", max_lsb, "  --max-lsb K          target: max |hardware - expected| <= K output LSBs\n"),
+    { "--allow-overflow", NULL, CLI_OPT_FLAG, offsetof(tb_accept, allow_overflow), 0, 0, NULL, NULL, NULL, 0,
+      "  --allow-overflow     an overflow does not fail the verdict (it is still reported)\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+#define VCD_ITEM(NAME, FIELD, HELP) { NAME, NULL, CLI_OPT_LONG, offsetof(run_args, FIELD), 0, (double)LONG_MAX, \
+    "an item number (0, 1, ...)", "%s needs an item number", NULL, 0, HELP }
+static const cli_opt run_tab[] = {
+    { "--ranges", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, run_o_ranges, CLI_OPT_MAYBE,
+      "  --ranges             list every signal's observed raw range, not only those that overflowed\n"
+      "  --ranges derived     first check statically that every signal's format holds its\n"
+      "                       interval for any input in the declared ranges (docs/sweeps.md)\n" },
+    { "--range", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s : expected NAME=LO:HI", run_o_range, 0,
+      "  --range NAME=LO:HI   an input's declared range for --ranges derived (default: its\n"
+      "                       format's; repeatable)\n" },
+    { "--json", NULL, CLI_OPT_FLAG, offsetof(run_args, json), 0, 0, NULL, NULL, NULL, 0,
+      "  --json               print the result as one JSON object\n" },
+    { "--out", NULL, CLI_OPT_STR, offsetof(run_args, csv), 0, 0, NULL, "%s needs a file name", NULL, 0,
+      "  --out FILE.csv       one row per vector: index, cycle, NAME_raw/_real/_expected/_err\n" },
+    { "--kernel", NULL, CLI_OPT_FLAG, offsetof(run_args, kernel), 0, 0, NULL, NULL, NULL, 0,
+      "  --kernel             simulate on the event-driven kernel alone, and report its events,\n"
+      "                       delta cycles and process runs (default: the batch's lanes where\n"
+      "                       they give the same results; docs/batch.md; --vcd implies it)\n" },
+    { "--no-batch", NULL, CLI_OPT_FLAG, offsetof(run_args, kernel), 0, 0, NULL, NULL, NULL, 0,
+      "  --no-batch           the same as --kernel\n" },
+    { "--vcd", NULL, CLI_OPT_STR, offsetof(run_args, vcd), 0, 0, NULL, "%s needs a file name", NULL, 0,
+      "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD)\n"
+      "                       and each output beat's expected value and error (tb.expected_NAME,\n"
+      "                       tb.err_NAME), with FILE.gtkw, a GTKWave save file: a group of the\n"
+      "                       outputs with their expected values and errors, then one per unit,\n"
+      "                       values in fixed point (docs/vcd.md)\n" },
+    VCD_ITEM("--vcd-from", vfrom,
+      "  --vcd-from N, --vcd-to M  dump only items N..M (from 0, as --out's index): from the\n"
+      "                       edge where item N is offered to the one that samples M's last beat\n"),
+    VCD_ITEM("--vcd-to", vto, ""),
+    { "--fst", NULL, CLI_OPT_FLAG, offsetof(run_args, fst), 0, 0, NULL, NULL, NULL, 0,
+      "  --fst                FILE is an FST dump (GTKWave's compact format), converted by\n"
+      "                       vcd2fst (Debian package gtkwave)\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_run_spec = {
+    "run", { cli_unit_opt_tab, accept_tab, run_tab }, run_pos, 0,
+    "run: unknown option '%s' (see shadesim run --help)",
+    "usage: shadesim run UNIT [options]\n"
+    "       shadesim run all [acceptance options]   every unit on its default vectors, one summary table\n\n"
+    "Drives UNIT clock by clock with golden vectors (inputs quantized to the unit's\n"
+    "input formats with --round), reports cycles, area, quantization error and\n"
+    "every signal's overflows, and gives a verdict (docs/bounds.md). Exit 0 when\n"
+    "the verdict is ok: no signal overflowed, every output is within the error\n"
+    "bound derived from the formats (checked exactly against the unit's ideal\n"
+    "function of the quantized inputs), the golden check against the vector\n"
+    "file's expected outputs holds, and your targets, if set, are met. Exit 1\n"
+    "otherwise, also when the bound cannot be decided (\"unchecked\") or the unit\n"
+    "derives none for the formats (\"no bound\").\n\noptions:\n",
+    "\nOutput files: a regular file is replaced only once complete (a symbolic link is\n"
+    "followed and kept); a device or FIFO is written to in place. --out - or --vcd -\n"
+    "writes that file to stdout (no .gtkw then) and the report goes to stderr; only\n"
+    "one of --out -, --vcd - and --json can have stdout.\n"
+};
+
+/* run all: the acceptance options only. */
+static const cli_optspec run_all_spec = {
+    "run all", { accept_tab }, NULL, 0,
+    "run all: unknown option '%s' (it takes --max-error, --max-nmse, --max-lsb, --allow-overflow)", NULL, NULL
+};
+
+static int run_all(const tb_accept *acc)
+{
+    int target = acc->max_error > 0 || acc->max_nmse > 0 || acc->max_lsb > 0;
+    printf("%-11s %-9s %6s %12s %12s %12s %10s %-9s %-8s %s\n", "unit", "schedule", "width", "clocks/item",
+           "max|e|", "nmse", "area GE", "bound", "golden", target ? "target" : "method error");
+    int rc = CLI_OK, bad = 0, missed = 0;
+    char far[400] = "";
+    for (size_t i = 0, n = unit_count(); i < n; i++) {
+        cli_unit_opts o;
+        cli_unit_select(&o, unit_at(i)->name);
+        vec_set vs;
+        if (cli_load_vectors(&o, &vs)) { rc = CLI_USAGE; continue; }
+        unit_fmts fm;
+        char err[600];
+        tb_result r;
+        tb_formats(o.u, &o.cfg, NULL, 0, &fm, err, sizeof err);
+        tb_opts lanes = { .lanes = 1 };
+        int t = tb_run(o.u, &o.cfg, &fm, &vs, &lanes, &r, err, sizeof err);
+        if (t != TB_OK) {
+            (void)cli_usage_error("%s: %s", o.u->name, err);
+            rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
+        } else {
+            tb_verdict(&r, acc);
+            double me = 0;
+            for (int k = 0; k < r.n_out; k++) if (r.out[k].max_method_err > me) me = r.out[k].max_method_err;
+            if (me > 1e-3 && strlen(far) < sizeof far - 40)
+                snprintf(far + strlen(far), sizeof far - strlen(far), " %s (%.3g)", o.u->name, me);
+            const char *bc = r.overflows && !acc->allow_overflow ? "OVERFLOW" : r.bound_check == TB_CHECK_OK ? "ok"
+                           : r.bound_check == TB_CHECK_EXCEEDED ? "EXCEEDED" : r.bound_check == TB_CHECK_NO_BOUND ? "NO BOUND" : "UNCHECKED";
+            char last[32];
+            if (target) snprintf(last, sizeof last, "%s", r.target_met ? "met" : "MISSED");
+            else snprintf(last, sizeof last, "%.3g", me);
+            printf("%-11s %-9s %6d %12.4g %12.4g %12.4g %10.1f %-9s %-8s %s\n", o.u->name, o.u->sched[o.cfg.schedule].name,
+                   o.cfg.width, r.cycles_per_item, isnan(r.max_abs_err) ? NAN : r.max_abs_err,
+                   isnan(r.nmse) ? NAN : r.nmse, r.area_ge, bc, r.golden_ok ? "ok" : "EXCEEDED", last);
+            if (!r.ok) {
+                if (r.target_set && !r.target_met && r.within_bound && r.golden_ok) missed++;
+                else bad++;
+                if (rc == CLI_OK) rc = CLI_FAIL;
+            }
+        }
+        tb_result_free(&r);
+        vec_set_free(&vs);
+    }
+    printf("\nbound ok: no overflow and every output within the bound derived from its formats, checked\n"
+           "against the unit's ideal function (exactly; units whose ideal is only a double: to 2^-40\n"
+           "relative, else \"unchecked\"); golden ok: within that bound plus input rounding\n"
+           "plus the method's own approximation of the true function. max|e| is against the true\n"
+           "function: a unit can be within its bound and far from it (interp3's 3-term 1/3).\n%s\n",
+           target ? "target: your --max-error / --max-nmse / --max-lsb." :
+           "method error: how far the unit's ideal is from the true function; no target set\n"
+           "(--max-error, --max-nmse, --max-lsb make a miss fail the run).");
+    if (bad) printf("summary: %d unit(s) fail the derived-bound or golden check\n", bad);
+    else printf("summary: every unit within its derived bound and golden check\n");
+    if (far[0]) printf("summary: within their bound but far from the true function (method error > 1e-3):%s\n", far);
+    if (target) printf("summary: %s\n", missed ? "some units MISS your target" : "every unit meets your target");
+    return cli_stdout_done(rc);
+}
+
+/* run --ranges derived: every signal's interval for inputs in the
+ * declared ranges against its format, before any vector. 1 when some
+ * format cannot hold its interval, 0 when all can, -1 after a message.
+ * With --json, opens the object the run's result is a member of. */
+static int check_derived(const cli_unit_opts *o, const unit_fmts *fm, const tb_ranges *rg, int json, FILE *report)
+{
+    tb_derived d;
+    char err[600];
+    if (tb_derive(o->u, &o->cfg, fm, rg, &d, err, sizeof err)) { cli_usage_error("%s", err); return -1; }
+    if (json) {
+        printf("{\"ranges_derived\": {\"ok\": %s, \"cannot_hold\": %d, \"signals\": ", d.nfail ? "false" : "true", d.nfail);
+        tb_derived_json(stdout, &d, NULL);
+        fputs("},\n\"run\": ", stdout);
+    } else if (d.nfail) {
+        fprintf(report, "ranges derived: %d signal(s) CANNOT HOLD their interval for inputs in the declared ranges:\n",
+                d.nfail);
+        tb_derived_print(report, &d, NULL, 0);
+    } else {
+        fprintf(report, "ranges derived: ok: every signal's format holds its interval for inputs in the declared ranges\n");
+    }
+    int bad = d.nfail > 0;
+    tb_derived_free(&d);
+    return bad;
+}
+
+static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, const int64_t *raw,
+                    const double *expected)
+{
+    tb_csv_row(base_out_file(data), r, idx, cycle, raw, expected);
+}
+
+/* run UNIT on a vector file, streamed (tb_run_stream): the same report,
+ * --out rows written as items complete. The header and first rows are
+ * read first, so a bad file is reported before anything is written. */
+static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char *path, const char *csv,
+                        int json, int ranges, FILE *report, const tb_accept *acc, const char *why)
+{
+    char err[600];
+    vec_set hdr;
+    vec_set_init(&hdr);
+    tb_expected_header(o->u, &o->cfg, &hdr);
+    vec_stream *vs = vec_stream_open(path, &hdr, err, sizeof err);
+    if (!vs) return cli_usage_error("%s", err);
+    const vec_set *rows;
+    if (vec_stream_next(vs, &rows) < 0) {
+        cli_usage_error("%s", vec_stream_error(vs));
+        vec_stream_close(vs);
+        return CLI_USAGE;
+    }
+    vec_stream_unread(vs);
+    base_out *out = NULL;
+    if (csv) {
+        out = base_out_open(csv, err, sizeof err);
+        if (!out) { vec_stream_close(vs); return cli_usage_error("%s", err); }
+        tb_csv_header(base_out_file(out), rows->n_out, (const char (*)[16])rows->out_names);
+    }
+    tb_result r;
+    int t = tb_run_stream(o->u, &o->cfg, fm, vs, csv ? csv_row : NULL, out, &r, err, sizeof err);
+    vec_stream_close(vs);
+    int rc = CLI_OK;
+    if (t != TB_OK) {
+        if (out) base_out_abort(out);
+        rc = cli_usage_error("%s", err);
+        if (t == TB_FAIL) rc = CLI_FAIL;
+    } else {
+        if (out && base_out_close(out, err, sizeof err)) rc = cli_usage_error("%s", err);
+        tb_verdict(&r, acc);
+        if (why) snprintf(r.engine_why, sizeof r.engine_why, "%s", why);
+        if (json) tb_write_json(stdout, &r);
+        else {
+            tb_print_table(report, &r);
+            if (ranges) tb_print_ranges(report, &r, 1);
+        }
+        if (rc == CLI_OK && !r.ok) rc = CLI_FAIL;
+    }
+    tb_result_free(&r);
+    return rc == CLI_USAGE ? rc : cli_stdout_done(rc);
+}
+
+int cli_run(int argc, char **argv)
+{
+    cli_unit_opts o;
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_run_spec);
+    if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, or run all)");
+    const char *unit = argv[1];
+    tb_accept acc;
+    memset(&acc, 0, sizeof acc);
+    if (!strcmp(unit, "all")) {
+        void *base[] = { &acc };
+        if (cli_opt_parse(&run_all_spec, base, argc, argv, 2)) return CLI_USAGE;
+        return run_all(&acc);
+    }
+    if (cli_unit_select(&o, unit)) return CLI_USAGE;
+    run_args ra = { NULL, NULL, 0, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
+    ra.u = o.u;
+    run_cur = &ra;
+    void *base[] = { &o, &acc, &ra };
+    int bad = cli_opt_parse(&cli_run_spec, base, argc, argv, 2);
+    run_cur = NULL;
+    if (bad) return CLI_USAGE;
+    if (ra.nrange && !ra.derived) return cli_usage_error("run: --range goes with --ranges derived");
+    const char *vcd = ra.vcd, *csv = ra.csv;
+    int json = ra.json, fst = ra.fst, ranges = ra.ranges;
+    long long vfrom = ra.vfrom, vto = ra.vto;
+    /* "-" is stdout for each output option; stdout holds one stream. */
+    int vcd_out = vcd && !strcmp(vcd, "-"), csv_out = csv && !strcmp(csv, "-");
+    if (vcd_out + csv_out + json > 1)
+        return cli_usage_error("run: only one of --out -, --vcd - and --json can write to stdout");
+    if ((vfrom >= 0 || vto >= 0 || fst) && !vcd)
+        return cli_usage_error("run: %s needs --vcd FILE", fst ? "--fst" : vfrom >= 0 ? "--vcd-from" : "--vcd-to");
+    if (vfrom >= 0 && vto >= 0 && vfrom > vto)
+        return cli_usage_error("run: --vcd-from %lld is after --vcd-to %lld", vfrom, vto);
+    if (fst && vcd_out) return cli_usage_error("run: --fst needs a file, not --vcd -");
+    if (fst && !tb_wave_have_vcd2fst())
+        return cli_usage_error("run: --fst needs vcd2fst, which is not installed (Debian package gtkwave)");
+    FILE *report = vcd_out || csv_out ? stderr : stdout;
+    unit_fmts fm;
+    char err[600];
+    if (tb_formats(o.u, &o.cfg, o.fmt, o.nfmt, &fm, err, sizeof err)) return cli_usage_error("%s", err);
+    if (!o.nfmt) {
+        /* Past the top of the unit's range the build would refuse with a
+         * hint about one signal; say the range instead (shadesim list). */
+        int wmax = tb_width_max(o.u, &o.cfg, err, sizeof err);
+        if (o.cfg.width > wmax)
+            return cli_usage_error("--width %d: unit %s builds with its default formats at widths %d..%d only (%s)",
+                                   o.cfg.width, o.u->name, unit_min_width(o.u, &o.cfg, NULL), wmax, err);
+    }
+    int static_bad = 0;
+    if (ra.derived && (static_bad = check_derived(&o, &fm, &ra.rg, json, report)) < 0) return CLI_USAGE;
+    /* On the kernel without a dump, a vector file is read a block at a
+     * time: memory does not grow with the number of vectors. The batch's
+     * lanes take the whole file in memory (docs/batch.md). */
+    int lanes = !ra.kernel && !vcd;
+    char vpath[4200];
+    const char *vfile = NULL;
+    if (!vcd) {
+        int f = cli_vectors_file(&o, vpath, sizeof vpath, &vfile);
+        if (f < 0) return CLI_USAGE;
+        /* a file too large to hold (a regular file; "-" and pipes are
+         * read whole) is streamed on the kernel all the same */
+        struct stat st;
+        const char *why = NULL;
+        if (f && lanes && strcmp(vfile, "-") && !stat(vfile, &st) && S_ISREG(st.st_mode) && st.st_size > RUN_LANES_MAX_BYTES)
+            why = "a vector file over 64 MiB, read a block at a time";
+        if (f && (!lanes || why)) {
+            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, report, &acc, why);
+            if (json && ra.derived) fputs("}\n", stdout);
+            return rs == CLI_OK && static_bad ? cli_stdout_done(CLI_FAIL) : rs;
+        }
+    }
+    vec_set vs;
+    if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
+    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst, .lanes = lanes };
+    if (vfrom >= 0 || vto >= 0) {
+        int bad_from = vfrom >= 0 && (size_t)vfrom >= vs.n_rows;
+        if (bad_from || (vto >= 0 && (size_t)vto >= vs.n_rows)) {
+            size_t n = vs.n_rows;
+            vec_set_free(&vs);
+            return cli_usage_error("run: --vcd-%s %lld: the vectors have %zu items (0..%zu)", bad_from ? "from" : "to",
+                                   bad_from ? vfrom : vto, n, n ? n - 1 : 0);
+        }
+        opts.vcd_window = 1;
+        opts.vcd_from = vfrom >= 0 ? (size_t)vfrom : 0;
+        opts.vcd_to = vto >= 0 ? (size_t)vto : vs.n_rows - 1;
+    }
+    tb_result r;
+    int t = tb_run(o.u, &o.cfg, &fm, &vs, &opts, &r, err, sizeof err);
+    int rc = CLI_OK;
+    if (t != TB_OK) {
+        /* The vectors' header was checked when they were read, so this is
+         * about the unit (formats it cannot build with) or an output file. */
+        rc = cli_usage_error("%s", err);
+        if (t == TB_FAIL) rc = CLI_FAIL;
+    } else {
+        if (csv && tb_write_csv(csv, &r, &vs, err, sizeof err)) rc = cli_usage_error("%s", err);
+        tb_verdict(&r, &acc);
+        if (json) tb_write_json(stdout, &r);
+        else {
+            tb_print_table(report, &r);
+            if (ranges) tb_print_ranges(report, &r, 1);
+        }
+        if (rc == CLI_OK && !r.ok) rc = CLI_FAIL;
+    }
+    tb_result_free(&r);
+    vec_set_free(&vs);
+    if (json && ra.derived) fputs("}\n", stdout);
+    if (rc == CLI_OK && static_bad) rc = CLI_FAIL;
+    return rc == CLI_USAGE ? rc : cli_stdout_done(rc);
+}

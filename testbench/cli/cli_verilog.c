@@ -1,0 +1,368 @@
+/* cli_verilog.c - the verbs from simulation to RTL: verilog (export),
+ * cosim (the export against shadesim in Icarus Verilog or Verilator,
+ * every output raw and its cycle), synth (Yosys cell counts beside the
+ * area model). */
+#include "testbench/cli/cli.h"
+#include "testbench/cli/cli_opt.h"
+#include "testbench/tb_verilog.h"
+#include "base/base_out.h"
+#include "sim/sim_area.h"
+#include <stddef.h>
+#include <stdlib.h>
+#include <errno.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define CLI_MAX_RTL 64
+
+static int have_tool(const char *tool)
+{
+    char cmd[200];
+    snprintf(cmd, sizeof cmd, "command -v %s >/dev/null 2>&1", tool);
+    return system(cmd) == 0;
+}
+
+/* UNIT, the first argument that is not an option; the unit options
+ * (cli_unit_opt_tab) are options once it is chosen. */
+static int unit_arg(void *base, const char *arg)
+{
+    cli_unit_opts *o = base;
+    if (o->u) return CLI_OPT_UNKNOWN;
+    return cli_unit_select(o, arg);
+}
+
+/* The verb's options, then the unit's: CLI_OK or CLI_USAGE. */
+static int parse(const cli_optspec *sp, int argc, char **argv, cli_unit_opts *o, void *own)
+{
+    memset(o, 0, sizeof *o);
+    void *base[] = { o, own, o };
+    if (cli_opt_parse(sp, base, argc, argv, 1)) return CLI_USAGE;
+    if (!o->u) return cli_usage_error("%s: no unit given (shadesim list shows the units)", sp->verb);
+    return CLI_OK;
+}
+
+static int formats(cli_unit_opts *o, unit_fmts *fm)
+{
+    char err[600];
+    if (tb_formats(o->u, &o->cfg, o->fmt, o->nfmt, fm, err, sizeof err)) return cli_usage_error("%s", err);
+    return CLI_OK;
+}
+
+/* ----------------------------------------------------------------- verilog */
+
+/* --reset sync|async|none, into the sim_vreset that starts the verb's
+ * own struct (verilog_st, cosim_st). */
+static int reset_opt(void *base, const char *opt, const char *v)
+{
+    static const char *const names[] = { "sync", "async", "none" };
+    for (int i = 0; i < 3; i++)
+        if (!strcmp(v, names[i])) { *(sim_vreset *)base = (sim_vreset)i; return 0; }
+    return cli_usage_error("%s %s: expected sync, async or none", opt, v);
+}
+
+#define RESET_OPT \
+    { "--reset", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs sync, async or none", reset_opt, 0, \
+      "  --reset KIND         the reset input rst (active high): sync (default; at a\n" \
+      "                       rising edge), async (at once), or none (no rst port;\n" \
+      "                       registers start from initial blocks, FPGA only)\n" }
+
+typedef struct verilog_st { sim_vreset reset; const char *dir, *hex; } verilog_st;
+
+static const cli_opt verilog_tab[] = {
+    RESET_OPT,
+    { "-o", NULL, CLI_OPT_STR, offsetof(verilog_st, dir), 0, 0, NULL, "%s needs a folder", NULL, 0,
+      "  -o DIR               output folder (made if missing)\n" },
+    { "--stimulus-hex", NULL, CLI_OPT_STR, offsetof(verilog_st, hex), 0, 0, NULL, "%s needs a file", NULL, 0,
+      "  --stimulus-hex FILE  also write the stimulus of the vectors (--vectors, or the\n"
+      "                       unit's default ones) to FILE and shadesim's results to\n"
+      "                       FILE.expect, what the testbench must write:\n"
+      "                       vvp -n tb.vvp +in=FILE +items=N +out=OUT && diff FILE.expect OUT\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+/* tab[0] is empty: the unit's table comes after the verb's, as the help
+ * lists them, and parse() passes the unit options' base first for UNIT. */
+static const cli_opt no_opts[] = { { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL } };
+
+const cli_optspec cli_verilog_spec = {
+    "verilog", { no_opts, verilog_tab, cli_unit_opt_tab }, unit_arg, 0,
+    "verilog: unexpected argument '%s' (see shadesim verilog --help)",
+    "usage: shadesim verilog UNIT [options] -o DIR\n"
+    "Write DIR/UNIT.v, synthesizable Verilog-2001 of the unit exactly as shadesim\n"
+    "builds it (same formats, rounding, overflow, schedule and handshake), with a\n"
+    "reset input rst, and DIR/UNIT_tb.v, a testbench that resets it, reads the\n"
+    "stimulus (--stimulus-hex) with $readmemh and writes each output beat with its\n"
+    "cycle. Prints a line per file written.\n"
+    "options:\n", NULL
+};
+
+int cli_verilog(int argc, char **argv)
+{
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_verilog_spec);
+    cli_unit_opts o;
+    verilog_st st = { SIM_VRESET_SYNC, NULL, NULL };
+    int rc = parse(&cli_verilog_spec, argc, argv, &o, &st);
+    if (rc) return rc;
+    if (!st.dir) return cli_usage_error("verilog: -o DIR is required");
+    unit_fmts fm;
+    if (formats(&o, &fm)) return CLI_USAGE;
+    char err[600], *paths[2];
+    if (tb_verilog_write(o.u, &o.cfg, &fm, st.reset, st.dir, paths, err, sizeof err)) return cli_usage_error("%s", err);
+    for (int i = 0; i < 2; i++) { printf("wrote %s\n", paths[i]); free(paths[i]); }
+    if (st.hex) {
+        vec_set vs;
+        if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
+        tb_result r;
+        int t = tb_run(o.u, &o.cfg, &fm, &vs, NULL, &r, err, sizeof err);
+        if (t != TB_OK) { vec_set_free(&vs); return t == TB_BADINPUT ? cli_usage_error("%s", err) : (fprintf(stderr, "shadesim: %s\n", err), CLI_FAIL); }
+        size_t pl = strlen(st.hex) + 8;
+        char *ex = malloc(pl);
+        if (!ex) rc = cli_usage_error("out of memory");
+        else {
+            snprintf(ex, pl, "%s.expect", st.hex);
+            if (tb_stimulus_write(o.u, &o.cfg, &fm, &vs, &r, st.hex, ex, err, sizeof err)) rc = cli_usage_error("%s", err);
+            else printf("wrote %s (%zu items: +items=%zu)\nwrote %s\n", st.hex, vs.n_rows, vs.n_rows, ex);
+        }
+        free(ex);
+        tb_result_free(&r);
+        vec_set_free(&vs);
+    }
+    return cli_stdout_done(rc);
+}
+
+/* ------------------------------------------------------------------- cosim */
+
+typedef struct cosim_st {
+    sim_vreset reset;
+    const char *sim, *keep, *top;
+    long n;                 /* 0: not given */
+    uint64_t seed;
+    const char *rtl[CLI_MAX_RTL];
+    int nrtl;
+} cosim_st;
+
+static int cosim_rtl(void *base, const char *opt, const char *v)
+{
+    cosim_st *st = base;
+    if (st->nrtl == CLI_MAX_RTL) return cli_usage_error("%s %s: at most %d files", opt, v, CLI_MAX_RTL);
+    st->rtl[st->nrtl++] = v;
+    return 0;
+}
+
+static int cosim_sim(void *base, const char *opt, const char *v)
+{
+    (void)opt;
+    if (strcmp(v, "icarus") && strcmp(v, "verilator")) return cli_usage_error("--sim %s: expected icarus or verilator", v);
+    ((cosim_st *)base)->sim = v;
+    return 0;
+}
+
+static const cli_opt cosim_tab[] = {
+    { "--rtl", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs a Verilog file", cosim_rtl, CLI_OPT_NONEMPTY,
+      "  --rtl FILE           your own RTL instead of the export (repeat for more\n"
+      "                       files): its top module must have the export's ports\n"
+      "                       and handshake (docs/verilog.md); checked on the unit's\n"
+      "                       default vectors unless -n or --vectors\n" },
+    { "--top", NULL, CLI_OPT_STR, offsetof(cosim_st, top), 0, 0, NULL, "%s needs a module name", NULL, CLI_OPT_NONEMPTY,
+      "  --top NAME           the top module of the --rtl files (default: the only\n"
+      "                       top-level one, or the one named like the unit)\n" },
+    RESET_OPT,
+    { "--sim", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, cosim_sim, 0,
+      "  --sim NAME           icarus (default; Debian package iverilog) or verilator\n" },
+    { "-n", NULL, CLI_OPT_LONG, offsetof(cosim_st, n), 1, 1000000, NULL, NULL, NULL, 0,
+      "  -n N                 items (default 50, with --rtl the unit's default\n"
+      "                       vectors), generated from the float reference, unless\n"
+      "                       --vectors FILE is given\n" },
+    { "--seed", NULL, CLI_OPT_U64, offsetof(cosim_st, seed), 0, 0, "a whole number", NULL, NULL, 0,
+      "  --seed S             seed of the generated items (default 1)\n" },
+    { "--keep", NULL, CLI_OPT_STR, offsetof(cosim_st, keep), 0, 0, NULL, NULL, NULL, 0,
+      "  --keep DIR           leave the export, stimulus and results in DIR\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_cosim_spec = {
+    "cosim", { no_opts, cosim_tab, cli_unit_opt_tab }, unit_arg, 0,
+    "cosim: unexpected argument '%s' (see shadesim cosim --help)",
+    "usage: shadesim cosim UNIT [options] [--rtl FILE.v ...] [--sim icarus|verilator] [-n N]\n"
+    "Export the unit (as `shadesim verilog`), or take your own RTL (--rtl), run the\n"
+    "same stimulus in shadesim and in the external simulator, and compare every\n"
+    "output raw and the cycle of every beat. Prints \"bit-exact, N items, M clocks\"\n"
+    "or the first mismatch (the item, its inputs, the expected and the actual raws\n"
+    "and clock); exit 1 on a mismatch, 2 when the RTL's ports differ from the unit's.\n"
+    "options:\n", NULL
+};
+
+/* Remove a folder we made and the files in it. */
+static void rm_tree(const char *dir)
+{
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    if (system(cmd) != 0) { /* a temporary left behind is harmless */ }
+}
+
+int cli_cosim(int argc, char **argv)
+{
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_cosim_spec);
+    cli_unit_opts o;
+    cosim_st st = { SIM_VRESET_SYNC, "icarus", NULL, NULL, 0, 1, { NULL }, 0 };
+    int rc = parse(&cli_cosim_spec, argc, argv, &o, &st);
+    if (rc) return rc;
+    if (st.top && !st.nrtl) return cli_usage_error("cosim: --top needs --rtl FILE");
+    int icarus = !strcmp(st.sim, "icarus");
+    if (icarus && (!have_tool("iverilog") || !have_tool("vvp")))
+        return cli_usage_error("cosim: iverilog not found (install the Debian package iverilog)");
+    if (!icarus && !have_tool("verilator"))
+        return cli_usage_error("cosim: verilator not found (install the Debian package verilator)");
+    unit_fmts fm;
+    if (formats(&o, &fm)) return CLI_USAGE;
+    char err[600];
+    vec_set vs;
+    /* the export: 50 generated items; the user's RTL: the unit's vectors */
+    if (o.vectors || (st.nrtl && !st.n)) { if (cli_load_vectors(&o, &vs)) return CLI_USAGE; }
+    else if (cli_make_vectors(o.u, &o.cfg, (size_t)(st.n ? st.n : 50), st.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
+    char tmpl[] = "/tmp/shadesim_cosim_XXXXXX";
+    const char *dir = st.keep;
+    if (!dir && !mkdtemp(tmpl)) { vec_set_free(&vs); return cli_usage_error("cosim: cannot make a temporary folder"); }
+    if (!dir) dir = tmpl;
+    char msg[1200];
+    tb_cosim_opts co = { st.reset, st.rtl, st.nrtl, st.top };
+    int t = tb_cosim_opt(o.u, &o.cfg, &fm, &vs, &co, icarus ? TB_SIM_ICARUS : TB_SIM_VERILATOR, dir, msg, sizeof msg);
+    if (t == TB_COSIM_EXACT) { printf("%s\n", msg); rc = CLI_OK; }
+    else if (t == TB_COSIM_MISMATCH) { printf("%s\n", msg); rc = CLI_FAIL; }
+    else if (t == TB_COSIM_BADINPUT) rc = cli_usage_error("%s", msg);
+    else { fprintf(stderr, "shadesim: %s\n", msg); rc = CLI_FAIL; }
+    vec_set_free(&vs);
+    if (!st.keep) rm_tree(dir);
+    return cli_stdout_done(rc);
+}
+
+/* ------------------------------------------------------------------- synth */
+
+typedef struct synth_st { const char *keep; } synth_st;
+
+static const cli_opt synth_tab[] = {
+    { "--keep", NULL, CLI_OPT_STR, offsetof(synth_st, keep), 0, 0, NULL, "%s needs a folder", NULL, 0,
+      "  --keep DIR           leave the export and Yosys's log in DIR\n" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
+
+const cli_optspec cli_synth_spec = {
+    "synth", { no_opts, synth_tab, cli_unit_opt_tab }, unit_arg, 0,
+    "synth: unexpected argument '%s' (see shadesim synth --help)",
+    "usage: shadesim synth UNIT [options] [--keep DIR]\n"
+    "Export the unit and synthesize it with Yosys to generic gates (synth; abc -g\n"
+    "AND,NAND,OR,NOR,XOR,XNOR,MUX; no cell library): prints Yosys's cells by type\n"
+    "and in total, weighted with the area model's NAND2 gate equivalents per gate,\n"
+    "beside shadesim's area estimate; then Yosys's longest topological path (ltp\n"
+    "-noff after flatten) beside shadesim's critical path in gate levels and ps.\n"
+    "Needs yosys (Debian package yosys).\n"
+    "options:\n", NULL
+};
+
+/* A Yosys generic cell in NAND2 gate equivalents, with the constants of
+ * sim/sim_area.h (NanGate 45 nm): flip-flops with an enable add a MUX2,
+ * with a synchronous reset ($_SDFF*) an AND2; one with an asynchronous
+ * reset ($_DFF_PP0_, $_DFFE_PP0P_: a reset value in its name) is a DFFR. */
+static double cell_ge(const char *c)
+{
+    if (!strncmp(c, "NAND", 4) || !strncmp(c, "NOR", 3)) return SIM_GE_NAND2;
+    if (!strncmp(c, "NOT", 3)) return SIM_GE_INV;
+    if (!strncmp(c, "AND", 3) || !strncmp(c, "OR", 2)) return SIM_GE_AND2;
+    if (!strncmp(c, "XOR", 3) || !strncmp(c, "XNOR", 4)) return SIM_GE_XOR2;
+    if (!strncmp(c, "MUX", 3)) return SIM_GE_MUX2;
+    if (strstr(c, "DFF")) {
+        double g = SIM_GE_DFF;
+        const char *pol = strchr(c, '_');
+        if (c[0] == 'S') g += SIM_GE_AND2;
+        else if (pol && strpbrk(pol, "01")) g = SIM_GE_DFFR;
+        if (strstr(c, "DFFE") || strstr(c, "DFFCE")) g += SIM_GE_MUX2;
+        return g;
+    }
+    return SIM_GE_NAND2;
+}
+
+/* Yosys's longest topological path (ltp -noff: flip-flops cut it, so it
+ * is the most gates between registers or ports) beside shadesim's
+ * critical path in gate levels (docs/timing.md compares them). */
+static void synth_paths(const char *dir, const cli_unit_opts *o, const unit_fmts *fm)
+{
+    char path[1200], line[400], err[600];
+    snprintf(path, sizeof path, "%s/ltp.txt", dir);
+    FILE *f = fopen(path, "r");
+    long len = -1;
+    while (f && fgets(line, sizeof line, f)) {
+        const char *l = strstr(line, "(length=");
+        if (strstr(line, "Longest topological path") && l) len = atol(l + 8);
+    }
+    if (f) fclose(f);
+    tb_ppa p;
+    memset(&p, 0, sizeof p);
+    int bad = tb_unit_timing(o->u, &o->cfg, fm, &p, err, sizeof err);
+    printf("Yosys longest topological path (ltp -noff) against shadesim's critical path:\n");
+    if (len >= 0) printf("  Yosys        %6ld gates\n", len);
+    else printf("  Yosys        (no ltp result: see yosys.log with --keep DIR)\n");
+    if (bad) { printf("  shadesim     (no critical path: %s)\n", err); return; }
+    char ptext[1200];
+    tb_ppa_path_text(&p, ptext, sizeof ptext);
+    printf("  shadesim     %6d levels, %.0f ps, f_max %.0f MHz (%s)\n", p.levels, p.crit_ps, p.fmax_mhz, ptext);
+    if (len > 0) printf("  ratio        %.2f (shadesim levels / Yosys gates)\n", p.levels / (double)len);
+}
+
+int cli_synth(int argc, char **argv)
+{
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_synth_spec);
+    cli_unit_opts o;
+    synth_st st = { NULL };
+    int rc = parse(&cli_synth_spec, argc, argv, &o, &st);
+    const char *keep = st.keep;
+    if (rc) return rc;
+    if (!have_tool("yosys")) return cli_usage_error("synth: yosys not found (install the Debian package yosys)");
+    unit_fmts fm;
+    if (formats(&o, &fm)) return CLI_USAGE;
+    char err[600];
+    double ge = tb_verilog_area(o.u, &o.cfg, &fm, err, sizeof err);
+    if (ge < 0) return cli_usage_error("%s", err);
+    char tmpl[] = "/tmp/shadesim_synth_XXXXXX";
+    const char *dir = keep;
+    if (!dir && !mkdtemp(tmpl)) return cli_usage_error("synth: cannot make a temporary folder");
+    if (!dir) dir = tmpl;
+    if (tb_verilog_export(o.u, &o.cfg, &fm, dir, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    size_t cl = 3 * strlen(dir) + 512;
+    char *cmd = malloc(cl);
+    if (!cmd) { rc = cli_usage_error("out of memory"); goto done; }
+    snprintf(cmd, cl, "cd '%s' && yosys -q -p 'read_verilog %s.v; synth -top %s; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; "
+             "opt_clean; tee -o stat.txt stat; flatten; tee -o ltp.txt ltp -noff' >yosys.log 2>&1", dir, o.u->name, o.u->name);
+    int sr = system(cmd);
+    free(cmd);
+    if (sr != 0) { fprintf(stderr, "shadesim: synth: yosys failed (see yosys.log: use --keep DIR)\n"); rc = CLI_FAIL; goto done; }
+    char path[1200], line[300];
+    snprintf(path, sizeof path, "%s/stat.txt", dir);
+    FILE *f = fopen(path, "r");
+    long total = -1;
+    printf("%s --width %d --schedule %s (%s, %s): Yosys generic gates\n", o.u->name, o.cfg.width,
+           o.u->sched[o.cfg.schedule].name, sim_round_name(o.cfg.rnd), sim_ovf_name(o.cfg.ovf));
+    double yge = 0;
+    while (f && fgets(line, sizeof line, f)) {
+        char cell[100];
+        long n;
+        if (strstr(line, "Number of cells:")) total = atol(strchr(line, ':') + 1);
+        else if (sscanf(line, " %99s %ld", cell, &n) == 2 && !strncmp(cell, "$_", 2)) {
+            double w = cell_ge(cell + 2);
+            yge += w * (double)n;
+            printf("  %-12s %6ld  x %.2f GE\n", cell + 2, n, w);
+        }
+    }
+    if (f) fclose(f);
+    printf("  cells        %6ld  = %.0f GE with the area model's gate constants\n", total, yge);
+    printf("  shadesim     %.0f GE (area model)\n", ge);
+    if (yge > 0) printf("  ratio        %.2f (shadesim / Yosys)\n", ge / yge);
+    synth_paths(dir, &o, &fm);
+done:
+    if (!keep) {
+        char c2[1200];
+        snprintf(c2, sizeof c2, "rm -rf '%s'", dir);
+        if (system(c2)) { /* best effort */ }
+    }
+    return cli_stdout_done(rc);
+}

@@ -1,0 +1,1073 @@
+/* tb_scene.c - a scene shaded through the simulated span hardware.
+ *
+ * The hardware path, row band by row band:
+ *   1. every covered pixel is shaded in double precision: the reference;
+ *   2. each span of n pixels is cut into intervals of L pixels from its
+ *      left end, the last one shorter (n mod L, or L). Interval j starts
+ *      at x0 + jL; its divisor dv is L, except the span's last interval
+ *      where dv = max(len - 1, 1), so that its t = 1 node is the span's
+ *      last pixel. Pixel k of an interval has t = k/dv;
+ *   3. the nodes x = start + dv * {0, 1, 1/2, 1/4 (N1) or 3/4 (N2)} are
+ *      shaded exactly (scn_span_at, then the lighting). The t = 1 node of
+ *      an interval is the t = 0 node of the next one: it is shaded once.
+ *      A last interval of one pixel needs only its t = 0 node (the other
+ *      node inputs repeat it: a constant; adaptive-auto gives it degree 2). Only the nodes the interval's
+ *      degree reads are shaded, and counted;
+ *   4. the degree: fixed by the policy; adaptive-region: the table of the
+ *      description (region -> 2 or 3); adaptive-auto: from the nodes the
+ *      hardware has anyway, the second difference
+ *          c = |I(0) + I(1) - 2 I(1/2)|
+ *      (4 times the deviation of the midpoint from the chord, zero for a
+ *      straight profile): degree 3 when c > auto_threshold, else 2; the
+ *      I(1/4) or I(3/4) node is shaded only for degree 3;
+ *   5. one tb_span_run per band with all of the band's intervals, on a
+ *      fresh simulation of the policy's unit; the pixels come back in
+ *      order and are written into the hardware image.
+ * The rows are split into a fixed number of bands (TB_SCENE_BANDS, or one
+ * per row when there are fewer rows) whatever the number of threads, and
+ * the bands' figures are summed in band order: the output is the same for
+ * any -j.
+ *
+ * Metrics over covered pixels, on the hardware's raw values (not clamped:
+ * an overshoot of the interpolation is an error like any other):
+ *   NMSE = sum (hw - ref)^2 / sum ref^2, max_abs_err = max |hw - ref|
+ *   (NMSE is the one every 1e-4 verdict and --max-nmse use).
+ * On 8 bits, v8 = round(255 clamp(v, 0, 1)) (also the PNG images):
+ *   NMSE8 = sum (hw8 - ref8)^2 / sum ref8^2, what the images show,
+ *   PSNR = 10 log10(255^2 / mean (hw8 - ref8)^2) (infinite when equal),
+ *   max_err8 = max |hw8 - ref8|, diff8_share = share of pixels with
+ *   hw8 != ref8.
+ * clocks_per_pixel = clocks of all bands' simulations / covered pixels.
+ */
+#include "testbench/study/tb_scene.h"
+#include "base/base_json.h"
+#include "testbench/tb.h"
+#include "units/unit_coef.h"
+#include "units/unit_net.h"
+#include "base/base_out.h"
+#include "base/base_par.h"
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#define TB_SCENE_BANDS 16
+
+/* CPU seconds of the calling thread: a render's time accounting
+ * (tb_scene_result.cpu_sim, cpu_render) sums what each of its threads
+ * spends, so that it reads the same on a busy machine and for any -j. */
+static double cpu_now(void)
+{
+    struct timespec ts;
+    if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts)) return 0;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* ------------------------------------------------- the unit of a policy */
+
+int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_fmts *f,
+                  char *err, size_t errlen)
+{
+    static const char *const uname[SCN_POL__COUNT] = { "span1", "span2", "span3", "span3", "span23", "span23" };
+    if ((int)d->policy < 0 || d->policy >= SCN_POL__COUNT) { snprintf(err, errlen, "unknown policy"); return -1; }
+    const unit_desc *u = unit_find(uname[d->policy]);
+    if (!u) { snprintf(err, errlen, "unit %s is not built into this shadesim", uname[d->policy]); return -1; }
+    unit_cfg_default(u, cfg);
+    cfg->width = d->fmt_width;
+    cfg->L = d->L;
+    cfg->terms = d->terms;
+    cfg->series = d->series;
+    cfg->rnd = (sim_round)d->rnd;
+    cfg->ovf = (sim_ovf)d->ovf;
+    int s = unit_sched_find(u, d->schedule);
+    if (s < 0) {
+        char list[200] = "";
+        for (int j = 0; j < u->nsched; j++) {
+            strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
+            strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
+        }
+        snprintf(err, errlen, "schedule %s: unit %s has schedules: %s", d->schedule, u->name, list);
+        return -1;
+    }
+    cfg->schedule = s;
+    /* Every parameter through its own range check (set from its text). */
+    for (int i = 0; i < u->nparams; i++) {
+        char v[64];
+        if (!strcmp(u->params[i].name, "nodes")) {
+            int n2 = d->policy == SCN_POL_CUBIC_N2 ||
+                     ((d->policy == SCN_POL_ADAPTIVE_REGION || d->policy == SCN_POL_ADAPTIVE_AUTO) && d->auto_cubic_nodes == 2);
+            snprintf(v, sizeof v, "%s", n2 ? "n2" : "n1");
+        } else unit_param_get(&u->params[i], cfg, v, sizeof v);
+        if (unit_param_set(u, cfg, u->params[i].name, v, err, errlen)) return -1;
+    }
+    const char *ov[SCN_MAX_FMT];
+    for (int i = 0; i < d->nfmt && i < SCN_MAX_FMT; i++) ov[i] = d->fmt[i];
+    if (tb_formats(u, cfg, ov, d->nfmt, f, err, errlen)) {
+        /* here the overrides come from the scene key fmt, not --fmt */
+        if (!strncmp(err, "--fmt ", 6)) memmove(err, err + 2, strlen(err + 2) + 1);
+        return -1;
+    }
+    *up = u;
+    return 0;
+}
+
+/* 1 if the policy's cubic intervals use node set N2 (I(3/4)). Both
+ * adaptive policies run on the span23 unit and take its node set from the
+ * auto-nodes key (auto_cubic_nodes). */
+static int nodes_n2(const scn_desc *d)
+{
+    if (d->policy == SCN_POL_CUBIC_N2) return 1;
+    if (d->policy == SCN_POL_ADAPTIVE_REGION || d->policy == SCN_POL_ADAPTIVE_AUTO) return d->auto_cubic_nodes == 2;
+    return 0;
+}
+
+/* --------------------------------------------------- operation counts */
+
+/* The operations of one evaluation of the lighting model at a point, from
+ * the interpolated (not normalized) normal and the position, counted as an
+ * efficient per-pixel shader does them: the reference does this at every
+ * covered pixel, the method at every shaded node, by the same rules.
+ *
+ * What varies over the frame is the normal N and the position P. Work on
+ * frame constants alone is done once per frame and not counted per point
+ * (both sides alike; spread over the covered pixels it is a few dozen
+ * operations / pixels): L of a directional light, V of an orthographic
+ * camera, and from them H = normalize(L + V), L.V, L.H = V.H, a Fresnel
+ * factor of L.H, 2/V.H; products of constants (I0 kd, I0 ks with the
+ * BRDF's own factors 1/pi, 1/(4 m^2), 1/(4 pi a^2), the Schlick forms'
+ * constants). So L is normalized per point only for a point light, V only
+ * for a perspective camera, H only where one of them varies. Further:
+ * comparisons, max(0, .), min, clamps and shifts (a factor 2) are free;
+ * a value used twice is computed once (L.H = V.H; N.V; c^2 and 1/c^2);
+ * a vector normalized is its dot with itself (2 add, 3 mul), a sqrt, a
+ * reciprocal (div) and 3 mul; x^n with the material's real exponent and
+ * exp are one "pow", x^g with the fixed integer g of D_g (4, 8, 16) and
+ * Ward's ^16 are multiplies by repeated squaring. One table, a row per
+ * step; a row counts when its condition holds, once or per light; the
+ * specular rows only when ks != 0. c = N.H in D and Ward, L.H in F.
+ *
+ *  step                                        when                      add mul div sqrt pow
+ *  normalize N: N.N, sqrt, 1/|N|, 3 mul        always                      2   6   1   1   0
+ *  V = eye - P, normalized                     perspective                 5   6   1   1   0
+ *  L = light - P, normalized                   point light                 5   6   1   1   0
+ *  N.L                                         light                       2   3   0   0   0
+ *  (I0 kd) N.L, summed (from the ambient)     light                       1   1   0   0   0
+ *  (I0 ks) spec, added                         specular                    1   1   0   0   0
+ *  phong R.V = 2 (N.L)(N.V) - L.V: N.V, 1 mul  phong, L and V constant     3   4   0   0   0
+ *  phong R = 2 (N.L) N - L, R.V                phong, L or V varies        5   6   0   0   0
+ *  (R.V)^n or (N.H)^n                          phong, blinn                0   0   0   0   1
+ *  H = normalize(L + V)                        half-vector BRDF, L or V    5   6   1   1   0
+ *                                              varies (blinn, cook, ward)
+ *  N.H                                         blinn, cook, ward           2   3   0   0   0
+ *  N.V                                         cook, ward                  2   3   0   0   0
+ *  L.H (= V.H)                                 cook, L or V varies         2   3   0   0   0
+ *  Beckmann D: c^2, r = 1/c^2, tan^2 = r - 1,
+ *    x (-1/m^2), exp, x r^2                    cook, exact D               1   4   1   0   1
+ *  D_g: k c + (1 - k), ^g by squaring          cook, D_g                   1   1+s 0   0   0
+ *  G = min(1, 2 (N.H) min(N.V, N.L) / V.H)     cook, L or V varies         0   1   1   0   0
+ *    the same, x (2/V.H) a constant            cook, L and V constant      0   2   0   0   0
+ *  D G / ((N.L)(N.V))                          cook                        0   2   1   0   0
+ *  x F                                         cook with F, L or V varies  0   1   0   0   0
+ *  Schlick F = c / (n + (1 - n) c)             the same, schlick           1   1   1   0   0
+ *  modified Schlick 1.6 c / u^2,
+ *    u = n + (1.25 - n) c                      the same, mschlick          1   2   1   0   0
+ *  Ward exact e: c^2, 1/c^2, - 1, x (-1/a^2),
+ *    exp                                       ward exact                  1   2   1   0   1
+ *  Ward polynomial e: k c + (1 - k), ^16       ward poly16                 1   5   0   0   0
+ *  e / sqrt((N.L)(N.V))                        ward                        0   1   1   1   0
+ * (s: the squarings and multiplies of x^g, floor(log2 g) + popcount(g) - 1:
+ * 2, 3, 4 for g = 4, 8, 16.)
+ *
+ * The method, per covered pixel: (shaded nodes x the same per-point cost)
+ * / pixels; the coefficient network's adders per interval / pixels (every
+ * ADD/SUB element of the network of the interval's degree, each /3
+ * network its terms' subtractors: `terms` for the paper series, terms - 1
+ * for the quarter series; shifts are wiring); Horner per pixel: deg mul +
+ * deg add; t = k * (1/dv): 1 mul per pixel (the reciprocal is a ROM).
+ * Costs weigh the counts with the description's weights (cost key); the
+ * long operations are div + sqrt + pow, unweighted. */
+typedef enum { W_ALWAYS, W_PERSP, W_POINT, W_LIGHT, W_SPEC, W_PHONG_CONST, W_PHONG_VAR, W_POW,
+               W_H_VAR, W_HALF, W_NV, W_LH_VAR, W_COOK_EXACT, W_COOK_DG, W_G_VAR, W_G_CONST, W_COOK,
+               W_F_VAR, W_SCHLICK_VAR, W_MSCHLICK_VAR, W_WARD_EXACT, W_WARD_POLY, W_WARD } ops_when;
+typedef struct ops_row { ops_when when; int per_light; double n[SCN_OP__COUNT]; } ops_row;
+static const ops_row ops_table[] = {
+    /*  when              per light  add mul div sqrt pow */
+    { W_ALWAYS,         0, { 2, 6, 1, 1, 0 } },   /* normalize N */
+    { W_PERSP,          0, { 5, 6, 1, 1, 0 } },   /* V */
+    { W_POINT,          1, { 5, 6, 1, 1, 0 } },   /* L of a point light */
+    { W_LIGHT,          1, { 2, 3, 0, 0, 0 } },   /* N.L */
+    { W_LIGHT,          1, { 1, 1, 0, 0, 0 } },   /* (I0 kd) N.L, summed */
+    { W_SPEC,           1, { 1, 1, 0, 0, 0 } },   /* (I0 ks) spec, added */
+    { W_PHONG_CONST,    1, { 3, 4, 0, 0, 0 } },   /* N.V, 2 (N.L)(N.V) - L.V */
+    { W_PHONG_VAR,      1, { 5, 6, 0, 0, 0 } },   /* R, R.V */
+    { W_POW,            1, { 0, 0, 0, 0, 1 } },   /* ^n */
+    { W_H_VAR,          1, { 5, 6, 1, 1, 0 } },   /* H normalized */
+    { W_HALF,           1, { 2, 3, 0, 0, 0 } },   /* N.H */
+    { W_NV,             1, { 2, 3, 0, 0, 0 } },   /* N.V */
+    { W_LH_VAR,         1, { 2, 3, 0, 0, 0 } },   /* L.H = V.H */
+    { W_COOK_EXACT,     1, { 1, 4, 1, 0, 1 } },   /* Beckmann D */
+    { W_COOK_DG,        1, { 1, 1, 0, 0, 0 } },   /* D_g base; + the squarings of ^g */
+    { W_G_VAR,          1, { 0, 1, 1, 0, 0 } },   /* G, / V.H */
+    { W_G_CONST,        1, { 0, 2, 0, 0, 0 } },   /* G, x 2/V.H */
+    { W_COOK,           1, { 0, 2, 1, 0, 0 } },   /* D G / ((N.L)(N.V)) */
+    { W_F_VAR,          1, { 0, 1, 0, 0, 0 } },   /* x F */
+    { W_SCHLICK_VAR,    1, { 1, 1, 1, 0, 0 } },   /* Schlick */
+    { W_MSCHLICK_VAR,   1, { 1, 2, 1, 0, 0 } },   /* modified Schlick */
+    { W_WARD_EXACT,     1, { 1, 2, 1, 0, 1 } },   /* exact Ward e */
+    { W_WARD_POLY,      1, { 1, 5, 0, 0, 0 } },   /* polynomial Ward e, ^16 in 4 mul */
+    { W_WARD,           1, { 0, 1, 1, 1, 0 } },   /* e / sqrt((N.L)(N.V)) */
+};
+
+/* Multiplies of x^g by repeated squaring (g >= 1). */
+static int pow_muls(int g)
+{
+    int n = -1;
+    for (int k = g; k > 0; k >>= 1) n += 1 + (k > 1 && (k & 1));
+    return n > 0 ? n : 0;
+}
+
+static int ops_applies(ops_when w, const scn_material *m, const scn_view *v, const scn_light *l)
+{
+    int cook = m->spec == SCN_SPEC_COOK, ward = m->spec == SCN_SPEC_WARD, phong = m->spec == SCN_SPEC_PHONG;
+    int half = m->spec == SCN_SPEC_BLINN || cook || ward;
+    int fresnel = cook && m->fresnel != SCN_FRESNEL_NONE;
+    /* L or V varies over the frame, so do H, L.V, L.H (per light) */
+    int var = v->cam.perspective || (l && l->point);
+    if (w >= W_SPEC && m->ks == 0) return 0;     /* no specular term is evaluated */
+    switch (w) {
+    case W_ALWAYS: return 1;
+    case W_PERSP: return v->cam.perspective;
+    case W_POINT: return l && l->point;
+    case W_LIGHT: return 1;
+    case W_SPEC: return phong || half;
+    case W_PHONG_CONST: return phong && !var;
+    case W_PHONG_VAR: return phong && var;
+    case W_POW: return phong || m->spec == SCN_SPEC_BLINN;
+    case W_H_VAR: return half && var;
+    case W_HALF: return half;
+    case W_NV: return cook || ward;
+    case W_LH_VAR: return cook && var;
+    case W_COOK_EXACT: return cook && m->dg == 0;
+    case W_COOK_DG: return cook && m->dg > 0;
+    case W_G_VAR: return cook && var;
+    case W_G_CONST: return cook && !var;
+    case W_COOK: return cook;
+    case W_F_VAR: return fresnel && var;
+    case W_SCHLICK_VAR: return cook && var && m->fresnel == SCN_FRESNEL_SCHLICK;
+    case W_MSCHLICK_VAR: return cook && var && m->fresnel == SCN_FRESNEL_MSCHLICK;
+    case W_WARD_EXACT: return ward && m->dg == 0;
+    case W_WARD_POLY: return ward && m->dg > 0;
+    case W_WARD: return ward;
+    }
+    return 0;
+}
+
+static void ops_add_row(const ops_row *r, const scn_material *m, double ops[SCN_OP__COUNT])
+{
+    for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] += r->n[k];
+    if (r->when == W_COOK_DG) ops[SCN_OP_MUL] += pow_muls(m->dg);
+}
+
+void tb_scene_point_ops(const scn_desc *d, const scn_view *v, double ops[SCN_OP__COUNT])
+{
+    for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] = 0;
+    for (size_t i = 0; i < sizeof ops_table / sizeof ops_table[0]; i++) {
+        const ops_row *r = &ops_table[i];
+        if (!r->per_light) {
+            if (ops_applies(r->when, &d->mat, v, NULL)) ops_add_row(r, &d->mat, ops);
+            continue;
+        }
+        for (int l = 0; l < v->nlights; l++)
+            if (ops_applies(r->when, &d->mat, v, &v->light[l])) ops_add_row(r, &d->mat, ops);
+    }
+}
+
+double tb_scene_long_ops(const double ops[SCN_OP__COUNT])
+{
+    return ops[SCN_OP_DIV] + ops[SCN_OP_SQRT] + ops[SCN_OP_POW];
+}
+
+/* Adders of a coefficient network (ADD and SUB elements; a /3 network is
+ * its subtractors or adders). */
+static int net_adds(const coef_net *net, int terms, int series)
+{
+    int n = 0;
+    for (int i = 0; i < net->nnodes; i++) {
+        if (net->node[i].op == COEF_ADD || net->node[i].op == COEF_SUB) n++;
+        else if (net->node[i].op == COEF_DIV3) n += series == DIV3_QUARTER ? terms - 1 : terms;
+    }
+    return n;
+}
+
+/* Adders of the coefficients of one interval of degree deg. */
+static int coef_adds(const scn_desc *d, int deg)
+{
+    if (deg <= 1) return 1;                              /* B = I2 - I1 */
+    if (deg == 2) return net_adds(&coef_net_q, d->terms, d->series);
+    return net_adds(nodes_n2(d) ? &coef_net_n2 : &coef_net_n1, d->terms, d->series);
+}
+
+/* ------------------------------------------------------------ render */
+
+typedef struct band {
+    int y0, y1;
+    size_t s0, s1;                 /* its spans */
+    tb_span_item *items;           /* its intervals, for the batch (NULL: simulated already) */
+    size_t nitems, npix;
+    int borrowed;                  /* items belong to a tb_scene_prep: not freed here */
+    double *refpix;                /* a prep's: the reference at the band's pixels, in their order */
+    double *pix;
+    tb_span_stats st;
+    size_t intervals, deg2, nodes;
+    double coef_adds, horner_deg;  /* sums over intervals / pixels */
+    double cpu_sim, cpu_other;     /* CPU seconds: simulating its intervals; the rest of its work */
+    int rc;
+    char err[300];
+} band;
+
+typedef struct job {
+    const scn_desc *d;
+    const scn_gbuf *g;
+    const scn_view *view;
+    tb_scene_shader fn;
+    void *ctx;
+    const unit_desc *u;
+    const unit_cfg *cfg;
+    const unit_fmts *fmts;
+    const scn_span *spans;
+    band *bands;
+    int nbands, vcd_band;
+    const char *vcd_path;
+    int batch;                     /* simulate bands side by side (tb_span_run_lanes) */
+    int energy;                    /* count toggles and energy (tb_scene_opts) */
+    int ngroups;                   /* the batch: bands in this many groups, one a thread */
+    double gcpu_sim[TB_SCENE_BANDS], gcpu_other[TB_SCENE_BANDS];   /* per group, as band's */
+    double max_se;                 /* the batch stops past this squared error (INFINITY: never) */
+    tb_scene_result *r;
+} job;
+
+static double shade_at(const job *J, const double pos[3], const double nrm[3])
+{
+    if (J->fn) return J->fn(J->ctx, pos, nrm);
+    return scn_shade(&J->d->mat, J->view, pos, nrm);
+}
+
+static double shade_node(const job *J, const scn_span *s, double x)
+{
+    double p[3], n[3];
+    if (x > s->x1 - 1) x = s->x1 - 1;   /* guards rounding only: nodes lie in the span */
+    scn_span_at(J->g, s, x, p, n);
+    return shade_at(J, p, n);
+}
+
+/* Degree of an interval before its nodes are known (0: decided from them). */
+static int policy_deg(const scn_desc *d, int region)
+{
+    switch (d->policy) {
+    case SCN_POL_LINEAR: return 1;
+    case SCN_POL_QUADRATIC: return 2;
+    case SCN_POL_CUBIC_N1: case SCN_POL_CUBIC_N2: return 3;
+    case SCN_POL_ADAPTIVE_REGION:
+        return region < SCN_MAX_REGIONS && d->region_deg[region] == 2 ? 2 : 3;
+    default: return 0;
+    }
+}
+
+/* A band's hardware pixels into the image, span by span. */
+static void band_pixels(const job *J, const band *b, const double *pix)
+{
+    int W = J->g->w;
+    size_t p = 0;
+    for (size_t k = b->s0; k < b->s1; k++) {
+        const scn_span *s = &J->spans[k];
+        for (int x = s->x0; x < s->x1; x++) J->r->hw[(size_t)s->y * W + x] = pix[p++];
+    }
+}
+
+static void run_band(job *J, band *b)
+{
+    const scn_desc *d = J->d;
+    const scn_gbuf *g = J->g;
+    tb_scene_result *r = J->r;
+    int W = g->w, L = d->L, n2 = nodes_n2(d);
+    double c0 = cpu_now();
+    /* reference */
+    for (int y = b->y0; y < b->y1; y++)
+        for (int x = 0; x < W; x++) {
+            size_t i = (size_t)y * W + x;
+            if (g->tri[i] < 0) continue;
+            double n[3] = { g->nrm[i][0], g->nrm[i][1], g->nrm[i][2] };
+            double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            if (len > 0) { n[0] /= len; n[1] /= len; n[2] /= len; }
+            r->ref[i] = shade_at(J, g->pos[i], n);
+        }
+    /* intervals */
+    size_t nitems = 0, npix = 0;
+    for (size_t k = b->s0; k < b->s1; k++) {
+        int n = J->spans[k].x1 - J->spans[k].x0;
+        nitems += (size_t)(n + L - 1) / L;
+        npix += (size_t)n;
+    }
+    b->npix = npix;
+    if (!nitems) { b->cpu_other += cpu_now() - c0; return; }
+    tb_span_item *items = calloc(nitems, sizeof *items);
+    double *pix = malloc(npix * sizeof *pix);
+    if (!items || !pix) {
+        free(items); free(pix);
+        b->rc = TB_FAIL;
+        snprintf(b->err, sizeof b->err, "out of memory");
+        b->cpu_other += cpu_now() - c0;
+        return;
+    }
+    size_t it = 0;
+    for (size_t k = b->s0; k < b->s1; k++) {
+        const scn_span *s = &J->spans[k];
+        int fixed = policy_deg(d, s->region);
+        double i0 = shade_node(J, s, s->x0);
+        b->nodes++;
+        for (int start = s->x0; start < s->x1; start += L) {
+            tb_span_item *m = &items[it++];
+            int len = s->x1 - start < L ? s->x1 - start : L;
+            int last = start + L >= s->x1;
+            int dv = last ? (len - 1 > 1 ? len - 1 : 1) : L;
+            m->n = len;
+            m->dv = dv;
+            m->node[0] = i0;
+            int deg = fixed;
+            if (last && len == 1) {
+                /* one pixel, t = 0: a constant interval, nothing to shade */
+                m->node[1] = m->node[2] = m->node[3] = i0;
+                if (!deg) deg = 2;
+            } else {
+                m->node[1] = shade_node(J, s, start + dv);
+                b->nodes++;
+                if (deg != 1) {
+                    m->node[2] = shade_node(J, s, start + dv * 0.5);
+                    b->nodes++;
+                }
+                if (!deg) deg = fabs(m->node[0] + m->node[1] - 2 * m->node[2]) > d->auto_threshold ? 3 : 2;
+                if (deg == 3) {
+                    m->node[3] = shade_node(J, s, start + dv * (n2 ? 0.75 : 0.25));
+                    b->nodes++;
+                }
+            }
+            m->deg = deg;
+            i0 = m->node[1];
+            b->intervals++;
+            if (deg == 2) b->deg2++;
+            b->coef_adds += coef_adds(d, deg);
+            b->horner_deg += (double)deg * len;
+            for (int x = start; x < start + len; x++) r->deg[(size_t)s->y * W + x] = (uint8_t)deg;
+        }
+    }
+    const char *vcd = J->vcd_band == (int)(b - J->bands) ? J->vcd_path : NULL;
+    if (J->batch && !vcd) {
+        /* simulated with the other bands of its group (run_group) */
+        b->items = items;
+        b->nitems = nitems;
+        b->pix = pix;
+        b->cpu_other += cpu_now() - c0;
+        return;
+    }
+    double c1 = cpu_now();
+    b->rc = J->energy ? tb_span_run_energy(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err)
+                      : tb_span_run(J->u, J->cfg, J->fmts, items, nitems, pix, &b->st, vcd, b->err, sizeof b->err);
+    double c2 = cpu_now();
+    if (b->rc == TB_OK) band_pixels(J, b, pix);
+    free(items);
+    free(pix);
+    b->cpu_sim += c2 - c1;
+    b->cpu_other += (c1 - c0) + (cpu_now() - c2);
+}
+
+/* Bands [g * nb / ngroups, (g + 1) * nb / ngroups) whose intervals wait,
+ * as lanes of one batch: each band's figures are tb_span_run's. */
+static void run_group(job *J, int g)
+{
+    int k0 = (int)((long long)J->nbands * g / J->ngroups), k1 = (int)((long long)J->nbands * (g + 1) / J->ngroups);
+    tb_span_lane lanes[TB_SCENE_BANDS];
+    int which[TB_SCENE_BANDS], n = 0;
+    for (int k = k0; k < k1; k++) {
+        band *b = &J->bands[k];
+        if (!b->items) continue;
+        which[n] = k;
+        lanes[n++] = (tb_span_lane){ .items = b->items, .nitems = b->nitems, .pix = b->pix, .energy = J->energy,
+                                     .ref = b->refpix };
+    }
+    if (!n) return;
+    double c0 = cpu_now();
+    tb_span_run_lanes_budget(J->u, J->cfg, J->fmts, lanes, (size_t)n, 1, J->max_se);
+    double c1 = cpu_now();
+    for (int i = 0; i < n; i++) {
+        band *b = &J->bands[which[i]];
+        b->st = lanes[i].st;
+        b->rc = lanes[i].rc;
+        snprintf(b->err, sizeof b->err, "%s", lanes[i].err);
+        if (b->rc == TB_OK) band_pixels(J, b, b->pix);
+        if (!b->borrowed) free(b->items);
+        free(b->pix);
+        b->items = NULL;
+        b->pix = NULL;
+    }
+    J->gcpu_sim[g] = c1 - c0;
+    J->gcpu_other[g] = cpu_now() - c1;
+}
+
+static void band_item(void *arg, size_t b)
+{
+    job *J = arg;
+    run_band(J, &J->bands[b]);
+}
+
+/* A band of a prepared render (its intervals made already) on the kernel
+ * alone: run_band's simulation. */
+static void sim_band_item(void *arg, size_t k)
+{
+    job *J = arg;
+    band *b = &J->bands[k];
+    if (!b->items) return;
+    double c0 = cpu_now();
+    b->rc = J->energy ? tb_span_run_energy(J->u, J->cfg, J->fmts, b->items, b->nitems, b->pix, &b->st, NULL, b->err, sizeof b->err)
+                      : tb_span_run(J->u, J->cfg, J->fmts, b->items, b->nitems, b->pix, &b->st, NULL, b->err, sizeof b->err);
+    double c1 = cpu_now();
+    if (b->rc == TB_OK) band_pixels(J, b, b->pix);
+    free(b->pix);
+    b->pix = NULL;
+    b->cpu_sim += c1 - c0;
+    b->cpu_other += cpu_now() - c1;
+}
+
+/* What every render of one view of a description shares, whatever its
+ * formats: the reference image, the degree and region images, the spans
+ * and each band's intervals with their node intensities and counts. */
+struct tb_scene_prep {
+    scn_desc d;                    /* the description it was made from */
+    const scn_gbuf *g;
+    int heldout, nb;
+    size_t nspans;
+    scn_span *spans;
+    double *ref;
+    uint8_t *deg, *region;
+    band bands[TB_SCENE_BANDS];    /* items kept (pix NULL), refpix made */
+    double sum_ref2;               /* sum ref^2 over covered pixels: NMSE's denominator */
+    double cpu;
+    /* tb_scene_prep_unit: the unit and configuration of ud */
+    int have_unit;
+    scn_desc ud;
+    const unit_desc *u;
+    unit_cfg cfg;
+};
+
+/* d renders like p's description but for its width and formats (and
+ * what only the unit or the operation weights read): the prepared
+ * intervals are d's. */
+static int prep_fits(const tb_scene_prep *p, const scn_desc *d)
+{
+    scn_desc a = *d, b = p->d;
+    a.fmt_width = b.fmt_width;
+    a.nfmt = b.nfmt;
+    memcpy(a.fmt, b.fmt, sizeof a.fmt);
+    a.rnd = b.rnd;
+    a.ovf = b.ovf;
+    memcpy(a.schedule, b.schedule, sizeof a.schedule);
+    memcpy(a.cost, b.cost, sizeof a.cost);
+    return !memcmp(&a, &b, sizeof a);
+}
+
+static void group_item(void *arg, size_t g)
+{
+    run_group(arg, (int)g);
+}
+
+static uint8_t to8(double v)
+{
+    if (!(v > 0)) return 0;     /* NaN too */
+    if (v >= 1) return 255;
+    return (uint8_t)floor(255 * v + 0.5);
+}
+
+/* The figures over covered pixels, from the two images. */
+static void metrics(const scn_gbuf *g, tb_scene_result *r)
+{
+    double se = 0, sr = 0, se8 = 0, sr8 = 0, maxe = 0;
+    int max8 = 0;
+    size_t diff = 0, n = 0;
+    for (size_t i = 0; i < (size_t)g->w * g->h; i++) {
+        if (g->tri[i] < 0) continue;
+        double e = r->hw[i] - r->ref[i];
+        se += e * e;
+        sr += r->ref[i] * r->ref[i];
+        if (fabs(e) > maxe || isnan(e)) maxe = fabs(e);
+        int r8 = to8(r->ref[i]), e8 = abs((int)to8(r->hw[i]) - r8);
+        se8 += (double)e8 * e8;
+        sr8 += (double)r8 * r8;
+        if (e8 > max8) max8 = e8;
+        if (e8) diff++;
+        n++;
+    }
+    r->covered = n;
+    r->nmse = sr > 0 ? se / sr : (se > 0 ? INFINITY : 0);
+    r->nmse8 = sr8 > 0 ? se8 / sr8 : (se8 > 0 ? INFINITY : 0);
+    r->max_abs_err = maxe;
+    r->max_err8 = max8;
+    r->diff8_share = n ? (double)diff / n : 0;
+    r->psnr = se8 > 0 ? 10 * log10(255.0 * 255.0 / (se8 / n)) : INFINITY;
+}
+
+/* The render. p: NULL, or the reference, degrees and intervals prepared
+ * already (then only the simulation and what follows; no VCD). make:
+ * NULL, or the reference, degrees and intervals are moved into it and no
+ * simulation is done (r is left empty). */
+static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx, const tb_scene_opts *o,
+                  const tb_scene_prep *p, tb_scene_prep *make, double max_nmse, tb_scene_result *r, char *err,
+                  size_t errlen)
+{
+    double c0 = cpu_now();
+    memset(r, 0, sizeof *r);
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
+    if (!o) o = &dflt;
+    r->heldout = p ? p->heldout : o->heldout;
+    if (p && p->have_unit && o->fmts && !memcmp(&p->ud, d, sizeof *d)) {
+        /* the formats are given: the rule's would be thrown away */
+        r->unit = p->u;
+        r->cfg = p->cfg;
+    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make)
+        return TB_BADINPUT;      /* (making a prep simulates nothing: it needs no unit) */
+    if (o->fmts) r->fmts = *o->fmts;
+    const scn_view *view = r->heldout ? &d->heldout : &d->view;
+    size_t np = (size_t)g->w * g->h;
+    r->w = g->w;
+    r->h = g->h;
+    r->ref = p ? malloc((np ? np : 1) * sizeof *r->ref) : calloc(np ? np : 1, sizeof *r->ref);
+    r->hw = calloc(np ? np : 1, sizeof *r->hw);
+    r->deg = p ? malloc(np ? np : 1) : calloc(np ? np : 1, 1);
+    r->region = p ? malloc(np ? np : 1) : calloc(np ? np : 1, 1);
+    scn_span *spans = NULL;
+    size_t nspans = p ? p->nspans : scn_spans(g, &spans);
+    if (p) spans = p->spans;
+    int nb = g->h < TB_SCENE_BANDS ? g->h : TB_SCENE_BANDS, pixok = 1;
+    band *bands = calloc(nb > 0 ? nb : 1, sizeof *bands);
+    for (int k = 0; p && bands && k < nb; k++) {
+        bands[k] = p->bands[k];
+        bands[k].borrowed = 1;
+        bands[k].cpu_sim = bands[k].cpu_other = 0;
+        if (bands[k].items && !(bands[k].pix = malloc(bands[k].npix * sizeof *bands[k].pix))) pixok = 0;
+    }
+    if (!r->ref || !r->hw || !r->deg || !r->region || !bands || !pixok || (nspans && !spans)) {
+        for (int k = 0; p && bands && k < nb; k++) free(bands[k].pix);
+        free(bands);
+        if (!p) free(spans);
+        tb_scene_free(r);
+        snprintf(err, errlen, "out of memory (%dx%d image)", g->w, g->h);
+        return TB_FAIL;
+    }
+    if (p) {
+        memcpy(r->ref, p->ref, np * sizeof *r->ref);
+        memcpy(r->deg, p->deg, np);
+        memcpy(r->region, p->region, np);
+    } else
+        for (size_t i = 0; i < np; i++) if (g->tri[i] >= 0) r->region[i] = g->region[i];
+    r->spans = nspans;
+    /* bands of equal rows; spans are in row order */
+    job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
+              .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
+              .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
+              .r = r, .max_se = INFINITY };
+    /* a budget only with a prep (its reference in band order); a margin
+     * far above the rounding of sums in another order, so that a render
+     * within max_nmse is never stopped */
+    if (p && max_nmse >= 0 && isfinite(max_nmse)) J.max_se = max_nmse * p->sum_ref2 * (1 + 1e-6);
+    size_t s = 0;
+    for (int k = 0; !p && k < nb; k++) {
+        band *b = &bands[k];
+        b->y0 = (int)((long long)g->h * k / nb);
+        b->y1 = (int)((long long)g->h * (k + 1) / nb);
+        while (s < nspans && spans[s].y < b->y0) s++;
+        b->s0 = s;
+        while (s < nspans && spans[s].y < b->y1) s++;
+        b->s1 = s;
+        if (J.vcd_band < 0 && b->s1 > b->s0) J.vcd_band = k;
+    }
+    int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
+    if (jobs > nb) jobs = nb;
+    double c1 = cpu_now();
+    if (!p) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
+    else if (!J.batch) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, sim_band_item, &J);
+    if (make) {
+        /* keep what the simulation would read, and the images */
+        int rc = TB_OK;
+        make->g = g;
+        make->heldout = r->heldout;
+        make->nb = nb;
+        make->nspans = nspans;
+        make->spans = spans;
+        make->ref = r->ref;
+        make->deg = r->deg;
+        make->region = r->region;
+        for (size_t i = 0; i < np; i++)
+            if (g->tri[i] >= 0) make->sum_ref2 += make->ref[i] * make->ref[i];
+        r->ref = NULL;
+        r->deg = r->region = NULL;
+        for (int k = 0; k < nb; k++) {
+            band *b = &bands[k];
+            make->cpu += b->cpu_sim + b->cpu_other;
+            free(b->pix);
+            b->pix = NULL;
+            if (b->rc != TB_OK && rc == TB_OK) {
+                rc = b->rc;
+                snprintf(err, errlen, "%s", b->err);
+            }
+            if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix)) && rc == TB_OK) {
+                rc = TB_FAIL;
+                snprintf(err, errlen, "out of memory");
+            }
+            for (size_t q = 0, j = b->s0; b->refpix && j < b->s1; j++)
+                for (int x = spans[j].x0; x < spans[j].x1; x++)
+                    b->refpix[q++] = make->ref[(size_t)spans[j].y * g->w + x];
+            make->bands[k] = *b;
+        }
+        free(bands);
+        tb_scene_free(r);
+        make->cpu += c1 - c0;
+        return rc;
+    }
+    if (J.batch) {
+        /* then the bands' hardware, a group of lanes a thread */
+        J.ngroups = jobs;
+        base_par_for((size_t)J.ngroups, jobs, group_item, &J);
+    }
+    double c2 = cpu_now();
+
+    /* sums in band order */
+    int rc = TB_OK;
+    double adds = 0, hdeg = 0;
+    for (int k = 0; k < nb; k++) {
+        band *b = &bands[k];
+        if (b->rc != TB_OK && rc == TB_OK) {
+            rc = b->rc;
+            snprintf(err, errlen, "%s", b->err);
+        }
+        r->hwst.clocks += b->st.clocks;
+        r->hwst.pixels += b->st.pixels;
+        r->hwst.items += b->st.items;
+        r->hwst.items_deg2 += b->st.items_deg2;
+        r->hwst.overflows += b->st.overflows;
+        if (b->st.area_ge > r->hwst.area_ge) r->hwst.area_ge = b->st.area_ge;
+        r->hwst.toggles += b->st.toggles;
+        r->hwst.energy_pj += b->st.energy_pj;
+        r->intervals += b->intervals;
+        r->intervals_deg2 += b->deg2;
+        r->nodes_shaded += b->nodes;
+        adds += b->coef_adds;
+        hdeg += b->horner_deg;
+        r->cpu_sim += b->cpu_sim;
+        r->cpu_render += b->cpu_sim + b->cpu_other;
+    }
+    for (int k = 0; J.batch && k < J.ngroups; k++) {
+        r->cpu_sim += J.gcpu_sim[k];
+        r->cpu_render += J.gcpu_sim[k] + J.gcpu_other[k];
+    }
+    free(bands);
+    if (!p) free(spans);
+    if (rc != TB_OK) { tb_scene_free(r); return rc; }
+    metrics(g, r);
+    size_t px = r->covered;
+    r->clocks_per_pixel = px ? (double)r->hwst.clocks / px : 0;
+    r->energy_pj_per_pixel = r->hwst.pixels ? r->hwst.energy_pj / (double)r->hwst.pixels : 0;
+    r->deg2_share = r->intervals ? (double)r->intervals_deg2 / r->intervals : 0;
+    /* operation counts per covered pixel */
+    double pt[SCN_OP__COUNT];
+    tb_scene_point_ops(d, view, pt);
+    for (int k = 0; k < SCN_OP__COUNT; k++) {
+        r->ops_ref[k] = px ? pt[k] : 0;
+        r->ops_hw[k] = px ? pt[k] * (double)r->nodes_shaded / px : 0;
+    }
+    if (px) {
+        r->ops_hw[SCN_OP_ADD] += adds / px + hdeg / px;     /* network; Horner adds */
+        r->ops_hw[SCN_OP_MUL] += hdeg / px + 1;             /* Horner muls; t = k * (1/dv) */
+    }
+    for (int k = 0; k < SCN_OP__COUNT; k++) {
+        r->cost_ref += r->ops_ref[k] * d->cost[k];
+        r->cost_hw += r->ops_hw[k] * d->cost[k];
+    }
+    r->speedup = r->cost_hw > 0 ? r->cost_ref / r->cost_hw : 0;
+    r->long_ref = tb_scene_long_ops(r->ops_ref);
+    r->long_hw = tb_scene_long_ops(r->ops_hw);
+    r->speedup_long = r->long_hw > 0 ? r->long_ref / r->long_hw : 0;
+    r->cpu_render += (c1 - c0) + (cpu_now() - c2);
+    return TB_OK;
+}
+
+int tb_scene_render_gbuf(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx,
+                         const tb_scene_opts *o, tb_scene_result *r, char *err, size_t errlen)
+{
+    return render(d, g, fn, ctx, o, NULL, NULL, INFINITY, r, err, errlen);
+}
+
+void tb_scene_prep_free(tb_scene_prep *p)
+{
+    if (!p) return;
+    for (int k = 0; k < p->nb; k++) {
+        free(p->bands[k].items);
+        free(p->bands[k].refpix);
+    }
+    free(p->spans);
+    free(p->ref);
+    free(p->deg);
+    free(p->region);
+    free(p);
+}
+
+int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int jobs, tb_scene_prep **out,
+                      char *err, size_t errlen)
+{
+    *out = NULL;
+    tb_scene_prep *p = calloc(1, sizeof *p);
+    if (!p) { snprintf(err, errlen, "out of memory"); return TB_FAIL; }
+    p->d = *d;
+    tb_scene_opts o = { jobs, heldout, NULL, NULL, 0, 0 };
+    tb_scene_result r;
+    int rc = render(d, g, NULL, NULL, &o, NULL, p, INFINITY, &r, err, errlen);
+    if (rc != TB_OK) { tb_scene_prep_free(p); return rc; }
+    *out = p;
+    return TB_OK;
+}
+
+int tb_scene_prep_unit(tb_scene_prep *p, const scn_desc *d, char *err, size_t errlen)
+{
+    unit_fmts f;
+    p->have_unit = 0;
+    if (!prep_fits(p, d)) { snprintf(err, errlen, "tb_scene_prep_unit: the description does not fit the prep"); return -1; }
+    if (tb_scene_unit(d, &p->u, &p->cfg, &f, err, errlen)) return -1;
+    p->ud = *d;
+    p->have_unit = 1;
+    return 0;
+}
+
+double tb_scene_prep_cpu(const tb_scene_prep *p)
+{
+    return p ? p->cpu : 0;
+}
+
+int tb_scene_render_prep_budget(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o, double max_nmse,
+                                tb_scene_result *r, char *err, size_t errlen)
+{
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
+    tb_scene_opts q = o ? *o : dflt;
+    q.heldout = p->heldout;
+    if (!prep_fits(p, d)) return render(d, p->g, NULL, NULL, &q, NULL, NULL, INFINITY, r, err, errlen);
+    return render(d, p->g, NULL, NULL, &q, p, NULL, max_nmse, r, err, errlen);
+}
+
+int tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o, tb_scene_result *r,
+                         char *err, size_t errlen)
+{
+    return tb_scene_render_prep_budget(d, p, o, INFINITY, r, err, errlen);
+}
+
+int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,
+                    tb_scene_result *r, char *err, size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    double c0 = cpu_now();
+    const scn_view *view = o && o->heldout ? &d->heldout : &d->view;
+    scn_gbuf g;
+    /* the rasterizer fails for a camera it cannot use (bad input) or
+     * out of memory */
+    if (scn_raster(m, &view->cam, d->width, d->height, &g, err, errlen))
+        return strstr(err, "memory") ? TB_FAIL : TB_BADINPUT;
+    double c1 = cpu_now();
+    int rc = tb_scene_render_gbuf(d, &g, NULL, NULL, o, r, err, errlen);
+    scn_gbuf_free(&g);
+    if (rc == TB_OK) r->cpu_render += c1 - c0;    /* the rasterization */
+    return rc;
+}
+
+void tb_scene_free(tb_scene_result *r)
+{
+    free(r->ref);
+    free(r->hw);
+    free(r->deg);
+    free(r->region);
+    r->ref = r->hw = NULL;
+    r->deg = r->region = NULL;
+}
+
+/* ------------------------------------------------------------ outputs */
+
+int tb_scene_err_scale(const tb_scene_result *r)
+{
+    int k = 4096;
+    while (k > 1 && r->max_abs_err * k > 1) k /= 4;
+    return k;
+}
+
+static void jops(FILE *f, const double *ops)
+{
+    fputc('{', f);
+    for (int k = 0; k < SCN_OP__COUNT; k++) {
+        fprintf(f, "%s\"%s\": ", k ? ", " : "", scn_op_name[k]);
+        base_json_num(f, ops[k], 17);
+    }
+    fputc('}', f);
+}
+
+static void jrgb(FILE *f, const uint8_t c[3])
+{
+    fprintf(f, "\"#%02x%02x%02x\"", c[0], c[1], c[2]);
+}
+
+/* The key of the maps tb_scene_write draws, from the same colour functions:
+ * the uncovered background, the colour of each degree (all three) and of
+ * each region label present, and the heat map's five stops as errors
+ * |hw - ref| at the render's scale K (full white: 1/K or more). */
+static void legend_json(FILE *f, const tb_scene_result *r)
+{
+    uint8_t c[3] = { 0, 0, 0 };
+    int K = tb_scene_err_scale(r);
+    fputs(",\n  \"legend\": {\n    \"background\": ", f);
+    jrgb(f, c);
+    fputs(",\n    \"degree\": {", f);
+    for (int g = 1; g <= 3; g++) {
+        scn_label_rgb(g, c);
+        fprintf(f, "%s\"%d\": ", g > 1 ? ", " : "", g);
+        jrgb(f, c);
+    }
+    fputs("},\n    \"region\": {", f);
+    int seen[256] = { 0 }, n = 0;
+    size_t np = (size_t)r->w * r->h;
+    for (size_t i = 0; i < np; i++)
+        if (r->deg[i]) seen[r->region[i]] = 1;
+    for (int k = 0; k < 256; k++) {
+        if (!seen[k]) continue;
+        scn_label_rgb(k, c);
+        fprintf(f, "%s\"%d\": ", n++ ? ", " : "", k);
+        jrgb(f, c);
+    }
+    fprintf(f, "},\n    \"error\": {\"file\": \"err-x%d.png\", \"white\": ", K);
+    base_json_num(f, 1.0 / K, 17);
+    fputs(", \"stops\": [", f);
+    for (int k = 0; k <= 4; k++) {
+        scn_heat_rgb(k / 4.0, c);
+        fputs(k ? ", [" : "[", f);
+        base_json_num(f, k / 4.0 / K, 17);
+        fputs(", ", f);
+        jrgb(f, c);
+        fputc(']', f);
+    }
+    fputs("]}\n  }", f);
+}
+
+int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
+{
+    const unit_desc *u = r->unit;
+    char fb[SIM_FMT_STRLEN];
+    fputs("{\n  \"mesh\": ", f);
+    base_json_str(f, d->mesh);
+    fprintf(f, ",\n  \"resolution\": \"%dx%d\",\n  \"view\": \"%s\",\n  \"policy\": \"%s\",\n", r->w, r->h,
+            r->heldout ? "heldout" : "main", scn_policy_name(d->policy));
+    fprintf(f, "  \"L\": %d,\n  \"terms\": %d,\n  \"series\": \"%s\",\n  \"width\": %d,\n", d->L, d->terms,
+            d->series == DIV3_QUARTER ? "quarter" : "paper", d->fmt_width);
+    fprintf(f, "  \"cubic_nodes\": \"%s\",\n  \"auto_threshold\": ", nodes_n2(d) ? "n2" : "n1");
+    base_json_num(f, d->auto_threshold, 17);
+    fprintf(f, ",\n  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"formats\": {", u->name, u->sched[r->cfg.schedule].name);
+    for (int i = 0, n = 0; i < u->nsigs; i++)
+        if (unit_sig_built(u, i, &r->cfg))
+            fprintf(f, "%s\"%s\": \"%s\"", n++ ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
+    fprintf(f, "},\n  \"round\": \"%s\",\n  \"overflow\": \"%s\",\n", sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
+    fprintf(f, "  \"covered\": %zu,\n  \"nmse\": ", r->covered); base_json_num(f, r->nmse, 17);
+    fputs(",\n  \"nmse8\": ", f); base_json_num(f, r->nmse8, 17);
+    fputs(",\n  \"psnr\": ", f); base_json_num(f, r->psnr, 17);
+    fputs(",\n  \"max_abs_err\": ", f); base_json_num(f, r->max_abs_err, 17);
+    fprintf(f, ",\n  \"max_err8\": %d,\n  \"diff8_share\": ", r->max_err8); base_json_num(f, r->diff8_share, 17);
+    fprintf(f, ",\n  \"err_scale\": %d,\n", tb_scene_err_scale(r));
+    fprintf(f, "  \"clocks\": %llu,\n  \"pixels\": %llu,\n  \"clocks_per_pixel\": ",
+            (unsigned long long)r->hwst.clocks, (unsigned long long)r->hwst.pixels);
+    base_json_num(f, r->clocks_per_pixel, 17);
+    fputs(",\n  \"area_ge\": ", f); base_json_num(f, r->hwst.area_ge, 17);
+    fprintf(f, ",\n  \"overflows\": %llu,\n  \"spans\": %zu,\n  \"intervals\": %zu,\n  \"intervals_deg2\": %zu,\n  \"deg2_share\": ",
+            (unsigned long long)r->hwst.overflows, r->spans, r->intervals, r->intervals_deg2);
+    base_json_num(f, r->deg2_share, 17);
+    fprintf(f, ",\n  \"nodes_shaded\": %zu,\n  \"ops_ref\": ", r->nodes_shaded);
+    jops(f, r->ops_ref);
+    fputs(",\n  \"ops_hw\": ", f); jops(f, r->ops_hw);
+    fputs(",\n  \"cost_weights\": ", f); jops(f, d->cost);
+    fputs(",\n  \"cost_ref\": ", f); base_json_num(f, r->cost_ref, 17);
+    fputs(",\n  \"cost_hw\": ", f); base_json_num(f, r->cost_hw, 17);
+    fputs(",\n  \"speedup\": ", f); base_json_num(f, r->speedup, 17);
+    fputs(",\n  \"long_ops_ref\": ", f); base_json_num(f, r->long_ref, 17);
+    fputs(",\n  \"long_ops_hw\": ", f); base_json_num(f, r->long_hw, 17);
+    fputs(",\n  \"speedup_long\": ", f); base_json_num(f, r->speedup_long, 17);
+    tb_scene_speed_json(f, r);
+    legend_json(f, r);
+    fputs("\n}\n", f);
+    return ferror(f) ? -1 : 0;
+}
+
+static int write_png(base_outset *set, const char *dir, const char *name, int w, int h, int ch, const uint8_t *pix,
+                     char *err, size_t errlen)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    uint8_t *buf;
+    size_t len;
+    if (scn_png_encode(w, h, ch, pix, &buf, &len)) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
+    int rc = base_outset_write(set, path, buf, len, err, errlen);
+    free(buf);
+    return rc;
+}
+
+/* The images and scene.json are one set (base_outset): all of them move
+ * in together or, on a failure or an interruption, none. */
+int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir, char *err, size_t errlen)
+{
+    if (base_out_mkdirs(dir, err, errlen)) return -1;
+    size_t np = (size_t)r->w * r->h;
+    uint8_t *g8 = calloc(np ? np : 1, 1), *rgb = calloc(np ? np * 3 : 1, 1);
+    if (!g8 || !rgb) { free(g8); free(rgb); snprintf(err, errlen, "out of memory"); return -1; }
+    base_outset *set = base_outset_new();
+    int rc = set ? 0 : -1;
+    if (!set) snprintf(err, errlen, "%s: out of memory", dir);
+    for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? to8(r->ref[i]) : 0;
+    rc = rc ? rc : write_png(set, dir, "ref.png", r->w, r->h, 1, g8, err, errlen);
+    for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? to8(r->hw[i]) : 0;
+    rc = rc ? rc : write_png(set, dir, "hw.png", r->w, r->h, 1, g8, err, errlen);
+    int K = tb_scene_err_scale(r);
+    for (size_t i = 0; i < np; i++) {
+        if (!r->deg[i]) { memset(rgb + 3 * i, 0, 3); continue; }
+        double e = fabs(r->hw[i] - r->ref[i]) * K;
+        scn_heat_rgb(e < 1 ? e : 1, rgb + 3 * i);
+    }
+    char name[64];
+    snprintf(name, sizeof name, "err-x%d.png", K);
+    rc = rc ? rc : write_png(set, dir, name, r->w, r->h, 3, rgb, err, errlen);
+    for (size_t i = 0; i < np; i++) {
+        if (r->deg[i]) scn_label_rgb(r->deg[i], rgb + 3 * i);
+        else memset(rgb + 3 * i, 0, 3);
+    }
+    rc = rc ? rc : write_png(set, dir, "degree.png", r->w, r->h, 3, rgb, err, errlen);
+    for (size_t i = 0; i < np; i++) {
+        if (r->deg[i]) scn_label_rgb(r->region[i], rgb + 3 * i);
+        else memset(rgb + 3 * i, 0, 3);
+    }
+    rc = rc ? rc : write_png(set, dir, "region.png", r->w, r->h, 3, rgb, err, errlen);
+    free(g8);
+    free(rgb);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/scene.json", dir);
+    FILE *jf = rc ? NULL : base_outset_open(set, path, err, errlen);
+    if (!jf) { base_outset_abort(set); return -1; }
+    tb_scene_json(jf, d, r);
+    if (base_outset_commit(set, err, errlen)) return -1;
+    /* the heat maps of earlier renders at other scales would mislead */
+    for (int k = 1; k <= 4096; k *= 4) {
+        if (k == K) continue;
+        char old[4200];
+        snprintf(old, sizeof old, "%s/err-x%d.png", dir, k);
+        base_out_remove_stale(old);
+    }
+    return 0;
+}
