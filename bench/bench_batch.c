@@ -13,7 +13,7 @@
 #include "bench/bench_items.h"
 #include "testbench/tb_batch.h"
 #include "sim/sim_batch.h"
-#include "testbench/cli/cli.h"
+#include "testbench/tb.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -158,7 +158,7 @@ static int horner(int clocks_only)
     memset(lanes, 0, sizeof lanes);
     size_t per = PIXELS / LANES;
     for (int k = 0; k < LANES; k++) {
-        if (cli_make_vectors(u, &cfg, per, 100 + (uint64_t)k, &vs[k], err, sizeof err)) { fprintf(stderr, "%s\n", err); return 1; }
+        if (tb_make_vectors(u, &cfg, per, 100 + (uint64_t)k, &vs[k], err, sizeof err)) { fprintf(stderr, "%s\n", err); return 1; }
         lanes[k].vs = &vs[k];
     }
     int n_in = unit_n_in(u), n_out = unit_n_out(u), idx[UNIT_MAX_IO];

@@ -3,7 +3,7 @@
  * (`shadesim run horner3 --vectors FILE`, parsing included) timed from
  * outside; also the vector file's reading alone (vec_file_read). The
  * vectors are the float reference's, written to /tmp once. */
-#include "testbench/cli/cli.h"
+#include "testbench/tb.h"
 #include "vectors/vec_file.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -37,7 +37,7 @@ int main(void)
     unit_cfg_default(u, &cfg);
     vec_set vs;
     char err[600];
-    if (cli_make_vectors(u, &cfg, PIXELS, 7, &vs, err, sizeof err)) { fprintf(stderr, "%s\n", err); return 1; }
+    if (tb_make_vectors(u, &cfg, PIXELS, 7, &vs, err, sizeof err)) { fprintf(stderr, "%s\n", err); return 1; }
     const char *path = "/tmp/shadesim_bench_horner3.vec";
     if (vec_file_write(path, &vs, err, sizeof err)) { fprintf(stderr, "%s\n", err); return 1; }
 

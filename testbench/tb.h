@@ -184,6 +184,11 @@ void tb_result_free(tb_result *res);
 /* The vector-set header a unit expects (unit name, inputs, outputs with
  * beats expanded: y0..y{L-1}), for checking files and making vectors. */
 void tb_expected_header(const unit_desc *u, const unit_cfg *cfg, vec_set *hdr);
+/* A unit's golden vectors generated from its float reference model: n
+ * items (0: the model's default count) from seed. 0, or -1 with a message
+ * (no reference model, generation failed). (tb_vectors.c) */
+int  tb_make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, uint64_t seed,
+                     vec_set *vs, char *err, size_t errlen);
 
 /* Formats from cfg->width, then overrides "NAME=sI.F" / "all=sI.F" applied
  * in order; 0, or -1 with a message. */

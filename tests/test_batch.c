@@ -13,7 +13,6 @@
 #include "testbench/tb.h"
 #include "testbench/tb_span.h"
 #include "testbench/tb_batch.h"
-#include "testbench/cli/cli.h"
 
 static uint64_t rng = 0x9e3779b97f4a7c15ull;
 static uint64_t rnd(void)
@@ -146,7 +145,7 @@ static void t_units_lanes_equal_kernel(void)
         int ok = 1;
         for (int k = 0; k < NL && ok; k++) {
             size_t n = 3 + (size_t)k * 3;
-            if (cli_make_vectors(u, &cfg, n, 11 + (uint64_t)k, &vs[k], err, sizeof err)) {
+            if (tb_make_vectors(u, &cfg, n, 11 + (uint64_t)k, &vs[k], err, sizeof err)) {
                 TST_CHECK(0, "%s: %s", u->name, err);
                 ok = 0;
                 while (k--) vec_set_free(&vs[k]);

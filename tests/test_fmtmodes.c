@@ -7,7 +7,6 @@
  * (floor division, clamping, wrapping modulo 2^W), not with sim_fixed.c. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
-#include "testbench/cli/cli.h"
 #include "testbench/tb_verilog.h"
 #include <stdint.h>
 #include <sys/stat.h>
@@ -195,7 +194,7 @@ static int run_unit(const char *name, const char *round, const char *const *ov, 
     memset(r, 0, sizeof *r);
     if (tb_formats(u, &cfg, ov, nov, &fm, err, errlen)) return -1;
     vec_set vs;
-    if (cli_make_vectors(u, &cfg, 300, 7, &vs, err, errlen)) return -1;
+    if (tb_make_vectors(u, &cfg, 300, 7, &vs, err, errlen)) return -1;
     int rc = tb_run(u, &cfg, &fm, &vs, NULL, r, err, errlen);
     if (rc == TB_OK) tb_verdict(r, NULL);
     vec_set_free(&vs);
@@ -274,7 +273,7 @@ static void t_unit_one_signal(void)
     unit_cfg_default(u, &cfg);
     char err[600];
     vec_set vs;
-    TST_EQ_INT(cli_make_vectors(u, &cfg, 300, 7, &vs, err, sizeof err), 0);
+    TST_EQ_INT(tb_make_vectors(u, &cfg, 300, 7, &vs, err, sizeof err), 0);
     const char *ov_sat[] = { "mul=s2.9:sat" }, *ov_wrap[] = { "mul=s2.9" };
     tb_result s, w;
     TST_EQ_INT(run_unit("horner3", NULL, ov_sat, 1, &s, err, sizeof err), TB_OK);
@@ -364,7 +363,7 @@ static void t_unet_bound(void)
             tb_result r;
             vec_set vs;
             TST_EQ_INT(tb_formats(u, &cfg, o, n, &fm, err, sizeof err), 0);
-            TST_EQ_INT(cli_make_vectors(u, &cfg, 200, 100 + (uint64_t)rep, &vs, err, sizeof err), 0);
+            TST_EQ_INT(tb_make_vectors(u, &cfg, 200, 100 + (uint64_t)rep, &vs, err, sizeof err), 0);
             TST_EQ_INT(tb_run(u, &cfg, &fm, &vs, NULL, &r, err, sizeof err), TB_OK);
             tb_verdict(&r, NULL);
             TST_CHECK(r.bound_check == TB_CHECK_OK && r.overflows == r.in_overflows, "%s --round %s with %d own modes: %s",
@@ -404,7 +403,7 @@ static void t_cosim(void)
         char err[600], msg[1200];
         TST_CHECK(tb_formats(u, &cfg, D[k].ov, 3, &fm, err, sizeof err) == 0, "%s: %s", D[k].u, err);
         vec_set vs;
-        if (cli_make_vectors(u, &cfg, 40, 11, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
+        if (tb_make_vectors(u, &cfg, 40, 11, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
         char sub[300];
         snprintf(sub, sizeof sub, "%s/%s", dir, D[k].u);
         mkdir(sub, 0777);

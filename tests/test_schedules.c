@@ -7,7 +7,6 @@
  * the unit's ideal function of the inputs as the hardware holds them. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
-#include "testbench/cli/cli.h"
 #include "units/unit_horner.h"
 #include <stdint.h>
 #include <sys/wait.h>
@@ -38,7 +37,7 @@ static int run(const unit_desc *u, const unit_cfg *cfg, const char *const *ov, i
     memset(r, 0, sizeof *r);
     if (tb_formats(u, cfg, ov, nov, &fm, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); return -1; }
     vec_set vs;
-    if (cli_make_vectors(u, cfg, 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); return -1; }
+    if (tb_make_vectors(u, cfg, 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); return -1; }
     int rc = tb_run(u, cfg, &fm, &vs, NULL, r, err, sizeof err);
     TST_CHECK(rc == TB_OK, "%s %s W=%d: %s", u->name, u->sched[cfg->schedule].name, cfg->width, err);
     if (rc == TB_OK && err_beat) {

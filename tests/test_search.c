@@ -3,7 +3,7 @@
  * recomputed here by running the same design on the same stimuli. */
 #include "tests/tst.h"
 #include "testbench/study/tb_sweep.h"
-#include "testbench/cli/cli.h"
+#include "testbench/tb.h"
 
 static int sweep_h3(tb_sweep *s, vec_set *vs, int lo, int hi, const tb_accept *acc)
 {
@@ -16,7 +16,7 @@ static int sweep_h3(tb_sweep *s, vec_set *vs, int lo, int hi, const tb_accept *a
     sp.nsched = sp.nrnd = sp.novf = 1;
     if (acc) sp.accept = *acc;
     if (tb_sweep_init(s, &sp, err, sizeof err)) { printf("  %s\n", err); return -1; }
-    if (cli_make_vectors(sp.u, &sp.base, 0, 1, vs, err, sizeof err)) { printf("  %s\n", err); return -1; }
+    if (tb_make_vectors(sp.u, &sp.base, 0, 1, vs, err, sizeof err)) { printf("  %s\n", err); return -1; }
     s->vs[0] = vs;
     tb_sweep_fingerprint(s);
     return tb_sweep_run(s, 1, 0, 0, NULL, NULL) ? -1 : 0;
@@ -42,7 +42,7 @@ static void heldout_is_a_fresh_run(void)
     vec_set_init(&ho);
     if (sweep_h3(&s, &vs, 12, 22, NULL)) { TST_CHECK(0, "sweep failed"); return; }
     const unit_desc *u = s.spec.u;
-    TST_EQ_INT(cli_make_vectors(u, &s.spec.base, vs.n_rows, 2, &ho, err, sizeof err), 0);
+    TST_EQ_INT(tb_make_vectors(u, &s.spec.base, vs.n_rows, 2, &ho, err, sizeof err), 0);
     for (int margin = 0; margin <= 1; margin++) {
         double target = 1e-2, goal = tb_target_goal(TB_TARGET_MAX_ABS_ERR, target, margin);
         tb_target_res t;

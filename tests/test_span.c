@@ -10,7 +10,6 @@
 #include "tests/tst_ref.h"
 #include "testbench/tb.h"
 #include "testbench/tb_span.h"
-#include "testbench/cli/cli.h"
 #include "sim/sim_area.h"
 #include <stdint.h>
 #include <unistd.h>
@@ -514,7 +513,7 @@ static void t_generic_run(void)
                 if (!u) return;
                 vec_set vs;
                 char err[600];
-                if (cli_make_vectors(u, &cfg, Ls[li] == 64 ? 20 : 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
+                if (tb_make_vectors(u, &cfg, Ls[li] == 64 ? 20 : 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
                 TST_EQ_INT(vs.n_out, Ls[li]);
                 tb_result r;
                 int rc = tb_run(u, &cfg, &f, &vs, NULL, &r, err, sizeof err);

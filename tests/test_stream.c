@@ -5,7 +5,7 @@
  * items than the ring holds); a bad row past the first block is the
  * reader's message, as a whole read gives it. */
 #include "tests/tst.h"
-#include "testbench/cli/cli.h"
+#include "testbench/tb.h"
 #include "testbench/tb_stream.h"
 #include "vectors/vec_file.h"
 #include <unistd.h>
@@ -104,7 +104,7 @@ static void t_many_blocks(void)
     char err[600], path[] = "/tmp/shadesim_test_stream_XXXXXX";
     int fd = mkstemp(path);
     if (fd >= 0) close(fd);
-    TST_CHECK(cli_make_vectors(u, &cfg, 45000, 3, &vs, err, sizeof err) == 0, "%s", err);
+    TST_CHECK(tb_make_vectors(u, &cfg, 45000, 3, &vs, err, sizeof err) == 0, "%s", err);
     TST_CHECK(vec_file_write(path, &vs, err, sizeof err) == 0, "%s", err);
     vec_set_free(&vs);
     same_both_ways(u, path, "horner3 45000");

@@ -33,7 +33,7 @@ static int default_vectors(const unit_desc *u, const unit_cfg *cfg, vec_set *vs)
     unit_cfg d;
     unit_cfg_default(u, &d);
     if (access(path, R_OK) == 0 && !memcmp(&d, cfg, sizeof d) && !vec_file_read(path, vs, &hdr, err, sizeof err)) return 0;
-    return cli_make_vectors(u, cfg, 0, 1, vs, err, sizeof err);
+    return tb_make_vectors(u, cfg, 0, 1, vs, err, sizeof err);
 }
 
 /* A sweep over widths lo..hi with default settings, run on `threads`. */

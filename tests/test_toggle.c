@@ -19,7 +19,6 @@
 #include "testbench/tb_batch.h"
 #include "testbench/tb_span.h"
 #include "testbench/study/tb_scene.h"
-#include "testbench/cli/cli.h"
 #include <unistd.h>
 
 static int bits_of(uint64_t x)
@@ -188,7 +187,7 @@ static void vcd_case(const char *unit, const char *sched)
     char err[600];
     if (tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
     vec_set vs;
-    if (cli_make_vectors(u, &cfg, 40, 5, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
+    if (tb_make_vectors(u, &cfg, 40, 5, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
     char path[] = "/tmp/shadesim_toggle_XXXXXX";
     int fd = mkstemp(path);
     TST_CHECK(fd >= 0, "mkstemp");
@@ -266,7 +265,7 @@ static void t_batch_lanes_equal_kernel(void)
         memset(lanes, 0, sizeof lanes);
         int ok = 1;
         for (int k = 0; k < NL; k++) {
-            if (cli_make_vectors(u, &cfg, 4 + (size_t)k * 5, 21 + (uint64_t)k, &vs[k], err, sizeof err)) {
+            if (tb_make_vectors(u, &cfg, 4 + (size_t)k * 5, 21 + (uint64_t)k, &vs[k], err, sizeof err)) {
                 TST_CHECK(0, "%s: %s", u->name, err);
                 while (k--) vec_set_free(&vs[k]);
                 ok = 0;

@@ -9,7 +9,6 @@
 #include "tests/tst.h"
 #include "tests/tst_ref.h"
 #include "testbench/tb.h"
-#include "testbench/cli/cli.h"
 #include <stdint.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -79,7 +78,7 @@ static int run(const char *unit, const unit_cfg *cfg, const char *const *ov, int
     if (tb_formats(u, cfg, ov, nov, &fm, err, errlen)) { memset(r, 0, sizeof *r); return -1; }
     vec_set own;
     if (!vs) {
-        if (cli_make_vectors(u, cfg, 0, 1, &own, err, errlen)) { memset(r, 0, sizeof *r); return -1; }
+        if (tb_make_vectors(u, cfg, 0, 1, &own, err, errlen)) { memset(r, 0, sizeof *r); return -1; }
         vs = &own;
     }
     int rc = tb_run(u, cfg, &fm, vs, NULL, r, err, errlen);
@@ -262,7 +261,7 @@ static void t_high_precision_network_error(void)
             double f = factor(cfg.terms, s);
             vec_set vs;
             char err[400];
-            TST_CHECK(cli_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err) == 0, "%s", err);
+            TST_CHECK(tb_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err) == 0, "%s", err);
             tb_result r;
             int rc = run(name, &cfg, ov, 1, &vs, &r, err, sizeof err);
             TST_CHECK(rc == TB_OK, "%s: %s", name, err);
@@ -454,7 +453,7 @@ static void t_coef_vs_vandermonde(void)
         unit_cfg cfg = cfg_of(u, 20);
         vec_set vs;
         char err[300];
-        TST_CHECK(cli_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err) == 0, "%s", err);
+        TST_CHECK(tb_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err) == 0, "%s", err);
         tb_result r;
         if (run(units[i], &cfg, NULL, 0, &vs, &r, err, sizeof err) != TB_OK) { TST_CHECK(0, "%s", err); continue; }
         unit_fmts fm;
@@ -486,7 +485,7 @@ static void check_interp(const char *name, int L, int terms, int width)
     double f = factor(terms, 0);
     vec_set vs;
     char err[300];
-    TST_CHECK(cli_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err) == 0, "%s", err);
+    TST_CHECK(tb_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err) == 0, "%s", err);
     tb_result r;
     int rc = run(name, &cfg, NULL, 0, &vs, &r, err, sizeof err);
     TST_CHECK(rc == TB_OK, "%s: %s", name, err);

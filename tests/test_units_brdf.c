@@ -6,7 +6,6 @@
  * n's bits, the peak 1/(4m^2) of D. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
-#include "testbench/cli/cli.h"
 #include "vectors/claims.h"
 #include <stdint.h>
 
@@ -24,7 +23,7 @@ static int run(const char *name, const unit_cfg *cfg, const char *ov, size_t n, 
     memset(r, 0, sizeof *r);
     if (!u) { printf("  no unit %s\n", name); return -1; }
     if (tb_formats(u, cfg, ov ? &ov : NULL, ov ? 1 : 0, &f, err, sizeof err)) { printf("  %s\n", err); return -1; }
-    if (cli_make_vectors(u, cfg, n, 1, &vs, err, sizeof err)) { printf("  %s\n", err); return -1; }
+    if (tb_make_vectors(u, cfg, n, 1, &vs, err, sizeof err)) { printf("  %s\n", err); return -1; }
     int rc = tb_run(u, cfg, &f, &vs, NULL, r, err, sizeof err);
     if (rc != TB_OK) printf("  %s: %s\n", name, err);
     vec_set_free(&vs);
@@ -98,7 +97,7 @@ static void bound_holds_under_overrides(void)
             f.f[i] = unit_fmt(is, ib, fb);
         }
         vec_set vs;
-        TST_CHECK(!cli_make_vectors(u, &cfg, 48, (uint64_t)it + 1, &vs, err, sizeof err), "%s", err);
+        TST_CHECK(!tb_make_vectors(u, &cfg, 48, (uint64_t)it + 1, &vs, err, sizeof err), "%s", err);
         tb_result r;
         int rc = tb_run(u, &cfg, &f, &vs, NULL, &r, err, sizeof err);
         TST_CHECK(rc == TB_OK || rc == TB_BADINPUT, "%s: simulation failed: %s", u->name, err);
@@ -409,7 +408,7 @@ static void vcd_has_internals(void)
         vec_set vs;
         char err[600];
         tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err);
-        cli_make_vectors(u, &cfg, 4, 1, &vs, err, sizeof err);
+        tb_make_vectors(u, &cfg, 4, 1, &vs, err, sizeof err);
         tb_opts o = { .vcd_path = path, .gtkw = 0 };
         tb_result r;
         TST_EQ_INT(tb_run(u, &cfg, &f, &vs, &o, &r, err, sizeof err), TB_OK);

@@ -4,7 +4,6 @@
  * computed here: 128-bit integer arithmetic, rounding by hand. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
-#include "testbench/cli/cli.h"
 #include <stdint.h>
 
 /* Run unit name with cfg and overrides ov[0..nov-1] on vs (NULL: the
@@ -19,7 +18,7 @@ static int run_ov(const char *name, const unit_cfg *cfg, const char *const *ov, 
     memset(r, 0, sizeof *r);
     if (!u) { printf("  no unit %s\n", name); return -1; }
     if (tb_formats(u, cfg, ov, nov, &f, err, sizeof err)) { printf("  %s\n", err); return -1; }
-    if (!vs_in && cli_make_vectors(u, cfg, 0, 1, &vs, err, sizeof err)) { printf("  %s\n", err); return -1; }
+    if (!vs_in && tb_make_vectors(u, cfg, 0, 1, &vs, err, sizeof err)) { printf("  %s\n", err); return -1; }
     int rc = tb_run(u, cfg, &f, vs_in ? vs_in : &vs, NULL, r, err, sizeof err);
     if (rc != TB_OK) printf("  %s: %s\n", name, err);
     if (!vs_in) vec_set_free(&vs);
@@ -142,7 +141,7 @@ static void t_exact_int128(void)
     vec_set vs;
     char err[600];
     const unit_desc *u = unit_find("horner3");
-    if (cli_make_vectors(u, &cfg, 300, 7, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
+    if (tb_make_vectors(u, &cfg, 300, 7, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
     tb_result r;
     if (run_ov("horner3", &cfg, ov, 2, &vs, &r)) { TST_CHECK(0, "run"); vec_set_free(&vs); return; }
     __int128 worst = 0;
@@ -203,7 +202,7 @@ static void t_overflow_input(void)
     const unit_desc *u = unit_find("div3");
     vec_set vs;
     char err[600];
-    if (cli_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
+    if (tb_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
     long expect = 0;
     for (size_t it = 0; it < vs.n_rows; it++) {
         double q = floor(ldexp(vec_row(&vs, it)[0], 15) + 0.5);
@@ -330,7 +329,7 @@ static void t_golden(void)
     const unit_desc *u = unit_find("horner3");
     vec_set vs;
     char err[600];
-    if (cli_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
+    if (tb_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
     tb_result r;
     if (run_ov("horner3", &cfg, NULL, 0, &vs, &r) == 0) {
         TST_CHECK(r.ok && r.golden_ok, "true vectors: %s", r.why);
@@ -356,7 +355,7 @@ static void t_overflow_named(void)
     const unit_desc *u = unit_find("horner3");
     vec_set vs;
     char err[600];
-    if (cli_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
+    if (tb_make_vectors(u, &cfg, 0, 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
     long expect = 0;
     for (size_t it = 0; it < vs.n_rows; it++) {
         double q = floor(ldexp(vec_row(&vs, it)[0], 9));
@@ -442,7 +441,7 @@ static void t_random_units(void)
                 f.f[i] = unit_fmt(f.f[i].is_signed, f.f[i].ibits, fb);
             if (d % 2 == 0) {       /* simulate every other draw (the bounds are cheap, runs are not) */
                 vec_set vs;
-                if (cli_make_vectors(u, &cfg, 24, (uint64_t)d + 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
+                if (tb_make_vectors(u, &cfg, 24, (uint64_t)d + 1, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
                 tb_result r;
                 int rc = tb_run(u, &cfg, &f, &vs, NULL, &r, err, sizeof err);
                 vec_set_free(&vs);

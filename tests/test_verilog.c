@@ -23,7 +23,7 @@
  * The tool-driven tests run in the plain build only, and are skipped when
  * their tool is not installed. */
 #include "tests/tst.h"
-#include "testbench/cli/cli.h"
+#include "testbench/tb.h"
 #include "testbench/tb_verilog.h"
 #include "sim/sim_verilog.h"
 #include <sys/stat.h>
@@ -70,7 +70,7 @@ static void one_width(int W)
     TST_CHECK(cfg.rnd == SIM_RND_TRUNC && cfg.ovf == SIM_OVF_WRAP, "default modes are not trunc/wrap");
 
     vec_set vs;
-    TST_CHECK(cli_make_vectors(u, &cfg, NVEC, 11, &vs, err, sizeof err) == 0, "%s", err);
+    TST_CHECK(tb_make_vectors(u, &cfg, NVEC, 11, &vs, err, sizeof err) == 0, "%s", err);
     TST_EQ_INT(vs.n_rows, NVEC);
 
     /* Inputs quantized as tb_run does, as hex raws of W bits. */
@@ -177,7 +177,7 @@ static const char *cosim_one(const unit_desc *u, int sched, int W, sim_round rnd
     *exact = 0;
     TST_CHECK(tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err) == 0, "%s: %s", u->name, err);
     vec_set vs;
-    if (cli_make_vectors(u, &cfg, (size_t)n, 3, &vs, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); return NULL; }
+    if (tb_make_vectors(u, &cfg, (size_t)n, 3, &vs, err, sizeof err)) { TST_CHECK(0, "%s: %s", u->name, err); return NULL; }
     snprintf(dir, sizeof dir, "%s/d%d", tmpdir, seq++);
     mkdir(dir, 0777);
     int rc = tb_cosim(u, &cfg, &fm, &vs, sim, dir, msg, sizeof msg);
@@ -271,7 +271,7 @@ static void t_cosim_verilator(void)
     char err[600], msg[1200], dir[256];
     TST_CHECK(tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err) == 0, "%s", err);
     vec_set vs;
-    if (cli_make_vectors(u, &cfg, 12, 3, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
+    if (tb_make_vectors(u, &cfg, 12, 3, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
     snprintf(dir, sizeof dir, "%s/va", tmpdir);
     mkdir(dir, 0777);
     tb_cosim_opts co = { SIM_VRESET_ASYNC, NULL, 0, NULL };
@@ -395,7 +395,7 @@ static void t_cosim_resets(void)
             char err[600], msg[1200], dir[256];
             TST_CHECK(tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err) == 0, "%s", err);
             vec_set vs;
-            if (cli_make_vectors(u, &cfg, 12, 9, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
+            if (tb_make_vectors(u, &cfg, 12, 9, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
             snprintf(dir, sizeof dir, "%s/r%zu_%d", tmpdir, i, rs);
             mkdir(dir, 0777);
             tb_cosim_opts co = { (sim_vreset)rs, NULL, 0, NULL };
@@ -460,7 +460,7 @@ static void t_cosim_params(void)
         unit_fmts fm;
         TST_CHECK(tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err) == 0, "%s", err);
         vec_set vs;
-        if (cli_make_vectors(u, &cfg, 12, 5, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
+        if (tb_make_vectors(u, &cfg, 12, 5, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
         snprintf(dir, sizeof dir, "%s/p%zu", tmpdir, i);
         mkdir(dir, 0777);
         int rc = tb_cosim(u, &cfg, &fm, &vs, TB_SIM_ICARUS, dir, msg, sizeof msg);

@@ -28,11 +28,6 @@ int cli_scene(int argc, char **argv);
 int cli_factor(int argc, char **argv);
 int cli_chart(int argc, char **argv);
 int cli_report(int argc, char **argv);
-/* The rows `shadesim claims` prints (at most CLAIMS_MAX; kind[i]:
- * "accuracy", "speed_hw" or "scene"), hardware figures at width; 0 with a
- * message when the face scene cannot be rendered. (cli_claims.c) */
-struct claim_result;
-size_t cli_claims_table(struct claim_result *rows, const char **kind, int width, char *err, size_t errlen);
 int cli_stability(int argc, char **argv);
 int cli_verilog(int argc, char **argv);
 int cli_cosim(int argc, char **argv);
@@ -94,9 +89,6 @@ int cli_load_vectors(const cli_unit_opts *o, vec_set *vs);
 int cli_vectors_file(const cli_unit_opts *o, char *buf, size_t len, const char **path);
 /* Path of the checked-in default vectors of a unit. */
 const char *cli_default_vectors_path(const char *unit, char *buf, size_t len);
-/* Generate a unit's golden vectors from its reference model. */
-int cli_make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, uint64_t seed,
-                     vec_set *vs, char *err, size_t errlen);
 
 /* "--schedule NAME: unit U has schedules: a, b": CLI_USAGE. */
 int cli_unit_sched_error(const unit_desc *u, const char *name);

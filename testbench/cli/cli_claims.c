@@ -1,120 +1,23 @@
 /* cli_claims.c - the verb claims: every numerical claim of the seeds next
- * to what we measure, with a verdict (vectors/claims.c computes them), the
- * seeds' speed claims measured as hardware clocks and area of our units
- * against chains of our units for the exact functions (testbench/
- * tb_speed_hw.c; deterministic: the same
- * bytes on every machine; CPU timings of float code are `make bench`'s,
- * bench/bench_claims.c), the failure region of each approximation, and
- * with -o DIR the charts (docs/brdf.md). */
+ * to what we measure, with a verdict, the seeds' speed claims measured as
+ * hardware clocks and area of our units against chains of our units for
+ * the exact functions, the failure region of each approximation, and with
+ * -o DIR the charts (docs/brdf.md). The study measures them all
+ * (testbench/study/tb_claims.h); this file parses the options, prints the
+ * text or JSON and writes the charts. Deterministic: the same bytes on
+ * every machine; CPU timings of float code are `make bench`'s
+ * (bench/bench_claims.c). */
 #include "testbench/cli/cli.h"
 #include "testbench/cli/cli_opt.h"
-#include "base/base_out.h"
-#include "base/base_json.h"
-#include "chart/chart.h"
-#include "vectors/claims.h"
+#include "testbench/study/tb_claims.h"
 #include "testbench/study/tb_scene_claims.h"
 #include "testbench/study/tb_factor_claims.h"
-#include "testbench/study/tb_speed_hw.h"
-#include "vectors/ref_brdf.h"
-#include <errno.h>
-#include <stdarg.h>
+#include "base/base_out.h"
+#include "base/base_json.h"
 #include <stddef.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
-#define DEG (M_PI / 180.0)
-
-#define FAIL_REL 0.10          /* a failure: relative error above 10% ... */
-#define FAIL_FLOOR 0.01        /* ... where the exact value is above 1% of its peak */
-
-/* ----------------------------------------------------------- JSON output */
-
-/* Text into a claim_result field (fixed size): formatted in full, then cut. */
-/* ------------------------------------------------- hardware cost figures */
-
-typedef double (*phys_fn)(double c, const unit_cfg *cfg);
-static double phys_beckmann(double c, const unit_cfg *cfg) { return ref_brdf_beckmann(c, cfg->m); }
-static double phys_ward(double c, const unit_cfg *cfg) { return ref_brdf_ward_exp(c, cfg->alpha); }
-static double phys_blinn(double c, const unit_cfg *cfg) { return ref_brdf_cos_pow(c, cfg->n); }
-
-/* ----------------------------------------------------- failure regions */
-
-typedef double (*fn_cp)(double c, double p);
-static double d16c(double c, double m) { return ref_brdf_dg_clamped(c, m, 16); }
-static double d16u(double c, double m) { return ref_brdf_dg(c, m, 16); }
-static double beck(double c, double m) { return ref_brdf_beckmann(c, m); }
-static double wpoly(double c, double a) { return ref_brdf_ward_exp_approx_clamped(c, a); }
-static double wexp(double c, double a) { return ref_brdf_ward_exp(c, a); }
-static double fsh(double c, double n) { return ref_brdf_schlick(c, n); }
-static double fmsh(double c, double n) { return ref_brdf_mschlick(c, n); }
-static double blinn(double c, double n) { return ref_brdf_cos_pow(c, n); }
-
-/* An approximation at one parameter value against its exact function. */
-typedef struct approx {
-    const char *name;      /* "D16" */
-    const char *pname;     /* "m" */
-    double p;
-    fn_cp f, exact;
-    double peak;           /* of the exact function (at 0 deg) */
-} approx;
-
-#define N_ANG 1800             /* 0.05 deg steps over [0, 90] */
-#define MAX_BANDS 8
-
-typedef struct bands { int n; double lo[MAX_BANDS], hi[MAX_BANDS]; double worst; } bands;
-
-static double ang_at(int i) { return 90.0 * i / N_ANG; }
-
-static int failing(const approx *a, int i)
-{
-    double c = cos(ang_at(i) * DEG), e = a->exact(c, a->p);
-    return e > FAIL_FLOOR * a->peak && fabs(a->f(c, a->p) / e - 1) > FAIL_REL;
-}
-
-/* Contiguous runs of failing angles, and the worst relative error where the
- * exact value is above 1% of its peak. */
-static void failure_bands(const approx *a, bands *b)
-{
-    memset(b, 0, sizeof *b);
-    int start = -1;
-    for (int i = 0; i <= N_ANG + 1; i++) {
-        int fl = i <= N_ANG && failing(a, i);
-        if (i <= N_ANG) {
-            double c = cos(ang_at(i) * DEG), e = a->exact(c, a->p);
-            if (e > FAIL_FLOOR * a->peak) b->worst = fmax(b->worst, fabs(a->f(c, a->p) / e - 1));
-        }
-        if (fl && start < 0) start = i;
-        if (!fl && start >= 0) {
-            if (b->n < MAX_BANDS) {
-                b->lo[b->n] = ang_at(start);
-                b->hi[b->n] = ang_at(i - 1);
-                b->n++;
-            }
-            start = -1;
-        }
-    }
-}
-
-static const approx APPROX[] = {
-    { "D16", "m", 0.2, d16c, beck, 1 / (4 * 0.04) },
-    { "D16", "m", 0.3, d16c, beck, 1 / (4 * 0.09) },
-    { "D16", "m", 0.4, d16c, beck, 1 / (4 * 0.16) },
-    { "D16", "m", 0.6, d16c, beck, 1 / (4 * 0.36) },
-    { "Ward poly16", "a", 0.1, wpoly, wexp, 1 },
-    { "Ward poly16", "a", 0.2, wpoly, wexp, 1 },
-    { "Ward poly16", "a", 0.3, wpoly, wexp, 1 },
-    { "Ward poly16", "a", 0.4, wpoly, wexp, 1 },
-    { "F_SH", "n", 60, fsh, blinn, 1 },
-    { "F_MSH", "n", 60, fmsh, blinn, 1 },
-    { "F_SH", "n", 500, fsh, blinn, 1 },
-    { "F_MSH", "n", 500, fmsh, blinn, 1 },
-};
-#define N_APPROX (sizeof APPROX / sizeof APPROX[0])
 
 /* --------------------------------------------------------------- charts */
 
@@ -130,101 +33,6 @@ static int write_chart(chart *c, const char *dir, const char *file, char paths[]
     return CLI_OK;
 }
 
-/* |relative error| in percent against angle, where the exact value is
- * above 0.1% of its peak; failure bands shaded. first..last index APPROX. */
-static chart *error_chart(const char *title, size_t first, size_t last)
-{
-    chart *c = chart_new(title, "angle between N and H (deg)", "|relative error| (%)");
-    if (!c) return NULL;
-    chart_log_y(c, 1);
-    for (size_t k = first; k <= last; k++) {
-        const approx *a = &APPROX[k];
-        char label[64];
-        snprintf(label, sizeof label, "%s, %s = %g", a->name, a->pname, a->p);
-        int s = chart_series(c, label, CHART_LINE);
-        for (int i = 0; i <= N_ANG; i += 4) {
-            double cc = cos(ang_at(i) * DEG), e = a->exact(cc, a->p);
-            if (e > 1e-3 * a->peak) chart_point(c, s, ang_at(i), 100 * fabs(a->f(cc, a->p) / e - 1));
-        }
-        bands b;
-        failure_bands(a, &b);
-        for (int j = 0; j < b.n; j++) {
-            snprintf(label, sizeof label, "%s=%g fails", a->pname, a->p);
-            chart_hband(c, b.lo[j], b.hi[j], label);
-        }
-    }
-    chart_hline(c, 100 * FAIL_REL, "10%");
-    return c;
-}
-
-/* Why d_approx clamps: D, D16 clamped and D16 as the seeds print it, as
- * fractions of D's peak, m = 0.2; past the cosine where the base turns
- * negative the printed even power rises again, to 2.3e4 x the peak. */
-static chart *clamp_chart(void)
-{
-    const double m = 0.2, peak = 1 / (4 * m * m);
-    chart *c = chart_new("D16 with and without the clamp, m = 0.2", "angle between N and H (deg)",
-                               "value / peak of D");
-    if (!c) return NULL;
-    chart_log_y(c, 1);
-    int s_d = chart_series(c, "Beckmann D", CHART_LINE);
-    int s_u = chart_series(c, "D16 as printed", CHART_LINE);
-    int s_c = chart_series(c, "D16 clamped (d_approx)", CHART_LINE);   /* drawn over the printed */
-    /* Values below 1e-12 of the peak are left out (D reaches 1e-300), as
-     * NaN so that the lines break there. */
-    for (int i = 0; i <= N_ANG; i += 4) {
-        double a = ang_at(i), cc = cos(a * DEG);
-        double v[3] = { beck(cc, m) / peak, d16c(cc, m) / peak, d16u(cc, m) / peak };
-        int s[3] = { s_d, s_c, s_u };
-        for (int k = 0; k < 3; k++)
-            chart_point(c, s[k], a, v[k] >= 1e-12 ? v[k] : NAN);
-    }
-    double c0 = ref_brdf_dg_base_zero_cos(m, 16);
-    char lab[64];
-    snprintf(lab, sizeof lab, "base < 0 from %.1f deg", acos(c0) / DEG);
-    if (c0 > 0) chart_hband(c, acos(c0) / DEG, 90, lab);
-    chart_hline(c, 1, "peak");
-    return c;
-}
-
-/* Clocks x area against error for the specular units at several widths. */
-typedef struct cost_unit { const char *unit, *label; phys_fn phys; } cost_unit;
-static const cost_unit COST_UNITS[] = {
-    { "d_approx", "d_approx vs D, m=0.2", phys_beckmann },
-    { "ward_approx", "ward_approx vs exp, a=0.2", phys_ward },
-    { "pow_n", "pow_n vs cos^32", phys_blinn },
-    { "schlick", "schlick vs cos^32", phys_blinn },
-    { "mschlick", "mschlick vs cos^32", phys_blinn },
-};
-#define N_COST_UNITS (sizeof COST_UNITS / sizeof COST_UNITS[0])
-static const int COST_WIDTHS[] = { 8, 12, 16, 20, 24 };
-#define N_COST_WIDTHS (sizeof COST_WIDTHS / sizeof COST_WIDTHS[0])
-
-static chart *cost_chart(void)
-{
-    chart *c = chart_new("Which specular model buys the most accuracy per clock",
-                               "clocks per item x area (GE x clocks)", "max |error| / peak of the exact function");
-    if (!c) return NULL;
-    chart_log_x(c, 1);
-    chart_log_y(c, 1);
-    for (size_t k = 0; k < N_COST_UNITS; k++) {
-        int s = chart_series(c, COST_UNITS[k].label, CHART_LINE | CHART_POINTS);
-        for (size_t w = 0; w < N_COST_WIDTHS; w++) {
-            unit_cfg cfg;
-            unit_cfg_default(unit_find(COST_UNITS[k].unit), &cfg);
-            cfg.width = COST_WIDTHS[w];
-            double peak = !strcmp(COST_UNITS[k].unit, "d_approx") ? 1 / (4 * cfg.m * cfg.m) : 1;
-            tb_hw_point pt;
-            if (tb_hw_point_run(COST_UNITS[k].unit, &cfg, 0, COST_UNITS[k].phys, peak, &pt)) continue;
-            char lab[16];
-            snprintf(lab, sizeof lab, "width %d", COST_WIDTHS[w]);
-            if (w == 0 || w == N_COST_WIDTHS - 1) chart_point_label(c, s, pt.clocks * pt.area, pt.max_err_peak, lab);
-            else chart_point(c, s, pt.clocks * pt.area, pt.max_err_peak);
-        }
-    }
-    return c;
-}
-
 static int write_charts(const char *dir, char paths[][600], int *np)
 {
     if (cli_make_dir(dir)) return CLI_USAGE;
@@ -232,15 +40,11 @@ static int write_charts(const char *dir, char paths[][600], int *np)
     base_outset *set = base_outset_begin();
     char err[600];
     if (!set) return cli_usage_error("claims: out of memory");
-    if (write_chart(error_chart("D16 (clamped) against Beckmann D", 0, 3), dir, "claims_d16.svg", paths, np) ||
-        write_chart(error_chart("Ward's exponential as a 16th power", 4, 7), dir, "claims_ward.svg", paths, np) ||
-        write_chart(error_chart("Schlick and modified Schlick against Blinn cos^n", 8, 11), dir,
-                    "claims_schlick.svg", paths, np) ||
-        write_chart(clamp_chart(), dir, "claims_d16_clamp.svg", paths, np) ||
-        write_chart(cost_chart(), dir, "claims_cost.svg", paths, np)) {
-        base_outset_abort(set);
-        return CLI_USAGE;
-    }
+    for (const tb_claims_chart *c = tb_claims_charts; c->file; c++)
+        if (write_chart(c->make(), dir, c->file, paths, np)) {
+            base_outset_abort(set);
+            return CLI_USAGE;
+        }
     if (base_outset_commit(set, err, sizeof err)) return cli_usage_error("%s", err);
     return CLI_OK;
 }
@@ -252,7 +56,7 @@ typedef struct report {
     const char *kind[CLAIMS_MAX];     /* "accuracy", "speed_hw", "factor", "scene" */
     size_t n;
     tb_speed_hw hc;
-    bands fb[N_APPROX];
+    tb_claims_bands fb[TB_CLAIMS_NAPPROX];
 } report;
 
 static void print_row(FILE *f, const claim_result *r)
@@ -315,9 +119,9 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
           "times it (bench/bench_claims); it is not part of these verdicts.\n\n", f);
 
     fputs("Failure regions: relative error above 10% where the exact value is above 1% of its peak\n", f);
-    for (size_t k = 0; k < N_APPROX; k++) {
-        const approx *a = &APPROX[k];
-        const bands *b = &rp->fb[k];
+    for (size_t k = 0; k < TB_CLAIMS_NAPPROX; k++) {
+        const tb_claims_approx *a = &tb_claims_approx_tab[k];
+        const tb_claims_bands *b = &rp->fb[k];
         fprintf(f, "  %-12s %s = %-4g worst %7.3g%%  ", a->name, a->pname, a->p, 100 * b->worst);
         if (!b->n) fputs("no failure", f);
         for (int j = 0; j < b->n; j++) fprintf(f, "%s%.2f..%.2f deg", j ? ", " : "fails at ", b->lo[j], b->hi[j]);
@@ -378,9 +182,9 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
             "exact D = that design, then a squarer and a divider each simulated alone; the exponential (no unit) "
             "not counted: lower bounds");
     fputs("\n  },\n  \"failure_regions\": [\n", f);
-    for (size_t k = 0; k < N_APPROX; k++) {
-        const approx *a = &APPROX[k];
-        const bands *b = &rp->fb[k];
+    for (size_t k = 0; k < TB_CLAIMS_NAPPROX; k++) {
+        const tb_claims_approx *a = &tb_claims_approx_tab[k];
+        const tb_claims_bands *b = &rp->fb[k];
         fputs("    {\"approximation\": ", f); base_json_str(f, a->name);
         fputs(", \"param\": ", f); base_json_str(f, a->pname);
         fputs(", \"value\": ", f); base_json_num(f, a->p, 10);
@@ -391,49 +195,11 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
             base_json_num(f, b->lo[j], 10); fputs(", ", f); base_json_num(f, b->hi[j], 10);
             fputs("]", f);
         }
-        fprintf(f, "]}%s\n", k + 1 < N_APPROX ? "," : "");
+        fprintf(f, "]}%s\n", k + 1 < TB_CLAIMS_NAPPROX ? "," : "");
     }
     fputs("  ],\n  \"charts\": [", f);
     for (int i = 0; i < np; i++) { fputs(i ? ", " : "", f); base_json_str(f, paths[i]); }
     fputs("]\n}\n", f);
-}
-
-/* ------------------------------------------------------------------ rows */
-
-/* Every row of the claims table: accuracy, the hardware speed claims at
- * width, the factorization paper's, the face scene's; kinds "accuracy",
- * "speed_hw", "factor", "scene". */
-static size_t claims_rows(claim_result *rows, const char **kind, int width, tb_speed_hw *hc, char *err, size_t errlen)
-{
-    size_t n = claims_compute(rows, CLAIMS_MAX);
-    for (size_t i = 0; i < n; i++) kind[i] = "accuracy";
-    tb_speed_hw_measure(width, hc);
-    if (n + 2 <= CLAIMS_MAX) {
-        size_t k = tb_speed_hw_rows(hc, &rows[n]);
-        for (size_t i = 0; i < k; i++) kind[n + i] = "speed_hw";
-        n += k;
-    }
-    if (n + TB_FACTOR_CLAIMS_ROWS <= CLAIMS_MAX) {
-        char ferr[300];
-        size_t k = tb_factor_claims(&rows[n], CLAIMS_MAX - n, ferr, sizeof ferr);
-        if (!k) { snprintf(err, errlen, "factorization: %s", ferr); return 0; }
-        for (size_t i = 0; i < k; i++) kind[n + i] = "factor";
-        n += k;
-    }
-    if (n + TB_SCENE_CLAIMS_ROWS <= CLAIMS_MAX) {
-        char serr[300];
-        size_t k = tb_scene_claims(&rows[n], CLAIMS_MAX - n, TB_SCENE_CLAIMS_RES, 2, serr, sizeof serr);
-        if (!k) { snprintf(err, errlen, "face scene: %s", serr); return 0; }
-        for (size_t i = 0; i < k; i++) kind[n + i] = "scene";
-        n += k;
-    }
-    return n;
-}
-
-size_t cli_claims_table(claim_result *rows, const char **kind, int width, char *err, size_t errlen)
-{
-    tb_speed_hw hc;
-    return claims_rows(rows, kind, width, &hc, err, errlen);
 }
 
 /* ------------------------------------------------------------------ verb */
@@ -497,9 +263,9 @@ int cli_claims(int argc, char **argv)
     report *rp = calloc(1, sizeof *rp);
     if (!rp) return cli_usage_error("claims: out of memory");
     char serr[300];
-    rp->n = claims_rows(rp->rows, rp->kind, width, &rp->hc, serr, sizeof serr);
+    rp->n = tb_claims_table(rp->rows, rp->kind, width, &rp->hc, serr, sizeof serr);
     if (!rp->n) { free(rp); return cli_usage_error("claims: %s", serr); }
-    for (size_t k = 0; k < N_APPROX; k++) failure_bands(&APPROX[k], &rp->fb[k]);
+    for (size_t k = 0; k < TB_CLAIMS_NAPPROX; k++) tb_claims_failure_bands(&tb_claims_approx_tab[k], &rp->fb[k]);
 
     char paths[8][600];
     int np = 0, rc = CLI_OK;

@@ -303,17 +303,6 @@ const char *cli_default_vectors_path(const char *unit, char *buf, size_t len)
     return buf;
 }
 
-int cli_make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, uint64_t seed,
-                     vec_set *vs, char *err, size_t errlen)
-{
-    const vec_model *m = u->ref;
-    if (!m) { snprintf(err, errlen, "unit %s has no float reference model", u->name); return -1; }
-    vec_set_init(vs);
-    vec_set_header(vs, m, &cfg->model);
-    if (m->gen(&cfg->model, n, seed, vs)) { snprintf(err, errlen, "cannot generate vectors for %s", u->name); return -1; }
-    return 0;
-}
-
 /* True if every parameter of the unit has its default value, so the
  * checked-in file (made with the defaults) applies. */
 static int params_default(const unit_desc *u, const unit_cfg *cfg)
@@ -352,7 +341,7 @@ int cli_load_vectors(const cli_unit_opts *o, vec_set *vs)
     tb_expected_header(o->u, &o->cfg, &hdr);
     vec_set_init(vs);
     if (!o->vectors && !params_default(o->u, &o->cfg)) {
-        if (cli_make_vectors(o->u, &o->cfg, 0, 1, vs, err, sizeof err)) return cli_usage_error("%s", err);
+        if (tb_make_vectors(o->u, &o->cfg, 0, 1, vs, err, sizeof err)) return cli_usage_error("%s", err);
         return CLI_OK;
     }
     const char *p = o->vectors ? o->vectors : cli_default_vectors_path(o->u->name, path, sizeof path);

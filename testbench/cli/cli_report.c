@@ -9,7 +9,7 @@
  * file) and are linked. Same inputs, same bytes: no dates, no timings.
  *
  * The figures come from the functions the other verbs use: tb_run and
- * tb_verdict (as run all), cli_claims_table (claims), tb_sweep and
+ * tb_verdict (as run all), tb_claims_table (claims), tb_sweep and
  * tb_sweep_chart (sweep, chart), tb_scene_render (scene).
  */
 #include "testbench/cli/cli.h"
@@ -19,6 +19,7 @@
 #include "testbench/study/tb_sweep.h"
 #include "testbench/study/tb_sweep_chart.h"
 #include "testbench/study/tb_stability.h"
+#include "testbench/study/tb_claims.h"
 #include "vectors/claims.h"
 #include "base/base_out.h"
 #include <errno.h>
@@ -222,7 +223,7 @@ static int section_claims(FILE *f)
     char err[400];
     if (!rows) return cli_usage_error("report: out of memory");
     progress("claims");
-    size_t n = cli_claims_table(rows, kind, 16, err, sizeof err);
+    size_t n = tb_claims_table(rows, kind, 16, NULL, err, sizeof err);
     if (!n) { free(rows); return cli_usage_error("report: claims: %s", err); }
     int nh = 0, no = 0, nf = 0;
     for (size_t i = 0; i < n; i++) {
@@ -588,7 +589,7 @@ static int section_wave(FILE *f, const char *dir)
     char err[600], path[4200];
     if (tb_formats(o.u, &o.cfg, NULL, 0, &fm, err, sizeof err)) return cli_usage_error("report: %s", err);
     /* A short dump reads better than the whole vector file: 16 items. */
-    if (cli_make_vectors(o.u, &o.cfg, 16, 1, &few, err, sizeof err)) return cli_usage_error("report: %s", err);
+    if (tb_make_vectors(o.u, &o.cfg, 16, 1, &few, err, sizeof err)) return cli_usage_error("report: %s", err);
     snprintf(path, sizeof path, "%s/horner3.vcd", dir);
     tb_opts to = { .vcd_path = path, .gtkw = 1 };
     tb_result r;

@@ -45,7 +45,7 @@ static int load_vectors(sweep_args *a, tb_sweep *s, vec_set *sets)
         o.cfg = *tb_sweep_pset_cfg(s, p);
         if (a->nvec > 0) {
             char err[600];
-            if (cli_make_vectors(o.u, &o.cfg, (size_t)a->nvec, a->seed, &sets[p], err, sizeof err)) return cli_usage_error("%s", err);
+            if (tb_make_vectors(o.u, &o.cfg, (size_t)a->nvec, a->seed, &sets[p], err, sizeof err)) return cli_usage_error("%s", err);
         } else if (cli_load_vectors(&o, &sets[p])) {
             return CLI_USAGE;
         }

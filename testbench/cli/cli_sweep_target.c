@@ -241,7 +241,7 @@ static int heldout_check(sweep_args *a, tb_sweep *s)
         size_t p = s->cfg[g].pset;
         if (!x->met) continue;
         if (!made[p]) {
-            if (cli_make_vectors(a->o.u, tb_sweep_pset_cfg(s, p), s->vs[p]->n_rows, a->t.ho_seed, &ho[p], err, sizeof err)) {
+            if (tb_make_vectors(a->o.u, tb_sweep_pset_cfg(s, p), s->vs[p]->n_rows, a->t.ho_seed, &ho[p], err, sizeof err)) {
                 rc = cli_usage_error("held-out stimuli: %s", err);
                 break;
             }

@@ -60,7 +60,7 @@ int cli_vectors(int argc, char **argv)
     if (!unit) return cli_usage_error("vectors: which unit? (shadesim list)");
     vec_set vs;
     char err[600];
-    if (cli_make_vectors(o.u, &o.cfg, (size_t)n, seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
+    if (tb_make_vectors(o.u, &o.cfg, (size_t)n, seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
     int rc = CLI_OK;
     /* "-" (and no -o) is stdout, checked for write errors like a file. */
     if (vec_file_write(out ? out : "-", &vs, err, sizeof err)) rc = cli_usage_error("%s", err);

@@ -220,7 +220,7 @@ int cli_cosim(int argc, char **argv)
     vec_set vs;
     /* the export: 50 generated items; the user's RTL: the unit's vectors */
     if (o.vectors || (st.nrtl && !st.n)) { if (cli_load_vectors(&o, &vs)) return CLI_USAGE; }
-    else if (cli_make_vectors(o.u, &o.cfg, (size_t)(st.n ? st.n : 50), st.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
+    else if (tb_make_vectors(o.u, &o.cfg, (size_t)(st.n ? st.n : 50), st.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
     char tmpl[] = "/tmp/shadesim_cosim_XXXXXX";
     const char *dir = st.keep;
     if (!dir && !mkdtemp(tmpl)) { vec_set_free(&vs); return cli_usage_error("cosim: cannot make a temporary folder"); }
