@@ -1,13 +1,16 @@
 /* cli_factor.c - shadesim factor: a BRDF factorized into lambda(d0) pi(h)
  * lambda(di) (vectors/ref_factor.c), its error against the BRDF and
  * against the rank-K sum-of-products baseline, the maps as PNG and raw
- * floats, and a study over resolutions and sample counts. */
+ * floats, and a study over resolutions and sample counts. The study, the
+ * claims and the Fig. 1 scene through the hardware are
+ * testbench/study/tb_factor_*.c's; this file parses, prints and writes. */
 #include "testbench/cli/cli.h"
 #include "testbench/cli/cli_opt.h"
 #include <stddef.h>
 #include "vectors/ref_factor.h"
 #include "testbench/study/tb_factor_scene.h"
 #include "testbench/study/tb_factor_claims.h"
+#include "testbench/study/tb_factor_study.h"
 #include "scene/scene.h"
 #include "base/base_out.h"
 #include <errno.h>
@@ -62,38 +65,14 @@ static int write_f32(const char *path, const rf_fact *f, char *err, size_t errle
     return rc;
 }
 
-static void csv_row(FILE *f, const char *method, int R, long samples, int rank, const rf_err *e)
-{
-    fprintf(f, "%s,%d,%ld,%d,%.6g,%.6g,%.6g,%.2f,%.2f,%.6g,%.6g,%ld,%ld\n", method, R, samples, rank, e->rel_rms,
-            e->nrms, e->rel_max, e->max_t0, e->max_ti, e->neg_share, e->recip_max, e->n, e->n_zero);
-}
-
-static const char csv_head[] =
-    "method,res,samples,rank,rel_rms,nrms,rel_max,rel_max_theta0,rel_max_thetai,neg_share,recip_max,heldout,under_floor\n";
-
 static void print_line(const char *method, const rf_err *e)
 {
     printf("  %-14s rel RMS %8.4f  NRMS %8.4f  max rel %9.3f at (%4.1f, %4.1f) deg  negative %6.2f%%  reciprocity %.1e\n",
            method, e->rel_rms, e->nrms, e->rel_max, e->max_t0, e->max_ti, 100 * e->neg_share, e->recip_max);
 }
 
-/* One factorization and its two error rows (texture lookups, log model). */
-static int fact_rows(rf_brdf *b, const rf_opts *o, long heldout, double flr, FILE *csv, char *err, size_t errlen)
-{
-    rf_fact f;
-    if (rf_factorize(rf_brdf_fn, b, o, &f, err, errlen)) return -1;
-    rf_err e;
-    long ns = o->samples > 0 ? o->samples : 24L * o->R * o->R;
-    rf_error(rf_brdf_fn, b, rf_fact_fn, &f, heldout, o->seed + 1000, flr, &e);
-    csv_row(csv, "factor", o->R, ns, 1, &e);
-    rf_error(rf_brdf_fn, b, rf_fact_log_fn, &f, heldout, o->seed + 1000, flr, &e);
-    csv_row(csv, "factor-log", o->R, ns, 1, &e);
-    rf_fact_free(&f);
-    return 0;
-}
-
 /* The claims (tb_factor_claims_rows, shared with the claims verb): a line
- * each on stdout, DIR/claims.csv. */
+ * each on stdout, DIR/claims.csv (tb_factor_claims_csv). */
 static int write_claims(rf_brdf *b, const rf_fact *f, const rf_opts *o, long heldout, const char *dir,
                         const tb_factor_scene_result *sr, char *err, size_t errlen, int *fails)
 {
@@ -104,20 +83,15 @@ static int write_claims(rf_brdf *b, const rf_fact *f, const rf_opts *o, long hel
     size_t len = 0;
     FILE *cf = open_memstream(&buf, &len);
     if (!cf) { snprintf(err, errlen, "out of memory"); return -1; }
-    fputs("claim,paper,measured,verdict\n", cf);
+    tb_factor_claims_csv(cf, rows, n, sr != NULL);
     printf("claims (%dx%d maps, %ld held-out pairs):\n", o->R, o->R, heldout);
     for (size_t i = 0; i < n; i++) {
         const claim_result *r = &rows[i];
         int holds = claims_verdict_kind(r->verdict) == 1;
-        fprintf(cf, "%s,\"%s\",\"%s\",%s\n", r->id, r->claim, r->measured_text, r->verdict);
         printf("  %-22s %-13s %s\n", r->id, holds ? "holds" : "DOES NOT HOLD", r->measured_text);
         if (!holds) ++*fails;
     }
-    if (!sr) {
-        fputs("fig1_vertex_vs_pixel,\"factorized per pixel looks closer to the BRDF than its exact values at the "
-              "vertices interpolated (Fig. 1)\",\"not measured: give --scene NAME\",not measured\n", cf);
-        printf("  %-22s %-13s %s\n", "fig1_vertex_vs_pixel", "not measured", "give --scene NAME");
-    }
+    if (!sr) printf("  %-22s %-13s %s\n", "fig1_vertex_vs_pixel", "not measured", "give --scene NAME");
     fclose(cf);
     char path[700];
     snprintf(path, sizeof path, "%s/claims.csv", dir);
@@ -272,15 +246,15 @@ int cli_factor(int argc, char **argv)
     size_t csvlen = 0;
     FILE *csv = open_memstream(&csvbuf, &csvlen);
     if (!csv) { rf_fact_free(&f); return cli_usage_error("out of memory"); }
-    fputs(csv_head, csv);
+    fputs(tb_factor_csv_head, csv);
     rf_err e;
     uint64_t hseed = o.seed + 1000;
     rf_error(rf_brdf_fn, &b, rf_fact_fn, &f, heldout, hseed, o.floor, &e);
     print_line("factorized", &e);
-    csv_row(csv, "factor", o.R, ns, 1, &e);
+    tb_factor_csv_row(csv, "factor", o.R, ns, 1, &e);
     rf_error(rf_brdf_fn, &b, rf_fact_log_fn, &f, heldout, hseed, o.floor, &e);
     print_line("factorized-log", &e);
-    csv_row(csv, "factor-log", o.R, ns, 1, &e);
+    tb_factor_csv_row(csv, "factor-log", o.R, ns, 1, &e);
     int rc = CLI_OK;
     if (svd_k > 0) {
         rf_svd s;
@@ -292,7 +266,7 @@ int cli_factor(int argc, char **argv)
             rf_error(rf_brdf_fn, &b, rf_svd_fn, &s, heldout, hseed, o.floor, &e);
             snprintf(name, sizeof name, "svd rank %d", k);
             print_line(name, &e);
-            csv_row(csv, "svd", rs, 0, k, &e);
+            tb_factor_csv_row(csv, "svd", rs, 0, k, &e);
         }
         rf_svd_free(&s);
     }
@@ -313,20 +287,7 @@ int cli_factor(int argc, char **argv)
         size_t sl = 0;
         FILE *sf = open_memstream(&sb, &sl);
         if (!sf) { rc = cli_usage_error("out of memory"); goto done; }
-        fputs(csv_head, sf);
-        static const int res[] = { 8, 16, 32, 64 };
-        for (size_t k = 0; k < sizeof res / sizeof res[0] && rc == CLI_OK; k++) {
-            rf_opts q = o;
-            q.R = res[k];
-            q.samples = 0;
-            if (fact_rows(&b, &q, heldout, o.floor, sf, err, sizeof err)) rc = cli_usage_error("%s", err);
-        }
-        static const int mult[] = { 6, 24, 96 };
-        for (size_t k = 0; k < sizeof mult / sizeof mult[0] && rc == CLI_OK; k++) {
-            rf_opts q = o;
-            q.samples = (long)mult[k] * o.R * o.R;
-            if (fact_rows(&b, &q, heldout, o.floor, sf, err, sizeof err)) rc = cli_usage_error("%s", err);
-        }
+        if (tb_factor_study(&b, &o, heldout, sf, err, sizeof err)) rc = cli_usage_error("%s", err);
         fclose(sf);
         snprintf(path, sizeof path, "%s/study.csv", dir);
         if (rc == CLI_OK && base_out_write_all(path, sb, sl, err, sizeof err)) rc = cli_usage_error("%s", err);
