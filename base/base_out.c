@@ -108,6 +108,16 @@ static void on_signal(int sig)
     errno = saved;
 }
 
+_Noreturn void base_out_of_memory(void)
+{
+    static const char msg[] = "shadesim: out of memory\n";
+    /* write(2), not stdio: stdio may need the memory there is none of */
+    if (write(STDERR_FILENO, msg, sizeof msg - 1) < 0) { /* nothing left to report it on */ }
+    for (int i = 0; i < REG_N; i++)
+        if (reg_used[i]) unlink(reg_path[i]);
+    _exit(BASE_EXIT_OOM);
+}
+
 /* ---- umask ------------------------------------------------------------- */
 
 static mode_t new_mode = 0644;

@@ -76,4 +76,14 @@ int      base_out_remove_stale(const char *path);
  * the same signal; catch SIGPIPE so that a closed pipe is the write error
  * EPIPE (reported, exit status 2). Called once by main. */
 void     base_out_install_signals(void);
+
+/* Out of memory: the one policy for every layer that can include base/
+ * (sim/ stands alone and does the same in sim_kernel.c). One line
+ * "shadesim: out of memory" on stderr, the registered temporaries of
+ * unfinished outputs removed (as on a signal, so no output appears half
+ * written), and exit status BASE_EXIT_OOM at once, without flushing
+ * stdout's buffer: a result cut short is not printed as if it were whole.
+ * docs/cli.md, "Exit status". */
+#define BASE_EXIT_OOM 3
+_Noreturn void base_out_of_memory(void);
 #endif

@@ -2,6 +2,7 @@
  * step of every testbench, the batch mode's, the Verilog export's and the
  * format checks'. */
 #include "testbench/tb.h"
+#include "base/base_out.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,7 +11,7 @@ int tb_build(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, tb_bui
 {
     memset(b, 0, sizeof *b);
     b->c = sim_new();
-    if (!b->c) { fputs("shadesim: out of memory\n", stderr); exit(3); }
+    if (!b->c) base_out_of_memory();
     sim_set_quant(b->c, cfg->rnd, cfg->ovf);
     b->clk = sim_bit_new(b->c, NULL, "clk", SIM_KIND_CLOCK);
     b->sc = sim_scope_new(b->c, NULL, u->name);

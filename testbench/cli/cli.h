@@ -1,15 +1,18 @@
 /* cli.h - the command line: one function per verb, and the options that
  * several verbs share (unit, width, formats, modes, parameters, vectors).
  *
- * Exit status (SPEC 4): 0 success, 1 a testbench's error bound exceeded or
- * the simulation failed, 2 bad usage or bad input (one line on stderr).
+ * Exit status: 0 success, 1 a testbench's error bound exceeded or the
+ * simulation failed, 2 bad usage or bad input (one line on stderr), 3 out
+ * of memory (base_out_of_memory, the one place that decides it). A verb
+ * turns a testbench's TB_OK / TB_FAIL / TB_BADINPUT into 0 / 1 / 2 only
+ * through cli_from_tb. docs/cli.md, "Exit status".
  */
 #ifndef CLI_H
 #define CLI_H
 #include <stdio.h>
 #include "testbench/tb.h"
 
-enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2 };
+enum { CLI_OK = 0, CLI_FAIL = 1, CLI_USAGE = 2, CLI_OOM = 3 /* = BASE_EXIT_OOM */ };
 
 typedef struct cli_verb {
     const char *name;
@@ -37,6 +40,12 @@ int cli_synth(int argc, char **argv);
  * Control bytes and bytes that are not UTF-8 go out as \xNN (messages
  * echo user text), so it serves every one-line error message. */
 int cli_usage_error(const char *fmt, ...);
+/* The one mapping from a testbench's result to an exit status: TB_OK is
+ * CLI_OK (nothing printed); TB_BADINPUT is CLI_USAGE and TB_FAIL (or any
+ * other failure) CLI_FAIL, each after the message fmt formats as one line
+ * on stderr (as cli_usage_error; no line when fmt is NULL or the message
+ * is empty). */
+int cli_from_tb(int t, const char *fmt, ...);
 /* A verb's results went to stdout: a write error there (full disk, closed
  * pipe) must not pass as success. rc, or CLI_USAGE after the error's line;
  * every verb that prints results returns through it. */

@@ -123,13 +123,13 @@ int cli_chart(int argc, char **argv)
     int rc = CLI_OK;
     /* the charts (and PNGs) are one set: all appear, or none */
     base_outset *set = base_outset_begin();
-    if (!set) { tb_sc_free(sc); return cli_usage_error("chart: out of memory"); }
+    if (!set) base_out_of_memory();
     for (int k = 0; k < TB_SC_NCHARTS && rc == CLI_OK; k++) {
         if (!tb_sc_chart_drawn(sc, k)) continue;
         char path[4200], ppath[4200];
         snprintf(path, sizeof path, "%s/%s", dir, tb_sc_chart_file[k]);
         chart *c = tb_sc_chart(sc, k, NULL);
-        if (!c) { rc = cli_usage_error("%s: out of memory", path); break; }
+        if (!c) base_out_of_memory();
         if (chart_write(c, path, err, sizeof err)) rc = cli_usage_error("%s", err);
         chart_free(c);
         if (rc) break;

@@ -25,8 +25,8 @@ static int write_chart(chart *c, const char *dir, const char *file, char paths[]
 {
     char path[600], err[700];
     snprintf(path, sizeof path, "%s/%s", dir, file);
-    int rc = c ? chart_write(c, path, err, sizeof err) : -1;
-    if (!c) snprintf(err, sizeof err, "%s: out of memory", path);
+    if (!c) base_out_of_memory();
+    int rc = chart_write(c, path, err, sizeof err);
     chart_free(c);
     if (rc) return cli_usage_error("%s", err);
     snprintf(paths[(*np)++], 600, "%s", path);
@@ -39,7 +39,7 @@ static int write_charts(const char *dir, char paths[][600], int *np)
     /* the charts are one set: all appear, or none */
     base_outset *set = base_outset_begin();
     char err[600];
-    if (!set) return cli_usage_error("claims: out of memory");
+    if (!set) base_out_of_memory();
     for (const tb_claims_chart *c = tb_claims_charts; c->file; c++)
         if (write_chart(c->make(), dir, c->file, paths, np)) {
             base_outset_abort(set);
@@ -261,7 +261,7 @@ int cli_claims(int argc, char **argv)
     const char *dir = ca.dir;
 
     report *rp = calloc(1, sizeof *rp);
-    if (!rp) return cli_usage_error("claims: out of memory");
+    if (!rp) base_out_of_memory();
     char serr[300];
     rp->n = tb_claims_table(rp->rows, rp->kind, width, &rp->hc, serr, sizeof serr);
     if (!rp->n) { free(rp); return cli_usage_error("claims: %s", serr); }

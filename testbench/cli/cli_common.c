@@ -29,18 +29,18 @@ static size_t utf8_len(const unsigned char *p)
 /* The message goes out with every byte a terminal could take for a control
  * (C0, DEL, bytes that are not UTF-8) as \xNN: messages echo option values,
  * paths and file text as the user gave them. */
-int cli_usage_error(const char *fmt, ...)
+/* The message of fmt and ap as one line "shadesim: ..." on stderr, bytes
+ * escaped; nothing when it is empty and skip_empty. */
+static void vmessage(int skip_empty, const char *fmt, va_list ap)
 {
     char small[1024], *msg = small;
-    va_list ap;
-    va_start(ap, fmt);
+    va_list again;
+    va_copy(again, ap);
     int n = vsnprintf(small, sizeof small, fmt, ap);
-    va_end(ap);
-    if (n >= (int)sizeof small && (msg = malloc((size_t)n + 1))) {
-        va_start(ap, fmt);
-        vsnprintf(msg, (size_t)n + 1, fmt, ap);
-        va_end(ap);
-    } else if (n >= (int)sizeof small) msg = small;
+    if (n >= (int)sizeof small && (msg = malloc((size_t)n + 1))) vsnprintf(msg, (size_t)n + 1, fmt, again);
+    else if (n >= (int)sizeof small) msg = small;
+    va_end(again);
+    if (skip_empty && !msg[0]) return;
     fputs("shadesim: ", stderr);
     for (const unsigned char *p = (const unsigned char *)msg; *p;) {
         size_t u = *p >= 0x80 ? utf8_len(p) : 0;
@@ -50,7 +50,29 @@ int cli_usage_error(const char *fmt, ...)
     }
     fputc('\n', stderr);
     if (msg != small) free(msg);
+}
+
+int cli_usage_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmessage(0, fmt, ap);
+    va_end(ap);
     return CLI_USAGE;
+}
+
+_Static_assert(CLI_OOM == BASE_EXIT_OOM, "one out-of-memory status");
+
+int cli_from_tb(int t, const char *fmt, ...)
+{
+    if (t == TB_OK) return CLI_OK;
+    if (fmt) {
+        va_list ap;
+        va_start(ap, fmt);
+        vmessage(1, fmt, ap);
+        va_end(ap);
+    }
+    return t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
 }
 
 int cli_stdout_done(int rc)

@@ -32,7 +32,7 @@ static int write_map_png(const char *path, const double *logtex, int R, double *
     *lo_out = lo; *hi_out = hi;
     int k = R >= 256 ? 1 : (256 + R - 1) / R, W = R * k;
     uint8_t *pix = malloc((size_t)W * W);
-    if (!pix) { snprintf(err, errlen, "out of memory"); return -1; }
+    if (!pix) base_out_of_memory();
     for (int y = 0; y < W; y++)
         for (int x = 0; x < W; x++) {
             /* image rows top to bottom = v from +1 to -1 */
@@ -43,7 +43,7 @@ static int write_map_png(const char *path, const double *logtex, int R, double *
     size_t len = 0;
     int rc = scn_png_encode(W, W, 1, pix, &png, &len);
     free(pix);
-    if (rc) { snprintf(err, errlen, "out of memory"); return -1; }
+    if (rc) base_out_of_memory();
     rc = base_out_write_all(path, png, len, err, errlen);
     free(png);
     return rc;
@@ -53,7 +53,7 @@ static int write_f32(const char *path, const rf_fact *f, char *err, size_t errle
 {
     size_t T = (size_t)f->R * f->R;
     uint8_t *buf = malloc(8 * T);
-    if (!buf) { snprintf(err, errlen, "out of memory"); return -1; }
+    if (!buf) base_out_of_memory();
     for (size_t j = 0; j < 2 * T; j++) {
         float v = (float)(j < T ? f->lam[j] : f->pi[j - T]);
         uint32_t u;
@@ -82,7 +82,7 @@ static int write_claims(rf_brdf *b, const rf_fact *f, const rf_opts *o, long hel
     char *buf = NULL;
     size_t len = 0;
     FILE *cf = open_memstream(&buf, &len);
-    if (!cf) { snprintf(err, errlen, "out of memory"); return -1; }
+    if (!cf) base_out_of_memory();
     tb_factor_claims_csv(cf, rows, n, sr != NULL);
     printf("claims (%dx%d maps, %ld held-out pairs):\n", o->R, o->R, heldout);
     for (size_t i = 0; i < n; i++) {
@@ -245,7 +245,7 @@ int cli_factor(int argc, char **argv)
     char *csvbuf = NULL;
     size_t csvlen = 0;
     FILE *csv = open_memstream(&csvbuf, &csvlen);
-    if (!csv) { rf_fact_free(&f); return cli_usage_error("out of memory"); }
+    if (!csv) base_out_of_memory();
     fputs(tb_factor_csv_head, csv);
     rf_err e;
     uint64_t hseed = o.seed + 1000;
@@ -274,7 +274,7 @@ int cli_factor(int argc, char **argv)
     /* Every file from here on is one set: they appear together at the
      * commit below, or (any failure) none of them. */
     set = base_outset_begin();
-    if (!set) { rc = cli_usage_error("out of memory"); goto done; }
+    if (!set) base_out_of_memory();
     snprintf(path, sizeof path, "%s/lambda.png", dir);
     if (write_map_png(path, f.llam, o.R, &llo, &lhi, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
     snprintf(path, sizeof path, "%s/pi.png", dir);
@@ -286,7 +286,7 @@ int cli_factor(int argc, char **argv)
         char *sb = NULL;
         size_t sl = 0;
         FILE *sf = open_memstream(&sb, &sl);
-        if (!sf) { rc = cli_usage_error("out of memory"); goto done; }
+        if (!sf) base_out_of_memory();
         if (tb_factor_study(&b, &o, heldout, sf, err, sizeof err)) rc = cli_usage_error("%s", err);
         fclose(sf);
         snprintf(path, sizeof path, "%s/study.csv", dir);

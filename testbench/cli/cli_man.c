@@ -116,7 +116,8 @@ int cli_man(FILE *f, const char *version)
     roff_text(f,
         "0: success. 1: an error bound or a target was exceeded, or the simulation\n"
         "failed. 2: bad usage or bad input, with one line on standard error naming the\n"
-        "file and line or the option, and the problem.");
+        "file and line or the option, and the problem. 3: out of memory (one line on\n"
+        "standard error; no output file is left half written).");
     fputs(".SH ENVIRONMENT\n.TP\n.B SHADESIM_HOME\n", f);
     roff_text(f,
         "A folder holding vectors/UNIT.vec, the default golden vectors. When set, it is\n"

@@ -40,7 +40,7 @@ int cli_merge(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_merge_spec);
     merge_args m = { NULL, calloc((size_t)argc, sizeof *m.in), 0 };
-    if (!m.in) return cli_usage_error("merge: out of memory");
+    if (!m.in) base_out_of_memory();
     void *base[] = { &m };
     int rc = cli_opt_parse(&cli_merge_spec, base, argc, argv, 1);
     char err[800];

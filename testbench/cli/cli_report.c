@@ -221,7 +221,7 @@ static int section_claims(FILE *f)
     claim_result *rows = calloc(CLAIMS_MAX, sizeof *rows);
     const char *kind[CLAIMS_MAX];
     char err[400];
-    if (!rows) return cli_usage_error("report: out of memory");
+    if (!rows) base_out_of_memory();
     progress("claims");
     size_t n = tb_claims_table(rows, kind, 16, NULL, err, sizeof err);
     if (!n) { free(rows); return cli_usage_error("report: claims: %s", err); }
@@ -331,7 +331,7 @@ static int run_sweep(const sweep_def *d, const char *dir, FILE *f)
     if (tb_sweep_init(&s, &sp, err, sizeof err)) return cli_usage_error("report: %s", err);
     vec_set *sets = calloc(s.npsets, sizeof *sets);
     int rc = CLI_OK;
-    if (!sets) { tb_sweep_free(&s); return cli_usage_error("report: out of memory"); }
+    if (!sets) base_out_of_memory();
     size_t loaded = 0;
     for (; loaded < s.npsets; loaded++) {
         cli_unit_opts po = o;
@@ -346,10 +346,10 @@ static int run_sweep(const sweep_def *d, const char *dir, FILE *f)
         tb_sweep_fingerprint(&s);
         tb_sweep_run(&s, 2, 0, 0, NULL, NULL);
         FILE *m = open_memstream(&csv, &len);
-        if (!m) rc = cli_usage_error("report: out of memory");
+        if (!m) base_out_of_memory();
         else {
             tb_sweep_print_csv(&s, m, 0, 0);
-            if (fclose(m)) rc = cli_usage_error("report: out of memory");
+            if (fclose(m)) base_out_of_memory();
         }
     }
     char path[4200], name[64];
@@ -374,8 +374,9 @@ static int run_sweep(const sweep_def *d, const char *dir, FILE *f)
             char *svg = NULL;
             size_t sl = 0;
             FILE *m = open_memstream(&svg, &sl);
-            if (!c || !m || chart_fwrite(c, m, tb_sc_chart_file[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
-            if (m && fclose(m) && rc == CLI_OK) rc = cli_usage_error("report: out of memory");
+            if (!c || !m) base_out_of_memory();
+            if (chart_fwrite(c, m, tb_sc_chart_file[k], err, sizeof err)) rc = cli_usage_error("report: %s", err);
+            if (fclose(m)) base_out_of_memory();
             if (rc == CLI_OK) {
                 char alt[128];
                 snprintf(alt, sizeof alt, "%s: %s", d->unit, tb_sc_chart_file[k]);
@@ -443,7 +444,8 @@ static int scene_compare(FILE *f)
         tb_scene_opts o = { 2, 0, NULL, NULL, 0, 0 };
         tb_scene_result r;
         memset(&r, 0, sizeof r);
-        if (tb_scene_render(&d, &m, &o, &r, err, sizeof err) != TB_OK) rc = cli_usage_error("report: face scene: %s", err);
+        int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
+        if (t != TB_OK) rc = cli_from_tb(t, "report: face scene: %s", err);
         else {
             char set[120] = "";
             if (cf[k].policy) snprintf(set, sizeof set, "--set policy=%s", cf[k].policy);
@@ -476,7 +478,7 @@ static int section_scene(FILE *f, const char *dir)
     tb_scene_opts o = { 2, 0, NULL, NULL, 0, 0 };
     int rc = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
     scn_mesh_free(&m);
-    if (rc != TB_OK) { tb_scene_free(&r); return cli_usage_error("report: face scene: %s", err); }
+    if (rc != TB_OK) { tb_scene_free(&r); return cli_from_tb(rc, "report: face scene: %s", err); }
     snprintf(sdir, sizeof sdir, "%s/scene", dir);
     if (tb_scene_write(&d, &r, sdir, err, sizeof err)) { tb_scene_free(&r); return cli_usage_error("%s", err); }
     fprintf(f, "<h2 id=\"scene\">The face scene through the hardware</h2>\n"
@@ -537,7 +539,7 @@ static int section_stability(FILE *f)
 {
     tb_stab *s = calloc(1, sizeof *s);
     char err[400];
-    if (!s) return cli_usage_error("report: out of memory");
+    if (!s) base_out_of_memory();
     progress("stability");
     if (tb_stability(s, 1, err, sizeof err)) { tb_stab_free(s); free(s); return cli_usage_error("report: %s", err); }
     fputs("<h2 id=\"stability\">Where each method stops working</h2>\n"
@@ -563,8 +565,9 @@ static int section_stability(FILE *f)
         char *svg = NULL;
         size_t sl = 0;
         FILE *m = open_memstream(&svg, &sl);
-        if (!m || chart_fwrite(s->charts[k], m, s->chart_files[k], err, sizeof err)) rc = cli_usage_error("report: chart: out of memory");
-        if (m && fclose(m) && rc == CLI_OK) rc = cli_usage_error("report: out of memory");
+        if (!m) base_out_of_memory();
+        if (chart_fwrite(s->charts[k], m, s->chart_files[k], err, sizeof err)) rc = cli_usage_error("report: %s", err);
+        if (fclose(m)) base_out_of_memory();
         if (rc == CLI_OK) {
             img(f, "image/svg+xml", svg, sl, s->chart_files[k], 800, 500);
             fputc('\n', f);
@@ -599,7 +602,7 @@ static int section_wave(FILE *f, const char *dir)
     if (t != TB_OK) {
         tb_result_free(&r);
         vec_set_free(&few);
-        return cli_usage_error("report: %s", err);
+        return cli_from_tb(t, "report: %s", err);
     }
     fprintf(f, "<p>horner3 on 16 vectors from its float reference (%llu clocks): every register, multiplexer, adder "
                "and multiplier as a VCD, with a GTKWave save file that groups the unit's signals. "
@@ -625,11 +628,11 @@ int cli_report(int argc, char **argv)
     char *html = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&html, &len);
-    if (!f) return cli_usage_error("report: out of memory");
+    if (!f) base_out_of_memory();
     /* Every file of the report (sweep CSVs, the scene's images, the page)
      * is one set: they appear together at the end, or none of them. */
     base_outset *set = base_outset_begin();
-    if (!set) { fclose(f); free(html); return cli_usage_error("report: out of memory"); }
+    if (!set) base_out_of_memory();
     fprintf(f, "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
                "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
                "<title>shadesim report</title>\n<style>\n%s</style>\n</head>\n<body>\n", css);
@@ -652,7 +655,7 @@ int cli_report(int argc, char **argv)
     fputs("</body>\n</html>\n", f);
     int bad = fclose(f);
     if (cli_stderr_tty()) fprintf(stderr, "\r\033[K");
-    if (!rc && bad) rc = cli_usage_error("report: out of memory");
+    if (!rc && bad) base_out_of_memory();
     char path[4200], err[600];
     snprintf(path, sizeof path, "%s/report.html", dir);
     if (!rc && base_out_write_all(path, html, len, err, sizeof err)) rc = cli_usage_error("%s", err);

@@ -152,8 +152,7 @@ static int run_all(const tb_accept *acc)
         tb_opts lanes = { .lanes = 1 };
         int t = tb_run(o.u, &o.cfg, &fm, &vs, &lanes, &r, err, sizeof err);
         if (t != TB_OK) {
-            (void)cli_usage_error("%s: %s", o.u->name, err);
-            rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
+            rc = cli_from_tb(t, "%s: %s", o.u->name, err);
         } else {
             tb_verdict(&r, acc);
             double me = 0;
@@ -254,8 +253,7 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
     int rc = CLI_OK;
     if (t != TB_OK) {
         if (out) base_out_abort(out);
-        rc = cli_usage_error("%s", err);
-        if (t == TB_FAIL) rc = CLI_FAIL;
+        rc = cli_from_tb(t, "%s", err);
     } else {
         if (out && base_out_close(out, err, sizeof err)) rc = cli_usage_error("%s", err);
         tb_verdict(&r, acc);
@@ -363,8 +361,7 @@ int cli_run(int argc, char **argv)
     if (t != TB_OK) {
         /* The vectors' header was checked when they were read, so this is
          * about the unit (formats it cannot build with) or an output file. */
-        rc = cli_usage_error("%s", err);
-        if (t == TB_FAIL) rc = CLI_FAIL;
+        rc = cli_from_tb(t, "%s", err);
     } else {
         if (csv && tb_write_csv(csv, &r, &vs, err, sizeof err)) rc = cli_usage_error("%s", err);
         tb_verdict(&r, &acc);

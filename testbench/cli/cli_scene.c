@@ -275,7 +275,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
         progress(cfgs[i].name);
         int t = tb_scene_render(&d, m, &o, &r, err, sizeof err);
         progress("");
-        if (t != TB_OK) { cli_usage_error("%s", err); return t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL; }
+        if (t != TB_OK) return cli_from_tb(t, "%s", err);
         if (tb_scene_speed_of(&r, d.fmt_width, err, sizeof err)) {
             tb_scene_free(&r);
             (void)cli_usage_error("%s", err);
@@ -394,7 +394,7 @@ int cli_scene(int argc, char **argv)
     /* Every file of the run (--compare's three folders, --sweep's and
      * --target-nmse's files, a render's images and VCD) is one set. */
     base_outset *set = base_outset_begin();
-    if (!set) { scn_mesh_free(&m); return cli_usage_error("scene: out of memory"); }
+    if (!set) base_out_of_memory();
     if (cmp) {
         rc = compare(&d, &m, jobs, no_batch, dir, json);
     } else if (target > 0 || sweep) {
@@ -402,8 +402,7 @@ int cli_scene(int argc, char **argv)
         int t = sweep ? tb_scene_sweep(&d, &m, jobs, no_batch, sweep_spec, dir, json, stdout, NULL, err, sizeof err)
                       : tb_scene_search(&d, &m, jobs, no_batch, target, dir, json, stdout, NULL, err, sizeof err);
         progress("");
-        if (t == TB_BADINPUT) rc = cli_usage_error("%s", err);
-        else if (t == TB_FAIL) { if (err[0]) (void)cli_usage_error("%s", err); rc = CLI_FAIL; }
+        rc = cli_from_tb(t, "%s", err);
     } else {
         tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 1 };
         tb_scene_result r;
@@ -415,8 +414,7 @@ int cli_scene(int argc, char **argv)
         }
         progress("");
         if (t != TB_OK) {
-            (void)cli_usage_error("%s", err);
-            rc = t == TB_BADINPUT ? CLI_USAGE : CLI_FAIL;
+            rc = cli_from_tb(t, "%s", err);
         } else {
             if (tb_scene_write(&d, &r, dir, err, sizeof err)) rc = cli_usage_error("%s", err);
             else {

@@ -19,7 +19,7 @@ static int write_charts(const tb_stab *s, const char *dir, char paths[][600], in
     /* the charts are one set: all appear, or none */
     base_outset *set = base_outset_begin();
     char err[800];
-    if (!set) return cli_usage_error("stability: out of memory");
+    if (!set) base_out_of_memory();
     for (int i = 0; i < s->ncharts; i++) {
         snprintf(paths[*np], 600, "%s/%s", dir, s->chart_files[i]);
         if (chart_write(s->charts[i], paths[*np], err, sizeof err)) {
@@ -108,7 +108,7 @@ int cli_stability(int argc, char **argv)
     int json = sa.json;
     const char *dir = sa.dir;
     tb_stab *s = calloc(1, sizeof *s);
-    if (!s) return cli_usage_error("stability: out of memory");
+    if (!s) base_out_of_memory();
     char err[300];
     if (tb_stability(s, dir != NULL, err, sizeof err)) {
         tb_stab_free(s);

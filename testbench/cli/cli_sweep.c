@@ -127,7 +127,7 @@ int cli_sweep(int argc, char **argv)
     if (tb_sweep_init(&s, &a.sp, err, sizeof err)) return cli_usage_error("%s", err);
     vec_set *sets = calloc(s.npsets, sizeof *sets);
     int rc = CLI_OK;
-    if (!sets) { tb_sweep_free(&s); return cli_usage_error("sweep: out of memory"); }
+    if (!sets) base_out_of_memory();
     /* Everything that can be refused is refused before the long part. */
     if (load_vectors(&a, &s, sets) || cli_make_dir(a.dir)) { rc = CLI_USAGE; goto done; }
     tb_sweep_fingerprint(&s);

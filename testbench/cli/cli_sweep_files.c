@@ -18,7 +18,7 @@ FILE *sweep_oset_open(oset *os, const char *name)
 {
     char path[4200], err[600];
     snprintf(path, sizeof path, "%s/%s", os->dir, name);
-    if (!os->set && !(os->set = base_outset_new())) { cli_usage_error("%s: out of memory", path); return NULL; }
+    if (!os->set && !(os->set = base_outset_new())) base_out_of_memory();
     FILE *f = base_outset_open(os->set, path, err, sizeof err);
     if (!f) { cli_usage_error("%s", err); return NULL; }
     os->n++;

@@ -44,7 +44,7 @@ int sweep_ranges_collect(sweep_args *a, tb_sweep *s)
     target_info *t = &a->t;
     t->dres = calloc(s->ngroups, sizeof *t->dres);
     t->dobs = calloc(s->ngroups, sizeof *t->dobs);
-    if (!t->dres || !t->dobs) return cli_usage_error("sweep: out of memory");
+    if (!t->dres || !t->dobs) base_out_of_memory();
     for (size_t g = 0; g < s->ngroups; g++) {
         const tb_target_res *x = &t->res[g];
         if (!x->met) continue;
@@ -53,7 +53,7 @@ int sweep_ranges_collect(sweep_args *a, tb_sweep *s)
         if (tb_derive(s->spec.u, &c->cfg, &x->fmts, &a->ranges, &t->dres[g], err, sizeof err))
             return cli_usage_error("sweep: %s", err);
         int st = tb_run(s->spec.u, &c->cfg, &x->fmts, s->vs[c->pset], NULL, &t->dobs[g], err, sizeof err);
-        if (st != TB_OK) return cli_usage_error("sweep: %s", err);
+        if (st != TB_OK) return cli_from_tb(st, "sweep: %s", err);
     }
     return 0;
 }
@@ -146,7 +146,7 @@ int sweep_ranges_stimuli(sweep_args *a, tb_sweep *s, vec_set *sets)
                 v[j] = k < corners ? level(lo[j], hi[j], l) : vec_rng_range(&rng, lo[j], hi[j]);
             }
             u->ref->eval(&cfg.model, v, v + vs->n_in);
-            if (vec_set_push(vs, v)) return cli_usage_error("sweep: out of memory");
+            if (vec_set_push(vs, v)) base_out_of_memory();
         }
     }
     return 0;

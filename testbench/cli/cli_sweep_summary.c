@@ -52,7 +52,7 @@ static int write_chart(chart *c, oset *os, const char *name, char *files, size_t
 {
     char path[4200], err[600];
     snprintf(path, sizeof path, "%s/%s", os->dir, name);
-    if (!c) return cli_usage_error("%s: out of memory", path);
+    if (!c) base_out_of_memory();
     FILE *f = sweep_oset_open(os, name);
     int rc = f ? chart_fwrite(c, f, path, err, sizeof err) : 0;
     chart_free(c);
@@ -71,9 +71,9 @@ static int write_charts(const tb_sweep *s, const target_info *t, oset *os, char 
     char *text = NULL, err[600];
     size_t len = 0;
     FILE *m = open_memstream(&text, &len);
-    if (!m) return cli_usage_error("sweep: out of memory");
+    if (!m) base_out_of_memory();
     tb_sweep_print_csv(s, m, 0, 0);
-    if (fclose(m)) { free(text); return cli_usage_error("sweep: out of memory"); }
+    if (fclose(m)) base_out_of_memory();
     tb_sc *sc = tb_sc_read(text, len, "sweep.csv", err, sizeof err);
     free(text);
     if (!sc) return cli_usage_error("%s", err);
@@ -82,7 +82,7 @@ static int write_charts(const tb_sweep *s, const target_info *t, oset *os, char 
     if (t->on) {
         te = calloc(s->ngroups, sizeof *te);
         ta = calloc(s->ngroups, sizeof *ta);
-        if (!te || !ta) { free(te); free(ta); tb_sc_free(sc); return cli_usage_error("sweep: out of memory"); }
+        if (!te || !ta) base_out_of_memory();
         tg.on = 1;
         tg.nmse = t->kind == TB_TARGET_NMSE;
         tg.value = t->value;
@@ -255,7 +255,7 @@ int sweep_outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     size_t nfront = 0;
     unsigned char *on = front_of(s, &nfront);
     int drawn[TB_SC_NCHARTS] = { 0 };
-    if (!on) { sweep_oset_abort(&os); return cli_usage_error("sweep: out of memory"); }
+    if (!on) base_out_of_memory();
     if (write_charts(s, &a->t, &os, files, sizeof files, drawn)) {
         free(on);
         sweep_oset_abort(&os);
@@ -279,7 +279,7 @@ int sweep_outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
     /* The summary, printed and saved: the same text. */
     char *text = summary_text(a, s, on, nfront);
     free(on);
-    if (!text) { sweep_oset_abort(&os); return cli_usage_error("sweep: out of memory"); }
+    if (!text) base_out_of_memory();
     FILE *sf = sweep_oset_open(&os, "summary.txt");
     if (!sf) { free(text); sweep_oset_abort(&os); return CLI_USAGE; }
     fputs(text, sf);

@@ -233,7 +233,7 @@ static int heldout_check(sweep_args *a, tb_sweep *s)
     unsigned char *made = calloc(s->npsets, 1);
     char err[600];
     int rc = 0;
-    if (!ho || !made) { free(ho); free(made); return cli_usage_error("sweep: out of memory"); }
+    if (!ho || !made) base_out_of_memory();
     a->t.ho_seed = (a->nvec > 0 ? a->seed : 1) + 1;
     a->t.ho_rows = s->vs[0]->n_rows;
     for (size_t g = 0; g < s->ngroups && !rc; g++) {
@@ -260,7 +260,7 @@ int sweep_target_search(sweep_args *a, tb_sweep *s, int tty)
 {
     char err[600];
     a->t.res = calloc(s->ngroups, sizeof *a->t.res);
-    if (!a->t.res) return cli_usage_error("target search: out of memory");
+    if (!a->t.res) base_out_of_memory();
     for (size_t g = 0; g < s->ngroups; g++) {
         if (tty) fprintf(stderr, "\rshadesim sweep %s: target search, settings %zu/%zu \033[K", s->spec.u->name, g + 1, s->ngroups);
         int bad = tb_sweep_target(s, g, a->t.kind, a->t.goal, a->threads, &a->t.res[g], err, sizeof err);

@@ -115,10 +115,10 @@ int cli_verilog(int argc, char **argv)
         if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
         tb_result r;
         int t = tb_run(o.u, &o.cfg, &fm, &vs, NULL, &r, err, sizeof err);
-        if (t != TB_OK) { vec_set_free(&vs); return t == TB_BADINPUT ? cli_usage_error("%s", err) : (fprintf(stderr, "shadesim: %s\n", err), CLI_FAIL); }
+        if (t != TB_OK) { vec_set_free(&vs); return cli_from_tb(t, "%s", err); }
         size_t pl = strlen(st.hex) + 8;
         char *ex = malloc(pl);
-        if (!ex) rc = cli_usage_error("out of memory");
+        if (!ex) base_out_of_memory();
         else {
             snprintf(ex, pl, "%s.expect", st.hex);
             if (tb_stimulus_write(o.u, &o.cfg, &fm, &vs, &r, st.hex, ex, err, sizeof err)) rc = cli_usage_error("%s", err);
@@ -230,8 +230,7 @@ int cli_cosim(int argc, char **argv)
     int t = tb_cosim_opt(o.u, &o.cfg, &fm, &vs, &co, icarus ? TB_SIM_ICARUS : TB_SIM_VERILATOR, dir, msg, sizeof msg);
     if (t == TB_COSIM_EXACT) { printf("%s\n", msg); rc = CLI_OK; }
     else if (t == TB_COSIM_MISMATCH) { printf("%s\n", msg); rc = CLI_FAIL; }
-    else if (t == TB_COSIM_BADINPUT) rc = cli_usage_error("%s", msg);
-    else { fprintf(stderr, "shadesim: %s\n", msg); rc = CLI_FAIL; }
+    else rc = cli_from_tb(t == TB_COSIM_BADINPUT ? TB_BADINPUT : TB_FAIL, "%s", msg);
     vec_set_free(&vs);
     if (!st.keep) rm_tree(dir);
     return cli_stdout_done(rc);
@@ -330,7 +329,7 @@ int cli_synth(int argc, char **argv)
     if (tb_verilog_export(o.u, &o.cfg, &fm, dir, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
     size_t cl = 3 * strlen(dir) + 512;
     char *cmd = malloc(cl);
-    if (!cmd) { rc = cli_usage_error("out of memory"); goto done; }
+    if (!cmd) base_out_of_memory();
     snprintf(cmd, cl, "cd '%s' && yosys -q -p 'read_verilog %s.v; synth -top %s; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; "
              "opt_clean; tee -o stat.txt stat; flatten; tee -o ltp.txt ltp -noff' >yosys.log 2>&1", dir, o.u->name, o.u->name);
     int sr = system(cmd);

@@ -33,7 +33,8 @@ static void usage(FILE *f)
     for (const cli_verb *v = cli_verbs; v->name; v++) fprintf(f, "  %-9s %s\n", v->name, v->summary);
     fputs("\nshadesim help VERB     the help of one verb (the same as shadesim VERB --help)\n"
           "shadesim --version    the version;   shadesim --man    the manual page (roff)\n"
-          "\nexit status: 0 success, 1 error bound exceeded or simulation failed, 2 bad usage or input\n", f);
+          "\nexit status: 0 success, 1 error bound exceeded or simulation failed, 2 bad usage or input,\n"
+          "3 out of memory\n", f);
 }
 
 /* Print what a top-level option writes to stdout, and check the write. */
