@@ -5,6 +5,7 @@
  * the last (valid and ready before the edge), record each beat the unit
  * marks valid, with the clock it came in. */
 #include "testbench/tb_batch.h"
+#include "base/base_out.h"
 #include "sim/sim_batch.h"
 #include "testbench/tb_range.h"
 #include "testbench/tb_energy.h"
@@ -72,7 +73,7 @@ static int from_kernel(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
     if (L->energy) {
         free(L->sig_toggles);
         L->sig_toggles = malloc((size_t)(r.nsigs ? r.nsigs : 1) * sizeof *L->sig_toggles);
-        if (!L->sig_toggles) { tb_result_free(&r); snprintf(err, errlen, "out of memory"); return TB_FAIL; }
+        if (!L->sig_toggles) base_out_of_memory();
         for (int i = 0; i < r.nsigs; i++) L->sig_toggles[i] = r.sigs[i].toggles;
         L->nsig = r.nsigs;
         L->toggles = r.ppa.toggles;
@@ -134,7 +135,7 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
     sim_batch *b = NULL;
     lane_st *S = calloc(n, sizeof *S);
     int rc = TB_OK;
-    if (!S) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+    if (!S) base_out_of_memory();
     if (unbuilt) { rc = TB_BADINPUT; goto done; }
     if (!(b = sim_batch_new(c, clk, (uint32_t)n, err, errlen))) { rc = TB_UNSUPPORTED; goto done; }
     int energy = 0;
@@ -153,7 +154,7 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
         S[k].total = S[k].n_items * (size_t)beats;
         L->raw = calloc(S[k].n_items * nv, sizeof *L->raw);
         L->beat_cycle = calloc(S[k].total, sizeof *L->beat_cycle);
-        if (!L->raw || !L->beat_cycle) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+        if (!L->raw || !L->beat_cycle) base_out_of_memory();
         drive(nin, nvalid, n_in, &S[k], (uint32_t)k);   /* the driver's run at initialization */
     }
     sim_batch_start(b);

@@ -137,7 +137,7 @@ static int add_port(tb_port *p, char **names, int n, int maxp, const char *name,
 {
     if (n >= maxp) { snprintf(err, errlen, "cosim: the RTL's top module has more than %d ports", maxp); return -1; }
     names[n] = strdup(name);
-    if (!names[n]) { snprintf(err, errlen, "out of memory"); return -1; }
+    if (!names[n]) base_out_of_memory();
     p[n] = (tb_port){ names[n], width, is_output };
     return n + 1;
 }
@@ -226,7 +226,7 @@ int tb_rtl_ports(const char *const *files, int nfiles, const char *want_top, con
     for (int i = 0; i < nfiles; i++) cl += 4 * strlen(files[i]) + 4;
     cl += 4 * strlen(dir) + (want_top ? 4 * strlen(want_top) : 0);
     char *cmd = calloc(1, cl), out[PATH_MAX + 32], log[PATH_MAX + 32];
-    if (!cmd) { snprintf(err, errlen, "out of memory"); return -1; }
+    if (!cmd) base_out_of_memory();
     const char *sname = sim == TB_SIM_ICARUS ? "icarus" : "verilator";
     strcpy(cmd, "cd ");
     sq(cmd, cl, dir);
@@ -358,7 +358,7 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
     char *in = malloc(pl), *ex = malloc(pl), *res = malloc(pl), *cmd = calloc(1, cl), *files = calloc(1, cl);
     char *names[64] = { NULL };
     char top[256];
-    if (!in || !ex || !res || !cmd || !files) { snprintf(msg, msglen, "out of memory"); goto done; }
+    if (!in || !ex || !res || !cmd || !files) base_out_of_memory();
     const char *n = u->name;
     if (base_out_mkdirs(dir, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
     if (o->nrtl) {
@@ -366,7 +366,7 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
         int ng = -1;
         tb_port got[64];
         char **absv = calloc((size_t)o->nrtl, sizeof *absv);
-        if (!absv) { snprintf(msg, msglen, "out of memory"); goto done; }
+        if (!absv) base_out_of_memory();
         for (int i = 0; i < o->nrtl && ng == -1; i++) {
             absv[i] = realpath(o->rtl[i], NULL);
             if (!absv[i]) { snprintf(msg, msglen, "cosim: --rtl %s: %s", o->rtl[i], strerror(errno)); ng = -2; break; }

@@ -7,6 +7,7 @@
 #include "testbench/tb_energy.h"
 #include "testbench/tb_lanes.h"
 #include "base/base_par.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -355,20 +356,14 @@ static int run_build(run_sim *s, const unit_desc *u, const unit_cfg *cfg, const 
     tb_state *st = &s->st;
     st->io = &s->io; st->n_in = r->n_in; st->n_out = r->n_out; st->beats = r->beats; st->n_items = m->n;
     st->in_raw = m->in_raw; st->ctx = s->c; st->beat_cycle = r->beat_cycle; st->raw = r->raw;
-    if (tb_range_init(&st->rg, s->c, s->sc, s->clk)) {
-        snprintf(err, errlen, "out of memory");
-        return TB_FAIL;
-    }
+    if (tb_range_init(&st->rg, s->c, s->sc, s->clk)) base_out_of_memory();
     sim_proc *drv = sim_proc_new(s->c, "tb.driver", driver, st);
     sim_sensitive(drv, s->clk, SIM_EDGE_POS);
     sim_proc *mon = sim_proc_new(s->c, "tb.monitor", monitor, st);
     sim_sensitive(mon, s->clk, SIM_EDGE_POS);
     mon->no_init = 1;
     /* every signal exists now: toggles counted from initialization on */
-    if (!(s->tog = sim_toggle_new(s->c))) {
-        snprintf(err, errlen, "out of memory");
-        return TB_FAIL;
-    }
+    if (!(s->tog = sim_toggle_new(s->c))) base_out_of_memory();
     if (o && o->vcd_path) {
         s->vcd = tb_wave_open(&s->wave, s->c, o, &s->io, s->clk, u, cfg, vs, err, errlen);
         if (!s->vcd) return TB_BADINPUT;

@@ -69,7 +69,7 @@ char *tb_verilog_module_text(const unit_desc *u, const unit_cfg *cfg, const unit
     char *buf = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
-    if (!f) { snprintf(err, errlen, "out of memory"); return NULL; }
+    if (!f) base_out_of_memory();
     tb_built bu;
     int unbuilt = tb_build(u, cfg, fm, &bu, err, errlen);
     sim_ctx *c = bu.c;
@@ -230,13 +230,13 @@ int tb_verilog_write(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f
     char *p[2] = { NULL, NULL };
     int rc = -1;
     size_t pl = strlen(dir) + strlen(u->name) + 16;
-    if (!tb || !(p[0] = malloc(pl)) || !(p[1] = malloc(pl))) { snprintf(err, errlen, "out of memory"); goto done; }
+    if (!tb || !(p[0] = malloc(pl)) || !(p[1] = malloc(pl))) base_out_of_memory();
     snprintf(p[0], pl, "%s/%s.v", dir, u->name);
     snprintf(p[1], pl, "%s/%s_tb.v", dir, u->name);
     if (base_out_mkdirs(dir, err, errlen)) goto done;
     /* the module and its testbench are one set: both appear, or neither */
     base_outset *set = base_outset_new();
-    if (!set) { snprintf(err, errlen, "out of memory"); goto done; }
+    if (!set) base_out_of_memory();
     if (base_outset_write(set, p[0], mod, strlen(mod), err, errlen) == 0)
         rc = base_outset_write(set, p[1], tb, strlen(tb), err, errlen);
     if (rc == 0) rc = base_outset_commit(set, err, errlen);

@@ -64,7 +64,7 @@ static double exact_at(const rf_brdf *b, const scn_view *v, const double pos[3],
 static int write_png(const char *path, const double *img, int w, int h, double scale, char *err, size_t len)
 {
     uint8_t *pix = malloc((size_t)w * h);
-    if (!pix) { snprintf(err, len, "out of memory"); return -1; }
+    if (!pix) base_out_of_memory();
     for (int i = 0; i < w * h; i++) {
         double t = img[i] / scale;
         pix[i] = (uint8_t)lrint(255 * (t < 0 ? 0 : t > 1 ? 1 : t));
@@ -105,7 +105,7 @@ int tb_factor_scene(const char *scene, int L, double alpha, int width, int res, 
     tb_result tr;
     memset(&tr, 0, sizeof tr);
     if (!maps || !u || !vm) { snprintf(err, errlen, "hf_lookup or its maps are not available"); goto out; }
-    if (!img[0] || !img[1] || !img[2] || !pix_of) { snprintf(err, errlen, "out of memory"); goto out; }
+    if (!img[0] || !img[1] || !img[2] || !pix_of) base_out_of_memory();
     vec_params vp;
     vec_params_default(&vp);
     vp.L = L; vp.alpha = alpha;
@@ -136,7 +136,7 @@ int tb_factor_scene(const char *scene, int L, double alpha, int width, int res, 
         double row[10];
         if (!local_dirs(&d.view, g.pos[i], g.nrm[i], row, row + 3, row + 6)) continue;
         row[9] = rf_maps_lookup(maps, row, row + 3, row + 6);
-        if (vec_set_push(&vs, row)) { snprintf(err, errlen, "out of memory"); goto out; }
+        if (vec_set_push(&vs, row)) base_out_of_memory();
         pix_of[nitems++] = i;
     }
     if (nitems) {

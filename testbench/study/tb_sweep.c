@@ -69,11 +69,7 @@ int tb_sweep_init(tb_sweep *s, const tb_sweep_spec *sp, char *err, size_t errlen
     s->cfg = calloc(s->n, sizeof *s->cfg);
     s->row = calloc(s->n, sizeof *s->row);
     s->vs = calloc(np, sizeof *s->vs);
-    if (!s->cfg || !s->row || !s->vs) {
-        snprintf(err, errlen, "sweep: out of memory for %zu configurations", s->n);
-        tb_sweep_free(s);
-        return -1;
-    }
+    if (!s->cfg || !s->row || !s->vs) base_out_of_memory();
     for (size_t i = 0; i < s->n; i++) {
         tb_sweep_cfg *c = &s->cfg[i];
         size_t g = i % ng, pset = 0, mul = 1;
@@ -400,7 +396,7 @@ int tb_sweep_merge(const char *const *paths, int n, const char *out, char *err, 
     const char *header = NULL;
     char id[64] = "";
     int rc = -1;
-    if (!text) { snprintf(err, errlen, "merge: out of memory"); return -1; }
+    if (!text) base_out_of_memory();
     for (int fi = 0; fi < n; fi++) {
         size_t len;
         const char *p = paths[fi];
@@ -446,7 +442,7 @@ int tb_sweep_merge(const char *const *paths, int n, const char *out, char *err, 
             if (nrows == cap) {
                 cap = cap ? cap * 2 : 256;
                 mrow *nr = realloc(rows, cap * sizeof *rows);
-                if (!nr) { snprintf(err, errlen, "merge: out of memory"); goto done; }
+                if (!nr) base_out_of_memory();
                 rows = nr;
             }
             rows[nrows++] = (mrow){ idx, fi, ln, line };
@@ -599,11 +595,7 @@ int tb_sweep_target(const tb_sweep *s, size_t group, tb_target_kind k, double ta
     /* nc jobs for the first round, `threads` for each batch after it. */
     cand_job *jobs = calloc((size_t)(nc > threads ? nc : threads), sizeof *jobs);
     cand_t *cand = malloc((size_t)nc * sizeof *cand);
-    if (!jobs || !cand) {
-        free(jobs); free(cand);
-        snprintf(err, errlen, "target search: out of memory");
-        return -1;
-    }
+    if (!jobs || !cand) base_out_of_memory();
     /* Every single-bit removal from the start, all at once: the area each
      * saves orders the passes, dearest bits first, so that the error
      * budget goes where it buys the most area (ties: fraction before
