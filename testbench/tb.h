@@ -1,6 +1,17 @@
 /* tb.h - per-unit testbenches: drive a unit with golden vectors, clock by
  * clock, and measure cycles, area and quantization error.
  *
+ * The testbench engine's public header (testbench/): one unit, one run -
+ * build it (tb_build), its formats (tb_formats), its vectors (vector files,
+ * or tb_make_vectors from its float reference), run it (tb_run; streamed:
+ * tb_stream.h; many lanes at once: tb_batch.h, tb_lanes.h; span units:
+ * tb_span.h), the verdict, PPA and timing, ranges and derived formats
+ * (tb_range.h, tb_derive.h), energy (tb_energy.h), waveforms (tb_wave.h),
+ * the Verilog export and co-simulation (tb_verilog.h), the JSON and CSV
+ * of a result. The studies (testbench/study/study.h) run it many times;
+ * the command line (testbench/cli/cli.h) prints it. The engine includes
+ * neither (tests/cli_layers.sh).
+ *
  * tb_run composes the layers: it builds the unit (units/) into a fresh
  * simulation (sim/), quantizes the vectors' inputs (vectors/) to the unit's
  * input formats, offers one item at a time through the valid/ready

@@ -109,6 +109,36 @@ done
 [ -z "$unlisted" ] && ok every_source_folder_is_a_layer \
     || fail every_source_folder_is_a_layer "folders with C sources not in the Makefile's LAYERS:$unlisted"
 
+# 2c. No verb calls a verb: a verb that needs another's figures gets them
+#     from the engine or a study. verb_calls ROOT prints "FILE:LINE: calls
+#     VERB" for each call of a verb's function (the "int cli_VERB(int argc,
+#     char **argv);" lines of ROOT/testbench/cli/cli.h) in the command line's
+#     files other than its own definition; main.c reaches the verbs through
+#     their table, not by name.
+verb_calls() {
+    root=$1
+    verbs=$(sed -n 's/^int \(cli_[a-z_0-9]*\)(int argc, char \*\*argv);.*/\1/p' "$root/testbench/cli/cli.h")
+    for f in "$root"/testbench/cli/*.c; do
+        [ -f "$f" ] || continue
+        for v in $verbs; do
+            grep -nE "(^|[^A-Za-z0-9_])$v\(" "$f" | grep -v "^[0-9]*:int $v(int argc" |
+                sed "s|^\([0-9]*\):.*|${f#"$root"/}:\1: calls $v|"
+        done
+    done
+}
+V=$T/verbs
+mkdir -p "$V/testbench/cli"
+printf 'int cli_aa(int argc, char **argv);\nint cli_bb(int argc, char **argv);\n' >"$V/testbench/cli/cli.h"
+printf 'int cli_aa(int argc, char **argv)\n{\n    return cli_bb(argc, argv);\n}\n' >"$V/testbench/cli/aa.c"
+printf 'int cli_bb(int argc, char **argv) { return xcli_aa(argc, argv); }\n' >"$V/testbench/cli/bb.c"
+got=$(verb_calls "$V")
+[ "$got" = "testbench/cli/aa.c:3: calls cli_bb" ] && ok checker_finds_verb_calls \
+    || fail checker_finds_verb_calls "found '$(echo "$got" | tr '\n' '|')', expected 'testbench/cli/aa.c:3: calls cli_bb'"
+calls=$(verb_calls .)
+nverbs=$(grep -c '^int cli_[a-z_0-9]*(int argc, char \*\*argv);' testbench/cli/cli.h)
+[ -z "$calls" ] && [ "$nverbs" -gt 5 ] && ok no_verb_calls_a_verb \
+    || fail no_verb_calls_a_verb "$nverbs verbs in testbench/cli/cli.h; $(echo "$calls" | head -5 | tr '\n' ';')"
+
 # 3. The tree itself.
 bad=$(wrong .)
 [ -z "$bad" ] && ok includes_point_down || fail includes_point_down "$(echo "$bad" | head -5 | tr '\n' ';')"

@@ -1,6 +1,13 @@
 /* cli.h - the command line: one function per verb, and the options that
  * several verbs share (unit, width, formats, modes, parameters, vectors).
  *
+ * The public header of testbench/cli/: main.c, the option parser
+ * (cli_opt.h), and one file per verb (cli_VERB.c; the sweep's in
+ * cli_sweep*.c). A verb parses its options, calls the engine
+ * (testbench/tb.h) or a study (testbench/study/study.h), and prints or
+ * writes what they return; no verb calls another verb, and nothing below
+ * includes this folder (tests/cli_layers.sh).
+ *
  * Exit status: 0 success, 1 a testbench's error bound exceeded or the
  * simulation failed, 2 bad usage or bad input (one line on stderr), 3 out
  * of memory (base_out_of_memory, the one place that decides it). A verb
