@@ -533,7 +533,7 @@ static int section_scene(FILE *f, const char *dir)
 
 /* ------------------------------------------------------------ stability */
 
-/* The stability atlas (testbench/tb_stability.c): every failure boundary
+/* The stability atlas (testbench/study/tb_stability.c): every failure boundary
  * as a table row, and its charts with the boundaries marked. */
 static int section_stability(FILE *f)
 {

@@ -1,5 +1,5 @@
 /* cli_stability.c - the verb stability: where each method stops working
- * (testbench/tb_stability.c measures it), as one table and charts. */
+ * (testbench/study/tb_stability.c measures it), as one table and charts. */
 #include "testbench/cli/cli.h"
 #include "testbench/cli/cli_opt.h"
 #include <stddef.h>
