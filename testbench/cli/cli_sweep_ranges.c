@@ -1,7 +1,9 @@
 /* cli_sweep_ranges.c - the sweep's --ranges observed|derived and --range
  * NAME=LO:HI: the options, and the observed and derived interval of every
- * signal of each group's chosen design (docs/sweeps.md, "Derived ranges"). */
+ * signal of each group's chosen design (measured by testbench/study/tb_sweep_check.c;
+ * docs/sweeps.md, "Derived ranges"). */
 #include "testbench/cli/cli_sweep.h"
+#include "testbench/study/tb_sweep_check.h"
 #include "base/base_json.h"
 #include <stdlib.h>
 #include <string.h>
@@ -45,17 +47,9 @@ int sweep_ranges_collect(sweep_args *a, tb_sweep *s)
     t->dres = calloc(s->ngroups, sizeof *t->dres);
     t->dobs = calloc(s->ngroups, sizeof *t->dobs);
     if (!t->dres || !t->dobs) base_out_of_memory();
-    for (size_t g = 0; g < s->ngroups; g++) {
-        const tb_target_res *x = &t->res[g];
-        if (!x->met) continue;
-        const tb_sweep_cfg *c = &s->cfg[x->uniform];
-        char err[600];
-        if (tb_derive(s->spec.u, &c->cfg, &x->fmts, &a->ranges, &t->dres[g], err, sizeof err))
-            return cli_usage_error("sweep: %s", err);
-        int st = tb_run(s->spec.u, &c->cfg, &x->fmts, s->vs[c->pset], NULL, &t->dobs[g], err, sizeof err);
-        if (st != TB_OK) return cli_from_tb(st, "sweep: %s", err);
-    }
-    return 0;
+    char err[600];
+    int st = tb_sweep_derived_all(s, t->res, &a->ranges, t->dres, t->dobs, err, sizeof err);
+    return cli_from_tb(st, "sweep: %s", err);
 }
 
 void sweep_ranges_print(FILE *f, const target_info *t, size_t g)

@@ -1,7 +1,9 @@
 /* cli_sweep_target.c - the sweep's target search (--target-error,
- * --target-nmse): the search per settings group, its check on held-out
- * stimuli, and what it prints and writes (target.json, target.csv). */
+ * --target-nmse): the search per settings group and its check on held-out
+ * stimuli (testbench/study/tb_sweep.h, tb_sweep_check.h), and what it
+ * prints and writes (target.json, target.csv). */
 #include "testbench/cli/cli_sweep.h"
+#include "testbench/study/tb_sweep_check.h"
 #include "base/base_json.h"
 #include <math.h>
 #include <stdint.h>
@@ -223,39 +225,6 @@ int sweep_write_target_json(const tb_sweep *s, const target_info *t, oset *os)
     return 0;
 }
 
-/* The target search's results on held-out stimuli: vectors of another
- * seed (the sweep's seed + 1; the default files are seed 1's), as many as
- * the sweep used, made once per parameter set; the generators put their
- * full-range corner values first whatever the seed. */
-static int heldout_check(sweep_args *a, tb_sweep *s)
-{
-    vec_set *ho = calloc(s->npsets, sizeof *ho);
-    unsigned char *made = calloc(s->npsets, 1);
-    char err[600];
-    int rc = 0;
-    if (!ho || !made) base_out_of_memory();
-    a->t.ho_seed = (a->nvec > 0 ? a->seed : 1) + 1;
-    a->t.ho_rows = s->vs[0]->n_rows;
-    for (size_t g = 0; g < s->ngroups && !rc; g++) {
-        tb_target_res *x = &a->t.res[g];
-        size_t p = s->cfg[g].pset;
-        if (!x->met) continue;
-        if (!made[p]) {
-            if (tb_make_vectors(a->o.u, tb_sweep_pset_cfg(s, p), s->vs[p]->n_rows, a->t.ho_seed, &ho[p], err, sizeof err)) {
-                rc = cli_usage_error("held-out stimuli: %s", err);
-                break;
-            }
-            made[p] = 1;
-        }
-        if (tb_sweep_target_heldout(s, &ho[p], a->t.kind, a->t.value, x, err, sizeof err)) rc = cli_usage_error("%s", err);
-        else if (!x->heldout_ok) a->ho_failed = 1;
-    }
-    for (size_t p = 0; p < s->npsets; p++) if (made[p]) vec_set_free(&ho[p]);
-    free(ho);
-    free(made);
-    return rc;
-}
-
 int sweep_target_search(sweep_args *a, tb_sweep *s, int tty)
 {
     char err[600];
@@ -267,6 +236,10 @@ int sweep_target_search(sweep_args *a, tb_sweep *s, int tty)
         if (tty) fputs("\r\033[K", stderr);
         if (bad) return cli_usage_error("%s", err);
     }
-    int rc = heldout_check(a, s);
-    return rc ? rc : sweep_ranges_collect(a, s);
+    /* held-out stimuli: the sweep's seed + 1 (the default files are seed 1's) */
+    a->t.ho_seed = (a->nvec > 0 ? a->seed : 1) + 1;
+    a->t.ho_rows = s->vs[0]->n_rows;
+    if (tb_sweep_heldout_all(s, a->t.res, a->t.kind, a->t.value, a->t.ho_seed, &a->ho_failed, err, sizeof err))
+        return cli_usage_error("%s", err);
+    return sweep_ranges_collect(a, s);
 }

@@ -5,6 +5,7 @@
  *
  *   tb_sweep.h         a unit over widths and settings (threads, shards,
  *                      one CSV), the cheapest formats meeting a target
+ *   tb_sweep_check.h   the target search's held-out and derived-range checks
  *   tb_sweep_chart.h   a sweep's charts, drawn from its CSV
  *   tb_scene.h         a scene shaded through the simulated span hardware
  *                      (images, NMSE, clocks, speed and energy)
@@ -26,6 +27,7 @@
 #ifndef STUDY_H
 #define STUDY_H
 #include "testbench/study/tb_sweep.h"
+#include "testbench/study/tb_sweep_check.h"
 #include "testbench/study/tb_sweep_chart.h"
 #include "testbench/study/tb_scene.h"
 #include "testbench/study/tb_scene_search.h"
