@@ -369,6 +369,39 @@ static void unit_options_shared(void)
     free(lines);
 }
 
+/* ------------------------------------------ testbench results to status */
+
+typedef struct from_tb_call { int t; const char *fmt, *arg; } from_tb_call;
+static int from_tb(void *p)
+{
+    const from_tb_call *c = p;
+    return c->fmt ? cli_from_tb(c->t, c->fmt, c->arg) : cli_from_tb(c->t, NULL);
+}
+
+/* cli_from_tb against docs/cli.md's table: a testbench's TB_OK is status 0
+ * with nothing on stderr; TB_FAIL (the simulation failed) 1 and
+ * TB_BADINPUT (input the unit cannot take) 2, each after one line
+ * "shadesim: MESSAGE" (bytes escaped as everywhere); an empty message or
+ * none prints no line. */
+static void from_tb_statuses(void)
+{
+    static const struct { int t; const char *fmt, *arg; int want; const char *line; } cases[] = {
+        { TB_OK, "%s", "not printed", 0, "" },
+        { TB_FAIL, "u: %s", "no output in time", 1, "shadesim: u: no output in time\n" },
+        { TB_BADINPUT, "%s", "v.vec:3: 2 inputs", 2, "shadesim: v.vec:3: 2 inputs\n" },
+        { TB_BADINPUT, "%s", "a\tb", 2, "shadesim: a\\x09b\n" },
+        { TB_FAIL, "%s", "", 1, "" },
+        { TB_FAIL, NULL, NULL, 1, "" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        from_tb_call c = { cases[i].t, cases[i].fmt, cases[i].arg };
+        TST_EQ_INT(capture(2, from_tb, &c), cases[i].want);
+        TST_CHECK(!strcmp(cap_text, cases[i].line), "case %zu: stderr '%s', expected '%s'", i, cap_text, cases[i].line);
+    }
+    /* out of memory has its own status, beside 0, 1 and 2 */
+    TST_EQ_INT(CLI_OOM, 3);
+}
+
 int main(void)
 {
     TST_RUN(values_both_spellings);
@@ -378,5 +411,6 @@ int main(void)
     TST_RUN(help_from_the_tables);
     TST_RUN(every_verb_help_lists_its_options);
     TST_RUN(unit_options_shared);
+    TST_RUN(from_tb_statuses);
     TST_EXIT();
 }
