@@ -211,21 +211,13 @@ static int span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     sim_proc *mon = sim_proc_new(c, "tb.monitor", monitor, &s);
     sim_sensitive(mon, clk, SIM_EDGE_POS);
     mon->no_init = 1;
-    if (energy && !(tog = sim_toggle_new(c))) {
-        snprintf(err, errlen, "out of memory");
-        rc = TB_FAIL;
-        goto done;
-    }
+    if (energy && !(tog = sim_toggle_new(c))) base_out_of_memory();
     if (vcd_path) {
         /* A dump can be hundreds of MB: base_out writes it to a temporary
          * that SIGINT/SIGTERM/SIGHUP remove, renamed into place when
          * complete; "-" streams to stdout. */
         if (!(vout = base_out_open(vcd_path, err, errlen))) { rc = TB_BADINPUT; goto done; }
-        if (!(vcd = sim_vcd_open(c, base_out_file(vout), "1ns"))) {
-            snprintf(err, errlen, "%s: out of memory", vcd_path);
-            rc = TB_BADINPUT;
-            goto done;
-        }
+        if (!(vcd = sim_vcd_open(c, base_out_file(vout), "1ns"))) base_out_of_memory();
     }
     sim_status ss = sim_run(c, clock_budget(total, nitems) * 10);
     if (ss != SIM_OK) {         /* a loop, or a design that is not well formed */

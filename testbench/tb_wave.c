@@ -79,7 +79,7 @@ sim_vcd *tb_wave_open(tb_wave *w, sim_ctx *c, const tb_opts *o, const unit_io *i
     w->prev_beat = -1;
     w->from = o->vcd_from; w->to = o->vcd_to;
     size_t n = strlen(o->vcd_path) + 32;
-    if (!(w->dump_path = malloc(n))) { snprintf(err, errlen, "out of memory"); return NULL; }
+    if (!(w->dump_path = malloc(n))) base_out_of_memory();
     /* --fst: the VCD goes to a temporary beside the FST (same file system,
      * so the conversion's output can be renamed into place) */
     if (o->fst) snprintf(w->dump_path, n, "%s.%ld.tmp.vcd", o->vcd_path, (long)getpid());
@@ -94,11 +94,7 @@ sim_vcd *tb_wave_open(tb_wave *w, sim_ctx *c, const tb_opts *o, const unit_io *i
         return NULL;
     }
     sim_vcd *v = sim_vcd_open(c, base_out_file(w->out), "1ns");
-    if (!v) {
-        snprintf(err, errlen, "%s: out of memory", w->dump_path);
-        tb_wave_free(w);
-        return NULL;
-    }
+    if (!v) base_out_of_memory();
     for (int k = 0; k < w->n_out; k++) {
         char name[64];
         snprintf(name, sizeof name, "expected_%s", io->out[k]->name);
@@ -168,10 +164,7 @@ int tb_wave_gtkw(sim_ctx *c, const char *vcd_path, const char *title, const sim_
     if (stat(base_out_pending(vcd_path), &st) != 0 || !S_ISREG(st.st_mode)) return 0;
     size_t gl = strlen(vcd_path) + sizeof ".gtkw";
     char *g = malloc(gl);
-    if (!g) {
-        snprintf(err, errlen, "%s.gtkw: out of memory", vcd_path);
-        return -1;
-    }
+    if (!g) base_out_of_memory();
     snprintf(g, gl, "%s.gtkw", vcd_path);
     base_out *go = base_out_open(g, msg, sizeof msg);   /* errno: the cause */
     int gbad = !go;
