@@ -768,10 +768,6 @@ static int sig_used_23(const unit_cfg *cfg, int i) { return cube_sig_used(&k23, 
 
 #define P_L { "L", UNIT_P_INT, offsetof(unit_cfg, L), 2, SPAN_LMAX, 8, NULL, \
               "pixels per interval, any 2..64: beats per item in `run`, the largest n and dv" }
-#define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, DIV3_PAPER_TERMS, NULL, \
-                  "terms of each /3 network (see div3); 3 is the paper's" }
-#define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, DIV3_PAPER, "paper quarter", \
-                   "series of each /3 network (see div3)" }
 #define P_NODES { "nodes", UNIT_P_ENUM, offsetof(unit_cfg, nodes), 0, 1, 0, "n1 n2", \
                   "node set of the cubic: n1 = I(0), I(1), I(1/2), I(1/4); n2 = I(0), I(1), I(1/2), I(3/4)" }
 
@@ -886,7 +882,7 @@ const unit_desc unit_span3 = {
     .nsched = 3,
     .sched = SPAN_SCHEDS("the paper's Horner sequence: 6 clocks per pixel", "3 clocks per pixel",
                          "result 3 clocks after the pixel entered"),
-    .nparams = 4, .params = { P_L, P_TERMS, P_SERIES, P_NODES },
+    .nparams = 4, .params = { P_L, DIV3_P_TERMS, DIV3_P_SERIES, P_NODES },
     .fmt_rule = SPAN_RULE("a b c d, their registers, y and the Horner datapath s7.(W-7)"),
     .formats = formats_3, .beats = beats, .build = build_3, .ideal = ideal_3, .bound = bound_3,
     .ideal_ratio = ratio_3, .sig_used = sig_used_3,
@@ -904,7 +900,7 @@ const unit_desc unit_span23 = {
     .sched = SPAN_SCHEDS("the paper's Horner sequence, 6 clocks per pixel of a cubic item, its first 4 for a "
                          "quadratic item", "3 clocks per pixel of a cubic item, 2 of a quadratic",
                          "a quadratic item enters as (0, A2, B2, C2); result 3 clocks after the pixel entered"),
-    .nparams = 4, .params = { P_L, P_TERMS, P_SERIES, P_NODES },
+    .nparams = 4, .params = { P_L, DIV3_P_TERMS, DIV3_P_SERIES, P_NODES },
     .fmt_rule = SPAN_RULE("both networks' coefficients, the registers (loaded through a degree mux), y and the "
                           "Horner datapath s7.(W-7)"),
     .formats = formats_23, .beats = beats, .build = build_23, .ideal = ideal_23, .bound = bound_23,
