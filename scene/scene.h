@@ -12,7 +12,8 @@
  *   scene_raster.c  cameras, scanline rasterizer with z-buffer -> scn_gbuf
  *   scene_span.c    spans of a surface buffer and attributes along them
  *   scene_shade.c   reference shading (lights, materials, BRDF models)
- *   scene_file.c    the scene description format (key value lines)
+ *   scene_file.c    the scene description format (key value lines): reading it
+ *   scene_desc.c    a description's defaults, built-in scenes, held-out view, writing
  *   scene_png.c     PNG encoder (filters, zlib stream, CRC-32), colour maps
  *   scene_deflate.c DEFLATE compressor (LZ77 + Huffman) for the PNGs
  */
