@@ -1,7 +1,8 @@
 /* scene_desc.c - a scene description's values apart from reading them:
  * the defaults (the built-in "face" scene) and the other built-in scenes,
- * the held-out view that follows the view, and writing a description back
- * as a scene file. The format itself, and reading it, is scene_file.c.
+ * the held-out view that follows the view, where a value was set (for
+ * errors found after reading), and writing a description back as a scene
+ * file. The format itself, and reading it, is scene_file.c.
  */
 #include "scene/scene_names.h"
 #include "sim/sim_fixed.h"      /* the sim_round / sim_ovf values only */
@@ -25,7 +26,6 @@ const char *const scn_dist_names[] = { "beckmann", "d4", "d8", "d16", NULL };
 const char *const scn_fresnel_names[] = { "none", "schlick", "mschlick", NULL };
 const char *const scn_round_names[] = { "trunc", "half-up", "even", NULL };
 const char *const scn_ovf_names[] = { "wrap", "sat", NULL };
-const char *const scn_schedule_names[] = { "paper", "mac", "pipe", NULL };
 const char *const scn_series_names[] = { "paper", "quarter", NULL };
 const char *const scn_camera_names[] = { "ortho", "perspective", NULL };
 
@@ -153,6 +153,37 @@ void scn_desc_sync(scn_desc *d)
             }
         }
     }
+}
+
+/* ------------------------------------------------- where a value was set */
+
+const char *scn_desc_where(const scn_desc *d, const char *const *keys, char *buf, size_t len)
+{
+    int best = 0, bk = -1;
+    for (; *keys; keys++)
+        for (int k = 0; scn_desc_keys[k] && k < SCN_DESC_NKEYS; k++)
+            if (!strcmp(*keys, scn_desc_keys[k]) && d->key_line[k] > best) { best = d->key_line[k]; bk = k; }
+    if (bk < 0) snprintf(buf, len, "%s", "");
+    else if (best == SCN_LINE_SET) snprintf(buf, len, "--set %s: ", scn_desc_keys[bk]);
+    else snprintf(buf, len, "%s:%d: ", d->src, best);
+    return buf;
+}
+
+int scn_desc_check_camera(const scn_desc *d, char *err, size_t errlen)
+{
+    static const char *const view[] = { "camera", "eye", "target", "up", "fov", "ortho-height", NULL };
+    static const char *const held[] = { "camera", "eye", "target", "up", "fov", "ortho-height",
+                                        "heldout-eye", "heldout-target", NULL };
+    char msg[300], where[300];
+    if (scn_camera_check(&d->view.cam, msg, sizeof msg)) {
+        snprintf(err, errlen, "%s%s", scn_desc_where(d, view, where, sizeof where), msg);
+        return -1;
+    }
+    if (scn_camera_check(&d->heldout.cam, msg, sizeof msg)) {
+        snprintf(err, errlen, "%sheld-out view: %s", scn_desc_where(d, held, where, sizeof where), msg);
+        return -1;
+    }
+    return 0;
 }
 
 /* ------------------------------------------------------------ writing */

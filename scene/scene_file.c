@@ -62,6 +62,9 @@
  * auto-nodes     n1|n2 (adaptive-auto cubic)         n1
  * L              N (2..64): pixels per interval      8
  * terms          N (1..20): /3 network terms         3
+ *                (L, terms, series and schedule are the unit's parameters:
+ *                their ranges, choices and defaults are its descriptor's,
+ *                checked when the scene's unit is set up)
  * series         paper|quarter (/3 network)          paper
  * width          W (4..64): default-format width     16
  * fmt *          none | NAME=sI.F|uI.F ... (signal   none
@@ -103,6 +106,7 @@
 #include "base/base_near.h"
 #include <ctype.h>
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -315,7 +319,11 @@ static const char *const ward_names[] = { "exact", "poly16", NULL };
 static const char *const nodes_names[] = { "n1", "n2", NULL };
 
 /* Every key once, in the order of the table at the top: its index is
- * key_line's (K_<ID>), its name scn_desc_keys', its row keys[]. */
+ * key_line's (K_<ID>), its name scn_desc_keys', its row keys[]. The
+ * hardware's parameters L and terms, and schedule, are the unit's: this
+ * layer reads a whole number or a name, and the testbench sets them
+ * through the unit's own setters (tb_scene_unit), with the ranges,
+ * choices and defaults of the unit's descriptor. */
 #define SCN_KEYS(X) \
     X(MESH,      "mesh",           CALL(k_mesh)) \
     X(DETAIL,    "detail",         INT(detail, 1, 8, "N")) \
@@ -345,8 +353,8 @@ static const char *const nodes_names[] = { "n1", "n2", NULL };
     X(REGDEG,    "region-degree",  CALL(k_regdeg)) \
     X(ATHRESH,   "auto-threshold", REAL(auto_threshold, 0.0, 1e6, "X")) \
     X(ANODES,    "auto-nodes",     NAME(auto_cubic_nodes, nodes_names, "n1|n2"), .vals = nodes_v) \
-    X(L,         "L",              INT(L, 2, 64, "N")) \
-    X(TERMS,     "terms",          INT(terms, 1, 20, "N")) \
+    X(L,         "L",              INT(L, INT_MIN, INT_MAX, "N")) \
+    X(TERMS,     "terms",          INT(terms, INT_MIN, INT_MAX, "N")) \
     X(SERIES,    "series",         NAME(series, scn_series_names, "paper|quarter")) \
     X(WIDTH,     "width",          INT(fmt_width, 4, 64, "W")) \
     X(FMT,       "fmt",            CALL(k_fmt)) \
@@ -526,13 +534,14 @@ static int k_fmt(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *
     return 0;
 }
 
+/* schedule: a name the unit judges (its schedules: tb_scene_unit). */
 static int k_schedule(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
 {
     (void)cx;
-    int i;
+    char b[48];
     if (count(k->name, n, 1, 1, "paper|mac|pipe", err, errlen)) return -1;
-    if ((i = pick(k->name, t[0], scn_schedule_names, -1, err, errlen)) < 0) return -1;
-    strcpy(d->schedule, scn_schedule_names[i]);
+    if (strlen(t[0]) >= sizeof d->schedule) return fail(err, errlen, "schedule: \"%s\" is too long", shown(t[0], b));
+    strcpy(d->schedule, t[0]);
     return 0;
 }
 
@@ -664,35 +673,6 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
 }
 
 _Static_assert(K__COUNT <= SCN_DESC_NKEYS, "scn_desc.key_line is too small");
-
-const char *scn_desc_where(const scn_desc *d, const char *const *keys, char *buf, size_t len)
-{
-    int best = 0, bk = -1;
-    for (; *keys; keys++)
-        for (int k = 0; k < K__COUNT; k++)
-            if (!strcmp(*keys, scn_desc_keys[k]) && d->key_line[k] > best) { best = d->key_line[k]; bk = k; }
-    if (bk < 0) snprintf(buf, len, "%s", "");
-    else if (best == SCN_LINE_SET) snprintf(buf, len, "--set %s: ", scn_desc_keys[bk]);
-    else snprintf(buf, len, "%s:%d: ", d->src, best);
-    return buf;
-}
-
-int scn_desc_check_camera(const scn_desc *d, char *err, size_t errlen)
-{
-    static const char *const view[] = { "camera", "eye", "target", "up", "fov", "ortho-height", NULL };
-    static const char *const held[] = { "camera", "eye", "target", "up", "fov", "ortho-height",
-                                        "heldout-eye", "heldout-target", NULL };
-    char msg[300], where[300];
-    if (scn_camera_check(&d->view.cam, msg, sizeof msg)) {
-        snprintf(err, errlen, "%s%s", scn_desc_where(d, view, where, sizeof where), msg);
-        return -1;
-    }
-    if (scn_camera_check(&d->heldout.cam, msg, sizeof msg)) {
-        snprintf(err, errlen, "%sheld-out view: %s", scn_desc_where(d, held, where, sizeof where), msg);
-        return -1;
-    }
-    return 0;
-}
 
 /* Cut a comment: '#' at the start or after a blank. */
 static void cut_comment(char *s)
