@@ -12,7 +12,8 @@
  *   scene_raster.c  cameras, scanline rasterizer with z-buffer -> scn_gbuf
  *   scene_span.c    spans of a surface buffer and attributes along them
  *   scene_shade.c   reference shading (lights, materials, BRDF models)
- *   scene_file.c    the scene description format (key value lines)
+ *   scene_file.c    the scene description format (key value lines): reading it
+ *   scene_desc.c    a description's defaults, built-in scenes, held-out view, writing
  *   scene_png.c     PNG encoder (filters, zlib stream, CRC-32), colour maps
  *   scene_deflate.c DEFLATE compressor (LZ77 + Huffman) for the PNGs
  */
@@ -125,9 +126,14 @@ typedef struct scn_desc {
     uint8_t      region_deg[SCN_MAX_REGIONS];   /* adaptive-region: degree per region (2 or 3) */
     int          auto_cubic_nodes;              /* adaptive-auto: 1 = N1, 2 = N2 */
     double       auto_threshold;                /* adaptive-auto: degree 3 when the curvature measure exceeds it */
-    int          L;              /* pixels per interval, 2..64 */
+    /* The hardware: the policy's unit's settings. L, terms, series and
+     * schedule are its parameters, whose ranges and choices only its
+     * descriptor has (testbench/tb_scene.c sets them through the unit's
+     * setters and refuses what it refuses); the defaults here are its
+     * defaults (tests/test_scene.c compares them). */
+    int          L;              /* pixels per interval */
     int          terms, series;  /* divide-by-3 network */
-    int          fmt_width;      /* W of the default-format rule */
+    int          fmt_width;      /* W of the default-format rule, 4..64 */
     int          nfmt;
     char         fmt[SCN_MAX_FMT][48];   /* NAME=sI.F overrides, in order */
     int          rnd, ovf;       /* sim_round / sim_ovf values */

@@ -62,6 +62,9 @@
  * auto-nodes     n1|n2 (adaptive-auto cubic)         n1
  * L              N (2..64): pixels per interval      8
  * terms          N (1..20): /3 network terms         3
+ *                (L, terms, series and schedule are the unit's parameters:
+ *                their ranges, choices and defaults are its descriptor's,
+ *                checked when the scene's unit is set up)
  * series         paper|quarter (/3 network)          paper
  * width          W (4..64): default-format width     16
  * fmt *          none | NAME=sI.F|uI.F ... (signal   none
@@ -96,165 +99,22 @@
  * name, too many lights, a line over 4095 bytes, a NUL byte); from
  * scn_desc_set "KEY: what". The description is only changed on success.
  */
-#include "scene/scene.h"
-#include "sim/sim_fixed.h"      /* the sim_round / sim_ovf values only */
+#include "scene/scene_names.h"
 #include "base/base_join.h"
 #include "base/base_line.h"
 #include "base/base_num.h"
 #include "base/base_near.h"
 #include <ctype.h>
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
-#ifndef M_PI
-#define M_PI 3.14159265358979323846
-#endif
-
 #define LINE_MAX_BYTES 4095
 #define MAX_TOK 40
-#define HELD_EYE_DEG   20.0
-#define HELD_LIGHT_DEG 70.0
-
-const char *const scn_op_name[SCN_OP__COUNT] = { "add", "mul", "div", "sqrt", "pow" };
-
-static const char *const policy_names[SCN_POL__COUNT] = {
-    "linear", "quadratic", "cubic-n1", "cubic-n2", "adaptive-region", "adaptive-auto" };
-static const char *const spec_names[SCN_SPEC__COUNT] = { "phong", "blinn", "cook", "ward" };
-static const char *const fresnel_names[] = { "none", "schlick", "mschlick", NULL };
-static const char *const round_names[] = { "trunc", "half-up", "even", NULL };
-static const char *const ovf_names[] = { "wrap", "sat", NULL };
-static const char *const schedule_names[] = { "paper", "mac", "pipe", NULL };
-static const char *const series_names[] = { "paper", "quarter", NULL };
-static const char *const camera_names[] = { "ortho", "perspective", NULL };
-
-const char *const scn_desc_builtin_names[] = { "face", "sphere", "torus", NULL };
-
-const char *scn_policy_name(scn_policy p)
-{
-    return (unsigned)p < SCN_POL__COUNT ? policy_names[p] : "?";
-}
-
-/* ---------------------------------------------------------- defaults */
-
-void scn_desc_default(scn_desc *d)
-{
-    memset(d, 0, sizeof *d);
-    d->version = 1;
-    strcpy(d->mesh, "face");
-    d->detail = 1;
-    d->width = d->height = 512;
-    scn_camera *c = &d->view.cam;
-    c->perspective = 0;
-    c->eye[2] = 5.0;
-    c->up[1] = 1.0;
-    c->fov_deg = 30.0;
-    c->ortho_height = 2.1;      /* the head is 1.9 tall: a small margin */
-    d->view.nlights = 1;
-    /* Upper left front, a unit vector exactly: (-12, 15, 16) / 25. */
-    d->view.light[0] = (scn_light){ 0, { -0.48, 0.6, 0.64 }, 1.0 };
-    d->mat = (scn_material){ .ambient = 0.05, .kd = 0.6, .ks = 0.35, .shininess = 24.0,
-                             .spec = SCN_SPEC_BLINN, .dg = 0, .m = 0.3, .alpha = 0.3,
-                             .fresnel = SCN_FRESNEL_NONE, .fresnel_n = 2.0 };
-    d->policy = SCN_POL_CUBIC_N1;
-    for (int r = 0; r < SCN_MAX_REGIONS; r++) d->region_deg[r] = 3;
-    d->region_deg[2] = d->region_deg[4] = d->region_deg[7] = 2;
-    d->auto_cubic_nodes = 1;
-    d->auto_threshold = 0.01;
-    d->L = 8;
-    d->terms = 3;
-    d->series = 0;
-    d->fmt_width = 16;
-    d->nfmt = 0;
-    d->rnd = SIM_RND_TRUNC;
-    d->ovf = SIM_OVF_WRAP;
-    strcpy(d->schedule, "paper");
-    d->cost[SCN_OP_ADD] = 1.0;
-    d->cost[SCN_OP_MUL] = 1.0;
-    d->cost[SCN_OP_DIV] = 4.0;
-    d->cost[SCN_OP_SQRT] = 4.0;
-    d->cost[SCN_OP_POW] = 8.0;
-    d->cook_dg = d->ward_dg = 0;
-    d->heldout_given = 0;
-    scn_desc_sync(d);
-}
-
-int scn_desc_builtin(const char *name, scn_desc *d)
-{
-    if (!name) return -1;
-    scn_desc t;
-    scn_desc_default(&t);
-    if (!strcmp(name, "face")) {
-        /* the defaults */
-    } else if (!strcmp(name, "sphere")) {
-        strcpy(t.mesh, "sphere");
-        t.view.cam.ortho_height = 2.4;          /* radius 1 with a margin */
-    } else if (!strcmp(name, "torus")) {
-        /* Radius 1 (0.7 + 0.3) around the origin; a perspective view, so
-         * the built-ins exercise both cameras. At distance 5, 28 degrees
-         * show 2.49 units vertically. */
-        strcpy(t.mesh, "torus");
-        t.view.cam.perspective = 1;
-        t.view.cam.fov_deg = 28.0;
-    } else {
-        return -1;
-    }
-    scn_desc_sync(&t);
-    *d = t;
-    return 0;
-}
-
-/* ------------------------------------------------ the held-out view */
-
-/* v rotated by deg about the unit axis k (Rodrigues). */
-static void rotate(const double v[3], const double k[3], double deg, double out[3])
-{
-    double a = deg * M_PI / 180.0, c = cos(a), s = sin(a);
-    double kv = k[0] * v[0] + k[1] * v[1] + k[2] * v[2];
-    double x[3] = { k[1] * v[2] - k[2] * v[1], k[2] * v[0] - k[0] * v[2],
-                    k[0] * v[1] - k[1] * v[0] };
-    for (int i = 0; i < 3; i++) out[i] = v[i] * c + x[i] * s + k[i] * kv * (1.0 - c);
-}
-
-void scn_desc_sync(scn_desc *d)
-{
-    const scn_camera *c = &d->view.cam;
-    scn_camera *h = &d->heldout.cam;
-    h->perspective = c->perspective;
-    memcpy(h->up, c->up, sizeof h->up);
-    h->fov_deg = c->fov_deg;
-    h->ortho_height = c->ortho_height;
-    double k[3] = { c->up[0], c->up[1], c->up[2] };
-    double len = sqrt(k[0] * k[0] + k[1] * k[1] + k[2] * k[2]);
-    if (len > 0.0) { k[0] /= len; k[1] /= len; k[2] /= len; }
-    else { k[0] = 0.0; k[1] = 1.0; k[2] = 0.0; }
-    if (!(d->heldout_given & SCN_HELD_TARGET)) memcpy(h->target, c->target, sizeof h->target);
-    if (!(d->heldout_given & SCN_HELD_EYE)) {
-        /* Turned about the vertical axis through the view's target. */
-        double rel[3] = { c->eye[0] - c->target[0], c->eye[1] - c->target[1],
-                          c->eye[2] - c->target[2] }, r[3];
-        rotate(rel, k, HELD_EYE_DEG, r);
-        for (int i = 0; i < 3; i++) h->eye[i] = c->target[i] + r[i];
-    }
-    if (!(d->heldout_given & SCN_HELD_LIGHT)) {
-        d->heldout.nlights = d->view.nlights;
-        for (int j = 0; j < d->view.nlights && j < SCN_MAX_LIGHTS; j++) {
-            const scn_light *l = &d->view.light[j];
-            scn_light *o = &d->heldout.light[j];
-            *o = *l;
-            if (l->point) {
-                double rel[3] = { l->v[0] - c->target[0], l->v[1] - c->target[1],
-                                  l->v[2] - c->target[2] }, r[3];
-                rotate(rel, k, HELD_LIGHT_DEG, r);
-                for (int i = 0; i < 3; i++) o->v[i] = c->target[i] + r[i];
-            } else {
-                rotate(l->v, k, HELD_LIGHT_DEG, o->v);
-            }
-        }
-    }
-}
 
 /* ---------------------------------------------------- value parsing */
 
@@ -264,6 +124,7 @@ typedef struct ctx {
     const char *dir;                /* scene file's folder (dirlen bytes), NULL: none */
     size_t      dirlen;             /* 0 with dir set: the root, "/" */
     int         line;               /* the line being applied (SCN_LINE_SET: --set) */
+    const char *rest;               /* its value text as written (mesh reads it) */
 } ctx;
 
 /* Error text without the "PATH:LINE: " / "KEY: " prefix. */
@@ -426,20 +287,91 @@ static int fmt_ok(const char *s, char *err, size_t errlen)
 
 /* ------------------------------------------------------- the keys */
 
-enum {
-    K_MESH, K_DETAIL, K_RES, K_CAMERA, K_EYE, K_TARGET, K_UP, K_FOV, K_OHEIGHT, K_LIGHT,
-    K_HEYE, K_HTARGET, K_HLIGHT, K_AMBIENT, K_KD, K_KS, K_SHININESS, K_SPECULAR, K_DIST,
-    K_WARDFORM, K_ROUGH, K_WALPHA, K_FRESNEL, K_FRESN, K_POLICY, K_REGDEG, K_ATHRESH,
-    K_ANODES, K_L, K_TERMS, K_SERIES, K_WIDTH, K_FMT, K_ROUND, K_OVERFLOW, K_SCHEDULE,
-    K_COST, K__COUNT
+/* A key's row: how its values are read and where they go. INT, REAL and
+ * NAME keys take one value into the field at off (INT and NAME an int,
+ * REAL a double) with the same checks and messages; CALL keys have a
+ * reader of their own. */
+typedef enum { KT_INT, KT_REAL, KT_NAME, KT_CALL } key_type;
+typedef struct key_row key_row;
+typedef int key_fn(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen);
+struct key_row {
+    key_type    type;
+    size_t      off;                /* offsetof(scn_desc, field) */
+    double      lo, hi;             /* INT, REAL: the range */
+    const char *what;               /* the value, as "takes 1 value (WHAT)" names it */
+    const char *const *names;       /* NAME: the choices, NULL-terminated */
+    const int  *vals;               /* NAME: the value of each choice (NULL: its index) */
+    key_fn     *call;               /* CALL */
+    int         dg;                 /* NAME: mat.dg follows (set_dg) */
+    const char *name;               /* set from the key list (KEY_ROW) */
 };
 
-const char *const scn_desc_keys[K__COUNT + 1] = {
-    "mesh", "detail", "resolution", "camera", "eye", "target", "up", "fov", "ortho-height",
-    "light", "heldout-eye", "heldout-target", "heldout-light", "ambient", "kd", "ks",
-    "shininess", "specular", "distribution", "ward-form", "roughness", "ward-alpha",
-    "fresnel", "fresnel-n", "policy", "region-degree", "auto-threshold", "auto-nodes", "L",
-    "terms", "series", "width", "fmt", "round", "overflow", "schedule", "cost", NULL };
+static key_fn k_mesh, k_res, k_vec, k_fov, k_oheight, k_light, k_held, k_regdeg, k_fmt, k_schedule, k_cost;
+
+#define F(field) offsetof(scn_desc, field)
+#define INT(field, lo_, hi_, wh_) .type = KT_INT, .off = F(field), .lo = lo_, .hi = hi_, .what = wh_
+#define REAL(field, lo_, hi_, wh_) .type = KT_REAL, .off = F(field), .lo = lo_, .hi = hi_, .what = wh_
+#define NAME(field, nm_, wh_) .type = KT_NAME, .off = F(field), .names = nm_, .what = wh_
+#define CALL(fn_) .type = KT_CALL, .call = fn_
+
+static const int dist_g[] = { 0, 4, 8, 16 }, ward_g[] = { 0, 16 }, nodes_v[] = { 1, 2 };
+static const char *const ward_names[] = { "exact", "poly16", NULL };
+static const char *const nodes_names[] = { "n1", "n2", NULL };
+
+/* Every key once, in the order of the table at the top: its index is
+ * key_line's (K_<ID>), its name scn_desc_keys', its row keys[]. The
+ * hardware's parameters L and terms, and schedule, are the unit's: this
+ * layer reads a whole number or a name, and the testbench sets them
+ * through the unit's own setters (tb_scene_unit), with the ranges,
+ * choices and defaults of the unit's descriptor. */
+#define SCN_KEYS(X) \
+    X(MESH,      "mesh",           CALL(k_mesh)) \
+    X(DETAIL,    "detail",         INT(detail, 1, 8, "N")) \
+    X(RES,       "resolution",     CALL(k_res)) \
+    X(CAMERA,    "camera",         NAME(view.cam.perspective, scn_camera_names, "ortho|perspective")) \
+    X(EYE,       "eye",            CALL(k_vec), .off = F(view.cam.eye)) \
+    X(TARGET,    "target",         CALL(k_vec), .off = F(view.cam.target)) \
+    X(UP,        "up",             CALL(k_vec), .off = F(view.cam.up)) \
+    X(FOV,       "fov",            CALL(k_fov)) \
+    X(OHEIGHT,   "ortho-height",   CALL(k_oheight)) \
+    X(LIGHT,     "light",          CALL(k_light)) \
+    X(HEYE,      "heldout-eye",    CALL(k_held), .off = F(heldout.cam.eye)) \
+    X(HTARGET,   "heldout-target", CALL(k_held), .off = F(heldout.cam.target)) \
+    X(HLIGHT,    "heldout-light",  CALL(k_light)) \
+    X(AMBIENT,   "ambient",        REAL(mat.ambient, 0.0, 1.0, "a number in [0, 1]")) \
+    X(KD,        "kd",             REAL(mat.kd, 0.0, 1.0, "a number in [0, 1]")) \
+    X(KS,        "ks",             REAL(mat.ks, 0.0, 1.0, "a number in [0, 1]")) \
+    X(SHININESS, "shininess",      REAL(mat.shininess, 0.0, 10000.0, "N")) \
+    X(SPECULAR,  "specular",       NAME(mat.spec, scn_spec_names, "phong|blinn|cook|ward"), .dg = 1) \
+    X(DIST,      "distribution",   NAME(cook_dg, scn_dist_names, "beckmann|d4|d8|d16"), .vals = dist_g, .dg = 1) \
+    X(WARDFORM,  "ward-form",      NAME(ward_dg, ward_names, "exact|poly16"), .vals = ward_g, .dg = 1) \
+    X(ROUGH,     "roughness",      REAL(mat.m, 0.01, 1.0, "a number in [0.01, 1]")) \
+    X(WALPHA,    "ward-alpha",     REAL(mat.alpha, 0.01, 1.0, "a number in [0.01, 1]")) \
+    X(FRESNEL,   "fresnel",        NAME(mat.fresnel, scn_fresnel_names, "none|schlick|mschlick")) \
+    X(FRESN,     "fresnel-n",      REAL(mat.fresnel_n, 1.0, 10000.0, "N")) \
+    X(POLICY,    "policy",         NAME(policy, scn_policy_names, "a policy name")) \
+    X(REGDEG,    "region-degree",  CALL(k_regdeg)) \
+    X(ATHRESH,   "auto-threshold", REAL(auto_threshold, 0.0, 1e6, "X")) \
+    X(ANODES,    "auto-nodes",     NAME(auto_cubic_nodes, nodes_names, "n1|n2"), .vals = nodes_v) \
+    X(L,         "L",              INT(L, INT_MIN, INT_MAX, "N")) \
+    X(TERMS,     "terms",          INT(terms, INT_MIN, INT_MAX, "N")) \
+    X(SERIES,    "series",         NAME(series, scn_series_names, "paper|quarter")) \
+    X(WIDTH,     "width",          INT(fmt_width, 4, 64, "W")) \
+    X(FMT,       "fmt",            CALL(k_fmt)) \
+    X(ROUND,     "round",          NAME(rnd, scn_round_names, "trunc|half-up|even")) \
+    X(OVERFLOW,  "overflow",       NAME(ovf, scn_ovf_names, "wrap|sat")) \
+    X(SCHEDULE,  "schedule",       CALL(k_schedule)) \
+    X(COST,      "cost",           CALL(k_cost))
+
+#define KEY_ID(id, nm, ...) K_##id,
+#define KEY_NAME(id, nm, ...) nm,
+#define KEY_ROW(id, nm, ...) { __VA_ARGS__, .name = nm },
+enum { SCN_KEYS(KEY_ID) K__COUNT };
+const char *const scn_desc_keys[K__COUNT + 1] = { SCN_KEYS(KEY_NAME) NULL };
+static const key_row keys[K__COUNT] = { SCN_KEYS(KEY_ROW) };
+/* NAME keys store an int; the enum fields among them must be one */
+_Static_assert(sizeof(scn_spec_model) == sizeof(int) && sizeof(scn_fresnel) == sizeof(int)
+               && sizeof(scn_policy) == sizeof(int), "enum fields are ints");
 
 static int unknown_key(const char *key, char *err, size_t errlen)
 {
@@ -456,6 +388,183 @@ static void set_dg(scn_desc *d)
               : d->mat.spec == SCN_SPEC_WARD ? d->ward_dg : 0;
 }
 
+/* mesh: the rest of the line; a relative path is relative to the file's folder. */
+static int k_mesh(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)k; (void)t; (void)n;
+    const char *rest = cx->rest;
+    if (!rest || !*rest) return fail(err, errlen, "mesh: takes a built-in name or an OBJ path");
+    int builtin = 0;
+    for (int i = 0; scn_desc_builtin_names[i]; i++)
+        if (!strcmp(rest, scn_desc_builtin_names[i])) builtin = 1;
+    size_t rl = strlen(rest);
+    if (builtin || rest[0] == '/' || !cx->dir) {
+        if (rl >= sizeof d->mesh) return fail(err, errlen, "mesh: path too long");
+        memcpy(d->mesh, rest, rl + 1);
+    } else {
+        if (cx->dirlen + 1 + rl >= sizeof d->mesh) return fail(err, errlen, "mesh: path too long");
+        memcpy(d->mesh, cx->dir, cx->dirlen);
+        d->mesh[cx->dirlen] = '/';
+        memcpy(d->mesh + cx->dirlen + 1, rest, rl + 1);
+    }
+    return 0;
+}
+
+static int k_res(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx;
+    if (count(k->name, n, 1, 1, "WxH", err, errlen)) return -1;
+    char b[48];
+    const char *s = t[0];
+    const char *xp = strchr(s, 'x');
+    if (!xp || xp == s || !xp[1] || xp - s > 20)
+        return fail(err, errlen, "resolution: \"%s\" is not WxH", shown(s, b));
+    char w[24];
+    memcpy(w, s, (size_t)(xp - s));
+    w[xp - s] = 0;
+    int wv, hv;
+    if (inum("resolution width", w, 1, 4096, &wv, err, errlen) ||
+        inum("resolution height", xp + 1, 1, 4096, &hv, err, errlen)) return -1;
+    d->width = wv;
+    d->height = hv;
+    return 0;
+}
+
+/* eye, target, up: X Y Z into the double[3] at off (up not zero). */
+static int k_vec(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx;
+    if (count(k->name, n, 3, 3, "X Y Z", err, errlen)) return -1;
+    double v[3];
+    if (vec3(k->name, t, v, err, errlen)) return -1;
+    if (k->off == F(view.cam.up) && v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
+        return fail(err, errlen, "up: a direction of length 0");
+    memcpy((char *)d + k->off, v, sizeof v);
+    return 0;
+}
+
+static int k_fov(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx;
+    double x;
+    if (count(k->name, n, 1, 1, "degrees", err, errlen)) return -1;
+    if (num(k->name, t[0], 0.0, 180.0, &x, err, errlen)) return -1;
+    if (x <= 0.0 || x >= 180.0)
+        return fail(err, errlen, "fov: %g is out of range (0 < fov < 180)", x);
+    d->view.cam.fov_deg = x;
+    return 0;
+}
+
+static int k_oheight(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx;
+    double x;
+    if (count(k->name, n, 1, 1, "H", err, errlen)) return -1;
+    if (num(k->name, t[0], 0.0, 1e6, &x, err, errlen)) return -1;
+    if (x <= 0.0) return fail(err, errlen, "ortho-height: must be > 0");
+    d->view.cam.ortho_height = x;
+    return 0;
+}
+
+/* light, heldout-light: none, auto (held-out), or one more light. */
+static int k_light(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    int view = k == &keys[K_LIGHT];
+    scn_view *v = view ? &d->view : &d->heldout;
+    if (n == 1 && !strcmp(t[0], "none")) {
+        v->nlights = 0;
+        if (view) cx->light_seen = 1;
+        else d->heldout_given |= SCN_HELD_LIGHT;
+        return 0;
+    }
+    if (!view && n == 1 && !strcmp(t[0], "auto")) {
+        d->heldout_given &= ~SCN_HELD_LIGHT;
+        return 0;
+    }
+    scn_light l;
+    if (light_of(k->name, t, n, &l, err, errlen)) return -1;
+    if (view) {
+        if (cx->from_file && !cx->light_seen) v->nlights = 0;
+        cx->light_seen = 1;
+    } else if (!(d->heldout_given & SCN_HELD_LIGHT)) {
+        v->nlights = 0;
+        d->heldout_given |= SCN_HELD_LIGHT;
+    }
+    if (v->nlights >= SCN_MAX_LIGHTS)
+        return fail(err, errlen, "%s: too many lights (at most %d)", k->name, SCN_MAX_LIGHTS);
+    v->light[v->nlights++] = l;
+    return 0;
+}
+
+/* heldout-eye, heldout-target: auto, or X Y Z into the double[3] at off. */
+static int k_held(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx;
+    unsigned bit = k == &keys[K_HEYE] ? SCN_HELD_EYE : SCN_HELD_TARGET;
+    if (n == 1 && !strcmp(t[0], "auto")) { d->heldout_given &= ~bit; return 0; }
+    if (count(k->name, n, 3, 3, "auto or X Y Z", err, errlen)) return -1;
+    if (vec3(k->name, t, (double *)((char *)d + k->off), err, errlen)) return -1;
+    d->heldout_given |= bit;
+    return 0;
+}
+
+static int k_regdeg(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx;
+    if (count(k->name, n, 2, 2, "REGION DEGREE", err, errlen)) return -1;
+    int r, g;
+    if (inum("region-degree region", t[0], 0, SCN_MAX_REGIONS - 1, &r, err, errlen) ||
+        inum("region-degree degree", t[1], 2, 3, &g, err, errlen)) return -1;
+    d->region_deg[r] = (uint8_t)g;
+    return 0;
+}
+
+/* fmt: none clears; each NAME=sI.F appends. */
+static int k_fmt(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx; (void)k;
+    if (n == 1 && !strcmp(t[0], "none")) { d->nfmt = 0; return 0; }
+    if (n < 1) return fail(err, errlen, "fmt: takes none or NAME=sI.F values, got none");
+    for (int i = 0; i < n; i++) {
+        if (fmt_ok(t[i], err, errlen)) return -1;
+        if (d->nfmt >= SCN_MAX_FMT)
+            return fail(err, errlen, "fmt: too many formats (at most %d)", SCN_MAX_FMT);
+        strcpy(d->fmt[d->nfmt++], t[i]);
+    }
+    return 0;
+}
+
+/* schedule: a name the unit judges (its schedules: tb_scene_unit). */
+static int k_schedule(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx;
+    char b[48];
+    if (count(k->name, n, 1, 1, "paper|mac|pipe", err, errlen)) return -1;
+    if (strlen(t[0]) >= sizeof d->schedule) return fail(err, errlen, "schedule: \"%s\" is too long", shown(t[0], b));
+    strcpy(d->schedule, t[0]);
+    return 0;
+}
+
+/* cost: OP=W values, each sets one weight. */
+static int k_cost(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx; (void)k;
+    if (n < 1) return fail(err, errlen, "cost: takes OP=W values (OP add mul div sqrt pow), got none");
+    for (int i = 0; i < n; i++) {
+        char b[48], name[8];
+        const char *eq = strchr(t[i], '=');
+        size_t nl = eq ? (size_t)(eq - t[i]) : 0;
+        if (!eq || nl == 0 || nl >= sizeof name)
+            return fail(err, errlen, "cost: \"%s\" is not OP=W", shown(t[i], b));
+        memcpy(name, t[i], nl);
+        name[nl] = 0;
+        int op = pick("cost", name, scn_op_name, SCN_OP__COUNT, err, errlen);
+        if (op < 0) return -1;
+        if (num("cost", eq + 1, 0.0, 1e6, &d->cost[op], err, errlen)) return -1;
+    }
+    return 0;
+}
+
 /* Apply one key with its value tokens t[0..n-1] (rest: the value text as
  * written, for mesh). d is a scratch copy: it may be left half-changed on
  * error, the callers discard it then. */
@@ -467,232 +576,24 @@ static int apply(scn_desc *d, ctx *cx, const char *key, char **t, int n, const c
         if (!strcmp(key, scn_desc_keys[k])) break;
     if (k == K__COUNT) return unknown_key(key, err, errlen);
     d->key_line[k] = cx->line;
-    scn_camera *cam = &d->view.cam;
+    const key_row *r = &keys[k];
+    char *field = (char *)d + r->off;
     int i;
-    double x;
-    switch (k) {
-    case K_MESH: {
-        if (!rest || !*rest) return fail(err, errlen, "mesh: takes a built-in name or an OBJ path");
-        int builtin = 0;
-        for (i = 0; scn_desc_builtin_names[i]; i++)
-            if (!strcmp(rest, scn_desc_builtin_names[i])) builtin = 1;
-        size_t rl = strlen(rest);
-        if (builtin || rest[0] == '/' || !cx->dir) {
-            if (rl >= sizeof d->mesh) return fail(err, errlen, "mesh: path too long");
-            memcpy(d->mesh, rest, rl + 1);
-        } else {
-            if (cx->dirlen + 1 + rl >= sizeof d->mesh) return fail(err, errlen, "mesh: path too long");
-            memcpy(d->mesh, cx->dir, cx->dirlen);
-            d->mesh[cx->dirlen] = '/';
-            memcpy(d->mesh + cx->dirlen + 1, rest, rl + 1);
-        }
-        return 0;
-    }
-    case K_DETAIL:
-        if (count(key, n, 1, 1, "N", err, errlen)) return -1;
-        return inum(key, t[0], 1, 8, &d->detail, err, errlen);
-    case K_RES: {
-        if (count(key, n, 1, 1, "WxH", err, errlen)) return -1;
-        char b[48];
-        const char *s = t[0];
-        const char *xp = strchr(s, 'x');
-        if (!xp || xp == s || !xp[1] || xp - s > 20)
-            return fail(err, errlen, "resolution: \"%s\" is not WxH", shown(s, b));
-        char w[24];
-        memcpy(w, s, (size_t)(xp - s));
-        w[xp - s] = 0;
-        int wv, hv;
-        if (inum("resolution width", w, 1, 4096, &wv, err, errlen) ||
-            inum("resolution height", xp + 1, 1, 4096, &hv, err, errlen)) return -1;
-        d->width = wv;
-        d->height = hv;
-        return 0;
-    }
-    case K_CAMERA:
-        if (count(key, n, 1, 1, "ortho|perspective", err, errlen)) return -1;
-        if ((i = pick(key, t[0], camera_names, -1, err, errlen)) < 0) return -1;
-        cam->perspective = i;
-        return 0;
-    case K_EYE:
-    case K_TARGET:
-    case K_UP: {
-        if (count(key, n, 3, 3, "X Y Z", err, errlen)) return -1;
-        double v[3];
-        if (vec3(key, t, v, err, errlen)) return -1;
-        if (k == K_UP && v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0)
-            return fail(err, errlen, "up: a direction of length 0");
-        memcpy(k == K_EYE ? cam->eye : k == K_TARGET ? cam->target : cam->up, v, sizeof v);
-        return 0;
-    }
-    case K_FOV:
-        if (count(key, n, 1, 1, "degrees", err, errlen)) return -1;
-        if (num(key, t[0], 0.0, 180.0, &x, err, errlen)) return -1;
-        if (x <= 0.0 || x >= 180.0)
-            return fail(err, errlen, "fov: %g is out of range (0 < fov < 180)", x);
-        cam->fov_deg = x;
-        return 0;
-    case K_OHEIGHT:
-        if (count(key, n, 1, 1, "H", err, errlen)) return -1;
-        if (num(key, t[0], 0.0, 1e6, &x, err, errlen)) return -1;
-        if (x <= 0.0) return fail(err, errlen, "ortho-height: must be > 0");
-        cam->ortho_height = x;
-        return 0;
-    case K_LIGHT:
-    case K_HLIGHT: {
-        scn_view *v = k == K_LIGHT ? &d->view : &d->heldout;
-        if (n == 1 && !strcmp(t[0], "none")) {
-            v->nlights = 0;
-            if (k == K_LIGHT) cx->light_seen = 1;
-            else d->heldout_given |= SCN_HELD_LIGHT;
-            return 0;
-        }
-        if (k == K_HLIGHT && n == 1 && !strcmp(t[0], "auto")) {
-            d->heldout_given &= ~SCN_HELD_LIGHT;
-            return 0;
-        }
-        scn_light l;
-        if (light_of(key, t, n, &l, err, errlen)) return -1;
-        if (k == K_LIGHT) {
-            if (cx->from_file && !cx->light_seen) v->nlights = 0;
-            cx->light_seen = 1;
-        } else if (!(d->heldout_given & SCN_HELD_LIGHT)) {
-            v->nlights = 0;
-            d->heldout_given |= SCN_HELD_LIGHT;
-        }
-        if (v->nlights >= SCN_MAX_LIGHTS)
-            return fail(err, errlen, "%s: too many lights (at most %d)", key, SCN_MAX_LIGHTS);
-        v->light[v->nlights++] = l;
-        return 0;
-    }
-    case K_HEYE:
-    case K_HTARGET: {
-        unsigned bit = k == K_HEYE ? SCN_HELD_EYE : SCN_HELD_TARGET;
-        if (n == 1 && !strcmp(t[0], "auto")) { d->heldout_given &= ~bit; return 0; }
-        if (count(key, n, 3, 3, "auto or X Y Z", err, errlen)) return -1;
-        if (vec3(key, t, k == K_HEYE ? d->heldout.cam.eye : d->heldout.cam.target,
-                 err, errlen)) return -1;
-        d->heldout_given |= bit;
-        return 0;
-    }
-    case K_AMBIENT:
-    case K_KD:
-    case K_KS:
-        if (count(key, n, 1, 1, "a number in [0, 1]", err, errlen)) return -1;
-        return num(key, t[0], 0.0, 1.0,
-                   k == K_AMBIENT ? &d->mat.ambient : k == K_KD ? &d->mat.kd : &d->mat.ks,
-                   err, errlen);
-    case K_SHININESS:
-        if (count(key, n, 1, 1, "N", err, errlen)) return -1;
-        return num(key, t[0], 0.0, 10000.0, &d->mat.shininess, err, errlen);
-    case K_SPECULAR:
-        if (count(key, n, 1, 1, "phong|blinn|cook|ward", err, errlen)) return -1;
-        if ((i = pick(key, t[0], spec_names, SCN_SPEC__COUNT, err, errlen)) < 0) return -1;
-        d->mat.spec = (scn_spec_model)i;
-        set_dg(d);
-        return 0;
-    case K_DIST: {
-        static const char *const nm[] = { "beckmann", "d4", "d8", "d16", NULL };
-        static const int g[] = { 0, 4, 8, 16 };
-        if (count(key, n, 1, 1, "beckmann|d4|d8|d16", err, errlen)) return -1;
-        if ((i = pick(key, t[0], nm, -1, err, errlen)) < 0) return -1;
-        d->cook_dg = g[i];
-        set_dg(d);
-        return 0;
-    }
-    case K_WARDFORM:
-        if (count(key, n, 1, 1, "exact|poly16", err, errlen)) return -1;
-        if ((i = pick(key, t[0], (const char *const[]){ "exact", "poly16", NULL }, -1,
-                      err, errlen)) < 0) return -1;
-        d->ward_dg = i ? 16 : 0;
-        set_dg(d);
-        return 0;
-    case K_ROUGH:
-    case K_WALPHA:
-        if (count(key, n, 1, 1, "a number in [0.01, 1]", err, errlen)) return -1;
-        return num(key, t[0], 0.01, 1.0, k == K_ROUGH ? &d->mat.m : &d->mat.alpha, err, errlen);
-    case K_FRESNEL:
-        if (count(key, n, 1, 1, "none|schlick|mschlick", err, errlen)) return -1;
-        if ((i = pick(key, t[0], fresnel_names, -1, err, errlen)) < 0) return -1;
-        d->mat.fresnel = (scn_fresnel)i;
-        return 0;
-    case K_FRESN:
-        if (count(key, n, 1, 1, "N", err, errlen)) return -1;
-        return num(key, t[0], 1.0, 10000.0, &d->mat.fresnel_n, err, errlen);
-    case K_POLICY:
-        if (count(key, n, 1, 1, "a policy name", err, errlen)) return -1;
-        if ((i = pick(key, t[0], policy_names, SCN_POL__COUNT, err, errlen)) < 0) return -1;
-        d->policy = (scn_policy)i;
-        return 0;
-    case K_REGDEG: {
-        if (count(key, n, 2, 2, "REGION DEGREE", err, errlen)) return -1;
-        int r, g;
-        if (inum("region-degree region", t[0], 0, SCN_MAX_REGIONS - 1, &r, err, errlen) ||
-            inum("region-degree degree", t[1], 2, 3, &g, err, errlen)) return -1;
-        d->region_deg[r] = (uint8_t)g;
-        return 0;
-    }
-    case K_ATHRESH:
-        if (count(key, n, 1, 1, "X", err, errlen)) return -1;
-        return num(key, t[0], 0.0, 1e6, &d->auto_threshold, err, errlen);
-    case K_ANODES:
-        if (count(key, n, 1, 1, "n1|n2", err, errlen)) return -1;
-        if ((i = pick(key, t[0], (const char *const[]){ "n1", "n2", NULL }, -1,
-                      err, errlen)) < 0) return -1;
-        d->auto_cubic_nodes = i + 1;
-        return 0;
-    case K_L:
-        if (count(key, n, 1, 1, "N", err, errlen)) return -1;
-        return inum(key, t[0], 2, 64, &d->L, err, errlen);
-    case K_TERMS:
-        if (count(key, n, 1, 1, "N", err, errlen)) return -1;
-        return inum(key, t[0], 1, 20, &d->terms, err, errlen);
-    case K_SERIES:
-        if (count(key, n, 1, 1, "paper|quarter", err, errlen)) return -1;
-        if ((i = pick(key, t[0], series_names, -1, err, errlen)) < 0) return -1;
-        d->series = i;
-        return 0;
-    case K_WIDTH:
-        if (count(key, n, 1, 1, "W", err, errlen)) return -1;
-        return inum(key, t[0], 4, 64, &d->fmt_width, err, errlen);
-    case K_FMT:
-        if (n == 1 && !strcmp(t[0], "none")) { d->nfmt = 0; return 0; }
-        if (n < 1) return fail(err, errlen, "fmt: takes none or NAME=sI.F values, got none");
-        for (i = 0; i < n; i++) {
-            if (fmt_ok(t[i], err, errlen)) return -1;
-            if (d->nfmt >= SCN_MAX_FMT)
-                return fail(err, errlen, "fmt: too many formats (at most %d)", SCN_MAX_FMT);
-            strcpy(d->fmt[d->nfmt++], t[i]);
-        }
-        return 0;
-    case K_ROUND:
-        if (count(key, n, 1, 1, "trunc|half-up|even", err, errlen)) return -1;
-        if ((i = pick(key, t[0], round_names, -1, err, errlen)) < 0) return -1;
-        d->rnd = i;
-        return 0;
-    case K_OVERFLOW:
-        if (count(key, n, 1, 1, "wrap|sat", err, errlen)) return -1;
-        if ((i = pick(key, t[0], ovf_names, -1, err, errlen)) < 0) return -1;
-        d->ovf = i;
-        return 0;
-    case K_SCHEDULE:
-        if (count(key, n, 1, 1, "paper|mac|pipe", err, errlen)) return -1;
-        if ((i = pick(key, t[0], schedule_names, -1, err, errlen)) < 0) return -1;
-        strcpy(d->schedule, schedule_names[i]);
-        return 0;
-    case K_COST:
-        if (n < 1) return fail(err, errlen, "cost: takes OP=W values (OP add mul div sqrt pow), got none");
-        for (i = 0; i < n; i++) {
-            char b[48], name[8];
-            const char *eq = strchr(t[i], '=');
-            size_t nl = eq ? (size_t)(eq - t[i]) : 0;
-            if (!eq || nl == 0 || nl >= sizeof name)
-                return fail(err, errlen, "cost: \"%s\" is not OP=W", shown(t[i], b));
-            memcpy(name, t[i], nl);
-            name[nl] = 0;
-            int op = pick("cost", name, scn_op_name, SCN_OP__COUNT, err, errlen);
-            if (op < 0) return -1;
-            if (num("cost", eq + 1, 0.0, 1e6, &d->cost[op], err, errlen)) return -1;
-        }
+    switch (r->type) {
+    case KT_CALL:
+        cx->rest = rest;
+        return r->call(d, cx, r, t, n, err, errlen);
+    case KT_INT:
+        if (count(key, n, 1, 1, r->what, err, errlen)) return -1;
+        return inum(key, t[0], (long)r->lo, (long)r->hi, (int *)field, err, errlen);
+    case KT_REAL:
+        if (count(key, n, 1, 1, r->what, err, errlen)) return -1;
+        return num(key, t[0], r->lo, r->hi, (double *)field, err, errlen);
+    case KT_NAME:
+        if (count(key, n, 1, 1, r->what, err, errlen)) return -1;
+        if ((i = pick(key, t[0], r->names, -1, err, errlen)) < 0) return -1;
+        *(int *)field = r->vals ? r->vals[i] : i;
+        if (r->dg) set_dg(d);
         return 0;
     }
     return unknown_key(key, err, errlen);
@@ -751,7 +652,7 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
     char v[LINE_MAX_BYTES + 1], msg[512];
     memcpy(v, value, vl + 1);
     scn_desc t = *d;
-    ctx cx = { 0, 0, NULL, 0, SCN_LINE_SET };
+    ctx cx = { 0, 0, NULL, 0, SCN_LINE_SET, NULL };
     if (apply_text(&t, &cx, key, v, msg, sizeof msg)) {
         /* Messages of value errors start with the key already. */
         size_t kl = strlen(key);
@@ -772,35 +673,6 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
 }
 
 _Static_assert(K__COUNT <= SCN_DESC_NKEYS, "scn_desc.key_line is too small");
-
-const char *scn_desc_where(const scn_desc *d, const char *const *keys, char *buf, size_t len)
-{
-    int best = 0, bk = -1;
-    for (; *keys; keys++)
-        for (int k = 0; k < K__COUNT; k++)
-            if (!strcmp(*keys, scn_desc_keys[k]) && d->key_line[k] > best) { best = d->key_line[k]; bk = k; }
-    if (bk < 0) snprintf(buf, len, "%s", "");
-    else if (best == SCN_LINE_SET) snprintf(buf, len, "--set %s: ", scn_desc_keys[bk]);
-    else snprintf(buf, len, "%s:%d: ", d->src, best);
-    return buf;
-}
-
-int scn_desc_check_camera(const scn_desc *d, char *err, size_t errlen)
-{
-    static const char *const view[] = { "camera", "eye", "target", "up", "fov", "ortho-height", NULL };
-    static const char *const held[] = { "camera", "eye", "target", "up", "fov", "ortho-height",
-                                        "heldout-eye", "heldout-target", NULL };
-    char msg[300], where[300];
-    if (scn_camera_check(&d->view.cam, msg, sizeof msg)) {
-        snprintf(err, errlen, "%s%s", scn_desc_where(d, view, where, sizeof where), msg);
-        return -1;
-    }
-    if (scn_camera_check(&d->heldout.cam, msg, sizeof msg)) {
-        snprintf(err, errlen, "%sheld-out view: %s", scn_desc_where(d, held, where, sizeof where), msg);
-        return -1;
-    }
-    return 0;
-}
 
 /* Cut a comment: '#' at the start or after a blank. */
 static void cut_comment(char *s)
@@ -825,7 +697,7 @@ int scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen)
     }
     scn_desc_default(t);
     const char *slash = strrchr(path, '/');
-    ctx cx = { 1, 0, slash ? path : NULL, slash ? (size_t)(slash - path) : 0, 0 };
+    ctx cx = { 1, 0, slash ? path : NULL, slash ? (size_t)(slash - path) : 0, 0, NULL };
     snprintf(t->src, sizeof t->src, "%s", path);
     char msg[512];
     long ln = 0;
@@ -902,98 +774,4 @@ int scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen)
     free(line);
     free(t);
     return rc;
-}
-
-/* ------------------------------------------------------------ writing */
-
-/* The shortest of %.15g, %.16g, %.17g that reads back as the same double:
- * 0.05 rather than 0.050000000000000003, and still an exact round trip. */
-typedef struct { char s[32]; } num_text;
-
-static num_text txt(double x)
-{
-    num_text t;
-    for (int p = 15; p <= 17; p++) {
-        snprintf(t.s, sizeof t.s, "%.*g", p, x);
-        if (strtod(t.s, NULL) == x) break;
-    }
-    return t;
-}
-
-static void put_light(FILE *f, const char *key, const scn_light *l)
-{
-    fprintf(f, "%s %s %s %s %s %s\n", key, l->point ? "point" : "directional",
-            txt(l->v[0]).s, txt(l->v[1]).s, txt(l->v[2]).s, txt(l->intensity).s);
-}
-
-int scn_desc_write(FILE *f, const scn_desc *d)
-{
-    static const char *const dist[] = { "beckmann", "d4", "d8", "d16" };
-    const scn_camera *c = &d->view.cam;
-    int cook = d->mat.spec == SCN_SPEC_COOK ? d->mat.dg : d->cook_dg;
-    int ward = d->mat.spec == SCN_SPEC_WARD ? d->mat.dg : d->ward_dg;
-    int di = cook == 4 ? 1 : cook == 8 ? 2 : cook == 16 ? 3 : 0;
-    fprintf(f, "shadesim-scene 1\n");
-    fprintf(f, "mesh %s\n", d->mesh);
-    fprintf(f, "detail %d\n", d->detail);
-    fprintf(f, "resolution %dx%d\n", d->width, d->height);
-    fprintf(f, "camera %s\n", c->perspective ? "perspective" : "ortho");
-    fprintf(f, "eye %s %s %s\n", txt(c->eye[0]).s, txt(c->eye[1]).s, txt(c->eye[2]).s);
-    fprintf(f, "target %s %s %s\n", txt(c->target[0]).s, txt(c->target[1]).s, txt(c->target[2]).s);
-    fprintf(f, "up %s %s %s\n", txt(c->up[0]).s, txt(c->up[1]).s, txt(c->up[2]).s);
-    fprintf(f, "fov %s\n", txt(c->fov_deg).s);
-    fprintf(f, "ortho-height %s\n", txt(c->ortho_height).s);
-    if (!d->view.nlights) fprintf(f, "light none\n");
-    for (int i = 0; i < d->view.nlights && i < SCN_MAX_LIGHTS; i++)
-        put_light(f, "light", &d->view.light[i]);
-    const scn_camera *h = &d->heldout.cam;
-    if (d->heldout_given & SCN_HELD_EYE)
-        fprintf(f, "heldout-eye %s %s %s\n", txt(h->eye[0]).s, txt(h->eye[1]).s, txt(h->eye[2]).s);
-    else
-        fprintf(f, "heldout-eye auto  # %s %s %s\n", txt(h->eye[0]).s, txt(h->eye[1]).s, txt(h->eye[2]).s);
-    if (d->heldout_given & SCN_HELD_TARGET)
-        fprintf(f, "heldout-target %s %s %s\n", txt(h->target[0]).s, txt(h->target[1]).s, txt(h->target[2]).s);
-    else
-        fprintf(f, "heldout-target auto  # %s %s %s\n", txt(h->target[0]).s, txt(h->target[1]).s, txt(h->target[2]).s);
-    if (d->heldout_given & SCN_HELD_LIGHT) {
-        if (!d->heldout.nlights) fprintf(f, "heldout-light none\n");
-        for (int i = 0; i < d->heldout.nlights && i < SCN_MAX_LIGHTS; i++)
-            put_light(f, "heldout-light", &d->heldout.light[i]);
-    } else {
-        fprintf(f, "heldout-light auto\n");
-        for (int i = 0; i < d->heldout.nlights && i < SCN_MAX_LIGHTS; i++) {
-            fprintf(f, "# ");
-            put_light(f, "heldout-light", &d->heldout.light[i]);
-        }
-    }
-    const scn_material *m = &d->mat;
-    fprintf(f, "ambient %s\n", txt(m->ambient).s);
-    fprintf(f, "kd %s\n", txt(m->kd).s);
-    fprintf(f, "ks %s\n", txt(m->ks).s);
-    fprintf(f, "shininess %s\n", txt(m->shininess).s);
-    fprintf(f, "specular %s\n", (unsigned)m->spec < SCN_SPEC__COUNT ? spec_names[m->spec] : "blinn");
-    fprintf(f, "distribution %s\n", dist[di]);
-    fprintf(f, "ward-form %s\n", ward ? "poly16" : "exact");
-    fprintf(f, "roughness %s\n", txt(m->m).s);
-    fprintf(f, "ward-alpha %s\n", txt(m->alpha).s);
-    fprintf(f, "fresnel %s\n", (unsigned)m->fresnel < 3 ? fresnel_names[m->fresnel] : "none");
-    fprintf(f, "fresnel-n %s\n", txt(m->fresnel_n).s);
-    fprintf(f, "policy %s\n", scn_policy_name(d->policy));
-    for (int r = 0; r < SCN_MAX_REGIONS; r++)
-        fprintf(f, "region-degree %d %d\n", r, d->region_deg[r]);
-    fprintf(f, "auto-threshold %s\n", txt(d->auto_threshold).s);
-    fprintf(f, "auto-nodes n%d\n", d->auto_cubic_nodes == 2 ? 2 : 1);
-    fprintf(f, "L %d\n", d->L);
-    fprintf(f, "terms %d\n", d->terms);
-    fprintf(f, "series %s\n", d->series ? "quarter" : "paper");
-    fprintf(f, "width %d\n", d->fmt_width);
-    if (!d->nfmt) fprintf(f, "fmt none\n");
-    for (int i = 0; i < d->nfmt && i < SCN_MAX_FMT; i++) fprintf(f, "fmt %s\n", d->fmt[i]);
-    fprintf(f, "round %s\n", (unsigned)d->rnd < 3 ? round_names[d->rnd] : "trunc");
-    fprintf(f, "overflow %s\n", (unsigned)d->ovf < 2 ? ovf_names[d->ovf] : "wrap");
-    fprintf(f, "schedule %s\n", d->schedule);
-    fprintf(f, "cost");
-    for (int i = 0; i < SCN_OP__COUNT; i++) fprintf(f, " %s=%s", scn_op_name[i], txt(d->cost[i]).s);
-    fprintf(f, "\n");
-    return ferror(f) ? -1 : 0;
 }

@@ -195,6 +195,13 @@ expect set_unknown_key 2 "$S" scene face --set frobnicate=1
 expect set_no_eq 2 "$S" scene face --set L
 expect set_bad_value 2 "$S" scene face --set L=eight
 expect set_bad_fmt 2 "$S" scene face --set fmt=nosig=s2.14
+# L and terms are the unit's parameters: their ranges are its (2..64,
+# 1..20), named at the line that set them
+expect set_bad_L 2 "$S" scene face --set L=65
+grep -q '^shadesim: --set L: .*2\.\.64' "$T/err" && ok set_bad_L_range || fail set_bad_L_range "$(cat "$T/err")"
+printf 'shadesim-scene 1\nL 4\nterms 21\npolicy linear\n' >"$T/terms.scene"
+expect file_bad_terms 2 "$S" scene "$T/terms.scene" -o "$T/terms"
+grep -q "terms.scene:3: .*terms.*1\.\.20" "$T/err" && ok file_bad_terms_line || fail file_bad_terms_line "$(cat "$T/err")"
 expect bad_option 2 "$S" scene face --bogus
 expect bad_jobs 2 "$S" scene face -j 0
 expect max_nmse_bad 2 "$S" scene face --max-nmse abc

@@ -482,6 +482,66 @@ static void test_jobs_same_bytes(void)
     for (int k = 0; k < 2; k++) { tst_rmtree(dir[k]); rmdir(dir[k]); }
 }
 
+/* The hardware keys are the unit's parameters: the scene file reads a
+ * number or a name, and tb_scene_unit sets them through the unit's
+ * setters. The ranges here are docs/scenes.md's (L any 2..64, terms
+ * 1..20, schedules paper, mac, pipe), written by hand; terms of a policy
+ * whose unit has no /3 network (linear: span1) is judged all the same. */
+static void test_hw_keys_are_the_units(void)
+{
+    static const struct { const char *key, *value; int ok; const char *what; } C[] = {
+        { "L", "2", 1, NULL },       { "L", "64", 1, NULL },      { "L", "1", 0, "2..64" },
+        { "L", "65", 0, "2..64" },   { "L", "-3", 0, "2..64" },   { "terms", "1", 1, NULL },
+        { "terms", "20", 1, NULL },  { "terms", "0", 0, "1..20" }, { "terms", "21", 0, "1..20" },
+        { "schedule", "pipe", 1, NULL }, { "schedule", "fast", 0, "paper, mac, pipe" },
+    };
+    static const char *const pols[] = { "linear", "quadratic", "cubic-n1", "cubic-n2", "adaptive-region", "adaptive-auto" };
+    for (size_t p = 0; p < sizeof pols / sizeof pols[0]; p++)
+        for (size_t i = 0; i < sizeof C / sizeof C[0]; i++) {
+            scn_desc d;
+            char err[300] = "";
+            scn_desc_default(&d);
+            TST_EQ_INT(scn_desc_set(&d, "policy", pols[p], err, sizeof err), 0);
+            TST_CHECK(scn_desc_set(&d, C[i].key, C[i].value, err, sizeof err) == 0,
+                      "the scene file takes %s %s: %s", C[i].key, C[i].value, err);
+            const unit_desc *u;
+            unit_cfg cfg;
+            unit_fmts f;
+            int rc = tb_scene_unit(&d, &u, &cfg, &f, err, sizeof err);
+            TST_CHECK(rc == (C[i].ok ? 0 : -1), "%s, %s %s: rc %d (%s)", pols[p], C[i].key, C[i].value, rc, err);
+            if (!C[i].ok) {
+                TST_CHECK(strstr(err, C[i].key) && strstr(err, C[i].what), "%s, %s %s: \"%s\" should name %s and %s",
+                          pols[p], C[i].key, C[i].value, err, C[i].key, C[i].what);
+            } else if (!strcmp(C[i].key, "L")) {
+                TST_EQ_INT(cfg.L, atoi(C[i].value));
+            }
+        }
+    /* The scene's defaults are the unit's: L 8, terms 3, the paper's
+     * series, width 16, trunc, wrap, its first schedule (unit_cfg_default
+     * of each policy's unit, from its descriptor's rows). */
+    for (size_t p = 0; p < sizeof pols / sizeof pols[0]; p++) {
+        scn_desc d;
+        char err[300];
+        scn_desc_default(&d);
+        TST_EQ_INT(scn_desc_set(&d, "policy", pols[p], err, sizeof err), 0);
+        const unit_desc *u;
+        unit_cfg cfg, def;
+        unit_fmts f;
+        TST_EQ_INT(tb_scene_unit(&d, &u, &cfg, &f, err, sizeof err), 0);
+        unit_cfg_default(unit_find("span23"), &def);
+        TST_EQ_INT(cfg.L, def.L);
+        TST_EQ_INT(cfg.terms, def.terms);
+        TST_EQ_INT(cfg.series, def.series);
+        unit_cfg_default(u, &def);
+        TST_EQ_INT(cfg.width, def.width);
+        TST_EQ_INT(cfg.rnd, def.rnd);
+        TST_EQ_INT(cfg.ovf, def.ovf);
+        TST_EQ_INT(cfg.schedule, 0);
+        TST_EQ_INT(cfg.L, 8);
+        TST_EQ_INT(cfg.terms, 3);
+    }
+}
+
 int main(void)
 {
     TST_RUN(test_wide_equals_float);
@@ -489,6 +549,7 @@ int main(void)
     TST_RUN(test_metrics);
     TST_RUN(test_op_counts);
     TST_RUN(test_jobs_same_bytes);
+    TST_RUN(test_hw_keys_are_the_units);
     if (face_ok) scn_mesh_free(&face);
     TST_EXIT();
 }

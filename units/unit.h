@@ -84,6 +84,16 @@ typedef enum { UNIT_SIG_IN, UNIT_SIG_OUT, UNIT_SIG_INTERNAL } unit_role;
 #define UNIT_SIGS(...) \
     .nsigs = (int)(sizeof((unit_sig[]){ __VA_ARGS__ }) / sizeof(unit_sig)), .sigs = { __VA_ARGS__ }
 
+/* A unit whose code indexes its signals writes them as one list, a line
+ *     X(ID, "name", ROLE, "what")     ROLE: IN, OUT or INTERNAL
+ * each, and expands it twice: into the index enum (UNIT_SIG_ID: ID is the
+ * row's position) and into the descriptor's rows,
+ *     enum { MY_SIGS(UNIT_SIG_ID) MY_NSIGS };  ...  UNIT_SIGS(MY_SIGS(UNIT_SIG_ROW)),
+ * so that an index and its row cannot drift apart (unit_coef.h's networks
+ * are the same idea: one list, two expansions). */
+#define UNIT_SIG_ID(id, nm, role_, wh) id,
+#define UNIT_SIG_ROW(id, nm, role_, wh) { .name = nm, .role = UNIT_SIG_##role_, .what = wh },
+
 typedef struct unit_sig {
     const char *name;       /* lower case; also the --fmt NAME and VCD name */
     unit_role   role;

@@ -191,10 +191,6 @@ COEF_UNIT_FNS(n1, unit_coef3_n1, coef_net_n1)
 COEF_UNIT_FNS(n2, unit_coef3_n2, coef_net_n2)
 COEF_UNIT_FNS(q, unit_coef2, coef_net_q)
 
-#define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, DIV3_PAPER_TERMS, NULL, \
-                  "terms of each /3 network (see div3); 3 is the paper's" }
-#define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, DIV3_PAPER, "paper quarter", \
-                   "series of each /3 network (see div3)" }
 #define COEF_RULE "i* u1.(W-1) (intensities in [0, 1]); a b c d sI.(W-I) (d: uI) with I the fewest integer bits " \
     "holding the coefficient's exact range over [0, 1]^4 plus its error bound; every shift and adder keeps " \
     "all the fraction bits it produces (left shifts need fewer, so 8x, 32x are exact) with I from its range, " \
@@ -211,7 +207,7 @@ const unit_desc unit_coef3_n1 = {
               COEF3_N1_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
               COEF3_N1_NET(COEF_SIG_INT, COEF_SIG_SKIP)),
     .nsched = 1, .sched = COMB_SCHED,
-    .nparams = 2, .params = { P_TERMS, P_SERIES },
+    .nparams = 2, .params = { DIV3_P_TERMS, DIV3_P_SERIES },
     .fmt_rule = COEF_RULE,
     .formats = formats_n1, .beats = beats1, .build = build_n1, .ideal = ideal_n1, .bound = bound_n1, .ideal_exact = exact_n1,
     .bound_own_modes = 1,   /* the unet walk's */
@@ -226,7 +222,7 @@ const unit_desc unit_coef3_n2 = {
               COEF3_N2_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
               COEF3_N2_NET(COEF_SIG_INT, COEF_SIG_SKIP)),
     .nsched = 1, .sched = COMB_SCHED,
-    .nparams = 2, .params = { P_TERMS, P_SERIES },
+    .nparams = 2, .params = { DIV3_P_TERMS, DIV3_P_SERIES },
     .fmt_rule = COEF_RULE,
     .formats = formats_n2, .beats = beats1, .build = build_n2, .ideal = ideal_n2, .bound = bound_n2, .ideal_exact = exact_n2,
     .bound_own_modes = 1,   /* the unet walk's */

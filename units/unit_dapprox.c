@@ -27,8 +27,23 @@
 #include <math.h>
 #include <stddef.h>
 
-/* Signal indices, shared by both descriptors (d_approx adds c0 at the end). */
-enum { S_C, S_OUT, S_OM, S_K, S_P, S_BASE, S_CLAMP, S_MX, S_MUL, S_RG, S_C0, S_NSIGS };
+/* The signals of both units, one list (unit.h, UNIT_SIG_ID): they differ
+ * in the output's name and d_approx's c0 at the end. */
+#define DA_SIGS(X, out_name, out_what) \
+    X(S_C,     "c", IN, "cos g = N.H, in [0, 1]") \
+    X(S_OUT,   out_name, OUT, out_what) \
+    X(S_OM,    "om", INTERNAL, "subtractor OM = 1 - c") \
+    X(S_K,     "k", INTERNAL, "constant k (slope of the base)") \
+    X(S_P,     "p", INTERNAL, "constant multiplier P = k * OM (shift-and-add)") \
+    X(S_BASE,  "base", INTERNAL, "subtractor BASE = 1 - P") \
+    X(S_CLAMP, "clamp", INTERNAL, "block key: BASE, or 0 when BASE < 0") \
+    X(S_MX,    "mx", INTERNAL, "operand mux: CLAMP in the first clock, then RG (drives both inputs)") \
+    X(S_MUL,   "mul", INTERNAL, "multiplier MUL = MX * MX (a squarer)") \
+    X(S_RG,    "rg", INTERNAL, "register RG <= MUL every clock")
+#define D_SIGS(X) DA_SIGS(X, "d", "D_g, in [0, 1/(4m^2)]") \
+    X(S_C0,    "c0", INTERNAL, "constant c0 = 1/(4m^2); d = c0 * RG by a constant multiplier")
+#define W_SIGS(X) DA_SIGS(X, "e", "the 16th power, in [0, 1]")
+enum { D_SIGS(UNIT_SIG_ID) S_NSIGS };
 
 /* What distinguishes the two units. */
 typedef struct da_kind {
@@ -258,26 +273,12 @@ static void w_bound(const unit_cfg *cfg, const unit_fmts *f, double *o) { da_bou
 
 /* ------------------------------------------------------------- descriptors */
 
-#define DA_INTERNALS \
-    { .name = "om", .role = UNIT_SIG_INTERNAL, .what = "subtractor OM = 1 - c" }, \
-    { .name = "k", .role = UNIT_SIG_INTERNAL, .what = "constant k (slope of the base)" }, \
-    { .name = "p", .role = UNIT_SIG_INTERNAL, .what = "constant multiplier P = k * OM (shift-and-add)" }, \
-    { .name = "base", .role = UNIT_SIG_INTERNAL, .what = "subtractor BASE = 1 - P" }, \
-    { .name = "clamp", .role = UNIT_SIG_INTERNAL, .what = "block key: BASE, or 0 when BASE < 0" }, \
-    { .name = "mx", .role = UNIT_SIG_INTERNAL, .what = "operand mux: CLAMP in the first clock, then RG (drives both inputs)" }, \
-    { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX * MX (a squarer)" }, \
-    { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" }
-
 const unit_desc unit_d_approx = {
     .name = "d_approx",
     .ref = &ref_model_d_approx,
     .summary = "D_g = (1/(4m^2)) max(0, ((2/m^2-4)/g)(c-1)+1)^g: Beckmann D as one clamped power",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (D4, D8, D16)",
-    UNIT_SIGS(
-        { .name = "c", .role = UNIT_SIG_IN, .what = "cos g = N.H, in [0, 1]" },
-        { .name = "d", .role = UNIT_SIG_OUT, .what = "D_g, in [0, 1/(4m^2)]" },
-        DA_INTERNALS,
-        { .name = "c0", .role = UNIT_SIG_INTERNAL, .what = "constant c0 = 1/(4m^2); d = c0 * RG by a constant multiplier" }),
+    UNIT_SIGS(D_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: log2(g) clocks" } },
     .nparams = 2,
@@ -297,10 +298,7 @@ const unit_desc unit_ward_approx = {
     .ref = &ref_model_ward_approx,
     .summary = "e = max(0, (c-1)/(8 alpha^2)+1)^16 ~ exp(-tan^2/alpha^2), Ward's exponential as a power",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (Ward)",
-    UNIT_SIGS(
-        { .name = "c", .role = UNIT_SIG_IN, .what = "cos g = N.H, in [0, 1]" },
-        { .name = "e", .role = UNIT_SIG_OUT, .what = "the 16th power, in [0, 1]" },
-        DA_INTERNALS),
+    UNIT_SIGS(W_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: 4 clocks" } },
     .nparams = 1,

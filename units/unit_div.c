@@ -220,7 +220,13 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
 
 /* -------------------------------------------------------------- the unit */
 
-enum { DV_N, DV_D, DV_Q, DV_R, DV_DZ, DV_NSIGS };
+#define DIV_SIGS(X) \
+    X(DV_N,  "n", IN, "dividend, 0 <= n < d") \
+    X(DV_D,  "d", IN, "divisor, in [1/2, 1] for the golden vectors (any d > 0 works)") \
+    X(DV_Q,  "q", OUT, "quotient register Q: floor(n/d) in q's format after the last clock") \
+    X(DV_R,  "r", INTERNAL, "remainder register R: (n - q d) 2^F_q at the end") \
+    X(DV_DZ, "dz", INTERNAL, "divide-by-zero flag register, d == 0, valid with q")
+enum { DIV_SIGS(UNIT_SIG_ID) DV_NSIGS };
 
 static void div_formats(const unit_cfg *cfg, unit_fmts *out)
 {
@@ -295,12 +301,7 @@ const unit_desc unit_div = {
     .ref = &ref_model_div,
     .summary = "q = n/d by a restoring divider, one quotient bit a clock (remainder r, flag dz)",
     .seed = "Zavalniuk et al. (2022), the division of F_SH and F_MSH",
-    UNIT_SIGS(
-        { .name = "n", .role = UNIT_SIG_IN, .what = "dividend, 0 <= n < d" },
-        { .name = "d", .role = UNIT_SIG_IN, .what = "divisor, in [1/2, 1] for the golden vectors (any d > 0 works)" },
-        { .name = "q", .role = UNIT_SIG_OUT, .what = "quotient register Q: floor(n/d) in q's format after the last clock" },
-        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "remainder register R: (n - q d) 2^F_q at the end" },
-        { .name = "dz", .role = UNIT_SIG_INTERNAL, .what = "divide-by-zero flag register, d == 0, valid with q" }),
+    UNIT_SIGS(DIV_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: as many clocks as q has value bits" } },
     .nparams = 0,

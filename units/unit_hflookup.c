@@ -41,11 +41,39 @@
 
 extern const unit_desc unit_hf_lookup;
 
-enum {
-    HF_X0, HF_Y0, HF_Z0, HF_XI, HF_YI, HF_ZI, HF_XH, HF_YH, HF_ZH, HF_Y,
-    HF_ZQ, HF_REC, HF_U, HF_V, HF_SU, HF_SV, HF_IX, HF_AX, HF_IY, HF_AY,
-    HF_ROM, HF_DX0, HF_MX0, HF_TOP, HF_DX1, HF_MX1, HF_BOT, HF_DY, HF_MY, HF_VAL, HF_M1, HF_NSIGS
-};
+#define HF_SIGS(X) \
+    X(HF_X0,  "x0", IN, "d0 (view) x, local frame") \
+    X(HF_Y0,  "y0", IN, "d0 y") \
+    X(HF_Z0,  "z0", IN, "d0 z (along the normal), in [0, 1]") \
+    X(HF_XI,  "xi", IN, "di (light) x") \
+    X(HF_YI,  "yi", IN, "di y") \
+    X(HF_ZI,  "zi", IN, "di z") \
+    X(HF_XH,  "xh", IN, "h = norm(d0 + di) x") \
+    X(HF_YH,  "yh", IN, "h y") \
+    X(HF_ZH,  "zh", IN, "h z") \
+    X(HF_Y,   "y", OUT, "lambda(d0) lambda(di) pi(h), maps scaled to largest entry 1") \
+    X(HF_ZQ,  "zq", INTERNAL, "z's top bits: the reciprocal ROM's address (per lookup: l0, li, ph)") \
+    X(HF_REC, "rec", INTERNAL, "1 / (1 + z): reciprocal ROM at zq and zq + 1 LSB, linear interpolation") \
+    X(HF_U,   "u", INTERNAL, "multiplier u = x rec (parabolic map)") \
+    X(HF_V,   "v", INTERNAL, "multiplier v = y rec") \
+    X(HF_SU,  "su", INTERNAL, "texel coordinate clamp(u R/2 + (R-1)/2, 0, R-1)") \
+    X(HF_SV,  "sv", INTERNAL, "texel coordinate from v") \
+    X(HF_IX,  "ix", INTERNAL, "integer part of su (R-2 at the last texel)") \
+    X(HF_AX,  "ax", INTERNAL, "fraction of su (1 at the last texel)") \
+    X(HF_IY,  "iy", INTERNAL, "integer part of sv") \
+    X(HF_AY,  "ay", INTERNAL, "fraction of sv") \
+    X(HF_ROM, "rom", INTERNAL, "the map's ROM reads t00, t01, t10, t11 at (ix + a, iy + b): the entry format") \
+    X(HF_DX0, "dx0", INTERNAL, "subtractor dx0 = t01 - t00") \
+    X(HF_MX0, "mx0", INTERNAL, "multiplier mx0 = ax dx0") \
+    X(HF_TOP, "top", INTERNAL, "adder top = t00 + mx0") \
+    X(HF_DX1, "dx1", INTERNAL, "subtractor dx1 = t11 - t10") \
+    X(HF_MX1, "mx1", INTERNAL, "multiplier mx1 = ax dx1") \
+    X(HF_BOT, "bot", INTERNAL, "adder bot = t10 + mx1") \
+    X(HF_DY,  "dy", INTERNAL, "subtractor dy = bot - top") \
+    X(HF_MY,  "my", INTERNAL, "multiplier my = ay dy") \
+    X(HF_VAL, "val", INTERNAL, "adder val = top + my: the bilinear lookup") \
+    X(HF_M1,  "m1", INTERNAL, "multiplier m1 = val(l0) val(li)")
+enum { HF_SIGS(UNIT_SIG_ID) HF_NSIGS };
 
 static int lg2(int R) { int k = 0; while ((1 << k) < R) k++; return k; }
 
@@ -390,38 +418,7 @@ const unit_desc unit_hf_lookup = {
     .ref = &ref_model_hf_lookup,
     .summary = "factorized BRDF lambda(d0) pi(h) lambda(di): parabolic addresses, 3 bilinear ROM lookups, 2 multipliers; one item a clock",
     .seed = "Romanyuk et al. (2020), eqs. 6-7 (homomorphic factorization)",
-    UNIT_SIGS(
-        { .name = "x0", .role = UNIT_SIG_IN, .what = "d0 (view) x, local frame" },
-        { .name = "y0", .role = UNIT_SIG_IN, .what = "d0 y" },
-        { .name = "z0", .role = UNIT_SIG_IN, .what = "d0 z (along the normal), in [0, 1]" },
-        { .name = "xi", .role = UNIT_SIG_IN, .what = "di (light) x" },
-        { .name = "yi", .role = UNIT_SIG_IN, .what = "di y" },
-        { .name = "zi", .role = UNIT_SIG_IN, .what = "di z" },
-        { .name = "xh", .role = UNIT_SIG_IN, .what = "h = norm(d0 + di) x" },
-        { .name = "yh", .role = UNIT_SIG_IN, .what = "h y" },
-        { .name = "zh", .role = UNIT_SIG_IN, .what = "h z" },
-        { .name = "y", .role = UNIT_SIG_OUT, .what = "lambda(d0) lambda(di) pi(h), maps scaled to largest entry 1" },
-        { .name = "zq", .role = UNIT_SIG_INTERNAL, .what = "z's top bits: the reciprocal ROM's address (per lookup: l0, li, ph)" },
-        { .name = "rec", .role = UNIT_SIG_INTERNAL, .what = "1 / (1 + z): reciprocal ROM at zq and zq + 1 LSB, linear interpolation" },
-        { .name = "u", .role = UNIT_SIG_INTERNAL, .what = "multiplier u = x rec (parabolic map)" },
-        { .name = "v", .role = UNIT_SIG_INTERNAL, .what = "multiplier v = y rec" },
-        { .name = "su", .role = UNIT_SIG_INTERNAL, .what = "texel coordinate clamp(u R/2 + (R-1)/2, 0, R-1)" },
-        { .name = "sv", .role = UNIT_SIG_INTERNAL, .what = "texel coordinate from v" },
-        { .name = "ix", .role = UNIT_SIG_INTERNAL, .what = "integer part of su (R-2 at the last texel)" },
-        { .name = "ax", .role = UNIT_SIG_INTERNAL, .what = "fraction of su (1 at the last texel)" },
-        { .name = "iy", .role = UNIT_SIG_INTERNAL, .what = "integer part of sv" },
-        { .name = "ay", .role = UNIT_SIG_INTERNAL, .what = "fraction of sv" },
-        { .name = "rom", .role = UNIT_SIG_INTERNAL, .what = "the map's ROM reads t00, t01, t10, t11 at (ix + a, iy + b): the entry format" },
-        { .name = "dx0", .role = UNIT_SIG_INTERNAL, .what = "subtractor dx0 = t01 - t00" },
-        { .name = "mx0", .role = UNIT_SIG_INTERNAL, .what = "multiplier mx0 = ax dx0" },
-        { .name = "top", .role = UNIT_SIG_INTERNAL, .what = "adder top = t00 + mx0" },
-        { .name = "dx1", .role = UNIT_SIG_INTERNAL, .what = "subtractor dx1 = t11 - t10" },
-        { .name = "mx1", .role = UNIT_SIG_INTERNAL, .what = "multiplier mx1 = ax dx1" },
-        { .name = "bot", .role = UNIT_SIG_INTERNAL, .what = "adder bot = t10 + mx1" },
-        { .name = "dy", .role = UNIT_SIG_INTERNAL, .what = "subtractor dy = bot - top" },
-        { .name = "my", .role = UNIT_SIG_INTERNAL, .what = "multiplier my = ay dy" },
-        { .name = "val", .role = UNIT_SIG_INTERNAL, .what = "adder val = top + my: the bilinear lookup" },
-        { .name = "m1", .role = UNIT_SIG_INTERNAL, .what = "multiplier m1 = val(l0) val(li)" }),
+    UNIT_SIGS(HF_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "comb", "three lookup paths and two multipliers, combinational: one item a clock" } },
     .nparams = 2,

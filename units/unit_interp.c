@@ -547,10 +547,6 @@ static int sig_used_3(const unit_cfg *cfg, int i)
 }
 
 #define P_L { "L", UNIT_P_POW2, offsetof(unit_cfg, L), 2, 32, 8, NULL, "pixels per interval (beats per item)" }
-#define P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, DIV3_PAPER_TERMS, NULL, \
-                  "terms of each /3 network (see div3); 3 is the paper's" }
-#define P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, DIV3_PAPER, "paper quarter", \
-                   "series of each /3 network (see div3)" }
 #define P_NODES { "nodes", UNIT_P_ENUM, offsetof(unit_cfg, nodes), 0, 1, 0, "n1 n2", \
                   "node set of the cubic: n1 = I(0), I(1), I(1/2), I(1/4) (the paper's choice); n2 = I(0), I(1), I(1/2), I(3/4)" }
 /* N2's own elements (coef3_n2's network), built only with nodes=n2; the
@@ -588,7 +584,7 @@ const unit_desc unit_interp3 = {
     .nsched = 4,
     .sched = INTERP_SCHEDS("coefficients once per item, then the paper's Horner sequence: 6 clocks per pixel, 6L per item",
                            "3 clocks per pixel, 3L per item", "L per item, first pixel 4 clocks after the accept"),
-    .nparams = 4, .params = { P_L, P_TERMS, P_SERIES, P_NODES },
+    .nparams = 4, .params = { P_L, DIV3_P_TERMS, DIV3_P_SERIES, P_NODES },
     .fmt_rule = INTERP_RULE("a b c d"),
     .formats = formats_3, .beats = beats, .build = build_3, .ideal = ideal_3, .bound = bound_3, .ideal_exact = exact_3,
     .bound_beats = beats_3, .sig_used = sig_used_3,

@@ -32,6 +32,7 @@
 #ifndef UNIT_NET_H
 #define UNIT_NET_H
 #include "units/unit.h"
+#include <stddef.h>
 
 #define UNET_MAXIN 4    /* inputs a network's values are linear forms of */
 
@@ -140,6 +141,15 @@ unet_val unet_reg_of(unet *n, int sig, const char *name, unet_val d);
 enum { DIV3_PAPER = 0, DIV3_QUARTER = 1 };
 #define DIV3_MAX_TERMS 20
 #define DIV3_PAPER_TERMS 3     /* the paper's network: x/2 - x/8 - x/32 - x/128 */
+
+/* The parameter rows of a unit built around /3 networks (coef3_n1,
+ * coef3_n2, interp3, span3, span23): one definition, so that the range,
+ * default and help of terms and series are the same in every such unit
+ * (div3 itself words its own). */
+#define DIV3_P_TERMS { "terms", UNIT_P_INT, offsetof(unit_cfg, terms), 1, DIV3_MAX_TERMS, DIV3_PAPER_TERMS, NULL, \
+                       "terms of each /3 network (see div3); 3 is the paper's" }
+#define DIV3_P_SERIES { "series", UNIT_P_ENUM, offsetof(unit_cfg, series), 0, 1, DIV3_PAPER, "paper quarter", \
+                        "series of each /3 network (see div3)" }
 
 /* Fraction bits the network's terms keep beyond x's: enough that the
  * truncations of its terms add up to at most one LSB of x. */

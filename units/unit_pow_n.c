@@ -36,7 +36,14 @@ static const char *pow_n_prog(int n, char *buf)
     return buf;
 }
 
-enum { PN_X, PN_Y, PN_MXA, PN_MXB, PN_MUL, PN_RG, PN_NSIGS };
+#define POW_N_SIGS(X) \
+    X(PN_X,   "x", IN, "base (a cosine), in [0, 1]") \
+    X(PN_Y,   "y", OUT, "x^n (RG after the last step)") \
+    X(PN_MXA, "mx_a", INTERNAL, "operand mux A: x in the first clock, then RG") \
+    X(PN_MXB, "mx_b", INTERNAL, "operand mux B: x (first clock, multiplies) or RG (squarings); " "absent when n is a power of two") \
+    X(PN_MUL, "mul", INTERNAL, "multiplier MUL = MX_A * MX_B, quantized to its own format") \
+    X(PN_RG,  "rg", INTERNAL, "register RG <= MUL every clock")
+enum { POW_N_SIGS(UNIT_SIG_ID) PN_NSIGS };
 
 /* n = 1 multiplies x by 1 (no mux); a power of two only squares (one
  * mux drives both operands, no mx_b). */
@@ -99,14 +106,7 @@ const unit_desc unit_pow_n = {
     .ref = &ref_model_pow_n,
     .summary = "y = x^n (Blinn/Phong cos^n), n = 1..1024, square and multiply on one multiplier",
     .seed = "Zavalniuk et al. (2022), eq. 13 (F_B = cos^n x), the exact reference of the Schlick forms",
-    UNIT_SIGS(
-        { .name = "x", .role = UNIT_SIG_IN, .what = "base (a cosine), in [0, 1]" },
-        { .name = "y", .role = UNIT_SIG_OUT, .what = "x^n (RG after the last step)" },
-        { .name = "mx_a", .role = UNIT_SIG_INTERNAL, .what = "operand mux A: x in the first clock, then RG" },
-        { .name = "mx_b", .role = UNIT_SIG_INTERNAL, .what = "operand mux B: x (first clock, multiplies) or RG (squarings); "
-                                     "absent when n is a power of two" },
-        { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX_A * MX_B, quantized to its own format" },
-        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" }),
+    UNIT_SIGS(POW_N_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "sqmul", "left-to-right square and multiply: a squaring per bit of n after the "
                           "leading one, a multiply per further 1 bit" } },

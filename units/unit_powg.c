@@ -199,7 +199,13 @@ static const char *powg_prog(int g, char *buf, size_t len)
     return buf;
 }
 
-enum { PG_X, PG_Y, PG_MX, PG_MUL, PG_RG, PG_NSIGS };
+#define POWG_SIGS(X) \
+    X(PG_X,   "x", IN, "base, in [0, 1]") \
+    X(PG_Y,   "y", OUT, "x^g (RG after the last squaring)") \
+    X(PG_MX,  "mx", INTERNAL, "operand mux: x in the first clock, then RG (drives both inputs)") \
+    X(PG_MUL, "mul", INTERNAL, "multiplier MUL = MX * MX (a squarer), quantized to its own format") \
+    X(PG_RG,  "rg", INTERNAL, "register RG <= MUL every clock")
+enum { POWG_SIGS(UNIT_SIG_ID) PG_NSIGS };
 
 /* g = 2 squares x once: the operand is x itself, no mux. */
 static int powg_sig_used(const unit_cfg *cfg, int i)
@@ -265,12 +271,7 @@ const unit_desc unit_powg = {
     .ref = &ref_model_powg,
     .summary = "y = x^g, g = 2^k, by repeated squaring: k clocks on one multiplier",
     .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (the power of D_g)",
-    UNIT_SIGS(
-        { .name = "x", .role = UNIT_SIG_IN, .what = "base, in [0, 1]" },
-        { .name = "y", .role = UNIT_SIG_OUT, .what = "x^g (RG after the last squaring)" },
-        { .name = "mx", .role = UNIT_SIG_INTERNAL, .what = "operand mux: x in the first clock, then RG (drives both inputs)" },
-        { .name = "mul", .role = UNIT_SIG_INTERNAL, .what = "multiplier MUL = MX * MX (a squarer), quantized to its own format" },
-        { .name = "rg", .role = UNIT_SIG_INTERNAL, .what = "register RG <= MUL every clock" }),
+    UNIT_SIGS(POWG_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "square", "one squaring a clock: log2(g) clocks per item" } },
     .nparams = 1,

@@ -41,7 +41,15 @@ static int n_ibits(int n) { return brdf_ibits(fmax(n, 1.25)); }
 
 /* ---------------------------------------------------------------- schlick */
 
-enum { SH_C, SH_F, SH_K, SH_T, SH_DEN, SH_Q, SH_R, SH_NSIGS };
+#define SH_SIGS(X) \
+    X(SH_C,   "c", IN, "cos x, in [0, 1]") \
+    X(SH_F,   "f", OUT, "F_SH, in [0, 1]") \
+    X(SH_K,   "k", INTERNAL, "constant n - 1") \
+    X(SH_T,   "t", INTERNAL, "constant multiplier T = (n - 1) c (shift-and-add)") \
+    X(SH_DEN, "den", INTERNAL, "subtractor DEN = n - T, in [1, n]") \
+    X(SH_Q,   "q", INTERNAL, "divider's quotient register Q") \
+    X(SH_R,   "r", INTERNAL, "divider's remainder register R")
+enum { SH_SIGS(UNIT_SIG_ID) SH_NSIGS };
 
 static void sh_formats(const unit_cfg *cfg, unit_fmts *out)
 {
@@ -150,14 +158,7 @@ const unit_desc unit_schlick = {
     .ref = &ref_model_schlick,
     .summary = "F_SH = c/(n - n c + c) (Schlick's stand-in for cos^n) on the restoring divider",
     .seed = "Zavalniuk et al. (2022), eq. 2",
-    UNIT_SIGS(
-        { .name = "c", .role = UNIT_SIG_IN, .what = "cos x, in [0, 1]" },
-        { .name = "f", .role = UNIT_SIG_OUT, .what = "F_SH, in [0, 1]" },
-        { .name = "k", .role = UNIT_SIG_INTERNAL, .what = "constant n - 1" },
-        { .name = "t", .role = UNIT_SIG_INTERNAL, .what = "constant multiplier T = (n - 1) c (shift-and-add)" },
-        { .name = "den", .role = UNIT_SIG_INTERNAL, .what = "subtractor DEN = n - T, in [1, n]" },
-        { .name = "q", .role = UNIT_SIG_INTERNAL, .what = "divider's quotient register Q" },
-        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "divider's remainder register R" }),
+    UNIT_SIGS(SH_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,
@@ -169,7 +170,19 @@ const unit_desc unit_schlick = {
 
 /* --------------------------------------------------------------- mschlick */
 
-enum { MS_C, MS_F, MS_K, MS_T, MS_U, MS_E, MS_UN, MS_V, MS_DEN, MS_Q, MS_R, MS_NSIGS };
+#define MS_SIGS(X) \
+    X(MS_C,   "c", IN, "cos x, in [0, 1]") \
+    X(MS_F,   "f", OUT, "F_MSH, in [0, 1.024]") \
+    X(MS_K,   "k", INTERNAL, "constant n - 1.25") \
+    X(MS_T,   "t", INTERNAL, "constant multiplier T = (n - 1.25) c") \
+    X(MS_U,   "u", INTERNAL, "subtractor U = n - T, in [1.25, n]") \
+    X(MS_E,   "e", INTERNAL, "leading-one detector: bits of U's integer part") \
+    X(MS_UN,  "un", INTERNAL, "barrel shifter UN = U 2^-E, in [1/2, 1)") \
+    X(MS_V,   "v", INTERNAL, "multiplier V = UN * UN") \
+    X(MS_DEN, "den", INTERNAL, "adder DEN = V + V/4 = 1.25 V") \
+    X(MS_Q,   "q", INTERNAL, "divider's quotient register Q = 2c 2^-2E / DEN") \
+    X(MS_R,   "r", INTERNAL, "divider's remainder register R")
+enum { MS_SIGS(UNIT_SIG_ID) MS_NSIGS };
 
 static void ms_formats(const unit_cfg *cfg, unit_fmts *out)
 {
@@ -384,18 +397,7 @@ const unit_desc unit_mschlick = {
     .ref = &ref_model_mschlick,
     .summary = "F_MSH = 2c/(1.25 (n - n c + 1.25 c)^2): normalize, square, divide",
     .seed = "Zavalniuk et al. (2022), eq. 5",
-    UNIT_SIGS(
-        { .name = "c", .role = UNIT_SIG_IN, .what = "cos x, in [0, 1]" },
-        { .name = "f", .role = UNIT_SIG_OUT, .what = "F_MSH, in [0, 1.024]" },
-        { .name = "k", .role = UNIT_SIG_INTERNAL, .what = "constant n - 1.25" },
-        { .name = "t", .role = UNIT_SIG_INTERNAL, .what = "constant multiplier T = (n - 1.25) c" },
-        { .name = "u", .role = UNIT_SIG_INTERNAL, .what = "subtractor U = n - T, in [1.25, n]" },
-        { .name = "e", .role = UNIT_SIG_INTERNAL, .what = "leading-one detector: bits of U's integer part" },
-        { .name = "un", .role = UNIT_SIG_INTERNAL, .what = "barrel shifter UN = U 2^-E, in [1/2, 1)" },
-        { .name = "v", .role = UNIT_SIG_INTERNAL, .what = "multiplier V = UN * UN" },
-        { .name = "den", .role = UNIT_SIG_INTERNAL, .what = "adder DEN = V + V/4 = 1.25 V" },
-        { .name = "q", .role = UNIT_SIG_INTERNAL, .what = "divider's quotient register Q = 2c 2^-2E / DEN" },
-        { .name = "r", .role = UNIT_SIG_INTERNAL, .what = "divider's remainder register R" }),
+    UNIT_SIGS(MS_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
     .nparams = 1,

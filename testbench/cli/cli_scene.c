@@ -384,8 +384,15 @@ int cli_scene(int argc, char **argv)
         /* named at the line of the key that set the value last */
         static const char *const sched[] = { "schedule", "policy", NULL };
         static const char *const fmts[] = { "fmt", "width", "L", "terms", "series", "policy", NULL };
-        char where[300];
-        return cli_usage_error("%s%s", scn_desc_where(&d, strstr(err, "schedule") ? sched : fmts, where, sizeof where), err);
+        /* a unit parameter's own message names it: "parameter L: ..." */
+        char where[300], pk[16];
+        const char *param[] = { pk, NULL };
+        const char *const *keys = strstr(err, "schedule") ? sched : fmts;
+        if (!strncmp(err, "parameter ", 10)) {
+            snprintf(pk, sizeof pk, "%.*s", (int)strcspn(err + 10, ":"), err + 10);
+            keys = param;
+        }
+        return cli_usage_error("%s%s", scn_desc_where(&d, keys, where, sizeof where), err);
     }
 
     scn_mesh m;

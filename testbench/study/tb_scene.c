@@ -40,6 +40,7 @@
  * clocks_per_pixel = clocks of all bands' simulations / covered pixels.
  */
 #include "testbench/study/tb_scene.h"
+#include "base/base_join.h"
 #include "base/base_json.h"
 #include "testbench/tb.h"
 #include "units/unit_coef.h"
@@ -68,41 +69,61 @@ static double cpu_now(void)
 
 /* ------------------------------------------------- the unit of a policy */
 
-int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_fmts *f,
-                  char *err, size_t errlen)
+static int nodes_n2(const scn_desc *d);
+
+static int has_param(const unit_desc *u, const char *name)
+{
+    for (int i = 0; i < u->nparams; i++)
+        if (!strcmp(u->params[i].name, name)) return 1;
+    return 0;
+}
+
+/* The scene's hardware settings into the policy's unit, each through the
+ * unit's own setter (unit_param_set, unit_sched_find): the ranges,
+ * choices and defaults of L, terms, series, nodes and the schedule are
+ * the unit descriptor's alone (the scene file reads a number or a name).
+ * A parameter the policy's unit does not have (span1's terms) is still
+ * judged, by the row of span23, which has every one a scene sets. */
+static int scene_cfg(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, char *err, size_t errlen)
 {
     static const char *const uname[SCN_POL__COUNT] = { "span1", "span2", "span3", "span3", "span23", "span23" };
     if ((int)d->policy < 0 || d->policy >= SCN_POL__COUNT) { snprintf(err, errlen, "unknown policy"); return -1; }
-    const unit_desc *u = unit_find(uname[d->policy]);
-    if (!u) { snprintf(err, errlen, "unit %s is not built into this shadesim", uname[d->policy]); return -1; }
+    const unit_desc *u = unit_find(uname[d->policy]), *all = unit_find("span23");
+    if (!u || !all) { snprintf(err, errlen, "unit %s is not built into this shadesim", u ? "span23" : uname[d->policy]); return -1; }
     unit_cfg_default(u, cfg);
     cfg->width = d->fmt_width;
-    cfg->L = d->L;
-    cfg->terms = d->terms;
-    cfg->series = d->series;
     cfg->rnd = (sim_round)d->rnd;
     cfg->ovf = (sim_ovf)d->ovf;
     int s = unit_sched_find(u, d->schedule);
     if (s < 0) {
         char list[200] = "";
-        for (int j = 0; j < u->nsched; j++) {
-            strncat(list, j ? ", " : "", sizeof list - strlen(list) - 1);
-            strncat(list, u->sched[j].name, sizeof list - strlen(list) - 1);
-        }
+        for (int j = 0; j < u->nsched; j++) base_join_add(list, sizeof list, ", ", u->sched[j].name);
         snprintf(err, errlen, "schedule %s: unit %s has schedules: %s", d->schedule, u->name, list);
         return -1;
     }
     cfg->schedule = s;
-    /* Every parameter through its own range check (set from its text). */
-    for (int i = 0; i < u->nparams; i++) {
-        char v[64];
-        if (!strcmp(u->params[i].name, "nodes")) {
-            int n2 = d->policy == SCN_POL_CUBIC_N2 ||
-                     ((d->policy == SCN_POL_ADAPTIVE_REGION || d->policy == SCN_POL_ADAPTIVE_AUTO) && d->auto_cubic_nodes == 2);
-            snprintf(v, sizeof v, "%s", n2 ? "n2" : "n1");
-        } else unit_param_get(&u->params[i], cfg, v, sizeof v);
-        if (unit_param_set(u, cfg, u->params[i].name, v, err, errlen)) return -1;
-    }
+    /* series as its choice's name: the scene stores the index */
+    unit_cfg named = *cfg;
+    named.series = d->series;
+    char series[32];
+    for (int i = 0; i < all->nparams; i++)
+        if (!strcmp(all->params[i].name, "series")) unit_param_get(&all->params[i], &named, series, sizeof series);
+    char L[24], terms[24];
+    snprintf(L, sizeof L, "%d", d->L);
+    snprintf(terms, sizeof terms, "%d", d->terms);
+    const char *const set[][2] = { { "L", L }, { "terms", terms }, { "series", series },
+                                   { "nodes", nodes_n2(d) ? "n2" : "n1" } };
+    for (size_t k = 0; k < sizeof set / sizeof set[0]; k++)
+        if (unit_param_set(has_param(u, set[k][0]) ? u : all, cfg, set[k][0], set[k][1], err, errlen)) return -1;
+    *up = u;
+    return 0;
+}
+
+int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_fmts *f,
+                  char *err, size_t errlen)
+{
+    const unit_desc *u;
+    if (scene_cfg(d, &u, cfg, err, errlen)) return -1;
     const char *ov[SCN_MAX_FMT];
     for (int i = 0; i < d->nfmt && i < SCN_MAX_FMT; i++) ov[i] = d->fmt[i];
     if (tb_formats(u, cfg, ov, d->nfmt, f, err, errlen)) {
@@ -825,6 +846,11 @@ int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int job
                       char *err, size_t errlen)
 {
     *out = NULL;
+    /* the intervals are cut by L: the unit's range first (formats may
+     * still be bad: a prep needs none) */
+    const unit_desc *u;
+    unit_cfg cfg;
+    if (scene_cfg(d, &u, &cfg, err, errlen)) return TB_BADINPUT;
     tb_scene_prep *p = calloc(1, sizeof *p);
     if (!p) { snprintf(err, errlen, "out of memory"); return TB_FAIL; }
     p->d = *d;
