@@ -617,27 +617,12 @@ static void metrics(const scn_gbuf *g, tb_scene_result *r)
     r->psnr = se8 > 0 ? 10 * log10(255.0 * 255.0 / (se8 / n)) : INFINITY;
 }
 
-/* The render. p: NULL, or the reference, degrees and intervals prepared
- * already (then only the simulation and what follows; no VCD). make:
- * NULL, or the reference, degrees and intervals are moved into it and no
- * simulation is done (r is left empty). */
-static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx, const tb_scene_opts *o,
-                  const tb_scene_prep *p, tb_scene_prep *make, double max_nmse, tb_scene_result *r, char *err,
-                  size_t errlen)
+/* r's images (copied from prep p, or empty), the spans (p's, or g's own)
+ * and nb bands (p's intervals borrowed, with room for their pixels). On
+ * failure everything is freed, r too. */
+static int render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_result *r, scn_span **spansp,
+                        size_t *nspansp, int *nbp, band **bandsp, char *err, size_t errlen)
 {
-    double c0 = cpu_now();
-    memset(r, 0, sizeof *r);
-    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
-    if (!o) o = &dflt;
-    r->heldout = p ? p->heldout : o->heldout;
-    if (p && p->have_unit && o->fmts && !memcmp(&p->ud, d, sizeof *d)) {
-        /* the formats are given: the rule's would be thrown away */
-        r->unit = p->u;
-        r->cfg = p->cfg;
-    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make)
-        return TB_BADINPUT;      /* (making a prep simulates nothing: it needs no unit) */
-    if (o->fmts) r->fmts = *o->fmts;
-    const scn_view *view = r->heldout ? &d->heldout : &d->view;
     size_t np = (size_t)g->w * g->h;
     r->w = g->w;
     r->h = g->h;
@@ -671,81 +656,86 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
     } else
         for (size_t i = 0; i < np; i++) if (g->tri[i] >= 0) r->region[i] = g->region[i];
     r->spans = nspans;
-    /* bands of equal rows; spans are in row order */
-    job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
-              .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
-              .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
-              .r = r, .max_se = INFINITY };
-    /* a budget only with a prep (its reference in band order); a margin
-     * far above the rounding of sums in another order, so that a render
-     * within max_nmse is never stopped */
-    if (p && max_nmse >= 0 && isfinite(max_nmse)) J.max_se = max_nmse * p->sum_ref2 * (1 + 1e-6);
+    *spansp = spans;
+    *nspansp = nspans;
+    *nbp = nb;
+    *bandsp = bands;
+    return TB_OK;
+}
+
+/* Bands of equal rows (spans are in row order); the VCD, if any, is of
+ * the first band with a span. */
+static void split_bands(job *J, size_t nspans)
+{
+    const scn_gbuf *g = J->g;
+    int nb = J->nbands;
     size_t s = 0;
-    for (int k = 0; !p && k < nb; k++) {
-        band *b = &bands[k];
+    for (int k = 0; k < nb; k++) {
+        band *b = &J->bands[k];
         b->y0 = (int)((long long)g->h * k / nb);
         b->y1 = (int)((long long)g->h * (k + 1) / nb);
-        while (s < nspans && spans[s].y < b->y0) s++;
+        while (s < nspans && J->spans[s].y < b->y0) s++;
         b->s0 = s;
-        while (s < nspans && spans[s].y < b->y1) s++;
+        while (s < nspans && J->spans[s].y < b->y1) s++;
         b->s1 = s;
-        if (J.vcd_band < 0 && b->s1 > b->s0) J.vcd_band = k;
+        if (J->vcd_band < 0 && b->s1 > b->s0) J->vcd_band = k;
     }
-    int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
-    if (jobs > nb) jobs = nb;
-    double c1 = cpu_now();
-    if (!p) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
-    else if (!J.batch) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, sim_band_item, &J);
-    if (make) {
-        /* keep what the simulation would read, and the images */
-        int rc = TB_OK;
-        make->g = g;
-        make->heldout = r->heldout;
-        make->nb = nb;
-        make->nspans = nspans;
-        make->spans = spans;
-        make->ref = r->ref;
-        make->deg = r->deg;
-        make->region = r->region;
-        for (size_t i = 0; i < np; i++)
-            if (g->tri[i] >= 0) make->sum_ref2 += make->ref[i] * make->ref[i];
-        r->ref = NULL;
-        r->deg = r->region = NULL;
-        for (int k = 0; k < nb; k++) {
-            band *b = &bands[k];
-            make->cpu += b->cpu_sim + b->cpu_other;
-            free(b->pix);
-            b->pix = NULL;
-            if (b->rc != TB_OK && rc == TB_OK) {
-                rc = b->rc;
-                snprintf(err, errlen, "%s", b->err);
-            }
-            if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix)) && rc == TB_OK) {
-                rc = TB_FAIL;
-                snprintf(err, errlen, "out of memory");
-            }
-            for (size_t q = 0, j = b->s0; b->refpix && j < b->s1; j++)
-                for (int x = spans[j].x0; x < spans[j].x1; x++)
-                    b->refpix[q++] = make->ref[(size_t)spans[j].y * g->w + x];
-            make->bands[k] = *b;
-        }
-        free(bands);
-        tb_scene_free(r);
-        make->cpu += c1 - c0;
-        return rc;
-    }
-    if (J.batch) {
-        /* then the bands' hardware, a group of lanes a thread */
-        J.ngroups = jobs;
-        base_par_for((size_t)J.ngroups, jobs, group_item, &J);
-    }
-    double c2 = cpu_now();
+}
 
-    /* sums in band order */
+/* Making a prep: keep in it what the simulation would read (the spans,
+ * each band's intervals and reference pixels) and the images; bands and
+ * r are freed. */
+static int keep_prep(tb_scene_prep *make, const job *J, scn_span *spans, size_t nspans, char *err, size_t errlen)
+{
+    const scn_gbuf *g = J->g;
+    tb_scene_result *r = J->r;
+    size_t np = (size_t)g->w * g->h;
     int rc = TB_OK;
-    double adds = 0, hdeg = 0;
-    for (int k = 0; k < nb; k++) {
-        band *b = &bands[k];
+    make->g = g;
+    make->heldout = r->heldout;
+    make->nb = J->nbands;
+    make->nspans = nspans;
+    make->spans = spans;
+    make->ref = r->ref;
+    make->deg = r->deg;
+    make->region = r->region;
+    for (size_t i = 0; i < np; i++)
+        if (g->tri[i] >= 0) make->sum_ref2 += make->ref[i] * make->ref[i];
+    r->ref = NULL;
+    r->deg = r->region = NULL;
+    for (int k = 0; k < J->nbands; k++) {
+        band *b = &J->bands[k];
+        make->cpu += b->cpu_sim + b->cpu_other;
+        free(b->pix);
+        b->pix = NULL;
+        if (b->rc != TB_OK && rc == TB_OK) {
+            rc = b->rc;
+            snprintf(err, errlen, "%s", b->err);
+        }
+        if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix)) && rc == TB_OK) {
+            rc = TB_FAIL;
+            snprintf(err, errlen, "out of memory");
+        }
+        for (size_t q = 0, j = b->s0; b->refpix && j < b->s1; j++)
+            for (int x = spans[j].x0; x < spans[j].x1; x++)
+                b->refpix[q++] = make->ref[(size_t)spans[j].y * g->w + x];
+        make->bands[k] = *b;
+    }
+    free(J->bands);
+    tb_scene_free(r);
+    return rc;
+}
+
+/* The bands' figures summed into r in band order (the first band's
+ * error, if any, in err); adds, hdeg: the coefficient network's and
+ * Horner's adds over all intervals and pixels. */
+static int sum_bands(const job *J, double *adds, double *hdeg, char *err, size_t errlen)
+{
+    tb_scene_result *r = J->r;
+    int rc = TB_OK;
+    *adds = *hdeg = 0;
+    for (int k = 0; k < J->nbands; k++) {
+        const band *b = &J->bands[k];
         if (b->rc != TB_OK && rc == TB_OK) {
             rc = b->rc;
             snprintf(err, errlen, "%s", b->err);
@@ -761,24 +751,26 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
         r->intervals += b->intervals;
         r->intervals_deg2 += b->deg2;
         r->nodes_shaded += b->nodes;
-        adds += b->coef_adds;
-        hdeg += b->horner_deg;
+        *adds += b->coef_adds;
+        *hdeg += b->horner_deg;
         r->cpu_sim += b->cpu_sim;
         r->cpu_render += b->cpu_sim + b->cpu_other;
     }
-    for (int k = 0; J.batch && k < J.ngroups; k++) {
-        r->cpu_sim += J.gcpu_sim[k];
-        r->cpu_render += J.gcpu_sim[k] + J.gcpu_other[k];
+    for (int k = 0; J->batch && k < J->ngroups; k++) {
+        r->cpu_sim += J->gcpu_sim[k];
+        r->cpu_render += J->gcpu_sim[k] + J->gcpu_other[k];
     }
-    free(bands);
-    if (!p) free(spans);
-    if (rc != TB_OK) { tb_scene_free(r); return rc; }
-    metrics(g, r);
+    return rc;
+}
+
+/* The figures per covered pixel: clocks, energy, the operation counts
+ * and costs of the reference and of the method, and the speedups. */
+static void per_pixel(const scn_desc *d, const scn_view *view, tb_scene_result *r, double adds, double hdeg)
+{
     size_t px = r->covered;
     r->clocks_per_pixel = px ? (double)r->hwst.clocks / px : 0;
     r->energy_pj_per_pixel = r->hwst.pixels ? r->hwst.energy_pj / (double)r->hwst.pixels : 0;
     r->deg2_share = r->intervals ? (double)r->intervals_deg2 / r->intervals : 0;
-    /* operation counts per covered pixel */
     double pt[SCN_OP__COUNT];
     tb_scene_point_ops(d, view, pt);
     for (int k = 0; k < SCN_OP__COUNT; k++) {
@@ -797,6 +789,66 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
     r->long_ref = tb_scene_long_ops(r->ops_ref);
     r->long_hw = tb_scene_long_ops(r->ops_hw);
     r->speedup_long = r->long_hw > 0 ? r->long_ref / r->long_hw : 0;
+}
+
+/* The render. p: NULL, or the reference, degrees and intervals prepared
+ * already (then only the simulation and what follows; no VCD). make:
+ * NULL, or the reference, degrees and intervals are moved into it and no
+ * simulation is done (r is left empty). */
+static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx, const tb_scene_opts *o,
+                  const tb_scene_prep *p, tb_scene_prep *make, double max_nmse, tb_scene_result *r, char *err,
+                  size_t errlen)
+{
+    double c0 = cpu_now();
+    memset(r, 0, sizeof *r);
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
+    if (!o) o = &dflt;
+    r->heldout = p ? p->heldout : o->heldout;
+    if (p && p->have_unit && o->fmts && !memcmp(&p->ud, d, sizeof *d)) {
+        /* the formats are given: the rule's would be thrown away */
+        r->unit = p->u;
+        r->cfg = p->cfg;
+    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make)
+        return TB_BADINPUT;      /* (making a prep simulates nothing: it needs no unit) */
+    if (o->fmts) r->fmts = *o->fmts;
+    const scn_view *view = r->heldout ? &d->heldout : &d->view;
+    scn_span *spans;
+    size_t nspans;
+    int nb;
+    band *bands;
+    if (render_alloc(g, p, r, &spans, &nspans, &nb, &bands, err, errlen)) return TB_FAIL;
+    job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
+              .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
+              .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
+              .r = r, .max_se = INFINITY };
+    /* a budget only with a prep (its reference in band order); a margin
+     * far above the rounding of sums in another order, so that a render
+     * within max_nmse is never stopped */
+    if (p && max_nmse >= 0 && isfinite(max_nmse)) J.max_se = max_nmse * p->sum_ref2 * (1 + 1e-6);
+    if (!p) split_bands(&J, nspans);
+    int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
+    if (jobs > nb) jobs = nb;
+    double c1 = cpu_now();
+    if (!p) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
+    else if (!J.batch) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, sim_band_item, &J);
+    if (make) {
+        int rc = keep_prep(make, &J, spans, nspans, err, errlen);
+        make->cpu += c1 - c0;
+        return rc;
+    }
+    if (J.batch) {
+        /* then the bands' hardware, a group of lanes a thread */
+        J.ngroups = jobs;
+        base_par_for((size_t)J.ngroups, jobs, group_item, &J);
+    }
+    double c2 = cpu_now();
+    double adds, hdeg;
+    int rc = sum_bands(&J, &adds, &hdeg, err, errlen);
+    free(bands);
+    if (!p) free(spans);
+    if (rc != TB_OK) { tb_scene_free(r); return rc; }
+    metrics(g, r);
+    per_pixel(d, view, r, adds, hdeg);
     r->cpu_render += (c1 - c0) + (cpu_now() - c2);
     return TB_OK;
 }
