@@ -1,6 +1,6 @@
-/* claims.c - the seeds' numerical claims against the double references
+/* claims.c - the papers' numerical claims against the double references
  * (see claims.h). One function per claim family; each fills rows of the
- * table with the seed's statement, our measurement and a verdict that
+ * table with the paper's statement, our measurement and a verdict that
  * follows from the numbers (nothing is hard-wired to the expected answer).
  */
 #include "vectors/claims_int.h"
@@ -105,7 +105,7 @@ double claims_max_abs_refined(fn_cp a, fn_cp r, double p)
     return best;
 }
 
-/* ---- seed 000: divide by 3 ---- */
+/* ---- Nechyporuk & Romanyuk (2020): divide by 3 ---- */
 
 static void claim_div3(table *t)
 {
@@ -122,7 +122,7 @@ static void claim_div3(table *t)
          "1/2 - sum 2^-(2i+1) converges to 1/3, one more term gives +0.195%%");
 }
 
-/* ---- seed 000: interpolation against Phong ---- */
+/* ---- Nechyporuk & Romanyuk (2020): interpolation against Phong ---- */
 
 /* NMSE of the float cubic (node set N1) through each interval of L pixels
  * against the exact shading of every pixel of a 64-pixel span. Float only:
@@ -174,7 +174,8 @@ static void claim_interp_nmse(table *t)
          "the hardware adds the 1/3 network's error (run interp3 --param terms=N)", bad ? failing : "none");
 }
 
-/* ---- seeds 000 III / 001 3: Beckmann D, its cos-power form and D16 ---- */
+/* ---- Nechyporuk & Romanyuk (2020) sec. III, Romanyuk et al. (SPIE) sec. 3:
+ * Beckmann D, its cos-power form and D16 ---- */
 
 static const double ROUGHNESS[] = { 0.2, 0.3, 0.4, 0.5, 0.6 };
 #define N_ROUGH (sizeof ROUGHNESS / sizeof ROUGHNESS[0])
@@ -202,8 +203,9 @@ static void claim_cpow(table *t)
             "convergence with D, high accuracy over a significant interval (m 0.2..0.6)", NAN);
         double abs_pk = 100.0 * claims_max_abs(d_cpow, d_exact, m, 0.0, HALF_PI, 8000) / peak;
         double r50 = d_band_rel(d_cpow, m, 0.5), r10 = d_band_rel(d_cpow, m, 0.1);
-        /* SPEC's "cos-power form off by 10-48% of the peak" (m >= 0.4) are
-         * D16's figures; the cos-power step alone is off by less. */
+        /* The "cos-power form off by 10-48% of the peak" (m >= 0.4) one
+         * may read in the papers' figures are D16's; the cos-power step
+         * alone is off by less. */
         double abs16 = 100.0 * claims_max_abs(d_16c, d_exact, m, 0.0, HALF_PI, 8000) / peak;
         r->measured = abs_pk;
         claims_text(r->measured_text, sizeof r->measured_text,
@@ -230,7 +232,7 @@ static void claim_d16(table *t)
         double r1 = d_band_rel(d_16c, m, 0.01), r50 = d_band_rel(d_16c, m, 0.5);
         double abs_pk = 100.0 * claims_max_abs(d_16c, d_exact, m, 0.0, HALF_PI, 8000) / peak;
         double c0 = ref_brdf_dg_base_zero_cos(m, 16);
-        /* How far the seed's unclamped form rises again past the zero. */
+        /* How far the papers' unclamped form rises again past the zero. */
         double rise = c0 > 0.0 ? claims_max_abs(d_16u, d_exact, m, acos(c0), HALF_PI, 2000) / peak : 0.0;
         r->measured = r1;
         if (c0 > 0.0)
@@ -258,7 +260,8 @@ static void claim_d16(table *t)
     }
 }
 
-/* ---- seeds 000 III / 001 3: Ward's exponential as a 16th power ---- */
+/* ---- Nechyporuk & Romanyuk (2020) sec. III, Romanyuk et al. (SPIE) sec. 3:
+ * Ward's exponential as a 16th power ---- */
 
 static double w_exact(double c, double a) { return ref_brdf_ward_exp(c, a); }
 static double w_poly(double c, double a) { return ref_brdf_ward_exp_approx_clamped(c, a); }
@@ -279,7 +282,7 @@ static void claim_ward(table *t)
         double e5 = claims_max_rel_pct(w_poly, w_exact, a, ward_band(a, 0.5), 4000);
         double e1 = claims_max_rel_pct(w_poly, w_exact, a, ward_band(a, 0.1), 4000);
         double e01 = claims_max_rel_pct(w_poly, w_exact, a, ward_band(a, 0.01), 4000);
-        /* SPEC's independent check sampled whole degrees; give that too. */
+        /* Sampled at whole degrees too (a coarser check's reading). */
         double e1deg = 0.0;
         for (int d = 0; d < 90; d++) {
             double c = cos(d / RAD2DEG), w = w_exact(c, a);
@@ -300,7 +303,8 @@ static void claim_ward(table *t)
     }
 }
 
-/* ---- seeds 000 III / 001 3: which power g of D_g is best at each m ---- */
+/* ---- Nechyporuk & Romanyuk (2020) sec. III, Romanyuk et al. (SPIE) sec. 3:
+ * which power g of D_g is best at each m ---- */
 
 static void claim_dg_best(table *t)
 {
@@ -332,7 +336,7 @@ static void claim_dg_best(table *t)
     }
 }
 
-/* ---- seed 000 IV: node set N1 against N2 ---- */
+/* ---- Nechyporuk & Romanyuk (2020) sec. IV: node set N1 against N2 ---- */
 
 static double span_nmse_nodes(const shade_span *s, int L, const double *tn)
 {

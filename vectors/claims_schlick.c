@@ -8,22 +8,20 @@
 #include <stdio.h>
 #include <string.h>
 
-/* ---- seed 004: Schlick and modified Schlick vs Blinn ---- */
-
 static double f_sh(double c, double n) { return ref_brdf_schlick(c, n); }
 static double f_msh(double c, double n) { return ref_brdf_mschlick(c, n); }
 static double f_b(double c, double n) { return ref_brdf_cos_pow(c, n); }
 
-/* "Relative error at the epicenter" (seed 004, eq. 6, Fig. 4): F_apr vs
- * Blinn F_B = cos^n x, both with the same n (the seed compares the three
+/* "Relative error at the epicenter" (Zavalniuk et al. 2022, eq. 6, Fig. 4): F_apr vs
+ * Blinn F_B = cos^n x, both with the same n (the paper compares the three
  * functions for one specular exponent n, eqs. 2, 5, 13), at the x where
  * F_B = 0.3, for n = 2..1000. With the exact abscissa cos x = 0.3^(1/n),
  * F_B = 0.3 and the maxima are 15.66% (F_MSH, at n = 2) and 51.19% (F_SH,
  * at n = 1000; its limit for large n is 1/(0.3 (1 - ln 0.3)) - 1 = 51.24%).
- * The seed's eq. 6 writes x_ep = acos(exp(-1.2/n)), rounding ln 0.3 =
+ * The paper's eq. 6 writes x_ep = acos(exp(-1.2/n)), rounding ln 0.3 =
  * -1.20397 to -1.2: there F_B = e^-1.2 = 0.3012 and, comparing against
  * that F_B, the maxima are 15.55% and 50.87%. Both readings are within the
- * claims; SPEC's 15.7%/51.2% is the exact reading, used for `measured`. */
+ * claims; the exact reading (15.7%/51.2%) is the one used for `measured`. */
 typedef struct epicenter { double msh, sh; int n_msh, n_sh; } epicenter;
 
 static epicenter epicenter_errors(int eq6)
@@ -93,7 +91,7 @@ static void claim_abs_half(table *t)
 }
 
 /* Max relative error (eq. 17) of F_SH and F_MSH over the interval of
- * computation; ratio sh/msh per n, q fixed. The seed stops its 0.01-rad
+ * computation; ratio sh/msh per n, q fixed. The paper stops its 0.01-rad
  * loop at gran(n); we read gran as Blinn's cut-off (eq. 14), where the
  * reference itself reaches 2^-q: with each function's own cut-off (eqs. 10,
  * 12) the relative error against a Blinn of ~1e-90 is meaningless. */
@@ -281,14 +279,14 @@ static void claim_mad_models(table *t)
                 double c = d == 90 ? 0.0 : cos(d / RAD2DEG);
                 sm += fabs(msh_model(c, n, M[k].b) - f_b(c, n));
             }
-        static const char *const seeds[] = { "Zavalniuk et al. (2022), Table 1, model 0", "Zavalniuk et al. (2022), Table 1, model 1",
+        static const char *const where[] = { "Zavalniuk et al. (2022), Table 1, model 0", "Zavalniuk et al. (2022), Table 1, model 1",
                                              "Zavalniuk et al. (2022), Table 1, model 3", "Zavalniuk et al. (2022), Table 1, model 4" };
         static const char *const claims[] = {
             "model 0, 2cos^2 x / (1.25 (n - n cos x + 1.25 cos^2 x)^2): mean absolute deviation from Blinn 0.0063 (second best, 3 raisings to powers)",
             "model 1, 2cos^3 x / (1.25 (n - n cos x + 1.25 cos^3 x)^2): mean absolute deviation from Blinn 0.0062 (the most accurate, 5 raisings)",
             "model 3, 2cos^2 x / (1.25 (n - n cos x + 1.25 cos^3 x)^2): mean absolute deviation from Blinn 0.0066",
             "model 4, 2cos x / (1.25 (n - n cos x + 1.25 cos^2 x)^2): mean absolute deviation from Blinn 0.0070" };
-        claim_result *r = claims_add(t, M[k].id, seeds[k], claims[k], M[k].mad);
+        claim_result *r = claims_add(t, M[k].id, where[k], claims[k], M[k].mad);
         r->measured = sm / cnt;
         claims_text(r->measured_text, sizeof r->measured_text,
              "%.5f over whole degrees 0..90, n = 1..1000 (powers b1..b5 = %d %d %d %d %d)", r->measured,
