@@ -5,7 +5,9 @@
  *   chart_svg.c     the output buffer: locale-independent numbers, XML text,
  *                   text width estimates, a small printf for SVG
  *   chart_axis.c    axes: 1-2-5 and decade ticks, tick labels, pixels
- *   chart_draw.c    layout and drawing, back to front
+ *   chart_layout.c  layout: margins, legend, band label rows, markers set
+ *                   apart, which points are drawn
+ *   chart_draw.c    drawing, back to front
  *   chart_pareto.c  Pareto fronts (uses nothing of the others)
  */
 #ifndef CHART_INT_H
@@ -111,6 +113,65 @@ double chart_pix(const chart_axis *a, double v);    /* data to pixels */
 double chart_snap(double v);                        /* to a pixel centre */
 void   chart_ticklabel(chart_buf *b, const chart_lab *l, double x, double y,
                        const char *anchor, int minor);
+
+/* ---- layout (chart_layout.c), read by the drawing (chart_draw.c) ------- */
+
+/* Boxes of placed text, kept apart (chart_overlap). */
+typedef struct { double x0, y0, x1, y1; } chart_box;
+
+typedef struct {
+    chart_box *v;
+    size_t n, cap;
+} chart_boxes;
+
+/* Whether a point is drawn, else why not (chart_visible). */
+enum { CHART_SHOWN, CHART_NONFINITE, CHART_NONPOS };
+
+/* Everything the drawing steps share: the plot rectangle (frame) in whole
+ * pixels, the fitted axes, and what was decided about legend and bands. */
+typedef struct {
+    const chart *c;
+    chart_buf *b;
+    int    have;            /* something to draw: else "no data" */
+    double L, R, T, B;      /* frame */
+    chart_axis ax, ay;
+    size_t nleg;            /* labelled series */
+    double legw;
+    char   foot[200];
+    size_t flen;
+    double *bx0, *bx1;      /* per band: its pixels, cut to the frame */
+    int   *brow;            /* per band: label row above the plot, or -1 */
+    double *dodge;          /* per point (series s from doff[s]): x offset in pixels */
+    size_t *doff;
+    int   *same;            /* per series: an earlier series of the same points, or -1 */
+} chart_lay;
+
+#define CHART_PAD      10  /* end ticks this far inside the frame */
+#define CHART_LEGMAX   26  /* legend text wrapped at this many characters */
+#define CHART_LEGLINES 3   /* ... onto at most this many lines, the last cut */
+#define CHART_DODGE    5   /* markers of equal value in different series: this far apart */
+#define CHART_DQ       2000 /* "equal" position: the same 1/2000 of the data range */
+#define CHART_BANDMAX  30  /* band labels likewise */
+#define CHART_PLMAX    20  /* point labels likewise */
+#define CHART_BANDROWS 4   /* rows for band labels; a label that fits none is dropped */
+
+void   chart_addbox(chart_boxes *bs, chart_box b, chart_buf *out);   /* out->oom on failure */
+int    chart_overlap(chart_box a, chart_box b);
+int    chart_visible(const chart *c, double x, double y);   /* CHART_SHOWN or why not */
+int    chart_draws(const chart *c, size_t s);   /* series s draws a marker or a line: listed */
+int    chart_shown_hl(const chart *c, double y);   /* a horizontal line at y can be drawn */
+void   chart_layout(chart_lay *l);   /* decide everything from l->c before drawing */
+/* x pixel of point i of series s, set aside when it shares its spot. */
+double chart_px(const chart_lay *l, size_t s, size_t i);
+/* Series s is one of a set with the same points (their lines move too). */
+int    chart_twin(const chart_lay *l, size_t s);
+/* Series s's legend text: its label, "(= other)" when it repeats one. */
+void   chart_leg_text(const chart_lay *l, size_t s, char *buf, size_t cap);
+/* s in lines of at most max code points (starts st, lengths ln); returns
+ * the number of lines. */
+int    chart_wrap(const char *s, size_t max, size_t st[CHART_LEGLINES], size_t ln[CHART_LEGLINES]);
+/* A piece of a label as XML text, cut to maxcp code points. */
+void   chart_text_n(chart_buf *b, const char *s, size_t n, size_t maxcp);
 
 /* The whole SVG of c into b (b->oom set when memory ran out). */
 void   chart_render(const chart *c, chart_buf *b);

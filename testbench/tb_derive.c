@@ -74,6 +74,9 @@ typedef struct dsim {
     uint32_t *order, norder;        /* combinational elements */
     uint32_t *regs, nregs;
     unsigned char *mark;
+    unsigned char *data;            /* depends on the data inputs (mark_data) */
+    sim_ival *snap;                 /* [nsnap][n]: the state after each acceptance but the last */
+    size_t *snap_got, nsnap, capsnap;   /* output beats by then */
 } dsim;
 
 /* The operands an element's value depends on within one clock. */
@@ -113,6 +116,7 @@ static void dsim_free(dsim *d)
 {
     free(d->val); free(d->hull); free(d->nxt_pre); free(d->nxt_post); free(d->bound);
     free(d->order); free(d->regs); free(d->mark);
+    free(d->data); free(d->snap); free(d->snap_got);
 }
 
 static int pt(sim_ival v) { return v.lo == v.hi; }
@@ -148,58 +152,59 @@ static int clock_step(dsim *d, const unit_io *io, int valid, char *err, size_t e
     return (valid && rdy.lo ? 1 : 0) + (ov.lo ? 2 : 0);
 }
 
-int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const tb_ranges *rg,
-              tb_derived *out, char *err, size_t errlen)
+/* The simulation's arrays for the build's n signals; 0, or -1 with a
+ * message. */
+static int dsim_alloc(dsim *d, sim_ctx *c, char *err, size_t errlen)
 {
-    memset(out, 0, sizeof *out);
-    for (int i = 0; i < UNIT_MAX_SIGS; i++) out->at[i] = -1;
-    tb_built b;
-    if (tb_build(u, cfg, f, &b, err, errlen)) { sim_free(b.c); return -1; }
-    dsim d;
-    memset(&d, 0, sizeof d);
-    d.c = b.c;
-    d.n = sim_signal_count(b.c);
-    size_t n = d.n ? d.n : 1;
-    d.val = calloc(n, sizeof *d.val); d.hull = calloc(n, sizeof *d.hull);
-    d.nxt_pre = calloc(n, sizeof *d.nxt_pre); d.nxt_post = calloc(n, sizeof *d.nxt_post);
-    d.bound = calloc(n, sizeof *d.bound);
-    d.order = calloc(n, sizeof *d.order); d.regs = calloc(n, sizeof *d.regs); d.mark = calloc(n, 1);
-    int rc = -1;
-    sim_ival *snap = NULL;
-    size_t *snap_got = NULL;
-    if (!d.val || !d.hull || !d.nxt_pre || !d.nxt_post || !d.bound || !d.order || !d.regs || !d.mark) {
+    memset(d, 0, sizeof *d);
+    d->c = c;
+    d->n = sim_signal_count(c);
+    size_t n = d->n ? d->n : 1;
+    d->val = calloc(n, sizeof *d->val); d->hull = calloc(n, sizeof *d->hull);
+    d->nxt_pre = calloc(n, sizeof *d->nxt_pre); d->nxt_post = calloc(n, sizeof *d->nxt_post);
+    d->bound = calloc(n, sizeof *d->bound);
+    d->order = calloc(n, sizeof *d->order); d->regs = calloc(n, sizeof *d->regs); d->mark = calloc(n, 1);
+    d->data = calloc(n, 1);
+    if (!d->val || !d->hull || !d->nxt_pre || !d->nxt_post || !d->bound || !d->order || !d->regs || !d->mark ||
+        !d->data) {
         snprintf(err, errlen, "derived ranges: out of memory");
-        goto done;
+        return -1;
     }
-    /* Everything starts at its value after elaboration (registers their
-     * reset value); the data inputs hold their declared interval. */
-    unsigned char *is_in = calloc(n, 1);
-    if (!is_in) { snprintf(err, errlen, "derived ranges: out of memory"); goto done; }
-    for (uint32_t i = 0; i < d.n; i++) {
-        sim_signal *s = sim_signal_at(b.c, i);
-        d.val[i] = d.hull[i] = (sim_ival){ s->cur, s->cur };
-        if (s->kind == SIM_KIND_REG) d.regs[d.nregs++] = i;
+    return 0;
+}
+
+/* Everything starts at its value after elaboration (registers their
+ * reset value); the data inputs hold their declared interval (rg's when
+ * it sets one) and are marked data. */
+static void dsim_start(dsim *d, const tb_built *b, const unit_desc *u, const unit_cfg *cfg, const tb_ranges *rg)
+{
+    for (uint32_t i = 0; i < d->n; i++) {
+        sim_signal *s = sim_signal_at(b->c, i);
+        d->val[i] = d->hull[i] = (sim_ival){ s->cur, s->cur };
+        if (s->kind == SIM_KIND_REG) d->regs[d->nregs++] = i;
     }
     for (int i = 0, k = 0; i < u->nsigs; i++) {
         if (u->sigs[i].role != UNIT_SIG_IN) continue;
-        sim_signal *s = b.io.in[k++];
+        sim_signal *s = b->io.in[k++];
         sim_ival pre = { s->raw_min, s->raw_max };
         if (rg && rg->set[i]) pre = (sim_ival){ round_real(rg->lo[i], s->fmt, cfg->rnd), round_real(rg->hi[i], s->fmt, cfg->rnd) };
-        d.hull[s->index] = pre;
-        d.val[s->index] = sim_ival_fit(pre, s->fmt, sim_fmt_ovf(s->fmt, cfg->ovf));
-        is_in[s->index] = 1;
+        d->hull[s->index] = pre;
+        d->val[s->index] = sim_ival_fit(pre, s->fmt, sim_fmt_ovf(s->fmt, cfg->ovf));
+        d->data[s->index] = 1;
     }
-    int bad = 0;
-    for (uint32_t i = 0; i < d.n && !bad; i++) bad = visit(&d, sim_signal_at(b.c, i), err, errlen);
-    if (bad) { free(is_in); goto done; }
-    /* The signals that depend on the data (is_in grows to them): only
-     * their registers' states are joined at acceptances; control state
-     * (step counters, pipeline valid bits) stays a point, and the state
-     * has settled when it repeats. */
+}
+
+/* The signals that depend on the data (d->data grows to them): only
+ * their registers' states are joined at acceptances; control state (step
+ * counters, pipeline valid bits) stays a point, and the state has settled
+ * when it repeats. */
+static void mark_data(dsim *d)
+{
+    unsigned char *is_in = d->data;
     for (int changed = 1; changed;) {
         changed = 0;
-        for (uint32_t i = 0; i < d.n; i++) {
-            const sim_signal *y = sim_signal_at(b.c, i);
+        for (uint32_t i = 0; i < d->n; i++) {
+            const sim_signal *y = sim_signal_at(d->c, i);
             sim_prim_info pi;
             if (is_in[i] || sim_prim_describe(y, &pi) || pi.kind == SIM_KIND_CONST) continue;
             int dep = (pi.a && is_in[pi.a->index]) || (pi.b && is_in[pi.b->index]) || (pi.c && is_in[pi.c->index])
@@ -208,20 +213,42 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
             if (dep) { is_in[i] = 1; changed = 1; }
         }
     }
+}
 
-    int beats = u->beats(cfg), valid = 1, have_bound = 0, st;
-    size_t accepted = 0, got = 0, nsnap = 0;
+/* The state after an acceptance, kept for the runs of that many items. */
+static int snap_keep(dsim *d, size_t got, char *err, size_t errlen)
+{
+    size_t n = d->n ? d->n : 1;
+    if (d->nsnap == d->capsnap) {
+        d->capsnap = d->capsnap ? 2 * d->capsnap : 8;
+        sim_ival *ns = realloc(d->snap, d->capsnap * n * sizeof *d->snap);
+        size_t *ng = realloc(d->snap_got, d->capsnap * sizeof *d->snap_got);
+        if (ns) d->snap = ns;
+        if (ng) d->snap_got = ng;
+        if (!ns || !ng) { snprintf(err, errlen, "derived ranges: out of memory"); return -1; }
+    }
+    memcpy(d->snap + d->nsnap * n, d->val, n * sizeof *d->snap);
+    d->snap_got[d->nsnap++] = got;
+    return 0;
+}
+
+/* Items offered one after another until the state after an acceptance
+ * lies within the join of the states at the acceptances before (and a
+ * few items are in), then drained to the last beat. *items, *clocks: the
+ * items accepted and the clocks run. The state after each acceptance but
+ * the last is kept (snap_keep) for drain_runs. */
+static int run_items(dsim *d, const tb_built *b, const unit_desc *u, int beats, int *items, uint64_t *clocks,
+                     char *err, size_t errlen)
+{
+    int valid = 1, have_bound = 0, st;
+    size_t accepted = 0, got = 0;
     uint64_t clk = 0;
-    /* The state after each acceptance but the last, where a run of that
-     * many items stops offering and drains (below). */
-    size_t capsnap = 0;
     for (;; clk++) {
         if (clk >= DERIVE_MAX_CLOCKS) {
             snprintf(err, errlen, "derived ranges: %s did not finish in %d clocks", u->name, DERIVE_MAX_CLOCKS);
-            free(is_in);
-            goto done;
+            return -1;
         }
-        if ((st = clock_step(&d, &b.io, valid, err, errlen)) < 0) { free(is_in); goto done; }
+        if ((st = clock_step(d, &b->io, valid, err, errlen)) < 0) return -1;
         got += (size_t)(st & 2) / 2;
         if (!valid && got >= accepted * (size_t)beats) break;   /* the last beat: tb_run stops here */
         if (!(st & 1)) continue;
@@ -229,65 +256,66 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
         /* An item accepted: the state now, joined with the state at the
          * last acceptance. Within it (and a few items in): settled. */
         int inside = have_bound;
-        for (uint32_t k = 0; k < d.nregs && inside; k++)
-            inside = sim_ival_within(d.val[d.regs[k]], d.bound[d.regs[k]]);
+        for (uint32_t k = 0; k < d->nregs && inside; k++)
+            inside = sim_ival_within(d->val[d->regs[k]], d->bound[d->regs[k]]);
         if (inside && accepted >= 3) { valid = 0; continue; }
         if (accepted >= DERIVE_MAX_ITEMS) {
             uint32_t w = 0;
-            for (uint32_t k = 0; k < d.nregs; k++)
-                if (!sim_ival_within(d.val[d.regs[k]], d.bound[d.regs[k]])) { w = d.regs[k]; break; }
+            for (uint32_t k = 0; k < d->nregs; k++)
+                if (!sim_ival_within(d->val[d->regs[k]], d->bound[d->regs[k]])) { w = d->regs[k]; break; }
             char p[200];
             snprintf(err, errlen, "derived ranges: %s keeps growing over %d items (an accumulator never cleared?)",
-                     sim_signal_path(sim_signal_at(b.c, w), p, sizeof p), DERIVE_MAX_ITEMS);
-            free(is_in);
-            goto done;
+                     sim_signal_path(sim_signal_at(b->c, w), p, sizeof p), DERIVE_MAX_ITEMS);
+            return -1;
         }
-        if (nsnap == capsnap) {
-            capsnap = capsnap ? 2 * capsnap : 8;
-            sim_ival *ns = realloc(snap, capsnap * n * sizeof *snap);
-            size_t *ng = realloc(snap_got, capsnap * sizeof *snap_got);
-            if (ns) snap = ns;
-            if (ng) snap_got = ng;
-            if (!ns || !ng) { snprintf(err, errlen, "derived ranges: out of memory"); free(is_in); goto done; }
-        }
-        memcpy(snap + nsnap * n, d.val, n * sizeof *snap);
-        snap_got[nsnap++] = got;
-        for (uint32_t k = 0; k < d.nregs; k++) {
-            uint32_t i = d.regs[k];
-            if (have_bound && is_in[i]) d.val[i] = sim_ival_hull(d.val[i], d.bound[i]);
-            d.bound[i] = d.val[i];
+        if (snap_keep(d, got, err, errlen)) return -1;
+        for (uint32_t k = 0; k < d->nregs; k++) {
+            uint32_t i = d->regs[k];
+            if (have_bound && d->data[i]) d->val[i] = sim_ival_hull(d->val[i], d->bound[i]);
+            d->bound[i] = d->val[i];
         }
         have_bound = 1;
     }
-    /* Runs of fewer items: from the state after their last acceptance,
-     * offering nothing more, to their last beat (a pipelined schedule
-     * drains differently with fewer items in flight). */
-    for (size_t j = 0; j < nsnap; j++) {
-        memcpy(d.val, snap + j * n, n * sizeof *snap);
-        size_t g = snap_got[j];
+    *items = (int)accepted;
+    *clocks = clk + 1;
+    return 0;
+}
+
+/* Runs of fewer items: from the state after their last acceptance,
+ * offering nothing more, to their last beat (a pipelined schedule drains
+ * differently with fewer items in flight). */
+static int drain_runs(dsim *d, const tb_built *b, const unit_desc *u, int beats, char *err, size_t errlen)
+{
+    size_t n = d->n ? d->n : 1;
+    int st;
+    for (size_t j = 0; j < d->nsnap; j++) {
+        memcpy(d->val, d->snap + j * n, n * sizeof *d->snap);
+        size_t g = d->snap_got[j];
         for (uint64_t c = 0; g < (j + 1) * (size_t)beats; c++) {
-            if (c >= DERIVE_MAX_CLOCKS || (st = clock_step(&d, &b.io, 0, err, errlen)) < 0) {
+            if (c >= DERIVE_MAX_CLOCKS || (st = clock_step(d, &b->io, 0, err, errlen)) < 0) {
                 if (c >= DERIVE_MAX_CLOCKS) snprintf(err, errlen, "derived ranges: %s did not drain", u->name);
-                free(is_in);
-                goto done;
+                return -1;
             }
             g += (size_t)(st & 2) / 2;
         }
     }
-    free(is_in);
-    out->items = (int)accepted;
-    out->clocks = clk + 1;
+    return 0;
+}
 
-    out->sigs = calloc(n, sizeof *out->sigs);
-    if (!out->sigs) { snprintf(err, errlen, "derived ranges: out of memory"); goto done; }
-    for (uint32_t i = 0; i < d.n; i++) {
-        sim_signal *s = sim_signal_at(b.c, i);
-        if (s == b.clk || !tb_range_in_scope(s, b.sc)) continue;
+/* out's signals: each signal of the unit's scope with its hull, as reals,
+ * and whether it fits its format. */
+static int collect(tb_derived *out, const dsim *d, const tb_built *b, const unit_desc *u, char *err, size_t errlen)
+{
+    out->sigs = calloc(d->n ? d->n : 1, sizeof *out->sigs);
+    if (!out->sigs) { snprintf(err, errlen, "derived ranges: out of memory"); return -1; }
+    for (uint32_t i = 0; i < d->n; i++) {
+        sim_signal *s = sim_signal_at(b->c, i);
+        if (s == b->clk || !tb_range_in_scope(s, b->sc)) continue;
         tb_dsig *t = &out->sigs[out->nsigs];
-        tb_range_name(s, b.sc, t->name, sizeof t->name);
+        tb_range_name(s, b->sc, t->name, sizeof t->name);
         t->fmt = s->fmt;
         t->kind = s->kind;
-        t->pre = d.hull[i];
+        t->pre = d->hull[i];
         t->lo = wide_real(t->pre.lo, s->fmt.fbits);
         t->hi = wide_real(t->pre.hi, s->fmt.fbits);
         t->fits = sim_ival_within(t->pre, (sim_ival){ s->raw_min, s->raw_max });
@@ -296,10 +324,32 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
             if (!strcmp(u->sigs[k].name, t->name)) out->at[k] = out->nsigs;
         out->nsigs++;
     }
+    return 0;
+}
+
+int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const tb_ranges *rg,
+              tb_derived *out, char *err, size_t errlen)
+{
+    memset(out, 0, sizeof *out);
+    for (int i = 0; i < UNIT_MAX_SIGS; i++) out->at[i] = -1;
+    tb_built b;
+    if (tb_build(u, cfg, f, &b, err, errlen)) { sim_free(b.c); return -1; }
+    dsim d;
+    int rc = -1, bad = 0;
+    if (dsim_alloc(&d, b.c, err, errlen)) goto done;
+    dsim_start(&d, &b, u, cfg, rg);
+    for (uint32_t i = 0; i < d.n && !bad; i++) bad = visit(&d, sim_signal_at(b.c, i), err, errlen);
+    if (bad) goto done;
+    mark_data(&d);
+    int beats = u->beats(cfg), items;
+    uint64_t clocks;
+    if (run_items(&d, &b, u, beats, &items, &clocks, err, errlen) || drain_runs(&d, &b, u, beats, err, errlen))
+        goto done;
+    out->items = items;
+    out->clocks = clocks;
+    if (collect(out, &d, &b, u, err, errlen)) goto done;
     rc = 0;
 done:
-    free(snap);
-    free(snap_got);
     dsim_free(&d);
     sim_free(b.c);
     if (rc) tb_derived_free(out);

@@ -61,21 +61,11 @@ static void snap_range(const sim_batch *b, const tb_range *g, uint32_t l, int64_
     for (int i = 0; i < g->nlive; i++) sim_batch_range(b, g->lv[i].sig, l, &mn[i], &mx[i]);
 }
 
-int tb_lanes_run(tb_lanes_job *j, char *why, size_t len)
+/* Lane k of L drives items [begin, end) of the n: its own piece
+ * [from, end) after LANES_WARM items of warm-up (lane 0 none). -1: out of
+ * memory. */
+static int lanes_init(lane *S, size_t L, size_t n, uint32_t nsig, const tb_range *g)
 {
-    size_t n = j->n_items, beats = (size_t)j->beats, nout = (size_t)j->n_out;
-    size_t L = n / LANES_MIN_ITEMS;
-    if (L > LANES_MAX) L = LANES_MAX;
-    if (L >= 8) L &= ~(size_t)7;        /* the vector loops take multiples of their width */
-    if (L < 2) { snprintf(why, len, "%zu items: too few for lanes", n); return 1; }
-    char err[300];
-    sim_batch *b = sim_batch_new(j->c, j->clk, (uint32_t)L, err, sizeof err);
-    if (!b) { snprintf(why, len, "%s", err); return 1; }
-    tb_range *g = j->rg;
-    uint32_t nsig = sim_signal_count(j->c);
-    lane *S = calloc(L, sizeof *S);
-    int rc = -1;
-    if (!S || sim_batch_ranges_on(b)) goto done;
     for (size_t k = 0; k < L; k++) {
         lane *s = &S[k];
         s->from = k * n / L;
@@ -89,8 +79,19 @@ int tb_lanes_run(tb_lanes_job *j, char *why, size_t len)
         s->tog_out = calloc((size_t)g->nsmp + 1, sizeof *s->tog_out);
         s->mn = malloc(((size_t)g->nlive + 1) * sizeof *s->mn);
         s->mx = malloc(((size_t)g->nlive + 1) * sizeof *s->mx);
-        if (!s->state_in || !s->state_out || !s->tog_in || !s->tog_out || !s->mn || !s->mx) goto done;
+        if (!s->state_in || !s->state_out || !s->tog_in || !s->tog_out || !s->mn || !s->mx) return -1;
     }
+    return 0;
+}
+
+/* The L lanes side by side until each has driven its piece (the last
+ * lane: until the stream's last beat), their beats' cycles and outputs
+ * into j and their junction states, toggles and ranges into S. 1 if a
+ * lane gave no answer in time. */
+static int lanes_simulate(tb_lanes_job *j, sim_batch *b, lane *S, size_t L)
+{
+    size_t n = j->n_items, beats = (size_t)j->beats, nout = (size_t)j->n_out;
+    tb_range *g = j->rg;
     int64_t *nin[UNIT_MAX_IO], *nvalid = sim_batch_next(b, j->io->in_valid);
     const int64_t *out[UNIT_MAX_IO];
     for (int i = 0; i < j->n_in; i++) nin[i] = sim_batch_next(b, j->io->in[i]);
@@ -156,18 +157,31 @@ int tb_lanes_run(tb_lanes_job *j, char *why, size_t len)
     }
     /* the last lane's toggles through the last edge's settling, where tb_run stops */
     snap_tog(b, g, (uint32_t)(L - 1), S[L - 1].tog_out);
-    rc = 1;
-    if (late) { snprintf(why, len, "a lane gave no answer in time"); goto done; }
+    return late;
+}
+
+/* Whether the pieces join into the one-lane run: no overflow, and each
+ * lane's state at its junction in is its predecessor's at its junction out
+ * (else the warm-up was too short). 0, or 1 with why. */
+static int lanes_check(const sim_batch *b, const lane *S, size_t L, uint32_t nsig, char *why, size_t len)
+{
     for (size_t k = 0; k < L; k++)
-        if (sim_batch_overflowed(b, (uint32_t)k)) { snprintf(why, len, "an overflow (the kernel counts it)"); goto done; }
+        if (sim_batch_overflowed(b, (uint32_t)k)) { snprintf(why, len, "an overflow (the kernel counts it)"); return 1; }
     for (size_t k = 1; k < L; k++) {
         const lane *p = &S[k - 1], *s = &S[k];
         if (p->beat_out != s->beat_in || memcmp(p->state_out, s->state_in, (size_t)nsig * sizeof *s->state_in)) {
             snprintf(why, len, "item %zu depends on more than the %d items before it", s->from, LANES_WARM);
-            goto done;
+            return 1;
         }
     }
-    /* joined: each piece's clocks shifted by the stream's before it */
+    return 0;
+}
+
+/* The pieces joined: each piece's clocks shifted by the stream's before
+ * it, the toggles summed, the live signals' ranges joined. */
+static void lanes_join(tb_lanes_job *j, const lane *S, size_t L)
+{
+    tb_range *g = j->rg;
     uint64_t at_edge = 0;       /* the stream's edge at lane k's junction in */
     for (size_t k = 0; k < L; k++) {
         const lane *s = &S[k];
@@ -191,6 +205,26 @@ int tb_lanes_run(tb_lanes_job *j, char *why, size_t len)
     }
     g->sampled = 1;
     j->lanes = (uint32_t)L;
+}
+
+int tb_lanes_run(tb_lanes_job *j, char *why, size_t len)
+{
+    size_t n = j->n_items;
+    size_t L = n / LANES_MIN_ITEMS;
+    if (L > LANES_MAX) L = LANES_MAX;
+    if (L >= 8) L &= ~(size_t)7;        /* the vector loops take multiples of their width */
+    if (L < 2) { snprintf(why, len, "%zu items: too few for lanes", n); return 1; }
+    char err[300];
+    sim_batch *b = sim_batch_new(j->c, j->clk, (uint32_t)L, err, sizeof err);
+    if (!b) { snprintf(why, len, "%s", err); return 1; }
+    uint32_t nsig = sim_signal_count(j->c);
+    lane *S = calloc(L, sizeof *S);
+    int rc = -1;
+    if (!S || sim_batch_ranges_on(b) || lanes_init(S, L, n, nsig, j->rg)) goto done;
+    rc = 1;
+    if (lanes_simulate(j, b, S, L)) { snprintf(why, len, "a lane gave no answer in time"); goto done; }
+    if (lanes_check(b, S, L, nsig, why, len)) goto done;
+    lanes_join(j, S, L);
     rc = 0;
 done:
     if (S)

@@ -382,6 +382,114 @@ static int in_disk(int R, int j)
     return u * u + v * v < 1;
 }
 
+/* N sample pairs (d0, di) of fn into pd, 7 doubles each (d0, di, f): odd
+ * ones drawn around a random half vector (the lobe's samples). Pairs below
+ * the horizon or with a value that is not a finite f >= 0 are skipped
+ * (f->skipped); f->fmax gets the largest value. Returns how many. */
+static long sample_pairs(rf_fn fn, void *user, uint64_t seed, long N, double *pd, rf_fact *f)
+{
+    uint64_t st = seed;
+    long np = 0;
+    double fmax = 0;
+    for (long s = 0; s < N; s++) {
+        double *d0 = pd + 7 * np, *di = d0 + 3, h[3];
+        if (s % 2 == 0) { rand_parab(&st, d0); rand_parab(&st, di); }
+        else {
+            int tries = 0;
+            do {
+                rand_parab(&st, h);
+                rand_parab(&st, d0);
+                double k = 2 * dot3(d0, h);
+                for (int c = 0; c < 3; c++) di[c] = k * h[c] - d0[c];
+            } while (di[2] <= 1e-9 && ++tries < 64);
+            if (di[2] <= 1e-9) { f->skipped++; continue; }
+        }
+        double v = fn(d0, di, user);
+        if (!(v >= 0) || !isfinite(v)) { f->skipped++; continue; }
+        d0[6] = v;
+        if (v > fmax) fmax = v;
+        np++;
+    }
+    f->fmax = fmax;
+    return np;
+}
+
+/* The 99th percentile of the np samples' values; -1: out of memory. */
+static double percentile99(const double *pd, long np)
+{
+    double *q = malloc(sizeof(double) * (size_t)np);
+    if (!q) return -1;
+    for (long s = 0; s < np; s++) q[s] = pd[7 * s + 6];
+    qsort(q, (size_t)np, sizeof *q, cmp_dbl);
+    double v = q[(long)(0.99 * (double)(np - 1))];
+    free(q);
+    return v;
+}
+
+/* A row per sample at or above the floor: log f = log lambda(d0) +
+ * log lambda(di) + log pi(h), each map's four bilinear taps. */
+static void sample_rows(sp *a, const double *pd, long np, int R, rf_fact *f)
+{
+    int T = R * R;
+    for (long s = 0; s < np; s++) {
+        const double *d0 = pd + 7 * s, *di = d0 + 3;
+        double v = d0[6], h[3];
+        if (v < f->floor) { f->floored++; continue; }
+        half(d0, di, h);
+        rf_tap t0, ti, th;
+        dir_tap(R, d0, &t0); dir_tap(R, di, &ti); dir_tap(R, h, &th);
+        int col[12];
+        double val[12];
+        for (int k = 0; k < 4; k++) {
+            col[k] = t0.idx[k]; val[k] = t0.w[k];
+            col[4 + k] = ti.idx[k]; val[4 + k] = ti.w[k];
+            col[8 + k] = T + th.idx[k]; val[8 + k] = th.w[k];
+        }
+        sp_row(a, col, val, 12, log(v));
+        f->used++;
+    }
+}
+
+/* The smoothness rows: each map's horizontal and vertical neighbours
+ * equal, with weight sqrt(smooth * used / pairs). */
+static void smooth_rows(sp *a, double smooth, int R, long pairs, const rf_fact *f)
+{
+    int T = R * R;
+    double w = sqrt(smooth * (double)f->used / (double)pairs);
+    for (int m = 0; m < 2; m++)
+        for (int j = 0; j < T; j++) {
+            int col[2] = { m * T + j, 0 };
+            double val[2] = { w, -w };
+            if (j % R < R - 1) { col[1] = m * T + j + 1; sp_row(a, col, val, 2, 0); }
+            if (j / R < R - 1) { col[1] = m * T + j + R; sp_row(a, col, val, 2, 0); }
+        }
+}
+
+/* The maps from the solution x (log lambda, log pi) and its refinement
+ * xr, in the gauge where lambda's largest disk texel is 1 (lambda c,
+ * pi / c^2 fit alike); the ranges over the disk. */
+static void gauge(rf_fact *f, const double *x, const double *xr)
+{
+    int R = f->R, T = R * R;
+    double mx = -INFINITY, mr = -INFINITY;
+    for (int j = 0; j < T; j++) if (in_disk(R, j) && x[j] > mx) mx = x[j];
+    for (int j = 0; j < T; j++) if (in_disk(R, j) && xr[j] > mr) mr = xr[j];
+    f->lam_min = f->pi_min = INFINITY;
+    f->lam_max = f->pi_max = -INFINITY;
+    for (int j = 0; j < T; j++) {
+        f->llam[j] = x[j] - mx;
+        f->lpi[j] = x[T + j] + 2 * mx;
+        f->lam[j] = exp(xr[j] - mr);
+        f->pi[j] = exp(xr[T + j] + 2 * mr);
+        if (in_disk(R, j)) {
+            if (f->lam[j] < f->lam_min) f->lam_min = f->lam[j];
+            if (f->lam[j] > f->lam_max) f->lam_max = f->lam[j];
+            if (f->pi[j] < f->pi_min) f->pi_min = f->pi[j];
+            if (f->pi[j] > f->pi_max) f->pi_max = f->pi[j];
+        }
+    }
+}
+
 int rf_factorize(rf_fn fn, void *user, const rf_opts *o, rf_fact *f, char *err, size_t len)
 {
     memset(f, 0, sizeof *f);
@@ -407,71 +515,18 @@ int rf_factorize(rf_fn fn, void *user, const rf_opts *o, rf_fact *f, char *err, 
     /* Pairs first (their f gives the floor), then the rows. */
     double *pd = malloc(sizeof(double) * 7 * (size_t)N);
     if (!pd) { snprintf(err, len, "out of memory (%ld samples)", N); goto out; }
-    uint64_t st = o->seed;
-    long np = 0;
-    double fmax = 0;
-    for (long s = 0; s < N; s++) {
-        double *d0 = pd + 7 * np, *di = d0 + 3, h[3];
-        if (s % 2 == 0) { rand_parab(&st, d0); rand_parab(&st, di); }
-        else {
-            int tries = 0;
-            do {
-                rand_parab(&st, h);
-                rand_parab(&st, d0);
-                double k = 2 * dot3(d0, h);
-                for (int c = 0; c < 3; c++) di[c] = k * h[c] - d0[c];
-            } while (di[2] <= 1e-9 && ++tries < 64);
-            if (di[2] <= 1e-9) { f->skipped++; continue; }
-        }
-        double v = fn(d0, di, user);
-        if (!(v >= 0) || !isfinite(v)) { f->skipped++; continue; }
-        d0[6] = v;
-        if (v > fmax) fmax = v;
-        np++;
-    }
-    if (!(fmax > 0)) { free(pd); snprintf(err, len, "the BRDF is 0 at every sample"); goto out; }
-    f->fmax = fmax;
+    long np = sample_pairs(fn, user, o->seed, N, pd, f);
+    if (!(f->fmax > 0)) { free(pd); snprintf(err, len, "the BRDF is 0 at every sample"); goto out; }
     /* The floor is relative to the 99th percentile, not the largest: the
      * largest is often a 1/(N.L N.V) near the horizon, orders of magnitude
      * above the lobe, and a floor against it would drop the lobe's tails. */
-    {
-        double *q = malloc(sizeof(double) * (size_t)np);
-        if (!q) { free(pd); snprintf(err, len, "out of memory (%ld samples)", N); goto out; }
-        for (long s = 0; s < np; s++) q[s] = pd[7 * s + 6];
-        qsort(q, (size_t)np, sizeof *q, cmp_dbl);
-        f->fref = q[(long)(0.99 * (double)(np - 1))];
-        free(q);
-    }
+    f->fref = percentile99(pd, np);
+    if (f->fref < 0) { free(pd); snprintf(err, len, "out of memory (%ld samples)", N); goto out; }
     f->floor = o->floor * f->fref;
-    for (long s = 0; s < np; s++) {
-        const double *d0 = pd + 7 * s, *di = d0 + 3;
-        double v = d0[6], h[3];
-        if (v < f->floor) { f->floored++; continue; }
-        half(d0, di, h);
-        rf_tap t0, ti, th;
-        dir_tap(R, d0, &t0); dir_tap(R, di, &ti); dir_tap(R, h, &th);
-        int col[12];
-        double val[12];
-        for (int k = 0; k < 4; k++) {
-            col[k] = t0.idx[k]; val[k] = t0.w[k];
-            col[4 + k] = ti.idx[k]; val[4 + k] = ti.w[k];
-            col[8 + k] = T + th.idx[k]; val[8 + k] = th.w[k];
-        }
-        sp_row(&a, col, val, 12, log(v));
-        f->used++;
-    }
+    sample_rows(&a, pd, np, R, f);
     free(pd);
     if (!f->used) { snprintf(err, len, "the BRDF is 0 at every sample"); goto out; }
-    if (o->smooth > 0) {
-        double w = sqrt(o->smooth * (double)f->used / (double)pairs);
-        for (int m = 0; m < 2; m++)
-            for (int j = 0; j < T; j++) {
-                int col[2] = { m * T + j, 0 };
-                double val[2] = { w, -w };
-                if (j % R < R - 1) { col[1] = m * T + j + 1; sp_row(&a, col, val, 2, 0); }
-                if (j / R < R - 1) { col[1] = m * T + j + R; sp_row(&a, col, val, 2, 0); }
-            }
-    }
+    if (o->smooth > 0) smooth_rows(&a, o->smooth, R, pairs, f);
     f->iters = cgls(&a, n, x, o->max_iter, o->tol, &f->relres);
     if (f->iters < 0) { snprintf(err, len, "out of memory in the solver"); goto out; }
     double *xr = malloc(sizeof(double) * (size_t)n);
@@ -482,24 +537,7 @@ int rf_factorize(rf_fn fn, void *user, const rf_opts *o, rf_fact *f, char *err, 
         snprintf(err, len, "out of memory in the refinement");
         goto out;
     }
-    /* Gauge: lambda's largest disk texel = 1 (lambda c, pi / c^2 fit alike). */
-    double mx = -INFINITY, mr = -INFINITY;
-    for (int j = 0; j < T; j++) if (in_disk(R, j) && x[j] > mx) mx = x[j];
-    for (int j = 0; j < T; j++) if (in_disk(R, j) && xr[j] > mr) mr = xr[j];
-    f->lam_min = f->pi_min = INFINITY;
-    f->lam_max = f->pi_max = -INFINITY;
-    for (int j = 0; j < T; j++) {
-        f->llam[j] = x[j] - mx;
-        f->lpi[j] = x[T + j] + 2 * mx;
-        f->lam[j] = exp(xr[j] - mr);
-        f->pi[j] = exp(xr[T + j] + 2 * mr);
-        if (in_disk(R, j)) {
-            if (f->lam[j] < f->lam_min) f->lam_min = f->lam[j];
-            if (f->lam[j] > f->lam_max) f->lam_max = f->lam[j];
-            if (f->pi[j] < f->pi_min) f->pi_min = f->pi[j];
-            if (f->pi[j] > f->pi_max) f->pi_max = f->pi[j];
-        }
-    }
+    gauge(f, x, xr);
     free(xr);
     rc = 0;
 out:

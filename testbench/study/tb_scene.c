@@ -41,11 +41,9 @@
  */
 #include "testbench/study/tb_scene.h"
 #include "base/base_join.h"
-#include "base/base_json.h"
 #include "testbench/tb.h"
 #include "units/unit_coef.h"
 #include "units/unit_net.h"
-#include "base/base_out.h"
 #include "base/base_par.h"
 #include <errno.h>
 #include <math.h>
@@ -69,7 +67,6 @@ static double cpu_now(void)
 
 /* ------------------------------------------------- the unit of a policy */
 
-static int nodes_n2(const scn_desc *d);
 
 static int has_param(const unit_desc *u, const char *name)
 {
@@ -112,7 +109,7 @@ static int scene_cfg(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, cha
     snprintf(L, sizeof L, "%d", d->L);
     snprintf(terms, sizeof terms, "%d", d->terms);
     const char *const set[][2] = { { "L", L }, { "terms", terms }, { "series", series },
-                                   { "nodes", nodes_n2(d) ? "n2" : "n1" } };
+                                   { "nodes", tb_scene_nodes_n2(d) ? "n2" : "n1" } };
     for (size_t k = 0; k < sizeof set / sizeof set[0]; k++)
         if (unit_param_set(has_param(u, set[k][0]) ? u : all, cfg, set[k][0], set[k][1], err, errlen)) return -1;
     *up = u;
@@ -138,177 +135,11 @@ int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_f
 /* 1 if the policy's cubic intervals use node set N2 (I(3/4)). Both
  * adaptive policies run on the span23 unit and take its node set from the
  * auto-nodes key (auto_cubic_nodes). */
-static int nodes_n2(const scn_desc *d)
+int tb_scene_nodes_n2(const scn_desc *d)
 {
     if (d->policy == SCN_POL_CUBIC_N2) return 1;
     if (d->policy == SCN_POL_ADAPTIVE_REGION || d->policy == SCN_POL_ADAPTIVE_AUTO) return d->auto_cubic_nodes == 2;
     return 0;
-}
-
-/* --------------------------------------------------- operation counts */
-
-/* The operations of one evaluation of the lighting model at a point, from
- * the interpolated (not normalized) normal and the position, counted as an
- * efficient per-pixel shader does them: the reference does this at every
- * covered pixel, the method at every shaded node, by the same rules.
- *
- * What varies over the frame is the normal N and the position P. Work on
- * frame constants alone is done once per frame and not counted per point
- * (both sides alike; spread over the covered pixels it is a few dozen
- * operations / pixels): L of a directional light, V of an orthographic
- * camera, and from them H = normalize(L + V), L.V, L.H = V.H, a Fresnel
- * factor of L.H, 2/V.H; products of constants (I0 kd, I0 ks with the
- * BRDF's own factors 1/pi, 1/(4 m^2), 1/(4 pi a^2), the Schlick forms'
- * constants). So L is normalized per point only for a point light, V only
- * for a perspective camera, H only where one of them varies. Further:
- * comparisons, max(0, .), min, clamps and shifts (a factor 2) are free;
- * a value used twice is computed once (L.H = V.H; N.V; c^2 and 1/c^2);
- * a vector normalized is its dot with itself (2 add, 3 mul), a sqrt, a
- * reciprocal (div) and 3 mul; x^n with the material's real exponent and
- * exp are one "pow", x^g with the fixed integer g of D_g (4, 8, 16) and
- * Ward's ^16 are multiplies by repeated squaring. One table, a row per
- * step; a row counts when its condition holds, once or per light; the
- * specular rows only when ks != 0. c = N.H in D and Ward, L.H in F.
- *
- *  step                                        when                      add mul div sqrt pow
- *  normalize N: N.N, sqrt, 1/|N|, 3 mul        always                      2   6   1   1   0
- *  V = eye - P, normalized                     perspective                 5   6   1   1   0
- *  L = light - P, normalized                   point light                 5   6   1   1   0
- *  N.L                                         light                       2   3   0   0   0
- *  (I0 kd) N.L, summed (from the ambient)     light                       1   1   0   0   0
- *  (I0 ks) spec, added                         specular                    1   1   0   0   0
- *  phong R.V = 2 (N.L)(N.V) - L.V: N.V, 1 mul  phong, L and V constant     3   4   0   0   0
- *  phong R = 2 (N.L) N - L, R.V                phong, L or V varies        5   6   0   0   0
- *  (R.V)^n or (N.H)^n                          phong, blinn                0   0   0   0   1
- *  H = normalize(L + V)                        half-vector BRDF, L or V    5   6   1   1   0
- *                                              varies (blinn, cook, ward)
- *  N.H                                         blinn, cook, ward           2   3   0   0   0
- *  N.V                                         cook, ward                  2   3   0   0   0
- *  L.H (= V.H)                                 cook, L or V varies         2   3   0   0   0
- *  Beckmann D: c^2, r = 1/c^2, tan^2 = r - 1,
- *    x (-1/m^2), exp, x r^2                    cook, exact D               1   4   1   0   1
- *  D_g: k c + (1 - k), ^g by squaring          cook, D_g                   1   1+s 0   0   0
- *  G = min(1, 2 (N.H) min(N.V, N.L) / V.H)     cook, L or V varies         0   1   1   0   0
- *    the same, x (2/V.H) a constant            cook, L and V constant      0   2   0   0   0
- *  D G / ((N.L)(N.V))                          cook                        0   2   1   0   0
- *  x F                                         cook with F, L or V varies  0   1   0   0   0
- *  Schlick F = c / (n + (1 - n) c)             the same, schlick           1   1   1   0   0
- *  modified Schlick 1.6 c / u^2,
- *    u = n + (1.25 - n) c                      the same, mschlick          1   2   1   0   0
- *  Ward exact e: c^2, 1/c^2, - 1, x (-1/a^2),
- *    exp                                       ward exact                  1   2   1   0   1
- *  Ward polynomial e: k c + (1 - k), ^16       ward poly16                 1   5   0   0   0
- *  e / sqrt((N.L)(N.V))                        ward                        0   1   1   1   0
- * (s: the squarings and multiplies of x^g, floor(log2 g) + popcount(g) - 1:
- * 2, 3, 4 for g = 4, 8, 16.)
- *
- * The method, per covered pixel: (shaded nodes x the same per-point cost)
- * / pixels; the coefficient network's adders per interval / pixels (every
- * ADD/SUB element of the network of the interval's degree, each /3
- * network its terms' subtractors: `terms` for the paper series, terms - 1
- * for the quarter series; shifts are wiring); Horner per pixel: deg mul +
- * deg add; t = k * (1/dv): 1 mul per pixel (the reciprocal is a ROM).
- * Costs weigh the counts with the description's weights (cost key); the
- * long operations are div + sqrt + pow, unweighted. */
-typedef enum { W_ALWAYS, W_PERSP, W_POINT, W_LIGHT, W_SPEC, W_PHONG_CONST, W_PHONG_VAR, W_POW,
-               W_H_VAR, W_HALF, W_NV, W_LH_VAR, W_COOK_EXACT, W_COOK_DG, W_G_VAR, W_G_CONST, W_COOK,
-               W_F_VAR, W_SCHLICK_VAR, W_MSCHLICK_VAR, W_WARD_EXACT, W_WARD_POLY, W_WARD } ops_when;
-typedef struct ops_row { ops_when when; int per_light; double n[SCN_OP__COUNT]; } ops_row;
-static const ops_row ops_table[] = {
-    /*  when              per light  add mul div sqrt pow */
-    { W_ALWAYS,         0, { 2, 6, 1, 1, 0 } },   /* normalize N */
-    { W_PERSP,          0, { 5, 6, 1, 1, 0 } },   /* V */
-    { W_POINT,          1, { 5, 6, 1, 1, 0 } },   /* L of a point light */
-    { W_LIGHT,          1, { 2, 3, 0, 0, 0 } },   /* N.L */
-    { W_LIGHT,          1, { 1, 1, 0, 0, 0 } },   /* (I0 kd) N.L, summed */
-    { W_SPEC,           1, { 1, 1, 0, 0, 0 } },   /* (I0 ks) spec, added */
-    { W_PHONG_CONST,    1, { 3, 4, 0, 0, 0 } },   /* N.V, 2 (N.L)(N.V) - L.V */
-    { W_PHONG_VAR,      1, { 5, 6, 0, 0, 0 } },   /* R, R.V */
-    { W_POW,            1, { 0, 0, 0, 0, 1 } },   /* ^n */
-    { W_H_VAR,          1, { 5, 6, 1, 1, 0 } },   /* H normalized */
-    { W_HALF,           1, { 2, 3, 0, 0, 0 } },   /* N.H */
-    { W_NV,             1, { 2, 3, 0, 0, 0 } },   /* N.V */
-    { W_LH_VAR,         1, { 2, 3, 0, 0, 0 } },   /* L.H = V.H */
-    { W_COOK_EXACT,     1, { 1, 4, 1, 0, 1 } },   /* Beckmann D */
-    { W_COOK_DG,        1, { 1, 1, 0, 0, 0 } },   /* D_g base; + the squarings of ^g */
-    { W_G_VAR,          1, { 0, 1, 1, 0, 0 } },   /* G, / V.H */
-    { W_G_CONST,        1, { 0, 2, 0, 0, 0 } },   /* G, x 2/V.H */
-    { W_COOK,           1, { 0, 2, 1, 0, 0 } },   /* D G / ((N.L)(N.V)) */
-    { W_F_VAR,          1, { 0, 1, 0, 0, 0 } },   /* x F */
-    { W_SCHLICK_VAR,    1, { 1, 1, 1, 0, 0 } },   /* Schlick */
-    { W_MSCHLICK_VAR,   1, { 1, 2, 1, 0, 0 } },   /* modified Schlick */
-    { W_WARD_EXACT,     1, { 1, 2, 1, 0, 1 } },   /* exact Ward e */
-    { W_WARD_POLY,      1, { 1, 5, 0, 0, 0 } },   /* polynomial Ward e, ^16 in 4 mul */
-    { W_WARD,           1, { 0, 1, 1, 1, 0 } },   /* e / sqrt((N.L)(N.V)) */
-};
-
-/* Multiplies of x^g by repeated squaring (g >= 1). */
-static int pow_muls(int g)
-{
-    int n = -1;
-    for (int k = g; k > 0; k >>= 1) n += 1 + (k > 1 && (k & 1));
-    return n > 0 ? n : 0;
-}
-
-static int ops_applies(ops_when w, const scn_material *m, const scn_view *v, const scn_light *l)
-{
-    int cook = m->spec == SCN_SPEC_COOK, ward = m->spec == SCN_SPEC_WARD, phong = m->spec == SCN_SPEC_PHONG;
-    int half = m->spec == SCN_SPEC_BLINN || cook || ward;
-    int fresnel = cook && m->fresnel != SCN_FRESNEL_NONE;
-    /* L or V varies over the frame, so do H, L.V, L.H (per light) */
-    int var = v->cam.perspective || (l && l->point);
-    if (w >= W_SPEC && m->ks == 0) return 0;     /* no specular term is evaluated */
-    switch (w) {
-    case W_ALWAYS: return 1;
-    case W_PERSP: return v->cam.perspective;
-    case W_POINT: return l && l->point;
-    case W_LIGHT: return 1;
-    case W_SPEC: return phong || half;
-    case W_PHONG_CONST: return phong && !var;
-    case W_PHONG_VAR: return phong && var;
-    case W_POW: return phong || m->spec == SCN_SPEC_BLINN;
-    case W_H_VAR: return half && var;
-    case W_HALF: return half;
-    case W_NV: return cook || ward;
-    case W_LH_VAR: return cook && var;
-    case W_COOK_EXACT: return cook && m->dg == 0;
-    case W_COOK_DG: return cook && m->dg > 0;
-    case W_G_VAR: return cook && var;
-    case W_G_CONST: return cook && !var;
-    case W_COOK: return cook;
-    case W_F_VAR: return fresnel && var;
-    case W_SCHLICK_VAR: return cook && var && m->fresnel == SCN_FRESNEL_SCHLICK;
-    case W_MSCHLICK_VAR: return cook && var && m->fresnel == SCN_FRESNEL_MSCHLICK;
-    case W_WARD_EXACT: return ward && m->dg == 0;
-    case W_WARD_POLY: return ward && m->dg > 0;
-    case W_WARD: return ward;
-    }
-    return 0;
-}
-
-static void ops_add_row(const ops_row *r, const scn_material *m, double ops[SCN_OP__COUNT])
-{
-    for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] += r->n[k];
-    if (r->when == W_COOK_DG) ops[SCN_OP_MUL] += pow_muls(m->dg);
-}
-
-void tb_scene_point_ops(const scn_desc *d, const scn_view *v, double ops[SCN_OP__COUNT])
-{
-    for (int k = 0; k < SCN_OP__COUNT; k++) ops[k] = 0;
-    for (size_t i = 0; i < sizeof ops_table / sizeof ops_table[0]; i++) {
-        const ops_row *r = &ops_table[i];
-        if (!r->per_light) {
-            if (ops_applies(r->when, &d->mat, v, NULL)) ops_add_row(r, &d->mat, ops);
-            continue;
-        }
-        for (int l = 0; l < v->nlights; l++)
-            if (ops_applies(r->when, &d->mat, v, &v->light[l])) ops_add_row(r, &d->mat, ops);
-    }
-}
-
-double tb_scene_long_ops(const double ops[SCN_OP__COUNT])
-{
-    return ops[SCN_OP_DIV] + ops[SCN_OP_SQRT] + ops[SCN_OP_POW];
 }
 
 /* Adders of a coefficient network (ADD and SUB elements; a /3 network is
@@ -328,7 +159,7 @@ static int coef_adds(const scn_desc *d, int deg)
 {
     if (deg <= 1) return 1;                              /* B = I2 - I1 */
     if (deg == 2) return net_adds(&coef_net_q, d->terms, d->series);
-    return net_adds(nodes_n2(d) ? &coef_net_n2 : &coef_net_n1, d->terms, d->series);
+    return net_adds(tb_scene_nodes_n2(d) ? &coef_net_n2 : &coef_net_n1, d->terms, d->series);
 }
 
 /* ------------------------------------------------------------ render */
@@ -413,7 +244,7 @@ static void run_band(job *J, band *b)
     const scn_desc *d = J->d;
     const scn_gbuf *g = J->g;
     tb_scene_result *r = J->r;
-    int W = g->w, L = d->L, n2 = nodes_n2(d);
+    int W = g->w, L = d->L, n2 = tb_scene_nodes_n2(d);
     double c0 = cpu_now();
     /* reference */
     for (int y = b->y0; y < b->y1; y++)
@@ -603,7 +434,8 @@ static void group_item(void *arg, size_t g)
     run_group(arg, (int)g);
 }
 
-static uint8_t to8(double v)
+/* On 8 bits: round(255 clamp(v, 0, 1)), what the images show. */
+uint8_t tb_scene_to8(double v)
 {
     if (!(v > 0)) return 0;     /* NaN too */
     if (v >= 1) return 255;
@@ -622,7 +454,7 @@ static void metrics(const scn_gbuf *g, tb_scene_result *r)
         se += e * e;
         sr += r->ref[i] * r->ref[i];
         if (fabs(e) > maxe || isnan(e)) maxe = fabs(e);
-        int r8 = to8(r->ref[i]), e8 = abs((int)to8(r->hw[i]) - r8);
+        int r8 = tb_scene_to8(r->ref[i]), e8 = abs((int)tb_scene_to8(r->hw[i]) - r8);
         se8 += (double)e8 * e8;
         sr8 += (double)r8 * r8;
         if (e8 > max8) max8 = e8;
@@ -638,27 +470,12 @@ static void metrics(const scn_gbuf *g, tb_scene_result *r)
     r->psnr = se8 > 0 ? 10 * log10(255.0 * 255.0 / (se8 / n)) : INFINITY;
 }
 
-/* The render. p: NULL, or the reference, degrees and intervals prepared
- * already (then only the simulation and what follows; no VCD). make:
- * NULL, or the reference, degrees and intervals are moved into it and no
- * simulation is done (r is left empty). */
-static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx, const tb_scene_opts *o,
-                  const tb_scene_prep *p, tb_scene_prep *make, double max_nmse, tb_scene_result *r, char *err,
-                  size_t errlen)
+/* r's images (copied from prep p, or empty), the spans (p's, or g's own)
+ * and nb bands (p's intervals borrowed, with room for their pixels). On
+ * failure everything is freed, r too. */
+static int render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_result *r, scn_span **spansp,
+                        size_t *nspansp, int *nbp, band **bandsp, char *err, size_t errlen)
 {
-    double c0 = cpu_now();
-    memset(r, 0, sizeof *r);
-    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
-    if (!o) o = &dflt;
-    r->heldout = p ? p->heldout : o->heldout;
-    if (p && p->have_unit && o->fmts && !memcmp(&p->ud, d, sizeof *d)) {
-        /* the formats are given: the rule's would be thrown away */
-        r->unit = p->u;
-        r->cfg = p->cfg;
-    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make)
-        return TB_BADINPUT;      /* (making a prep simulates nothing: it needs no unit) */
-    if (o->fmts) r->fmts = *o->fmts;
-    const scn_view *view = r->heldout ? &d->heldout : &d->view;
     size_t np = (size_t)g->w * g->h;
     r->w = g->w;
     r->h = g->h;
@@ -692,81 +509,86 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
     } else
         for (size_t i = 0; i < np; i++) if (g->tri[i] >= 0) r->region[i] = g->region[i];
     r->spans = nspans;
-    /* bands of equal rows; spans are in row order */
-    job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
-              .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
-              .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
-              .r = r, .max_se = INFINITY };
-    /* a budget only with a prep (its reference in band order); a margin
-     * far above the rounding of sums in another order, so that a render
-     * within max_nmse is never stopped */
-    if (p && max_nmse >= 0 && isfinite(max_nmse)) J.max_se = max_nmse * p->sum_ref2 * (1 + 1e-6);
+    *spansp = spans;
+    *nspansp = nspans;
+    *nbp = nb;
+    *bandsp = bands;
+    return TB_OK;
+}
+
+/* Bands of equal rows (spans are in row order); the VCD, if any, is of
+ * the first band with a span. */
+static void split_bands(job *J, size_t nspans)
+{
+    const scn_gbuf *g = J->g;
+    int nb = J->nbands;
     size_t s = 0;
-    for (int k = 0; !p && k < nb; k++) {
-        band *b = &bands[k];
+    for (int k = 0; k < nb; k++) {
+        band *b = &J->bands[k];
         b->y0 = (int)((long long)g->h * k / nb);
         b->y1 = (int)((long long)g->h * (k + 1) / nb);
-        while (s < nspans && spans[s].y < b->y0) s++;
+        while (s < nspans && J->spans[s].y < b->y0) s++;
         b->s0 = s;
-        while (s < nspans && spans[s].y < b->y1) s++;
+        while (s < nspans && J->spans[s].y < b->y1) s++;
         b->s1 = s;
-        if (J.vcd_band < 0 && b->s1 > b->s0) J.vcd_band = k;
+        if (J->vcd_band < 0 && b->s1 > b->s0) J->vcd_band = k;
     }
-    int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
-    if (jobs > nb) jobs = nb;
-    double c1 = cpu_now();
-    if (!p) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
-    else if (!J.batch) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, sim_band_item, &J);
-    if (make) {
-        /* keep what the simulation would read, and the images */
-        int rc = TB_OK;
-        make->g = g;
-        make->heldout = r->heldout;
-        make->nb = nb;
-        make->nspans = nspans;
-        make->spans = spans;
-        make->ref = r->ref;
-        make->deg = r->deg;
-        make->region = r->region;
-        for (size_t i = 0; i < np; i++)
-            if (g->tri[i] >= 0) make->sum_ref2 += make->ref[i] * make->ref[i];
-        r->ref = NULL;
-        r->deg = r->region = NULL;
-        for (int k = 0; k < nb; k++) {
-            band *b = &bands[k];
-            make->cpu += b->cpu_sim + b->cpu_other;
-            free(b->pix);
-            b->pix = NULL;
-            if (b->rc != TB_OK && rc == TB_OK) {
-                rc = b->rc;
-                snprintf(err, errlen, "%s", b->err);
-            }
-            if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix)) && rc == TB_OK) {
-                rc = TB_FAIL;
-                snprintf(err, errlen, "out of memory");
-            }
-            for (size_t q = 0, j = b->s0; b->refpix && j < b->s1; j++)
-                for (int x = spans[j].x0; x < spans[j].x1; x++)
-                    b->refpix[q++] = make->ref[(size_t)spans[j].y * g->w + x];
-            make->bands[k] = *b;
-        }
-        free(bands);
-        tb_scene_free(r);
-        make->cpu += c1 - c0;
-        return rc;
-    }
-    if (J.batch) {
-        /* then the bands' hardware, a group of lanes a thread */
-        J.ngroups = jobs;
-        base_par_for((size_t)J.ngroups, jobs, group_item, &J);
-    }
-    double c2 = cpu_now();
+}
 
-    /* sums in band order */
+/* Making a prep: keep in it what the simulation would read (the spans,
+ * each band's intervals and reference pixels) and the images; bands and
+ * r are freed. */
+static int keep_prep(tb_scene_prep *make, const job *J, scn_span *spans, size_t nspans, char *err, size_t errlen)
+{
+    const scn_gbuf *g = J->g;
+    tb_scene_result *r = J->r;
+    size_t np = (size_t)g->w * g->h;
     int rc = TB_OK;
-    double adds = 0, hdeg = 0;
-    for (int k = 0; k < nb; k++) {
-        band *b = &bands[k];
+    make->g = g;
+    make->heldout = r->heldout;
+    make->nb = J->nbands;
+    make->nspans = nspans;
+    make->spans = spans;
+    make->ref = r->ref;
+    make->deg = r->deg;
+    make->region = r->region;
+    for (size_t i = 0; i < np; i++)
+        if (g->tri[i] >= 0) make->sum_ref2 += make->ref[i] * make->ref[i];
+    r->ref = NULL;
+    r->deg = r->region = NULL;
+    for (int k = 0; k < J->nbands; k++) {
+        band *b = &J->bands[k];
+        make->cpu += b->cpu_sim + b->cpu_other;
+        free(b->pix);
+        b->pix = NULL;
+        if (b->rc != TB_OK && rc == TB_OK) {
+            rc = b->rc;
+            snprintf(err, errlen, "%s", b->err);
+        }
+        if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix)) && rc == TB_OK) {
+            rc = TB_FAIL;
+            snprintf(err, errlen, "out of memory");
+        }
+        for (size_t q = 0, j = b->s0; b->refpix && j < b->s1; j++)
+            for (int x = spans[j].x0; x < spans[j].x1; x++)
+                b->refpix[q++] = make->ref[(size_t)spans[j].y * g->w + x];
+        make->bands[k] = *b;
+    }
+    free(J->bands);
+    tb_scene_free(r);
+    return rc;
+}
+
+/* The bands' figures summed into r in band order (the first band's
+ * error, if any, in err); adds, hdeg: the coefficient network's and
+ * Horner's adds over all intervals and pixels. */
+static int sum_bands(const job *J, double *adds, double *hdeg, char *err, size_t errlen)
+{
+    tb_scene_result *r = J->r;
+    int rc = TB_OK;
+    *adds = *hdeg = 0;
+    for (int k = 0; k < J->nbands; k++) {
+        const band *b = &J->bands[k];
         if (b->rc != TB_OK && rc == TB_OK) {
             rc = b->rc;
             snprintf(err, errlen, "%s", b->err);
@@ -782,24 +604,26 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
         r->intervals += b->intervals;
         r->intervals_deg2 += b->deg2;
         r->nodes_shaded += b->nodes;
-        adds += b->coef_adds;
-        hdeg += b->horner_deg;
+        *adds += b->coef_adds;
+        *hdeg += b->horner_deg;
         r->cpu_sim += b->cpu_sim;
         r->cpu_render += b->cpu_sim + b->cpu_other;
     }
-    for (int k = 0; J.batch && k < J.ngroups; k++) {
-        r->cpu_sim += J.gcpu_sim[k];
-        r->cpu_render += J.gcpu_sim[k] + J.gcpu_other[k];
+    for (int k = 0; J->batch && k < J->ngroups; k++) {
+        r->cpu_sim += J->gcpu_sim[k];
+        r->cpu_render += J->gcpu_sim[k] + J->gcpu_other[k];
     }
-    free(bands);
-    if (!p) free(spans);
-    if (rc != TB_OK) { tb_scene_free(r); return rc; }
-    metrics(g, r);
+    return rc;
+}
+
+/* The figures per covered pixel: clocks, energy, the operation counts
+ * and costs of the reference and of the method, and the speedups. */
+static void per_pixel(const scn_desc *d, const scn_view *view, tb_scene_result *r, double adds, double hdeg)
+{
     size_t px = r->covered;
     r->clocks_per_pixel = px ? (double)r->hwst.clocks / px : 0;
     r->energy_pj_per_pixel = r->hwst.pixels ? r->hwst.energy_pj / (double)r->hwst.pixels : 0;
     r->deg2_share = r->intervals ? (double)r->intervals_deg2 / r->intervals : 0;
-    /* operation counts per covered pixel */
     double pt[SCN_OP__COUNT];
     tb_scene_point_ops(d, view, pt);
     for (int k = 0; k < SCN_OP__COUNT; k++) {
@@ -818,6 +642,66 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
     r->long_ref = tb_scene_long_ops(r->ops_ref);
     r->long_hw = tb_scene_long_ops(r->ops_hw);
     r->speedup_long = r->long_hw > 0 ? r->long_ref / r->long_hw : 0;
+}
+
+/* The render. p: NULL, or the reference, degrees and intervals prepared
+ * already (then only the simulation and what follows; no VCD). make:
+ * NULL, or the reference, degrees and intervals are moved into it and no
+ * simulation is done (r is left empty). */
+static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void *ctx, const tb_scene_opts *o,
+                  const tb_scene_prep *p, tb_scene_prep *make, double max_nmse, tb_scene_result *r, char *err,
+                  size_t errlen)
+{
+    double c0 = cpu_now();
+    memset(r, 0, sizeof *r);
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
+    if (!o) o = &dflt;
+    r->heldout = p ? p->heldout : o->heldout;
+    if (p && p->have_unit && o->fmts && !memcmp(&p->ud, d, sizeof *d)) {
+        /* the formats are given: the rule's would be thrown away */
+        r->unit = p->u;
+        r->cfg = p->cfg;
+    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make)
+        return TB_BADINPUT;      /* (making a prep simulates nothing: it needs no unit) */
+    if (o->fmts) r->fmts = *o->fmts;
+    const scn_view *view = r->heldout ? &d->heldout : &d->view;
+    scn_span *spans;
+    size_t nspans;
+    int nb;
+    band *bands;
+    if (render_alloc(g, p, r, &spans, &nspans, &nb, &bands, err, errlen)) return TB_FAIL;
+    job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
+              .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
+              .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
+              .r = r, .max_se = INFINITY };
+    /* a budget only with a prep (its reference in band order); a margin
+     * far above the rounding of sums in another order, so that a render
+     * within max_nmse is never stopped */
+    if (p && max_nmse >= 0 && isfinite(max_nmse)) J.max_se = max_nmse * p->sum_ref2 * (1 + 1e-6);
+    if (!p) split_bands(&J, nspans);
+    int jobs = o->jobs < 1 ? 1 : o->jobs > 256 ? 256 : o->jobs;
+    if (jobs > nb) jobs = nb;
+    double c1 = cpu_now();
+    if (!p) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, band_item, &J);
+    else if (!J.batch) base_par_for((size_t)(nb > 0 ? nb : 0), jobs, sim_band_item, &J);
+    if (make) {
+        int rc = keep_prep(make, &J, spans, nspans, err, errlen);
+        make->cpu += c1 - c0;
+        return rc;
+    }
+    if (J.batch) {
+        /* then the bands' hardware, a group of lanes a thread */
+        J.ngroups = jobs;
+        base_par_for((size_t)J.ngroups, jobs, group_item, &J);
+    }
+    double c2 = cpu_now();
+    double adds, hdeg;
+    int rc = sum_bands(&J, &adds, &hdeg, err, errlen);
+    free(bands);
+    if (!p) free(spans);
+    if (rc != TB_OK) { tb_scene_free(r); return rc; }
+    metrics(g, r);
+    per_pixel(d, view, r, adds, hdeg);
     r->cpu_render += (c1 - c0) + (cpu_now() - c2);
     return TB_OK;
 }
@@ -920,180 +804,4 @@ void tb_scene_free(tb_scene_result *r)
     free(r->region);
     r->ref = r->hw = NULL;
     r->deg = r->region = NULL;
-}
-
-/* ------------------------------------------------------------ outputs */
-
-int tb_scene_err_scale(const tb_scene_result *r)
-{
-    int k = 4096;
-    while (k > 1 && r->max_abs_err * k > 1) k /= 4;
-    return k;
-}
-
-static void jops(FILE *f, const double *ops)
-{
-    fputc('{', f);
-    for (int k = 0; k < SCN_OP__COUNT; k++) {
-        fprintf(f, "%s\"%s\": ", k ? ", " : "", scn_op_name[k]);
-        base_json_num(f, ops[k], 17);
-    }
-    fputc('}', f);
-}
-
-static void jrgb(FILE *f, const uint8_t c[3])
-{
-    fprintf(f, "\"#%02x%02x%02x\"", c[0], c[1], c[2]);
-}
-
-/* The key of the maps tb_scene_write draws, from the same colour functions:
- * the uncovered background, the colour of each degree (all three) and of
- * each region label present, and the heat map's five stops as errors
- * |hw - ref| at the render's scale K (full white: 1/K or more). */
-static void legend_json(FILE *f, const tb_scene_result *r)
-{
-    uint8_t c[3] = { 0, 0, 0 };
-    int K = tb_scene_err_scale(r);
-    fputs(",\n  \"legend\": {\n    \"background\": ", f);
-    jrgb(f, c);
-    fputs(",\n    \"degree\": {", f);
-    for (int g = 1; g <= 3; g++) {
-        scn_label_rgb(g, c);
-        fprintf(f, "%s\"%d\": ", g > 1 ? ", " : "", g);
-        jrgb(f, c);
-    }
-    fputs("},\n    \"region\": {", f);
-    int seen[256] = { 0 }, n = 0;
-    size_t np = (size_t)r->w * r->h;
-    for (size_t i = 0; i < np; i++)
-        if (r->deg[i]) seen[r->region[i]] = 1;
-    for (int k = 0; k < 256; k++) {
-        if (!seen[k]) continue;
-        scn_label_rgb(k, c);
-        fprintf(f, "%s\"%d\": ", n++ ? ", " : "", k);
-        jrgb(f, c);
-    }
-    fprintf(f, "},\n    \"error\": {\"file\": \"err-x%d.png\", \"white\": ", K);
-    base_json_num(f, 1.0 / K, 17);
-    fputs(", \"stops\": [", f);
-    for (int k = 0; k <= 4; k++) {
-        scn_heat_rgb(k / 4.0, c);
-        fputs(k ? ", [" : "[", f);
-        base_json_num(f, k / 4.0 / K, 17);
-        fputs(", ", f);
-        jrgb(f, c);
-        fputc(']', f);
-    }
-    fputs("]}\n  }", f);
-}
-
-int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
-{
-    const unit_desc *u = r->unit;
-    char fb[SIM_FMT_STRLEN];
-    fputs("{\n  \"mesh\": ", f);
-    base_json_str(f, d->mesh);
-    fprintf(f, ",\n  \"resolution\": \"%dx%d\",\n  \"view\": \"%s\",\n  \"policy\": \"%s\",\n", r->w, r->h,
-            r->heldout ? "heldout" : "main", scn_policy_name(d->policy));
-    fprintf(f, "  \"L\": %d,\n  \"terms\": %d,\n  \"series\": \"%s\",\n  \"width\": %d,\n", d->L, d->terms,
-            d->series == DIV3_QUARTER ? "quarter" : "paper", d->fmt_width);
-    fprintf(f, "  \"cubic_nodes\": \"%s\",\n  \"auto_threshold\": ", nodes_n2(d) ? "n2" : "n1");
-    base_json_num(f, d->auto_threshold, 17);
-    fprintf(f, ",\n  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"formats\": {", u->name, u->sched[r->cfg.schedule].name);
-    for (int i = 0, n = 0; i < u->nsigs; i++)
-        if (unit_sig_built(u, i, &r->cfg))
-            fprintf(f, "%s\"%s\": \"%s\"", n++ ? ", " : "", u->sigs[i].name, sim_fmt_str(r->fmts.f[i], fb));
-    fprintf(f, "},\n  \"round\": \"%s\",\n  \"overflow\": \"%s\",\n", sim_round_name(r->cfg.rnd), sim_ovf_name(r->cfg.ovf));
-    fprintf(f, "  \"covered\": %zu,\n  \"nmse\": ", r->covered); base_json_num(f, r->nmse, 17);
-    fputs(",\n  \"nmse8\": ", f); base_json_num(f, r->nmse8, 17);
-    fputs(",\n  \"psnr\": ", f); base_json_num(f, r->psnr, 17);
-    fputs(",\n  \"max_abs_err\": ", f); base_json_num(f, r->max_abs_err, 17);
-    fprintf(f, ",\n  \"max_err8\": %d,\n  \"diff8_share\": ", r->max_err8); base_json_num(f, r->diff8_share, 17);
-    fprintf(f, ",\n  \"err_scale\": %d,\n", tb_scene_err_scale(r));
-    fprintf(f, "  \"clocks\": %llu,\n  \"pixels\": %llu,\n  \"clocks_per_pixel\": ",
-            (unsigned long long)r->hwst.clocks, (unsigned long long)r->hwst.pixels);
-    base_json_num(f, r->clocks_per_pixel, 17);
-    fputs(",\n  \"area_ge\": ", f); base_json_num(f, r->hwst.area_ge, 17);
-    fprintf(f, ",\n  \"overflows\": %llu,\n  \"spans\": %zu,\n  \"intervals\": %zu,\n  \"intervals_deg2\": %zu,\n  \"deg2_share\": ",
-            (unsigned long long)r->hwst.overflows, r->spans, r->intervals, r->intervals_deg2);
-    base_json_num(f, r->deg2_share, 17);
-    fprintf(f, ",\n  \"nodes_shaded\": %zu,\n  \"ops_ref\": ", r->nodes_shaded);
-    jops(f, r->ops_ref);
-    fputs(",\n  \"ops_hw\": ", f); jops(f, r->ops_hw);
-    fputs(",\n  \"cost_weights\": ", f); jops(f, d->cost);
-    fputs(",\n  \"cost_ref\": ", f); base_json_num(f, r->cost_ref, 17);
-    fputs(",\n  \"cost_hw\": ", f); base_json_num(f, r->cost_hw, 17);
-    fputs(",\n  \"speedup\": ", f); base_json_num(f, r->speedup, 17);
-    fputs(",\n  \"long_ops_ref\": ", f); base_json_num(f, r->long_ref, 17);
-    fputs(",\n  \"long_ops_hw\": ", f); base_json_num(f, r->long_hw, 17);
-    fputs(",\n  \"speedup_long\": ", f); base_json_num(f, r->speedup_long, 17);
-    tb_scene_speed_json(f, r);
-    legend_json(f, r);
-    fputs("\n}\n", f);
-    return ferror(f) ? -1 : 0;
-}
-
-static int write_png(base_outset *set, const char *dir, const char *name, int w, int h, int ch, const uint8_t *pix,
-                     char *err, size_t errlen)
-{
-    char path[4200];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    uint8_t *buf;
-    size_t len;
-    if (scn_png_encode(w, h, ch, pix, &buf, &len)) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
-    int rc = base_outset_write(set, path, buf, len, err, errlen);
-    free(buf);
-    return rc;
-}
-
-/* The images and scene.json are one set (base_outset): all of them move
- * in together or, on a failure or an interruption, none. */
-int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir, char *err, size_t errlen)
-{
-    if (base_out_mkdirs(dir, err, errlen)) return -1;
-    size_t np = (size_t)r->w * r->h;
-    uint8_t *g8 = calloc(np ? np : 1, 1), *rgb = calloc(np ? np * 3 : 1, 1);
-    if (!g8 || !rgb) { free(g8); free(rgb); snprintf(err, errlen, "out of memory"); return -1; }
-    base_outset *set = base_outset_new();
-    int rc = set ? 0 : -1;
-    if (!set) snprintf(err, errlen, "%s: out of memory", dir);
-    for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? to8(r->ref[i]) : 0;
-    rc = rc ? rc : write_png(set, dir, "ref.png", r->w, r->h, 1, g8, err, errlen);
-    for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? to8(r->hw[i]) : 0;
-    rc = rc ? rc : write_png(set, dir, "hw.png", r->w, r->h, 1, g8, err, errlen);
-    int K = tb_scene_err_scale(r);
-    for (size_t i = 0; i < np; i++) {
-        if (!r->deg[i]) { memset(rgb + 3 * i, 0, 3); continue; }
-        double e = fabs(r->hw[i] - r->ref[i]) * K;
-        scn_heat_rgb(e < 1 ? e : 1, rgb + 3 * i);
-    }
-    char name[64];
-    snprintf(name, sizeof name, "err-x%d.png", K);
-    rc = rc ? rc : write_png(set, dir, name, r->w, r->h, 3, rgb, err, errlen);
-    for (size_t i = 0; i < np; i++) {
-        if (r->deg[i]) scn_label_rgb(r->deg[i], rgb + 3 * i);
-        else memset(rgb + 3 * i, 0, 3);
-    }
-    rc = rc ? rc : write_png(set, dir, "degree.png", r->w, r->h, 3, rgb, err, errlen);
-    for (size_t i = 0; i < np; i++) {
-        if (r->deg[i]) scn_label_rgb(r->region[i], rgb + 3 * i);
-        else memset(rgb + 3 * i, 0, 3);
-    }
-    rc = rc ? rc : write_png(set, dir, "region.png", r->w, r->h, 3, rgb, err, errlen);
-    free(g8);
-    free(rgb);
-    char path[4200];
-    snprintf(path, sizeof path, "%s/scene.json", dir);
-    FILE *jf = rc ? NULL : base_outset_open(set, path, err, errlen);
-    if (!jf) { base_outset_abort(set); return -1; }
-    tb_scene_json(jf, d, r);
-    if (base_outset_commit(set, err, errlen)) return -1;
-    /* the heat maps of earlier renders at other scales would mislead */
-    for (int k = 1; k <= 4096; k *= 4) {
-        if (k == K) continue;
-        char old[4200];
-        snprintf(old, sizeof old, "%s/err-x%d.png", dir, k);
-        base_out_remove_stale(old);
-    }
-    return 0;
 }

@@ -73,7 +73,7 @@ typedef struct tb_scene_result {
     size_t    spans, intervals, intervals_deg2;
     double    deg2_share;
     /* Operations per covered pixel (frame constants hoisted, both sides
-     * alike: tb_scene.c), their weighted costs, and the long operations
+     * alike: tb_scene_ops.c), their weighted costs, and the long operations
      * (div + sqrt + pow, unweighted). */
     double    ops_ref[SCN_OP__COUNT], ops_hw[SCN_OP__COUNT];
     double    cost_ref, cost_hw, speedup;   /* speedup = cost_ref / cost_hw */
@@ -151,6 +151,12 @@ double tb_scene_prep_cpu(const tb_scene_prep *p);
  * while other threads render from p. 0, or -1 with a message. */
 int    tb_scene_prep_unit(tb_scene_prep *p, const scn_desc *d, char *err, size_t errlen);
 void   tb_scene_prep_free(tb_scene_prep *p);
+/* 1 if d's cubic intervals use node set N2 (I(3/4)): the cubic-n2
+ * policy, or an adaptive one whose auto-nodes key says n2. */
+int  tb_scene_nodes_n2(const scn_desc *d);
+/* v on 8 bits, round(255 clamp(v, 0, 1)), NaN as 0: the images and the
+ * 8-bit figures (NMSE8, PSNR, max_err8). */
+uint8_t tb_scene_to8(double v);
 /* Operations of one evaluation of d's lighting model at a point of view v
  * (the per-pixel cost of the reference; each shaded node costs the same),
  * as an efficient per-pixel shader does it: what is constant over the

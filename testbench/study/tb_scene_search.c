@@ -482,6 +482,228 @@ static size_t est_rest(const order_t *ord, int from, int no, const unit_fmts *cu
     return n;
 }
 
+/* The renders expected in all before step 1 (formats f0): a few steps and
+ * the bisection, then the rest as at the scene's own width. */
+static size_t est_all(const report *rp, const unit_cfg *cfg, const unit_fmts *f0)
+{
+    order_t o0[UNIT_MAX_SIGS];
+    unsigned char b0[UNIT_MAX_SIGS];
+    int n0 = 0;
+    built_signals(rp->u, cfg, f0, b0);
+    for (int i = 0; i < rp->u->nsigs; i++)
+        if (f0->f[i].width && b0[i] && unit_sig_used(rp->u, i, cfg->schedule) && !pinned(rp->d, rp->u->sigs[i].name) &&
+            f0->f[i].fbits > fmin_of(f0->f[i]))
+            o0[n0++] = (order_t){ i, 0 };
+    return 5 + est_rest(o0, 0, n0, f0);
+}
+
+/* 1. The smallest uniform width (rp->met, rp->wu, rp->uni, the width
+ * below). TB_BADINPUT (err set): the scene's own width cannot render. */
+static int find_uniform(search *s, report *rp, char *err, size_t errlen)
+{
+    const scn_desc *d = s->d;
+    eval e;
+    int w = d->fmt_width < W_MIN ? W_MIN : d->fmt_width > W_MAX ? W_MAX : d->fmt_width;
+    at_width(s, w, &e);
+    if (e.status == TB_BADINPUT && w == d->fmt_width) {
+        snprintf(err, errlen, "%s", e.err);
+        return TB_BADINPUT;
+    }
+    int lo = 0, hi = 0;          /* a failing and a holding width */
+    if (holds(s, &e)) {
+        hi = w;
+        rp->uni = e;
+        for (;;) {
+            if (hi == W_MIN) { lo = W_MIN - 1; break; }
+            int x = hi - 4 < W_MIN ? W_MIN : hi - 4;
+            at_width(s, x, &e);
+            if (holds(s, &e)) { hi = x; rp->uni = e; }
+            else { lo = x; rp->uni_below = e; rp->below_w = x; break; }
+        }
+    } else {
+        lo = w;
+        rp->uni_below = e;
+        rp->below_w = w;
+        double prev = e.status == TB_OK ? e.nmse : INFINITY;
+        for (int x = w + 4; x <= W_MAX; x += 4) {
+            at_width(s, x, &e);
+            if (holds(s, &e)) { hi = x; rp->uni = e; break; }
+            lo = x;
+            rp->uni_below = e;
+            rp->below_w = x;
+            /* The error has stopped falling with width: what is left is the
+             * method's own (interpolation) error, which no width removes. */
+            if (e.status == TB_OK && e.ovf == 0 && e.nmse > 0.9 * prev && e.nmse > 2 * s->target) {
+                rp->floor_stop = 1;
+                break;
+            }
+            if (e.status == TB_OK) prev = e.nmse;
+        }
+    }
+    if (!hi) { rp->met = 0; return TB_OK; }
+    while (hi - lo > 1) {
+        int mid = lo + (hi - lo) / 2;
+        at_width(s, mid, &e);
+        if (holds(s, &e)) { hi = mid; rp->uni = e; }
+        else { lo = mid; rp->uni_below = e; rp->below_w = mid; }
+    }
+    rp->met = 1;
+    rp->wu = hi;
+    rp->have_below = lo >= W_MIN;
+    if (!rp->have_below) memset(&rp->uni_below, 0, sizeof rp->uni_below);
+    return TB_OK;
+}
+
+/* Step 2's signals, dearest first: those the build at cur makes
+ * (rp->built), the schedule uses and no override pins, with a fraction bit
+ * to lose; dearest = the most area one bit fewer saves. Returns how many. */
+static int trim_order(report *rp, const unit_cfg *cfg, const unit_fmts *cur, order_t *ord)
+{
+    const unit_desc *u = rp->u;
+    int no = 0;
+    double a0 = unit_area(u, cfg, cur);
+    built_signals(u, cfg, cur, rp->built);
+    for (int i = 0; i < u->nsigs; i++) {
+        sim_fmt fi = cur->f[i];
+        if (!fi.width || !rp->built[i] || !unit_sig_used(u, i, cfg->schedule) || pinned(rp->d, u->sigs[i].name))
+            continue;
+        if (fi.fbits <= fmin_of(fi)) continue;
+        unit_fmts t = *cur;
+        t.f[i] = with_fbits(fi, fi.fbits - 1);
+        double a = unit_area(u, cfg, &t);
+        ord[no++] = (order_t){ i, a >= 0 && a0 >= 0 ? a0 - a : 0 };
+    }
+    qsort(ord, (size_t)no, sizeof *ord, order_cmp);
+    return no;
+}
+
+/* A step 2 render of formats t; when it holds, the found one. */
+static int try_trim(search *s, report *rp, const unit_fmts *t, const char *what)
+{
+    eval e;
+    tb_scene_result r;
+    progress(s, what);
+    render_b(s, s->dr, t, 0, s->jobs, s->target, &e, &r);
+    s->renders++;
+    account(s, &e);
+    int ok = holds(s, &e);
+    if (ok) keep_found(s, &r), rp->found = e;
+    tb_scene_free(&r);
+    return ok;
+}
+
+/* 2. The fewest fraction bits of signal ord[k] that hold, into cur. */
+static void trim_signal(search *s, report *rp, const order_t *ord, int k, int no, unit_fmts *cur)
+{
+    int i = ord[k].sig;
+    rp->sig[rp->nsig++] = i;
+    sim_fmt fi = cur->f[i];
+    int good = fi.fbits, bad = fmin_of(fi) - 1;
+    char what[64];
+    snprintf(what, sizeof what, "signal %s", rp->u->sigs[i].name);
+    /* One bit less first: a signal the target already needs whole
+     * costs one render. */
+    unit_fmts t = *cur;
+    t.f[i] = with_fbits(fi, good - 1);
+    int ok = try_trim(s, rp, &t, what);
+    s->expected = s->renders + est_rest(ord, k + 1, no, cur);
+    if (!ok) return;
+    good--;
+    /* Then none at all (a signal this view hardly uses, such as the
+     * quadratic network where every interval is cubic): one render. */
+    if (good - bad > 1) {
+        t.f[i] = with_fbits(fi, bad + 1);
+        if (try_trim(s, rp, &t, what)) good = bad + 1;
+        else bad++;
+    }
+    while (good - bad > 1) {
+        int mid = bad + (good - bad) / 2;
+        t.f[i] = with_fbits(fi, mid);
+        if (try_trim(s, rp, &t, what)) good = mid;
+        else bad = mid;
+    }
+    cur->f[i] = with_fbits(fi, good);
+    s->expected = s->renders + est_rest(ord, k + 1, no, cur);
+}
+
+/* 3. Passes of single-bit removals until none holds: `jobs` candidates
+ * at a time in cj; the first that holds wins, the pass going on after it
+ * as a one-at-a-time pass would. */
+static void final_passes(search *s, report *rp, cand *cj, const order_t *ord, int no, unit_fmts *cur)
+{
+    int jobs = s->jobs;
+    for (int changed = 1; changed;) {
+        changed = 0;
+        for (int next = 0; next < no;) {
+            int nb = 0;
+            while (next < no && nb < jobs) {
+                int i = ord[next++].sig;
+                if (cur->f[i].fbits <= fmin_of(cur->f[i])) continue;
+                cj[nb].s = s;
+                cj[nb].f = *cur;
+                cj[nb].f.f[i] = with_fbits(cur->f[i], cur->f[i].fbits - 1);
+                cj[nb].sig = i;
+                cj[nb].pos = next - 1;
+                nb++;
+            }
+            if (!nb) break;
+            /* expected: this pass's candidates left, a whole pass more if
+             * this one removed a bit (the last pass removes none) */
+            size_t left = 0, all = 0;
+            for (int k = 0; k < no; k++) {
+                int i = ord[k].sig, can = cur->f[i].fbits > fmin_of(cur->f[i]);
+                all += (size_t)can;
+                left += (size_t)(can && k >= cj[0].pos);
+            }
+            s->expected = s->renders + left + (changed ? all : 0) + 2;
+            progress(s, "final passes");
+            base_par_for((size_t)nb, jobs, cand_run, cj);
+            for (int b = 0; b < nb; b++) account(s, &cj[b].e);
+            for (int b = 0; b < nb; b++) {
+                s->renders++;
+                if (holds(s, &cj[b].e)) {
+                    *cur = cj[b].f;
+                    rp->found = cj[b].e;
+                    keep_found(s, &cj[b].r);
+                    changed = 1;
+                    next = cj[b].pos + 1;
+                    break;
+                }
+            }
+            for (int b = 0; b < nb; b++) tb_scene_free(&cj[b].r);
+        }
+    }
+}
+
+/* The search's outcome rc out: the work figures, DIR/search.{json,txt}
+ * and DIR/found/, the report on out, and for TB_FAIL the reason in err.
+ * Returns rc, or TB_BADINPUT when a file cannot be written. */
+static int report_out(search *s, report *rp, int rc, const char *outdir, int json, FILE *out, tb_scene_work *work,
+                      char *err, size_t errlen)
+{
+    if (s->tty) fputs("\r\033[K", stderr);
+    rp->renders = s->renders;
+    if (work) {
+        work->renders = s->renders;
+        work->renders_run = s->renders_run;
+        work->cpu_sim = s->cpu_sim;
+        work->cpu_render = s->cpu_render;
+    }
+    rp->verdict = rc;
+    if (outdir && write_report(rp, outdir, err, errlen)) return TB_BADINPUT;
+    if (outdir && rp->met && write_found(s, rp, outdir, err, errlen)) return TB_BADINPUT;
+    if (outdir && !rp->met) remove_found(outdir);
+    if (json) print_json(out, rp);
+    else print_text(out, rp);
+    if (rc == TB_FAIL) {
+        /* The reason, for the caller's one line on stderr. */
+        char v[512];
+        verdict_text(rp, v, sizeof v);
+        snprintf(err, errlen, "scene search: %s", strncmp(v, "FAIL: ", 6) ? v : v + 6);
+    }
+    return rc;
+}
+
 int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, double target_nmse,
                     const char *outdir, int json, FILE *out, tb_scene_work *work, char *err, size_t errlen)
 {
@@ -524,79 +746,18 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     if (tb_scene_unit(d, &rp->u, &cfg, &f0, err, errlen)) { rc = TB_BADINPUT; goto done; }
     rp->sched = cfg.schedule;
 
-    /* 1. The smallest uniform width. Expected: a few steps and the
-     * bisection, then the rest as at the scene's own width. */
-    if (s.tty) {
-        order_t o0[UNIT_MAX_SIGS];
-        unsigned char b0[UNIT_MAX_SIGS];
-        int n0 = 0;
-        built_signals(rp->u, &cfg, &f0, b0);
-        for (int i = 0; i < rp->u->nsigs; i++)
-            if (f0.f[i].width && b0[i] && unit_sig_used(rp->u, i, cfg.schedule) && !pinned(d, rp->u->sigs[i].name) &&
-                f0.f[i].fbits > fmin_of(f0.f[i]))
-                o0[n0++] = (order_t){ i, 0 };
-        s.expected = 5 + est_rest(o0, 0, n0, &f0);
-    }
-    eval e;
-    int w = d->fmt_width < W_MIN ? W_MIN : d->fmt_width > W_MAX ? W_MAX : d->fmt_width;
-    at_width(&s, w, &e);
-    if (e.status == TB_BADINPUT && w == d->fmt_width) {
-        snprintf(err, errlen, "%s", e.err);
-        rc = TB_BADINPUT;
-        goto done;
-    }
-    int lo = 0, hi = 0;          /* a failing and a holding width */
-    if (holds(&s, &e)) {
-        hi = w;
-        rp->uni = e;
-        for (;;) {
-            if (hi == W_MIN) { lo = W_MIN - 1; break; }
-            int x = hi - 4 < W_MIN ? W_MIN : hi - 4;
-            at_width(&s, x, &e);
-            if (holds(&s, &e)) { hi = x; rp->uni = e; }
-            else { lo = x; rp->uni_below = e; rp->below_w = x; break; }
-        }
-    } else {
-        lo = w;
-        rp->uni_below = e;
-        rp->below_w = w;
-        double prev = e.status == TB_OK ? e.nmse : INFINITY;
-        for (int x = w + 4; x <= W_MAX; x += 4) {
-            at_width(&s, x, &e);
-            if (holds(&s, &e)) { hi = x; rp->uni = e; break; }
-            lo = x;
-            rp->uni_below = e;
-            rp->below_w = x;
-            /* The error has stopped falling with width: what is left is the
-             * method's own (interpolation) error, which no width removes. */
-            if (e.status == TB_OK && e.ovf == 0 && e.nmse > 0.9 * prev && e.nmse > 2 * target_nmse) {
-                rp->floor_stop = 1;
-                break;
-            }
-            if (e.status == TB_OK) prev = e.nmse;
-        }
-    }
-    if (!hi) { rp->met = 0; rc = TB_FAIL; goto report; }
-    while (hi - lo > 1) {
-        int mid = lo + (hi - lo) / 2;
-        at_width(&s, mid, &e);
-        if (holds(&s, &e)) { hi = mid; rp->uni = e; }
-        else { lo = mid; rp->uni_below = e; rp->below_w = mid; }
-    }
-    rp->met = 1;
-    rp->wu = hi;
-    rp->have_below = lo >= W_MIN;
-    if (!rp->have_below) memset(&rp->uni_below, 0, sizeof rp->uni_below);
+    /* 1. The smallest uniform width. */
+    if (s.tty) s.expected = est_all(rp, &cfg, &f0);
+    if (find_uniform(&s, rp, err, errlen) == TB_BADINPUT) { rc = TB_BADINPUT; goto done; }
+    if (!rp->met) { rc = report_out(&s, rp, TB_FAIL, outdir, json, out, work, err, errlen); goto done; }
 
-    /* 2. Fraction bits, signal by signal, dearest first. */
+    /* 2. Fraction bits, signal by signal, dearest first, on the unit at W. */
     {
         scn_desc dw = *d;
         dw.fmt_width = rp->wu;
-        unit_cfg c2;
         unit_fmts fw;
         const unit_desc *u2;
-        if (tb_scene_unit(&dw, &u2, &c2, &fw, err, errlen)) { rc = TB_BADINPUT; goto done; }
-        cfg = c2;
+        if (tb_scene_unit(&dw, &u2, &cfg, &fw, err, errlen)) { rc = TB_BADINPUT; goto done; }
     }
     /* From here every render is of the description at width W with the
      * formats given, as `scene --set width=W --set fmt=...` renders them. */
@@ -607,118 +768,14 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
         rc = TB_BADINPUT;
         goto done;
     }
-    const unit_desc *u = rp->u;
     unit_fmts cur = rp->uni.fmts;
     rp->found = rp->uni;
     order_t ord[UNIT_MAX_SIGS];
-    int no = 0;
-    double a0 = unit_area(u, &cfg, &cur);
-    built_signals(u, &cfg, &cur, rp->built);
-    for (int i = 0; i < u->nsigs; i++) {
-        sim_fmt fi = cur.f[i];
-        if (!fi.width || !rp->built[i] || !unit_sig_used(u, i, cfg.schedule) || pinned(d, u->sigs[i].name))
-            continue;
-        if (fi.fbits <= fmin_of(fi)) continue;
-        unit_fmts t = cur;
-        t.f[i] = with_fbits(fi, fi.fbits - 1);
-        double a = unit_area(u, &cfg, &t);
-        ord[no++] = (order_t){ i, a >= 0 && a0 >= 0 ? a0 - a : 0 };
-    }
-    qsort(ord, (size_t)no, sizeof *ord, order_cmp);
+    int no = trim_order(rp, &cfg, &cur, ord);
     s.expected = s.renders + est_rest(ord, 0, no, &cur);
-    /* The description with the unit's formats given explicitly. */
-    for (int k = 0; k < no; k++) {
-        int i = ord[k].sig;
-        rp->sig[rp->nsig++] = i;
-        sim_fmt fi = cur.f[i];
-        int good = fi.fbits, bad = fmin_of(fi) - 1;
-        char what[64];
-        snprintf(what, sizeof what, "signal %s", u->sigs[i].name);
-        /* One bit less first: a signal the target already needs whole
-         * costs one render. */
-        unit_fmts t = cur;
-        t.f[i] = with_fbits(fi, good - 1);
-        progress(&s, what);
-        tb_scene_result r;
-        render_b(&s, s.dr, &t, 0, jobs, target_nmse, &e, &r);
-        s.renders++;
-        account(&s, &e);
-        s.expected = s.renders + est_rest(ord, k + 1, no, &cur);
-        if (!holds(&s, &e)) { tb_scene_free(&r); continue; }
-        good--;
-        rp->found = e;
-        keep_found(&s, &r);
-        /* Then none at all (a signal this view hardly uses, such as the
-         * quadratic network where every interval is cubic): one render. */
-        if (good - bad > 1) {
-            t.f[i] = with_fbits(fi, bad + 1);
-            progress(&s, what);
-            render_b(&s, s.dr, &t, 0, jobs, target_nmse, &e, &r);
-            s.renders++;
-            account(&s, &e);
-            if (holds(&s, &e)) { good = bad + 1; rp->found = e; keep_found(&s, &r); }
-            else bad++;
-            tb_scene_free(&r);
-        }
-        while (good - bad > 1) {
-            int mid = bad + (good - bad) / 2;
-            t.f[i] = with_fbits(fi, mid);
-            progress(&s, what);
-            render_b(&s, s.dr, &t, 0, jobs, target_nmse, &e, &r);
-            s.renders++;
-            account(&s, &e);
-            if (holds(&s, &e)) { good = mid; rp->found = e; keep_found(&s, &r); }
-            else bad = mid;
-            tb_scene_free(&r);
-        }
-        cur.f[i] = with_fbits(fi, good);
-        s.expected = s.renders + est_rest(ord, k + 1, no, &cur);
-    }
+    for (int k = 0; k < no; k++) trim_signal(&s, rp, ord, k, no, &cur);
 
-    /* 3. Passes of single-bit removals until none holds. */
-    for (int changed = 1; changed;) {
-        changed = 0;
-        for (int next = 0; next < no;) {
-            int nb = 0;
-            while (next < no && nb < jobs) {
-                int i = ord[next++].sig;
-                if (cur.f[i].fbits <= fmin_of(cur.f[i])) continue;
-                cj[nb].s = &s;
-                cj[nb].f = cur;
-                cj[nb].f.f[i] = with_fbits(cur.f[i], cur.f[i].fbits - 1);
-                cj[nb].sig = i;
-                cj[nb].pos = next - 1;
-                nb++;
-            }
-            if (!nb) break;
-            /* expected: this pass's candidates left, a whole pass more if
-             * this one removed a bit (the last pass removes none) */
-            size_t left = 0, all = 0;
-            for (int k = 0; k < no; k++) {
-                int i = ord[k].sig, can = cur.f[i].fbits > fmin_of(cur.f[i]);
-                all += (size_t)can;
-                left += (size_t)(can && k >= cj[0].pos);
-            }
-            s.expected = s.renders + left + (changed ? all : 0) + 2;
-            progress(&s, "final passes");
-            base_par_for((size_t)nb, jobs, cand_run, cj);
-            for (int b = 0; b < nb; b++) account(&s, &cj[b].e);
-            /* The first that holds wins; the pass goes on after it, as a
-             * one-at-a-time pass would. */
-            for (int b = 0; b < nb; b++) {
-                s.renders++;
-                if (holds(&s, &cj[b].e)) {
-                    cur = cj[b].f;
-                    rp->found = cj[b].e;
-                    keep_found(&s, &cj[b].r);
-                    changed = 1;
-                    next = cj[b].pos + 1;
-                    break;
-                }
-            }
-            for (int b = 0; b < nb; b++) tb_scene_free(&cj[b].r);
-        }
-    }
+    final_passes(&s, rp, cj, ord, no, &cur);
 
     /* 4. The held-out view, with the found formats and with uniform W. */
     progress(&s, "held-out view");
@@ -728,29 +785,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     account(&s, &rp->found_held);
     account(&s, &rp->uni_held);
     rp->found.fmts = cur;
-    rc = holds(&s, &rp->found_held) ? TB_OK : TB_FAIL;
-
-report:
-    if (s.tty) fputs("\r\033[K", stderr);
-    rp->renders = s.renders;
-    if (work) {
-        work->renders = s.renders;
-        work->renders_run = s.renders_run;
-        work->cpu_sim = s.cpu_sim;
-        work->cpu_render = s.cpu_render;
-    }
-    rp->verdict = rc;
-    if (outdir && write_report(rp, outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
-    if (outdir && rp->met && write_found(&s, rp, outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
-    if (outdir && !rp->met) remove_found(outdir);
-    if (json) print_json(out, rp);
-    else print_text(out, rp);
-    if (rc == TB_FAIL) {
-        /* The reason, for the caller's one line on stderr. */
-        char v[512];
-        verdict_text(rp, v, sizeof v);
-        snprintf(err, errlen, "scene search: %s", strncmp(v, "FAIL: ", 6) ? v : v + 6);
-    }
+    rc = report_out(&s, rp, holds(&s, &rp->found_held) ? TB_OK : TB_FAIL, outdir, json, out, work, err, errlen);
 done:
     tb_scene_free(&s.found_r);
     tb_scene_prep_free(s.pv);

@@ -371,64 +371,56 @@ static void write_csv(FILE *f, const pt *p, size_t n)
 
 /* ------------------------------------------------------------------ verb */
 
-int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, const char *spec,
-                   const char *outdir, int json, FILE *out, tb_scene_work *work, char *err, size_t errlen)
+/* The grid's points in config order: schedule, width, policy, L, terms;
+ * then, unless the widths are given, the extras (adaptive-region at L 8
+ * with 3 and 8 terms at widths 12 and 20, per schedule). NULL: out of
+ * memory. */
+static pt *grid_points(const axes *a, size_t *np)
 {
-    axes a;
-    if (errlen) err[0] = 0;
-    if (work) memset(work, 0, sizeof *work);
-    axes_default(&a);
-    if (spec && *spec && parse_spec(spec, &a, err, errlen)) return TB_BADINPUT;
-    if (jobs < 1) jobs = 1;
-    if (jobs > 64) jobs = 64;
-
-    /* The grid: schedule, width, policy, L, terms; then the extras. */
-    size_t n = (size_t)a.nsched * (size_t)a.nwidth * (size_t)a.npol * (size_t)a.nL * (size_t)a.nterms;
+    size_t n = (size_t)a->nsched * (size_t)a->nwidth * (size_t)a->npol * (size_t)a->nL * (size_t)a->nterms;
     static const int extra_w[] = { 12, 20 }, extra_t[] = { 3, 8 };
-    size_t nx = a.width_given ? 0 : 2 * 2 * (size_t)a.nsched;
+    size_t nx = a->width_given ? 0 : 2 * 2 * (size_t)a->nsched;
     pt *p = calloc(n + nx, sizeof *p);
-    if (!p) { snprintf(err, errlen, "scene sweep: out of memory"); return TB_BADINPUT; }
+    if (!p) return NULL;
     size_t k = 0;
-    for (int s = 0; s < a.nsched; s++)
-        for (int w = 0; w < a.nwidth; w++)
-            for (int q = 0; q < a.npol; q++)
-                for (int l = 0; l < a.nL; l++)
-                    for (int t = 0; t < a.nterms; t++) {
+    for (int s = 0; s < a->nsched; s++)
+        for (int w = 0; w < a->nwidth; w++)
+            for (int q = 0; q < a->npol; q++)
+                for (int l = 0; l < a->nL; l++)
+                    for (int t = 0; t < a->nterms; t++) {
                         pt *x = &p[k++];
-                        x->L = a.L[l]; x->pol = a.pol[q]; x->terms = a.terms[t]; x->width = a.width[w];
-                        snprintf(x->sched, sizeof x->sched, "%s", a.sched[s]);
+                        x->L = a->L[l]; x->pol = a->pol[q]; x->terms = a->terms[t]; x->width = a->width[w];
+                        snprintf(x->sched, sizeof x->sched, "%s", a->sched[s]);
                     }
-    for (int s = 0; s < (nx ? a.nsched : 0); s++)
+    for (int s = 0; s < (nx ? a->nsched : 0); s++)
         for (int t = 0; t < 2; t++)
             for (int w = 0; w < 2; w++) {
                 pt *x = &p[k++];
                 x->L = 8; x->pol = SCN_POL_ADAPTIVE_REGION; x->terms = extra_t[t]; x->width = extra_w[w];
                 x->extra = 1;
-                snprintf(x->sched, sizeof x->sched, "%s", a.sched[s]);
+                snprintf(x->sched, sizeof x->sched, "%s", a->sched[s]);
             }
-    n = k;
+    *np = k;
+    return p;
+}
 
-    /* Check every point's hardware before rendering anything, and find
-     * the points that build the same hardware. */
-    int rc = TB_OK;
-    sweep sw = { .d = d, .m = m, .p = p, .n = n, .mu = PTHREAD_MUTEX_INITIALIZER, .tty = isatty(2),
-                 .no_batch = no_batch, .t0 = mono_now() };
-    scn_gbuf g;
-    memset(&g, 0, sizeof g);
-    sw.todo = malloc((n ? n : 1) * sizeof *sw.todo);
-    if (!sw.todo) { snprintf(err, errlen, "scene sweep: out of memory"); rc = TB_BADINPUT; goto done; }
-    for (size_t i = 0; i < n; i++) {
+/* Every point's hardware checked before anything renders, and the points
+ * that build the same hardware found: each is the same_as of the first
+ * with its key; the others go into sw->todo. */
+static int check_points(sweep *sw, char *err, size_t errlen)
+{
+    pt *p = sw->p;
+    for (size_t i = 0; i < sw->n; i++) {
         scn_desc dd;
         const unit_desc *u;
         unit_cfg cfg;
         unit_fmts f;
-        desc_of(d, &p[i], &dd);
+        desc_of(sw->d, &p[i], &dd);
         char e2[300];
         if (tb_scene_unit(&dd, &u, &cfg, &f, e2, sizeof e2)) {
             snprintf(err, errlen, "--sweep: %s L=%d terms=%d width=%d schedule=%s: %s",
                      scn_policy_name((scn_policy)p[i].pol), p[i].L, p[i].terms, p[i].width, p[i].sched, e2);
-            rc = TB_BADINPUT;
-            goto done;
+            return TB_BADINPUT;
         }
         snprintf(p[i].unit, sizeof p[i].unit, "%s", u->name);
         size_t kl = (size_t)snprintf(p[i].key, sizeof p[i].key, "%s|%s|%d|%s|%d",
@@ -441,8 +433,130 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
         p[i].same_as = -1;
         for (size_t j = 0; j < i; j++)
             if (p[j].same_as < 0 && !strcmp(p[j].key, p[i].key)) { p[i].same_as = (int)j; break; }
-        if (p[i].same_as < 0) sw.todo[sw.ntodo++] = i;
+        if (p[i].same_as < 0) sw->todo[sw->ntodo++] = i;
     }
+    return TB_OK;
+}
+
+/* The points the summary names ((size_t)-1: none) and the failed renders. */
+typedef struct picks { size_t nfail, paper, best, cheap; } picks;
+
+static picks pick_points(const pt *p, size_t n)
+{
+    picks k = { 0, (size_t)-1, (size_t)-1, (size_t)-1 };
+    for (size_t i = 0; i < n; i++) {
+        if (p[i].same_as >= 0) continue;
+        if (p[i].status != TB_OK) { k.nfail++; continue; }
+        if (is_paper(&p[i])) k.paper = i;
+        if (p[i].ovf == 0 && (k.best == (size_t)-1 || p[i].nmse < p[k.best].nmse)) k.best = i;
+        /* The cheapest point that meets 1e-4 without overflow. */
+        if (p[i].ovf == 0 && p[i].nmse <= 1e-4 &&
+            (k.cheap == (size_t)-1 || p[i].cost_hw < p[k.cheap].cost_hw ||
+             (p[i].cost_hw == p[k.cheap].cost_hw && p[i].nmse < p[k.cheap].nmse)))
+            k.cheap = i;
+    }
+    return k;
+}
+
+static const char *const sweep_files[1 + M_N] = { "sweep.csv", "sweep_ops.svg", "sweep_clocks.svg",
+                                                  "sweep_speed.svg", "sweep_energy.svg" };
+
+/* DIR/sweep.csv and the charts; paths gets their names. */
+static int write_files(const scn_desc *d, const pt *p, size_t n, const char *outdir, char paths[][1100],
+                       char *err, size_t errlen)
+{
+    for (int j = 0; j < 1 + M_N; j++) snprintf(paths[j], 1100, "%s/%s", outdir, sweep_files[j]);
+    base_out *o = base_out_open(paths[0], err, errlen);
+    if (!o) return TB_BADINPUT;
+    write_csv(base_out_file(o), p, n);
+    if (base_out_close(o, err, errlen)) return TB_BADINPUT;
+    int crc = 0;
+    for (int m = 0; m < M_N && !crc; m++) draw_chart(d, p, n, m, paths[1 + m], err, errlen, &crc);
+    return crc ? TB_BADINPUT : TB_OK;
+}
+
+static void print_json(FILE *out, const scn_desc *d, const pt *p, size_t n, size_t renders, const picks *k,
+                       const char *outdir, char paths[][1100])
+{
+    fprintf(out, "{\n  \"sweep\": {\n    \"points\": %zu,\n    \"renders\": %zu,\n    \"failed\": %zu,\n",
+            n, renders, k->nfail);
+    fprintf(out, "    \"resolution\": [%d, %d],\n", d->width, d->height);
+    const size_t sel[3] = { k->paper, k->best, k->cheap };
+    const char *const nm[3] = { "paper", "lowest_nmse", "cheapest_meeting_1e-4" };
+    for (int j = 0; j < 3; j++) {
+        fprintf(out, "    \"%s\": ", nm[j]);
+        if (sel[j] == (size_t)-1) { fputs("null,\n", out); continue; }
+        const pt *q = &p[sel[j]];
+        /* 9 digits; a figure that is not finite (NMSE of a failed
+         * render) is null, as JSON has no inf */
+        fprintf(out, "{\"config\": %zu, \"policy\": \"%s\", \"L\": %d, \"terms\": %d, \"width\": %d, "
+                "\"schedule\": \"%s\", \"nmse\": ", sel[j], scn_policy_name((scn_policy)q->pol), q->L,
+                q->terms, q->width, q->sched);
+        base_json_num(out, q->nmse, 9);
+        fputs(", \"cost_per_pixel\": ", out); base_json_num(out, q->cost_hw, 9);
+        fputs(", \"clocks_per_pixel\": ", out); base_json_num(out, q->cpp, 9);
+        fputs(", \"speedup\": ", out); base_json_num(out, q->speedup, 9);
+        fputs(", \"area_ge\": ", out); base_json_num(out, q->area, 9);
+        fputs(", \"fmax_mhz\": ", out); base_json_num(out, q->fmax, 9);
+        fputs(", \"pixels_per_s\": ", out); base_json_num(out, q->pps, 9);
+        fputs(", \"energy_pj_per_pixel\": ", out); base_json_num(out, q->epp, 9);
+        fputs("},\n", out);
+    }
+    fputs("    \"files\": [", out);
+    for (int j = 0; outdir && j < 1 + M_N; j++) fprintf(out, "%s\"%s\"", j ? ", " : "", paths[j]);
+    fputs("]\n  }\n}\n", out);
+}
+
+static void print_text(FILE *out, const scn_desc *d, const pt *p, size_t n, size_t renders, const picks *k,
+                       const char *outdir, char paths[][1100])
+{
+    fprintf(out, "scene sweep: %s %dx%d, %zu grid points, %zu distinct renders\n", d->mesh, d->width,
+            d->height, n, renders);
+    if (k->nfail) fprintf(out, "  %zu renders failed (their rows say so)\n", k->nfail);
+    fprintf(out, "  %-16s %3s %5s %5s %-6s %11s %9s %9s %8s %9s %5s %6s %7s %6s\n", "policy", "L", "terms",
+            "width", "sched", "NMSE", "cost/px", "clk/px", "speedup", "area GE", "ovf", "MHz", "Mpx/s", "pJ/px");
+    const size_t sel[3] = { k->paper, k->cheap, k->best };
+    const char *const nm[3] = { "paper", "cheapest <=1e-4", "lowest NMSE" };
+    for (int j = 0; j < 3; j++) {
+        if (sel[j] == (size_t)-1) { fprintf(out, "  %s: not in the grid\n", nm[j]); continue; }
+        const pt *q = &p[sel[j]];
+        fprintf(out, "  %-16s %3d %5d %5d %-6s %11.4g %9.3g %9.3g %8.3g %9.0f %5llu %6.0f %7.4g %6.3g  %s\n",
+                scn_policy_name((scn_policy)q->pol), q->L, q->terms, q->width, q->sched, q->nmse, q->cost_hw,
+                q->cpp, q->speedup, q->area, (unsigned long long)q->ovf, q->fmax, q->pps / 1e6, q->epp, nm[j]);
+    }
+    size_t nf[M_N] = { 0 }, nb = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (p[i].same_as >= 0 || p[i].status != TB_OK) continue;
+        for (int m = 0; m < M_N; m++) nf[m] += (size_t)p[i].front[m];
+        nb += p[i].ovf > 0 || p[i].jump[M_OPS];
+    }
+    fprintf(out, "  Pareto front: %zu points (operations), %zu (clocks), %zu (pixels/s), %zu (energy); %zu points "
+            "break (overflow or NMSE > 10x the front)\n", nf[M_OPS], nf[M_CLK], nf[M_SPEED], nf[M_ENERGY], nb);
+    for (int j = 0; outdir && j < 1 + M_N; j++) fprintf(out, "wrote %s\n", paths[j]);
+}
+
+int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, const char *spec,
+                   const char *outdir, int json, FILE *out, tb_scene_work *work, char *err, size_t errlen)
+{
+    axes a;
+    if (errlen) err[0] = 0;
+    if (work) memset(work, 0, sizeof *work);
+    axes_default(&a);
+    if (spec && *spec && parse_spec(spec, &a, err, errlen)) return TB_BADINPUT;
+    if (jobs < 1) jobs = 1;
+    if (jobs > 64) jobs = 64;
+    size_t n = 0;
+    pt *p = grid_points(&a, &n);
+    if (!p) { snprintf(err, errlen, "scene sweep: out of memory"); return TB_BADINPUT; }
+
+    int rc = TB_OK;
+    sweep sw = { .d = d, .m = m, .p = p, .n = n, .mu = PTHREAD_MUTEX_INITIALIZER, .tty = isatty(2),
+                 .no_batch = no_batch, .t0 = mono_now() };
+    scn_gbuf g;
+    memset(&g, 0, sizeof g);
+    sw.todo = malloc((n ? n : 1) * sizeof *sw.todo);
+    if (!sw.todo) { snprintf(err, errlen, "scene sweep: out of memory"); rc = TB_BADINPUT; goto done; }
+    if ((rc = check_points(&sw, err, errlen)) != TB_OK) goto done;
     if (outdir && base_out_mkdirs(outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
     if (scn_raster(m, &d->view.cam, d->width, d->height, &g, err, errlen)) { rc = TB_BADINPUT; goto done; }
     sw.g = &g;
@@ -454,91 +568,15 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
         work->cpu_render = sw.cpu_render;
     }
     for (int m = 0; m < M_N; m++) fronts(p, n, m);
-
-    size_t nfail = 0, paper = (size_t)-1, best = (size_t)-1, cheap = (size_t)-1;
-    for (size_t i = 0; i < n; i++) {
-        if (p[i].same_as >= 0) continue;
-        if (p[i].status != TB_OK) { nfail++; continue; }
-        if (is_paper(&p[i])) paper = i;
-        if (p[i].ovf == 0 && (best == (size_t)-1 || p[i].nmse < p[best].nmse)) best = i;
-        /* The cheapest point that meets 1e-4 without overflow. */
-        if (p[i].ovf == 0 && p[i].nmse <= 1e-4 &&
-            (cheap == (size_t)-1 || p[i].cost_hw < p[cheap].cost_hw ||
-             (p[i].cost_hw == p[cheap].cost_hw && p[i].nmse < p[cheap].nmse)))
-            cheap = i;
-    }
-
-    static const char *const files[1 + M_N] = { "sweep.csv", "sweep_ops.svg", "sweep_clocks.svg", "sweep_speed.svg",
-                                                "sweep_energy.svg" };
+    picks k = pick_points(p, n);
     char paths[1 + M_N][1100];
-    if (outdir) {
-        for (int j = 0; j < 1 + M_N; j++) snprintf(paths[j], sizeof paths[j], "%s/%s", outdir, files[j]);
-        base_out *o = base_out_open(paths[0], err, errlen);
-        if (!o) { rc = TB_BADINPUT; goto done; }
-        write_csv(base_out_file(o), p, n);
-        if (base_out_close(o, err, errlen)) { rc = TB_BADINPUT; goto done; }
-        int crc = 0;
-        for (int m = 0; m < M_N && !crc; m++) draw_chart(d, p, n, m, paths[1 + m], err, errlen, &crc);
-        if (crc) { rc = TB_BADINPUT; goto done; }
-    }
-
-    if (json) {
-        fprintf(out, "{\n  \"sweep\": {\n    \"points\": %zu,\n    \"renders\": %zu,\n    \"failed\": %zu,\n",
-                n, sw.ntodo, nfail);
-        fprintf(out, "    \"resolution\": [%d, %d],\n", d->width, d->height);
-        const size_t sel[3] = { paper, best, cheap };
-        const char *const nm[3] = { "paper", "lowest_nmse", "cheapest_meeting_1e-4" };
-        for (int j = 0; j < 3; j++) {
-            fprintf(out, "    \"%s\": ", nm[j]);
-            if (sel[j] == (size_t)-1) { fputs("null,\n", out); continue; }
-            const pt *q = &p[sel[j]];
-            /* 9 digits; a figure that is not finite (NMSE of a failed
-             * render) is null, as JSON has no inf */
-            fprintf(out, "{\"config\": %zu, \"policy\": \"%s\", \"L\": %d, \"terms\": %d, \"width\": %d, "
-                    "\"schedule\": \"%s\", \"nmse\": ", sel[j], scn_policy_name((scn_policy)q->pol), q->L,
-                    q->terms, q->width, q->sched);
-            base_json_num(out, q->nmse, 9);
-            fputs(", \"cost_per_pixel\": ", out); base_json_num(out, q->cost_hw, 9);
-            fputs(", \"clocks_per_pixel\": ", out); base_json_num(out, q->cpp, 9);
-            fputs(", \"speedup\": ", out); base_json_num(out, q->speedup, 9);
-            fputs(", \"area_ge\": ", out); base_json_num(out, q->area, 9);
-            fputs(", \"fmax_mhz\": ", out); base_json_num(out, q->fmax, 9);
-            fputs(", \"pixels_per_s\": ", out); base_json_num(out, q->pps, 9);
-            fputs(", \"energy_pj_per_pixel\": ", out); base_json_num(out, q->epp, 9);
-            fputs("},\n", out);
-        }
-        fputs("    \"files\": [", out);
-        for (int j = 0; outdir && j < 1 + M_N; j++) fprintf(out, "%s\"%s\"", j ? ", " : "", paths[j]);
-        fputs("]\n  }\n}\n", out);
-    } else {
-        fprintf(out, "scene sweep: %s %dx%d, %zu grid points, %zu distinct renders\n", d->mesh, d->width,
-                d->height, n, sw.ntodo);
-        if (nfail) fprintf(out, "  %zu renders failed (their rows say so)\n", nfail);
-        fprintf(out, "  %-16s %3s %5s %5s %-6s %11s %9s %9s %8s %9s %5s %6s %7s %6s\n", "policy", "L", "terms",
-                "width", "sched", "NMSE", "cost/px", "clk/px", "speedup", "area GE", "ovf", "MHz", "Mpx/s", "pJ/px");
-        const size_t sel[3] = { paper, cheap, best };
-        const char *const nm[3] = { "paper", "cheapest <=1e-4", "lowest NMSE" };
-        for (int j = 0; j < 3; j++) {
-            if (sel[j] == (size_t)-1) { fprintf(out, "  %s: not in the grid\n", nm[j]); continue; }
-            const pt *q = &p[sel[j]];
-            fprintf(out, "  %-16s %3d %5d %5d %-6s %11.4g %9.3g %9.3g %8.3g %9.0f %5llu %6.0f %7.4g %6.3g  %s\n",
-                    scn_policy_name((scn_policy)q->pol), q->L, q->terms, q->width, q->sched, q->nmse, q->cost_hw,
-                    q->cpp, q->speedup, q->area, (unsigned long long)q->ovf, q->fmax, q->pps / 1e6, q->epp, nm[j]);
-        }
-        size_t nf[M_N] = { 0 }, nb = 0;
-        for (size_t i = 0; i < n; i++) {
-            if (p[i].same_as >= 0 || p[i].status != TB_OK) continue;
-            for (int m = 0; m < M_N; m++) nf[m] += (size_t)p[i].front[m];
-            nb += p[i].ovf > 0 || p[i].jump[M_OPS];
-        }
-        fprintf(out, "  Pareto front: %zu points (operations), %zu (clocks), %zu (pixels/s), %zu (energy); %zu points "
-                "break (overflow or NMSE > 10x the front)\n", nf[M_OPS], nf[M_CLK], nf[M_SPEED], nf[M_ENERGY], nb);
-        for (int j = 0; outdir && j < 1 + M_N; j++) fprintf(out, "wrote %s\n", paths[j]);
-    }
-    if (nfail) {
+    if (outdir && (rc = write_files(d, p, n, outdir, paths, err, errlen)) != TB_OK) goto done;
+    if (json) print_json(out, d, p, n, sw.ntodo, &k, outdir, paths);
+    else print_text(out, d, p, n, sw.ntodo, &k, outdir, paths);
+    if (k.nfail) {
         rc = TB_FAIL;
         snprintf(err, errlen, "scene sweep: %zu of %zu renders failed (their rows in sweep.csv are marked failed)",
-                 nfail, sw.ntodo);
+                 k.nfail, sw.ntodo);
     }
 done:
     free(sw.todo);

@@ -102,167 +102,169 @@ static uint64_t sc_key(const unsigned char *v, int n)
     return h;
 }
 
-tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, size_t errlen)
+/* What reading a CSV keeps between its lines: where the columns are. */
+typedef struct sc_rd {
+    const char *what;          /* the file's name, for messages */
+    int col[C_N], idcol[SC_MAXID], col_pps, col_e, nh;
+    size_t rowcap, gcap;       /* allocated rows of sc->row, sc->gval */
+} sc_rd;
+
+/* The header line: the columns the charts need, and the identity columns
+ * (schedule, the unit's parameters between width and round, round,
+ * overflow). */
+static int sc_header(tb_sc *sc, sc_rd *rd, char *line, char *err, size_t errlen)
 {
-    tb_sc *sc = calloc(1, sizeof *sc);
-    char *buf = malloc(len + 1);
-    char **f = malloc(4096 * sizeof *f);
-    int col[C_N], idcol[SC_MAXID], col_pps = -1, col_e = -1;
-    sc_hash ht = { 0, NULL };
-    size_t rowcap = 0, gcap = 0;
-    if (!sc || !buf || !f) { sc_err(err, errlen, "%s: out of memory", what); goto bad; }
-    memcpy(buf, text, len);
-    buf[len] = 0;
-    char *line = buf, *next;
-    int lineno = 1, nh = 0;
+    const char *what = rd->what;
     char *hdr[4096];
-    /* The header. */
-    next = strchr(line, '\n');
-    if (!next) { sc_err(err, errlen, "%s:1: not a sweep CSV (no header line)", what); goto bad; }
-    *next = 0;
-    if (next > line && next[-1] == '\r') next[-1] = 0;
-    nh = sc_split(line, hdr, 4096);
-    if (nh < 0) { sc_err(err, errlen, "%s:1: too many columns", what); goto bad; }
+    int nh = rd->nh = sc_split(line, hdr, 4096);
+    if (nh < 0) { sc_err(err, errlen, "%s:1: too many columns", what); return -1; }
     for (int k = 0; k < C_N; k++)
-        if ((col[k] = sc_find(hdr, nh, sc_need[k])) < 0) {
+        if ((rd->col[k] = sc_find(hdr, nh, sc_need[k])) < 0) {
             sc_err(err, errlen, "%s:1: not a sweep CSV (no column '%s')", what, sc_need[k]);
-            goto bad;
+            return -1;
         }
     /* Speed and energy: optional (a CSV made before them has neither). */
-    col_pps = sc_find(hdr, nh, "pixels_per_s");
-    col_e = sc_find(hdr, nh, "energy_pj_per_pixel");
-    sc->have_pps = col_pps >= 0;
-    sc->have_energy = col_e >= 0;
+    rd->col_pps = sc_find(hdr, nh, "pixels_per_s");
+    rd->col_e = sc_find(hdr, nh, "energy_pj_per_pixel");
+    sc->have_pps = rd->col_pps >= 0;
+    sc->have_energy = rd->col_e >= 0;
+    const int *col = rd->col;
     if (col[C_ROUND] <= col[C_WIDTH] || col[C_ROUND] - col[C_WIDTH] - 1 + 3 > SC_MAXID) {
         sc_err(err, errlen, "%s:1: not a sweep CSV (columns out of order)", what);
-        goto bad;
+        return -1;
     }
-    idcol[sc->nid++] = col[C_SCHED];
-    for (int k = col[C_WIDTH] + 1; k < col[C_ROUND]; k++) idcol[sc->nid++] = k;
-    idcol[sc->nid++] = col[C_ROUND];
-    idcol[sc->nid++] = col[C_OVF];
+    rd->idcol[sc->nid++] = col[C_SCHED];
+    for (int k = col[C_WIDTH] + 1; k < col[C_ROUND]; k++) rd->idcol[sc->nid++] = k;
+    rd->idcol[sc->nid++] = col[C_ROUND];
+    rd->idcol[sc->nid++] = col[C_OVF];
     for (int k = 0; k < sc->nid; k++) {
-        snprintf(sc->id[k].name, sizeof sc->id[k].name, "%s", hdr[idcol[k]]);
+        snprintf(sc->id[k].name, sizeof sc->id[k].name, "%s", hdr[rd->idcol[k]]);
         sc->id[k].param = k > 0 && k < sc->nid - 2;
     }
-    /* The rows. */
-    for (line = next + 1; *line; line = next ? next + 1 : line + strlen(line)) {
-        lineno++;
-        next = strchr(line, '\n');
-        if (next) *next = 0;
-        size_t ll = strlen(line);
-        if (ll && line[ll - 1] == '\r') line[--ll] = 0;
-        if (!ll) {
-            if (!next) break;
-            sc_err(err, errlen, "%s:%d: empty line", what, lineno);
-            goto bad;
-        }
-        int nf = sc_split(line, f, 4096);
-        if (nf != nh) {
-            sc_err(err, errlen, "%s:%d: %d fields, the header has %d", what, lineno, nf < 0 ? 4096 : nf, nh);
-            goto bad;
-        }
-        if (!sc->n) snprintf(sc->unit, sizeof sc->unit, "%s", f[col[C_UNIT]]);
-        else if (strcmp(sc->unit, f[col[C_UNIT]])) {
-            sc_err(err, errlen, "%s:%d: unit %s, the rows before are %s", what, lineno, f[col[C_UNIT]], sc->unit);
-            goto bad;
-        }
-        if (sc->n == rowcap) {
-            size_t nc = rowcap ? 2 * rowcap : 64;
-            tb_sc_row *r = realloc(sc->row, nc * sizeof *r);
-            if (!r) { sc_err(err, errlen, "%s: out of memory", what); goto bad; }
-            sc->row = r;
-            rowcap = nc;
-        }
-        tb_sc_row *r = &sc->row[sc->n];
-        memset(r, 0, sizeof *r);
-        double cfg, w;
-        if (sc_num(f[col[C_CONFIG]], &cfg) || cfg < 0 || cfg != floor(cfg) || cfg > 1e12) {
-            sc_err(err, errlen, "%s:%d: config '%s' is not a configuration number", what, lineno, f[col[C_CONFIG]]);
-            goto bad;
-        }
-        if (sc_num(f[col[C_WIDTH]], &w) || w < 1 || w > 64 || w != floor(w)) {
-            sc_err(err, errlen, "%s:%d: width '%s' is not 1..64", what, lineno, f[col[C_WIDTH]]);
-            goto bad;
-        }
-        r->config = (size_t)cfg;
-        r->width = (int)w;
-        const char *st = f[col[C_STATUS]];
-        if (strcmp(st, "ok") && strcmp(st, "failed") && strcmp(st, "not_buildable")) {
-            sc_err(err, errlen, "%s:%d: status '%s' is not ok, failed or not_buildable", what, lineno, st);
-            goto bad;
-        }
-        r->ok = !strcmp(st, "ok");
-        if (r->ok) {
-            const int nc[4] = { C_MAXE, C_RMS, C_AREA, C_CPB };
-            double *dst[4] = { &r->max_err, &r->rms_err, &r->area, &r->clocks_per_pixel };
-            for (int k = 0; k < 4; k++)
-                if (sc_num(f[col[nc[k]]], dst[k])) {
-                    sc_err(err, errlen, "%s:%d: %s '%s' is not a number", what, lineno, sc_need[nc[k]], f[col[nc[k]]]);
-                    goto bad;
-                }
-            /* Empty or non-positive: unknown (no timing or energy for this row). */
-            if (col_pps < 0 || sc_num(f[col_pps], &r->pixels_per_s) || !(r->pixels_per_s > 0)) {
-                r->pixels_per_s = NAN;
-                sc->have_pps = 0;
-            }
-            if (col_e < 0 || sc_num(f[col_e], &r->energy_pp) || !(r->energy_pp > 0)) {
-                r->energy_pp = NAN;
-                sc->have_energy = 0;
-            }
-        }
-        /* Identity values: the group is found later, in config order. */
-        unsigned char v[SC_MAXID];
-        for (int k = 0; k < sc->nid; k++) {
-            sc_col *c = &sc->id[k];
-            const char *s = f[idcol[k]];
-            size_t j = 0;
-            while (j < c->nval && strcmp(c->val[j], s)) j++;
-            if (j == c->nval) {
-                if (c->nval == SC_MAXVAL || strlen(s) > 31) {
-                    sc_err(err, errlen, "%s:%d: column %s: more than %d values, or a value longer than 31 characters",
-                           what, lineno, c->name, SC_MAXVAL);
-                    goto bad;
-                }
-                snprintf(c->val[c->nval++], 32, "%s", s);
-            }
-            v[k] = (unsigned char)j;
-        }
-        /* The row's tuple of value indices, beside it in gval. */
-        sc->n++;
-        if (sc->n > gcap) {
-            size_t nc = gcap ? 2 * gcap : 64;
-            unsigned char (*g)[SC_MAXID] = realloc(sc->gval, nc * sizeof *g);
-            if (!g) { sc_err(err, errlen, "%s: out of memory", what); goto bad; }
-            sc->gval = g;
-            gcap = nc;
-        }
-        memcpy(sc->gval[sc->n - 1], v, SC_MAXID);
+    return 0;
+}
+
+/* Row r's figures from fields f: configuration, width, status and, for
+ * an ok row, its errors, area, clocks, speed and energy. */
+static int sc_figures(tb_sc *sc, const sc_rd *rd, char **f, int lineno, tb_sc_row *r, char *err, size_t errlen)
+{
+    const char *what = rd->what;
+    const int *col = rd->col;
+    double cfg, w;
+    if (sc_num(f[col[C_CONFIG]], &cfg) || cfg < 0 || cfg != floor(cfg) || cfg > 1e12) {
+        sc_err(err, errlen, "%s:%d: config '%s' is not a configuration number", what, lineno, f[col[C_CONFIG]]);
+        return -1;
     }
-    if (!sc->n) { sc_err(err, errlen, "%s: no rows", what); goto bad; }
-    /* Configuration order (a merged CSV is already in it; shards are not
-     * complete, which the charts accept). The tuples move with the rows. */
-    {
-        tb_sc_row *sorted = malloc(sc->n * sizeof *sorted);
-        unsigned char (*gv)[SC_MAXID] = malloc(sc->n * sizeof *gv);
-        if (!sorted || !gv) { free(sorted); free(gv); sc_err(err, errlen, "%s: out of memory", what); goto bad; }
-        for (size_t i = 0; i < sc->n; i++) { sorted[i] = sc->row[i]; sorted[i].group = i; }
-        qsort(sorted, sc->n, sizeof *sorted, sc_cfg_cmp);
-        for (size_t i = 0; i < sc->n; i++) {
-            memcpy(gv[i], sc->gval[sorted[i].group], SC_MAXID);
-            if (i && sorted[i].config == sorted[i - 1].config) {
-                sc_err(err, errlen, "%s: configuration %zu is given twice", what, sorted[i].config);
-                free(sorted);
-                free(gv);
-                goto bad;
-            }
-        }
-        free(sc->row);
-        free(sc->gval);
-        sc->row = sorted;
-        sc->gval = gv;
+    if (sc_num(f[col[C_WIDTH]], &w) || w < 1 || w > 64 || w != floor(w)) {
+        sc_err(err, errlen, "%s:%d: width '%s' is not 1..64", what, lineno, f[col[C_WIDTH]]);
+        return -1;
     }
-    /* Values in order of first appearance in configuration order. */
+    r->config = (size_t)cfg;
+    r->width = (int)w;
+    const char *st = f[col[C_STATUS]];
+    if (strcmp(st, "ok") && strcmp(st, "failed") && strcmp(st, "not_buildable")) {
+        sc_err(err, errlen, "%s:%d: status '%s' is not ok, failed or not_buildable", what, lineno, st);
+        return -1;
+    }
+    r->ok = !strcmp(st, "ok");
+    if (r->ok) {
+        const int nc[4] = { C_MAXE, C_RMS, C_AREA, C_CPB };
+        double *dst[4] = { &r->max_err, &r->rms_err, &r->area, &r->clocks_per_pixel };
+        for (int k = 0; k < 4; k++)
+            if (sc_num(f[col[nc[k]]], dst[k])) {
+                sc_err(err, errlen, "%s:%d: %s '%s' is not a number", what, lineno, sc_need[nc[k]], f[col[nc[k]]]);
+                return -1;
+            }
+        /* Empty or non-positive: unknown (no timing or energy for this row). */
+        if (rd->col_pps < 0 || sc_num(f[rd->col_pps], &r->pixels_per_s) || !(r->pixels_per_s > 0)) {
+            r->pixels_per_s = NAN;
+            sc->have_pps = 0;
+        }
+        if (rd->col_e < 0 || sc_num(f[rd->col_e], &r->energy_pp) || !(r->energy_pp > 0)) {
+            r->energy_pp = NAN;
+            sc->have_energy = 0;
+        }
+    }
+    return 0;
+}
+
+/* One data line's fields f: its row, and its identity values' indices
+ * beside it in gval (the group is found later, in config order). */
+static int sc_row(tb_sc *sc, sc_rd *rd, char **f, int lineno, char *err, size_t errlen)
+{
+    const char *what = rd->what, *unit = f[rd->col[C_UNIT]];
+    if (!sc->n) snprintf(sc->unit, sizeof sc->unit, "%s", unit);
+    else if (strcmp(sc->unit, unit)) {
+        sc_err(err, errlen, "%s:%d: unit %s, the rows before are %s", what, lineno, unit, sc->unit);
+        return -1;
+    }
+    if (sc->n == rd->rowcap) {
+        size_t nc = rd->rowcap ? 2 * rd->rowcap : 64;
+        tb_sc_row *r = realloc(sc->row, nc * sizeof *r);
+        if (!r) { sc_err(err, errlen, "%s: out of memory", what); return -1; }
+        sc->row = r;
+        rd->rowcap = nc;
+    }
+    tb_sc_row *r = &sc->row[sc->n];
+    memset(r, 0, sizeof *r);
+    if (sc_figures(sc, rd, f, lineno, r, err, errlen)) return -1;
+    unsigned char v[SC_MAXID];
+    for (int k = 0; k < sc->nid; k++) {
+        sc_col *c = &sc->id[k];
+        const char *s = f[rd->idcol[k]];
+        size_t j = 0;
+        while (j < c->nval && strcmp(c->val[j], s)) j++;
+        if (j == c->nval) {
+            if (c->nval == SC_MAXVAL || strlen(s) > 31) {
+                sc_err(err, errlen, "%s:%d: column %s: more than %d values, or a value longer than 31 characters",
+                       what, lineno, c->name, SC_MAXVAL);
+                return -1;
+            }
+            snprintf(c->val[c->nval++], 32, "%s", s);
+        }
+        v[k] = (unsigned char)j;
+    }
+    sc->n++;
+    if (sc->n > rd->gcap) {
+        size_t nc = rd->gcap ? 2 * rd->gcap : 64;
+        unsigned char (*g)[SC_MAXID] = realloc(sc->gval, nc * sizeof *g);
+        if (!g) { sc_err(err, errlen, "%s: out of memory", what); return -1; }
+        sc->gval = g;
+        rd->gcap = nc;
+    }
+    memcpy(sc->gval[sc->n - 1], v, SC_MAXID);
+    return 0;
+}
+
+/* Configuration order (a merged CSV is already in it; shards are not
+ * complete, which the charts accept). The tuples move with the rows. */
+static int sc_sort(tb_sc *sc, const char *what, char *err, size_t errlen)
+{
+    tb_sc_row *sorted = malloc(sc->n * sizeof *sorted);
+    unsigned char (*gv)[SC_MAXID] = malloc(sc->n * sizeof *gv);
+    if (!sorted || !gv) { free(sorted); free(gv); sc_err(err, errlen, "%s: out of memory", what); return -1; }
+    for (size_t i = 0; i < sc->n; i++) { sorted[i] = sc->row[i]; sorted[i].group = i; }
+    qsort(sorted, sc->n, sizeof *sorted, sc_cfg_cmp);
+    for (size_t i = 0; i < sc->n; i++) {
+        memcpy(gv[i], sc->gval[sorted[i].group], SC_MAXID);
+        if (i && sorted[i].config == sorted[i - 1].config) {
+            sc_err(err, errlen, "%s: configuration %zu is given twice", what, sorted[i].config);
+            free(sorted);
+            free(gv);
+            return -1;
+        }
+    }
+    free(sc->row);
+    free(sc->gval);
+    sc->row = sorted;
+    sc->gval = gv;
+    return 0;
+}
+
+/* Each column's values renumbered in order of first appearance in
+ * configuration order. */
+static void sc_value_order(tb_sc *sc)
+{
     for (int k = 0; k < sc->nid; k++) {
         sc_col *c = &sc->id[k];
         int map[SC_MAXVAL], nmap = 0;
@@ -276,12 +278,17 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
         memcpy(c->val, tmp, c->nval * 32);
         for (size_t i = 0; i < sc->n; i++) sc->gval[i][k] = (unsigned char)map[sc->gval[i][k]];
     }
-    /* Groups, numbered in order of first appearance. */
-    ht.cap = 64;
+}
+
+/* Groups, numbered in order of first appearance; gval becomes the
+ * groups' tuples, and each group gets its label. */
+static int sc_groups(tb_sc *sc, const char *what, char *err, size_t errlen)
+{
+    sc_hash ht = { 64, NULL };
     while (ht.cap < 2 * sc->n) ht.cap *= 2;
     ht.slot = malloc(ht.cap * sizeof *ht.slot);
     unsigned char (*gt)[SC_MAXID] = malloc(sc->n * sizeof *gt);
-    if (!ht.slot || !gt) { free(gt); sc_err(err, errlen, "%s: out of memory", what); goto bad; }
+    if (!ht.slot || !gt) { free(ht.slot); free(gt); sc_err(err, errlen, "%s: out of memory", what); return -1; }
     for (size_t k = 0; k < ht.cap; k++) ht.slot[k] = SIZE_MAX;
     for (size_t i = 0; i < sc->n; i++) {
         size_t h = (size_t)(sc_key(sc->gval[i], sc->nid) & (ht.cap - 1));
@@ -293,11 +300,10 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
         sc->row[i].group = ht.slot[h];
     }
     free(ht.slot);
-    ht.slot = NULL;
     free(sc->gval);
     sc->gval = gt;
     sc->glabel = calloc(sc->ngroups, sizeof *sc->glabel);
-    if (!sc->glabel) { sc_err(err, errlen, "%s: out of memory", what); goto bad; }
+    if (!sc->glabel) { sc_err(err, errlen, "%s: out of memory", what); return -1; }
     for (size_t g = 0; g < sc->ngroups; g++) {
         size_t k = 0, cap = sizeof sc->glabel[g];
         char *b = sc->glabel[g];
@@ -309,11 +315,51 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
             if (m > 0) k += (size_t)m;
         }
     }
+    return 0;
+}
+
+tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, size_t errlen)
+{
+    tb_sc *sc = calloc(1, sizeof *sc);
+    char *buf = malloc(len + 1);
+    char **f = malloc(4096 * sizeof *f);
+    sc_rd rd = { .what = what, .col_pps = -1, .col_e = -1 };
+    if (!sc || !buf || !f) { sc_err(err, errlen, "%s: out of memory", what); goto bad; }
+    memcpy(buf, text, len);
+    buf[len] = 0;
+    char *line = buf, *next;
+    int lineno = 1;
+    next = strchr(line, '\n');
+    if (!next) { sc_err(err, errlen, "%s:1: not a sweep CSV (no header line)", what); goto bad; }
+    *next = 0;
+    if (next > line && next[-1] == '\r') next[-1] = 0;
+    if (sc_header(sc, &rd, line, err, errlen)) goto bad;
+    for (line = next + 1; *line; line = next ? next + 1 : line + strlen(line)) {
+        lineno++;
+        next = strchr(line, '\n');
+        if (next) *next = 0;
+        size_t ll = strlen(line);
+        if (ll && line[ll - 1] == '\r') line[--ll] = 0;
+        if (!ll) {
+            if (!next) break;
+            sc_err(err, errlen, "%s:%d: empty line", what, lineno);
+            goto bad;
+        }
+        int nf = sc_split(line, f, 4096);
+        if (nf != rd.nh) {
+            sc_err(err, errlen, "%s:%d: %d fields, the header has %d", what, lineno, nf < 0 ? 4096 : nf, rd.nh);
+            goto bad;
+        }
+        if (sc_row(sc, &rd, f, lineno, err, errlen)) goto bad;
+    }
+    if (!sc->n) { sc_err(err, errlen, "%s: no rows", what); goto bad; }
+    if (sc_sort(sc, what, err, errlen)) goto bad;
+    sc_value_order(sc);
+    if (sc_groups(sc, what, err, errlen)) goto bad;
     free(f);
     free(buf);
     return sc;
 bad:
-    free(ht.slot);
     free(f);
     free(buf);
     tb_sc_free(sc);
