@@ -25,7 +25,7 @@
  * range check is left. Logic: y <= the low 64 - op_k bits of
  * op_logic(inputs), sign-extended (LOGIC_S) or masked with op_radd
  * (LOGIC_U). A logic element with few input bits is tabulated when the
- * simulation starts (sim_kernel.c): LUT1, one input, y <= op_tab[a -
+ * simulation starts (sim_sched.c): LUT1, one input, y <= op_tab[a -
  * op_lo] when a - op_lo <= op_hi (its format's span); LUTN, the inputs'
  * offsets side by side (op_tin); an input outside its format calls fn. */
 enum { SIM__OP_FN = 0, SIM__OP_COPY, SIM__OP_ADD, SIM__OP_SUB, SIM__OP_MUL,
@@ -47,7 +47,7 @@ typedef struct sim__lut_in {
 typedef struct sim__proc {
     /* hot: read or written on every evaluation */
     uint64_t    listed;     /* in the run list being built while it equals the
-                             * context's generation (sim_kernel.c) */
+                             * context's generation (sim_sched.c) */
     uint8_t     op;         /* SIM__OP_* */
     int8_t      op_k;
     uint32_t    op_n;       /* mux or logic inputs */
