@@ -137,8 +137,9 @@ void       sim_set_max_deltas(sim_ctx *c, uint32_t n);
  * and every clock edge goes through the timers and a full update. Values,
  * overflow counts, observers and every counter (sim_stats, each signal's
  * changes, each process's runs) are the fast kernel's; only the time
- * taken differs. Set it before the first sim_run (tables are made there);
- * 0 (the default) is the fast kernel. */
+ * taken differs. 0 (the default) is the fast kernel. It may change
+ * between runs (the tables are made at the first sim_run, if the kernel
+ * is fast then). */
 void       sim_set_reference(sim_ctx *c, int on);
 
 sim_scope *sim_root(sim_ctx *c);

@@ -512,7 +512,7 @@ static void obs_fn(sim_ctx *c, sim_time now, void *data)
 }
 
 static int64_t mix_fn(const int64_t *in, void *u) { (void)u; return in[0] * 5 + in[1] * 3 + (in[0] & 2); }
-static int64_t wide_fn(const int64_t *in, void *u) { (void)u; return in[0] ^ (in[1] << 2); }
+static int64_t wide_fn(const int64_t *in, void *u) { (void)u; return in[0] ^ (int64_t)((uint64_t)in[1] << 2); }
 
 /* A design with every kind of element the kernel evaluates itself (copy,
  * add, sub, mul, mux, block key, logic both ways and tabulated, their
