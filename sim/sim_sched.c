@@ -12,8 +12,8 @@
  * Where the time goes, and what keeps it short (every counter in
  * sim_stats and every signal's `changes` is what the plain algorithm
  * counts; sim_set_reference runs that plain algorithm, with none of the
- * fast paths marked *, and tests/cli_engine.sh and tests/cli_gold.sh
- * hold the two to the same counters):
+ * fast paths marked *, and tests/test_kernel.c, tests/cli_engine.sh and
+ * tests/cli_gold.sh hold the two to the same counters):
  *  * A primitive (sim_prim.c) whose exact result fits 62 bits is evaluated
  *    by the kernel itself (sim__proc.op, sim_internal.h): operands, one
  *    add or multiply, one shift (none when the result already has the
