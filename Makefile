@@ -31,7 +31,7 @@ LIBOBJ  := $(patsubst %.c,$(B)/%.o,$(LIBSRC))
 TESTBIN := $(patsubst tests/%.c,$(B)/tests/%,$(TESTSRC))
 BENCHBIN:= $(patsubst bench/%.c,$(B)/bench/%,$(BENCHSRC))
 
-.PHONY: all test bench run clean vectors docs install uninstall fuzz
+.PHONY: all test bench run clean vectors docs install uninstall fuzz gold
 all: bin/shadesim
 
 # Quiet builds: one short line per step; V=1 shows the full commands.
@@ -180,6 +180,15 @@ run:
 vectors: bin/shadesim
 	@for u in $$(./bin/shadesim list | sed -n 's/^\([a-z0-9_]*\) — .*/\1/p'); do \
 	    ./bin/shadesim vectors $$u -o vectors/$$u.vec || exit 1; echo "vectors/$$u.vec"; done
+
+# Regenerate tests/gold/counters.txt: the kernel's counters (events, delta
+# cycles, process runs, clocks, overflows) for every unit and schedule,
+# from its reference (--reference: no fast path); tests/cli_gold.sh holds
+# the fast kernel to them.
+gold: bin/shadesim
+	@sh tests/gold/make_gold.sh ./bin/shadesim --reference >tests/gold/counters.txt.tmp \
+	    && mv -f tests/gold/counters.txt.tmp tests/gold/counters.txt && echo tests/gold/counters.txt \
+	    || { rm -f tests/gold/counters.txt.tmp; exit 1; }
 
 # Regenerate docs made from the unit descriptors.
 docs: bin/shadesim

@@ -131,6 +131,16 @@ sim_ovf    sim_get_ovf(const sim_ctx *c);
 /* Delta cycles allowed per time step before a loop is reported (default
  * 1000). */
 void       sim_set_max_deltas(sim_ctx *c, uint32_t n);
+/* The reference kernel (on != 0): the plain evaluate/update loop with
+ * none of the fast paths (sim_sched.c): every process runs its general
+ * function (no primitive evaluated inline, no logic element tabulated),
+ * and every clock edge goes through the timers and a full update. Values,
+ * overflow counts, observers and every counter (sim_stats, each signal's
+ * changes, each process's runs) are the fast kernel's; only the time
+ * taken differs. 0 (the default) is the fast kernel. It may change
+ * between runs (the tables are made at the first sim_run, if the kernel
+ * is fast then). */
+void       sim_set_reference(sim_ctx *c, int on);
 
 sim_scope *sim_root(sim_ctx *c);
 sim_scope *sim_scope_new(sim_ctx *c, sim_scope *parent, const char *name);

@@ -1,7 +1,9 @@
 /* sim_internal.h - NOT part of the API: the kernel's own record of a
  * process, with the fast-path fields of the primitives the kernel
- * evaluates itself, and the hooks between sim_kernel.c and sim_prim.c.
- * Included by those two files only; anything else uses sim.h.
+ * evaluates itself, the context both halves of the kernel share
+ * (sim_kernel.c: signals, processes, observers; sim_sched.c: timers, time
+ * steps, the delta loop), and the hooks between them and sim_prim.c.
+ * Included by those files only; anything else uses sim.h.
  *
  * A process is one sim__proc. Its public part (struct sim_proc: data,
  * ctx, no_init) is the last member, and what sim_proc_new hands out is a
@@ -23,7 +25,7 @@
  * range check is left. Logic: y <= the low 64 - op_k bits of
  * op_logic(inputs), sign-extended (LOGIC_S) or masked with op_radd
  * (LOGIC_U). A logic element with few input bits is tabulated when the
- * simulation starts (sim_kernel.c): LUT1, one input, y <= op_tab[a -
+ * simulation starts (sim_sched.c): LUT1, one input, y <= op_tab[a -
  * op_lo] when a - op_lo <= op_hi (its format's span); LUTN, the inputs'
  * offsets side by side (op_tin); an input outside its format calls fn. */
 enum { SIM__OP_FN = 0, SIM__OP_COPY, SIM__OP_ADD, SIM__OP_SUB, SIM__OP_MUL,
@@ -45,7 +47,7 @@ typedef struct sim__lut_in {
 typedef struct sim__proc {
     /* hot: read or written on every evaluation */
     uint64_t    listed;     /* in the run list being built while it equals the
-                             * context's generation (sim_kernel.c) */
+                             * context's generation (sim_sched.c) */
     uint8_t     op;         /* SIM__OP_* */
     int8_t      op_k;
     uint32_t    op_n;       /* mux or logic inputs */
@@ -98,4 +100,63 @@ void sim__uses_stale(sim_ctx *c);
  * that passes it, any other) to a used value. epoch: one per settling,
  * for the memo every signal carries. */
 int  sim__value_used(sim_signal *s, uint64_t epoch);
+
+/* ---- the context (sim_kernel.c builds it, sim_sched.c runs it) ---- */
+
+/* A timed event: at time `at`, fn(data). Clocks are the only users so far;
+ * a binary heap keeps them ordered (seq breaks ties first-come first). */
+typedef struct sim__timer {
+    sim_time at;
+    uint64_t seq;
+    void   (*fn)(sim_ctx *c, void *data);
+    void    *data;
+} sim__timer;
+
+typedef struct sim__obs {
+    sim_observer_fn fn;
+    void    *data;
+    unsigned flags;
+} sim__obs;
+
+struct sim__chunk { struct sim__chunk *next; };
+
+struct sim_ctx {
+    sim_updq     q;                          /* written this delta (first: see sim_write) */
+    sim_signal **sigs;   uint32_t nsig, capsig;
+    sim__proc  **procs;  uint32_t nproc, capproc;
+    sim__proc  **run;    uint32_t nrun;      /* runnable this delta; capacity capproc */
+    sim__proc  **run2;   uint32_t nrun2;     /* woken for the next delta */
+    sim_signal **chg;    uint32_t nchg;      /* changed this time step (sim_changed) */
+    sim_signal **chg_on;                     /* chg while an observer reads it, else NULL */
+    uint32_t     epoch;                      /* a signal is in chg iff its noted is this */
+    uint64_t     gen;                        /* a process is in the run list being built iff
+                                              * its listed is this (one per delta: never wraps) */
+    sim_signal **ovfq;   uint32_t novfq;     /* overflowed this time step (sim__overflow) */
+    uint32_t     uses_nsig;                  /* signals when the readers were listed (0: not) */
+    uint64_t     use_epoch;                  /* one per settling that met an overflow */
+    sim__timer  *heap;   uint32_t nheap, capheap;
+    uint64_t     timer_seq;
+    sim_time     now;
+    sim_stats    stats;
+    sim_round    rnd;
+    sim_ovf      ovf;
+    uint32_t     max_deltas;
+    uint32_t     changed;                    /* signals the last update changed */
+    int          started, stop;
+    int          reference;                  /* sim_set_reference: no fast path */
+    int          stepped;                    /* a time step ran, the last at step_time */
+    sim_time     step_time;
+    sim__obs    *obs;    uint32_t nobs, capobs;
+    uint32_t     track;                      /* observers reading sim_changed */
+    int          elab_err;                   /* err holds an elaboration error */
+    sim_scope    root;
+    struct sim__chunk *mem;
+    char         err[512];
+};
+
+/* Grow an array of elem-byte items to hold need (doubling; exits when
+ * out of memory). */
+void *sim__grow(void *p, uint32_t *cap, size_t elem, uint32_t need);
+/* Start a new list of changed signals (sim_changed). */
+void sim__clear_changed(sim_ctx *c);
 #endif

@@ -125,6 +125,7 @@ typedef struct tb_result {
     tb_metrics out[UNIT_MAX_IO];
     sim_stats  stats;            /* the kernel's; only clocks when the batch ran */
     uint32_t   lanes;            /* the batch's lanes that simulated it (tb_lanes.h); 0: the kernel */
+    int        reference;        /* the kernel ran as its reference (sim_set_reference) */
     char       engine_why[160];  /* lanes asked for but the kernel ran: why ("" otherwise) */
     /* The verdict (tb_verdict): */
     int        bound_check;      /* worst TB_CHECK_* over the outputs */
@@ -166,6 +167,8 @@ typedef struct tb_opts {
     int         fst;             /* VCD_PATH is an FST file, converted by vcd2fst */
     int         lanes;           /* simulate on the batch's lanes where they give the kernel's
                                   * results (tb_lanes.h; not with a dump), else the kernel */
+    int         reference;       /* the kernel as its reference, without its fast paths
+                                  * (sim_set_reference; implies the kernel, not lanes) */
 } tb_opts;
 
 enum { TB_OK = 0, TB_FAIL = 1, TB_BADINPUT = 2 };

@@ -128,8 +128,8 @@ int tb_write_json(FILE *f, const tb_result *r)
         fprintf(f, "\n  },\n  \"sim\": {\"engine\": \"batch\", \"lanes\": %u, \"clocks\": %llu}\n}\n", (unsigned)r->lanes,
                 (unsigned long long)r->stats.clocks);
     else
-        fprintf(f, "\n  },\n  \"sim\": {\"engine\": \"kernel\", \"clocks\": %llu, \"events\": %llu, \"delta_cycles\": %llu, \"process_runs\": %llu}\n}\n",
-                (unsigned long long)r->stats.clocks, (unsigned long long)r->stats.events,
+        fprintf(f, "\n  },\n  \"sim\": {\"engine\": \"%s\", \"clocks\": %llu, \"events\": %llu, \"delta_cycles\": %llu, \"process_runs\": %llu}\n}\n",
+                r->reference ? "reference" : "kernel", (unsigned long long)r->stats.clocks, (unsigned long long)r->stats.events,
                 (unsigned long long)r->stats.deltas, (unsigned long long)r->stats.proc_runs);
     return ferror(f) ? -1 : 0;
 }
@@ -228,8 +228,8 @@ void tb_print_table(FILE *f, const tb_result *r)
         fprintf(f, "engine batch: %u lanes, levelized, the kernel's results (--kernel: its event counts)\n",
                 (unsigned)r->lanes);
     else
-        fprintf(f, "engine kernel: %llu events, %llu delta cycles, %llu process runs%s%s%s\n",
-                (unsigned long long)r->stats.events, (unsigned long long)r->stats.deltas,
+        fprintf(f, "engine %s: %llu events, %llu delta cycles, %llu process runs%s%s%s\n",
+                r->reference ? "reference" : "kernel", (unsigned long long)r->stats.events, (unsigned long long)r->stats.deltas,
                 (unsigned long long)r->stats.proc_runs, r->engine_why[0] ? " (not on lanes: " : "",
                 r->engine_why, r->engine_why[0] ? ")" : "");
     /* the format column as wide as its longest entry (a format with its

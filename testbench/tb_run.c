@@ -351,6 +351,7 @@ static int run_build(run_sim *s, const unit_desc *u, const unit_cfg *cfg, const 
     int bad = tb_build(u, cfg, fmts, &b, err, errlen);
     s->c = b.c; s->clk = b.clk; s->sc = b.sc; s->io = b.io;
     if (bad) return TB_BADINPUT;
+    if (o && o->reference) { sim_set_reference(s->c, 1); r->reference = 1; }
     /* 100 MHz in a 1 ns timescale: rising edges at 5, 15, 25, ... */
     sim_clock(s->c, s->clk, 5, 5);
     tb_state *st = &s->st;
@@ -518,7 +519,7 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
 
     run_mem m;
     if (run_mem_alloc(&m, u, r, vs->n_rows, err, errlen)) return TB_FAIL;
-    if (o && o->lanes && !o->vcd_path) {
+    if (o && o->lanes && !o->vcd_path && !o->reference) {
         int t = run_lanes(u, cfg, fmts, vs, &m, r, err, errlen);   /* prepares too */
         if (t != 1) { run_mem_free(&m); return t; }
         /* the kernel from a clean slate: the lanes may have written some */

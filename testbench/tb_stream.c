@@ -375,7 +375,7 @@ static void ring_free(ring *R)
 }
 
 int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
-                  vec_stream *vs, tb_row_fn row, void *row_data, tb_result *r,
+                  vec_stream *vs, tb_row_fn row, void *row_data, const tb_opts *o, tb_result *r,
                   char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
@@ -422,6 +422,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     int rc = TB_OK;
     sim_toggle *tog = NULL;      /* switching activity (tb_energy.h) */
     if (unbuilt) { rc = TB_BADINPUT; goto done; }
+    if (o && o->reference) { sim_set_reference(c, 1); r->reference = 1; }
     sim_clock(c, clk, 5, 5);
     st.io = &io; st.ctx = c;
     if (tb_range_init(&st.rg, c, sc, clk)) {

@@ -91,9 +91,10 @@ typedef void (*tb_row_fn)(void *data, const tb_result *r, size_t idx, uint64_t c
  * expected header, tb_expected_header, so that its header is checked).
  * Nothing proportional to the number of rows is kept: res->raw and
  * res->beat_cycle are NULL, row (if not NULL) sees every item as it
- * completes. No VCD (o is not taken). A bad row in the file stops the run:
- * TB_BADINPUT with the reader's "PATH:LINE: what" in err. */
+ * completes. No VCD and no lanes: of o (NULL: none) only reference is
+ * taken. A bad row in the file stops the run: TB_BADINPUT with the
+ * reader's "PATH:LINE: what" in err. */
 int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
-                  vec_stream *vs, tb_row_fn row, void *row_data, tb_result *res,
+                  vec_stream *vs, tb_row_fn row, void *row_data, const tb_opts *o, tb_result *res,
                   char *err, size_t errlen);
 #endif

@@ -3,8 +3,12 @@
 # report as on the event-driven kernel (--kernel), for every unit and
 # schedule: the JSON, byte for byte but for its "sim" line (the engine,
 # and the kernel's own counters, printed only when the kernel ran), the
-# text table but for its engine line, the --out CSV. Then the cases that
-# must fall back to the kernel: --vcd, an overflow.
+# text table but for its engine line, the --out CSV. The kernel and its
+# reference (--reference: no fast path) give the same JSON byte for byte
+# but for the engine's name, so every counter (events, delta cycles,
+# process runs, clocks) and overflow count, and the same --vcd dump and
+# .gtkw byte for byte. Then the cases that must fall back to the kernel:
+# --vcd, an overflow.
 . tests/lib_cli.sh
 PREFIX=cli_engine.
 
@@ -37,6 +41,32 @@ for u in $units; do
         else
             ok "$n"
         fi
+        # the reference: the whole JSON, the sim line's counters included
+        $S run "$u" --schedule "$sc" --json --reference >"$T/r.json" 2>"$T/r.err"; rr=$?
+        sed 's/^\(  "sim": {"engine": \)"reference"/\1"kernel"/' "$T/r.json" >"$T/r.as-k"
+        if [ "$rr" -ne "$rk" ]; then
+            fail "$n.reference" "exit $rr on the reference, $rk on the kernel"
+        elif ! grep -q '"sim": {"engine": "reference", "clocks": [0-9]*, "events": [0-9]*, "delta_cycles"' "$T/r.json"; then
+            fail "$n.reference" "$(grep '"sim"' "$T/r.json")"
+        elif ! cmp -s "$T/k.json" "$T/r.as-k"; then
+            fail "$n.reference" "JSON differs: $(diff "$T/k.json" "$T/r.as-k" | head -4 | tr '\n' ' ')"
+        else
+            ok "$n.reference"
+        fi
+        # and the dump (through tb_run, where the JSON above was streamed)
+        $S run "$u" --schedule "$sc" --kernel --vcd "$T/k.vcd" >"$T/k.txt" 2>&1; rk=$?
+        $S run "$u" --schedule "$sc" --reference --vcd "$T/r.vcd" >"$T/r.txt" 2>&1; rr=$?
+        if [ "$rk" -ne "$rr" ] || [ ! -s "$T/k.vcd" ]; then
+            fail "$n.vcd" "exit $rk on the kernel, $rr on the reference: $(head -c 200 "$T/r.txt")"
+        elif ! cmp -s "$T/k.vcd" "$T/r.vcd" || ! sed "s|$T/r\.vcd|$T/k.vcd|g" "$T/r.vcd.gtkw" | cmp -s "$T/k.vcd.gtkw" -; then
+            # (the .gtkw names its own path and the dump's)
+            fail "$n.vcd" "dumps differ: $(cmp "$T/k.vcd" "$T/r.vcd"; diff "$T/k.vcd.gtkw" "$T/r.vcd.gtkw" | head -4 | tr '\n' ' ')"
+        elif [ "$(grep -v '^engine ' "$T/k.txt")" != "$(grep -v '^engine ' "$T/r.txt")" ] ||
+             [ "$(sed -n 's/^engine kernel: //p' "$T/k.txt")" != "$(sed -n 's/^engine reference: //p' "$T/r.txt")" ]; then
+            fail "$n.vcd" "tables differ: $(diff "$T/k.txt" "$T/r.txt" | head -4 | tr '\n' ' ')"
+        else
+            ok "$n.vcd"
+        fi
     done
 done
 
@@ -44,6 +74,11 @@ done
 $S run horner3 >"$T/b.txt"; $S run horner3 --no-batch >"$T/k.txt"
 if grep -q '^engine batch: [0-9]* lanes' "$T/b.txt" && grep -q '^engine kernel: [0-9]* events, [0-9]* delta cycles' "$T/k.txt" &&
    [ "$(grep -v '^engine ' "$T/b.txt")" = "$(grep -v '^engine ' "$T/k.txt")" ]; then ok table; else fail table "$(diff "$T/b.txt" "$T/k.txt" | head -6 | tr '\n' ' ')"; fi
+# the reference's table: its engine line names it, with the kernel's counts
+$S run horner3 --reference >"$T/r.txt"
+if grep -q '^engine reference: [0-9]* events, [0-9]* delta cycles' "$T/r.txt" &&
+   [ "$(sed 's/^engine reference: /engine kernel: /' "$T/r.txt")" = "$(cat "$T/k.txt")" ]; then ok table-reference
+else fail table-reference "$(diff "$T/k.txt" "$T/r.txt" | head -6 | tr '\n' ' ')"; fi
 
 # a longer file (several items a lane, 64 lanes) and its --out rows
 $S vectors span23 -n 5000 --seed 3 -o "$T/s.vec" 2>/dev/null

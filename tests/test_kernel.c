@@ -1,10 +1,24 @@
 /* test_kernel.c - kernel semantics: non-blocking register updates, delta
  * cycles, loop detection, clocks, and the datapath primitives' arithmetic
- * against independent double-precision computations. */
+ * against independent double-precision computations. Every test runs on
+ * the fast kernel, then again on its reference (sim_set_reference: no
+ * fast path), which must meet the same hand-derived expectations; and
+ * the two must agree on every counter of a design with every kind of
+ * element (t_reference_counters). */
 #include "tests/tst.h"
 #include "sim/sim.h"
 #include "sim/sim_prim.h"
 #include "sim/sim_area.h"
+
+/* 1 while the tests run on the kernel's reference. */
+static int on_reference;
+
+static sim_ctx *ctx_new(void)
+{
+    sim_ctx *c = sim_new();
+    sim_set_reference(c, on_reference);
+    return c;
+}
 
 static sim_fmt F(const char *s)
 {
@@ -27,7 +41,7 @@ static void t_shift_register(void)
     /* in -> r0 -> r1 -> r2 -> r3: after k edges r_i holds in's value of
      * edge k-i, in either creation order of the registers. */
     for (int order = 0; order < 2; order++) {
-        sim_ctx *c = sim_new();
+        sim_ctx *c = ctx_new();
         sim_signal *clk = clock(c);
         sim_signal *in = sim_signal_new(c, NULL, "in", F("u8.0"), SIM_KIND_INPUT);
         sim_signal *r[4];
@@ -54,7 +68,7 @@ static void t_swap(void)
 {
     /* a <= b; b <= a on one edge exchanges them, in either creation order. */
     for (int order = 0; order < 2; order++) {
-        sim_ctx *c = sim_new();
+        sim_ctx *c = ctx_new();
         sim_signal *clk = clock(c);
         sim_signal *a, *b;
         if (!order) {
@@ -78,7 +92,7 @@ static void t_swap(void)
 
 static void t_enable_reset(void)
 {
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_signal *clk = clock(c);
     sim_signal *d = sim_signal_new(c, NULL, "d", F("u4.0"), SIM_KIND_INPUT);
     sim_signal *en = sim_bit_new(c, NULL, "en", SIM_KIND_INPUT);
@@ -103,7 +117,7 @@ static void t_delta_chain(void)
     /* x -> +1 -> +1 -> ... (n adders): a change at x settles after exactly
      * n+1 delta cycles (one to update x, one per adder). */
     enum { N = 7 };
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_signal *x = sim_signal_new(c, NULL, "x", F("s16.0"), SIM_KIND_INPUT);
     sim_signal *one = sim_const(c, NULL, "one", F("s16.0"), 1.0);
     sim_signal *y = x;
@@ -130,7 +144,7 @@ static int64_t buf_fn(const int64_t *in, void *u) { (void)u; return in[0]; }
 static void t_loop_detected(void)
 {
     /* w -> inv -> y -> w oscillates: reported by name, not hung. */
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_set_max_deltas(c, 50);
     sim_scope *u = sim_scope_new(c, NULL, "ring");
     sim_signal *w = sim_bit_new(c, u, "w", SIM_KIND_WIRE);
@@ -144,7 +158,7 @@ static void t_loop_detected(void)
     sim_free(c);
 
     /* A chain that settles is not a loop, even a long one. */
-    c = sim_new();
+    c = ctx_new();
     sim_set_max_deltas(c, 50);
     sim_signal *x = sim_bit_new(c, NULL, "x", SIM_KIND_INPUT);
     sim_signal *z = x;
@@ -177,7 +191,7 @@ static void t_primitives_arith(void)
      * formats, every rounding and overflow mode, against ref_q. */
     const char *fa = "s3.5", *fb = "s2.7", *fy = "s3.4";
     for (int rnd = 0; rnd < 3; rnd++) for (int sat = 0; sat < 2; sat++) {
-        sim_ctx *c = sim_new();
+        sim_ctx *c = ctx_new();
         sim_set_quant(c, (sim_round)rnd, sat ? SIM_OVF_SAT : SIM_OVF_WRAP);
         sim_signal *a = sim_signal_new(c, NULL, "a", F(fa), SIM_KIND_INPUT);
         sim_signal *b = sim_signal_new(c, NULL, "b", F(fb), SIM_KIND_INPUT);
@@ -224,7 +238,7 @@ static void t_primitives_arith(void)
 static void t_wide_mul(void)
 {
     /* 32x32 and 63x63-bit products are exact before quantization. */
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_signal *a = sim_signal_new(c, NULL, "a", F("s32.0"), SIM_KIND_INPUT);
     sim_signal *b = sim_signal_new(c, NULL, "b", F("s32.0"), SIM_KIND_INPUT);
     sim_signal *p = sim_mul(c, NULL, "p", F("s64.0"), a, b);
@@ -235,7 +249,7 @@ static void t_wide_mul(void)
     TST_EQ_INT(p->cur, -(2147483647LL * 2147483647LL));
     sim_free(c);
 
-    c = sim_new();
+    c = ctx_new();
     a = sim_signal_new(c, NULL, "a", F("s1.63"), SIM_KIND_INPUT);
     b = sim_signal_new(c, NULL, "b", F("s1.63"), SIM_KIND_INPUT);
     p = sim_mul(c, NULL, "p", F("s2.62"), a, b);
@@ -254,7 +268,7 @@ static void t_area_model(void)
     TST_NEAR(sim_area_mul(8, 8) / sim_area_mul(4, 4), (64 * SIM_GE_AND2 + 56 * SIM_GE_FA) / (16 * SIM_GE_AND2 + 12 * SIM_GE_FA), 1e-9);
     TST_NEAR(sim_area_mux(10, 4), 30 * SIM_GE_MUX2, 1e-9);
     TST_NEAR(sim_area_reg(8, 1, 0), 8 * (SIM_GE_DFF + SIM_GE_MUX2), 1e-9);
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_scope *u = sim_scope_new(c, NULL, "u");
     sim_signal *a = sim_signal_new(c, u, "a", F("s4.4"), SIM_KIND_INPUT);
     sim_signal *b = sim_signal_new(c, u, "b", F("s4.4"), SIM_KIND_INPUT);
@@ -267,7 +281,7 @@ static void t_area_model(void)
     /* Rounding to nearest where bits are dropped costs an incrementer;
      * saturation where the result can exceed the output costs the clamp. */
     for (int rnd = 0; rnd < 2; rnd++) for (int sat = 0; sat < 2; sat++) {
-        c = sim_new();
+        c = ctx_new();
         sim_set_quant(c, rnd ? SIM_RND_HALF_UP : SIM_RND_TRUNC, sat ? SIM_OVF_SAT : SIM_OVF_WRAP);
         a = sim_signal_new(c, NULL, "a", F("s4.4"), SIM_KIND_INPUT);
         b = sim_signal_new(c, NULL, "b", F("s4.4"), SIM_KIND_INPUT);
@@ -281,7 +295,7 @@ static void t_area_model(void)
 
 static void t_find_and_paths(void)
 {
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_scope *u = sim_scope_new(c, NULL, "u");
     sim_scope *v = sim_scope_new(c, u, "v");
     sim_signal *s = sim_signal_new(c, v, "sig", F("u3.0"), SIM_KIND_WIRE);
@@ -301,7 +315,7 @@ static void t_overflow_settled_only(void)
      * the subtractor briefly sees 8.8 - 0.1: a glitch, not an overflow of
      * the hardware, since 7 x 0.1 fits. Only x = 1.2 (7 x 1.2 = 8.4)
      * overflows for real, once for the one time step it is computed in. */
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_signal *x = sim_signal_new(c, NULL, "x", F("u1.15"), SIM_KIND_INPUT);
     sim_signal *x8 = sim_shift(c, NULL, "x8", F("u4.15"), x, 3);
     sim_signal *y = sim_sub(c, NULL, "y", F("s4.15"), x8, x);
@@ -326,7 +340,7 @@ static void t_overflow_glitch_same_raw(void)
      * and x = 2: the adder first sees 2 + 10 = 12, which wraps to 4, then
      * 2 + 2 = 4, in range. The settled 4 equals the glitch's wrapped raw,
      * but the last evaluation did not overflow: no count. */
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_signal *a = sim_signal_new(c, NULL, "a", F("u4.0"), SIM_KIND_INPUT);
     sim_signal *x = sim_signal_new(c, NULL, "x", F("u4.0"), SIM_KIND_INPUT);
     sim_signal *b = sim_signal_new(c, NULL, "b", F("u4.0"), SIM_KIND_WIRE);
@@ -353,7 +367,7 @@ static void t_overflow_used_values(void)
      * takes it (sel 0, pass 1 or en 1), and discarded otherwise. Inputs
      * change between edges (times 10 i), the registers take them at 10 i
      * + 5. */
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_signal *clk = clock(c);
     sim_signal *x = sim_signal_new(c, NULL, "x", F("s4.0"), SIM_KIND_INPUT);
     sim_signal *sel = sim_bit_new(c, NULL, "sel", SIM_KIND_INPUT);
@@ -434,7 +448,7 @@ static void t_logic_table(void)
      * then, never while simulating, and give what a call gives; one with
      * 9 input bits is called at each evaluation. A raw forced outside its
      * input's format is outside the table: that evaluation calls. */
-    sim_ctx *c = sim_new();
+    sim_ctx *c = ctx_new();
     sim_signal *x = sim_signal_new(c, NULL, "x", F("u3.0"), SIM_KIND_INPUT);
     sim_signal *z = sim_signal_new(c, NULL, "z", F("s2.1"), SIM_KIND_INPUT);
     sim_signal *w = sim_signal_new(c, NULL, "w", F("u6.0"), SIM_KIND_INPUT);
@@ -444,8 +458,10 @@ static void t_logic_table(void)
     sim_signal *y2 = sim_logic(c, NULL, "y2", F("u5.0"), 2, xz, lut_fn, &n2, 1.0);
     sim_signal *yb = sim_logic(c, NULL, "yb", F("s6.0"), 2, xw, lut_fn, &nb, 1.0);
     TST_EQ_INT(sim_run(c, 0), SIM_OK);
-    TST_EQ_INT(n1, 8);
-    TST_EQ_INT(n2, 8 * 8);
+    /* the reference makes no table: one call per evaluation */
+    int t1 = on_reference ? 1 : 8, t2 = on_reference ? 1 : 8 * 8;
+    TST_EQ_INT(n1, t1);
+    TST_EQ_INT(n2, t2);
     TST_EQ_INT(nb, 1);      /* its initialization run */
     sim_time t = 1;
     int bad = 0;
@@ -461,8 +477,9 @@ static void t_logic_table(void)
             bad += y1->cur != e1 || y2->cur != e2 || yb->cur != eb;
         }
     TST_EQ_INT(bad, 0);
-    TST_EQ_INT(n1, 8);
-    TST_EQ_INT(n2, 8 * 8);
+    if (on_reference) { t1 = (int)sim_proc_runs(y1->driver); t2 = (int)sim_proc_runs(y2->driver); }
+    TST_EQ_INT(n1, t1);
+    TST_EQ_INT(n2, t2);
     TST_EQ_INT(nb, (int)sim_proc_runs(yb->driver));
     TST_CHECK(nb > 60, "the untabulated element ran: %d", nb);
     /* x = 9 does not fit u3.0: y1 and y2 call their functions. */
@@ -471,25 +488,142 @@ static void t_logic_table(void)
     int dummy = 0;
     TST_EQ_INT(y1->cur, low_bits(lut_fn1((int64_t[]){ 9 }, &dummy), y1->fmt));
     TST_EQ_INT(y2->cur, low_bits(lut_fn((int64_t[]){ 9, -1 }, &dummy), y2->fmt));
-    TST_EQ_INT(n1, 8 + 1);
-    TST_EQ_INT(n2, 8 * 8 + 1);
+    TST_EQ_INT(n1, t1 + 1);
+    TST_EQ_INT(n2, t2 + 1);
     sim_free(c);
+}
+
+/* ---- the reference against the fast kernel, counter by counter ---- */
+
+/* An observer's record of a run: a hash of every signal's value at the
+ * end of every time step, the steps, and the changed lists' lengths. */
+typedef struct obs_rec { uint64_t hash, steps, changed; } obs_rec;
+
+static void obs_fn(sim_ctx *c, sim_time now, void *data)
+{
+    obs_rec *r = data;
+    uint64_t h = r->hash ^ now;
+    for (uint32_t i = 0; i < sim_signal_count(c); i++) h = (h ^ (uint64_t)sim_signal_at(c, i)->cur) * 0x100000001b3ull;
+    uint32_t n;
+    sim_changed(c, &n);
+    r->hash = h;
+    r->steps++;
+    r->changed += n;
+}
+
+static int64_t mix_fn(const int64_t *in, void *u) { (void)u; return in[0] * 5 + in[1] * 3 + (in[0] & 2); }
+static int64_t wide_fn(const int64_t *in, void *u) { (void)u; return in[0] ^ (int64_t)((uint64_t)in[1] << 2); }
+
+/* A design with every kind of element the kernel evaluates itself (copy,
+ * add, sub, mul, mux, block key, logic both ways and tabulated, their
+ * overflows, the *_X forms) and some it does not (shift), two clocks (so
+ * that some time steps are not one clock edge alone), inputs forced
+ * between edges and a feedback register. Runs 60 time units. */
+static void mixed_run(int reference, sim_stats *st, obs_rec *rec, uint64_t *sigs, uint64_t *runs, uint32_t *nsig,
+                      uint32_t *nproc)
+{
+    sim_ctx *c = sim_new();
+    sim_set_reference(c, reference);
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_signal *clk2 = sim_bit_new(c, NULL, "clk2", SIM_KIND_CLOCK);
+    sim_clock(c, clk, 2, 2);
+    sim_clock(c, clk2, 3, 3);
+    sim_signal *a = sim_signal_new(c, NULL, "a", F("s4.2"), SIM_KIND_INPUT);
+    sim_signal *b = sim_signal_new(c, NULL, "b", F("s3.3"), SIM_KIND_INPUT);
+    sim_signal *s = sim_bit_new(c, NULL, "s", SIM_KIND_INPUT);
+    sim_signal *k = sim_signal_new(c, NULL, "k", F("u2.0"), SIM_KIND_INPUT);
+    sim_signal *add = sim_add(c, NULL, "add", F("s4.2"), a, b);            /* rounds b: QUANT; overflows */
+    sim_signal *addx = sim_add(c, NULL, "addx", F("s6.3"), a, b);          /* exact: the _X form */
+    sim_signal *sub = sim_sub(c, NULL, "sub", F("s3.1"), a, b);
+    sim_signal *mul = sim_mul(c, NULL, "mul", F("s4.2"), a, b);
+    sim_signal *sh = sim_shift(c, NULL, "sh", F("s6.2"), a, 1);
+    sim_signal *in3[3] = { add, sub, mul };
+    sim_signal *mx = sim_mux(c, NULL, "mx", F("s4.2"), k, 3, in3);         /* k = 3: no input */
+    sim_signal *bk = sim_bk(c, NULL, "bk", F("s3.1"), s, mul);
+    sim_signal *ab[2] = { k, s };
+    sim_signal *lut = sim_logic(c, NULL, "lut", F("s4.0"), 2, ab, mix_fn, NULL, 1.0);
+    sim_signal *aw[2] = { a, b };
+    sim_signal *lw = sim_logic(c, NULL, "lw", F("u5.0"), 2, aw, wide_fn, NULL, 1.0);
+    sim_signal *inv = sim_logic(c, NULL, "inv", s->fmt, 1, &s, inv_fn, NULL, 1.0);
+    sim_signal *r = sim_reg(c, NULL, "r", F("s4.2"), clk, mx, s, NULL, 0);
+    sim_signal *r2 = sim_reg(c, NULL, "r2", F("s3.1"), clk2, bk, inv, NULL, 0);
+    sim_signal *acc = sim_reg(c, NULL, "acc", F("s5.2"), clk, NULL, NULL, NULL, 0);
+    sim_signal *sum = sim_add(c, NULL, "sum", F("s5.2"), acc, r);
+    sim_reg_connect(acc, sum);
+    sim_signal *cp = sim_reg(c, NULL, "cp", F("s6.2"), clk2, sh, NULL, NULL, 0);
+    (void)addx; (void)lut; (void)lw; (void)r2; (void)cp;
+    obs_rec rr = { 0, 0, 0 };
+    TST_EQ_INT(sim_observe(c, obs_fn, &rr, SIM_OBS_CHANGES), 0);
+    for (int t = 0; t < 60; t++) {
+        sim_force(a, (t * 7) % 64 - 32);
+        if (t % 3 == 0) sim_force(b, (t * 5) % 64 - 32);
+        sim_force(s, t % 5 < 2);
+        if (t % 4 == 1) sim_force(k, (t / 4) % 4);
+        TST_EQ_INT(sim_run(c, (sim_time)t), SIM_OK);
+    }
+    *st = *sim_get_stats(c);
+    *rec = rr;
+    *nsig = sim_signal_count(c);
+    *nproc = sim_proc_count(c);
+    for (uint32_t i = 0; i < *nsig; i++) {
+        const sim_signal *x = sim_signal_at(c, i);
+        sigs[3 * i] = x->changes; sigs[3 * i + 1] = x->overflows; sigs[3 * i + 2] = x->ovf_discarded;
+    }
+    for (uint32_t i = 0; i < *nproc; i++) runs[i] = sim_proc_runs(sim_proc_at(c, i));
+    sim_free(c);
+}
+
+static void t_reference_counters(void)
+{
+    sim_stats s[2];
+    obs_rec o[2];
+    uint64_t sig[2][3 * 64], runs[2][64];
+    uint32_t ns[2], np[2];
+    for (int m = 0; m < 2; m++) mixed_run(m, &s[m], &o[m], sig[m], runs[m], &ns[m], &np[m]);
+    TST_EQ_INT(s[1].clocks, s[0].clocks);
+    TST_EQ_INT(s[1].events, s[0].events);
+    TST_EQ_INT(s[1].deltas, s[0].deltas);
+    TST_EQ_INT(s[1].proc_runs, s[0].proc_runs);
+    TST_EQ_INT(s[1].time_steps, s[0].time_steps);
+    TST_CHECK(o[1].hash == o[0].hash, "values at the ends of time steps differ");
+    TST_EQ_INT(o[1].steps, o[0].steps);
+    TST_EQ_INT(o[1].changed, o[0].changed);
+    TST_EQ_INT(ns[1], ns[0]);
+    TST_EQ_INT(np[1], np[0]);
+    TST_CHECK(!memcmp(sig[0], sig[1], 3 * ns[0] * sizeof **sig), "a signal's changes or overflows differ");
+    TST_CHECK(!memcmp(runs[0], runs[1], np[0] * sizeof **runs), "a process's runs differ");
+    /* the run did what it is meant to: both clocks, overflows, used and discarded */
+    TST_EQ_INT(s[0].clocks, 15 + 10);
+    uint64_t ovf = 0, disc = 0;
+    for (uint32_t i = 0; i < ns[0]; i++) { ovf += sig[0][3 * i + 1]; disc += sig[0][3 * i + 2]; }
+    TST_CHECK(ovf > 0 && disc > 0, "overflows used %llu, discarded %llu", (unsigned long long)ovf,
+              (unsigned long long)disc);
+}
+
+/* Every test on the fast kernel, then on its reference. */
+#define RUN(fn) tst_run(on_reference ? #fn "/reference" : #fn, fn)
+static void all(void)
+{
+    RUN(t_shift_register);
+    RUN(t_swap);
+    RUN(t_enable_reset);
+    RUN(t_delta_chain);
+    RUN(t_loop_detected);
+    RUN(t_primitives_arith);
+    RUN(t_wide_mul);
+    RUN(t_area_model);
+    RUN(t_find_and_paths);
+    RUN(t_overflow_settled_only);
+    RUN(t_overflow_glitch_same_raw);
+    RUN(t_overflow_used_values);
+    RUN(t_logic_table);
 }
 
 int main(void)
 {
-    TST_RUN(t_shift_register);
-    TST_RUN(t_swap);
-    TST_RUN(t_enable_reset);
-    TST_RUN(t_delta_chain);
-    TST_RUN(t_loop_detected);
-    TST_RUN(t_primitives_arith);
-    TST_RUN(t_wide_mul);
-    TST_RUN(t_area_model);
-    TST_RUN(t_find_and_paths);
-    TST_RUN(t_overflow_settled_only);
-    TST_RUN(t_overflow_glitch_same_raw);
-    TST_RUN(t_overflow_used_values);
-    TST_RUN(t_logic_table);
+    all();
+    on_reference = 1;
+    all();
+    TST_RUN(t_reference_counters);
     TST_EXIT();
 }

@@ -61,7 +61,7 @@ static int same_both_ways(const unit_desc *u, const char *path, const char *tag)
     TST_CHECK(st != NULL, "%s", err);
     c2.f = open_memstream(&c2.p, &c2.n);
     tb_csv_header(c2.f, vs.n_out, (const char (*)[16])vs.out_names);
-    int t2 = st ? tb_run_stream(u, &cfg, &fm, st, row_cb, &c2, &r2, err, sizeof err) : TB_FAIL;
+    int t2 = st ? tb_run_stream(u, &cfg, &fm, st, row_cb, &c2, NULL, &r2, err, sizeof err) : TB_FAIL;
     TST_CHECK(t2 == TB_OK, "%s: %s", tag, err);
     fclose(c2.f);
     j2.f = open_memstream(&j2.p, &j2.n);
@@ -121,7 +121,7 @@ static void t_many_blocks(void)
     unit_fmts fm;
     tb_formats(u, &cfg, NULL, 0, &fm, err, sizeof err);
     tb_result r;
-    int t = st ? tb_run_stream(u, &cfg, &fm, st, NULL, NULL, &r, got, sizeof got) : TB_FAIL;
+    int t = st ? tb_run_stream(u, &cfg, &fm, st, NULL, NULL, NULL, &r, got, sizeof got) : TB_FAIL;
     vec_stream_close(st);
     TST_EQ_INT(t, TB_BADINPUT);
     TST_EQ_STR(got, want);

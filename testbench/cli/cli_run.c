@@ -19,7 +19,7 @@
 
 typedef struct run_args {
     const char *vcd, *csv;
-    int json, fst, ranges, kernel;
+    int json, fst, ranges, kernel, reference;
     long vfrom, vto;
     /* --ranges derived, --range NAME=LO:HI (static check) */
     int derived, nrange, want_mode;
@@ -91,6 +91,11 @@ static const cli_opt run_tab[] = {
       "                       they give the same results; docs/batch.md; --vcd implies it)\n" },
     { "--no-batch", NULL, CLI_OPT_FLAG, offsetof(run_args, kernel), 0, 0, NULL, NULL, NULL, 0,
       "  --no-batch           the same as --kernel\n" },
+    { "--reference", NULL, CLI_OPT_FLAG, offsetof(run_args, reference), 0, 0, NULL, NULL, NULL, 0,
+      "  --reference          the kernel as its own reference: the plain evaluate/update loop,\n"
+      "                       every element through its general evaluation, no logic tables,\n"
+      "                       no clock-edge shortcut; the same results and counters as --kernel,\n"
+      "                       slower (implies --kernel; docs/batch.md)\n" },
     { "--vcd", NULL, CLI_OPT_STR, offsetof(run_args, vcd), 0, 0, NULL, "%s needs a file name", NULL, 0,
       "  --vcd FILE           dump every register, mux, adder and multiplier (IEEE 1364 VCD)\n"
       "                       and each output beat's expected value and error (tb.expected_NAME,\n"
@@ -226,7 +231,7 @@ static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, 
  * --out rows written as items complete. The header and first rows are
  * read first, so a bad file is reported before anything is written. */
 static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char *path, const char *csv,
-                        int json, int ranges, FILE *report, const tb_accept *acc, const char *why)
+                        int json, int ranges, int reference, FILE *report, const tb_accept *acc, const char *why)
 {
     char err[600];
     vec_set hdr;
@@ -248,7 +253,8 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
         tb_csv_header(base_out_file(out), rows->n_out, (const char (*)[16])rows->out_names);
     }
     tb_result r;
-    int t = tb_run_stream(o->u, &o->cfg, fm, vs, csv ? csv_row : NULL, out, &r, err, sizeof err);
+    tb_opts topt = { .reference = reference };
+    int t = tb_run_stream(o->u, &o->cfg, fm, vs, csv ? csv_row : NULL, out, &topt, &r, err, sizeof err);
     vec_stream_close(vs);
     int rc = CLI_OK;
     if (t != TB_OK) {
@@ -283,7 +289,7 @@ int cli_run(int argc, char **argv)
         return run_all(&acc);
     }
     if (cli_unit_select(&o, unit)) return CLI_USAGE;
-    run_args ra = { NULL, NULL, 0, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
+    run_args ra = { NULL, NULL, 0, 0, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
     ra.u = o.u;
     run_cur = &ra;
     void *base[] = { &o, &acc, &ra };
@@ -322,7 +328,7 @@ int cli_run(int argc, char **argv)
     /* On the kernel without a dump, a vector file is read a block at a
      * time: memory does not grow with the number of vectors. The batch's
      * lanes take the whole file in memory (docs/batch.md). */
-    int lanes = !ra.kernel && !vcd;
+    int lanes = !ra.kernel && !ra.reference && !vcd;
     char vpath[4200];
     const char *vfile = NULL;
     if (!vcd) {
@@ -335,14 +341,14 @@ int cli_run(int argc, char **argv)
         if (f && lanes && strcmp(vfile, "-") && !stat(vfile, &st) && S_ISREG(st.st_mode) && st.st_size > RUN_LANES_MAX_BYTES)
             why = "a vector file over 64 MiB, read a block at a time";
         if (f && (!lanes || why)) {
-            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, report, &acc, why);
+            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, ra.reference, report, &acc, why);
             if (json && ra.derived) fputs("}\n", stdout);
             return rs == CLI_OK && static_bad ? cli_stdout_done(CLI_FAIL) : rs;
         }
     }
     vec_set vs;
     if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
-    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst, .lanes = lanes };
+    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst, .lanes = lanes, .reference = ra.reference };
     if (vfrom >= 0 || vto >= 0) {
         int bad_from = vfrom >= 0 && (size_t)vfrom >= vs.n_rows;
         if (bad_from || (vto >= 0 && (size_t)vto >= vs.n_rows)) {
