@@ -54,7 +54,7 @@ void sim_assign(sim_ctx *c, sim_signal *dst, sim_signal *src);
 sim_signal *sim_mux(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                     sim_signal *sel, int n, sim_signal *const *in);
 
-/* Block key (the seed's BK): y = pass ? quant(x) : 0. */
+/* Block key (BK in the paper's Fig. 9): y = pass ? quant(x) : 0. */
 sim_signal *sim_bk(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                    sim_signal *pass, sim_signal *x);
 

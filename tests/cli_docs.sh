@@ -4,7 +4,8 @@
 # the reader to files they do not have (../shared, SPEC), never name a paper
 # by an internal number ("seed 000") or talk of "the brief"; every paper
 # they cite by short name is defined in docs/references.md; README's first
-# commands are make run and make test; the LICENSE is there.
+# commands are make run and make test; the LICENSE is there. The source
+# (comments and strings) avoids the same words.
 . tests/lib_cli.sh
 PREFIX=cli_docs.
 
@@ -19,6 +20,17 @@ notin() { ! grep -qE "$bad" "$1"; }
 
 hits=$(grep -rInE "$bad" README.md docs/ 2>/dev/null | head -5)
 check readme_docs_self_contained [ -z "$hits" ]
+[ -n "$hits" ] && echo "$hits" | sed 's/^/  /'
+
+# The source speaks the same language: comments and strings of every
+# layer, the benchmarks, the tests and the Makefile (this file excepted:
+# it names the words it forbids). The planted file shows the scan bites.
+src_hits() { grep -rInE "$bad" "$@" --include='*.c' --include='*.h' --include='*.sh' --include='*.v' \
+    --include='*.cpp' --include=Makefile 2>/dev/null | grep -v '^tests/cli_docs.sh:'; }
+mkdir -p "$T/plant" && printf '/* the seed'"'"'s BK (SPEC 2.1) */\n' >"$T/plant/p.c"
+check source_scan_finds_planted [ -n "$(src_hits "$T/plant")" ]
+hits=$(src_hits sim base chart vectors units scene testbench bench tests Makefile | head -5)
+check source_self_contained [ -z "$hits" ]
 [ -n "$hits" ] && echo "$hits" | sed 's/^/  /'
 
 # Every verb that --help lists, and the top level.

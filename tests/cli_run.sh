@@ -1,5 +1,5 @@
 #!/bin/sh
-# Command-line contract of list, vectors and run (SPEC 4): exit statuses,
+# Command-line contract of list, vectors and run (docs/cli.md): exit statuses,
 # one-line errors naming file and line, no output left behind on bad input,
 # the JSON fields and the CSV columns. One "ok/FAIL NAME" line per check.
 PREFIX=cli_run.

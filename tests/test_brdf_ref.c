@@ -1,9 +1,9 @@
 /* test_brdf_ref.c - the BRDF references (vectors/ref_brdf.c), their vector
  * models (vectors/ref_brdf_models.c) and the claims table (vectors/claims.c).
  *
- * The SPEC section 3 figures are recomputed here from the formulas, written
+ * The figures of docs/brdf.md (sec. 3 of the papers) are recomputed here from the formulas, written
  * out again in this file rather than taken from the code under test, and
- * then compared with both the SPEC and the claims table.
+ * then compared with both those figures and the claims table.
  */
 #include "tests/tst.h"
 #include "vectors/claims.h"
@@ -68,7 +68,7 @@ static void get_claims(claims_tab *t)
 
 #define CLAIM(tab, id) find_claim((tab)->r, (tab)->n, id)
 
-/* ---- SPEC section 3 figures ---- */
+/* ---- the figures of docs/brdf.md ---- */
 
 static void test_div3_network(void)
 {
@@ -95,8 +95,8 @@ static void test_epicenter_15_7_and_51_2(void)
     }
     msh *= 100;
     sh *= 100;
-    TST_NEAR(msh, 15.7, 0.05);             /* SPEC: 15.7%, 3 significant digits */
-    TST_NEAR(sh, 51.2, 0.05);              /* SPEC: 51.2% */
+    TST_NEAR(msh, 15.7, 0.05);             /* expected: 15.7%, 3 significant digits */
+    TST_NEAR(sh, 51.2, 0.05);              /* expected: 51.2% */
     claims_tab *const tp = &the_claims;
     get_claims(tp);
     const claim_result *m = CLAIM(tp, "mschlick_epicenter"), *s = CLAIM(tp, "schlick_epicenter");
@@ -118,7 +118,7 @@ static void test_abs_error_n60(void)
         am = fmax(am, fabs(t_mschlick(c, 60) - b));
         as = fmax(as, fabs(t_schlick(c, 60) - b));
     }
-    TST_NEAR(am, 0.081, 0.0005);           /* SPEC: 0.081 vs 0.199 */
+    TST_NEAR(am, 0.081, 0.0005);           /* expected: 0.081 vs 0.199 */
     TST_NEAR(as, 0.199, 0.0005);
     claims_tab *const tp = &the_claims;
     get_claims(tp);
@@ -153,11 +153,11 @@ static void test_d16_m02(void)
     if (!r) return;
     TST_NEAR(r->measured, worst, 2e-3);
     TST_EQ_INT(claims_verdict_kind(r->verdict), 0);   /* only for the clamped form */
-    /* Unclamped, the seed's form rises again: at 90 deg base = -1.875. */
+    /* Unclamped, the paper's form rises again: at 90 deg base = -1.875. */
     TST_NEAR(ref_brdf_dg(0.0, m, 16) / peak, pow(1.875, 16), 1e-6 * pow(1.875, 16));
 }
 
-/* SPEC: for m >= 0.4 the method is off by 10-48% of the peak. That range is
+/* expected: for m >= 0.4 the method is off by 10-48% of the peak. That range is
  * D16's (both approximation steps); the cos-power step alone gives 8-40%. */
 static void test_large_m_off_by_10_to_48(void)
 {
@@ -195,9 +195,9 @@ static void test_ward_a02_and_tail(void)
             if (w <= level[k]) break;
             e[k] = fmax(e[k], fabs(t_ward_poly(th, 0.2) / w - 1));
         }
-    TST_NEAR(100 * e[0], 0.07, 0.005);     /* SPEC: 0.07% where exp > 0.5 */
-    TST_NEAR(100 * e[1], 1.2, 0.05);       /* SPEC: 1.2% where exp > 0.1 */
-    /* a >= 0.3: 17% (SPEC's whole-degree grid) to over 100% where exp > 0.1. */
+    TST_NEAR(100 * e[0], 0.07, 0.005);     /* expected: 0.07% where exp > 0.5 */
+    TST_NEAR(100 * e[1], 1.2, 0.05);       /* expected: 1.2% where exp > 0.1 */
+    /* a >= 0.3: 17% (the whole-degree grid of the independent check) to over 100% where exp > 0.1. */
     double deg03 = 0, fine06 = 0;
     for (int d = 0; d < 90; d++) {
         double th = d * M_PI / 180, w = t_ward_exp(th, 0.3);
@@ -306,9 +306,9 @@ static void test_cutoff_closed_forms_vs_bisection(void)
     TST_NEAR(ref_brdf_cutoff_blinn(1, 3), acos(0.125), 1e-15);
 }
 
-/* seed 004: ratio of the maximum relative errors (q = 8, Blinn's cut-off),
+/* Zavalniuk et al. (2022): ratio of the maximum relative errors (q = 8, Blinn's cut-off),
  * and spot ratios R_MSH < R_SH. */
-static void test_ratios_seed004(void)
+static void test_ratios_zavalniuk(void)
 {
     claims_tab *const tp = &the_claims;
     get_claims(tp);
@@ -478,7 +478,7 @@ static void test_claims_table(void)
         TST_CHECK(CLAIM(tp, must[i]) != NULL, "missing %s", must[i]);
     for (size_t i = 0; i < tp->n; i++) {
         const claim_result *r = &tp->r[i];
-        TST_CHECK(r->id && *r->id && r->seed && *r->seed && r->claim && *r->claim, "texts %zu", i);
+        TST_CHECK(r->id && *r->id && r->source && *r->source && r->claim && *r->claim, "texts %zu", i);
         TST_CHECK(isfinite(r->measured), "%s: measured %g", r->id, r->measured);
         TST_CHECK(isfinite(r->claimed) || isnan(r->claimed), "%s: claimed", r->id);
         TST_CHECK(claims_verdict_kind(r->verdict) >= -1, "%s: verdict '%s'", r->id,
@@ -549,7 +549,7 @@ int main(void)
     TST_RUN(test_dg_clamped_bounded_by_peak);
     TST_RUN(test_reference_values);
     TST_RUN(test_cutoff_closed_forms_vs_bisection);
-    TST_RUN(test_ratios_seed004);
+    TST_RUN(test_ratios_zavalniuk);
     TST_RUN(test_models_table);
     TST_RUN(test_models_gen);
     TST_RUN(test_models_eval_and_params);

@@ -49,7 +49,7 @@ static void check_desc(const unit_desc *u)
 {
     TST_CHECK(u->name && *u->name && strlen(u->name) < 16, "name");
     TST_CHECK(u->summary && *u->summary, "%s: summary", u->name);
-    TST_CHECK(u->seed && *u->seed, "%s: seed (the paper)", u->name);
+    TST_CHECK(u->source && *u->source, "%s: source (the paper)", u->name);
     TST_CHECK(u->fmt_rule && *u->fmt_rule, "%s: fmt_rule", u->name);
     TST_CHECK(u->formats && u->beats && u->build && u->ideal && u->bound, "%s: a required hook is NULL", u->name);
     TST_CHECK(unit_find(u->name) == u, "%s: unit_find finds it (names unique)", u->name);

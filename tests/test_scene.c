@@ -338,8 +338,8 @@ static void test_op_counts(void)
     d.mat.spec = SCN_SPEC_BLINN;
     d.mat.ks = 0.3;
     /* light: N.L, kd term summed; spec: ks term added */
-    const opc LIGHT[] = { DOT, MUL, ADD }, SPEC[] = { MUL, ADD };
-    opc light = ops_of(LIGHT, 3), spec = ops_of(SPEC, 2);
+    const opc LIGHT[] = { DOT, MUL, ADD }, SPECULAR[] = { MUL, ADD };
+    opc light = ops_of(LIGHT, 3), spec = ops_of(SPECULAR, 2);
     /* (1) Blinn, directional light, orthographic: H constant: 8 add 14 mul
      * 1 div 1 sqrt 1 pow */
     const opc A[] = { NORM, light, spec, DOT, POW };

@@ -51,7 +51,7 @@ static const double *nodes_of(const ut *t, int deg, int *k)
 
 /* The ideal polynomial's coefficients (highest first) through nodes I with
  * the network's factor f in place of 1/3: the Vandermonde solve plus what
- * f - 1/3 adds where the cubic's formulas divide by 3 (SPEC 2.1). */
+ * f - 1/3 adds where the cubic's formulas divide by 3 (docs/units.md). */
 static void ideal_coef(const ut *t, int deg, const double *I, double f, double *c, int *k)
 {
     const double *tn = nodes_of(t, deg, k);

@@ -135,7 +135,7 @@ static void high_precision_is_ideal(void)
 
 /* ---- d_approx: the clamp ------------------------------------------------- */
 
-/* A dense sweep of c in [0, 1], well past the cosine where the seed's base
+/* A dense sweep of c in [0, 1], well past the cosine where the paper's base
  * turns negative (about 49 deg for m = 0.2, where its even power starts to
  * rise again): the hardware never exceeds D's peak 1/(4m^2), and is 0
  * where the base is negative. */
@@ -156,7 +156,7 @@ static void d_approx_clamp(void)
             int above = 0;
             for (int i = 0; i <= 2048; i++) {
                 double c = i / 2048.0, b = k * (c - 1) + 1, row[2] = { c, 0 };
-                double b16 = pow(b, 16) * peak;       /* the seed's form, unclamped */
+                double b16 = pow(b, 16) * peak;       /* the paper's form, unclamped */
                 above += b16 > peak;
                 row[1] = b > 0 ? b16 : 0;
                 vec_set_push(&vs, row);

@@ -8,7 +8,7 @@
 #include "tests/tst_ref.h"
 #include "vectors/vectors.h"
 #include "vectors/vec_file.h"
-#include "vectors/ref_seed000.h"
+#include "vectors/ref_interp.h"
 #include "vectors/ref_shading.h"
 #include "units/unit.h"
 #include <dirent.h>
@@ -229,7 +229,7 @@ static int rows_equal(const vec_set *a, const vec_set *b)
     return 1;
 }
 
-static void t_seed000_ports(void)
+static void t_interp_ports(void)
 {
     static const struct { const char *name, *in, *out; } want[] = {
         { "horner3", "a b c d t", "y" },
@@ -241,14 +241,14 @@ static void t_seed000_ports(void)
         { "interp3", "i1 i2 i3 i4", "y0 y1 y2 y3 y4 y5 y6 y7" },
         { "interp2", "i1 i2 i3", "y0 y1 y2 y3 y4 y5 y6 y7" },
     };
-    static const vec_model *const vec_models_seed000[] = {
+    static const vec_model *const vec_models_interp[] = {
         &ref_model_horner3, &ref_model_horner2, &ref_model_div3, &ref_model_coef3_n1,
         &ref_model_coef3_n2, &ref_model_coef2, &ref_model_interp3, &ref_model_interp2, NULL };
     size_t n = 0;
-    while (vec_models_seed000[n]) n++;
+    while (vec_models_interp[n]) n++;
     TST_EQ_INT(n, sizeof want / sizeof want[0]);
     for (size_t i = 0; i < n && i < sizeof want / sizeof want[0]; i++) {
-        const vec_model *m = vec_models_seed000[i];
+        const vec_model *m = vec_models_interp[i];
         TST_EQ_STR(m->name, want[i].name);
         TST_CHECK(unit_find(want[i].name) && unit_find(want[i].name)->ref == m, "the unit %s points at it", want[i].name);
         vec_params p;
@@ -268,7 +268,7 @@ static void t_seed000_ports(void)
         m->ports(NULL, &ni, in, &no, out);
         TST_CHECK(ni == s.n_in && no == s.n_out, "%s ports(NULL)", m->name);
         /* gen gives an empty set the model's header, and refuses to append
-         * to a set of another shape (2 in, 2 out: no seed-000 unit). */
+         * to a set of another shape (2 in, 2 out: no unit of the interpolation paper). */
         vec_set g, w;
         vec_set_init(&g);
         TST_EQ_INT(m->gen(&p, 3, 1, &g), 0);
@@ -864,7 +864,7 @@ int main(void)
     TST_RUN(t_horner);
     TST_RUN(t_div3_network);
     TST_RUN(t_interp_lagrange);
-    TST_RUN(t_seed000_ports);
+    TST_RUN(t_interp_ports);
     TST_RUN(t_every_model);
     TST_RUN(t_gen_realistic);
     TST_RUN(t_shading_points);

@@ -123,7 +123,7 @@ typedef struct unit_desc unit_desc;
 struct unit_desc {
     const char *name;               /* also its reference model's and vector file's */
     const char *summary;            /* one line for `shadesim list` */
-    const char *seed;               /* the paper it comes from (docs/references.md): "Nechyporuk & Romanyuk (2020), Fig. 9" */
+    const char *source;             /* the paper it comes from (docs/references.md): "Nechyporuk & Romanyuk (2020), Fig. 9" */
     int nsigs;
     unit_sig sigs[UNIT_MAX_SIGS];   /* inputs first, then outputs, then internals */
     int nsched;

@@ -1,11 +1,11 @@
-/* unit_coef.c - the coefficient units of seed 000 (Fig. 8): cubic
+/* unit_coef.c - the coefficient units of Nechyporuk & Romanyuk (2020) (Fig. 8): cubic
  * coefficients from node sets N1 and N2, quadratic from three nodes.
  *
  * Each unit is one network of unit_coef.h walked by one builder: the
  * networks differ only in their data. Combinational: one item per clock.
  */
 #include "units/unit_coef.h"
-#include "vectors/ref_seed000.h"
+#include "vectors/ref_interp.h"
 #include <stddef.h>
 #include <string.h>
 
@@ -18,7 +18,7 @@ static const coef_node n1_nodes[] = { COEF3_N1_NET(COEF_NODE_X, COEF_NODE_O) };
 static const coef_node n2_nodes[] = { COEF3_N2_NET(COEF_NODE_X, COEF_NODE_O) };
 static const coef_node q_nodes[] = { COEF2_NET(COEF_NODE_X, COEF_NODE_O) };
 
-/* SPEC 2.1, with `th` for 1/3. */
+/* The coefficient formulas (docs/units.md), with `th` for 1/3. */
 static void formula_n1(const double *I, double th, double *o)
 {
     o[0] = 8 * (I[1] + 8 * I[3]) * th - 8 * (I[0] + 2 * I[2]);
@@ -202,7 +202,7 @@ const unit_desc unit_coef3_n1 = {
     .name = "coef3_n1",
     .ref = &ref_model_coef3_n1,
     .summary = "cubic coefficients A B C D from I(0), I(1), I(1/2), I(1/4) by shifts, adders and two /3 networks (Fig. 8)",
-    .seed = "Nechyporuk & Romanyuk (2020), Fig. 8, nodes N1: I(0), I(1), I(1/2), I(1/4)",
+    .source = "Nechyporuk & Romanyuk (2020), Fig. 8, nodes N1: I(0), I(1), I(1/2), I(1/4)",
     UNIT_SIGS(COEF_SIGS_I123, COEF_SIG_I4_N1,
               COEF3_N1_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
               COEF3_N1_NET(COEF_SIG_INT, COEF_SIG_SKIP)),
@@ -217,7 +217,7 @@ const unit_desc unit_coef3_n2 = {
     .name = "coef3_n2",
     .ref = &ref_model_coef3_n2,
     .summary = "cubic coefficients A B C D from I(0), I(1), I(1/2), I(3/4), same structure as coef3_n1",
-    .seed = "Nechyporuk & Romanyuk (2020), nodes N2: I(0), I(1), I(1/2), I(3/4)",
+    .source = "Nechyporuk & Romanyuk (2020), nodes N2: I(0), I(1), I(1/2), I(3/4)",
     UNIT_SIGS(COEF_SIGS_I123, COEF_SIG_I4_N2,
               COEF3_N2_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
               COEF3_N2_NET(COEF_SIG_INT, COEF_SIG_SKIP)),
@@ -232,7 +232,7 @@ const unit_desc unit_coef2 = {
     .name = "coef2",
     .ref = &ref_model_coef2,
     .summary = "quadratic coefficients A B C from I(0), I(1), I(1/2) by shifts and adders (no /3)",
-    .seed = "Nechyporuk & Romanyuk (2020), quadratic through I(0), I(1), I(1/2)",
+    .source = "Nechyporuk & Romanyuk (2020), quadratic through I(0), I(1), I(1/2)",
     UNIT_SIGS(COEF_SIGS_I123,
               COEF2_NET(COEF_SIG_SKIP, COEF_SIG_OUT)
               COEF2_NET(COEF_SIG_INT, COEF_SIG_SKIP)),

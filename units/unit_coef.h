@@ -1,4 +1,4 @@
-/* unit_coef.h - the coefficient networks of seed 000 (Fig. 8, SPEC 2.1),
+/* unit_coef.h - the coefficient networks of Nechyporuk & Romanyuk (2020) (Fig. 8; the coefficient formulas of docs/units.md),
  * shared by the coefficient units (unit_coef.c) and the interpolators
  * (unit_interp.c).
  *
@@ -9,7 +9,7 @@
  * with op SHL (a * 2^k: wiring), ADD (a + b), SUB (a - b) or DIV3 (a/3 by
  * the Fig. 7 network, built in a sub-scope of that name; one format for all
  * of its terms, sums and output). Operands name earlier elements or the
- * inputs i1..i4; `_` is none. Every constant factor of the SPEC formulas is
+ * inputs i1..i4; `_` is none. Every constant factor of the coefficient formulas is
  * a sum or difference of powers of two (7 = 8-1, 10 = 8+2, 13 = 8+4+1,
  * 14 = 16-2, 5 = 4+1, 3 = 2+1), and shared subterms (7 I1 in B and C of
  * N1) are built once.
@@ -133,7 +133,7 @@ typedef struct coef_net {
     int nin, nout;          /* i1..i<nin>; outputs in list order */
     int nnodes;
     const coef_node *node;
-    /* The SPEC 2.1 formulas in exact arithmetic with `third` in place of
+    /* The coefficient formulas (docs/units.md) in exact arithmetic with `third` in place of
      * 1/3 (the ideal: third is the network's factor). */
     void (*formula)(const double *I, double third, double *out);
 } coef_net;

@@ -17,7 +17,7 @@
  *
  * The base is formed as 1 - k (1 - c), not (1 - k) + k c: at the peak,
  * c = 1, it is exactly 1 whatever the rounding of k, so the output's peak
- * is exactly quant(c0) <= c0. The clamp is what the seeds' printed form
+ * is exactly quant(c0) <= c0. The clamp is what the papers' printed form
  * lacks: beyond the cosine 1 - 1/k (about 49 deg for m = 0.2) their even
  * power of a negative base rises again.
  */
@@ -277,7 +277,7 @@ const unit_desc unit_d_approx = {
     .name = "d_approx",
     .ref = &ref_model_d_approx,
     .summary = "D_g = (1/(4m^2)) max(0, ((2/m^2-4)/g)(c-1)+1)^g: Beckmann D as one clamped power",
-    .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (D4, D8, D16)",
+    .source = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (D4, D8, D16)",
     UNIT_SIGS(D_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: log2(g) clocks" } },
@@ -297,7 +297,7 @@ const unit_desc unit_ward_approx = {
     .name = "ward_approx",
     .ref = &ref_model_ward_approx,
     .summary = "e = max(0, (c-1)/(8 alpha^2)+1)^16 ~ exp(-tan^2/alpha^2), Ward's exponential as a power",
-    .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (Ward)",
+    .source = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (Ward)",
     UNIT_SIGS(W_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "square", "base and first squaring in one clock, then a squaring a clock: 4 clocks" } },

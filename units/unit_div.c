@@ -300,7 +300,7 @@ const unit_desc unit_div = {
     .name = "div",
     .ref = &ref_model_div,
     .summary = "q = n/d by a restoring divider, one quotient bit a clock (remainder r, flag dz)",
-    .seed = "Zavalniuk et al. (2022), the division of F_SH and F_MSH",
+    .source = "Zavalniuk et al. (2022), the division of F_SH and F_MSH",
     UNIT_SIGS(DIV_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: as many clocks as q has value bits" } },

@@ -1,4 +1,4 @@
-/* unit_div3.c - the divide-by-3 shift network of seed 000, Fig. 7.
+/* unit_div3.c - the divide-by-3 shift network of Nechyporuk & Romanyuk (2020), Fig. 7.
  *
  *   paper:   y = x/2 - x/8 - x/32 - x/128 - ...   (terms subtracted terms)
  *   quarter: y = x/4 + x/16 + x/64 + ...          (terms terms)
@@ -17,7 +17,7 @@
  * --fmt and the VCD (sig_used).
  */
 #include "units/unit_net.h"
-#include "vectors/ref_seed000.h"
+#include "vectors/ref_interp.h"
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -140,7 +140,7 @@ const unit_desc unit_div3 = {
     .name = "div3",
     .ref = &ref_model_div3,
     .summary = "x/3 by the Fig. 7 shift network: x/2 - x/8 - x/32 - ... (or x/4 + x/16 + ...), combinational",
-    .seed = "Nechyporuk & Romanyuk (2020), Fig. 7",
+    .source = "Nechyporuk & Romanyuk (2020), Fig. 7",
     UNIT_SIGS(
         { .name = "x", .role = UNIT_SIG_IN, .what = "dividend" },
         { .name = "y", .role = UNIT_SIG_OUT, .what = "x/3 by the network (a view of the last partial sum)" },

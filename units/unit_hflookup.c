@@ -417,7 +417,7 @@ const unit_desc unit_hf_lookup = {
     .name = "hf_lookup",
     .ref = &ref_model_hf_lookup,
     .summary = "factorized BRDF lambda(d0) pi(h) lambda(di): parabolic addresses, 3 bilinear ROM lookups, 2 multipliers; one item a clock",
-    .seed = "Romanyuk et al. (2020), eqs. 6-7 (homomorphic factorization)",
+    .source = "Romanyuk et al. (2020), eqs. 6-7 (homomorphic factorization)",
     UNIT_SIGS(HF_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "comb", "three lookup paths and two multipliers, combinational: one item a clock" } },

@@ -1,4 +1,4 @@
-/* unit_horner.c - the Horner datapath of seed 000, Fig. 9, and its faster
+/* unit_horner.c - the Horner datapath of Nechyporuk & Romanyuk (2020), Fig. 9, and its faster
  * schedules (unit_horner.h; docs/schedules.md compares them).
  *
  * paper:  MUL = MX1 * t        MX1 in {A, RG}
@@ -17,7 +17,7 @@
  */
 #include "units/unit_horner.h"
 #include "units/unit_net.h"
-#include "vectors/ref_seed000.h"
+#include "vectors/ref_interp.h"
 #include <stdio.h>
 #include "sim/sim_area.h"
 #include <math.h>
@@ -37,7 +37,7 @@ struct h_sched {
     h_step step[8];         /* mac, pipe: mx2 is the coefficient k, bk unused */
 };
 
-/* SPEC 2.3, the paper's text: six clocks per pixel. Where the paper leaves
+/* The paper's text (sec. IV): six clocks per pixel. Where the paper leaves
  * MX1 free ("-") it selects RG. */
 static const h_sched h3_paper = { 3, HORNER_PAPER, 6, 3, {
     { MX1_RG, 1,       0 },   /* RG <= B */
@@ -290,7 +290,7 @@ void horner_default_fmts(const unit_desc *u, int deg, int width, unit_fmts *out)
 
 /* Integer bits of the datapath (HORNER_IBITS = 7): the coefficients of real intensity profiles
  * reach |A| <= 24, |B| <= 34, |C| <= 11 for node intensities in [0, 1]
- * (SPEC 2.1 formulas at their extremes), and every partial sum of Horner's
+ * (coefficient formulas (docs/units.md) at their extremes), and every partial sum of Horner's
  * rule stays below |A| + |B| + |C| + |D| < 64 for t in [0, 1]. The same
  * holds for every schedule: they compute the same partial sums. */
 static void horner_formats(const unit_desc *u, const unit_cfg *cfg, unit_fmts *out, int deg)
@@ -381,7 +381,7 @@ const unit_desc unit_horner3 = {
     .name = "horner3",
     .ref = &ref_model_horner3,
     .summary = "cubic I = ((A t + B) t + C) t + D on the Fig. 9 datapath (RG, MX1, MX2, BK, Sm, MUL)",
-    .seed = "Nechyporuk & Romanyuk (2020), Fig. 9",
+    .source = "Nechyporuk & Romanyuk (2020), Fig. 9",
     UNIT_SIGS(
         { .name = "a", .role = UNIT_SIG_IN, .what = "coefficient A" }, { .name = "b", .role = UNIT_SIG_IN, .what = "coefficient B" },
         { .name = "c", .role = UNIT_SIG_IN, .what = "coefficient C" }, { .name = "d", .role = UNIT_SIG_IN, .what = "coefficient D" },
@@ -399,7 +399,7 @@ const unit_desc unit_horner2 = {
     .name = "horner2",
     .ref = &ref_model_horner2,
     .summary = "quadratic I = (A t + B) t + C on the same datapath, four clocks per pixel",
-    .seed = "Nechyporuk & Romanyuk (2020), Fig. 9 (degree 2)",
+    .source = "Nechyporuk & Romanyuk (2020), Fig. 9 (degree 2)",
     UNIT_SIGS(
         { .name = "a", .role = UNIT_SIG_IN, .what = "coefficient A" }, { .name = "b", .role = UNIT_SIG_IN, .what = "coefficient B" },
         { .name = "c", .role = UNIT_SIG_IN, .what = "coefficient C" },

@@ -1,4 +1,4 @@
-/* unit_horner.h - the Horner datapath of seed 000 (Fig. 9) and its faster
+/* unit_horner.h - the Horner datapath of Nechyporuk & Romanyuk (2020) (Fig. 9) and its faster
  * schedules, as a builder other units compose (interp3/interp2 put it
  * behind a coefficient unit).
  *

@@ -1,4 +1,4 @@
-/* unit_interp.c - interpolation along a span (seed 000 IV): the
+/* unit_interp.c - interpolation along a span (Nechyporuk & Romanyuk (2020), sec. IV): the
  * coefficient unit (Fig. 8) and the Horner datapath (Fig. 9) composed, or
  * forward differencing in its place.
  *
@@ -26,7 +26,7 @@
  */
 #include "units/unit_coef.h"
 #include "units/unit_horner.h"
-#include "vectors/ref_seed000.h"
+#include "vectors/ref_interp.h"
 #include "sim/sim_area.h"
 #include <math.h>
 #include <stddef.h>
@@ -573,7 +573,7 @@ const unit_desc unit_interp3 = {
     .name = "interp3",
     .ref = &ref_model_interp3,
     .summary = "cubic interpolation of a span interval: coef3_n1 + registers + the Fig. 9 Horner, L pixels per item",
-    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
+    .source = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
     UNIT_SIGS(COEF_SIGS_I123, { .name = "i4", .role = UNIT_SIG_IN, .what = "I4 = I(1/4) (nodes=n1) or I(3/4) (nodes=n2)" },
               Y_SIG,
               COEF3_N1_NET(COEF_SIG_INT, COEF_SIG_INT) N2_SIGS,
@@ -594,7 +594,7 @@ const unit_desc unit_interp2 = {
     .name = "interp2",
     .ref = &ref_model_interp2,
     .summary = "quadratic interpolation of a span interval: coef2 + registers + the Horner cut to degree 2, L pixels per item",
-    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
+    .source = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
     UNIT_SIGS(COEF_SIGS_I123, Y_SIG,
               COEF2_NET(COEF_SIG_INT, COEF_SIG_INT)
               REG("ra", "register of A, loaded when an item is accepted"),

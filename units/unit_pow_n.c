@@ -105,7 +105,7 @@ const unit_desc unit_pow_n = {
     .name = "pow_n",
     .ref = &ref_model_pow_n,
     .summary = "y = x^n (Blinn/Phong cos^n), n = 1..1024, square and multiply on one multiplier",
-    .seed = "Zavalniuk et al. (2022), eq. 13 (F_B = cos^n x), the exact reference of the Schlick forms",
+    .source = "Zavalniuk et al. (2022), eq. 13 (F_B = cos^n x), the exact reference of the Schlick forms",
     UNIT_SIGS(POW_N_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "sqmul", "left-to-right square and multiply: a squaring per bit of n after the "

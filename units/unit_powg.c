@@ -270,7 +270,7 @@ const unit_desc unit_powg = {
     .name = "powg",
     .ref = &ref_model_powg,
     .summary = "y = x^g, g = 2^k, by repeated squaring: k clocks on one multiplier",
-    .seed = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (the power of D_g)",
+    .source = "Nechyporuk & Romanyuk (2020), sec. III; S. O. Romanyuk et al. (SPIE), sec. 3 (the power of D_g)",
     UNIT_SIGS(POWG_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "square", "one squaring a clock: log2(g) clocks per item" } },

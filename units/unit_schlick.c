@@ -1,4 +1,4 @@
-/* unit_schlick.c - Schlick's F_SH = c / (n - n c + c) and seed 004's
+/* unit_schlick.c - Schlick's F_SH = c / (n - n c + c) and Zavalniuk et al. (2022)'s
  * modified F_MSH = 2c / (1.25 (n - n c + 1.25 c)^2), both on the restoring
  * divider of unit_div.c.
  *
@@ -157,7 +157,7 @@ const unit_desc unit_schlick = {
     .name = "schlick",
     .ref = &ref_model_schlick,
     .summary = "F_SH = c/(n - n c + c) (Schlick's stand-in for cos^n) on the restoring divider",
-    .seed = "Zavalniuk et al. (2022), eq. 2",
+    .source = "Zavalniuk et al. (2022), eq. 2",
     UNIT_SIGS(SH_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },
@@ -396,7 +396,7 @@ const unit_desc unit_mschlick = {
     .name = "mschlick",
     .ref = &ref_model_mschlick,
     .summary = "F_MSH = 2c/(1.25 (n - n c + 1.25 c)^2): normalize, square, divide",
-    .seed = "Zavalniuk et al. (2022), eq. 5",
+    .source = "Zavalniuk et al. (2022), eq. 5",
     UNIT_SIGS(MS_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
     .sched = { { "restoring", "one quotient bit a clock: W clocks" } },

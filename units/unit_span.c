@@ -44,7 +44,7 @@
  * hardware is unit_span_hw.c, the bound unit_span_bound.c (unit_span.h).
  */
 #include "units/unit_span.h"
-#include "vectors/ref_seed000.h"
+#include "vectors/ref_interp.h"
 #include <math.h>
 #include <stddef.h>
 #include <string.h>
@@ -328,7 +328,7 @@ const unit_desc unit_span1 = {
     .name = "span1",
     .ref = &ref_model_span1,
     .summary = "linear I1 + (I2 - I1) t" SPAN_SUMMARY,
-    .seed = "Nechyporuk & Romanyuk (2020), sec. IV (degree 1, for comparison)",
+    .source = "Nechyporuk & Romanyuk (2020), sec. IV (degree 1, for comparison)",
     UNIT_SIGS(S_I12, S_NDV, S_Y,
               S_INT("a", "A = I2 - I1 (a subtractor)"), S_INT("b", "B = I1 (wiring)"),
               S_INT("ra", "register of A, loaded when an item is accepted"), S_INT("rb", "register of B"),
@@ -351,7 +351,7 @@ const unit_desc unit_span2 = {
     .name = "span2",
     .ref = &ref_model_span2,
     .summary = "quadratic through I(0), I(1), I(1/2)" SPAN_SUMMARY,
-    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
+    .source = "Nechyporuk & Romanyuk (2020), sec. IV, Fig. 9 (degree 2)",
     UNIT_SIGS(S_I12, S_I3, S_NDV, S_Y,
               COEF2_NET(S_NET, S_NET)
               S_INT("ra", "register of A, loaded when an item is accepted"), S_INT("rb", "register of B"),
@@ -370,7 +370,7 @@ const unit_desc unit_span3 = {
     .name = "span3",
     .ref = &ref_model_span3,
     .summary = "cubic through node set N1 or N2" SPAN_SUMMARY,
-    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
+    .source = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9",
     UNIT_SIGS(S_I12, S_I3, S_I4, S_NDV, S_Y, S_CUBE, S_REGS3, S_T, HORNER_SIGS3),
     .nsched = 3,
     .sched = SPAN_SCHEDS("the paper's Horner sequence: 6 clocks per pixel", "3 clocks per pixel",
@@ -385,7 +385,7 @@ const unit_desc unit_span23 = {
     .name = "span23",
     .ref = &ref_model_span23,
     .summary = "adaptive: quadratic or cubic per item (input deg), both networks, one Horner" SPAN_SUMMARY,
-    .seed = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9; degree chosen per interval",
+    .source = "Nechyporuk & Romanyuk (2020), sec. IV, Figs. 8 and 9; degree chosen per interval",
     UNIT_SIGS(S_I12, S_I3, S_I4, S_NDV, S_DEG, S_Y, S_CUBE,
               COEF2_NET(SQ_SIG, SQ_SIG)
               S_REGS3, S_T, HORNER_SIGS3),

@@ -1,5 +1,5 @@
 /* units_brdf.c - the few pieces of hardware and arithmetic the BRDF
- * approximation units of seeds 000/001/004 share (prefix brdf_).
+ * approximation units of the interpolation, SPIE and Schlick papers share (prefix brdf_).
  *
  *   powg, pow_n, d_approx, ward_approx   one-multiplier power engine (unit_powg.c)
  *   div, schlick, mschlick               restoring divider (unit_div.c)

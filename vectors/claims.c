@@ -5,7 +5,7 @@
  */
 #include "vectors/claims_int.h"
 #include "vectors/ref_brdf.h"
-#include "vectors/ref_seed000.h"
+#include "vectors/ref_interp.h"
 #include "vectors/ref_shading.h"
 #include "base/base_join.h"
 #include <math.h>
@@ -19,7 +19,7 @@ claim_result *claims_add(table *t, const char *id, const char *seed, const char 
     t->n++;
     memset(r, 0, sizeof *r);
     r->id = id;
-    r->seed = seed;
+    r->source = seed;
     r->claim = claim;
     r->claimed = claimed;
     r->measured = NAN;

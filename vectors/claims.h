@@ -1,14 +1,14 @@
-/* claims.h - each numerical claim of the seeds next to what the double
+/* claims.h - each numerical claim of the papers next to what the double
  * references measure, as one table shared by `shadesim claims`, the report,
  * the docs and the tests.
  *
- * A row holds the claim as the seed states it (with where it is stated),
- * the seed's number, our number, and a verdict that is exactly one of
+ * A row holds the claim as the paper states it (with where it is stated),
+ * the paper's number, our number, and a verdict that is exactly one of
  *   "holds"                      the claim is true as stated,
  *   "holds only for <condition>" true under the condition named, false
  *                                outside it (the note says by how much),
- *   "does not hold"              false where the seed says it is true.
- * Where the seed's wording is qualitative ("high accuracy"), the note
+ *   "does not hold"              false where the paper says it is true.
+ * Where the paper's wording is qualitative ("high accuracy"), the note
  * states the criterion we apply. Percentages are in percent.
  */
 #ifndef CLAIMS_H
@@ -23,9 +23,9 @@
 
 typedef struct claim_result {
     const char *id;            /* stable key, e.g. "d16_m0.2" */
-    const char *seed;          /* where: seed file number, section, eq./fig. */
+    const char *source;        /* where: the paper (short name), section, eq./fig. */
     const char *claim;         /* text of the claim */
-    double claimed;            /* the seed's number; NAN when it gives none */
+    double claimed;            /* the paper's number; NAN when it gives none */
     double measured;           /* ours, in the unit of `claimed`; always finite */
     char measured_text[160];   /* ours in words, with units and detail */
     const char *verdict;       /* see above */
@@ -41,7 +41,7 @@ size_t claims_compute(claim_result *out, size_t max);
  * -2 for anything else. */
 int claims_verdict_kind(const char *verdict);
 
-/* ---- CPU speed claims (seeds 000/001: D16 4.34x faster than D, Ward
+/* ---- CPU speed claims (Nechyporuk & Romanyuk (2020) and Romanyuk et al. (SPIE): D16 4.34x faster than D, Ward
  * approximation more than 2x). Timing-dependent: for `make bench` only
  * (bench/bench_claims.c), never in `shadesim claims`'s verdicts, never
  * asserted in tests. ---- */

@@ -119,8 +119,8 @@ double ref_brdf_mschlick(double c, double n)
     return 2.0 * c / (1.25 * u * u);
 }
 
-/* ---- cut-off intervals (seed 004) ----
- * The seed writes the inequalities as 0 <= F <= 2^-q (eqs. 9, 11, 13) but
+/* ---- cut-off intervals (Zavalniuk et al., 2022) ----
+ * The paper writes the inequalities as 0 <= F <= 2^-q (eqs. 9, 11, 13) but
  * means the interval of computation 0 <= x <= x_cut where F >= 2^-q
  * (eqs. 10, 12, 14): every F here decreases in x, so x_cut is where it
  * crosses 2^-q. */

@@ -1,4 +1,4 @@
-/* ref_brdf_models.c - reference models of the BRDF units (seeds 000 III,
+/* ref_brdf_models.c - reference models of the BRDF units (Nechyporuk & Romanyuk (2020) sec. III,
  * 001, 004): powg, d_approx, ward_approx, pow_n, div, schlick, mschlick.
  *
  * Expected outputs are the exact function each unit implements (e.g. D_g
@@ -224,7 +224,7 @@ static int gen_schlick_like(const vec_model *self, double hot, const vec_params 
     gen_plan pl = { .kind = DRAW_ANGLE, .hot = hot };
     plan_cos(&pl, 1.0);
     plan_cos(&pl, 0.0);
-    plan_cos(&pl, pow(0.3, 1.0 / p->n));            /* seed 004's epicenter */
+    plan_cos(&pl, pow(0.3, 1.0 / p->n));            /* Zavalniuk et al. (2022)'s epicenter */
     plan_cos(&pl, cos(hot));
     return gen_rows(self, p, n, seed, out, &pl);
 }

@@ -29,7 +29,7 @@ extern const vec_model ref_model_hf_lookup;
 /* ------------------------------------------------------------ BRDFs */
 
 enum { RF_BLINN, RF_CT, RF_WARD };
-/* Cook-Torrance distributions: Beckmann (the seeds' form, no 1/pi), the
+/* Cook-Torrance distributions: Beckmann (the papers' form, no 1/pi), the
  * one-function forms D_g (base clamped at 0), and the rational stand-ins
  * for cos^n: Schlick's c/(n - nc + c) and the modified Schlick. */
 enum { RF_D_BECKMANN, RF_D_D4, RF_D_D8, RF_D_D16, RF_D_SCHLICK, RF_D_MSCHLICK };

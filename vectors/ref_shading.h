@@ -1,6 +1,6 @@
 /* ref_shading.h - exact (double) shading along one raster span.
  *
- * This is the "true" intensity that seed 000 approximates with a cubic or a
+ * This is the "true" intensity that Nechyporuk & Romanyuk (2020) approximates with a cubic or a
  * quadratic per interval: Phong shading, i.e. the normal is interpolated
  * linearly between the span's two end normals and renormalized at every
  * pixel, then Lambert diffuse and Phong or Blinn-Phong specular are applied.

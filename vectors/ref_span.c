@@ -9,12 +9,12 @@
  * alternately; span23's rows alternate degree 3 and 2 over those.
  * Intervals of other lengths go through tb_span_run (testbench/tb_span.h).
  *
- * The interpolant is evaluated in Lagrange form (as ref_seed000.c does for
+ * The interpolant is evaluated in Lagrange form (as ref_interp.c does for
  * interp3/interp2): no coefficient formula and no Horner cancellation, and
  * exact at the nodes.
  */
 #include "vectors/vectors.h"
-#include "vectors/ref_seed000.h"
+#include "vectors/ref_interp.h"
 #include "vectors/ref_shading.h"
 #include <math.h>
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* vec_file.c - golden vector files (SPEC 4): a strict reader and an atomic
+/* vec_file.c - golden vector files (docs/cli.md): a strict reader and an atomic
  * writer.
  *
  * The reader is meant to face hand-edited and truncated files: every

@@ -12,7 +12,7 @@
  * so the include graph runs sim <- vectors <- units <- testbench with no
  * circle, and there is one registry (the units'), not two matched by name.
  * The model's parameters are the unit's (unit_cfg holds a vec_params).
- * Files (the SPEC's vector format) are read and written by vec_file.h.
+ * Files (the format of docs/vectors.md) are read and written by vec_file.h.
  */
 #ifndef VECTORS_H
 #define VECTORS_H

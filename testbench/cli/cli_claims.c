@@ -1,5 +1,5 @@
-/* cli_claims.c - the verb claims: every numerical claim of the seeds next
- * to what we measure, with a verdict, the seeds' speed claims measured as
+/* cli_claims.c - the verb claims: every numerical claim of the papers next
+ * to what we measure, with a verdict, the papers' speed claims measured as
  * hardware clocks and area of our units against chains of our units for
  * the exact functions, the failure region of each approximation, and with
  * -o DIR the charts (docs/brdf.md). The study measures them all
@@ -61,7 +61,7 @@ typedef struct report {
 
 static void print_row(FILE *f, const claim_result *r)
 {
-    fprintf(f, "%s (%s): %s\n", r->id, r->seed, r->verdict);
+    fprintf(f, "%s (%s): %s\n", r->id, r->source, r->verdict);
     fprintf(f, "  claim:    %s\n", r->claim);
     if (isfinite(r->claimed)) fprintf(f, "  paper:    %g    measured: %.4g\n", r->claimed, r->measured);
     else fprintf(f, "  paper:    (no number)    measured: %.4g\n", r->measured);
@@ -141,7 +141,7 @@ static void json_row(FILE *f, const claim_result *r, const char *kind)
 {
     fputs("    {\"id\": ", f); base_json_str(f, r->id);
     fputs(", \"kind\": ", f); base_json_str(f, kind);
-    fputs(", \"source\": ", f); base_json_str(f, r->seed);
+    fputs(", \"source\": ", f); base_json_str(f, r->source);
     fputs(",\n     \"claim\": ", f); base_json_str(f, r->claim);
     fputs(",\n     \"claimed\": ", f); base_json_num(f, r->claimed, 10);
     fputs(", \"measured\": ", f); base_json_num(f, r->measured, 10);

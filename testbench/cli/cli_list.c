@@ -39,7 +39,7 @@ static void list_unit(FILE *f, const unit_desc *u, int width, int sched)
     unit_fmts fm;
     defaults_at(u, width, sched, &cfg, &fm);
     char fb[SIM_FMT_STRLEN];
-    fprintf(f, "%s — %s\n  from %s\n  schedules:", u->name, u->summary, u->seed);
+    fprintf(f, "%s — %s\n  from %s\n  schedules:", u->name, u->summary, u->source);
     for (int i = 0; i < u->nsched; i++) fprintf(f, "%s %s (%s)", i ? "," : "", u->sched[i].name, u->sched[i].what);
     fputs("\n  parameters:", f);
     if (!u->nparams) fputs(" none", f);
@@ -76,7 +76,7 @@ static void list_unit_md(FILE *f, const unit_desc *u, int width, int sched)
     unit_fmts fm;
     defaults_at(u, width, sched < 0 ? 0 : sched, &cfg, &fm);
     char fb[SIM_FMT_STRLEN];
-    fprintf(f, "## %s\n\n%s. From %s.\n\n", u->name, u->summary, u->seed);
+    fprintf(f, "## %s\n\n%s. From %s.\n\n", u->name, u->summary, u->source);
     fputs("| schedule | what |\n| --- | --- |\n", f);
     for (int i = 0; i < u->nsched; i++) fprintf(f, "| `%s` | %s |\n", u->sched[i].name, u->sched[i].what);
     if (u->nparams) {

@@ -246,7 +246,7 @@ static int section_claims(FILE *f)
         fprintf(f, "<tr id=\"claim-%s\"><td class=\"id\">", r->id);
         h(f, r->id);
         fprintf(f, "</td><td>%s</td><td>", kind[i]);
-        h(f, r->seed);
+        h(f, r->source);
         fputs("</td><td>", f);
         h(f, r->claim);
         fputs("<div class=\"note\">", f);

@@ -137,7 +137,7 @@ static chart *d16_chart(void) { return error_chart("D16 (clamped) against Beckma
 static chart *ward_chart(void) { return error_chart("Ward's exponential as a 16th power", 4, 7); }
 static chart *schlick_chart(void) { return error_chart("Schlick and modified Schlick against Blinn cos^n", 8, 11); }
 
-/* Why d_approx clamps: D, D16 clamped and D16 as the seeds print it, as
+/* Why d_approx clamps: D, D16 clamped and D16 as The papers print it, as
  * fractions of D's peak, m = 0.2; past the cosine where the base turns
  * negative the printed even power rises again, to 2.3e4 x the peak. */
 static chart *clamp_chart(void)

@@ -27,7 +27,7 @@ static claim_result *row(claim_result *out, size_t *n, size_t max, const char *i
     claim_result *r = &out[(*n)++];
     memset(r, 0, sizeof *r);
     r->id = id;
-    r->seed = seed;
+    r->source = seed;
     r->claim = claim;
     r->claimed = NAN;
     r->measured = isfinite(measured) ? measured : 0;

@@ -109,7 +109,7 @@ static const char *const WHERE = "Nechyporuk & Romanyuk (2020), sec. IV (conclus
 static void row_paper(claim_result *r, const all *a, int res)
 {
     r->id = "scene_nmse_paper";
-    r->seed = WHERE;
+    r->source = WHERE;
     r->claim = "adaptive degree 2/3 on a face gives NMSE no more than 0.0001 against Phong "
                "(here: degree by face region, L 8, the paper's 3-term divide-by-3 network, through the simulated hardware)";
     r->claimed = CLAIM_NMSE;
@@ -127,7 +127,7 @@ static void row_terms(claim_result *r, const all *a, int res)
 {
     int KL = a->KL, KT = a->KT;
     r->id = "scene_nmse_terms";
-    r->seed = WHERE;
+    r->source = WHERE;
     r->claim = "the same with enough terms in the divide-by-3 network (and, if that is not enough, shorter intervals)";
     r->claimed = CLAIM_NMSE;
     r->measured = a->pk.nmse;
@@ -146,7 +146,7 @@ static void row_auto(claim_result *r, const all *a, int res, double threshold)
     int KL = a->KL, KT = a->KT;
     const meas *au3 = &a->au3, *auk = &a->auk;
     r->id = "scene_nmse_auto";
-    r->seed = WHERE;
+    r->source = WHERE;
     r->claim = "the same with the degree chosen automatically per interval (second difference of the nodes "
                "against a threshold) instead of by face region";
     r->claimed = CLAIM_NMSE;
@@ -168,7 +168,7 @@ static void row_speedup(claim_result *r, const all *a, int res)
 {
     int KL = a->KL, KT = a->KT;
     r->id = "scene_speedup";
-    r->seed = WHERE;
+    r->source = WHERE;
     r->claim = "compared with Phong, up to 3 times faster on a face by fewer costly operations "
                "(here: operations per pixel against an efficient per-pixel shader, weighted, and long ones alone)";
     r->claimed = 3;

@@ -226,7 +226,7 @@ size_t tb_speed_hw_rows(const tb_speed_hw *h, claim_result *out)
     claim_result *r = &out[0];
     memset(out, 0, 2 * sizeof *out);
     r->id = "d16_speed_hw";
-    r->seed = "Nechyporuk & Romanyuk (2020), sec. III results; S. O. Romanyuk et al. (SPIE), sec. 4";
+    r->source = "Nechyporuk & Romanyuk (2020), sec. III results; S. O. Romanyuk et al. (SPIE), sec. 4";
     r->claim = "computing D16 instead of D raises the speed 4.34 times (here: in clocks of our hardware)";
     r->claimed = 4.34;
     r->measured = h->d16.clocks > 0 ? h->exact_d_clocks / h->d16.clocks : 0;
@@ -244,7 +244,7 @@ size_t tb_speed_hw_rows(const tb_speed_hw *h, claim_result *out)
                h->ovl_d[2]);
     r = &out[1];
     r->id = "ward_speed_hw";
-    r->seed = "Nechyporuk & Romanyuk (2020), sec. III results; S. O. Romanyuk et al. (SPIE), sec. 4";
+    r->source = "Nechyporuk & Romanyuk (2020), sec. III results; S. O. Romanyuk et al. (SPIE), sec. 4";
     r->claim = "for the Ward model the speed gain of the approximation is more than twice (here: in clocks)";
     r->claimed = 2.0;
     r->measured = h->ward16.clocks > 0 ? h->exact_w_clocks / h->ward16.clocks : 0;

@@ -1,4 +1,4 @@
-// horner3_ref.v - the Horner datapath of seed 000, Fig. 9, written by hand as RTL from
+// horner3_ref.v - the Horner datapath of Nechyporuk & Romanyuk (2020), Fig. 9, written by hand as RTL from
 // the paper (not from the simulator or its export), to cross-check both.
 //
 //   MUL = MX1 * t            MX1 in {A, RG}
@@ -10,7 +10,7 @@
 // MUL keeps the product's bits [TF+W-1:TF]: floor to F fraction bits, then
 // wrap to W bits (shadesim's trunc/wrap). The adder wraps.
 //
-// Controller: a 3-bit step counter walks the paper's six steps (SPEC 2.3);
+// Controller: a 3-bit step counter walks the paper's six steps (sec. IV);
 // it waits at step 0 until in_valid; in_ready is 1 in the last step (the
 // item is accepted at that edge); out_valid is in_ready one clock later,
 // when RG holds I.

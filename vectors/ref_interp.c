@@ -1,4 +1,4 @@
-/* ref_seed000.c - exact float models of the seed-000 units (SPEC 2) and
+/* ref_interp.c - exact float models of the units of Nechyporuk & Romanyuk (2020) and
  * their golden-vector generators.
  *
  * Expected outputs are the exact function of each unit (the exact cubic,
@@ -7,7 +7,7 @@
  * spans of ref_shading.c are only where realistic node intensities come
  * from.
  */
-#include "vectors/ref_seed000.h"
+#include "vectors/ref_interp.h"
 #include "vectors/ref_shading.h"
 #include "vectors/vectors.h"
 #include <math.h>
@@ -464,7 +464,7 @@ static int gen_div3(const vec_params *p, size_t n, uint64_t seed, vec_set *out)
     return 0;
 }
 
-/* ---- the models (ref_seed000.h; each unit's descriptor points at its own) ---- */
+/* ---- the models (ref_interp.h; each unit's descriptor points at its own) ---- */
 
 /* cubic Horner ((a t + b) t + c) t + d (Fig. 9) */
 const vec_model ref_model_horner3 = {

@@ -1,4 +1,4 @@
-/* test_units000.c - the seed-000 units built on the Horner datapath: div3
+/* test_units_interp.c - the units of Nechyporuk & Romanyuk (2020) built on the Horner datapath: div3
  * (Fig. 7), coef3_n1, coef3_n2, coef2 (Fig. 8), interp3, interp2.
  *
  * Every check runs the real path (descriptor -> formats -> tb_run on golden
@@ -32,7 +32,7 @@ static double factor(int terms, int quarter)
 static const double T_N1[4] = { 0, 1, 0.5, 0.25 }, T_N2[4] = { 0, 1, 0.5, 0.75 }, T_Q[3] = { 0, 1, 0.5 };
 
 /* What the network's 1/3 adds to each coefficient: (factor - 1/3) times
- * the sum the formulas divide by 3, with its outer factor (SPEC 2.1). */
+ * the sum the formulas divide by 3, with its outer factor (docs/units.md). */
 static void network_dev(const char *unit, const double *I, double f, double *dev)
 {
     double d = f - 1.0 / 3;
@@ -96,7 +96,7 @@ static double out_real(const tb_result *r, size_t item, int beat, int port)
 
 static void t_registry_order(void)
 {
-    /* After horner3/horner2, in the order of the brief. */
+    /* After horner3/horner2, in the order docs/units.md lists them. */
     size_t h2 = 0;
     for (size_t i = 0; i < unit_count(); i++) if (!strcmp(unit_at(i)->name, "horner2")) h2 = i;
     for (int k = 0; k < NMINE; k++) {

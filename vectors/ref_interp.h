@@ -1,7 +1,7 @@
-/* ref_seed000.h - exact float reference of the seed-000 hardware (SPEC 2).
+/* ref_interp.h - exact float reference of the hardware of Nechyporuk & Romanyuk (2020).
  *
  * Plain functions for testbenches and tests, and the reference models
- * (vec_model) built on them: ref_seed000.c's horner3, horner2, div3,
+ * (vec_model) built on them: ref_interp.c's horner3, horner2, div3,
  * coef3_n1, coef3_n2, coef2, interp3, interp2 and ref_span.c's span1,
  * span2, span3, span23. Each unit's descriptor (units/) points at its
  * model (unit_desc.ref): there is no registry of models.
@@ -10,8 +10,8 @@
  * I4 = I(1/4) (node set N1) or I(3/4) (node set N2). Arrays are indexed
  * from 0, so I[0] is I1.
  */
-#ifndef REF_SEED000_H
-#define REF_SEED000_H
+#ifndef REF_INTERP_H
+#define REF_INTERP_H
 #include "vectors/vectors.h"
 
 extern const vec_model ref_model_horner3, ref_model_horner2, ref_model_div3, ref_model_coef3_n1,
@@ -22,7 +22,7 @@ extern const vec_model ref_model_horner3, ref_model_horner2, ref_model_div3, ref
 extern const double ref_nodes_n1[4], ref_nodes_n2[4], ref_nodes_q[3];
 
 /* Cubic coefficients abcd = {A, B, C, D} of I(t) = A t^3 + B t^2 + C t + D
- * through the nodes, by the SPEC 2.1 formulas (exact /3). */
+ * through the nodes, by the coefficient formulas (docs/units.md) (exact /3). */
 void ref_coef3_n1(const double I[4], double abcd[4]);
 void ref_coef3_n2(const double I[4], double abcd[4]);
 /* Quadratic abc = {A, B, C} of I(t) = A t^2 + B t + C through I(0), I(1),
