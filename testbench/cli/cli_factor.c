@@ -202,6 +202,51 @@ const cli_optspec cli_factor_spec = {
     "\nexit status: 0 done, 1 --claims: a claim does not hold, 2 bad usage or input.\n"
 };
 
+/* The error rows on held-out pairs: the factorization (and its log form),
+ * then the rank-1..svd_k sums of products; printed and added to csv. */
+static int error_rows(FILE *csv, rf_brdf *b, rf_fact *f, const rf_opts *o, long heldout, long svd_k,
+                      char *err, size_t errlen)
+{
+    rf_err e;
+    uint64_t hseed = o->seed + 1000;
+    long ns = o->samples > 0 ? o->samples : 24L * o->R * o->R;
+    rf_error(rf_brdf_fn, b, rf_fact_fn, f, heldout, hseed, o->floor, &e);
+    print_line("factorized", &e);
+    tb_factor_csv_row(csv, "factor", o->R, ns, 1, &e);
+    rf_error(rf_brdf_fn, b, rf_fact_log_fn, f, heldout, hseed, o->floor, &e);
+    print_line("factorized-log", &e);
+    tb_factor_csv_row(csv, "factor-log", o->R, ns, 1, &e);
+    if (svd_k <= 0) return 0;
+    rf_svd s;
+    int rs = o->R < 32 ? o->R : 32;
+    if (rf_svd_fit(rf_brdf_fn, b, rs, (int)svd_k, &s, err, errlen)) return -1;
+    for (int k = 1; k <= svd_k; k++) {
+        char name[32];
+        s.k_used = k;
+        rf_error(rf_brdf_fn, b, rf_svd_fn, &s, heldout, hseed, o->floor, &e);
+        snprintf(name, sizeof name, "svd rank %d", k);
+        print_line(name, &e);
+        tb_factor_csv_row(csv, "svd", rs, 0, k, &e);
+    }
+    rf_svd_free(&s);
+    return 0;
+}
+
+/* --study: the resolution and sample-count study into DIR/study.csv. */
+static int write_study(rf_brdf *b, const rf_opts *o, long heldout, const char *dir, char *err, size_t errlen)
+{
+    char *sb = NULL, path[700];
+    size_t sl = 0;
+    FILE *sf = open_memstream(&sb, &sl);
+    if (!sf) base_out_of_memory();
+    int bad = tb_factor_study(b, o, heldout, sf, err, errlen);
+    fclose(sf);
+    snprintf(path, sizeof path, "%s/study.csv", dir);
+    if (!bad) bad = base_out_write_all(path, sb, sl, err, errlen);
+    free(sb);
+    return bad ? -1 : 0;
+}
+
 int cli_factor(int argc, char **argv)
 {
     base_outset *set = NULL;
@@ -247,29 +292,8 @@ int cli_factor(int argc, char **argv)
     FILE *csv = open_memstream(&csvbuf, &csvlen);
     if (!csv) base_out_of_memory();
     fputs(tb_factor_csv_head, csv);
-    rf_err e;
-    uint64_t hseed = o.seed + 1000;
-    rf_error(rf_brdf_fn, &b, rf_fact_fn, &f, heldout, hseed, o.floor, &e);
-    print_line("factorized", &e);
-    tb_factor_csv_row(csv, "factor", o.R, ns, 1, &e);
-    rf_error(rf_brdf_fn, &b, rf_fact_log_fn, &f, heldout, hseed, o.floor, &e);
-    print_line("factorized-log", &e);
-    tb_factor_csv_row(csv, "factor-log", o.R, ns, 1, &e);
     int rc = CLI_OK;
-    if (svd_k > 0) {
-        rf_svd s;
-        int rs = o.R < 32 ? o.R : 32;
-        if (rf_svd_fit(rf_brdf_fn, &b, rs, (int)svd_k, &s, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
-        for (int k = 1; k <= svd_k; k++) {
-            char name[32];
-            s.k_used = k;
-            rf_error(rf_brdf_fn, &b, rf_svd_fn, &s, heldout, hseed, o.floor, &e);
-            snprintf(name, sizeof name, "svd rank %d", k);
-            print_line(name, &e);
-            tb_factor_csv_row(csv, "svd", rs, 0, k, &e);
-        }
-        rf_svd_free(&s);
-    }
+    if (error_rows(csv, &b, &f, &o, heldout, svd_k, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
     double llo, lhi, plo, phi;
     /* Every file from here on is one set: they appear together at the
      * commit below, or (any failure) none of them. */
@@ -282,18 +306,7 @@ int cli_factor(int argc, char **argv)
     fprintf(csv, "# lambda.png: grey 0..255 = log lambda %.6g..%.6g; pi.png: log pi %.6g..%.6g\n", llo, lhi, plo, phi);
     snprintf(path, sizeof path, "%s/factors.f32", dir);
     if (write_f32(path, &f, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
-    if (study) {
-        char *sb = NULL;
-        size_t sl = 0;
-        FILE *sf = open_memstream(&sb, &sl);
-        if (!sf) base_out_of_memory();
-        if (tb_factor_study(&b, &o, heldout, sf, err, sizeof err)) rc = cli_usage_error("%s", err);
-        fclose(sf);
-        snprintf(path, sizeof path, "%s/study.csv", dir);
-        if (rc == CLI_OK && base_out_write_all(path, sb, sl, err, sizeof err)) rc = cli_usage_error("%s", err);
-        free(sb);
-        if (rc) goto done;
-    }
+    if (study && write_study(&b, &o, heldout, dir, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
     tb_factor_scene_result sr;
     if (scene) {
         if (tb_factor_scene(scene, o.R, b.ax, (int)hw_width, (int)scene_res, dir, &sr, err, sizeof err)) {
