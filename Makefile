@@ -112,9 +112,13 @@ CLANG ?= clang
 ASAN_FLAGS = OPT="-O1 -g -fno-omit-frame-pointer" \
 	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
 TB := $(if $(filter clang%,$(notdir $(CC))),build-clang,build)
-# The portable flavour (as on a CPU other than x86-64): the batch's tests,
-# plain, and tests/cli_engine.sh on its shadesim.
-PORTABLE_BINS = $(TB)-portable/tests/test_batch $(TB)-portable/tests/test_toggle $(TB)-portable/shadesim
+# The portable flavour (as on a CPU other than x86-64, and a compiler without
+# computed goto): the batch without its vector loops and the kernel's delta
+# loop compiled as a switch; the batch's and the kernel's tests, plain, and
+# tests/cli_engine.sh and tests/cli_gold.sh on its shadesim.
+PORTABLE_CFLAGS = -DSIM_BATCH_X86=0 -DSIM_KERNEL_SWITCH=1
+PORTABLE_BINS = $(TB)-portable/tests/test_batch $(TB)-portable/tests/test_toggle \
+	$(TB)-portable/tests/test_kernel $(TB)-portable/shadesim
 
 # Sub-makes build quietly (BRIEF=1: no per-file lines) under one line per
 # step; V=1 shows every command.
@@ -127,8 +131,8 @@ test:
 	@$(SUBMAKE) $(TESTJ) testbins B=$(TB)
 	@echo "building $(TB)-asan/ ($(CC) ASan+UBSan)..."
 	@$(SUBMAKE) $(TESTJ) testbins B=$(TB)-asan $(ASAN_FLAGS)
-	@echo "building $(TB)-portable/ ($(CC), -DSIM_BATCH_X86=0: the batch without its vector loops)..."
-	@$(SUBMAKE) $(TESTJ) $(PORTABLE_BINS) B=$(TB)-portable CFLAGS=-DSIM_BATCH_X86=0
+	@echo "building $(TB)-portable/ ($(CC), $(PORTABLE_CFLAGS): no vector loops, switch dispatch)..."
+	@$(SUBMAKE) $(TESTJ) $(PORTABLE_BINS) B=$(TB)-portable CFLAGS="$(PORTABLE_CFLAGS)"
 	@$(SUBMAKE) bin/shadesim
 	@echo "testing..."
 	@sh tests/run.sh $(TB) $(TB)-asan $(TB)-portable

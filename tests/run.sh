@@ -35,8 +35,9 @@ for b in "$@"; do
     done
     for t in tests/cli_*.sh; do
         is_slow "$(basename "$t" .sh)" && continue
-        # the portable flavour (no vector loops): the batch's tests only
-        case $b in *-portable) [ "$t" = tests/cli_engine.sh ] || continue ;; esac
+        # the portable flavour (no vector loops, switch dispatch): the
+        # batch's and the kernel's tests only
+        case $b in *-portable) case $t in tests/cli_engine.sh|tests/cli_gold.sh) ;; *) continue ;; esac ;; esac
         [ -f "$t" ] && { n=$((n + 1)); echo "$n $b cli $t"; }
     done
 done >"$dir/jobs"
