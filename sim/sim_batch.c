@@ -140,7 +140,7 @@ static void eval_comb(const bop *p, const uint64_t *m, uint32_t nw, unsigned cha
     const int k = p->k, sa = p->sa, sb = p->sb, fa = p->fa, src_f = p->src_f, n = p->n;
     int64_t *const *in = p->in;
     switch (p->kind) {
-    case B_COPY:
+    case B_WIRE:
         if (p->fast) FOR_LANES(l, m, nw, FAST_Q(a[l], l););
         else FOR_LANES(l, m, nw, PUT(l, quant(p, a[l], fa, &ovf[l])););
         break;
@@ -758,13 +758,16 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
     p->y = ROW(y);
     const sim_signal *reads[10];
     int nreads = 0;
-    switch (in->kind) {
+    /* the evaluation the kind takes (an input a sim_assign drives is a
+     * copy: sim_elem.h), and the schedule's kind is that one */
+    const sim_kind ev = sim_kind_eval(in->kind);
+    p->kind = (int)ev;
+    switch (ev) {
     case SIM_KIND_REG:
         if (in->clk != clk) {
             snprintf(err, errlen, "register %s is not clocked by %s", sim_signal_path(y, path, sizeof path), clk->name);
             return -1;
         }
-        p->kind = B_REG;
         p->a = in->a ? ROW(in->a) : NULL;
         p->c = in->c ? ROW(in->c) : NULL;
         p->rst = in->rst ? ROW(in->rst) : NULL;
@@ -776,16 +779,14 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         return 0;
     case SIM_KIND_WIRE:   /* sim_assign */
     case SIM_KIND_BK:
-        p->kind = in->kind == SIM_KIND_BK ? B_BK : B_COPY;
         p->a = ROW(in->a);
         p->fa = in->a->fmt.fbits;
         p->fast = raw_bits(in->a) <= 62 && fast_setup(p, p->fa);
         reads[nreads++] = in->a;
-        if (in->kind == SIM_KIND_BK) { p->c = ROW(in->c); reads[nreads++] = in->c; }
+        if (ev == SIM_KIND_BK) { p->c = ROW(in->c); reads[nreads++] = in->c; }
         break;
     case SIM_KIND_ADD:
     case SIM_KIND_SUB:
-        p->kind = in->kind == SIM_KIND_ADD ? B_ADD : B_SUB;
         p->a = ROW(in->a);
         p->b = ROW(in->b);
         p->src_f = imax(in->a->fmt.fbits, in->b->fmt.fbits);
@@ -797,7 +798,6 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         reads[nreads++] = in->b;
         break;
     case SIM_KIND_MUL:
-        p->kind = B_MUL;
         p->a = ROW(in->a);
         p->b = ROW(in->b);
         p->src_f = in->a->fmt.fbits + in->b->fmt.fbits;
@@ -806,7 +806,6 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         reads[nreads++] = in->b;
         break;
     case SIM_KIND_SHIFT: {
-        p->kind = B_SHIFT;
         p->a = ROW(in->a);
         int f = in->a->fmt.fbits - in->shift;
         p->sa = f < 0 ? -f : 0;
@@ -817,7 +816,6 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         break;
     }
     case SIM_KIND_MUX: {
-        p->kind = B_MUX;
         p->c = ROW(in->c);
         reads[nreads++] = in->c;
         p->n = in->n;
@@ -843,7 +841,6 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         break;
     }
     case SIM_KIND_LOGIC:
-        p->kind = B_LOGIC;
         p->n = in->n;
         p->fn = in->fn;
         p->user = in->user;
@@ -1047,9 +1044,9 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
                      sim_signal_path(s, path, sizeof path));
             goto fail;
         }
-        bop *p = in.kind == SIM_KIND_REG ? &b->reg[b->nreg] : &comb[ncomb];
+        bop *p = sim_kind_role(in.kind) == SIM_ELEM_SEQ ? &b->reg[b->nreg] : &comb[ncomb];
         if (op_setup(b, p, s, &in, clk, err, errlen)) goto fail;
-        if (in.kind == SIM_KIND_REG) {
+        if (sim_kind_role(in.kind) == SIM_ELEM_SEQ) {
             /* what it samples: input, enable, reset */
             p->dep = malloc(3 * sizeof *p->dep);
             if (!p->dep) goto oom;

@@ -6,7 +6,14 @@
 #include "sim/sim_batch.h"
 #include "sim/sim_prim.h"
 
-enum { B_COPY, B_ADD, B_SUB, B_MUL, B_SHIFT, B_MUX, B_BK, B_LOGIC, B_REG };
+/* An element's kind in the schedule: the evaluation its sim_kind takes
+ * (sim_kind_eval, sim_elem.h's eval column), B_WIRE a copy. Only kinds
+ * some row evaluates as (a combinational or state role) reach it. */
+enum {
+#define B_ENUM(K, ...) B_##K = SIM_KIND_##K,
+    SIM_ELEM_LIST(B_ENUM)
+#undef B_ENUM
+};
 
 /* One element of the schedule. Operand pointers are the lane arrays of
  * the signals it reads. */

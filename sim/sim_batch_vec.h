@@ -61,7 +61,7 @@ VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char 
     uint64_t acc = 0;
     uint32_t l;
     switch (p->kind) {
-    case B_COPY:
+    case B_WIRE:
         if (!p->fast) return 0;
         for (l = 0; l < nl; l += W) TAIL(V_LD(a + l), all);
         break;

@@ -113,7 +113,7 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
     sim_ovf o = sim_fmt_ovf(y->fmt, pi.o);
     int any = 0;
     sim_ival p, q;
-    switch (pi.kind) {
+    switch (sim_kind_eval(pi.kind)) {   /* an input a sim_assign drives: a copy (sim_elem.h) */
     case SIM_KIND_CONST:
         pre->lo = pre->hi = y->cur;
         *post = *pre;

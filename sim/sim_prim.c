@@ -94,17 +94,11 @@ static int fast_quant_setup(prim *p, int src_f)
 static void set_native(sim_proc *pub, int op, const prim *p)
 {
     sim__proc *pr = sim__proc_of(pub);
-    if (!p->k && !p->radd) {
-        /* No rounding shift: the variant that only checks the range. */
-        switch (op) {
-        case SIM__OP_COPY: op = SIM__OP_COPY_X; break;
-        case SIM__OP_ADD:  op = SIM__OP_ADD_X; break;
-        case SIM__OP_SUB:  op = SIM__OP_SUB_X; break;
-        case SIM__OP_MUX:  op = SIM__OP_MUX_X; break;
-        case SIM__OP_BK:   op = SIM__OP_BK_X; break;
-        default: break;
-        }
-    }
+    /* No rounding shift: the variant that only checks the range. */
+#define OP_X(O, label, x) [SIM__OP_##O] = SIM__OP_##x,
+    static const uint8_t op_x[SIM__OP__COUNT] = { SIM__OP_LIST(OP_X) };
+#undef OP_X
+    if (!p->k && !p->radd) op = op_x[op];
     pr->op = (uint8_t)op;
     pr->op_y = p->y; pr->op_a = p->a; pr->op_b = p->b; pr->op_c = p->c;
     pr->op_lo = p->lo; pr->op_hi = p->hi; pr->op_radd = p->radd;
