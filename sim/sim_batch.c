@@ -16,6 +16,8 @@
  */
 #include "sim/sim_batch_int.h"
 #include "sim/sim_prim.h"
+#include "sim/sim_quant.h"
+#include "sim/sim_lut.h"
 #include "sim/sim_toggle.h"
 #include <stdlib.h>
 #include <string.h>
@@ -67,25 +69,10 @@ uint32_t sim_batch_vector(uint32_t most)
 /* sim_quant_into without the signal: the overflow flags the lane. */
 static int64_t quant(const bop *p, sim_wide raw, int src_f, unsigned char *ovf)
 {
-    int k = src_f - p->fy.fbits;
-    if ((unsigned)k < 63 && raw >= -((sim_wide)1 << 62) && raw < ((sim_wide)1 << 62) && p->r != SIM_RND_EVEN) {
-        int64_t x = (int64_t)raw;
-        if (k && p->r == SIM_RND_HALF_UP) x += (int64_t)1 << (k - 1);
-        x >>= k;
-        if (x >= p->lo && x <= p->hi) return x;
-    }
     int o = 0;
-    int64_t v = sim_fx_requant(raw, src_f, p->fy, p->r, p->o, &o);
+    int64_t v = sim__quant(raw, src_f, p->fy, p->lo, p->hi, p->r, p->o, &o);
     if (o) *ovf = 1;
     return v;
-}
-
-/* Low W bits of v, sign- or zero-extended (a logic element's output). */
-static int64_t canon(int64_t v, sim_fmt f)
-{
-    int sh = 64 - f.width;
-    if (f.is_signed) return (int64_t)((uint64_t)v << sh) >> sh;
-    return (int64_t)((uint64_t)v & (UINT64_MAX >> sh));
 }
 
 static sim_wide align(int64_t raw, int k) { return (sim_wide)raw * ((sim_wide)1 << k); }
@@ -240,7 +227,7 @@ static void eval_comb(const bop *p, const uint64_t *m, uint32_t nw, unsigned cha
         FOR_LANES(l, m, nw, {
             int64_t v[8];
             for (int i = 0; i < n; i++) v[i] = in[i][l];
-            PUT(l, canon(p->fn(v, p->user), p->fy));
+            PUT(l, sim__canon(p->fn(v, p->user), p->fy));
         });
         break;
     }
@@ -694,10 +681,7 @@ static int raw_bits(const sim_signal *s) { return s->fmt.width; }
 static int fast_setup(bop *p, int src_f)
 {
     p->src_f = src_f;
-    p->k = src_f - p->fy.fbits;
-    if (p->k < 0 || p->k > 61 || p->r == SIM_RND_EVEN) return 0;
-    p->radd = (p->r == SIM_RND_HALF_UP && p->k) ? (int64_t)1 << (p->k - 1) : 0;
-    return 1;
+    return sim__quant_fast(src_f, p->fy.fbits, p->r, &p->k, &p->radd);
 }
 
 static int imax(int a, int b) { return a > b ? a : b; }
@@ -717,28 +701,17 @@ static void widen_src(bop *p, int wa, int wb)
     p->src_f += d;
 }
 
-/* A logic element whose inputs have at most LOGIC_TAB_BITS bits in all is
- * tabulated once (its function is defined for every raw value of its
- * inputs' formats: sim_prim.h), so that evaluating it is an index and a
- * load instead of a call per lane. The index is the inputs' raw bits side
- * by side; a raw is its low W bits, sign-extended back by the format. */
-#define LOGIC_TAB_BITS 12
+/* A logic element whose inputs have at most SIM_LUT_BITS bits in all is
+ * tabulated once (sim_lut.h, in the two's complement code: an index is
+ * the inputs' low bits, masked and shifted side by side), so that
+ * evaluating it is an index and a load instead of a call per lane. */
 static void logic_table(bop *p, const sim_prim_info *in)
 {
-    int bits = 0;
-    for (int i = 0; i < in->n; i++) {
-        p->tsh[i] = bits;
-        p->tmask[i] = UINT64_MAX >> (64 - in->in[i]->fmt.width);
-        bits += in->in[i]->fmt.width;
-        if (bits > LOGIC_TAB_BITS) return;
-    }
+    int bits = sim_lut_layout(in->n, in->in, SIM_LUT_BITS, p->tsh, p->tmask);
+    if (bits < 0) return;
     int64_t *t = malloc(((size_t)1 << bits) * sizeof *t);
     if (!t) return;   /* evaluated by calls instead */
-    for (uint64_t ix = 0; ix < ((uint64_t)1 << bits); ix++) {
-        int64_t v[8];
-        for (int i = 0; i < in->n; i++) v[i] = canon((int64_t)((ix >> p->tsh[i]) & p->tmask[i]), in->in[i]->fmt);
-        t[ix] = canon(in->fn(v, in->user), p->fy);
-    }
+    sim_lut_fill(t, bits, in->n, in->in, p->tsh, p->tmask, SIM_LUT_TWOS, in->fn, in->user, p->fy);
     p->tab = t;
 }
 
@@ -825,14 +798,15 @@ static int op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_in
         p->in_radd = malloc((size_t)(in->n ? in->n : 1) * sizeof *p->in_radd);
         if (!p->in || !p->in_f || !p->in_k || !p->in_radd) { snprintf(err, errlen, "out of memory"); return -1; }
         /* fast when every input is (as fast_setup for each one's fraction bits) */
-        int fast = in->n > 0 && p->r != SIM_RND_EVEN;
+        int fast = in->n > 0;
         for (int i = 0; i < in->n; i++) {
             p->in[i] = ROW(in->in[i]);
             p->in_f[i] = in->in[i]->fmt.fbits;
-            int k = in->in[i]->fmt.fbits - p->fy.fbits;
-            fast &= raw_bits(in->in[i]) <= 62 && k >= 0 && k <= 61;
-            p->in_k[i] = k >= 0 && k <= 61 ? k : 0;
-            p->in_radd[i] = p->r == SIM_RND_HALF_UP && k > 0 && k <= 61 ? (int64_t)1 << (k - 1) : 0;
+            int k;
+            p->in_radd[i] = 0;
+            int fi = sim__quant_fast(p->in_f[i], p->fy.fbits, p->r, &k, &p->in_radd[i]);
+            fast &= raw_bits(in->in[i]) <= 62 && fi;
+            p->in_k[i] = fi ? k : 0;
         }
         p->fast = fast;
         for (int i = 0; i < in->n; i++) {

@@ -10,6 +10,7 @@
 #include "sim/sim_area.h"
 #include "sim/sim_delay.h"
 #include "sim/sim_internal.h"
+#include "sim/sim_quant.h"
 #include <string.h>
 
 typedef struct prim {
@@ -36,19 +37,8 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, 
 {
     r = sim_fmt_round(s->fmt, r);   /* the signal's own modes, if it has them */
     o = sim_fmt_ovf(s->fmt, o);
-    /* Fast path for what datapaths do on almost every clock: drop k < 63
-     * low bits of a value that fits 63 bits by truncation or half-up, and
-     * land in range. Anything else takes the general path, which is the
-     * definition (tests compare both through the primitives). */
-    int k = src_fbits - s->fmt.fbits;
-    if ((unsigned)k < 63 && raw >= -((sim_wide)1 << 62) && raw < ((sim_wide)1 << 62) && r != SIM_RND_EVEN) {
-        int64_t x = (int64_t)raw;
-        if (k && r == SIM_RND_HALF_UP) x += (int64_t)1 << (k - 1);
-        x >>= k;   /* arithmetic shift: floor division by 2^k (gcc, clang) */
-        if (x >= s->raw_min && x <= s->raw_max) return x;
-    }
     int ovf = 0;
-    int64_t v = sim_fx_requant(raw, src_fbits, s->fmt, r, o, &ovf);
+    int64_t v = sim__quant(raw, src_fbits, s->fmt, s->raw_min, s->raw_max, r, o, &ovf);
     if (ovf) sim__overflow(s, v);
     return v;
 }
@@ -80,12 +70,9 @@ static int copy_fits(const sim_signal *s) { return raw_bits(s) <= 62; }
 static int fast_quant_setup(prim *p, int src_f)
 {
     p->src_f = src_f;
-    p->k = src_f - p->y->fmt.fbits;
     p->lo = p->y->raw_min;
     p->hi = p->y->raw_max;
-    if (p->k < 0 || p->k > 61 || p->r == SIM_RND_EVEN) return 0;
-    p->radd = (p->r == SIM_RND_HALF_UP && p->k) ? (int64_t)1 << (p->k - 1) : 0;
-    return 1;
+    return sim__quant_fast(src_f, p->y->fmt.fbits, p->r, &p->k, &p->radd);
 }
 
 /* Let the kernel evaluate the element itself (sim_internal.h, SIM__OP_*);
@@ -105,14 +92,6 @@ static void set_native(sim_proc *pub, int op, const prim *p)
     pr->op_k = (int8_t)p->k;
     pr->op_n = (uint32_t)p->n;
     pr->op_in = p->in;
-}
-
-/* Low W bits of v, sign-/zero-extended: sim_fx_canon without the call. */
-static inline int64_t canon(int64_t v, sim_fmt f)
-{
-    int sh = 64 - f.width;
-    if (f.is_signed) return (int64_t)((uint64_t)v << sh) >> sh;
-    return (int64_t)((uint64_t)v & (UINT64_MAX >> sh));
 }
 
 static prim *prim_new(sim_ctx *c, sim_signal *y)
@@ -459,7 +438,7 @@ static void logic_eval(sim_proc *pr)
     prim *p = pr->data;
     int64_t v[SIM__LOGIC_MAX];
     for (int i = 0; i < p->n; i++) v[i] = p->in[i]->cur;
-    sim_write(p->y, canon(p->fn(v, p->user), p->y->fmt));
+    sim_write(p->y, sim__canon(p->fn(v, p->user), p->y->fmt));
 }
 
 sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,

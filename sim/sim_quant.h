@@ -1,0 +1,53 @@
+/* sim_quant.h - the scalar quantization step every engine takes, written
+ * once: sim_prim.c (the kernel's elements, sim_quant_into) and the batch
+ * mode's scalar loops (sim_batch_eval.c) call these; the vector loops
+ * (sim_batch_vec.h) do the fast path's add, shift and range check in
+ * vectors and hand a lane that leaves it back to the scalar loop. Not for
+ * other layers.
+ */
+#ifndef SIM_QUANT_H
+#define SIM_QUANT_H
+#include "sim/sim_fixed.h"
+
+/* raw, with src_f fraction bits, into format f whose raw range is
+ * [lo, hi], rounding r and overflow o (already the format's own): the
+ * fast path for what datapaths do on almost every clock (drop k < 63 low
+ * bits of a value that fits 63 bits by truncation or half-up, and land in
+ * range), else the general path, which is the definition
+ * (sim_fx_requant; tests compare both through the primitives). *ovf set
+ * to 1 when it overflowed. */
+static inline int64_t sim__quant(sim_wide raw, int src_f, sim_fmt f, int64_t lo, int64_t hi,
+                                 sim_round r, sim_ovf o, int *ovf)
+{
+    int k = src_f - f.fbits;
+    if ((unsigned)k < 63 && raw >= -((sim_wide)1 << 62) && raw < ((sim_wide)1 << 62) && r != SIM_RND_EVEN) {
+        int64_t x = (int64_t)raw;
+        if (k && r == SIM_RND_HALF_UP) x += (int64_t)1 << (k - 1);
+        x >>= k;   /* arithmetic shift: floor division by 2^k (gcc, clang) */
+        if (x >= lo && x <= hi) return x;
+    }
+    return sim_fx_requant(raw, src_f, f, r, o, ovf);
+}
+
+/* The specialized fast path's constants for an exact result with src_f
+ * fraction bits into dst_f: y = (s + *radd) >> *k when that lands in
+ * range (floor((s + 2^(k-1)) / 2^k) is half-up rounding). *k is set in
+ * any case; returns 1 when the path applies (trunc or half-up,
+ * 0 <= k <= 61), else 0 with *radd untouched. */
+static inline int sim__quant_fast(int src_f, int dst_f, sim_round r, int *k, int64_t *radd)
+{
+    *k = src_f - dst_f;
+    if (*k < 0 || *k > 61 || r == SIM_RND_EVEN) return 0;
+    *radd = (r == SIM_RND_HALF_UP && *k) ? (int64_t)1 << (*k - 1) : 0;
+    return 1;
+}
+
+/* Low W bits of v, sign- or zero-extended (a logic element's output):
+ * sim_fx_canon without the call. */
+static inline int64_t sim__canon(int64_t v, sim_fmt f)
+{
+    int sh = 64 - f.width;
+    if (f.is_signed) return (int64_t)((uint64_t)v << sh) >> sh;
+    return (int64_t)((uint64_t)v & (UINT64_MAX >> sh));
+}
+#endif
