@@ -1,6 +1,10 @@
-/* sim_batch_int.h - what sim_batch.c shares with its vector loops
- * (sim_batch_avx2.c): one element of the schedule and the entry points of
- * each side. Not for other layers. */
+/* sim_batch_int.h - what the batch mode's files share: the batch itself,
+ * one element of the schedule, and the entry points of each file.
+ *   sim_batch.c       construction: the schedule, levelized; accessors
+ *   sim_batch_op.c    one element's setup from its description
+ *   sim_batch_eval.c  evaluation: scalar loops, settle, clock, toggles
+ *   sim_batch_vec.h   the vector loops (sim_batch_avx2.c, _avx512.c)
+ * Not for other layers. */
 #ifndef SIM_BATCH_INT_H
 #define SIM_BATCH_INT_H
 #include "sim/sim_batch.h"
@@ -107,4 +111,43 @@ sim__batch_count_fn sim__batch_count_dense, sim__batch_count_dense_avx2, sim__ba
 /* The scalar loop of p (combinational or register, in place) in the lanes
  * of the one-word mask m (sim_batch.c). */
 void sim__batch_lanes(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);
+
+struct sim_batch {
+    uint32_t lanes, nsig;
+    int64_t *val;               /* nsig x lanes: every signal's values */
+    int64_t *pend;              /* inputs' values for the next edge */
+    int32_t *inslot;            /* per signal: its row in pend, or -1 */
+    uint32_t nin;
+    uint32_t *in_sig;           /* per input row: the signal */
+    bop     *comb;  uint32_t ncomb;   /* in topological order */
+    bop     *reg;   uint32_t nreg;
+    int64_t *regnx;             /* nreg x lanes */
+    uint64_t *regm;             /* nreg x nw: lanes to evaluate at the next edge */
+    unsigned char *ovf;         /* per lane: some quantization overflowed */
+    uint32_t nw;                /* 64-lane words of a mask */
+    uint64_t *chg;              /* per signal: lanes it changed in at this edge (nw words) */
+    unsigned char *uni;         /* per signal: 1 if every lane holds the same value */
+    uint64_t all[SIM_BATCH_MAX_LANES / 64];   /* every lane */
+    int      started;
+    int      reg_inplace;       /* registers update in place, in b->reg's order (order_regs) */
+    uint32_t vw;                /* lanes per vector of the vector loops (0: none; sim_batch_new) */
+    int    (*vcomb)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
+    int    (*vreg)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
+    uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t);
+    uint64_t vec_groups, vec_fell;   /* groups of lanes (a vector each) they did, and handed back (sim_batch_vector_stats) */
+    /* toggle counting (sim_batch_toggles_on), NULL when off */
+    uint64_t *tog;              /* nsig x lanes: bit toggles so far */
+    int64_t  *tprev;            /* nsig x lanes: the values they are counted from */
+    uint64_t *fmask;            /* per signal: its format's bits (sim_toggle_mask) */
+    sim__batch_count_fn *vcount;   /* the count in every lane at once (sim_batch_int.h) */
+    /* range tracking (sim_batch_ranges_on), NULL when off */
+    int64_t  *rmin, *rmax;      /* nsig x lanes: smallest and largest settled value */
+};
+
+/* Fill p from the element driving y (sim_batch_op.c); -1 (err) for what
+ * the batch mode cannot evaluate. */
+int  sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_info *in,
+                         const sim_signal *clk, char *err, size_t errlen);
+/* Free n elements' own arrays, then ops. */
+void sim__batch_free_ops(bop *ops, uint32_t n);
 #endif
