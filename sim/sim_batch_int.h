@@ -23,7 +23,7 @@ enum {
  * the signals it reads. */
 typedef struct bop {
     int      kind;
-    int      fast;        /* the int64_t path applies (see op_setup) */
+    int      fast;        /* the int64_t path applies (sim_batch_op.c) */
     int      sa, sb;      /* left shifts aligning a, b to src_f */
     int      src_f;       /* fraction bits of the exact result */
     int      k;           /* fast path: right shift from src_f to y */
@@ -42,7 +42,7 @@ typedef struct bop {
     int64_t *in_radd;     /* and what is added before it (inputs may differ in fraction bits) */
     sim_logic_fn fn;
     void    *user;
-    int64_t *tab;         /* logic: y for every input value (see logic_table), or NULL */
+    int64_t *tab;         /* logic: y for every input value (sim_batch_op.c, logic_table), or NULL */
     int      tsh[8];      /* logic: where input i's bits go in the table index */
     uint64_t tmask[8];
     int64_t *nx;          /* register: value after the edge */
@@ -67,7 +67,7 @@ typedef struct bop {
 uint32_t sim__batch_vec_width(uint32_t most);
 /* Each evaluates p in lanes 0..nl-1 (nl a multiple of the width, at most
  * 64) exactly as the scalar loop would (also in the lanes none of p's
- * inputs changed in: they compute what they hold, see sim_batch.c), ORs
+ * inputs changed in: they compute what they hold, see sim_batch_eval.c), ORs
  * the lanes its output changed in into *om and returns 1; 0 when it has
  * no loop for p (the caller runs the scalar one). A group of lanes in
  * which a fast result leaves y's range (an overflow, or a value the fast
@@ -80,7 +80,7 @@ int sim__batch_vec_comb_avx512(const bop *p, uint32_t nl, unsigned char *ovf, ui
 int sim__batch_vec_reg_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 uint64_t sim__batch_vec_take_avx512(int64_t *v, const int64_t *p, uint32_t nl);
 /* Toggles and ranges of one signal in every lane 0..nl-1 at once
- * (sim_batch.c's count after a settle, when many lanes changed): t[l] +=
+ * (sim_batch_eval.c's count after a settle, when many lanes changed): t[l] +=
  * the bits of `mask` in which v[l] differs from pv[l], pv[l] = v[l], and
  * lo/hi (when not NULL) widened to take v[l]. In a lane where v did not
  * change, v[l] == pv[l] and v[l] is already in its range: nothing moves,
@@ -109,7 +109,7 @@ typedef void sim__batch_count_fn(const int64_t *v, int64_t *pv, uint64_t *t, uin
                                  uint32_t nl);
 sim__batch_count_fn sim__batch_count_dense, sim__batch_count_dense_avx2, sim__batch_count_dense_avx512;
 /* The scalar loop of p (combinational or register, in place) in the lanes
- * of the one-word mask m (sim_batch.c). */
+ * of the one-word mask m (sim_batch_eval.c). */
 void sim__batch_lanes(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);
 
 struct sim_batch {

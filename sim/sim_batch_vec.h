@@ -14,7 +14,7 @@
  *   V_BLEND(m, a, b) V_MASKZ(m, x)        m ? b : a; m ? x : 0
  *   V_GATHER(tab, ix)                     tab[ix] in every lane
  *
- * Every loop computes what sim_batch.c's scalar loop computes for the
+ * Every loop computes what sim_batch_eval.c's scalar loop computes for the
  * element, lane for lane (see sim_batch_avx2.c for why the results are
  * the same bits).
  */
