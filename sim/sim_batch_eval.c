@@ -19,8 +19,10 @@
 /* sim_quant_into without the signal: the overflow flags the lane. */
 static int64_t quant(const bop *p, sim_wide raw, int src_f, unsigned char *ovf)
 {
+    int64_t v;
+    if (sim__quant_fits(raw, src_f, p->fy.fbits, p->lo, p->hi, p->r, &v)) return v;
     int o = 0;
-    int64_t v = sim__quant(raw, src_f, p->fy, p->lo, p->hi, p->r, p->o, &o);
+    v = sim_fx_requant(raw, src_f, p->fy, p->r, p->o, &o);
     if (o) *ovf = 1;
     return v;
 }

@@ -109,7 +109,10 @@ int sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_pri
     /* the evaluation the kind takes (an input a sim_assign drives is a
      * copy: sim_elem.h), and the schedule's kind is that one */
     const sim_kind ev = sim_kind_eval(in->kind);
-    p->kind = (int)ev;
+#define B_OF(K, name, role, eval, ...) [SIM_KIND_##K] = B_##eval,
+    static const unsigned char b_kind[SIM_KIND__COUNT] = { SIM_ELEM_LIST(B_OF) };
+#undef B_OF
+    p->kind = b_kind[ev];
     switch (ev) {
     case SIM_KIND_REG:
         if (in->clk != clk) {

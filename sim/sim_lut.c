@@ -19,12 +19,18 @@ int sim_lut_layout(int n, sim_signal *const *in, int max_bits, int *sh, uint64_t
 void sim_lut_fill(int64_t *tab, int bits, int n, sim_signal *const *in, const int *sh,
                   const uint64_t *mask, sim_lut_code code, sim_logic_fn fn, void *user, sim_fmt out)
 {
+    /* a field f decodes to (f ^ x) - s: for a signed input of w bits,
+     * s = 2^(w-1) and, in the two's complement code, x = s too (f below
+     * s is f, above it f - 2^w), in the offset code x = 0 (f + raw_min);
+     * an unsigned input's field is its raw in either code */
+    uint64_t x[8], s[8];
+    for (int j = 0; j < n; j++) {
+        s[j] = in[j]->fmt.is_signed ? (uint64_t)1 << (in[j]->fmt.width - 1) : 0;
+        x[j] = code == SIM_LUT_TWOS ? s[j] : 0;
+    }
     for (uint64_t ix = 0; ix < ((uint64_t)1 << bits); ix++) {
         int64_t v[8];
-        for (int j = 0; j < n; j++) {
-            uint64_t f = (ix >> sh[j]) & mask[j];
-            v[j] = code == SIM_LUT_OFFSET ? in[j]->raw_min + (int64_t)f : sim__canon((int64_t)f, in[j]->fmt);
-        }
+        for (int j = 0; j < n; j++) v[j] = (int64_t)((((ix >> sh[j]) & mask[j]) ^ x[j]) - s[j]);
         tab[ix] = sim__canon(fn(v, user), out);
     }
 }

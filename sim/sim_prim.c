@@ -37,8 +37,10 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, 
 {
     r = sim_fmt_round(s->fmt, r);   /* the signal's own modes, if it has them */
     o = sim_fmt_ovf(s->fmt, o);
+    int64_t v;
+    if (sim__quant_fits(raw, src_fbits, s->fmt.fbits, s->raw_min, s->raw_max, r, &v)) return v;
     int ovf = 0;
-    int64_t v = sim__quant(raw, src_fbits, s->fmt, s->raw_min, s->raw_max, r, o, &ovf);
+    v = sim_fx_requant(raw, src_fbits, s->fmt, r, o, &ovf);
     if (ovf) sim__overflow(s, v);
     return v;
 }

@@ -9,24 +9,26 @@
 #define SIM_QUANT_H
 #include "sim/sim_fixed.h"
 
-/* raw, with src_f fraction bits, into format f whose raw range is
- * [lo, hi], rounding r and overflow o (already the format's own): the
- * fast path for what datapaths do on almost every clock (drop k < 63 low
- * bits of a value that fits 63 bits by truncation or half-up, and land in
- * range), else the general path, which is the definition
- * (sim_fx_requant; tests compare both through the primitives). *ovf set
- * to 1 when it overflowed. */
-static inline int64_t sim__quant(sim_wide raw, int src_f, sim_fmt f, int64_t lo, int64_t hi,
-                                 sim_round r, sim_ovf o, int *ovf)
+/* The fast path of quantizing raw, with src_f fraction bits, into a
+ * format of dst_f fraction bits and raw range [lo, hi], rounding r
+ * (already the format's own): what datapaths do on almost every clock,
+ * drop k < 63 low bits of a value that fits 63 bits by truncation or
+ * half-up, and land in range. 1 with the result in *x when it applies;
+ * 0 otherwise, and the caller takes the general path, sim_fx_requant,
+ * which is the definition (tests compare both through the primitives).
+ * The general call stays with the caller: kept out of here, the fast
+ * path needs no overflow flag in memory. */
+static inline int sim__quant_fits(sim_wide raw, int src_f, int dst_f, int64_t lo, int64_t hi, sim_round r,
+                                  int64_t *x)
 {
-    int k = src_f - f.fbits;
+    int k = src_f - dst_f;
     if ((unsigned)k < 63 && raw >= -((sim_wide)1 << 62) && raw < ((sim_wide)1 << 62) && r != SIM_RND_EVEN) {
-        int64_t x = (int64_t)raw;
-        if (k && r == SIM_RND_HALF_UP) x += (int64_t)1 << (k - 1);
-        x >>= k;   /* arithmetic shift: floor division by 2^k (gcc, clang) */
-        if (x >= lo && x <= hi) return x;
+        int64_t v = (int64_t)raw;
+        if (k && r == SIM_RND_HALF_UP) v += (int64_t)1 << (k - 1);
+        v >>= k;   /* arithmetic shift: floor division by 2^k (gcc, clang) */
+        if (v >= lo && v <= hi) { *x = v; return 1; }
     }
-    return sim_fx_requant(raw, src_f, f, r, o, ovf);
+    return 0;
 }
 
 /* The specialized fast path's constants for an exact result with src_f
