@@ -109,9 +109,10 @@ CLANG ?= clang
 ASAN_FLAGS = OPT="-O1 -g -fno-omit-frame-pointer" \
 	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
 TB := $(if $(filter clang%,$(notdir $(CC))),build-clang,build)
-# The portable flavour (as on a CPU other than x86-64): the batch's tests,
+# The portable flavour (as on a CPU other than x86-64): the batch's tests
+# (test_batch, test_toggle, and test_elem: every element kind),
 # plain, and tests/cli_engine.sh on its shadesim.
-PORTABLE_BINS = $(TB)-portable/tests/test_batch $(TB)-portable/tests/test_toggle $(TB)-portable/shadesim
+PORTABLE_BINS = $(TB)-portable/tests/test_batch $(TB)-portable/tests/test_toggle $(TB)-portable/tests/test_elem $(TB)-portable/shadesim
 
 # Sub-makes build quietly (BRIEF=1: no per-file lines) under one line per
 # step; V=1 shows every command.
