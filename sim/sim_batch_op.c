@@ -17,8 +17,6 @@ static int fast_setup(bop *p, int src_f)
     return sim__quant_fast(src_f, p->fy.fbits, p->r, &p->k, &p->radd);
 }
 
-static int imax(int a, int b) { return a > b ? a : b; }
-
 /* An exact result with fewer fraction bits than y (an adder's or a
  * shift's, whose operands of wa and wb bits are aligned by left shifts
  * sa, sb; wb 0: no second operand) is aligned to y's fraction bits at
@@ -140,9 +138,9 @@ int sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_pri
     case SIM_KIND_SUB:
         p->a = ROW(in->a);
         p->b = ROW(in->b);
-        p->src_f = imax(in->a->fmt.fbits, in->b->fmt.fbits);
-        p->sa = p->src_f - in->a->fmt.fbits;
-        p->sb = p->src_f - in->b->fmt.fbits;
+        p->src_f = in->src_f;
+        p->sa = in->sa;
+        p->sb = in->sb;
         widen_src(p, raw_bits(in->a), raw_bits(in->b));
         p->fast = raw_bits(in->a) + p->sa <= 61 && raw_bits(in->b) + p->sb <= 61 && fast_setup(p, p->src_f);
         reads[nreads++] = in->a;
@@ -151,16 +149,15 @@ int sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_pri
     case SIM_KIND_MUL:
         p->a = ROW(in->a);
         p->b = ROW(in->b);
-        p->src_f = in->a->fmt.fbits + in->b->fmt.fbits;
+        p->src_f = in->src_f;
         p->fast = raw_bits(in->a) + raw_bits(in->b) <= 62 && fast_setup(p, p->src_f);
         reads[nreads++] = in->a;
         reads[nreads++] = in->b;
         break;
     case SIM_KIND_SHIFT: {
         p->a = ROW(in->a);
-        int f = in->a->fmt.fbits - in->shift;
-        p->sa = f < 0 ? -f : 0;
-        p->src_f = f < 0 ? 0 : f;
+        p->sa = in->sa;
+        p->src_f = in->src_f;
         widen_src(p, raw_bits(in->a), 0);
         p->fast = raw_bits(in->a) + p->sa <= 61 && fast_setup(p, p->src_f);
         reads[nreads++] = in->a;

@@ -504,6 +504,11 @@ int sim_prim_describe(const sim_signal *y, sim_prim_info *out)
     out->verilog = p->verilog;
     /* sim_shift kept f = fbits(x) - sh as src_f - sa (one of them 0) */
     if (y->kind == SIM_KIND_SHIFT) out->shift = p->a->fmt.fbits - (p->src_f - p->sa);
+    if (y->kind == SIM_KIND_ADD || y->kind == SIM_KIND_SUB || y->kind == SIM_KIND_MUL || y->kind == SIM_KIND_SHIFT) {
+        out->src_f = p->src_f;
+        out->sa = p->sa;
+        out->sb = p->sb;
+    }
     return 0;
 }
 

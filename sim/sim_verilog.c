@@ -328,10 +328,10 @@ static int emit_arith(vgen *g, const sim_signal *y, const sim_prim_info *in, con
     const char *nm = N(g, y);
     char ea[300], eb[300], pre[200];
     snprintf(pre, sizeof pre, "%s", nm);
-    int T, src_f;
+    /* the exact result: src_f fraction bits, operands aligned by sa, sb
+     * (sim_prim_describe) */
+    int T, src_f = in->src_f, sa = in->sa, sb = in->sb;
     if (y->kind == SIM_KIND_ADD || y->kind == SIM_KIND_SUB) {
-        src_f = in->a->fmt.fbits > in->b->fmt.fbits ? in->a->fmt.fbits : in->b->fmt.fbits;
-        int sa = src_f - in->a->fmt.fbits, sb = src_f - in->b->fmt.fbits;
         int ta = sw(in->a) + sa, tb = sw(in->b) + sb;
         T = (ta > tb ? ta : tb) + 1;
         ext(ea, sizeof ea, g, in->a, T, sa);
@@ -339,7 +339,6 @@ static int emit_arith(vgen *g, const sim_signal *y, const sim_prim_info *in, con
         fprintf(f, "    wire [%d:0] %s__a = %s;\n    wire [%d:0] %s__b = %s;\n", T - 1, pre, ea, T - 1, pre, eb);
         fprintf(f, "    wire [%d:0] %s__e = %s__a %c %s__b;\n", T - 1, pre, pre, y->kind == SIM_KIND_ADD ? '+' : '-', pre);
     } else if (y->kind == SIM_KIND_MUL) {
-        src_f = in->a->fmt.fbits + in->b->fmt.fbits;
         T = sw(in->a) + sw(in->b);
         ext(ea, sizeof ea, g, in->a, T, 0);
         ext(eb, sizeof eb, g, in->b, T, 0);
@@ -347,10 +346,7 @@ static int emit_arith(vgen *g, const sim_signal *y, const sim_prim_info *in, con
          * synthesizer trims the copies of the sign) */
         fprintf(f, "    wire [%d:0] %s__a = %s;\n    wire [%d:0] %s__b = %s;\n", T - 1, pre, ea, T - 1, pre, eb);
         fprintf(f, "    wire [%d:0] %s__e = %s__a * %s__b;\n", T - 1, pre, pre, pre);
-    } else {   /* shift: x * 2^sh is the raw with fbits - sh fraction bits */
-        int fb = in->a->fmt.fbits - in->shift;
-        int sa = fb < 0 ? -fb : 0;
-        src_f = fb < 0 ? 0 : fb;
+    } else {   /* shift: x * 2^sh is the raw with fbits - sh fraction bits (scaled up by sa past the point) */
         T = sw(in->a) + sa;
         ext(ea, sizeof ea, g, in->a, T, sa);
         fprintf(f, "    wire [%d:0] %s__e = %s;\n", T - 1, pre, ea);
