@@ -42,7 +42,7 @@ static void logic_table(bop *p, const sim_prim_info *in)
     if (bits < 0) return;
     int64_t *t = malloc(((size_t)1 << bits) * sizeof *t);
     if (!t) return;   /* evaluated by calls instead */
-    sim_lut_fill(t, bits, in->n, in->in, p->tsh, p->tmask, SIM_LUT_TWOS, in->fn, in->user, p->fy);
+    sim_lut_fill(t, bits, in->n, in->in, p->tmask, SIM_LUT_TWOS, in->fn, in->user, p->fy);
     p->tab = t;
 }
 

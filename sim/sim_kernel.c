@@ -866,7 +866,7 @@ static void tabulate(sim_ctx *c, sim__proc *p)
         tin[j].sh = sh[j];
     }
     int64_t *tab = sim_alloc(c, ((size_t)1 << bits) * sizeof *tab);
-    sim_lut_fill(tab, bits, (int)n, p->op_in, sh, mask, SIM_LUT_OFFSET,
+    sim_lut_fill(tab, bits, (int)n, p->op_in, mask, SIM_LUT_OFFSET,
                  p->op_logic, p->op_user, p->op_y->fmt);
     p->op_tab = tab;
     p->op_tin = tin;

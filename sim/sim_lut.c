@@ -16,8 +16,8 @@ int sim_lut_layout(int n, sim_signal *const *in, int max_bits, int *sh, uint64_t
     return bits > max_bits ? -1 : bits;
 }
 
-void sim_lut_fill(int64_t *tab, int bits, int n, sim_signal *const *in, const int *sh,
-                  const uint64_t *mask, sim_lut_code code, sim_logic_fn fn, void *user, sim_fmt out)
+void sim_lut_fill(int64_t *tab, int bits, int n, sim_signal *const *in, const uint64_t *mask,
+                  sim_lut_code code, sim_logic_fn fn, void *user, sim_fmt out)
 {
     /* a field f decodes to (f ^ x) - s: for a signed input of w bits,
      * s = 2^(w-1) and, in the two's complement code, x = s too (f below
@@ -28,9 +28,18 @@ void sim_lut_fill(int64_t *tab, int bits, int n, sim_signal *const *in, const in
         s[j] = in[j]->fmt.is_signed ? (uint64_t)1 << (in[j]->fmt.width - 1) : 0;
         x[j] = code == SIM_LUT_TWOS ? s[j] : 0;
     }
+    /* the fields count up as an odometer does (field 0 the lowest digit,
+     * the fields side by side from bit 0: sh[j] is the widths below j),
+     * so each index decodes only the fields that changed */
+    uint64_t f[8];
+    int64_t v[8];
+    for (int j = 0; j < n; j++) { f[j] = 0; v[j] = (int64_t)(x[j] - s[j]); }
     for (uint64_t ix = 0; ix < ((uint64_t)1 << bits); ix++) {
-        int64_t v[8];
-        for (int j = 0; j < n; j++) v[j] = (int64_t)((((ix >> sh[j]) & mask[j]) ^ x[j]) - s[j]);
         tab[ix] = sim__canon(fn(v, user), out);
+        for (int j = 0; j < n; j++) {
+            f[j] = (f[j] + 1) & mask[j];
+            v[j] = (int64_t)((f[j] ^ x[j]) - s[j]);
+            if (f[j]) break;
+        }
     }
 }

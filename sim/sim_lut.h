@@ -38,8 +38,9 @@ typedef enum { SIM_LUT_OFFSET, SIM_LUT_TWOS } sim_lut_code;
  * for every j; returns the index's bits, or -1 when they are more than
  * max_bits (at most SIM_LUT_BITS) or n is outside 0..8. */
 int sim_lut_layout(int n, sim_signal *const *in, int max_bits, int *sh, uint64_t *mask);
-/* Fill tab[0 .. 2^bits - 1] (bits from sim_lut_layout), calling fn once
- * per entry in increasing index order; out is the output's format. */
-void sim_lut_fill(int64_t *tab, int bits, int n, sim_signal *const *in, const int *sh,
-                  const uint64_t *mask, sim_lut_code code, sim_logic_fn fn, void *user, sim_fmt out);
+/* Fill tab[0 .. 2^bits - 1] (bits and mask from sim_lut_layout),
+ * calling fn once per entry in increasing index order; out is the
+ * output's format. */
+void sim_lut_fill(int64_t *tab, int bits, int n, sim_signal *const *in, const uint64_t *mask,
+                  sim_lut_code code, sim_logic_fn fn, void *user, sim_fmt out);
 #endif
