@@ -19,6 +19,7 @@
 #include <stdint.h>
 #include <stdio.h>
 #include "sim/sim_fixed.h"
+#include "sim/sim_elem.h"
 
 typedef struct sim_ctx    sim_ctx;
 typedef struct sim_signal sim_signal;
@@ -31,12 +32,26 @@ typedef void (*sim_proc_fn)(sim_proc *p);
 
 typedef enum { SIM_EDGE_ANY, SIM_EDGE_POS, SIM_EDGE_NEG } sim_edge;
 
-/* What drives a signal, for area and documentation. */
+/* What drives a signal: one value per row of sim_elem.h's list, in its
+ * order (SIM_KIND_WIRE, SIM_KIND_INPUT, SIM_KIND_CLOCK, SIM_KIND_CONST,
+ * SIM_KIND_REG, SIM_KIND_MUX, SIM_KIND_BK, SIM_KIND_ADD, SIM_KIND_SUB,
+ * SIM_KIND_MUL, SIM_KIND_SHIFT, SIM_KIND_LOGIC). */
 typedef enum {
-    SIM_KIND_WIRE, SIM_KIND_INPUT, SIM_KIND_CLOCK, SIM_KIND_CONST,
-    SIM_KIND_REG, SIM_KIND_MUX, SIM_KIND_BK, SIM_KIND_ADD, SIM_KIND_SUB,
-    SIM_KIND_MUL, SIM_KIND_SHIFT, SIM_KIND_LOGIC, SIM_KIND__COUNT
+#define SIM__KIND_ENUM(K, ...) SIM_KIND_##K,
+    SIM_ELEM_LIST(SIM__KIND_ENUM)
+#undef SIM__KIND_ENUM
+    SIM_KIND__COUNT
 } sim_kind;
+
+/* The kind's name ("add"), its role (SIM_ELEM_SOURCE, _COMB, _SEQ), the
+ * kind whose evaluation a primitive driving it takes, and whether it has
+ * area and delay of its own: sim_elem.h's columns. NULL, -1 or 0 for a
+ * value that is no kind. */
+const char *sim_kind_name(sim_kind k);
+int         sim_kind_role(sim_kind k);
+sim_kind    sim_kind_eval(sim_kind k);
+int         sim_kind_has_area(sim_kind k);
+int         sim_kind_has_delay(sim_kind k);
 
 struct sim_fanout { sim_proc *proc; uint8_t edge; };
 

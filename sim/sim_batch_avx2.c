@@ -2,7 +2,7 @@
  * (AVX2), and where the vector loops are chosen.
  *
  * When most lanes of a batch need an element at an edge (the datapath,
- * busy every clock), sim_batch.c's loop does per lane: load the operands,
+ * busy every clock), sim_batch_eval.c's loop does per lane: load the operands,
  * add or multiply, shift, check y's range, compare with the old value,
  * store. The vector loops (sim_batch_vec.h) run the same steps on four
  * lanes per instruction here, eight with AVX-512 (sim_batch_avx512.c),

@@ -1,18 +1,36 @@
-/* sim_batch_int.h - what sim_batch.c shares with its vector loops
- * (sim_batch_avx2.c): one element of the schedule and the entry points of
- * each side. Not for other layers. */
+/* sim_batch_int.h - what the batch mode's files share: the batch itself,
+ * one element of the schedule, and the entry points of each file.
+ *   sim_batch.c       construction: the schedule, levelized; accessors
+ *   sim_batch_op.c    one element's setup from its description
+ *   sim_batch_eval.c  evaluation: scalar loops, settle, clock, toggles
+ *   sim_batch_vec.h   the vector loops (sim_batch_avx2.c, _avx512.c)
+ * Not for other layers. */
 #ifndef SIM_BATCH_INT_H
 #define SIM_BATCH_INT_H
 #include "sim/sim_batch.h"
 #include "sim/sim_prim.h"
 
-enum { B_COPY, B_ADD, B_SUB, B_MUL, B_SHIFT, B_MUX, B_BK, B_LOGIC, B_REG };
+/* An element's kind in the schedule: the evaluation its sim_kind takes
+ * (sim_kind_eval, sim_elem.h's eval column; B_WIRE a copy), numbered
+ * by this list. Every value of the eval column has one (the table
+ * sim_batch_op.c makes from the element list does not compile without
+ * it); CLOCK and CONST, last, are never evaluated. The order is the one
+ * the scalar loops were measured in: numbering the kinds as sim_kind
+ * does costs 0.35% more instructions on span2's scalar loops
+ * (valgrind --tool=callgrind build/bench/bench_batch --vector 0 one span2
+ * paper batch), from the jump table's block layout alone. */
+#define SIM__BATCH_KINDS(X) X(WIRE) X(ADD) X(SUB) X(MUL) X(SHIFT) X(MUX) X(BK) X(LOGIC) X(REG) X(CLOCK) X(CONST)
+enum {
+#define B_ENUM(K) B_##K,
+    SIM__BATCH_KINDS(B_ENUM)
+#undef B_ENUM
+};
 
 /* One element of the schedule. Operand pointers are the lane arrays of
  * the signals it reads. */
 typedef struct bop {
     int      kind;
-    int      fast;        /* the int64_t path applies (see op_setup) */
+    int      fast;        /* the int64_t path applies (sim_batch_op.c) */
     int      sa, sb;      /* left shifts aligning a, b to src_f */
     int      src_f;       /* fraction bits of the exact result */
     int      k;           /* fast path: right shift from src_f to y */
@@ -31,7 +49,7 @@ typedef struct bop {
     int64_t *in_radd;     /* and what is added before it (inputs may differ in fraction bits) */
     sim_logic_fn fn;
     void    *user;
-    int64_t *tab;         /* logic: y for every input value (see logic_table), or NULL */
+    int64_t *tab;         /* logic: y for every input value (sim_batch_op.c, logic_table), or NULL */
     int      tsh[8];      /* logic: where input i's bits go in the table index */
     uint64_t tmask[8];
     int64_t *nx;          /* register: value after the edge */
@@ -56,7 +74,7 @@ typedef struct bop {
 uint32_t sim__batch_vec_width(uint32_t most);
 /* Each evaluates p in lanes 0..nl-1 (nl a multiple of the width, at most
  * 64) exactly as the scalar loop would (also in the lanes none of p's
- * inputs changed in: they compute what they hold, see sim_batch.c), ORs
+ * inputs changed in: they compute what they hold, see sim_batch_eval.c), ORs
  * the lanes its output changed in into *om and returns 1; 0 when it has
  * no loop for p (the caller runs the scalar one). A group of lanes in
  * which a fast result leaves y's range (an overflow, or a value the fast
@@ -69,7 +87,7 @@ int sim__batch_vec_comb_avx512(const bop *p, uint32_t nl, unsigned char *ovf, ui
 int sim__batch_vec_reg_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 uint64_t sim__batch_vec_take_avx512(int64_t *v, const int64_t *p, uint32_t nl);
 /* Toggles and ranges of one signal in every lane 0..nl-1 at once
- * (sim_batch.c's count after a settle, when many lanes changed): t[l] +=
+ * (sim_batch_eval.c's count after a settle, when many lanes changed): t[l] +=
  * the bits of `mask` in which v[l] differs from pv[l], pv[l] = v[l], and
  * lo/hi (when not NULL) widened to take v[l]. In a lane where v did not
  * change, v[l] == pv[l] and v[l] is already in its range: nothing moves,
@@ -98,6 +116,45 @@ typedef void sim__batch_count_fn(const int64_t *v, int64_t *pv, uint64_t *t, uin
                                  uint32_t nl);
 sim__batch_count_fn sim__batch_count_dense, sim__batch_count_dense_avx2, sim__batch_count_dense_avx512;
 /* The scalar loop of p (combinational or register, in place) in the lanes
- * of the one-word mask m (sim_batch.c). */
+ * of the one-word mask m (sim_batch_eval.c). */
 void sim__batch_lanes(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);
+
+struct sim_batch {
+    uint32_t lanes, nsig;
+    int64_t *val;               /* nsig x lanes: every signal's values */
+    int64_t *pend;              /* inputs' values for the next edge */
+    int32_t *inslot;            /* per signal: its row in pend, or -1 */
+    uint32_t nin;
+    uint32_t *in_sig;           /* per input row: the signal */
+    bop     *comb;  uint32_t ncomb;   /* in topological order */
+    bop     *reg;   uint32_t nreg;
+    int64_t *regnx;             /* nreg x lanes */
+    uint64_t *regm;             /* nreg x nw: lanes to evaluate at the next edge */
+    unsigned char *ovf;         /* per lane: some quantization overflowed */
+    uint32_t nw;                /* 64-lane words of a mask */
+    uint64_t *chg;              /* per signal: lanes it changed in at this edge (nw words) */
+    unsigned char *uni;         /* per signal: 1 if every lane holds the same value */
+    uint64_t all[SIM_BATCH_MAX_LANES / 64];   /* every lane */
+    int      started;
+    int      reg_inplace;       /* registers update in place, in b->reg's order (order_regs) */
+    uint32_t vw;                /* lanes per vector of the vector loops (0: none; sim_batch_new) */
+    int    (*vcomb)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
+    int    (*vreg)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
+    uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t);
+    uint64_t vec_groups, vec_fell;   /* groups of lanes (a vector each) they did, and handed back (sim_batch_vector_stats) */
+    /* toggle counting (sim_batch_toggles_on), NULL when off */
+    uint64_t *tog;              /* nsig x lanes: bit toggles so far */
+    int64_t  *tprev;            /* nsig x lanes: the values they are counted from */
+    uint64_t *fmask;            /* per signal: its format's bits (sim_toggle_mask) */
+    sim__batch_count_fn *vcount;   /* the count in every lane at once (sim_batch_int.h) */
+    /* range tracking (sim_batch_ranges_on), NULL when off */
+    int64_t  *rmin, *rmax;      /* nsig x lanes: smallest and largest settled value */
+};
+
+/* Fill p from the element driving y (sim_batch_op.c); -1 (err) for what
+ * the batch mode cannot evaluate. */
+int  sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_prim_info *in,
+                         const sim_signal *clk, char *err, size_t errlen);
+/* Free n elements' own arrays, then ops. */
+void sim__batch_free_ops(bop *ops, uint32_t n);
 #endif

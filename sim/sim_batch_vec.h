@@ -14,7 +14,7 @@
  *   V_BLEND(m, a, b) V_MASKZ(m, x)        m ? b : a; m ? x : 0
  *   V_GATHER(tab, ix)                     tab[ix] in every lane
  *
- * Every loop computes what sim_batch.c's scalar loop computes for the
+ * Every loop computes what sim_batch_eval.c's scalar loop computes for the
  * element, lane for lane (see sim_batch_avx2.c for why the results are
  * the same bits).
  */
@@ -61,7 +61,7 @@ VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char 
     uint64_t acc = 0;
     uint32_t l;
     switch (p->kind) {
-    case B_COPY:
+    case B_WIRE:
         if (!p->fast) return 0;
         for (l = 0; l < nl; l += W) TAIL(V_LD(a + l), all);
         break;

@@ -57,16 +57,11 @@
 static int SIM__DELTAS_NAME(sim_ctx *c, uint32_t *deltas, int once)
 {
 #if !SIM__DELTAS_SWITCH
-    /* The table follows the SIM__OP_* order (sim_internal.h). */
-    static const void *const op_label[] = {
-        [SIM__OP_FN] = &&general, [SIM__OP_COPY] = &&op_copy, [SIM__OP_ADD] = &&op_add,
-        [SIM__OP_SUB] = &&op_sub, [SIM__OP_MUL] = &&op_mul, [SIM__OP_MUX] = &&op_mux,
-        [SIM__OP_BK] = &&op_bk, [SIM__OP_LOGIC_S] = &&op_logic_s, [SIM__OP_LOGIC_U] = &&op_logic_u,
-        [SIM__OP_COPY_X] = &&op_copy_x, [SIM__OP_ADD_X] = &&op_add_x, [SIM__OP_SUB_X] = &&op_sub_x,
-        [SIM__OP_MUX_X] = &&op_mux_x, [SIM__OP_BK_X] = &&op_bk_x,
-        [SIM__OP_LUT1] = &&op_lut1, [SIM__OP_LUTN] = &&op_lutn,
-    };
-    _Static_assert(sizeof op_label / sizeof *op_label == SIM__OP_LUTN + 1, "one label per SIM__OP_*");
+    /* The table is made from SIM__OP_LIST (sim_internal.h). */
+#define OP_LABEL(O, label, x) [SIM__OP_##O] = &&label,
+    static const void *const op_label[] = { SIM__OP_LIST(OP_LABEL) };
+#undef OP_LABEL
+    _Static_assert(sizeof op_label / sizeof *op_label == SIM__OP__COUNT, "one label per SIM__OP_*");
 #endif
     sim__proc **run = c->run, **next = c->run2;
     uint32_t nrun = c->nrun;

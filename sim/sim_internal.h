@@ -28,10 +28,34 @@
  * simulation starts (sim_sched.c): LUT1, one input, y <= op_tab[a -
  * op_lo] when a - op_lo <= op_hi (its format's span); LUTN, the inputs'
  * offsets side by side (op_tin); an input outside its format calls fn. */
-enum { SIM__OP_FN = 0, SIM__OP_COPY, SIM__OP_ADD, SIM__OP_SUB, SIM__OP_MUL,
-       SIM__OP_MUX, SIM__OP_BK, SIM__OP_LOGIC_S, SIM__OP_LOGIC_U,
-       SIM__OP_COPY_X, SIM__OP_ADD_X, SIM__OP_SUB_X, SIM__OP_MUX_X, SIM__OP_BK_X,
-       SIM__OP_LUT1, SIM__OP_LUTN };
+/* One row per operation: X(OP, label, x), the enum SIM__OP_OP (in this
+ * order, from 0), the label of its code in sim_kernel.c's evaluate loop
+ * (the dispatch table is made from this list), and x, the *_X variant
+ * set_native (sim_prim.c) takes for it when k and radd are 0 (OP itself
+ * when it has none). */
+#define SIM__OP_LIST(X)                    \
+    X(FN,      general,    FN)             \
+    X(COPY,    op_copy,    COPY_X)         \
+    X(ADD,     op_add,     ADD_X)          \
+    X(SUB,     op_sub,     SUB_X)          \
+    X(MUL,     op_mul,     MUL)            \
+    X(MUX,     op_mux,     MUX_X)          \
+    X(BK,      op_bk,      BK_X)           \
+    X(LOGIC_S, op_logic_s, LOGIC_S)        \
+    X(LOGIC_U, op_logic_u, LOGIC_U)        \
+    X(COPY_X,  op_copy_x,  COPY_X)         \
+    X(ADD_X,   op_add_x,   ADD_X)          \
+    X(SUB_X,   op_sub_x,   SUB_X)          \
+    X(MUX_X,   op_mux_x,   MUX_X)          \
+    X(BK_X,    op_bk_x,    BK_X)           \
+    X(LUT1,    op_lut1,    LUT1)           \
+    X(LUTN,    op_lutn,    LUTN)
+enum {
+#define SIM__OP_ENUM(O, label, x) SIM__OP_##O,
+    SIM__OP_LIST(SIM__OP_ENUM)
+#undef SIM__OP_ENUM
+    SIM__OP__COUNT
+};
 
 /* One input of a tabulated logic element: its offset from lo, at most
  * span, is at bit sh of the index. */

@@ -113,7 +113,7 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
     sim_ovf o = sim_fmt_ovf(y->fmt, pi.o);
     int any = 0;
     sim_ival p, q;
-    switch (pi.kind) {
+    switch (sim_kind_eval(pi.kind)) {   /* an input a sim_assign drives: a copy (sim_elem.h) */
     case SIM_KIND_CONST:
         pre->lo = pre->hi = y->cur;
         *post = *pre;
@@ -157,8 +157,8 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
         return 0;
     }
     case SIM_KIND_ADD: case SIM_KIND_SUB: {
-        int fa = pi.a->fmt.fbits, fb = pi.b->fmt.fbits, sf = fa > fb ? fa : fb;
-        sim_wide ka = (sim_wide)1 << (sf - fa), kb = (sim_wide)1 << (sf - fb);
+        int sf = pi.src_f;
+        sim_wide ka = (sim_wide)1 << pi.sa, kb = (sim_wide)1 << pi.sb;
         sim_ival x = vals[pi.a->index], z = vals[pi.b->index], s;
         if (pi.kind == SIM_KIND_ADD) s = (sim_ival){ x.lo * ka + z.lo * kb, x.hi * ka + z.hi * kb };
         else s = (sim_ival){ x.lo * ka - z.hi * kb, x.hi * ka - z.lo * kb };
@@ -170,15 +170,15 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
         sim_wide c[4] = { x.lo * z.lo, x.lo * z.hi, x.hi * z.lo, x.hi * z.hi };
         sim_ival s = { c[0], c[0] };
         for (int i = 1; i < 4; i++) s = sim_ival_hull(s, (sim_ival){ c[i], c[i] });
-        into(y, s, pi.a->fmt.fbits + pi.b->fmt.fbits, r, o, pre, post);
+        into(y, s, pi.src_f, r, o, pre, post);
         return 0;
     }
     case SIM_KIND_SHIFT: {
-        /* as sim_shift: f = fbits(x) - sh; a negative f scales the raw up */
-        int f = pi.a->fmt.fbits - pi.shift, sa = f < 0 ? -f : 0;
+        /* x * 2^sh is x's raw with fewer fraction bits, scaled up (sa)
+         * past the binary point */
         sim_ival x = vals[pi.a->index];
-        sim_wide k = (sim_wide)1 << sa;
-        into(y, (sim_ival){ x.lo * k, x.hi * k }, f < 0 ? 0 : f, r, o, pre, post);
+        sim_wide k = (sim_wide)1 << pi.sa;
+        into(y, (sim_ival){ x.lo * k, x.hi * k }, pi.src_f, r, o, pre, post);
         return 0;
     }
     case SIM_KIND_LOGIC:

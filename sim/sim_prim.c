@@ -10,6 +10,7 @@
 #include "sim/sim_area.h"
 #include "sim/sim_delay.h"
 #include "sim/sim_internal.h"
+#include "sim/sim_quant.h"
 #include <string.h>
 
 typedef struct prim {
@@ -36,19 +37,10 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, 
 {
     r = sim_fmt_round(s->fmt, r);   /* the signal's own modes, if it has them */
     o = sim_fmt_ovf(s->fmt, o);
-    /* Fast path for what datapaths do on almost every clock: drop k < 63
-     * low bits of a value that fits 63 bits by truncation or half-up, and
-     * land in range. Anything else takes the general path, which is the
-     * definition (tests compare both through the primitives). */
-    int k = src_fbits - s->fmt.fbits;
-    if ((unsigned)k < 63 && raw >= -((sim_wide)1 << 62) && raw < ((sim_wide)1 << 62) && r != SIM_RND_EVEN) {
-        int64_t x = (int64_t)raw;
-        if (k && r == SIM_RND_HALF_UP) x += (int64_t)1 << (k - 1);
-        x >>= k;   /* arithmetic shift: floor division by 2^k (gcc, clang) */
-        if (x >= s->raw_min && x <= s->raw_max) return x;
-    }
+    int64_t v;
+    if (sim__quant_fits(raw, src_fbits, s->fmt.fbits, s->raw_min, s->raw_max, r, &v)) return v;
     int ovf = 0;
-    int64_t v = sim_fx_requant(raw, src_fbits, s->fmt, r, o, &ovf);
+    v = sim_fx_requant(raw, src_fbits, s->fmt, r, o, &ovf);
     if (ovf) sim__overflow(s, v);
     return v;
 }
@@ -80,12 +72,9 @@ static int copy_fits(const sim_signal *s) { return raw_bits(s) <= 62; }
 static int fast_quant_setup(prim *p, int src_f)
 {
     p->src_f = src_f;
-    p->k = src_f - p->y->fmt.fbits;
     p->lo = p->y->raw_min;
     p->hi = p->y->raw_max;
-    if (p->k < 0 || p->k > 61 || p->r == SIM_RND_EVEN) return 0;
-    p->radd = (p->r == SIM_RND_HALF_UP && p->k) ? (int64_t)1 << (p->k - 1) : 0;
-    return 1;
+    return sim__quant_fast(src_f, p->y->fmt.fbits, p->r, &p->k, &p->radd);
 }
 
 /* Let the kernel evaluate the element itself (sim_internal.h, SIM__OP_*);
@@ -94,31 +83,17 @@ static int fast_quant_setup(prim *p, int src_f)
 static void set_native(sim_proc *pub, int op, const prim *p)
 {
     sim__proc *pr = sim__proc_of(pub);
-    if (!p->k && !p->radd) {
-        /* No rounding shift: the variant that only checks the range. */
-        switch (op) {
-        case SIM__OP_COPY: op = SIM__OP_COPY_X; break;
-        case SIM__OP_ADD:  op = SIM__OP_ADD_X; break;
-        case SIM__OP_SUB:  op = SIM__OP_SUB_X; break;
-        case SIM__OP_MUX:  op = SIM__OP_MUX_X; break;
-        case SIM__OP_BK:   op = SIM__OP_BK_X; break;
-        default: break;
-        }
-    }
+    /* No rounding shift: the variant that only checks the range. */
+#define OP_X(O, label, x) [SIM__OP_##O] = SIM__OP_##x,
+    static const uint8_t op_x[SIM__OP__COUNT] = { SIM__OP_LIST(OP_X) };
+#undef OP_X
+    if (!p->k && !p->radd) op = op_x[op];
     pr->op = (uint8_t)op;
     pr->op_y = p->y; pr->op_a = p->a; pr->op_b = p->b; pr->op_c = p->c;
     pr->op_lo = p->lo; pr->op_hi = p->hi; pr->op_radd = p->radd;
     pr->op_k = (int8_t)p->k;
     pr->op_n = (uint32_t)p->n;
     pr->op_in = p->in;
-}
-
-/* Low W bits of v, sign-/zero-extended: sim_fx_canon without the call. */
-static inline int64_t canon(int64_t v, sim_fmt f)
-{
-    int sh = 64 - f.width;
-    if (f.is_signed) return (int64_t)((uint64_t)v << sh) >> sh;
-    return (int64_t)((uint64_t)v & (UINT64_MAX >> sh));
 }
 
 static prim *prim_new(sim_ctx *c, sim_signal *y)
@@ -465,7 +440,7 @@ static void logic_eval(sim_proc *pr)
     prim *p = pr->data;
     int64_t v[SIM__LOGIC_MAX];
     for (int i = 0; i < p->n; i++) v[i] = p->in[i]->cur;
-    sim_write(p->y, canon(p->fn(v, p->user), p->y->fmt));
+    sim_write(p->y, sim__canon(p->fn(v, p->user), p->y->fmt));
 }
 
 sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
@@ -529,6 +504,11 @@ int sim_prim_describe(const sim_signal *y, sim_prim_info *out)
     out->verilog = p->verilog;
     /* sim_shift kept f = fbits(x) - sh as src_f - sa (one of them 0) */
     if (y->kind == SIM_KIND_SHIFT) out->shift = p->a->fmt.fbits - (p->src_f - p->sa);
+    if (y->kind == SIM_KIND_ADD || y->kind == SIM_KIND_SUB || y->kind == SIM_KIND_MUL || y->kind == SIM_KIND_SHIFT) {
+        out->src_f = p->src_f;
+        out->sa = p->sa;
+        out->sb = p->sb;
+    }
     return 0;
 }
 

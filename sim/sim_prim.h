@@ -112,13 +112,17 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits,
  * c: register enable, mux select, block-key pass (NULL: none); rst and
  * rst_raw: a register's synchronous reset; clk: the register's clock;
  * shift: sim_shift's sh; n, in: mux inputs or logic inputs; fn, user:
- * the logic function; r, o: the element's quantization modes. A WIRE with
- * a driver is a sim_assign of a. */
+ * the logic function; r, o: the element's quantization modes; src_f, sa,
+ * sb (adder, subtractor, multiplier, shifter): the exact result's
+ * fraction bits, and the left shifts of a's and b's raws that align them
+ * to it (the one place that alignment is computed: the engines and the
+ * export read it here). A WIRE with a driver is a sim_assign of a. */
 typedef struct sim_prim_info {
     sim_kind    kind;
     sim_signal *a, *b, *c, *rst, *clk;
     int64_t     rst_raw;
     int         shift;
+    int         src_f, sa, sb;
     int         n;
     sim_signal *const *in;
     sim_logic_fn fn;

@@ -44,6 +44,7 @@
  *    make the compiler reload every pointer after it).
  */
 #include "sim/sim_internal.h"
+#include "sim/sim_lut.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -316,35 +317,29 @@ static inline void step_end(sim_ctx *c)
     }
 }
 
-/* A logic element whose inputs have at most LUT_BITS bits in all becomes
- * a table, made once when the simulation starts: an index and a load
- * instead of a call. Its function is defined for every raw value of its
- * inputs' formats (sim_prim.h), and what it gives for a value in range is
- * what the call would: the same function, the same canonical form of the
- * result. A value outside its input's format (a raw forced from outside)
- * still goes to the call. */
-#define LUT_BITS 8
+/* A logic element whose inputs have at most SIM_LUT_BITS_KERNEL bits in
+ * all becomes a table (sim_lut.h, in the offset code), made once when
+ * the simulation starts: an index and a load instead of a call. What it
+ * gives for a value in range is what the call would. A value outside its
+ * input's format (a raw forced from outside) still goes to the call. */
 static void tabulate(sim_ctx *c, sim__proc *p)
 {
     uint32_t n = p->op_n;
+    int sh[SIM__LOGIC_MAX];
+    uint64_t mask[SIM__LOGIC_MAX];
     if (n < 1 || n > SIM__LOGIC_MAX) return;
-    int bits = 0;
-    for (uint32_t j = 0; j < n; j++) bits += p->op_in[j]->fmt.width;
-    if (bits > LUT_BITS) return;
+    int bits = sim_lut_layout((int)n, p->op_in, SIM_LUT_BITS_KERNEL, sh, mask);
+    if (bits < 0) return;
     sim__lut_in *tin = sim_alloc(c, n * sizeof *tin);
-    for (uint32_t j = 0, sh = 0; j < n; sh += p->op_in[j]->fmt.width, j++) {
+    for (uint32_t j = 0; j < n; j++) {
         const sim_signal *in = p->op_in[j];
         tin[j].lo = in->raw_min;
         tin[j].span = (uint64_t)in->raw_max - (uint64_t)in->raw_min;
-        tin[j].sh = (int)sh;
+        tin[j].sh = sh[j];
     }
     int64_t *tab = sim_alloc(c, ((size_t)1 << bits) * sizeof *tab);
-    for (uint64_t ix = 0; ix < ((uint64_t)1 << bits); ix++) {
-        int64_t v[SIM__LOGIC_MAX];
-        for (uint32_t j = 0; j < n; j++) v[j] = tin[j].lo + (int64_t)((ix >> tin[j].sh) & tin[j].span);
-        uint64_t y = (uint64_t)p->op_logic(v, p->op_user);
-        tab[ix] = p->op == SIM__OP_LOGIC_S ? (int64_t)(y << p->op_k) >> p->op_k : (int64_t)(y & (uint64_t)p->op_radd);
-    }
+    sim_lut_fill(tab, bits, (int)n, p->op_in, mask, SIM_LUT_OFFSET,
+                 p->op_logic, p->op_user, p->op_y->fmt);
     p->op_tab = tab;
     p->op_tin = tin;
     if (n == 1) {

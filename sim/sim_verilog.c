@@ -218,8 +218,9 @@ static void emit_text(vgen *g, const sim_signal *y, const sim_prim_info *in)
 }
 
 /* A logic element as a table over its input bits (or its own text). */
-static int emit_logic(vgen *g, const sim_signal *y, const sim_prim_info *in)
+static int emit_logic(vgen *g, const sim_signal *y, const sim_prim_info *in, const sim_signal *clk)
 {
+    (void)clk;
     FILE *f = g->f;
     int bits = 0;
     for (int i = 0; i < in->n; i++) bits += in->in[i]->fmt.width;
@@ -274,8 +275,9 @@ static int emit_logic(vgen *g, const sim_signal *y, const sim_prim_info *in)
     return 0;
 }
 
-static void emit_mux(vgen *g, const sim_signal *y, const sim_prim_info *in)
+static int emit_mux(vgen *g, const sim_signal *y, const sim_prim_info *in, const sim_signal *clk)
 {
+    (void)clk;
     FILE *f = g->f;
     const char *nm = N(g, y);
     int same = 1;
@@ -306,7 +308,7 @@ static void emit_mux(vgen *g, const sim_signal *y, const sim_prim_info *in)
     int full = !sel->fmt.is_signed && sel->fmt.width < 31 && (int64_t)in->n >= ((int64_t)1 << sel->fmt.width);
     if (!full) fprintf(f, "            default: %s__m = %d'b0;\n", nm, mw);
     fprintf(f, "        endcase\n    end\n");
-    if (!same) { fprintf(f, "    assign %s = %s__m;\n", nm, nm); return; }
+    if (!same) { fprintf(f, "    assign %s = %s__m;\n", nm, nm); return 0; }
     /* quantize the selected value: a temporary wire named like a signal */
     snprintf(pre, sizeof pre, "%s__q", nm);
     int T = mw + !mf.is_signed;
@@ -315,19 +317,21 @@ static void emit_mux(vgen *g, const sim_signal *y, const sim_prim_info *in)
     char src[320];
     snprintf(src, sizeof src, "%s__e", pre);
     quant(g, pre, src, T, mf.fbits, y->fmt, in->r, in->o, nm);
+    return 0;
 }
 
 /* Adder, subtractor, multiplier, shift: exact value, then quantize. */
-static void emit_arith(vgen *g, const sim_signal *y, const sim_prim_info *in)
+static int emit_arith(vgen *g, const sim_signal *y, const sim_prim_info *in, const sim_signal *clk)
 {
+    (void)clk;
     FILE *f = g->f;
     const char *nm = N(g, y);
     char ea[300], eb[300], pre[200];
     snprintf(pre, sizeof pre, "%s", nm);
-    int T, src_f;
+    /* the exact result: src_f fraction bits, operands aligned by sa, sb
+     * (sim_prim_describe) */
+    int T, src_f = in->src_f, sa = in->sa, sb = in->sb;
     if (y->kind == SIM_KIND_ADD || y->kind == SIM_KIND_SUB) {
-        src_f = in->a->fmt.fbits > in->b->fmt.fbits ? in->a->fmt.fbits : in->b->fmt.fbits;
-        int sa = src_f - in->a->fmt.fbits, sb = src_f - in->b->fmt.fbits;
         int ta = sw(in->a) + sa, tb = sw(in->b) + sb;
         T = (ta > tb ? ta : tb) + 1;
         ext(ea, sizeof ea, g, in->a, T, sa);
@@ -335,7 +339,6 @@ static void emit_arith(vgen *g, const sim_signal *y, const sim_prim_info *in)
         fprintf(f, "    wire [%d:0] %s__a = %s;\n    wire [%d:0] %s__b = %s;\n", T - 1, pre, ea, T - 1, pre, eb);
         fprintf(f, "    wire [%d:0] %s__e = %s__a %c %s__b;\n", T - 1, pre, pre, y->kind == SIM_KIND_ADD ? '+' : '-', pre);
     } else if (y->kind == SIM_KIND_MUL) {
-        src_f = in->a->fmt.fbits + in->b->fmt.fbits;
         T = sw(in->a) + sw(in->b);
         ext(ea, sizeof ea, g, in->a, T, 0);
         ext(eb, sizeof eb, g, in->b, T, 0);
@@ -343,10 +346,7 @@ static void emit_arith(vgen *g, const sim_signal *y, const sim_prim_info *in)
          * synthesizer trims the copies of the sign) */
         fprintf(f, "    wire [%d:0] %s__a = %s;\n    wire [%d:0] %s__b = %s;\n", T - 1, pre, ea, T - 1, pre, eb);
         fprintf(f, "    wire [%d:0] %s__e = %s__a * %s__b;\n", T - 1, pre, pre, pre);
-    } else {   /* shift: x * 2^sh is the raw with fbits - sh fraction bits */
-        int fb = in->a->fmt.fbits - in->shift;
-        int sa = fb < 0 ? -fb : 0;
-        src_f = fb < 0 ? 0 : fb;
+    } else {   /* shift: x * 2^sh is the raw with fbits - sh fraction bits (scaled up by sa past the point) */
         T = sw(in->a) + sa;
         ext(ea, sizeof ea, g, in->a, T, sa);
         fprintf(f, "    wire [%d:0] %s__e = %s;\n", T - 1, pre, ea);
@@ -354,13 +354,86 @@ static void emit_arith(vgen *g, const sim_signal *y, const sim_prim_info *in)
     char src[220];
     snprintf(src, sizeof src, "%s__e", pre);
     quant(g, pre, src, T, src_f, y->fmt, in->r, in->o, nm);
+    return 0;
+}
+
+/* One emitter per value of sim_elem.h's vlog column: y's driver, read
+ * from its description in, as Verilog. 0, or -1 with g->err set. */
+static int emit_const(vgen *g, const sim_signal *y, const sim_prim_info *in, const sim_signal *clk)
+{
+    char buf[64];
+    (void)in; (void)clk;
+    lit(buf, sizeof buf, y->fmt.width, y->cur);
+    fprintf(g->f, "    assign %s = %s;\n", N(g, y), buf);
+    return 0;
+}
+
+static int emit_reg(vgen *g, const sim_signal *y, const sim_prim_info *in, const sim_signal *clk)
+{
+    FILE *f = g->f;
+    const char *nm = N(g, y);
+    char pre[200];
+    if (in->clk != clk) { snprintf(g->err, g->errlen, "register %s has a clock of its own", nm); return -1; }
+    char rl[64];
+    lit(rl, sizeof rl, y->fmt.width, in->rst_raw);
+    if (g->reset == SIM_VRESET_NONE) {
+        fprintf(f, "    initial %s = %s;\n", nm, rl);
+        if (!in->a) return 0;    /* never loaded: keeps its initial value */
+    }
+    if (in->a) {
+        snprintf(pre, sizeof pre, "%s__d", nm);
+        fprintf(f, "    wire [%d:0] %s;\n", y->fmt.width - 1, pre);
+        quant_sig(g, pre, in->a, y->fmt, in->r, in->o, pre);
+    }
+    /* the module's reset first, then the unit's own synchronous one,
+     * then the enable */
+    fprintf(f, "    always @(posedge clk%s)\n        ", g->reset == SIM_VRESET_ASYNC ? " or posedge rst" : "");
+    if (g->reset != SIM_VRESET_NONE) {
+        fprintf(f, "if (rst) %s <= %s;\n", nm, rl);
+        if (!in->a) return 0;    /* never loaded: keeps its reset value */
+        fprintf(f, "        else ");
+    }
+    if (in->rst) fprintf(f, "if (|%s) %s <= %s;\n        else ", N(g, in->rst), nm, rl);
+    if (in->c) fprintf(f, "if (|%s) ", N(g, in->c));
+    fprintf(f, "%s <= %s;\n", nm, pre);
+    return 0;
+}
+
+/* sim_assign into a declared wire (or an input) */
+static int emit_copy(vgen *g, const sim_signal *y, const sim_prim_info *in, const sim_signal *clk)
+{
+    char pre[200];
+    const char *nm = N(g, y);
+    (void)clk;
+    snprintf(pre, sizeof pre, "%s", nm);
+    quant_sig(g, pre, in->a, y->fmt, in->r, in->o, nm);
+    return 0;
+}
+
+static int emit_bk(vgen *g, const sim_signal *y, const sim_prim_info *in, const sim_signal *clk)
+{
+    char pre[200];
+    const char *nm = N(g, y);
+    (void)clk;
+    snprintf(pre, sizeof pre, "%s__x", nm);
+    fprintf(g->f, "    wire [%d:0] %s;\n", y->fmt.width - 1, pre);
+    quant_sig(g, pre, in->a, y->fmt, in->r, in->o, pre);
+    fprintf(g->f, "    assign %s = (|%s) ? %s : %d'b0;\n", nm, N(g, in->c), pre, y->fmt.width);
+    return 0;
+}
+
+static int emit_none(vgen *g, const sim_signal *y, const sim_prim_info *in, const sim_signal *clk)
+{
+    (void)in; (void)clk;
+    snprintf(g->err, g->errlen, "signal %s: an element the export does not know", N(g, y));
+    return -1;
 }
 
 static int emit_sig(vgen *g, const sim_signal *y, const sim_signal *clk, int is_input_port)
 {
     FILE *f = g->f;
     const char *nm = N(g, y);
-    char pre[200], buf[64];
+    char buf[64];
     if (is_input_port) return 0;
     sim_prim_info in;
     if (sim_prim_describe(y, &in)) {
@@ -379,56 +452,13 @@ static int emit_sig(vgen *g, const sim_signal *y, const sim_signal *clk, int is_
             return -1;
         }
     fprintf(f, "    // %s: %s\n", nm, sim_fmt_str(y->fmt, buf));
-    switch ((sim_kind)y->kind) {
-    case SIM_KIND_CONST:
-        lit(buf, sizeof buf, y->fmt.width, y->cur);
-        fprintf(f, "    assign %s = %s;\n", nm, buf);
-        return 0;
-    case SIM_KIND_REG: {
-        if (in.clk != clk) { snprintf(g->err, g->errlen, "register %s has a clock of its own", nm); return -1; }
-        char rl[64];
-        lit(rl, sizeof rl, y->fmt.width, in.rst_raw);
-        if (g->reset == SIM_VRESET_NONE) {
-            fprintf(f, "    initial %s = %s;\n", nm, rl);
-            if (!in.a) return 0;    /* never loaded: keeps its initial value */
-        }
-        if (in.a) {
-            snprintf(pre, sizeof pre, "%s__d", nm);
-            fprintf(f, "    wire [%d:0] %s;\n", y->fmt.width - 1, pre);
-            quant_sig(g, pre, in.a, y->fmt, in.r, in.o, pre);
-        }
-        /* the module's reset first, then the unit's own synchronous one,
-         * then the enable */
-        fprintf(f, "    always @(posedge clk%s)\n        ", g->reset == SIM_VRESET_ASYNC ? " or posedge rst" : "");
-        if (g->reset != SIM_VRESET_NONE) {
-            fprintf(f, "if (rst) %s <= %s;\n", nm, rl);
-            if (!in.a) return 0;    /* never loaded: keeps its reset value */
-            fprintf(f, "        else ");
-        }
-        if (in.rst) fprintf(f, "if (|%s) %s <= %s;\n        else ", N(g, in.rst), nm, rl);
-        if (in.c) fprintf(f, "if (|%s) ", N(g, in.c));
-        fprintf(f, "%s <= %s;\n", nm, pre);
-        return 0;
-    }
-    case SIM_KIND_WIRE: case SIM_KIND_INPUT:   /* sim_assign into a declared wire */
-        snprintf(pre, sizeof pre, "%s", nm);
-        quant_sig(g, pre, in.a, y->fmt, in.r, in.o, nm);
-        return 0;
-    case SIM_KIND_BK:
-        snprintf(pre, sizeof pre, "%s__x", nm);
-        fprintf(f, "    wire [%d:0] %s;\n", y->fmt.width - 1, pre);
-        quant_sig(g, pre, in.a, y->fmt, in.r, in.o, pre);
-        fprintf(f, "    assign %s = (|%s) ? %s : %d'b0;\n", nm, N(g, in.c), pre, y->fmt.width);
-        return 0;
-    case SIM_KIND_MUX: emit_mux(g, y, &in); return 0;
-    case SIM_KIND_ADD: case SIM_KIND_SUB: case SIM_KIND_MUL: case SIM_KIND_SHIFT:
-        emit_arith(g, y, &in);
-        return 0;
-    case SIM_KIND_LOGIC: return emit_logic(g, y, &in);
-    default:
-        snprintf(g->err, g->errlen, "signal %s: an element the export does not know", nm);
-        return -1;
-    }
+    /* the kind's emitter: sim_elem.h's vlog column */
+#define EMIT_OF(K, name, role, eval, vlog, ...) [SIM_KIND_##K] = emit_##vlog,
+    static int (*const emit_kind[SIM_KIND__COUNT])(vgen *, const sim_signal *, const sim_prim_info *,
+                                                 const sim_signal *) = { SIM_ELEM_LIST(EMIT_OF) };
+#undef EMIT_OF
+    if (y->kind >= SIM_KIND__COUNT) return emit_none(g, y, &in, clk);
+    return emit_kind[y->kind](g, y, &in, clk);
 }
 
 int sim_verilog_module(FILE *f, const sim_ctx *c, const sim_scope *sc, const char *module,
