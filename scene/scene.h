@@ -126,18 +126,19 @@ typedef struct scn_desc {
     uint8_t      region_deg[SCN_MAX_REGIONS];   /* adaptive-region: degree per region (2 or 3) */
     int          auto_cubic_nodes;              /* adaptive-auto: 1 = N1, 2 = N2 */
     double       auto_threshold;                /* adaptive-auto: degree 3 when the curvature measure exceeds it */
-    /* The hardware: the policy's unit's settings. L, terms, series and
-     * schedule are its parameters, whose ranges and choices only its
-     * descriptor has (testbench/tb_scene.c sets them through the unit's
-     * setters and refuses what it refuses); the defaults here are its
-     * defaults (tests/test_scene.c compares them). */
-    int          L;              /* pixels per interval */
-    int          terms, series;  /* divide-by-3 network */
+    /* The hardware. L, terms, series and schedule are the policy's unit's
+     * parameters, kept as the scene file or --set wrote them ("": not
+     * set); their ranges, choices and defaults are the unit descriptor's
+     * alone: testbench/study/tb_scene_cfg.c applies what is set over the
+     * unit's defaults through its setters (and refuses what they refuse),
+     * and the render reads the configuration that gives. */
+    char         L[16], terms[16];   /* a whole number (the file checks that much) */
+    char         series[16];     /* a choice name: "paper", "quarter" */
+    char         schedule[16];   /* a schedule name: "paper", "mac", "pipe" */
     int          fmt_width;      /* W of the default-format rule, 4..64 */
     int          nfmt;
     char         fmt[SCN_MAX_FMT][48];   /* NAME=sI.F overrides, in order */
     int          rnd, ovf;       /* sim_round / sim_ovf values */
-    char         schedule[16];   /* "paper", "mac", "pipe" */
     double       cost[SCN_OP__COUNT];           /* weights of the operation count */
     /* Bookkeeping of scn_desc_set / scn_desc_read (scene_file.c): */
     int          cook_dg, ward_dg;   /* "distribution" and "ward-form" as set; mat.dg is the

@@ -200,8 +200,8 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
     char a[64], b[64];
     const unit_desc *u = r->unit;
     fprintf(f, "scene %s %dx%d, %s view; policy %s, L %d, /3 network %d terms (%s series), width %d, schedule %s\n",
-            d->mesh, r->w, r->h, r->heldout ? "held-out" : "main", scn_policy_name(d->policy), d->L, d->terms,
-            d->series ? "quarter" : "paper", d->fmt_width, u->sched[r->cfg.schedule].name);
+            d->mesh, r->w, r->h, r->heldout ? "held-out" : "main", scn_policy_name(d->policy), r->cfg.L,
+            r->cfg.terms, r->cfg.series == DIV3_QUARTER ? "quarter" : "paper", d->fmt_width, u->sched[r->cfg.schedule].name);
     if (!r->covered) fputs("  (nothing covered: the camera sees no part of the mesh)\n", f);
     fmt_nmse(a, sizeof a, r->nmse);
     fprintf(f, "  %-22s %-14s %s\n", "NMSE", a,
@@ -267,8 +267,8 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
     for (int i = 0; i < n; i++) {
         scn_desc d = *d0;
         d.policy = (scn_policy)cfgs[i].policy;
-        d.terms = cfgs[i].terms;
-        if (i == 0) d.series = DIV3_PAPER;     /* the paper's x/2 - x/8 - x/32 - x/128 */
+        snprintf(d.terms, sizeof d.terms, "%d", cfgs[i].terms);
+        if (i == 0) snprintf(d.series, sizeof d.series, "paper");   /* the paper's x/2 - x/8 - x/32 - x/128 */
         tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 1 };
         tb_scene_result r;
         char err[600], sub[4200];
@@ -293,7 +293,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
             fmt_nmse(a, sizeof a, r.nmse);
             fmt_nmse(a8, sizeof a8, r.nmse8);
             fmt_psnr(b, sizeof b, r.psnr);
-            snprintf(what, sizeof what, "%s, /3 network %d terms", scn_policy_name(d.policy), d.terms);
+            snprintf(what, sizeof what, "%s, /3 network %d terms", scn_policy_name(d.policy), r.cfg.terms);
             printf("%-10s %-46s %11s %11s %10s %8.2fx %8.2fx %13.3f %9.0f %4.0f MHz %9.4g %7.3g  %s\n", cfgs[i].name,
                    what, a, a8, b, r.speedup, r.speedup_long, r.clocks_per_pixel, r.hwst.area_ge, r.speed.hw.fmax_mhz,
                    r.speed.pixels_per_s / 1e6, r.speed.energy_pj_per_pixel,

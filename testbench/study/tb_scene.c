@@ -40,7 +40,6 @@
  * clocks_per_pixel = clocks of all bands' simulations / covered pixels.
  */
 #include "testbench/study/tb_scene.h"
-#include "base/base_join.h"
 #include "testbench/tb.h"
 #include "units/unit_coef.h"
 #include "units/unit_net.h"
@@ -65,83 +64,6 @@ static double cpu_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* ------------------------------------------------- the unit of a policy */
-
-
-static int has_param(const unit_desc *u, const char *name)
-{
-    for (int i = 0; i < u->nparams; i++)
-        if (!strcmp(u->params[i].name, name)) return 1;
-    return 0;
-}
-
-/* The scene's hardware settings into the policy's unit, each through the
- * unit's own setter (unit_param_set, unit_sched_find): the ranges,
- * choices and defaults of L, terms, series, nodes and the schedule are
- * the unit descriptor's alone (the scene file reads a number or a name).
- * A parameter the policy's unit does not have (span1's terms) is still
- * judged, by the row of span23, which has every one a scene sets. */
-static int scene_cfg(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, char *err, size_t errlen)
-{
-    static const char *const uname[SCN_POL__COUNT] = { "span1", "span2", "span3", "span3", "span23", "span23" };
-    if ((int)d->policy < 0 || d->policy >= SCN_POL__COUNT) { snprintf(err, errlen, "unknown policy"); return -1; }
-    const unit_desc *u = unit_find(uname[d->policy]), *all = unit_find("span23");
-    if (!u || !all) { snprintf(err, errlen, "unit %s is not built into this shadesim", u ? "span23" : uname[d->policy]); return -1; }
-    unit_cfg_default(u, cfg);
-    cfg->width = d->fmt_width;
-    cfg->rnd = (sim_round)d->rnd;
-    cfg->ovf = (sim_ovf)d->ovf;
-    int s = unit_sched_find(u, d->schedule);
-    if (s < 0) {
-        char list[200] = "";
-        for (int j = 0; j < u->nsched; j++) base_join_add(list, sizeof list, ", ", u->sched[j].name);
-        snprintf(err, errlen, "schedule %s: unit %s has schedules: %s", d->schedule, u->name, list);
-        return -1;
-    }
-    cfg->schedule = s;
-    /* series as its choice's name: the scene stores the index */
-    unit_cfg named = *cfg;
-    named.series = d->series;
-    char series[32];
-    for (int i = 0; i < all->nparams; i++)
-        if (!strcmp(all->params[i].name, "series")) unit_param_get(&all->params[i], &named, series, sizeof series);
-    char L[24], terms[24];
-    snprintf(L, sizeof L, "%d", d->L);
-    snprintf(terms, sizeof terms, "%d", d->terms);
-    const char *const set[][2] = { { "L", L }, { "terms", terms }, { "series", series },
-                                   { "nodes", tb_scene_nodes_n2(d) ? "n2" : "n1" } };
-    for (size_t k = 0; k < sizeof set / sizeof set[0]; k++)
-        if (unit_param_set(has_param(u, set[k][0]) ? u : all, cfg, set[k][0], set[k][1], err, errlen)) return -1;
-    *up = u;
-    return 0;
-}
-
-int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_fmts *f,
-                  char *err, size_t errlen)
-{
-    const unit_desc *u;
-    if (scene_cfg(d, &u, cfg, err, errlen)) return -1;
-    const char *ov[SCN_MAX_FMT];
-    for (int i = 0; i < d->nfmt && i < SCN_MAX_FMT; i++) ov[i] = d->fmt[i];
-    if (tb_formats(u, cfg, ov, d->nfmt, f, err, errlen)) {
-        /* here the overrides come from the scene key fmt, not --fmt */
-        if (!strncmp(err, "--fmt ", 6)) memmove(err, err + 2, strlen(err + 2) + 1);
-        return -1;
-    }
-    *up = u;
-    return 0;
-}
-
-/* 1 if the policy's cubic intervals use node set N2 (I(3/4)). Both
- * adaptive policies run on the span23 unit and take its node set from the
- * auto-nodes key (auto_cubic_nodes). */
-int tb_scene_nodes_n2(const scn_desc *d)
-{
-    if (d->policy == SCN_POL_CUBIC_N2) return 1;
-    if (d->policy == SCN_POL_ADAPTIVE_REGION || d->policy == SCN_POL_ADAPTIVE_AUTO) return d->auto_cubic_nodes == 2;
-    return 0;
-}
-
 /* Adders of a coefficient network (ADD and SUB elements; a /3 network is
  * its subtractors or adders). */
 static int net_adds(const coef_net *net, int terms, int series)
@@ -154,12 +76,13 @@ static int net_adds(const coef_net *net, int terms, int series)
     return n;
 }
 
-/* Adders of the coefficients of one interval of degree deg. */
-static int coef_adds(const scn_desc *d, int deg)
+/* Adders of the coefficients of one interval of degree deg, on the unit
+ * configured as cfg (n2: node set N2). */
+static int coef_adds(const unit_cfg *cfg, int n2, int deg)
 {
     if (deg <= 1) return 1;                              /* B = I2 - I1 */
-    if (deg == 2) return net_adds(&coef_net_q, d->terms, d->series);
-    return net_adds(tb_scene_nodes_n2(d) ? &coef_net_n2 : &coef_net_n1, d->terms, d->series);
+    if (deg == 2) return net_adds(&coef_net_q, cfg->terms, cfg->series);
+    return net_adds(n2 ? &coef_net_n2 : &coef_net_n1, cfg->terms, cfg->series);
 }
 
 /* ------------------------------------------------------------ render */
@@ -244,7 +167,7 @@ static void run_band(job *J, band *b)
     const scn_desc *d = J->d;
     const scn_gbuf *g = J->g;
     tb_scene_result *r = J->r;
-    int W = g->w, L = d->L, n2 = tb_scene_nodes_n2(d);
+    int W = g->w, L = J->cfg->L, n2 = tb_scene_nodes_n2(d);     /* the unit's L: intervals */
     double c0 = cpu_now();
     /* reference */
     for (int y = b->y0; y < b->y1; y++)
@@ -310,7 +233,7 @@ static void run_band(job *J, band *b)
             i0 = m->node[1];
             b->intervals++;
             if (deg == 2) b->deg2++;
-            b->coef_adds += coef_adds(d, deg);
+            b->coef_adds += coef_adds(J->cfg, n2, deg);
             b->horner_deg += (double)deg * len;
             for (int x = start; x < start + len; x++) r->deg[(size_t)s->y * W + x] = (uint8_t)deg;
         }
@@ -661,8 +584,11 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
         /* the formats are given: the rule's would be thrown away */
         r->unit = p->u;
         r->cfg = p->cfg;
-    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make)
-        return TB_BADINPUT;      /* (making a prep simulates nothing: it needs no unit) */
+    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen)) {
+        /* making a prep simulates nothing: it needs the configuration
+         * (the intervals are cut by its L), not formats */
+        if (!make || tb_scene_cfg(d, &r->unit, &r->cfg, err, errlen)) return TB_BADINPUT;
+    }
     if (o->fmts) r->fmts = *o->fmts;
     const scn_view *view = r->heldout ? &d->heldout : &d->view;
     scn_span *spans;
@@ -734,7 +660,7 @@ int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int job
      * still be bad: a prep needs none) */
     const unit_desc *u;
     unit_cfg cfg;
-    if (scene_cfg(d, &u, &cfg, err, errlen)) return TB_BADINPUT;
+    if (tb_scene_cfg(d, &u, &cfg, err, errlen)) return TB_BADINPUT;
     tb_scene_prep *p = calloc(1, sizeof *p);
     if (!p) { snprintf(err, errlen, "out of memory"); return TB_FAIL; }
     p->d = *d;

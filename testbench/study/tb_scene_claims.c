@@ -46,8 +46,8 @@ static int measure(const scn_desc *d0, const scn_gbuf *g, scn_policy pol, int L,
 {
     scn_desc d = *d0;
     d.policy = pol;
-    d.L = L;
-    d.terms = terms;
+    snprintf(d.L, sizeof d.L, "%d", L);
+    snprintf(d.terms, sizeof d.terms, "%d", terms);
     tb_scene_opts o = { jobs, 0, NULL, NULL, 0, 0 };
     tb_scene_result r;
     memset(&r, 0, sizeof r);

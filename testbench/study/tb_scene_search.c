@@ -298,6 +298,7 @@ typedef struct report {
     double target;
     int met, wu;                 /* a uniform width met the target; it */
     int sched;                   /* the unit's schedule index */
+    int L, terms;                /* the unit's, as the description sets them */
     int below_w;                 /* width of uni_below */
     unsigned char built[UNIT_MAX_SIGS];   /* signals the build makes (listed, trimmed) */
     int floor_stop;              /* stopped going up: the method's own error is above the target */
@@ -346,8 +347,8 @@ static void print_json(FILE *f, const report *rp)
     base_json_str(f, d->mesh);
     fputs(",\n    \"policy\": ", f);
     base_json_str(f, scn_policy_name(d->policy));
-    fprintf(f, ",\n    \"L\": %d,\n    \"terms\": %d,\n    \"schedule\": ", d->L, d->terms);
-    base_json_str(f, d->schedule);
+    fprintf(f, ",\n    \"L\": %d,\n    \"terms\": %d,\n    \"schedule\": ", rp->L, rp->terms);
+    base_json_str(f, rp->u ? rp->u->sched[rp->sched].name : "");
     fputs(",\n    \"unit\": ", f);
     base_json_str(f, rp->u ? rp->u->name : "");
     fprintf(f, ",\n    \"uniform_met\": %s", rp->met ? "true" : "false");
@@ -394,7 +395,8 @@ static void print_text(FILE *f, const report *rp)
     const scn_desc *d = rp->d;
     char fb[SIM_FMT_STRLEN], fb2[SIM_FMT_STRLEN], v[512];
     fprintf(f, "scene search: NMSE <= %g on %s %dx%d, policy %s, L %d, terms %d, schedule %s (unit %s)\n",
-            rp->target, d->mesh, d->width, d->height, scn_policy_name(d->policy), d->L, d->terms, d->schedule,
+            rp->target, d->mesh, d->width, d->height, scn_policy_name(d->policy), rp->L, rp->terms,
+            rp->u ? rp->u->sched[rp->sched].name : "?",
             rp->u ? rp->u->name : "?");
     if (rp->met) {
         fprintf(f, "smallest uniform width: W = %d", rp->wu);
@@ -745,6 +747,8 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     unit_fmts f0;
     if (tb_scene_unit(d, &rp->u, &cfg, &f0, err, errlen)) { rc = TB_BADINPUT; goto done; }
     rp->sched = cfg.schedule;
+    rp->L = cfg.L;
+    rp->terms = cfg.terms;
 
     /* 1. The smallest uniform width. */
     if (s.tty) s.expected = est_all(rp, &cfg, &f0);

@@ -191,9 +191,9 @@ static double mono_now(void)
 static void desc_of(const scn_desc *d, const pt *p, scn_desc *out)
 {
     *out = *d;
-    out->L = p->L;
+    snprintf(out->L, sizeof out->L, "%d", p->L);
     out->policy = (scn_policy)p->pol;
-    out->terms = p->terms;
+    snprintf(out->terms, sizeof out->terms, "%d", p->terms);
     out->fmt_width = p->width;
     snprintf(out->schedule, sizeof out->schedule, "%s", p->sched);
 }
