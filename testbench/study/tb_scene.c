@@ -41,6 +41,7 @@
  */
 #include "testbench/study/tb_scene.h"
 #include "testbench/tb.h"
+#include "base/base_out.h"
 #include "units/unit_coef.h"
 #include "units/unit_net.h"
 #include "base/base_par.h"
@@ -190,13 +191,7 @@ static void run_band(job *J, band *b)
     if (!nitems) { b->cpu_other += cpu_now() - c0; return; }
     tb_span_item *items = calloc(nitems, sizeof *items);
     double *pix = malloc(npix * sizeof *pix);
-    if (!items || !pix) {
-        free(items); free(pix);
-        b->rc = TB_FAIL;
-        snprintf(b->err, sizeof b->err, "out of memory");
-        b->cpu_other += cpu_now() - c0;
-        return;
-    }
+    if (!items || !pix) base_out_of_memory();
     size_t it = 0;
     for (size_t k = b->s0; k < b->s1; k++) {
         const scn_span *s = &J->spans[k];
@@ -394,10 +389,10 @@ static void metrics(const scn_gbuf *g, tb_scene_result *r)
 }
 
 /* r's images (copied from prep p, or empty), the spans (p's, or g's own)
- * and nb bands (p's intervals borrowed, with room for their pixels). On
- * failure everything is freed, r too. */
-static int render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_result *r, scn_span **spansp,
-                        size_t *nspansp, int *nbp, band **bandsp, char *err, size_t errlen)
+ * and nb bands (p's intervals borrowed, with room for their pixels). Out
+ * of memory: base_out_of_memory. */
+static void render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_result *r, scn_span **spansp,
+                         size_t *nspansp, int *nbp, band **bandsp)
 {
     size_t np = (size_t)g->w * g->h;
     r->w = g->w;
@@ -409,22 +404,15 @@ static int render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_resu
     scn_span *spans = NULL;
     size_t nspans = p ? p->nspans : scn_spans(g, &spans);
     if (p) spans = p->spans;
-    int nb = g->h < TB_SCENE_BANDS ? g->h : TB_SCENE_BANDS, pixok = 1;
+    int nb = g->h < TB_SCENE_BANDS ? g->h : TB_SCENE_BANDS;
     band *bands = calloc(nb > 0 ? nb : 1, sizeof *bands);
     for (int k = 0; p && bands && k < nb; k++) {
         bands[k] = p->bands[k];
         bands[k].borrowed = 1;
         bands[k].cpu_sim = bands[k].cpu_other = 0;
-        if (bands[k].items && !(bands[k].pix = malloc(bands[k].npix * sizeof *bands[k].pix))) pixok = 0;
+        if (bands[k].items && !(bands[k].pix = malloc(bands[k].npix * sizeof *bands[k].pix))) base_out_of_memory();
     }
-    if (!r->ref || !r->hw || !r->deg || !r->region || !bands || !pixok || (nspans && !spans)) {
-        for (int k = 0; p && bands && k < nb; k++) free(bands[k].pix);
-        free(bands);
-        if (!p) free(spans);
-        tb_scene_free(r);
-        snprintf(err, errlen, "out of memory (%dx%d image)", g->w, g->h);
-        return TB_FAIL;
-    }
+    if (!r->ref || !r->hw || !r->deg || !r->region || !bands || (nspans && !spans)) base_out_of_memory();
     if (p) {
         memcpy(r->ref, p->ref, np * sizeof *r->ref);
         memcpy(r->deg, p->deg, np);
@@ -436,7 +424,6 @@ static int render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_resu
     *nspansp = nspans;
     *nbp = nb;
     *bandsp = bands;
-    return TB_OK;
 }
 
 /* Bands of equal rows (spans are in row order); the VCD, if any, is of
@@ -488,10 +475,7 @@ static int keep_prep(tb_scene_prep *make, const job *J, scn_span *spans, size_t 
             rc = b->rc;
             snprintf(err, errlen, "%s", b->err);
         }
-        if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix)) && rc == TB_OK) {
-            rc = TB_FAIL;
-            snprintf(err, errlen, "out of memory");
-        }
+        if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix))) base_out_of_memory();
         for (size_t q = 0, j = b->s0; b->refpix && j < b->s1; j++)
             for (int x = spans[j].x0; x < spans[j].x1; x++)
                 b->refpix[q++] = make->ref[(size_t)spans[j].y * g->w + x];
@@ -595,7 +579,7 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
     size_t nspans;
     int nb;
     band *bands;
-    if (render_alloc(g, p, r, &spans, &nspans, &nb, &bands, err, errlen)) return TB_FAIL;
+    render_alloc(g, p, r, &spans, &nspans, &nb, &bands);
     job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
               .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
               .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
@@ -662,7 +646,7 @@ int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int job
     unit_cfg cfg;
     if (tb_scene_cfg(d, &u, &cfg, err, errlen)) return TB_BADINPUT;
     tb_scene_prep *p = calloc(1, sizeof *p);
-    if (!p) { snprintf(err, errlen, "out of memory"); return TB_FAIL; }
+    if (!p) base_out_of_memory();
     p->d = *d;
     tb_scene_opts o = { jobs, heldout, NULL, NULL, 0, 0 };
     tb_scene_result r;
@@ -704,6 +688,15 @@ int tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_sce
     return tb_scene_render_prep_budget(d, p, o, INFINITY, r, err, errlen);
 }
 
+int tb_scene_raster(const scn_mesh *m, const scn_camera *cam, int w, int h, scn_gbuf *g, char *err, size_t errlen)
+{
+    if (!scn_raster(m, cam, w, h, g, err, errlen)) return 0;
+    /* its failures: a camera it cannot use, or out of memory, which its
+     * message says */
+    if (strstr(err, "out of memory")) base_out_of_memory();
+    return -1;
+}
+
 int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,
                     tb_scene_result *r, char *err, size_t errlen)
 {
@@ -711,10 +704,7 @@ int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o
     double c0 = cpu_now();
     const scn_view *view = o && o->heldout ? &d->heldout : &d->view;
     scn_gbuf g;
-    /* the rasterizer fails for a camera it cannot use (bad input) or
-     * out of memory */
-    if (scn_raster(m, &view->cam, d->width, d->height, &g, err, errlen))
-        return strstr(err, "memory") ? TB_FAIL : TB_BADINPUT;
+    if (tb_scene_raster(m, &view->cam, d->width, d->height, &g, err, errlen)) return TB_BADINPUT;
     double c1 = cpu_now();
     int rc = tb_scene_render_gbuf(d, &g, NULL, NULL, o, r, err, errlen);
     scn_gbuf_free(&g);

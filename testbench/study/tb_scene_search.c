@@ -722,8 +722,8 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     scn_gbuf gv, gh;
     memset(&gv, 0, sizeof gv);
     memset(&gh, 0, sizeof gh);
-    if (scn_raster(m, &d->view.cam, d->width, d->height, &gv, err, errlen) ||
-        scn_raster(m, &d->heldout.cam, d->width, d->height, &gh, err, errlen)) {
+    if (tb_scene_raster(m, &d->view.cam, d->width, d->height, &gv, err, errlen) ||
+        tb_scene_raster(m, &d->heldout.cam, d->width, d->height, &gh, err, errlen)) {
         scn_gbuf_free(&gv);
         scn_gbuf_free(&gh);
         return TB_BADINPUT;
@@ -733,7 +733,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     report *rp = calloc(1, sizeof *rp);
     cand *cj = calloc((size_t)jobs, sizeof *cj);
     int rc = TB_FAIL;
-    if (!rp || !cj) { snprintf(err, errlen, "scene search: out of memory"); rc = TB_BADINPUT; goto done; }
+    if (!rp || !cj) base_out_of_memory();
     /* What no format changes, once for each view: the reference, the
      * nodes and intervals (every render reads them; none recomputes). */
     rc = tb_scene_prep_new(d, &gv, 0, jobs, &s.pv, err, errlen);
