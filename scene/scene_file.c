@@ -63,9 +63,10 @@
  * L              N (2..64): pixels per interval      8
  * terms          N (1..20): /3 network terms         3
  *                (L, terms, series and schedule are the unit's parameters:
- *                their ranges, choices and defaults are its descriptor's,
- *                applied when the scene's unit is set up; not set, the
- *                description holds "")
+ *                their ranges, choices and defaults are its descriptor's;
+ *                width, round and overflow are every unit's settings, with
+ *                its defaults; all applied when the scene's unit is set
+ *                up; not set, the description holds "")
  * series         paper|quarter (/3 network)          paper
  * width          W (4..64): default-format width     16
  * fmt *          none | NAME=sI.F|uI.F ... (signal   none
@@ -314,6 +315,7 @@ static key_fn k_mesh, k_res, k_vec, k_fov, k_oheight, k_light, k_held, k_regdeg,
 #define REAL(field, lo_, hi_, wh_) .type = KT_REAL, .off = F(field), .lo = lo_, .hi = hi_, .what = wh_
 #define NAME(field, nm_, wh_) .type = KT_NAME, .off = F(field), .names = nm_, .what = wh_
 #define CALL(fn_) .type = KT_CALL, .call = fn_
+#define WHOLE(field, lo_, hi_, wh_) CALL(k_whole), .off = F(field), .lo = lo_, .hi = hi_, .what = wh_
 
 static const int dist_g[] = { 0, 4, 8, 16 }, ward_g[] = { 0, 16 }, nodes_v[] = { 1, 2 };
 static const char *const ward_names[] = { "exact", "poly16", NULL };
@@ -355,13 +357,13 @@ static const char *const nodes_names[] = { "n1", "n2", NULL };
     X(REGDEG,    "region-degree",  CALL(k_regdeg)) \
     X(ATHRESH,   "auto-threshold", REAL(auto_threshold, 0.0, 1e6, "X")) \
     X(ANODES,    "auto-nodes",     NAME(auto_cubic_nodes, nodes_names, "n1|n2"), .vals = nodes_v) \
-    X(L,         "L",              CALL(k_whole), .off = F(L), .what = "N") \
-    X(TERMS,     "terms",          CALL(k_whole), .off = F(terms), .what = "N") \
+    X(L,         "L",              WHOLE(L, INT_MIN, INT_MAX, "N")) \
+    X(TERMS,     "terms",          WHOLE(terms, INT_MIN, INT_MAX, "N")) \
     X(SERIES,    "series",         CALL(k_word), .off = F(series), .what = "paper|quarter") \
-    X(WIDTH,     "width",          INT(fmt_width, 4, 64, "W")) \
+    X(WIDTH,     "width",          WHOLE(fmt_width, 4, 64, "W")) \
     X(FMT,       "fmt",            CALL(k_fmt)) \
-    X(ROUND,     "round",          NAME(rnd, scn_round_names, "trunc|half-up|even")) \
-    X(OVERFLOW,  "overflow",       NAME(ovf, scn_ovf_names, "wrap|sat")) \
+    X(ROUND,     "round",          CALL(k_word), .off = F(rnd), .what = "trunc|half-up|even") \
+    X(OVERFLOW,  "overflow",       CALL(k_word), .off = F(ovf), .what = "wrap|sat") \
     X(SCHEDULE,  "schedule",       CALL(k_word), .off = F(schedule), .what = "paper|mac|pipe") \
     X(COST,      "cost",           CALL(k_cost))
 
@@ -536,20 +538,21 @@ static int k_fmt(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *
     return 0;
 }
 
-/* L, terms: a whole number the unit judges, kept as text at off (the
- * number's own digits: a range is the unit's). */
+/* L, terms, width: a whole number in the row's range (L's and terms'
+ * are the unit's: any int here), kept as text at off. */
 static int k_whole(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
 {
     (void)cx;
     int v;
     if (count(k->name, n, 1, 1, k->what, err, errlen)) return -1;
-    if (inum(k->name, t[0], INT_MIN, INT_MAX, &v, err, errlen)) return -1;
+    if (inum(k->name, t[0], (long)k->lo, (long)k->hi, &v, err, errlen)) return -1;
     snprintf((char *)d + k->off, sizeof d->L, "%d", v);     /* at most 11 bytes */
     return 0;
 }
 
-/* series, schedule: a name the unit judges (its choices, its schedules:
- * tb_scene_unit), kept as text at off. */
+/* series, schedule, round, overflow: a name the unit judges (its
+ * choices, its schedules, the simulator's modes: tb_scene_unit), kept as
+ * text at off. */
 static int k_word(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
 {
     (void)cx;
@@ -688,10 +691,10 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
 }
 
 _Static_assert(K__COUNT <= SCN_DESC_NKEYS, "scn_desc.key_line is too small");
-/* k_whole and k_word write any of the four at the size of one */
-_Static_assert(sizeof ((scn_desc *)0)->terms == sizeof ((scn_desc *)0)->L
-               && sizeof ((scn_desc *)0)->series == sizeof ((scn_desc *)0)->schedule
-               && sizeof ((scn_desc *)0)->L == sizeof ((scn_desc *)0)->schedule, "hardware key fields");
+/* k_whole and k_word write any of these at the size of one */
+#define SAME_SIZE(a, b) (sizeof ((scn_desc *)0)->a == sizeof ((scn_desc *)0)->b)
+_Static_assert(SAME_SIZE(terms, L) && SAME_SIZE(series, L) && SAME_SIZE(schedule, L) && SAME_SIZE(fmt_width, L)
+               && SAME_SIZE(rnd, L) && SAME_SIZE(ovf, L), "hardware key fields");
 
 /* Cut a comment: '#' at the start or after a blank. */
 static void cut_comment(char *s)

@@ -16,7 +16,7 @@ static void wide(scn_desc *d)
 {
     d->nfmt = 1;
     snprintf(d->fmt[0], sizeof d->fmt[0], "all=s8.40");
-    d->fmt_width = 48;
+    snprintf(d->fmt_width, sizeof d->fmt_width, "48");
     snprintf(d->terms, sizeof d->terms, "20");
 }
 
@@ -485,10 +485,11 @@ static void test_jobs_same_bytes(void)
 
 /* The hardware keys are the unit's parameters: the scene file keeps a
  * number or a name as written, and tb_scene_unit sets them through the
- * unit's setters. The ranges here are docs/scenes.md's (L any 2..64,
- * terms 1..20, series paper or quarter, schedules paper, mac, pipe),
- * written by hand; terms of a policy whose unit has no /3 network
- * (linear: span1) is judged all the same. */
+ * unit's setters (round and overflow by the simulator's mode names).
+ * The ranges here are docs/scenes.md's (L any 2..64, terms 1..20, series
+ * paper or quarter, schedules paper, mac, pipe, round trunc, half-up,
+ * even, overflow wrap, sat), written by hand; terms of a policy whose
+ * unit has no /3 network (linear: span1) is judged all the same. */
 static void test_hw_keys_are_the_units(void)
 {
     static const struct { const char *key, *value; int ok; const char *what; } C[] = {
@@ -497,6 +498,8 @@ static void test_hw_keys_are_the_units(void)
         { "terms", "20", 1, NULL },  { "terms", "0", 0, "1..20" }, { "terms", "21", 0, "1..20" },
         { "series", "quarter", 1, NULL }, { "series", "half", 0, "paper quarter" },
         { "schedule", "pipe", 1, NULL }, { "schedule", "fast", 0, "paper, mac, pipe" },
+        { "width", "20", 1, NULL },  { "round", "even", 1, NULL }, { "round", "nearest", 0, "trunc, half-up, even" },
+        { "overflow", "sat", 1, NULL }, { "overflow", "clamp", 0, "wrap, sat" },
     };
     static const char *const pols[] = { "linear", "quadratic", "cubic-n1", "cubic-n2", "adaptive-region", "adaptive-auto" };
     for (size_t p = 0; p < sizeof pols / sizeof pols[0]; p++)
@@ -521,6 +524,12 @@ static void test_hw_keys_are_the_units(void)
                 TST_EQ_INT(cfg.terms, atoi(C[i].value));
             } else if (!strcmp(C[i].key, "series")) {
                 TST_EQ_INT(cfg.series, DIV3_QUARTER);
+            } else if (!strcmp(C[i].key, "width")) {
+                TST_EQ_INT(cfg.width, 20);
+            } else if (!strcmp(C[i].key, "round")) {
+                TST_EQ_INT(cfg.rnd, SIM_RND_EVEN);
+            } else if (!strcmp(C[i].key, "overflow")) {
+                TST_EQ_INT(cfg.ovf, SIM_OVF_SAT);
             }
         }
     /* A scene that sets none of them (the description holds "") gets the
@@ -532,7 +541,8 @@ static void test_hw_keys_are_the_units(void)
         char err[300];
         scn_desc_default(&d);
         TST_EQ_INT(scn_desc_set(&d, "policy", pols[p], err, sizeof err), 0);
-        TST_CHECK(!*d.L && !*d.terms && !*d.series && !*d.schedule, "%s: hardware keys set by default", pols[p]);
+        TST_CHECK(!*d.L && !*d.terms && !*d.series && !*d.schedule && !*d.fmt_width && !*d.rnd && !*d.ovf,
+                  "%s: hardware keys set by default", pols[p]);
         const unit_desc *u;
         unit_cfg cfg, def;
         unit_fmts f;
@@ -548,6 +558,9 @@ static void test_hw_keys_are_the_units(void)
         TST_EQ_INT(cfg.schedule, 0);
         TST_EQ_INT(cfg.L, 8);
         TST_EQ_INT(cfg.terms, 3);
+        TST_EQ_INT(cfg.width, 16);              /* docs/scenes.md: width 16, trunc, wrap */
+        TST_EQ_INT(cfg.rnd, SIM_RND_TRUNC);
+        TST_EQ_INT(cfg.ovf, SIM_OVF_WRAP);
     }
 }
 

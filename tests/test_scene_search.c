@@ -91,7 +91,7 @@ static double target_for(void)
 {
     /* Twice the error of a wide datapath: met by some width, not by all. */
     scn_desc w = D;
-    w.fmt_width = 28;
+    snprintf(w.fmt_width, sizeof w.fmt_width, "28");
     double e;
     uint64_t ov;
     if (render(&w, NULL, 0, &e, &ov) != TB_OK) return NAN;
@@ -121,16 +121,16 @@ static void test_search_smallest_and_heldout(void)
     scn_desc dw = D;
     double e;
     uint64_t ov;
-    dw.fmt_width = wu;
+    snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", wu);
     TST_EQ_INT(render(&dw, NULL, 0, &e, &ov), TB_OK);
     TST_CHECK(e <= target && ov == 0, "W=%d: NMSE %g ovf %llu", wu, e, (unsigned long long)ov);
     TST_NEAR(jnum_of(js, "uniform_nmse"), e, 1e-8 * e + 1e-300);
-    dw.fmt_width = wu - 1;
+    snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", wu - 1);
     int rc1 = render(&dw, NULL, 0, &e, &ov);
     TST_CHECK(rc1 != TB_OK || e > target || ov > 0, "W=%d also meets (NMSE %g)", wu - 1, e);
 
     /* The found formats, read back from the JSON. */
-    dw.fmt_width = wu;
+    snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", wu);
     const unit_desc *u;
     unit_cfg cfg;
     unit_fmts f;
@@ -211,7 +211,7 @@ static void test_search_jobs(void)
     scn_desc d = D, w;
     d.policy = SCN_POL_LINEAR;
     w = d;
-    w.fmt_width = 28;
+    snprintf(w.fmt_width, sizeof w.fmt_width, "28");
     double e;
     uint64_t ov;
     TST_EQ_INT(render(&w, NULL, 0, &e, &ov), TB_OK);
@@ -269,7 +269,7 @@ static void test_prep_exact(void)
             unit_fmts f, *fp = NULL;
             const unit_desc *u;
             unit_cfg cfg;
-            if (k == 1) e.fmt_width = 12;
+            if (k == 1) snprintf(e.fmt_width, sizeof e.fmt_width, "12");
             if (k == 2 || k == 3) {
                 /* two fraction bits off every signal that has them */
                 TST_EQ_INT(tb_scene_unit(&e, &u, &cfg, &f, err, sizeof err), 0);
@@ -375,7 +375,8 @@ static void test_sweep_csv(void)
                 TST_EQ_INT(width, 12); TST_EQ_STR(pol, "quadratic"); TST_EQ_INT(L, 8); TST_EQ_INT(terms, 8);
                 scn_desc d = D;
                 d.width = D.width;
-                d.policy = SCN_POL_QUADRATIC; d.fmt_width = 12;
+                d.policy = SCN_POL_QUADRATIC;
+                snprintf(d.fmt_width, sizeof d.fmt_width, "12");
                 snprintf(d.L, sizeof d.L, "8");
                 snprintf(d.terms, sizeof d.terms, "8");
                 double e;
@@ -427,7 +428,8 @@ static void test_scene_claims(void)
     scn_mesh m;
     TST_EQ_INT(scn_desc_builtin("face", &d), 0);
     d.width = d.height = 48;
-    d.policy = SCN_POL_ADAPTIVE_REGION; d.fmt_width = 16;
+    d.policy = SCN_POL_ADAPTIVE_REGION;
+    snprintf(d.fmt_width, sizeof d.fmt_width, "16");
     snprintf(d.L, sizeof d.L, "8");
     snprintf(d.terms, sizeof d.terms, "3");
     snprintf(d.schedule, sizeof d.schedule, "paper");

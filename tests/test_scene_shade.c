@@ -342,13 +342,13 @@ static void desc_defaults(void)
     TST_NEAR(d.mat.shininess, 24, 0);
     TST_EQ_INT(d.mat.spec, SCN_SPEC_BLINN);
     TST_EQ_INT(d.policy, SCN_POL_CUBIC_N1);
-    /* the unit's parameters: not set, its defaults (test_scene.c) */
+    /* the unit's configuration: not set, its defaults (test_scene.c) */
     TST_EQ_STR(d.L, "");
     TST_EQ_STR(d.terms, "");
     TST_EQ_STR(d.series, "");
-    TST_EQ_INT(d.fmt_width, 16);
-    TST_EQ_INT(d.rnd, 0);
-    TST_EQ_INT(d.ovf, 0);
+    TST_EQ_STR(d.fmt_width, "");
+    TST_EQ_STR(d.rnd, "");
+    TST_EQ_STR(d.ovf, "");
     TST_EQ_STR(d.schedule, "");
     TST_EQ_INT(d.nfmt, 0);
     for (int r = 0; r < SCN_MAX_REGIONS; r++)
@@ -475,13 +475,13 @@ static void check_every(const scn_desc *d, const char *meshpath)
     TST_EQ_STR(d->L, "12");
     TST_EQ_STR(d->terms, "5");
     TST_EQ_STR(d->series, "quarter");
-    TST_EQ_INT(d->fmt_width, 20);
+    TST_EQ_STR(d->fmt_width, "20");
     TST_EQ_INT(d->nfmt, 3);
     TST_EQ_STR(d->fmt[0], "all=s3.17");
     TST_EQ_STR(d->fmt[1], "y=s2.18");
     TST_EQ_STR(d->fmt[2], "a=u1.15");
-    TST_EQ_INT(d->rnd, 2);
-    TST_EQ_INT(d->ovf, 1);
+    TST_EQ_STR(d->rnd, "even");
+    TST_EQ_STR(d->ovf, "sat");
     TST_EQ_STR(d->schedule, "mac");
     TST_NEAR(d->cost[SCN_OP_ADD], 1, 0);
     TST_NEAR(d->cost[SCN_OP_DIV], 8, 0);
@@ -595,7 +595,9 @@ static void desc_roundtrip(void)
         TST_EQ_STR(e.terms, d.terms);
         TST_EQ_STR(e.series, d.series);
         TST_EQ_INT(e.width, d.width);
-        TST_EQ_INT(e.rnd, d.rnd);
+        TST_EQ_STR(e.fmt_width, d.fmt_width);
+        TST_EQ_STR(e.rnd, d.rnd);
+        TST_EQ_STR(e.ovf, d.ovf);
         TST_EQ_STR(e.schedule, d.schedule);
         /* And the text is a fixed point. */
         TST_EQ_INT(write_desc(&e, "w2.scene", t2, sizeof t2), 0);
@@ -630,8 +632,6 @@ static void desc_errors(void)
         { "specular lambert\n", 2, "not one of" },
         { "distribution d32\n", 2, "not one of" },
         { "policy cubic\n", 2, "not one of" },
-        { "round nearest\n", 2, "not one of" },
-        { "overflow clamp\n", 2, "not one of" },
         { "fresnel fast\n", 2, "not one of" },
         { "region-degree 16 2\n", 2, "out of range" },
         { "region-degree 3 4\n", 2, "out of range" },

@@ -487,7 +487,7 @@ static int section_scene(FILE *f, const char *dir)
                "network, width %d), against per-pixel shading in double precision. Rerun: "
                "<code>shadesim scene face --set resolution=%dx%d -o scene</code>. Files: <a href=\"scene/scene.json\">"
                "scene/scene.json</a> and the PNGs in <code>scene/</code>.</p>\n",
-            r.w, r.h, r.cfg.L, r.unit ? r.unit->name : "span", scn_policy_name(d.policy), r.cfg.terms, d.fmt_width, r.w,
+            r.w, r.h, r.cfg.L, r.unit ? r.unit->name : "span", scn_policy_name(d.policy), r.cfg.terms, r.cfg.width, r.w,
             r.h);
     fputs("<div class=\"scene\">\n", f);
     int K = tb_scene_err_scale(&r);

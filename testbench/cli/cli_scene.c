@@ -201,7 +201,7 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
     const unit_desc *u = r->unit;
     fprintf(f, "scene %s %dx%d, %s view; policy %s, L %d, /3 network %d terms (%s series), width %d, schedule %s\n",
             d->mesh, r->w, r->h, r->heldout ? "held-out" : "main", scn_policy_name(d->policy), r->cfg.L,
-            r->cfg.terms, r->cfg.series == DIV3_QUARTER ? "quarter" : "paper", d->fmt_width, u->sched[r->cfg.schedule].name);
+            r->cfg.terms, r->cfg.series == DIV3_QUARTER ? "quarter" : "paper", r->cfg.width, u->sched[r->cfg.schedule].name);
     if (!r->covered) fputs("  (nothing covered: the camera sees no part of the mesh)\n", f);
     fmt_nmse(a, sizeof a, r->nmse);
     fprintf(f, "  %-22s %-14s %s\n", "NMSE", a,
@@ -280,7 +280,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
         int t = tb_scene_render(&d, m, &o, &r, err, sizeof err);
         progress("");
         if (t != TB_OK) return cli_from_tb(t, "%s", err);
-        if (tb_scene_speed_of(&r, d.fmt_width, err, sizeof err)) {
+        if (tb_scene_speed_of(&r, r.cfg.width, err, sizeof err)) {
             tb_scene_free(&r);
             (void)cli_usage_error("%s", err);
             return CLI_FAIL;
@@ -396,6 +396,13 @@ int cli_scene(int argc, char **argv)
             snprintf(pk, sizeof pk, "%.*s", (int)strcspn(err + 10, ":"), err + 10);
             keys = param;
         }
+        /* and a setting every unit has, "round: ..." (tb_scene_cfg) */
+        static const char *const own[] = { "width", "round", "overflow" };
+        for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
+            if (!strncmp(err, own[k], strlen(own[k])) && err[strlen(own[k])] == ':') {
+                snprintf(pk, sizeof pk, "%s", own[k]);
+                keys = param;
+            }
         return cli_usage_error("%s%s", scn_desc_where(&d, keys, where, sizeof where), err);
     }
 
@@ -419,7 +426,7 @@ int cli_scene(int argc, char **argv)
         tb_scene_result r;
         progress("rendering...");
         int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
-        if (t == TB_OK && tb_scene_speed_of(&r, d.fmt_width, err, sizeof err)) {
+        if (t == TB_OK && tb_scene_speed_of(&r, r.cfg.width, err, sizeof err)) {
             tb_scene_free(&r);
             t = TB_FAIL;
         }

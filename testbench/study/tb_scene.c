@@ -337,11 +337,11 @@ struct tb_scene_prep {
 static int prep_fits(const tb_scene_prep *p, const scn_desc *d)
 {
     scn_desc a = *d, b = p->d;
-    a.fmt_width = b.fmt_width;
+    memcpy(a.fmt_width, b.fmt_width, sizeof a.fmt_width);
     a.nfmt = b.nfmt;
     memcpy(a.fmt, b.fmt, sizeof a.fmt);
-    a.rnd = b.rnd;
-    a.ovf = b.ovf;
+    memcpy(a.rnd, b.rnd, sizeof a.rnd);
+    memcpy(a.ovf, b.ovf, sizeof a.ovf);
     memcpy(a.schedule, b.schedule, sizeof a.schedule);
     memcpy(a.cost, b.cost, sizeof a.cost);
     return !memcmp(&a, &b, sizeof a);

@@ -1,15 +1,20 @@
 /* tb_scene_cfg.c - the unit of a scene's policy and its configuration.
  *
- * A scene's hardware keys (L, terms, series, schedule) are the unit's
- * parameters: the description keeps them as written, or "" when not set,
- * and here they are applied over the unit's defaults (unit_cfg_default)
- * through the unit's own setters (unit_param_set, unit_sched_find), so
- * that their ranges, choices and defaults live in the unit descriptor
- * alone. Everything downstream (the render's intervals, its operation
- * counts, the table, scene.json) reads the configuration this gives.
+ * A scene's hardware keys are the unit's configuration: the description
+ * keeps them as written, or "" when not set, and here they are applied
+ * over the unit's defaults (unit_cfg_default): L, terms and series
+ * through the unit's own parameter setters (unit_param_set), the
+ * schedule by the unit's name for it (unit_sched_find), round and
+ * overflow by the simulator's mode names (sim_round_parse,
+ * sim_ovf_parse), the width as the whole number it is. So a range,
+ * choice or default of theirs lives in the unit descriptor (or the
+ * simulator) alone. Everything downstream (the render's intervals, its
+ * operation counts, the table, scene.json, the searches) reads the
+ * configuration this gives.
  */
 #include "testbench/study/tb_scene.h"
 #include "base/base_join.h"
+#include "base/base_num.h"
 #include <stdio.h>
 #include <string.h>
 
@@ -29,9 +34,23 @@ int tb_scene_cfg(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, char *e
     const unit_desc *u = unit_find(uname[d->policy]), *all = unit_find("span23");
     if (!u || !all) { snprintf(err, errlen, "unit %s is not built into this shadesim", u ? "span23" : uname[d->policy]); return -1; }
     unit_cfg_default(u, cfg);
-    cfg->width = d->fmt_width;
-    cfg->rnd = (sim_round)d->rnd;
-    cfg->ovf = (sim_ovf)d->ovf;
+    long long w;
+    if (*d->fmt_width && (base_num_whole(d->fmt_width, 0, &w) || w < 1 || w > 64)) {
+        snprintf(err, errlen, "width: '%s' is not a whole number 1..64", d->fmt_width);
+        return -1;
+    }
+    if (*d->fmt_width) cfg->width = (int)w;
+    char list[64] = "";
+    if (*d->rnd && sim_round_parse(d->rnd, &cfg->rnd)) {
+        for (int m = SIM_RND_TRUNC; m <= SIM_RND_EVEN; m++) base_join_add(list, sizeof list, ", ", sim_round_name((sim_round)m));
+        snprintf(err, errlen, "round: \"%s\" is not one of %s", d->rnd, list);
+        return -1;
+    }
+    if (*d->ovf && sim_ovf_parse(d->ovf, &cfg->ovf)) {
+        for (int m = SIM_OVF_WRAP; m <= SIM_OVF_SAT; m++) base_join_add(list, sizeof list, ", ", sim_ovf_name((sim_ovf)m));
+        snprintf(err, errlen, "overflow: \"%s\" is not one of %s", d->ovf, list);
+        return -1;
+    }
     if (*d->schedule) {
         int s = unit_sched_find(u, d->schedule);
         if (s < 0) {

@@ -228,7 +228,7 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
     memset(&g, 0, sizeof g);
     if (scn_desc_builtin("face", &d)) { snprintf(err, errlen, "no built-in face scene"); return 0; }
     d.width = d.height = res;
-    d.fmt_width = 16;
+    snprintf(d.fmt_width, sizeof d.fmt_width, "16");
     snprintf(d.schedule, sizeof d.schedule, "paper");
     size_t n = 0;
     all a;

@@ -80,7 +80,7 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     fprintf(f, ",\n  \"resolution\": \"%dx%d\",\n  \"view\": \"%s\",\n  \"policy\": \"%s\",\n", r->w, r->h,
             r->heldout ? "heldout" : "main", scn_policy_name(d->policy));
     fprintf(f, "  \"L\": %d,\n  \"terms\": %d,\n  \"series\": \"%s\",\n  \"width\": %d,\n", r->cfg.L, r->cfg.terms,
-            r->cfg.series == DIV3_QUARTER ? "quarter" : "paper", d->fmt_width);
+            r->cfg.series == DIV3_QUARTER ? "quarter" : "paper", r->cfg.width);
     fprintf(f, "  \"cubic_nodes\": \"%s\",\n  \"auto_threshold\": ", tb_scene_nodes_n2(d) ? "n2" : "n1");
     base_json_num(f, d->auto_threshold, 17);
     fprintf(f, ",\n  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"formats\": {", u->name, u->sched[r->cfg.schedule].name);

@@ -181,7 +181,7 @@ static void progress(search *s, const char *what)
 static void at_width(search *s, int w, eval *e)
 {
     scn_desc dw = *s->d;
-    dw.fmt_width = w;
+    snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", w);
     char what[64];
     snprintf(what, sizeof what, "uniform width %d", w);
     progress(s, what);
@@ -298,7 +298,7 @@ typedef struct report {
     double target;
     int met, wu;                 /* a uniform width met the target; it */
     int sched;                   /* the unit's schedule index */
-    int L, terms;                /* the unit's, as the description sets them */
+    int L, terms, width;         /* the unit's, as the description sets them */
     int below_w;                 /* width of uni_below */
     unsigned char built[UNIT_MAX_SIGS];   /* signals the build makes (listed, trimmed) */
     int floor_stop;              /* stopped going up: the method's own error is above the target */
@@ -503,11 +503,10 @@ static size_t est_all(const report *rp, const unit_cfg *cfg, const unit_fmts *f0
  * below). TB_BADINPUT (err set): the scene's own width cannot render. */
 static int find_uniform(search *s, report *rp, char *err, size_t errlen)
 {
-    const scn_desc *d = s->d;
     eval e;
-    int w = d->fmt_width < W_MIN ? W_MIN : d->fmt_width > W_MAX ? W_MAX : d->fmt_width;
+    int w = rp->width < W_MIN ? W_MIN : rp->width > W_MAX ? W_MAX : rp->width;
     at_width(s, w, &e);
-    if (e.status == TB_BADINPUT && w == d->fmt_width) {
+    if (e.status == TB_BADINPUT && w == rp->width) {
         snprintf(err, errlen, "%s", e.err);
         return TB_BADINPUT;
     }
@@ -749,6 +748,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     rp->sched = cfg.schedule;
     rp->L = cfg.L;
     rp->terms = cfg.terms;
+    rp->width = cfg.width;
 
     /* 1. The smallest uniform width. */
     if (s.tty) s.expected = est_all(rp, &cfg, &f0);
@@ -758,7 +758,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     /* 2. Fraction bits, signal by signal, dearest first, on the unit at W. */
     {
         scn_desc dw = *d;
-        dw.fmt_width = rp->wu;
+        snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", rp->wu);
         unit_fmts fw;
         const unit_desc *u2;
         if (tb_scene_unit(&dw, &u2, &cfg, &fw, err, errlen)) { rc = TB_BADINPUT; goto done; }
@@ -766,7 +766,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     /* From here every render is of the description at width W with the
      * formats given, as `scene --set width=W --set fmt=...` renders them. */
     scn_desc dwu = *d;
-    dwu.fmt_width = rp->wu;
+    snprintf(dwu.fmt_width, sizeof dwu.fmt_width, "%d", rp->wu);
     s.dr = &dwu;
     if (tb_scene_prep_unit(s.pv, &dwu, err, errlen) || tb_scene_prep_unit(s.ph, &dwu, err, errlen)) {
         rc = TB_BADINPUT;

@@ -194,7 +194,7 @@ static void desc_of(const scn_desc *d, const pt *p, scn_desc *out)
     snprintf(out->L, sizeof out->L, "%d", p->L);
     out->policy = (scn_policy)p->pol;
     snprintf(out->terms, sizeof out->terms, "%d", p->terms);
-    out->fmt_width = p->width;
+    snprintf(out->fmt_width, sizeof out->fmt_width, "%d", p->width);
     snprintf(out->schedule, sizeof out->schedule, "%s", p->sched);
 }
 
