@@ -250,6 +250,30 @@ static int load_mesh(const scn_desc *d, scn_mesh *m)
     return -1;
 }
 
+/* A refusal of the scene's unit (tb_scene_unit, tb_build), named at the
+ * line of the key that set the value last: exit status 2. */
+static int unit_error(const scn_desc *d, const char *err)
+{
+    static const char *const sched[] = { "schedule", "policy", NULL };
+    static const char *const fmts[] = { "fmt", "width", "L", "terms", "series", "policy", NULL };
+    char where[300], pk[16];
+    const char *param[] = { pk, NULL };
+    const char *const *keys = strstr(err, "schedule") ? sched : fmts;
+    /* a unit parameter's own message names it: "parameter L: ..." */
+    if (!strncmp(err, "parameter ", 10)) {
+        snprintf(pk, sizeof pk, "%.*s", (int)strcspn(err + 10, ":"), err + 10);
+        keys = param;
+    }
+    /* and a setting every unit has, "round: ..." (tb_scene_cfg) */
+    static const char *const own[] = { "width", "round", "overflow" };
+    for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
+        if (!strncmp(err, own[k], strlen(own[k])) && err[strlen(own[k])] == ':') {
+            snprintf(pk, sizeof pk, "%s", own[k]);
+            keys = param;
+        }
+    return cli_usage_error("%s%s", scn_desc_where(d, keys, where, sizeof where), err);
+}
+
 static void progress(const char *what)
 {
     if (cli_stderr_tty()) fprintf(stderr, "\r%-70s\r", what);
@@ -384,27 +408,7 @@ int cli_scene(int argc, char **argv)
         bad = tb_build(u, &cfg, &fm, &b, err, sizeof err);
         sim_free(b.c);
     }
-    if (bad) {
-        /* named at the line of the key that set the value last */
-        static const char *const sched[] = { "schedule", "policy", NULL };
-        static const char *const fmts[] = { "fmt", "width", "L", "terms", "series", "policy", NULL };
-        /* a unit parameter's own message names it: "parameter L: ..." */
-        char where[300], pk[16];
-        const char *param[] = { pk, NULL };
-        const char *const *keys = strstr(err, "schedule") ? sched : fmts;
-        if (!strncmp(err, "parameter ", 10)) {
-            snprintf(pk, sizeof pk, "%.*s", (int)strcspn(err + 10, ":"), err + 10);
-            keys = param;
-        }
-        /* and a setting every unit has, "round: ..." (tb_scene_cfg) */
-        static const char *const own[] = { "width", "round", "overflow" };
-        for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
-            if (!strncmp(err, own[k], strlen(own[k])) && err[strlen(own[k])] == ':') {
-                snprintf(pk, sizeof pk, "%s", own[k]);
-                keys = param;
-            }
-        return cli_usage_error("%s%s", scn_desc_where(&d, keys, where, sizeof where), err);
-    }
+    if (bad) return unit_error(&d, err);
 
     scn_mesh m;
     if (load_mesh(&d, &m)) return CLI_USAGE;

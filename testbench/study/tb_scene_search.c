@@ -297,8 +297,7 @@ typedef struct report {
     const unit_desc *u;
     double target;
     int met, wu;                 /* a uniform width met the target; it */
-    int sched;                   /* the unit's schedule index */
-    int L, terms, width;         /* the unit's, as the description sets them */
+    int sched, L, terms, width;  /* the unit's schedule index, L, terms, width (tb_scene_unit's) */
     int below_w;                 /* width of uni_below */
     unsigned char built[UNIT_MAX_SIGS];   /* signals the build makes (listed, trimmed) */
     int floor_stop;              /* stopped going up: the method's own error is above the target */
@@ -745,10 +744,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     unit_cfg cfg;
     unit_fmts f0;
     if (tb_scene_unit(d, &rp->u, &cfg, &f0, err, errlen)) { rc = TB_BADINPUT; goto done; }
-    rp->sched = cfg.schedule;
-    rp->L = cfg.L;
-    rp->terms = cfg.terms;
-    rp->width = cfg.width;
+    rp->sched = cfg.schedule, rp->L = cfg.L, rp->terms = cfg.terms, rp->width = cfg.width;
 
     /* 1. The smallest uniform width. */
     if (s.tty) s.expected = est_all(rp, &cfg, &f0);
