@@ -80,7 +80,7 @@ static int search_and_sweep(const scn_mesh *m)
     int bad = 0;
     if (scn_desc_builtin("face", &d)) return 1;
     d.policy = SCN_POL_ADAPTIVE_REGION;
-    d.terms = 5;
+    snprintf(d.terms, sizeof d.terms, "5");
     char *js = NULL;
     size_t jl = 0;
     FILE *out = open_memstream(&js, &jl);

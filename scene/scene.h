@@ -112,7 +112,8 @@ typedef enum { SCN_OP_ADD, SCN_OP_MUL, SCN_OP_DIV, SCN_OP_SQRT, SCN_OP_POW, SCN_
 extern const char *const scn_op_name[SCN_OP__COUNT];     /* "add" "mul" "div" "sqrt" "pow" */
 
 /* Everything a scene file says. Every field has a default
- * (scn_desc_default: the face scene). Strings are owned by the struct. */
+ * (scn_desc_default: the face scene) but the hardware's, whose defaults
+ * are the unit's ("" here). Strings are owned by the struct. */
 #define SCN_DESC_NKEYS  40       /* room for the keys of scn_desc_keys */
 typedef struct scn_desc {
     int          version;        /* "shadesim-scene 1" */
@@ -126,18 +127,21 @@ typedef struct scn_desc {
     uint8_t      region_deg[SCN_MAX_REGIONS];   /* adaptive-region: degree per region (2 or 3) */
     int          auto_cubic_nodes;              /* adaptive-auto: 1 = N1, 2 = N2 */
     double       auto_threshold;                /* adaptive-auto: degree 3 when the curvature measure exceeds it */
-    /* The hardware: the policy's unit's settings. L, terms, series and
-     * schedule are its parameters, whose ranges and choices only its
-     * descriptor has (testbench/tb_scene.c sets them through the unit's
-     * setters and refuses what it refuses); the defaults here are its
-     * defaults (tests/test_scene.c compares them). */
-    int          L;              /* pixels per interval */
-    int          terms, series;  /* divide-by-3 network */
-    int          fmt_width;      /* W of the default-format rule, 4..64 */
+    /* The hardware: the policy's unit's configuration, kept as the scene
+     * file or --set wrote it ("": not set). L, terms, series and schedule
+     * are the unit's parameters, whose ranges, choices and defaults are
+     * its descriptor's alone; width, round and overflow are every unit's
+     * settings (unit_cfg_default's defaults, the simulator's mode names).
+     * testbench/study/tb_scene_cfg.c applies what is set over the unit's
+     * defaults through its setters (and refuses what they refuse), and
+     * the render reads the configuration that gives. */
+    char         L[16], terms[16];   /* a whole number (the file checks that much) */
+    char         series[16];     /* a choice name: "paper", "quarter" */
+    char         schedule[16];   /* a schedule name: "paper", "mac", "pipe" */
+    char         fmt_width[16];  /* W of the default-format rule: a whole number 4..64 */
     int          nfmt;
     char         fmt[SCN_MAX_FMT][48];   /* NAME=sI.F overrides, in order */
-    int          rnd, ovf;       /* sim_round / sim_ovf values */
-    char         schedule[16];   /* "paper", "mac", "pipe" */
+    char         rnd[16], ovf[16];   /* mode names: "trunc", "half-up", "even"; "wrap", "sat" */
     double       cost[SCN_OP__COUNT];           /* weights of the operation count */
     /* Bookkeeping of scn_desc_set / scn_desc_read (scene_file.c): */
     int          cook_dg, ward_dg;   /* "distribution" and "ward-form" as set; mat.dg is the
@@ -163,7 +167,8 @@ int  scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen);
 /* Set one key from text, as a line "key value" would ("light" appends a
  * light); for --set KEY=VALUE on the command line. 0 or -1 with a message. */
 int  scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, size_t errlen);
-/* Write the description back as a scene file (every key). */
+/* Write the description back as a scene file (every key; the hardware's
+ * only where set, so that the unit's defaults stay the unit's). */
 int  scn_desc_write(FILE *f, const scn_desc *d);
 const char *scn_policy_name(scn_policy p);
 /* The built-in scenes "face" (= scn_desc_default), "sphere", "torus": the

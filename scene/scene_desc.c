@@ -5,7 +5,6 @@
  * file. The format itself, and reading it, is scene_file.c.
  */
 #include "scene/scene_names.h"
-#include "sim/sim_fixed.h"      /* the sim_round / sim_ovf values only */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,9 +23,6 @@ const char *const scn_policy_names[SCN_POL__COUNT + 1] = {
 const char *const scn_spec_names[SCN_SPEC__COUNT + 1] = { "phong", "blinn", "cook", "ward", NULL };
 const char *const scn_dist_names[] = { "beckmann", "d4", "d8", "d16", NULL };
 const char *const scn_fresnel_names[] = { "none", "schlick", "mschlick", NULL };
-const char *const scn_round_names[] = { "trunc", "half-up", "even", NULL };
-const char *const scn_ovf_names[] = { "wrap", "sat", NULL };
-const char *const scn_series_names[] = { "paper", "quarter", NULL };
 const char *const scn_camera_names[] = { "ortho", "perspective", NULL };
 
 const char *const scn_desc_builtin_names[] = { "face", "sphere", "torus", NULL };
@@ -62,14 +58,9 @@ void scn_desc_default(scn_desc *d)
     d->region_deg[2] = d->region_deg[4] = d->region_deg[7] = 2;
     d->auto_cubic_nodes = 1;
     d->auto_threshold = 0.01;
-    d->L = 8;
-    d->terms = 3;
-    d->series = 0;
-    d->fmt_width = 16;
+    /* L, terms, series, schedule, width, round, overflow: not set (the
+     * unit's defaults) */
     d->nfmt = 0;
-    d->rnd = SIM_RND_TRUNC;
-    d->ovf = SIM_OVF_WRAP;
-    strcpy(d->schedule, "paper");
     d->cost[SCN_OP_ADD] = 1.0;
     d->cost[SCN_OP_MUL] = 1.0;
     d->cost[SCN_OP_DIV] = 4.0;
@@ -264,15 +255,16 @@ int scn_desc_write(FILE *f, const scn_desc *d)
         fprintf(f, "region-degree %d %d\n", r, d->region_deg[r]);
     fprintf(f, "auto-threshold %s\n", txt(d->auto_threshold).s);
     fprintf(f, "auto-nodes n%d\n", d->auto_cubic_nodes == 2 ? 2 : 1);
-    fprintf(f, "L %d\n", d->L);
-    fprintf(f, "terms %d\n", d->terms);
-    fprintf(f, "series %s\n", d->series ? "quarter" : "paper");
-    fprintf(f, "width %d\n", d->fmt_width);
+    /* the unit's parameters only where set: else its defaults */
+    if (*d->L) fprintf(f, "L %s\n", d->L);
+    if (*d->terms) fprintf(f, "terms %s\n", d->terms);
+    if (*d->series) fprintf(f, "series %s\n", d->series);
+    if (*d->fmt_width) fprintf(f, "width %s\n", d->fmt_width);
     if (!d->nfmt) fprintf(f, "fmt none\n");
     for (int i = 0; i < d->nfmt && i < SCN_MAX_FMT; i++) fprintf(f, "fmt %s\n", d->fmt[i]);
-    fprintf(f, "round %s\n", (unsigned)d->rnd < 3 ? scn_round_names[d->rnd] : "trunc");
-    fprintf(f, "overflow %s\n", (unsigned)d->ovf < 2 ? scn_ovf_names[d->ovf] : "wrap");
-    fprintf(f, "schedule %s\n", d->schedule);
+    if (*d->rnd) fprintf(f, "round %s\n", d->rnd);
+    if (*d->ovf) fprintf(f, "overflow %s\n", d->ovf);
+    if (*d->schedule) fprintf(f, "schedule %s\n", d->schedule);
     fprintf(f, "cost");
     for (int i = 0; i < SCN_OP__COUNT; i++) fprintf(f, " %s=%s", scn_op_name[i], txt(d->cost[i]).s);
     fprintf(f, "\n");

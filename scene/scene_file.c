@@ -63,8 +63,10 @@
  * L              N (2..64): pixels per interval      8
  * terms          N (1..20): /3 network terms         3
  *                (L, terms, series and schedule are the unit's parameters:
- *                their ranges, choices and defaults are its descriptor's,
- *                checked when the scene's unit is set up)
+ *                their ranges, choices and defaults are its descriptor's;
+ *                width, round and overflow are every unit's settings, with
+ *                its defaults; all applied when the scene's unit is set
+ *                up; not set, the description holds "")
  * series         paper|quarter (/3 network)          paper
  * width          W (4..64): default-format width     16
  * fmt *          none | NAME=sI.F|uI.F ... (signal   none
@@ -306,13 +308,14 @@ struct key_row {
     const char *name;               /* set from the key list (KEY_ROW) */
 };
 
-static key_fn k_mesh, k_res, k_vec, k_fov, k_oheight, k_light, k_held, k_regdeg, k_fmt, k_schedule, k_cost;
+static key_fn k_mesh, k_res, k_vec, k_fov, k_oheight, k_light, k_held, k_regdeg, k_fmt, k_whole, k_word, k_cost;
 
 #define F(field) offsetof(scn_desc, field)
 #define INT(field, lo_, hi_, wh_) .type = KT_INT, .off = F(field), .lo = lo_, .hi = hi_, .what = wh_
 #define REAL(field, lo_, hi_, wh_) .type = KT_REAL, .off = F(field), .lo = lo_, .hi = hi_, .what = wh_
 #define NAME(field, nm_, wh_) .type = KT_NAME, .off = F(field), .names = nm_, .what = wh_
 #define CALL(fn_) .type = KT_CALL, .call = fn_
+#define WHOLE(field, lo_, hi_, wh_) CALL(k_whole), .off = F(field), .lo = lo_, .hi = hi_, .what = wh_
 
 static const int dist_g[] = { 0, 4, 8, 16 }, ward_g[] = { 0, 16 }, nodes_v[] = { 1, 2 };
 static const char *const ward_names[] = { "exact", "poly16", NULL };
@@ -320,10 +323,11 @@ static const char *const nodes_names[] = { "n1", "n2", NULL };
 
 /* Every key once, in the order of the table at the top: its index is
  * key_line's (K_<ID>), its name scn_desc_keys', its row keys[]. The
- * hardware's parameters L and terms, and schedule, are the unit's: this
- * layer reads a whole number or a name, and the testbench sets them
- * through the unit's own setters (tb_scene_unit), with the ranges,
- * choices and defaults of the unit's descriptor. */
+ * hardware's parameters L, terms, series and its schedule are the unit's:
+ * this layer keeps the whole number or the name as text (k_whole,
+ * k_word; "" when not set), and the testbench applies them through the
+ * unit's own setters (tb_scene_unit), with the ranges, choices and
+ * defaults of the unit's descriptor. */
 #define SCN_KEYS(X) \
     X(MESH,      "mesh",           CALL(k_mesh)) \
     X(DETAIL,    "detail",         INT(detail, 1, 8, "N")) \
@@ -353,14 +357,14 @@ static const char *const nodes_names[] = { "n1", "n2", NULL };
     X(REGDEG,    "region-degree",  CALL(k_regdeg)) \
     X(ATHRESH,   "auto-threshold", REAL(auto_threshold, 0.0, 1e6, "X")) \
     X(ANODES,    "auto-nodes",     NAME(auto_cubic_nodes, nodes_names, "n1|n2"), .vals = nodes_v) \
-    X(L,         "L",              INT(L, INT_MIN, INT_MAX, "N")) \
-    X(TERMS,     "terms",          INT(terms, INT_MIN, INT_MAX, "N")) \
-    X(SERIES,    "series",         NAME(series, scn_series_names, "paper|quarter")) \
-    X(WIDTH,     "width",          INT(fmt_width, 4, 64, "W")) \
+    X(L,         "L",              WHOLE(L, INT_MIN, INT_MAX, "N")) \
+    X(TERMS,     "terms",          WHOLE(terms, INT_MIN, INT_MAX, "N")) \
+    X(SERIES,    "series",         CALL(k_word), .off = F(series), .what = "paper|quarter") \
+    X(WIDTH,     "width",          WHOLE(fmt_width, 4, 64, "W")) \
     X(FMT,       "fmt",            CALL(k_fmt)) \
-    X(ROUND,     "round",          NAME(rnd, scn_round_names, "trunc|half-up|even")) \
-    X(OVERFLOW,  "overflow",       NAME(ovf, scn_ovf_names, "wrap|sat")) \
-    X(SCHEDULE,  "schedule",       CALL(k_schedule)) \
+    X(ROUND,     "round",          CALL(k_word), .off = F(rnd), .what = "trunc|half-up|even") \
+    X(OVERFLOW,  "overflow",       CALL(k_word), .off = F(ovf), .what = "wrap|sat") \
+    X(SCHEDULE,  "schedule",       CALL(k_word), .off = F(schedule), .what = "paper|mac|pipe") \
     X(COST,      "cost",           CALL(k_cost))
 
 #define KEY_ID(id, nm, ...) K_##id,
@@ -534,14 +538,28 @@ static int k_fmt(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *
     return 0;
 }
 
-/* schedule: a name the unit judges (its schedules: tb_scene_unit). */
-static int k_schedule(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+/* L, terms, width: a whole number in the row's range (L's and terms'
+ * are the unit's: any int here), kept as text at off. */
+static int k_whole(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
+{
+    (void)cx;
+    int v;
+    if (count(k->name, n, 1, 1, k->what, err, errlen)) return -1;
+    if (inum(k->name, t[0], (long)k->lo, (long)k->hi, &v, err, errlen)) return -1;
+    snprintf((char *)d + k->off, sizeof d->L, "%d", v);     /* at most 11 bytes */
+    return 0;
+}
+
+/* series, schedule, round, overflow: a name the unit judges (its
+ * choices, its schedules, the simulator's modes: tb_scene_unit), kept as
+ * text at off. */
+static int k_word(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
 {
     (void)cx;
     char b[48];
-    if (count(k->name, n, 1, 1, "paper|mac|pipe", err, errlen)) return -1;
-    if (strlen(t[0]) >= sizeof d->schedule) return fail(err, errlen, "schedule: \"%s\" is too long", shown(t[0], b));
-    strcpy(d->schedule, t[0]);
+    if (count(k->name, n, 1, 1, k->what, err, errlen)) return -1;
+    if (strlen(t[0]) >= sizeof d->schedule) return fail(err, errlen, "%s: \"%s\" is too long", k->name, shown(t[0], b));
+    strcpy((char *)d + k->off, t[0]);
     return 0;
 }
 
@@ -673,6 +691,10 @@ int scn_desc_set(scn_desc *d, const char *key, const char *value, char *err, siz
 }
 
 _Static_assert(K__COUNT <= SCN_DESC_NKEYS, "scn_desc.key_line is too small");
+/* k_whole and k_word write any of these at the size of one */
+#define SAME_SIZE(a, b) (sizeof ((scn_desc *)0)->a == sizeof ((scn_desc *)0)->b)
+_Static_assert(SAME_SIZE(terms, L) && SAME_SIZE(series, L) && SAME_SIZE(schedule, L) && SAME_SIZE(fmt_width, L)
+               && SAME_SIZE(rnd, L) && SAME_SIZE(ovf, L), "hardware key fields");
 
 /* Cut a comment: '#' at the start or after a blank. */
 static void cut_comment(char *s)

@@ -11,8 +11,5 @@ extern const char *const scn_policy_names[SCN_POL__COUNT + 1];
 extern const char *const scn_spec_names[SCN_SPEC__COUNT + 1];
 extern const char *const scn_dist_names[];
 extern const char *const scn_fresnel_names[];
-extern const char *const scn_round_names[];
-extern const char *const scn_ovf_names[];
-extern const char *const scn_series_names[];
 extern const char *const scn_camera_names[];
 #endif

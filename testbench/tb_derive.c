@@ -2,6 +2,7 @@
  * intervals (sim_ival.h), driven as tb_run drives it (tb_derive.h). */
 #include "testbench/tb_derive.h"
 #include "testbench/tb_range.h"
+#include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -152,9 +153,8 @@ static int clock_step(dsim *d, const unit_io *io, int valid, char *err, size_t e
     return (valid && rdy.lo ? 1 : 0) + (ov.lo ? 2 : 0);
 }
 
-/* The simulation's arrays for the build's n signals; 0, or -1 with a
- * message. */
-static int dsim_alloc(dsim *d, sim_ctx *c, char *err, size_t errlen)
+/* The simulation's arrays for the build's n signals. */
+static void dsim_alloc(dsim *d, sim_ctx *c)
 {
     memset(d, 0, sizeof *d);
     d->c = c;
@@ -166,11 +166,8 @@ static int dsim_alloc(dsim *d, sim_ctx *c, char *err, size_t errlen)
     d->order = calloc(n, sizeof *d->order); d->regs = calloc(n, sizeof *d->regs); d->mark = calloc(n, 1);
     d->data = calloc(n, 1);
     if (!d->val || !d->hull || !d->nxt_pre || !d->nxt_post || !d->bound || !d->order || !d->regs || !d->mark ||
-        !d->data) {
-        snprintf(err, errlen, "derived ranges: out of memory");
-        return -1;
-    }
-    return 0;
+        !d->data)
+        base_out_of_memory();
 }
 
 /* Everything starts at its value after elaboration (registers their
@@ -216,7 +213,7 @@ static void mark_data(dsim *d)
 }
 
 /* The state after an acceptance, kept for the runs of that many items. */
-static int snap_keep(dsim *d, size_t got, char *err, size_t errlen)
+static void snap_keep(dsim *d, size_t got)
 {
     size_t n = d->n ? d->n : 1;
     if (d->nsnap == d->capsnap) {
@@ -225,11 +222,10 @@ static int snap_keep(dsim *d, size_t got, char *err, size_t errlen)
         size_t *ng = realloc(d->snap_got, d->capsnap * sizeof *d->snap_got);
         if (ns) d->snap = ns;
         if (ng) d->snap_got = ng;
-        if (!ns || !ng) { snprintf(err, errlen, "derived ranges: out of memory"); return -1; }
+        if (!ns || !ng) base_out_of_memory();
     }
     memcpy(d->snap + d->nsnap * n, d->val, n * sizeof *d->snap);
     d->snap_got[d->nsnap++] = got;
-    return 0;
 }
 
 /* Items offered one after another until the state after an acceptance
@@ -268,7 +264,7 @@ static int run_items(dsim *d, const tb_built *b, const unit_desc *u, int beats, 
                      sim_signal_path(sim_signal_at(b->c, w), p, sizeof p), DERIVE_MAX_ITEMS);
             return -1;
         }
-        if (snap_keep(d, got, err, errlen)) return -1;
+        snap_keep(d, got);
         for (uint32_t k = 0; k < d->nregs; k++) {
             uint32_t i = d->regs[k];
             if (have_bound && d->data[i]) d->val[i] = sim_ival_hull(d->val[i], d->bound[i]);
@@ -304,10 +300,10 @@ static int drain_runs(dsim *d, const tb_built *b, const unit_desc *u, int beats,
 
 /* out's signals: each signal of the unit's scope with its hull, as reals,
  * and whether it fits its format. */
-static int collect(tb_derived *out, const dsim *d, const tb_built *b, const unit_desc *u, char *err, size_t errlen)
+static void collect(tb_derived *out, const dsim *d, const tb_built *b, const unit_desc *u)
 {
     out->sigs = calloc(d->n ? d->n : 1, sizeof *out->sigs);
-    if (!out->sigs) { snprintf(err, errlen, "derived ranges: out of memory"); return -1; }
+    if (!out->sigs) base_out_of_memory();
     for (uint32_t i = 0; i < d->n; i++) {
         sim_signal *s = sim_signal_at(b->c, i);
         if (s == b->clk || !tb_range_in_scope(s, b->sc)) continue;
@@ -324,7 +320,6 @@ static int collect(tb_derived *out, const dsim *d, const tb_built *b, const unit
             if (!strcmp(u->sigs[k].name, t->name)) out->at[k] = out->nsigs;
         out->nsigs++;
     }
-    return 0;
 }
 
 int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const tb_ranges *rg,
@@ -336,7 +331,7 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
     if (tb_build(u, cfg, f, &b, err, errlen)) { sim_free(b.c); return -1; }
     dsim d;
     int rc = -1, bad = 0;
-    if (dsim_alloc(&d, b.c, err, errlen)) goto done;
+    dsim_alloc(&d, b.c);
     dsim_start(&d, &b, u, cfg, rg);
     for (uint32_t i = 0; i < d.n && !bad; i++) bad = visit(&d, sim_signal_at(b.c, i), err, errlen);
     if (bad) goto done;
@@ -347,7 +342,7 @@ int tb_derive(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, const
         goto done;
     out->items = items;
     out->clocks = clocks;
-    if (collect(out, &d, &b, u, err, errlen)) goto done;
+    collect(out, &d, &b, u);
     rc = 0;
 done:
     dsim_free(&d);

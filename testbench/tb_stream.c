@@ -17,6 +17,7 @@
 #include "testbench/tb_stream.h"
 #include "testbench/tb_range.h"
 #include "testbench/tb_energy.h"
+#include "base/base_out.h"
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -345,7 +346,7 @@ static void st_monitor(sim_proc *p)
     if (s->io->out_valid->cur) st_collect(s, p);
 }
 
-static int ring_alloc(ring *R, int n_in, int nv, const unit_desc *u)
+static void ring_alloc(ring *R, int n_in, int nv, const unit_desc *u)
 {
     /* About 4 MB of prepared items, at least 256. */
     size_t per = (size_t)n_in * 8 + (size_t)nv * (8 + 5 * 8 + 8) + 16
@@ -363,9 +364,10 @@ static int ring_alloc(ring *R, int n_in, int nv, const unit_desc *u)
     R->hi = u->ideal_interval ? calloc(cap * (size_t)nv, sizeof *R->hi) : NULL;
     R->exact_ok = calloc(cap, 1);
     R->cycle = calloc(cap, sizeof *R->cycle);
-    return R->in_raw && R->raw && R->ideal && R->expected && R->exact_ok && R->cycle
-        && (R->exact || !(u->ideal_exact || u->ideal_ratio || u->ideal_interval))
-        && (R->den || !u->ideal_ratio) && (R->hi || !u->ideal_interval) ? 0 : -1;
+    if (!(R->in_raw && R->raw && R->ideal && R->expected && R->exact_ok && R->cycle
+          && (R->exact || !(u->ideal_exact || u->ideal_ratio || u->ideal_interval))
+          && (R->den || !u->ideal_ratio) && (R->hi || !u->ideal_interval)))
+        base_out_of_memory();
 }
 
 static void ring_free(ring *R)
@@ -389,11 +391,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     st.offered = SIZE_MAX;
     static const vec_set none;
     st.rows = &none;
-    if (ring_alloc(&st.R, st.n_in, st.nv, u)) {
-        ring_free(&st.R);
-        snprintf(err, errlen, "out of memory");
-        return TB_FAIL;
-    }
+    ring_alloc(&st.R, st.n_in, st.nv, u);
     /* The first rows before anything is built: an empty or bad file is
      * reported as vec_file_read would. */
     if (!have_item(&st, 0)) {
@@ -425,22 +423,14 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     if (o && o->reference) { sim_set_reference(c, 1); r->reference = 1; }
     sim_clock(c, clk, 5, 5);
     st.io = &io; st.ctx = c;
-    if (tb_range_init(&st.rg, c, sc, clk)) {
-        snprintf(err, errlen, "out of memory");
-        rc = TB_FAIL;
-        goto done;
-    }
+    if (tb_range_init(&st.rg, c, sc, clk)) base_out_of_memory();     /* its one failure */
     sim_proc *drv = sim_proc_new(c, "tb.driver", st_driver, &st);
     sim_sensitive(drv, clk, SIM_EDGE_POS);
     sim_proc *mon = sim_proc_new(c, "tb.monitor", st_monitor, &st);
     sim_sensitive(mon, clk, SIM_EDGE_POS);
     mon->no_init = 1;
     /* every signal exists now: toggles counted from initialization on */
-    if (!(tog = sim_toggle_new(c))) {
-        snprintf(err, errlen, "out of memory");
-        rc = TB_FAIL;
-        goto done;
-    }
+    if (!(tog = sim_toggle_new(c))) base_out_of_memory();
     /* tb_run's bound, 1000 clocks + 4096 per beat, over the items read so
      * far: it grows while the file is read, and is tb_run's at its end. */
     sim_status ss;

@@ -8,6 +8,7 @@
 #include "tst_ref.h"
 #include "testbench/study/tb_scene.h"
 #include "testbench/tb.h"
+#include "units/unit_net.h"
 #include <stdint.h>
 
 /* The wide formats at which the hardware is float interpolation. */
@@ -15,8 +16,8 @@ static void wide(scn_desc *d)
 {
     d->nfmt = 1;
     snprintf(d->fmt[0], sizeof d->fmt[0], "all=s8.40");
-    d->fmt_width = 48;
-    d->terms = 20;
+    snprintf(d->fmt_width, sizeof d->fmt_width, "48");
+    snprintf(d->terms, sizeof d->terms, "20");
 }
 
 static scn_mesh face;
@@ -46,7 +47,7 @@ static void expected(const scn_desc *d, const scn_gbuf *g, double *img, size_t *
 {
     scn_span *sp;
     size_t ns = scn_spans(g, &sp);
-    int L = d->L;
+    int L = atoi(d->L);                 /* every caller sets it */
     int n2 = d->policy == SCN_POL_CUBIC_N2 ||
              (d->policy >= SCN_POL_ADAPTIVE_REGION && d->auto_cubic_nodes == 2);
     *nint = *nnodes = 0;
@@ -95,13 +96,13 @@ static void test_wide_equals_float(void)
             scn_desc_default(&d);
             d.width = d.height = 64;
             d.policy = pols[pi];
-            d.L = Ls[li];
+            snprintf(d.L, sizeof d.L, "%d", Ls[li]);
             wide(&d);
             tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0 };
             tb_scene_result r;
             char err[600];
             int rc = tb_scene_render(&d, &face, &o, &r, err, sizeof err);
-            TST_CHECK(rc == TB_OK, "%s L=%d: %s", scn_policy_name(d.policy), d.L, err);
+            TST_CHECK(rc == TB_OK, "%s L=%s: %s", scn_policy_name(d.policy), d.L, err);
             if (rc != TB_OK) continue;
             scn_gbuf g;
             TST_CHECK(!scn_raster(&face, &d.view.cam, 64, 64, &g, err, sizeof err), "%s", err);
@@ -116,7 +117,7 @@ static void test_wide_equals_float(void)
                 double e = fabs(r.hw[i] - img[i]);
                 if (e > worst || isnan(e)) worst = e;
             }
-            TST_CHECK(worst <= 1e-9, "%s L=%d: max |hw - float| = %g", scn_policy_name(d.policy), d.L, worst);
+            TST_CHECK(worst <= 1e-9, "%s L=%s: max |hw - float| = %g", scn_policy_name(d.policy), d.L, worst);
             TST_EQ_INT(r.covered, cov);
             TST_EQ_INT(r.intervals, nint);
             TST_EQ_INT(r.nodes_shaded, nnodes);
@@ -193,7 +194,7 @@ static void test_polynomial_profiles(void)
     scn_desc d;
     scn_desc_default(&d);
     wide(&d);
-    d.L = 8;
+    snprintf(d.L, sizeof d.L, "8");
     int ok;
     /* 0.1 + 0.8 (x/44)^2 over x = 0..44 */
     memset(poly_c, 0, sizeof poly_c);
@@ -482,18 +483,23 @@ static void test_jobs_same_bytes(void)
     for (int k = 0; k < 2; k++) { tst_rmtree(dir[k]); rmdir(dir[k]); }
 }
 
-/* The hardware keys are the unit's parameters: the scene file reads a
- * number or a name, and tb_scene_unit sets them through the unit's
- * setters. The ranges here are docs/scenes.md's (L any 2..64, terms
- * 1..20, schedules paper, mac, pipe), written by hand; terms of a policy
- * whose unit has no /3 network (linear: span1) is judged all the same. */
+/* The hardware keys are the unit's parameters: the scene file keeps a
+ * number or a name as written, and tb_scene_unit sets them through the
+ * unit's setters (round and overflow by the simulator's mode names).
+ * The ranges here are docs/scenes.md's (L any 2..64, terms 1..20, series
+ * paper or quarter, schedules paper, mac, pipe, round trunc, half-up,
+ * even, overflow wrap, sat), written by hand; terms of a policy whose
+ * unit has no /3 network (linear: span1) is judged all the same. */
 static void test_hw_keys_are_the_units(void)
 {
     static const struct { const char *key, *value; int ok; const char *what; } C[] = {
         { "L", "2", 1, NULL },       { "L", "64", 1, NULL },      { "L", "1", 0, "2..64" },
         { "L", "65", 0, "2..64" },   { "L", "-3", 0, "2..64" },   { "terms", "1", 1, NULL },
         { "terms", "20", 1, NULL },  { "terms", "0", 0, "1..20" }, { "terms", "21", 0, "1..20" },
+        { "series", "quarter", 1, NULL }, { "series", "half", 0, "paper quarter" },
         { "schedule", "pipe", 1, NULL }, { "schedule", "fast", 0, "paper, mac, pipe" },
+        { "width", "20", 1, NULL },  { "round", "even", 1, NULL }, { "round", "nearest", 0, "trunc, half-up, even" },
+        { "overflow", "sat", 1, NULL }, { "overflow", "clamp", 0, "wrap, sat" },
     };
     static const char *const pols[] = { "linear", "quadratic", "cubic-n1", "cubic-n2", "adaptive-region", "adaptive-auto" };
     for (size_t p = 0; p < sizeof pols / sizeof pols[0]; p++)
@@ -514,16 +520,29 @@ static void test_hw_keys_are_the_units(void)
                           pols[p], C[i].key, C[i].value, err, C[i].key, C[i].what);
             } else if (!strcmp(C[i].key, "L")) {
                 TST_EQ_INT(cfg.L, atoi(C[i].value));
+            } else if (!strcmp(C[i].key, "terms")) {
+                TST_EQ_INT(cfg.terms, atoi(C[i].value));
+            } else if (!strcmp(C[i].key, "series")) {
+                TST_EQ_INT(cfg.series, DIV3_QUARTER);
+            } else if (!strcmp(C[i].key, "width")) {
+                TST_EQ_INT(cfg.width, 20);
+            } else if (!strcmp(C[i].key, "round")) {
+                TST_EQ_INT(cfg.rnd, SIM_RND_EVEN);
+            } else if (!strcmp(C[i].key, "overflow")) {
+                TST_EQ_INT(cfg.ovf, SIM_OVF_SAT);
             }
         }
-    /* The scene's defaults are the unit's: L 8, terms 3, the paper's
-     * series, width 16, trunc, wrap, its first schedule (unit_cfg_default
-     * of each policy's unit, from its descriptor's rows). */
+    /* A scene that sets none of them (the description holds "") gets the
+     * unit's defaults: L 8, terms 3, the paper's series, width 16, trunc,
+     * wrap, its first schedule (unit_cfg_default of each policy's unit,
+     * from its descriptor's rows). */
     for (size_t p = 0; p < sizeof pols / sizeof pols[0]; p++) {
         scn_desc d;
         char err[300];
         scn_desc_default(&d);
         TST_EQ_INT(scn_desc_set(&d, "policy", pols[p], err, sizeof err), 0);
+        TST_CHECK(!*d.L && !*d.terms && !*d.series && !*d.schedule && !*d.fmt_width && !*d.rnd && !*d.ovf,
+                  "%s: hardware keys set by default", pols[p]);
         const unit_desc *u;
         unit_cfg cfg, def;
         unit_fmts f;
@@ -539,6 +558,9 @@ static void test_hw_keys_are_the_units(void)
         TST_EQ_INT(cfg.schedule, 0);
         TST_EQ_INT(cfg.L, 8);
         TST_EQ_INT(cfg.terms, 3);
+        TST_EQ_INT(cfg.width, 16);              /* docs/scenes.md: width 16, trunc, wrap */
+        TST_EQ_INT(cfg.rnd, SIM_RND_TRUNC);
+        TST_EQ_INT(cfg.ovf, SIM_OVF_WRAP);
     }
 }
 

@@ -33,7 +33,7 @@ static int setup(void)
     if (have_scene) return 1;
     if (scn_desc_builtin("sphere", &D)) return 0;
     D.width = D.height = 32;
-    D.terms = 8;            /* a method error well under the quantization's at small widths */
+    snprintf(D.terms, sizeof D.terms, "8");   /* a method error well under the quantization's at small widths */
     if (scn_mesh_builtin(D.mesh, D.detail, &M, err, sizeof err)) { printf("  %s\n", err); return 0; }
     have_scene = 1;
     return 1;
@@ -91,7 +91,7 @@ static double target_for(void)
 {
     /* Twice the error of a wide datapath: met by some width, not by all. */
     scn_desc w = D;
-    w.fmt_width = 28;
+    snprintf(w.fmt_width, sizeof w.fmt_width, "28");
     double e;
     uint64_t ov;
     if (render(&w, NULL, 0, &e, &ov) != TB_OK) return NAN;
@@ -121,16 +121,16 @@ static void test_search_smallest_and_heldout(void)
     scn_desc dw = D;
     double e;
     uint64_t ov;
-    dw.fmt_width = wu;
+    snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", wu);
     TST_EQ_INT(render(&dw, NULL, 0, &e, &ov), TB_OK);
     TST_CHECK(e <= target && ov == 0, "W=%d: NMSE %g ovf %llu", wu, e, (unsigned long long)ov);
     TST_NEAR(jnum_of(js, "uniform_nmse"), e, 1e-8 * e + 1e-300);
-    dw.fmt_width = wu - 1;
+    snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", wu - 1);
     int rc1 = render(&dw, NULL, 0, &e, &ov);
     TST_CHECK(rc1 != TB_OK || e > target || ov > 0, "W=%d also meets (NMSE %g)", wu - 1, e);
 
     /* The found formats, read back from the JSON. */
-    dw.fmt_width = wu;
+    snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", wu);
     const unit_desc *u;
     unit_cfg cfg;
     unit_fmts f;
@@ -211,7 +211,7 @@ static void test_search_jobs(void)
     scn_desc d = D, w;
     d.policy = SCN_POL_LINEAR;
     w = d;
-    w.fmt_width = 28;
+    snprintf(w.fmt_width, sizeof w.fmt_width, "28");
     double e;
     uint64_t ov;
     TST_EQ_INT(render(&w, NULL, 0, &e, &ov), TB_OK);
@@ -269,7 +269,7 @@ static void test_prep_exact(void)
             unit_fmts f, *fp = NULL;
             const unit_desc *u;
             unit_cfg cfg;
-            if (k == 1) e.fmt_width = 12;
+            if (k == 1) snprintf(e.fmt_width, sizeof e.fmt_width, "12");
             if (k == 2 || k == 3) {
                 /* two fraction bits off every signal that has them */
                 TST_EQ_INT(tb_scene_unit(&e, &u, &cfg, &f, err, sizeof err), 0);
@@ -277,7 +277,7 @@ static void test_prep_exact(void)
                     if (f.f[i].width && f.f[i].fbits > 3) { f.f[i].fbits -= 2; f.f[i].width -= 2; }
                 fp = &f;
             }
-            if (k == 4) e.L = 4;          /* not the prep's intervals */
+            if (k == 4) snprintf(e.L, sizeof e.L, "4");   /* not the prep's intervals */
             /* from here, with formats given, the unit comes from the prep */
             if (k == 2) TST_EQ_INT(tb_scene_prep_unit(p, &e, err, sizeof err), 0);
             tb_scene_opts o = { 2, held, NULL, fp, k == 3, 0 };
@@ -375,7 +375,10 @@ static void test_sweep_csv(void)
                 TST_EQ_INT(width, 12); TST_EQ_STR(pol, "quadratic"); TST_EQ_INT(L, 8); TST_EQ_INT(terms, 8);
                 scn_desc d = D;
                 d.width = D.width;
-                d.policy = SCN_POL_QUADRATIC; d.L = 8; d.terms = 8; d.fmt_width = 12;
+                d.policy = SCN_POL_QUADRATIC;
+                snprintf(d.fmt_width, sizeof d.fmt_width, "12");
+                snprintf(d.L, sizeof d.L, "8");
+                snprintf(d.terms, sizeof d.terms, "8");
                 double e;
                 uint64_t ov;
                 TST_EQ_INT(render(&d, NULL, 0, &e, &ov), TB_OK);
@@ -425,7 +428,10 @@ static void test_scene_claims(void)
     scn_mesh m;
     TST_EQ_INT(scn_desc_builtin("face", &d), 0);
     d.width = d.height = 48;
-    d.policy = SCN_POL_ADAPTIVE_REGION; d.L = 8; d.terms = 3; d.fmt_width = 16;
+    d.policy = SCN_POL_ADAPTIVE_REGION;
+    snprintf(d.fmt_width, sizeof d.fmt_width, "16");
+    snprintf(d.L, sizeof d.L, "8");
+    snprintf(d.terms, sizeof d.terms, "3");
     snprintf(d.schedule, sizeof d.schedule, "paper");
     TST_EQ_INT(scn_mesh_builtin(d.mesh, d.detail, &m, err, sizeof err), 0);
     tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0 };

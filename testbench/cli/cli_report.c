@@ -454,7 +454,7 @@ static int scene_compare(FILE *f)
                        "<td class=\"n\">%.2f</td><td class=\"n\">%d</td><td class=\"n\">%.0f%%</td><td class=\"n\">%.3g</td>"
                        "<td class=\"n\">%.0f</td><td class=\"n\">%.2fx</td></tr>\n",
                     *set ? "<code>" : "", *set ? set : "as above", *set ? "</code>" : "", scn_policy_name(d.policy),
-                    d.terms, r.nmse, r.psnr, r.max_err8, 100 * r.deg2_share, r.clocks_per_pixel, r.hwst.area_ge, r.speedup);
+                    r.cfg.terms, r.nmse, r.psnr, r.max_err8, 100 * r.deg2_share, r.clocks_per_pixel, r.hwst.area_ge, r.speedup);
         }
         tb_scene_free(&r);
     }
@@ -487,7 +487,8 @@ static int section_scene(FILE *f, const char *dir)
                "network, width %d), against per-pixel shading in double precision. Rerun: "
                "<code>shadesim scene face --set resolution=%dx%d -o scene</code>. Files: <a href=\"scene/scene.json\">"
                "scene/scene.json</a> and the PNGs in <code>scene/</code>.</p>\n",
-            r.w, r.h, d.L, r.unit ? r.unit->name : "span", scn_policy_name(d.policy), d.terms, d.fmt_width, r.w, r.h);
+            r.w, r.h, r.cfg.L, r.unit ? r.unit->name : "span", scn_policy_name(d.policy), r.cfg.terms, r.cfg.width, r.w,
+            r.h);
     fputs("<div class=\"scene\">\n", f);
     int K = tb_scene_err_scale(&r);
     char errname[32], errcap[160];

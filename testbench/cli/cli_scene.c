@@ -200,8 +200,8 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
     char a[64], b[64];
     const unit_desc *u = r->unit;
     fprintf(f, "scene %s %dx%d, %s view; policy %s, L %d, /3 network %d terms (%s series), width %d, schedule %s\n",
-            d->mesh, r->w, r->h, r->heldout ? "held-out" : "main", scn_policy_name(d->policy), d->L, d->terms,
-            d->series ? "quarter" : "paper", d->fmt_width, u->sched[r->cfg.schedule].name);
+            d->mesh, r->w, r->h, r->heldout ? "held-out" : "main", scn_policy_name(d->policy), r->cfg.L,
+            r->cfg.terms, r->cfg.series == DIV3_QUARTER ? "quarter" : "paper", r->cfg.width, u->sched[r->cfg.schedule].name);
     if (!r->covered) fputs("  (nothing covered: the camera sees no part of the mesh)\n", f);
     fmt_nmse(a, sizeof a, r->nmse);
     fprintf(f, "  %-22s %-14s %s\n", "NMSE", a,
@@ -242,8 +242,36 @@ static int load_mesh(const scn_desc *d, scn_mesh *m)
                                       : scn_mesh_obj(d->mesh, m, err, sizeof err);
     static const char *const keys[] = { "mesh", "detail", NULL };
     char where[300];
-    if (rc) { cli_usage_error("%s%s", scn_desc_where(d, keys, where, sizeof where), err); return -1; }
-    return 0;
+    if (!rc) return 0;
+    /* a message that ends so is the reader's own out of memory, not the file's fault */
+    size_t n = strlen(err), k = strlen("out of memory");
+    if (n >= k && !strcmp(err + n - k, "out of memory")) base_out_of_memory();
+    cli_usage_error("%s%s", scn_desc_where(d, keys, where, sizeof where), err);
+    return -1;
+}
+
+/* A refusal of the scene's unit (tb_scene_unit, tb_build), named at the
+ * line of the key that set the value last: exit status 2. */
+static int unit_error(const scn_desc *d, const char *err)
+{
+    static const char *const sched[] = { "schedule", "policy", NULL };
+    static const char *const fmts[] = { "fmt", "width", "L", "terms", "series", "policy", NULL };
+    char where[300], pk[16];
+    const char *param[] = { pk, NULL };
+    const char *const *keys = strstr(err, "schedule") ? sched : fmts;
+    /* a unit parameter's own message names it: "parameter L: ..." */
+    if (!strncmp(err, "parameter ", 10)) {
+        snprintf(pk, sizeof pk, "%.*s", (int)strcspn(err + 10, ":"), err + 10);
+        keys = param;
+    }
+    /* and a setting every unit has, "round: ..." (tb_scene_cfg) */
+    static const char *const own[] = { "width", "round", "overflow" };
+    for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
+        if (!strncmp(err, own[k], strlen(own[k])) && err[strlen(own[k])] == ':') {
+            snprintf(pk, sizeof pk, "%s", own[k]);
+            keys = param;
+        }
+    return cli_usage_error("%s%s", scn_desc_where(d, keys, where, sizeof where), err);
 }
 
 static void progress(const char *what)
@@ -267,8 +295,8 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
     for (int i = 0; i < n; i++) {
         scn_desc d = *d0;
         d.policy = (scn_policy)cfgs[i].policy;
-        d.terms = cfgs[i].terms;
-        if (i == 0) d.series = DIV3_PAPER;     /* the paper's x/2 - x/8 - x/32 - x/128 */
+        snprintf(d.terms, sizeof d.terms, "%d", cfgs[i].terms);
+        if (i == 0) snprintf(d.series, sizeof d.series, "paper");   /* the paper's x/2 - x/8 - x/32 - x/128 */
         tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 1 };
         tb_scene_result r;
         char err[600], sub[4200];
@@ -276,7 +304,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
         int t = tb_scene_render(&d, m, &o, &r, err, sizeof err);
         progress("");
         if (t != TB_OK) return cli_from_tb(t, "%s", err);
-        if (tb_scene_speed_of(&r, d.fmt_width, err, sizeof err)) {
+        if (tb_scene_speed_of(&r, r.cfg.width, err, sizeof err)) {
             tb_scene_free(&r);
             (void)cli_usage_error("%s", err);
             return CLI_FAIL;
@@ -293,7 +321,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
             fmt_nmse(a, sizeof a, r.nmse);
             fmt_nmse(a8, sizeof a8, r.nmse8);
             fmt_psnr(b, sizeof b, r.psnr);
-            snprintf(what, sizeof what, "%s, /3 network %d terms", scn_policy_name(d.policy), d.terms);
+            snprintf(what, sizeof what, "%s, /3 network %d terms", scn_policy_name(d.policy), r.cfg.terms);
             printf("%-10s %-46s %11s %11s %10s %8.2fx %8.2fx %13.3f %9.0f %4.0f MHz %9.4g %7.3g  %s\n", cfgs[i].name,
                    what, a, a8, b, r.speedup, r.speedup_long, r.clocks_per_pixel, r.hwst.area_ge, r.speed.hw.fmax_mhz,
                    r.speed.pixels_per_s / 1e6, r.speed.energy_pj_per_pixel,
@@ -380,20 +408,7 @@ int cli_scene(int argc, char **argv)
         bad = tb_build(u, &cfg, &fm, &b, err, sizeof err);
         sim_free(b.c);
     }
-    if (bad) {
-        /* named at the line of the key that set the value last */
-        static const char *const sched[] = { "schedule", "policy", NULL };
-        static const char *const fmts[] = { "fmt", "width", "L", "terms", "series", "policy", NULL };
-        /* a unit parameter's own message names it: "parameter L: ..." */
-        char where[300], pk[16];
-        const char *param[] = { pk, NULL };
-        const char *const *keys = strstr(err, "schedule") ? sched : fmts;
-        if (!strncmp(err, "parameter ", 10)) {
-            snprintf(pk, sizeof pk, "%.*s", (int)strcspn(err + 10, ":"), err + 10);
-            keys = param;
-        }
-        return cli_usage_error("%s%s", scn_desc_where(&d, keys, where, sizeof where), err);
-    }
+    if (bad) return unit_error(&d, err);
 
     scn_mesh m;
     if (load_mesh(&d, &m)) return CLI_USAGE;
@@ -415,7 +430,7 @@ int cli_scene(int argc, char **argv)
         tb_scene_result r;
         progress("rendering...");
         int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
-        if (t == TB_OK && tb_scene_speed_of(&r, d.fmt_width, err, sizeof err)) {
+        if (t == TB_OK && tb_scene_speed_of(&r, r.cfg.width, err, sizeof err)) {
             tb_scene_free(&r);
             t = TB_FAIL;
         }

@@ -40,8 +40,8 @@
  * clocks_per_pixel = clocks of all bands' simulations / covered pixels.
  */
 #include "testbench/study/tb_scene.h"
-#include "base/base_join.h"
 #include "testbench/tb.h"
+#include "base/base_out.h"
 #include "units/unit_coef.h"
 #include "units/unit_net.h"
 #include "base/base_par.h"
@@ -65,83 +65,6 @@ static double cpu_now(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* ------------------------------------------------- the unit of a policy */
-
-
-static int has_param(const unit_desc *u, const char *name)
-{
-    for (int i = 0; i < u->nparams; i++)
-        if (!strcmp(u->params[i].name, name)) return 1;
-    return 0;
-}
-
-/* The scene's hardware settings into the policy's unit, each through the
- * unit's own setter (unit_param_set, unit_sched_find): the ranges,
- * choices and defaults of L, terms, series, nodes and the schedule are
- * the unit descriptor's alone (the scene file reads a number or a name).
- * A parameter the policy's unit does not have (span1's terms) is still
- * judged, by the row of span23, which has every one a scene sets. */
-static int scene_cfg(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, char *err, size_t errlen)
-{
-    static const char *const uname[SCN_POL__COUNT] = { "span1", "span2", "span3", "span3", "span23", "span23" };
-    if ((int)d->policy < 0 || d->policy >= SCN_POL__COUNT) { snprintf(err, errlen, "unknown policy"); return -1; }
-    const unit_desc *u = unit_find(uname[d->policy]), *all = unit_find("span23");
-    if (!u || !all) { snprintf(err, errlen, "unit %s is not built into this shadesim", u ? "span23" : uname[d->policy]); return -1; }
-    unit_cfg_default(u, cfg);
-    cfg->width = d->fmt_width;
-    cfg->rnd = (sim_round)d->rnd;
-    cfg->ovf = (sim_ovf)d->ovf;
-    int s = unit_sched_find(u, d->schedule);
-    if (s < 0) {
-        char list[200] = "";
-        for (int j = 0; j < u->nsched; j++) base_join_add(list, sizeof list, ", ", u->sched[j].name);
-        snprintf(err, errlen, "schedule %s: unit %s has schedules: %s", d->schedule, u->name, list);
-        return -1;
-    }
-    cfg->schedule = s;
-    /* series as its choice's name: the scene stores the index */
-    unit_cfg named = *cfg;
-    named.series = d->series;
-    char series[32];
-    for (int i = 0; i < all->nparams; i++)
-        if (!strcmp(all->params[i].name, "series")) unit_param_get(&all->params[i], &named, series, sizeof series);
-    char L[24], terms[24];
-    snprintf(L, sizeof L, "%d", d->L);
-    snprintf(terms, sizeof terms, "%d", d->terms);
-    const char *const set[][2] = { { "L", L }, { "terms", terms }, { "series", series },
-                                   { "nodes", tb_scene_nodes_n2(d) ? "n2" : "n1" } };
-    for (size_t k = 0; k < sizeof set / sizeof set[0]; k++)
-        if (unit_param_set(has_param(u, set[k][0]) ? u : all, cfg, set[k][0], set[k][1], err, errlen)) return -1;
-    *up = u;
-    return 0;
-}
-
-int tb_scene_unit(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, unit_fmts *f,
-                  char *err, size_t errlen)
-{
-    const unit_desc *u;
-    if (scene_cfg(d, &u, cfg, err, errlen)) return -1;
-    const char *ov[SCN_MAX_FMT];
-    for (int i = 0; i < d->nfmt && i < SCN_MAX_FMT; i++) ov[i] = d->fmt[i];
-    if (tb_formats(u, cfg, ov, d->nfmt, f, err, errlen)) {
-        /* here the overrides come from the scene key fmt, not --fmt */
-        if (!strncmp(err, "--fmt ", 6)) memmove(err, err + 2, strlen(err + 2) + 1);
-        return -1;
-    }
-    *up = u;
-    return 0;
-}
-
-/* 1 if the policy's cubic intervals use node set N2 (I(3/4)). Both
- * adaptive policies run on the span23 unit and take its node set from the
- * auto-nodes key (auto_cubic_nodes). */
-int tb_scene_nodes_n2(const scn_desc *d)
-{
-    if (d->policy == SCN_POL_CUBIC_N2) return 1;
-    if (d->policy == SCN_POL_ADAPTIVE_REGION || d->policy == SCN_POL_ADAPTIVE_AUTO) return d->auto_cubic_nodes == 2;
-    return 0;
-}
-
 /* Adders of a coefficient network (ADD and SUB elements; a /3 network is
  * its subtractors or adders). */
 static int net_adds(const coef_net *net, int terms, int series)
@@ -154,12 +77,13 @@ static int net_adds(const coef_net *net, int terms, int series)
     return n;
 }
 
-/* Adders of the coefficients of one interval of degree deg. */
-static int coef_adds(const scn_desc *d, int deg)
+/* Adders of the coefficients of one interval of degree deg, on the unit
+ * configured as cfg (n2: node set N2). */
+static int coef_adds(const unit_cfg *cfg, int n2, int deg)
 {
     if (deg <= 1) return 1;                              /* B = I2 - I1 */
-    if (deg == 2) return net_adds(&coef_net_q, d->terms, d->series);
-    return net_adds(tb_scene_nodes_n2(d) ? &coef_net_n2 : &coef_net_n1, d->terms, d->series);
+    if (deg == 2) return net_adds(&coef_net_q, cfg->terms, cfg->series);
+    return net_adds(n2 ? &coef_net_n2 : &coef_net_n1, cfg->terms, cfg->series);
 }
 
 /* ------------------------------------------------------------ render */
@@ -244,7 +168,7 @@ static void run_band(job *J, band *b)
     const scn_desc *d = J->d;
     const scn_gbuf *g = J->g;
     tb_scene_result *r = J->r;
-    int W = g->w, L = d->L, n2 = tb_scene_nodes_n2(d);
+    int W = g->w, L = J->cfg->L, n2 = tb_scene_nodes_n2(d);     /* the unit's L: intervals */
     double c0 = cpu_now();
     /* reference */
     for (int y = b->y0; y < b->y1; y++)
@@ -267,13 +191,7 @@ static void run_band(job *J, band *b)
     if (!nitems) { b->cpu_other += cpu_now() - c0; return; }
     tb_span_item *items = calloc(nitems, sizeof *items);
     double *pix = malloc(npix * sizeof *pix);
-    if (!items || !pix) {
-        free(items); free(pix);
-        b->rc = TB_FAIL;
-        snprintf(b->err, sizeof b->err, "out of memory");
-        b->cpu_other += cpu_now() - c0;
-        return;
-    }
+    if (!items || !pix) base_out_of_memory();
     size_t it = 0;
     for (size_t k = b->s0; k < b->s1; k++) {
         const scn_span *s = &J->spans[k];
@@ -310,7 +228,7 @@ static void run_band(job *J, band *b)
             i0 = m->node[1];
             b->intervals++;
             if (deg == 2) b->deg2++;
-            b->coef_adds += coef_adds(d, deg);
+            b->coef_adds += coef_adds(J->cfg, n2, deg);
             b->horner_deg += (double)deg * len;
             for (int x = start; x < start + len; x++) r->deg[(size_t)s->y * W + x] = (uint8_t)deg;
         }
@@ -419,11 +337,11 @@ struct tb_scene_prep {
 static int prep_fits(const tb_scene_prep *p, const scn_desc *d)
 {
     scn_desc a = *d, b = p->d;
-    a.fmt_width = b.fmt_width;
+    memcpy(a.fmt_width, b.fmt_width, sizeof a.fmt_width);
     a.nfmt = b.nfmt;
     memcpy(a.fmt, b.fmt, sizeof a.fmt);
-    a.rnd = b.rnd;
-    a.ovf = b.ovf;
+    memcpy(a.rnd, b.rnd, sizeof a.rnd);
+    memcpy(a.ovf, b.ovf, sizeof a.ovf);
     memcpy(a.schedule, b.schedule, sizeof a.schedule);
     memcpy(a.cost, b.cost, sizeof a.cost);
     return !memcmp(&a, &b, sizeof a);
@@ -471,10 +389,10 @@ static void metrics(const scn_gbuf *g, tb_scene_result *r)
 }
 
 /* r's images (copied from prep p, or empty), the spans (p's, or g's own)
- * and nb bands (p's intervals borrowed, with room for their pixels). On
- * failure everything is freed, r too. */
-static int render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_result *r, scn_span **spansp,
-                        size_t *nspansp, int *nbp, band **bandsp, char *err, size_t errlen)
+ * and nb bands (p's intervals borrowed, with room for their pixels). Out
+ * of memory: base_out_of_memory. */
+static void render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_result *r, scn_span **spansp,
+                         size_t *nspansp, int *nbp, band **bandsp)
 {
     size_t np = (size_t)g->w * g->h;
     r->w = g->w;
@@ -486,22 +404,15 @@ static int render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_resu
     scn_span *spans = NULL;
     size_t nspans = p ? p->nspans : scn_spans(g, &spans);
     if (p) spans = p->spans;
-    int nb = g->h < TB_SCENE_BANDS ? g->h : TB_SCENE_BANDS, pixok = 1;
+    int nb = g->h < TB_SCENE_BANDS ? g->h : TB_SCENE_BANDS;
     band *bands = calloc(nb > 0 ? nb : 1, sizeof *bands);
     for (int k = 0; p && bands && k < nb; k++) {
         bands[k] = p->bands[k];
         bands[k].borrowed = 1;
         bands[k].cpu_sim = bands[k].cpu_other = 0;
-        if (bands[k].items && !(bands[k].pix = malloc(bands[k].npix * sizeof *bands[k].pix))) pixok = 0;
+        if (bands[k].items && !(bands[k].pix = malloc(bands[k].npix * sizeof *bands[k].pix))) base_out_of_memory();
     }
-    if (!r->ref || !r->hw || !r->deg || !r->region || !bands || !pixok || (nspans && !spans)) {
-        for (int k = 0; p && bands && k < nb; k++) free(bands[k].pix);
-        free(bands);
-        if (!p) free(spans);
-        tb_scene_free(r);
-        snprintf(err, errlen, "out of memory (%dx%d image)", g->w, g->h);
-        return TB_FAIL;
-    }
+    if (!r->ref || !r->hw || !r->deg || !r->region || !bands || (nspans && !spans)) base_out_of_memory();
     if (p) {
         memcpy(r->ref, p->ref, np * sizeof *r->ref);
         memcpy(r->deg, p->deg, np);
@@ -513,7 +424,6 @@ static int render_alloc(const scn_gbuf *g, const tb_scene_prep *p, tb_scene_resu
     *nspansp = nspans;
     *nbp = nb;
     *bandsp = bands;
-    return TB_OK;
 }
 
 /* Bands of equal rows (spans are in row order); the VCD, if any, is of
@@ -565,10 +475,7 @@ static int keep_prep(tb_scene_prep *make, const job *J, scn_span *spans, size_t 
             rc = b->rc;
             snprintf(err, errlen, "%s", b->err);
         }
-        if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix)) && rc == TB_OK) {
-            rc = TB_FAIL;
-            snprintf(err, errlen, "out of memory");
-        }
+        if (b->items && !(b->refpix = malloc(b->npix * sizeof *b->refpix))) base_out_of_memory();
         for (size_t q = 0, j = b->s0; b->refpix && j < b->s1; j++)
             for (int x = spans[j].x0; x < spans[j].x1; x++)
                 b->refpix[q++] = make->ref[(size_t)spans[j].y * g->w + x];
@@ -661,15 +568,18 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
         /* the formats are given: the rule's would be thrown away */
         r->unit = p->u;
         r->cfg = p->cfg;
-    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen) && !make)
-        return TB_BADINPUT;      /* (making a prep simulates nothing: it needs no unit) */
+    } else if (tb_scene_unit(d, &r->unit, &r->cfg, &r->fmts, err, errlen)) {
+        /* making a prep simulates nothing: it needs the configuration
+         * (the intervals are cut by its L), not formats */
+        if (!make || tb_scene_cfg(d, &r->unit, &r->cfg, err, errlen)) return TB_BADINPUT;
+    }
     if (o->fmts) r->fmts = *o->fmts;
     const scn_view *view = r->heldout ? &d->heldout : &d->view;
     scn_span *spans;
     size_t nspans;
     int nb;
     band *bands;
-    if (render_alloc(g, p, r, &spans, &nspans, &nb, &bands, err, errlen)) return TB_FAIL;
+    render_alloc(g, p, r, &spans, &nspans, &nb, &bands);
     job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
               .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
               .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
@@ -734,9 +644,9 @@ int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int job
      * still be bad: a prep needs none) */
     const unit_desc *u;
     unit_cfg cfg;
-    if (scene_cfg(d, &u, &cfg, err, errlen)) return TB_BADINPUT;
+    if (tb_scene_cfg(d, &u, &cfg, err, errlen)) return TB_BADINPUT;
     tb_scene_prep *p = calloc(1, sizeof *p);
-    if (!p) { snprintf(err, errlen, "out of memory"); return TB_FAIL; }
+    if (!p) base_out_of_memory();
     p->d = *d;
     tb_scene_opts o = { jobs, heldout, NULL, NULL, 0, 0 };
     tb_scene_result r;
@@ -778,6 +688,15 @@ int tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_sce
     return tb_scene_render_prep_budget(d, p, o, INFINITY, r, err, errlen);
 }
 
+int tb_scene_raster(const scn_mesh *m, const scn_camera *cam, int w, int h, scn_gbuf *g, char *err, size_t errlen)
+{
+    if (!scn_raster(m, cam, w, h, g, err, errlen)) return 0;
+    /* its failures: a camera it cannot use, or out of memory, which its
+     * message says */
+    if (strstr(err, "out of memory")) base_out_of_memory();
+    return -1;
+}
+
 int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,
                     tb_scene_result *r, char *err, size_t errlen)
 {
@@ -785,10 +704,7 @@ int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o
     double c0 = cpu_now();
     const scn_view *view = o && o->heldout ? &d->heldout : &d->view;
     scn_gbuf g;
-    /* the rasterizer fails for a camera it cannot use (bad input) or
-     * out of memory */
-    if (scn_raster(m, &view->cam, d->width, d->height, &g, err, errlen))
-        return strstr(err, "memory") ? TB_FAIL : TB_BADINPUT;
+    if (tb_scene_raster(m, &view->cam, d->width, d->height, &g, err, errlen)) return TB_BADINPUT;
     double c1 = cpu_now();
     int rc = tb_scene_render_gbuf(d, &g, NULL, NULL, o, r, err, errlen);
     scn_gbuf_free(&g);

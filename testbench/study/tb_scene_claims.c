@@ -46,8 +46,8 @@ static int measure(const scn_desc *d0, const scn_gbuf *g, scn_policy pol, int L,
 {
     scn_desc d = *d0;
     d.policy = pol;
-    d.L = L;
-    d.terms = terms;
+    snprintf(d.L, sizeof d.L, "%d", L);
+    snprintf(d.terms, sizeof d.terms, "%d", terms);
     tb_scene_opts o = { jobs, 0, NULL, NULL, 0, 0 };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
@@ -228,12 +228,12 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
     memset(&g, 0, sizeof g);
     if (scn_desc_builtin("face", &d)) { snprintf(err, errlen, "no built-in face scene"); return 0; }
     d.width = d.height = res;
-    d.fmt_width = 16;
+    snprintf(d.fmt_width, sizeof d.fmt_width, "16");
     snprintf(d.schedule, sizeof d.schedule, "paper");
     size_t n = 0;
     all a;
     if (scn_mesh_builtin(d.mesh, d.detail, &m, err, errlen) ||
-        scn_raster(&m, &d.view.cam, d.width, d.height, &g, err, errlen) ||
+        tb_scene_raster(&m, &d.view.cam, d.width, d.height, &g, err, errlen) ||
         measure_all(&d, &g, jobs, &a, err, errlen))
         goto done;
     memset(out, 0, TB_SCENE_CLAIMS_ROWS * sizeof *out);

@@ -79,8 +79,8 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     base_json_str(f, d->mesh);
     fprintf(f, ",\n  \"resolution\": \"%dx%d\",\n  \"view\": \"%s\",\n  \"policy\": \"%s\",\n", r->w, r->h,
             r->heldout ? "heldout" : "main", scn_policy_name(d->policy));
-    fprintf(f, "  \"L\": %d,\n  \"terms\": %d,\n  \"series\": \"%s\",\n  \"width\": %d,\n", d->L, d->terms,
-            d->series == DIV3_QUARTER ? "quarter" : "paper", d->fmt_width);
+    fprintf(f, "  \"L\": %d,\n  \"terms\": %d,\n  \"series\": \"%s\",\n  \"width\": %d,\n", r->cfg.L, r->cfg.terms,
+            r->cfg.series == DIV3_QUARTER ? "quarter" : "paper", r->cfg.width);
     fprintf(f, "  \"cubic_nodes\": \"%s\",\n  \"auto_threshold\": ", tb_scene_nodes_n2(d) ? "n2" : "n1");
     base_json_num(f, d->auto_threshold, 17);
     fprintf(f, ",\n  \"unit\": \"%s\",\n  \"schedule\": \"%s\",\n  \"formats\": {", u->name, u->sched[r->cfg.schedule].name);
@@ -124,7 +124,7 @@ static int write_png(base_outset *set, const char *dir, const char *name, int w,
     snprintf(path, sizeof path, "%s/%s", dir, name);
     uint8_t *buf;
     size_t len;
-    if (scn_png_encode(w, h, ch, pix, &buf, &len)) { snprintf(err, errlen, "%s: out of memory", path); return -1; }
+    if (scn_png_encode(w, h, ch, pix, &buf, &len)) base_out_of_memory();    /* its one failure */
     int rc = base_outset_write(set, path, buf, len, err, errlen);
     free(buf);
     return rc;
@@ -137,10 +137,9 @@ int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir,
     if (base_out_mkdirs(dir, err, errlen)) return -1;
     size_t np = (size_t)r->w * r->h;
     uint8_t *g8 = calloc(np ? np : 1, 1), *rgb = calloc(np ? np * 3 : 1, 1);
-    if (!g8 || !rgb) { free(g8); free(rgb); snprintf(err, errlen, "out of memory"); return -1; }
     base_outset *set = base_outset_new();
-    int rc = set ? 0 : -1;
-    if (!set) snprintf(err, errlen, "%s: out of memory", dir);
+    if (!g8 || !rgb || !set) base_out_of_memory();
+    int rc = 0;
     for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? tb_scene_to8(r->ref[i]) : 0;
     rc = rc ? rc : write_png(set, dir, "ref.png", r->w, r->h, 1, g8, err, errlen);
     for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? tb_scene_to8(r->hw[i]) : 0;

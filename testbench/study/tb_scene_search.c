@@ -181,7 +181,7 @@ static void progress(search *s, const char *what)
 static void at_width(search *s, int w, eval *e)
 {
     scn_desc dw = *s->d;
-    dw.fmt_width = w;
+    snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", w);
     char what[64];
     snprintf(what, sizeof what, "uniform width %d", w);
     progress(s, what);
@@ -297,7 +297,7 @@ typedef struct report {
     const unit_desc *u;
     double target;
     int met, wu;                 /* a uniform width met the target; it */
-    int sched;                   /* the unit's schedule index */
+    int sched, L, terms, width;  /* the unit's schedule index, L, terms, width (tb_scene_unit's) */
     int below_w;                 /* width of uni_below */
     unsigned char built[UNIT_MAX_SIGS];   /* signals the build makes (listed, trimmed) */
     int floor_stop;              /* stopped going up: the method's own error is above the target */
@@ -346,8 +346,8 @@ static void print_json(FILE *f, const report *rp)
     base_json_str(f, d->mesh);
     fputs(",\n    \"policy\": ", f);
     base_json_str(f, scn_policy_name(d->policy));
-    fprintf(f, ",\n    \"L\": %d,\n    \"terms\": %d,\n    \"schedule\": ", d->L, d->terms);
-    base_json_str(f, d->schedule);
+    fprintf(f, ",\n    \"L\": %d,\n    \"terms\": %d,\n    \"schedule\": ", rp->L, rp->terms);
+    base_json_str(f, rp->u ? rp->u->sched[rp->sched].name : "");
     fputs(",\n    \"unit\": ", f);
     base_json_str(f, rp->u ? rp->u->name : "");
     fprintf(f, ",\n    \"uniform_met\": %s", rp->met ? "true" : "false");
@@ -394,7 +394,8 @@ static void print_text(FILE *f, const report *rp)
     const scn_desc *d = rp->d;
     char fb[SIM_FMT_STRLEN], fb2[SIM_FMT_STRLEN], v[512];
     fprintf(f, "scene search: NMSE <= %g on %s %dx%d, policy %s, L %d, terms %d, schedule %s (unit %s)\n",
-            rp->target, d->mesh, d->width, d->height, scn_policy_name(d->policy), d->L, d->terms, d->schedule,
+            rp->target, d->mesh, d->width, d->height, scn_policy_name(d->policy), rp->L, rp->terms,
+            rp->u ? rp->u->sched[rp->sched].name : "?",
             rp->u ? rp->u->name : "?");
     if (rp->met) {
         fprintf(f, "smallest uniform width: W = %d", rp->wu);
@@ -501,11 +502,10 @@ static size_t est_all(const report *rp, const unit_cfg *cfg, const unit_fmts *f0
  * below). TB_BADINPUT (err set): the scene's own width cannot render. */
 static int find_uniform(search *s, report *rp, char *err, size_t errlen)
 {
-    const scn_desc *d = s->d;
     eval e;
-    int w = d->fmt_width < W_MIN ? W_MIN : d->fmt_width > W_MAX ? W_MAX : d->fmt_width;
+    int w = rp->width < W_MIN ? W_MIN : rp->width > W_MAX ? W_MAX : rp->width;
     at_width(s, w, &e);
-    if (e.status == TB_BADINPUT && w == d->fmt_width) {
+    if (e.status == TB_BADINPUT && w == rp->width) {
         snprintf(err, errlen, "%s", e.err);
         return TB_BADINPUT;
     }
@@ -720,8 +720,8 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     scn_gbuf gv, gh;
     memset(&gv, 0, sizeof gv);
     memset(&gh, 0, sizeof gh);
-    if (scn_raster(m, &d->view.cam, d->width, d->height, &gv, err, errlen) ||
-        scn_raster(m, &d->heldout.cam, d->width, d->height, &gh, err, errlen)) {
+    if (tb_scene_raster(m, &d->view.cam, d->width, d->height, &gv, err, errlen) ||
+        tb_scene_raster(m, &d->heldout.cam, d->width, d->height, &gh, err, errlen)) {
         scn_gbuf_free(&gv);
         scn_gbuf_free(&gh);
         return TB_BADINPUT;
@@ -731,7 +731,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     report *rp = calloc(1, sizeof *rp);
     cand *cj = calloc((size_t)jobs, sizeof *cj);
     int rc = TB_FAIL;
-    if (!rp || !cj) { snprintf(err, errlen, "scene search: out of memory"); rc = TB_BADINPUT; goto done; }
+    if (!rp || !cj) base_out_of_memory();
     /* What no format changes, once for each view: the reference, the
      * nodes and intervals (every render reads them; none recomputes). */
     rc = tb_scene_prep_new(d, &gv, 0, jobs, &s.pv, err, errlen);
@@ -744,7 +744,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     unit_cfg cfg;
     unit_fmts f0;
     if (tb_scene_unit(d, &rp->u, &cfg, &f0, err, errlen)) { rc = TB_BADINPUT; goto done; }
-    rp->sched = cfg.schedule;
+    rp->sched = cfg.schedule, rp->L = cfg.L, rp->terms = cfg.terms, rp->width = cfg.width;
 
     /* 1. The smallest uniform width. */
     if (s.tty) s.expected = est_all(rp, &cfg, &f0);
@@ -754,7 +754,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     /* 2. Fraction bits, signal by signal, dearest first, on the unit at W. */
     {
         scn_desc dw = *d;
-        dw.fmt_width = rp->wu;
+        snprintf(dw.fmt_width, sizeof dw.fmt_width, "%d", rp->wu);
         unit_fmts fw;
         const unit_desc *u2;
         if (tb_scene_unit(&dw, &u2, &cfg, &fw, err, errlen)) { rc = TB_BADINPUT; goto done; }
@@ -762,7 +762,7 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     /* From here every render is of the description at width W with the
      * formats given, as `scene --set width=W --set fmt=...` renders them. */
     scn_desc dwu = *d;
-    dwu.fmt_width = rp->wu;
+    snprintf(dwu.fmt_width, sizeof dwu.fmt_width, "%d", rp->wu);
     s.dr = &dwu;
     if (tb_scene_prep_unit(s.pv, &dwu, err, errlen) || tb_scene_prep_unit(s.ph, &dwu, err, errlen)) {
         rc = TB_BADINPUT;

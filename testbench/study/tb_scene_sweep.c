@@ -191,10 +191,10 @@ static double mono_now(void)
 static void desc_of(const scn_desc *d, const pt *p, scn_desc *out)
 {
     *out = *d;
-    out->L = p->L;
+    snprintf(out->L, sizeof out->L, "%d", p->L);
     out->policy = (scn_policy)p->pol;
-    out->terms = p->terms;
-    out->fmt_width = p->width;
+    snprintf(out->terms, sizeof out->terms, "%d", p->terms);
+    snprintf(out->fmt_width, sizeof out->fmt_width, "%d", p->width);
     snprintf(out->schedule, sizeof out->schedule, "%s", p->sched);
 }
 
@@ -253,7 +253,7 @@ static void fronts(pt *p, size_t n, int m)
     if (!n) return;
     double *x = calloc(n, sizeof *x), *y = calloc(n, sizeof *y);
     unsigned char *on = calloc(n, 1);
-    if (!x || !y || !on) { free(x); free(y); free(on); return; }
+    if (!x || !y || !on) base_out_of_memory();
     for (size_t i = 0; i < n; i++) {
         int use = p[i].same_as < 0 && p[i].status == TB_OK && p[i].ovf == 0;
         x[i] = use ? m_key(&p[i], m) : NAN;
@@ -290,7 +290,7 @@ static void draw_chart(const scn_desc *d, const pt *p, size_t n, int m, const ch
     const char *b = strrchr(d->mesh, '/');
     snprintf(title, sizeof title, "%.60s %dx%d: NMSE against %s", b ? b + 1 : d->mesh, d->width, d->height, what[m]);
     chart *c = chart_new(title, xlabel[m], "NMSE vs per-pixel reference");
-    if (!c) { snprintf(err, errlen, "%s: out of memory", path); *rc = -1; return; }
+    if (!c) base_out_of_memory();          /* its one failure */
     chart_log_y(c, 1);
     /* The front first (a line under the points), then the marked kinds,
      * then one series per policy. */
@@ -301,19 +301,18 @@ static void draw_chart(const scn_desc *d, const pt *p, size_t n, int m, const ch
     for (int q = 0; q < SCN_POL__COUNT; q++) s_pol[q] = chart_series(c, scn_policy_name((scn_policy)q), CHART_POINTS);
     /* Front points in increasing x as drawn. */
     size_t *idx = malloc((n ? n : 1) * sizeof *idx), nf = 0;
-    if (idx) {
-        for (size_t i = 0; i < n; i++)
-            if (p[i].front[m]) idx[nf++] = i;
-        for (size_t a = 1; a < nf; a++)
-            for (size_t b = a; b > 0; b--) {
-                double xa = m_val(&p[idx[b]], m), xb = m_val(&p[idx[b - 1]], m);
-                if (xa < xb || (xa == xb && p[idx[b]].nmse > p[idx[b - 1]].nmse)) {
-                    size_t t = idx[b]; idx[b] = idx[b - 1]; idx[b - 1] = t;
-                } else break;
-            }
-        for (size_t k = 0; k < nf; k++) chart_point(c, s_front, m_val(&p[idx[k]], m), p[idx[k]].nmse);
-        free(idx);
-    }
+    if (!idx) base_out_of_memory();
+    for (size_t i = 0; i < n; i++)
+        if (p[i].front[m]) idx[nf++] = i;
+    for (size_t a = 1; a < nf; a++)
+        for (size_t b = a; b > 0; b--) {
+            double xa = m_val(&p[idx[b]], m), xb = m_val(&p[idx[b - 1]], m);
+            if (xa < xb || (xa == xb && p[idx[b]].nmse > p[idx[b - 1]].nmse)) {
+                size_t t = idx[b]; idx[b] = idx[b - 1]; idx[b - 1] = t;
+            } else break;
+        }
+    for (size_t k = 0; k < nf; k++) chart_point(c, s_front, m_val(&p[idx[k]], m), p[idx[k]].nmse);
+    free(idx);
     for (size_t i = 0; i < n; i++) {
         const pt *q = &p[i];
         if (q->same_as >= 0 || !pt_ok(q)) continue;
@@ -373,15 +372,14 @@ static void write_csv(FILE *f, const pt *p, size_t n)
 
 /* The grid's points in config order: schedule, width, policy, L, terms;
  * then, unless the widths are given, the extras (adaptive-region at L 8
- * with 3 and 8 terms at widths 12 and 20, per schedule). NULL: out of
- * memory. */
+ * with 3 and 8 terms at widths 12 and 20, per schedule). */
 static pt *grid_points(const axes *a, size_t *np)
 {
     size_t n = (size_t)a->nsched * (size_t)a->nwidth * (size_t)a->npol * (size_t)a->nL * (size_t)a->nterms;
     static const int extra_w[] = { 12, 20 }, extra_t[] = { 3, 8 };
     size_t nx = a->width_given ? 0 : 2 * 2 * (size_t)a->nsched;
     pt *p = calloc(n + nx, sizeof *p);
-    if (!p) return NULL;
+    if (!p) base_out_of_memory();
     size_t k = 0;
     for (int s = 0; s < a->nsched; s++)
         for (int w = 0; w < a->nwidth; w++)
@@ -547,7 +545,6 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
     if (jobs > 64) jobs = 64;
     size_t n = 0;
     pt *p = grid_points(&a, &n);
-    if (!p) { snprintf(err, errlen, "scene sweep: out of memory"); return TB_BADINPUT; }
 
     int rc = TB_OK;
     sweep sw = { .d = d, .m = m, .p = p, .n = n, .mu = PTHREAD_MUTEX_INITIALIZER, .tty = isatty(2),
@@ -555,10 +552,10 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
     scn_gbuf g;
     memset(&g, 0, sizeof g);
     sw.todo = malloc((n ? n : 1) * sizeof *sw.todo);
-    if (!sw.todo) { snprintf(err, errlen, "scene sweep: out of memory"); rc = TB_BADINPUT; goto done; }
+    if (!sw.todo) base_out_of_memory();
     if ((rc = check_points(&sw, err, errlen)) != TB_OK) goto done;
     if (outdir && base_out_mkdirs(outdir, err, errlen)) { rc = TB_BADINPUT; goto done; }
-    if (scn_raster(m, &d->view.cam, d->width, d->height, &g, err, errlen)) { rc = TB_BADINPUT; goto done; }
+    if (tb_scene_raster(m, &d->view.cam, d->width, d->height, &g, err, errlen)) { rc = TB_BADINPUT; goto done; }
     sw.g = &g;
     base_par_for(sw.ntodo, jobs, run_pt, &sw);
     if (sw.tty) fputs("\r\033[K", stderr);

@@ -1,5 +1,6 @@
 /* tb_sweep_chart.c - a sweep's charts from its CSV; see tb_sweep_chart.h. */
 #include "testbench/study/tb_sweep_chart.h"
+#include "base/base_out.h"
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -201,7 +202,7 @@ static int sc_row(tb_sc *sc, sc_rd *rd, char **f, int lineno, char *err, size_t 
     if (sc->n == rd->rowcap) {
         size_t nc = rd->rowcap ? 2 * rd->rowcap : 64;
         tb_sc_row *r = realloc(sc->row, nc * sizeof *r);
-        if (!r) { sc_err(err, errlen, "%s: out of memory", what); return -1; }
+        if (!r) base_out_of_memory();
         sc->row = r;
         rd->rowcap = nc;
     }
@@ -228,7 +229,7 @@ static int sc_row(tb_sc *sc, sc_rd *rd, char **f, int lineno, char *err, size_t 
     if (sc->n > rd->gcap) {
         size_t nc = rd->gcap ? 2 * rd->gcap : 64;
         unsigned char (*g)[SC_MAXID] = realloc(sc->gval, nc * sizeof *g);
-        if (!g) { sc_err(err, errlen, "%s: out of memory", what); return -1; }
+        if (!g) base_out_of_memory();
         sc->gval = g;
         rd->gcap = nc;
     }
@@ -240,9 +241,9 @@ static int sc_row(tb_sc *sc, sc_rd *rd, char **f, int lineno, char *err, size_t 
  * complete, which the charts accept). The tuples move with the rows. */
 static int sc_sort(tb_sc *sc, const char *what, char *err, size_t errlen)
 {
-    tb_sc_row *sorted = malloc(sc->n * sizeof *sorted);
-    unsigned char (*gv)[SC_MAXID] = malloc(sc->n * sizeof *gv);
-    if (!sorted || !gv) { free(sorted); free(gv); sc_err(err, errlen, "%s: out of memory", what); return -1; }
+    tb_sc_row *sorted = malloc((sc->n ? sc->n : 1) * sizeof *sorted);
+    unsigned char (*gv)[SC_MAXID] = malloc((sc->n ? sc->n : 1) * sizeof *gv);
+    if (!sorted || !gv) base_out_of_memory();
     for (size_t i = 0; i < sc->n; i++) { sorted[i] = sc->row[i]; sorted[i].group = i; }
     qsort(sorted, sc->n, sizeof *sorted, sc_cfg_cmp);
     for (size_t i = 0; i < sc->n; i++) {
@@ -282,13 +283,13 @@ static void sc_value_order(tb_sc *sc)
 
 /* Groups, numbered in order of first appearance; gval becomes the
  * groups' tuples, and each group gets its label. */
-static int sc_groups(tb_sc *sc, const char *what, char *err, size_t errlen)
+static void sc_groups(tb_sc *sc)
 {
     sc_hash ht = { 64, NULL };
     while (ht.cap < 2 * sc->n) ht.cap *= 2;
     ht.slot = malloc(ht.cap * sizeof *ht.slot);
-    unsigned char (*gt)[SC_MAXID] = malloc(sc->n * sizeof *gt);
-    if (!ht.slot || !gt) { free(ht.slot); free(gt); sc_err(err, errlen, "%s: out of memory", what); return -1; }
+    unsigned char (*gt)[SC_MAXID] = malloc((sc->n ? sc->n : 1) * sizeof *gt);
+    if (!ht.slot || !gt) base_out_of_memory();
     for (size_t k = 0; k < ht.cap; k++) ht.slot[k] = SIZE_MAX;
     for (size_t i = 0; i < sc->n; i++) {
         size_t h = (size_t)(sc_key(sc->gval[i], sc->nid) & (ht.cap - 1));
@@ -302,8 +303,8 @@ static int sc_groups(tb_sc *sc, const char *what, char *err, size_t errlen)
     free(ht.slot);
     free(sc->gval);
     sc->gval = gt;
-    sc->glabel = calloc(sc->ngroups, sizeof *sc->glabel);
-    if (!sc->glabel) { sc_err(err, errlen, "%s: out of memory", what); return -1; }
+    sc->glabel = calloc(sc->ngroups ? sc->ngroups : 1, sizeof *sc->glabel);
+    if (!sc->glabel) base_out_of_memory();
     for (size_t g = 0; g < sc->ngroups; g++) {
         size_t k = 0, cap = sizeof sc->glabel[g];
         char *b = sc->glabel[g];
@@ -315,7 +316,6 @@ static int sc_groups(tb_sc *sc, const char *what, char *err, size_t errlen)
             if (m > 0) k += (size_t)m;
         }
     }
-    return 0;
 }
 
 tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, size_t errlen)
@@ -324,7 +324,7 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
     char *buf = malloc(len + 1);
     char **f = malloc(4096 * sizeof *f);
     sc_rd rd = { .what = what, .col_pps = -1, .col_e = -1 };
-    if (!sc || !buf || !f) { sc_err(err, errlen, "%s: out of memory", what); goto bad; }
+    if (!sc || !buf || !f) base_out_of_memory();
     memcpy(buf, text, len);
     buf[len] = 0;
     char *line = buf, *next;
@@ -355,7 +355,7 @@ tb_sc *tb_sc_read(const char *text, size_t len, const char *what, char *err, siz
     if (!sc->n) { sc_err(err, errlen, "%s: no rows", what); goto bad; }
     if (sc_sort(sc, what, err, errlen)) goto bad;
     sc_value_order(sc);
-    if (sc_groups(sc, what, err, errlen)) goto bad;
+    sc_groups(sc);
     free(f);
     free(buf);
     return sc;
@@ -370,17 +370,16 @@ bad:
 
 size_t tb_sc_front(const tb_sc *sc, unsigned char *on)
 {
-    double *x = malloc(sc->n * sizeof *x), *y = malloc(sc->n * sizeof *y), *z = malloc(sc->n * sizeof *z);
-    size_t nf = 0;
-    if (x && y && z) {
-        for (size_t i = 0; i < sc->n; i++) {
-            const tb_sc_row *r = &sc->row[i];
-            x[i] = r->ok ? r->max_err : NAN;
-            y[i] = r->ok ? r->area : NAN;
-            z[i] = !r->ok ? NAN : sc->have_pps ? 1.0 / r->pixels_per_s : r->clocks_per_pixel;
-        }
-        nf = chart_pareto3(x, y, z, sc->n, on);
-    } else memset(on, 0, sc->n);
+    size_t n1 = sc->n ? sc->n : 1;
+    double *x = malloc(n1 * sizeof *x), *y = malloc(n1 * sizeof *y), *z = malloc(n1 * sizeof *z);
+    if (!x || !y || !z) base_out_of_memory();
+    for (size_t i = 0; i < sc->n; i++) {
+        const tb_sc_row *r = &sc->row[i];
+        x[i] = r->ok ? r->max_err : NAN;
+        y[i] = r->ok ? r->area : NAN;
+        z[i] = !r->ok ? NAN : sc->have_pps ? 1.0 / r->pixels_per_s : r->clocks_per_pixel;
+    }
+    size_t nf = chart_pareto3(x, y, z, sc->n, on);
     free(x); free(y); free(z);
     return nf;
 }
@@ -525,7 +524,7 @@ static chart *sc_error_width(const tb_sc *sc, const sc_look *l, const tb_sc_targ
     char title[200];
     snprintf(title, sizeof title, lines ? "%s: max and RMS error against width" : "%s: max error against width", sc->unit);
     chart *c = chart_new(title, "width W (bits, the unit's format rule)", "error vs float reference (output units)");
-    if (!c) return NULL;
+    if (!c) base_out_of_memory();          /* its one failure */
     chart_log_y(c, 1);
     chart_int_x(c, 1);
     for (size_t g = 0; g < sc->ngroups; g++) {
@@ -610,7 +609,7 @@ static chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_targe
     char title[200];
     snprintf(title, sizeof title, sc_title[which], sc->unit);
     chart *c = chart_new(title, "max |e| vs float reference (output units)", sc_ylabel[which]);
-    if (!c) return NULL;
+    if (!c) base_out_of_memory();
     chart_log_x(c, 1);
     double lo = INFINITY, hi = 0;
     for (size_t i = 0; i < sc->n; i++)
@@ -627,8 +626,8 @@ static chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_targe
             if (r->group == g && r->ok) chart_point(c, s, r->max_err, sc_y(r, which));
         }
     }
-    unsigned char *on = calloc(sc->n, 1);
-    if (!on) { chart_free(c); return NULL; }
+    unsigned char *on = calloc(sc->n ? sc->n : 1, 1);
+    if (!on) base_out_of_memory();
     tb_sc_front(sc, on);
     /* When the speed does not vary the front is the two-dimensional one of
      * this plane: a staircase through it reads as the best area at each
@@ -640,18 +639,17 @@ static chart *sc_area_error(const tb_sc *sc, const sc_look *l, const tb_sc_targe
         size_t nf = 0;
         for (size_t i = 0; i < sc->n; i++) nf += on[i];
         size_t *ix = malloc((nf ? nf : 1) * sizeof *ix);
-        if (ix) {
-            size_t m = 0;
-            for (size_t i = 0; i < sc->n; i++) if (on[i]) ix[m++] = i;
-            for (size_t a = 1; a < m; a++)     /* insertion sort: fronts are short */
-                for (size_t b = a; b > 0; b--) {
-                    const tb_sc_row *p = &sc->row[ix[b - 1]], *q = &sc->row[ix[b]];
-                    if (p->max_err < q->max_err || (p->max_err == q->max_err && p->area <= q->area)) break;
-                    size_t tmp = ix[b]; ix[b] = ix[b - 1]; ix[b - 1] = tmp;
-                }
-            for (size_t k = 0; k < m; k++) chart_point(c, st, sc->row[ix[k]].max_err, sc->row[ix[k]].area);
-            free(ix);
-        }
+        if (!ix) base_out_of_memory();
+        size_t m = 0;
+        for (size_t i = 0; i < sc->n; i++) if (on[i]) ix[m++] = i;
+        for (size_t a = 1; a < m; a++)     /* insertion sort: fronts are short */
+            for (size_t b = a; b > 0; b--) {
+                const tb_sc_row *p = &sc->row[ix[b - 1]], *q = &sc->row[ix[b]];
+                if (p->max_err < q->max_err || (p->max_err == q->max_err && p->area <= q->area)) break;
+                size_t tmp = ix[b]; ix[b] = ix[b - 1]; ix[b - 1] = tmp;
+            }
+        for (size_t k = 0; k < m; k++) chart_point(c, st, sc->row[ix[k]].max_err, sc->row[ix[k]].area);
+        free(ix);
     }
     sc_keys(c, sc, l, CHART_POINTS);
     sc_front(c, sc, on, which);

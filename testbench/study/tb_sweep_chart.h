@@ -75,6 +75,7 @@ extern const char *const tb_sc_chart_file[TB_SC_NCHARTS];
  * differ between rows (else it is one flat row of points); the speed and
  * energy charts when the CSV has their columns. */
 int    tb_sc_chart_drawn(const tb_sc *sc, int which);
-/* The chart (caller frees), NULL when out of memory. */
+/* The chart (caller frees), NULL for a `which` there is none of (out of
+ * memory: base_out_of_memory). */
 chart *tb_sc_chart(const tb_sc *sc, int which, const tb_sc_target *t);
 #endif
