@@ -105,3 +105,17 @@ printf 'v -1e12 -1e12 0\nv 1e12 -1e12 0\nv 0 1e12 0\nf 1 2 3\n' >"$T/big.obj"
 bounded far_triangle 0 'covered pixels +64 ' "$S" scene sphere --set mesh="$T/big.obj" --set resolution=8x8 -o "$T/s13"
 bounded tiny_ortho 0 'covered pixels +64 ' "$S" scene sphere --set ortho-height=1e-15 --set resolution=8x8 -o "$T/s14"
 bounded tiny_fov 0 'covered pixels +64 ' "$S" scene sphere --set camera=perspective --set fov=1e-12 --set resolution=8x8 -o "$T/s15"
+
+# --- out of memory (docs/cli.md, exit status 3): a render far larger than
+# the address space allowed ends with the one line and status 3, and its
+# output folder never appears. Only where ulimit -v can be set.
+if [ $have_ulimit = 1 ]; then
+    (ulimit -v $MEM_KB; exec "$S" scene face --set resolution=4096x4096 -j 1 -o "$T/oom") >"$T/out" 2>"$T/err"
+    got=$?
+    if [ $got -ne 3 ]; then fail out_of_memory_status "exit $got, expected 3: $(head -c 300 "$T/err")"
+    elif [ "$(cat "$T/err")" != "shadesim: out of memory" ]; then fail out_of_memory_status "stderr: $(head -c 300 "$T/err")"
+    else ok out_of_memory_status; fi
+    check out_of_memory_no_output [ ! -e "$T/oom" ]
+else
+    echo "skip ${PREFIX}out_of_memory_status: ulimit -v unusable here (sanitizer build)"
+fi
