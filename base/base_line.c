@@ -1,6 +1,7 @@
 /* base_line.c - bounded line reading (see base_line.h).
  * getc_unlocked: a line reader owns its stream (no other thread reads
  * it), and the locked getc costs several times more per byte. */
+#include "base/base_out.h"
 #include "base/base_line.h"
 #include <errno.h>
 #include <stdlib.h>
@@ -32,7 +33,7 @@ char *base_text_read(const char *path, size_t max_line, size_t *len, char *err, 
     char *b = malloc(cap);
     char *ret = NULL;
     for (;;) {
-        if (!b) { snprintf(err, errlen, "%s: out of memory", path); break; }
+        if (!b) base_out_of_memory();
         size_t k = fread(b + n, 1, cap - n - 1, f);
         /* Check what just arrived: NULs, and each line's length. */
         char *nul = memchr(b + n, 0, k);

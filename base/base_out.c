@@ -257,7 +257,7 @@ static int open_temp(base_out *o, const char *t, const struct stat *st, int exis
     size_t bl = tl - d;
     if (bl > 200) bl = 200;     /* ".NAME.tmp-XXXXXX" within NAME_MAX */
     o->tmp = malloc(d + 1 + bl + sizeof ".tmp-XXXXXX");
-    if (!o->tmp) { msg(err, errlen, o->shown, "out of memory"); return -1; }
+    if (!o->tmp) base_out_of_memory();
     memcpy(o->tmp, t, d);
     o->tmp[d] = '.';
     memcpy(o->tmp + d + 1, t + d, bl);

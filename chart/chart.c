@@ -45,12 +45,12 @@ static void chart_fail(chart *c, const char *msg)
     if (!c->err[0]) snprintf(c->err, sizeof c->err, "%s", msg);
 }
 
-/* Copy of an optional text; NULL stays NULL, a failed copy is an error. */
-static char *chart_dup_text(chart *c, const char *s)
+/* Copy of an optional text; NULL stays NULL (out of memory exits). */
+static char *chart_dup_text(const char *s)
 {
     if (!s) return NULL;
     char *d = chart_strdup(s);
-    if (!d) chart_fail(c, "out of memory");
+    if (!d) base_out_of_memory();
     return d;
 }
 
@@ -58,9 +58,9 @@ chart *chart_new(const char *title, const char *xlabel, const char *ylabel)
 {
     chart *c = calloc(1, sizeof *c);
     if (!c) return NULL;
-    c->title = chart_dup_text(c, title);
-    c->xlabel = chart_dup_text(c, xlabel);
-    c->ylabel = chart_dup_text(c, ylabel);
+    c->title = chart_dup_text(title);
+    c->xlabel = chart_dup_text(xlabel);
+    c->ylabel = chart_dup_text(ylabel);
     if (c->err[0]) { chart_free(c); return NULL; }
     return c;
 }
@@ -88,10 +88,7 @@ int chart_series(chart *c, const char *label, int style)
 {
     if (!c) return -1;
     if (c->nser >= INT_MAX ||
-        chart_grow((void **)&c->ser, &c->capser, c->nser + 1, sizeof *c->ser)) {
-        chart_fail(c, "out of memory");
-        return -1;
-    }
+        chart_grow((void **)&c->ser, &c->capser, c->nser + 1, sizeof *c->ser)) base_out_of_memory();
     /* A series with neither bit would be invisible: default to points. */
     if (!(style & (CHART_LINE | CHART_POINTS | CHART_STEP))) style = CHART_POINTS;
     chart_ser *s = &c->ser[c->nser];
@@ -99,7 +96,7 @@ int chart_series(chart *c, const char *label, int style)
     s->style = style;
     s->shape = -1;
     s->dash = -1;
-    if (label && *label && !(s->label = chart_dup_text(c, label))) return -1;
+    if (label && *label && !(s->label = chart_dup_text(label))) return -1;
     return (int)c->nser++;
 }
 
@@ -135,10 +132,7 @@ static size_t chart_add(chart *c, int series, double x, double y)
         return SIZE_MAX;
     }
     chart_ser *s = &c->ser[series];
-    if (chart_grow((void **)&s->pt, &s->cap, s->n + 1, sizeof *s->pt)) {
-        chart_fail(c, "out of memory");
-        return SIZE_MAX;
-    }
+    if (chart_grow((void **)&s->pt, &s->cap, s->n + 1, sizeof *s->pt)) base_out_of_memory();
     s->pt[s->n].x = x;
     s->pt[s->n].y = y;
     return s->n++;
@@ -153,11 +147,8 @@ void chart_point_label(chart *c, int series, double x, double y, const char *lab
 {
     size_t idx = chart_add(c, series, x, y);
     if (idx == SIZE_MAX || !label || !*label) return;
-    if (chart_grow((void **)&c->pl, &c->cappl, c->npl + 1, sizeof *c->pl)) {
-        chart_fail(c, "out of memory");
-        return;
-    }
-    char *t = chart_dup_text(c, label);
+    if (chart_grow((void **)&c->pl, &c->cappl, c->npl + 1, sizeof *c->pl)) base_out_of_memory();
+    char *t = chart_dup_text(label);
     if (!t) return;
     c->pl[c->npl].series = series;
     c->pl[c->npl].idx = idx;
@@ -168,12 +159,9 @@ void chart_point_label(chart *c, int series, double x, double y, const char *lab
 void chart_hband(chart *c, double x0, double x1, const char *label)
 {
     if (!c) return;
-    if (chart_grow((void **)&c->band, &c->capband, c->nband + 1, sizeof *c->band)) {
-        chart_fail(c, "out of memory");
-        return;
-    }
+    if (chart_grow((void **)&c->band, &c->capband, c->nband + 1, sizeof *c->band)) base_out_of_memory();
     char *t = NULL;
-    if (label && *label && !(t = chart_dup_text(c, label))) return;
+    if (label && *label && !(t = chart_dup_text(label))) return;
     c->band[c->nband].x0 = x0 <= x1 ? x0 : x1;
     c->band[c->nband].x1 = x0 <= x1 ? x1 : x0;
     c->band[c->nband].label = t;
@@ -183,12 +171,9 @@ void chart_hband(chart *c, double x0, double x1, const char *label)
 void chart_hline(chart *c, double y, const char *label)
 {
     if (!c) return;
-    if (chart_grow((void **)&c->hl, &c->caphl, c->nhl + 1, sizeof *c->hl)) {
-        chart_fail(c, "out of memory");
-        return;
-    }
+    if (chart_grow((void **)&c->hl, &c->caphl, c->nhl + 1, sizeof *c->hl)) base_out_of_memory();
     char *t = NULL;
-    if (label && *label && !(t = chart_dup_text(c, label))) return;
+    if (label && *label && !(t = chart_dup_text(label))) return;
     c->hl[c->nhl].y = y;
     c->hl[c->nhl].label = t;
     c->nhl++;
@@ -222,12 +207,7 @@ static int chart_rendered(const chart *c, const char *what, chart_buf *b, char *
         return -1;
     }
     chart_render(c, b);
-    if (b->oom) {
-        free(b->p);
-        b->p = NULL;
-        chart_err(err, errlen, "%s: out of memory", what);
-        return -1;
-    }
+    if (b->oom) base_out_of_memory();
     return 0;
 }
 

@@ -211,8 +211,8 @@ typedef struct scn_gbuf {
 
 /* Rasterize with a z-buffer, back faces culled, the top-left fill rule
  * (a pixel centre on a shared edge belongs to exactly one triangle).
- * Attributes are interpolated perspective-correctly. 0, or -1 (out of
- * memory). */
+ * Attributes are interpolated perspective-correctly. 0, or -1 with a
+ * message (a camera it cannot use); out of memory ends the program. */
 /* The checks scn_raster makes of a camera, alone: 0, or -1 with
  * "camera: what". */
 int  scn_camera_check(const scn_camera *c, char *err, size_t errlen);

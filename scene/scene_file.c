@@ -101,6 +101,7 @@
  * name, too many lights, a line over 4095 bytes, a NUL byte); from
  * scn_desc_set "KEY: what". The description is only changed on success.
  */
+#include "base/base_out.h"
 #include "scene/scene_names.h"
 #include "base/base_join.h"
 #include "base/base_line.h"
@@ -712,11 +713,7 @@ int scn_desc_read(const char *path, scn_desc *d, char *err, size_t errlen)
     }
     scn_desc *t = malloc(sizeof *t);
     char *line = malloc(LINE_MAX_BYTES + 1);
-    if (!t || !line) {
-        free(t); free(line); fclose(f);
-        snprintf(err, errlen, "%s: out of memory", path);
-        return -1;
-    }
+    if (!t || !line) base_out_of_memory();
     scn_desc_default(t);
     const char *slash = strrchr(path, '/');
     ctx cx = { 1, 0, slash ? path : NULL, slash ? (size_t)(slash - path) : 0, 0, NULL };

@@ -5,8 +5,8 @@
 #include "scene/scene.h"
 
 /* Zero *m and allocate nv vertices and nt triangles (regions zeroed,
- * nregions 1 named "rest"). 0, or -1 (out of memory or counts too large;
- * *m is left empty). */
+ * nregions 1 named "rest"). 0, or -1 (counts too large; *m is left
+ * empty). Out of memory ends the program (base_out_of_memory). */
 int  scn_mesh_alloc(scn_mesh *m, size_t nv, size_t nt);
 
 /* Area-weighted vertex normals: each vertex gets the normalized sum of the

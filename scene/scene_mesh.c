@@ -50,6 +50,7 @@
  *
  * detail (1..8) multiplies both grid counts.
  */
+#include "base/base_out.h"
 #include "scene/scene_geom.h"
 #include <math.h>
 #include <stdio.h>
@@ -75,10 +76,7 @@ int scn_mesh_alloc(scn_mesh *m, size_t nv, size_t nt)
     m->nrm = malloc((nv ? nv : 1) * sizeof *m->nrm);
     m->tri = malloc((nt ? nt : 1) * sizeof *m->tri);
     m->region = calloc(nt ? nt : 1, 1);
-    if (!m->pos || !m->nrm || !m->tri || !m->region) {
-        scn_mesh_free(m);
-        return -1;
-    }
+    if (!m->pos || !m->nrm || !m->tri || !m->region) base_out_of_memory();
     m->nv = nv;
     m->nt = nt;
     m->nregions = 1;
@@ -353,7 +351,7 @@ static int build_face(int detail, scn_mesh *m)
     for (int k = 0; k < 8; k++) m->region_name[k] = names[k];
     /* Per vertex: undeformed front coordinates for the region labels. */
     double (*fr)[3] = malloc(m->nv * sizeof *fr);
-    if (!fr) { scn_mesh_free(m); return -1; }
+    if (!fr) base_out_of_memory();
     const double h = 1e-5;          /* central-difference step in grid units */
     size_t v = 0;
     for (int i = 0; i <= nlat; i++) {
@@ -418,7 +416,7 @@ int scn_mesh_builtin(const char *name, int detail, scn_mesh *m, char *err, size_
         return -1;
     }
     if (r) {
-        snprintf(err, errlen, "mesh %s: out of memory", name);
+        snprintf(err, errlen, "mesh %s: too many vertices", name);
         return -1;
     }
     return 0;

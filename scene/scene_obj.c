@@ -23,6 +23,7 @@
  * files, while reading for pipes), and so is a line over 1 MiB (reading
  * stops there: a stream without LF costs no more).
  */
+#include "base/base_out.h"
 #include "scene/scene_geom.h"
 #include "base/base_line.h"
 #include <errno.h>
@@ -162,7 +163,7 @@ static int face(ctx *c, char *s, size_t nv, size_t nvt, size_t nvn, vec *tris)
             cv[2] = vi;
             cn[2] = ni;
             otri *o = vec_push(tris);
-            if (!o) return fail(c, "out of memory");
+            if (!o) base_out_of_memory();
             memcpy(o->v, cv, sizeof cv);
             memcpy(o->n, cn, sizeof cn);
             cv[1] = vi;                           /* fan: c0 ci ci+1 */
@@ -199,7 +200,7 @@ static int build(ctx *c, const vec *vp, const vec *vn, const vec *tris, scn_mesh
     pair *tab = malloc(slots * sizeof *tab);
     pair *outs = malloc(3 * (nt ? nt : 1) * sizeof *outs);   /* [out]: its pair */
     int rc = -1;
-    if (!auto_n || !tv || !tab || !outs) goto oom;
+    if (!auto_n || !tv || !tab || !outs) base_out_of_memory();
     for (size_t t = 0; t < nt; t++) memcpy(tv[t], T[t].v, sizeof tv[t]);
     scn_vertex_normals(P, np, (const uint32_t (*)[3])tv, nt, auto_n);
     for (size_t i = 0; i < slots; i++) tab[i].out = NONE;
@@ -215,7 +216,11 @@ static int build(ctx *c, const vec *vp, const vec *vn, const vec *tris, scn_mesh
             }
             tv[t][k] = tab[h].out;
         }
-    if (nout > UINT32_MAX || scn_mesh_alloc(m, nout, nt)) goto oom;
+    if (nout > UINT32_MAX || scn_mesh_alloc(m, nout, nt)) {   /* too many (out of memory exits) */
+        c->line = 0;
+        fail(c, "more than %u distinct vertex and normal pairs", (unsigned)UINT32_MAX);
+        goto done;
+    }
     for (size_t o = 0; o < nout; o++) {
         uint32_t v = outs[o].v, n = outs[o].n;
         memcpy(m->pos[o], P[v], sizeof m->pos[o]);
@@ -228,10 +233,6 @@ static int build(ctx *c, const vec *vp, const vec *vn, const vec *tris, scn_mesh
     }
     memcpy(m->tri, tv, nt * sizeof *tv);
     rc = 0;
-    goto done;
-oom:
-    c->line = 0;
-    fail(c, "out of memory");
 done:
     free(auto_n);
     free(tv);
@@ -272,7 +273,7 @@ int scn_mesh_obj(const char *path, scn_mesh *m, char *err, size_t errlen)
     char *line = malloc(OBJ_MAX_LINE + 1);
     long len;
     int rc = -1;
-    if (!line) { fail(&c, "out of memory"); goto out; }
+    if (!line) base_out_of_memory();
     while ((len = base_line_read(f, line, OBJ_MAX_LINE)) >= 0 || len == BASE_LINE_LONG || len == BASE_LINE_NUL) {
         c.line++;
         if (len == BASE_LINE_LONG) {
@@ -310,7 +311,7 @@ int scn_mesh_obj(const char *path, scn_mesh *m, char *err, size_t errlen)
                 goto out;
             }
             double *d = vec_push(dst);
-            if (!d) { fail(&c, "out of memory"); goto out; }
+            if (!d) base_out_of_memory();
             memcpy(d, p, sizeof p);
         } else if (!strcmp(kw, "f")) {
             if (face(&c, s, vp.n, nvt, vn.n, &tris)) goto out;

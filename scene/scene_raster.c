@@ -47,12 +47,13 @@
  * the lower triangle index stays. Deterministic: one thread, mesh order.
  * Uncovered pixels: tri -1, depth +inf, region, pos, nrm 0.
  *
- * Errors (-1 with a message; beyond the header's out of memory): image
+ * Errors (-1 with a message; out of memory ends the program): image
  * size outside 1..32768 per side or 2^28 pixels, eye == target, up zero
  * or along the view, fov outside (0, 180), ortho height <= 0, more than
  * INT32_MAX triangles. 128-bit integers are the GNU __int128, as in
  * sim/sim_fixed.c.
  */
+#include "base/base_out.h"
 #include "scene/scene.h"
 #include <math.h>
 #include <stdlib.h>
@@ -435,11 +436,7 @@ int scn_raster(const scn_mesh *m, const scn_camera *cam, int w, int h, scn_gbuf 
     rvert *vs = malloc((m->nv ? m->nv : 1) * sizeof *vs);
     double (*vv)[2] = malloc((m->nv ? m->nv : 1) * sizeof *vv);     /* xv, yv */
     if (!g->tri || !g->region || !g->depth || !g->pos || !g->nrm || !g->frags || !vs || !vv) {
-        free(vs);
-        free(vv);
-        scn_gbuf_free(g);
-        snprintf(err, errlen, "raster %dx%d: out of memory", w, h);
-        return -1;
+        base_out_of_memory();
     }
     for (size_t i = 0; i < n; i++) {
         g->tri[i] = -1;

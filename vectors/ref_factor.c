@@ -1,5 +1,6 @@
 /* ref_factor.c - BRDF models, parabolic maps, the log-space factorization
  * and the SVD baseline (see ref_factor.h). */
+#include "base/base_out.h"
 #include "vectors/ref_factor.h"
 #include "vectors/ref_brdf.h"
 #include "base/base_num.h"
@@ -506,37 +507,31 @@ int rf_factorize(rf_fn fn, void *user, const rf_opts *o, rf_fact *f, char *err, 
     f->llam = malloc(sizeof(double) * (size_t)T); f->lpi = malloc(sizeof(double) * (size_t)T);
     f->lam = malloc(sizeof(double) * (size_t)T); f->pi = malloc(sizeof(double) * (size_t)T);
     int rc = -1;
-    if (!a.ptr || !a.col || !a.val || !a.rhs || !x || !f->llam || !f->lpi || !f->lam || !f->pi) {
-        snprintf(err, len, "out of memory (resolution %d, %ld samples)", R, N);
-        goto out;
-    }
+    if (!a.ptr || !a.col || !a.val || !a.rhs || !x || !f->llam || !f->lpi || !f->lam || !f->pi)
+        base_out_of_memory();
     f->R = R;
     a.ptr[0] = 0;
     /* Pairs first (their f gives the floor), then the rows. */
     double *pd = malloc(sizeof(double) * 7 * (size_t)N);
-    if (!pd) { snprintf(err, len, "out of memory (%ld samples)", N); goto out; }
+    if (!pd) base_out_of_memory();
     long np = sample_pairs(fn, user, o->seed, N, pd, f);
     if (!(f->fmax > 0)) { free(pd); snprintf(err, len, "the BRDF is 0 at every sample"); goto out; }
     /* The floor is relative to the 99th percentile, not the largest: the
      * largest is often a 1/(N.L N.V) near the horizon, orders of magnitude
      * above the lobe, and a floor against it would drop the lobe's tails. */
     f->fref = percentile99(pd, np);
-    if (f->fref < 0) { free(pd); snprintf(err, len, "out of memory (%ld samples)", N); goto out; }
+    if (f->fref < 0) base_out_of_memory();
     f->floor = o->floor * f->fref;
     sample_rows(&a, pd, np, R, f);
     free(pd);
     if (!f->used) { snprintf(err, len, "the BRDF is 0 at every sample"); goto out; }
     if (o->smooth > 0) smooth_rows(&a, o->smooth, R, pairs, f);
     f->iters = cgls(&a, n, x, o->max_iter, o->tol, &f->relres);
-    if (f->iters < 0) { snprintf(err, len, "out of memory in the solver"); goto out; }
+    if (f->iters < 0) base_out_of_memory();
     double *xr = malloc(sizeof(double) * (size_t)n);
-    if (!xr) { snprintf(err, len, "out of memory in the solver"); goto out; }
+    if (!xr) base_out_of_memory();
     memcpy(xr, x, sizeof(double) * (size_t)n);
-    if (o->refine > 0 && refine(&a, f->used, n, xr, o->refine, o->max_iter) < 0) {
-        free(xr);
-        snprintf(err, len, "out of memory in the refinement");
-        goto out;
-    }
+    if (o->refine > 0 && refine(&a, f->used, n, xr, o->refine, o->max_iter) < 0) base_out_of_memory();
     gauge(f, x, xr);
     free(xr);
     rc = 0;
@@ -617,11 +612,7 @@ int rf_svd_fit(rf_fn fn, void *user, int R, int K, rf_svd *s, char *err, size_t 
     s->v = calloc((size_t)K * (size_t)T, sizeof(double));
     s->sv = calloc((size_t)K, sizeof(double));
     double *w = malloc(sizeof(double) * (size_t)T);
-    if (!M || !s->u || !s->v || !s->sv || !w) {
-        free(M); free(w); rf_svd_free(s);
-        snprintf(err, len, "svd: out of memory");
-        return -1;
-    }
+    if (!M || !s->u || !s->v || !s->sv || !w) base_out_of_memory();
     s->R = R; s->K = K; s->k_used = K;
     /* M[h][d]: f at the texel centres; di from (h, d), d0 its mirror about h. */
     for (int a = 0; a < T; a++) {

@@ -360,7 +360,7 @@ static int parse_row(reader *r, char *p, vec_set *s, unsigned seen)
     double v[2 * VEC_MAX_PORTS];
     if (parse_side(r, p, "inputs", s->n_in, v)) return -1;
     if (parse_side(r, bar + 1, "outputs", s->n_out, v + s->n_in)) return -1;
-    if (vec_set_push(s, v)) return fail(r, "out of memory");
+    if (vec_set_push(s, v)) base_out_of_memory();
     return 0;
 }
 
@@ -502,7 +502,7 @@ static int do_rows(reader *r, char *b, char *e, vec_set *s, const vec_set *expec
      * appending is reported on the half's last line.) */
     r->line += h->r.line;
     if (h->rc) return fail(r, "%s", h->r.why);
-    if (append_rows(s, &pp->rows)) return fail(r, "out of memory");
+    if (append_rows(s, &pp->rows)) base_out_of_memory();
     return 0;
 }
 
@@ -602,7 +602,7 @@ static int read_step(vec_stream *v, vec_set *s)
 vec_stream *vec_stream_open(const char *path, const vec_set *expect, char *err, size_t errlen)
 {
     vec_stream *v = calloc(1, sizeof *v);
-    if (!v) { msg(err, errlen, "%s: out of memory", path); return NULL; }
+    if (!v) base_out_of_memory();
     v->is_stdin = !strcmp(path, "-");
     v->r.path = v->is_stdin ? "<stdin>" : path;
     v->r.err = v->err;
@@ -611,10 +611,10 @@ vec_stream *vec_stream_open(const char *path, const vec_set *expect, char *err, 
     /* zeroed, and VEC_NUM_PAD bytes longer: vec_num_strtod_padded reads
      * digits eight bytes at a time, up to seven past a line's end */
     v->buf = calloc(v->cap + 1 + VEC_NUM_PAD, 1);
+    if (!v->buf) base_out_of_memory();
     v->f = v->is_stdin ? stdin : fopen(path, "rb");
-    if (!v->buf || !v->f) {
-        if (!v->buf) msg(err, errlen, "%s: out of memory", path);
-        else msg(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+    if (!v->f) {
+        msg(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         if (v->f && !v->is_stdin) fclose(v->f);
         free(v->buf);
         free(v);

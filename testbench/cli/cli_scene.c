@@ -243,9 +243,6 @@ static int load_mesh(const scn_desc *d, scn_mesh *m)
     static const char *const keys[] = { "mesh", "detail", NULL };
     char where[300];
     if (!rc) return 0;
-    /* a message that ends so is the reader's own out of memory, not the file's fault */
-    size_t n = strlen(err), k = strlen("out of memory");
-    if (n >= k && !strcmp(err + n - k, "out of memory")) base_out_of_memory();
     cli_usage_error("%s%s", scn_desc_where(d, keys, where, sizeof where), err);
     return -1;
 }

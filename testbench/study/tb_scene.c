@@ -688,14 +688,6 @@ int tb_scene_render_prep(const scn_desc *d, const tb_scene_prep *p, const tb_sce
     return tb_scene_render_prep_budget(d, p, o, INFINITY, r, err, errlen);
 }
 
-int tb_scene_raster(const scn_mesh *m, const scn_camera *cam, int w, int h, scn_gbuf *g, char *err, size_t errlen)
-{
-    if (!scn_raster(m, cam, w, h, g, err, errlen)) return 0;
-    /* its failures: a camera it cannot use, or out of memory, which its
-     * message says */
-    if (strstr(err, "out of memory")) base_out_of_memory();
-    return -1;
-}
 
 int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,
                     tb_scene_result *r, char *err, size_t errlen)
@@ -704,7 +696,7 @@ int tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o
     double c0 = cpu_now();
     const scn_view *view = o && o->heldout ? &d->heldout : &d->view;
     scn_gbuf g;
-    if (tb_scene_raster(m, &view->cam, d->width, d->height, &g, err, errlen)) return TB_BADINPUT;
+    if (scn_raster(m, &view->cam, d->width, d->height, &g, err, errlen)) return TB_BADINPUT;
     double c1 = cpu_now();
     int rc = tb_scene_render_gbuf(d, &g, NULL, NULL, o, r, err, errlen);
     scn_gbuf_free(&g);

@@ -109,9 +109,6 @@ int  tb_scene_cfg(const scn_desc *d, const unit_desc **u, unit_cfg *cfg, char *e
 /* tb_scene_cfg and the formats: the width rule's, then the fmt keys. */
 int  tb_scene_unit(const scn_desc *d, const unit_desc **u, unit_cfg *cfg, unit_fmts *f,
                    char *err, size_t errlen);
-/* scn_raster, out of memory ending the program (base_out_of_memory): 0,
- * or -1 with a message (a camera it cannot use). */
-int  tb_scene_raster(const scn_mesh *m, const scn_camera *cam, int w, int h, scn_gbuf *g, char *err, size_t errlen);
 /* Render. m is the description's mesh (already loaded). TB_OK, TB_FAIL or
  * TB_BADINPUT with a message. */
 int  tb_scene_render(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o,

@@ -233,7 +233,7 @@ size_t tb_scene_claims(claim_result *out, size_t max, int res, int jobs, char *e
     size_t n = 0;
     all a;
     if (scn_mesh_builtin(d.mesh, d.detail, &m, err, errlen) ||
-        tb_scene_raster(&m, &d.view.cam, d.width, d.height, &g, err, errlen) ||
+        scn_raster(&m, &d.view.cam, d.width, d.height, &g, err, errlen) ||
         measure_all(&d, &g, jobs, &a, err, errlen))
         goto done;
     memset(out, 0, TB_SCENE_CLAIMS_ROWS * sizeof *out);

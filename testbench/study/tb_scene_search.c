@@ -720,8 +720,8 @@ int tb_scene_search(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch
     scn_gbuf gv, gh;
     memset(&gv, 0, sizeof gv);
     memset(&gh, 0, sizeof gh);
-    if (tb_scene_raster(m, &d->view.cam, d->width, d->height, &gv, err, errlen) ||
-        tb_scene_raster(m, &d->heldout.cam, d->width, d->height, &gh, err, errlen)) {
+    if (scn_raster(m, &d->view.cam, d->width, d->height, &gv, err, errlen) ||
+        scn_raster(m, &d->heldout.cam, d->width, d->height, &gh, err, errlen)) {
         scn_gbuf_free(&gv);
         scn_gbuf_free(&gh);
         return TB_BADINPUT;
