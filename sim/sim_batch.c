@@ -41,7 +41,9 @@ struct sim_batch {
     uint32_t vw;                /* lanes per vector of the vector loops (0: none; sim_batch_new) */
     int    (*vcomb)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
     int    (*vreg)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
-    uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t);
+    uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t, unsigned char *);
+    uint64_t (*vfill)(int64_t *, int64_t, uint32_t, int);
+    int    (*vsame)(const int64_t *, uint32_t);
     uint64_t vec_groups, vec_fell;   /* groups of lanes (a vector each) they did, and handed back (sim_batch_vector_stats) */
     /* toggle counting (sim_batch_toggles_on), NULL when off */
     uint64_t *tog;              /* nsig x lanes: bit toggles so far */
@@ -318,6 +320,12 @@ static int same_lanes(const int64_t *v, uint32_t n)
     return 1;
 }
 
+/* same_lanes of a row of b, by the vector loop when b has one. */
+static inline unsigned char row_same(const sim_batch *b, const int64_t *v)
+{
+    return (unsigned char)(b->vsame ? b->vsame(v, b->lanes) : same_lanes(v, b->lanes));
+}
+
 /* Inputs take the values set for this edge; the lanes each changed in
  * are marked. */
 static void apply_inputs(sim_batch *b)
@@ -330,8 +338,8 @@ static void apply_inputs(sim_batch *b)
         if (!memcmp(v, p, L * sizeof *v)) continue;
         uint64_t *om = b->chg + (size_t)sig * b->nw;
         if (b->vw) {
-            *om |= b->vtake(v, p, b->lanes);
-            b->uni[sig] = (unsigned char)same_lanes(v, b->lanes);
+            /* one pass: the compare, the copy and the uniform check */
+            *om |= b->vtake(v, p, b->lanes, &b->uni[sig]);
             continue;
         }
         for (size_t w = 0; w < b->nw; w++) {
@@ -364,8 +372,11 @@ static int eval_uniform(sim_batch *b, const bop *p)
     uint64_t *om = b->chg + (size_t)p->sig * b->nw;
     if (was) {
         if (v == old0) return 1;   /* changed in no lane */
-        for (uint32_t l = 1; l < b->lanes; l++) y[l] = v;
+        if (b->vfill) b->vfill(y, v, b->lanes, 0);
+        else for (uint32_t l = 1; l < b->lanes; l++) y[l] = v;
         memcpy(om, b->all, b->nw * sizeof *om);
+    } else if (b->vfill) {
+        om[0] |= om0 | b->vfill(y, v, b->lanes, 1);   /* one word of lanes (vw) */
     } else {
         om[0] |= om0;
         for (uint32_t l = 1; l < b->lanes; l++) {
@@ -444,13 +455,17 @@ static void count_toggles(sim_batch *b)
 static void settle1(sim_batch *b)
 {
     uint64_t *chg = b->chg;
+    const unsigned char *uni = b->uni;
     const bop *p = b->comb, *end = p + b->ncomb;
     for (; p < end; p++) {
+        /* the lanes to evaluate, and whether every input is uniform (the
+         * loads side by side: no call to eval_uniform when one is not) */
         uint64_t m = 0;
+        unsigned u = 1;
         const uint32_t *dep = p->dep;
-        for (int k = 0; k < p->ndep; k++) m |= chg[dep[k]];
+        for (int k = 0; k < p->ndep; k++) { m |= chg[dep[k]]; u &= uni[dep[k]]; }
         if (!m) continue;
-        if ((m & (m - 1)) && p->ndep && eval_uniform(b, p)) continue;
+        if ((m & (m - 1)) && u && p->ndep && eval_uniform(b, p)) continue;
         if (b->vw && wide_enough(m, b->lanes, b->vw) && b->vcomb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
             b->vec_groups += b->lanes / b->vw;
         else
@@ -643,12 +658,12 @@ void sim_batch_cycle(sim_batch *b)
                     b->vec_groups += b->lanes / b->vw;
                     b->regm[i] = 0;
                     b->chg[p->sig] |= om;
-                    if (om) b->uni[p->sig] = (unsigned char)same_lanes(p->y, b->lanes);
+                    if (om) b->uni[p->sig] = row_same(b, p->y);
                     continue;
                 }
             }
             if (reg_inplace(p, b->regm + (size_t)i * nw, b->chg + (size_t)p->sig * nw, nw, b->ovf))
-                b->uni[p->sig] = (unsigned char)same_lanes(p->y, b->lanes);
+                b->uni[p->sig] = row_same(b, p->y);
         }
         apply_inputs(b);
         settle(b);
@@ -1077,8 +1092,10 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
 #if SIM_BATCH_X86
     if (vw == 8) {
         b->vcomb = sim__batch_vec_comb_avx512; b->vreg = sim__batch_vec_reg_avx512; b->vtake = sim__batch_vec_take_avx512;
+        b->vfill = sim__batch_vec_fill_avx512; b->vsame = sim__batch_vec_same_avx512;
     } else if (vw == 4) {
         b->vcomb = sim__batch_vec_comb_avx2; b->vreg = sim__batch_vec_reg_avx2; b->vtake = sim__batch_vec_take_avx2;
+        b->vfill = sim__batch_vec_fill_avx2; b->vsame = sim__batch_vec_same_avx2;
     }
 #endif
     b->vw = b->vcomb ? vw : 0;

@@ -169,11 +169,39 @@ VTARGET int VNAME(sim__batch_vec_reg)(const bop *p, uint32_t nl, unsigned char *
     return 1;
 }
 
-VTARGET uint64_t VNAME(sim__batch_vec_take)(int64_t *v, const int64_t *p, uint32_t nl)
+VTARGET uint64_t VNAME(sim__batch_vec_take)(int64_t *v, const int64_t *p, uint32_t nl, unsigned char *same)
 {
+    const VEC p0 = V_SET1(p[0]);
+    MASK d = M_NONE;   /* lanes of p that differ from p[0] */
     uint64_t acc = 0;
-    for (uint32_t l = 0; l < nl; l += W) acc |= VNAME(put)(v, l, V_LD(p + l));
+    for (uint32_t l = 0; l < nl; l += W) {
+        VEC x = V_LD(p + l);
+        d = M_OR(d, M_NOT(V_EQ(x, p0)));
+        acc |= VNAME(put)(v, l, x);
+    }
+    if (acc) *same = !M_ANY(d);
     return acc;
+}
+
+VTARGET uint64_t VNAME(sim__batch_vec_fill)(int64_t *y, int64_t v, uint32_t nl, int changes)
+{
+    const VEC x = V_SET1(v);
+    uint64_t acc = 0;
+    if (!changes) {
+        for (uint32_t l = 0; l < nl; l += W) V_ST(y + l, x);
+        return 0;
+    }
+    for (uint32_t l = 0; l < nl; l += W) acc |= VNAME(put)(y, l, x);
+    return acc;
+}
+
+VTARGET int VNAME(sim__batch_vec_same)(const int64_t *v, uint32_t nl)
+{
+    /* a data row differs within the first lanes: stop there */
+    const VEC v0 = V_SET1(v[0]);
+    for (uint32_t l = 0; l < nl; l += W)
+        if (M_BITS(V_EQ(V_LD(v + l), v0)) != (1u << W) - 1) return 0;
+    return 1;
 }
 
 #undef GROUP
