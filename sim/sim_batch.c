@@ -747,7 +747,9 @@ static void logic_table(bop *p, const sim_prim_info *in)
         bits += in->in[i]->fmt.width;
         if (bits > LOGIC_TAB_BITS) return;
     }
-    int64_t *t = malloc(((size_t)1 << bits) * sizeof *t);
+    /* at least 16 entries (zeros after the table's): the vector loops
+     * load a small table whole into registers */
+    int64_t *t = calloc(bits < 4 ? 16 : (size_t)1 << bits, sizeof *t);
     if (!t) return;   /* evaluated by calls instead */
     for (uint64_t ix = 0; ix < ((uint64_t)1 << bits); ix++) {
         int64_t v[8];

@@ -36,6 +36,15 @@
 #define V_MASKZ(m, x) _mm512_maskz_mov_epi64((m), (x))
 #define V_GATHER(tab, ix) _mm512_i64gather_epi64((ix), (const void *)(tab), 8)
 
+/* A logic element's table of at most 16 entries in two registers: one
+ * vpermt2q picks entry ix (bit 3 of ix chooses the register). */
+typedef struct lut_avx512 { __m512i lo, hi; } lut_avx512_t;
+#define V_LUT(t, ix) _mm512_permutex2var_epi64((t).lo, (ix), (t).hi)
+#define V_LUT_T lut_avx512_t
+#define V_LUT_LOAD(tab) ((lut_avx512_t){ V_LD(tab), V_LD((tab) + 8) })
+#define V_LUT_OK(f) 1
+#define V_LUT_BITS 4
+
 #include "sim/sim_batch_vec.h"
 
 /* sim__batch_count_dense (sim_batch_int.h), eight lanes an instruction:

@@ -13,6 +13,9 @@
  *   M_AND M_OR M_NOT M_NONE M_ANY(m) M_BITS(m)   masks; M_BITS: bit i is lane i
  *   V_BLEND(m, a, b) V_MASKZ(m, x)        m ? b : a; m ? x : 0
  *   V_GATHER(tab, ix)                     tab[ix] in every lane
+ *   V_LUT (optional) V_LUT_T V_LUT_LOAD(tab) V_LUT_OK(fmt) V_LUT_BITS
+ *                    tab[ix] from a table of 16 entries held in registers,
+ *                    for ix < 2^V_LUT_BITS and entries of format fmt
  *
  * Every loop computes what sim_batch.c's scalar loop computes for the
  * element, lane for lane (see sim_batch_avx2.c for why the results are
@@ -123,15 +126,32 @@ VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char 
         int n = p->n;
         VEC mk[8];
         __m128i sh[8];
+        const int64_t *in[8];   /* locals: the stores to y may alias p's fields */
         for (int i = 0; i < n; i++) {
             mk[i] = V_SET1((int64_t)p->tmask[i]);
             sh[i] = _mm_cvtsi32_si128(p->tsh[i]);
+            in[i] = p->in[i];
         }
+#define LOGIC_IX(ix) VEC ix = V_AND(V_LD(in[0] + l), mk[0]);                          \
+        for (int i = 1; i < n; i++) ix = V_OR(ix, V_SLL(V_AND(V_LD(in[i] + l), mk[i]), sh[i]))
+#ifdef V_LUT
+        /* a table of at most 2^V_LUT_BITS entries (logic_table pads it
+         * to 16) held in registers: permutes instead of a gather */
+        const int bits = p->tsh[n - 1] + 64 - __builtin_clzll(p->tmask[n - 1]);
+        if (bits <= V_LUT_BITS && V_LUT_OK(p->fy)) {
+            const V_LUT_T t = V_LUT_LOAD(p->tab);
+            for (l = 0; l < nl; l += W) {
+                LOGIC_IX(ix);
+                acc |= VNAME(put)(y, l, V_LUT(t, ix));
+            }
+            break;
+        }
+#endif
         for (l = 0; l < nl; l += W) {
-            VEC ix = V_AND(V_LD(p->in[0] + l), mk[0]);
-            for (int i = 1; i < n; i++) ix = V_OR(ix, V_SLL(V_AND(V_LD(p->in[i] + l), mk[i]), sh[i]));
+            LOGIC_IX(ix);
             acc |= VNAME(put)(y, l, V_GATHER(tab, ix));
         }
+#undef LOGIC_IX
         break;
     }
     default:

@@ -340,6 +340,10 @@ static void register_case(int ring)
  * partial. Every signal in every lane at every edge, and the overflow
  * flags, must be the same. */
 static int64_t lg3(const int64_t *in, void *u) { (void)u; return (in[0] * 3 + in[1] * 5 + in[2]) & 7; }
+/* small tables (3 and 4 input bits: held in registers by the vector
+ * loops), with negative entries, one wrapped into its output's width */
+static int64_t lg_small(const int64_t *in, void *u) { (void)u; return in[0] * 5 - in[1] * 7 - 3; }
+static int64_t lg_wide(const int64_t *in, void *u) { (void)u; return (in[0] - 4) * 100000 + in[1]; }
 
 static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, int64_t *trace, unsigned char *ovf,
                       int edges, uint32_t *nsig)
@@ -364,6 +368,9 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
     sim_signal *bk = sim_bk(c, NULL, "bk", F(1, 28, 6), en, x);
     sim_signal *li[3] = { sl, en, g };
     sim_signal *t = sim_logic(c, NULL, "t", F(0, 3, 0), 3, li, lg3, NULL, 1);
+    sim_signal *li3[2] = { sl, en }, *li4[2] = { g, en };
+    sim_signal *t3 = sim_logic(c, NULL, "t3", F(1, 4, 0), 2, li3, lg_small, NULL, 1);
+    sim_signal *t4 = sim_logic(c, NULL, "t4", F(1, 21, 0), 2, li4, lg_wide, NULL, 1);
     sim_signal *cp = sim_signal_new(c, NULL, "cp", F(1, 36, 2), SIM_KIND_WIRE);
     sim_assign(c, cp, m);
     sim_signal *r1 = sim_reg(c, NULL, "r1", F(1, 30, 10), clk, x, en, NULL, 0);
@@ -372,7 +379,7 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
     sim_signal *y = sim_add(c, NULL, "y", F(1, 40, 8), r2, r1);
     sim_signal *z = sim_mul(c, NULL, "z", F(1, 20, 4), r3, t);
 #undef F
-    (void)d; (void)sh; (void)bk; (void)cp; (void)y; (void)z;
+    (void)d; (void)sh; (void)bk; (void)cp; (void)y; (void)z; (void)t3; (void)t4;
     sim_batch *b = sim_batch_new(c, clk, lanes, err, sizeof err);
     TST_CHECK(b != NULL, "%s", err);
     if (!b) { sim_free(c); return -1; }
