@@ -39,6 +39,7 @@ struct sim_batch {
     int      started;
     int      reg_inplace;       /* registers update in place, in b->reg's order (order_regs) */
     uint32_t vw;                /* lanes per vector of the vector loops (0: none; sim_batch_new) */
+    uint32_t vgroups;           /* lanes / vw (a division per element was measurable) */
     int    (*vcomb)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
     int    (*vreg)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
     uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t, unsigned char *);
@@ -467,7 +468,7 @@ static void settle1(sim_batch *b)
         if (!m) continue;
         if ((m & (m - 1)) && u && p->ndep && eval_uniform(b, p)) continue;
         if (b->vw && wide_enough(m, b->lanes, b->vw) && b->vcomb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
-            b->vec_groups += b->lanes / b->vw;
+            b->vec_groups += b->vgroups;
         else
             eval_comb(p, &m, 1, b->ovf, chg + p->sig);
         b->uni[p->sig] = 0;
@@ -655,7 +656,7 @@ void sim_batch_cycle(sim_batch *b)
             if (b->vw && wide_enough(b->regm[i], b->lanes, b->vw)) {
                 uint64_t om = 0;
                 if (b->vreg(p, b->lanes, b->ovf, &om, &b->vec_fell)) {
-                    b->vec_groups += b->lanes / b->vw;
+                    b->vec_groups += b->vgroups;
                     b->regm[i] = 0;
                     b->chg[p->sig] |= om;
                     if (om) b->uni[p->sig] = row_same(b, p->y);
@@ -1101,6 +1102,7 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
     }
 #endif
     b->vw = b->vcomb ? vw : 0;
+    b->vgroups = b->vw ? lanes / b->vw : 0;
     b->vcount = sim__batch_count_dense;
 #if SIM_BATCH_X86
     uint32_t cw = sim__batch_vec_width(vec_most);

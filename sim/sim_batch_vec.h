@@ -37,19 +37,31 @@ static VTARGET inline MASK VNAME(outside)(VEC x, VEC lo, VEC hi)
 
 #define GROUP ((uint64_t)((1u << W) - 1) << (l & 63))   /* the lanes l..l+W-1 of a word */
 
-/* The common tail: q = (s + radd) >> k (s itself when k0: no rounding
- * shift, most registers, adders and keys) checked against y's range in
- * the lanes of `live`; stored, or the group done by the scalar loop. */
-#define TAIL(s, live) do {                                                     \
+/* The group l..l+W-1 by the scalar loop (a result out of y's range);
+ * acc stays in a register. */
+#define FALL() do {                                                            \
+        uint64_t t_ = 0;                                                       \
+        sim__batch_lanes(p, GROUP, ovf, &t_);                                  \
+        acc |= t_;                                                             \
+        ++*fell;                                                               \
+    } while (0)
+
+/* The common tail: q = (s + radd) >> k (s itself without `shift`: no
+ * rounding shift, most registers, adders and keys) checked against y's
+ * range in the lanes of `live`; stored, or the group done by the scalar
+ * loop. */
+#define TAIL(s, live, shift) do {                                              \
         VEC q_ = (s);                                                          \
-        if (!k0) q_ = V_SRA(V_ADD(q_, radd), kk, kk64);                        \
+        if (shift) q_ = V_SRA(V_ADD(q_, radd), kk, kk64);                      \
         MASK o_ = M_AND(VNAME(outside)(q_, lo, hi), (live));                   \
-        if (__builtin_expect(M_ANY(o_), 0)) {                                  \
-            sim__batch_lanes(p, GROUP, ovf, &acc);                             \
-            ++*fell;                                                           \
-        } else {                                                               \
-            acc |= VNAME(put)(y, l, V_MASKZ((live), q_));                      \
-        }                                                                      \
+        if (__builtin_expect(M_ANY(o_), 0)) FALL();                            \
+        else acc |= VNAME(put)(y, l, V_MASKZ((live), q_));                     \
+    } while (0)
+
+/* TAIL over every group, a loop of its own with and without the shift. */
+#define LOOP(s, live) do {                                                     \
+        if (k0) for (l = 0; l < nl; l += W) TAIL(s, live, 0);                  \
+        else for (l = 0; l < nl; l += W) TAIL(s, live, 1);                     \
     } while (0)
 
 VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell)
@@ -66,28 +78,28 @@ VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char 
     switch (p->kind) {
     case B_COPY:
         if (!p->fast) return 0;
-        for (l = 0; l < nl; l += W) TAIL(V_LD(a + l), all);
+        LOOP(V_LD(a + l), all);
         break;
     case B_ADD:
         if (!p->fast) return 0;
-        for (l = 0; l < nl; l += W) TAIL(V_ADD(V_SLL(V_LD(a + l), ssa), V_SLL(V_LD(b + l), ssb)), all);
+        LOOP(V_ADD(V_SLL(V_LD(a + l), ssa), V_SLL(V_LD(b + l), ssb)), all);
         break;
     case B_SUB:
         if (!p->fast) return 0;
-        for (l = 0; l < nl; l += W) TAIL(V_SUB(V_SLL(V_LD(a + l), ssa), V_SLL(V_LD(b + l), ssb)), all);
+        LOOP(V_SUB(V_SLL(V_LD(a + l), ssa), V_SLL(V_LD(b + l), ssb)), all);
         break;
     case B_SHIFT:
         if (!p->fast) return 0;
-        for (l = 0; l < nl; l += W) TAIL(V_SLL(V_LD(a + l), ssa), all);
+        LOOP(V_SLL(V_LD(a + l), ssa), all);
         break;
     case B_MUL:
         if (!p->fast) return 0;
-        for (l = 0; l < nl; l += W) TAIL(V_MUL(V_LD(a + l), V_LD(b + l)), all);
+        LOOP(V_MUL(V_LD(a + l), V_LD(b + l)), all);
         break;
     case B_BK:
         /* key 0: y is 0 (no range check there) */
         if (!p->fast) return 0;
-        for (l = 0; l < nl; l += W) TAIL(V_LD(a + l), M_NOT(V_EQ(V_LD(c + l), zero)));
+        LOOP(V_LD(a + l), M_NOT(V_EQ(V_LD(c + l), zero)));
         break;
     case B_MUX: {
         /* each input's own shift; a select past the inputs gives 0 */
@@ -95,27 +107,29 @@ VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char 
         int n = p->n;
         __m128i ik[8], ik64[8];
         VEC ir[8];
+        const int64_t *in[8];   /* locals: the stores to y may alias p's fields */
+        int shifts = 0;         /* some input has fraction bits to drop */
         for (int i = 0; i < n; i++) {
             ik[i] = _mm_cvtsi32_si128(p->in_k[i]);
             ik64[i] = _mm_cvtsi32_si128(64 - p->in_k[i]);
             ir[i] = V_SET1(p->in_radd[i]);
+            in[i] = p->in[i];
+            shifts |= p->in_k[i] != 0 || p->in_radd[i] != 0;
         }
+        /* every input in every lane, blended by the select (no branch on
+         * which inputs a group selects: selects differ lane to lane); a
+         * lane that selects none holds 0, which is in y's range, so one
+         * range check of the result covers the lanes that select one */
         for (l = 0; l < nl; l += W) {
-            VEC sel = V_LD(c + l), q = zero;
-            MASK o = M_NONE;
+            const VEC sel = V_LD(c + l);
+            VEC q = zero;
             for (int i = 0; i < n; i++) {
-                MASK hit = V_EQ(sel, V_SET1(i));
-                if (!M_ANY(hit)) continue;
-                VEC qi = V_SRA(V_ADD(V_LD(p->in[i] + l), ir[i]), ik[i], ik64[i]);
-                q = V_BLEND(hit, q, qi);
-                o = M_OR(o, M_AND(VNAME(outside)(qi, lo, hi), hit));
+                VEC qi = V_LD(in[i] + l);
+                if (shifts) qi = V_SRA(V_ADD(qi, ir[i]), ik[i], ik64[i]);
+                q = V_BLEND(V_EQ(sel, V_SET1(i)), q, qi);
             }
-            if (__builtin_expect(M_ANY(o), 0)) {
-                sim__batch_lanes(p, GROUP, ovf, &acc);
-                ++*fell;
-            } else {
-                acc |= VNAME(put)(y, l, q);
-            }
+            if (__builtin_expect(M_ANY(VNAME(outside)(q, lo, hi)), 0)) FALL();
+            else acc |= VNAME(put)(y, l, q);
         }
         break;
     }
@@ -178,8 +192,7 @@ VTARGET int VNAME(sim__batch_vec_reg)(const bop *p, uint32_t nl, unsigned char *
         if (!k0) q = V_SRA(V_ADD(q, radd), kk, kk64);
         MASK o = M_AND(VNAME(outside)(q, lo, hi), on);
         if (__builtin_expect(M_ANY(o), 0)) {
-            sim__batch_lanes(p, GROUP, ovf, &acc);
-            ++*fell;
+            FALL();
             continue;
         }
         if (en) q = V_BLEND(on, V_LD(y + l), q);
@@ -225,4 +238,6 @@ VTARGET int VNAME(sim__batch_vec_same)(const int64_t *v, uint32_t nl)
 }
 
 #undef GROUP
+#undef FALL
 #undef TAIL
+#undef LOOP
