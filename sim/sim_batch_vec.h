@@ -107,24 +107,37 @@ VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char 
         int n = p->n;
         __m128i ik[8], ik64[8];
         VEC ir[8];
-        const int64_t *in[8];   /* locals: the stores to y may alias p's fields */
         int shifts = 0;         /* some input has fraction bits to drop */
         for (int i = 0; i < n; i++) {
             ik[i] = _mm_cvtsi32_si128(p->in_k[i]);
             ik64[i] = _mm_cvtsi32_si128(64 - p->in_k[i]);
             ir[i] = V_SET1(p->in_radd[i]);
-            in[i] = p->in[i];
             shifts |= p->in_k[i] != 0 || p->in_radd[i] != 0;
         }
         /* every input in every lane, blended by the select (no branch on
          * which inputs a group selects: selects differ lane to lane); a
          * lane that selects none holds 0, which is in y's range, so one
-         * range check of the result covers the lanes that select one */
+         * range check of the result covers the lanes that select one.
+         * The common two inputs without shifts: a loop of their own, the
+         * pointers in locals (stores to y may alias p's fields; copying
+         * an array of them, the compiler calls a string move) */
+        if (n == 2 && !shifts) {
+            const int64_t *i0 = p->in[0], *i1 = p->in[1];
+            const VEC one = V_SET1(1);
+            for (l = 0; l < nl; l += W) {
+                const VEC sel = V_LD(c + l);
+                VEC q = V_BLEND(V_EQ(sel, zero), zero, V_LD(i0 + l));
+                q = V_BLEND(V_EQ(sel, one), q, V_LD(i1 + l));
+                if (__builtin_expect(M_ANY(VNAME(outside)(q, lo, hi)), 0)) FALL();
+                else acc |= VNAME(put)(y, l, q);
+            }
+            break;
+        }
         for (l = 0; l < nl; l += W) {
             const VEC sel = V_LD(c + l);
             VEC q = zero;
             for (int i = 0; i < n; i++) {
-                VEC qi = V_LD(in[i] + l);
+                VEC qi = V_LD(p->in[i] + l);
                 if (shifts) qi = V_SRA(V_ADD(qi, ir[i]), ik[i], ik64[i]);
                 q = V_BLEND(V_EQ(sel, V_SET1(i)), q, qi);
             }
@@ -140,14 +153,16 @@ VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char 
         int n = p->n;
         VEC mk[8];
         __m128i sh[8];
-        const int64_t *in[8];   /* locals: the stores to y may alias p's fields */
         for (int i = 0; i < n; i++) {
             mk[i] = V_SET1((int64_t)p->tmask[i]);
             sh[i] = _mm_cvtsi32_si128(p->tsh[i]);
-            in[i] = p->in[i];
         }
-#define LOGIC_IX(ix) VEC ix = V_AND(V_LD(in[0] + l), mk[0]);                          \
-        for (int i = 1; i < n; i++) ix = V_OR(ix, V_SLL(V_AND(V_LD(in[i] + l), mk[i]), sh[i]))
+        /* one and two inputs (most control logic) from locals, as the
+         * multiplexer's */
+        const int64_t *i0 = p->in[0], *i1 = n > 1 ? p->in[1] : i0;
+#define LOGIC_IX(ix) VEC ix = V_AND(V_LD(i0 + l), mk[0]);                             \
+        if (n == 2) ix = V_OR(ix, V_SLL(V_AND(V_LD(i1 + l), mk[1]), sh[1]));            \
+        else for (int i = 1; i < n; i++) ix = V_OR(ix, V_SLL(V_AND(V_LD(p->in[i] + l), mk[i]), sh[i]))
 #ifdef V_LUT
         /* a table of at most 2^V_LUT_BITS entries (logic_table pads it
          * to 16) held in registers: permutes instead of a gather */

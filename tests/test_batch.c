@@ -344,6 +344,7 @@ static int64_t lg3(const int64_t *in, void *u) { (void)u; return (in[0] * 3 + in
  * loops), with negative entries, one wrapped into its output's width */
 static int64_t lg_small(const int64_t *in, void *u) { (void)u; return in[0] * 5 - in[1] * 7 - 3; }
 static int64_t lg_wide(const int64_t *in, void *u) { (void)u; return (in[0] - 4) * 100000 + in[1]; }
+static int64_t lg_one(const int64_t *in, void *u) { (void)u; return in[0] * 3 - 11; }
 
 static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, int64_t *trace, unsigned char *ovf,
                       int edges, uint32_t *nsig)
@@ -371,15 +372,18 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
     sim_signal *li3[2] = { sl, en }, *li4[2] = { g, en };
     sim_signal *t3 = sim_logic(c, NULL, "t3", F(1, 4, 0), 2, li3, lg_small, NULL, 1);
     sim_signal *t4 = sim_logic(c, NULL, "t4", F(1, 21, 0), 2, li4, lg_wide, NULL, 1);
+    sim_signal *t1 = sim_logic(c, NULL, "t1", F(1, 5, 0), 1, &g, lg_one, NULL, 1);
     sim_signal *cp = sim_signal_new(c, NULL, "cp", F(1, 36, 2), SIM_KIND_WIRE);
     sim_assign(c, cp, m);
     sim_signal *r1 = sim_reg(c, NULL, "r1", F(1, 30, 10), clk, x, en, NULL, 0);
+    sim_signal *mj[2] = { x, r1 };
+    sim_signal *mx2 = sim_mux(c, NULL, "mx2", F(1, 24, 10), sl, 2, mj);   /* no shifts; wide x overflows */
     sim_signal *r2 = sim_reg(c, NULL, "r2", F(1, 36, 4), clk, m, NULL, NULL, 0);
     sim_signal *r3 = sim_reg(c, NULL, "r3", F(1, 30, 9), clk, mx, NULL, en, 3);
     sim_signal *y = sim_add(c, NULL, "y", F(1, 40, 8), r2, r1);
     sim_signal *z = sim_mul(c, NULL, "z", F(1, 20, 4), r3, t);
 #undef F
-    (void)d; (void)sh; (void)bk; (void)cp; (void)y; (void)z; (void)t3; (void)t4;
+    (void)d; (void)sh; (void)bk; (void)cp; (void)y; (void)z; (void)t3; (void)t4; (void)t1; (void)mx2;
     sim_batch *b = sim_batch_new(c, clk, lanes, err, sizeof err);
     TST_CHECK(b != NULL, "%s", err);
     if (!b) { sim_free(c); return -1; }
