@@ -45,6 +45,7 @@ struct sim_batch {
     uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t, unsigned char *);
     uint64_t (*vfill)(int64_t *, int64_t, uint32_t, int);
     int    (*vsame)(const int64_t *, uint32_t);
+    int    (*vsparse)(const bop *, uint64_t, unsigned char *, uint64_t *);
     uint64_t vec_groups, vec_fell;   /* groups of lanes (a vector each) they did, and handed back (sim_batch_vector_stats) */
     /* toggle counting (sim_batch_toggles_on), NULL when off */
     uint64_t *tog;              /* nsig x lanes: bit toggles so far */
@@ -467,9 +468,10 @@ static void settle1(sim_batch *b)
         for (int k = 0; k < p->ndep; k++) { m |= chg[dep[k]]; u &= uni[dep[k]]; }
         if (!m) continue;
         if ((m & (m - 1)) && u && p->ndep && eval_uniform(b, p)) continue;
-        if (b->vw && wide_enough(m, b->lanes, b->vw) && b->vcomb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
+        if (!b->vw) eval_comb(p, &m, 1, b->ovf, chg + p->sig);
+        else if (wide_enough(m, b->lanes, b->vw) && b->vcomb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
             b->vec_groups += b->vgroups;
-        else
+        else if (!b->vsparse(p, m, b->ovf, chg + p->sig))
             eval_comb(p, &m, 1, b->ovf, chg + p->sig);
         b->uni[p->sig] = 0;
     }
@@ -653,10 +655,11 @@ void sim_batch_cycle(sim_batch *b)
     if (b->reg_inplace) {
         for (uint32_t i = 0; i < b->nreg; i++) {
             bop *p = &b->reg[i];
-            if (b->vw && wide_enough(b->regm[i], b->lanes, b->vw)) {
+            if (b->vw && b->regm[i]) {
                 uint64_t om = 0;
-                if (b->vreg(p, b->lanes, b->ovf, &om, &b->vec_fell)) {
-                    b->vec_groups += b->vgroups;
+                int wide = wide_enough(b->regm[i], b->lanes, b->vw);
+                if (wide ? b->vreg(p, b->lanes, b->ovf, &om, &b->vec_fell) : b->vsparse(p, b->regm[i], b->ovf, &om)) {
+                    if (wide) b->vec_groups += b->vgroups;
                     b->regm[i] = 0;
                     b->chg[p->sig] |= om;
                     if (om) b->uni[p->sig] = row_same(b, p->y);
@@ -1096,9 +1099,11 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
     if (vw == 8) {
         b->vcomb = sim__batch_vec_comb_avx512; b->vreg = sim__batch_vec_reg_avx512; b->vtake = sim__batch_vec_take_avx512;
         b->vfill = sim__batch_vec_fill_avx512; b->vsame = sim__batch_vec_same_avx512;
+        b->vsparse = sim__batch_vec_sparse_avx512;
     } else if (vw == 4) {
         b->vcomb = sim__batch_vec_comb_avx2; b->vreg = sim__batch_vec_reg_avx2; b->vtake = sim__batch_vec_take_avx2;
         b->vfill = sim__batch_vec_fill_avx2; b->vsame = sim__batch_vec_same_avx2;
+        b->vsparse = sim__batch_vec_sparse_avx2;
     }
 #endif
     b->vw = b->vcomb ? vw : 0;

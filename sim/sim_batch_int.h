@@ -63,18 +63,21 @@ uint32_t sim__batch_vec_width(uint32_t most);
  * path does not cover) is handed to sim__batch_lanes and counted in
  * *fell. vec_take: v[l] = p[l], the lanes where that changed v (and
  * when some did, *same = every lane of p holds p[0]); vec_fill: y[l] = v,
- * the lanes where that changed y (when asked: `changes`); vec_same: 1 if every lane of v holds
- * v[0]. */
+ * the lanes where that changed y (when asked: `changes`); vec_same: 1 if
+ * every lane of v holds v[0]; vec_sparse: the scalar loop of p in the few
+ * lanes of m, for the common fast elements (0: not one of them). */
 int sim__batch_vec_comb_avx2(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 int sim__batch_vec_reg_avx2(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 uint64_t sim__batch_vec_take_avx2(int64_t *v, const int64_t *p, uint32_t nl, unsigned char *same);
 uint64_t sim__batch_vec_fill_avx2(int64_t *y, int64_t v, uint32_t nl, int changes);
 int sim__batch_vec_same_avx2(const int64_t *v, uint32_t nl);
+int sim__batch_vec_sparse_avx2(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);
 int sim__batch_vec_comb_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 int sim__batch_vec_reg_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 uint64_t sim__batch_vec_take_avx512(int64_t *v, const int64_t *p, uint32_t nl, unsigned char *same);
 uint64_t sim__batch_vec_fill_avx512(int64_t *y, int64_t v, uint32_t nl, int changes);
 int sim__batch_vec_same_avx512(const int64_t *v, uint32_t nl);
+int sim__batch_vec_sparse_avx512(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);
 /* Toggles and ranges of one signal in every lane 0..nl-1 at once
  * (sim_batch.c's count after a settle, when many lanes changed): t[l] +=
  * the bits of `mask` in which v[l] differs from pv[l], pv[l] = v[l], and

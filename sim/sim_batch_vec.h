@@ -217,6 +217,80 @@ VTARGET int VNAME(sim__batch_vec_reg)(const bop *p, uint32_t nl, unsigned char *
     return 1;
 }
 
+/* The few lanes of m (a coefficient network woken in the lanes whose
+ * interval was just accepted; a register loading it) one by one: the
+ * scalar loop's steps for the common fast elements, with nothing else in
+ * the function, so that the per-call cost (what a lane or five share) is
+ * a few loads. A lane whose result leaves y's range is left to the
+ * scalar loop (sim__batch_lanes), after the others. 0 for an element it
+ * does not take. */
+#define SPARSE(...) do {                                                       \
+        for (uint64_t m_ = m; m_; m_ &= m_ - 1) {                              \
+            const uint32_t l = (uint32_t)__builtin_ctzll(m_);                  \
+            int64_t x;                                                         \
+            __VA_ARGS__                                                        \
+            if (__builtin_expect((uint64_t)x - ulo > span, 0)) {               \
+                bad |= m_ & -m_;                                               \
+                continue;                                                      \
+            }                                                                  \
+            acc |= (uint64_t)(y[l] != x) << l;                                 \
+            y[l] = x;                                                          \
+        }                                                                      \
+    } while (0)
+#define FASTQ(s) x = (int64_t)((uint64_t)(s) + radd) >> k
+
+VTARGET int VNAME(sim__batch_vec_sparse)(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om)
+{
+    const int64_t *a = p->a, *b = p->b, *c = p->c;
+    int64_t *y = p->y;
+    const uint64_t ulo = (uint64_t)p->lo, span = (uint64_t)p->hi - ulo, radd = (uint64_t)p->radd;
+    const int k = p->k, sa = p->sa, sb = p->sb;
+    uint64_t acc = 0, bad = 0;
+    if (p->kind != B_LOGIC && !p->fast) return 0;
+    switch (p->kind) {
+    case B_COPY: SPARSE(FASTQ(a[l]);); break;
+    case B_ADD: SPARSE(FASTQ(((uint64_t)a[l] << sa) + ((uint64_t)b[l] << sb));); break;
+    case B_SUB: SPARSE(FASTQ(((uint64_t)a[l] << sa) - ((uint64_t)b[l] << sb));); break;
+    case B_SHIFT: SPARSE(FASTQ((uint64_t)a[l] << sa);); break;
+    case B_MUL: SPARSE(FASTQ((uint64_t)a[l] * (uint64_t)b[l]);); break;
+    case B_BK: SPARSE(if (c[l]) FASTQ(a[l]); else x = 0;); break;   /* key 0: y is 0, in range */
+    case B_MUX: {
+        /* a select past the inputs gives 0 */
+        const uint64_t n = (uint64_t)p->n;
+        int64_t *const *in = p->in;
+        const int *ik = p->in_k;
+        const int64_t *ir = p->in_radd;
+        SPARSE(uint64_t s = (uint64_t)c[l];
+               x = s < n ? (int64_t)((uint64_t)in[s][l] + (uint64_t)ir[s]) >> ik[s] : 0;);
+        break;
+    }
+    case B_LOGIC: {
+        if (!p->tab || p->n < 1 || p->n > 2) return 0;
+        const int64_t *tab = p->tab, *i0 = p->in[0], *i1 = p->n > 1 ? p->in[1] : p->in[0];
+        const uint64_t m0 = p->tmask[0], m1 = p->n > 1 ? p->tmask[1] : 0;
+        const int s1 = p->n > 1 ? p->tsh[1] : 0;
+        /* a table's entries are in y's range */
+        SPARSE(x = tab[((uint64_t)i0[l] & m0) | (((uint64_t)i1[l] & m1) << s1)];);
+        break;
+    }
+    case B_REG: {
+        /* in place, as vec_reg: q <= d, with an enable q <= en ? d : q */
+        if (!a || p->rst) return 0;
+        if (c) SPARSE(if (c[l]) FASTQ(a[l]); else x = y[l];);
+        else SPARSE(FASTQ(a[l]););
+        break;
+    }
+    default:
+        return 0;
+    }
+    if (bad) sim__batch_lanes(p, bad, ovf, &acc);
+    *om |= acc;
+    return 1;
+}
+
+#undef SPARSE
+#undef FASTQ
+
 VTARGET uint64_t VNAME(sim__batch_vec_take)(int64_t *v, const int64_t *p, uint32_t nl, unsigned char *same)
 {
     const VEC p0 = V_SET1(p[0]);

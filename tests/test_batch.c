@@ -337,7 +337,7 @@ static void register_case(int ring)
  * truncating rounding, wrapping and saturation, and values that overflow
  * now and then (those groups of four lanes take the scalar loop). Some
  * lanes hold their inputs for a few edges, so that the element masks are
- * partial. Every signal in every lane at every edge, and the overflow
+ * partial, and on some edges most lanes do (the loops for a few lanes). Every signal in every lane at every edge, and the overflow
  * flags, must be the same. */
 static int64_t lg3(const int64_t *in, void *u) { (void)u; return (in[0] * 3 + in[1] * 5 + in[2]) & 7; }
 /* small tables (3 and 4 input bits: held in registers by the vector
@@ -393,11 +393,15 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
     int64_t *in[5] = { sim_batch_next(b, x), sim_batch_next(b, w), sim_batch_next(b, sl), sim_batch_next(b, en),
                        sim_batch_next(b, g) };
     for (int e = 0; e <= edges; e++) {
+        /* every fourth edge, few lanes change (one in sixteen): the
+         * elements' masks are sparse (the loops for a few lanes) */
+        int sparse = e % 4 == 2;
         for (uint32_t l = 0; l < lanes; l++) {
-            if (e && (RND() % 3) == 0) continue;   /* this lane holds its inputs */
+            if (e && (sparse ? RND() % 16 != 0 : (RND() % 3) == 0)) continue;   /* this lane holds its inputs */
             uint64_t r = RND();
-            /* lanes 3, 7, ...: now and then an x whose product overflows m */
-            in[0][l] = l % 4 == 3 && r % 17 == 0 ? (int64_t)(RND() >> 25) - ((int64_t)1 << 38)
+            /* lanes 3, 7, ...: now and then an x whose product overflows
+             * m (on the sparse edges more often) */
+            in[0][l] = l % 4 == 3 && r % (sparse ? 4 : 17) == 0 ? (int64_t)(RND() >> 25) - ((int64_t)1 << 38)
                                                  : (int64_t)(r % 2000001) - 1000000;
             in[1][l] = (int64_t)(RND() % 1048575) - 524287;
             in[2][l] = (int64_t)(RND() % 4);
