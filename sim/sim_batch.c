@@ -360,7 +360,9 @@ static void apply_inputs(sim_batch *b)
 }
 
 /* p's inputs hold one value in every lane (control, in lanes that run in
- * step): evaluate lane 0 alone and copy it. Returns 0 if they do not. */
+ * step): evaluate lane 0 alone and copy it. Returns 0 if they do not.
+ * For a register too (in place, at the edge: its inputs' values before
+ * it). */
 static int eval_uniform(sim_batch *b, const bop *p)
 {
     for (int k = 0; k < p->ndep; k++) if (!b->uni[p->dep[k]]) return 0;
@@ -368,7 +370,7 @@ static int eval_uniform(sim_batch *b, const bop *p)
     unsigned char f = 0;
     int64_t *y = p->y, old0 = y[0];
     int was = b->uni[p->sig];
-    eval_comb(p, &one, 1, &f, &om0);
+    if (!b->vsparse || !b->vsparse(p, one, &f, &om0)) sim__batch_lanes(p, one, &f, &om0);
     if (f) memset(b->ovf, 1, b->lanes);   /* every lane computed the same overflow */
     int64_t v = y[0];
     uint64_t *om = b->chg + (size_t)p->sig * b->nw;
@@ -656,6 +658,8 @@ void sim_batch_cycle(sim_batch *b)
         for (uint32_t i = 0; i < b->nreg; i++) {
             bop *p = &b->reg[i];
             if (b->vw && b->regm[i]) {
+                /* a control register in lanes that run in step: lane 0, copied */
+                if (eval_uniform(b, p)) { b->regm[i] = 0; continue; }
                 uint64_t om = 0;
                 int wide = wide_enough(b->regm[i], b->lanes, b->vw);
                 if (wide ? b->vreg(p, b->lanes, b->ovf, &om, &b->vec_fell) : b->vsparse(p, b->regm[i], b->ovf, &om)) {

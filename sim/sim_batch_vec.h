@@ -283,7 +283,11 @@ VTARGET int VNAME(sim__batch_vec_sparse)(const bop *p, uint64_t m, unsigned char
     default:
         return 0;
     }
-    if (bad) sim__batch_lanes(p, bad, ovf, &acc);
+    if (bad) {
+        uint64_t t = 0;   /* (acc stays in a register) */
+        sim__batch_lanes(p, bad, ovf, &t);
+        acc |= t;
+    }
     *om |= acc;
     return 1;
 }
