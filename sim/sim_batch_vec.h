@@ -201,18 +201,24 @@ VTARGET int VNAME(sim__batch_vec_reg)(const bop *p, uint32_t nl, unsigned char *
     const __m128i kk = _mm_cvtsi32_si128(p->k), kk64 = _mm_cvtsi32_si128(64 - p->k);
     const int k0 = p->k == 0 && p->radd == 0;
     uint64_t acc = 0;
-    for (uint32_t l = 0; l < nl; l += W) {
-        VEC q = V_LD(a + l);
-        MASK on = en ? M_NOT(V_EQ(V_LD(en + l), zero)) : all;
-        if (!k0) q = V_SRA(V_ADD(q, radd), kk, kk64);
-        MASK o = M_AND(VNAME(outside)(q, lo, hi), on);
-        if (__builtin_expect(M_ANY(o), 0)) {
-            FALL();
-            continue;
-        }
-        if (en) q = V_BLEND(on, V_LD(y + l), q);
-        acc |= VNAME(put)(y, l, q);
+    uint32_t l;
+    /* a loop of its own for each case (the common register has neither
+     * an enable nor a rounding shift) */
+#define REG_LOOP(EN, SHIFT) for (l = 0; l < nl; l += W) {                     \
+        VEC q = V_LD(a + l);                                                   \
+        MASK on = EN ? M_NOT(V_EQ(V_LD(en + l), zero)) : all;                  \
+        if (SHIFT) q = V_SRA(V_ADD(q, radd), kk, kk64);                        \
+        MASK o = M_AND(VNAME(outside)(q, lo, hi), on);                         \
+        if (__builtin_expect(M_ANY(o), 0)) { FALL(); continue; }               \
+        if (EN) q = V_BLEND(on, V_LD(y + l), q);                               \
+        acc |= VNAME(put)(y, l, q);                                            \
     }
+    if (en) {
+        if (k0) REG_LOOP(1, 0) else REG_LOOP(1, 1)
+    } else {
+        if (k0) REG_LOOP(0, 0) else REG_LOOP(0, 1)
+    }
+#undef REG_LOOP
     *om |= acc;
     return 1;
 }
