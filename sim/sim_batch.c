@@ -378,7 +378,7 @@ static int eval_uniform(sim_batch *b, const bop *p)
         if (v == old0) return 1;   /* changed in no lane */
         if (b->vfill) b->vfill(y, v, b->lanes, 0);
         else for (uint32_t l = 1; l < b->lanes; l++) y[l] = v;
-        memcpy(om, b->all, b->nw * sizeof *om);
+        for (uint32_t w = 0; w < b->nw; w++) om[w] = b->all[w];   /* (a word or two: no memcpy call) */
     } else if (b->vfill) {
         om[0] |= om0 | b->vfill(y, v, b->lanes, 1);   /* one word of lanes (vw) */
     } else {

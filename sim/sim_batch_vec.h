@@ -320,7 +320,11 @@ VTARGET uint64_t VNAME(sim__batch_vec_fill)(int64_t *y, int64_t v, uint32_t nl, 
     const VEC x = V_SET1(v);
     uint64_t acc = 0;
     if (!changes) {
-        for (uint32_t l = 0; l < nl; l += W) V_ST(y + l, x);
+        uint32_t l = 0;
+        for (; l + 4 * W <= nl; l += 4 * W) {   /* (64 lanes: four stores an iteration) */
+            V_ST(y + l, x); V_ST(y + l + W, x); V_ST(y + l + 2 * W, x); V_ST(y + l + 3 * W, x);
+        }
+        for (; l < nl; l += W) V_ST(y + l, x);
         return 0;
     }
     for (uint32_t l = 0; l < nl; l += W) acc |= VNAME(put)(y, l, x);
