@@ -133,6 +133,26 @@ VTARGET int VNAME(sim__batch_vec_comb)(const bop *p, uint32_t nl, unsigned char 
             }
             break;
         }
+        if (n <= 4) {
+            /* up to four inputs (the Horner datapath's coefficient
+             * select), unrolled, their pointers in locals */
+            const int64_t *ip0 = p->in[0], *ip1 = n > 1 ? p->in[1] : ip0;
+            const int64_t *ip2 = n > 2 ? p->in[2] : ip0, *ip3 = n > 3 ? p->in[3] : ip0;
+#define MUX_IN(i, ip) if (n > i) {                                             \
+                VEC qi = V_LD(ip + l);                                         \
+                if (shifts) qi = V_SRA(V_ADD(qi, ir[i]), ik[i], ik64[i]);      \
+                q = V_BLEND(V_EQ(sel, V_SET1(i)), q, qi);                      \
+            }
+            for (l = 0; l < nl; l += W) {
+                const VEC sel = V_LD(c + l);
+                VEC q = zero;
+                MUX_IN(0, ip0) MUX_IN(1, ip1) MUX_IN(2, ip2) MUX_IN(3, ip3)
+                if (__builtin_expect(M_ANY(VNAME(outside)(q, lo, hi)), 0)) FALL();
+                else acc |= VNAME(put)(y, l, q);
+            }
+#undef MUX_IN
+            break;
+        }
         for (l = 0; l < nl; l += W) {
             const VEC sel = V_LD(c + l);
             VEC q = zero;

@@ -366,6 +366,8 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
     sim_signal *sh = sim_shift(c, NULL, "sh", F(1, 10, 14), w, -3);
     sim_signal *mi[2] = { x, a };
     sim_signal *mx = sim_mux(c, NULL, "mx", F(1, 24, 9), sl, 2, mi); /* k = 1 and 3; s = 2, 3: 0 */
+    sim_signal *mi3[3] = { x, a, w };
+    sim_signal *mx3 = sim_mux(c, NULL, "mx3", F(1, 24, 8), sl, 3, mi3);   /* k = 2, 4, 0; s = 3: 0 */
     sim_signal *bk = sim_bk(c, NULL, "bk", F(1, 28, 6), en, x);
     sim_signal *li[3] = { sl, en, g };
     sim_signal *t = sim_logic(c, NULL, "t", F(0, 3, 0), 3, li, lg3, NULL, 1);
@@ -383,7 +385,7 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
     sim_signal *y = sim_add(c, NULL, "y", F(1, 40, 8), r2, r1);
     sim_signal *z = sim_mul(c, NULL, "z", F(1, 20, 4), r3, t);
 #undef F
-    (void)d; (void)sh; (void)bk; (void)cp; (void)y; (void)z; (void)t3; (void)t4; (void)t1; (void)mx2;
+    (void)d; (void)sh; (void)bk; (void)cp; (void)y; (void)z; (void)t3; (void)t4; (void)t1; (void)mx2; (void)mx3;
     sim_batch *b = sim_batch_new(c, clk, lanes, err, sizeof err);
     TST_CHECK(b != NULL, "%s", err);
     if (!b) { sim_free(c); return -1; }
