@@ -8,7 +8,7 @@
 #if SIM_BATCH_X86
 #include <immintrin.h>
 
-#define VTARGET __attribute__((target("avx512f,avx512dq")))
+#define VTARGET __attribute__((target("avx512f,avx512dq,bmi,bmi2")))
 #define VNAME(f) f##_avx512
 #define W 8
 #define VEC __m512i
