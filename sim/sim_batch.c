@@ -152,6 +152,35 @@ static int order_regs(sim_batch *b)
     return 0;
 }
 
+/* The vector loops b uses (none: the scalar ones): one word of lanes, a
+ * multiple of the vector's, registers in place; vec_most caps the width
+ * (sim_batch_new). */
+static void pick_vector_loops(sim_batch *b, uint32_t lanes, uint32_t vec_most)
+{
+    uint32_t vw = lanes <= 64 && b->reg_inplace ? sim__batch_vec_width(vec_most) : 0;
+    if (vw == 8 && lanes % 8) vw = sim__batch_vec_width(4);
+    if (vw && lanes % vw) vw = 0;
+#if SIM_BATCH_X86
+    if (vw == 8) {
+        b->vcomb = sim__batch_vec_comb_avx512; b->vreg = sim__batch_vec_reg_avx512; b->vtake = sim__batch_vec_take_avx512;
+        b->vfill = sim__batch_vec_fill_avx512; b->vsame = sim__batch_vec_same_avx512;
+        b->vsparse = sim__batch_vec_sparse_avx512;
+    } else if (vw == 4) {
+        b->vcomb = sim__batch_vec_comb_avx2; b->vreg = sim__batch_vec_reg_avx2; b->vtake = sim__batch_vec_take_avx2;
+        b->vfill = sim__batch_vec_fill_avx2; b->vsame = sim__batch_vec_same_avx2;
+        b->vsparse = sim__batch_vec_sparse_avx2;
+    }
+#endif
+    b->vw = b->vcomb ? vw : 0;
+    b->vgroups = b->vw ? lanes / b->vw : 0;
+    b->vcount = sim__batch_count_dense;
+#if SIM_BATCH_X86
+    uint32_t cw = sim__batch_vec_width(vec_most);
+    if (cw == 8) b->vcount = sim__batch_count_dense_avx512;
+    else if (cw == 4) b->vcount = sim__batch_count_dense_avx2;
+#endif
+}
+
 sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char *err, size_t errlen)
 {
     if (lanes < 1 || lanes > SIM_BATCH_MAX_LANES) {
@@ -224,25 +253,7 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
         op_of_sig[i] = ncomb++;
     }
     if (order_regs(b)) goto oom;
-    /* the vector loops: one word of lanes, a multiple of the vector's,
-     * registers in place */
-    uint32_t vw = lanes <= 64 && b->reg_inplace ? sim__batch_vec_width(vec_most) : 0;
-    if (vw == 8 && lanes % 8) vw = sim__batch_vec_width(4);
-    if (vw && lanes % vw) vw = 0;
-#if SIM_BATCH_X86
-    if (vw == 8) {
-        b->vcomb = sim__batch_vec_comb_avx512; b->vreg = sim__batch_vec_reg_avx512; b->vtake = sim__batch_vec_take_avx512;
-    } else if (vw == 4) {
-        b->vcomb = sim__batch_vec_comb_avx2; b->vreg = sim__batch_vec_reg_avx2; b->vtake = sim__batch_vec_take_avx2;
-    }
-#endif
-    b->vw = b->vcomb ? vw : 0;
-    b->vcount = sim__batch_count_dense;
-#if SIM_BATCH_X86
-    uint32_t cw = sim__batch_vec_width(vec_most);
-    if (cw == 8) b->vcount = sim__batch_count_dense_avx512;
-    else if (cw == 4) b->vcount = sim__batch_count_dense_avx2;
-#endif
+    pick_vector_loops(b, lanes, vec_most);
     if (sim_proc_count(c) != ndriven) {
         snprintf(err, errlen, "the design has %u processes that drive no signal (testbench or user processes)",
                  sim_proc_count(c) - ndriven);

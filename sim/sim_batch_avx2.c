@@ -30,12 +30,15 @@
  * no __builtin_cpu_init: batches are made from several threads.) */
 uint32_t sim__batch_vec_width(uint32_t most)
 {
+    /* BMI2 (shifts by a register's count in one instruction) came with
+     * AVX2 on every CPU that has it; asked for all the same */
+    if (!__builtin_cpu_supports("bmi2")) return 0;
     if (most >= 8 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) return 8;
     if (most >= 4 && __builtin_cpu_supports("avx2")) return 4;
     return 0;
 }
 
-#define VTARGET __attribute__((target("avx2")))
+#define VTARGET __attribute__((target("avx2,bmi,bmi2")))
 #define VNAME(f) f##_avx2
 #define W 4
 #define VEC __m256i
@@ -79,6 +82,42 @@ static VTARGET inline __m256i mul_avx2(__m256i a, __m256i b)
     __m256i lh = _mm256_mul_epu32(a, _mm256_srli_epi64(b, 32));
     return _mm256_add_epi64(ll, _mm256_slli_epi64(_mm256_add_epi64(hl, lh), 32));
 }
+
+/* A logic element's table of at most 16 entries, each fitting 32 bits
+ * (its output's width: at most 31 bits, 32 signed), as two vectors of
+ * eight 32-bit entries. The four indices (each under 16, the low half of
+ * its lane) are packed into the low half of a vector; vpermd picks entry
+ * ix & 7 from each table, bit 3 of ix chooses between them, and the four
+ * entries are sign-extended back to 64 bits. Six instructions on
+ * registers instead of a gather's four loads. */
+typedef struct lut_avx2 { __m256i lo, hi; } lut_avx2_t;
+
+static VTARGET inline __m256i lut_half_avx2(const int64_t *t)
+{
+    const __m256i low = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);   /* the low halves first */
+    __m256i a = _mm256_permutevar8x32_epi32(V_LD(t), low), b = _mm256_permutevar8x32_epi32(V_LD(t + 4), low);
+    return _mm256_permute2x128_si256(a, b, 0x20);
+}
+
+static VTARGET inline lut_avx2_t lut_load_avx2(const int64_t *t)
+{
+    return (lut_avx2_t){ lut_half_avx2(t), lut_half_avx2(t + 8) };
+}
+
+static VTARGET inline __m256i lut_avx2(lut_avx2_t t, __m256i ix)
+{
+    __m256i ixp = _mm256_permutevar8x32_epi32(ix, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6));
+    __m256 r0 = _mm256_castsi256_ps(_mm256_permutevar8x32_epi32(t.lo, ixp));
+    __m256 r1 = _mm256_castsi256_ps(_mm256_permutevar8x32_epi32(t.hi, ixp));
+    __m256 r = _mm256_blendv_ps(r0, r1, _mm256_castsi256_ps(_mm256_slli_epi32(ixp, 28)));
+    return _mm256_cvtepi32_epi64(_mm256_castsi256_si128(_mm256_castps_si256(r)));
+}
+
+#define V_LUT(t, ix) lut_avx2((t), (ix))
+#define V_LUT_T lut_avx2_t
+#define V_LUT_LOAD(tab) lut_load_avx2(tab)
+#define V_LUT_OK(f) ((f).width < 32 || ((f).width == 32 && (f).is_signed))
+#define V_LUT_BITS 4
 
 #include "sim/sim_batch_vec.h"
 

@@ -8,7 +8,7 @@
 #if SIM_BATCH_X86
 #include <immintrin.h>
 
-#define VTARGET __attribute__((target("avx512f,avx512dq")))
+#define VTARGET __attribute__((target("avx512f,avx512dq,bmi,bmi2")))
 #define VNAME(f) f##_avx512
 #define W 8
 #define VEC __m512i
@@ -35,6 +35,15 @@
 #define V_BLEND(m, a, b) _mm512_mask_blend_epi64((m), (a), (b))
 #define V_MASKZ(m, x) _mm512_maskz_mov_epi64((m), (x))
 #define V_GATHER(tab, ix) _mm512_i64gather_epi64((ix), (const void *)(tab), 8)
+
+/* A logic element's table of at most 16 entries in two registers: one
+ * vpermt2q picks entry ix (bit 3 of ix chooses the register). */
+typedef struct lut_avx512 { __m512i lo, hi; } lut_avx512_t;
+#define V_LUT(t, ix) _mm512_permutex2var_epi64((t).lo, (ix), (t).hi)
+#define V_LUT_T lut_avx512_t
+#define V_LUT_LOAD(tab) ((lut_avx512_t){ V_LD(tab), V_LD((tab) + 8) })
+#define V_LUT_OK(f) 1
+#define V_LUT_BITS 4
 
 #include "sim/sim_batch_vec.h"
 

@@ -257,6 +257,12 @@ static int same_lanes(const int64_t *v, uint32_t n)
     return 1;
 }
 
+/* same_lanes of a row of b, by the vector loop when b has one. */
+static inline unsigned char row_same(const sim_batch *b, const int64_t *v)
+{
+    return (unsigned char)(b->vsame ? b->vsame(v, b->lanes) : same_lanes(v, b->lanes));
+}
+
 /* Inputs take the values set for this edge; the lanes each changed in
  * are marked. */
 static void apply_inputs(sim_batch *b)
@@ -269,8 +275,8 @@ static void apply_inputs(sim_batch *b)
         if (!memcmp(v, p, L * sizeof *v)) continue;
         uint64_t *om = b->chg + (size_t)sig * b->nw;
         if (b->vw) {
-            *om |= b->vtake(v, p, b->lanes);
-            b->uni[sig] = (unsigned char)same_lanes(v, b->lanes);
+            /* one pass: the compare, the copy and the uniform check */
+            *om |= b->vtake(v, p, b->lanes, &b->uni[sig]);
             continue;
         }
         for (size_t w = 0; w < b->nw; w++) {
@@ -289,7 +295,9 @@ static void apply_inputs(sim_batch *b)
 }
 
 /* p's inputs hold one value in every lane (control, in lanes that run in
- * step): evaluate lane 0 alone and copy it. Returns 0 if they do not. */
+ * step): evaluate lane 0 alone and copy it. Returns 0 if they do not.
+ * For a register too (in place, at the edge: its inputs' values before
+ * it). */
 static int eval_uniform(sim_batch *b, const bop *p)
 {
     for (int k = 0; k < p->ndep; k++) if (!b->uni[p->dep[k]]) return 0;
@@ -297,14 +305,17 @@ static int eval_uniform(sim_batch *b, const bop *p)
     unsigned char f = 0;
     int64_t *y = p->y, old0 = y[0];
     int was = b->uni[p->sig];
-    eval_comb(p, &one, 1, &f, &om0);
+    if (!b->vsparse || !b->vsparse(p, one, &f, &om0)) sim__batch_lanes(p, one, &f, &om0);
     if (f) memset(b->ovf, 1, b->lanes);   /* every lane computed the same overflow */
     int64_t v = y[0];
     uint64_t *om = b->chg + (size_t)p->sig * b->nw;
     if (was) {
         if (v == old0) return 1;   /* changed in no lane */
-        for (uint32_t l = 1; l < b->lanes; l++) y[l] = v;
-        memcpy(om, b->all, b->nw * sizeof *om);
+        if (b->vfill) b->vfill(y, v, b->lanes, 0);
+        else for (uint32_t l = 1; l < b->lanes; l++) y[l] = v;
+        for (uint32_t w = 0; w < b->nw; w++) om[w] = b->all[w];   /* (a word or two: no memcpy call) */
+    } else if (b->vfill) {
+        om[0] |= om0 | b->vfill(y, v, b->lanes, 1);   /* one word of lanes (vw) */
     } else {
         om[0] |= om0;
         for (uint32_t l = 1; l < b->lanes; l++) {
@@ -383,16 +394,21 @@ static void count_toggles(sim_batch *b)
 static void settle1(sim_batch *b)
 {
     uint64_t *chg = b->chg;
+    const unsigned char *uni = b->uni;
     const bop *p = b->comb, *end = p + b->ncomb;
     for (; p < end; p++) {
+        /* the lanes to evaluate, and whether every input is uniform (the
+         * loads side by side: no call to eval_uniform when one is not) */
         uint64_t m = 0;
+        unsigned u = 1;
         const uint32_t *dep = p->dep;
-        for (int k = 0; k < p->ndep; k++) m |= chg[dep[k]];
+        for (int k = 0; k < p->ndep; k++) { m |= chg[dep[k]]; u &= uni[dep[k]]; }
         if (!m) continue;
-        if ((m & (m - 1)) && p->ndep && eval_uniform(b, p)) continue;
-        if (b->vw && wide_enough(m, b->lanes, b->vw) && b->vcomb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
-            b->vec_groups += b->lanes / b->vw;
-        else
+        if ((m & (m - 1)) && u && p->ndep && eval_uniform(b, p)) continue;
+        if (!b->vw) eval_comb(p, &m, 1, b->ovf, chg + p->sig);
+        else if (wide_enough(m, b->lanes, b->vw) && b->vcomb(p, b->lanes, b->ovf, chg + p->sig, &b->vec_fell))
+            b->vec_groups += b->vgroups;
+        else if (!b->vsparse(p, m, b->ovf, chg + p->sig))
             eval_comb(p, &m, 1, b->ovf, chg + p->sig);
         b->uni[p->sig] = 0;
     }
@@ -576,18 +592,21 @@ void sim_batch_cycle(sim_batch *b)
     if (b->reg_inplace) {
         for (uint32_t i = 0; i < b->nreg; i++) {
             bop *p = &b->reg[i];
-            if (b->vw && wide_enough(b->regm[i], b->lanes, b->vw)) {
+            if (b->vw && b->regm[i]) {
+                /* a control register in lanes that run in step: lane 0, copied */
+                if (eval_uniform(b, p)) { b->regm[i] = 0; continue; }
                 uint64_t om = 0;
-                if (b->vreg(p, b->lanes, b->ovf, &om, &b->vec_fell)) {
-                    b->vec_groups += b->lanes / b->vw;
+                int wide = wide_enough(b->regm[i], b->lanes, b->vw);
+                if (wide ? b->vreg(p, b->lanes, b->ovf, &om, &b->vec_fell) : b->vsparse(p, b->regm[i], b->ovf, &om)) {
+                    if (wide) b->vec_groups += b->vgroups;
                     b->regm[i] = 0;
                     b->chg[p->sig] |= om;
-                    if (om) b->uni[p->sig] = (unsigned char)same_lanes(p->y, b->lanes);
+                    if (om) b->uni[p->sig] = row_same(b, p->y);
                     continue;
                 }
             }
             if (reg_inplace(p, b->regm + (size_t)i * nw, b->chg + (size_t)p->sig * nw, nw, b->ovf))
-                b->uni[p->sig] = (unsigned char)same_lanes(p->y, b->lanes);
+                b->uni[p->sig] = row_same(b, p->y);
         }
         apply_inputs(b);
         settle(b);

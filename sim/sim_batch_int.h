@@ -79,13 +79,23 @@ uint32_t sim__batch_vec_width(uint32_t most);
  * no loop for p (the caller runs the scalar one). A group of lanes in
  * which a fast result leaves y's range (an overflow, or a value the fast
  * path does not cover) is handed to sim__batch_lanes and counted in
- * *fell. vec_take: v[l] = p[l], the lanes where that changed v. */
+ * *fell. vec_take: v[l] = p[l], the lanes where that changed v (and
+ * when some did, *same = every lane of p holds p[0]); vec_fill: y[l] = v,
+ * the lanes where that changed y (when asked: `changes`); vec_same: 1 if
+ * every lane of v holds v[0]; vec_sparse: the scalar loop of p in the few
+ * lanes of m, for the common fast elements (0: not one of them). */
 int sim__batch_vec_comb_avx2(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 int sim__batch_vec_reg_avx2(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
-uint64_t sim__batch_vec_take_avx2(int64_t *v, const int64_t *p, uint32_t nl);
+uint64_t sim__batch_vec_take_avx2(int64_t *v, const int64_t *p, uint32_t nl, unsigned char *same);
+uint64_t sim__batch_vec_fill_avx2(int64_t *y, int64_t v, uint32_t nl, int changes);
+int sim__batch_vec_same_avx2(const int64_t *v, uint32_t nl);
+int sim__batch_vec_sparse_avx2(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);
 int sim__batch_vec_comb_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
 int sim__batch_vec_reg_avx512(const bop *p, uint32_t nl, unsigned char *ovf, uint64_t *om, uint64_t *fell);
-uint64_t sim__batch_vec_take_avx512(int64_t *v, const int64_t *p, uint32_t nl);
+uint64_t sim__batch_vec_take_avx512(int64_t *v, const int64_t *p, uint32_t nl, unsigned char *same);
+uint64_t sim__batch_vec_fill_avx512(int64_t *y, int64_t v, uint32_t nl, int changes);
+int sim__batch_vec_same_avx512(const int64_t *v, uint32_t nl);
+int sim__batch_vec_sparse_avx512(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om);
 /* Toggles and ranges of one signal in every lane 0..nl-1 at once
  * (sim_batch_eval.c's count after a settle, when many lanes changed): t[l] +=
  * the bits of `mask` in which v[l] differs from pv[l], pv[l] = v[l], and
@@ -138,9 +148,13 @@ struct sim_batch {
     int      started;
     int      reg_inplace;       /* registers update in place, in b->reg's order (order_regs) */
     uint32_t vw;                /* lanes per vector of the vector loops (0: none; sim_batch_new) */
+    uint32_t vgroups;           /* lanes / vw (a division per element was measurable) */
     int    (*vcomb)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
     int    (*vreg)(const bop *, uint32_t, unsigned char *, uint64_t *, uint64_t *);
-    uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t);
+    uint64_t (*vtake)(int64_t *, const int64_t *, uint32_t, unsigned char *);
+    uint64_t (*vfill)(int64_t *, int64_t, uint32_t, int);
+    int    (*vsame)(const int64_t *, uint32_t);
+    int    (*vsparse)(const bop *, uint64_t, unsigned char *, uint64_t *);
     uint64_t vec_groups, vec_fell;   /* groups of lanes (a vector each) they did, and handed back (sim_batch_vector_stats) */
     /* toggle counting (sim_batch_toggles_on), NULL when off */
     uint64_t *tog;              /* nsig x lanes: bit toggles so far */

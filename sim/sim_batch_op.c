@@ -40,7 +40,9 @@ static void logic_table(bop *p, const sim_prim_info *in)
 {
     int bits = sim_lut_layout(in->n, in->in, SIM_LUT_BITS, p->tsh, p->tmask);
     if (bits < 0) return;
-    int64_t *t = malloc(((size_t)1 << bits) * sizeof *t);
+    /* at least 16 entries (zeros after the table's): the vector loops
+     * load a small table whole into registers */
+    int64_t *t = calloc(bits < 4 ? 16 : (size_t)1 << bits, sizeof *t);
     if (!t) return;   /* evaluated by calls instead */
     sim_lut_fill(t, bits, in->n, in->in, p->tmask, SIM_LUT_TWOS, in->fn, in->user, p->fy);
     p->tab = t;

@@ -15,6 +15,7 @@
 typedef struct lane_st {
     int64_t *in_raw;        /* [item][input] */
     size_t   n_items, next, got, total;
+    uint64_t budget;        /* tb_run's clock budget */
     int      done;
 } lane_st;
 
@@ -152,6 +153,7 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
         L->in_overflows = 0;
         if (quantize(u, cfg, fm, L, &S[k])) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
         S[k].total = S[k].n_items * (size_t)beats;
+        S[k].budget = 1000 + S[k].total * 4096;
         L->raw = calloc(S[k].n_items * nv, sizeof *L->raw);
         L->beat_cycle = calloc(S[k].total, sizeof *L->beat_cycle);
         if (!L->raw || !L->beat_cycle) base_out_of_memory();
@@ -159,7 +161,8 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
     }
     sim_batch_start(b);
     size_t active = n;
-    uint64_t e = 0;
+    uint64_t e = 0, first_budget = UINT64_MAX;   /* no lane is looked at for its budget before */
+    for (size_t k = 0; k < n; k++) if (S[k].budget < first_budget) first_budget = S[k].budget;
     while (active) {
         e++;
         const int64_t *iv = sim_batch_val(b, io.in_valid), *ir = sim_batch_val(b, io.in_ready);
@@ -178,7 +181,7 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
             /* driver */
             if (iv[k] && ir[k]) { s->next++; drive(nin, nvalid, n_in, s, (uint32_t)k); }
             /* tb_run's budget: past it the kernel says what went wrong */
-            if (!s->done && e >= 1000 + s->total * 4096) { s->done = 2; nfin++; }
+            if (e >= first_budget && !s->done && e >= s->budget) { s->done = 2; nfin++; }
         }
         sim_batch_cycle(b);
         if (!nfin) continue;

@@ -336,9 +336,14 @@ static void register_case(int ring)
  * truncating rounding, wrapping and saturation, and values that overflow
  * now and then (those groups of four lanes take the scalar loop). Some
  * lanes hold their inputs for a few edges, so that the element masks are
- * partial. Every signal in every lane at every edge, and the overflow
+ * partial, and on some edges most lanes do (the loops for a few lanes). Every signal in every lane at every edge, and the overflow
  * flags, must be the same. */
 static int64_t lg3(const int64_t *in, void *u) { (void)u; return (in[0] * 3 + in[1] * 5 + in[2]) & 7; }
+/* small tables (3 and 4 input bits: held in registers by the vector
+ * loops), with negative entries, one wrapped into its output's width */
+static int64_t lg_small(const int64_t *in, void *u) { (void)u; return in[0] * 5 - in[1] * 7 - 3; }
+static int64_t lg_wide(const int64_t *in, void *u) { (void)u; return (in[0] - 4) * 100000 + in[1]; }
+static int64_t lg_one(const int64_t *in, void *u) { (void)u; return in[0] * 3 - 11; }
 
 static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, int64_t *trace, unsigned char *ovf,
                       int edges, uint32_t *nsig)
@@ -360,18 +365,26 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
     sim_signal *sh = sim_shift(c, NULL, "sh", F(1, 10, 14), w, -3);
     sim_signal *mi[2] = { x, a };
     sim_signal *mx = sim_mux(c, NULL, "mx", F(1, 24, 9), sl, 2, mi); /* k = 1 and 3; s = 2, 3: 0 */
+    sim_signal *mi3[3] = { x, a, w };
+    sim_signal *mx3 = sim_mux(c, NULL, "mx3", F(1, 24, 8), sl, 3, mi3);   /* k = 2, 4, 0; s = 3: 0 */
     sim_signal *bk = sim_bk(c, NULL, "bk", F(1, 28, 6), en, x);
     sim_signal *li[3] = { sl, en, g };
     sim_signal *t = sim_logic(c, NULL, "t", F(0, 3, 0), 3, li, lg3, NULL, 1);
+    sim_signal *li3[2] = { sl, en }, *li4[2] = { g, en };
+    sim_signal *t3 = sim_logic(c, NULL, "t3", F(1, 4, 0), 2, li3, lg_small, NULL, 1);
+    sim_signal *t4 = sim_logic(c, NULL, "t4", F(1, 21, 0), 2, li4, lg_wide, NULL, 1);
+    sim_signal *t1 = sim_logic(c, NULL, "t1", F(1, 5, 0), 1, &g, lg_one, NULL, 1);
     sim_signal *cp = sim_signal_new(c, NULL, "cp", F(1, 36, 2), SIM_KIND_WIRE);
     sim_assign(c, cp, m);
     sim_signal *r1 = sim_reg(c, NULL, "r1", F(1, 30, 10), clk, x, en, NULL, 0);
+    sim_signal *mj[2] = { x, r1 };
+    sim_signal *mx2 = sim_mux(c, NULL, "mx2", F(1, 24, 10), sl, 2, mj);   /* no shifts; wide x overflows */
     sim_signal *r2 = sim_reg(c, NULL, "r2", F(1, 36, 4), clk, m, NULL, NULL, 0);
     sim_signal *r3 = sim_reg(c, NULL, "r3", F(1, 30, 9), clk, mx, NULL, en, 3);
     sim_signal *y = sim_add(c, NULL, "y", F(1, 40, 8), r2, r1);
     sim_signal *z = sim_mul(c, NULL, "z", F(1, 20, 4), r3, t);
 #undef F
-    (void)d; (void)sh; (void)bk; (void)cp; (void)y; (void)z;
+    (void)d; (void)sh; (void)bk; (void)cp; (void)y; (void)z; (void)t3; (void)t4; (void)t1; (void)mx2; (void)mx3;
     sim_batch *b = sim_batch_new(c, clk, lanes, err, sizeof err);
     TST_CHECK(b != NULL, "%s", err);
     if (!b) { sim_free(c); return -1; }
@@ -381,11 +394,15 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
     int64_t *in[5] = { sim_batch_next(b, x), sim_batch_next(b, w), sim_batch_next(b, sl), sim_batch_next(b, en),
                        sim_batch_next(b, g) };
     for (int e = 0; e <= edges; e++) {
+        /* every fourth edge, few lanes change (one in sixteen): the
+         * elements' masks are sparse (the loops for a few lanes) */
+        int sparse = e % 4 == 2;
         for (uint32_t l = 0; l < lanes; l++) {
-            if (e && (RND() % 3) == 0) continue;   /* this lane holds its inputs */
+            if (e && (sparse ? RND() % 16 != 0 : (RND() % 3) == 0)) continue;   /* this lane holds its inputs */
             uint64_t r = RND();
-            /* lanes 3, 7, ...: now and then an x whose product overflows m */
-            in[0][l] = l % 4 == 3 && r % 17 == 0 ? (int64_t)(RND() >> 25) - ((int64_t)1 << 38)
+            /* lanes 3, 7, ...: now and then an x whose product overflows
+             * m (on the sparse edges more often) */
+            in[0][l] = l % 4 == 3 && r % (sparse ? 4 : 17) == 0 ? (int64_t)(RND() >> 25) - ((int64_t)1 << 38)
                                                  : (int64_t)(r % 2000001) - 1000000;
             in[1][l] = (int64_t)(RND() % 1048575) - 524287;
             in[2][l] = (int64_t)(RND() % 4);
