@@ -298,6 +298,11 @@ const int64_t *sim_batch_val(const sim_batch *b, const sim_signal *s)
     return b->val + (size_t)s->index * b->lanes;
 }
 
+const uint64_t *sim_batch_changed(const sim_batch *b, const sim_signal *s)
+{
+    return b->chg + (size_t)s->index * b->nw;
+}
+
 int64_t *sim_batch_next(sim_batch *b, const sim_signal *s)
 {
     if (s->index >= b->nsig || b->inslot[s->index] < 0) return NULL;

@@ -58,6 +58,10 @@ uint32_t   sim_batch_lanes(const sim_batch *b);
 
 /* The values of s now, one per lane. */
 const int64_t *sim_batch_val(const sim_batch *b, const sim_signal *s);
+/* The lanes (bit l%64 of word l/64) in which s took a new value at the
+ * last sim_batch_cycle, until the next: a testbench looks at those lanes
+ * only, instead of every lane at every edge. */
+const uint64_t *sim_batch_changed(const sim_batch *b, const sim_signal *s);
 /* Input s of lane `lane` takes raw v at the next edge (or at the start, if
  * the batch has not started): what sim_write from a process woken by the
  * edge does. s must be an input (no element drives it): -1 otherwise. */

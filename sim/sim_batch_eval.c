@@ -419,7 +419,6 @@ static void settle1(sim_batch *b)
         b->regm[i] = rm;
     }
     if (b->tog) count_toggles(b);
-    memset(chg, 0, (size_t)b->nsig * sizeof *chg);
 }
 
 static void settle(sim_batch *b)
@@ -457,7 +456,6 @@ static void settle(sim_batch *b)
         }
     }
     if (b->tog && b->started) count_toggles(b);
-    memset(chg, 0, (size_t)b->nsig * nw * sizeof *chg);
 }
 
 void sim_batch_start(sim_batch *b)
@@ -587,8 +585,10 @@ void sim_batch_cycle(sim_batch *b)
      * once: the kernel's evaluate/update, without the lists. A register
      * whose input, enable and reset did not change in a lane since the
      * last edge would load what it holds there: only the other lanes
-     * (regm) are evaluated. */
+     * (regm) are evaluated. The last edge's change masks are cleared
+     * here, not after its settle: sim_batch_changed reads them. */
     uint32_t nw = b->nw;
+    memset(b->chg, 0, (size_t)b->nsig * nw * sizeof *b->chg);
     if (b->reg_inplace) {
         for (uint32_t i = 0; i < b->nreg; i++) {
             bop *p = &b->reg[i];

@@ -13,45 +13,77 @@
 #include <string.h>
 
 typedef struct lane_st {
-    int64_t *in_raw;        /* [item][input] */
+    const vec_set *vs;
     size_t   n_items, next, got, total;
     uint64_t budget;        /* tb_run's clock budget */
+    uint64_t *in_ovf;       /* the lane's tb_batch_lane in_overflows */
     int      done;
 } lane_st;
 
-/* Quantize lane k's inputs as tb_run does (tb_prep's first step). */
-static int quantize(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, tb_batch_lane *L, lane_st *s)
-{
-    int n_in = unit_n_in(u);
-    sim_fx_conv cv[UNIT_MAX_IO];   /* each input port's quantization */
-    for (int i = 0, k = 0; i < u->nsigs; i++)
-        if (u->sigs[i].role == UNIT_SIG_IN) sim_fx_conv_init(&cv[k++], fm->f[i], cfg->rnd, cfg->ovf);
-    s->n_items = L->vs->n_rows;
-    s->in_raw = malloc((s->n_items ? s->n_items : 1) * (size_t)n_in * sizeof *s->in_raw);
-    if (!s->in_raw) return -1;
-    for (size_t it = 0; it < s->n_items; it++) {
-        const double *row = vec_row(L->vs, it);
-        for (int i = 0; i < n_in; i++) {
-            int ov = 0;
-            s->in_raw[it * (size_t)n_in + (size_t)i] = sim_fx_conv_real(&cv[i], row[i], &ov);
-            L->in_overflows += (uint64_t)ov;
-        }
-    }
-    return 0;
-}
-
-/* The driver's writes for lane l: the item at s->next, or valid low past
- * the last. Written when next moves only: a pending value stays from edge
- * to edge, as a signal keeps the value the kernel's driver rewrites. */
-static void drive(int64_t *const *nin, int64_t *nvalid, int n_in, const lane_st *s, uint32_t l)
+/* The driver's writes for lane l: the item at s->next, quantized as tb_run
+ * does (tb_prep's first step: cv, each input port's conversion), or valid
+ * low past the last. Each item is driven once, when next moves to it, so
+ * quantizing here counts every item's input overflows once (a lane that
+ * stops short goes to the kernel, which counts them again) and keeps no
+ * quantized copy of the vectors. Written when next moves only: a pending
+ * value stays from edge to edge, as a signal keeps the value the kernel's
+ * driver rewrites. */
+static void drive(int64_t *const *nin, int64_t *nvalid, int n_in, const sim_fx_conv *cv, lane_st *s, uint32_t l)
 {
     if (s->next < s->n_items) {
-        const int64_t *v = s->in_raw + s->next * (size_t)n_in;
-        for (int i = 0; i < n_in; i++) nin[i][l] = v[i];
+        const double *row = vec_row(s->vs, s->next);
+        uint64_t o = 0;
+        /* the next row is read a few clocks from now: ask for it already
+         * (as many streams of rows as lanes, more than the CPU's own
+         * prefetcher follows; as tb_span.c does) */
+        if (s->next + 1 < s->n_items) {
+            const double *nx = vec_row(s->vs, s->next + 1);
+            __builtin_prefetch(nx);
+            __builtin_prefetch(nx + n_in - 1);
+        }
+        for (int i = 0; i < n_in; i++) {
+            int ov = 0;
+            nin[i][l] = sim_fx_conv_real(&cv[i], row[i], &ov);
+            o += (uint64_t)ov;
+        }
+        *s->in_ovf += o;
         nvalid[l] = 1;
     } else {
         nvalid[l] = 0;
     }
+}
+
+/* The handshake signals' lanes that are high (bit k%64 of word k/64),
+ * and the lanes still running: the driver and monitor act where these
+ * say, not in every lane at every edge. */
+typedef struct hs {
+    size_t   nw;
+    uint64_t iv[SIM_BATCH_MAX_LANES / 64], ir[SIM_BATCH_MAX_LANES / 64], ov[SIM_BATCH_MAX_LANES / 64];
+    uint64_t live[SIM_BATCH_MAX_LANES / 64];
+} hs;
+
+/* m's bits from s's values: in every lane (all), or in the lanes s
+ * changed in at the last edge. */
+static void hs_lanes(uint64_t *m, const sim_batch *b, const sim_signal *s, size_t n, size_t nw, int all)
+{
+    const int64_t *v = sim_batch_val(b, s);
+    const uint64_t *chg = sim_batch_changed(b, s);
+    for (size_t w = 0; w < nw; w++) {
+        uint64_t c = all ? (w + 1 < nw || n % 64 == 0 ? UINT64_MAX : ((uint64_t)1 << (n % 64)) - 1) : chg[w];
+        uint64_t set = 0;
+        for (uint64_t x = c; x; x &= x - 1) {
+            unsigned l = (unsigned)__builtin_ctzll(x);
+            set |= (uint64_t)(v[w * 64 + l] != 0) << l;
+        }
+        m[w] = (m[w] & ~c) | set;
+    }
+}
+
+static void hs_update(hs *h, const sim_batch *b, const unit_io *io, size_t n, int all)
+{
+    hs_lanes(h->iv, b, io->in_valid, n, h->nw, all);
+    hs_lanes(h->ir, b, io->in_ready, n, h->nw, all);
+    hs_lanes(h->ov, b, io->out_valid, n, h->nw, all);
 }
 
 /* Lane k from tb_run (the kernel). */
@@ -148,42 +180,59 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
     const int64_t *out[UNIT_MAX_IO];
     for (int i = 0; i < n_in; i++) nin[i] = sim_batch_next(b, io.in[i]);
     for (int o = 0; o < n_out; o++) out[o] = sim_batch_val(b, io.out[o]);
+    sim_fx_conv cv[UNIT_MAX_IO];   /* each input port's quantization */
+    for (int i = 0, k = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_IN) sim_fx_conv_init(&cv[k++], fm->f[i], cfg->rnd, cfg->ovf);
     for (size_t k = 0; k < n; k++) {
         tb_batch_lane *L = &lanes[k];
         L->in_overflows = 0;
-        if (quantize(u, cfg, fm, L, &S[k])) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+        S[k].vs = L->vs;
+        S[k].n_items = L->vs->n_rows;
+        S[k].in_ovf = &L->in_overflows;
         S[k].total = S[k].n_items * (size_t)beats;
         S[k].budget = 1000 + S[k].total * 4096;
         L->raw = calloc(S[k].n_items * nv, sizeof *L->raw);
         L->beat_cycle = calloc(S[k].total, sizeof *L->beat_cycle);
         if (!L->raw || !L->beat_cycle) base_out_of_memory();
-        drive(nin, nvalid, n_in, &S[k], (uint32_t)k);   /* the driver's run at initialization */
+        drive(nin, nvalid, n_in, cv, &S[k], (uint32_t)k);   /* the driver's run at initialization */
     }
     sim_batch_start(b);
     size_t active = n;
     uint64_t e = 0, first_budget = UINT64_MAX;   /* no lane is looked at for its budget before */
     for (size_t k = 0; k < n; k++) if (S[k].budget < first_budget) first_budget = S[k].budget;
+    hs h = { .nw = (n + 63) / 64 };
+    for (size_t k = 0; k < n; k++) h.live[k >> 6] |= (uint64_t)1 << (k & 63);
+    hs_update(&h, b, &io, n, 1);
     while (active) {
         e++;
-        const int64_t *iv = sim_batch_val(b, io.in_valid), *ir = sim_batch_val(b, io.in_ready);
-        const int64_t *ov = sim_batch_val(b, io.out_valid);
         size_t nfin = 0;
-        for (size_t k = 0; k < n; k++) {
-            lane_st *s = &S[k];
-            tb_batch_lane *L = &lanes[k];
-            if (s->done) continue;
-            /* monitor: the cycle that just ended */
-            if (ov[k] && s->got < s->total) {
+        for (size_t w = 0; w < h.nw; w++) {
+            /* monitor (the cycle that just ended) and driver, in the
+             * lanes where they act: out_valid high; in_valid and in_ready
+             * high (the driver runs in a lane the monitor just finished too) */
+            uint64_t mon = h.ov[w] & h.live[w], fire = h.iv[w] & h.ir[w] & h.live[w];
+            while (mon) {
+                size_t k = w * 64 + (size_t)__builtin_ctzll(mon);
+                mon &= mon - 1;
+                lane_st *s = &S[k];
+                tb_batch_lane *L = &lanes[k];
                 L->beat_cycle[s->got] = e - 1;
                 for (int o = 0; o < n_out; o++) L->raw[s->got * (size_t)n_out + (size_t)o] = out[o][k];
-                if (++s->got == s->total) { s->done = 1; nfin++; L->clocks = e; }
+                if (++s->got == s->total) { s->done = 1; nfin++; L->clocks = e; h.live[w] &= ~((uint64_t)1 << (k & 63)); }
             }
-            /* driver */
-            if (iv[k] && ir[k]) { s->next++; drive(nin, nvalid, n_in, s, (uint32_t)k); }
-            /* tb_run's budget: past it the kernel says what went wrong */
-            if (e >= first_budget && !s->done && e >= s->budget) { s->done = 2; nfin++; }
+            while (fire) {
+                size_t k = w * 64 + (size_t)__builtin_ctzll(fire);
+                fire &= fire - 1;
+                S[k].next++;
+                drive(nin, nvalid, n_in, cv, &S[k], (uint32_t)k);
+            }
         }
+        /* tb_run's budget: past it the kernel says what went wrong */
+        if (e >= first_budget)
+            for (size_t k = 0; k < n; k++)
+                if (!S[k].done && e >= S[k].budget) { S[k].done = 2; nfin++; h.live[k >> 6] &= ~((uint64_t)1 << (k & 63)); }
         sim_batch_cycle(b);
+        hs_update(&h, b, &io, n, 0);
         if (!nfin) continue;
         active -= nfin;
         for (size_t k = 0; k < n; k++)
@@ -200,7 +249,6 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
     for (size_t k = 0; k < n && rc == TB_OK; k++)
         if (!lanes[k].batched) rc = from_kernel(u, cfg, fm, &lanes[k], err, errlen);
 done:
-    if (S) for (size_t k = 0; k < n; k++) free(S[k].in_raw);
     free(S);
     sim_batch_free(b);
     sim_free(c);
