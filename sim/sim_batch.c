@@ -37,7 +37,7 @@ void sim_batch_free(sim_batch *b)
     if (!b) return;
     sim__batch_free_ops(b->comb, b->ncomb);
     sim__batch_free_ops(b->reg, b->nreg);
-    free(b->val); free(b->pend); free(b->inslot); free(b->in_sig); free(b->regnx); free(b->regm); free(b->ovf); free(b->chg); free(b->uni);
+    free(b->val); free(b->pend); free(b->inslot); free(b->in_sig); free(b->in_mark); free(b->regnx); free(b->regm); free(b->ovf); free(b->chg); free(b->uni);
     free(b->tog); free(b->tprev); free(b->fmask); free(b->rmin); free(b->rmax);
     free(b);
 }
@@ -262,9 +262,10 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
     if (levelize(b, c, comb, ncomb, info, op_of_sig, err, errlen)) goto fail;
     free(comb); comb = NULL;   /* the ops moved into b->comb (their arrays with them) */
     b->pend = malloc((size_t)(b->nin ? b->nin : 1) * lanes * sizeof *b->pend);
+    b->in_mark = calloc(b->nin ? b->nin : 1, 1);
     b->regnx = malloc((size_t)(b->nreg ? b->nreg : 1) * lanes * sizeof *b->regnx);
     b->regm = calloc((size_t)(b->nreg ? b->nreg : 1) * b->nw, sizeof *b->regm);
-    if (!b->pend || !b->regnx || !b->regm) goto oom;
+    if (!b->pend || !b->in_mark || !b->regnx || !b->regm) goto oom;
     for (uint32_t i = 0; i < b->nin; i++)
         memcpy(b->pend + (size_t)i * lanes, b->val + (size_t)b->in_sig[i] * lanes, lanes * sizeof *b->pend);
     for (uint32_t i = 0; i < b->nreg; i++) b->reg[i].nx = b->regnx + (size_t)i * lanes;
@@ -303,6 +304,11 @@ const uint64_t *sim_batch_changed(const sim_batch *b, const sim_signal *s)
     return b->chg + (size_t)s->index * b->nw;
 }
 
+int sim_batch_uniform(const sim_batch *b, const sim_signal *s)
+{
+    return b->uni[s->index];
+}
+
 int64_t *sim_batch_next(sim_batch *b, const sim_signal *s)
 {
     if (s->index >= b->nsig || b->inslot[s->index] < 0) return NULL;
@@ -313,5 +319,13 @@ int sim_batch_set(sim_batch *b, const sim_signal *s, uint32_t lane, int64_t v)
 {
     if (s->index >= b->nsig || b->inslot[s->index] < 0 || lane >= b->lanes) return -1;
     b->pend[(size_t)b->inslot[s->index] * b->lanes + lane] = v;
+    b->in_mark[b->inslot[s->index]] = 1;
     return 0;
+}
+
+void sim_batch_mark(sim_batch *b, const sim_signal *s)
+{
+    if (s->index >= b->nsig || b->inslot[s->index] < 0) return;
+    b->in_mark[b->inslot[s->index]] = 1;
+    b->marking = 1;
 }

@@ -62,6 +62,10 @@ const int64_t *sim_batch_val(const sim_batch *b, const sim_signal *s);
  * last sim_batch_cycle, until the next: a testbench looks at those lanes
  * only, instead of every lane at every edge. */
 const uint64_t *sim_batch_changed(const sim_batch *b, const sim_signal *s);
+/* 1 when every lane of s is known to hold one value (lanes that run in
+ * step: the batch keeps this for its own shortcut); 0 when they differ or
+ * it does not know. */
+int sim_batch_uniform(const sim_batch *b, const sim_signal *s);
 /* Input s of lane `lane` takes raw v at the next edge (or at the start, if
  * the batch has not started): what sim_write from a process woken by the
  * edge does. s must be an input (no element drives it): -1 otherwise. */
@@ -70,6 +74,11 @@ int  sim_batch_set(sim_batch *b, const sim_signal *s, uint32_t lane, int64_t v);
  * input s takes at the next edge, to write in place; they stay set from
  * edge to edge until written again. NULL if s is not an input. */
 int64_t *sim_batch_next(sim_batch *b, const sim_signal *s);
+/* Input s was written through sim_batch_next since the last edge. Once a
+ * testbench marks an input, the edges look only at the inputs marked
+ * since the edge before (and those sim_batch_set wrote): the others are
+ * not compared lane by lane for a change. */
+void sim_batch_mark(sim_batch *b, const sim_signal *s);
 
 /* The kernel's initialization: inputs set so far take their values, every
  * combinational element is evaluated (registers keep their reset values). */

@@ -136,6 +136,8 @@ struct sim_batch {
     int32_t *inslot;            /* per signal: its row in pend, or -1 */
     uint32_t nin;
     uint32_t *in_sig;           /* per input row: the signal */
+    unsigned char *in_mark;     /* per input row: written since the last edge (sim_batch_mark) */
+    int      marking;           /* 1 once sim_batch_mark was called: unmarked inputs are not compared */
     bop     *comb;  uint32_t ncomb;   /* in topological order */
     bop     *reg;   uint32_t nreg;
     int64_t *regnx;             /* nreg x lanes */

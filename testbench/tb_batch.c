@@ -68,13 +68,16 @@ static void hs_lanes(uint64_t *m, const sim_batch *b, const sim_signal *s, size_
 {
     const int64_t *v = sim_batch_val(b, s);
     const uint64_t *chg = sim_batch_changed(b, s);
+    int uni = sim_batch_uniform(b, s);   /* lanes in step: lane 0 says it for all */
     for (size_t w = 0; w < nw; w++) {
         uint64_t c = all ? (w + 1 < nw || n % 64 == 0 ? UINT64_MAX : ((uint64_t)1 << (n % 64)) - 1) : chg[w];
         uint64_t set = 0;
-        for (uint64_t x = c; x; x &= x - 1) {
-            unsigned l = (unsigned)__builtin_ctzll(x);
-            set |= (uint64_t)(v[w * 64 + l] != 0) << l;
-        }
+        if (uni) set = v[0] ? c : 0;
+        else
+            for (uint64_t x = c; x; x &= x - 1) {
+                unsigned l = (unsigned)__builtin_ctzll(x);
+                set |= (uint64_t)(v[w * 64 + l] != 0) << l;
+            }
         m[w] = (m[w] & ~c) | set;
     }
 }
@@ -206,11 +209,13 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
     while (active) {
         e++;
         size_t nfin = 0;
+        uint64_t fired = 0;
         for (size_t w = 0; w < h.nw; w++) {
             /* monitor (the cycle that just ended) and driver, in the
              * lanes where they act: out_valid high; in_valid and in_ready
              * high (the driver runs in a lane the monitor just finished too) */
             uint64_t mon = h.ov[w] & h.live[w], fire = h.iv[w] & h.ir[w] & h.live[w];
+            fired |= fire;
             while (mon) {
                 size_t k = w * 64 + (size_t)__builtin_ctzll(mon);
                 mon &= mon - 1;
@@ -226,6 +231,10 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
                 S[k].next++;
                 drive(nin, nvalid, n_in, cv, &S[k], (uint32_t)k);
             }
+        }
+        if (fired) {   /* what the driver wrote: the edge compares those inputs alone */
+            sim_batch_mark(b, io.in_valid);
+            for (int i = 0; i < n_in; i++) sim_batch_mark(b, io.in[i]);
         }
         /* tb_run's budget: past it the kernel says what went wrong */
         if (e >= first_budget)

@@ -258,6 +258,50 @@ static void t_accumulator_by_hand(void)
     sim_free(c);
 }
 
+/* A testbench that marks what it writes (sim_batch_mark): an input
+ * written without a mark keeps its value over the edges until marked;
+ * sim_batch_set needs no mark. */
+static void t_marked_inputs(void)
+{
+    char err[300];
+    sim_ctx *c = sim_new();
+    sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+    sim_fmt f = { .is_signed = 1, .ibits = 8, .fbits = 0, .width = 8 };
+    sim_signal *x = sim_signal_new(c, NULL, "x", f, SIM_KIND_INPUT);
+    sim_signal *w = sim_signal_new(c, NULL, "w", f, SIM_KIND_INPUT);
+    sim_signal *r = sim_reg(c, NULL, "r", f, clk, x, NULL, NULL, 0);
+    sim_batch *b = sim_batch_new(c, clk, 2, err, sizeof err);
+    TST_CHECK(b != NULL, "%s", err);
+    if (!b) { sim_free(c); return; }
+    int64_t *nx = sim_batch_next(b, x), *nw = sim_batch_next(b, w);
+    nx[0] = 3; nx[1] = 4;
+    sim_batch_start(b);                         /* the start takes every input */
+    TST_EQ_INT(sim_batch_val(b, x)[1], 4);
+    nx[1] = 7;
+    sim_batch_mark(b, x);
+    sim_batch_cycle(b);                         /* marked: taken, r sampled the 4 before it */
+    TST_EQ_INT(sim_batch_val(b, x)[1], 7);
+    TST_EQ_INT(sim_batch_val(b, r)[1], 4);
+    TST_EQ_INT(sim_batch_changed(b, x)[0], 2);  /* lane 1 alone */
+    nx[0] = 9;
+    nw[1] = 5;
+    sim_batch_mark(b, w);
+    sim_batch_cycle(b);                         /* x unmarked: held */
+    TST_EQ_INT(sim_batch_val(b, x)[0], 3);
+    TST_EQ_INT(sim_batch_val(b, w)[1], 5);
+    TST_EQ_INT(sim_batch_changed(b, x)[0], 0);
+    sim_batch_cycle(b);
+    TST_EQ_INT(sim_batch_val(b, x)[0], 3);
+    sim_batch_set(b, x, 1, -2);                 /* a set is marked: both pending values go */
+    sim_batch_cycle(b);
+    TST_EQ_INT(sim_batch_val(b, x)[0], 9);
+    TST_EQ_INT(sim_batch_val(b, x)[1], -2);
+    TST_EQ_INT(sim_batch_changed(b, x)[0], 3);
+    TST_EQ_INT(sim_batch_val(b, r)[0], 3);
+    sim_batch_free(b);
+    sim_free(c);
+}
+
 /* Registers reading registers, lane by lane against the hand formula, in
  * two designs (a ring anywhere makes the batch update every register
  * through a copy, so each case has its own): a chain built first stage
@@ -411,8 +455,20 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
         }
         if (!e) sim_batch_start(b);
         else sim_batch_cycle(b);
-        for (uint32_t i = 0; i < *nsig; i++)
-            memcpy(trace + ((size_t)e * *nsig + i) * lanes, sim_batch_val(b, sim_signal_at(c, i)), lanes * sizeof *trace);
+        for (uint32_t i = 0; i < *nsig; i++) {
+            const sim_signal *si = sim_signal_at(c, i);
+            const int64_t *v = sim_batch_val(b, si), *was = trace + ((size_t)(e - 1) * *nsig + i) * lanes;
+            memcpy(trace + ((size_t)e * *nsig + i) * lanes, v, lanes * sizeof *trace);
+            if (!e) continue;
+            /* the lanes the edge changed s in, against the values before
+             * and after it; a signal said uniform holds one value */
+            uint64_t want = 0, got = sim_batch_changed(b, si)[0];
+            int same = 1;
+            for (uint32_t l = 0; l < lanes; l++) { want |= (uint64_t)(v[l] != was[l]) << l; same &= v[l] == v[0]; }
+            TST_CHECK(got == want, "edge %d, %s: changed in lanes %llx, want %llx", e, si->name,
+                      (unsigned long long)got, (unsigned long long)want);
+            TST_CHECK(same || !sim_batch_uniform(b, si), "edge %d, %s: said uniform", e, si->name);
+        }
     }
 #undef RND
     for (uint32_t l = 0; l < lanes; l++) ovf[l] = (unsigned char)sim_batch_overflowed(b, l);
@@ -477,6 +533,7 @@ int main(void)
     TST_RUN(t_register_chain);
     TST_RUN(t_register_ring);
     TST_RUN(t_refusals);
+    TST_RUN(t_marked_inputs);
     TST_RUN(t_vector_loops_equal_scalar);
     TST_RUN(t_span_lanes_equal_kernel);
     TST_RUN(t_span_overflow_falls_back);
