@@ -467,9 +467,10 @@ static int vector_run(sim_round rm, sim_ovf om, uint32_t lanes, uint32_t vec, in
         else sim_batch_cycle(b);
         for (uint32_t i = 0; i < *nsig; i++) {
             const sim_signal *si = sim_signal_at(c, i);
-            const int64_t *v = sim_batch_val(b, si), *was = trace + ((size_t)(e - 1) * *nsig + i) * lanes;
+            const int64_t *v = sim_batch_val(b, si);
             memcpy(trace + ((size_t)e * *nsig + i) * lanes, v, lanes * sizeof *trace);
             if (!e) continue;
+            const int64_t *was = trace + ((size_t)(e - 1) * *nsig + i) * lanes;
             /* the lanes the edge changed s in, against the values before
              * and after it; a signal said uniform holds one value */
             uint64_t want = 0, got = sim_batch_changed(b, si)[0];
