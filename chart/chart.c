@@ -14,30 +14,21 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Make room for need elements in *p (capacity *cap, element size sz). */
-int chart_grow(void **p, size_t *cap, size_t need, size_t sz)
+/* Make room for need elements in *p (capacity *cap, element size sz);
+ * out of memory (or a size past the address space) ends the program. */
+void chart_grow(void **p, size_t *cap, size_t need, size_t sz)
 {
-    if (need <= *cap) return 0;
+    if (need <= *cap) return;
     size_t nc = *cap ? *cap : 8;
     while (nc < need) {
-        if (nc > SIZE_MAX / 2) return -1;
+        if (nc > SIZE_MAX / 2) base_out_of_memory();
         nc *= 2;
     }
-    if (nc > SIZE_MAX / sz) return -1;
+    if (nc > SIZE_MAX / sz) base_out_of_memory();
     void *q = realloc(*p, nc * sz);
-    if (!q) return -1;
+    if (!q) base_out_of_memory();
     *p = q;
     *cap = nc;
-    return 0;
-}
-
-static char *chart_strdup(const char *s)
-{
-    if (!s) return NULL;
-    size_t n = strlen(s) + 1;
-    char *d = malloc(n);
-    if (d) memcpy(d, s, n);
-    return d;
 }
 
 static void chart_fail(chart *c, const char *msg)
@@ -49,9 +40,10 @@ static void chart_fail(chart *c, const char *msg)
 static char *chart_dup_text(const char *s)
 {
     if (!s) return NULL;
-    char *d = chart_strdup(s);
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
     if (!d) base_out_of_memory();
-    return d;
+    return memcpy(d, s, n);
 }
 
 chart *chart_new(const char *title, const char *xlabel, const char *ylabel)
@@ -87,8 +79,8 @@ void chart_int_x(chart *c, int on) { if (c) c->int_x = !!on; }
 int chart_series(chart *c, const char *label, int style)
 {
     if (!c) return -1;
-    if (c->nser >= INT_MAX ||
-        chart_grow((void **)&c->ser, &c->capser, c->nser + 1, sizeof *c->ser)) base_out_of_memory();
+    if (c->nser >= INT_MAX) base_out_of_memory();
+    chart_grow((void **)&c->ser, &c->capser, c->nser + 1, sizeof *c->ser);
     /* A series with neither bit would be invisible: default to points. */
     if (!(style & (CHART_LINE | CHART_POINTS | CHART_STEP))) style = CHART_POINTS;
     chart_ser *s = &c->ser[c->nser];
@@ -96,7 +88,7 @@ int chart_series(chart *c, const char *label, int style)
     s->style = style;
     s->shape = -1;
     s->dash = -1;
-    if (label && *label && !(s->label = chart_dup_text(label))) return -1;
+    if (label && *label) s->label = chart_dup_text(label);
     return (int)c->nser++;
 }
 
@@ -132,7 +124,7 @@ static size_t chart_add(chart *c, int series, double x, double y)
         return SIZE_MAX;
     }
     chart_ser *s = &c->ser[series];
-    if (chart_grow((void **)&s->pt, &s->cap, s->n + 1, sizeof *s->pt)) base_out_of_memory();
+    chart_grow((void **)&s->pt, &s->cap, s->n + 1, sizeof *s->pt);
     s->pt[s->n].x = x;
     s->pt[s->n].y = y;
     return s->n++;
@@ -147,7 +139,7 @@ void chart_point_label(chart *c, int series, double x, double y, const char *lab
 {
     size_t idx = chart_add(c, series, x, y);
     if (idx == SIZE_MAX || !label || !*label) return;
-    if (chart_grow((void **)&c->pl, &c->cappl, c->npl + 1, sizeof *c->pl)) base_out_of_memory();
+    chart_grow((void **)&c->pl, &c->cappl, c->npl + 1, sizeof *c->pl);
     char *t = chart_dup_text(label);
     if (!t) return;
     c->pl[c->npl].series = series;
@@ -159,9 +151,9 @@ void chart_point_label(chart *c, int series, double x, double y, const char *lab
 void chart_hband(chart *c, double x0, double x1, const char *label)
 {
     if (!c) return;
-    if (chart_grow((void **)&c->band, &c->capband, c->nband + 1, sizeof *c->band)) base_out_of_memory();
+    chart_grow((void **)&c->band, &c->capband, c->nband + 1, sizeof *c->band);
     char *t = NULL;
-    if (label && *label && !(t = chart_dup_text(label))) return;
+    if (label && *label) t = chart_dup_text(label);
     c->band[c->nband].x0 = x0 <= x1 ? x0 : x1;
     c->band[c->nband].x1 = x0 <= x1 ? x1 : x0;
     c->band[c->nband].label = t;
@@ -171,9 +163,9 @@ void chart_hband(chart *c, double x0, double x1, const char *label)
 void chart_hline(chart *c, double y, const char *label)
 {
     if (!c) return;
-    if (chart_grow((void **)&c->hl, &c->caphl, c->nhl + 1, sizeof *c->hl)) base_out_of_memory();
+    chart_grow((void **)&c->hl, &c->caphl, c->nhl + 1, sizeof *c->hl);
     char *t = NULL;
-    if (label && *label && !(t = chart_dup_text(label))) return;
+    if (label && *label) t = chart_dup_text(label);
     c->hl[c->nhl].y = y;
     c->hl[c->nhl].label = t;
     c->nhl++;
@@ -207,7 +199,6 @@ static int chart_rendered(const chart *c, const char *what, chart_buf *b, char *
         return -1;
     }
     chart_render(c, b);
-    if (b->oom) base_out_of_memory();
     return 0;
 }
 

@@ -165,7 +165,6 @@ static void chart_draw_series(const chart_lay *l)
             if (d.n) chart_marker_paint(l->b, c, s, d.p);
         }
     }
-    if (d.oom) l->b->oom = 1;
     free(d.p);
 }
 
@@ -186,7 +185,7 @@ static void chart_draw_plabels(const chart_lay *l)
             if (chart_visible(c, pt->x, pt->y) != CHART_SHOWN) continue;
             double x = chart_px(l, s, i), y = chart_pix(&l->ay, pt->y);
             chart_box bx = { x - 4, y - 4, x + 4, y + 4 };
-            chart_addbox(&obst, bx, b);
+            chart_addbox(&obst, bx);
         }
     const double fs = CHART_FS_SMALL, asc = 0.75 * fs, dsc = 0.22 * fs, gap = 5;
     /* The reference lines' labels (chart_draw_hlabels) are texts too. */
@@ -196,7 +195,7 @@ static void chart_draw_plabels(const chart_lay *l)
         double p = chart_pix(&l->ay, h->y), ty = p - 4 - 10 < l->T ? p + 13 : p - 4;
         double w = chart_textw(h->label, fs, chart_fit(l->R - l->L - 8, fs));
         chart_box bx = { l->R - 4 - w, ty - fs, l->R - 4, ty + 0.3 * fs };
-        chart_addbox(&lab, bx, b);
+        chart_addbox(&lab, bx);
     }
     /* the grid lines a label should not sit on (chart_draw_grid's) */
     double gx[CHART_MAXMAJ], gy[CHART_MAXMAJ];
@@ -214,7 +213,7 @@ static void chart_draw_plabels(const chart_lay *l)
     static const double nudge[][2] = { { 0, 0 }, { 0, -3 }, { 0, 3 }, { 3, 0 }, { 0, -6 }, { 0, 6 },
                                        { 3, -3 }, { 3, 3 }, { 6, 0 }, { 0, -9 }, { 0, 9 }, { -3, 0 } };
     const int nn = (int)(sizeof nudge / sizeof nudge[0]);
-    for (size_t k = 0; k < c->npl && !b->oom; k++) {
+    for (size_t k = 0; k < c->npl; k++) {
         size_t ps = (size_t)c->pl[k].series;
         const chart_pt *pt = &c->ser[ps].pt[c->pl[k].idx];
         if (chart_visible(c, pt->x, pt->y) != CHART_SHOWN) continue;
@@ -246,7 +245,7 @@ static void chart_draw_plabels(const chart_lay *l)
             }
         if (bestscore >= 100) continue;       /* on another text or outside: dropped */
         chart_box bx = { x + bestx, y + besty - asc, x + bestx + w, y + besty + dsc };
-        chart_addbox(&lab, bx, b);
+        chart_addbox(&lab, bx);
         chart_f(b, "<text x=\"%f\" y=\"%f\" font-size=\"%d\" fill=\"#333\" " CHART_HALO ">",
                  bx.x0, y + besty, CHART_FS_SMALL);
         chart_text(b, c->pl[k].text, CHART_PLMAX);
@@ -378,8 +377,7 @@ static void chart_draw_legend(const chart_lay *l)
             if (se->style & CHART_POINTS) {
                 chart_buf d = { 0 };
                 chart_marker(&d, chart_shape(c, s), lx + 22, cy, chart_marker_r(se->style));
-                if (d.oom) b->oom = 1;
-                else chart_marker_paint(b, c, s, d.p);
+                chart_marker_paint(b, c, s, d.p);
                 free(d.p);
             }
         }

@@ -63,11 +63,11 @@ struct chart {
 };
 
 /* Make room for need elements in *p (capacity *cap, element size sz). */
-int chart_grow(void **p, size_t *cap, size_t need, size_t sz);
+void chart_grow(void **p, size_t *cap, size_t need, size_t sz);
 
 /* ---- output buffer and locale-independent formatting ------------------ */
 
-typedef struct { char *p; size_t n, cap; int oom; } chart_buf;
+typedef struct { char *p; size_t n, cap; } chart_buf;
 
 void   chart_puts(chart_buf *b, const char *s);
 /* v with dec decimals, by hand (no locale, never -0); trim: no trailing 0s. */
@@ -155,7 +155,7 @@ typedef struct {
 #define CHART_PLMAX    20  /* point labels likewise */
 #define CHART_BANDROWS 4   /* rows for band labels; a label that fits none is dropped */
 
-void   chart_addbox(chart_boxes *bs, chart_box b, chart_buf *out);   /* out->oom on failure */
+void   chart_addbox(chart_boxes *bs, chart_box b);
 int    chart_overlap(chart_box a, chart_box b);
 int    chart_visible(const chart *c, double x, double y);   /* CHART_SHOWN or why not */
 int    chart_draws(const chart *c, size_t s);   /* series s draws a marker or a line: listed */
@@ -173,6 +173,6 @@ int    chart_wrap(const char *s, size_t max, size_t st[CHART_LEGLINES], size_t l
 /* A piece of a label as XML text, cut to maxcp code points. */
 void   chart_text_n(chart_buf *b, const char *s, size_t n, size_t maxcp);
 
-/* The whole SVG of c into b (b->oom set when memory ran out). */
+/* The whole SVG of c into b. */
 void   chart_render(const chart *c, chart_buf *b);
 #endif

@@ -2,6 +2,7 @@
  * (chart_int.h): axes, margins, the legend and its wrapped text, band
  * label rows, the spreading of markers that share a spot, and which
  * points are drawn at all. chart_draw.c draws from it. */
+#include "base/base_out.h"
 #include "chart/chart_int.h"
 #include <math.h>
 #include <stdint.h>
@@ -9,9 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-void chart_addbox(chart_boxes *bs, chart_box b, chart_buf *out)
+void chart_addbox(chart_boxes *bs, chart_box b)
 {
-    if (chart_grow((void **)&bs->v, &bs->cap, bs->n + 1, sizeof *bs->v)) { out->oom = 1; return; }
+    chart_grow((void **)&bs->v, &bs->cap, bs->n + 1, sizeof *bs->v);
     bs->v[bs->n++] = b;
 }
 
@@ -83,7 +84,7 @@ static int chart_layout_bands(chart_lay *l)
             chart_box bx = { cx - w / 2 - 4, r, cx + w / 2 + 4, r + 0.5 };
             int clash = 0;
             for (size_t j = 0; j < placed.n; j++) clash |= chart_overlap(bx, placed.v[j]);
-            if (!clash) { l->brow[i] = r; chart_addbox(&placed, bx, l->b); }
+            if (!clash) { l->brow[i] = r; chart_addbox(&placed, bx); }
         }
         if (l->brow[i] + 1 > nrows) nrows = l->brow[i] + 1;
     }
@@ -136,10 +137,11 @@ static size_t chart_layout_dodge(chart_lay *l, double xmin, double xmax, double 
     const chart *c = l->c;
     size_t tot = 0, moved = 0;
     l->doff = calloc(c->nser + 1, sizeof *l->doff);
-    for (size_t s = 0; l->doff && s < c->nser; s++) { l->doff[s] = tot; tot += c->ser[s].n; }
+    if (!l->doff) base_out_of_memory();
+    for (size_t s = 0; s < c->nser; s++) { l->doff[s] = tot; tot += c->ser[s].n; }
     l->dodge = calloc(tot ? tot : 1, sizeof *l->dodge);
     chart_dkey *k = malloc((tot ? tot : 1) * sizeof *k);
-    if (!l->doff || !l->dodge || !k) { l->b->oom = 1; free(k); return 0; }
+    if (!l->dodge || !k) base_out_of_memory();
     double x0 = c->log_x ? log10(xmin) : xmin, y0 = c->log_y ? log10(ymin) : ymin;
     double sx = (c->log_x ? log10(xmax) : xmax) - x0, sy = (c->log_y ? log10(ymax) : ymax) - y0;
     if (!(sx > 0) || !isfinite(sx)) sx = 1;
@@ -306,8 +308,8 @@ void chart_layout(chart_lay *l)
         else if (nshown) { ymin = fmin(ymin, y); ymax = fmax(ymax, y); }
     }
     l->same = malloc((c->nser ? c->nser : 1) * sizeof *l->same);
-    if (!l->same) l->b->oom = 1;
-    for (size_t s = 0; l->same && s < c->nser; s++) l->same[s] = chart_same_series(c, s);
+    if (!l->same) base_out_of_memory();
+    for (size_t s = 0; s < c->nser; s++) l->same[s] = chart_same_series(c, s);
     size_t ndodge = nshown ? chart_layout_dodge(l, xmin, xmax, ymin, ymax) : 0;
     chart_footnote(l->foot, sizeof l->foot, &l->flen, ndodge, "point", "of equal value in two series or more set side by side");
     chart_footnote(l->foot, sizeof l->foot, &l->flen, nnonpos, "point", "<= 0 not shown");
@@ -370,8 +372,8 @@ void chart_layout(chart_lay *l)
         l->bx0 = calloc(c->nband, sizeof *l->bx0);
         l->bx1 = calloc(c->nband, sizeof *l->bx1);
         l->brow = calloc(c->nband, sizeof *l->brow);
-        if (!l->bx0 || !l->bx1 || !l->brow) { l->b->oom = 1; l->have = 0; }
-        else l->T += 13 * chart_layout_bands(l);
+        if (!l->bx0 || !l->bx1 || !l->brow) base_out_of_memory();
+        l->T += 13 * chart_layout_bands(l);
     }
     l->ay.p0 = l->B - CHART_PAD;
     l->ay.p1 = l->T + CHART_PAD;

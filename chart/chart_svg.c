@@ -1,6 +1,7 @@
 /* chart_svg.c - the buffer a chart is rendered into, and what writes
  * into it: numbers that no locale can change, XML-escaped UTF-8 text cut
  * to a length, text width estimates, a small printf for SVG. */
+#include "base/base_out.h"
 #include "chart/chart_int.h"
 #include <math.h>
 #include <stdarg.h>
@@ -11,12 +12,8 @@
 
 static void chart_put(chart_buf *b, const char *s, size_t len)
 {
-    if (b->oom) return;
-    if (len >= SIZE_MAX - b->n ||
-        chart_grow((void **)&b->p, &b->cap, b->n + len + 1, 1)) {
-        b->oom = 1;
-        return;
-    }
+    if (len >= SIZE_MAX - b->n) base_out_of_memory();
+    chart_grow((void **)&b->p, &b->cap, b->n + len + 1, 1);
     memcpy(b->p + b->n, s, len);
     b->n += len;
     b->p[b->n] = 0;
