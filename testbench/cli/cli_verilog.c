@@ -1,11 +1,14 @@
 /* cli_verilog.c - the verbs from simulation to RTL: verilog (export),
  * cosim (the export against shadesim in Icarus Verilog or Verilator,
  * every output raw and its cycle), synth (Yosys cell counts beside the
- * area model). */
+ * area model; its --sta and --fpga flows in cli_synth.c). */
 #include "testbench/cli/cli.h"
 #include "testbench/cli/cli_opt.h"
+#include "testbench/cli/cli_synth.h"
 #include "testbench/tb_verilog.h"
+#include "testbench/tb_synth.h"
 #include "base/base_out.h"
+#include "base/base_proc.h"
 #include "sim/sim_area.h"
 #include <stddef.h>
 #include <stdlib.h>
@@ -193,14 +196,6 @@ const cli_optspec cli_cosim_spec = {
     "options:\n", NULL
 };
 
-/* Remove a folder we made and the files in it. */
-static void rm_tree(const char *dir)
-{
-    char cmd[1200];
-    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
-    if (system(cmd) != 0) { /* a temporary left behind is harmless */ }
-}
-
 int cli_cosim(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_cosim_spec);
@@ -232,30 +227,75 @@ int cli_cosim(int argc, char **argv)
     else if (t == TB_COSIM_MISMATCH) { printf("%s\n", msg); rc = CLI_FAIL; }
     else rc = cli_from_tb(t == TB_COSIM_BADINPUT ? TB_BADINPUT : TB_FAIL, "%s", msg);
     vec_set_free(&vs);
-    if (!st.keep) rm_tree(dir);
+    if (!st.keep) base_proc_rmtree(dir);
     return cli_stdout_done(rc);
 }
 
 /* ------------------------------------------------------------------- synth */
 
-typedef struct synth_st { const char *keep; } synth_st;
+static int synth_fpga(void *base, const char *opt, const char *v)
+{
+    if (strcmp(v, "ice40")) return cli_usage_error("%s %s: expected ice40 (the FPGA family nextpnr-ice40 places)", opt, v);
+    ((cli_synth_st *)base)->fpga = v;
+    return 0;
+}
+
+static int synth_device(void *base, const char *opt, const char *v)
+{
+    static const char *const dev[] = { "lp384", "lp1k", "lp4k", "lp8k", "hx1k", "hx4k", "hx8k", "up3k", "up5k", "u1k", "u2k", "u4k" };
+    for (size_t i = 0; i < sizeof dev / sizeof dev[0]; i++)
+        if (!strcmp(v, dev[i])) { ((cli_synth_st *)base)->device = v; return 0; }
+    return cli_usage_error("%s %s: expected an iCE40 device of nextpnr-ice40: lp384, lp1k, lp4k, lp8k, hx1k, hx4k, hx8k, "
+                           "up3k, up5k, u1k, u2k or u4k", opt, v);
+}
 
 static const cli_opt synth_tab[] = {
-    { "--keep", NULL, CLI_OPT_STR, offsetof(synth_st, keep), 0, 0, NULL, "%s needs a folder", NULL, 0,
-      "  --keep DIR           leave the export and Yosys's log in DIR\n" },
+    { "--sta", NULL, CLI_OPT_FLAG, offsetof(cli_synth_st, sta), 0, 0, NULL, NULL, NULL, 0,
+      "  --sta                map to a standard-cell library with Yosys (dfflibmap, abc\n"
+      "                       -liberty) and time the netlist with OpenSTA (Debian\n"
+      "                       package opensta): its critical path (cells, start and\n"
+      "                       end), f_max and mapped area beside the model's, with\n"
+      "                       the ratios model / tool; needs --liberty\n" },
+    { "--liberty", NULL, CLI_OPT_STR, offsetof(cli_synth_st, liberty), 0, 0, NULL, "%s needs a Liberty file", NULL, CLI_OPT_NONEMPTY,
+      "  --liberty FILE       the cell library (.lib, or gzipped); 1 GE is its NAND2_X1\n" },
+    { "--clock-ps", NULL, CLI_OPT_REAL, offsetof(cli_synth_st, clock_ps), 1, 1e9, NULL, NULL, NULL, 0,
+      "  --clock-ps P         the clock OpenSTA times against (default 10000 ps); the\n"
+      "                       critical path is P less the worst slack\n" },
+    { "--fpga", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs ice40", synth_fpga, 0,
+      "  --fpga ice40         synthesize for an iCE40 (Yosys synth_ice40), place and\n"
+      "                       route with nextpnr-ice40 (Debian package nextpnr-ice40):\n"
+      "                       LUTs, flip-flops, carries, DSPs, logic cells and\n"
+      "                       nextpnr's f_max for clk\n" },
+    { "--device", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs an iCE40 device", synth_device, 0,
+      "  --device D           the iCE40 device (default hx8k)\n" },
+    { "--package", NULL, CLI_OPT_STR, offsetof(cli_synth_st, package), 0, 0, NULL, "%s needs a package", NULL, CLI_OPT_NONEMPTY,
+      "  --package P          its package (default ct256)\n" },
+    { "--freq", NULL, CLI_OPT_REAL, offsetof(cli_synth_st, freq_mhz), 0, 1e4, NULL, NULL, NULL, CLI_OPT_GT_LO,
+      "  --freq MHZ           nextpnr's target frequency (default its own, 12 MHz); a\n"
+      "                       missed target is reported, not an error\n" },
+    { "--timeout", NULL, CLI_OPT_REAL, offsetof(cli_synth_st, timeout_s), 0, 1e7, NULL, NULL, NULL, 0,
+      "  --timeout SECONDS    stop the tools after this long in all (default 600; 0:\n"
+      "                       no limit): exit status 2\n" },
+    { "--json", NULL, CLI_OPT_FLAG, offsetof(cli_synth_st, json), 0, 0, NULL, NULL, NULL, 0,
+      "  --json               with --sta or --fpga: one JSON object on stdout\n" },
+    { "--keep", NULL, CLI_OPT_STR, offsetof(cli_synth_st, keep), 0, 0, NULL, "%s needs a folder", NULL, 0,
+      "  --keep DIR           leave the export, the tools' scripts and logs in DIR\n" },
     { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
 };
 
 const cli_optspec cli_synth_spec = {
     "synth", { no_opts, synth_tab, cli_unit_opt_tab }, unit_arg, 0,
     "synth: unexpected argument '%s' (see shadesim synth --help)",
-    "usage: shadesim synth UNIT [options] [--keep DIR]\n"
+    "usage: shadesim synth UNIT [options] [--sta --liberty FILE | --fpga ice40] [--keep DIR]\n"
     "Export the unit and synthesize it with Yosys to generic gates (synth; abc -g\n"
     "AND,NAND,OR,NOR,XOR,XNOR,MUX; no cell library): prints Yosys's cells by type\n"
     "and in total, weighted with the area model's NAND2 gate equivalents per gate,\n"
     "beside shadesim's area estimate; then Yosys's longest topological path (ltp\n"
     "-noff after flatten) beside shadesim's critical path in gate levels and ps.\n"
-    "Needs yosys (Debian package yosys).\n"
+    "With --sta, the real flow on a cell library instead (Yosys, then OpenSTA);\n"
+    "with --fpga ice40, Yosys and nextpnr (docs/timing.md, \"Against OpenSTA and\n"
+    "nextpnr\"). Needs yosys (Debian package yosys). A progress line on stderr when\n"
+    "it is a terminal; a tool still running at --timeout is stopped (exit 2).\n"
     "options:\n", NULL
 };
 
@@ -308,39 +348,31 @@ static void synth_paths(const char *dir, const cli_unit_opts *o, const unit_fmts
     if (len > 0) printf("  ratio        %.2f (shadesim levels / Yosys gates)\n", p.levels / (double)len);
 }
 
-int cli_synth(int argc, char **argv)
+/* The generic flow: Yosys to generic gates, its cells and longest path
+ * beside the model's. */
+static int synth_generic(const cli_unit_opts *o, const unit_fmts *fm, const cli_synth_st *st)
 {
-    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_synth_spec);
-    cli_unit_opts o;
-    synth_st st = { NULL };
-    int rc = parse(&cli_synth_spec, argc, argv, &o, &st);
-    const char *keep = st.keep;
-    if (rc) return rc;
-    if (!have_tool("yosys")) return cli_usage_error("synth: yosys not found (install the Debian package yosys)");
-    unit_fmts fm;
-    if (formats(&o, &fm)) return CLI_USAGE;
     char err[600];
-    double ge = tb_verilog_area(o.u, &o.cfg, &fm, err, sizeof err);
+    double ge = tb_verilog_area(o->u, &o->cfg, fm, err, sizeof err);
     if (ge < 0) return cli_usage_error("%s", err);
-    char tmpl[] = "/tmp/shadesim_synth_XXXXXX";
-    const char *dir = keep;
-    if (!dir && !mkdtemp(tmpl)) return cli_usage_error("synth: cannot make a temporary folder");
-    if (!dir) dir = tmpl;
-    if (tb_verilog_export(o.u, &o.cfg, &fm, dir, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
-    size_t cl = 3 * strlen(dir) + 512;
-    char *cmd = malloc(cl);
-    if (!cmd) base_out_of_memory();
-    snprintf(cmd, cl, "cd '%s' && yosys -q -p 'read_verilog %s.v; synth -top %s; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; "
-             "opt_clean; tee -o stat.txt stat; flatten; tee -o ltp.txt ltp -noff' >yosys.log 2>&1", dir, o.u->name, o.u->name);
-    int sr = system(cmd);
-    free(cmd);
-    if (sr != 0) { fprintf(stderr, "shadesim: synth: yosys failed (see yosys.log: use --keep DIR)\n"); rc = CLI_FAIL; goto done; }
+    char tmpl[4096];
+    const char *dir = cli_synth_dir(st, tmpl, sizeof tmpl);
+    if (!dir) return CLI_USAGE;
+    tb_synth_run run = { base_proc_now(), st->timeout_s < 0 ? CLI_SYNTH_TIMEOUT : st->timeout_s, cli_stderr_tty(), 0 };
+    int rc = CLI_OK, t = TB_SYNTH_OK;
+    if (tb_verilog_export(o->u, &o->cfg, fm, dir, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    char cmd[1200];
+    snprintf(cmd, sizeof cmd, "yosys -q -l yosys.log -p 'read_verilog %s.v; synth -top %s; abc -g AND,NAND,OR,NOR,XOR,XNOR,MUX; "
+             "opt_clean; tee -q -o stat.txt stat; flatten; tee -q -o ltp.txt ltp -noff' >/dev/null 2>&1", o->u->name, o->u->name);
+    t = tb_synth_tool(&run, "yosys", dir, cmd, 1, err, sizeof err);
+    if (t == TB_SYNTH_FAILED) { fprintf(stderr, "shadesim: synth: yosys failed (see yosys.log: use --keep DIR)\n"); rc = CLI_FAIL; goto done; }
+    if (t != TB_SYNTH_OK) { rc = t == TB_SYNTH_SIGNAL ? CLI_FAIL : cli_usage_error("%s", err); goto done; }
     char path[1200], line[300];
     snprintf(path, sizeof path, "%s/stat.txt", dir);
     FILE *f = fopen(path, "r");
     long total = -1;
-    printf("%s --width %d --schedule %s (%s, %s): Yosys generic gates\n", o.u->name, o.cfg.width,
-           o.u->sched[o.cfg.schedule].name, sim_round_name(o.cfg.rnd), sim_ovf_name(o.cfg.ovf));
+    printf("%s --width %d --schedule %s (%s, %s): Yosys generic gates\n", o->u->name, o->cfg.width,
+           o->u->sched[o->cfg.schedule].name, sim_round_name(o->cfg.rnd), sim_ovf_name(o->cfg.ovf));
     double yge = 0;
     while (f && fgets(line, sizeof line, f)) {
         char cell[100];
@@ -356,12 +388,28 @@ int cli_synth(int argc, char **argv)
     printf("  cells        %6ld  = %.0f GE with the area model's gate constants\n", total, yge);
     printf("  shadesim     %.0f GE (area model)\n", ge);
     if (yge > 0) printf("  ratio        %.2f (shadesim / Yosys)\n", ge / yge);
-    synth_paths(dir, &o, &fm);
+    synth_paths(dir, o, fm);
 done:
-    if (!keep) {
-        char c2[1200];
-        snprintf(c2, sizeof c2, "rm -rf '%s'", dir);
-        if (system(c2)) { /* best effort */ }
-    }
+    cli_synth_cleanup(st, dir, t == TB_SYNTH_SIGNAL ? run.signal : 0);
     return cli_stdout_done(rc);
+}
+
+int cli_synth(int argc, char **argv)
+{
+    if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_synth_spec);
+    cli_unit_opts o;
+    cli_synth_st st = { NULL, 0, 0, NULL, 0, NULL, NULL, NULL, 0, -1 };
+    int rc = parse(&cli_synth_spec, argc, argv, &o, &st);
+    if (rc) return rc;
+    if (st.sta && st.fpga) return cli_usage_error("synth: --sta and --fpga are two flows: choose one");
+    if (st.sta && !st.liberty) return cli_usage_error("synth: --sta needs --liberty FILE (a Liberty cell library, e.g. NanGate45's; docs/timing.md)");
+    if (st.liberty && !st.sta) return cli_usage_error("synth: --liberty goes with --sta");
+    if (st.clock_ps > 0 && !st.sta) return cli_usage_error("synth: --clock-ps goes with --sta");
+    if ((st.device || st.package || st.freq_mhz > 0) && !st.fpga) return cli_usage_error("synth: --device, --package and --freq go with --fpga ice40");
+    if (st.json && !st.sta && !st.fpga) return cli_usage_error("synth: --json goes with --sta or --fpga");
+    unit_fmts fm;
+    if (formats(&o, &fm)) return CLI_USAGE;
+    if (st.sta || st.fpga) return cli_synth_flow(&o, &fm, &st);
+    if (!have_tool("yosys")) return cli_usage_error("synth: yosys not found (install the Debian package yosys)");
+    return synth_generic(&o, &fm, &st);
 }
