@@ -10,9 +10,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* A beat line "CYCLE RAW...": the raws alone (by_items), else all of it. */
+static const char *beat_text(const char *line, int by_items)
+{
+    const char *sp = by_items ? strchr(line, ' ') : NULL;
+    return sp ? sp : line;
+}
+
 /* First differing line of two files: 0 same, -1 a file missing, else its
- * number (1-based); both lines (without newline) and the lines read. */
-static long first_diff(const char *pa, const char *pb, char *la, char *lb, size_t len, long *lines)
+ * number (1-based); both lines (without newline) and the lines read.
+ * by_items: the cycles are not compared, only the raws, in order. */
+static long first_diff(const char *pa, const char *pb, char *la, char *lb, size_t len, long *lines, int by_items)
 {
     FILE *a = fopen(pa, "r"), *b = fopen(pb, "r");
     long n = 0, bad = 0;
@@ -23,7 +31,7 @@ static long first_diff(const char *pa, const char *pb, char *la, char *lb, size_
         n++;
         if (!x) la[0] = 0;
         if (!y) lb[0] = 0;
-        if (!x || !y || strcmp(la, lb)) { bad = n; break; }
+        if (!x || !y || strcmp(beat_text(la, by_items), beat_text(lb, by_items))) { bad = n; break; }
     }
     if (!a || !b) bad = -1;
     if (a) fclose(a);
@@ -342,10 +350,43 @@ static void rtl_mismatch(const unit_desc *u, const unit_cfg *cfg, const unit_fmt
     #undef ADD
 }
 
+/* The cycle of beat lines k0 and k1 (0-based) of a results file: 0, or
+ * -1 when it has fewer lines. */
+static int beat_cycles(const char *path, long k0, long k1, unsigned long long *c0, unsigned long long *c1)
+{
+    FILE *f = fopen(path, "r");
+    char line[512];
+    int got = 0;
+    for (long k = 0; f && got < 2 && fgets(line, sizeof line, f); k++) {
+        if (k == k0) { *c0 = strtoull(line, NULL, 10); got++; }
+        if (k == k1) { *c1 = strtoull(line, NULL, 10); got += k1 != k0; }
+    }
+    if (f) fclose(f);
+    return got == 2 ? 0 : -1;
+}
+
+/* --match items, all equal: the RTL's latency (the cycle of its first
+ * beat) and items per clock (steady state, first beats of the first and
+ * last items, as tb_run measures the model's) beside shadesim's. */
+static void items_verdict(const tb_result *r, const char *res, const char *sname, char *msg, size_t msglen)
+{
+    unsigned long long c0 = 0, c1 = 0;
+    long last = (long)((r->vectors ? r->vectors - 1 : 0) * (size_t)r->beats);
+    size_t o = (size_t)snprintf(msg, msglen, "bit-exact item by item, %zu items (%s)", r->vectors, sname);
+    if (o >= msglen || beat_cycles(res, 0, last, &c0, &c1)) return;
+    o += (size_t)snprintf(msg + o, msglen - o, ": RTL latency %llu clocks", c0);
+    if (o < msglen && r->vectors > 1 && c1 > c0)
+        o += (size_t)snprintf(msg + o, msglen - o, ", %.4g items per clock", (double)(r->vectors - 1) / (double)(c1 - c0));
+    if (o < msglen)
+        o += (size_t)snprintf(msg + o, msglen - o, "; shadesim latency %llu clocks", (unsigned long long)r->latency);
+    if (o < msglen && r->vectors > 1 && r->cycles_per_item > 0)
+        snprintf(msg + o, msglen - o, ", %.4g items per clock", 1.0 / r->cycles_per_item);
+}
+
 int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
                  const tb_cosim_opts *o, int sim, const char *dir, char *msg, size_t msglen)
 {
-    static const tb_cosim_opts dflt = { SIM_VRESET_SYNC, NULL, 0, NULL };
+    static const tb_cosim_opts dflt = { SIM_VRESET_SYNC, NULL, 0, NULL, 0 };
     if (!o) o = &dflt;
     tb_result r;
     char err[600];
@@ -421,10 +462,11 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
         goto done;
     }
     char la[512], lb[512];
-    long lines = 0, bad = first_diff(ex, res, la, lb, sizeof la, &lines);
+    long lines = 0, bad = first_diff(ex, res, la, lb, sizeof la, &lines, o->match_items);
     size_t nb = r.vectors * (size_t)r.beats;
     if (bad == 0 && (size_t)lines == nb) {
-        snprintf(msg, msglen, "bit-exact, %zu items, %llu clocks (%s)", r.vectors, (unsigned long long)r.cycles, sname);
+        if (o->match_items) items_verdict(&r, res, sname, msg, msglen);
+        else snprintf(msg, msglen, "bit-exact, %zu items, %llu clocks (%s)", r.vectors, (unsigned long long)r.cycles, sname);
         rc = TB_COSIM_EXACT;
     } else if (bad < 0) {
         snprintf(msg, msglen, "cosim: %s wrote no results", sname);

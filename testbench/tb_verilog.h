@@ -75,6 +75,9 @@ typedef struct tb_cosim_opts {
     const char *const *rtl;     /* the user's Verilog files instead of the export (nrtl > 0) */
     int nrtl;
     const char *top;            /* their top module; NULL: the only top-level module, or UNIT */
+    int match_items;            /* compare the output raws item by item in order, not their
+                                 * cycles (a re-timed design); msg then gives the RTL's
+                                 * latency and items per clock beside shadesim's */
 } tb_cosim_opts;
 int tb_cosim(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
              int sim, const char *dir, char *msg, size_t msglen);

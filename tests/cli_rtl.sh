@@ -6,7 +6,8 @@
 # here from the vector file with awk, with y short by exactly 0x100 at
 # clock 6 K + 6 (six clocks an item); horner3_width.v (t 12 bits wide) and
 # other port mismatches are exit 2 before simulating. Needs iverilog (plain
-# build only); one check in Verilator when it is installed.
+# build only); one check in Verilator when it is installed. --match items
+# on a re-timed copy (one more register stage) and a broken one.
 PREFIX=cli_rtl.
 . tests/lib_cli.sh
 R=tests/rtl
@@ -68,6 +69,44 @@ expect two_tops_chosen 1 "$S" cosim horner3 --rtl $R/horner3_hand.v --rtl $R/hor
 expect no_such_top 2 "$S" cosim horner3 --rtl $R/horner3_hand.v --top nosuch
 printf 'module broken(input wire clk);\n  assign = ;\nendmodule\n' >"$T/broken.v"
 expect syntax_error 2 "$S" cosim horner3 --rtl "$T/broken.v"
+
+# --match items: a correct design re-timed with one more register stage
+# (y and out_valid a clock later) fails clock by clock, as before, and
+# passes item by item with its latency one clock more than shadesim's and
+# the same six clocks an item; the broken core behind the same stage still
+# fails at item k, a clock after the model's beat.
+for core in hand bug; do
+    cat >"$T/late_$core.v" <<EOF
+module horner3_late (
+    input  wire        clk, rst,
+    input  wire [15:0] a, b, c, d, t,
+    input  wire        in_valid,
+    output wire        in_ready,
+    output reg  [15:0] y,
+    output reg         out_valid
+);
+    wire [15:0] y0;
+    wire        v0;
+    horner3_$core core (.clk(clk), .rst(rst), .a(a), .b(b), .c(c), .d(d), .t(t), .in_valid(in_valid),
+                       .in_ready(in_ready), .y(y0), .out_valid(v0));
+    always @(posedge clk) begin
+        y <= y0;
+        out_valid <= rst ? 1'b0 : v0;
+    end
+endmodule
+EOF
+done
+late="--rtl $R/horner3_hand.v --rtl $T/late_hand.v --top horner3_late"
+expect late_by_clocks_fails 1 "$S" cosim horner3 $late
+grep -q '^MISMATCH at item 0 .*: expected y=0000 at clock 6, icarus gave y=0000 at clock 7$' "$T/out" &&
+    ok late_by_clocks_named || fail late_by_clocks_named "$(cat "$T/out")"
+expect late_by_items 0 "$S" cosim horner3 $late --match items
+want="bit-exact item by item, $items items (icarus): RTL latency 7 clocks, 0.1667 items per clock; shadesim latency 6 clocks, 0.1667 items per clock"
+[ "$(cat "$T/out")" = "$want" ] && ok late_latency || fail late_latency "got '$(cat "$T/out")', expected '$want'"
+expect late_bug_by_items 1 "$S" cosim horner3 --rtl $R/horner3_bug.v --rtl "$T/late_bug.v" --top horner3_late --match items
+grep -q "^MISMATCH at item $k (inputs .*): expected y=.* at clock $((6 * k + 6)), icarus gave y=.* at clock $((6 * k + 7))\$" "$T/out" &&
+    ok late_bug_named || fail late_bug_named "item $k: $(cat "$T/out")"
+expect match_bad_value 2 "$S" cosim horner3 --match beats
 
 if command -v verilator >/dev/null 2>&1; then
     expect verilator_width 2 "$S" cosim horner3 --rtl $R/horner3_width.v --sim verilator

@@ -143,7 +143,15 @@ typedef struct cosim_st {
     uint64_t seed;
     const char *rtl[CLI_MAX_RTL];
     int nrtl;
+    int match_items;
 } cosim_st;
+
+static int cosim_match(void *base, const char *opt, const char *v)
+{
+    if (strcmp(v, "items") && strcmp(v, "clocks")) return cli_usage_error("%s %s: expected items or clocks", opt, v);
+    ((cosim_st *)base)->match_items = !strcmp(v, "items");
+    return 0;
+}
 
 static int cosim_rtl(void *base, const char *opt, const char *v)
 {
@@ -170,6 +178,12 @@ static const cli_opt cosim_tab[] = {
     { "--top", NULL, CLI_OPT_STR, offsetof(cosim_st, top), 0, 0, NULL, "%s needs a module name", NULL, CLI_OPT_NONEMPTY,
       "  --top NAME           the top module of the --rtl files (default: the only\n"
       "                       top-level one, or the one named like the unit)\n" },
+    { "--match", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs items or clocks", cosim_match, 0,
+      "  --match WHAT         clocks (default): every output raw and the clock of\n"
+      "                       every beat as shadesim has them; items: the raws item\n"
+      "                       by item in order, whatever the latency (RTL re-timed or\n"
+      "                       pipelined deeper), with the RTL's latency and items per\n"
+      "                       clock printed beside shadesim's\n" },
     RESET_OPT,
     { "--sim", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, cosim_sim, 0,
       "  --sim NAME           icarus (default; Debian package iverilog) or verilator\n" },
@@ -200,7 +214,7 @@ int cli_cosim(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_cosim_spec);
     cli_unit_opts o;
-    cosim_st st = { SIM_VRESET_SYNC, "icarus", NULL, NULL, 0, 1, { NULL }, 0 };
+    cosim_st st = { SIM_VRESET_SYNC, "icarus", NULL, NULL, 0, 1, { NULL }, 0, 0 };
     int rc = parse(&cli_cosim_spec, argc, argv, &o, &st);
     if (rc) return rc;
     if (st.top && !st.nrtl) return cli_usage_error("cosim: --top needs --rtl FILE");
@@ -221,7 +235,7 @@ int cli_cosim(int argc, char **argv)
     if (!dir && !mkdtemp(tmpl)) { vec_set_free(&vs); return cli_usage_error("cosim: cannot make a temporary folder"); }
     if (!dir) dir = tmpl;
     char msg[1200];
-    tb_cosim_opts co = { st.reset, st.rtl, st.nrtl, st.top };
+    tb_cosim_opts co = { st.reset, st.rtl, st.nrtl, st.top, st.match_items };
     int t = tb_cosim_opt(o.u, &o.cfg, &fm, &vs, &co, icarus ? TB_SIM_ICARUS : TB_SIM_VERILATOR, dir, msg, sizeof msg);
     if (t == TB_COSIM_EXACT) { printf("%s\n", msg); rc = CLI_OK; }
     else if (t == TB_COSIM_MISMATCH) { printf("%s\n", msg); rc = CLI_FAIL; }
