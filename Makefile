@@ -149,6 +149,16 @@ test-quick:
 	@echo "testing (quick: $(TB)/ only, tests/slow.list left out)..."
 	@TST_QUICK=1 sh tests/run.sh $(TB)
 
+# The delay and area models against Yosys and OpenSTA on every unit at
+# widths 8, 16 and 24 (tests/cli_sta.sh with STA_DESIGNS=all; make test
+# runs it on five designs). Needs yosys, sta (opensta) and the NanGate45
+# Liberty at ../shared/liberty/ or STA_LIBERTY=FILE; STA_TABLE=FILE also
+# writes the table docs/timing.md shows. About 3 min of CPU, two at a time.
+.PHONY: test-sta
+test-sta: bin/shadesim
+	@echo "testing the models against OpenSTA (every unit, widths 8, 16, 24)..."
+	@STA_DESIGNS=all sh tests/cli_sta.sh
+
 .PHONY: test-clang
 test-clang:
 	@echo "building build-clang/ ($(CLANG) $(OPT))..."

@@ -346,7 +346,7 @@ int tb_synth_fpga(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, 
     /* a missed --freq target fails nextpnr's exit status, not the flow */
     if (read_nextpnr(dir, r)) return TB_SYNTH_OK;
     if (r->ios_avail > 0 && r->ios > r->ios_avail) {
-        snprintf(err, errlen, "synth: %s needs %ld I/O cells, more than the %ld pins of the %s %s package "
+        snprintf(err, errlen, "synth: %s needs %ld I/O cells, more than the %ld nextpnr finds on the %s in package %s "
                  "(choose a larger one: --device hx8k --package ct256)", u->name, r->ios, r->ios_avail, r->device, r->package);
         return TB_SYNTH_BADINPUT;
     }
