@@ -152,7 +152,7 @@ test-quick:
 # The delay and area models against Yosys and OpenSTA on every unit at
 # widths 8, 16 and 24 (tests/cli_sta.sh with STA_DESIGNS=all; make test
 # runs it on five designs). Needs yosys, sta (opensta) and the NanGate45
-# Liberty at ../shared/liberty/ or STA_LIBERTY=FILE; STA_TABLE=FILE also
+# Liberty in shared/liberty/ beside the checkout, or STA_LIBERTY=FILE; STA_TABLE=FILE also
 # writes the table docs/timing.md shows. About 3 min of CPU, two at a time.
 .PHONY: test-sta
 test-sta: bin/shadesim

@@ -13,12 +13,12 @@
 # 8, 16 and 24 (make test-sta; a design the export refuses is left out);
 # by default five units at width 16 (make test's share). STA_TABLE=FILE
 # also writes the table (markdown) to FILE: docs/timing.md's is made so.
-# The Liberty: STA_LIBERTY=FILE, else ../shared/liberty/nangate45_typ.lib.gz
-# beside the repository (not part of it: the user passes their own).
+# The Liberty: STA_LIBERTY=FILE, else shared/liberty/nangate45_typ.lib.gz in
+# the folder that holds the checkout (not part of it: users pass their own).
 PREFIX=cli_sta.
 . tests/lib_cli.sh
 
-LIB=${STA_LIBERTY:-../shared/liberty/nangate45_typ.lib.gz}
+LIB=${STA_LIBERTY:-$(cd .. && pwd)/shared/liberty/nangate45_typ.lib.gz}
 ALL="one_design_vs_sta one_design_ge errors timeout signal delay_band area_band spearman"
 skip_all() { for t in $ALL; do echo "skip ${PREFIX}$t: $1"; done; exit 0; }
 command -v yosys >/dev/null 2>&1 || skip_all "yosys not installed"
@@ -77,7 +77,7 @@ while [ $i -lt 50 ] && [ -z "$(ls -A "$T/tmp")" ]; do sleep 0.1; i=$((i + 1)); d
 sleep 1
 d=$(ls -d "$T/tmp"/* 2>/dev/null | head -1)
 kill -TERM "$pid"
-wait "$pid"; rc=$?
+wait "$pid" 2>/dev/null; rc=$?   # (no "Terminated" line from the shell)
 sleep 0.5
 [ -n "$d" ] && [ "$rc" = 143 ] && [ -z "$(ls -A "$T/tmp")" ] && ! alive "$d" && ok signal ||
     fail signal "exit $rc, folder '$d' $(ls -A "$T/tmp"), $(alive "$d" && echo 'a tool still running')"
