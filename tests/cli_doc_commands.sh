@@ -146,6 +146,7 @@ compare() {
 }
 
 ran=0 mapped=0 skipped=0 prev=
+LIBERTY=$(cd "$SHADESIM_HOME/.." && pwd)/shared/liberty/nangate45_typ.lib.gz
 while read -r kind file line dollar cmd; do
     [ "$kind" = C ] || continue
     name="$file:$line"
@@ -157,6 +158,9 @@ while read -r kind file line dollar cmd; do
         # files (tests/rtl/horner3_hand.v, vectors/horner3.vec) are there
         ln -s "$SHADESIM_HOME/tests" "$W/tests"
         ln -s "$SHADESIM_HOME/vectors" "$W/vectors"
+        # synth --sta's library, as a reader who downloaded it has it:
+        # the NanGate45 Liberty kept beside the checkout (never in it)
+        [ -r "$LIBERTY" ] && ln -s "$LIBERTY" "$W/nangate45_typ.lib.gz"
         prev=$file
     fi
     case $cmd in
@@ -183,13 +187,19 @@ while read -r kind file line dollar cmd; do
     "== status "*) want=${rule#== status } ;;
     "=> "*) run=${rule#=> }; mapped=$((mapped + 1)) ;;
     esac
-    # tools: cosim needs Icarus Verilog (or Verilator), synth Yosys
+    # tools: cosim needs Icarus Verilog (or Verilator), synth Yosys (and
+    # OpenSTA or nextpnr for --sta and --fpga)
     tool=
     case $args in
     *--fst*) tool=vcd2fst ;;
     cosim*--sim\ verilator*) tool=verilator ;;
     cosim*) tool=iverilog ;;
+    synth*--sta*) tool=sta ;;
+    synth*--fpga*) tool=nextpnr-ice40 ;;
     synth*) tool=yosys ;;
+    esac
+    case $args in *nangate45_typ.lib.gz*)
+        if [ ! -r "$LIBERTY" ]; then echo "skip ${PREFIX}$name: no NanGate45 Liberty beside the checkout"; skipped=$((skipped + 1)); continue; fi ;;
     esac
     if [ -n "$tool" ] && ! command -v "$tool" >/dev/null 2>&1; then
         echo "skip ${PREFIX}$name: $tool not installed"; skipped=$((skipped + 1)); continue
