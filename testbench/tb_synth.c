@@ -292,9 +292,11 @@ static void read_ice40_stat(const char *dir, tb_fpga *r)
     if (f) fclose(f);
 }
 
-/* nextpnr's log: "ICESTORM_LC: U/ A", "SB_IO: U/ A", and the last "Max
- * frequency for clock 'clk...': F MHz (PASS|FAIL at T MHz)". 1 if the
- * frequency was found. */
+/* nextpnr's log: "ICESTORM_LC: U/ A", "SB_IO: U/ A", the last "Max
+ * frequency for clock 'clk...': F MHz (PASS|FAIL at T MHz)" and "Max
+ * delay A -> B: X ns" of the paths from or to ports (<async>; the last of
+ * each kind: after routing). 1 if a frequency was found (for a design
+ * without a clocked path, 1000 / its port to port delay). */
 static int read_nextpnr(const char *dir, tb_fpga *r)
 {
     char path[PATH_MAX], line[600];
@@ -314,11 +316,20 @@ static int read_nextpnr(const char *dir, tb_fpga *r)
                 r->fmax_mhz = fm;
                 r->met = !strcmp(verdict, "PASS");
                 r->target_mhz = at;
-                found = 1;
+                r->clocked = found = 1;
             }
+        } else if ((s = strstr(line, "Max delay ")) && (s = strstr(s, ": ")) && strstr(line, "<async>")) {
+            const char *arrow = strstr(line, "->");
+            double ns = atof(s + 2);
+            if (!arrow) continue;
+            int from_port = strstr(line, "<async>") < arrow, to_port = strstr(arrow, "<async>") != NULL;
+            if (from_port && to_port) r->comb_ns = ns;
+            else if (from_port) r->in_ns = ns;
+            else r->out_ns = ns;
         }
     }
     if (f) fclose(f);
+    if (!found && r->comb_ns > 0) { r->fmax_mhz = 1000 / r->comb_ns; found = 1; }
     return found;
 }
 
@@ -326,8 +337,8 @@ int tb_synth_fpga(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, 
                   tb_synth_run *run, tb_fpga *r, char *err, size_t errlen)
 {
     r->luts = r->ffs = r->carries = r->dsps = r->rams = r->lcs = r->lcs_avail = r->ios = r->ios_avail = 0;
-    r->fmax_mhz = r->target_mhz = 0;
-    r->met = 0;
+    r->fmax_mhz = r->target_mhz = r->in_ns = r->out_ns = r->comb_ns = 0;
+    r->met = r->clocked = 0;
     int rc = export_unit(u, cfg, fm, dir, err, errlen);
     if (rc) return rc;
     if (need_tool("nextpnr-ice40", "nextpnr-ice40", err, errlen)) return TB_SYNTH_BADINPUT;

@@ -71,6 +71,10 @@ typedef struct tb_fpga {
     long ios, ios_avail;        /* SB_IO used / on the package */
     double fmax_mhz;            /* nextpnr's last "Max frequency for clock" of clk */
     double target_mhz;          /* the target nextpnr checked (its default when freq_mhz is 0) */
+    double in_ns, out_ns, comb_ns;  /* nextpnr's "Max delay" of port -> clk, clk -> port and
+                                     * port -> port paths (0: none); a design without a
+                                     * clocked path has only comb_ns, and fmax_mhz = 1000 / it */
+    int clocked;                /* 1: fmax_mhz is clk's, reg to reg */
     int met;                    /* 1 PASS at the target, 0 FAIL */
 } tb_fpga;
 

@@ -162,8 +162,19 @@ static void fpga_text(const cli_unit_opts *o, const tb_fpga *r, const model_fig 
     if (r->rams) printf("  RAMs (SB_RAM40_4K)    %7ld\n", r->rams);
     printf("  logic cells           %7ld of %ld\n", r->lcs, r->lcs_avail);
     printf("  I/O cells             %7ld of %ld\n", r->ios, r->ios_avail);
-    printf("  f_max (clk)           %7.2f MHz (nextpnr after routing; %s the %.2f MHz target)\n", r->fmax_mhz,
-           r->met ? "meets" : "misses", r->target_mhz);
+    if (r->clocked)
+        printf("  f_max (clk)           %7.2f MHz (nextpnr after routing; %s the %.2f MHz target)\n", r->fmax_mhz,
+               r->met ? "meets" : "misses", r->target_mhz);
+    else
+        printf("  f_max (port to port)  %7.2f MHz (no clocked path: 1 / nextpnr's longest path, %.2f ns)\n",
+               r->fmax_mhz, r->comb_ns);
+    if (r->clocked && (r->in_ns > 0 || r->out_ns > 0 || r->comb_ns > 0)) {
+        printf("  port paths           ");
+        if (r->in_ns > 0) printf(" in -> clk %.2f ns", r->in_ns);
+        if (r->out_ns > 0) printf("%s clk -> out %.2f ns", r->in_ns > 0 ? "," : "", r->out_ns);
+        if (r->comb_ns > 0) printf("%s in -> out %.2f ns", r->in_ns > 0 || r->out_ns > 0 ? "," : "", r->comb_ns);
+        printf(" (pads included; not in f_max)\n");
+    }
     if (m->ok)
         printf("  shadesim model        %7.0f MHz (%.0f ps on NanGate 45 nm cells: an ASIC model, not this FPGA's)\n",
                m->p.fmax_mhz, m->p.crit_ps);
@@ -182,7 +193,8 @@ static void fpga_json(const cli_unit_opts *o, const tb_fpga *r, const model_fig 
     base_json_num(stdout, r->fmax_mhz, 6);
     printf(", \"target_mhz\": ");
     base_json_num(stdout, r->target_mhz, 6);
-    printf(", \"met\": %s", r->met ? "true" : "false");
+    printf(", \"clocked\": %s, \"met\": %s, \"in_ns\": %.2f, \"out_ns\": %.2f, \"comb_ns\": %.2f",
+           r->clocked ? "true" : "false", r->met ? "true" : "false", r->in_ns, r->out_ns, r->comb_ns);
     json_model(m);
     printf("}\n");
 }
