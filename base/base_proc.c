@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 static volatile sig_atomic_t got_signal;
+static int last_signal;         /* what stopped the last run (base_proc_signal) */
 
 static void on_signal(int sig) { got_signal = sig; }
 
@@ -99,7 +100,7 @@ int base_proc_run(const char *cmd, base_proc *p, char *err, size_t errlen)
             }
             if (w < 0 && errno != EINTR) { p->status = 1; break; }
             double now = base_proc_now();
-            if (got_signal) { p->signal = got_signal; end_group(pid); rc = BASE_PROC_SIGNAL; break; }
+            if (got_signal) { p->signal = last_signal = got_signal; end_group(pid); rc = BASE_PROC_SIGNAL; break; }
             if (p->limit_s > 0 && now - p->start >= p->limit_s) { end_group(pid); rc = BASE_PROC_TIMEOUT; break; }
             if (p->progress && now - last >= 1.0) { progress(p, now, &shown); last = now; }
             nap(100);
@@ -109,6 +110,8 @@ int base_proc_run(const char *cmd, base_proc *p, char *err, size_t errlen)
     for (size_t i = 0; i < NCAUGHT; i++) sigaction(caught[i], &old[i], NULL);
     return rc;
 }
+
+int base_proc_signal(void) { return last_signal; }
 
 _Noreturn void base_proc_reraise(int sig)
 {

@@ -45,6 +45,10 @@ int base_proc_run(const char *cmd, base_proc *p, char *err, size_t errlen);
 /* Remove folder dir and everything in it (links not followed): a
  * temporary folder's end. 0, or -1 when something stayed. */
 int base_proc_rmtree(const char *dir);
+/* The signal that stopped the last base_proc_run of this process (0:
+ * none): for a caller whose callee ran the tools, to clean up and then
+ * base_proc_reraise it. */
+int base_proc_signal(void);
 /* Die by sig as shadesim's own handlers (base_out_install_signals) would
  * have made it: the handlers in place before base_proc_run get it. */
 _Noreturn void base_proc_reraise(int sig);

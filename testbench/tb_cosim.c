@@ -5,6 +5,7 @@
 #define _XOPEN_SOURCE 700          /* realpath */
 #include "testbench/tb_verilog.h"
 #include "base/base_out.h"
+#include "base/base_proc.h"
 #include <errno.h>
 #include <limits.h>
 #include <stdlib.h>
@@ -15,6 +16,16 @@ static const char *beat_text(const char *line, int by_items)
 {
     const char *sp = by_items ? strchr(line, ' ') : NULL;
     return sp ? sp : line;
+}
+
+/* A tool's command line (it starts with "cd DIR &&"), as base_proc runs
+ * it: in a process group of its own that a signal to shadesim ends (the
+ * caller then sees base_proc_signal). Its exit status, or -1. */
+static int run_tool(const char *cmd, const char *step)
+{
+    char err[200];
+    base_proc p = { "cosim", step, NULL, NULL, NULL, base_proc_now(), 0, 0, 0, 0 };
+    return base_proc_run(cmd, &p, err, sizeof err) == BASE_PROC_DONE ? p.status : -1;
 }
 
 /* First differing line of two files: 0 same, -1 a file missing, else its
@@ -251,7 +262,7 @@ int tb_rtl_ports(const char *const *files, int nfiles, const char *want_top, con
     snprintf(out, sizeof out, "%s/%s", dir, sim == TB_SIM_ICARUS ? "rtlports.vvp" : "rtlports.xml");
     snprintf(log, sizeof log, "%s/rtlports.log", dir);
     remove(out);
-    int rc = system(cmd);
+    int rc = run_tool(cmd, sname);
     free(cmd);
     if (rc != 0) {
         char line[400];
@@ -451,7 +462,7 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
                  "--top-module %s_tb -o %s_vtb --Mdir obj_verilator %s_tb.v%s >verilator.log 2>&1 && "
                  "obj_verilator/%s_vtb +in=stimulus.hex +items=%zu +limit=%llu +out=verilator.out >vtb.log 2>&1",
                  words, n, n, n, files, n, vs->n_rows, limit);
-    if (system(cmd) != 0) {
+    if (run_tool(cmd, sname) != 0) {
         if (o->nrtl) {
             char line[400], log[PATH_MAX + 32];
             snprintf(log, sizeof log, "%s/%s", dir, sim == TB_SIM_ICARUS ? "iverilog.log" : "verilator.log");

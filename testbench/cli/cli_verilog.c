@@ -237,6 +237,11 @@ int cli_cosim(int argc, char **argv)
     char msg[1200];
     tb_cosim_opts co = { st.reset, st.rtl, st.nrtl, st.top, st.match_items };
     int t = tb_cosim_opt(o.u, &o.cfg, &fm, &vs, &co, icarus ? TB_SIM_ICARUS : TB_SIM_VERILATOR, dir, msg, sizeof msg);
+    if (base_proc_signal()) {           /* the simulator stopped by SIGINT/TERM/HUP: no verdict */
+        vec_set_free(&vs);
+        if (!st.keep) base_proc_rmtree(dir);
+        base_proc_reraise(base_proc_signal());
+    }
     if (t == TB_COSIM_EXACT) { printf("%s\n", msg); rc = CLI_OK; }
     else if (t == TB_COSIM_MISMATCH) { printf("%s\n", msg); rc = CLI_FAIL; }
     else rc = cli_from_tb(t == TB_COSIM_BADINPUT ? TB_BADINPUT : TB_FAIL, "%s", msg);
