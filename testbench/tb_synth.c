@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 /* 1 if an executable `tool` is on PATH. */
@@ -99,6 +100,11 @@ static int export_unit(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
  * linked by its absolute path. */
 static int liberty_in(const char *lib, const char *dir, tb_synth_run *run, char *err, size_t errlen)
 {
+    struct stat st;
+    if (stat(lib, &st) == 0 && !S_ISREG(st.st_mode)) {
+        snprintf(err, errlen, "synth: --liberty %s: not a file", lib);
+        return TB_SYNTH_BADINPUT;
+    }
     FILE *f = fopen(lib, "rb");
     if (!f) { snprintf(err, errlen, "synth: --liberty %s: %s", lib, strerror(errno)); return TB_SYNTH_BADINPUT; }
     unsigned char m[2] = { 0, 0 };
@@ -339,6 +345,12 @@ int tb_synth_fpga(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, 
     r->luts = r->ffs = r->carries = r->dsps = r->rams = r->lcs = r->lcs_avail = r->ios = r->ios_avail = 0;
     r->fmax_mhz = r->target_mhz = r->in_ns = r->out_ns = r->comb_ns = 0;
     r->met = r->clocked = 0;
+    /* the names go into nextpnr's command line: letters and digits only */
+    if (!r->package[0] || strspn(r->package, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789") != strlen(r->package)
+        || strspn(r->device, "abcdefghijklmnopqrstuvwxyz0123456789") != strlen(r->device)) {
+        snprintf(err, errlen, "synth: --device %s --package %s: letters and digits only (e.g. hx8k, ct256)", r->device, r->package);
+        return TB_SYNTH_BADINPUT;
+    }
     int rc = export_unit(u, cfg, fm, dir, err, errlen);
     if (rc) return rc;
     if (need_tool("nextpnr-ice40", "nextpnr-ice40", err, errlen)) return TB_SYNTH_BADINPUT;

@@ -12,6 +12,7 @@ PREFIX=cli_fpga.
 
 expect bad_family 2 "$S" synth horner3 --fpga xc7
 expect bad_device 2 "$S" synth horner3 --fpga ice40 --device hx9k
+expect bad_package 2 "$S" synth horner3 --fpga ice40 --package 'ct256;x'
 expect device_without_fpga 2 "$S" synth horner3 --device hx8k
 expect json_alone 2 "$S" synth horner3 --json
 ALL="counts fmax_from_log missed_target too_few_pins combinational progress_on_tty"

@@ -55,6 +55,7 @@ awk -v g="$ge" -v a="$um2" -v n="$nand" 'BEGIN { exit !(n > 0 && a > 0 && (g - a
 # --- bad input: one line, exit 2, no output
 expect errors_no_lib 2 "$S" synth div3 --sta --liberty "$T/none.lib" &&
     expect errors_no_liberty_opt 2 "$S" synth div3 --sta &&
+    expect errors_lib_folder 2 "$S" synth div3 --sta --liberty "$T" &&
     expect errors_both 2 "$S" synth div3 --sta --liberty "$LIB" --fpga ice40 &&
     printf 'library (x) { }\n' >"$T/empty.lib" && expect errors_no_nand2 2 "$S" synth div3 --sta --liberty "$T/empty.lib" &&
     [ ! -s "$T/out" ] && ok errors || fail errors "$(cat "$T/out" "$T/err")"
