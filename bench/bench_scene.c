@@ -135,7 +135,7 @@ int main(void)
     /* -j 1 and -j 2 with the batch mode (the default), -j 1 on the kernel
      * alone (--no-batch) */
     for (int k = 0; k < 3; k++) {
-        tb_scene_opts o = { k == 1 ? 2 : 1, 0, NULL, NULL, k == 2, 0 };
+        tb_scene_opts o = { k == 1 ? 2 : 1, 0, NULL, NULL, k == 2, 0, NULL };
         dt[k] = 1e9;
         for (int rep = 0; rep < 3; rep++) {
             tb_scene_result t;

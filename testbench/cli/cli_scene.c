@@ -8,6 +8,7 @@
 #include "testbench/cli/cli_opt.h"
 #include "testbench/study/tb_scene.h"
 #include "testbench/study/tb_scene_search.h"
+#include "testbench/study/tb_scene_pipes.h"
 #include "base/base_out.h"
 #include "units/unit_net.h"
 #include <sys/stat.h>
@@ -229,6 +230,7 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
     snprintf(a, sizeof a, "%.0f GE", r->hwst.area_ge);
     fprintf(f, "  %-22s %-14s %s\n", "area", a, "gate equivalents of the instantiated unit");
     tb_scene_speed_print(f, r);
+    tb_scene_pipes_print(f, r->pipes);
     print_ops(f, d, r);
     if (dir) fprintf(f, "  %-22s %s/ (ref.png hw.png err-x%d.png degree.png region.png scene.json)\n", "images", dir,
                      tb_scene_err_scale(r));
@@ -294,7 +296,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
         d.policy = (scn_policy)cfgs[i].policy;
         snprintf(d.terms, sizeof d.terms, "%d", cfgs[i].terms);
         if (i == 0) snprintf(d.series, sizeof d.series, "paper");   /* the paper's x/2 - x/8 - x/32 - x/128 */
-        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 1 };
+        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 1, NULL };
         tb_scene_result r;
         char err[600], sub[4200];
         progress(cfgs[i].name);
@@ -423,14 +425,11 @@ int cli_scene(int argc, char **argv)
         progress("");
         rc = cli_from_tb(t, "%s", err);
     } else {
-        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 1 };
+        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 1, NULL };
         tb_scene_result r;
+        tb_scene_pipes pp;
         progress("rendering...");
-        int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
-        if (t == TB_OK && tb_scene_speed_of(&r, r.cfg.width, err, sizeof err)) {
-            tb_scene_free(&r);
-            t = TB_FAIL;
-        }
+        int t = tb_scene_render_pipes(&d, &m, &o, &r, &pp, err, sizeof err);
         progress("");
         if (t != TB_OK) {
             rc = cli_from_tb(t, "%s", err);
@@ -442,6 +441,7 @@ int cli_scene(int argc, char **argv)
                 if (max_nmse >= 0 && !(r.nmse <= max_nmse)) rc = CLI_FAIL;
             }
             tb_scene_free(&r);
+            tb_scene_pipes_free(&pp);
         }
     }
     /* a missed target (exit 1) still writes its files: they are data */

@@ -48,7 +48,7 @@ static int measure(const scn_desc *d0, const scn_gbuf *g, scn_policy pol, int L,
     d.policy = pol;
     snprintf(d.L, sizeof d.L, "%d", L);
     snprintf(d.terms, sizeof d.terms, "%d", terms);
-    tb_scene_opts o = { jobs, 0, NULL, NULL, 0, 0 };
+    tb_scene_opts o = { jobs, 0, NULL, NULL, 0, 0, NULL };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     memset(out, 0, sizeof *out);

@@ -204,7 +204,7 @@ static void run_pt(void *ctx, size_t k)
     pt *p = &s->p[s->todo[k]];
     scn_desc dd;
     desc_of(s->d, p, &dd);
-    tb_scene_opts o = { 1, 0, NULL, NULL, s->no_batch, 1 };
+    tb_scene_opts o = { 1, 0, NULL, NULL, s->no_batch, 1, NULL };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     p->status = tb_scene_render_gbuf(&dd, s->g, NULL, NULL, &o, &r, p->err, sizeof p->err);
