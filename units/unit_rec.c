@@ -152,12 +152,26 @@ static rec_st rec_step(sim_ctx *c, sim_scope *sc, const char *prefix, int k, con
     return o;
 }
 
+/* The divisor 1 (raw 2^F_d) in place of 0: an empty slot of a pipeline
+ * (registers start at 0) or a zero vector divides by 1 instead of letting
+ * R double every step until it overflows. */
+static int64_t f_d_raw(const int64_t *in, void *u)
+{
+    return in[0] ? in[0] : (int64_t)1 << *(const int *)u;
+}
+
 /* The operand as an integer raw: the radicand's X (x_raw shifted up by
- * one for an odd F_x) or the divisor's d_raw (wiring). */
+ * one for an odd F_x: wiring) or the divisor's d_raw (d, or 1 for 0). */
 static sim_signal *operand_raw(sim_ctx *c, sim_scope *sc, const char *name, const rec_spec *s, sim_signal *in)
 {
     if (s->kind == REC_SQRT) return sim_shift(c, sc, name, uint_fmt(x_width0(s)), in, s->f_in + (s->f_in & 1));
-    return sim_shift(c, sc, name, uint_fmt(s->f_in + 1), in, s->f_in);
+    int *fd = sim_alloc(c, sizeof *fd), w = s->f_in + 1;
+    *fd = s->f_in;
+    sim_signal *d = sim_logic(c, sc, name, uint_fmt(w), 1, &in, f_d_raw, fd, w * SIM_GE_NAND2 / 2 + w * SIM_GE_MUX2);
+    char vt[160];
+    snprintf(vt, sizeof vt, "assign %%y = (%%0 == %d'd0) ? %d'h%llx : %%0;", w, w, (unsigned long long)1 << s->f_in);
+    sim_logic_verilog(d, vt);
+    return d;
 }
 
 /* R's first value: 0 (root) or 2^(F_d - 2) (reciprocal: N / 2^K). */
@@ -238,7 +252,7 @@ sim_signal *rec_pipe(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *pre
         }
         if (st.d) {
             snprintf(nm, sizeof nm, "%s%d_d", prefix, k + 1);
-            st.d = sim_reg(c, sc, nm, st.d->fmt, clk, st.d, NULL, NULL, 0);
+            st.d = sim_reg(c, sc, nm, st.d->fmt, clk, st.d, NULL, NULL, (int64_t)1 << s->f_in);
         }
     }
     return st.q;
