@@ -32,7 +32,9 @@
     X(span2) \
     X(span3) \
     X(span23) \
-    X(hf_lookup)    /* unit_hflookup.c: the factorized BRDF's lookups */
+    X(hf_lookup)    /* unit_hflookup.c: the factorized BRDF's lookups */ \
+    X(sqrt)         /* unit_sqrt.c: the restoring square root */ \
+    X(shade)        /* unit_shade.c: one pixel of Blinn shading */
 
 #define UNIT_DECLARE(name) extern const unit_desc unit_##name;
 #define UNIT_ENTRY(name) &unit_##name,
