@@ -114,6 +114,25 @@ static void derive(tb_pipe_row *w)
     w->ge_per_mpps = w->pixels_per_s > 0 ? w->area_ge / (w->pixels_per_s / 1e6) : INFINITY;
 }
 
+/* The method's pipeline: one node shader feeding k span units side by
+ * side (each its own spans), k in 1..TB_PIPES_KMAX the one with the most
+ * pixels per second per kGE (the fewest of equals): a pixel every
+ * max(span clocks per pixel / k, shade clocks per node x nodes per pixel)
+ * clocks, area shade + k span units. */
+static void balance(tb_pipe_row *b)
+{
+    tb_pipe_row best = *b;
+    for (int k = 1; k <= TB_PIPES_KMAX; k++) {
+        tb_pipe_row w = *b;
+        w.spans = k;
+        w.clocks_per_pixel = fmax(w.span_cpp / k, w.shade_cpi * w.nodes_per_pixel);
+        w.area_ge = w.shade_area + k * w.span_area;
+        derive(&w);
+        if (k == 1 || w.pps_per_kge > best.pps_per_kge) best = w;
+    }
+    *b = best;
+}
+
 /* The normals of every band, in band order, as the unit's inputs. */
 static double *inputs(const tb_scene_nodes *rec, int nodes, const double fr[9], size_t *n)
 {
@@ -189,11 +208,9 @@ static int one_schedule(const scn_desc *d, const scn_mesh *m, const tb_scene_opt
         b->span_area = r2.hwst.area_ge;
         b->span_fmax = r->speed.hw.fmax_mhz;
         b->span_pj = r2.energy_pj_per_pixel;
-        b->clocks_per_pixel = fmax(b->span_cpp, b->shade_cpi * b->nodes_per_pixel);
-        b->area_ge = b->span_area + b->shade_area;
         b->fmax_mhz = fmin(b->span_fmax, b->shade_fmax);
         b->pj_per_pixel = b->span_pj + b->shade_pj * b->nodes_per_pixel;
-        derive(b);
+        balance(b);
         if (keep) {
             p->ref_hw = img;
             p->hw_nodes = r2.hw;
@@ -280,15 +297,17 @@ void tb_scene_pipes_print(FILE *f, const tb_scene_pipes *p)
     }
     fprintf(f, "  both pipelines in hardware: unit shade (width %d, n %d) per pixel, and shading the method's nodes\n",
             p->width, p->n);
-    fprintf(f, "    %-10s %-9s %11s %10s %9s %9s %8s %10s %9s %7s\n", "side", "schedule", "NMSE", "clocks/px",
-            "area GE", "f_max", "Mpx/s", "Mpx/s/kGE", "GE/Mpx/s", "pJ/px");
+    fprintf(f, "    %-10s %-9s %5s %11s %10s %9s %9s %8s %10s %9s %7s\n", "side", "schedule", "spans", "NMSE",
+            "clocks/px", "area GE", "f_max", "Mpx/s", "Mpx/s/kGE", "GE/Mpx/s", "pJ/px");
     for (int i = 0; i < p->nrows; i++) {
         const tb_pipe_row *w = &p->row[i];
         char a[32];
         if (isfinite(w->nmse)) snprintf(a, sizeof a, "%.3e", w->nmse);
         else snprintf(a, sizeof a, "inf");
-        fprintf(f, "    %-10s %-9s %11s %10.3f %9.0f %5.0f MHz %8.4g %10.4g %9.4g %7.3g\n",
-                w->method ? "method" : "reference", w->sched, a, w->clocks_per_pixel, w->area_ge, w->fmax_mhz,
+        char k[16] = "-";
+        if (w->method) snprintf(k, sizeof k, "%d", w->spans);
+        fprintf(f, "    %-10s %-9s %5s %11s %10.3f %9.0f %5.0f MHz %8.4g %10.4g %9.4g %7.3g\n",
+                w->method ? "method" : "reference", w->sched, k, a, w->clocks_per_pixel, w->area_ge, w->fmax_mhz,
                 w->pixels_per_s / 1e6, w->pps_per_kge / 1e6, w->ge_per_mpps, w->pj_per_pixel);
     }
     for (int i = 0; i < p->nrows; i++) {
@@ -310,7 +329,7 @@ static void row_json(FILE *f, const tb_pipe_row *w)
         { "ge_per_mpixels_per_s", w->ge_per_mpps }, { "energy_pj_per_pixel", w->pj_per_pixel },
         { "shade_clocks_per_item", w->shade_cpi }, { "shade_area_ge", w->shade_area },
         { "shade_fmax_mhz", w->shade_fmax }, { "shade_energy_pj_per_item", w->shade_pj },
-        { "nodes_per_pixel", w->nodes_per_pixel }, { "span_clocks_per_pixel", w->span_cpp },
+        { "nodes_per_pixel", w->nodes_per_pixel }, { "span_units", w->spans }, { "span_clocks_per_pixel", w->span_cpp },
         { "span_area_ge", w->span_area }, { "span_fmax_mhz", w->span_fmax }, { "span_energy_pj_per_pixel", w->span_pj },
     };
     for (size_t k = 0; k < sizeof t / sizeof t[0]; k++) {

@@ -12,13 +12,14 @@
  *
  *   reference  the shade unit alone: its clocks per pixel, area, f_max and
  *              energy per pixel, simulated over every covered pixel;
- *   method     node shader + span unit, the two side by side at one clock
- *              (the slower f_max of the two), the node shader feeding the
- *              span unit: clocks per pixel = max(span unit's, shade's
- *              clocks per item x nodes per pixel), area the sum, energy
- *              per pixel the span unit's plus the shade unit's per node x
- *              nodes per pixel (the idle clocks of the unit that waits not
- *              counted: a gated clock).
+ *   method     a node shader feeding k span units, side by side at one
+ *              clock (the slower f_max of the two units): clocks per
+ *              pixel = max(span unit's / k, shade's clocks per item x
+ *              nodes per pixel), area shade + k span units, k (1 to
+ *              TB_PIPES_KMAX) the one with the most pixels per second per
+ *              kGE; energy per pixel the span unit's plus the shade
+ *              unit's per node x nodes per pixel (the idle clocks of the
+ *              unit that waits not counted: a gated clock).
  *
  * pixels/s = f_max / clocks per pixel; per kGE = pixels/s / (area / 1000)
  * (pixels per second at equal area); the area at equal pixels per second
@@ -39,10 +40,12 @@ typedef struct tb_pipe_row {
     /* the parts */
     double shade_cpi, shade_area, shade_fmax, shade_pj;   /* per item */
     double nodes_per_pixel;        /* method */
+    int    spans;                  /* method: span units fed by the node shader */
     double span_cpp, span_area, span_fmax, span_pj;       /* method: the span unit's */
 } tb_pipe_row;
 
 #define TB_PIPES_MAX (2 * UNIT_MAX_SCHED)
+#define TB_PIPES_KMAX 64
 typedef struct tb_scene_pipes {
     int    ok;                     /* 0: no comparison, why says why */
     char   why[200];
