@@ -336,7 +336,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
         tb_scene_result r;
         char err[600], sub[4200];
         progress(cfgs[i].name);
-        int t = tb_scene_render_pipes(&d, m, &o, &r, &pp[n], err, sizeof err);
+        int t = tb_scene_render_pipes(&d, m, NULL, &o, TB_PIPES_BOTH, &r, &pp[n], err, sizeof err);
         progress("");
         if (t != TB_OK) { rc = cli_from_tb(t, "%s", err); break; }
         names[n++] = cfgs[i].name;
@@ -464,7 +464,7 @@ int cli_scene(int argc, char **argv)
         tb_scene_result r;
         tb_scene_pipes pp;
         progress("rendering...");
-        int t = tb_scene_render_pipes(&d, &m, &o, &r, &pp, err, sizeof err);
+        int t = tb_scene_render_pipes(&d, &m, NULL, &o, TB_PIPES_BOTH, &r, &pp, err, sizeof err);
         progress("");
         if (t != TB_OK) {
             rc = cli_from_tb(t, "%s", err);

@@ -78,7 +78,7 @@ static int measure(const scn_desc *d0, const scn_gbuf *g, const scn_mesh *m, scn
     memset(out, 0, sizeof *out);
     tb_scene_pipes pp;
     memset(&pp, 0, sizeof pp);
-    int rc = m ? tb_scene_render_pipes(&d, m, &o, &r, &pp, err, errlen)
+    int rc = m ? tb_scene_render_pipes(&d, NULL, g, &o, TB_PIPES_BOTH, &r, &pp, err, errlen)
                : tb_scene_render_gbuf(&d, g, NULL, NULL, &o, &r, err, errlen);
     if (rc == TB_OK) {
         best_pipe(&pp, out);

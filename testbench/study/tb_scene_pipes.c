@@ -107,6 +107,9 @@ static int shader_at(const scn_desc *d, int width, int k, shader *s, char *err, 
     return tb_unit_timing(s->u, &s->cfg, &s->f, &s->ppa, err, errlen);
 }
 
+static double *inputs(const tb_scene_nodes *rec, int nodes, const double fr[9], size_t *n);
+static void balance(tb_pipe_row *b);
+
 static void derive(tb_pipe_row *w)
 {
     w->pixels_per_s = w->clocks_per_pixel > 0 ? w->fmax_mhz * 1e6 / w->clocks_per_pixel : 0;
@@ -150,27 +153,62 @@ static double *inputs(const tb_scene_nodes *rec, int nodes, const double fr[9], 
     return in;
 }
 
-/* One schedule: the reference's pixels, then the nodes and the method's
- * render with them; rows into p, the images of the first schedule kept. */
-static int one_schedule(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o, const tb_scene_result *r,
-                        tb_scene_nodes *rec, const shader *s, const double fr[9], int keep, tb_scene_pipes *p,
-                        char *err, size_t errlen)
+/* The render of d as the pipelines need it: of mesh m, or on surface
+ * buffer g when given (a sweep's, rasterized once). */
+static int render_of(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
+                     tb_scene_result *r, char *err, size_t errlen)
 {
-    size_t np, nn, npx = (size_t)r->w * r->h;
-    double *pin = inputs(rec, 0, fr, &np), *nin = inputs(rec, 1, fr, &nn);
-    double *pout = malloc((np ? np : 1) * sizeof *pout), *nout = malloc((nn ? nn : 1) * sizeof *nout);
-    double *img = calloc(npx ? npx : 1, sizeof *img);
-    if (!pout || !nout || !img) base_out_of_memory();
-    tb_items_stats ps, ns;
-    int jobs = o->jobs < 1 ? 1 : o->jobs;
+    return g ? tb_scene_render_gbuf(d, g, NULL, NULL, o, r, err, errlen) : tb_scene_render(d, m, o, r, err, errlen);
+}
+
+/* The reference's row at schedule s: every recorded pixel through the
+ * unit; the image into *img (NULL: not kept). */
+static int ref_row(const tb_scene_result *r, const tb_scene_nodes *rec, const shader *s, const double fr[9], int jobs,
+                   tb_pipe_row *a, double **img, char *err, size_t errlen)
+{
+    size_t np, npx = (size_t)r->w * r->h;
+    double *pin = inputs(rec, 0, fr, &np);
+    double *pout = malloc((np ? np : 1) * sizeof *pout), *im = calloc(npx ? npx : 1, sizeof *im);
+    if (!pout || !im) base_out_of_memory();
+    tb_items_stats ps;
     int rc = tb_items_run(s->u, &s->cfg, &s->f, pin, np, jobs, 1, pout, &ps, err, errlen);
-    if (rc == TB_OK) rc = tb_items_run(s->u, &s->cfg, &s->f, nin, nn, jobs, 1, nout, &ns, err, errlen);
-    tb_scene_result r2;
-    memset(&r2, 0, sizeof r2);
     if (rc == TB_OK) {
         size_t i = 0;
         for (int k = 0; k < TB_SCENE_BANDS; k++)
-            for (size_t j = 0; j < rec->band[k].npix; j++) img[rec->band[k].pix[j]] = pout[i++];
+            for (size_t j = 0; j < rec->band[k].npix; j++) im[rec->band[k].pix[j]] = pout[i++];
+        memset(a, 0, sizeof *a);
+        snprintf(a->sched, sizeof a->sched, "%s", s->u->sched[s->cfg.schedule].name);
+        a->width = s->cfg.width;
+        a->shade_cpi = a->clocks_per_pixel = ps.cycles_per_item;
+        a->shade_area = a->area_ge = ps.area_ge;
+        a->shade_fmax = a->fmax_mhz = s->ppa.fmax_mhz;
+        a->shade_pj = a->pj_per_pixel = ps.items ? ps.energy_pj / (double)ps.items : 0;
+        a->nmse = nmse_of(r, im);
+        a->overflows = ps.overflows + ps.in_overflows;
+        derive(a);
+    }
+    if (rc == TB_OK && img) *img = im;
+    else free(im);
+    free(pin);
+    free(pout);
+    return rc;
+}
+
+/* The method's row at schedule s: the recorded nodes through the unit,
+ * replayed into a render of d; its hardware image into *img (NULL: not
+ * kept). */
+static int method_row(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
+                      const tb_scene_result *r, tb_scene_nodes *rec, const shader *s, const double fr[9],
+                      tb_pipe_row *b, double **img, char *err, size_t errlen)
+{
+    size_t nn;
+    double *nin = inputs(rec, 1, fr, &nn), *nout = malloc((nn ? nn : 1) * sizeof *nout);
+    if (!nout) base_out_of_memory();
+    tb_items_stats ns;
+    int rc = tb_items_run(s->u, &s->cfg, &s->f, nin, nn, o->jobs < 1 ? 1 : o->jobs, 1, nout, &ns, err, errlen);
+    tb_scene_result r2;
+    memset(&r2, 0, sizeof r2);
+    if (rc == TB_OK) {
         rec->replay = 1;
         for (int k = 0, off = 0; k < TB_SCENE_BANDS; off += (int)rec->band[k].nnodes, k++) {
             rec->band[k].val = nout + off;
@@ -180,27 +218,17 @@ static int one_schedule(const scn_desc *d, const scn_mesh *m, const tb_scene_opt
         o2.nodes = rec;
         o2.energy = 1;
         o2.vcd_path = NULL;
-        rc = tb_scene_render(d, m, &o2, &r2, err, errlen);
+        rc = render_of(d, m, g, &o2, &r2, err, errlen);
     }
     if (rc == TB_OK) {
-        const char *sn = s->u->sched[s->cfg.schedule].name;
-        tb_pipe_row *a = &p->row[p->nrows++], *b = &p->row[p->nrows++];
-        memset(a, 0, sizeof *a);
-        snprintf(a->sched, sizeof a->sched, "%s", sn);
-        a->width = s->cfg.width;
-        a->shade_cpi = ps.cycles_per_item;
-        a->shade_area = ps.area_ge;
-        a->shade_fmax = s->ppa.fmax_mhz;
-        a->shade_pj = ps.items ? ps.energy_pj / (double)ps.items : 0;
-        *b = *a;
-        a->nmse = nmse_of(r, img);
-        a->overflows = ps.overflows + ps.in_overflows;
-        a->clocks_per_pixel = a->shade_cpi;
-        a->area_ge = a->shade_area;
-        a->fmax_mhz = a->shade_fmax;
-        a->pj_per_pixel = a->shade_pj;
-        derive(a);
+        memset(b, 0, sizeof *b);
         b->method = 1;
+        snprintf(b->sched, sizeof b->sched, "%s", s->u->sched[s->cfg.schedule].name);
+        b->width = s->cfg.width;
+        b->shade_cpi = ns.cycles_per_item;
+        b->shade_area = ns.area_ge;
+        b->shade_fmax = s->ppa.fmax_mhz;
+        b->shade_pj = ns.items ? ns.energy_pj / (double)ns.items : 0;
         b->nmse = r2.nmse;
         b->overflows = ns.overflows + ns.in_overflows + r2.hwst.overflows;
         b->nodes_per_pixel = r2.covered ? (double)r2.nodes_shaded / (double)r2.covered : 0;
@@ -211,24 +239,17 @@ static int one_schedule(const scn_desc *d, const scn_mesh *m, const tb_scene_opt
         b->fmax_mhz = fmin(b->span_fmax, b->shade_fmax);
         b->pj_per_pixel = b->span_pj + b->shade_pj * b->nodes_per_pixel;
         balance(b);
-        if (keep) {
-            p->ref_hw = img;
-            p->hw_nodes = r2.hw;
-            img = NULL;
-            r2.hw = NULL;
-        }
+        if (img) { *img = r2.hw; r2.hw = NULL; }
     }
     tb_scene_free(&r2);
-    free(img);
-    free(pin);
     free(nin);
-    free(pout);
     free(nout);
     return rc;
 }
 
-int tb_scene_pipes_run(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o, const tb_scene_result *r,
-                       tb_scene_nodes *rec, int width, tb_scene_pipes *p, char *err, size_t errlen)
+int tb_scene_pipes_run(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
+                       const tb_scene_result *r, tb_scene_nodes *rec, int width, int which, tb_scene_pipes *p,
+                       char *err, size_t errlen)
 {
     memset(p, 0, sizeof *p);
     const scn_view *v = r->heldout ? &d->heldout : &d->view;
@@ -243,7 +264,12 @@ int tb_scene_pipes_run(const scn_desc *d, const scn_mesh *m, const tb_scene_opts
     for (int k = 0; k < u->nsched && p->nrows + 2 <= TB_PIPES_MAX; k++) {
         shader s;
         if (shader_at(d, width, k, &s, err, errlen)) return TB_BADINPUT;
-        int rc = one_schedule(d, m, o, r, rec, &s, fr, k == 0, p, err, errlen);
+        int rc = TB_OK;
+        if (which & TB_PIPES_REF)
+            rc = ref_row(r, rec, &s, fr, o->jobs < 1 ? 1 : o->jobs, &p->row[p->nrows++], k ? NULL : &p->ref_hw,
+                         err, errlen);
+        if (rc == TB_OK && (which & TB_PIPES_METHOD))
+            rc = method_row(d, m, g, o, r, rec, &s, fr, &p->row[p->nrows++], k ? NULL : &p->hw_nodes, err, errlen);
         if (rc != TB_OK) { tb_scene_pipes_free(p); return rc; }
     }
     p->ok = 1;
@@ -264,24 +290,52 @@ const tb_pipe_row *tb_scene_pipes_ref(const tb_scene_pipes *p, const char *sched
     return NULL;
 }
 
-int tb_scene_render_pipes(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o, tb_scene_result *r,
-                          tb_scene_pipes *p, char *err, size_t errlen)
+int tb_scene_render_pipes(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
+                          int which, tb_scene_result *r, tb_scene_pipes *p, char *err, size_t errlen)
 {
     tb_scene_nodes rec;
     memset(&rec, 0, sizeof rec);
     memset(p, 0, sizeof *p);
     tb_scene_opts o1 = *o;
     o1.nodes = &rec;
-    int rc = tb_scene_render(d, m, &o1, r, err, errlen);
+    int rc = render_of(d, m, g, &o1, r, err, errlen);
     if (rc == TB_OK && tb_scene_speed_of(r, r->cfg.width, err, errlen)) {
         tb_scene_free(r);
         rc = TB_FAIL;
     }
     if (rc == TB_OK) {
-        rc = tb_scene_pipes_run(d, m, o, r, &rec, r->cfg.width, p, err, errlen);
+        rc = tb_scene_pipes_run(d, m, g, o, r, &rec, r->cfg.width, which, p, err, errlen);
         if (rc != TB_OK) tb_scene_free(r);
         else r->pipes = p;
     }
+    tb_scene_nodes_free(&rec);
+    return rc;
+}
+
+int tb_scene_pipes_refs(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
+                        const int *widths, int nw, tb_pipe_row *rows, int *nrows, char *err, size_t errlen)
+{
+    *nrows = 0;
+    tb_scene_nodes rec;
+    memset(&rec, 0, sizeof rec);
+    tb_scene_result r;
+    tb_scene_opts o1 = *o;
+    o1.nodes = &rec;
+    o1.energy = 0;
+    const scn_view *v = &d->view;
+    char why[200];
+    if (!tb_scene_pipes_fit(d, v, why, sizeof why)) return TB_OK;
+    int rc = render_of(d, m, g, &o1, &r, err, errlen), rendered = rc == TB_OK;
+    double fr[9];
+    frame(d, v, fr);
+    const unit_desc *u = unit_find("shade");
+    for (int w = 0; rc == TB_OK && w < nw; w++)
+        for (int k = 0; rc == TB_OK && k < u->nsched; k++) {
+            shader s;
+            if (shader_at(d, widths[w], k, &s, err, errlen)) rc = TB_BADINPUT;
+            else rc = ref_row(&r, &rec, &s, fr, o->jobs < 1 ? 1 : o->jobs, &rows[(*nrows)++], NULL, err, errlen);
+        }
+    if (rendered) tb_scene_free(&r);
     tb_scene_nodes_free(&rec);
     return rc;
 }

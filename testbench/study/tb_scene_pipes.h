@@ -61,12 +61,21 @@ typedef struct tb_scene_pipes {
  * light, an orthographic camera, Blinn or no specular term, a whole
  * shininess in the unit's range), else 0 and why. */
 int  tb_scene_pipes_fit(const scn_desc *d, const scn_view *v, char *why, size_t len);
-/* Both pipelines for render r of d (mesh m), which recorded into rec with
- * options o; the shade unit at `width`. rec is replayed (and left so).
- * Fills p (p->ok 0 with why when the lighting does not fit or there is no
- * shade unit); TB_OK, or TB_FAIL / TB_BADINPUT with a message. */
-int  tb_scene_pipes_run(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o, const tb_scene_result *r,
-                        tb_scene_nodes *rec, int width, tb_scene_pipes *p, char *err, size_t errlen);
+/* Both pipelines for render r of d (mesh m, or surface buffer g when not
+ * NULL), which recorded into rec with options o; the shade unit at
+ * `width`; which: TB_PIPES_REF and / or TB_PIPES_METHOD, the rows made.
+ * rec is replayed (and left so). Fills p (p->ok 0 with why when the
+ * lighting does not fit or there is no shade unit); TB_OK, or TB_FAIL /
+ * TB_BADINPUT with a message. */
+enum { TB_PIPES_REF = 1, TB_PIPES_METHOD = 2, TB_PIPES_BOTH = 3 };
+int  tb_scene_pipes_run(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
+                        const tb_scene_result *r, tb_scene_nodes *rec, int width, int which, tb_scene_pipes *p,
+                        char *err, size_t errlen);
+/* The reference alone at each of nw widths and every schedule of the
+ * shade unit, into rows (room for nw x its schedules), *nrows of them (0
+ * when the lighting does not fit): a sweep's shader configurations. */
+int  tb_scene_pipes_refs(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
+                         const int *widths, int nw, tb_pipe_row *rows, int *nrows, char *err, size_t errlen);
 void tb_scene_pipes_free(tb_scene_pipes *p);
 /* The method's row over the reference's at one schedule (NULL: none). */
 const tb_pipe_row *tb_scene_pipes_ref(const tb_scene_pipes *p, const char *sched);
@@ -74,9 +83,9 @@ const tb_pipe_row *tb_scene_pipes_ref(const tb_scene_pipes *p, const char *sched
  * "pipelines" (after a comma). */
 void tb_scene_pipes_print(FILE *f, const tb_scene_pipes *p);
 void tb_scene_pipes_json(FILE *f, const tb_scene_pipes *p);
-/* The render with the pipelines in one call: tb_scene_render recording,
- * tb_scene_speed_of, tb_scene_pipes_run at the scene's width. The result's
+/* The render with the pipelines in one call: the render (of m, or on g)
+ * recording, tb_scene_speed_of, tb_scene_pipes_run at the scene's width. The result's
  * pipes points at p. TB_OK, or TB_FAIL / TB_BADINPUT with a message. */
-int  tb_scene_render_pipes(const scn_desc *d, const scn_mesh *m, const tb_scene_opts *o, tb_scene_result *r,
-                           tb_scene_pipes *p, char *err, size_t errlen);
+int  tb_scene_render_pipes(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
+                           int which, tb_scene_result *r, tb_scene_pipes *p, char *err, size_t errlen);
 #endif
