@@ -12,7 +12,7 @@
  * small part of it, few enough lanes that the batch's vector loops fill. */
 #define ITEMS_PER_LANE 256
 #define ITEMS_MAX_LANES 1024
-#define ITEMS_GROUPS 16          /* lanes in at most this many groups, one a thread at a time */
+#define ITEMS_GROUPS 64          /* at most this many groups of lanes, one a thread (each builds the unit) */
 
 typedef struct items_job {
     const unit_desc *u;
@@ -65,7 +65,10 @@ int tb_items_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, co
                     .energy = energy };
     size_t nl = (n + ITEMS_PER_LANE - 1) / ITEMS_PER_LANE;
     J.nlanes = (uint32_t)(nl > ITEMS_MAX_LANES ? ITEMS_MAX_LANES : nl);
-    J.ngroups = J.nlanes < ITEMS_GROUPS ? J.nlanes : ITEMS_GROUPS;
+    /* a group a thread: the lanes are independent, so the grouping
+     * changes no figure */
+    uint32_t ng = (uint32_t)(jobs < 1 ? 1 : jobs > ITEMS_GROUPS ? ITEMS_GROUPS : jobs);
+    J.ngroups = J.nlanes < ng ? J.nlanes : ng;
     J.vs = calloc(J.nlanes, sizeof *J.vs);
     J.lanes = calloc(J.nlanes, sizeof *J.lanes);
     double *row = malloc((size_t)(J.n_in + J.n_out) * sizeof *row);
