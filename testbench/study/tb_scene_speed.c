@@ -80,8 +80,8 @@ void tb_scene_speed_print(FILE *f, const tb_scene_result *r)
             "ref. pixels / s", a, sp->ref_divs, sp->ref_divs == 1 ? "" : "s", sp->div_clocks, sp->div.fmax_mhz,
             sp->div.energy_pj_per_item);
     snprintf(a, sizeof a, "%.3g pJ", sp->ref_energy_pj_per_pixel_min);
-    fprintf(f, "  %-22s >= %-11s (its square roots and powers would add to both; no unit builds them)\n",
-            "ref. energy / pixel", a);
+    fprintf(f, "  %-22s >= %-11s (its square roots and powers would add to both; the shade unit does not take "
+            "this lighting)\n", "ref. energy / pixel", a);
     /* The method's shaded nodes divide too: on the same divider they
      * bound its rate as the reference's divides bound the reference's. */
     snprintf(a, sizeof a, "%.4g M", sp->node_pixels_per_s_max / 1e6);
