@@ -57,7 +57,8 @@ awk -v f="$rf" -v a="$ra" -v c="$rc" '$1 == "reference" && NR == 1 {
 
 # The table prints the JSON's rows, and no divider bound where the shade
 # unit measures the reference.
-awk '$1 == "reference" || $1 == "method" { print $1, $2, $3 }' "$T/rows" | while read -r side sched nm; do
+awk '$1 == "reference" || $1 == "method" { print $1 == "reference" ? "per-pixel" : "node+span", $2, $3 }' "$T/rows" \
+    | while read -r side sched nm; do
     v=$(echo "$nm" | sed 's/nmse=//')
     grep -q "^    $side  *$sched .* $(awk -v x="$v" 'BEGIN { printf "%.3e", x }') " "$T/a.out" || echo "$side $sched"
 done >"$T/miss"
@@ -81,7 +82,7 @@ for cfg in paper corrected auto; do
     m=$(sed -n 's/^ *{"side": "method", "schedule": "[a-z]*", "nmse": \([-0-9.e+]*\), .*"pixels_per_s_per_kge": \([-0-9.e+]*\),.*/\1 \2/p' \
         "$T/c/$cfg/scene.json" | head -1)
     want=$(echo "$m" | awk '{ printf "%.3e .* %.4g ", $1, $2 / 1e6 }')
-    grep -q "^$cfg  *method .*$want" "$T/c.out" || echo "$cfg"
+    grep -q "^$cfg  *node+span .*$want" "$T/c.out" || echo "$cfg"
 done >"$T/cmiss"
 check compare_table_from_json [ ! -s "$T/cmiss" ]
 [ -s "$T/cmiss" ] && echo "  missing: $(cat "$T/cmiss") in $(grep method "$T/c.out" | head -3)"

@@ -287,7 +287,8 @@ static void print_pipes_compare(const char *const *names, const tb_scene_pipes *
         printf("both pipelines: %s\n", n ? pp[0].why : "none");
         return;
     }
-    printf("\nboth pipelines in hardware (unit shade, width %d, n %d; method = node shader + span units):\n",
+    printf("\nboth pipelines in hardware (unit shade, width %d, n %d; per-pixel: the reference on it; node+span: the "
+           "method, its nodes on it):\n",
            pp[0].width, pp[0].n);
     printf("%-10s %-9s %-9s %5s %11s %10s %9s %9s %8s %10s %7s %9s\n", "config", "side", "schedule", "spans", "NMSE",
            "clocks/px", "area GE", "f_max", "Mpx/s", "Mpx/s/kGE", "pJ/px", "vs ref.");
@@ -303,7 +304,7 @@ static void print_pipes_compare(const char *const *names, const tb_scene_pipes *
             }
             fmt_nmse(a, sizeof a, w->nmse);
             printf("%-10s %-9s %-9s %5s %11s %10.3f %9.0f %5.0f MHz %8.4g %10.4g %7.3g %9s  %s\n",
-                   c < 0 ? "-" : names[c], w->method ? "method" : "reference", w->sched, k, a, w->clocks_per_pixel,
+                   c < 0 ? "-" : names[c], w->method ? "node+span" : "per-pixel", w->sched, k, a, w->clocks_per_pixel,
                    w->area_ge, w->fmax_mhz, w->pixels_per_s / 1e6, w->pps_per_kge / 1e6, w->pj_per_pixel, v,
                    w->nmse <= COMPARE_TARGET ? "NMSE <= 1e-4" : "NMSE > 1e-4");
         }

@@ -349,8 +349,8 @@ void tb_scene_pipes_print(FILE *f, const tb_scene_pipes *p)
         fprintf(f, "  %-22s %s\n", "both pipelines", p->why);
         return;
     }
-    fprintf(f, "  both pipelines in hardware: unit shade (width %d, n %d) per pixel, and shading the method's nodes\n",
-            p->width, p->n);
+    fprintf(f, "  both pipelines in hardware: unit shade (width %d, n %d) per pixel (per-pixel), and shading the "
+            "method's nodes (node+span)\n", p->width, p->n);
     fprintf(f, "    %-10s %-9s %5s %11s %10s %9s %9s %8s %10s %9s %7s\n", "side", "schedule", "spans", "NMSE",
             "clocks/px", "area GE", "f_max", "Mpx/s", "Mpx/s/kGE", "GE/Mpx/s", "pJ/px");
     for (int i = 0; i < p->nrows; i++) {
@@ -361,7 +361,7 @@ void tb_scene_pipes_print(FILE *f, const tb_scene_pipes *p)
         char k[16] = "-";
         if (w->method) snprintf(k, sizeof k, "%d", w->spans);
         fprintf(f, "    %-10s %-9s %5s %11s %10.3f %9.0f %5.0f MHz %8.4g %10.4g %9.4g %7.3g\n",
-                w->method ? "method" : "reference", w->sched, k, a, w->clocks_per_pixel, w->area_ge, w->fmax_mhz,
+                w->method ? "node+span" : "per-pixel", w->sched, k, a, w->clocks_per_pixel, w->area_ge, w->fmax_mhz,
                 w->pixels_per_s / 1e6, w->pps_per_kge / 1e6, w->ge_per_mpps, w->pj_per_pixel);
     }
     for (int i = 0; i < p->nrows; i++) {
