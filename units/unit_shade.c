@@ -15,8 +15,8 @@
  *   DHQ = DL > 0 && DH > 0 ? DH : 0  format (the gates are exact)
  *   ROOT = sqrt(NN), RINV = 1/ROOT   the two digit recurrences
  *   NL = DLQ RINV, NH = DHQ RINV     u.L and u.H where they count
- *   SPEC = NH^n                      square and multiply
- *   DIF = kd NL, SPC = ks SPEC, SUM = ka + DIF + SPC
+ *   HL = NH^n                        square and multiply (the highlight)
+ *   DIF = kd NL, KSH = ks HL, SUM = ka + DIF + KSH
  *   i = SUM >= 1 ? 1 : SUM
  *
  * Because the gates read the exact dot products, the hardware switches
@@ -55,10 +55,10 @@
     X(S_RINV, "rinv", INTERNAL, "1/ROOT, truncated (restoring recurrence)") \
     X(S_NL, "nl", INTERNAL, "multiplier NL = DLQ RINV: max(0, u.L)") \
     X(S_NH, "nh", INTERNAL, "multiplier NH = DHQ RINV: u.H where the highlight counts") \
-    X(S_SPEC, "spec", INTERNAL, "NH^n by square and multiply (each step's product and register)") \
+    X(S_HL, "hl", INTERNAL, "the highlight NH^n by square and multiply (each step's product and register)") \
     X(S_DIF, "dif", INTERNAL, "multiplier DIF = kd NL") \
-    X(S_SPC, "spc", INTERNAL, "multiplier SPC = ks SPEC") \
-    X(S_SUM, "sum", INTERNAL, "adders SUM = ka + DIF + SPC") \
+    X(S_KSH, "ksh", INTERNAL, "multiplier KSH = ks HL") \
+    X(S_SUM, "sum", INTERNAL, "adders SUM = ka + DIF + KSH") \
     X(S_CLAMP, "clamp", INTERNAL, "1 where SUM >= 1: the output multiplexer's select")
 enum { SH_SIGS(UNIT_SIG_ID) SH_NSIGS };
 enum { SH_PIPE };
@@ -77,12 +77,12 @@ static void sh_formats(const unit_cfg *cfg, unit_fmts *out)
     for (int k = S_NX; k <= S_HZ; k++) out->f[k] = unit_fmt(1, 2, F);
     for (int k = S_KA; k <= S_KS; k++) out->f[k] = unit_fmt(0, 1, W - 1);
     out->f[S_I] = unit_fmt(0, 1, W - 1);
-    out->f[S_NN] = unit_fmt(0, 1, 2 * F);
-    out->f[S_DL] = out->f[S_DH] = unit_fmt(1, 2, 2 * F);
+    out->f[S_NN] = unit_fmt(0, 1, nrm_prod_fbits(W));
+    out->f[S_DL] = out->f[S_DH] = unit_fmt(1, 2, nrm_prod_fbits(W));
     out->f[S_DLQ] = out->f[S_DHQ] = unit_fmt(0, 1, Fw);
     out->f[S_ROOT] = unit_fmt(0, 1, Fw);
     out->f[S_RINV] = unit_fmt(0, 2, Fw);
-    out->f[S_NL] = out->f[S_NH] = out->f[S_SPEC] = out->f[S_DIF] = out->f[S_SPC] = unit_fmt(0, 1, Fw);
+    out->f[S_NL] = out->f[S_NH] = out->f[S_HL] = out->f[S_DIF] = out->f[S_KSH] = unit_fmt(0, 1, Fw);
     out->f[S_SUM] = unit_fmt(0, 2, Fw);
     out->f[S_CLAMP] = unit_fmt(0, 1, 0);
 }
@@ -153,24 +153,28 @@ static int sh_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     /* |L|, |H| <= 1 before their quantization, so as held at most
      * 1 + sqrt(3) 2^-F; |N| <= NRM_NMAX as held (the domain) */
     double lmax = 1 + 2 * sim_fmt_lsb(F[S_LX]);
-    unet_val nn = nrm_dot(n, S_NN, "nn", in + S_NX, in + S_NX, NRM_NMAX * NRM_NMAX);
-    unet_val dl = nrm_dot(n, S_DL, "dl", in + S_NX, in + S_LX, NRM_NMAX * lmax);
-    unet_val dh = nrm_dot(n, S_DH, "dh", in + S_NX, in + S_HX, NRM_NMAX * lmax);
+    /* stage 1: the products; stage 2: their sums, the gates and keys */
+    unet_val nn = nrm_dot(n, S_NN, "nn", in + S_NX, in + S_NX, NRM_NMAX * NRM_NMAX, 1);
+    unet_val dl = nrm_dot(n, S_DL, "dl", in + S_NX, in + S_LX, NRM_NMAX * lmax, 1);
+    unet_val dh = nrm_dot(n, S_DH, "dh", in + S_NX, in + S_HX, NRM_NMAX * lmax, 1);
+    if (!hw && (dl.err > 0 || dh.err > 0)) {
+        /* a gate on an inexact sign may switch the highlight where the
+         * ideal does not: no bound */
+        snprintf(err, errlen, "shade: dl and dh are exact only up to width 26 (their gates need exact signs)");
+        return -1;
+    }
     sim_signal *gl = hw ? gate(n->c, n->sc, "gate_l", dl.s, NULL) : NULL;
     sim_signal *gh = hw ? gate(n->c, n->sc, "gate_h", dl.s, dh.s) : NULL;
     unet_val dlq = unet_bk(n, S_DLQ, "dlq", gl, dl, 1), dhq = unet_bk(n, S_DHQ, "dhq", gh, dh, 1);
-    unet_val ka = in[S_KA], kd = in[S_KD], ks = in[S_KS];
     sim_signal *v = hw ? io->in_valid : NULL;
-    /* stage 1: the dot products registered */
     nn = nrm_delay(n, "nn_r", nn, 1);
     dlq = nrm_delay(n, "dlq_r", dlq, 1);
     dhq = nrm_delay(n, "dhq_r", dhq, 1);
-    ka = nrm_delay(n, "ka_r", ka, 1);
-    kd = nrm_delay(n, "kd_r", kd, 1);
-    ks = nrm_delay(n, "ks_r", ks, 1);
+    unet_val ka = nrm_delay(n, "ka_r", in[S_KA], 2), kd = nrm_delay(n, "kd_r", in[S_KD], 2);
+    unet_val ks = nrm_delay(n, "ks_r", in[S_KS], 2);
     int K = 0, P = 0;
     unet_val rinv;
-    if (nrm_rsqrt(n, nn, S_ROOT, S_RINV, 1, NULL, NULL, &rinv, &K, err, errlen)) return -1;
+    if (nrm_rsqrt(n, nn, S_ROOT, S_RINV, 1, NULL, NULL, NULL, &rinv, &K, err, errlen)) return -1;
     dlq = nrm_delay(n, "dlq_d", dlq, K);
     dhq = nrm_delay(n, "dhq_d", dhq, K);
     ka = nrm_delay(n, "ka_d", ka, K);
@@ -178,26 +182,26 @@ static int sh_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     ks = nrm_delay(n, "ks_d", ks, K);
     unet_val nl = unet_mul(n, S_NL, "nl", dlq, rinv), nh = unet_mul(n, S_NH, "nh", dhq, rinv);
     nl.imag = nh.imag = lmax;           /* u.L, u.H: |u| = 1 */
-    /* stage K + 2: NL, NH registered */
+    /* stage K + 3: NL, NH registered */
     nl = nrm_delay(n, "nl_r", nl, 1);
     nh = nrm_delay(n, "nh_r", nh, 1);
     ka = nrm_delay(n, "ka_e", ka, 1);
     kd = nrm_delay(n, "kd_e", kd, 1);
     ks = nrm_delay(n, "ks_e", ks, 1);
-    unet_val dif = unet_mul(n, S_DIF, "dif", nl, kd), spec;
+    unet_val dif = unet_mul(n, S_DIF, "dif", nl, kd), hl;
     if (!hw && (!brdf_holds(F[S_NL], 0, nl.imag + nl.err) || !brdf_holds(F[S_NH], 0, nh.imag + nh.err))) {
         snprintf(err, errlen, "shade: nl, nh must hold [0, 1]");
         return -1;
     }
-    if (pw_unrolled(n, prog, nh, S_SPEC, "pw", "spec", &spec, &P)) {
+    if (pw_unrolled(n, prog, nh, S_HL, "pw", "hl", &hl, &P)) {
         snprintf(err, errlen, "shade: internal: bad power program");
         return -1;
     }
     dif = nrm_delay(n, "dif_p", dif, P);
     ka = nrm_delay(n, "ka_p", ka, P);
     ks = nrm_delay(n, "ks_p", ks, P);
-    unet_val spc = unet_mul(n, S_SPC, "spc", spec, ks);
-    unet_val sum = unet_add(n, S_SUM, "sum", unet_add(n, S_SUM, "sum_a", ka, dif), spc);
+    unet_val ksh = unet_mul(n, S_KSH, "ksh", hl, ks);
+    unet_val sum = unet_add(n, S_SUM, "sum", unet_add(n, S_SUM, "sum_a", ka, dif), ksh);
     unet_val one = brdf_uconst(n, F[S_I], "one_i", 1.0);
     sim_signal *sel = hw ? ge_one(n->c, n->sc, sum.s) : NULL;
     unet_val two[2] = { sum, one };
@@ -205,7 +209,7 @@ static int sh_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     *out = unet_mux(n, S_I, "i", sel, 2, two, 0);
     if (hw) {
         io->in_ready = sim_const_raw(n->c, n->sc, "in_ready", unit_fmt(0, 1, 0), 1);
-        io->out_valid = rec_delay(n->c, n->sc, n->clk, "v", v, 1 + K + 1 + P);
+        io->out_valid = rec_delay(n->c, n->sc, n->clk, "v", v, 2 + K + 1 + P);
         io->out[0] = out->s;
     }
     if (!hw && !brdf_holds(F[S_SUM], 0, sum.imag + sum.err)) {
@@ -256,11 +260,12 @@ const unit_desc unit_shade = {
     .source = "Nechyporuk & Romanyuk (2020), sec. IV (the per-pixel Phong/Blinn reference the method is compared with)",
     UNIT_SIGS(SH_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
-    .sched = { { "pipe", "fully pipelined: a pixel a clock; the dot products, a stage a root bit, a stage "
-                         "a reciprocal bit, the products, a stage a step of the power" } },
+    .sched = { { "pipe", "fully pipelined, a pixel a clock: a stage of products and one of sums, a stage a "
+                         "root bit and one a reciprocal bit, the products by 1/|N|, a stage a step of the power" } },
     .nparams = 1,
     .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, PW_N_MAX, 24, NULL, "shininess: the exponent of (u.H)^n" } },
-    .fmt_rule = "N, L, H s2.(W-2); ka, kd, ks, i u1.(W-1); nn u1.(2W-4), dl, dh s2.(2W-4) (exact); "
-                "root, dlq, dhq, nl, nh, spec, dif, spc u1.(W+2); rinv, sum u2.(W+2)",
+    .fmt_rule = "N, L, H s2.(W-2); ka, kd, ks, i u1.(W-1); nn u1.P, dl, dh s2.P, P = 2W-4 (exact) up to "
+                "W = 26, W+22 above (no bound: the gates need exact signs); "
+                "root, dlq, dhq, nl, nh, hl, dif, ksh u1.(W+2); rinv, sum u2.(W+2)",
     .formats = sh_formats, .beats = beats1, .build = sh_build, .ideal = sh_ideal, .bound = sh_bound,
 };
