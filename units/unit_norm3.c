@@ -54,27 +54,35 @@ static int n3_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
         in[k].imag = fmin(in[k].imag, NRM_NMAX);          /* |n_k| <= |N| */
         if (hw) io->in[k] = in[k].s;
     }
-    sim_signal *first = NULL, *first_rcp = NULL, *root_run = NULL;
+    sim_signal *first = NULL, *first_rcp = NULL, *root_run = NULL, *rcp_run = NULL;
     int ks, kq;
     nrm_steps(n->fm.f[N_NN], n->fm.f[N_ROOT], n->fm.f[N_RINV], &ks, &kq);
     if (hw && !pipe) {
         sim_signal *next;
         int nsteps = 1 + ks + kq + 1;
         brdf_seq(n->c, n->sc, n->clk, nsteps, io, &next, &first);
-        uint8_t table[128] = { 0 }, run[128] = { 0 }, first_sq[128] = { 0 };
+        /* the control words by step: 0 NN, 1..ks the root, ks+1..ks+kq the
+         * reciprocal, then the products */
+        uint8_t f_sq[128] = { 0 }, f_rc[128] = { 0 }, r_sq[128] = { 0 }, r_rc[128] = { 0 };
         if (nsteps > 128) { snprintf(err, errlen, "norm3: too many steps"); return -1; }
-        first_sq[1] = 1;
-        table[1 + ks] = 1;
-        for (int t = 1; t <= ks; t++) run[t] = 1;
-        first = brdf_decode(n->c, n->sc, n->clk, "root_first", next, first_sq, nsteps);
-        first_rcp = brdf_decode(n->c, n->sc, n->clk, "rcp_first", next, table, nsteps);
-        root_run = brdf_decode(n->c, n->sc, n->clk, "root_run", next, run, nsteps);
+        f_sq[1] = f_rc[1 + ks] = 1;
+        for (int t = 1; t <= ks; t++) r_sq[t] = 1;
+        for (int t = 1 + ks; t <= ks + kq; t++) r_rc[t] = 1;
+        first = brdf_decode(n->c, n->sc, n->clk, "root_first", next, f_sq, nsteps);
+        first_rcp = brdf_decode(n->c, n->sc, n->clk, "rcp_first", next, f_rc, nsteps);
+        root_run = brdf_decode(n->c, n->sc, n->clk, "root_run", next, r_sq, nsteps);
+        rcp_run = brdf_decode(n->c, n->sc, n->clk, "rcp_run", next, r_rc, nsteps);
     }
     unet_val nn = nrm_dot(n, N_NN, "nn", in, in, NRM_NMAX * NRM_NMAX, pipe);
     int K = 0;
     nn = nrm_delay(n, "nn_r", nn, 1);       /* restoring: NN in clock 0, the root from clock 1 */
     unet_val rinv;
-    if (nrm_rsqrt(n, nn, N_ROOT, N_RINV, pipe, first, root_run, first_rcp, &rinv, &K, err, errlen)) return -1;
+    if (nrm_rsqrt(n, nn, N_ROOT, N_RINV, pipe, first, root_run, first_rcp, rcp_run, &rinv, &K, err, errlen)) return -1;
+    /* restoring: RINV is final in the last step only; the multipliers see
+     * 0 in the others (a block key), so that no product of a partial
+     * reciprocal overflows (a value nothing takes, but the batch mode
+     * would leave the run to the kernel) */
+    if (!pipe) rinv = unet_bk(n, N_RINV, "rinv_last", hw ? io->in_ready : NULL, rinv, 1);
     for (int k = 0; k < 3; k++) {
         const char *nm = n->u->sigs[N_UX + k].name;
         char pn[16];

@@ -43,7 +43,8 @@ int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp)
 }
 
 int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
-              sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, unet_val *rinv, int *stages,
+              sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, sim_signal *rcp_run,
+              unet_val *rinv, int *stages,
               char *err, size_t errlen)
 {
     sim_fmt fs = s.f;
@@ -73,11 +74,11 @@ int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
         if (pipe) {
             qq = rec_pipe(n->c, n->sc, n->clk, "rc", &rc, root.s);
         } else {
-            /* the root held while the reciprocal runs: loaded in its first clock */
-            sim_signal *held = sim_reg(n->c, n->sc, "root_hold", froot, n->clk, root.s, first_rcp, NULL, 0);
-            sim_signal *src[2] = { held, root.s };
-            sim_signal *d = sim_mux(n->c, n->sc, "root_d", froot, first_rcp, 2, src);
-            qq = rec_iter(n->c, n->sc, n->clk, "rc_", &rc, d, first_rcp, NULL);
+            /* the root's registers hold it while the reciprocal runs (the
+             * root steps only where root_run is 1), and the reciprocal
+             * steps only where rcp_run is 1: neither runs on a changing
+             * operand */
+            qq = rec_iter(n->c, n->sc, n->clk, "rc_", &rc, root.s, first_rcp, rcp_run);
         }
         q.s = sim_shift(n->c, n->sc, "rinv", frinv, qq, -frinv.fbits);
     }

@@ -38,13 +38,14 @@ unet_val nrm_dot(unet *n, int sig, const char *pfx, const unet_val *a, const une
  * root (signal sig_root, u1.F_r) and rinv (sig_rinv, u2.F_q).
  * pipe: both recurrences unrolled, *stages their pipeline registers.
  * Otherwise iterative: the root from the clock where first_root is 1,
- * stepping where root_run is 1 (its K clocks), the reciprocal from the
- * clock where first_rcp is 1 (rec_steps of the root later), reading the
- * root from a register loaded at that clock.
+ * stepping where root_run is 1 (its K clocks, so that its registers hold
+ * the root after them), the reciprocal from the clock where first_rcp is
+ * 1 (rec_steps of the root later), stepping where rcp_run is 1.
  * Bounding (no hardware), rinv's error derived for |N| >= NRM_NMIN.
  * 0, or -1 with a message (formats the recurrences cannot take). */
 int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
-              sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, unet_val *rinv, int *stages,
+              sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, sim_signal *rcp_run,
+              unet_val *rinv, int *stages,
               char *err, size_t errlen);
 /* Clocks (stages) of the two recurrences for these formats. */
 int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp);

@@ -188,7 +188,11 @@ sim_signal *rec_iter(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *pre
                      const rec_spec *s, sim_signal *in, sim_signal *first, sim_signal *en)
 {
     char nm[48];
-    int K = rec_steps(s), wr = r_width(s, K), wx = s->kind == REC_SQRT ? x_width0(s) : 0;
+    /* R: for a root held past its K steps (en 0), the next step's R2 =
+     * 4R + 3 still forms at R's input; two more bits hold it, so that
+     * the value the register does not take never overflows either */
+    int K = rec_steps(s), wr = r_width(s, K) + (en && s->kind == REC_SQRT ? 2 : 0);
+    int wx = s->kind == REC_SQRT ? x_width0(s) : 0;
     snprintf(nm, sizeof nm, "%sr", prefix);
     sim_signal *r = sim_reg(c, sc, nm, uint_fmt(wr), clk, NULL, en, NULL, 0);
     snprintf(nm, sizeof nm, "%sq", prefix);

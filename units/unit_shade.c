@@ -174,7 +174,7 @@ static int sh_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     unet_val ks = nrm_delay(n, "ks_r", in[S_KS], 2);
     int K = 0, P = 0;
     unet_val rinv;
-    if (nrm_rsqrt(n, nn, S_ROOT, S_RINV, 1, NULL, NULL, NULL, &rinv, &K, err, errlen)) return -1;
+    if (nrm_rsqrt(n, nn, S_ROOT, S_RINV, 1, NULL, NULL, NULL, NULL, &rinv, &K, err, errlen)) return -1;
     dlq = nrm_delay(n, "dlq_d", dlq, K);
     dhq = nrm_delay(n, "dhq_d", dhq, K);
     ka = nrm_delay(n, "ka_d", ka, K);
