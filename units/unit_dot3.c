@@ -109,7 +109,7 @@ const unit_desc unit_dot3 = {
     .sched = { { "comb", "combinational: an item a clock" },
                { "pipe", "the products registered, then the adders: an item a clock, one clock of latency" } },
     .nparams = 0,
-    .fmt_rule = "a, b, y s2.(W-2) (components in [-1, 1]); dot and its products s3.P, P = 2W-4 (exact) up to W = 26, W+22 above",
+    .fmt_rule = "a, b, y s2.(W-2) (components in [-1, 1]); dot and its products s3.P, P = 2W-4 (exact) up to W = 25, W+21 above",
     .formats = d3_formats, .beats = beats1, .build = d3_build, .ideal = d3_ideal, .bound = d3_bound,
     .ideal_exact = d3_exact,
     .bound_own_modes = 1,   /* the unet walk's */

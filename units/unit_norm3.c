@@ -151,6 +151,6 @@ const unit_desc unit_norm3 = {
                { "restoring", "N.N, then the root and the reciprocal, a bit a clock each, then the products: "
                               "1 + (W + 3) + (W + 4) + 1 clocks an item" } },
     .nparams = 0,
-    .fmt_rule = "N, u s2.(W-2); nn u1.P, P = 2W-4 (exact) up to W = 26, W+22 above; root u1.(W+2); rinv u2.(W+2)",
+    .fmt_rule = "N, u s2.(W-2); nn u1.P, P = 2W-4 (exact) up to W = 25, W+21 above; root u1.(W+2); rinv u2.(W+2)",
     .formats = n3_formats, .beats = beats1, .build = n3_build, .ideal = n3_ideal, .bound = n3_bound,
 };

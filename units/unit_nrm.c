@@ -7,7 +7,7 @@
 
 int nrm_prod_fbits(int W)
 {
-    return 2 * (W - 2) < W + 22 ? 2 * (W - 2) : W + 22;
+    return 2 * (W - 2) < W + 21 ? 2 * (W - 2) : W + 21;
 }
 
 unet_val nrm_dot(unet *n, int sig, const char *pfx, const unet_val *a, const unet_val *b, double imag, int reg)

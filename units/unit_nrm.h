@@ -24,7 +24,7 @@
 
 /* Fraction bits of the dot products of vectors held as s2.(W-2): every
  * bit of the products (2W - 4) while a product fits 64 bits with room,
- * W <= 26; W + 22 above, still one more a width (and no longer exact). */
+ * W <= 25; W + 21 above, still one more a width (and no longer exact). */
 int nrm_prod_fbits(int W);
 
 /* a.b into elements of signal sig's format: products "<pfx>_x", "_y",
