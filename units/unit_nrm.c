@@ -5,13 +5,20 @@
 #include <math.h>
 #include <stdio.h>
 
-unet_val nrm_dot(unet *n, int sig, const char *pfx, const unet_val *a, const unet_val *b, double imag)
+int nrm_prod_fbits(int W)
+{
+    return 2 * (W - 2) < W + 21 ? 2 * (W - 2) : W + 21;
+}
+
+unet_val nrm_dot(unet *n, int sig, const char *pfx, const unet_val *a, const unet_val *b, double imag, int reg)
 {
     char nm[48];
     unet_val p[3];
     for (int k = 0; k < 3; k++) {
         snprintf(nm, sizeof nm, "%s_%c", pfx, "xyz"[k]);
         p[k] = unet_mul(n, sig, nm, a[k], b[k]);
+        snprintf(nm, sizeof nm, "%s_%c_r", pfx, "xyz"[k]);
+        if (reg) p[k] = nrm_delay(n, nm, p[k], 1);
     }
     snprintf(nm, sizeof nm, "%s_xy", pfx);
     unet_val s = unet_add(n, sig, nm, p[0], p[1]);
@@ -36,7 +43,8 @@ int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp)
 }
 
 int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
-              sim_signal *first_root, sim_signal *first_rcp, unet_val *rinv, int *stages,
+              sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, sim_signal *rcp_run,
+              unet_val *rinv, int *stages,
               char *err, size_t errlen)
 {
     sim_fmt fs = s.f;
@@ -60,26 +68,27 @@ int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
         if (pipe) {
             qs = rec_pipe(n->c, n->sc, n->clk, "sq", &sq, s.s);
         } else {
-            qs = rec_iter(n->c, n->sc, n->clk, "sq_", &sq, s.s, first_root);
+            qs = rec_iter(n->c, n->sc, n->clk, "sq_", &sq, s.s, first_root, root_run);
         }
         root.s = sim_shift(n->c, n->sc, "root", froot, qs, -froot.fbits);
         if (pipe) {
             qq = rec_pipe(n->c, n->sc, n->clk, "rc", &rc, root.s);
         } else {
-            /* the root held while the reciprocal runs: loaded in its first clock */
-            sim_signal *held = sim_reg(n->c, n->sc, "root_hold", froot, n->clk, root.s, first_rcp, NULL, 0);
-            sim_signal *src[2] = { held, root.s };
-            sim_signal *d = sim_mux(n->c, n->sc, "root_d", froot, first_rcp, 2, src);
-            qq = rec_iter(n->c, n->sc, n->clk, "rc_", &rc, d, first_rcp);
+            /* the root's registers hold it while the reciprocal runs (the
+             * root steps only where root_run is 1), and the reciprocal
+             * steps only where rcp_run is 1: neither runs on a changing
+             * operand */
+            qq = rec_iter(n->c, n->sc, n->clk, "rc_", &rc, root.s, first_rcp, rcp_run);
         }
         q.s = sim_shift(n->c, n->sc, "rinv", frinv, qq, -frinv.fbits);
     }
     /* The root truncated: r - 2^-F_r < root <= r = sqrt(s), s exact. The
      * reciprocal of the truncated root, truncated: with rmin = NRM_NMIN,
      * 1/root - 1/r lies in [0, 2^-F_r / ((rmin - 2^-F_r) rmin)] and rinv
-     * in (1/root - 2^-F_q, 1/root], so |rinv - 1/r| is below the larger of
-     * the two (they have opposite signs) when s is exact, their sum when
-     * not (root may then lie above r). */
+     * in (1/root - 2^-F_q, 1/root]: |rinv - 1/r| is below their sum (below
+     * the larger when s is exact, as they then have opposite signs; the
+     * sum keeps the bound from growing when rinv is widened, which moves
+     * the truncation into the products that read it). */
     double er = sim_fmt_lsb(froot), rmin = NRM_NMIN;
     root.err = s.err / (sqrt(fmax(0.0, rmin * rmin - s.err)) + rmin) + er;
     root.q = er;
@@ -87,7 +96,7 @@ int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
     root.imag = NRM_NMAX;
     root.mag = NRM_NMAX;
     double e_rcp = root.err / ((rmin - root.err) * rmin);
-    q.err = s.err > 0 ? e_rcp + sim_fmt_lsb(frinv) : fmax(e_rcp, sim_fmt_lsb(frinv));
+    q.err = e_rcp + sim_fmt_lsb(frinv);
     q.q = sim_fmt_lsb(frinv);
     q.eff = frinv.fbits;
     q.imag = 1 / rmin;

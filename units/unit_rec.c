@@ -185,14 +185,18 @@ static int r_width(const rec_spec *s, int step)
 }
 
 sim_signal *rec_iter(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *prefix,
-                     const rec_spec *s, sim_signal *in, sim_signal *first)
+                     const rec_spec *s, sim_signal *in, sim_signal *first, sim_signal *en)
 {
     char nm[48];
-    int K = rec_steps(s), wr = r_width(s, K), wx = s->kind == REC_SQRT ? x_width0(s) : 0;
+    /* R: for a root held past its K steps (en 0), the next step's R2 =
+     * 4R + 3 still forms at R's input; two more bits hold it, so that
+     * the value the register does not take never overflows either */
+    int K = rec_steps(s), wr = r_width(s, K) + (en && s->kind == REC_SQRT ? 2 : 0);
+    int wx = s->kind == REC_SQRT ? x_width0(s) : 0;
     snprintf(nm, sizeof nm, "%sr", prefix);
-    sim_signal *r = sim_reg(c, sc, nm, uint_fmt(wr), clk, NULL, NULL, NULL, 0);
+    sim_signal *r = sim_reg(c, sc, nm, uint_fmt(wr), clk, NULL, en, NULL, 0);
     snprintf(nm, sizeof nm, "%sq", prefix);
-    sim_signal *q = sim_reg(c, sc, nm, uint_fmt(K), clk, NULL, NULL, NULL, 0);
+    sim_signal *q = sim_reg(c, sc, nm, uint_fmt(K), clk, NULL, en, NULL, 0);
     snprintf(nm, sizeof nm, "%sr0", prefix);
     sim_signal *r0 = sim_const_raw(c, sc, nm, uint_fmt(wr), r0_raw(s));
     snprintf(nm, sizeof nm, "%sq0", prefix);
@@ -206,7 +210,7 @@ sim_signal *rec_iter(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *pre
     sim_signal *x = NULL;
     if (s->kind == REC_SQRT) {
         snprintf(nm, sizeof nm, "%sx", prefix);
-        x = sim_reg(c, sc, nm, uint_fmt(wx), clk, NULL, NULL, NULL, 0);
+        x = sim_reg(c, sc, nm, uint_fmt(wx), clk, NULL, en, NULL, 0);
         snprintf(nm, sizeof nm, "%sx_load", prefix);
         sim_signal *xs[2] = { x, operand_raw(c, sc, nm, s, in) };
         snprintf(nm, sizeof nm, "%sx_in", prefix);

@@ -46,9 +46,12 @@ int     rec_check(const rec_spec *s, char *err, size_t errlen);
 
 /* Iterative: the step and its registers (named prefix "r", "q", "x"),
  * loading the operand in (x or d, held by the source for the whole item)
- * where first is 1. Q after K clocks; the caller's sequencer counts them. */
+ * where first is 1. Q after K clocks; the caller's sequencer counts them.
+ * en (NULL: always): the registers take a step only where it is 1 (a
+ * root that must not run on past its K steps while a unit does
+ * something else: Q would lose its top bits and R outgrow its register). */
 sim_signal *rec_iter(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *prefix,
-                     const rec_spec *s, sim_signal *in, sim_signal *first);
+                     const rec_spec *s, sim_signal *in, sim_signal *first, sim_signal *en);
 /* Unrolled and pipelined: stage k's registers are prefix "<k>_r", "_q",
  * "_x" (and "_d", the divisor carried along). The result (format
  * rec_out_fmt, a view of the last Q) K clocks after in entered. */

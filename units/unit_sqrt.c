@@ -43,7 +43,7 @@ static int sq_build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *
         sim_signal *next, *first;
         brdf_seq(c, sc, clk, rec_steps(&s), io, &next, &first);
         (void)next;
-        q = rec_iter(c, sc, clk, "rt_", &s, io->in[0], first);
+        q = rec_iter(c, sc, clk, "rt_", &s, io->in[0], first, NULL);
     } else {
         io->in_valid = sim_bit_new(c, sc, "in_valid", SIM_KIND_INPUT);
         io->in_ready = sim_const_raw(c, sc, "in_ready", unit_fmt(0, 1, 0), 1);
