@@ -12,7 +12,8 @@
  * small part of it, few enough lanes that the batch's vector loops fill. */
 #define ITEMS_PER_LANE 256
 #define ITEMS_MAX_LANES 1024
-#define ITEMS_GROUPS 64          /* at most this many groups of lanes, one a thread (each builds the unit) */
+#define ITEMS_GROUP_LANES 128    /* lanes a group (each group builds the unit and runs on one thread) */
+#define ITEMS_GROUPS (ITEMS_MAX_LANES / ITEMS_GROUP_LANES)
 
 typedef struct items_job {
     const unit_desc *u;
@@ -65,10 +66,10 @@ int tb_items_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, co
                     .energy = energy };
     size_t nl = (n + ITEMS_PER_LANE - 1) / ITEMS_PER_LANE;
     J.nlanes = (uint32_t)(nl > ITEMS_MAX_LANES ? ITEMS_MAX_LANES : nl);
-    /* a group a thread: the lanes are independent, so the grouping
-     * changes no figure */
-    uint32_t ng = (uint32_t)(jobs < 1 ? 1 : jobs > ITEMS_GROUPS ? ITEMS_GROUPS : jobs);
-    J.ngroups = J.nlanes < ng ? J.nlanes : ng;
+    /* groups of lanes fixed by the count alone, as the lanes are: a
+     * lane's switching is counted until its group's last lane ends, so a
+     * grouping by threads would change the energy with -j */
+    J.ngroups = (J.nlanes + ITEMS_GROUP_LANES - 1) / ITEMS_GROUP_LANES;
     J.vs = calloc(J.nlanes, sizeof *J.vs);
     J.lanes = calloc(J.nlanes, sizeof *J.lanes);
     double *row = malloc((size_t)(J.n_in + J.n_out) * sizeof *row);

@@ -5,8 +5,9 @@
  * The list is cut into lanes of consecutive items, their number a function
  * of the list's length alone (not of the threads), each lane tb_batch_run's
  * (a lane in which a quantization overflowed is simulated again by the
- * kernel: tb_batch.h); threads take contiguous groups of lanes. So every
- * figure is the same for any number of threads. The unit must give each
+ * kernel: tb_batch.h), in groups of lanes also fixed by the count (a lane's
+ * switching is counted until the last lane of its group ends), the groups
+ * on threads. So every figure is the same for any number of threads. The unit must give each
  * item's output from that item's inputs alone (no state carried between
  * items), as the shading units do. */
 #ifndef TB_ITEMS_H
