@@ -78,8 +78,10 @@ static const cli_opt scene_tab[] = {
       "                   err-xK.png (|hw - ref| heat map, full white = 1/K; K in\n"
       "                   4^0..4^6, the largest that shows the maximum error),\n"
       "                   degree.png (degree of each interval), region.png (mesh\n"
-      "                   regions) and scene.json (the figures, and under\n"
-      "                   \"legend\" the colours of the maps)\n" },
+      "                   regions), ref-hw.png and hw-nodes.png (the reference\n"
+      "                   and the method with its nodes on the shade unit) and\n"
+      "                   scene.json (the figures, and under \"legend\" the\n"
+      "                   colours of the maps)\n" },
     SC_FLAG("--json", json, "  --json           print the JSON summary on stdout instead of the table\n"),
     { "-j", NULL, CLI_OPT_INT, offsetof(scene_args, jobs), 1, 256, NULL, "%s needs a number of threads", NULL, 0,
       "  -j N             threads (default: the machine's cores); the output is the\n"
@@ -102,11 +104,14 @@ static const cli_opt scene_tab[] = {
     { "--sweep", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, o_sweep, CLI_OPT_MAYBE,
       "  --sweep [GRID]   sweep L, policy, terms, width, schedule: CSV and SVG charts\n"
       "                   of NMSE against operations and clocks per pixel, Pareto\n"
-      "                   front; GRID like \"L=4,8;terms=3,5\" (default grid)\n" },
+      "                   front, and both pipelines in hardware against the shade\n"
+      "                   unit's widths and schedules; GRID like \"L=4,8;terms=3,5\"\n"
+      "                   (default grid)\n" },
     SC_FLAG("--compare", cmp,
       "  --compare        the scene twice: the paper's configuration (adaptive-region,\n"
       "                   3-term /3 network) and a corrected one (enough terms for\n"
-      "                   NMSE <= 1e-4), and adaptive-auto; a table, images in DIR/*/\n"),
+      "                   NMSE <= 1e-4), and adaptive-auto; a table, then both\n"
+      "                   pipelines in hardware for each; images in DIR/*/\n"),
     { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
 };
 
@@ -119,8 +124,10 @@ const cli_optspec cli_scene_spec = {
     "node set N1 or N2, or degree 2/3 adaptive) interpolates every pixel clock by\n"
     "clock at the scene's fixed-point formats. Prints NMSE, PSNR, errors on 8 bits,\n"
     "clocks per pixel, area, the span unit's critical path, f_max, pixels per\n"
-    "second and energy per pixel beside the bound a per-pixel shader's divides\n"
-    "put on it (docs/timing.md), and the operations per pixel, by kind, of the\n"
+    "second and energy per pixel; both pipelines in hardware: the per-pixel\n"
+    "reference on the shade unit, and the method with its nodes shaded on it\n"
+    "(NMSE, clocks per pixel, area, f_max, M pixels/s, per kGE, pJ per pixel;\n"
+    "docs/scenes.md); and the operations per pixel, by kind, of the\n"
     "method and of an efficient per-pixel shader (work constant over the frame\n"
     "done once), with two speed-ups: all operations weighted, and the long ones\n"
     "(div, sqrt, pow) alone.\n\n"

@@ -107,9 +107,6 @@ static int shader_at(const scn_desc *d, int width, int k, shader *s, char *err, 
     return tb_unit_timing(s->u, &s->cfg, &s->f, &s->ppa, err, errlen);
 }
 
-static double *inputs(const tb_scene_nodes *rec, int nodes, const double fr[9], size_t *n);
-static void balance(tb_pipe_row *b);
-
 static void derive(tb_pipe_row *w)
 {
     w->pixels_per_s = w->clocks_per_pixel > 0 ? w->fmax_mhz * 1e6 / w->clocks_per_pixel : 0;
