@@ -53,11 +53,40 @@ static void same_as_tb_run(const char *name, size_t n)
 }
 
 static void div_items(void) { same_as_tb_run("div", 3000); }
+
+/* More lanes than a group holds: the figures, energy too, the same for
+ * one thread and three. */
+static void groups_any_jobs(void)
+{
+    const unit_desc *u = unit_find("div");
+    unit_cfg cfg;
+    unit_fmts f;
+    char err[600];
+    unit_cfg_default(u, &cfg);
+    TST_CHECK(!tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err), "%s", err);
+    size_t n = 40000;
+    double *in = malloc(2 * n * sizeof *in), *o1 = malloc(n * sizeof *o1), *o3 = malloc(n * sizeof *o3);
+    for (size_t i = 0; i < n; i++) {
+        in[2 * i] = (double)(i % 97) / 200;          /* a < b: the quotient below 1 */
+        in[2 * i + 1] = 0.5 + (double)(i % 89) / 200;
+    }
+    tb_items_stats s1, s3;
+    TST_EQ_INT(tb_items_run(u, &cfg, &f, in, n, 1, 1, o1, &s1, err, sizeof err), TB_OK);
+    TST_EQ_INT(tb_items_run(u, &cfg, &f, in, n, 3, 1, o3, &s3, err, sizeof err), TB_OK);
+    TST_CHECK(s1.lanes > 128, "%u lanes: one group only", s1.lanes);
+    TST_CHECK(!memcmp(o1, o3, n * sizeof *o1), "outputs differ");
+    TST_CHECK(s1.clocks == s3.clocks && s1.energy_pj == s3.energy_pj && s1.cycles_per_item == s3.cycles_per_item,
+              "-j 1 and -j 3: %g and %g pJ", s1.energy_pj, s3.energy_pj);
+    free(in);
+    free(o1);
+    free(o3);
+}
 static void powg_items(void) { same_as_tb_run("powg", 700); }
 
 int main(void)
 {
     TST_RUN(div_items);
     TST_RUN(powg_items);
+    TST_RUN(groups_any_jobs);
     TST_EXIT();
 }
