@@ -65,6 +65,17 @@ static void expect(const char *name, int e, const double *q, double *out)
     out[0] = s < 1 ? s : 1;
 }
 
+/* u's formats for cfg and an empty vector set with u's ports. */
+static int setup(const unit_desc *u, const unit_cfg *cfg, unit_fmts *f, vec_set *vs)
+{
+    char err[600];
+    int rc = tb_formats(u, cfg, NULL, 0, f, err, sizeof err);
+    TST_CHECK(rc == 0, "%s", err);
+    vec_set_init(vs);
+    tb_expected_header(u, cfg, vs);
+    return rc;
+}
+
 /* Every schedule of `name` at width W with parameter n = e (shade). */
 static void check_unit(const char *name, int W, int e, uint64_t seed)
 {
@@ -79,10 +90,8 @@ static void check_unit(const char *name, int W, int e, uint64_t seed)
         cfg.n = e;
         unit_fmts f;
         char err[600];
-        TST_CHECK(tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err) == 0, "%s", err);
         vec_set vs;
-        vec_set_init(&vs);
-        tb_expected_header(u, &cfg, &vs);
+        if (setup(u, &cfg, &f, &vs)) return;
         int nin = vs.n_in, nout = vs.n_out;
         rng_s = seed;
         for (int r = 0; r < ROWS; r++) {
@@ -146,10 +155,8 @@ static void shade_hand_pixels(void)
     unit_cfg_default(u, &cfg);
     unit_fmts f;
     char err[600];
-    TST_CHECK(tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err) == 0, "%s", err);
     vec_set vs;
-    vec_set_init(&vs);
-    tb_expected_header(u, &cfg, &vs);
+    if (setup(u, &cfg, &f, &vs)) return;
     double rows[3][13] = {
         { 0, 0, 0.5, 0, 0, 1, 0, 0, 1, 0.125, 0.5, 0.25, 0.875 },
         { 0, 0, 1, 0, 0, 1, 0, 0, 1, 0.5, 0.5, 0.5, 1 },

@@ -52,8 +52,8 @@
     X(S_KS, "ks", IN, SH_B, "specular coefficient, in [0, 1]") \
     X(S_I,  "i", OUT, SH_B, "intensity, clamp(ka + kd u.L + ks (u.H)^n, 0, 1)") \
     X(S_NN, "nn", INTERNAL, SH_B, "N.N, exact: three squares and two adders (shared: ACC read as N.N)") \
-    X(S_DL, "dl", INTERNAL, SH_B, "N.L, exact (shared: a register loaded from ACC)") \
-    X(S_DH, "dh", INTERNAL, SH_B, "N.H, exact (shared: a register loaded from ACC)") \
+    X(S_DL, "dl", INTERNAL, SH_B, "N.L, exact (shared: a register loaded from the adder)") \
+    X(S_DH, "dh", INTERNAL, SH_B, "N.H, exact (shared: a register loaded from the adder)") \
     X(S_DLQ, "dlq", INTERNAL, SH_B, "block key: DL where DL > 0, else 0, in the working format") \
     X(S_DHQ, "dhq", INTERNAL, SH_B, "block key: DH where DL > 0 and DH > 0, else 0") \
     X(S_ROOT, "root", INTERNAL, SH_B, "sqrt(NN), truncated (restoring recurrence)") \
@@ -102,7 +102,7 @@ static void sh_formats(const unit_cfg *cfg, unit_fmts *out)
     out->f[S_CLAMP] = unit_fmt(0, cfg->schedule == SH_SHARED ? 2 : 1, 0);   /* shared: also below 0 */
     /* shared: one multiplier and one adder keep every bit of the dot
      * products (P fraction bits; |values| < 8 whatever the operands), DL
-     * and DH are loaded from ACC in its format */
+     * and DH are loaded from the adder in its format */
     int Pb = nrm_prod_fbits(W);
     out->f[S_CN] = out->f[S_CV] = unit_fmt(1, 2, F);
     out->f[S_KC] = unit_fmt(0, 1, W - 1);
@@ -308,8 +308,8 @@ static int sh_prog(int ks, int kq, const char *pw, sh_word *w)
     }
     w[3].en |= E_SQ0;                           /* ACC holds N.N */
     for (int t = 3; t < 3 + ks; t++) w[t].en |= E_SQ;
-    w[6].en |= E_DL;                            /* ACC holds N.L */
-    w[9].en |= E_DH;                            /* ACC holds N.H */
+    w[5].en |= E_DL;                            /* the adder forms N.L */
+    w[8].en |= E_DH;                            /* the adder forms N.H */
     w[3 + ks].en |= E_RC0;
     for (int t = 3 + ks; t < r0; t++) w[t].rc = 1;
     w[r0] = (sh_word){ .a = A_RINV, .b = B_DLQ, .en = E_NL };
@@ -424,11 +424,10 @@ static int sh_walk_shared(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *o
         unet_val mul = unet_mul(n, S_MUL, "mul", ma, mb);
         unet_val cs[3] = { zero, acc, in[S_KA] };
         unet_val add = unet_add(n, S_ACC, "add", mul, unet_mux(n, S_MXC, "mx_c", d[D_C], 3, cs, c->c));
-        /* the loads, all from the values before the edge */
-        unet_val acc0 = acc;
+        /* the loads at the edge that ends the clock */
         sh_load(n, &acc, add, 1);
-        sh_load(n, &dl, acc0, c->en & E_DL);
-        sh_load(n, &dh, acc0, c->en & E_DH);
+        sh_load(n, &dl, add, c->en & E_DL);
+        sh_load(n, &dh, add, c->en & E_DH);
         sh_load(n, &nl, mul, c->en & E_NL);
         sh_load(n, &nh, mul, c->en & E_NH);
         sh_load(n, &hl, mul, c->en & E_HL);
@@ -437,7 +436,7 @@ static int sh_walk_shared(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *o
         if (c->en & E_DH) dh.imag = NRM_NMAX * lmax;
         if (c->en & E_NL) nl.imag = lmax;
         if (c->en & E_NH) nh.imag = lmax;
-        if (!hw && (c->en & (E_DL | E_DH)) && acc0.err > 0) {
+        if (!hw && (c->en & (E_DL | E_DH)) && add.err > 0) {
             snprintf(err, errlen, "shade: dl and dh are exact only up to width 25 (their gates need exact signs)");
             return -1;
         }

@@ -77,7 +77,7 @@ const unit_desc unit_sqrt = {
     .name = "sqrt",
     .ref = &ref_model_sqrt,
     .summary = "y = sqrt(x) by the restoring digit recurrence, one root bit a clock or a stage",
-    .source = "restoring square root (Parhami, Computer Arithmetic, ch. 21); the normalization of Blinn (1977)",
+    .source = "Nechyporuk & Romanyuk (2020), sec. IV (the per-pixel reference normalizes N); the restoring square root of Parhami's Computer Arithmetic (docs/references.md)",
     UNIT_SIGS(
         { .name = "x", .role = UNIT_SIG_IN, .what = "radicand, in [0, 2)" },
         { .name = "y", .role = UNIT_SIG_OUT, .what = "floor(sqrt(x) 2^F_y) 2^-F_y: the root truncated to y's format" }),
