@@ -19,9 +19,12 @@
  * once per lane. */
 #define LANES_MIN_ITEMS 32
 #define LANES_MAX       64
-/* Items before a lane's own, from reset: enough for every unit's items
- * in flight; a unit that needs more fails the junction check (kernel). */
+/* Items before a lane's own, from reset: enough for most units' items
+ * in flight; a unit that needs more fails the junction check, and is run
+ * again with the long warm-up (a deep pipeline: shade's, norm3's), then
+ * on the kernel. */
 #define LANES_WARM      16
+#define LANES_WARM_LONG 128
 
 typedef struct lane {
     size_t   begin, from, end;  /* items driven: [begin, end); its own from `from` */
@@ -62,15 +65,16 @@ static void snap_range(const sim_batch *b, const tb_range *g, uint32_t l, int64_
 }
 
 /* Lane k of L drives items [begin, end) of the n: its own piece
- * [from, end) after LANES_WARM items of warm-up (lane 0 none). -1: out of
- * memory. */
-static int lanes_init(lane *S, size_t L, size_t n, uint32_t nsig, const tb_range *g)
+ * [from, end) after `warm` items of warm-up (lane 0 none; a lane whose
+ * piece starts earlier starts from the stream's first item, as the
+ * stream does). -1: out of memory. */
+static int lanes_init(lane *S, size_t L, size_t n, uint32_t nsig, const tb_range *g, size_t warm)
 {
     for (size_t k = 0; k < L; k++) {
         lane *s = &S[k];
         s->from = k * n / L;
         s->end = (k + 1) * n / L;
-        s->begin = k ? s->from - LANES_WARM : 0;
+        s->begin = k && s->from > warm ? s->from - warm : 0;
         s->next = s->begin;
         s->phase = k ? 0 : 1;
         s->state_in = malloc(((size_t)nsig + 1) * sizeof *s->state_in);
@@ -163,15 +167,15 @@ static int lanes_simulate(tb_lanes_job *j, sim_batch *b, lane *S, size_t L)
 /* Whether the pieces join into the one-lane run: no overflow, and each
  * lane's state at its junction in is its predecessor's at its junction out
  * (else the warm-up was too short). 0, or 1 with why. */
-static int lanes_check(const sim_batch *b, const lane *S, size_t L, uint32_t nsig, char *why, size_t len)
+static int lanes_check(const sim_batch *b, const lane *S, size_t L, uint32_t nsig, size_t warm, char *why, size_t len)
 {
     for (size_t k = 0; k < L; k++)
         if (sim_batch_overflowed(b, (uint32_t)k)) { snprintf(why, len, "an overflow (the kernel counts it)"); return 1; }
     for (size_t k = 1; k < L; k++) {
         const lane *p = &S[k - 1], *s = &S[k];
         if (p->beat_out != s->beat_in || memcmp(p->state_out, s->state_in, (size_t)nsig * sizeof *s->state_in)) {
-            snprintf(why, len, "item %zu depends on more than the %d items before it", s->from, LANES_WARM);
-            return 1;
+            snprintf(why, len, "item %zu depends on more than the %zu items before it", s->from, warm);
+            return 2;
         }
     }
     return 0;
@@ -207,7 +211,9 @@ static void lanes_join(tb_lanes_job *j, const lane *S, size_t L)
     j->lanes = (uint32_t)L;
 }
 
-int tb_lanes_run(tb_lanes_job *j, char *why, size_t len)
+/* One try with a warm-up of `warm` items: 0 done, 2 the warm-up was too
+ * short, 1 not taken, -1 out of memory. */
+static int lanes_try(tb_lanes_job *j, size_t warm, char *why, size_t len)
 {
     size_t n = j->n_items;
     size_t L = n / LANES_MIN_ITEMS;
@@ -220,10 +226,10 @@ int tb_lanes_run(tb_lanes_job *j, char *why, size_t len)
     uint32_t nsig = sim_signal_count(j->c);
     lane *S = calloc(L, sizeof *S);
     int rc = -1;
-    if (!S || sim_batch_ranges_on(b) || lanes_init(S, L, n, nsig, j->rg)) goto done;
+    if (!S || sim_batch_ranges_on(b) || lanes_init(S, L, n, nsig, j->rg, warm)) goto done;
     rc = 1;
     if (lanes_simulate(j, b, S, L)) { snprintf(why, len, "a lane gave no answer in time"); goto done; }
-    if (lanes_check(b, S, L, nsig, why, len)) goto done;
+    if ((rc = lanes_check(b, S, L, nsig, warm, why, len)) != 0) goto done;
     lanes_join(j, S, L);
     rc = 0;
 done:
@@ -235,4 +241,15 @@ done:
     free(S);
     sim_batch_free(b);
     return rc;
+}
+
+int tb_lanes_run(tb_lanes_job *j, char *why, size_t len)
+{
+    int rc = lanes_try(j, LANES_WARM, why, len);
+    if (rc == 2) {
+        /* the pieces did not join: a deep pipeline, again with the long warm-up
+         * (the ranges start over: tb_range_init's state, as the first try found it) */
+        rc = lanes_try(j, LANES_WARM_LONG, why, len);
+    }
+    return rc == 2 ? 1 : rc;
 }

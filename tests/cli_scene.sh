@@ -68,10 +68,10 @@ else
     echo "skip cli_scene.json_legend_matches_images: python3 not installed"
 fi
 k=$(sed -n 's/^  "err_scale": \([0-9]*\),$/\1/p' "$T/out")
-for f in ref.png hw.png "err-x$k.png" degree.png region.png scene.json; do
+for f in ref.png hw.png "err-x$k.png" degree.png region.png ref-hw.png hw-nodes.png scene.json; do
     [ -s "$T/face/$f" ] && ok "file_$f" || fail "file_$f" "missing in the output folder"
 done
-[ "$(ls "$T/face" | wc -l)" -eq 6 ] && ok files_only || fail files_only "$(ls "$T/face")"
+[ "$(ls "$T/face" | wc -l)" -eq 8 ] && ok files_only || fail files_only "$(ls "$T/face")"
 # NMSE 8-bit from the PNG files' pixels, decoded here (chunks, zlib,
 # filter bytes), against scene.json's nmse8; uncovered pixels are 0 in both
 # images, so the sums over every pixel are those over the covered ones.
@@ -213,7 +213,9 @@ fi
 
 # --compare: three configurations, a table row and a folder each.
 expect compare 0 "$S" scene face $R --compare -o "$T/cmp"
-[ "$(grep -cE '^(paper|corrected|auto) ' "$T/out")" -eq 3 ] && ok compare_rows || fail compare_rows "$(cat "$T/out")"
+# (and a row each in the second table, both pipelines: "config method ...")
+[ "$(grep -cE '^(paper|corrected|auto)  *adaptive-' "$T/out")" -eq 3 ] && ok compare_rows || fail compare_rows "$(cat "$T/out")"
+[ "$(grep -cE '^(paper|corrected|auto)  *node\+span ' "$T/out")" -ge 3 ] && ok compare_pipes_rows || fail compare_pipes_rows "$(cat "$T/out")"
 [ -s "$T/cmp/paper/scene.json" ] && [ -s "$T/cmp/corrected/hw.png" ] && [ -s "$T/cmp/auto/degree.png" ] \
     && ok compare_files || fail compare_files "$(ls -R "$T/cmp")"
 grep -q '"terms": 3,' "$T/cmp/paper/scene.json" && grep -q '"policy": "adaptive-auto"' "$T/cmp/auto/scene.json" \

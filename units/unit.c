@@ -32,7 +32,11 @@
     X(span2) \
     X(span3) \
     X(span23) \
-    X(hf_lookup)    /* unit_hflookup.c: the factorized BRDF's lookups */
+    X(hf_lookup)    /* unit_hflookup.c: the factorized BRDF's lookups */ \
+    X(sqrt)         /* unit_sqrt.c: the restoring square root */ \
+    X(dot3)         /* unit_dot3.c: the dot product (unit_nrm.c) */ \
+    X(norm3)        /* unit_norm3.c: N/|N| (unit_nrm.c) */ \
+    X(shade)        /* unit_shade.c: one pixel of Blinn shading */
 
 #define UNIT_DECLARE(name) extern const unit_desc unit_##name;
 #define UNIT_ENTRY(name) &unit_##name,

@@ -17,12 +17,11 @@
 
 extern const unit_desc unit_pow_n;
 
-#define PN_MAX_N 1024
-/* 2 characters a step, at most 2 steps a bit of n: 10 bits after the lead. */
-#define PN_PROG_LEN (4 * 11 + 1)
+#define PN_MAX_N PW_N_MAX
+#define PN_PROG_LEN PW_N_PROG_LEN
 
-/* The program for n, or NULL when n is out of range. */
-static const char *pow_n_prog(int n, char *buf)
+/* The program for n, or NULL when n is out of range (shade runs it too). */
+const char *pow_n_prog(int n, char *buf)
 {
     if (n < 1 || n > PN_MAX_N) return NULL;
     if (n == 1) { strcpy(buf, "I1"); return buf; }

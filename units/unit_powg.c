@@ -187,6 +187,42 @@ double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_
     return rg.err;
 }
 
+int pw_unrolled(unet *n, const char *prog, unet_val in, int sig, const char *pfx,
+                const char *last, unet_val *rg, int *stages)
+{
+    size_t len = strlen(prog);
+    if (len < 2 || len % 2) return -1;
+    int ns = (int)(len / 2);
+    char nm[48];
+    sim_fmt f1 = unit_fmt(0, 1, 0);
+    int has_one = strchr(prog, '1') != NULL;
+    unet_val r, x = in, one = unet_wrap(n->c && has_one ? sim_const_raw(n->c, n->sc, "one", f1, 1) : NULL, f1, -1);
+    memset(&r, 0, sizeof r);
+    one.mag = one.imag = 1;
+    for (int s = 0; s < ns; s++) {
+        unet_val op[2];
+        for (int k = 0; k < 2; k++) {
+            char ch = prog[2 * s + k];
+            if (!strchr("IR1", ch) || (ch == 'R' && s == 0)) return -1;
+            op[k] = ch == 'I' ? x : ch == 'R' ? r : one;
+        }
+        snprintf(nm, sizeof nm, "%s%d_mul", pfx, s + 1);
+        /* the bound takes the product as B * A, as pw_walk does */
+        unet_val mul = n->c ? unet_mul(n, sig, nm, op[0], op[1]) : unet_mul(n, sig, nm, op[1], op[0]);
+        if (s == ns - 1) snprintf(nm, sizeof nm, "%s", last);
+        else snprintf(nm, sizeof nm, "%s%d", pfx, s + 1);
+        r = unet_reg_of(n, sig, nm, mul);
+        /* IN travels beside the products while a later step reads it */
+        if (n->c && strchr(prog + 2 * (s + 1), 'I')) {
+            snprintf(nm, sizeof nm, "%s%d_in", pfx, s + 1);
+            x.s = sim_reg(n->c, n->sc, nm, x.s->fmt, n->clk, x.s, NULL, NULL, 0);
+        }
+    }
+    *rg = r;
+    if (stages) *stages = ns;
+    return 0;
+}
+
 /* ------------------------------------------------------------------ powg */
 
 /* "II" then "RR" k-1 times for g = 2^k; NULL if g is not a power of two. */

@@ -54,6 +54,24 @@ double pw_bound(const unit_desc *u, const unit_fmts *f, sim_round r, sim_fmt in_
  * exist only where an operand has more than one source); 1 for others. */
 int    pw_sig_built(const unit_desc *u, const char *prog, int i);
 
+/* The engine's program unrolled (shade's pipe): a stage a step, each a
+ * multiplier (element "<pfx><k>_mul", format of signal sig) and its
+ * register ("<pfx><k>", the last one named last), IN carried beside in
+ * registers where a later step reads it. The same products and
+ * quantizations as pw_engine's clocks, so the walk bounds it the same
+ * way; *stages: its pipeline registers. 0, or -1 (a bad program). */
+int    pw_unrolled(unet *n, const char *prog, unet_val in, int sig, const char *pfx,
+                   const char *last, unet_val *rg, int *stages);
+
+/* ---- unit_pow_n.c ---- */
+#define PW_N_MAX 1024
+/* 2 characters a step, at most 2 steps a bit of n: 10 bits after the lead. */
+#define PW_N_PROG_LEN (4 * 11 + 1)
+/* Left-to-right square and multiply for x^n: "II", then per bit of n
+ * after the leading one "RR" and, for a 1 bit, "RI" ("I1" for n = 1).
+ * NULL when n is outside 1..PW_N_MAX. */
+const char *pow_n_prog(int n, char *buf);
+
 /* ---- unit_div.c: the restoring divider ---- */
 sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk,
                      const unit_fmts *f, unit_io *io, sim_signal *num, sim_signal *den,

@@ -77,30 +77,34 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
         if (!strcmp(rp->kind[i], "accuracy")) print_row(f, &rp->rows[i]);
 
     const tb_speed_hw *h = &rp->hc;
-    fprintf(f, "Speed claims in hardware: our units at width %d, each simulated (clocks per item, area in GE)\n",
-            h->width);
+    fprintf(f, "Speed claims in hardware: our units at width %d, each simulated (clocks per item, area in GE,\n"
+               "clock period = the design's critical path, time per item = clocks x period)\n", h->width);
     if (!h->ok) fputs("  (some unit failed to run; figures may be missing)\n", f);
-    fprintf(f, "  %-40s %8s %10s %14s\n", "", "clocks", "area", "clocks x area");
-    struct { const char *name; double cl, ar; } t[] = {
-        { "d_approx (D16, m=0.2)", h->d16.clocks, h->d16.area },
-        { "exact D without its exp", h->exact_d_clocks, h->exact_d_area },
-        { h->pow_d.label, h->pow_d.clocks, h->pow_d.area },
-        { "ward_approx (a=0.2)", h->ward16.clocks, h->ward16.area },
-        { "Ward exp term without its exp (wired)", h->exact_w_clocks, h->exact_w_area },
-        { h->pow_w.label, h->pow_w.clocks, h->pow_w.area },
-        { "  stage: powg g=2 (squarer)", h->sq.clocks, h->sq.area },
-        { "  stage: div (restoring divider)", h->div.clocks, h->div.area },
+    fprintf(f, "  %-40s %6s %7s %9s %7s %11s\n", "", "clocks", "area", "period ps", "ns/item", "ns x kGE");
+    struct { const char *name; double cl, ar, pd; } t[] = {
+        { "d_approx (D16, m=0.2)", h->d16.clocks, h->d16.area, h->d16.period_ps },
+        { "exact D without its exp", h->exact_d_clocks, h->exact_d_area, h->exact_d_period_ps },
+        { h->pow_d.label, h->pow_d.clocks, h->pow_d.area, h->pow_d.period_ps },
+        { "ward_approx (a=0.2)", h->ward16.clocks, h->ward16.area, h->ward16.period_ps },
+        { "Ward exp term without its exp (wired)", h->exact_w_clocks, h->exact_w_area, h->exact_w_period_ps },
+        { h->pow_w.label, h->pow_w.clocks, h->pow_w.area, h->pow_w.period_ps },
+        { "  stage: powg g=2 (squarer)", h->sq.clocks, h->sq.area, h->sq.period_ps },
+        { "  stage: div (restoring divider)", h->div.clocks, h->div.area, h->div.period_ps },
     };
-    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++)
-        fprintf(f, "  %-40s %8.0f %10.0f %14.0f\n", t[i].name, t[i].cl, t[i].ar, t[i].cl * t[i].ar);
+    for (size_t i = 0; i < sizeof t / sizeof t[0]; i++) {
+        double ns = t[i].cl * t[i].pd / 1e3;
+        fprintf(f, "  %-40s %6.0f %7.0f %9.0f %7.1f %11.1f\n", t[i].name, t[i].cl, t[i].ar, t[i].pd, ns,
+                ns * t[i].ar / 1e3);
+    }
     fprintf(f, "  exact D = c^2 (squarer) -> (1-c^2)/c^2 (divider) -> exp -> c^4 (squarer on c^2) ->\n"
           "  exp/c^4 (divider). The first two stages are wired into one design (1 - c^2 by a\n"
           "  subtractor, operand registers, a valid flag) and simulated end to end, one item\n"
           "  at a time: Ward's exp term (max error %.2f quotient LSBs on c in [0.75, 1)); exact\n"
           "  D adds the squarer's and the divider's own clocks and areas, each simulated alone\n"
           "  (their glue not counted). The exponential has no unit: it is not counted, so both\n"
-          "  exact figures are lower bounds. pow_n rows: the papers' intermediate cos^(2/m^2-4)\n"
-          "  and cos^(2/a^2) forms computed exactly.\n\n", h->wired_err_lsb);
+          "  exact figures are lower bounds. A chain is one clocked design: its period is its\n"
+          "  slowest stage's (exact D's: the wired design's). pow_n rows: the papers'\n"
+          "  intermediate cos^(2/m^2-4) and cos^(2/a^2) forms computed exactly.\n\n", h->wired_err_lsb);
     for (size_t i = 0; i < rp->n; i++)
         if (!strcmp(rp->kind[i], "speed_hw")) print_row(f, &rp->rows[i]);
 
@@ -151,11 +155,13 @@ static void json_row(FILE *f, const claim_result *r, const char *kind)
     fputs("}", f);
 }
 
-static void json_hw(FILE *f, const char *name, double cl, double ar, int n, int last)
+static void json_hw(FILE *f, const char *name, double cl, double ar, double pd, int n, int last)
 {
     fputs("      ", f); base_json_str(f, name);
     fputs(": {\"clocks_per_item\": ", f); base_json_num(f, cl, 10);
     fputs(", \"area_ge\": ", f); base_json_num(f, ar, 10);
+    fputs(", \"period_ps\": ", f); base_json_num(f, pd, 10);
+    fputs(", \"ns_per_item\": ", f); base_json_num(f, cl * pd / 1e3, 10);
     if (n) fprintf(f, ", \"n\": %d", n);
     fprintf(f, "}%s\n", last ? "" : ",");
 }
@@ -169,18 +175,19 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
     }
     const tb_speed_hw *h = &rp->hc;
     fprintf(f, "  ],\n  \"hardware\": {\n    \"width\": %d,\n    \"units\": {\n", h->width);
-    json_hw(f, "d_approx", h->d16.clocks, h->d16.area, 0, 0);
-    json_hw(f, "ward_approx", h->ward16.clocks, h->ward16.area, 0, 0);
-    json_hw(f, "powg_g2", h->sq.clocks, h->sq.area, 0, 0);
-    json_hw(f, "div", h->div.clocks, h->div.area, 0, 0);
-    json_hw(f, "pow_n_cos_power_d", h->pow_d.clocks, h->pow_d.area, h->n_d, 0);
-    json_hw(f, "pow_n_cos_power_ward", h->pow_w.clocks, h->pow_w.area, h->n_w, 0);
-    json_hw(f, "exact_d_without_exp", h->exact_d_clocks, h->exact_d_area, 0, 0);
-    json_hw(f, "ward_exp_term_without_exp", h->exact_w_clocks, h->exact_w_area, 0, 1);
+    json_hw(f, "d_approx", h->d16.clocks, h->d16.area, h->d16.period_ps, 0, 0);
+    json_hw(f, "ward_approx", h->ward16.clocks, h->ward16.area, h->ward16.period_ps, 0, 0);
+    json_hw(f, "powg_g2", h->sq.clocks, h->sq.area, h->sq.period_ps, 0, 0);
+    json_hw(f, "div", h->div.clocks, h->div.area, h->div.period_ps, 0, 0);
+    json_hw(f, "pow_n_cos_power_d", h->pow_d.clocks, h->pow_d.area, h->pow_d.period_ps, h->n_d, 0);
+    json_hw(f, "pow_n_cos_power_ward", h->pow_w.clocks, h->pow_w.area, h->pow_w.period_ps, h->n_w, 0);
+    json_hw(f, "exact_d_without_exp", h->exact_d_clocks, h->exact_d_area, h->exact_d_period_ps, 0, 0);
+    json_hw(f, "ward_exp_term_without_exp", h->exact_w_clocks, h->exact_w_area, h->exact_w_period_ps, 0, 1);
     fputs("    },\n    \"model\": ", f);
-    base_json_str(f, "built units: Ward's exp term = squarer and divider wired into one design and simulated; "
-            "exact D = that design, then a squarer and a divider each simulated alone; the exponential (no unit) "
-            "not counted: lower bounds");
+    base_json_str(f, "built units, time per item = clocks x the critical path of each design (a chain: its "
+            "slowest stage's): Ward's exp term = squarer and divider wired into one design and simulated; exact D = "
+            "that design, then a squarer and a divider each simulated alone; the exponential (no unit) not counted: "
+            "lower bounds");
     fputs("\n  },\n  \"failure_regions\": [\n", f);
     for (size_t k = 0; k < TB_CLAIMS_NAPPROX; k++) {
         const tb_claims_approx *a = &tb_claims_approx_tab[k];
@@ -221,7 +228,7 @@ static const cli_opt claims_tab[] = {
       "                       claims_d16.svg, claims_ward.svg, claims_schlick.svg\n"
       "                       (error against angle, failure regions shaded),\n"
       "                       claims_d16_clamp.svg (why d_approx clamps its base) and\n"
-      "                       claims_cost.svg (clocks x area against error, our units)\n" },
+      "                       claims_cost.svg (time x area against error, our units)\n" },
     { "--width", NULL, CLI_OPT_INT, offsetof(claims_args, width), 4, 48, NULL, "claims: --width needs a whole number 4..48",
       NULL, 0,
       "  --width W            width of the hardware units for the speed and cost\n"

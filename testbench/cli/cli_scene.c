@@ -8,6 +8,7 @@
 #include "testbench/cli/cli_opt.h"
 #include "testbench/study/tb_scene.h"
 #include "testbench/study/tb_scene_search.h"
+#include "testbench/study/tb_scene_pipes.h"
 #include "base/base_out.h"
 #include "units/unit_net.h"
 #include <sys/stat.h>
@@ -77,8 +78,10 @@ static const cli_opt scene_tab[] = {
       "                   err-xK.png (|hw - ref| heat map, full white = 1/K; K in\n"
       "                   4^0..4^6, the largest that shows the maximum error),\n"
       "                   degree.png (degree of each interval), region.png (mesh\n"
-      "                   regions) and scene.json (the figures, and under\n"
-      "                   \"legend\" the colours of the maps)\n" },
+      "                   regions), ref-hw.png and hw-nodes.png (the reference\n"
+      "                   and the method with its nodes on the shade unit) and\n"
+      "                   scene.json (the figures, and under \"legend\" the\n"
+      "                   colours of the maps)\n" },
     SC_FLAG("--json", json, "  --json           print the JSON summary on stdout instead of the table\n"),
     { "-j", NULL, CLI_OPT_INT, offsetof(scene_args, jobs), 1, 256, NULL, "%s needs a number of threads", NULL, 0,
       "  -j N             threads (default: the machine's cores); the output is the\n"
@@ -101,11 +104,14 @@ static const cli_opt scene_tab[] = {
     { "--sweep", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, NULL, o_sweep, CLI_OPT_MAYBE,
       "  --sweep [GRID]   sweep L, policy, terms, width, schedule: CSV and SVG charts\n"
       "                   of NMSE against operations and clocks per pixel, Pareto\n"
-      "                   front; GRID like \"L=4,8;terms=3,5\" (default grid)\n" },
+      "                   front, and both pipelines in hardware against the shade\n"
+      "                   unit's widths and schedules; GRID like \"L=4,8;terms=3,5\"\n"
+      "                   (default grid)\n" },
     SC_FLAG("--compare", cmp,
       "  --compare        the scene twice: the paper's configuration (adaptive-region,\n"
       "                   3-term /3 network) and a corrected one (enough terms for\n"
-      "                   NMSE <= 1e-4), and adaptive-auto; a table, images in DIR/*/\n"),
+      "                   NMSE <= 1e-4), and adaptive-auto; a table, then both\n"
+      "                   pipelines in hardware for each; images in DIR/*/\n"),
     { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
 };
 
@@ -118,8 +124,10 @@ const cli_optspec cli_scene_spec = {
     "node set N1 or N2, or degree 2/3 adaptive) interpolates every pixel clock by\n"
     "clock at the scene's fixed-point formats. Prints NMSE, PSNR, errors on 8 bits,\n"
     "clocks per pixel, area, the span unit's critical path, f_max, pixels per\n"
-    "second and energy per pixel beside the bound a per-pixel shader's divides\n"
-    "put on it (docs/timing.md), and the operations per pixel, by kind, of the\n"
+    "second and energy per pixel; both pipelines in hardware: the per-pixel\n"
+    "reference on the shade unit, and the method with its nodes shaded on it\n"
+    "(NMSE, clocks per pixel, area, f_max, M pixels/s, per kGE, pJ per pixel;\n"
+    "docs/scenes.md); and the operations per pixel, by kind, of the\n"
     "method and of an efficient per-pixel shader (work constant over the frame\n"
     "done once), with two speed-ups: all operations weighted, and the long ones\n"
     "(div, sqrt, pow) alone.\n\n"
@@ -229,9 +237,10 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
     snprintf(a, sizeof a, "%.0f GE", r->hwst.area_ge);
     fprintf(f, "  %-22s %-14s %s\n", "area", a, "gate equivalents of the instantiated unit");
     tb_scene_speed_print(f, r);
+    tb_scene_pipes_print(f, r->pipes);
     print_ops(f, d, r);
-    if (dir) fprintf(f, "  %-22s %s/ (ref.png hw.png err-x%d.png degree.png region.png scene.json)\n", "images", dir,
-                     tb_scene_err_scale(r));
+    if (dir) fprintf(f, "  %-22s %s/ (ref.png hw.png err-x%d.png degree.png region.png%s scene.json)\n", "images", dir,
+                     tb_scene_err_scale(r), r->pipes && r->pipes->ok ? " ref-hw.png hw-nodes.png" : "");
 }
 
 /* Load the description's mesh (built-in name or OBJ path). */
@@ -276,6 +285,40 @@ static void progress(const char *what)
     if (cli_stderr_tty()) fprintf(stderr, "\r%-70s\r", what);
 }
 
+/* --compare's second table: both pipelines in hardware, the reference
+ * once (its rows are the same in every configuration) and each
+ * configuration's method, against the reference at the same schedule. */
+static void print_pipes_compare(const char *const *names, const tb_scene_pipes *pp, int n)
+{
+    if (!n || !pp[0].ok) {
+        printf("both pipelines: %s\n", n ? pp[0].why : "none");
+        return;
+    }
+    printf("\nboth pipelines in hardware (unit shade, width %d, n %d; per-pixel: the reference on it; node+span: the "
+           "method, its nodes on it):\n",
+           pp[0].width, pp[0].n);
+    printf("%-10s %-9s %-9s %5s %11s %10s %9s %9s %8s %10s %7s %9s\n", "config", "side", "schedule", "spans", "NMSE",
+           "clocks/px", "area GE", "f_max", "Mpx/s", "Mpx/s/kGE", "pJ/px", "vs ref.");
+    for (int c = -1; c < n; c++)
+        for (int i = 0; i < pp[c < 0 ? 0 : c].nrows; i++) {
+            const tb_pipe_row *w = &pp[c < 0 ? 0 : c].row[i];
+            if (w->method != (c >= 0)) continue;
+            const tb_pipe_row *ref = tb_scene_pipes_ref(&pp[c < 0 ? 0 : c], w->sched);
+            char k[16] = "-", a[32], v[32] = "";
+            if (w->method) {
+                snprintf(k, sizeof k, "%d", w->spans);
+                snprintf(v, sizeof v, "%.3gx", ref ? w->pps_per_kge / ref->pps_per_kge : NAN);
+            }
+            fmt_nmse(a, sizeof a, w->nmse);
+            printf("%-10s %-9s %-9s %5s %11s %10.3f %9.0f %5.0f MHz %8.4g %10.4g %7.3g %9s  %s\n",
+                   c < 0 ? "-" : names[c], w->method ? "node+span" : "per-pixel", w->sched, k, a, w->clocks_per_pixel,
+                   w->area_ge, w->fmax_mhz, w->pixels_per_s / 1e6, w->pps_per_kge / 1e6, w->pj_per_pixel, v,
+                   w->nmse <= COMPARE_TARGET ? "NMSE <= 1e-4" : "NMSE > 1e-4");
+        }
+    printf("vs ref.: the method's pixels/s per kGE over the reference's at the same schedule (the area at equal\n"
+           "pixels/s is its inverse; energy per pixel does not change with the copies)\n");
+}
+
 /* --compare: the paper's configuration next to the corrected ones. */
 static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch, const char *dir, int json)
 {
@@ -284,33 +327,32 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
         { "corrected", SCN_POL_ADAPTIVE_REGION, COMPARE_TERMS },
         { "auto", SCN_POL_ADAPTIVE_AUTO, COMPARE_TERMS },
     };
-    int n = (int)(sizeof cfgs / sizeof cfgs[0]);
+    enum { N = sizeof cfgs / sizeof cfgs[0] };
+    const char *names[N];
+    tb_scene_pipes pp[N];
+    int n = 0, rc = CLI_OK;
     if (json) puts("[");
     else printf("%-10s %-46s %11s %11s %10s %9s %9s %13s %9s %8s %9s %7s\n", "config", "policy, divide-by-3 network",
                 "NMSE", "NMSE 8-bit", "PSNR", "speed-up", "long ops", "clocks/pixel", "area GE", "f_max", "Mpx/s", "pJ/px");
     double ref_max = NAN, ref_e = NAN;
-    for (int i = 0; i < n; i++) {
+    for (int i = 0; i < N && rc == CLI_OK; i++) {
         scn_desc d = *d0;
         d.policy = (scn_policy)cfgs[i].policy;
         snprintf(d.terms, sizeof d.terms, "%d", cfgs[i].terms);
         if (i == 0) snprintf(d.series, sizeof d.series, "paper");   /* the paper's x/2 - x/8 - x/32 - x/128 */
-        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 1 };
+        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 1, NULL };
         tb_scene_result r;
         char err[600], sub[4200];
         progress(cfgs[i].name);
-        int t = tb_scene_render(&d, m, &o, &r, err, sizeof err);
+        int t = tb_scene_render_pipes(&d, m, NULL, &o, TB_PIPES_BOTH, &r, &pp[n], err, sizeof err);
         progress("");
-        if (t != TB_OK) return cli_from_tb(t, "%s", err);
-        if (tb_scene_speed_of(&r, r.cfg.width, err, sizeof err)) {
-            tb_scene_free(&r);
-            (void)cli_usage_error("%s", err);
-            return CLI_FAIL;
-        }
+        if (t != TB_OK) { rc = cli_from_tb(t, "%s", err); break; }
+        names[n++] = cfgs[i].name;
         ref_max = r.speed.ref_pixels_per_s_max;
         ref_e = r.speed.ref_energy_pj_per_pixel_min;
         snprintf(sub, sizeof sub, "%s/%s", dir, cfgs[i].name);
-        if (tb_scene_write(&d, &r, sub, err, sizeof err)) { tb_scene_free(&r); return cli_usage_error("%s", err); }
-        if (json) {
+        if (tb_scene_write(&d, &r, sub, err, sizeof err)) rc = cli_usage_error("%s", err);
+        else if (json) {
             printf("%s", i ? ",\n" : "");
             tb_scene_json(stdout, &d, &r);
         } else {
@@ -326,15 +368,18 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
         }
         tb_scene_free(&r);
     }
-    if (json) puts("]");
-    else {
-        printf("verdicts on NMSE of the raw output; NMSE 8-bit is that of the images' 8-bit values\n");
-        /* The same reference for every row: the divider bounds it. */
-        printf("reference: <= %.4g M pixels/s, >= %.3g pJ/pixel (its divides on unit div; docs/scenes.md)\n",
-               ref_max / 1e6, ref_e);
-        printf("images: %s/{paper,corrected,auto}/ (ref.png hw.png err-x*.png degree.png region.png scene.json)\n", dir);
+    if (rc == CLI_OK && json) puts("]");
+    else if (rc == CLI_OK) {
+        printf("verdicts on NMSE of the raw output (exact nodes); NMSE 8-bit is that of the images' 8-bit values\n");
+        if (!pp[0].ok)     /* the reference unmeasured: the divider bounds it */
+            printf("reference: <= %.4g M pixels/s, >= %.3g pJ/pixel (its divides on unit div; docs/scenes.md)\n",
+                   ref_max / 1e6, ref_e);
+        print_pipes_compare(names, pp, n);
+        printf("images: %s/{paper,corrected,auto}/ (ref.png hw.png err-x*.png degree.png region.png ref-hw.png "
+               "hw-nodes.png scene.json)\n", dir);
     }
-    return CLI_OK;
+    for (int i = 0; i < n; i++) tb_scene_pipes_free(&pp[i]);
+    return rc;
 }
 
 /* -j when not given: one thread a core online (the output is the same
@@ -423,14 +468,11 @@ int cli_scene(int argc, char **argv)
         progress("");
         rc = cli_from_tb(t, "%s", err);
     } else {
-        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 1 };
+        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 1, NULL };
         tb_scene_result r;
+        tb_scene_pipes pp;
         progress("rendering...");
-        int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
-        if (t == TB_OK && tb_scene_speed_of(&r, r.cfg.width, err, sizeof err)) {
-            tb_scene_free(&r);
-            t = TB_FAIL;
-        }
+        int t = tb_scene_render_pipes(&d, &m, NULL, &o, TB_PIPES_BOTH, &r, &pp, err, sizeof err);
         progress("");
         if (t != TB_OK) {
             rc = cli_from_tb(t, "%s", err);
@@ -442,6 +484,7 @@ int cli_scene(int argc, char **argv)
                 if (max_nmse >= 0 && !(r.nmse <= max_nmse)) rc = CLI_FAIL;
             }
             tb_scene_free(&r);
+            tb_scene_pipes_free(&pp);
         }
     }
     /* a missed target (exit 1) still writes its files: they are data */

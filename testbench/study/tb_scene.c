@@ -53,8 +53,6 @@
 #include <time.h>
 #include <unistd.h>
 
-#define TB_SCENE_BANDS 16
-
 /* CPU seconds of the calling thread: a render's time accounting
  * (tb_scene_result.cpu_sim, cpu_render) sums what each of its threads
  * spends, so that it reads the same on a busy machine and for any -j. */
@@ -119,6 +117,7 @@ typedef struct job {
     const char *vcd_path;
     int batch;                     /* simulate bands side by side (tb_span_run_lanes) */
     int energy;                    /* count toggles and energy (tb_scene_opts) */
+    tb_scene_nodes *nodes;         /* record normals / replay node intensities (tb_scene_opts) */
     int ngroups;                   /* the batch: bands in this many groups, one a thread */
     double gcpu_sim[TB_SCENE_BANDS], gcpu_other[TB_SCENE_BANDS];   /* per group, as band's */
     double max_se;                 /* the batch stops past this squared error (INFINITY: never) */
@@ -131,12 +130,40 @@ static double shade_at(const job *J, const double pos[3], const double nrm[3])
     return scn_shade(&J->d->mat, J->view, pos, nrm);
 }
 
-static double shade_node(const job *J, const scn_span *s, double x)
+/* A normal appended to a recording (its pixel index too, pix != NULL). */
+static void rec_push(double (**a)[3], size_t **ix, size_t *n, size_t *cap, const double v[3], size_t pix)
 {
+    if (*n == *cap) {
+        *cap = *cap ? 2 * *cap : 1024;
+        if (!(*a = realloc(*a, *cap * sizeof **a)) || (ix && !(*ix = realloc(*ix, *cap * sizeof **ix))))
+            base_out_of_memory();
+    }
+    memcpy((*a)[*n], v, sizeof (*a)[*n]);
+    if (ix) (*ix)[*n] = pix;
+    (*n)++;
+}
+
+/* A node's intensity: shaded exactly (and its normal recorded), or the
+ * next replayed one. */
+static double node_at(const job *J, band *b, const scn_span *s, double x)
+{
+    tb_scene_nodes_band *nb = J->nodes ? &J->nodes->band[b - J->bands] : NULL;
+    if (nb && J->nodes->replay) return nb->next < nb->nnodes ? nb->val[nb->next++] : NAN;
     double p[3], n[3];
     if (x > s->x1 - 1) x = s->x1 - 1;   /* guards rounding only: nodes lie in the span */
     scn_span_at(J->g, s, x, p, n);
+    if (nb) rec_push(&nb->nn, NULL, &nb->nnodes, &nb->cap_nodes, n, 0);
     return shade_at(J, p, n);
+}
+
+void tb_scene_nodes_free(tb_scene_nodes *n)
+{
+    for (int k = 0; n && k < TB_SCENE_BANDS; k++) {
+        free(n->band[k].pn);
+        free(n->band[k].pix);
+        free(n->band[k].nn);
+        memset(&n->band[k], 0, sizeof n->band[k]);
+    }
 }
 
 /* Degree of an interval before its nodes are known (0: decided from them). */
@@ -179,6 +206,8 @@ static void run_band(job *J, band *b)
             double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
             if (len > 0) { n[0] /= len; n[1] /= len; n[2] /= len; }
             r->ref[i] = shade_at(J, g->pos[i], n);
+            tb_scene_nodes_band *nb = J->nodes && !J->nodes->replay ? &J->nodes->band[b - J->bands] : NULL;
+            if (nb) rec_push(&nb->pn, &nb->pix, &nb->npix, &nb->cap_pix, g->nrm[i], i);
         }
     /* intervals */
     size_t nitems = 0, npix = 0;
@@ -196,7 +225,7 @@ static void run_band(job *J, band *b)
     for (size_t k = b->s0; k < b->s1; k++) {
         const scn_span *s = &J->spans[k];
         int fixed = policy_deg(d, s->region);
-        double i0 = shade_node(J, s, s->x0);
+        double i0 = node_at(J, b, s, s->x0);
         b->nodes++;
         for (int start = s->x0; start < s->x1; start += L) {
             tb_span_item *m = &items[it++];
@@ -212,15 +241,19 @@ static void run_band(job *J, band *b)
                 m->node[1] = m->node[2] = m->node[3] = i0;
                 if (!deg) deg = 2;
             } else {
-                m->node[1] = shade_node(J, s, start + dv);
+                m->node[1] = node_at(J, b, s, start + dv);
                 b->nodes++;
                 if (deg != 1) {
-                    m->node[2] = shade_node(J, s, start + dv * 0.5);
+                    m->node[2] = node_at(J, b, s, start + dv * 0.5);
                     b->nodes++;
                 }
+                /* recorded or replayed, adaptive-auto's fourth node is taken whatever the degree */
+                double xq = start + dv * (n2 ? 0.75 : 0.25);
+                int early = !fixed && J->nodes;
+                double q = early ? node_at(J, b, s, xq) : 0;
                 if (!deg) deg = fabs(m->node[0] + m->node[1] - 2 * m->node[2]) > d->auto_threshold ? 3 : 2;
                 if (deg == 3) {
-                    m->node[3] = shade_node(J, s, start + dv * (n2 ? 0.75 : 0.25));
+                    m->node[3] = early ? q : node_at(J, b, s, xq);
                     b->nodes++;
                 }
             }
@@ -561,7 +594,7 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
 {
     double c0 = cpu_now();
     memset(r, 0, sizeof *r);
-    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0, NULL };
     if (!o) o = &dflt;
     r->heldout = p ? p->heldout : o->heldout;
     if (p && p->have_unit && o->fmts && !memcmp(&p->ud, d, sizeof *d)) {
@@ -583,7 +616,7 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
     job J = { .d = d, .g = g, .view = view, .fn = fn, .ctx = ctx, .u = r->unit, .cfg = &r->cfg,
               .fmts = &r->fmts, .spans = spans, .bands = bands, .nbands = nb, .vcd_band = -1,
               .vcd_path = p || make ? NULL : o->vcd_path, .batch = make || !o->no_batch, .energy = o->energy,
-              .r = r, .max_se = INFINITY };
+              .nodes = p || make ? NULL : o->nodes, .r = r, .max_se = INFINITY };
     /* a budget only with a prep (its reference in band order); a margin
      * far above the rounding of sums in another order, so that a render
      * within max_nmse is never stopped */
@@ -648,7 +681,7 @@ int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int job
     tb_scene_prep *p = calloc(1, sizeof *p);
     if (!p) base_out_of_memory();
     p->d = *d;
-    tb_scene_opts o = { jobs, heldout, NULL, NULL, 0, 0 };
+    tb_scene_opts o = { jobs, heldout, NULL, NULL, 0, 0, NULL };
     tb_scene_result r;
     int rc = render(d, g, NULL, NULL, &o, NULL, p, INFINITY, &r, err, errlen);
     if (rc != TB_OK) { tb_scene_prep_free(p); return rc; }
@@ -675,7 +708,7 @@ double tb_scene_prep_cpu(const tb_scene_prep *p)
 int tb_scene_render_prep_budget(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o, double max_nmse,
                                 tb_scene_result *r, char *err, size_t errlen)
 {
-    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0 };
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0, NULL };
     tb_scene_opts q = o ? *o : dflt;
     q.heldout = p->heldout;
     if (!prep_fits(p, d)) return render(d, p->g, NULL, NULL, &q, NULL, NULL, INFINITY, r, err, errlen);

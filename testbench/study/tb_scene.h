@@ -16,6 +16,29 @@
 #include "testbench/tb_span.h"
 #include "testbench/tb.h"
 
+#define TB_SCENE_BANDS 16
+
+/* What a render hands the hardware shading pipelines (tb_scene_pipes.h)
+ * and takes back from them, band by band: recording, each covered pixel's
+ * normal as interpolated and its place in the image, and each node's
+ * normal in the order the render shades the nodes (an adaptive-auto
+ * interval's I(1/4) or I(3/4) node always, as its degree is not known
+ * before the nodes are); replaying, the nodes' intensities in that order
+ * in place of the exact ones (and the reference pixels not recorded). */
+typedef struct tb_scene_nodes_band {
+    double (*pn)[3];             /* covered pixels' normals */
+    size_t *pix, npix, cap_pix;  /* their indices y * w + x */
+    double (*nn)[3];             /* nodes' normals */
+    size_t nnodes, cap_nodes;
+    const double *val;           /* replay: the nodes' intensities */
+    size_t next;                 /* replay: the next node's */
+} tb_scene_nodes_band;
+typedef struct tb_scene_nodes {
+    int replay;                  /* 0: record; 1: replay */
+    tb_scene_nodes_band band[TB_SCENE_BANDS];
+} tb_scene_nodes;
+void tb_scene_nodes_free(tb_scene_nodes *n);
+
 typedef struct tb_scene_opts {
     int         jobs;        /* threads (rows split into bands); output identical for any value */
     int         heldout;     /* 1: render the description's held-out view instead of its view */
@@ -26,6 +49,7 @@ typedef struct tb_scene_opts {
     int         energy;      /* 1: count the hardware's switching activity (r->hwst.toggles,
                               * r->hwst.energy_pj, r->energy_pj_per_pixel); 0: not counted,
                               * and the render pays nothing for it */
+    tb_scene_nodes *nodes;   /* NULL, or record into it / replay from it (not with a prep) */
 } tb_scene_opts;
 
 /* Speed and energy of a render in hardware terms (docs/timing.md,
@@ -49,6 +73,7 @@ typedef struct tb_scene_speed {
     /* the method's shaded nodes divide too (ops_hw): on the same divider */
     double   node_divs, node_pixels_per_s_max;
 } tb_scene_speed;
+struct tb_scene_pipes;            /* tb_scene_pipes.h */
 typedef struct tb_scene_result {
     int       w, h;
     size_t    covered;                /* pixels covered by the mesh */
@@ -82,6 +107,10 @@ typedef struct tb_scene_result {
     int       heldout;                /* 1: the held-out view was rendered */
     int       have_speed;             /* speed filled (tb_scene_speed_of) */
     tb_scene_speed speed;
+    /* Both pipelines in hardware (tb_scene_render_pipes; not owned): the
+     * table, scene.json and the images show them; where they are
+     * measured, the text leaves out the divider's bound on the reference. */
+    const struct tb_scene_pipes *pipes;
     /* Where the render's time went, in CPU seconds summed over its
      * threads (each thread's own clock): cpu_sim simulating the span unit
      * (tb_span_run / the batch lanes: the unit's build and levelization,

@@ -1,6 +1,7 @@
 /* tb_scene_json.c - a render's outputs: scene.json (tb_scene_json, with
  * the key of the maps) and the folder of images (tb_scene_write). */
 #include "testbench/study/tb_scene.h"
+#include "testbench/study/tb_scene_pipes.h"
 #include "base/base_json.h"
 #include "base/base_out.h"
 #include "units/unit_net.h"
@@ -112,6 +113,7 @@ int tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r)
     fputs(",\n  \"long_ops_hw\": ", f); base_json_num(f, r->long_hw, 17);
     fputs(",\n  \"speedup_long\": ", f); base_json_num(f, r->speedup_long, 17);
     tb_scene_speed_json(f, r);
+    tb_scene_pipes_json(f, r->pipes);
     legend_json(f, r);
     fputs("\n}\n", f);
     return ferror(f) ? -1 : 0;
@@ -144,6 +146,14 @@ int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir,
     rc = rc ? rc : write_png(set, dir, "ref.png", r->w, r->h, 1, g8, err, errlen);
     for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? tb_scene_to8(r->hw[i]) : 0;
     rc = rc ? rc : write_png(set, dir, "hw.png", r->w, r->h, 1, g8, err, errlen);
+    /* both pipelines in hardware: the reference through the shade unit,
+     * and the method with its nodes from it */
+    const tb_scene_pipes *pp = r->pipes && r->pipes->ok ? r->pipes : NULL;
+    for (int k = 0; pp && k < 2; k++) {
+        const double *img = k ? pp->hw_nodes : pp->ref_hw;
+        for (size_t i = 0; i < np; i++) g8[i] = r->deg[i] ? tb_scene_to8(img[i]) : 0;
+        rc = rc ? rc : write_png(set, dir, k ? "hw-nodes.png" : "ref-hw.png", r->w, r->h, 1, g8, err, errlen);
+    }
     int K = tb_scene_err_scale(r);
     for (size_t i = 0; i < np; i++) {
         if (!r->deg[i]) { memset(rgb + 3 * i, 0, 3); continue; }

@@ -2,6 +2,7 @@
  * the bound the buildable part of a per-pixel reference puts on it
  * (tb_scene.h, tb_scene_speed). */
 #include "testbench/study/tb_scene.h"
+#include "testbench/study/tb_scene_pipes.h"
 #include "base/base_json.h"
 #include <math.h>
 #include <string.h>
@@ -72,13 +73,15 @@ void tb_scene_speed_print(FILE *f, const tb_scene_result *r)
     else snprintf(a, sizeof a, "%.3g pJ", sp->energy_pj_per_pixel);
     fprintf(f, "  %-22s %-14s switching and clock of unit %s (not the node shading; docs/timing.md)\n",
             "energy / pixel", a, r->unit->name);
+    /* the bounds where the shade unit does not measure the reference */
+    if (r->pipes && r->pipes->ok) return;
     snprintf(a, sizeof a, "%.4g M", sp->ref_pixels_per_s_max / 1e6);
     fprintf(f, "  %-22s <= %-11s %.3g divide%s per pixel on unit div: %.0f clocks each at %.0f MHz, %.3g pJ\n",
             "ref. pixels / s", a, sp->ref_divs, sp->ref_divs == 1 ? "" : "s", sp->div_clocks, sp->div.fmax_mhz,
             sp->div.energy_pj_per_item);
     snprintf(a, sizeof a, "%.3g pJ", sp->ref_energy_pj_per_pixel_min);
-    fprintf(f, "  %-22s >= %-11s (its square roots and powers would add to both; no unit builds them)\n",
-            "ref. energy / pixel", a);
+    fprintf(f, "  %-22s >= %-11s (its square roots and powers would add to both; the shade unit does not take "
+            "this lighting)\n", "ref. energy / pixel", a);
     /* The method's shaded nodes divide too: on the same divider they
      * bound its rate as the reference's divides bound the reference's. */
     snprintf(a, sizeof a, "%.4g M", sp->node_pixels_per_s_max / 1e6);

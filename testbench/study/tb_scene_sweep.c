@@ -23,6 +23,7 @@
  */
 #include "base/base_json.h"
 #include "testbench/study/tb_scene_search.h"
+#include "testbench/study/tb_scene_pipes.h"
 #include "testbench/study/tb_sweep.h"
 #include "chart/chart.h"
 #include "base/base_out.h"
@@ -62,6 +63,12 @@ typedef struct pt {
     int max_err8;
     uint64_t ovf;
     int front[4], jump[4];      /* by metric (M_*) */
+    /* both pipelines in hardware (tb_scene_pipes.h): the method's row of
+     * the most pixels per second per kGE over the shade unit's schedules */
+    int pipes;                  /* measured */
+    double pnmse, ppk, ppj;     /* NMSE with nodes from hardware, pixels/s per kGE, pJ/px */
+    int pspans;
+    char psched[16];
 } pt;
 
 /* What a chart and a front set NMSE against. */
@@ -204,16 +211,26 @@ static void run_pt(void *ctx, size_t k)
     pt *p = &s->p[s->todo[k]];
     scn_desc dd;
     desc_of(s->d, p, &dd);
-    tb_scene_opts o = { 1, 0, NULL, NULL, s->no_batch, 1 };
+    tb_scene_opts o = { 1, 0, NULL, NULL, s->no_batch, 1, NULL };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
-    p->status = tb_scene_render_gbuf(&dd, s->g, NULL, NULL, &o, &r, p->err, sizeof p->err);
-    tb_ppa pp;
-    if (p->status == TB_OK && tb_unit_timing(r.unit, &r.cfg, &r.fmts, &pp, p->err, sizeof p->err))
-        p->status = TB_FAIL;
+    tb_scene_pipes pipes;
+    p->status = tb_scene_render_pipes(&dd, NULL, s->g, &o, TB_PIPES_METHOD, &r, &pipes, p->err, sizeof p->err);
     if (p->status == TB_OK) {
-        p->fmax = pp.fmax_mhz;
-        p->pps = r.clocks_per_pixel > 0 ? pp.fmax_mhz * 1e6 / r.clocks_per_pixel : NAN;
+        const tb_pipe_row *best = NULL;
+        for (int i = 0; i < pipes.nrows; i++)
+            if (!best || pipes.row[i].pps_per_kge > best->pps_per_kge) best = &pipes.row[i];
+        if (pipes.ok && best) {
+            p->pipes = 1;
+            p->pnmse = best->nmse;
+            p->ppk = best->pps_per_kge;
+            p->ppj = best->pj_per_pixel;
+            p->pspans = best->spans;
+            snprintf(p->psched, sizeof p->psched, "%s", best->sched);
+        }
+        tb_scene_pipes_free(&pipes);
+        p->fmax = r.speed.hw.fmax_mhz;
+        p->pps = r.speed.pixels_per_s;
         p->epp = r.energy_pj_per_pixel;
         p->nmse = r.nmse;
         p->psnr = r.psnr;
@@ -331,6 +348,66 @@ static void draw_chart(const scn_desc *d, const pt *p, size_t n, int m, const ch
     chart_free(c);
 }
 
+/* ------------------------------------------------------ both pipelines */
+
+/* The shader's configurations the sweep sets beside the method's: the
+ * shade unit alone, per pixel, at these widths and every schedule. */
+static const int SHADE_W[] = { 10, 12, 14, 16, 20 };
+#define N_SHADE_W ((int)(sizeof SHADE_W / sizeof SHADE_W[0]))
+#define N_SHADE_ROWS (N_SHADE_W * UNIT_MAX_SCHED)
+
+/* NMSE against pixels per second per kGE (energy 0) or pJ per pixel
+ * (energy 1) of both pipelines in hardware: the method's points (node
+ * shader + span units, nodes from hardware) by policy, the paper's
+ * marked, and the per-pixel shader's configurations labelled by width
+ * and schedule. */
+static void draw_pipes_chart(const scn_desc *d, const pt *p, size_t n, const tb_pipe_row *ref, int nref, int energy,
+                             const char *path, char *err, size_t errlen, int *rc)
+{
+    char title[200];
+    const char *b = strrchr(d->mesh, '/');
+    snprintf(title, sizeof title, "%.60s %dx%d: NMSE against %s, both pipelines in hardware", b ? b + 1 : d->mesh,
+             d->width, d->height, energy ? "energy per pixel" : "pixels per second per kGE");
+    chart *c = chart_new(title, energy ? "energy per pixel (pJ): shade unit per pixel, or node shader + span units"
+                                       : "M pixels per second per kGE (pixels per second at equal area)",
+                         "NMSE vs the float reference image");
+    if (!c) base_out_of_memory();
+    chart_log_y(c, 1);
+    int s_ref = chart_series(c, "per-pixel shader (unit shade)", CHART_POINTS);
+    int s_paper = chart_series(c, "paper (L8, 3 terms, W16)", CHART_POINTS);
+    int s_pol[SCN_POL__COUNT];
+    for (int q = 0; q < SCN_POL__COUNT; q++) s_pol[q] = chart_series(c, scn_policy_name((scn_policy)q), CHART_POINTS);
+    for (int i = 0; i < nref; i++) {
+        char lab[32];
+        snprintf(lab, sizeof lab, "W%d %s", ref[i].width, ref[i].sched);
+        chart_point_label(c, s_ref, energy ? ref[i].pj_per_pixel : ref[i].pps_per_kge / 1e6,
+                          fmax(ref[i].nmse, 1e-12), lab);
+    }
+    for (size_t i = 0; i < n; i++) {
+        const pt *q = &p[i];
+        if (q->same_as >= 0 || !pt_ok(q) || !q->pipes) continue;
+        double x = energy ? q->ppj : q->ppk / 1e6;
+        if (is_paper(q)) chart_point_label(c, s_paper, x, q->pnmse, "paper");
+        else chart_point(c, s_pol[q->pol], x, q->pnmse);
+    }
+    chart_hline(c, 1e-4, "NMSE 1e-4 (the paper's claim)");
+    if (chart_write(c, path, err, errlen)) *rc = -1;
+    chart_free(c);
+}
+
+/* The shader's configurations as CSV rows. */
+static void write_shader_csv(FILE *f, const tb_pipe_row *ref, int nref)
+{
+    fputs("width,schedule,nmse,clocks_per_pixel,area_ge,fmax_mhz,pixels_per_s,pixels_per_s_per_kge,"
+          "energy_pj_per_pixel,overflows\n", f);
+    for (int i = 0; i < nref; i++) {
+        const tb_pipe_row *w = &ref[i];
+        fprintf(f, "%d,%s,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%llu\n", w->width, w->sched, w->nmse,
+                w->clocks_per_pixel, w->area_ge, w->fmax_mhz, w->pixels_per_s, w->pps_per_kge, w->pj_per_pixel,
+                (unsigned long long)w->overflows);
+    }
+}
+
 /* ------------------------------------------------------------------- CSV */
 
 static void cnum(FILE *f, double v)
@@ -345,7 +422,8 @@ static void write_csv(FILE *f, const pt *p, size_t n)
     fputs("config,policy,L,terms,width,schedule,unit,status,same_as,nmse,psnr,max_abs_err,max_err8,"
           "clocks_per_pixel,ops_per_pixel,cost_per_pixel,cost_ref_per_pixel,speedup,area_ge,overflows,deg2_share,"
           "front_ops,front_clocks,breaks_ops,breaks_clocks,paper,fmax_mhz,pixels_per_s,energy_pj_per_pixel,"
-          "front_speed,front_energy\n", f);
+          "front_speed,front_energy,pipe_schedule,pipe_spans,pipe_nmse,pipe_pixels_per_s_per_kge,"
+          "pipe_energy_pj_per_pixel\n", f);
     for (size_t i = 0; i < n; i++) {
         const pt *q = &p[i];
         const pt *r = q->same_as >= 0 ? &p[q->same_as] : q;
@@ -361,9 +439,14 @@ static void write_csv(FILE *f, const pt *p, size_t n)
             fprintf(f, ",%d,%d,%d,%d,%d", q->front[M_OPS], q->front[M_CLK], r->ovf > 0 || r->jump[M_OPS],
                     r->ovf > 0 || r->jump[M_CLK], is_paper(q));
             cnum(f, r->fmax); cnum(f, r->pps); cnum(f, r->epp);
-            fprintf(f, ",%d,%d\n", q->front[M_SPEED], q->front[M_ENERGY]);
+            fprintf(f, ",%d,%d", q->front[M_SPEED], q->front[M_ENERGY]);
+            if (r->pipes) {
+                fprintf(f, ",%s,%d", r->psched, r->pspans);
+                cnum(f, r->pnmse); cnum(f, r->ppk); cnum(f, r->ppj);
+                fputc('\n', f);
+            } else fputs(",,,,,\n", f);
         } else {
-            fprintf(f, ",,,,,,,,,,,,,,,,%d,,,,,\n", is_paper(q));
+            fprintf(f, ",,,,,,,,,,,,,,,,%d,,,,,,,,,,\n", is_paper(q));
         }
     }
 }
@@ -456,20 +539,28 @@ static picks pick_points(const pt *p, size_t n)
     return k;
 }
 
-static const char *const sweep_files[1 + M_N] = { "sweep.csv", "sweep_ops.svg", "sweep_clocks.svg",
-                                                  "sweep_speed.svg", "sweep_energy.svg" };
+#define N_FILES (1 + M_N + 3)
+static const char *const sweep_files[N_FILES] = { "sweep.csv", "sweep_ops.svg", "sweep_clocks.svg",
+                                                  "sweep_speed.svg", "sweep_energy.svg", "sweep_shader.csv",
+                                                  "sweep_pipes_speed.svg", "sweep_pipes_energy.svg" };
 
 /* DIR/sweep.csv and the charts; paths gets their names. */
-static int write_files(const scn_desc *d, const pt *p, size_t n, const char *outdir, char paths[][1100],
-                       char *err, size_t errlen)
+static int write_files(const scn_desc *d, const pt *p, size_t n, const tb_pipe_row *ref, int nref,
+                       const char *outdir, char paths[][1100], char *err, size_t errlen)
 {
-    for (int j = 0; j < 1 + M_N; j++) snprintf(paths[j], 1100, "%s/%s", outdir, sweep_files[j]);
+    for (int j = 0; j < N_FILES; j++) snprintf(paths[j], 1100, "%s/%s", outdir, sweep_files[j]);
     base_out *o = base_out_open(paths[0], err, errlen);
     if (!o) return TB_BADINPUT;
     write_csv(base_out_file(o), p, n);
     if (base_out_close(o, err, errlen)) return TB_BADINPUT;
     int crc = 0;
     for (int m = 0; m < M_N && !crc; m++) draw_chart(d, p, n, m, paths[1 + m], err, errlen, &crc);
+    if (!crc && !(o = base_out_open(paths[1 + M_N], err, errlen))) crc = -1;
+    if (!crc) {
+        write_shader_csv(base_out_file(o), ref, nref);
+        if (base_out_close(o, err, errlen)) crc = -1;
+    }
+    for (int e = 0; e < 2 && !crc; e++) draw_pipes_chart(d, p, n, ref, nref, e, paths[2 + M_N + e], err, errlen, &crc);
     return crc ? TB_BADINPUT : TB_OK;
 }
 
@@ -501,8 +592,42 @@ static void print_json(FILE *out, const scn_desc *d, const pt *p, size_t n, size
         fputs("},\n", out);
     }
     fputs("    \"files\": [", out);
-    for (int j = 0; outdir && j < 1 + M_N; j++) fprintf(out, "%s\"%s\"", j ? ", " : "", paths[j]);
+    for (int j = 0; outdir && j < N_FILES; j++) fprintf(out, "%s\"%s\"", j ? ", " : "", paths[j]);
     fputs("]\n  }\n}\n", out);
+}
+
+/* Both pipelines at NMSE <= 1e-4: the method's point and the shader's
+ * configuration of the most pixels per second per kGE that meet it
+ * (without overflow); -1: none. */
+static void best_pipes(const pt *p, size_t n, const tb_pipe_row *ref, int nref, long *bm, int *br)
+{
+    *bm = -1;
+    *br = -1;
+    for (size_t i = 0; i < n; i++)
+        if (p[i].same_as < 0 && pt_ok(&p[i]) && p[i].pipes && p[i].ovf == 0 && p[i].pnmse <= 1e-4 &&
+            (*bm < 0 || p[i].ppk > p[*bm].ppk))
+            *bm = (long)i;
+    for (int j = 0; j < nref; j++)
+        if (ref[j].nmse <= 1e-4 && ref[j].overflows == 0 && (*br < 0 || ref[j].pps_per_kge > ref[*br].pps_per_kge))
+            *br = j;
+}
+
+static void print_pipes(FILE *out, const pt *p, size_t n, const tb_pipe_row *ref, int nref)
+{
+    long bm;
+    int br;
+    best_pipes(p, n, ref, nref, &bm, &br);
+    if (!nref) { fputs("  both pipelines: not measured (the scene's lighting does not fit the shade unit)\n", out); return; }
+    fputs("  both pipelines at NMSE <= 1e-4, the most pixels/s per kGE:", out);
+    if (bm >= 0) fprintf(out, " method %.4g M (%s, L %d, %d terms, W%d, shade %s, %d span units, NMSE %.3g)",
+                         p[bm].ppk / 1e6, scn_policy_name((scn_policy)p[bm].pol), p[bm].L, p[bm].terms, p[bm].width,
+                         p[bm].psched, p[bm].pspans, p[bm].pnmse);
+    else fputs(" no method point", out);
+    if (br >= 0) fprintf(out, ", per-pixel shader %.4g M (W%d %s, NMSE %.3g)", ref[br].pps_per_kge / 1e6,
+                         ref[br].width, ref[br].sched, ref[br].nmse);
+    else fputs(", no shader configuration", out);
+    if (bm >= 0 && br >= 0) fprintf(out, ": %.3gx", p[bm].ppk / ref[br].pps_per_kge);
+    fputc('\n', out);
 }
 
 static void print_text(FILE *out, const scn_desc *d, const pt *p, size_t n, size_t renders, const picks *k,
@@ -530,7 +655,7 @@ static void print_text(FILE *out, const scn_desc *d, const pt *p, size_t n, size
     }
     fprintf(out, "  Pareto front: %zu points (operations), %zu (clocks), %zu (pixels/s), %zu (energy); %zu points "
             "break (overflow or NMSE > 10x the front)\n", nf[M_OPS], nf[M_CLK], nf[M_SPEED], nf[M_ENERGY], nb);
-    for (int j = 0; outdir && j < 1 + M_N; j++) fprintf(out, "wrote %s\n", paths[j]);
+    for (int j = 0; outdir && j < N_FILES; j++) fprintf(out, "wrote %s\n", paths[j]);
 }
 
 int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch, const char *spec,
@@ -564,12 +689,21 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
         work->cpu_sim = sw.cpu_sim;
         work->cpu_render = sw.cpu_render;
     }
+    /* the per-pixel shader's configurations, over the same pixels */
+    tb_pipe_row ref[N_SHADE_ROWS];
+    int nref = 0;
+    tb_scene_opts ro = { jobs, 0, NULL, NULL, no_batch, 1, NULL };
+    if ((rc = tb_scene_pipes_refs(d, NULL, &g, &ro, SHADE_W, N_SHADE_W, ref, &nref, err, errlen)) != TB_OK) goto done;
     for (int m = 0; m < M_N; m++) fronts(p, n, m);
     picks k = pick_points(p, n);
-    char paths[1 + M_N][1100];
-    if (outdir && (rc = write_files(d, p, n, outdir, paths, err, errlen)) != TB_OK) goto done;
+    char paths[N_FILES][1100];
+    if (outdir && (rc = write_files(d, p, n, ref, nref, outdir, paths, err, errlen)) != TB_OK) goto done;
     if (json) print_json(out, d, p, n, sw.ntodo, &k, outdir, paths);
-    else print_text(out, d, p, n, sw.ntodo, &k, outdir, paths);
+    else {
+        print_text(out, d, p, n, sw.ntodo, &k, NULL, paths);
+        print_pipes(out, p, n, ref, nref);
+        for (int j = 0; outdir && j < N_FILES; j++) fprintf(out, "wrote %s\n", paths[j]);
+    }
     if (k.nfail) {
         rc = TB_FAIL;
         snprintf(err, errlen, "scene sweep: %zu of %zu renders failed (their rows in sweep.csv are marked failed)",

@@ -12,6 +12,10 @@
  * valid flag between them) and simulated end to end; exact D adds the
  * last two stages' clocks and areas, each unit simulated alone (their glue
  * not counted).
+ * Speed is time per item: clocks x the clock period each design allows
+ * (its critical path, the delay model of docs/timing.md); the designs
+ * differ in period (a divider step is shorter than a multiplier), so
+ * clocks alone overstate the gain.
  * The exponential is the one piece without a unit: it is left out of the
  * measured figures (so they are lower bounds for the exact functions) and
  * only named beside them. The subtractor 1 - c^2 and the constant factors
@@ -26,6 +30,7 @@ typedef struct tb_hw_point {
     const char *unit;
     char   label[64];
     double clocks, area, max_err_peak;   /* max |hw - phys| / peak (phys given) */
+    double period_ps;                    /* its critical path (docs/timing.md): the clock it allows */
     int    ok;
 } tb_hw_point;
 
@@ -43,11 +48,16 @@ typedef struct tb_speed_hw {
     tb_hw_point d16, ward16, sq, div, pow_d, pow_w;
     tb_hw_point wired;                   /* Ward's exp argument wired (tb_speed_ward_chain) */
     double wired_err_lsb;                /* its largest error, quotient LSBs */
-    /* the exact functions' chains without the exponential, measured */
+    /* the exact functions' chains without the exponential, measured; a
+     * chain is one clocked design, so its period is its slowest stage's */
     double exact_d_clocks, exact_d_area, exact_w_clocks, exact_w_area;
-    double lad_d[TB_SPEED_NW], lad_w[TB_SPEED_NW];   /* clock ratios at tb_speed_widths */
-    /* the same with the chains' stages overlapped (an item in each stage
-     * at once: an item per slowest stage's clocks) */
+    double exact_d_period_ps, exact_w_period_ps;
+    /* time ratios (clocks x period per item, exact over approximation) at
+     * tb_speed_widths, and the clock ratios alone beside them */
+    double lad_d[TB_SPEED_NW], lad_w[TB_SPEED_NW];
+    double clk_d[TB_SPEED_NW], clk_w[TB_SPEED_NW];
+    /* the time ratios with the chains' stages overlapped (an item in each
+     * stage at once: an item per slowest stage's clocks) */
     double ovl_d[TB_SPEED_NW], ovl_w[TB_SPEED_NW];
     int ok;
 } tb_speed_hw;

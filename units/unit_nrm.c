@@ -1,0 +1,116 @@
+/* unit_nrm.c - the normalization datapath of dot3, norm3 and shade
+ * (unit_nrm.h). */
+#include "units/unit_nrm.h"
+#include "units/units_brdf.h"
+#include <math.h>
+#include <stdio.h>
+
+int nrm_prod_fbits(int W)
+{
+    return 2 * (W - 2) < W + 21 ? 2 * (W - 2) : W + 21;
+}
+
+unet_val nrm_dot(unet *n, int sig, const char *pfx, const unet_val *a, const unet_val *b, double imag, int reg)
+{
+    char nm[48];
+    unet_val p[3];
+    for (int k = 0; k < 3; k++) {
+        snprintf(nm, sizeof nm, "%s_%c", pfx, "xyz"[k]);
+        p[k] = unet_mul(n, sig, nm, a[k], b[k]);
+        snprintf(nm, sizeof nm, "%s_%c_r", pfx, "xyz"[k]);
+        if (reg) p[k] = nrm_delay(n, nm, p[k], 1);
+    }
+    snprintf(nm, sizeof nm, "%s_xy", pfx);
+    unet_val s = unet_add(n, sig, nm, p[0], p[1]);
+    s = unet_add(n, sig, pfx, s, p[2]);
+    s.imag = fmin(s.imag, imag);
+    return s;
+}
+
+static void specs(sim_fmt fs, sim_fmt froot, sim_fmt frinv, rec_spec *sq, rec_spec *rc)
+{
+    *sq = (rec_spec){ REC_SQRT, fs.fbits, froot.fbits };
+    *rc = (rec_spec){ REC_RECIP, froot.fbits, frinv.fbits };
+}
+
+int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp)
+{
+    rec_spec sq, rc;
+    specs(fs, froot, frinv, &sq, &rc);
+    *k_root = rec_steps(&sq);
+    *k_rcp = rec_steps(&rc);
+    return *k_root + *k_rcp;
+}
+
+int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
+              sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, sim_signal *rcp_run,
+              unet_val *rinv, int *stages,
+              char *err, size_t errlen)
+{
+    sim_fmt fs = s.f;
+    sim_fmt froot = n->fm.f[sig_root], frinv = n->fm.f[sig_rinv];
+    char b1[SIM_FMT_STRLEN], b2[SIM_FMT_STRLEN];
+    rec_spec sq, rc;
+    specs(fs, froot, frinv, &sq, &rc);
+    if (fs.is_signed || fs.ibits > 1 || !brdf_holds(froot, 0, 1) || !brdf_holds(frinv, 0, 2)) {
+        snprintf(err, errlen, "%s: the radicand %s must be unsigned below 2, root=%s hold [0, 1] and "
+                 "rinv=%s hold [1, 2]", n->u->name, sim_fmt_str(fs, b1), sim_fmt_str(froot, b2), sim_fmt_str(frinv, b1));
+        return -1;
+    }
+    if (rec_check(&sq, err, errlen) || rec_check(&rc, err, errlen)) return -1;
+    int ks = rec_steps(&sq), kq = rec_steps(&rc);
+    if (stages) *stages = pipe ? ks + kq : 0;
+    unet_val root = s, q = s;
+    root.f = froot;
+    q.f = frinv;
+    if (n->c) {
+        sim_signal *qs, *qq;
+        if (pipe) {
+            qs = rec_pipe(n->c, n->sc, n->clk, "sq", &sq, s.s);
+        } else {
+            qs = rec_iter(n->c, n->sc, n->clk, "sq_", &sq, s.s, first_root, root_run);
+        }
+        root.s = sim_shift(n->c, n->sc, "root", froot, qs, -froot.fbits);
+        if (pipe) {
+            qq = rec_pipe(n->c, n->sc, n->clk, "rc", &rc, root.s);
+        } else {
+            /* the root's registers hold it while the reciprocal runs (the
+             * root steps only where root_run is 1), and the reciprocal
+             * steps only where rcp_run is 1: neither runs on a changing
+             * operand */
+            qq = rec_iter(n->c, n->sc, n->clk, "rc_", &rc, root.s, first_rcp, rcp_run);
+        }
+        q.s = sim_shift(n->c, n->sc, "rinv", frinv, qq, -frinv.fbits);
+    }
+    /* The root truncated: r - 2^-F_r < root <= r = sqrt(s), s exact. The
+     * reciprocal of the truncated root, truncated: with rmin = NRM_NMIN,
+     * 1/root - 1/r lies in [0, 2^-F_r / ((rmin - 2^-F_r) rmin)] and rinv
+     * in (1/root - 2^-F_q, 1/root]: |rinv - 1/r| is below their sum (below
+     * the larger when s is exact, as they then have opposite signs; the
+     * sum keeps the bound from growing when rinv is widened, which moves
+     * the truncation into the products that read it). */
+    double er = sim_fmt_lsb(froot), rmin = NRM_NMIN;
+    root.err = s.err / (sqrt(fmax(0.0, rmin * rmin - s.err)) + rmin) + er;
+    root.q = er;
+    root.eff = froot.fbits;
+    root.imag = NRM_NMAX;
+    root.mag = NRM_NMAX;
+    double e_rcp = root.err / ((rmin - root.err) * rmin);
+    q.err = e_rcp + sim_fmt_lsb(frinv);
+    q.q = sim_fmt_lsb(frinv);
+    q.eff = frinv.fbits;
+    q.imag = 1 / rmin;
+    q.mag = 1 / (rmin - root.err);
+    if (!(rmin - root.err > 0)) {
+        snprintf(err, errlen, "%s: root=%s too coarse for |N| >= %g", n->u->name, sim_fmt_str(froot, b1), rmin);
+        return -1;
+    }
+    *rinv = q;
+    return 0;
+}
+
+unet_val nrm_delay(unet *n, const char *pfx, unet_val v, int k)
+{
+    if (n->c && v.s) v.s = rec_delay(n->c, n->sc, n->clk, pfx, v.s, k);
+    return v;
+}
