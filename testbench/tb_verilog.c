@@ -167,8 +167,9 @@ char *tb_verilog_tb_text(const unit_desc *u, const unit_cfg *cfg, const unit_fmt
     fprintf(f, "    integer items = 0, idx = 0, got = 0, cycle = 0, fo = 0, limit = 0%s;\n"
                "    reg [8*1024-1:0] fin, fout;\n", has_rst ? ", resets = 0" : "");
     fprintf(f, "    wire [31:0] next_idx = idx + ((in_valid && in_ready) ? 32'd1 : 32'd0);\n");
-    fprintf(f, "    task offer;\n        input integer i;\n        begin\n");
-    tb_offer(f, u, fm, "            ", "i", "<=");
+    /* the item's index under a name no port takes (shade's output is i) */
+    fprintf(f, "    task offer;\n        input integer item_at;\n        begin\n");
+    tb_offer(f, u, fm, "            ", "item_at", "<=");
     fprintf(f, "        end\n    endtask\n");
     fprintf(f, "    initial begin\n"
                "        if (!$value$plusargs(\"in=%%s\", fin) || !$value$plusargs(\"out=%%s\", fout)\n"

@@ -29,7 +29,7 @@
     X(N_ROOT, "root", INTERNAL, "sqrt(NN), truncated (restoring recurrence)") \
     X(N_RINV, "rinv", INTERNAL, "1/ROOT, truncated (restoring recurrence)")
 enum { N3_SIGS(UNIT_SIG_ID) N3_NSIGS };
-enum { N3_PIPE, N3_ITER };
+enum { N3_ITER, N3_PIPE };     /* the smaller design the default */
 
 extern const unit_desc unit_norm3;
 
@@ -146,10 +146,10 @@ const unit_desc unit_norm3 = {
     .source = "Nechyporuk & Romanyuk (2020), sec. IV (the normal renormalized per pixel by the reference)",
     UNIT_SIGS(N3_SIGS(UNIT_SIG_ROW)),
     .nsched = 2,
-    .sched = { { "pipe", "fully pipelined, an item a clock: squares, their sum, a stage a root bit and a "
-                         "reciprocal bit, the products" },
-               { "restoring", "N.N, then the root and the reciprocal, a bit a clock each, then the products: "
-                              "1 + (W + 3) + (W + 4) + 1 clocks an item" } },
+    .sched = { { "restoring", "N.N, then the root and the reciprocal, a bit a clock each, then the products: "
+                              "1 + (W + 3) + (W + 4) + 1 clocks an item" },
+               { "pipe", "fully pipelined, an item a clock: squares, their sum, a stage a root bit and a "
+                         "reciprocal bit, the products" } },
     .nparams = 0,
     .fmt_rule = "N, u s2.(W-2); nn u1.P, P = 2W-4 (exact) up to W = 25, W+21 above; root u1.(W+2); rinv u2.(W+2)",
     .formats = n3_formats, .beats = beats1, .build = n3_build, .ideal = n3_ideal, .bound = n3_bound,

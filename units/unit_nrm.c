@@ -100,7 +100,10 @@ int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
     q.q = sim_fmt_lsb(frinv);
     q.eff = frinv.fbits;
     q.imag = 1 / rmin;
-    q.mag = 1 / (rmin - root.err);
+    /* |rinv| <= 1/|N| + its error: a bound that requantizing rinv (a
+     * multiplexer's narrower input) moves exactly as it moves the error,
+     * so that widening rinv never grows a product's bound */
+    q.mag = q.imag + q.err;
     if (!(rmin - root.err > 0)) {
         snprintf(err, errlen, "%s: root=%s too coarse for |N| >= %g", n->u->name, sim_fmt_str(froot, b1), rmin);
         return -1;

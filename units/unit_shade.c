@@ -75,7 +75,9 @@
     X(S_ACC, "acc", INTERNAL, SH_S, "the one adder's register ACC <= MUL + MX_C")
 #define SH_ID(id, nm, role_, sch, wh) id,
 #define SH_ROW(id, nm, role_, sch, wh) { .name = nm, .role = UNIT_SIG_##role_, .what = wh, .scheds = sch },
-enum { SH_PIPE, SH_SHARED };
+/* shared first: the default, and the design small enough for Yosys to
+ * synthesize in seconds (the pipe takes minutes at W = 16) */
+enum { SH_SHARED, SH_PIPE };
 enum { SH_SIGS(SH_ID) SH_NSIGS };
 
 extern const unit_desc unit_shade;
@@ -498,10 +500,10 @@ const unit_desc unit_shade = {
     .source = "Nechyporuk & Romanyuk (2020), sec. IV (the per-pixel Phong/Blinn reference the method is compared with)",
     UNIT_SIGS(SH_SIGS(SH_ROW)),
     .nsched = 2,
-    .sched = { { "pipe", "fully pipelined, a pixel a clock: a stage of products and one of sums, a stage a "
-                         "root bit and one a reciprocal bit, the products by 1/|N|, a stage a step of the power" },
-               { "shared", "one multiplier and one adder for every product and sum, the root and the "
-                           "reciprocal a bit a clock: 3 + (W + 3) + (W + 4) + 2 + (power steps) + 2 clocks a pixel" } },
+    .sched = { { "shared", "one multiplier and one adder for every product and sum, the root and the "
+                           "reciprocal a bit a clock: 3 + (W + 3) + (W + 4) + 2 + (power steps) + 2 clocks a pixel" },
+               { "pipe", "fully pipelined, a pixel a clock: a stage of products and one of sums, a stage a "
+                         "root bit and one a reciprocal bit, the products by 1/|N|, a stage a step of the power" } },
     .nparams = 1,
     .params = { { "n", UNIT_P_INT, offsetof(unit_cfg, n), 1, PW_N_MAX, 24, NULL, "shininess: the exponent of (u.H)^n" } },
     .fmt_rule = "N, L, H s2.(W-2); ka, kd, ks, i u1.(W-1); nn u1.P, dl, dh s2.P, P = 2W-4 (exact) up to "
