@@ -18,8 +18,10 @@ double sim_area_sub(int w) { return w * (SIM_GE_FA + SIM_GE_INV); }
 
 double sim_area_mul(int wa, int wb)
 {
-    /* wa*wb partial-product ANDs, reduced by (wa-1) rows of wb full adders. */
-    return (double)wa * wb * SIM_GE_AND2 + (double)(wa - 1) * wb * SIM_GE_FA;
+    /* wa*wb partial-product ANDs, reduced by a row of full adders as wide
+     * as the wider operand for each bit of the narrower but one. */
+    int lo = wa < wb ? wa : wb, hi = wa < wb ? wb : wa;
+    return (double)wa * wb * SIM_GE_AND2 + (double)(lo - 1) * hi * SIM_GE_FA;
 }
 
 double sim_area_round(int w) { return w * SIM_GE_HA; }

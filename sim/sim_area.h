@@ -25,7 +25,7 @@ double sim_area_mux(int w, int n);                     /* (n-1) 2:1 muxes per bi
 double sim_area_bk(int w);                             /* an AND gate per bit */
 double sim_area_add(int w);                            /* ripple-carry: w full adders */
 double sim_area_sub(int w);                            /* w full adders + w inverters */
-double sim_area_mul(int wa, int wb);                   /* array: wa*wb AND2 + (wa-1)*wb FA */
+double sim_area_mul(int wa, int wb);                   /* array: wa*wb AND2 + (min-1)*max FA */
 /* Quantization logic at an element's output of w bits: rounding to nearest
  * where it drops fraction bits (an incrementer: w half adders), saturation
  * where its exact result has `extra` integer bits more than the output

@@ -4,7 +4,9 @@
  * rounding incrementer and saturation clamp at an element's output. The
  * adder is a ripple carry because that is what Yosys's `synth` and ABC
  * leave of `$add` (docs/timing.md measures it: 2(w-1) levels, linear in
- * w). */
+ * w); mapped to NanGate cells its carry runs through AOI21/OAI21 pairs,
+ * and the multiplier's carry-save rows through XOR2s (docs/timing.md,
+ * "Against OpenSTA"). */
 #include "sim/sim_delay.h"
 #include "sim/sim.h"
 
@@ -78,10 +80,17 @@ sim_arcs sim_delay_add(int w)
     if (w <= 1) return sim_arcs_bitwise(d(1, SIM_PS_XOR2));
     sim_arcs r;
     r.ll = d(1, SIM_PS_XOR2);          /* bit 0: the operands' XOR */
-    /* bit 0's carry from its operands, w-2 carries rippling, the top sum */
-    r.lm = d(2 * (w - 1), SIM_PS_FA_AB_CO + (w - 2) * SIM_PS_FA_CO + SIM_PS_FA_S);
+    /* bit 0's carry from its operands (an AND), w-2 carries rippling as
+     * the mapped AOI21/OAI21 pairs do, the top sum (an XOR) */
+    r.lm = d(2 * (w - 1), SIM_PS_AND2 + (w - 2) * SIM_PS_CARRY2 / 2 + SIM_PS_XOR2);
     r.ml = SIM_DELAY_NONE;             /* low sum bits do not see high operand bits */
-    r.mm = d(2, SIM_PS_FA_S);          /* the top operand bits into the top sum */
+    r.mm = d(2, 2 * SIM_PS_XOR2);      /* the top operand bits into the top sum: two XORs */
+    return r;
+}
+
+sim_arcs sim_delay_csa(void)
+{
+    sim_arcs r = { d(2, 2 * SIM_PS_XOR2), SIM_DELAY_NONE, SIM_DELAY_NONE, d(2, 2 * SIM_PS_XOR2) };
     return r;
 }
 
@@ -92,14 +101,15 @@ sim_arcs sim_delay_mul(int wa, int wb, int wy)
     if (wa < 1) wa = 1;
     if (wb < 1) wb = 1;
     if (wy < 1) wy = 1;
+    int rows = (wa < wb ? wa : wb) - 1, rip = (wa < wb ? wb : wa) - 1;
     /* Every output bit sees every operand bit; the last one settles after
-     * the partial product, wa-1 rows and the wb-1 bit ripple; the output's
-     * bits are the ripple's top ones (quantization keeps the high part),
-     * its lowest up to wy-1 carries earlier. */
-    sim_delay full = d(1 + 2 * (wa - 1) + 2 * (wb - 1),
-                       SIM_PS_AND2 + (wa - 1) * SIM_PS_FA_S + (wb - 1) * SIM_PS_FA_CO);
-    int rip = wy - 1 < wb - 1 ? wy - 1 : wb - 1;
-    sim_delay low = d(full.lv - 2 * rip, full.ps - rip * SIM_PS_FA_CO);
+     * the partial product, the carry-save rows of the narrower operand and
+     * the ripple across the wider; the output's bits are the ripple's top
+     * ones (quantization keeps the high part), its lowest up to wy-1
+     * carries earlier. */
+    sim_delay full = d(1 + 2 * rows + 2 * rip, SIM_PS_AND2 + rows * SIM_PS_XOR2 + rip * SIM_PS_CARRY2 / 2);
+    int early = wy - 1 < rip ? wy - 1 : rip;
+    sim_delay low = d(full.lv - 2 * early, full.ps - early * SIM_PS_CARRY2 / 2);
     sim_arcs r = { low, full, low, full };
     return r;
 }
@@ -129,4 +139,10 @@ sim_arcs sim_delay_logic(int bits)
 {
     int lv = bits <= 1 ? 1 : clog2(bits) + 1;
     return sim_arcs_all(d(lv, lv * SIM_PS_AND2));
+}
+
+double sim_delay_load_ps(double pins_sel, double pins, int from_reg)
+{
+    double ff = pins_sel * SIM_FF_PIN_SEL + pins * SIM_FF_PIN - SIM_FF_REF;
+    return ff > 0 ? ff * (from_reg ? SIM_PS_PER_FF_Q : SIM_PS_PER_FF) : 0.0;
 }

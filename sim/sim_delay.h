@@ -10,8 +10,11 @@
  * index_1[2] = 17.2 ps and the load index_2 point nearest a fanout of
  * four (about 7.5 fF; 6.3-6.5 fF in the tables of the small cells that
  * stop at 25 fF). Each constant is the worse of cell_rise and cell_fall
- * of the named arc. docs/timing.md has the table and what the model
- * leaves out.
+ * of the named arc; a carry is the pair of inverting cells mapped
+ * netlists ripple it through. A net that drives more than the tables'
+ * load adds the driver's slope times the excess (sim_delay_load_ps).
+ * docs/timing.md has the table, the comparison with OpenSTA on mapped
+ * netlists that set these choices, and what the model leaves out.
  *
  * Bits of a word need not arrive together: a ripple-carry adder's sum
  * bits settle from the least significant up, and an adder fed by another
@@ -26,14 +29,30 @@
 
 #define SIM_PS_AND2      49.2   /* AND2_X1  A2 -> ZN, rise, 7.57 fF */
 #define SIM_PS_XOR2      59.8   /* XNOR2_X1 B -> ZN (A = 0), rise, 6.50 fF (stands for XOR2_X1) */
-#define SIM_PS_MUX2      64.5   /* MUX2_X1  B -> Z (A = S = 1), fall, 7.55 fF */
-#define SIM_PS_MUX2_S    80.9   /* MUX2_X1  S -> Z (A = 1, B = 0), fall, 7.55 fF */
-#define SIM_PS_FA_CO     83.9   /* FA_X1    CI -> CO (A = 1, B = 0), fall, 7.51 fF */
-#define SIM_PS_FA_AB_CO  93.0   /* FA_X1    B -> CO (A = 0, CI = 1), fall, 7.51 fF */
-#define SIM_PS_FA_S      78.0   /* FA_X1    CI -> S (A = B = 1), fall, 7.53 fF */
+#define SIM_PS_MUX2      74.7   /* MUX2_X1  B -> Z (A = S = 1), fall, 7.56 fF */
+#define SIM_PS_MUX2_S    73.1   /* MUX2_X1  S -> Z (A = 1, B = 0), fall, 7.56 fF */
+/* A ripple carry through two bits as mapped netlists build it: an AOI21
+ * then an OAI21, the carry on a B input of each; the worse polarity
+ * (AOI21_X1 B2 -> ZN rise 57.8 at 6.33 fF, OAI21_X1 B2 -> ZN fall 29.4 at
+ * 6.51 fF; the other, 27.1 + 59.6 = 86.7). */
+#define SIM_PS_CARRY2    87.2
 #define SIM_PS_HA_S      71.1   /* HA_X1    B -> S (A = 0), rise, 6.31 fF */
 #define SIM_PS_DFF_CQ   104.7   /* DFF_X1   CK -> Q, rise, 7.59 fF */
 #define SIM_PS_DFF_SU    39.8   /* DFF_X1   setup_rising on D, fall_constraint, D and CK slew 44.9 ps */
+
+/* Load: every figure above is at about 7.5 fF (SIM_FF_REF); a net that
+ * drives more pins is slower by the driver's slope times the extra load.
+ * The slope is the rise table's between its 3.3 and 13.4 fF points of the
+ * NOR2_X1, AOI21_X1, OAI21_X1 and XOR2_X1 the mapped netlists drive their
+ * wide nets with (5.09 to 5.12 ps/fF at 17.2 ps slew), DFF_X1's for a
+ * register's Q (CK -> Q rise, 7.53 to 30.1 fF: 2.44 ps/fF). Pins: MUX2_X1
+ * S (1.92 fF) for a select, enable or key bit, AOI21_X1 B1 (1.65 fF) for
+ * any other. */
+#define SIM_FF_REF        7.5
+#define SIM_PS_PER_FF     5.09
+#define SIM_PS_PER_FF_Q   2.44
+#define SIM_FF_PIN_SEL    1.92
+#define SIM_FF_PIN        1.65
 
 /* Levels and picoseconds along an arc; lv < 0: no arc. */
 typedef struct sim_delay { int lv; double ps; } sim_delay;
@@ -69,11 +88,17 @@ sim_delay sim_delay_reg_rst(void);
 
 sim_arcs sim_delay_mux(int n);             /* ceil(log2 n) MUX2, the first from its select */
 sim_arcs sim_delay_bk(void);               /* an AND2 */
-sim_arcs sim_delay_add(int w);             /* ripple carry, w bits: 2(w-1) levels from L to M */
+sim_arcs sim_delay_add(int w);             /* ripple carry, w bits: 2(w-1) levels from L to M, SIM_PS_CARRY2 per 2 bits */
 sim_arcs sim_delay_sub(int w);             /* a conditional inverter (XOR2), then the adder */
-/* Array multiplier wa x wb quantized to wy bits: a partial product
- * (AND2), wa-1 carry-save rows, a wb-1 bit ripple-carry adder whose sum
- * bits, the output's, settle from L up. */
+/* An adder or subtractor whose one reader is another: synthesis (Yosys's
+ * alumacc) makes the chain one multi-operand adder, a carry-save stage
+ * each (a full adder's sum, two XOR2, bit to bit: no carry ripples) and
+ * one ripple at the end, the last adder's. */
+sim_arcs sim_delay_csa(void);
+/* Array multiplier wa x wb quantized to wy bits (wa, wb the operands'
+ * live bits: sim_prim.c): a partial product (AND2), min(wa, wb) - 1
+ * carry-save rows (an XOR2 each), a max(wa, wb) - 1 bit ripple-carry
+ * adder whose sum bits, the output's, settle from L up. */
 sim_arcs sim_delay_mul(int wa, int wb, int wy);
 sim_arcs sim_delay_round(int w);           /* incrementer: a w-bit half-adder chain */
 sim_arcs sim_delay_sat(int extra);         /* detect (XOR2, OR tree) from the top bits, clamp (MUX2 select) */
@@ -81,4 +106,7 @@ sim_arcs sim_delay_sat(int extra);         /* detect (XOR2, OR tree) from the to
  * gates over them, ceil(log2 bits) + 1 levels of AND2 (an estimate: the
  * elements are small decoders and comparators). */
 sim_arcs sim_delay_logic(int bits);
+/* The extra delay of a net whose bit drives pins_sel select-like and
+ * pins other inputs, beyond the figures' load (from_reg: a register's Q). */
+double sim_delay_load_ps(double pins_sel, double pins, int from_reg);
 #endif

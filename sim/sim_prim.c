@@ -31,6 +31,7 @@ typedef struct prim {
     void       *user;
     sim_signal *clk;             /* register's clock (for sim_prim_describe) */
     const char *verilog;         /* logic: sim_logic_verilog's text */
+    int         qlogic;          /* rounding or saturation logic after the element */
 } prim;
 
 int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, sim_ovf o)
@@ -142,10 +143,11 @@ static sim_arcs quant_cost(const prim *p, sim_fmt f, int src_f, int src_i, doubl
 
 /* Set the element's area and delay: its own logic (area, dl), then its
  * quantization's. */
-static void set_cost(sim_signal *y, const prim *p, double area, sim_arcs dl, int src_f, int src_i)
+static void set_cost(sim_signal *y, prim *p, double area, sim_arcs dl, int src_f, int src_i)
 {
     double q;
     dl = quant_cost(p, y->fmt, src_f, src_i, &q, dl);
+    p->qlogic = q > 0;
     y->area_ge = area + q;
     sim_arcs_set(y, dl);
 }
@@ -383,6 +385,27 @@ static void mul_eval(sim_proc *pr)
     sim_write(p->y, sim_quant_into(p->y, prod, p->src_f, p->r, p->o));
 }
 
+int sim_prim_live_bits(const sim_signal *s)
+{
+    sim_prim_info in;
+    for (int depth = 0; depth < 16 && s->kind == SIM_KIND_SHIFT && !sim_prim_describe(s, &in) && in.a; depth++) {
+        /* a constant shift is wiring: its other bits are constant zeros */
+        if (in.a->kind != SIM_KIND_SHIFT) {
+            int w = sim_prim_live_bits(in.a);
+            return w < s->fmt.width ? w : s->fmt.width;
+        }
+        s = in.a;
+    }
+    if (s->kind == SIM_KIND_CONST) {
+        uint64_t m = s->fmt.width >= 64 ? UINT64_MAX : (((uint64_t)1 << s->fmt.width) - 1);
+        uint64_t v = (uint64_t)(s->cur < 0 ? -s->cur : s->cur) & m;
+        int k = 0;
+        for (; v; v &= v - 1) k++;
+        return k ? k : 1;
+    }
+    return s->fmt.width;
+}
+
 sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                     sim_signal *a, sim_signal *b)
 {
@@ -395,8 +418,9 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     if (raw_bits(a) + raw_bits(b) <= 62 && fast_quant_setup(p, p->src_f)) set_native(pr, SIM__OP_MUL, p);
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
-    set_cost(y, p, sim_area_mul(a->fmt.width, b->fmt.width), sim_delay_mul(a->fmt.width, b->fmt.width, fmt.width),
-             p->src_f, a->fmt.ibits + b->fmt.ibits);
+    /* the array synthesis builds: the operands' live bits only */
+    int la = sim_prim_live_bits(a), lb = sim_prim_live_bits(b);
+    set_cost(y, p, sim_area_mul(la, lb), sim_delay_mul(la, lb, fmt.width), p->src_f, a->fmt.ibits + b->fmt.ibits);
     return y;
 }
 
@@ -501,6 +525,7 @@ int sim_prim_describe(const sim_signal *y, sim_prim_info *out)
     out->rst = p->rst; out->rst_raw = p->rst_raw; out->clk = p->clk;
     out->n = p->n; out->in = p->in; out->fn = p->fn; out->user = p->user;
     out->r = p->r; out->o = p->o;
+    out->qlogic = p->qlogic;
     out->verilog = p->verilog;
     /* sim_shift kept f = fbits(x) - sh as src_f - sa (one of them 0) */
     if (y->kind == SIM_KIND_SHIFT) out->shift = p->a->fmt.fbits - (p->src_f - p->sa);
@@ -541,6 +566,13 @@ int sim_prim_reads(const sim_prim_info *in, const sim_signal **r)
         break;
     }
     return n;
+}
+
+void sim_logic_depth(sim_signal *y, int levels)
+{
+    if (y->kind != SIM_KIND_LOGIC || !y->driver || sim__proc_of(y->driver)->fn != logic_eval) return;
+    sim_delay dl = { levels, levels * SIM_PS_AND2 };
+    sim_arcs_set(y, sim_arcs_all(dl));
 }
 
 void sim_logic_verilog(sim_signal *y, const char *text)

@@ -100,12 +100,22 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
  * what the C function computes, raw bits of y's format; the co-simulation
  * tests check it. Copied. */
 void sim_logic_verilog(sim_signal *y, const char *text);
+/* A logic element's depth in gate levels (AND2 each), where its unit
+ * knows it better than the estimate from its input bits: 0 for wiring
+ * (bits concatenated or selected), 1 for an inverter. */
+void sim_logic_depth(sim_signal *y, int levels);
 
 /* Quantize an exact wide value with src_fbits into s's format using the
  * element's modes r, o (s's format's own modes win), count an overflow on s; used by the primitives and by
  * units that model an element the primitives do not cover. */
 int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits,
                        sim_round r, sim_ovf o);
+/* The bits of s a multiplier builds partial products for: a constant's
+ * nonzero bits (a shift-and-add of that many rows), a constant shift's
+ * source's (wiring, as `t` = a pixel counter with its binary point moved:
+ * the other bits are constant zeros synthesis drops), else its width. */
+int sim_prim_live_bits(const sim_signal *s);
+
 /* What an element is, for exporters (Verilog): read from the element's own
  * record, so the kernel's evaluation is untouched. kind is the output
  * signal's kind; a, b: operands (register: D; mux: unused, see in);
@@ -130,6 +140,7 @@ typedef struct sim_prim_info {
     sim_round   r;
     sim_ovf     o;
     const char *verilog;     /* logic: sim_logic_verilog's text, or NULL */
+    int         qlogic;      /* 1: rounding or saturation logic after the element (sim_area_round, sim_area_sat) */
 } sim_prim_info;
 /* 0 and *out filled for a signal driven by a primitive (or a constant);
  * -1 for an input, a clock, or a signal a user process drives. */

@@ -10,6 +10,8 @@
 
 typedef struct walk {
     const sim_ctx *c;
+    double  *load;        /* each signal's extra delay for the pins its bits drive (sim_delay_load_ps) */
+    unsigned char *csa;   /* 1: an adder merged into the multi-operand adder of its one reader (sim_delay_csa) */
     sim_delay *al, *am;   /* arrival of each signal's least and most significant bit (NONE: no path) */
     int32_t *pred;        /* the input its most significant bit came through, or -1 at a start */
     unsigned char *st;    /* 0 not seen, 1 on the walk's stack, 2 done */
@@ -44,7 +46,7 @@ static int visit(walk *w, const sim_signal *s)
         const sim_signal **r = malloc((size_t)(10 + (in.n > 0 ? in.n : 0)) * sizeof *r);
         if (!r) { snprintf(w->err, w->errlen, "out of memory"); return -1; }
         int nr = sim_prim_reads(&in, r);
-        sim_arcs a = sim_arcs_of(s);
+        sim_arcs a = w->csa[i] ? sim_delay_csa() : sim_arcs_of(s);
         for (int k = 0; k < nr; k++) {
             if (visit(w, r[k])) { free(r); return -1; }
             uint32_t j = r[k]->index;
@@ -57,19 +59,83 @@ static int visit(walk *w, const sim_signal *s)
         }
         free(r);
     }
+    if (w->al[i].lv >= 0) w->al[i].ps += w->load[i];
+    if (w->am[i].lv >= 0) w->am[i].ps += w->load[i];
     w->st[i] = 2;
     return 0;
+}
+
+/* Pins one bit of each signal drives: a select, enable, reset or key bit
+ * one per bit of the element it steers (per bit of a multiplexer's first
+ * level), a multiplier operand's bit one per live bit of the other, an
+ * adder operand's two (its XOR and its carry gate), any other one; a
+ * constant shift is wiring, so its pins are its source's. Into load[] as
+ * picoseconds (sim_delay_load_ps). */
+static int is_addsub(sim_kind k) { return k == SIM_KIND_ADD || k == SIM_KIND_SUB; }
+
+static void loads(const sim_ctx *c, double *load, unsigned char *csa)
+{
+    uint32_t n = sim_signal_count(c);
+    double *sel = calloc(n ? n : 1, sizeof *sel), *oth = calloc(n ? n : 1, sizeof *oth);
+    int *reads = calloc(n ? n : 1, sizeof *reads), *adds = calloc(n ? n : 1, sizeof *adds);
+    memset(csa, 0, n ? n : 1);
+    if (!sel || !oth || !reads || !adds) {
+        free(sel); free(oth); free(reads); free(adds);
+        memset(load, 0, (n ? n : 1) * sizeof *load);
+        return;
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        const sim_signal *y = sim_signal_at(c, i);
+        sim_prim_info in;
+        if (!y->driver || sim_prim_describe(y, &in)) continue;
+        const sim_signal *ops[3] = { in.a, in.b, in.c };
+        for (int k = 0; k < 3; k++)
+            if (ops[k]) { reads[ops[k]->index]++; adds[ops[k]->index] += is_addsub(in.kind) && k < 2; }
+        if (in.rst) reads[in.rst->index]++;
+        for (int k = 0; k < in.n; k++) reads[in.in[k]->index]++;
+        int w = y->fmt.width;
+        if (in.c) sel[in.c->index] += in.kind == SIM_KIND_MUX ? w * ((in.n + 1) / 2) : w;
+        if (in.rst) sel[in.rst->index] += w;
+        if (in.kind == SIM_KIND_MUL) {
+            oth[in.a->index] += sim_prim_live_bits(in.b);
+            oth[in.b->index] += sim_prim_live_bits(in.a);
+            continue;
+        }
+        double per = in.kind == SIM_KIND_ADD || in.kind == SIM_KIND_SUB ? 2 : 1;
+        if (in.a) oth[in.a->index] += per;
+        if (in.b) oth[in.b->index] += per;
+        if (in.kind == SIM_KIND_MUX || in.kind == SIM_KIND_LOGIC)
+            for (int k = 0; k < in.n; k++) oth[in.in[k]->index] += 1;
+    }
+    /* latest first: a shift of a shift passes its pins on down */
+    for (uint32_t i = n; i-- > 0;) {
+        const sim_signal *y = sim_signal_at(c, i);
+        sim_prim_info in;
+        if (y->kind != SIM_KIND_SHIFT || sim_prim_describe(y, &in) || !in.a) continue;
+        sel[in.a->index] += sel[i]; oth[in.a->index] += oth[i];
+        sel[i] = oth[i] = 0;
+    }
+    for (uint32_t i = 0; i < n; i++) {
+        const sim_signal *y = sim_signal_at(c, i);
+        int driven = y->driver && y->kind != SIM_KIND_INPUT && y->kind != SIM_KIND_CONST;
+        load[i] = driven ? sim_delay_load_ps(sel[i], oth[i], y->kind == SIM_KIND_REG) : 0.0;
+        sim_prim_info in;
+        if (is_addsub(y->kind) && reads[i] == 1 && adds[i] == 1 && !sim_prim_describe(y, &in) && !in.qlogic)
+            csa[i] = 1;
+    }
+    free(sel); free(oth); free(reads); free(adds);
 }
 
 int sim_timing_analyze(const sim_ctx *c, sim_timing *out, char *err, size_t errlen)
 {
     memset(out, 0, sizeof *out);
     uint32_t n = sim_signal_count(c);
-    walk w = { c, malloc((n ? n : 1) * sizeof(sim_delay)), malloc((n ? n : 1) * sizeof(sim_delay)),
+    walk w = { c, malloc((n ? n : 1) * sizeof(double)), malloc(n ? n : 1), malloc((n ? n : 1) * sizeof(sim_delay)), malloc((n ? n : 1) * sizeof(sim_delay)),
                malloc((n ? n : 1) * sizeof(int32_t)), calloc(n ? n : 1, 1), err, errlen };
     int32_t *chain = malloc((size_t)(n + 1) * sizeof *chain);
     int rc = -1;
-    if (!w.al || !w.am || !w.pred || !w.st || !chain) { snprintf(err, errlen, "out of memory"); goto done; }
+    if (!w.load || !w.csa || !w.al || !w.am || !w.pred || !w.st || !chain) { snprintf(err, errlen, "out of memory"); goto done; }
+    loads(c, w.load, w.csa);
     for (uint32_t i = 0; i < n; i++)
         if (visit(&w, sim_signal_at(c, i))) goto done;
     /* Endpoints: every signal as it is (a port no register captures ends
@@ -105,6 +171,6 @@ int sim_timing_analyze(const sim_ctx *c, sim_timing *out, char *err, size_t errl
     }
     rc = 0;
 done:
-    free(w.al); free(w.am); free(w.pred); free(w.st); free(chain);
+    free(w.load); free(w.csa); free(w.al); free(w.am); free(w.pred); free(w.st); free(chain);
     return rc;
 }

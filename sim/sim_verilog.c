@@ -3,7 +3,10 @@
  * Every intermediate is an explicitly sized bit vector: operands are
  * sign- or zero-extended by concatenation to the width of the exact
  * result, so no expression depends on Verilog's width and signedness
- * rules (and `verilator -Wall` has no width warning to give).
+ * rules (and `verilator -Wall` has no width warning to give). Products
+ * are the one exception: `$signed(a) * $signed(b)` on the operands at
+ * their own widths, which the product's width extends as signed (the
+ * form synthesis builds a wa x wb multiplier from).
  */
 #include "sim/sim_verilog.h"
 #include "sim/sim_prim.h"
@@ -339,13 +342,16 @@ static int emit_arith(vgen *g, const sim_signal *y, const sim_prim_info *in, con
         fprintf(f, "    wire [%d:0] %s__a = %s;\n    wire [%d:0] %s__b = %s;\n", T - 1, pre, ea, T - 1, pre, eb);
         fprintf(f, "    wire [%d:0] %s__e = %s__a %c %s__b;\n", T - 1, pre, pre, y->kind == SIM_KIND_ADD ? '+' : '-', pre);
     } else if (y->kind == SIM_KIND_MUL) {
+        /* Each operand at its own width as a signed number (an unsigned
+         * one zero-extended by a bit), the product at the sum of the two:
+         * the exact product fits. Synthesis builds a signed wa x wb
+         * multiplier from this; the same product written on operands
+         * sign-extended to the full width is a T x T one that it must trim
+         * (minutes in ABC for 16 x 16 bits, and more cells). */
         T = sw(in->a) + sw(in->b);
-        ext(ea, sizeof ea, g, in->a, T, 0);
-        ext(eb, sizeof eb, g, in->b, T, 0);
-        /* T-bit operands, T-bit product: the exact product fits (a
-         * synthesizer trims the copies of the sign) */
-        fprintf(f, "    wire [%d:0] %s__a = %s;\n    wire [%d:0] %s__b = %s;\n", T - 1, pre, ea, T - 1, pre, eb);
-        fprintf(f, "    wire [%d:0] %s__e = %s__a * %s__b;\n", T - 1, pre, pre, pre);
+        ext(ea, sizeof ea, g, in->a, sw(in->a), 0);
+        ext(eb, sizeof eb, g, in->b, sw(in->b), 0);
+        fprintf(f, "    wire [%d:0] %s__e = $signed(%s) * $signed(%s);\n", T - 1, pre, ea, eb);
     } else {   /* shift: x * 2^sh is the raw with fbits - sh fraction bits (scaled up by sa past the point) */
         T = sw(in->a) + sa;
         ext(ea, sizeof ea, g, in->a, T, sa);

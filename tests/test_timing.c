@@ -5,14 +5,17 @@
 #include "tests/tst.h"
 #include "sim/sim_prim.h"
 #include "sim/sim_timing.h"
+#include "sim/sim_area.h"
+#include "sim/sim_delay.h"
 
 static const sim_fmt F8 = { .is_signed = 1, .ibits = 4, .fbits = 4, .width = 8 };   /* s4.4 */
 static const sim_fmt U1 = { .is_signed = 0, .ibits = 1, .fbits = 0, .width = 1 };
 static const sim_fmt U3 = { .is_signed = 0, .ibits = 3, .fbits = 0, .width = 3 };
 
 /* An 8-bit ripple-carry adder from its operands' low bits to its top sum
- * bit: bit 0's carry (B -> CO), six carries (CI -> CO), the top sum (CI -> S). */
-#define ADD8_PS (SIM_PS_FA_AB_CO + 6 * SIM_PS_FA_CO + SIM_PS_FA_S)
+ * bit: bit 0's carry (an AND2), six carries (three AOI21/OAI21 pairs), the
+ * top sum (an XOR2). */
+#define ADD8_PS (SIM_PS_AND2 + 3 * SIM_PS_CARRY2 + SIM_PS_XOR2)
 
 static void path_is(const sim_timing *t, int n, const char *const *names)
 {
@@ -61,7 +64,9 @@ static void t_reg_add_reg(void)
 }
 
 /* A 5:1 multiplexer from registers, select from a register: three MUX2
- * levels, the first from the select. */
+ * levels, the first from the select. The select's bit drives the first
+ * level's three MUX2 selects in each of the 8 bits: 24 S pins, its
+ * register's Q slower by DFF_X1's slope times the load past the tables'. */
 static void t_mux_tree(void)
 {
     sim_signal *clk;
@@ -78,16 +83,19 @@ static void t_mux_tree(void)
     char err[200];
     TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
     TST_EQ_INT(t.levels, 3);
-    TST_NEAR(t.ps, SIM_PS_DFF_CQ + SIM_PS_MUX2_S + 2 * SIM_PS_MUX2 + SIM_PS_DFF_SU, 1e-9);
+    double load = (24 * SIM_FF_PIN_SEL - SIM_FF_REF) * SIM_PS_PER_FF_Q;
+    TST_NEAR(t.ps, SIM_PS_DFF_CQ + load + SIM_PS_MUX2_S + 2 * SIM_PS_MUX2 + SIM_PS_DFF_SU, 1e-9);
     path_is(&t, 3, (const char *const[]){ "sel", "m", "out" });
     sim_free(c);
 }
 
 /* An 8 x 8 array multiplier between registers: AND2, 7 carry-save rows
- * (sum outputs), a 7-bit ripple; truncated and wrapped, no other logic.
- * Rounded to nearest, the incrementer's top sum bit after it (its carry
- * chain starts on the product's low bits, 14 levels earlier, and ends
- * sooner). */
+ * (an XOR2 each), a 7-bit ripple (AOI21/OAI21 pairs); truncated and
+ * wrapped, no other logic. Each bit of a drives b's 8 partial products (8
+ * pins: its Q slower by the load past the tables'). Rounded to nearest,
+ * the incrementer after it: its carry chain (7 AND2, then the top sum)
+ * starts on the product's low bits, 14 levels (7 carries, 305 ps) before
+ * the top one, and is the longer way (7 AND2 = 344 ps). */
 static void t_multiplier(void)
 {
     for (int rnd = 0; rnd < 2; rnd++) {
@@ -102,9 +110,10 @@ static void t_multiplier(void)
         sim_timing t;
         char err[200];
         TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
-        double mul = SIM_PS_AND2 + 7 * SIM_PS_FA_S + 7 * SIM_PS_FA_CO;
-        TST_EQ_INT(t.levels, 1 + 2 * 7 + 2 * 7 + rnd);
-        TST_NEAR(t.ps, SIM_PS_DFF_CQ + mul + (rnd ? SIM_PS_HA_S : 0) + SIM_PS_DFF_SU, 1e-9);
+        double load = (8 * SIM_FF_PIN - SIM_FF_REF) * SIM_PS_PER_FF_Q;
+        double rows = SIM_PS_AND2 + 7 * SIM_PS_XOR2, ripple = 7 * SIM_PS_CARRY2 / 2;
+        TST_EQ_INT(t.levels, rnd ? 1 + 2 * 7 + 8 : 1 + 2 * 7 + 2 * 7);
+        TST_NEAR(t.ps, SIM_PS_DFF_CQ + load + rows + (rnd ? 7 * SIM_PS_AND2 + SIM_PS_HA_S : ripple) + SIM_PS_DFF_SU, 1e-9);
         path_is(&t, 3, (const char *const[]){ "a", "m", "p" });
         sim_free(c);
     }
@@ -113,8 +122,8 @@ static void t_multiplier(void)
 /* Two chained adders and a short branch into a 2:1 mux and a register:
  * a = x + y, b = a + y, s = p ? x : 0, z = sel ? s : b. The second adder
  * starts on a's low bits while a's carry still ripples, so b's top bit is
- * a's top bit plus one full adder's sum (2 levels), not plus a whole
- * adder: 14 + 2 levels. */
+ * a's top bit plus one sum (2 levels, two XOR2), not plus a whole adder:
+ * 14 + 2 levels. */
 static void t_branches(void)
 {
     sim_signal *clk;
@@ -132,7 +141,7 @@ static void t_branches(void)
     char err[200];
     TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
     TST_EQ_INT(t.levels, 14 + 2 + 1);
-    TST_NEAR(t.ps, ADD8_PS + SIM_PS_FA_S + SIM_PS_MUX2_S + SIM_PS_DFF_SU, 1e-9);
+    TST_NEAR(t.ps, ADD8_PS + 2 * SIM_PS_XOR2 + SIM_PS_MUX2_S + SIM_PS_DFF_SU, 1e-9);
     path_is(&t, 5, (const char *const[]){ "x", "a", "b", "z", "out" });
     sim_free(c);
 }
@@ -174,6 +183,59 @@ static void t_port_to_port(void)
     sim_free(c);
 }
 
+/* A multiplier's operands by their live bits: t, a 3-bit counter k with
+ * its binary point moved (a shift: wiring), has 3; the constant 0.3125 =
+ * 0101b 2^-4 two. x (8 bits) times t: two carry-save rows and a 7-bit
+ * ripple, the area of an 8 x 3 array; times the constant: one row. */
+static void t_live_bits(void)
+{
+    static const sim_fmt U44 = { .is_signed = 0, .ibits = 4, .fbits = 4, .width = 8 };
+    sim_signal *clk;
+    sim_ctx *c = fresh(&clk);
+    sim_signal *x = sim_signal_new(c, NULL, "x", F8, SIM_KIND_INPUT);
+    sim_signal *k = sim_signal_new(c, NULL, "k", U3, SIM_KIND_INPUT);
+    sim_signal *t = sim_shift(c, NULL, "t", U44, k, -3);
+    sim_signal *m = sim_mul(c, NULL, "m", F8, x, t);
+    TST_EQ_INT(sim_prim_live_bits(t), 3);
+    TST_NEAR(m->area_ge, 8 * 3 * SIM_GE_AND2 + 2 * 8 * SIM_GE_FA, 1e-9);
+    sim_signal *kc = sim_const(c, NULL, "kc", U44, 0.3125);
+    sim_signal *mc = sim_mul(c, NULL, "mc", F8, x, kc);
+    TST_EQ_INT(sim_prim_live_bits(kc), 2);
+    TST_NEAR(mc->area_ge, 8 * 2 * SIM_GE_AND2 + 1 * 8 * SIM_GE_FA, 1e-9);
+    (void)mc;
+    sim_timing tm;
+    char err[200];
+    TST_EQ_INT(sim_timing_analyze(c, &tm, err, sizeof err), 0);
+    TST_EQ_INT(tm.levels, 1 + 2 * 2 + 2 * 7);
+    TST_NEAR(tm.ps, SIM_PS_AND2 + 2 * SIM_PS_XOR2 + 7 * SIM_PS_CARRY2 / 2, 1e-9);
+    path_is(&tm, 2, (const char *const[]){ "x", "m" });   /* x and k arrive together: the first read wins */
+    sim_free(c);
+}
+
+/* A net's load: s = p AND q (a block key of 1 bit) selects between two
+ * 16-bit inputs; its bit drives 16 MUX2 selects, 16 x 1.92 fF, past the
+ * tables' 7.5 fF by 23.2 fF at NOR2_X1's 5.09 ps/fF. Input ports drive
+ * ideally (no load figure), as OpenSTA times them without a driving cell. */
+static void t_load(void)
+{
+    static const sim_fmt F16 = { .is_signed = 1, .ibits = 8, .fbits = 8, .width = 16 };
+    sim_signal *clk;
+    sim_ctx *c = fresh(&clk);
+    sim_signal *p = sim_signal_new(c, NULL, "p", U1, SIM_KIND_INPUT);
+    sim_signal *q = sim_signal_new(c, NULL, "q", U1, SIM_KIND_INPUT);
+    sim_signal *x0 = sim_signal_new(c, NULL, "x0", F16, SIM_KIND_INPUT);
+    sim_signal *x1 = sim_signal_new(c, NULL, "x1", F16, SIM_KIND_INPUT);
+    sim_signal *s = sim_bk(c, NULL, "s", U1, p, q);
+    sim_mux(c, NULL, "z", F16, s, 2, (sim_signal *const[]){ x0, x1 });
+    sim_timing t;
+    char err[200];
+    TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
+    TST_EQ_INT(t.levels, 2);
+    TST_NEAR(t.ps, SIM_PS_AND2 + (16 * 1.92 - 7.5) * 5.09 + SIM_PS_MUX2_S, 1e-9);
+    path_is(&t, 3, (const char *const[]){ "p", "s", "z" });
+    sim_free(c);
+}
+
 int main(void)
 {
     TST_RUN(t_reg_add_reg);
@@ -182,5 +244,7 @@ int main(void)
     TST_RUN(t_branches);
     TST_RUN(t_loop);
     TST_RUN(t_port_to_port);
+    TST_RUN(t_live_bits);
+    TST_RUN(t_load);
     TST_EXIT();
 }

@@ -161,6 +161,7 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
     double shifter = shr ? brdf_bitlen((uint64_t)shr_max) * (fr.width + qb) * SIM_GE_MUX2 : 0.0;
     sim_signal *r_load = sim_logic(c, sc, "r_load", fr, nld, ld_in, shr ? f_r_load_shr : f_r_load, ld, shifter);
     vl_scaled(r_load, fn.width, fn.is_signed, ld->s - qb, shr != NULL, fr.width, fr.width);
+    sim_logic_depth(r_load, shr ? brdf_bitlen((uint64_t)shr_max) : 0);   /* wiring, or the shifter's levels */
     char vt[200];
 
     sim_signal *r = sim_reg(c, sc, "r", fr, clk, NULL, NULL, NULL, 0);
@@ -172,21 +173,25 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
         /* Dividend bits below the quotient's LSB enter through Q. */
         sim_signal *q_load = sim_logic(c, sc, "q_load", fq, nld, ld_in, shr ? f_q_load_shr : f_q_load, ld, 0);
         vl_scaled(q_load, fn.width, fn.is_signed, ld->s, shr != NULL, qb < fq.width ? qb : fq.width, fq.width);
+        sim_logic_depth(q_load, shr ? brdf_bitlen((uint64_t)shr_max) : 0);
         sim_signal *q_in_src[2] = { q, q_load };
         q_in = sim_mux(c, sc, "q_in", fq, first, 2, q_in_src);
     } else {
         /* They never do: Q starts at zero, an AND gate a bit. */
         sim_signal *busy = sim_logic(c, sc, "busy", u1, 1, &first, f_not, NULL, SIM_GE_INV);
+        sim_logic_depth(busy, 1);
         q_in = sim_bk(c, sc, "q_in", fq, busy, q);
     }
     sim_signal *r2_in[2] = { r_in, q_in };
     sim_signal *r2 = sim_logic(c, sc, "r2", unit_fmt(fr.is_signed, fr.ibits + 1, fr.fbits), 2, r2_in, f_r2, qbp, 0);
     snprintf(vt, sizeof vt, "assign %%y = {%%0, %%1[%d]};", qb - 1);
     sim_logic_verilog(r2, vt);
+    sim_logic_depth(r2, 0);       /* R shifted left, Q's top bit in: wiring */
     sim_signal *trial = sim_sub(c, sc, "trial", unit_fmt(1, fr.ibits + 2, fr.fbits), r2, den);
     sim_signal *qbit = sim_logic(c, sc, "qbit", u1, 1, &trial, f_qbit, NULL, SIM_GE_INV);
     snprintf(vt, sizeof vt, "assign %%y = ~%%0[%d];", trial->fmt.width - 1);
     sim_logic_verilog(qbit, vt);
+    sim_logic_depth(qbit, 1);     /* an inverter of the trial's sign */
     /* The restore mux keeps TRIAL's format: its select arrives a delta
      * after its data, and a narrower output would count the transient
      * (unselected) values as overflows. R quantizes the settled value. */
@@ -201,6 +206,7 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
         if (kb >= 2) snprintf(low, sizeof low, "%%0[%d:0], ", kb - 2);
         snprintf(vt, sizeof vt, "assign %%y = {%s%s%%1};", pad, low);
         sim_logic_verilog(q_next, vt);
+        sim_logic_depth(q_next, 0);   /* Q shifted left, the new bit in: wiring */
     }
     sim_reg_connect(q, q_next);
     if (idz >= 0) {

@@ -33,6 +33,7 @@
 #include "vectors/ref_factor.h"
 #include "sim/sim_area.h"
 #include <math.h>
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
@@ -131,6 +132,17 @@ static int64_t quant(__int128 v, int src, sim_fmt f, sim_round r)
 
 typedef struct hf_rec { sim_fmt fz, fq, fr; sim_round r; } hf_rec;
 
+/* The reciprocal ROM's entry i: 1/(1 + i 2^-A) in REC's fraction bits,
+ * rounded by the unit's mode (truncated, or to nearest). */
+static int64_t rec_entry(const hf_rec *p, int64_t i)
+{
+    int A = p->fq.fbits, Fr = p->fr.fbits;
+    __int128 den = ((__int128)1 << A) + i;
+    __int128 q = p->r == SIM_RND_TRUNC ? ((__int128)1 << (A + Fr)) / den
+                                       : (((__int128)1 << (A + Fr + 1)) + den) / (2 * den);
+    return (int64_t)q;
+}
+
 /* The reciprocal 1/(1 + z) from a ROM of 2^A + 1 entries and a linear
  * interpolation between two of them (the chord):
  *   k = ZQ 2^A (the address), t = (z - ZQ) 2^A in [0, 1),
@@ -145,13 +157,7 @@ static int64_t f_rec(const int64_t *in, void *u)
     int64_t k = in[1];                               /* ZQ's raw: z's top A fraction bits */
     int Ft = Fz > A ? Fz - A : 0;
     int64_t t = Fz > A ? in[0] - (k << (Fz - A)) : 0;   /* t 2^Ft */
-    int64_t e[2];
-    for (int j = 0; j < 2; j++) {
-        __int128 den = ((__int128)1 << A) + k + j;
-        __int128 q = p->r == SIM_RND_TRUNC ? ((__int128)1 << (A + Fr)) / den
-                                           : (((__int128)1 << (A + Fr + 1)) + den) / (2 * den);
-        e[j] = (int64_t)q;
-    }
+    int64_t e[2] = { rec_entry(p, k), rec_entry(p, k + 1) };
     __int128 v = ((__int128)e[0] << Ft) + (__int128)t * (e[1] - e[0]);    /* at Fr + Ft bits */
     return quant(v, Fr + Ft, p->fr, p->r);
 }
@@ -212,6 +218,191 @@ static int64_t rom_raw(double x, sim_fmt f, sim_round r)
     return (int64_t)(v > hi ? hi : v < 0 ? 0 : v);
 }
 
+/* ------------------------------------------------------ the logic as RTL
+ * For the Verilog export (sim_logic_verilog): each element above as
+ * statements, the same arithmetic on explicitly sized vectors, exact by
+ * construction (test_verilog co-simulates them); the reciprocal ROM as a
+ * function of its address, read at zq and zq + 1. An element whose
+ * vectors would pass 64 bits (formats far from the defaults) gets no text,
+ * and the export refuses it by name. */
+
+typedef struct vt { char *p; size_t n, cap; int full; } vt;
+
+static void vt_add(vt *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void vt_add(vt *b, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    int k = vsnprintf(b->p + b->n, b->cap - b->n, fmt, ap);
+    va_end(ap);
+    if (k < 0 || (size_t)k >= b->cap - b->n) { b->full = 1; return; }
+    b->n += (size_t)k;
+}
+
+/* N-bit literal of raw (two's complement). */
+static void vt_lit(vt *b, int N, int64_t raw)
+{
+    uint64_t m = N >= 64 ? UINT64_MAX : (((uint64_t)1 << N) - 1);
+    vt_add(b, "%d'h%llx", N, (unsigned long long)((uint64_t)raw & m));
+}
+
+/* Input %arg (format f) as a signed value of N >= its width + !signed bits. */
+static void vt_sx(vt *b, int arg, sim_fmt f, int N)
+{
+    int pad = N - f.width;
+    if (pad <= 0) vt_add(b, "%%%d", arg);
+    else if (f.is_signed) vt_add(b, "{{%d{%%%d[%d]}}, %%%d}", pad, arg, f.width - 1, arg);
+    else vt_add(b, "{%d'b0, %%%d}", pad, arg);
+}
+
+static int sw(sim_fmt f) { return f.width + !f.is_signed; }
+
+/* %y = quant(v, src, f, r) (the function above) of the N-bit signed wire
+ * %t_v: the rounding increment, the shift, the clamp to f's range. */
+static void vt_quant(vt *b, int N, int src, sim_fmt f, sim_round r)
+{
+    int sh = src - f.fbits, up = sh > 0 ? sh : 0, dn = sh < 0 ? -sh : 0;
+    int M = (N > f.width + up ? N : f.width + up) + 1;        /* room for the increment, and f's range */
+    vt_add(b, "wire [%d:0] %%t_a = {{%d{%%t_v[%d]}}, %%t_v}", M - 1, M - N, N - 1);
+    if (up && r != SIM_RND_TRUNC) { vt_add(b, " + "); vt_lit(b, M, (int64_t)1 << (up - 1)); }
+    vt_add(b, ";\n");
+    int S = M - up + dn;
+    if (up) vt_add(b, "wire [%d:0] %%t_s = %%t_a[%d:%d];\n", S - 1, M - 1, up);
+    else if (dn) vt_add(b, "wire [%d:0] %%t_s = {%%t_a, %d'b0};\n", S - 1, dn);
+    else vt_add(b, "wire [%d:0] %%t_s = %%t_a;\n", S - 1);
+    vt_add(b, "assign %%y = $signed(%%t_s) < $signed(");
+    vt_lit(b, S, sim_fmt_raw_min(f));
+    vt_add(b, ") ? ");
+    vt_lit(b, f.width, sim_fmt_raw_min(f));
+    vt_add(b, " : $signed(%%t_s) > $signed(");
+    vt_lit(b, S, sim_fmt_raw_max(f));
+    vt_add(b, ") ? ");
+    vt_lit(b, f.width, sim_fmt_raw_max(f));
+    vt_add(b, " : %%t_s[%d:0];\n", f.width - 1);
+    if (S > 64) b->full = 1;
+}
+
+/* The text into y, unless it did not fit (then y has none). */
+static void vt_set(sim_signal *y, vt *b)
+{
+    if (!b->full) sim_logic_verilog(y, b->p);
+}
+
+static vt vt_new(sim_ctx *c, size_t cap)
+{
+    vt b = { sim_alloc(c, cap), 0, cap, 0 };
+    b.p[0] = 0;
+    return b;
+}
+
+/* zq = z shifted right by Fz - A (f_zq), its low bits. */
+static void vl_zq(sim_ctx *c, sim_signal *zq, const hf_rec *p)
+{
+    vt b = vt_new(c, 512);
+    int sh = p->fz.fbits - p->fq.fbits, wq = zq->fmt.width;
+    int K = sw(p->fz) > wq + sh ? sw(p->fz) : wq + sh;
+    vt_add(&b, "wire [%d:0] %%t_z = ", K - 1 + (sh < 0 ? -sh : 0));
+    if (sh < 0) vt_add(&b, "{");
+    vt_sx(&b, 0, p->fz, K);
+    if (sh < 0) vt_add(&b, ", %d'b0}", -sh);
+    vt_add(&b, ";\nassign %%y = %%t_z[%d:%d];\n", (sh > 0 ? sh : 0) + wq - 1, sh > 0 ? sh : 0);
+    vt_set(zq, &b);
+}
+
+/* rec (f_rec): t = z - zq 2^Ft, the entries at zq and zq + 1 from the
+ * ROM function, e0 2^Ft + t (e1 - e0), quantized. */
+static void vl_rec(sim_ctx *c, sim_signal *rec, const hf_rec *p)
+{
+    int wq = p->fq.width, A = p->fq.fbits, Fz = p->fz.fbits, Ft = Fz > A ? Fz - A : 0;
+    if (wq > 14 || p->fq.is_signed) return;
+    int64_t n = ((int64_t)1 << wq) + 1, emax = 0;
+    for (int64_t i = 0; i < n; i++) if (rec_entry(p, i) > emax) emax = rec_entry(p, i);
+    int EW = 1;
+    while (EW < 62 && ((int64_t)1 << EW) <= emax) EW++;
+    vt b = vt_new(c, (size_t)n * 64 + 4096);
+    vt_add(&b, "function [%d:0] %%t_rom;\ninput [%d:0] i;\ncase (i)\n", EW - 1, wq);
+    for (int64_t i = 0; i < n; i++) {
+        vt_add(&b, "    ");
+        vt_lit(&b, wq + 1, i);
+        vt_add(&b, ": %%t_rom = ");
+        vt_lit(&b, EW, rec_entry(p, i));
+        vt_add(&b, ";\n");
+    }
+    vt_add(&b, "    default: %%t_rom = %d'b0;\nendcase\nendfunction\n", EW);
+    vt_add(&b, "wire [%d:0] %%t_e0 = %%t_rom({1'b0, %%1});\n", EW - 1);
+    vt_add(&b, "wire [%d:0] %%t_e1 = %%t_rom({1'b0, %%1} + ", EW - 1);
+    vt_lit(&b, wq + 1, 1);
+    vt_add(&b, ");\n");
+    if (!Ft) {
+        vt_add(&b, "wire [%d:0] %%t_v = {1'b0, %%t_e0};\n", EW);
+        vt_quant(&b, EW + 1, p->fr.fbits, p->fr, p->r);
+    } else {
+        int NT = (sw(p->fz) > wq + 1 + Ft ? sw(p->fz) : wq + 1 + Ft) + 1;
+        int NP = NT + EW + 1, NV = (NP > EW + 1 + Ft ? NP : EW + 1 + Ft) + 1;
+        vt_add(&b, "wire [%d:0] %%t_t = ", NT - 1);
+        vt_sx(&b, 0, p->fz, NT);
+        vt_add(&b, " - {%d'b0, %%1, %d'b0};\n", NT - wq - Ft, Ft);
+        vt_add(&b, "wire [%d:0] %%t_d = {1'b0, %%t_e1} - {1'b0, %%t_e0};\n", EW);
+        vt_add(&b, "wire [%d:0] %%t_p = $signed(%%t_t) * $signed(%%t_d);\n", NP - 1);
+        vt_add(&b, "wire [%d:0] %%t_v = {%d'b0, %%t_e0, %d'b0} + {{%d{%%t_p[%d]}}, %%t_p};\n",
+               NV - 1, NV - EW - Ft, Ft, NV - NP, NP - 1);
+        vt_quant(&b, NV, p->fr.fbits + Ft, p->fr, p->r);
+    }
+    vt_set(rec, &b);
+}
+
+/* su, sv (f_addr): clamp(U R + (R-1) 2^Fu, 0, (R-1) 2^(Fu+1)) at Fu + 1
+ * fraction bits, quantized; R a power of two (the parameter's kind). */
+static void vl_addr(sim_ctx *c, sim_signal *s, const hf_addr *p)
+{
+    int lr = lg2(p->R);
+    if ((1 << lr) != p->R) return;
+    int F = p->fu.fbits + 1, NS = sw(p->fu) + lr + 2;
+    vt b = vt_new(c, 1024);
+    vt_add(&b, "wire [%d:0] %%t_w = {", NS - 1);
+    vt_sx(&b, 0, p->fu, NS - lr);
+    vt_add(&b, lr ? ", %d'b0} + " : "} + ", lr);
+    vt_lit(&b, NS, (int64_t)(p->R - 1) << p->fu.fbits);
+    vt_add(&b, ";\nwire [%d:0] %%t_v = $signed(%%t_w) < $signed(%d'b0) ? %d'b0 : $signed(%%t_w) > $signed(", NS - 1, NS, NS);
+    vt_lit(&b, NS, (int64_t)(p->R - 1) << F);
+    vt_add(&b, ") ? ");
+    vt_lit(&b, NS, (int64_t)(p->R - 1) << F);
+    vt_add(&b, " : %%t_w;\n");
+    vt_quant(&b, NS, F, s->fmt, p->r);
+    if (NS > 64) b.full = 1;
+    vt_set(s, &b);
+}
+
+/* ix, iy, ax, ay (f_split): S's integer part or its fraction, R-2 and 1
+ * at the last texel; into y's bits. */
+static void vl_split(sim_ctx *c, sim_signal *y, sim_fmt fs, const hf_split *p)
+{
+    int wo = y->fmt.width, lr = lg2(p->R), NX = sw(fs) > p->fs + lr + 2 ? sw(fs) : p->fs + lr + 2;
+    vt b = vt_new(c, 1024);
+    vt_add(&b, "wire [%d:0] %%t_x = ", NX - 1);
+    vt_sx(&b, 0, fs, NX);
+    vt_add(&b, ";\nwire %%t_c = $signed(%%t_x[%d:%d]) >= $signed(", NX - 1, p->fs);
+    vt_lit(&b, NX - p->fs, p->R - 1);
+    vt_add(&b, ");\nwire [%d:0] %%t_r = ", wo - 1);
+    if (p->frac) {
+        int lsh = p->fa > p->fs ? p->fa - p->fs : 0, rsh = p->fs > p->fa ? p->fs - p->fa : 0;
+        if (!p->fs) vt_add(&b, "%d'b0;\n", wo);
+        else {
+            vt_add(&b, "%%t_f[%d:%d];\nwire [%d:0] %%t_f = {%d'b0, %%t_x[%d:0]", rsh + wo - 1, rsh,
+                   wo + p->fs + lsh - 1, wo, p->fs - 1);
+            vt_add(&b, lsh ? ", %d'b0};\n" : "};\n", lsh);
+        }
+    } else {
+        vt_add(&b, "%%t_i[%d:0];\nwire [%d:0] %%t_i = {{%d{%%t_x[%d]}}, %%t_x[%d:%d]", wo - 1,
+               wo + NX - p->fs + p->fi - 1, wo, NX - 1, NX - 1, p->fs);
+        vt_add(&b, p->fi ? ", %d'b0};\n" : "};\n", p->fi);
+    }
+    vt_add(&b, "assign %%y = %%t_c ? ");
+    vt_lit(&b, wo, p->frac ? (int64_t)1 << p->fa : (int64_t)(p->R - 2) << p->fi);
+    vt_add(&b, " : %%t_r;\n");
+    vt_set(y, &b);
+}
+
 static sim_signal *lookup(sim_ctx *c, sim_scope *top, const char *scope, const unit_cfg *cfg,
                           const unit_fmts *f, sim_signal *x, sim_signal *y, sim_signal *z,
                           const double *map)
@@ -222,12 +413,14 @@ static sim_signal *lookup(sim_ctx *c, sim_scope *top, const char *scope, const u
     hf_rec *rp = sim_alloc(c, sizeof *rp);
     rp->fz = z->fmt; rp->fq = F[HF_ZQ]; rp->fr = F[HF_REC]; rp->r = cfg->rnd;
     sim_signal *zq = sim_logic(c, sc, "zq", F[HF_ZQ], 1, &z, f_zq, rp, 0);
+    vl_zq(c, zq, rp);
     int A = F[HF_ZQ].fbits, wr = F[HF_REC].ibits + F[HF_REC].fbits;
     int wt = rp->fz.fbits > A ? rp->fz.fbits - A : 0;
     double rec_ge = HF_GE_PER_ROM_BIT * (ldexp(1.0, A) + 1) * wr * 2     /* two read ports */
                   + (double)wt * wr * SIM_GE_FA + 2.0 * wr * SIM_GE_FA;  /* multiplier, subtractor, adder */
     sim_signal *zin[2] = { z, zq };
     sim_signal *rec = sim_logic(c, sc, "rec", F[HF_REC], 2, zin, f_rec, rp, rec_ge);
+    vl_rec(c, rec, rp);
     sim_signal *u = sim_mul(c, sc, "u", F[HF_U], x, rec);
     sim_signal *v = sim_mul(c, sc, "v", F[HF_V], y, rec);
     sim_signal *ax = NULL, *ix = NULL, *ay = NULL, *iy = NULL;
@@ -237,6 +430,7 @@ static sim_signal *lookup(sim_ctx *c, sim_scope *top, const char *scope, const u
         int w = ap->fu.ibits + ap->fu.fbits + 2;
         sim_signal *s = sim_logic(c, sc, k ? "sv" : "su", ap->fs, 1, k ? &v : &u, f_addr, ap,
                                   w * (SIM_GE_FA + 2 * SIM_GE_MUX2));
+        vl_addr(c, s, ap);
         hf_split *pi = sim_alloc(c, sizeof *pi), *pa = sim_alloc(c, sizeof *pa);
         pi->fs = pa->fs = ap->fs.fbits; pi->R = pa->R = R;
         pi->fa = 0; pi->frac = 0; pi->fi = F[k ? HF_IY : HF_IX].fbits;
@@ -245,6 +439,8 @@ static sim_signal *lookup(sim_ctx *c, sim_scope *top, const char *scope, const u
         sim_signal *ii = sim_logic(c, sc, k ? "iy" : "ix", F[k ? HF_IY : HF_IX], 1, &s, f_split, pi, lr * SIM_GE_MUX2);
         sim_signal *aa = sim_logic(c, sc, k ? "ay" : "ax", F[k ? HF_AY : HF_AX], 1, &s, f_split, pa,
                                    (pa->fa + 1) * SIM_GE_AND2);
+        vl_split(c, ii, ap->fs, pi);
+        vl_split(c, aa, ap->fs, pa);
         if (k) { iy = ii; ay = aa; } else { ix = ii; ax = aa; }
     }
     int64_t *raw = sim_alloc(c, sizeof(int64_t) * (size_t)R * R);

@@ -134,7 +134,7 @@ sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
      * for the network; the quantization logic is still there. A negative
      * k makes one of the adders a subtractor (or, for a power of two,
      * adds a negator). */
-    double quant = y->area_ge - sim_area_mul(x->fmt.width, k->fmt.width);
+    double quant = y->area_ge - sim_area_mul(sim_prim_live_bits(x), sim_prim_live_bits(k));
     double net = kr < 0 ? sim_area_sub(w) + (adders > 1 ? (adders - 1) * sim_area_add(w) : 0.0)
                         : adders > 0 ? adders * sim_area_add(w) : 0.0;
     y->area_ge = net + quant;
