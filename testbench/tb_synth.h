@@ -14,27 +14,26 @@
 #include "testbench/tb.h"
 #include "base/base_proc.h"
 
-/* One tool's command line run in dir through base_proc (step names it
- * on the progress line; yosys: 1 when it writes dir/yosys.log, whose pass
- * the line shows), within run's limit. TB_SYNTH_OK, FAILED (a non-zero
- * exit status), TIMEOUT or SIGNAL, with a message for the last two. */
-typedef struct tb_synth_run tb_synth_run;
-int tb_synth_tool(tb_synth_run *run, const char *step, const char *dir, const char *cmd, int yosys,
-                  char *err, size_t errlen);
-
 /* Results: OK; BADINPUT (a tool or file missing, the device too small:
  * the message says which); FAILED (a tool failed: the message names its
  * log); TIMEOUT; SIGNAL (shadesim got run->signal: the caller cleans up
  * and calls base_proc_reraise). */
 enum { TB_SYNTH_OK = 0, TB_SYNTH_BADINPUT, TB_SYNTH_FAILED, TB_SYNTH_TIMEOUT, TB_SYNTH_SIGNAL };
 
-/* How the tools run: verb, start, limit_s and progress as base_proc has
- * them (step, detail and dir are set per tool); signal out. */
-struct tb_synth_run {
+/* How the tools run: start, limit_s and progress as base_proc has them
+ * (verb, step, detail and dir are set per tool); signal out. */
+typedef struct tb_synth_run {
     double start, limit_s;
     int progress;
     int signal;
-};
+} tb_synth_run;
+
+/* One tool's command line run in dir through base_proc (step names it
+ * on the progress line; yosys: 1 when it writes dir/yosys.log, whose pass
+ * the line shows), within run's limit. TB_SYNTH_OK, FAILED (a non-zero
+ * exit status), TIMEOUT or SIGNAL, with a message for the last two. */
+int tb_synth_tool(tb_synth_run *run, const char *step, const char *dir, const char *cmd, int yosys,
+                  char *err, size_t errlen);
 
 #define TB_STA_CELLS 256
 typedef struct tb_sta {
