@@ -398,7 +398,7 @@ int sim_prim_live_bits(const sim_signal *s)
     }
     if (s->kind == SIM_KIND_CONST) {
         uint64_t m = s->fmt.width >= 64 ? UINT64_MAX : (((uint64_t)1 << s->fmt.width) - 1);
-        uint64_t v = (uint64_t)(s->cur < 0 ? -s->cur : s->cur) & m;
+        uint64_t v = (s->cur < 0 ? (uint64_t)0 - (uint64_t)s->cur : (uint64_t)s->cur) & m;
         int k = 0;
         for (; v; v &= v - 1) k++;
         return k ? k : 1;
