@@ -69,6 +69,9 @@ static int SIM__DELTAS_NAME(sim_ctx *c, uint32_t *deltas, int once)
     sim_signal **upd = c->q.upd;
     uint32_t nd = *deltas;
     int hit = 0;
+#if !SIM__DELTAS_REF
+    c->stats.fast_paths++;
+#endif
     for (;;) {
         uint32_t nupd = c->q.nupd, i;
         sim__proc *p;
@@ -84,7 +87,13 @@ static int SIM__DELTAS_NAME(sim_ctx *c, uint32_t *deltas, int once)
                 /* Anything the kernel does not know inline, and a
                  * primitive whose fast result is out of range. */
                 c->q.nupd = nupd;
+#if SIM__DELTAS_REF
+                /* a primitive: its one definition, from its record */
+                if (p->elem) sim__elem_step(p);
+                else p->fn(&p->pub);
+#else
                 p->fn(&p->pub);
+#endif
                 nupd = c->q.nupd;
                 vmbreak;
             /* Operands' widths bound the exact result below 2^62

@@ -278,7 +278,7 @@ static inline void tick_in_place(sim_ctx *c)
 static inline uint32_t step_start(sim_ctx *c)
 {
     if (!c->nheap || c->heap[0].at > c->now) return 0;
-    if (!c->reference && tick_alone(c)) { tick_in_place(c); return 1; }
+    if (!c->reference && tick_alone(c)) { c->stats.fast_paths++; tick_in_place(c); return 1; }
     do {
         sim__timer t = timer_pop(c);
         t.fn(c, t.data);
@@ -337,6 +337,7 @@ static void tabulate(sim_ctx *c, sim__proc *p)
         tin[j].span = (uint64_t)in->raw_max - (uint64_t)in->raw_min;
         tin[j].sh = sh[j];
     }
+    c->stats.fast_paths++;
     int64_t *tab = sim_alloc(c, ((size_t)1 << bits) * sizeof *tab);
     sim_lut_fill(tab, bits, (int)n, p->op_in, mask, SIM_LUT_OFFSET,
                  p->op_logic, p->op_user, p->op_y->fmt);
