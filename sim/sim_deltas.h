@@ -11,9 +11,11 @@
  *    copy's too when built with -DSIM_KERNEL_SWITCH=1.
  * Before each include, sim_sched.c defines
  *   SIM__DELTAS_NAME    the function's name;
- *   SIM__DELTAS_REF     1: every process runs its general function (the
- *                       reference: no operation evaluated inline, no
- *                       table), 0: the operation sim__proc.op says;
+ *   SIM__DELTAS_REF     1: every primitive is evaluated by sim_elem_eval
+ *                       from its record, any other process runs its
+ *                       function (the reference: no operation inline, no
+ *                       table, no shortcut), 0: the operation sim__proc.op
+ *                       says;
  *   SIM__DELTAS_SWITCH  1: the switch, 0: the computed goto;
  * and the end of this file undefines them.
  *

@@ -22,7 +22,9 @@
  *    count), calls the process's own function. The delta loop is written
  *    once (sim_deltas.h) and compiled twice: the fast copy dispatches with
  *    a computed goto, the reference copy with a switch on a constant (every
- *    process its function).
+ *    primitive through sim_elem_eval, from its record; any other process
+ *    its function). sim_stats.fast_paths counts the entries into these
+ *    paths: tests/test_reference.c holds the reference's at 0.
  *  * A logic element with a few input bits is a table (tabulate).
  *  * A time step whose only business is one clock edge (no other timer
  *    due, nothing pending) toggles the clock and runs the first delta's
