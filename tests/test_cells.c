@@ -67,6 +67,21 @@ static int64_t cell_logic(const int64_t *in, void *user)
     return in[0] * 3 - (in[1] ^ 5);
 }
 
+static int is_binary(sim_kind k)
+{
+    return k == SIM_KIND_MUX || k == SIM_KIND_ADD || k == SIM_KIND_SUB || k == SIM_KIND_MUL || k == SIM_KIND_LOGIC;
+}
+
+/* "s1.1" or "s1.1, u2.0": the cell's operand formats, for messages. */
+static const char *opnds(sim_kind k, sim_fmt fa, sim_fmt fb, char *buf)
+{
+    char x[SIM_FMT_STRLEN], z[SIM_FMT_STRLEN];
+    sim_fmt_str(fa, x);
+    if (!is_binary(k)) { strcpy(buf, x); return buf; }
+    sprintf(buf, "%s, %s", x, sim_fmt_str(fb, z));
+    return buf;
+}
+
 /* One cell in one context. */
 typedef struct cell {
     sim_ctx    *c;
@@ -96,8 +111,7 @@ static void cell_build(cell *d, sim_kind k, sim_fmt fa, sim_fmt fb)
         break;
     default: break;
     }
-    int binary = k == SIM_KIND_MUX || k == SIM_KIND_ADD || k == SIM_KIND_SUB || k == SIM_KIND_MUL ||
-                 k == SIM_KIND_LOGIC;
+    int binary = is_binary(k);
     if (binary) b = sim_signal_new(d->c, sc, "b", fb, SIM_KIND_INPUT);
     sim_signal *all[] = { x, a, b, z };
     for (int i = 0; i < 4; i++) if (all[i]) d->in[d->nin++] = all[i];
@@ -217,8 +231,8 @@ static void kernels(sim_kind k, sim_fmt fa, sim_fmt fb)
                 uint64_t dov = ovf_of(c->y[j]) - o0[j];
                 if ((c->y[j]->cur != q[i][j] || (woken && dov != (uint64_t)x.ovf[j]) || (!woken && dov)) &&
                     bad++ < 8) {
-                    char fs[3][SIM_FMT_STRLEN];
-                    TST_CHECK(0, "%s %s, %s -> %s (%s kernel), inputs %lld %lld %lld: %lld, overflows %llu; "
+                    char fs[3][SIM_FMT_STRLEN], ops[2 * SIM_FMT_STRLEN + 2];
+                    TST_CHECK(0, "%s %s -> %s (%s kernel), inputs %lld %lld %lld: %lld, overflows %llu; "
                               "the definition %lld, overflow %d", sim_kind_name(k), sim_fmt_str(fa, fs[0]),
                               sim_fmt_str(fb, fs[1]), sim_fmt_str(c->y[j]->fmt, fs[2]), i ? "reference" : "fast",
                               (long long)v[0], (long long)(c->nin > 1 ? v[1] : 0), (long long)(c->nin > 2 ? v[2] : 0),
@@ -268,9 +282,9 @@ static uint64_t batch(sim_kind k, sim_fmt fa, sim_fmt fb, uint32_t vec)
                 int64_t want = x[l].wr[j] ? x[l].out[j] : d.y[j]->cur;   /* a held register: its reset value */
                 any |= x[l].ovf[j];
                 if (sim_batch_val(b, d.y[j])[l] != want && bad++ < 8) {
-                    char fs[3][SIM_FMT_STRLEN];
-                    TST_CHECK(0, "%s %s, %s -> %s (batch, vectors %u), lane %u: %lld, the definition %lld",
-                              sim_kind_name(k), sim_fmt_str(fa, fs[0]), sim_fmt_str(fb, fs[1]),
+                    char fs[3][SIM_FMT_STRLEN], ops[2 * SIM_FMT_STRLEN + 2];
+                    TST_CHECK(0, "%s %s -> %s (batch, vectors %u), lane %u: %lld, the definition %lld",
+                              sim_kind_name(k), opnds(k, fa, fb, ops),
                               sim_fmt_str(d.y[j]->fmt, fs[2]), vec, l,
                               (long long)sim_batch_val(b, d.y[j])[l], (long long)want);
                 }
@@ -335,9 +349,9 @@ static void intervals(sim_kind k, sim_fmt fa, sim_fmt fb)
                 int64_t want = all[ci].wr[j] ? all[ci].out[j] : held[j];
                 int fail = bi < 0 ? post.lo != want || post.hi != want : want < post.lo || want > post.hi;
                 if (fail && bad++ < 8) {
-                    char fs[3][SIM_FMT_STRLEN];
-                    TST_CHECK(0, "%s %s, %s -> %s (intervals, %s), inputs %lld %lld %lld: [%lld, %lld], "
-                              "the definition %lld", sim_kind_name(k), sim_fmt_str(fa, fs[0]), sim_fmt_str(fb, fs[1]),
+                    char fs[3][SIM_FMT_STRLEN], ops[2 * SIM_FMT_STRLEN + 2];
+                    TST_CHECK(0, "%s %s -> %s (intervals, %s), inputs %lld %lld %lld: [%lld, %lld], "
+                              "the definition %lld", sim_kind_name(k), opnds(k, fa, fb, ops),
                               sim_fmt_str(d.y[j]->fmt, fs[2]), bi < 0 ? "a point" : "a box",
                               (long long)cv[ci][0], (long long)(d.nin > 1 ? cv[ci][1] : 0),
                               (long long)(d.nin > 2 ? cv[ci][2] : 0), (long long)post.lo, (long long)post.hi,
@@ -358,8 +372,7 @@ static const sim_kind KINDS[] = { SIM_KIND_WIRE, SIM_KIND_REG, SIM_KIND_MUX, SIM
  * has one) through fn. */
 static void each_cell(sim_kind k, void (*fn)(sim_kind, sim_fmt, sim_fmt))
 {
-    int binary = k == SIM_KIND_MUX || k == SIM_KIND_ADD || k == SIM_KIND_SUB || k == SIM_KIND_MUL ||
-                 k == SIM_KIND_LOGIC;
+    int binary = is_binary(k);
     for (int i = 0; i < n_in_f; i++)
         for (int j = 0; j < (binary ? n_in_f : 1); j++) fn(k, in_f[i], in_f[j]);
 }
