@@ -233,8 +233,8 @@ static void kernels(sim_kind k, sim_fmt fa, sim_fmt fb)
                     bad++ < 8) {
                     char fs[3][SIM_FMT_STRLEN], ops[2 * SIM_FMT_STRLEN + 2];
                     TST_CHECK(0, "%s %s -> %s (%s kernel), inputs %lld %lld %lld: %lld, overflows %llu; "
-                              "the definition %lld, overflow %d", sim_kind_name(k), sim_fmt_str(fa, fs[0]),
-                              sim_fmt_str(fb, fs[1]), sim_fmt_str(c->y[j]->fmt, fs[2]), i ? "reference" : "fast",
+                              "the definition %lld, overflow %d", sim_kind_name(k), opnds(k, fa, fb, ops),
+                              sim_fmt_str(c->y[j]->fmt, fs[2]), i ? "reference" : "fast",
                               (long long)v[0], (long long)(c->nin > 1 ? v[1] : 0), (long long)(c->nin > 2 ? v[2] : 0),
                               (long long)c->y[j]->cur, (unsigned long long)dov, (long long)q[i][j], x.ovf[j]);
                 }
