@@ -110,7 +110,7 @@ testbins: $(TESTBIN) $(B)/shadesim
 # CLANG=clang-18 picks a version.
 CLANG ?= clang
 ASAN_FLAGS = OPT="-O1 -g -fno-omit-frame-pointer" \
-	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
+	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -DSIM_DEBUG"
 TB := $(if $(filter clang%,$(notdir $(CC))),build-clang,build)
 # The portable flavour (as on a CPU other than x86-64, and a compiler without
 # computed goto): the batch without its vector loops and the kernel's delta

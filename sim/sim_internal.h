@@ -57,6 +57,16 @@ enum {
     SIM__OP__COUNT
 };
 
+/* Debug asserts of the fast paths' preconditions, SQLite-style: checked
+ * in the sanitizer build (-DSIM_DEBUG, the Makefile's ASAN_FLAGS), nothing
+ * in the product's. */
+#ifdef SIM_DEBUG
+#include <assert.h>
+#define SIM__ASSERT(c) assert(c)
+#else
+#define SIM__ASSERT(c) ((void)0)
+#endif
+
 /* One input of a tabulated logic element: its offset from lo, at most
  * span, is at bit sh of the index. */
 typedef struct sim__lut_in {

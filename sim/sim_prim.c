@@ -50,6 +50,7 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, 
 static inline int64_t q64(prim *p, int64_t s)
 {
     p->e.y->ctx->stats.fast_paths++;
+    SIM__ASSERT(p->k >= 0 && p->k <= 61 && s > -((int64_t)1 << 62) && s < ((int64_t)1 << 62));
     int64_t x = (int64_t)((uint64_t)s + (uint64_t)p->radd) >> p->k;
     if (__builtin_expect(x >= p->lo && x <= p->hi, 1)) return x;
     return sim_quant_into(p->e.y, s, p->e.src_f, p->e.r, p->e.o);
@@ -81,6 +82,16 @@ static void set_native(sim_proc *pub, int op, const prim *p)
 #define OP_X(O, label, x) [SIM__OP_##O] = SIM__OP_##x,
     static const uint8_t op_x[SIM__OP__COUNT] = { SIM__OP_LIST(OP_X) };
 #undef OP_X
+    /* what the inline operations assume (sim_deltas.h): a shift a 64-bit
+     * value takes, a range to land in, operands whose exact result fits
+     * 62 bits, aligned fractions for the adder (no shift per input) */
+    SIM__ASSERT(p->k >= 0 && p->k <= 61 && p->lo <= p->hi);
+    SIM__ASSERT(op != SIM__OP_MUL || p->e.a->fmt.width + p->e.b->fmt.width <= 62);
+    SIM__ASSERT((op != SIM__OP_ADD && op != SIM__OP_SUB) ||
+                (p->e.a->fmt.fbits == p->e.b->fmt.fbits && p->e.sa == 0 && p->e.sb == 0 &&
+                 p->e.a->fmt.width <= 61 && p->e.b->fmt.width <= 61));
+    SIM__ASSERT((op != SIM__OP_COPY && op != SIM__OP_MUX && op != SIM__OP_BK) || !p->e.a ||
+                p->e.a->fmt.width <= 62);
     if (!p->k && !p->radd) op = op_x[op];
     pr->op = (uint8_t)op;
     pr->op_y = p->e.y; pr->op_a = p->e.a; pr->op_b = p->e.b; pr->op_c = p->e.c;

@@ -340,6 +340,7 @@ static void tabulate(sim_ctx *c, sim__proc *p)
         tin[j].sh = sh[j];
     }
     c->stats.fast_paths++;
+    SIM__ASSERT(bits <= SIM_LUT_BITS_KERNEL && (n > 1 || (uint64_t)p->op_in[0]->raw_max - (uint64_t)p->op_in[0]->raw_min < ((uint64_t)1 << bits)));
     int64_t *tab = sim_alloc(c, ((size_t)1 << bits) * sizeof *tab);
     sim_lut_fill(tab, bits, (int)n, p->op_in, mask, SIM_LUT_OFFSET,
                  p->op_logic, p->op_user, p->op_y->fmt);
