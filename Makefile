@@ -110,16 +110,17 @@ testbins: $(TESTBIN) $(B)/shadesim
 # CLANG=clang-18 picks a version.
 CLANG ?= clang
 ASAN_FLAGS = OPT="-O1 -g -fno-omit-frame-pointer" \
-	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined"
+	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -DSIM_DEBUG"
 TB := $(if $(filter clang%,$(notdir $(CC))),build-clang,build)
 # The portable flavour (as on a CPU other than x86-64, and a compiler without
 # computed goto): the batch without its vector loops and the kernel's delta
 # loop compiled as a switch; the batch's and the kernel's tests (test_batch,
-# test_toggle, test_kernel, and test_elem: every element kind), plain, and
+# test_toggle, test_kernel, test_elem and test_cells: every element kind), plain, and
 # tests/cli_engine.sh and tests/cli_gold.sh on its shadesim.
 PORTABLE_CFLAGS = -DSIM_BATCH_X86=0 -DSIM_KERNEL_SWITCH=1
 PORTABLE_BINS = $(TB)-portable/tests/test_batch $(TB)-portable/tests/test_toggle \
-	$(TB)-portable/tests/test_kernel $(TB)-portable/tests/test_elem $(TB)-portable/shadesim
+	$(TB)-portable/tests/test_kernel $(TB)-portable/tests/test_elem $(TB)-portable/tests/test_cells \
+	$(TB)-portable/shadesim
 
 # Sub-makes build quietly (BRIEF=1: no per-file lines) under one line per
 # step; V=1 shows every command.

@@ -131,6 +131,10 @@ typedef struct sim_stats {
     uint64_t time_steps;  /* distinct times the kernel stopped at (a sim_run
                            * resuming at the time the last one ended continues
                            * that time step) */
+    uint64_t fast_paths;  /* a check, not a measure: entries into a fast path
+                           * (the fast delta loop, a clock edge in place, a
+                           * table made, a shortcut of a primitive's
+                           * quantization); 0 under sim_set_reference */
 } sim_stats;
 
 /* SIM_ERR_ELAB: the design is not well formed (a signal with two drivers,
@@ -147,9 +151,11 @@ sim_ovf    sim_get_ovf(const sim_ctx *c);
  * 1000). */
 void       sim_set_max_deltas(sim_ctx *c, uint32_t n);
 /* The reference kernel (on != 0): the plain evaluate/update loop with
- * none of the fast paths (sim_sched.c): every process runs its general
- * function (no primitive evaluated inline, no logic element tabulated),
- * and every clock edge goes through the timers and a full update. Values,
+ * none of the fast paths (sim_sched.c): every primitive is evaluated by
+ * sim_elem_eval from its record (sim_prim.h: the exact operation, then one
+ * requantization; no inline operation, no table, no shortcut), every other
+ * process runs its function, and every clock edge goes through the timers
+ * and a full update (sim_stats.fast_paths stays 0). Values,
  * overflow counts, observers and every counter (sim_stats, each signal's
  * changes, each process's runs) are the fast kernel's; only the time
  * taken differs. 0 (the default) is the fast kernel. It may change

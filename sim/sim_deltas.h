@@ -11,9 +11,11 @@
  *    copy's too when built with -DSIM_KERNEL_SWITCH=1.
  * Before each include, sim_sched.c defines
  *   SIM__DELTAS_NAME    the function's name;
- *   SIM__DELTAS_REF     1: every process runs its general function (the
- *                       reference: no operation evaluated inline, no
- *                       table), 0: the operation sim__proc.op says;
+ *   SIM__DELTAS_REF     1: every primitive is evaluated by sim_elem_eval
+ *                       from its record, any other process runs its
+ *                       function (the reference: no operation inline, no
+ *                       table, no shortcut), 0: the operation sim__proc.op
+ *                       says;
  *   SIM__DELTAS_SWITCH  1: the switch, 0: the computed goto;
  * and the end of this file undefines them.
  *
@@ -69,6 +71,9 @@ static int SIM__DELTAS_NAME(sim_ctx *c, uint32_t *deltas, int once)
     sim_signal **upd = c->q.upd;
     uint32_t nd = *deltas;
     int hit = 0;
+#if !SIM__DELTAS_REF
+    c->stats.fast_paths++;
+#endif
     for (;;) {
         uint32_t nupd = c->q.nupd, i;
         sim__proc *p;
@@ -84,7 +89,13 @@ static int SIM__DELTAS_NAME(sim_ctx *c, uint32_t *deltas, int once)
                 /* Anything the kernel does not know inline, and a
                  * primitive whose fast result is out of range. */
                 c->q.nupd = nupd;
+#if SIM__DELTAS_REF
+                /* a primitive: its one definition, from its record */
+                if (p->elem) sim__elem_step(p);
+                else p->fn(&p->pub);
+#else
                 p->fn(&p->pub);
+#endif
                 nupd = c->q.nupd;
                 vmbreak;
             /* Operands' widths bound the exact result below 2^62

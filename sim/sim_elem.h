@@ -28,7 +28,9 @@
  * scalar loop (sim_batch_eval.c) and setup (sim_batch_op.c), emit_VLOG,
  * toggle_ENERGY, sim_ival.c's case; the tables made from this list do not
  * compile until each engine names its function, and tests/test_elem.c
- * runs every kind through every engine.
+ * runs every kind through every engine. Its one executable definition is
+ * its case of sim_elem_eval (sim_elem_eval.c), which the reference kernel
+ * runs and tests/test_cells.c holds every engine to.
  */
 #ifndef SIM_ELEM_H
 #define SIM_ELEM_H

@@ -57,6 +57,16 @@ enum {
     SIM__OP__COUNT
 };
 
+/* Debug asserts of the fast paths' preconditions, SQLite-style: checked
+ * in the sanitizer build (-DSIM_DEBUG, the Makefile's ASAN_FLAGS), nothing
+ * in the product's. */
+#ifdef SIM_DEBUG
+#include <assert.h>
+#define SIM__ASSERT(c) assert(c)
+#else
+#define SIM__ASSERT(c) ((void)0)
+#endif
+
 /* One input of a tabulated logic element: its offset from lo, at most
  * span, is at bit sh of the index. */
 typedef struct sim__lut_in {
@@ -86,6 +96,7 @@ typedef struct sim__proc {
     const int64_t *op_tab;  /* LUT1, LUTN: the table */
     const sim__lut_in *op_tin;  /* LUTN: op_n inputs */
     /* cold */
+    const struct sim_prim_info *elem;   /* a primitive's record (sim_prim.h), else NULL */
     const char *name;
     sim_proc    pub;        /* what users hold */
 } sim__proc;
@@ -94,6 +105,11 @@ static inline sim__proc *sim__proc_of(const sim_proc *p)
 {
     return (sim__proc *)(void *)((char *)(uintptr_t)p - offsetof(sim__proc, pub));
 }
+
+/* The reference kernel's evaluation of a primitive (p->elem set): its
+ * inputs' values, sim_elem_eval, the overflow counted, the write; none of
+ * the fast paths (sim_prim.c). */
+void sim__elem_step(sim__proc *p);
 
 /* Record an elaboration error (the first one is kept): sim_run then
  * returns SIM_ERR_ELAB without simulating, sim_error gives the text. */

@@ -14,24 +14,11 @@
 #include <string.h>
 
 typedef struct prim {
-    /* what every evaluation reads first */
-    sim_signal *y, *a, *b, *c;   /* output; operands (c: enable / select) */
+    sim_prim_info e;             /* the element's record (sim_prim.h) */
+    /* the fast path's constants, made from it */
     int64_t     lo, hi;          /* y's raw range */
-    int64_t     radd;            /* fast path: added before the shift (half-up) */
-    int         k;               /* fast path: right shift from src_f to y */
-    int         sa, sb;          /* left shifts aligning a, b to src_f */
-    int         src_f;           /* fraction bits of the exact result */
-    sim_round   r;
-    sim_ovf     o;
-    sim_signal *rst;
-    int64_t     rst_raw;
-    int         n;               /* mux inputs */
-    sim_signal *const *in;
-    sim_logic_fn fn;
-    void       *user;
-    sim_signal *clk;             /* register's clock (for sim_prim_describe) */
-    const char *verilog;         /* logic: sim_logic_verilog's text */
-    int         qlogic;          /* rounding or saturation logic after the element */
+    int64_t     radd;            /* added before the shift (half-up) */
+    int         k;               /* right shift from src_f to y */
 } prim;
 
 int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, sim_ovf o)
@@ -39,7 +26,12 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, 
     r = sim_fmt_round(s->fmt, r);   /* the signal's own modes, if it has them */
     o = sim_fmt_ovf(s->fmt, o);
     int64_t v;
-    if (sim__quant_fits(raw, src_fbits, s->fmt.fbits, s->raw_min, s->raw_max, r, &v)) return v;
+    /* The reference kernel takes no shortcut, here either (units' own
+     * processes call this). */
+    if (!s->ctx->reference && sim__quant_fits(raw, src_fbits, s->fmt.fbits, s->raw_min, s->raw_max, r, &v)) {
+        s->ctx->stats.fast_paths++;
+        return v;
+    }
     int ovf = 0;
     v = sim_fx_requant(raw, src_fbits, s->fmt, r, o, &ovf);
     if (ovf) sim__overflow(s, v);
@@ -54,12 +46,14 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits, sim_round r, 
  * (floor((s + 2^(k-1)) / 2^k) is half-up rounding, and in range nothing
  * else applies). Out of range, or any other case, takes sim_quant_into. */
 
-/* Exact value s (int64_t, |s| < 2^62) with p->src_f fraction bits into y. */
+/* Exact value s (int64_t, |s| < 2^62) with p->e.src_f fraction bits into y. */
 static inline int64_t q64(prim *p, int64_t s)
 {
+    p->e.y->ctx->stats.fast_paths++;
+    SIM__ASSERT(p->k >= 0 && p->k <= 61 && s > -((int64_t)1 << 62) && s < ((int64_t)1 << 62));
     int64_t x = (int64_t)((uint64_t)s + (uint64_t)p->radd) >> p->k;
     if (__builtin_expect(x >= p->lo && x <= p->hi, 1)) return x;
-    return sim_quant_into(p->y, s, p->src_f, p->r, p->o);
+    return sim_quant_into(p->e.y, s, p->e.src_f, p->e.r, p->e.o);
 }
 
 /* Bits bounding a signal's raw: |raw| <= 2^bits. */
@@ -69,13 +63,13 @@ static int raw_bits(const sim_signal *s) { return s->fmt.width; }
 static int copy_fits(const sim_signal *s) { return raw_bits(s) <= 62; }
 
 /* Set the fast-path constants for an exact result with src_f fraction
- * bits; 1 if the fast path applies (trunc or half-up, 0 <= k < 62). */
+ * bits; 1 if the fast path applies (trunc or half-up, 0 <= k < 62). The
+ * record's src_f is the arithmetic elements' own (set by them). */
 static int fast_quant_setup(prim *p, int src_f)
 {
-    p->src_f = src_f;
-    p->lo = p->y->raw_min;
-    p->hi = p->y->raw_max;
-    return sim__quant_fast(src_f, p->y->fmt.fbits, p->r, &p->k, &p->radd);
+    p->lo = p->e.y->raw_min;
+    p->hi = p->e.y->raw_max;
+    return sim__quant_fast(src_f, p->e.y->fmt.fbits, p->e.r, &p->k, &p->radd);
 }
 
 /* Let the kernel evaluate the element itself (sim_internal.h, SIM__OP_*);
@@ -88,22 +82,33 @@ static void set_native(sim_proc *pub, int op, const prim *p)
 #define OP_X(O, label, x) [SIM__OP_##O] = SIM__OP_##x,
     static const uint8_t op_x[SIM__OP__COUNT] = { SIM__OP_LIST(OP_X) };
 #undef OP_X
+    /* what the inline operations assume (sim_deltas.h): a shift a 64-bit
+     * value takes, a range to land in, operands whose exact result fits
+     * 62 bits, aligned fractions for the adder (no shift per input) */
+    SIM__ASSERT(p->k >= 0 && p->k <= 61 && p->lo <= p->hi);
+    SIM__ASSERT(op != SIM__OP_MUL || p->e.a->fmt.width + p->e.b->fmt.width <= 62);
+    SIM__ASSERT((op != SIM__OP_ADD && op != SIM__OP_SUB) ||
+                (p->e.a->fmt.fbits == p->e.b->fmt.fbits && p->e.sa == 0 && p->e.sb == 0 &&
+                 p->e.a->fmt.width <= 61 && p->e.b->fmt.width <= 61));
+    SIM__ASSERT((op != SIM__OP_COPY && op != SIM__OP_MUX && op != SIM__OP_BK) || !p->e.a ||
+                p->e.a->fmt.width <= 62);
     if (!p->k && !p->radd) op = op_x[op];
     pr->op = (uint8_t)op;
-    pr->op_y = p->y; pr->op_a = p->a; pr->op_b = p->b; pr->op_c = p->c;
+    pr->op_y = p->e.y; pr->op_a = p->e.a; pr->op_b = p->e.b; pr->op_c = p->e.c;
     pr->op_lo = p->lo; pr->op_hi = p->hi; pr->op_radd = p->radd;
     pr->op_k = (int8_t)p->k;
-    pr->op_n = (uint32_t)p->n;
-    pr->op_in = p->in;
+    pr->op_n = (uint32_t)p->e.n;
+    pr->op_in = p->e.in;
 }
 
 static prim *prim_new(sim_ctx *c, sim_signal *y)
 {
     prim *p = sim_alloc(c, sizeof *p);
-    p->y = y;
+    p->e.y = y;
+    p->e.kind = (sim_kind)y->kind;
     /* The output format's own modes, else the context's defaults. */
-    p->r = sim_fmt_round(y->fmt, sim_get_round(c));
-    p->o = sim_fmt_ovf(y->fmt, sim_get_ovf(c));
+    p->e.r = sim_fmt_round(y->fmt, sim_get_round(c));
+    p->e.o = sim_fmt_ovf(y->fmt, sim_get_ovf(c));
     p->lo = y->raw_min;
     p->hi = y->raw_max;
     return p;
@@ -114,6 +119,7 @@ static sim_proc *prim_proc(sim_ctx *c, sim_signal *y, sim_proc_fn fn, prim *p)
     char name[160];
     snprintf(name, sizeof name, "%s.%s", y->scope->name, y->name);
     y->driver = sim_proc_new(c, name, fn, p);
+    sim__proc_of(y->driver)->elem = &p->e;   /* a primitive: the reference evaluates its record */
     return y->driver;
 }
 
@@ -129,11 +135,11 @@ static int imax(int a, int b) { return a > b ? a : b; }
 static sim_arcs quant_cost(const prim *p, sim_fmt f, int src_f, int src_i, double *area, sim_arcs dl)
 {
     double q = 0;
-    if (src_f > f.fbits && p->r != SIM_RND_TRUNC) {
+    if (src_f > f.fbits && p->e.r != SIM_RND_TRUNC) {
         q += sim_area_round(f.width);
         dl = sim_arcs_then(dl, sim_delay_round(f.width));
     }
-    if (src_i > f.ibits && p->o == SIM_OVF_SAT) {
+    if (src_i > f.ibits && p->e.o == SIM_OVF_SAT) {
         q += sim_area_sat(f.width, src_i - f.ibits);
         dl = sim_arcs_then(dl, sim_delay_sat(src_i - f.ibits));
     }
@@ -147,7 +153,7 @@ static void set_cost(sim_signal *y, prim *p, double area, sim_arcs dl, int src_f
 {
     double q;
     dl = quant_cost(p, y->fmt, src_f, src_i, &q, dl);
-    p->qlogic = q > 0;
+    p->e.qlogic = q > 0;
     y->area_ge = area + q;
     sim_arcs_set(y, dl);
 }
@@ -177,15 +183,15 @@ sim_signal *sim_const(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt, 
 static void reg_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    if (p->rst && p->rst->cur) { sim_write(p->y, p->rst_raw); return; }
-    if ((p->c && !p->c->cur) || !p->a) return;
-    sim_write(p->y, sim_quant_into(p->y, p->a->cur, p->a->fmt.fbits, p->r, p->o));
+    if (p->e.rst && p->e.rst->cur) { sim_write(p->e.y, p->e.rst_raw); return; }
+    if ((p->e.c && !p->e.c->cur) || !p->e.a) return;
+    sim_write(p->e.y, sim_quant_into(p->e.y, p->e.a->cur, p->e.a->fmt.fbits, p->e.r, p->e.o));
 }
 
 static void copy_slow(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_write(p->y, sim_quant_into(p->y, p->a->cur, p->a->fmt.fbits, p->r, p->o));
+    sim_write(p->e.y, sim_quant_into(p->e.y, p->e.a->cur, p->e.a->fmt.fbits, p->e.r, p->e.o));
 }
 
 /* Choose a register's evaluation for its current D input. */
@@ -193,7 +199,7 @@ static void reg_setup(sim_proc *pr)
 {
     prim *p = pr->data;
     sim__proc_of(pr)->op = SIM__OP_FN;
-    if (!p->rst && !p->c && p->a && copy_fits(p->a) && fast_quant_setup(p, p->a->fmt.fbits))
+    if (!p->e.rst && !p->e.c && p->e.a && copy_fits(p->e.a) && fast_quant_setup(p, p->e.a->fmt.fbits))
         set_native(pr, SIM__OP_COPY, p);
 }
 
@@ -203,9 +209,9 @@ sim_signal *sim_reg(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 {
     sim_signal *y = sim_signal_new(c, sc, name, fmt, SIM_KIND_REG);
     prim *p = prim_new(c, y);
-    p->a = d; p->c = en; p->rst = rst; p->clk = clk;
-    p->rst_raw = sim_fx_canon(rst_raw, fmt);
-    y->cur = y->nxt = p->rst_raw;
+    p->e.a = d; p->e.c = en; p->e.rst = rst; p->e.clk = clk;
+    p->e.rst_raw = sim_fx_canon(rst_raw, fmt);
+    y->cur = y->nxt = p->e.rst_raw;
     sim_proc *pr = prim_proc(c, y, reg_eval, p);
     reg_setup(pr);
     sim_sensitive(pr, clk, SIM_EDGE_POS);
@@ -218,7 +224,7 @@ sim_signal *sim_reg(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 int sim_reg_connect(sim_signal *q, sim_signal *d)
 {
     if (q->kind != SIM_KIND_REG || !q->driver) return -1;
-    ((prim *)q->driver->data)->a = d;
+    ((prim *)q->driver->data)->e.a = d;
     reg_setup(q->driver);
     sim__uses_stale(q->ctx);
     return 0;
@@ -238,7 +244,7 @@ void sim_assign(sim_ctx *c, sim_signal *dst, sim_signal *src)
         return;
     }
     prim *p = prim_new(c, dst);
-    p->a = src;
+    p->e.a = src;
     sim_proc *pr = prim_proc(c, dst, copy_slow, p);
     if (copy_fits(src) && fast_quant_setup(p, src->fmt.fbits)) set_native(pr, SIM__OP_COPY, p);
     sim_sensitive(pr, src, SIM_EDGE_ANY);
@@ -249,10 +255,10 @@ void sim_assign(sim_ctx *c, sim_signal *dst, sim_signal *src)
 static void mux_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    int64_t sel = p->c->cur;
-    if (sel < 0 || sel >= p->n) { sim_write(p->y, 0); return; }
-    const sim_signal *x = p->in[sel];
-    sim_write(p->y, sim_quant_into(p->y, x->cur, x->fmt.fbits, p->r, p->o));
+    int64_t sel = p->e.c->cur;
+    if (sel < 0 || sel >= p->e.n) { sim_write(p->e.y, 0); return; }
+    const sim_signal *x = p->e.in[sel];
+    sim_write(p->e.y, sim_quant_into(p->e.y, x->cur, x->fmt.fbits, p->e.r, p->e.o));
 }
 
 sim_signal *sim_mux(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
@@ -262,7 +268,7 @@ sim_signal *sim_mux(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     prim *p = prim_new(c, y);
     sim_signal **copy = sim_alloc(c, (size_t)n * sizeof *copy);
     for (int i = 0; i < n; i++) copy[i] = in[i];
-    p->c = sel; p->n = n; p->in = copy;
+    p->e.c = sel; p->e.n = n; p->e.in = copy;
     int same = n > 0 && copy_fits(in[0]);
     for (int i = 1; i < n; i++) same &= in[i]->fmt.fbits == in[0]->fmt.fbits && copy_fits(in[i]);
     sim_proc *pr = prim_proc(c, y, mux_eval, p);
@@ -281,7 +287,7 @@ sim_signal *sim_mux(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 static void bk_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_write(p->y, p->c->cur ? sim_quant_into(p->y, p->a->cur, p->a->fmt.fbits, p->r, p->o) : 0);
+    sim_write(p->e.y, p->e.c->cur ? sim_quant_into(p->e.y, p->e.a->cur, p->e.a->fmt.fbits, p->e.r, p->e.o) : 0);
 }
 
 sim_signal *sim_bk(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
@@ -289,7 +295,7 @@ sim_signal *sim_bk(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 {
     sim_signal *y = sim_signal_new(c, sc, name, fmt, SIM_KIND_BK);
     prim *p = prim_new(c, y);
-    p->a = x; p->c = pass;
+    p->e.a = x; p->e.c = pass;
     sim_proc *pr = prim_proc(c, y, bk_eval, p);
     if (copy_fits(x) && fast_quant_setup(p, x->fmt.fbits)) set_native(pr, SIM__OP_BK, p);
     sim_sensitive(pr, pass, SIM_EDGE_ANY);
@@ -303,15 +309,15 @@ sim_signal *sim_bk(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 static void add_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_wide s = align(p->a->cur, p->sa) + align(p->b->cur, p->sb);
-    sim_write(p->y, sim_quant_into(p->y, s, p->src_f, p->r, p->o));
+    sim_wide s = align(p->e.a->cur, p->e.sa) + align(p->e.b->cur, p->e.sb);
+    sim_write(p->e.y, sim_quant_into(p->e.y, s, p->e.src_f, p->e.r, p->e.o));
 }
 
 static void sub_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_wide s = align(p->a->cur, p->sa) - align(p->b->cur, p->sb);
-    sim_write(p->y, sim_quant_into(p->y, s, p->src_f, p->r, p->o));
+    sim_wide s = align(p->e.a->cur, p->e.sa) - align(p->e.b->cur, p->e.sb);
+    sim_write(p->e.y, sim_quant_into(p->e.y, s, p->e.src_f, p->e.r, p->e.o));
 }
 
 /* Aligned operands each under 2^61: shifting left by s is exact (done
@@ -319,13 +325,13 @@ static void sub_eval(sim_proc *pr)
 static void add_fast_al(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_write(p->y, q64(p, (int64_t)(((uint64_t)p->a->cur << p->sa) + ((uint64_t)p->b->cur << p->sb))));
+    sim_write(p->e.y, q64(p, (int64_t)(((uint64_t)p->e.a->cur << p->e.sa) + ((uint64_t)p->e.b->cur << p->e.sb))));
 }
 
 static void sub_fast_al(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_write(p->y, q64(p, (int64_t)(((uint64_t)p->a->cur << p->sa) - ((uint64_t)p->b->cur << p->sb))));
+    sim_write(p->e.y, q64(p, (int64_t)(((uint64_t)p->e.a->cur << p->e.sa) - ((uint64_t)p->e.b->cur << p->e.sb))));
 }
 
 /* Bits an adder really has: the operands' integer part (plus a carry, but
@@ -344,23 +350,23 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
 {
     sim_signal *y = sim_signal_new(c, sc, name, fmt, sub ? SIM_KIND_SUB : SIM_KIND_ADD);
     prim *p = prim_new(c, y);
-    p->a = a; p->b = b;
+    p->e.a = a; p->e.b = b;
     /* Formats have at most 64 fraction bits and 64-bit raws, so the aligned
      * operands need at most 63 + 64 bits: the sum fits in 128. */
-    p->src_f = imax(a->fmt.fbits, b->fmt.fbits);
-    p->sa = p->src_f - a->fmt.fbits;
-    p->sb = p->src_f - b->fmt.fbits;
+    p->e.src_f = imax(a->fmt.fbits, b->fmt.fbits);
+    p->e.sa = p->e.src_f - a->fmt.fbits;
+    p->e.sb = p->e.src_f - b->fmt.fbits;
     sim_proc_fn fn = sub ? sub_eval : add_eval;
     /* |a 2^sa| and |b 2^sb| below 2^61: the sum is below 2^62. */
-    int fast = raw_bits(a) + p->sa <= 61 && raw_bits(b) + p->sb <= 61 && fast_quant_setup(p, p->src_f);
-    if (fast && (p->sa || p->sb)) fn = sub ? sub_fast_al : add_fast_al;
+    int fast = raw_bits(a) + p->e.sa <= 61 && raw_bits(b) + p->e.sb <= 61 && fast_quant_setup(p, p->e.src_f);
+    if (fast && (p->e.sa || p->e.sb)) fn = sub ? sub_fast_al : add_fast_al;
     sim_proc *pr = prim_proc(c, y, fn, p);
-    if (fast && !p->sa && !p->sb) set_native(pr, sub ? SIM__OP_SUB : SIM__OP_ADD, p);
+    if (fast && !p->e.sa && !p->e.sb) set_native(pr, sub ? SIM__OP_SUB : SIM__OP_ADD, p);
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     int w = adder_width(a->fmt, b->fmt, fmt);
     set_cost(y, p, sub ? sim_area_sub(w) : sim_area_add(w), sub ? sim_delay_sub(w) : sim_delay_add(w),
-             p->src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
+             p->e.src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
     return y;
 }
 
@@ -381,8 +387,8 @@ sim_signal *sim_sub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 static void mul_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_wide prod = (sim_wide)p->a->cur * (sim_wide)p->b->cur;
-    sim_write(p->y, sim_quant_into(p->y, prod, p->src_f, p->r, p->o));
+    sim_wide prod = (sim_wide)p->e.a->cur * (sim_wide)p->e.b->cur;
+    sim_write(p->e.y, sim_quant_into(p->e.y, prod, p->e.src_f, p->e.r, p->e.o));
 }
 
 int sim_prim_live_bits(const sim_signal *s)
@@ -411,16 +417,16 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 {
     sim_signal *y = sim_signal_new(c, sc, name, fmt, SIM_KIND_MUL);
     prim *p = prim_new(c, y);
-    p->a = a; p->b = b;
-    p->src_f = a->fmt.fbits + b->fmt.fbits;
+    p->e.a = a; p->e.b = b;
+    p->e.src_f = a->fmt.fbits + b->fmt.fbits;
     sim_proc *pr = prim_proc(c, y, mul_eval, p);
     /* Operand widths summing to at most 62 bits: the product fits int64_t. */
-    if (raw_bits(a) + raw_bits(b) <= 62 && fast_quant_setup(p, p->src_f)) set_native(pr, SIM__OP_MUL, p);
+    if (raw_bits(a) + raw_bits(b) <= 62 && fast_quant_setup(p, p->e.src_f)) set_native(pr, SIM__OP_MUL, p);
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     /* the array synthesis builds: the operands' live bits only */
     int la = sim_prim_live_bits(a), lb = sim_prim_live_bits(b);
-    set_cost(y, p, sim_area_mul(la, lb), sim_delay_mul(la, lb, fmt.width), p->src_f, a->fmt.ibits + b->fmt.ibits);
+    set_cost(y, p, sim_area_mul(la, lb), sim_delay_mul(la, lb, fmt.width), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
     return y;
 }
 
@@ -431,13 +437,13 @@ static void shift_eval(sim_proc *pr)
     prim *p = pr->data;
     /* x * 2^sh is the same raw read with sh fewer fraction bits; a left
      * shift past the binary point is applied to the raw (sa). */
-    sim_write(p->y, sim_quant_into(p->y, align(p->a->cur, p->sa), p->src_f, p->r, p->o));
+    sim_write(p->e.y, sim_quant_into(p->e.y, align(p->e.a->cur, p->e.sa), p->e.src_f, p->e.r, p->e.o));
 }
 
 static void shift_fast(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_write(p->y, q64(p, (int64_t)((uint64_t)p->a->cur << p->sa)));
+    sim_write(p->e.y, q64(p, (int64_t)((uint64_t)p->e.a->cur << p->e.sa)));
 }
 
 sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
@@ -445,13 +451,14 @@ sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 {
     sim_signal *y = sim_signal_new(c, sc, name, fmt, SIM_KIND_SHIFT);
     prim *p = prim_new(c, y);
-    p->a = x;
+    p->e.a = x;
+    p->e.shift = sh;
     int f = x->fmt.fbits - sh;
-    p->sa = f < 0 ? -f : 0;
-    p->src_f = f < 0 ? 0 : f;
-    int fast = raw_bits(x) + p->sa <= 61 && fast_quant_setup(p, p->src_f);
-    sim_proc *pr = prim_proc(c, y, fast && p->sa ? shift_fast : shift_eval, p);
-    if (fast && !p->sa) set_native(pr, SIM__OP_COPY, p);
+    p->e.sa = f < 0 ? -f : 0;
+    p->e.src_f = f < 0 ? 0 : f;
+    int fast = raw_bits(x) + p->e.sa <= 61 && fast_quant_setup(p, p->e.src_f);
+    sim_proc *pr = prim_proc(c, y, fast && p->e.sa ? shift_fast : shift_eval, p);
+    if (fast && !p->e.sa) set_native(pr, SIM__OP_COPY, p);
     sim_sensitive(pr, x, SIM_EDGE_ANY);
     set_cost(y, p, 0.0, no_delay(), f, x->fmt.ibits + sh);   /* the shift itself is wires */
     return y;
@@ -463,8 +470,8 @@ static void logic_eval(sim_proc *pr)
 {
     prim *p = pr->data;
     int64_t v[SIM__LOGIC_MAX];
-    for (int i = 0; i < p->n; i++) v[i] = p->in[i]->cur;
-    sim_write(p->y, sim__canon(p->fn(v, p->user), p->y->fmt));
+    for (int i = 0; i < p->e.n; i++) v[i] = p->e.in[i]->cur;
+    sim_write(p->e.y, sim__canon(p->e.fn(v, p->e.user), p->e.y->fmt));
 }
 
 sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
@@ -483,7 +490,7 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     prim *p = prim_new(c, y);
     sim_signal **copy = sim_alloc(c, (size_t)(n ? n : 1) * sizeof *copy);
     for (int i = 0; i < n; i++) copy[i] = in[i];
-    p->n = n; p->in = copy; p->fn = fn; p->user = user;
+    p->e.n = n; p->e.in = copy; p->e.fn = fn; p->e.user = user;
     sim_proc *pr = prim_proc(c, y, logic_eval, p);
     if (n >= 1) {
         set_native(pr, fmt.is_signed ? SIM__OP_LOGIC_S : SIM__OP_LOGIC_U, p);
@@ -502,47 +509,46 @@ sim_signal *sim_logic(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     return y;
 }
 
+/* ---------------------------------------------------------------- reference */
+
+void sim__elem_step(sim__proc *pr)
+{
+    const sim_prim_info *e = pr->elem;
+    int n = sim_elem_nin(e);
+    int64_t v[n > 0 ? n : 1], out;
+    int ovf;
+    sim_elem_read(e, v);
+    if (!sim_elem_eval(e, v, &out, &ovf)) return;
+    if (ovf) sim__overflow(e->y, out);
+    sim_write(e->y, out);
+}
+
 /* ------------------------------------------------------------ description */
 
-/* Whether fn is one of this file's evaluations (the process is a prim). */
-static int is_prim_fn(sim_proc_fn fn)
+/* The element record of the primitive driving y, or NULL (an input, a
+ * clock, a constant, a user process). */
+static const sim_prim_info *elem_of(const sim_signal *y)
 {
-    static const sim_proc_fn fns[] = { reg_eval, copy_slow, mux_eval, bk_eval, add_eval, sub_eval,
-                                       add_fast_al, sub_fast_al, mul_eval, shift_eval, shift_fast,
-                                       logic_eval };
-    for (size_t i = 0; i < sizeof fns / sizeof fns[0]; i++) if (fns[i] == fn) return 1;
-    return 0;
+    return y->driver ? sim__proc_of(y->driver)->elem : NULL;
 }
 
 int sim_prim_describe(const sim_signal *y, sim_prim_info *out)
 {
+    const sim_prim_info *e = elem_of(y);
+    if (e) { *out = *e; return 0; }
     memset(out, 0, sizeof *out);
     out->kind = (sim_kind)y->kind;
+    out->y = (sim_signal *)(uintptr_t)y;
     if (y->kind == SIM_KIND_CONST) { out->r = SIM_RND_TRUNC; out->o = SIM_OVF_WRAP; return 0; }
-    if (!y->driver || !is_prim_fn(sim__proc_of(y->driver)->fn)) return -1;
-    const prim *p = y->driver->data;
-    out->a = p->a; out->b = p->b; out->c = p->c;
-    out->rst = p->rst; out->rst_raw = p->rst_raw; out->clk = p->clk;
-    out->n = p->n; out->in = p->in; out->fn = p->fn; out->user = p->user;
-    out->r = p->r; out->o = p->o;
-    out->qlogic = p->qlogic;
-    out->verilog = p->verilog;
-    /* sim_shift kept f = fbits(x) - sh as src_f - sa (one of them 0) */
-    if (y->kind == SIM_KIND_SHIFT) out->shift = p->a->fmt.fbits - (p->src_f - p->sa);
-    if (y->kind == SIM_KIND_ADD || y->kind == SIM_KIND_SUB || y->kind == SIM_KIND_MUL || y->kind == SIM_KIND_SHIFT) {
-        out->src_f = p->src_f;
-        out->sa = p->sa;
-        out->sb = p->sb;
-    }
-    return 0;
+    return -1;
 }
 
 int sim_mul_network_delay(sim_signal *y, sim_arcs net)
 {
-    if (y->kind != SIM_KIND_MUL || !y->driver || sim__proc_of(y->driver)->fn != mul_eval) return -1;
+    if (y->kind != SIM_KIND_MUL || !elem_of(y)) return -1;
     const prim *p = y->driver->data;
     double q;
-    sim_arcs_set(y, quant_cost(p, y->fmt, p->src_f, p->a->fmt.ibits + p->b->fmt.ibits, &q, net));
+    sim_arcs_set(y, quant_cost(p, y->fmt, p->e.src_f, p->e.a->fmt.ibits + p->e.b->fmt.ibits, &q, net));
     return 0;
 }
 
@@ -577,8 +583,8 @@ void sim_logic_depth(sim_signal *y, int levels)
 
 void sim_logic_verilog(sim_signal *y, const char *text)
 {
-    if (y->kind != SIM_KIND_LOGIC || !y->driver || sim__proc_of(y->driver)->fn != logic_eval) return;
-    ((prim *)y->driver->data)->verilog = sim_strdup(y->ctx, text);
+    if (y->kind != SIM_KIND_LOGIC || !elem_of(y)) return;
+    ((prim *)y->driver->data)->e.verilog = sim_strdup(y->ctx, text);
 }
 
 /* ------------------------------------------------------------ used values */
@@ -602,15 +608,15 @@ void sim__uses_build(sim_ctx *c)
             sim_signal *y = sim_signal_at(c, i);
             /* every primitive reading a signal, the registers (sensitive to
              * their clock only) among them */
-            if (y->driver && is_prim_fn(sim__proc_of(y->driver)->fn)) {
+            if (elem_of(y)) {
                 const prim *p = y->driver->data;
-                sim_signal *fixed[4] = { p->a, p->b, p->c, p->rst };   /* a register's clock aside */
+                sim_signal *fixed[4] = { p->e.a, p->e.b, p->e.c, p->e.rst };   /* a register's clock aside */
                 for (int j = 0; j < 4; j++) if (fixed[j]) add_use(fixed[j], p, fill);
-                for (int j = 0; j < p->n; j++) if (p->in[j]) add_use((sim_signal *)(uintptr_t)p->in[j], p, fill);
+                for (int j = 0; j < p->e.n; j++) if (p->e.in[j]) add_use((sim_signal *)(uintptr_t)p->e.in[j], p, fill);
             }
             /* and every other process woken by it */
             for (uint32_t j = 0; j < y->nfan; j++)
-                if (!is_prim_fn(sim__proc_of(y->fan[j].proc)->fn)) add_use(y, NULL, fill);
+                if (!sim__proc_of(y->fan[j].proc)->elem) add_use(y, NULL, fill);
         }
     }
 }
@@ -623,22 +629,22 @@ int sim__value_used(sim_signal *s, uint64_t epoch)
     for (uint32_t i = 0; i < s->nuses && !used; i++) {
         const prim *p = s->uses[i].prim;
         if (!p) { used = 1; break; }
-        switch (p->y->kind) {
+        switch (p->e.y->kind) {
         case SIM_KIND_REG:      /* D: taken at the next edge if enabled and not reset */
-            used = s != p->a || ((!p->c || p->c->cur) && !(p->rst && p->rst->cur));
+            used = s != p->e.a || ((!p->e.c || p->e.c->cur) && !(p->e.rst && p->e.rst->cur));
             break;
         case SIM_KIND_MUX:
-            if (s == p->c) used = sim__value_used(p->y, epoch);
+            if (s == p->e.c) used = sim__value_used(p->e.y, epoch);
             else {
-                int64_t sel = p->c->cur;
-                used = sel >= 0 && sel < p->n && p->in[sel] == s && sim__value_used(p->y, epoch);
+                int64_t sel = p->e.c->cur;
+                used = sel >= 0 && sel < p->e.n && p->e.in[sel] == s && sim__value_used(p->e.y, epoch);
             }
             break;
         case SIM_KIND_BK:
-            used = (s == p->c || p->c->cur) && sim__value_used(p->y, epoch);
+            used = (s == p->e.c || p->e.c->cur) && sim__value_used(p->e.y, epoch);
             break;
         default:
-            used = sim__value_used(p->y, epoch);
+            used = sim__value_used(p->e.y, epoch);
         }
     }
     s->use_epoch = epoch;

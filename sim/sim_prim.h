@@ -116,19 +116,24 @@ int64_t sim_quant_into(sim_signal *s, sim_wide raw, int src_fbits,
  * the other bits are constant zeros synthesis drops), else its width. */
 int sim_prim_live_bits(const sim_signal *s);
 
-/* What an element is, for exporters (Verilog): read from the element's own
- * record, so the kernel's evaluation is untouched. kind is the output
- * signal's kind; a, b: operands (register: D; mux: unused, see in);
- * c: register enable, mux select, block-key pass (NULL: none); rst and
- * rst_raw: a register's synchronous reset; clk: the register's clock;
- * shift: sim_shift's sh; n, in: mux inputs or logic inputs; fn, user:
- * the logic function; r, o: the element's quantization modes; src_f, sa,
- * sb (adder, subtractor, multiplier, shifter): the exact result's
- * fraction bits, and the left shifts of a's and b's raws that align them
- * to it (the one place that alignment is computed: the engines and the
- * export read it here). A WIRE with a driver is a sim_assign of a. */
+/* The element record: what an element is, written once by its
+ * constructor into the context (the netlist), and read by every engine:
+ * the kernel's processes, the reference (sim_elem_eval), the batch's
+ * set-up, the Verilog export, the interval, delay and energy models.
+ * y: the output; kind is y's kind; a, b: operands (register: D; mux:
+ * unused, see in); c: register enable, mux select, block-key pass (NULL:
+ * none); rst and rst_raw: a register's synchronous reset; clk: the
+ * register's clock; shift: sim_shift's sh; n, in: mux inputs or logic
+ * inputs; fn, user: the logic function; r, o: the element's quantization
+ * modes (its output format's own, else the context's); src_f, sa, sb
+ * (adder, subtractor, multiplier, shifter): the exact result's fraction
+ * bits, and the left shifts of a's and b's raws that align them to it
+ * (what the fast paths and the export read; sim_elem_eval works them out
+ * from the operands' formats on its own, so a wrong one here is caught).
+ * A WIRE with a driver is a sim_assign of a. */
 typedef struct sim_prim_info {
     sim_kind    kind;
+    sim_signal *y;
     sim_signal *a, *b, *c, *rst, *clk;
     int64_t     rst_raw;
     int         shift;
@@ -142,8 +147,9 @@ typedef struct sim_prim_info {
     const char *verilog;     /* logic: sim_logic_verilog's text, or NULL */
     int         qlogic;      /* 1: rounding or saturation logic after the element (sim_area_round, sim_area_sat) */
 } sim_prim_info;
-/* 0 and *out filled for a signal driven by a primitive (or a constant);
- * -1 for an input, a clock, or a signal a user process drives. */
+/* 0 and *out filled with y's element record for a signal driven by a
+ * primitive (or a constant: kind, y, trunc and wrap); -1 for an input, a
+ * clock, or a signal a user process drives. */
 int sim_prim_describe(const sim_signal *y, sim_prim_info *out);
 /* The signals a combinational element reads (mux: select, then inputs;
  * logic: its inputs; block key: pass, then x; others: a, b), into r,
@@ -151,4 +157,21 @@ int sim_prim_describe(const sim_signal *y, sim_prim_info *out);
  * (they sample a, c and rst at the edge). The batch mode levelizes by it,
  * the timing analysis walks it. */
 int sim_prim_reads(const sim_prim_info *in, const sim_signal **r);
+
+/* ---- the one executable definition of every element (sim_elem_eval.c) ----
+ * sim_elem_eval: the element's value for the input values in (the
+ * order of sim_elem_read), computed in the plainest way: the exact
+ * operation in 128-bit integers, then the one requantization
+ * (sim_fx_requant) into y's format with the element's modes; no fast path
+ * of any kind. *ovf is set to 1 when that quantization overflowed, else 0.
+ * Returns 1 with the value in *out, or 0 when the element holds its
+ * value (a register not loading; a constant). The reference kernel runs
+ * every primitive through it; the tests hold every other engine to it. */
+int sim_elem_eval(const sim_prim_info *e, const int64_t *in, int64_t *out, int *ovf);
+/* The number of input values sim_elem_eval reads, and the inputs' current
+ * values in its order into v (which holds sim_elem_nin(e)): a register's
+ * D (0 if none), enable (1 if none), reset (0 if none); any other
+ * element's sim_prim_reads. */
+int  sim_elem_nin(const sim_prim_info *e);
+void sim_elem_read(const sim_prim_info *e, int64_t *v);
 #endif

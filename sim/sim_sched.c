@@ -22,7 +22,9 @@
  *    count), calls the process's own function. The delta loop is written
  *    once (sim_deltas.h) and compiled twice: the fast copy dispatches with
  *    a computed goto, the reference copy with a switch on a constant (every
- *    process its function).
+ *    primitive through sim_elem_eval, from its record; any other process
+ *    its function). sim_stats.fast_paths counts the entries into these
+ *    paths: tests/test_reference.c holds the reference's at 0.
  *  * A logic element with a few input bits is a table (tabulate).
  *  * A time step whose only business is one clock edge (no other timer
  *    due, nothing pending) toggles the clock and runs the first delta's
@@ -278,7 +280,7 @@ static inline void tick_in_place(sim_ctx *c)
 static inline uint32_t step_start(sim_ctx *c)
 {
     if (!c->nheap || c->heap[0].at > c->now) return 0;
-    if (!c->reference && tick_alone(c)) { tick_in_place(c); return 1; }
+    if (!c->reference && tick_alone(c)) { c->stats.fast_paths++; tick_in_place(c); return 1; }
     do {
         sim__timer t = timer_pop(c);
         t.fn(c, t.data);
@@ -337,6 +339,8 @@ static void tabulate(sim_ctx *c, sim__proc *p)
         tin[j].span = (uint64_t)in->raw_max - (uint64_t)in->raw_min;
         tin[j].sh = sh[j];
     }
+    c->stats.fast_paths++;
+    SIM__ASSERT(bits <= SIM_LUT_BITS_KERNEL && (n > 1 || (uint64_t)p->op_in[0]->raw_max - (uint64_t)p->op_in[0]->raw_min < ((uint64_t)1 << bits)));
     int64_t *tab = sim_alloc(c, ((size_t)1 << bits) * sizeof *tab);
     sim_lut_fill(tab, bits, (int)n, p->op_in, mask, SIM_LUT_OFFSET,
                  p->op_logic, p->op_user, p->op_y->fmt);
