@@ -264,6 +264,7 @@ static void vt_quant(vt *b, int N, int src, sim_fmt f, sim_round r)
     int sh = src - f.fbits, up = sh > 0 ? sh : 0, dn = sh < 0 ? -sh : 0;
     int M = (N > f.width + up ? N : f.width + up) + 1;        /* room for the increment, and f's range */
     vt_add(b, "wire [%d:0] %%t_a = {{%d{%%t_v[%d]}}, %%t_v}", M - 1, M - N, N - 1);
+    if (up > 63) { b->full = 1; return; }   /* the increment would not fit the 64-bit literal */
     if (up && r != SIM_RND_TRUNC) { vt_add(b, " + "); vt_lit(b, M, (int64_t)1 << (up - 1)); }
     vt_add(b, ";\n");
     int S = M - up + dn;
@@ -358,6 +359,8 @@ static void vl_addr(sim_ctx *c, sim_signal *s, const hf_addr *p)
     int lr = lg2(p->R);
     if ((1 << lr) != p->R) return;
     int F = p->fu.fbits + 1, NS = sw(p->fu) + lr + 2;
+    /* the literals below are NS-bit values held in 64 bits: no text past that */
+    if (NS > 64) return;
     vt b = vt_new(c, 1024);
     vt_add(&b, "wire [%d:0] %%t_w = {", NS - 1);
     vt_sx(&b, 0, p->fu, NS - lr);
@@ -369,7 +372,6 @@ static void vl_addr(sim_ctx *c, sim_signal *s, const hf_addr *p)
     vt_lit(&b, NS, (int64_t)(p->R - 1) << F);
     vt_add(&b, " : %%t_w;\n");
     vt_quant(&b, NS, F, s->fmt, p->r);
-    if (NS > 64) b.full = 1;
     vt_set(s, &b);
 }
 
