@@ -155,10 +155,16 @@ test-quick:
 # runs it on five designs). Needs yosys, sta (opensta) and the NanGate45
 # Liberty in shared/liberty/ beside the checkout, or STA_LIBERTY=FILE; STA_TABLE=FILE also
 # writes the table docs/timing.md shows. About 3 min of CPU, two at a time.
-.PHONY: test-sta
-test-sta: bin/shadesim
-	@echo "testing the models against OpenSTA (every unit, widths 8, 16, 24)..."
-	@STA_DESIGNS=all sh tests/cli_sta.sh
+# The long tool-driven tests (tests/long.list): OpenSTA on every unit at
+# widths 8, 16 and 24, nextpnr-ice40, the exhaustive cell table; the plain
+# build, its own "N passed, N failed" line. .ci/run runs it before make test.
+.PHONY: test-long
+test-long:
+	@echo "building $(TB)/ ($(CC) $(OPT))..."
+	@$(SUBMAKE) $(TESTJ) testbins B=$(TB)
+	@$(SUBMAKE) bin/shadesim
+	@echo "testing (long: $(TB)/ only, tests/long.list)..."
+	@STA_DESIGNS=all TST_LONG=1 sh tests/run.sh $(TB)
 
 .PHONY: test-clang
 test-clang:

@@ -12,8 +12,8 @@
 # stay where it was listed (within 0.1) or leave the list.
 #
 # The designs: STA_DESIGNS=all is every unit of `shadesim list` at widths
-# 8, 16 and 24 (make test-sta; a design the export refuses is left out);
-# by default five units at width 16 (make test's share). STA_TABLE=FILE
+# 8, 16 and 24 (make test-long; a design the export refuses is left out);
+# by default five units at width 16 (sh tests/cli_sta.sh alone). STA_TABLE=FILE
 # also writes the table (markdown) to FILE: docs/timing.md's is made so.
 # The Liberty: STA_LIBERTY=FILE, else shared/liberty/nangate45_typ.lib.gz in
 # the folder that holds the checkout (not part of it: users pass their own).

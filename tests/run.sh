@@ -24,7 +24,14 @@ trap 'exit 130' INT TERM
 # names: the edit loop's suite, in well under a minute.
 slow=
 if [ "${TST_QUICK:-0}" = 1 ]; then slow=$(sed 's/#.*//' tests/slow.list); fi
-is_slow() { for x in $slow; do [ "$x" = "$1" ] && return 0; done; return 1; }
+# tests/long.list names the tests only `make test-long` runs (TST_LONG=1:
+# those alone); every other run leaves them out.
+long=$(sed 's/#.*//' tests/long.list)
+in_list() { x=$1; shift; for y in "$@"; do [ "$x" = "$y" ] && return 0; done; return 1; }
+is_slow() {
+    if [ "${TST_LONG:-0}" = 1 ]; then in_list "$1" $long && return 1; return 0; fi
+    in_list "$1" $slow $long
+}
 
 # The job list: one line "N BUILD KIND PATH" per test, in print order.
 n=0
