@@ -4,9 +4,10 @@
  * schedule is sim_batch.c's; the vector loops (sim_batch_vec.h) take a
  * group of lanes where they can.
  *
- * Each element's quantization is sim_quant_into's, step for step
- * (sim_quant.h): the same fast path and the same general path, so a
- * lane's values are the kernel's.
+ * Each element's operation is sim_op.h's, in uint64_t on the fast path
+ * and in sim_wide on the exact one, and its quantization sim_quant_into's,
+ * step for step (sim_quant.h): the same fast path and the same general
+ * path, so a lane's values are the kernel's.
  */
 #include "sim/sim_batch_int.h"
 #include "sim/sim_quant.h"
@@ -27,9 +28,11 @@ static int64_t quant(const bop *p, sim_wide raw, int src_f, unsigned char *ovf)
     return v;
 }
 
-static sim_wide align(int64_t raw, int k) { return (sim_wide)raw * ((sim_wide)1 << k); }
-
 /* ------------------------------------------------------------- evaluation */
+
+/* sim_op.h's alignment in the fast path's type and in the exact one. */
+#define ALIGN64(x, k) SIM_OP_ALIGN(uint64_t, x, k)
+#define ALIGNW(x, k)  SIM_OP_ALIGN(sim_wide, x, k)
 
 /* Which lanes an element is evaluated in, and which lanes its output
  * changed in, are bit masks over the lanes (64 a word): an element is
@@ -62,8 +65,8 @@ static sim_wide align(int64_t raw, int k) { return (sim_wide)raw * ((sim_wide)1 
  * it lands out of range (an overflow). */
 #define FAST_Q(s, l) do {                                                      \
         int64_t s_ = (s);                                                      \
-        int64_t x_ = (int64_t)((uint64_t)s_ + radd) >> k;                      \
-        if (__builtin_expect((uint64_t)x_ - ulo > span, 0))                    \
+        int64_t x_ = SIM_OP_QUANT(s_, radd, k);                                \
+        if (__builtin_expect(!SIM_OP_IN_SPAN(x_, ulo, span), 0))               \
             x_ = quant(p, s_, p->src_f, &ovf[l]);                              \
         PUT(l, x_);                                                            \
     } while (0)
@@ -84,20 +87,20 @@ static void eval_comb(const bop *p, const uint64_t *m, uint32_t nw, unsigned cha
         else FOR_LANES(l, m, nw, PUT(l, quant(p, a[l], fa, &ovf[l])););
         break;
     case B_ADD:
-        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)(((uint64_t)a[l] << sa) + ((uint64_t)b[l] << sb)), l););
-        else FOR_LANES(l, m, nw, PUT(l, quant(p, align(a[l], sa) + align(b[l], sb), src_f, &ovf[l])););
+        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)SIM_OP_ADD(uint64_t, ALIGN64(a[l], sa), ALIGN64(b[l], sb)), l););
+        else FOR_LANES(l, m, nw, PUT(l, quant(p, SIM_OP_ADD(sim_wide, ALIGNW(a[l], sa), ALIGNW(b[l], sb)), src_f, &ovf[l])););
         break;
     case B_SUB:
-        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)(((uint64_t)a[l] << sa) - ((uint64_t)b[l] << sb)), l););
-        else FOR_LANES(l, m, nw, PUT(l, quant(p, align(a[l], sa) - align(b[l], sb), src_f, &ovf[l])););
+        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)SIM_OP_SUB(uint64_t, ALIGN64(a[l], sa), ALIGN64(b[l], sb)), l););
+        else FOR_LANES(l, m, nw, PUT(l, quant(p, SIM_OP_SUB(sim_wide, ALIGNW(a[l], sa), ALIGNW(b[l], sb)), src_f, &ovf[l])););
         break;
     case B_MUL:
-        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)((uint64_t)a[l] * (uint64_t)b[l]), l););
-        else FOR_LANES(l, m, nw, PUT(l, quant(p, (sim_wide)a[l] * (sim_wide)b[l], src_f, &ovf[l])););
+        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)SIM_OP_MUL(uint64_t, a[l], b[l]), l););
+        else FOR_LANES(l, m, nw, PUT(l, quant(p, SIM_OP_MUL(sim_wide, a[l], b[l]), src_f, &ovf[l])););
         break;
     case B_SHIFT:
-        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)((uint64_t)a[l] << sa), l););
-        else FOR_LANES(l, m, nw, PUT(l, quant(p, align(a[l], sa), src_f, &ovf[l])););
+        if (p->fast) FOR_LANES(l, m, nw, FAST_Q((int64_t)ALIGN64(a[l], sa), l););
+        else FOR_LANES(l, m, nw, PUT(l, quant(p, ALIGNW(a[l], sa), src_f, &ovf[l])););
         break;
     case B_BK:
         FOR_LANES(l, m, nw, {
@@ -115,17 +118,17 @@ static void eval_comb(const bop *p, const uint64_t *m, uint32_t nw, unsigned cha
             const int64_t *ir = p->in_radd;
             FOR_LANES(l, m, nw, {
                 uint64_t sel = (uint64_t)c[l];
-                if (sel >= (uint64_t)n) { PUT(l, 0); continue; }
+                if (!SIM_OP_SEL_IN(sel, n)) { PUT(l, 0); continue; }
                 int64_t raw = in[sel][l];
-                int64_t x = (int64_t)((uint64_t)raw + (uint64_t)ir[sel]) >> ik[sel];
-                if (__builtin_expect((uint64_t)x - ulo > span, 0)) x = quant(p, raw, p->in_f[sel], &ovf[l]);
+                int64_t x = SIM_OP_QUANT(raw, ir[sel], ik[sel]);
+                if (__builtin_expect(!SIM_OP_IN_SPAN(x, ulo, span), 0)) x = quant(p, raw, p->in_f[sel], &ovf[l]);
                 PUT(l, x);
             });
             break;
         }
         FOR_LANES(l, m, nw, {
             int64_t sel = c[l];
-            if (sel < 0 || sel >= n) PUT(l, 0);
+            if (!SIM_OP_SEL_IN(sel, n)) PUT(l, 0);
             else PUT(l, quant(p, in[sel][l], p->in_f[sel], &ovf[l]));
         });
         break;
@@ -207,8 +210,8 @@ static inline int64_t reg_next(const regv *r, const bop *p, uint32_t l, unsigned
     if (r->rst && r->rst[l]) return r->rst_raw;
     if ((r->en && !r->en[l]) || !r->a) return r->y[l];
     if (r->fast) {
-        int64_t x = (int64_t)((uint64_t)r->a[l] + r->radd) >> r->k;
-        if ((uint64_t)x - (uint64_t)r->lo <= r->span) return x;
+        int64_t x = SIM_OP_QUANT(r->a[l], r->radd, r->k);
+        if (SIM_OP_IN_SPAN(x, (uint64_t)r->lo, r->span)) return x;
     }
     return quant(p, r->a[l], r->fa, &ovf[l]);
 }
@@ -226,7 +229,7 @@ static void eval_reg(const bop *p, const uint64_t *m, uint32_t nw, unsigned char
         if (d && plain) {
             /* the common register, q <= d, in every lane of the word */
             for (uint32_t l = w * 64; l < w * 64 + 64; l++) {
-                int64_t x = (int64_t)((uint64_t)a[l] + radd) >> k;
+                int64_t x = SIM_OP_QUANT(a[l], radd, k);
                 nx[l] = x >= lo && x <= hi ? x : quant(p, a[l], p->fa, &ovf[l]);
             }
         } else if (d) {
@@ -540,7 +543,7 @@ static uint64_t reg_inplace(const bop *p, uint64_t *rm, uint64_t *om, uint32_t n
         int d = mw == UINT64_MAX;
         if (d && plain) {
             for (uint32_t l = w * 64; l < w * 64 + 64; l++) {
-                int64_t x = (int64_t)((uint64_t)a[l] + radd) >> k;
+                int64_t x = SIM_OP_QUANT(a[l], radd, k);
                 if (__builtin_expect(x < lo || x > hi, 0)) x = quant(p, a[l], p->fa, &ovf[l]);
                 acc |= (uint64_t)(y[l] != x) << (l & 63);
                 y[l] = x;
@@ -555,7 +558,7 @@ static uint64_t reg_inplace(const bop *p, uint64_t *rm, uint64_t *om, uint32_t n
             while (mw) {
                 uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
                 mw &= mw - 1;
-                int64_t x = (int64_t)((uint64_t)a[l] + radd) >> k;
+                int64_t x = SIM_OP_QUANT(a[l], radd, k);
                 if (__builtin_expect(x < lo || x > hi, 0)) x = quant(p, a[l], p->fa, &ovf[l]);
                 acc |= (uint64_t)(y[l] != x) << (l & 63);
                 y[l] = x;

@@ -9,6 +9,7 @@
 #define SIM_BATCH_INT_H
 #include "sim/sim_batch.h"
 #include "sim/sim_prim.h"
+#include "sim/sim_op.h"
 
 /* An element's kind in the schedule: the evaluation its sim_kind takes
  * (sim_kind_eval, sim_elem.h's eval column; B_WIRE a copy), numbered

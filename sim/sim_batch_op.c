@@ -7,8 +7,6 @@
 #include "sim/sim_lut.h"
 #include <stdlib.h>
 
-static int raw_bits(const sim_signal *s) { return s->fmt.width; }
-
 /* The fast path's constants for an exact result with src_f fraction bits;
  * 1 when it applies (as sim_prim.c's fast_quant_setup). */
 static int fast_setup(bop *p, int src_f)
@@ -26,7 +24,7 @@ static int fast_setup(bop *p, int src_f)
 static void widen_src(bop *p, int wa, int wb)
 {
     int d = p->fy.fbits - p->src_f;
-    if (d <= 0 || wa + p->sa + d > 61 || (wb && wb + p->sb + d > 61)) return;
+    if (d <= 0 || !sim__op_fits_aligned(wa, p->sa + d) || (wb && !sim__op_fits_aligned(wb, p->sb + d))) return;
     p->sa += d;
     p->sb += d;
     p->src_f += d;
@@ -69,7 +67,7 @@ static int setup_mux(sim_batch *b, bop *p, const sim_prim_info *in, const sim_si
         int k;
         p->in_radd[i] = 0;
         int fi = sim__quant_fast(p->in_f[i], p->fy.fbits, p->r, &k, &p->in_radd[i]);
-        fast &= raw_bits(in->in[i]) <= 62 && fi;
+        fast &= sim__op_fits_copy(sim__raw_bits(in->in[i])) && fi;
         p->in_k[i] = fi ? k : 0;
     }
     p->fast = fast;
@@ -125,14 +123,14 @@ int sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_pri
         p->rst_raw = in->rst_raw;
         if (in->a) {
             p->fa = in->a->fmt.fbits;
-            p->fast = raw_bits(in->a) <= 62 && fast_setup(p, p->fa);
+            p->fast = sim__op_fits_copy(sim__raw_bits(in->a)) && fast_setup(p, p->fa);
         }
         return 0;
     case SIM_KIND_WIRE:   /* sim_assign */
     case SIM_KIND_BK:
         p->a = ROW(in->a);
         p->fa = in->a->fmt.fbits;
-        p->fast = raw_bits(in->a) <= 62 && fast_setup(p, p->fa);
+        p->fast = sim__op_fits_copy(sim__raw_bits(in->a)) && fast_setup(p, p->fa);
         reads[nreads++] = in->a;
         if (ev == SIM_KIND_BK) { p->c = ROW(in->c); reads[nreads++] = in->c; }
         break;
@@ -143,8 +141,9 @@ int sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_pri
         p->src_f = in->src_f;
         p->sa = in->sa;
         p->sb = in->sb;
-        widen_src(p, raw_bits(in->a), raw_bits(in->b));
-        p->fast = raw_bits(in->a) + p->sa <= 61 && raw_bits(in->b) + p->sb <= 61 && fast_setup(p, p->src_f);
+        widen_src(p, sim__raw_bits(in->a), sim__raw_bits(in->b));
+        p->fast = sim__op_fits_aligned(sim__raw_bits(in->a), p->sa) && sim__op_fits_aligned(sim__raw_bits(in->b), p->sb) &&
+                  fast_setup(p, p->src_f);
         reads[nreads++] = in->a;
         reads[nreads++] = in->b;
         break;
@@ -152,7 +151,7 @@ int sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_pri
         p->a = ROW(in->a);
         p->b = ROW(in->b);
         p->src_f = in->src_f;
-        p->fast = raw_bits(in->a) + raw_bits(in->b) <= 62 && fast_setup(p, p->src_f);
+        p->fast = sim__op_fits_mul(sim__raw_bits(in->a), sim__raw_bits(in->b)) && fast_setup(p, p->src_f);
         reads[nreads++] = in->a;
         reads[nreads++] = in->b;
         break;
@@ -160,8 +159,8 @@ int sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_pri
         p->a = ROW(in->a);
         p->sa = in->sa;
         p->src_f = in->src_f;
-        widen_src(p, raw_bits(in->a), 0);
-        p->fast = raw_bits(in->a) + p->sa <= 61 && fast_setup(p, p->src_f);
+        widen_src(p, sim__raw_bits(in->a), 0);
+        p->fast = sim__op_fits_aligned(sim__raw_bits(in->a), p->sa) && fast_setup(p, p->src_f);
         reads[nreads++] = in->a;
         break;
     }

@@ -281,7 +281,7 @@ VTARGET int VNAME(sim__batch_vec_reg)(const bop *p, uint32_t nl, unsigned char *
             const uint32_t l = (uint32_t)__builtin_ctzll(m_);                  \
             int64_t x;                                                         \
             __VA_ARGS__                                                        \
-            if (__builtin_expect((uint64_t)x - ulo > span, 0)) {               \
+            if (__builtin_expect(!SIM_OP_IN_SPAN(x, ulo, span), 0)) {          \
                 bad |= m_ & -m_;                                               \
                 continue;                                                      \
             }                                                                  \
@@ -289,7 +289,9 @@ VTARGET int VNAME(sim__batch_vec_reg)(const bop *p, uint32_t nl, unsigned char *
             y[l] = x;                                                          \
         }                                                                      \
     } while (0)
-#define FASTQ(s) x = (int64_t)((uint64_t)(s) + radd) >> k
+/* sim_op.h's operations and fast quantization, as the scalar loop's */
+#define FASTQ(s) x = SIM_OP_QUANT(s, radd, k)
+#define ALIGN64(v, s) SIM_OP_ALIGN(uint64_t, v, s)
 
 VTARGET int VNAME(sim__batch_vec_sparse)(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om)
 {
@@ -301,10 +303,10 @@ VTARGET int VNAME(sim__batch_vec_sparse)(const bop *p, uint64_t m, unsigned char
     if (p->kind != B_LOGIC && !p->fast) return 0;
     switch (p->kind) {
     case B_WIRE: SPARSE(FASTQ(a[l]);); break;
-    case B_ADD: SPARSE(FASTQ(((uint64_t)a[l] << sa) + ((uint64_t)b[l] << sb));); break;
-    case B_SUB: SPARSE(FASTQ(((uint64_t)a[l] << sa) - ((uint64_t)b[l] << sb));); break;
-    case B_SHIFT: SPARSE(FASTQ((uint64_t)a[l] << sa);); break;
-    case B_MUL: SPARSE(FASTQ((uint64_t)a[l] * (uint64_t)b[l]);); break;
+    case B_ADD: SPARSE(FASTQ(SIM_OP_ADD(uint64_t, ALIGN64(a[l], sa), ALIGN64(b[l], sb)));); break;
+    case B_SUB: SPARSE(FASTQ(SIM_OP_SUB(uint64_t, ALIGN64(a[l], sa), ALIGN64(b[l], sb)));); break;
+    case B_SHIFT: SPARSE(FASTQ(ALIGN64(a[l], sa));); break;
+    case B_MUL: SPARSE(FASTQ(SIM_OP_MUL(uint64_t, a[l], b[l]));); break;
     case B_BK: SPARSE(if (c[l]) FASTQ(a[l]); else x = 0;); break;   /* key 0: y is 0, in range */
     case B_MUX: {
         /* a select past the inputs gives 0 */
@@ -313,7 +315,7 @@ VTARGET int VNAME(sim__batch_vec_sparse)(const bop *p, uint64_t m, unsigned char
         const int *ik = p->in_k;
         const int64_t *ir = p->in_radd;
         SPARSE(uint64_t s = (uint64_t)c[l];
-               x = s < n ? (int64_t)((uint64_t)in[s][l] + (uint64_t)ir[s]) >> ik[s] : 0;);
+               x = SIM_OP_SEL_IN(s, n) ? SIM_OP_QUANT(in[s][l], ir[s], ik[s]) : 0;);
         break;
     }
     case B_LOGIC: {
@@ -346,6 +348,7 @@ VTARGET int VNAME(sim__batch_vec_sparse)(const bop *p, uint64_t m, unsigned char
 
 #undef SPARSE
 #undef FASTQ
+#undef ALIGN64
 
 VTARGET uint64_t VNAME(sim__batch_vec_take)(int64_t *v, const int64_t *p, uint32_t nl, unsigned char *same)
 {

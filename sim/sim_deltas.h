@@ -46,7 +46,7 @@
 #endif
 /* y <= (x + radd) >> k (arithmetic: floor) when in range; out of range,
  * the general evaluation counts the overflow. */
-#define QUANT(x) do { v = (int64_t)((uint64_t)(x) + (uint64_t)p->op_radd) >> p->op_k; \
+#define QUANT(x) do { v = SIM_OP_QUANT(x, p->op_radd, p->op_k);                        \
                       if (__builtin_expect(v < p->op_lo || v > p->op_hi, 0)) goto general; } while (0)
 /* The same when radd and k are 0 (the *_X operations). */
 #define RANGE(x) do { v = (int64_t)(x); \
@@ -99,26 +99,27 @@ static int SIM__DELTAS_NAME(sim_ctx *c, uint32_t *deltas, int once)
                 nupd = c->q.nupd;
                 vmbreak;
             /* Operands' widths bound the exact result below 2^62
-             * (sim_prim.c checks); the arithmetic is done unsigned, so
-             * that even a raw forced outside its format cannot overflow. */
+             * (sim_prim.c checks, sim_op.h's conditions); the operations
+             * are sim_op.h's in uint64_t, so that even a raw forced
+             * outside its format cannot overflow. */
             vmcase(SIM__OP_COPY, op_copy)   QUANT(p->op_a->cur); WRITE_Y(); vmbreak;
-            vmcase(SIM__OP_ADD, op_add)     QUANT((uint64_t)p->op_a->cur + (uint64_t)p->op_b->cur); WRITE_Y(); vmbreak;
-            vmcase(SIM__OP_SUB, op_sub)     QUANT((uint64_t)p->op_a->cur - (uint64_t)p->op_b->cur); WRITE_Y(); vmbreak;
-            vmcase(SIM__OP_MUL, op_mul)     QUANT((uint64_t)p->op_a->cur * (uint64_t)p->op_b->cur); WRITE_Y(); vmbreak;
+            vmcase(SIM__OP_ADD, op_add)     QUANT(SIM_OP_ADD(uint64_t, p->op_a->cur, p->op_b->cur)); WRITE_Y(); vmbreak;
+            vmcase(SIM__OP_SUB, op_sub)     QUANT(SIM_OP_SUB(uint64_t, p->op_a->cur, p->op_b->cur)); WRITE_Y(); vmbreak;
+            vmcase(SIM__OP_MUL, op_mul)     QUANT(SIM_OP_MUL(uint64_t, p->op_a->cur, p->op_b->cur)); WRITE_Y(); vmbreak;
             vmcase(SIM__OP_MUX, op_mux) {
                     uint64_t sel = (uint64_t)p->op_c->cur;
-                    if (sel >= p->op_n) { v = 0; WRITE_Y(); vmbreak; }
+                    if (!SIM_OP_SEL_IN(sel, p->op_n)) { v = 0; WRITE_Y(); vmbreak; }
                     QUANT(p->op_in[sel]->cur); WRITE_Y(); vmbreak;
                 }
             vmcase(SIM__OP_BK, op_bk)
                 if (!p->op_c->cur) { v = 0; WRITE_Y(); vmbreak; }
                 QUANT(p->op_a->cur); WRITE_Y(); vmbreak;
             vmcase(SIM__OP_COPY_X, op_copy_x) RANGE(p->op_a->cur); WRITE_Y(); vmbreak;
-            vmcase(SIM__OP_ADD_X, op_add_x)   RANGE((uint64_t)p->op_a->cur + (uint64_t)p->op_b->cur); WRITE_Y(); vmbreak;
-            vmcase(SIM__OP_SUB_X, op_sub_x)   RANGE((uint64_t)p->op_a->cur - (uint64_t)p->op_b->cur); WRITE_Y(); vmbreak;
+            vmcase(SIM__OP_ADD_X, op_add_x)   RANGE(SIM_OP_ADD(uint64_t, p->op_a->cur, p->op_b->cur)); WRITE_Y(); vmbreak;
+            vmcase(SIM__OP_SUB_X, op_sub_x)   RANGE(SIM_OP_SUB(uint64_t, p->op_a->cur, p->op_b->cur)); WRITE_Y(); vmbreak;
             vmcase(SIM__OP_MUX_X, op_mux_x) {
                     uint64_t sel = (uint64_t)p->op_c->cur;
-                    if (sel >= p->op_n) { v = 0; WRITE_Y(); vmbreak; }
+                    if (!SIM_OP_SEL_IN(sel, p->op_n)) { v = 0; WRITE_Y(); vmbreak; }
                     RANGE(p->op_in[sel]->cur); WRITE_Y(); vmbreak;
                 }
             vmcase(SIM__OP_BK_X, op_bk_x)

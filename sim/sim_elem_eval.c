@@ -8,12 +8,12 @@
  *
  * It reads the operands' formats, never the record's alignment shifts
  * (src_f, sa, sb), which the fast paths take: working them out again here
- * is what lets a wrong shift in the record show up as a difference.
+ * is what lets a wrong shift in the record show up as a difference. The
+ * operations themselves are sim_op.h's, in sim_wide: the ones every other
+ * scalar evaluation expands in its own type.
  */
 #include "sim/sim_prim.h"
-
-/* raw * 2^k exactly, k >= 0 (a multiplication: defined for negative raws). */
-static sim_wide scaled(int64_t raw, int k) { return (sim_wide)raw * ((sim_wide)1 << k); }
+#include "sim/sim_op.h"
 
 static int64_t requant(const sim_prim_info *e, sim_wide exact, int src_f, int *ovf)
 {
@@ -69,7 +69,7 @@ int sim_elem_eval(const sim_prim_info *e, const int64_t *in, int64_t *out, int *
         return 1;
     case SIM_KIND_MUX: {     /* a select out of range gives 0 */
         int64_t sel = in[0];
-        if (sel < 0 || sel >= e->n) { *out = 0; return 1; }
+        if (!SIM_OP_SEL_IN(sel, e->n)) { *out = 0; return 1; }
         *out = requant(e, in[1 + sel], e->in[sel]->fmt.fbits, ovf);
         return 1;
     }
@@ -79,12 +79,14 @@ int sim_elem_eval(const sim_prim_info *e, const int64_t *in, int64_t *out, int *
     case SIM_KIND_ADD:
     case SIM_KIND_SUB: {     /* both aligned to the finer operand's fraction bits */
         int f = a->fmt.fbits > b->fmt.fbits ? a->fmt.fbits : b->fmt.fbits;
-        sim_wide x = scaled(in[0], f - a->fmt.fbits), z = scaled(in[1], f - b->fmt.fbits);
-        *out = requant(e, sim_kind_eval(e->kind) == SIM_KIND_ADD ? x + z : x - z, f, ovf);
+        sim_wide x = SIM_OP_ALIGN(sim_wide, in[0], f - a->fmt.fbits);
+        sim_wide z = SIM_OP_ALIGN(sim_wide, in[1], f - b->fmt.fbits);
+        *out = requant(e, sim_kind_eval(e->kind) == SIM_KIND_ADD ? SIM_OP_ADD(sim_wide, x, z) : SIM_OP_SUB(sim_wide, x, z),
+                       f, ovf);
         return 1;
     }
     case SIM_KIND_MUL:       /* the whole product, fraction bits added */
-        *out = requant(e, (sim_wide)in[0] * (sim_wide)in[1], a->fmt.fbits + b->fmt.fbits, ovf);
+        *out = requant(e, SIM_OP_MUL(sim_wide, in[0], in[1]), a->fmt.fbits + b->fmt.fbits, ovf);
         return 1;
     case SIM_KIND_SHIFT:     /* x 2^sh: the same raw with sh fewer fraction bits */
         *out = requant(e, in[0], a->fmt.fbits - e->shift, ovf);

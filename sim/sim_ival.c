@@ -1,7 +1,10 @@
 /* sim_ival.c - interval evaluation of the primitives: each element's
  * exact result over its operands' intervals, rounded as the element
- * rounds (sim_prim.c's evaluations, on the ends of intervals). */
+ * rounds (sim_elem_eval's operations, sim_op.h's, on the ends of
+ * intervals: which ends, and the rounding of an interval, are this
+ * file's own). */
 #include "sim/sim_ival.h"
+#include "sim/sim_op.h"
 
 sim_wide sim_ival_round(sim_wide x, int src_f, int dst_f, sim_round r)
 {
@@ -71,13 +74,6 @@ static void take(int *any, sim_ival *pre, sim_ival *post, sim_ival p, sim_ival q
  * values when there are at most this many, else its whole format. */
 #define LOGIC_ENUM_MAX 4096
 
-static int64_t canon(int64_t v, sim_fmt f)
-{
-    int sh = 64 - f.width;
-    if (f.is_signed) return (int64_t)((uint64_t)v << sh) >> sh;
-    return (int64_t)((uint64_t)v & (UINT64_MAX >> sh));
-}
-
 static sim_ival logic_eval(const sim_signal *y, const sim_prim_info *pi, const sim_ival *vals)
 {
     sim_ival full = { sim_fmt_raw_min(y->fmt), sim_fmt_raw_max(y->fmt) };
@@ -92,7 +88,7 @@ static sim_ival logic_eval(const sim_signal *y, const sim_prim_info *pi, const s
     if (combos > LOGIC_ENUM_MAX) return full;
     sim_ival out = { 0, 0 };
     for (int first = 1;;) {
-        int64_t r = canon(pi->fn(v, pi->user), y->fmt);
+        int64_t r = sim__canon(pi->fn(v, pi->user), y->fmt);
         if (first) { out.lo = out.hi = r; first = 0; }
         else out = sim_ival_hull(out, (sim_ival){ r, r });
         int i = 0;
@@ -138,7 +134,9 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
     }
     case SIM_KIND_MUX: {
         sim_ival sel = vals[pi.c->index];
-        if (sel.lo < 0 || sel.hi >= pi.n) take(&any, pre, post, (sim_ival){ 0, 0 }, (sim_ival){ 0, 0 });
+        /* a select out of range gives 0 */
+        if (!SIM_OP_SEL_IN(sel.lo, pi.n) || !SIM_OP_SEL_IN(sel.hi, pi.n))
+            take(&any, pre, post, (sim_ival){ 0, 0 }, (sim_ival){ 0, 0 });
         sim_wide a = sel.lo < 0 ? 0 : sel.lo, b = sel.hi >= pi.n ? pi.n - 1 : sel.hi;
         for (sim_wide s = a; s <= b; s++) {
             const sim_signal *x = pi.in[(int)s];
@@ -157,17 +155,18 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
         return 0;
     }
     case SIM_KIND_ADD: case SIM_KIND_SUB: {
-        int sf = pi.src_f;
-        sim_wide ka = (sim_wide)1 << pi.sa, kb = (sim_wide)1 << pi.sb;
         sim_ival x = vals[pi.a->index], z = vals[pi.b->index], s;
-        if (pi.kind == SIM_KIND_ADD) s = (sim_ival){ x.lo * ka + z.lo * kb, x.hi * ka + z.hi * kb };
-        else s = (sim_ival){ x.lo * ka - z.hi * kb, x.hi * ka - z.lo * kb };
-        into(y, s, sf, r, o, pre, post);
+        x = (sim_ival){ SIM_OP_ALIGN(sim_wide, x.lo, pi.sa), SIM_OP_ALIGN(sim_wide, x.hi, pi.sa) };
+        z = (sim_ival){ SIM_OP_ALIGN(sim_wide, z.lo, pi.sb), SIM_OP_ALIGN(sim_wide, z.hi, pi.sb) };
+        if (pi.kind == SIM_KIND_ADD) s = (sim_ival){ SIM_OP_ADD(sim_wide, x.lo, z.lo), SIM_OP_ADD(sim_wide, x.hi, z.hi) };
+        else s = (sim_ival){ SIM_OP_SUB(sim_wide, x.lo, z.hi), SIM_OP_SUB(sim_wide, x.hi, z.lo) };
+        into(y, s, pi.src_f, r, o, pre, post);
         return 0;
     }
     case SIM_KIND_MUL: {
         sim_ival x = vals[pi.a->index], z = vals[pi.b->index];
-        sim_wide c[4] = { x.lo * z.lo, x.lo * z.hi, x.hi * z.lo, x.hi * z.hi };
+        sim_wide c[4] = { SIM_OP_MUL(sim_wide, x.lo, z.lo), SIM_OP_MUL(sim_wide, x.lo, z.hi),
+                          SIM_OP_MUL(sim_wide, x.hi, z.lo), SIM_OP_MUL(sim_wide, x.hi, z.hi) };
         sim_ival s = { c[0], c[0] };
         for (int i = 1; i < 4; i++) s = sim_ival_hull(s, (sim_ival){ c[i], c[i] });
         into(y, s, pi.src_f, r, o, pre, post);
@@ -177,8 +176,8 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
         /* x * 2^sh is x's raw with fewer fraction bits, scaled up (sa)
          * past the binary point */
         sim_ival x = vals[pi.a->index];
-        sim_wide k = (sim_wide)1 << pi.sa;
-        into(y, (sim_ival){ x.lo * k, x.hi * k }, pi.src_f, r, o, pre, post);
+        into(y, (sim_ival){ SIM_OP_ALIGN(sim_wide, x.lo, pi.sa), SIM_OP_ALIGN(sim_wide, x.hi, pi.sa) }, pi.src_f, r, o,
+             pre, post);
         return 0;
     }
     case SIM_KIND_LOGIC:

@@ -51,16 +51,13 @@ static inline int64_t q64(prim *p, int64_t s)
 {
     p->e.y->ctx->stats.fast_paths++;
     SIM__ASSERT(p->k >= 0 && p->k <= 61 && s > -((int64_t)1 << 62) && s < ((int64_t)1 << 62));
-    int64_t x = (int64_t)((uint64_t)s + (uint64_t)p->radd) >> p->k;
+    int64_t x = SIM_OP_QUANT(s, p->radd, p->k);
     if (__builtin_expect(x >= p->lo && x <= p->hi, 1)) return x;
     return sim_quant_into(p->e.y, s, p->e.src_f, p->e.r, p->e.o);
 }
 
-/* Bits bounding a signal's raw: |raw| <= 2^bits. */
-static int raw_bits(const sim_signal *s) { return s->fmt.width; }
-/* A value passed through unchanged (register, mux, block key) must stay
- * below 2^62 too, so that adding the rounding constant cannot overflow. */
-static int copy_fits(const sim_signal *s) { return raw_bits(s) <= 62; }
+/* A value passed through unchanged (register, mux, block key). */
+static int copy_fits(const sim_signal *s) { return sim__op_fits_copy(sim__raw_bits(s)); }
 
 /* Set the fast-path constants for an exact result with src_f fraction
  * bits; 1 if the fast path applies (trunc or half-up, 0 <= k < 62). The
@@ -86,12 +83,12 @@ static void set_native(sim_proc *pub, int op, const prim *p)
      * value takes, a range to land in, operands whose exact result fits
      * 62 bits, aligned fractions for the adder (no shift per input) */
     SIM__ASSERT(p->k >= 0 && p->k <= 61 && p->lo <= p->hi);
-    SIM__ASSERT(op != SIM__OP_MUL || p->e.a->fmt.width + p->e.b->fmt.width <= 62);
+    SIM__ASSERT(op != SIM__OP_MUL || sim__op_fits_mul(p->e.a->fmt.width, p->e.b->fmt.width));
     SIM__ASSERT((op != SIM__OP_ADD && op != SIM__OP_SUB) ||
                 (p->e.a->fmt.fbits == p->e.b->fmt.fbits && p->e.sa == 0 && p->e.sb == 0 &&
-                 p->e.a->fmt.width <= 61 && p->e.b->fmt.width <= 61));
+                 sim__op_fits_aligned(p->e.a->fmt.width, 0) && sim__op_fits_aligned(p->e.b->fmt.width, 0)));
     SIM__ASSERT((op != SIM__OP_COPY && op != SIM__OP_MUX && op != SIM__OP_BK) || !p->e.a ||
-                p->e.a->fmt.width <= 62);
+                sim__op_fits_copy(p->e.a->fmt.width));
     if (!p->k && !p->radd) op = op_x[op];
     pr->op = (uint8_t)op;
     pr->op_y = p->e.y; pr->op_a = p->e.a; pr->op_b = p->e.b; pr->op_c = p->e.c;
@@ -122,9 +119,6 @@ static sim_proc *prim_proc(sim_ctx *c, sim_signal *y, sim_proc_fn fn, prim *p)
     sim__proc_of(y->driver)->elem = &p->e;   /* a primitive: the reference evaluates its record */
     return y->driver;
 }
-
-/* Multiplying by 2^k instead of shifting keeps negative values defined. */
-static inline sim_wide align(int64_t raw, int k) { return (sim_wide)raw * ((sim_wide)1 << k); }
 
 static int imax(int a, int b) { return a > b ? a : b; }
 
@@ -256,7 +250,7 @@ static void mux_eval(sim_proc *pr)
 {
     prim *p = pr->data;
     int64_t sel = p->e.c->cur;
-    if (sel < 0 || sel >= p->e.n) { sim_write(p->e.y, 0); return; }
+    if (!SIM_OP_SEL_IN(sel, p->e.n)) { sim_write(p->e.y, 0); return; }
     const sim_signal *x = p->e.in[sel];
     sim_write(p->e.y, sim_quant_into(p->e.y, x->cur, x->fmt.fbits, p->e.r, p->e.o));
 }
@@ -309,29 +303,32 @@ sim_signal *sim_bk(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 static void add_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_wide s = align(p->e.a->cur, p->e.sa) + align(p->e.b->cur, p->e.sb);
+    sim_wide s = SIM_OP_ADD(sim_wide, SIM_OP_ALIGN(sim_wide, p->e.a->cur, p->e.sa),
+                            SIM_OP_ALIGN(sim_wide, p->e.b->cur, p->e.sb));
     sim_write(p->e.y, sim_quant_into(p->e.y, s, p->e.src_f, p->e.r, p->e.o));
 }
 
 static void sub_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_wide s = align(p->e.a->cur, p->e.sa) - align(p->e.b->cur, p->e.sb);
+    sim_wide s = SIM_OP_SUB(sim_wide, SIM_OP_ALIGN(sim_wide, p->e.a->cur, p->e.sa),
+                            SIM_OP_ALIGN(sim_wide, p->e.b->cur, p->e.sb));
     sim_write(p->e.y, sim_quant_into(p->e.y, s, p->e.src_f, p->e.r, p->e.o));
 }
 
-/* Aligned operands each under 2^61: shifting left by s is exact (done
- * unsigned: defined for negative raws). */
+/* Aligned operands each under 2^61: the uint64_t forms are exact. */
 static void add_fast_al(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_write(p->e.y, q64(p, (int64_t)(((uint64_t)p->e.a->cur << p->e.sa) + ((uint64_t)p->e.b->cur << p->e.sb))));
+    sim_write(p->e.y, q64(p, (int64_t)SIM_OP_ADD(uint64_t, SIM_OP_ALIGN(uint64_t, p->e.a->cur, p->e.sa),
+                                                 SIM_OP_ALIGN(uint64_t, p->e.b->cur, p->e.sb))));
 }
 
 static void sub_fast_al(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_write(p->e.y, q64(p, (int64_t)(((uint64_t)p->e.a->cur << p->e.sa) - ((uint64_t)p->e.b->cur << p->e.sb))));
+    sim_write(p->e.y, q64(p, (int64_t)SIM_OP_SUB(uint64_t, SIM_OP_ALIGN(uint64_t, p->e.a->cur, p->e.sa),
+                                                 SIM_OP_ALIGN(uint64_t, p->e.b->cur, p->e.sb))));
 }
 
 /* Bits an adder really has: the operands' integer part (plus a carry, but
@@ -358,7 +355,8 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
     p->e.sb = p->e.src_f - b->fmt.fbits;
     sim_proc_fn fn = sub ? sub_eval : add_eval;
     /* |a 2^sa| and |b 2^sb| below 2^61: the sum is below 2^62. */
-    int fast = raw_bits(a) + p->e.sa <= 61 && raw_bits(b) + p->e.sb <= 61 && fast_quant_setup(p, p->e.src_f);
+    int fast = sim__op_fits_aligned(sim__raw_bits(a), p->e.sa) && sim__op_fits_aligned(sim__raw_bits(b), p->e.sb) &&
+               fast_quant_setup(p, p->e.src_f);
     if (fast && (p->e.sa || p->e.sb)) fn = sub ? sub_fast_al : add_fast_al;
     sim_proc *pr = prim_proc(c, y, fn, p);
     if (fast && !p->e.sa && !p->e.sb) set_native(pr, sub ? SIM__OP_SUB : SIM__OP_ADD, p);
@@ -387,7 +385,7 @@ sim_signal *sim_sub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
 static void mul_eval(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_wide prod = (sim_wide)p->e.a->cur * (sim_wide)p->e.b->cur;
+    sim_wide prod = SIM_OP_MUL(sim_wide, p->e.a->cur, p->e.b->cur);
     sim_write(p->e.y, sim_quant_into(p->e.y, prod, p->e.src_f, p->e.r, p->e.o));
 }
 
@@ -421,7 +419,7 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     p->e.src_f = a->fmt.fbits + b->fmt.fbits;
     sim_proc *pr = prim_proc(c, y, mul_eval, p);
     /* Operand widths summing to at most 62 bits: the product fits int64_t. */
-    if (raw_bits(a) + raw_bits(b) <= 62 && fast_quant_setup(p, p->e.src_f)) set_native(pr, SIM__OP_MUL, p);
+    if (sim__op_fits_mul(sim__raw_bits(a), sim__raw_bits(b)) && fast_quant_setup(p, p->e.src_f)) set_native(pr, SIM__OP_MUL, p);
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     /* the array synthesis builds: the operands' live bits only */
@@ -437,13 +435,13 @@ static void shift_eval(sim_proc *pr)
     prim *p = pr->data;
     /* x * 2^sh is the same raw read with sh fewer fraction bits; a left
      * shift past the binary point is applied to the raw (sa). */
-    sim_write(p->e.y, sim_quant_into(p->e.y, align(p->e.a->cur, p->e.sa), p->e.src_f, p->e.r, p->e.o));
+    sim_write(p->e.y, sim_quant_into(p->e.y, SIM_OP_ALIGN(sim_wide, p->e.a->cur, p->e.sa), p->e.src_f, p->e.r, p->e.o));
 }
 
 static void shift_fast(sim_proc *pr)
 {
     prim *p = pr->data;
-    sim_write(p->e.y, q64(p, (int64_t)((uint64_t)p->e.a->cur << p->e.sa)));
+    sim_write(p->e.y, q64(p, (int64_t)SIM_OP_ALIGN(uint64_t, p->e.a->cur, p->e.sa)));
 }
 
 sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
@@ -456,7 +454,7 @@ sim_signal *sim_shift(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     int f = x->fmt.fbits - sh;
     p->e.sa = f < 0 ? -f : 0;
     p->e.src_f = f < 0 ? 0 : f;
-    int fast = raw_bits(x) + p->e.sa <= 61 && fast_quant_setup(p, p->e.src_f);
+    int fast = sim__op_fits_aligned(sim__raw_bits(x), p->e.sa) && fast_quant_setup(p, p->e.src_f);
     sim_proc *pr = prim_proc(c, y, fast && p->e.sa ? shift_fast : shift_eval, p);
     if (fast && !p->e.sa) set_native(pr, SIM__OP_COPY, p);
     sim_sensitive(pr, x, SIM_EDGE_ANY);
@@ -637,7 +635,7 @@ int sim__value_used(sim_signal *s, uint64_t epoch)
             if (s == p->e.c) used = sim__value_used(p->e.y, epoch);
             else {
                 int64_t sel = p->e.c->cur;
-                used = sel >= 0 && sel < p->e.n && p->e.in[sel] == s && sim__value_used(p->e.y, epoch);
+                used = SIM_OP_SEL_IN(sel, p->e.n) && p->e.in[sel] == s && sim__value_used(p->e.y, epoch);
             }
             break;
         case SIM_KIND_BK:

@@ -7,7 +7,7 @@
  */
 #ifndef SIM_QUANT_H
 #define SIM_QUANT_H
-#include "sim/sim_fixed.h"
+#include "sim/sim_op.h"
 
 /* The fast path of quantizing raw, with src_f fraction bits, into a
  * format of dst_f fraction bits and raw range [lo, hi], rounding r
@@ -23,9 +23,7 @@ static inline int sim__quant_fits(sim_wide raw, int src_f, int dst_f, int64_t lo
 {
     int k = src_f - dst_f;
     if ((unsigned)k < 63 && raw >= -((sim_wide)1 << 62) && raw < ((sim_wide)1 << 62) && r != SIM_RND_EVEN) {
-        int64_t v = (int64_t)raw;
-        if (k && r == SIM_RND_HALF_UP) v += (int64_t)1 << (k - 1);
-        v >>= k;   /* arithmetic shift: floor division by 2^k (gcc, clang) */
+        int64_t v = SIM_OP_QUANT(raw, k && r == SIM_RND_HALF_UP ? (int64_t)1 << (k - 1) : 0, k);
         if (v >= lo && v <= hi) { *x = v; return 1; }
     }
     return 0;
@@ -44,12 +42,4 @@ static inline int sim__quant_fast(int src_f, int dst_f, sim_round r, int *k, int
     return 1;
 }
 
-/* Low W bits of v, sign- or zero-extended (a logic element's output):
- * sim_fx_canon without the call. */
-static inline int64_t sim__canon(int64_t v, sim_fmt f)
-{
-    int sh = 64 - f.width;
-    if (f.is_signed) return (int64_t)((uint64_t)v << sh) >> sh;
-    return (int64_t)((uint64_t)v & (UINT64_MAX >> sh));
-}
 #endif

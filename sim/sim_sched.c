@@ -47,6 +47,7 @@
  */
 #include "sim/sim_internal.h"
 #include "sim/sim_lut.h"
+#include "sim/sim_op.h"
 #include <stdio.h>
 #include <string.h>
 
