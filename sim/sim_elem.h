@@ -1,5 +1,8 @@
-/* sim_elem.h - the element kinds, one row each: the one list every
- * engine's per-kind code is generated from or checked against.
+/* sim_elem.h - the element kinds, one row each: the one list the per-kind
+ * tables are made from (the kind enum and names, the batch's kinds, the
+ * Verilog and energy dispatch) and tests/test_elem.c walks. The kernel's
+ * inline operations (sim_internal.h) and the vector loops are not made
+ * from it: tests/test_cells.c holds them to sim_elem_eval.
  *
  * The list is an X-macro, SIM_ELEM_LIST(X), with one
  * X(KIND, name, role, eval, vlog, energy, area, delay) per kind:
@@ -22,15 +25,16 @@
  *   delay   1: it has a delay of its own (sim_delay.h, sim_arcs); 0: it
  *           passes values in no time or drives them from outside
  *
- * Adding a kind is one row here and its semantics once per engine: its
- * constructor in sim_prim.c (process, fast path, area, delay), the kernel's
- * SIM__OP_* if it evaluates it inline (sim_internal.h), the batch mode's
- * scalar loop (sim_batch_eval.c) and setup (sim_batch_op.c), emit_VLOG,
- * toggle_ENERGY, sim_ival.c's case; the tables made from this list do not
- * compile until each engine names its function, and tests/test_elem.c
- * runs every kind through every engine. Its one executable definition is
- * its case of sim_elem_eval (sim_elem_eval.c), which the reference kernel
- * runs and tests/test_cells.c holds every engine to.
+ * Adding a kind is one row here, its operation once in sim_op.h, and its
+ * use of it once per engine: its constructor in sim_prim.c (process, fast
+ * path, area, delay), the kernel's SIM__OP_* if it evaluates it inline
+ * (sim_internal.h), the batch mode's scalar loop (sim_batch_eval.c) and
+ * setup (sim_batch_op.c), emit_VLOG, toggle_ENERGY, sim_ival.c's case; the
+ * tables made from this list do not compile until each engine names its
+ * function, and tests/test_elem.c runs every kind through every engine.
+ * Its one executable definition is its case of sim_elem_eval
+ * (sim_elem_eval.c), which the reference kernel runs and
+ * tests/test_cells.c holds every engine to.
  */
 #ifndef SIM_ELEM_H
 #define SIM_ELEM_H
