@@ -166,6 +166,15 @@ test-long:
 	@echo "testing (long: $(TB)/ only, tests/long.list)..."
 	@STA_DESIGNS=all TST_LONG=1 sh tests/run.sh $(TB)
 
+# The planted faults (tests/faults/*.patch: an off-by-one in the vector
+# multiplier, a wrong select range, a rounding mode swapped in one engine,
+# an interval rounded inward), each applied to a copy of the sources and
+# shown failing test_cells (tests/cli_faults.sh; also in tests/long.list).
+.PHONY: faults
+faults:
+	@$(SUBMAKE) $(B)/tests/test_cells $(B)/tests/test_elem
+	@TST_BUILD=$(B) sh tests/cli_faults.sh
+
 .PHONY: test-clang
 test-clang:
 	@echo "building build-clang/ ($(CLANG) $(OPT))..."
