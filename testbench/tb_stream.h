@@ -68,7 +68,7 @@ void tb_acc_item(tb_acc *a, tb_result *r, size_t idx, const int64_t *raw, const 
                  const tb_item *it);
 void tb_acc_end(tb_acc *a, tb_result *r);
 
-/* The exact check of one value (tb_run.c): TB_CHECK_OK / EXCEEDED /
+/* The exact check of one value (tb_check.c): TB_CHECK_OK / EXCEEDED /
  * UNCHECKED, and |hw - ideal| in *err. */
 int tb_check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
                    double ideal_d, const sim_dy *bound, double *err);

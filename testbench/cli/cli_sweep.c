@@ -4,25 +4,18 @@
  * cli_sweep_target.c's. */
 #include "testbench/cli/cli_sweep.h"
 #include "testbench/cli/cli_opt.h"
+#include "base/base_proc.h"
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 /* ------------------------------------------------------------- progress */
 
 typedef struct progress { const char *unit; double t0, last; int shown; } progress;
 
-double sweep_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 static void on_progress(void *arg, size_t done, size_t total)
 {
     progress *p = arg;
-    double t = sweep_now();
+    double t = base_proc_now();
     if (done < total && t - p->last < 0.1) return;
     p->last = t;
     p->shown = 1;
@@ -132,11 +125,11 @@ int cli_sweep(int argc, char **argv)
     if (load_vectors(&a, &s, sets) || cli_make_dir(a.dir)) { rc = CLI_USAGE; goto done; }
     tb_sweep_fingerprint(&s);
 
-    progress pr = { a.o.u->name, sweep_now(), 0, 0 };
+    progress pr = { a.o.u->name, base_proc_now(), 0, 0 };
     int tty = cli_stderr_tty();
     size_t failed = tb_sweep_run(&s, a.threads, a.shard_k, a.shard_n, tty ? on_progress : NULL, &pr);
     progress_clear(&pr);
-    double secs = sweep_now() - pr.t0;
+    double secs = base_proc_now() - pr.t0;
     failed = sweep_failures(&a, &s, failed);
     rc = a.shard_n ? sweep_shard_out(&a, &s, tty, secs) : sweep_outputs(&a, &s, pr.t0, tty);
     if (rc == CLI_OK && (failed || a.misses || a.ho_failed)) rc = CLI_FAIL;

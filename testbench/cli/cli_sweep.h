@@ -60,8 +60,6 @@ void sweep_oset_abort(oset *os);
 /* Move the set in (and remove DIR/gone[k]) under the folder's lock. */
 int sweep_oset_commit(oset *os, const char *const *gone, int ngone);
 
-/* Seconds on the monotonic clock (progress on a terminal only). */
-double sweep_now(void);
 /* Rows (of shard k/n; n = 0: all) that miss the user's acceptance
  * (--max-error/--max-nmse/--max-lsb): a line saying which, counted in
  * *misses; nothing when no acceptance option was given. */

@@ -3,6 +3,7 @@
  * acceptance line, saved as one set into the output folder. */
 #include "testbench/cli/cli_sweep.h"
 #include "chart/chart.h"
+#include "base/base_proc.h"
 #include "testbench/study/tb_sweep_chart.h"
 #include <math.h>
 #include <stdlib.h>
@@ -289,7 +290,7 @@ int sweep_outputs(sweep_args *a, tb_sweep *s, double t0, int tty)
         /* Timings are not output (the same inputs give the same bytes): only
          * a terminal's stderr hears how long it took. */
         printf("wrote %s/: %s\n", a->dir, files);
-        if (tty) fprintf(stderr, "shadesim sweep %s: %.2f s on %d thread%s\n", s->spec.u->name, sweep_now() - t0,
+        if (tty) fprintf(stderr, "shadesim sweep %s: %.2f s on %d thread%s\n", s->spec.u->name, base_proc_now() - t0,
                          a->threads, a->threads > 1 ? "s" : "");
     }
     free(text);

@@ -479,13 +479,6 @@ done:
 
 /* ---------------------------------------------------------- target search */
 
-int tb_target_holds(const tb_result *r, int status, tb_target_kind k, double target, uint64_t max_ovf)
-{
-    if (status != TB_OK || !r->within_bound || r->overflows > max_ovf) return 0;
-    double v = k == TB_TARGET_NMSE ? r->nmse : r->max_abs_err;
-    return v <= target;
-}
-
 int tb_sweep_holds(const tb_sweep *s, const tb_result *r, int status, tb_target_kind k, double target,
                    uint64_t max_ovf)
 {

@@ -3,7 +3,6 @@
  * any input in the declared ranges (tb_derive.h), fraction bits searched
  * as for observed ranges (tb_sweep.c). */
 #include "testbench/study/tb_sweep.h"
-#include <math.h>
 #include <string.h>
 
 int tb_sweep_derive(const tb_sweep *s, const tb_sweep_cfg *c, const unsigned char *keep, unit_fmts *f,
@@ -39,22 +38,4 @@ int tb_sweep_derived_start(const tb_sweep *s, size_t group, tb_target_kind k, do
         return 0;
     }
     return 0;
-}
-
-double tb_derived_err(const tb_result *r)
-{
-    double w = 0;
-    for (int o = 0; o < r->n_out; o++) {
-        const tb_metrics *m = &r->out[o];
-        if (!isfinite(m->bound) || m->bound < 0) return INFINITY;
-        double e = m->bound + m->max_input_err + m->max_method_err;
-        if (e > w) w = e;
-    }
-    return w;
-}
-
-int tb_target_holds_derived(const tb_result *r, int status, tb_target_kind k, double target)
-{
-    if (!tb_target_holds(r, status, k, target, 0)) return 0;
-    return k != TB_TARGET_MAX_ABS_ERR || tb_derived_err(r) <= target;
 }
