@@ -1,7 +1,9 @@
 /* claims_int.h - what the files of the claims table share; not for use
  * outside them (the public interface is claims.h).
  *
- *   claims.c          the table, the numerical helpers, the claims of
+ *   claims_table.c    the table's rows and the numerical helpers (a
+ *                     leaf: the other files call it)
+ *   claims.c          the whole table (claims_compute), the claims of
  *                     Nechyporuk & Romanyuk (2020) and Romanyuk et al.
  *                     (SPIE): divide by 3, interpolation, D and Ward
  *                     approximations, node sets

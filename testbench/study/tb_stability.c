@@ -42,20 +42,6 @@ static int make_vectors(const unit_desc *u, const unit_cfg *cfg, size_t n, int n
     return 0;
 }
 
-/* Run u with formats fm (NULL: the rule's) on vs; TB_OK and r filled. */
-int tb_stab_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs, tb_result *r)
-{
-    unit_fmts f;
-    char err[400];
-    memset(r, 0, sizeof *r);
-    if (!fm) {
-        if (tb_formats(u, cfg, NULL, 0, &f, err, sizeof err)) return -1;
-        fm = &f;
-    }
-    if (tb_run(u, cfg, fm, vs, NULL, r, err, sizeof err) != TB_OK) { tb_result_free(r); return -1; }
-    return 0;
-}
-
 /* Max |hw - ideal| over every output and beat. */
 static double err_ideal(const tb_result *r)
 {
@@ -281,23 +267,6 @@ int tb_stab_unit(const char *unit, int W, int v, double *err_lsb, double *clocks
 }
 
 /* ============================================================ the atlas */
-
-tb_stab_row *tb_stab_row_add(tb_stab *s, const char *id, const char *method)
-{
-    tb_stab_row *r = &s->rows[s->nrows < TB_STAB_MAX_ROWS ? s->nrows++ : TB_STAB_MAX_ROWS - 1];
-    memset(r, 0, sizeof *r);
-    tb_settext(r->id, sizeof r->id, "%s", id);
-    tb_settext(r->method, sizeof r->method, "%s", method);
-    return r;
-}
-
-void tb_stab_keep_chart(tb_stab *s, chart *c, const char *file)
-{
-    if (s->ncharts < TB_STAB_MAX_CHARTS) {
-        s->charts[s->ncharts] = c;
-        s->chart_files[s->ncharts++] = file;
-    } else chart_free(c);
-}
 
 /* binomial sum 1 + L + C(L,2) + ... + C(L,deg): how many truncations reach fy */
 static double fwd_reach(int deg, int L)

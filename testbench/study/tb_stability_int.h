@@ -1,9 +1,10 @@
 /* tb_stability_int.h - what the files of the stability atlas share; not
  * for use outside them (the public interface is tb_stability.h).
  *
- *   tb_stability.c       running the units, forward differencing,
- *                        coefficient ranges, div3, BRDF, divider and
- *                        powers; the atlas's rows and charts
+ *   tb_stability_rows.c  a unit's run, the atlas's next row, a chart
+ *                        kept (a leaf: the other two call it)
+ *   tb_stability.c       forward differencing, coefficient ranges, div3,
+ *                        BRDF, divider and powers; the whole atlas
  *   tb_stability_prof.c  highlight profiles through interp2/interp3:
  *                        cubic overshoot, degree against curvature, the
  *                        cubic's node sets
