@@ -151,16 +151,19 @@ sim_ovf    sim_get_ovf(const sim_ctx *c);
  * 1000). */
 void       sim_set_max_deltas(sim_ctx *c, uint32_t n);
 /* The reference kernel (on != 0): the plain evaluate/update loop with
- * none of the fast paths (sim_sched.c): every primitive is evaluated by
- * sim_elem_eval from its record (sim_prim.h: the exact operation, then one
- * requantization; no inline operation, no table, no shortcut), every other
- * process runs its function, and every clock edge goes through the timers
- * and a full update (sim_stats.fast_paths stays 0). Values,
- * overflow counts, observers and every counter (sim_stats, each signal's
- * changes, each process's runs) are the fast kernel's; only the time
- * taken differs. 0 (the default) is the fast kernel. It may change
- * between runs (the tables are made at the first sim_run, if the kernel
- * is fast then). */
+ * none of the evaluation's fast paths (sim_sched.c): every primitive is
+ * evaluated by sim_elem_eval from its record (sim_prim.h: the exact
+ * operation, then one requantization; no inline operation, no table, no
+ * shortcut), every other process runs its function (sim_quant_into takes
+ * no shortcut either), and every clock edge goes through the timers and a
+ * full update (sim_stats.fast_paths stays 0). What it shares with the fast
+ * kernel, and so does not check: the update phase (sim_write, the update
+ * of the written signals and the waking of their readers), the order of
+ * the processes, and the design as built. Values, overflow counts,
+ * observers and every counter (sim_stats, each signal's changes, each
+ * process's runs) are the fast kernel's; only the time taken differs. 0
+ * (the default) is the fast kernel. It may change between runs (the
+ * tables are made at the first sim_run, if the kernel is fast then). */
 void       sim_set_reference(sim_ctx *c, int on);
 
 sim_scope *sim_root(sim_ctx *c);

@@ -29,10 +29,10 @@
  * op_lo] when a - op_lo <= op_hi (its format's span); LUTN, the inputs'
  * offsets side by side (op_tin); an input outside its format calls fn. */
 /* One row per operation: X(OP, label, x), the enum SIM__OP_OP (in this
- * order, from 0), the label of its code in sim_kernel.c's evaluate loop
- * (the dispatch table is made from this list), and x, the *_X variant
- * set_native (sim_prim.c) takes for it when k and radd are 0 (OP itself
- * when it has none). */
+ * order, from 0), the label of its code in the evaluate loop (sim_deltas.h,
+ * which sim_sched.c compiles; the dispatch table is made from this list),
+ * and x, the *_X variant set_native (sim_prim.c) takes for it when k and
+ * radd are 0 (OP itself when it has none). */
 #define SIM__OP_LIST(X)                    \
     X(FN,      general,    FN)             \
     X(COPY,    op_copy,    COPY_X)         \
@@ -107,8 +107,8 @@ static inline sim__proc *sim__proc_of(const sim_proc *p)
 }
 
 /* The reference kernel's evaluation of a primitive (p->elem set): its
- * inputs' values, sim_elem_eval, the overflow counted, the write; none of
- * the fast paths (sim_prim.c). */
+ * inputs' values, sim_elem_eval, the overflow counted, the write (sim_prim.c;
+ * the write and the update after it are the fast kernel's own). */
 void sim__elem_step(sim__proc *p);
 
 /* Record an elaboration error (the first one is kept): sim_run then

@@ -1,5 +1,5 @@
 /* sim_lut.h - a logic element (sim_logic) as a table: the one tabulator
- * the kernel (sim_kernel.c, tabulate) and the batch mode (sim_batch_op.c)
+ * the kernel (sim_sched.c, tabulate) and the batch mode (sim_batch_op.c)
  * both build their tables with. Not for other layers.
  *
  * The index is the inputs' fields side by side, input 0 lowest: input j's
