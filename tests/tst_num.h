@@ -1,5 +1,5 @@
-/* tst_num.h - a corpus of decimal strings for comparing vec_num_strtod with
- * strtod (tests/test_vec_num.c: a lean corpus; bench/bench_vec_num.c: ten
+/* tst_num.h - a corpus of decimal strings for comparing base_strtod with
+ * strtod (tests/test_strtod.c: a lean corpus; bench/bench_strtod.c: ten
  * million). Deterministic: string i of a seed is always the same.
  *
  * Kinds, drawn in turn:
@@ -20,7 +20,7 @@
 #include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
-#include "vectors/vec_num.h"
+#include "base/base_strtod.h"
 
 static const char *const tst_num_fixed[] = {
     "0", "-0", "+0", "0.0", "-0.0", "00000", "0e999999", "-0e-999999", "1e", "1e+", "1e-", "1E5", "1e+5",
@@ -151,24 +151,24 @@ static void tst_num_make(uint64_t seed, uint64_t i, char *buf, size_t len)
     if (i < TST_NUM_NFIXED) snprintf(buf, len, "%s", tst_num_fixed[i]);
 }
 
-/* Compare one string: 0 when vec_num_strtod, its exact path alone
- * (vec_num_strtod_exact), its padded reading (vec_num_strtod_padded) and
+/* Compare one string: 0 when base_strtod, its exact path alone
+ * (base_strtod_exact), its padded reading (base_strtod_padded) and
  * strtod agree on the value's bits and the end
  * pointer, else a message in why. */
 static int tst_num_check(const char *s, char *why, size_t len)
 {
     char *e1, *e2, *e3;
-    double a = vec_num_strtod(s, &e1);
+    double a = base_strtod(s, &e1);
     double b = strtod(s, &e2);
-    double c = vec_num_strtod_exact(s, &e3);
-    /* the padded reading on a copy in a buffer exactly VEC_NUM_PAD bytes
+    double c = base_strtod_exact(s, &e3);
+    /* the padded reading on a copy in a buffer exactly BASE_STRTOD_PAD bytes
      * longer than the string (ASan sees a read past it) */
     size_t n = strlen(s) + 1;
-    char *cp = malloc(n + VEC_NUM_PAD), *e4;
+    char *cp = malloc(n + BASE_STRTOD_PAD), *e4;
     if (!cp) { snprintf(why, len, "out of memory"); return -1; }
     memcpy(cp, s, n);
-    memset(cp + n, '9', VEC_NUM_PAD);     /* digits: must not be read as such */
-    double d = vec_num_strtod_padded(cp, &e4);
+    memset(cp + n, '9', BASE_STRTOD_PAD);     /* digits: must not be read as such */
+    double d = base_strtod_padded(cp, &e4);
     long o4 = e4 - cp;
     free(cp);
     uint64_t ba, bb, bc, bd;

@@ -10,7 +10,7 @@
  * set that holds no rows (or free it first). On failure it is left empty.
  */
 #include "vectors/vec_file.h"
-#include "vectors/vec_num.h"
+#include "base/base_strtod.h"
 #include "base/base_out.h"
 #include "base/base_par.h"
 #include "base/base_join.h"
@@ -103,7 +103,7 @@ int vec_file_write(const char *path, const vec_set *s, char *err, size_t errlen)
  * The file is read in large blocks (no per-character stdio call). One
  * pass over a line, eight bytes at a time, finds its end and any byte
  * that is not allowed; the line is cut out of the block in place and its
- * numbers parsed straight from it by vec_num_strtod_padded (strtod's results,
+ * numbers parsed straight from it by base_strtod_padded (strtod's results,
  * faster; a token is only copied out for an error message). Once the
  * first row has been read, the rows of a large block are parsed by two
  * threads, each taking half of the block, joined in order. Every check,
@@ -306,14 +306,14 @@ static int parse_comment(reader *r, char *p, vec_set *s, const vec_set *expect,
 }
 
 /* One number at *pp, a token ending at a space, a tab or the end: the
- * whole token must be a finite real. vec_num_strtod_padded (strtod's result, bit
+ * whole token must be a finite real. base_strtod_padded (strtod's result, bit
  * for bit) reads it in place; only a token it refuses is cut out, for the
  * message. */
 static int parse_num(reader *r, char **pp, double *out)
 {
     char cut[32], *tok = *pp, *end;
     errno = 0;
-    double v = vec_num_strtod_padded(tok, &end);     /* in the padded block */
+    double v = base_strtod_padded(tok, &end);     /* in the padded block */
     if (end == tok || (*end && !is_space(*end))) {
         char *e = tok;
         while (*e && !is_space(*e)) e++;
@@ -608,9 +608,9 @@ vec_stream *vec_stream_open(const char *path, const vec_set *expect, char *err, 
     v->r.err = v->err;
     v->r.errlen = sizeof v->err;
     v->cap = VEC_BLOCK + VEC_LINE_MAX + 8;
-    /* zeroed, and VEC_NUM_PAD bytes longer: vec_num_strtod_padded reads
+    /* zeroed, and BASE_STRTOD_PAD bytes longer: base_strtod_padded reads
      * digits eight bytes at a time, up to seven past a line's end */
-    v->buf = calloc(v->cap + 1 + VEC_NUM_PAD, 1);
+    v->buf = calloc(v->cap + 1 + BASE_STRTOD_PAD, 1);
     if (!v->buf) base_out_of_memory();
     v->f = v->is_stdin ? stdin : fopen(path, "rb");
     if (!v->f) {

@@ -1,9 +1,9 @@
-/* bench_vec_num.c - vec_num_strtod against strtod: bit for bit on ten
+/* bench_strtod.c - base_strtod against strtod: bit for bit on ten
  * million strings of the tests/tst_num.h corpus (random doubles, random
  * digit strings, halfway cases and their neighbours, exponents near the
  * limits, oddities), then the speed of both on what vector files hold
  * (%.17g of values in [-8, 8)). Fails (exit 1) on any difference. */
-#include "vectors/vec_num.h"
+#include "base/base_strtod.h"
 #include "tests/tst_num.h"
 #include <stdlib.h>
 #include <time.h>
@@ -27,7 +27,7 @@ int main(void)
         tst_num_make(2, i, buf, sizeof buf);
         if (tst_num_check(buf, why, sizeof why) && bad++ < 10) fprintf(stderr, "bench: %s\n", why);
     }
-    printf("numbers vec_num_strtod vs strtod on %u strings: %lu differ (%.1f s)\n", CORPUS, bad, now_s() - t0);
+    printf("numbers base_strtod vs strtod on %u strings: %lu differ (%.1f s)\n", CORPUS, bad, now_s() - t0);
 
     /* Speed: one text of SPEED numbers, parsed by each, best of 3. */
     char *text = malloc((size_t)SPEED * 26 + 1), *p = text;
@@ -41,14 +41,14 @@ int main(void)
         double s = 0, t = now_s();
         char *q = text, *e;
         for (unsigned i = 0; i < SPEED; i++, q = e + 1)
-            s += which ? strtod(q, &e) : vec_num_strtod(q, &e);
+            s += which ? strtod(q, &e) : base_strtod(q, &e);
         t = now_s() - t;
         if (t < best[which]) best[which] = t;
         sum[which] = s;
     }
     free(text);
     if (sum[0] != sum[1]) bad++;
-    printf("numbers %u %%.17g values: vec_num_strtod %.1f ns/number, strtod %.1f ns/number (%.1fx; best of 3)\n",
+    printf("numbers %u %%.17g values: base_strtod %.1f ns/number, strtod %.1f ns/number (%.1fx; best of 3)\n",
            SPEED, best[0] / SPEED * 1e9, best[1] / SPEED * 1e9, best[1] / best[0]);
     return bad ? 1 : 0;
 }

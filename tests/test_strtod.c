@@ -1,13 +1,13 @@
-/* test_vec_num.c - vec_num_strtod equals strtod bit for bit (value and end
+/* test_strtod.c - base_strtod equals strtod bit for bit (value and end
  * pointer) on a lean corpus (tests/tst_num.h: random doubles in %.17g and
  * other precisions, random digit strings, exact halfway cases and their
  * neighbours, exponents near the limits, subnormals, malformed input);
- * every string also through the exact path alone (vec_num_strtod_exact);
- * and the fast steps (vec_num_fast: Clinger, Eisel-Lemire) on millions of
+ * every string also through the exact path alone (base_strtod_exact);
+ * and the fast steps (base_strtod_fast: Clinger, Eisel-Lemire) on millions of
  * w 10^q against the exact path and strtod, counting how many they decide.
- * bench/bench_vec_num.c runs ten million. */
+ * bench/bench_strtod.c runs ten million. */
 #include "tests/tst.h"
-#include "vectors/vec_num.h"
+#include "base/base_strtod.h"
 #include "tests/tst_num.h"
 
 #define CORPUS 200000
@@ -53,24 +53,24 @@ static void t_small_exponents(void)
 static void t_halfway(void)
 {
     /* 2^53 + 1 lies halfway between 2^53 and 2^53 + 2: even is 2^53 */
-    TST_CHECK(vec_num_strtod("9007199254740993", NULL) == 0x1p53, "2^53+1");
+    TST_CHECK(base_strtod("9007199254740993", NULL) == 0x1p53, "2^53+1");
     /* 2^53 + 3: halfway between 2^53 + 2 and 2^53 + 4: even is + 4 */
-    TST_CHECK(vec_num_strtod("9007199254740995", NULL) == 0x1p53 + 4, "2^53+3");
+    TST_CHECK(base_strtod("9007199254740995", NULL) == 0x1p53 + 4, "2^53+3");
     /* 2^52 + 0.5: between 2^52 and 2^52 + 1, even is 2^52; + 1.5 -> + 2 */
-    TST_CHECK(vec_num_strtod("4503599627370496.5", NULL) == 0x1p52, "2^52+1/2");
-    TST_CHECK(vec_num_strtod("4503599627370497.5", NULL) == 0x1p52 + 2, "2^52+3/2");
+    TST_CHECK(base_strtod("4503599627370496.5", NULL) == 0x1p52, "2^52+1/2");
+    TST_CHECK(base_strtod("4503599627370497.5", NULL) == 0x1p52 + 2, "2^52+3/2");
     /* just above halfway rounds up */
-    TST_CHECK(vec_num_strtod("4503599627370496.5000001", NULL) == 0x1p52 + 1, "above half");
-    TST_CHECK(vec_num_strtod("-0", NULL) == 0 && signbit(vec_num_strtod("-0", NULL)), "-0");
+    TST_CHECK(base_strtod("4503599627370496.5000001", NULL) == 0x1p52 + 1, "above half");
+    TST_CHECK(base_strtod("-0", NULL) == 0 && signbit(base_strtod("-0", NULL)), "-0");
     char *end;
     const char *s = "1.25e2 | 3";
-    TST_CHECK(vec_num_strtod(s, &end) == 125.0 && end == s + 6, "end after the exponent");
+    TST_CHECK(base_strtod(s, &end) == 125.0 && end == s + 6, "end after the exponent");
     s = "7e";
-    TST_CHECK(vec_num_strtod(s, &end) == 7.0 && end == s + 1, "'e' without digits is not read");
+    TST_CHECK(base_strtod(s, &end) == 7.0 && end == s + 1, "'e' without digits is not read");
 }
 
 /* w 10^q as "[-]we<q>" through tst_num_check (fast = exact = strtod);
- * then vec_num_fast on the same w, q: when it decides, the same bits.
+ * then base_strtod_fast on the same w, q: when it decides, the same bits.
  * Returns -1 on a mismatch, else whether the fast steps decided. */
 static int fast_case(uint64_t w, long q, int neg, char *why, size_t len)
 {
@@ -78,7 +78,7 @@ static int fast_case(uint64_t w, long q, int neg, char *why, size_t len)
     snprintf(buf, sizeof buf, "%s%llue%ld", neg ? "-" : "", (unsigned long long)w, q);
     if (tst_num_check(buf, why, len)) return -1;
     double f;
-    if (!vec_num_fast(w, q, neg, &f)) return 0;
+    if (!base_strtod_fast(w, q, neg, &f)) return 0;
     double b = strtod(buf, NULL);
     if (memcmp(&f, &b, sizeof f)) {
         snprintf(why, len, "'%s': fast step %a against strtod's %a", buf, f, b);
@@ -175,7 +175,7 @@ static void t_fast_g17(void)
         if (*p == 'e') q = strtol(p + 1, NULL, 10);
         if (frac > 0) q -= frac;
         double f;
-        if (vec_num_fast(w, q, buf[0] == '-', &f)) {
+        if (base_strtod_fast(w, q, buf[0] == '-', &f)) {
             fast++;
             if (memcmp(&f, &v, sizeof f) && bad++ < 10) TST_CHECK(0, "'%s': fast step %a", buf, f);
         }

@@ -1,4 +1,4 @@
-/* vec_num.c - decimal to double: an exact fast path, strtod for the rest.
+/* base_strtod.c - decimal to double: an exact fast path, strtod for the rest.
  *
  * A decimal w * 10^q with w < 10^19 (19 significant digits at most) and
  * |q| <= 27 is w * 5^q * 2^q, and 5^|q| < 2^63 fits one word:
@@ -20,7 +20,7 @@
  * leading blanks, a number followed by an unusual character -- goes to
  * strtod, so the value and the end pointer are always strtod's.
  */
-#include "vectors/vec_num.h"
+#include "base/base_strtod.h"
 #include <float.h>
 #include <pthread.h>
 #include <stdatomic.h>
@@ -220,7 +220,7 @@ static inline __attribute__((always_inline)) int fast_steps(uint64_t w, long q, 
     return 0;
 }
 
-int vec_num_fast(uint64_t w, long q, int neg, double *out) { return fast_steps(w, q, neg, out); }
+int base_strtod_fast(uint64_t w, long q, int neg, double *out) { return fast_steps(w, q, neg, out); }
 
 /* Eight digits at once (little-endian loads): whether the eight bytes at
  * p are all digits, and their value. The usual SWAR forms: a byte is a
@@ -266,7 +266,7 @@ static inline __attribute__((always_inline)) const char *digits(const char *p, u
 }
 
 /* The parse, and with fast set the fast steps before the exact ones;
- * pad: the caller allows reads of VEC_NUM_PAD bytes past the string. */
+ * pad: the caller allows reads of BASE_STRTOD_PAD bytes past the string. */
 static inline __attribute__((always_inline)) double parse(const char *s, char **end, int fast, int pad)
 
 {
@@ -339,6 +339,6 @@ slow:
     return strtod(s, end);
 }
 
-double vec_num_strtod(const char *s, char **end) { return parse(s, end, 1, 0); }
-double vec_num_strtod_padded(const char *s, char **end) { return parse(s, end, 1, 1); }
-double vec_num_strtod_exact(const char *s, char **end) { return parse(s, end, 0, 0); }
+double base_strtod(const char *s, char **end) { return parse(s, end, 1, 0); }
+double base_strtod_padded(const char *s, char **end) { return parse(s, end, 1, 1); }
+double base_strtod_exact(const char *s, char **end) { return parse(s, end, 0, 0); }
