@@ -611,6 +611,7 @@ static void desc_errors(void)
     static const struct { const char *body; int line; const char *what; } C[] = {
         { "fvo 30\n", 2, "did you mean \"fov\"" },
         { "resolutoin 4x4\n", 2, "did you mean \"resolution\"" },
+        { "widht 14\n", 2, "did you mean \"width\"" },   /* a swap: not "light" (a tie before) */
         { "\n# c\nzzzzzzzzzzzz 1\n", 4, "unknown key" },
         { "eye 1 2\n", 2, "3 values" },
         { "eye 1 2 3 4\n", 2, "3 values" },
