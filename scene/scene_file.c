@@ -145,10 +145,7 @@ static int fail(char *err, size_t errlen, const char *fmt, ...)
 /* A token shown in a message: its bytes, at most 40 (then "..."). */
 static const char *shown(const char *s, char buf[48])
 {
-    /* the bytes as they are: the message's printer (the CLI's) keeps valid
-     * UTF-8 and writes other bytes as \xNN, as for every other message
-     * (each non-ASCII byte was a '?'); a cut at 40 bytes falls before a
-     * character, not inside one */
+    /* the CLI's printer keeps UTF-8 and writes other bytes as \xNN */
     size_t i = 0;
     for (; s[i] && i < 40; i++) buf[i] = s[i];
     if (s[i]) {
