@@ -3,24 +3,32 @@
 #include <ctype.h>
 #include <string.h>
 
+static int same(char x, char y) { return tolower((unsigned char)x) == tolower((unsigned char)y); }
+
+/* The optimal string alignment distance: Levenshtein's three edits plus
+ * the swap of two neighbours as one (the commonest typo: "widht" is one
+ * edit from "width", two from "light", so the nearer name wins instead of
+ * the first of a tie). Three rows of the table: two back for the swap. */
 int base_near_distance(const char *a, const char *b)
 {
     size_t la = strlen(a), lb = strlen(b);
     if (la > 40 || lb > 40) return 99;
-    int row[41];
-    for (size_t j = 0; j <= lb; j++) row[j] = (int)j;
+    int r0[41], r1[41], r2[41];
+    int *pp = r0, *p = r1, *c = r2;
+    for (size_t j = 0; j <= lb; j++) p[j] = (int)j;
     for (size_t i = 1; i <= la; i++) {
-        int diag = row[0];
-        row[0] = (int)i;
+        c[0] = (int)i;
         for (size_t j = 1; j <= lb; j++) {
-            int up = row[j];
-            int sub = diag + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
-            int best = up + 1 < row[j - 1] + 1 ? up + 1 : row[j - 1] + 1;
-            row[j] = sub < best ? sub : best;
-            diag = up;
+            int v = p[j - 1] + !same(a[i - 1], b[j - 1]);
+            if (p[j] + 1 < v) v = p[j] + 1;
+            if (c[j - 1] + 1 < v) v = c[j - 1] + 1;
+            if (i > 1 && j > 1 && same(a[i - 1], b[j - 2]) && same(a[i - 2], b[j - 1]) && pp[j - 2] + 1 < v)
+                v = pp[j - 2] + 1;
+            c[j] = v;
         }
+        int *t = pp; pp = p; p = c; c = t;
     }
-    return row[lb];
+    return p[lb];
 }
 
 const char *base_near(const char *word, const char *const *names, size_t n)

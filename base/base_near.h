@@ -1,12 +1,14 @@
 /* base_near.h - "did you mean": the nearest of a list of names to a word
- * a user mistyped, by edit distance (insertions, deletions and
- * substitutions, case ignored), close enough to be a likely typo.
+ * a user mistyped, by edit distance (insertions, deletions,
+ * substitutions and swaps of two neighbours, case ignored), close enough
+ * to be a likely typo.
  */
 #ifndef BASE_NEAR_H
 #define BASE_NEAR_H
 #include <stddef.h>
 
-/* Edit distance of a and b, case ignored; 99 when either is longer than
+/* Edit distance of a and b (a swap of two neighbours one edit), case
+ * ignored; 99 when either is longer than
  * 40 characters. */
 int base_near_distance(const char *a, const char *b);
 /* The name among names[0..n-1] (NULL entries skipped) nearest to word,

@@ -142,12 +142,16 @@ static int fail(char *err, size_t errlen, const char *fmt, ...)
     return -1;
 }
 
-/* A token shown in a message: printable ASCII only, at most 40 bytes. */
+/* A token shown in a message: its bytes, at most 40 (then "..."). */
 static const char *shown(const char *s, char buf[48])
 {
+    /* the CLI's printer keeps UTF-8 and writes other bytes as \xNN */
     size_t i = 0;
-    for (; s[i] && i < 40; i++) buf[i] = isprint((unsigned char)s[i]) ? s[i] : '?';
-    if (s[i]) { buf[i++] = '.'; buf[i++] = '.'; buf[i++] = '.'; }
+    for (; s[i] && i < 40; i++) buf[i] = s[i];
+    if (s[i]) {
+        while (i > 0 && ((unsigned char)s[i] & 0xC0) == 0x80) i--;
+        buf[i++] = '.'; buf[i++] = '.'; buf[i++] = '.';
+    }
     buf[i] = 0;
     return buf;
 }

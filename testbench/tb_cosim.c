@@ -67,6 +67,19 @@ static void sq(char *buf, size_t len, const char *s)
     buf[o < len ? o : len - 1] = 0;
 }
 
+/* "cd 'DIR'" into buf: a relative DIR as './DIR', so that a folder named
+ * "-x" is not an option of cd, nor "-" its previous folder. */
+static void cd_dir(char *buf, size_t len, const char *dir)
+{
+    size_t n = strlen(dir) + 3;
+    char *d = malloc(n);
+    if (!d) base_out_of_memory();
+    snprintf(d, n, "%s%s", dir[0] == '/' ? "" : "./", dir);
+    snprintf(buf, len, "cd ");
+    sq(buf, len, d);
+    free(d);
+}
+
 /* The first line of a log that says "error" (else its first line), for a
  * one-line message. */
 static void log_line(const char *path, char *out, size_t len)
@@ -247,8 +260,7 @@ int tb_rtl_ports(const char *const *files, int nfiles, const char *want_top, con
     char *cmd = calloc(1, cl), out[PATH_MAX + 32], log[PATH_MAX + 32];
     if (!cmd) base_out_of_memory();
     const char *sname = sim == TB_SIM_ICARUS ? "icarus" : "verilator";
-    strcpy(cmd, "cd ");
-    sq(cmd, cl, dir);
+    cd_dir(cmd, cl, dir);
     if (sim == TB_SIM_ICARUS) {
         snprintf(cmd + strlen(cmd), cl - strlen(cmd), " && iverilog -g%s -o rtlports.vvp", ext_sv(files, nfiles) ? "2012" : "2005");
         if (want_top && *want_top) { strcat(cmd, " -s "); sq(cmd, cl, want_top); }
@@ -448,8 +460,7 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
     size_t words = vs->n_rows * (size_t)unit_n_in(u);
     /* a design slower than shadesim's by more than 2x, or stuck, stops */
     unsigned long long limit = 2 * (unsigned long long)r.cycles + 1000;
-    strcpy(cmd, "cd ");
-    sq(cmd, cl, dir);
+    cd_dir(cmd, cl, dir);
     size_t at = strlen(cmd);
     if (sim == TB_SIM_ICARUS)
         snprintf(cmd + at, cl - at,

@@ -60,6 +60,16 @@ cp "$P/bin/shadesim" "$T/lone/bin/"
 rc=$?
 check lone_binary_exit_2 [ $rc -eq 2 -a "$(wc -l <"$T/lone.err")" -eq 1 ]
 check lone_binary_names_share grep -q "$T/lone/share/shadesim/vectors/horner3.vec" "$T/lone.err"
+check lone_binary_says_install grep -q "install with make install" "$T/lone.err"
+# The same binary in a source tree (a Makefile and units/ one up from its
+# bin/) whose vectors/ lacks the file: it names the tree's vectors/ and
+# make vectors, not the install's share/ (which it named)
+mkdir -p "$T/tree/bin" "$T/tree/units" "$T/tree/vectors" && : >"$T/tree/Makefile"
+cp "$P/bin/shadesim" "$T/tree/bin/"
+(cd / && env -u SHADESIM_HOME "$T/tree/bin/shadesim" run horner3) >"$T/tree.out" 2>"$T/tree.err"
+rc=$?
+[ $rc -eq 2 ] && [ "$(wc -l <"$T/tree.err")" -eq 1 ] && grep -q "^shadesim: $T/tree/vectors/horner3.vec: .*make vectors" "$T/tree.err" \
+    && ok source_tree_names_make_vectors || fail source_tree_names_make_vectors "exit $rc: $(cat "$T/tree.err")"
 # --vectors still works without any data folder.
 (cd / && env -u SHADESIM_HOME "$T/lone/bin/shadesim" run horner3 --vectors "$root/vectors/horner3.vec") >"$T/lonev.run" 2>/dev/null
 check lone_binary_with_vectors cmp -s "$T/lonev.run" "$T/tree.run"

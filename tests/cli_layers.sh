@@ -16,6 +16,7 @@
 # this test shows on every run that it can fail.
 . tests/lib_cli.sh
 PREFIX=cli_layers.
+plain_only
 
 # uses LAYER: the folders LAYER may include from (itself first).
 uses() {

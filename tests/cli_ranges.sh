@@ -10,6 +10,15 @@ PREFIX=cli_ranges.
 # over [0, 2): mul = mx1 * t reaches -64 (2 - 2^-15) = -127.998 (by hand), which s7.9 cannot hold.
 expect run_default_cannot_hold 1 "$S" run horner3 --ranges derived
 check run_lists_mul grep -q '^  mul  *s7\.9  *derived \[-127\.99' "$T/out"
+# ... and its verdict says so, in the table and the JSON, on the lanes and
+# on the kernel (it said "verdict: ok" beside the CANNOT HOLD list)
+grep -q '^verdict: CANNOT HOLD: 2 signal(s) can leave their format' "$T/out" && ok run_cannot_hold_verdict \
+    || fail run_cannot_hold_verdict "$(grep '^verdict' "$T/out")"
+"$S" run horner3 --ranges derived --json >"$T/rj" 2>/dev/null
+[ $? -eq 1 ] && grep -q '^  "verdict": "fail",$' "$T/rj" && grep -q '"why": "CANNOT HOLD: 2 signal' "$T/rj" \
+    && ok run_cannot_hold_json || fail run_cannot_hold_json "$(grep '"verdict"\|"why"' "$T/rj")"
+"$S" run horner3 --ranges derived --kernel --vectors "$SHADESIM_HOME/vectors/horner3.vec" >"$T/rk" 2>&1
+[ $? -eq 1 ] && grep -q '^verdict: CANNOT HOLD' "$T/rk" && ok run_cannot_hold_streamed || fail run_cannot_hold_streamed "$(tail -1 "$T/rk")"
 # Declared ranges small enough: |y| <= 4 with a..d in [-1, 1], t in [0, 1].
 expect run_declared_ok 0 "$S" run horner3 --ranges derived --range a=-1:1 --range b=-1:1 --range c=-1:1 --range d=-1:1 --range t=0:1
 check run_says_ok grep -q '^ranges derived: ok' "$T/out"

@@ -95,3 +95,14 @@ for c in paper corrected auto; do
     [ "$got" = "$js" ] || bad="$bad $c: '$got' != '$js'"
 done
 [ -z "$bad" ] && ok compare_speedups || fail compare_speedups "$bad"
+
+# All-zero weights: the weighted speed-up is 0 / 0, not defined: "nan" in
+# the table and --compare, null in scene.json (docs/cli.md's rule; it was
+# printed 0.00x and 0); the long-ops one is still the ratio of its totals.
+"$S" scene sphere --set resolution=24x24 --set "cost=add=0 mul=0 div=0 sqrt=0 pow=0" -o "$T/zw" >"$T/zw.out" 2>&1
+grep -q '^  speed-up (weighted)  *nan  *weighted cost, reference / method: 0.000 / 0.000$' "$T/zw.out" &&
+    grep -q '^  "speedup": null,$' "$T/zw/scene.json" && grep -q '^  "speedup_long": [1-9]' "$T/zw/scene.json" &&
+    ok zero_weights_nan || fail zero_weights_nan "$(grep 'speed-up' "$T/zw.out"; grep '"speedup' "$T/zw/scene.json")"
+"$S" scene sphere --set resolution=24x24 --set "cost=add=0 mul=0 div=0 sqrt=0 pow=0" --compare -o "$T/zc" >"$T/zc.out" 2>&1
+[ "$(awk '$1 == "paper" || $1 == "corrected" || $1 == "auto" { if ($0 ~ / nan  *[0-9.]+x /) n++ } END { print n + 0 }' "$T/zc.out")" = 3 ] &&
+    ok zero_weights_compare || fail zero_weights_compare "$(sed -n 1,4p "$T/zc.out")"

@@ -75,6 +75,11 @@ message vectors_o_empty "shadesim: empty output path" vectors horner3 -o ""
 bad=$(printf 'hor\377ner\033[31m')
 message raw_bytes_escaped "shadesim: unknown unit 'hor\\xffner\\x1b[31m' (shadesim list shows the units)" run "$bad"
 message raw_bytes_in_value "shadesim: --width 1\\xff: expected a whole number 1..64" run horner3 --width "$(printf '1\377')"
+# a scene file's text too: valid UTF-8 kept, other bytes \xNN (each was a "?")
+printf 'shadesim-scene 1\nlumi\303\250re 1\n' >"$T/u8.scene"
+printf 'shadesim-scene 1\nx\377y 1\n' >"$T/ff.scene"
+message scene_utf8_kept "shadesim: $T/u8.scene:2: unknown key \"$(printf 'lumi\303\250re')\"" scene "$T/u8.scene"
+message scene_bytes_escaped "shadesim: $T/ff.scene:2: unknown key \"x\\xffy\"" scene "$T/ff.scene"
 
 # One spelling of not-a-number. Expected outputs of 1e200 make every error
 # about 1e200: the squared errors and references overflow to inf, and the

@@ -90,4 +90,11 @@ bad merge_missing_file merge "$T/nonexistent.csv" -o "$T/x.csv"
 check sweep_help [ $? -eq 0 -a "$(head -1 "$T/h" | cut -c1-21)" = "usage: shadesim sweep" ]
 "$S" merge --help >"$T/h" 2>&1
 check merge_help [ $? -eq 0 -a "$(head -1 "$T/h" | cut -c1-21)" = "usage: shadesim merge" ]
+# A target no width meets: the files are written, target.json says
+# "met": false, and the run exits 1 (docs/cli.md's rule for every
+# --target-*; it exited 0).
+"$S" sweep horner3 --widths 8:10 --target-error 1e-9 -o "$T/miss" >"$T/miss.out" 2>&1
+rc=$?
+[ $rc -eq 1 ] && grep -q '"met": false' "$T/miss/target.json" && [ -s "$T/miss/sweep.csv" ] && ok target_missed_exit_1 \
+    || fail target_missed_exit_1 "exit $rc: $(grep -c '"met": false' "$T/miss/target.json" 2>&1) $(tail -2 "$T/miss.out")"
 exit 0

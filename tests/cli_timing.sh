@@ -8,8 +8,14 @@
 # `shadesim synth` runs two at a time (one per core); hf_lookup, whose
 # ROMs take ABC far too long for a test, is left out. TIMING_TABLE=FILE also
 # writes the comparison table (markdown) to FILE: docs/timing.md's is made
-# so.
+# so, with TIMING_DESIGNS=all.
+#
+# The designs: TIMING_DESIGNS=all is every unit at widths 8, 16 and 24
+# (about four minutes of CPU: `make test-long` runs it, through
+# tests/cli_timing_full.sh); otherwise width 8 alone, every unit, the
+# same checks over 19 designs (about half a minute).
 PREFIX=cli_timing.
+[ "${TIMING_DESIGNS:-}" = all ] && PREFIX=cli_timing_full.
 . tests/lib_cli.sh
 
 # run --json: f_max is 1e6 / ps and items/s f_max / cycles per item;
@@ -40,7 +46,9 @@ grep -q '^  Yosys  *[1-9][0-9]* gates$' "$T/out" && grep -q '^  shadesim  *[1-9]
 
 units=$("$S" list 2>/dev/null | sed -n 's/^\([a-z0-9_]*\) — .*/\1/p')
 : >"$T/designs"
-for w in 8 16 24; do
+widths=8
+[ "${TIMING_DESIGNS:-}" = all ] && widths="8 16 24"
+for w in $widths; do
     mkdir -p "$T/w$w"
     for u in $units; do
         # hf_lookup is left out: its reciprocal ROMs (2^(W/2+1) + 1 entries
@@ -62,7 +70,7 @@ while read -r u w; do
 done <"$T/designs"
 
 # Spearman's rho (ranks with ties averaged) and the ratio's range
-awk -v table="${TIMING_TABLE:-}" '
+awk -v pre="$PREFIX" -v table="${TIMING_TABLE:-}" '
 function rank(v, r, n,   i, j, k, t, idx) {
     for (i = 1; i <= n; i++) idx[i] = i
     for (i = 2; i <= n; i++) for (j = i; j > 1 && v[idx[j - 1]] > v[idx[j]]; j--) { t = idx[j]; idx[j] = idx[j - 1]; idx[j - 1] = t }
@@ -75,7 +83,7 @@ $3 !~ /^[0-9]+$/ || $4 !~ /^[0-9]+$/ { bad = bad " " $1 "@" $2; next }
 { n++; u[n] = $1; w[n] = $2; y[n] = $3; s[n] = $4; ps[n] = $5; q = $4 / $3
   if (n == 1 || q < lo) lo = q; if (n == 1 || q > hi) hi = q }
 END {
-    if (bad != "" || n < 3) { printf "FAIL cli_timing.yosys_rank: no figures for%s\n", bad; exit }
+    if (bad != "" || n < 3) { printf "FAIL " pre "yosys_rank: no figures for%s\n", bad; exit }
     rank(y, ry, n); rank(s, rs, n)
     for (i = 1; i <= n; i++) { my += ry[i] / n; ms += rs[i] / n }
     for (i = 1; i <= n; i++) { c += (ry[i] - my) * (rs[i] - ms); a += (ry[i] - my) ^ 2; b += (rs[i] - ms) ^ 2 }
@@ -85,8 +93,8 @@ END {
         for (i = 1; i <= n; i++) printf "| %s | %d | %d | %d | %d | %.2f |\n", u[i], w[i], y[i], s[i], ps[i], s[i] / y[i] >table
         printf "\n%d designs: Spearman rank correlation %.3f, levels / ltp %.2f to %.2f\n", n, rho, lo, hi >table
     }
-    if (rho >= 0.8) printf "ok cli_timing.yosys_rank\n"
-    else printf "FAIL cli_timing.yosys_rank: Spearman %.3f over %d designs (needs >= 0.8)\n", rho, n
-    if (lo >= 0.8 && hi <= 2.0) printf "ok cli_timing.yosys_ratio_band\n"
-    else printf "FAIL cli_timing.yosys_ratio_band: levels / ltp %.2f to %.2f, outside 0.8 to 2.0\n", lo, hi
+    if (rho >= 0.8) printf "ok " pre "yosys_rank\n"
+    else printf "FAIL " pre "yosys_rank: Spearman %.3f over %d designs (needs >= 0.8)\n", rho, n
+    if (lo >= 0.8 && hi <= 2.0) printf "ok " pre "yosys_ratio_band\n"
+    else printf "FAIL " pre "yosys_ratio_band: levels / ltp %.2f to %.2f, outside 0.8 to 2.0\n", lo, hi
 }' "$T/pairs"

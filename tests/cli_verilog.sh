@@ -83,6 +83,12 @@ if command -v iverilog >/dev/null 2>&1; then
     n=$(wc -l <"$T/rtl/s.hex")
     (cd "$T/rtl" && iverilog -g2005 -o tb.vvp horner3_tb.v horner3.v && vvp -n tb.vvp +in=s.hex +items="$n" +out=out.txt) >/dev/null 2>&1
     cmp -s "$T/rtl/s.hex.expect" "$T/rtl/out.txt" && ok rerun_by_hand || fail rerun_by_hand "results differ"
+    # --keep with a folder named like an option, or "-": the tools run in
+    # that folder (it ran `cd -x`, exit 1 blaming the RTL, and `cd -`)
+    case $S in /*) SA=$S ;; *) SA=$(pwd)/$S ;; esac
+    (cd "$T" && "$SA" cosim horner3 --keep -x >"$T/kx" 2>&1 && "$SA" cosim horner3 --keep - >"$T/kd" 2>&1) &&
+        grep -q '^bit-exact' "$T/kx" && [ -s "$T/-x/horner3_tb.v" ] && [ -s "$T/-/horner3_tb.v" ] && ok keep_dash_folder \
+        || fail keep_dash_folder "$(tail -1 "$T/kx") $(tail -1 "$T/kd" 2>/dev/null)"
 else
     echo "skip ${PREFIX}cosim_horner3: iverilog not installed"
 fi

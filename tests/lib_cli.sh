@@ -24,3 +24,18 @@ expect() {
     fi
     ok "$name"
 }
+
+# The build flavour under test (tests/run.sh sets TST_BUILD): ASAN=1 under
+# the sanitizers, where each process starts in about 0.1 s of CPU and runs
+# 3 to 5 times slower. A test whose loops repeat one code path over every
+# unit, schedule or variant walks a part of them there (what it leaves to
+# the plain build, it says); its checks are the same.
+case "${TST_BUILD:-}" in *-asan) ASAN=1 ;; *) ASAN= ;; esac
+
+# plain_only: the rest of the test checks what no build flavour changes
+# (the sources, the docs): it runs in the plain build alone.
+plain_only() {
+    case "${TST_BUILD:-}" in
+    *-asan|*-portable) echo "skip ${PREFIX%.}: checks no build flavour changes, run in the plain build"; exit 0 ;;
+    esac
+}

@@ -116,12 +116,18 @@ static void json_string_escapes(void)
 }
 
 /* Edit distances worked by hand: kitten -> sitting is k->s, e->i and an
- * added g (3); a transposition is two edits; case is ignored; the empty
- * word is as far as the other word is long. */
+ * added g (3); a swap of two neighbours is one edit (widht -> width), two
+ * swaps two, and a swap is not one across a third letter (abc -> cba:
+ * a->c, c->a, 2); widht -> light is w->l, d->g (2); case is ignored; the
+ * empty word is as far as the other word is long. */
 static void near_distance_by_hand(void)
 {
     TST_CHECK(base_near_distance("kitten", "sitting") == 3, "kitten/sitting");
-    TST_CHECK(base_near_distance("widht", "width") == 2, "transposition");
+    TST_CHECK(base_near_distance("widht", "width") == 1, "transposition");
+    TST_CHECK(base_near_distance("iwdht", "width") == 2, "two transpositions");
+    TST_CHECK(base_near_distance("abc", "cba") == 2, "no swap across a letter");
+    TST_CHECK(base_near_distance("widht", "light") == 2, "widht/light");
+    TST_CHECK(base_near_distance("ca", "abc") == 3, "OSA: ca -> abc is 3, not 2");
     TST_CHECK(base_near_distance("Horner3", "horner3") == 0, "case");
     TST_CHECK(base_near_distance("", "abc") == 3 && base_near_distance("abc", "") == 3, "empty");
     TST_CHECK(base_near_distance("run", "run") == 0, "same");
@@ -143,6 +149,9 @@ static void near_choice(void)
     TST_CHECK(base_near("x", names, 0) == NULL, "empty list");
     const char *const ties[] = { "ab", "ba" };
     TST_CHECK(base_near("aa", ties, 2) == ties[0], "tie: the first");
+    /* the scene's keys: light is listed before width, and a swap is nearer */
+    const char *const keys[] = { "light", "width" };
+    TST_CHECK(base_near("widht", keys, 2) == keys[1], "widht -> width, not light");
 }
 
 /* Joining: the first item without a separator, the next with one. */

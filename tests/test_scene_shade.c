@@ -611,6 +611,9 @@ static void desc_errors(void)
     static const struct { const char *body; int line; const char *what; } C[] = {
         { "fvo 30\n", 2, "did you mean \"fov\"" },
         { "resolutoin 4x4\n", 2, "did you mean \"resolution\"" },
+        { "widht 14\n", 2, "did you mean \"width\"" },   /* a swap: not "light" (a tie before) */
+        { "lumi\xc3\xa8re 1\n", 2, "unknown key \"lumi\xc3\xa8re\"" },   /* UTF-8 kept (it was "lumi??re") */
+        { "x\xffy 2\n", 2, "unknown key \"x\xffy\"" },                 /* the CLI writes \xff */
         { "\n# c\nzzzzzzzzzzzz 1\n", 4, "unknown key" },
         { "eye 1 2\n", 2, "3 values" },
         { "eye 1 2 3 4\n", 2, "3 values" },

@@ -282,6 +282,38 @@ const cli_opt cli_unit_opt_tab[] = {
     { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
 };
 
+/* True if dir is a shadesim source tree: its Makefile and units/. */
+static int in_source_tree(const char *dir)
+{
+    char p[4200];
+    snprintf(p, sizeof p, "%s/Makefile", dir);
+    if (access(p, R_OK)) return 0;
+    snprintf(p, sizeof p, "%s/units", dir);
+    return !access(p, F_OK);
+}
+
+/* The default vectors file p of unit is not there: one line, with the way
+ * to make it that fits where it was looked for (a source tree's vectors/:
+ * make vectors; else SHADESIM_HOME or make install). */
+static int vectors_missing(const char *p, const char *unit)
+{
+    char tree[4200];
+    snprintf(tree, sizeof tree, "%s", p);
+    char *s = strrchr(tree, '/');
+    if (s) *s = 0; else tree[0] = 0;            /* the file's folder */
+    char *base = strrchr(tree, '/');
+    base = base ? base + 1 : tree;
+    if (strcmp(base, "vectors")) tree[0] = 0;   /* not a vectors/ folder */
+    else if (base == tree) snprintf(tree, sizeof tree, ".");
+    else base[-1] = 0;                          /* the folder that holds vectors/ */
+    if (tree[0] && in_source_tree(tree))
+        return cli_usage_error("%s: the default vectors of %s are not there (make vectors writes them in this "
+                               "source tree; or give --vectors FILE)", p, unit);
+    return cli_usage_error("%s: the default vectors of %s are not there (set SHADESIM_HOME to the "
+                           "folder that holds vectors/, install with make install, or give --vectors FILE)",
+                           p, unit);
+}
+
 /* The data folders, in the order searched (docs/cli.md, "Data files"):
  *   1. $SHADESIM_HOME, when set (and then only it: an explicit choice that
  *      does not hold the file is an error, not a fallback);
@@ -316,8 +348,10 @@ const char *cli_default_vectors_path(const char *unit, char *buf, size_t len)
         char cwd[600];
         snprintf(cwd, sizeof cwd, "vectors/%s.vec", unit);
         if (!access(cwd, R_OK)) { snprintf(buf, len, "%s", cwd); return buf; }
-        /* Not found: name the installed place for an installed binary. */
-        if (!strcmp(dir, "bin") && access(buf, F_OK))
+        /* Not found: name the installed place for an installed binary,
+         * the tree's vectors/ for one built in a source tree (its
+         * Makefile and units/ one up from bin/) */
+        if (!strcmp(dir, "bin") && access(buf, F_OK) && !in_source_tree(exe))
             snprintf(buf, len, "%s/share/shadesim/vectors/%s.vec", exe, unit);
         return buf;
     }
@@ -346,9 +380,7 @@ int cli_vectors_file(const cli_unit_opts *o, char *buf, size_t len, const char *
     if (!o->vectors && !params_default(o->u, &o->cfg)) return 0;
     const char *p = o->vectors ? o->vectors : cli_default_vectors_path(o->u->name, buf, len);
     if (!o->vectors && access(p, R_OK)) {
-        cli_usage_error("%s: the default vectors of %s are not there (set SHADESIM_HOME to the "
-                        "folder that holds vectors/, install with make install, or give --vectors FILE)",
-                        p, o->u->name);
+        vectors_missing(p, o->u->name);
         return -1;
     }
     *path = p;
@@ -367,10 +399,7 @@ int cli_load_vectors(const cli_unit_opts *o, vec_set *vs)
         return CLI_OK;
     }
     const char *p = o->vectors ? o->vectors : cli_default_vectors_path(o->u->name, path, sizeof path);
-    if (!o->vectors && access(p, R_OK))
-        return cli_usage_error("%s: the default vectors of %s are not there (set SHADESIM_HOME to the "
-                               "folder that holds vectors/, install with make install, or give --vectors FILE)",
-                               p, o->u->name);
+    if (!o->vectors && access(p, R_OK)) return vectors_missing(p, o->u->name);
     if (vec_file_read(p, vs, &hdr, err, sizeof err)) { vec_set_free(vs); return cli_usage_error("%s", err); }
     return CLI_OK;
 }

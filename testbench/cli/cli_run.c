@@ -197,8 +197,9 @@ static int run_all(const tb_accept *acc)
 }
 
 /* run --ranges derived: every signal's interval for inputs in the
- * declared ranges against its format, before any vector. 1 when some
- * format cannot hold its interval, 0 when all can, -1 after a message.
+ * declared ranges against its format, before any vector. The number of
+ * formats that cannot hold their interval (0 when all can), -1 after a
+ * message.
  * With --json, opens the object the run's result is a member of. */
 static int check_derived(const cli_unit_opts *o, const unit_fmts *fm, const tb_ranges *rg, int json, FILE *report)
 {
@@ -216,9 +217,21 @@ static int check_derived(const cli_unit_opts *o, const unit_fmts *fm, const tb_r
     } else {
         fprintf(report, "ranges derived: ok: every signal's format holds its interval for inputs in the declared ranges\n");
     }
-    int bad = d.nfail > 0;
+    int bad = d.nfail;
     tb_derived_free(&d);
     return bad;
+}
+
+/* A run whose formats cannot hold the derived ranges (check_derived's
+ * count) does not pass, whatever its vectors showed: the verdict says so,
+ * in the table and the JSON alike, as the exit status does. */
+static void derived_verdict(tb_result *r, int nbad)
+{
+    if (nbad <= 0 || !r->ok) return;
+    r->ok = 0;
+    snprintf(r->why, sizeof r->why,
+             "CANNOT HOLD: %d signal(s) can leave their format for inputs in the declared ranges (--ranges derived)",
+             nbad);
 }
 
 static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, const int64_t *raw,
@@ -231,7 +244,8 @@ static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, 
  * --out rows written as items complete. The header and first rows are
  * read first, so a bad file is reported before anything is written. */
 static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char *path, const char *csv,
-                        int json, int ranges, int reference, FILE *report, const tb_accept *acc, const char *why)
+                        int json, int ranges, int reference, FILE *report, const tb_accept *acc, const char *why,
+                        int static_bad)
 {
     char err[600];
     vec_set hdr;
@@ -263,6 +277,7 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
     } else {
         if (out && base_out_close(out, err, sizeof err)) rc = cli_usage_error("%s", err);
         tb_verdict(&r, acc);
+        derived_verdict(&r, static_bad);
         if (why) snprintf(r.engine_why, sizeof r.engine_why, "%s", why);
         if (json) tb_write_json(stdout, &r);
         else {
@@ -341,7 +356,7 @@ int cli_run(int argc, char **argv)
         if (f && lanes && strcmp(vfile, "-") && !stat(vfile, &st) && S_ISREG(st.st_mode) && st.st_size > RUN_LANES_MAX_BYTES)
             why = "a vector file over 64 MiB, read a block at a time";
         if (f && (!lanes || why)) {
-            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, ra.reference, report, &acc, why);
+            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, ra.reference, report, &acc, why, static_bad);
             if (json && ra.derived) fputs("}\n", stdout);
             return rs == CLI_OK && static_bad ? cli_stdout_done(CLI_FAIL) : rs;
         }
@@ -371,6 +386,7 @@ int cli_run(int argc, char **argv)
     } else {
         if (csv && tb_write_csv(csv, &r, &vs, err, sizeof err)) rc = cli_usage_error("%s", err);
         tb_verdict(&r, &acc);
+        derived_verdict(&r, static_bad);
         if (json) tb_write_json(stdout, &r);
         else {
             tb_print_table(report, &r);

@@ -181,6 +181,15 @@ static void fmt_psnr(char *buf, size_t len, double v)
 /* The operations per pixel of the reference and of the method, the cost
  * weights, and the two speed-ups, each the ratio of the figures printed
  * above it (docs/scenes.md, "Operation counts"). */
+/* A speed-up as the table prints it: "2.04x", or "nan" where the ratio is
+ * not defined (all-zero weights: 0 / 0; docs/cli.md's rule, not "-nanx") */
+static void speedup_text(char *a, size_t n, double v)
+{
+    if (isnan(v)) snprintf(a, n, "nan");
+    else if (isinf(v)) snprintf(a, n, "%s", v > 0 ? "inf" : "-inf");
+    else snprintf(a, n, "%.2fx", v);
+}
+
 static void print_ops(FILE *f, const scn_desc *d, const tb_scene_result *r)
 {
     const double *row[3] = { r->ops_ref, r->ops_hw, d->cost };
@@ -195,10 +204,10 @@ static void print_ops(FILE *f, const scn_desc *d, const tb_scene_result *r)
         fputc('\n', f);
     }
     char a[32];
-    snprintf(a, sizeof a, "%.2fx", r->speedup);
+    speedup_text(a, sizeof a, r->speedup);
     fprintf(f, "  %-22s %-14s weighted cost, reference / method: %.3f / %.3f\n", "speed-up (weighted)", a,
             r->cost_ref, r->cost_hw);
-    snprintf(a, sizeof a, "%.2fx", r->speedup_long);
+    speedup_text(a, sizeof a, r->speedup_long);
     fprintf(f, "  %-22s %-14s div + sqrt + pow, unweighted, reference / method: %.3f / %.3f\n",
             "speed-up (long ops)", a, r->long_ref, r->long_hw);
 }
@@ -360,9 +369,12 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
             fmt_nmse(a, sizeof a, r.nmse);
             fmt_nmse(a8, sizeof a8, r.nmse8);
             fmt_psnr(b, sizeof b, r.psnr);
+            char sw[32], sl[32];
+            speedup_text(sw, sizeof sw, r.speedup);
+            speedup_text(sl, sizeof sl, r.speedup_long);
             snprintf(what, sizeof what, "%s, /3 network %d terms", scn_policy_name(d.policy), r.cfg.terms);
-            printf("%-10s %-46s %11s %11s %10s %8.2fx %8.2fx %13.3f %9.0f %4.0f MHz %9.4g %7.3g  %s\n", cfgs[i].name,
-                   what, a, a8, b, r.speedup, r.speedup_long, r.clocks_per_pixel, r.hwst.area_ge, r.speed.hw.fmax_mhz,
+            printf("%-10s %-46s %11s %11s %10s %9s %9s %13.3f %9.0f %4.0f MHz %9.4g %7.3g  %s\n", cfgs[i].name,
+                   what, a, a8, b, sw, sl, r.clocks_per_pixel, r.hwst.area_ge, r.speed.hw.fmax_mhz,
                    r.speed.pixels_per_s / 1e6, r.speed.energy_pj_per_pixel,
                    r.nmse <= COMPARE_TARGET ? "NMSE <= 1e-4" : "NMSE > 1e-4");
         }

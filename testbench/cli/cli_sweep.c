@@ -132,7 +132,7 @@ int cli_sweep(int argc, char **argv)
     double secs = base_proc_now() - pr.t0;
     failed = sweep_failures(&a, &s, failed);
     rc = a.shard_n ? sweep_shard_out(&a, &s, tty, secs) : sweep_outputs(&a, &s, pr.t0, tty);
-    if (rc == CLI_OK && (failed || a.misses || a.ho_failed)) rc = CLI_FAIL;
+    if (rc == CLI_OK && (failed || a.misses || a.ho_failed || a.t_missed)) rc = CLI_FAIL;
 done:
     for (size_t p = 0; p < s.npsets; p++) vec_set_free(&sets[p]);
     free(sets);

@@ -45,6 +45,7 @@ typedef struct sweep_args {
     uint64_t seed;
     target_info t;
     int ho_failed;          /* some group's held-out check failed */
+    int t_missed;           /* settings groups whose target search found nothing (met 0) */
     size_t misses;          /* rows that miss --max-error/--max-nmse/--max-lsb */
     int derived;            /* --ranges derived */
     int nrange;             /* --range NAME=LO:HI given */

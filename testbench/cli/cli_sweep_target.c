@@ -241,5 +241,9 @@ int sweep_target_search(sweep_args *a, tb_sweep *s, int tty)
     a->t.ho_rows = s->vs[0]->n_rows;
     if (tb_sweep_heldout_all(s, a->t.res, a->t.kind, a->t.value, a->t.ho_seed, &a->ho_failed, err, sizeof err))
         return cli_usage_error("%s", err);
+    /* a target no design meets (nor its speed and energy limits) is a
+     * result that failed: exit 1, as docs/cli.md says of every --target-* */
+    a->t_missed = 0;
+    for (size_t g = 0; g < s->ngroups; g++) a->t_missed += !a->t.res[g].met;
     return sweep_ranges_collect(a, s);
 }

@@ -578,10 +578,12 @@ static void per_pixel(const scn_desc *d, const scn_view *view, tb_scene_result *
         r->cost_ref += r->ops_ref[k] * d->cost[k];
         r->cost_hw += r->ops_hw[k] * d->cost[k];
     }
-    r->speedup = r->cost_hw > 0 ? r->cost_ref / r->cost_hw : 0;
+    /* a ratio of two totals, whatever they are: all-zero weights give
+     * 0 / 0, not defined, so nan (null in JSON, docs/cli.md), never 0 */
+    r->speedup = r->cost_ref / r->cost_hw;
     r->long_ref = tb_scene_long_ops(r->ops_ref);
     r->long_hw = tb_scene_long_ops(r->ops_hw);
-    r->speedup_long = r->long_hw > 0 ? r->long_ref / r->long_hw : 0;
+    r->speedup_long = r->long_ref / r->long_hw;
 }
 
 /* The render. p: NULL, or the reference, degrees and intervals prepared
