@@ -88,6 +88,32 @@ sim_arcs sim_delay_add(int w)
     return r;
 }
 
+sim_arcs sim_delay_add_span(int chain, int ext)
+{
+    if (chain < 1) chain = 1;
+    sim_arcs r = sim_delay_add(chain);
+    if (ext <= 0) return r;
+    /* Above the chain only one operand varies: an incrementer by the
+     * chain's carry (and the other operand's sign), each bit the XOR of
+     * its own with the carry ANDed with the bits below it, their AND a
+     * tree (ceil(log2 ext) levels) from the operands in parallel with the
+     * chain: the carry out of the chain, one AND2, the XOR. */
+    sim_delay carry = chain < 2 ? d(1, SIM_PS_AND2) : d(2 * chain - 1, SIM_PS_AND2 + (chain - 1) * SIM_PS_CARRY2 / 2);
+    sim_delay top = sim_delay_then(carry, ext == 1 ? d(1, SIM_PS_XOR2) : d(2, SIM_PS_AND2 + SIM_PS_XOR2));
+    int k = clog2(ext);
+    r.lm = later(top, d(k + 2, k * SIM_PS_AND2 + SIM_PS_AND2 + SIM_PS_XOR2));
+    r.mm = later(r.mm, d(k + 2, k * SIM_PS_AND2 + SIM_PS_AND2 + SIM_PS_XOR2));
+    return r;
+}
+
+sim_arcs sim_delay_sub_span(int chain, int ext)
+{
+    /* the subtrahend's inversion is free: mapped, it becomes the XNOR and
+     * the inverting AOI/OAI cells of the adder (no cell of its own on
+     * OpenSTA's paths through coef2's and div3's subtractors) */
+    return sim_delay_add_span(chain, ext);
+}
+
 sim_arcs sim_delay_csa(void)
 {
     sim_arcs r = { d(2, 2 * SIM_PS_XOR2), SIM_DELAY_NONE, SIM_DELAY_NONE, d(2, 2 * SIM_PS_XOR2) };

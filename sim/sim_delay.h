@@ -90,6 +90,13 @@ sim_arcs sim_delay_mux(int n);             /* ceil(log2 n) MUX2, the first from 
 sim_arcs sim_delay_bk(void);               /* an AND2 */
 sim_arcs sim_delay_add(int w);             /* ripple carry, w bits: 2(w-1) levels from L to M, SIM_PS_CARRY2 per 2 bits */
 sim_arcs sim_delay_sub(int w);             /* a conditional inverter (XOR2), then the adder */
+/* An adder whose operands both vary over only `chain` of its bits (low
+ * bits where one operand is constant zero need no carry): the ripple
+ * over those, then `ext` bits above them where only one operand varies
+ * (an incrementer by the carry, as synthesis builds it once constants
+ * are propagated: sim_live.h). sim_delay_add(w) is chain w, ext 0. */
+sim_arcs sim_delay_add_span(int chain, int ext);
+sim_arcs sim_delay_sub_span(int chain, int ext);
 /* An adder or subtractor whose one reader is another: synthesis (Yosys's
  * alumacc) makes the chain one multi-operand adder, a carry-save stage
  * each (a full adder's sum, two XOR2, bit to bit: no carry ripples) and
