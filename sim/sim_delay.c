@@ -122,12 +122,23 @@ sim_arcs sim_delay_csa(void)
 
 sim_arcs sim_delay_sub(int w) { return sim_arcs_then(sim_arcs_bitwise(d(1, SIM_PS_XOR2)), sim_delay_add(w)); }
 
+int sim_delay_mul_rows(int rows)
+{
+    /* Dadda's stage count for n = rows + 1 partial products: the largest
+     * height d_j (2, 3, 4, 6, 9, 13, ...; d_{j+1} = floor(3 d_j / 2))
+     * below n is reached after j stages */
+    int stages = 0;
+    for (int h = 2; h < rows + 1; h = h * 3 / 2) stages++;
+    int tree = 2 * stages + 3;
+    return rows < tree ? rows : tree;
+}
+
 sim_arcs sim_delay_mul(int wa, int wb, int wy)
 {
     if (wa < 1) wa = 1;
     if (wb < 1) wb = 1;
     if (wy < 1) wy = 1;
-    int rows = (wa < wb ? wa : wb) - 1, rip = (wa < wb ? wb : wa) - 1;
+    int rows = sim_delay_mul_rows((wa < wb ? wa : wb) - 1), rip = (wa < wb ? wb : wa) - 1;
     /* Every output bit sees every operand bit; the last one settles after
      * the partial product, the carry-save rows of the narrower operand and
      * the ripple across the wider; the output's bits are the ripple's top

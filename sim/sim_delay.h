@@ -107,6 +107,13 @@ sim_arcs sim_delay_csa(void);
  * carry-save rows (an XOR2 each), a max(wa, wb) - 1 bit ripple-carry
  * adder whose sum bits, the output's, settle from L up. */
 sim_arcs sim_delay_mul(int wa, int wb, int wy);
+/* The XOR levels of the carry-save reduction of rows + 1 partial
+ * products: one a row, as the array's, up to 15 rows (16 x 16); beyond,
+ * ABC's delay-driven mapping reduces them as a tree: two XOR levels per
+ * Dadda stage (3:2 counters) plus three, min(rows, 2 stages + 3). Fitted
+ * to a registered W x W product through the same flow (W = 4 to 32,
+ * docs/timing.md, "Wide multipliers"). */
+int sim_delay_mul_rows(int rows);
 sim_arcs sim_delay_round(int w);           /* incrementer: a w-bit half-adder chain */
 sim_arcs sim_delay_sat(int extra);         /* detect (XOR2, OR tree) from the top bits, clamp (MUX2 select) */
 /* A logic element of `bits` input bits in all: a balanced tree of 2-input
