@@ -147,6 +147,13 @@ sim_arcs sim_delay_mul(int wa, int wb, int wy)
     sim_delay full = d(1 + 2 * rows + 2 * rip, SIM_PS_AND2 + rows * SIM_PS_XOR2 + rip * SIM_PS_CARRY2 / 2);
     int early = wy - 1 < rip ? wy - 1 : rip;
     sim_delay low = d(full.lv - 2 * early, full.ps - early * SIM_PS_CARRY2 / 2);
+    /* An output that keeps the product's low bits (exact, as dot3's three
+     * products into their sum): its lowest, bit k0, is the array's column
+     * k0, which settles after k0 rows, before the reduction ends (the
+     * adder after it ripples from there while the high columns reduce,
+     * as ABC's mapping of dot3's sum of products does). */
+    int k0 = wa + wb - wy;
+    if (k0 < rows) low = d(1 + 2 * (k0 > 0 ? k0 : 0), SIM_PS_AND2 + (k0 > 0 ? k0 : 0) * SIM_PS_XOR2);
     sim_arcs r = { low, full, low, full };
     return r;
 }
