@@ -434,7 +434,14 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     /* the array synthesis builds: the operands' live bits only */
     int la = sim_prim_live_bits(a), lb = sim_prim_live_bits(b);
-    set_cost(y, p, sim_area_mul(la, lb), sim_delay_mul(la, lb, fmt.width), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
+    /* the product's columns the output does not keep (constant operands:
+     * a shift-and-add, whose rows are the constant's bits, left whole) */
+    int lo = 0, hi = 0;
+    if (a->kind != SIM_KIND_CONST && b->kind != SIM_KIND_CONST && la == a->fmt.width && lb == b->fmt.width) {
+        lo = p->e.src_f - fmt.fbits;
+        hi = a->fmt.ibits + b->fmt.ibits - fmt.ibits;
+    }
+    set_cost(y, p, sim_area_mul_cols(la, lb, lo > 0 ? lo : 0, hi > 0 ? hi : 0), sim_delay_mul(la, lb, fmt.width), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
     return y;
 }
 
