@@ -88,17 +88,30 @@ sim_arcs sim_delay_add(int w)
     return r;
 }
 
-sim_arcs sim_delay_add_span(int chain, int ext)
+sim_arcs sim_delay_add_span(int chain, int ext, int low)
 {
     if (chain < 1) chain = 1;
     sim_arcs r = sim_delay_add(chain);
+    /* The carry out of `low` bits below the chain and of its own lowest
+     * bit: a prefix tree of generate and propagate over those low + 1
+     * bits, one AOI21/OAI21 a level (ceil(log2(low + 1)) levels), where
+     * the chain alone would take that bit's AND2; the ripple then runs
+     * from the chain's second bit. */
+    sim_delay carry = chain < 2 ? d(1, SIM_PS_AND2) : d(2 * chain - 1, SIM_PS_AND2 + (chain - 1) * SIM_PS_CARRY2 / 2);
+    if (low > 0) {
+        int k = clog2(low + 1);
+        sim_delay start = d(2 * k, k * SIM_PS_CARRY2 / 2);
+        carry = sim_delay_then(start, d(2 * (chain - 1), (chain - 1) * SIM_PS_CARRY2 / 2));
+        if (chain >= 2)
+            r.lm = sim_delay_then(sim_delay_then(start, d(2 * (chain - 2), (chain - 2) * SIM_PS_CARRY2 / 2)), d(1, SIM_PS_XOR2));
+    }
     if (ext <= 0) return r;
     /* Above the chain only one operand varies: an incrementer by the
      * chain's carry (and the other operand's sign), each bit the XOR of
      * its own with the carry ANDed with the bits below it, their AND a
      * tree (ceil(log2 ext) levels) from the operands in parallel with the
-     * chain: the carry out of the chain, one AND2, the XOR. */
-    sim_delay carry = chain < 2 ? d(1, SIM_PS_AND2) : d(2 * chain - 1, SIM_PS_AND2 + (chain - 1) * SIM_PS_CARRY2 / 2);
+     * chain: the carry out of the chain, one AND2 (none for one bit), the
+     * XOR. */
     sim_delay top = sim_delay_then(carry, ext == 1 ? d(1, SIM_PS_XOR2) : d(2, SIM_PS_AND2 + SIM_PS_XOR2));
     int k = clog2(ext);
     r.lm = later(top, d(k + 2, k * SIM_PS_AND2 + SIM_PS_AND2 + SIM_PS_XOR2));
@@ -106,12 +119,12 @@ sim_arcs sim_delay_add_span(int chain, int ext)
     return r;
 }
 
-sim_arcs sim_delay_sub_span(int chain, int ext)
+sim_arcs sim_delay_sub_span(int chain, int ext, int low)
 {
     /* the subtrahend's inversion is free: mapped, it becomes the XNOR and
      * the inverting AOI/OAI cells of the adder (no cell of its own on
      * OpenSTA's paths through coef2's and div3's subtractors) */
-    return sim_delay_add_span(chain, ext);
+    return sim_delay_add_span(chain, ext, low);
 }
 
 sim_arcs sim_delay_csa(void)

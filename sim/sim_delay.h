@@ -94,9 +94,11 @@ sim_arcs sim_delay_sub(int w);             /* a conditional inverter (XOR2), the
  * bits where one operand is constant zero need no carry): the ripple
  * over those, then `ext` bits above them where only one operand varies
  * (an incrementer by the carry, as synthesis builds it once constants
- * are propagated: sim_live.h). sim_delay_add(w) is chain w, ext 0. */
-sim_arcs sim_delay_add_span(int chain, int ext);
-sim_arcs sim_delay_sub_span(int chain, int ext);
+ * are propagated: sim_live.h); `low` bits below the output's lowest that
+ * only carry into the chain, by a prefix tree. sim_delay_add(w) is chain
+ * w, ext 0, low 0. */
+sim_arcs sim_delay_add_span(int chain, int ext, int low);
+sim_arcs sim_delay_sub_span(int chain, int ext, int low);
 /* An adder or subtractor whose one reader is another: synthesis (Yosys's
  * alumacc) makes the chain one multi-operand adder, a carry-save stage
  * each (a full adder's sum, two XOR2, bit to bit: no carry ripples) and

@@ -74,3 +74,29 @@ static void span(const sim_signal *s, int depth, int *lo, int *hi)
 }
 
 void sim_live_span(const sim_signal *s, int *lo, int *hi) { span(s, 0, lo, hi); }
+
+/* the second largest of v[0..n-1] (the largest for n < 2) */
+static int second(const int *v, int n, int sign)
+{
+    int a = sign * v[0], b = a;
+    for (int k = 1; k < n; k++) {
+        int x = sign * v[k];
+        if (x > a) { b = a; a = x; }
+        else if (x > b || k == 1) b = x;
+    }
+    return sign * (n < 2 ? a : b);
+}
+
+void sim_live_chain(const int *lo, const int *hi, int n, sim_fmt y, int *chain, int *ext, int *low)
+{
+    int top = y.ibits - 1, hmax = hi[0];
+    for (int k = 1; k < n; k++) hmax = imax(hmax, hi[k]);
+    top = imin(hmax + 1, top);
+    /* the bits below y's lowest give only their carry into it, which
+     * synthesis takes by a tree beside the operands' first levels: the
+     * chain starts at y's lowest bit */
+    int chi = imin(second(hi, n, 1), top), lo2 = second(lo, n, -1), clo = imax(lo2, -y.fbits);
+    *low = imax(imin(clo, chi + 1) - lo2, 0);
+    *chain = imax(imin(chi - clo + 1, y.width), 1);
+    *ext = imax(top - chi, 0);
+}

@@ -128,7 +128,6 @@ static sim_proc *prim_proc(sim_ctx *c, sim_signal *y, sim_proc_fn fn, prim *p)
 static inline sim_wide align(int64_t raw, int k) { return (sim_wide)raw * ((sim_wide)1 << k); }
 
 static int imax(int a, int b) { return a > b ? a : b; }
-static int imin(int a, int b) { return a < b ? a : b; }
 
 /* The logic an element's quantization needs besides truncation and wrap,
  * for an exact result with src_f fraction and src_i integer bits:
@@ -368,12 +367,12 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     int w = adder_width(a->fmt, b->fmt, fmt);
     /* the carry chain over the bits where both operands vary (sim_live.h) */
-    int la, ha, lb, hb;
-    sim_live_span(a, &la, &ha);
-    sim_live_span(b, &lb, &hb);
-    int top = imin(imax(ha, hb) + 1, fmt.ibits - 1), chi = imin(imin(ha, hb), top);
-    int chain = imin(chi - imax(la, lb) + 1, w), ext = top - chi;
-    set_cost(y, p, sub ? sim_area_sub(w) : sim_area_add(w), sub ? sim_delay_sub_span(chain, ext) : sim_delay_add_span(chain, ext),
+    int chain, ext, low, lo[2], hi[2];
+    sim_live_span(a, &lo[0], &hi[0]);
+    sim_live_span(b, &lo[1], &hi[1]);
+    sim_live_chain(lo, hi, 2, fmt, &chain, &ext, &low);
+    if (chain > w) chain = w;
+    set_cost(y, p, sub ? sim_area_sub(w) : sim_area_add(w), sub ? sim_delay_sub_span(chain, ext, low) : sim_delay_add_span(chain, ext, low),
              p->e.src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
     return y;
 }
