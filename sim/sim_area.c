@@ -24,6 +24,30 @@ double sim_area_mul(int wa, int wb)
     return (double)wa * wb * SIM_GE_AND2 + (double)(lo - 1) * hi * SIM_GE_FA;
 }
 
+double sim_area_mul_cols(int wa, int wb, int drop_lo, int drop_hi)
+{
+    double full = sim_area_mul(wa, wb);
+    if (wa < 1 || wb < 1) return full;
+    int cols = wa + wb;                      /* product bits 0 .. wa + wb - 1 */
+    if (drop_hi > cols) drop_hi = cols;
+    if (drop_lo > cols - drop_hi) drop_lo = cols - drop_hi;
+    /* columns above the output's top: their partial products (column k
+     * holds min(k + 1, wa, wb, wa + wb - 1 - k) of them) and the adders
+     * that reduce them, in proportion */
+    int lo = wa < wb ? wa : wb, pp = 0;
+    for (int k = cols - drop_hi; k < cols - 1; k++) {
+        int n = k + 1;
+        if (n > lo) n = lo;
+        if (n > cols - 1 - k) n = cols - 1 - k;
+        pp += n;
+    }
+    double ge = full * (1.0 - (double)pp / ((double)wa * wb));
+    /* columns below the output's bottom still carry into it: each loses
+     * the XOR2 of its own sum bit */
+    if (drop_lo > 0) ge -= drop_lo * SIM_GE_XOR2;
+    return ge > 0 ? ge : 0.0;
+}
+
 double sim_area_round(int w) { return w * SIM_GE_HA; }
 double sim_area_sat(int w, int extra) { return extra > 0 ? w * SIM_GE_MUX2 + extra * SIM_GE_XOR2 : 0.0; }
 

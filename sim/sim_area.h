@@ -26,6 +26,12 @@ double sim_area_bk(int w);                             /* an AND gate per bit */
 double sim_area_add(int w);                            /* ripple-carry: w full adders */
 double sim_area_sub(int w);                            /* w full adders + w inverters */
 double sim_area_mul(int wa, int wb);                   /* array: wa*wb AND2 + (min-1)*max FA */
+/* The array for an output that keeps only some of the product's wa + wb
+ * bits: drop_hi columns above its top need no logic (their partial
+ * products and adders go, in proportion), drop_lo below its bottom still
+ * carry into it but need no sum bit (an XOR2 less each). A narrow format
+ * (--fmt mul=sI.F) so costs less than the full array. */
+double sim_area_mul_cols(int wa, int wb, int drop_lo, int drop_hi);
 /* Quantization logic at an element's output of w bits: rounding to nearest
  * where it drops fraction bits (an incrementer: w half adders), saturation
  * where its exact result has `extra` integer bits more than the output

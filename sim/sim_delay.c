@@ -88,6 +88,45 @@ sim_arcs sim_delay_add(int w)
     return r;
 }
 
+sim_arcs sim_delay_add_span(int chain, int ext, int low)
+{
+    if (chain < 1) chain = 1;
+    sim_arcs r = sim_delay_add(chain);
+    /* The carry out of `low` bits below the chain and of its own lowest
+     * bit: a prefix tree of generate and propagate over those low + 1
+     * bits, one AOI21/OAI21 a level (ceil(log2(low + 1)) levels), where
+     * the chain alone would take that bit's AND2; the ripple then runs
+     * from the chain's second bit. */
+    sim_delay carry = chain < 2 ? d(1, SIM_PS_AND2) : d(2 * chain - 1, SIM_PS_AND2 + (chain - 1) * SIM_PS_CARRY2 / 2);
+    if (low > 0) {
+        int k = clog2(low + 1);
+        sim_delay start = d(2 * k, k * SIM_PS_CARRY2 / 2);
+        carry = sim_delay_then(start, d(2 * (chain - 1), (chain - 1) * SIM_PS_CARRY2 / 2));
+        if (chain >= 2)
+            r.lm = sim_delay_then(sim_delay_then(start, d(2 * (chain - 2), (chain - 2) * SIM_PS_CARRY2 / 2)), d(1, SIM_PS_XOR2));
+    }
+    if (ext <= 0) return r;
+    /* Above the chain only one operand varies: an incrementer by the
+     * chain's carry (and the other operand's sign), each bit the XOR of
+     * its own with the carry ANDed with the bits below it, their AND a
+     * tree (ceil(log2 ext) levels) from the operands in parallel with the
+     * chain: the carry out of the chain, one AND2 (none for one bit), the
+     * XOR. */
+    sim_delay top = sim_delay_then(carry, ext == 1 ? d(1, SIM_PS_XOR2) : d(2, SIM_PS_AND2 + SIM_PS_XOR2));
+    int k = clog2(ext);
+    r.lm = later(top, d(k + 2, k * SIM_PS_AND2 + SIM_PS_AND2 + SIM_PS_XOR2));
+    r.mm = later(r.mm, d(k + 2, k * SIM_PS_AND2 + SIM_PS_AND2 + SIM_PS_XOR2));
+    return r;
+}
+
+sim_arcs sim_delay_sub_span(int chain, int ext, int low)
+{
+    /* the subtrahend's inversion is free: mapped, it becomes the XNOR and
+     * the inverting AOI/OAI cells of the adder (no cell of its own on
+     * OpenSTA's paths through coef2's and div3's subtractors) */
+    return sim_delay_add_span(chain, ext, low);
+}
+
 sim_arcs sim_delay_csa(void)
 {
     sim_arcs r = { d(2, 2 * SIM_PS_XOR2), SIM_DELAY_NONE, SIM_DELAY_NONE, d(2, 2 * SIM_PS_XOR2) };
@@ -96,12 +135,23 @@ sim_arcs sim_delay_csa(void)
 
 sim_arcs sim_delay_sub(int w) { return sim_arcs_then(sim_arcs_bitwise(d(1, SIM_PS_XOR2)), sim_delay_add(w)); }
 
+int sim_delay_mul_rows(int rows)
+{
+    /* Dadda's stage count for n = rows + 1 partial products: the largest
+     * height d_j (2, 3, 4, 6, 9, 13, ...; d_{j+1} = floor(3 d_j / 2))
+     * below n is reached after j stages */
+    int stages = 0;
+    for (int h = 2; h < rows + 1; h = h * 3 / 2) stages++;
+    int tree = 2 * stages + 3;
+    return rows < tree ? rows : tree;
+}
+
 sim_arcs sim_delay_mul(int wa, int wb, int wy)
 {
     if (wa < 1) wa = 1;
     if (wb < 1) wb = 1;
     if (wy < 1) wy = 1;
-    int rows = (wa < wb ? wa : wb) - 1, rip = (wa < wb ? wb : wa) - 1;
+    int rows = sim_delay_mul_rows((wa < wb ? wa : wb) - 1), rip = (wa < wb ? wb : wa) - 1;
     /* Every output bit sees every operand bit; the last one settles after
      * the partial product, the carry-save rows of the narrower operand and
      * the ripple across the wider; the output's bits are the ripple's top
@@ -110,6 +160,13 @@ sim_arcs sim_delay_mul(int wa, int wb, int wy)
     sim_delay full = d(1 + 2 * rows + 2 * rip, SIM_PS_AND2 + rows * SIM_PS_XOR2 + rip * SIM_PS_CARRY2 / 2);
     int early = wy - 1 < rip ? wy - 1 : rip;
     sim_delay low = d(full.lv - 2 * early, full.ps - early * SIM_PS_CARRY2 / 2);
+    /* An output that keeps the product's low bits (exact, as dot3's three
+     * products into their sum): its lowest, bit k0, is the array's column
+     * k0, which settles after k0 rows, before the reduction ends (the
+     * adder after it ripples from there while the high columns reduce,
+     * as ABC's mapping of dot3's sum of products does). */
+    int k0 = wa + wb - wy;
+    if (k0 < rows) low = d(1 + 2 * (k0 > 0 ? k0 : 0), SIM_PS_AND2 + (k0 > 0 ? k0 : 0) * SIM_PS_XOR2);
     sim_arcs r = { low, full, low, full };
     return r;
 }

@@ -90,6 +90,15 @@ sim_arcs sim_delay_mux(int n);             /* ceil(log2 n) MUX2, the first from 
 sim_arcs sim_delay_bk(void);               /* an AND2 */
 sim_arcs sim_delay_add(int w);             /* ripple carry, w bits: 2(w-1) levels from L to M, SIM_PS_CARRY2 per 2 bits */
 sim_arcs sim_delay_sub(int w);             /* a conditional inverter (XOR2), then the adder */
+/* An adder whose operands both vary over only `chain` of its bits (low
+ * bits where one operand is constant zero need no carry): the ripple
+ * over those, then `ext` bits above them where only one operand varies
+ * (an incrementer by the carry, as synthesis builds it once constants
+ * are propagated: sim_live.h); `low` bits below the output's lowest that
+ * only carry into the chain, by a prefix tree. sim_delay_add(w) is chain
+ * w, ext 0, low 0. */
+sim_arcs sim_delay_add_span(int chain, int ext, int low);
+sim_arcs sim_delay_sub_span(int chain, int ext, int low);
 /* An adder or subtractor whose one reader is another: synthesis (Yosys's
  * alumacc) makes the chain one multi-operand adder, a carry-save stage
  * each (a full adder's sum, two XOR2, bit to bit: no carry ripples) and
@@ -100,6 +109,13 @@ sim_arcs sim_delay_csa(void);
  * carry-save rows (an XOR2 each), a max(wa, wb) - 1 bit ripple-carry
  * adder whose sum bits, the output's, settle from L up. */
 sim_arcs sim_delay_mul(int wa, int wb, int wy);
+/* The XOR levels of the carry-save reduction of rows + 1 partial
+ * products: one a row, as the array's, up to 15 rows (16 x 16); beyond,
+ * ABC's delay-driven mapping reduces them as a tree: two XOR levels per
+ * Dadda stage (3:2 counters) plus three, min(rows, 2 stages + 3). Fitted
+ * to a registered W x W product through the same flow (W = 4 to 32,
+ * docs/timing.md, "Wide multipliers"). */
+int sim_delay_mul_rows(int rows);
 sim_arcs sim_delay_round(int w);           /* incrementer: a w-bit half-adder chain */
 sim_arcs sim_delay_sat(int extra);         /* detect (XOR2, OR tree) from the top bits, clamp (MUX2 select) */
 /* A logic element of `bits` input bits in all: a balanced tree of 2-input

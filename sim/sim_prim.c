@@ -9,6 +9,7 @@
 #include "sim/sim_prim.h"
 #include "sim/sim_area.h"
 #include "sim/sim_delay.h"
+#include "sim/sim_live.h"
 #include "sim/sim_internal.h"
 #include "sim/sim_quant.h"
 #include <string.h>
@@ -363,7 +364,13 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     int w = adder_width(a->fmt, b->fmt, fmt);
-    set_cost(y, p, sub ? sim_area_sub(w) : sim_area_add(w), sub ? sim_delay_sub(w) : sim_delay_add(w),
+    /* the carry chain over the bits where both operands vary (sim_live.h) */
+    int chain, ext, low, lo[2], hi[2];
+    sim_live_span(a, &lo[0], &hi[0]);
+    sim_live_span(b, &lo[1], &hi[1]);
+    sim_live_chain(lo, hi, 2, fmt, &chain, &ext, &low);
+    if (chain > w) chain = w;
+    set_cost(y, p, sub ? sim_area_sub(w) : sim_area_add(w), sub ? sim_delay_sub_span(chain, ext, low) : sim_delay_add_span(chain, ext, low),
              p->e.src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
     return y;
 }
@@ -424,7 +431,14 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
     sim_sensitive(pr, b, SIM_EDGE_ANY);
     /* the array synthesis builds: the operands' live bits only */
     int la = sim_prim_live_bits(a), lb = sim_prim_live_bits(b);
-    set_cost(y, p, sim_area_mul(la, lb), sim_delay_mul(la, lb, fmt.width), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
+    /* the product's columns the output does not keep (constant operands:
+     * a shift-and-add, whose rows are the constant's bits, left whole) */
+    int lo = 0, hi = 0;
+    if (a->kind != SIM_KIND_CONST && b->kind != SIM_KIND_CONST && la == a->fmt.width && lb == b->fmt.width) {
+        lo = p->e.src_f - fmt.fbits;
+        hi = a->fmt.ibits + b->fmt.ibits - fmt.ibits;
+    }
+    set_cost(y, p, sim_area_mul_cols(la, lb, lo > 0 ? lo : 0, hi > 0 ? hi : 0), sim_delay_mul(la, lb, fmt.width), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
     return y;
 }
 

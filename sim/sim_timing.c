@@ -4,6 +4,7 @@
 #include "sim/sim_timing.h"
 #include "sim/sim_delay.h"
 #include "sim/sim_prim.h"
+#include "sim/sim_live.h"
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,8 +20,27 @@ typedef struct walk {
     size_t   errlen;
 } walk;
 
+static int is_addsub(sim_kind k) { return k == SIM_KIND_ADD || k == SIM_KIND_SUB; }
+
+/* The live spans of the terms a multi-operand adder adds: an operand
+ * merged into it (csa) by its own operands, any other by its own. */
+#define TERMS_MAX 32
+static void terms(const struct walk *w, const sim_signal *s, int *lo, int *hi, int *n, int depth);
+
 /* Later arrival wins (by ps; at a tie, more levels); NONE loses. */
 static int later(sim_delay a, sim_delay b) { return a.lv >= 0 && (b.lv < 0 || a.ps > b.ps || (a.ps == b.ps && a.lv > b.lv)); }
+
+static void terms(const walk *w, const sim_signal *s, int *lo, int *hi, int *n, int depth)
+{
+    sim_prim_info in;
+    if (w->csa[s->index] && depth < 8 && !sim_prim_describe(s, &in) && in.a && in.b) {
+        terms(w, in.a, lo, hi, n, depth + 1);
+        terms(w, in.b, lo, hi, n, depth + 1);
+    } else if (*n < TERMS_MAX) {
+        sim_live_span(s, &lo[*n], &hi[*n]);
+        (*n)++;
+    }
+}
 
 static int visit(walk *w, const sim_signal *s)
 {
@@ -47,6 +67,15 @@ static int visit(walk *w, const sim_signal *s)
         if (!r) { snprintf(w->err, w->errlen, "out of memory"); return -1; }
         int nr = sim_prim_reads(&in, r);
         sim_arcs a = w->csa[i] ? sim_delay_csa() : sim_arcs_of(s);
+        if (!w->csa[i] && is_addsub(in.kind) && !in.qlogic && ((in.a && w->csa[in.a->index]) || (in.b && w->csa[in.b->index]))) {
+            /* the last adder of a multi-operand chain: its carry runs over
+             * all the chain's bits (sim_live_adder) */
+            int chain, ext, low, lo[TERMS_MAX], hi[TERMS_MAX], n = 0;
+            terms(w, in.a, lo, hi, &n, 0);
+            terms(w, in.b, lo, hi, &n, 0);
+            sim_live_chain(lo, hi, n, s->fmt, &chain, &ext, &low);
+            a = in.kind == SIM_KIND_SUB ? sim_delay_sub_span(chain, ext, low) : sim_delay_add_span(chain, ext, low);
+        }
         for (int k = 0; k < nr; k++) {
             if (visit(w, r[k])) { free(r); return -1; }
             uint32_t j = r[k]->index;
@@ -71,7 +100,6 @@ static int visit(walk *w, const sim_signal *s)
  * adder operand's two (its XOR and its carry gate), any other one; a
  * constant shift is wiring, so its pins are its source's. Into load[] as
  * picoseconds (sim_delay_load_ps). */
-static int is_addsub(sim_kind k) { return k == SIM_KIND_ADD || k == SIM_KIND_SUB; }
 
 static void loads(const sim_ctx *c, double *load, unsigned char *csa)
 {

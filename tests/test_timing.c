@@ -212,6 +212,67 @@ static void t_live_bits(void)
     sim_free(c);
 }
 
+/* An adder of a and b/16 (s4.4 each; b shifted right by 4: wiring, its
+ * bits 2^-8 .. 2^-1 vary, the ones above copy its sign) into s5.8: both
+ * operands vary over 2^-4 .. 2^-1 only, a 4-bit carry chain (bit 0's
+ * AND2, three carries), then 5 bits where a alone varies: an incrementer,
+ * its carry one AND2 after the chain's, the top sum an XOR2 (its other
+ * way, the 3-level AND tree over those 5 bits from the ports, is
+ * shorter: 4 AND2 + XOR2). The same as a subtraction: the inversion of
+ * b costs nothing. Not the 13-bit ripple of the adder's whole width. */
+static void t_add_span(void)
+{
+    static const sim_fmt S48 = { .is_signed = 1, .ibits = 4, .fbits = 8, .width = 12 };
+    static const sim_fmt S58 = { .is_signed = 1, .ibits = 5, .fbits = 8, .width = 13 };
+    for (int sub = 0; sub < 2; sub++) {
+        sim_signal *clk;
+        sim_ctx *c = fresh(&clk);
+        sim_signal *a = sim_signal_new(c, NULL, "a", F8, SIM_KIND_INPUT);
+        sim_signal *b = sim_signal_new(c, NULL, "b", F8, SIM_KIND_INPUT);
+        sim_signal *bs = sim_shift(c, NULL, "bs", S48, b, -4);
+        (sub ? sim_sub : sim_add)(c, NULL, "y", S58, a, bs);
+        sim_timing t;
+        char err[200];
+        TST_EQ_INT(sim_timing_analyze(c, &t, err, sizeof err), 0);
+        TST_EQ_INT(t.levels, 2 * 4 - 1 + 2);
+        TST_NEAR(t.ps, SIM_PS_AND2 + 3 * SIM_PS_CARRY2 / 2 + SIM_PS_AND2 + SIM_PS_XOR2, 1e-9);
+        TST_CHECK(t.ps < sim_delay_add(13).lm.ps, "ps %g", t.ps);
+        sim_free(c);
+    }
+}
+
+/* The reduction's XOR levels: a row each up to 16 partial products
+ * (Dadda's heights 2, 3, 4, 6, 9, 13: 6 stages for 16, whose tree of
+ * 2 x 6 + 3 = 15 is no shorter); 24 and 32 products: 7 and 8 stages,
+ * 17 and 19 levels, not 23 and 31. */
+static void t_mul_rows(void)
+{
+    TST_EQ_INT(sim_delay_mul_rows(7), 7);
+    TST_EQ_INT(sim_delay_mul_rows(15), 15);
+    TST_EQ_INT(sim_delay_mul_rows(23), 2 * 7 + 3);
+    TST_EQ_INT(sim_delay_mul_rows(31), 2 * 8 + 3);
+}
+
+/* An exact product (s4.4 x s4.4 into s8.8) keeps its lowest bit, the
+ * array's column 0: one partial product (AND2) after the operands, not the
+ * whole reduction; kept to 8 bits (s4.4, k0 = 8 beyond the 7 rows) its
+ * lowest settles as before, the full path less the wy - 1 = 7 last
+ * carries: the 7 rows. */
+static void t_mul_low(void)
+{
+    static const sim_fmt S88 = { .is_signed = 1, .ibits = 8, .fbits = 8, .width = 16 };
+    sim_signal *clk;
+    sim_ctx *c = fresh(&clk);
+    sim_signal *a = sim_signal_new(c, NULL, "a", F8, SIM_KIND_INPUT);
+    sim_signal *b = sim_signal_new(c, NULL, "b", F8, SIM_KIND_INPUT);
+    sim_signal *m = sim_mul(c, NULL, "m", S88, a, b);
+    sim_signal *m4 = sim_mul(c, NULL, "m4", F8, a, b);
+    TST_NEAR(sim_arcs_of(m).ll.ps, SIM_PS_AND2, 1e-9);
+    TST_NEAR(sim_arcs_of(m).mm.ps, SIM_PS_AND2 + 7 * SIM_PS_XOR2 + 7 * SIM_PS_CARRY2 / 2, 1e-9);
+    TST_NEAR(sim_arcs_of(m4).ll.ps, SIM_PS_AND2 + 7 * SIM_PS_XOR2, 1e-9);
+    sim_free(c);
+}
+
 /* A net's load: s = p AND q (a block key of 1 bit) selects between two
  * 16-bit inputs; its bit drives 16 MUX2 selects, 16 x 1.92 fF, past the
  * tables' 7.5 fF by 23.2 fF at NOR2_X1's 5.09 ps/fF. Input ports drive
@@ -246,5 +307,8 @@ int main(void)
     TST_RUN(t_port_to_port);
     TST_RUN(t_live_bits);
     TST_RUN(t_load);
+    TST_RUN(t_add_span);
+    TST_RUN(t_mul_rows);
+    TST_RUN(t_mul_low);
     TST_EXIT();
 }

@@ -7,6 +7,7 @@
  * Vandermonde solve, the interpolants by Lagrange's formula, the monomials'
  * coefficient vectors by definition. */
 #include "tests/tst.h"
+#include "sim/sim_area.h"
 #include "tests/tst_ref.h"
 #include "testbench/tb.h"
 #include <stdint.h>
@@ -620,7 +621,10 @@ static void t_horner3_unchanged(void)
     char err[300];
     if (run("horner3", &cfg, NULL, 0, NULL, &r, err, sizeof err) != TB_OK) { TST_CHECK(0, "%s", err); return; }
     TST_NEAR(r.cycles_per_item, 6, 0);
-    TST_NEAR(r.area_ge, 2064.75, 1e-9);
+    /* 2064.75 then; the multiplier's 15 product columns below its output
+     * (s7.9 of an exact s8.24) have since lost their sum XOR2 each
+     * (sim_area_mul_cols) */
+    TST_NEAR(r.area_ge, 2064.75 - 15 * SIM_GE_XOR2, 1e-9);
     TST_NEAR(r.max_abs_err, 0.0085827453787687968, 0);
     TST_EQ_INT(r.cycles, 3841);
     tb_result_free(&r);

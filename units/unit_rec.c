@@ -114,13 +114,16 @@ static rec_st rec_step(sim_ctx *c, sim_scope *sc, const char *prefix, int k, con
         if (st.x) snprintf(vt, sizeof vt, "assign %%y = {%%0, %%1[%d:%d]};", wx - 1, wx - 2);
         else snprintf(vt, sizeof vt, "assign %%y = {%%0, 2'b00};");
         sim_logic_verilog(r2, vt);
+        sim_logic_depth(r2, 0);     /* 4R and X's top two bits: wiring */
         name3(nm, sizeof nm, prefix, k, "dq");
         sub = sim_logic(c, sc, nm, uint_fmt(wq + 2), 1, &st.q, f_dq, widths(c, wq, 0, wq + 2), 0);
         sim_logic_verilog(sub, "assign %y = {%0, 2'b01};");
+        sim_logic_depth(sub, 0);
     } else {
         name3(nm, sizeof nm, prefix, k, "r2");
         r2 = sim_logic(c, sc, nm, uint_fmt(wr + 1), 1, &st.r, f_r2_recip, widths(c, wr, 0, wr + 1), 0);
         sim_logic_verilog(r2, "assign %y = {%0, 1'b0};");
+        sim_logic_depth(r2, 0);
         sub = st.d;
     }
     int wt = (r2->fmt.width > sub->fmt.width ? r2->fmt.width : sub->fmt.width) + 1;
@@ -130,6 +133,7 @@ static rec_st rec_step(sim_ctx *c, sim_scope *sc, const char *prefix, int k, con
     sim_signal *sel = sim_logic(c, sc, nm, uint_fmt(1), 1, &t, f_sel, NULL, SIM_GE_INV);
     snprintf(vt, sizeof vt, "assign %%y = ~%%0[%d];", wt - 1);
     sim_logic_verilog(sel, vt);
+    sim_logic_depth(sel, 1);        /* an inverter of the trial's sign */
     rec_st o = st;
     sim_signal *rs[2] = { r2, t };
     name3(nm, sizeof nm, prefix, k, "rn");
@@ -141,6 +145,7 @@ static rec_st rec_step(sim_ctx *c, sim_scope *sc, const char *prefix, int k, con
     else if (wq >= 2) snprintf(vt, sizeof vt, "assign %%y = {%%0[%d:0], %%1};", wq - 2);
     else snprintf(vt, sizeof vt, "assign %%y = %%1;");
     sim_logic_verilog(o.q, vt);
+    sim_logic_depth(o.q, 0);        /* Q shifted left, the new bit in: wiring */
     o.x = NULL;
     if (st.x && wx_n > 0) {
         name3(nm, sizeof nm, prefix, k, "xn");
@@ -148,6 +153,7 @@ static rec_st rec_step(sim_ctx *c, sim_scope *sc, const char *prefix, int k, con
         if (wx_n == wx) snprintf(vt, sizeof vt, "assign %%y = {%%0[%d:0], 2'b00};", wx - 3);
         else snprintf(vt, sizeof vt, "assign %%y = %%0[%d:0];", wx_n - 1);
         sim_logic_verilog(o.x, vt);
+        sim_logic_depth(o.x, 0);
     }
     return o;
 }
