@@ -137,7 +137,7 @@ static int both_pipelines(const scn_desc *d, const scn_mesh *m)
     memset(keep, 0, sizeof keep);
     for (int k = 0; k < 2; k++)
         for (int rep = 0; rep < 3; rep++) {
-            tb_scene_opts o = { k + 1, 0, NULL, NULL, 0, 1, NULL };
+            tb_scene_opts o = { k + 1, 0, NULL, NULL, 0, 1, NULL, NULL };
             tb_scene_result r;
             tb_scene_pipes p;
             double t0 = now_s(), c0 = cpu_s();
@@ -182,7 +182,7 @@ int main(void)
     /* -j 1 and -j 2 with the batch mode (the default), -j 1 on the kernel
      * alone (--no-batch) */
     for (int k = 0; k < 3; k++) {
-        tb_scene_opts o = { k == 1 ? 2 : 1, 0, NULL, NULL, k == 2, 0, NULL };
+        tb_scene_opts o = { k == 1 ? 2 : 1, 0, NULL, NULL, k == 2, 0, NULL, NULL };
         dt[k] = 1e9;
         for (int rep = 0; rep < 3; rep++) {
             tb_scene_result t;

@@ -388,7 +388,7 @@ static void t_scene_energy(void)
     tb_scene_result r[3];
     for (int k = 0; k < 3; k++) {
         /* 0: plain; 1: energy on the batch; 2: energy on the kernel alone */
-        tb_scene_opts o = { 2, 0, NULL, NULL, k == 2, k > 0, NULL };
+        tb_scene_opts o = { 2, 0, NULL, NULL, k == 2, k > 0, NULL, NULL };
         TST_EQ_INT(tb_scene_render(&d, &face, &o, &r[k], err, sizeof err), TB_OK);
     }
     size_t n = (size_t)r[0].w * (size_t)r[0].h;
