@@ -21,12 +21,13 @@ typedef struct memo_run {
     unit_fmts f;
     int energy;
     size_t n, n_in, in;             /* in: index into the kept items */
-    double *out;
+    double *out;                    /* NULL while a thread runs it */
     tb_items_stats st;
 } memo_run;
 
 struct tb_items_memo {
     pthread_mutex_t mu;
+    pthread_cond_t done;            /* a run finished (waiters look again) */
     memo_run *run;
     memo_in *in;
     size_t nrun, cap, nin, capin, hits;
@@ -88,6 +89,7 @@ tb_items_memo *tb_items_memo_new(void)
     tb_items_memo *m = calloc(1, sizeof *m);
     if (!m) base_out_of_memory();
     pthread_mutex_init(&m->mu, NULL);
+    pthread_cond_init(&m->done, NULL);
     return m;
 }
 
@@ -99,12 +101,13 @@ void tb_items_memo_free(tb_items_memo *m)
     free(m->run);
     free(m->in);
     pthread_mutex_destroy(&m->mu);
+    pthread_cond_destroy(&m->done);
     free(m);
 }
 
 void tb_items_memo_counts(const tb_items_memo *m, size_t *kept, size_t *hits)
 {
-    *kept = m ? m->nrun : 0;
+    *kept = m ? m->nrun : 0;           /* (when no run is under way) */
     *hits = m ? m->hits : 0;
 }
 
@@ -117,35 +120,49 @@ int tb_items_run_memo(tb_items_memo *m, const unit_desc *u, const unit_cfg *cfg,
     uint64_t hin = fnv(0xcbf29ce484222325ull, in, n * n_in * sizeof *in);
     uint64_t h = key_hash(u, cfg, f, energy, hin);
     pthread_mutex_lock(&m->mu);
-    for (size_t i = 0; i < m->nrun; i++)
-        if (same(m, &m->run[i], h, u, cfg, f, energy, in, n, n_in)) {
+    for (;;) {
+        size_t i = 0;
+        while (i < m->nrun && !same(m, &m->run[i], h, u, cfg, f, energy, in, n, n_in)) i++;
+        if (i == m->nrun) break;
+        if (m->run[i].out) {
             memcpy(out, m->run[i].out, n * sizeof *out);
             *st = m->run[i].st;
             m->hits++;
             pthread_mutex_unlock(&m->mu);
             return TB_OK;
         }
-    pthread_mutex_unlock(&m->mu);
-    /* not held: run it (two threads asking the same at once both run it,
-     * and get the same bytes; the first is kept) */
-    int rc = tb_items_run(u, cfg, f, in, n, jobs, energy, out, st, err, errlen);
-    if (rc != TB_OK) return rc;
-    pthread_mutex_lock(&m->mu);
-    int dup = 0;
-    for (size_t i = 0; i < m->nrun && !dup; i++) dup = same(m, &m->run[i], h, u, cfg, f, energy, in, n, n_in);
-    if (!dup) {
-        if (m->nrun == m->cap) {
-            m->cap = m->cap ? 2 * m->cap : 16;
-            m->run = realloc(m->run, m->cap * sizeof *m->run);
-            if (!m->run) base_out_of_memory();
-        }
-        memo_run r = { .hash = h, .u = u, .cfg = *cfg, .f = *f, .energy = energy, .n = n, .n_in = n_in,
-                       .in = in_index(m, hin, in, n * n_in), .st = *st };
-        r.out = malloc((n ? n : 1) * sizeof *r.out);
-        if (!r.out) base_out_of_memory();
-        memcpy(r.out, out, n * sizeof *out);
-        m->run[m->nrun++] = r;
+        /* another thread is running it (a sweep's neighbouring points
+         * share their nodes): its answer, rather than the same run twice */
+        pthread_cond_wait(&m->done, &m->mu);
     }
+    /* not held: kept as running (out NULL) while it runs */
+    if (m->nrun == m->cap) {
+        m->cap = m->cap ? 2 * m->cap : 16;
+        m->run = realloc(m->run, m->cap * sizeof *m->run);
+        if (!m->run) base_out_of_memory();
+    }
+    m->run[m->nrun++] = (memo_run){ .hash = h, .u = u, .cfg = *cfg, .f = *f, .energy = energy, .n = n, .n_in = n_in,
+                                    .in = in_index(m, hin, in, n * n_in) };
     pthread_mutex_unlock(&m->mu);
-    return TB_OK;
+    int rc = tb_items_run(u, cfg, f, in, n, jobs, energy, out, st, err, errlen);
+    double *keep = NULL;
+    if (rc == TB_OK) {
+        keep = malloc((n ? n : 1) * sizeof *keep);
+        if (!keep) base_out_of_memory();
+        memcpy(keep, out, n * sizeof *out);
+    }
+    pthread_mutex_lock(&m->mu);
+    size_t i = 0;
+    while (i < m->nrun && !(m->run[i].hash == h && !m->run[i].out && same(m, &m->run[i], h, u, cfg, f, energy, in, n, n_in)))
+        i++;
+    if (rc == TB_OK) {
+        m->run[i].out = keep;
+        m->run[i].st = *st;
+    } else {
+        /* a failed run is not kept: a thread waiting on it runs it itself */
+        m->run[i] = m->run[--m->nrun];
+    }
+    pthread_cond_broadcast(&m->done);
+    pthread_mutex_unlock(&m->mu);
+    return rc;
 }

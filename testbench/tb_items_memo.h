@@ -5,7 +5,8 @@
  * is deterministic (tb_items.h: every figure the same for any number of
  * threads), so a kept result is the bytes a new run would give. A
  * configuration made differently (its padding) only misses, never hits
- * wrongly. Safe to share between threads. */
+ * wrongly. Safe to share between threads: a thread asking for a run
+ * another is making waits for its answer (a failed run is not kept). */
 #ifndef TB_ITEMS_MEMO_H
 #define TB_ITEMS_MEMO_H
 #include "testbench/tb_items.h"
