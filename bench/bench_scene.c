@@ -158,9 +158,19 @@ static int both_pipelines(const scn_desc *d, const scn_mesh *m)
         printf("scene face both pipelines: -j 1 and -j 2 DIFFER\n");
         bad = 1;
     }
-    for (int k = 0; k < 2; k++)
-        printf("scene face 512x512 through both pipelines -j %d: %.3f s wall (best of 3), %.3f s CPU (load %.1f)%s\n",
-               k + 1, best[k], cpu[k], load1(), k ? (best[1] <= 3 ? "; meets the 3 s target" : "; MISSES the 3 s target") : "");
+    /* The target is wall time on an idle machine. On a busy one the wall
+     * time says little; the CPU time bounds it: a run that waits for
+     * nothing but the processor takes no longer than its CPU time once it
+     * has a core to itself (and -j 2 splits it over two). */
+    double ld = load1();
+    for (int k = 0; k < 2; k++) {
+        printf("scene face 512x512 through both pipelines -j %d: %.3f s wall (best of 3), %.3f s CPU (load %.1f)",
+               k + 1, best[k], cpu[k], ld);
+        if (k) printf("; %s the 3 s target%s", best[1] <= 3 ? "meets" : "MISSES",
+                      best[1] > 3 && cpu[1] <= 3 ? " in wall time at this load; its CPU time, which bounds the wall "
+                                                   "time on an idle machine, meets it" : "");
+        putchar('\n');
+    }
     for (int k = 0; k < 2; k++) tb_scene_pipes_free(&keep[k]);
     return bad;
 }
