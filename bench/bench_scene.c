@@ -137,7 +137,7 @@ static int both_pipelines(const scn_desc *d, const scn_mesh *m)
     memset(keep, 0, sizeof keep);
     for (int k = 0; k < 2; k++)
         for (int rep = 0; rep < 3; rep++) {
-            tb_scene_opts o = { k + 1, 0, NULL, NULL, 0, 1, NULL };
+            tb_scene_opts o = { k + 1, 0, NULL, NULL, 0, 1, NULL, NULL };
             tb_scene_result r;
             tb_scene_pipes p;
             double t0 = now_s(), c0 = cpu_s();
@@ -158,9 +158,19 @@ static int both_pipelines(const scn_desc *d, const scn_mesh *m)
         printf("scene face both pipelines: -j 1 and -j 2 DIFFER\n");
         bad = 1;
     }
-    for (int k = 0; k < 2; k++)
-        printf("scene face 512x512 through both pipelines -j %d: %.3f s wall (best of 3), %.3f s CPU (load %.1f)%s\n",
-               k + 1, best[k], cpu[k], load1(), k ? (best[1] <= 3 ? "; meets the 3 s target" : "; MISSES the 3 s target") : "");
+    /* The target is wall time on an idle machine. On a busy one the wall
+     * time says little; the CPU time bounds it: a run that waits for
+     * nothing but the processor takes no longer than its CPU time once it
+     * has a core to itself (and -j 2 splits it over two). */
+    double ld = load1();
+    for (int k = 0; k < 2; k++) {
+        printf("scene face 512x512 through both pipelines -j %d: %.3f s wall (best of 3), %.3f s CPU (load %.1f)",
+               k + 1, best[k], cpu[k], ld);
+        if (k) printf("; %s the 3 s target%s", best[1] <= 3 ? "meets" : "MISSES",
+                      best[1] > 3 && cpu[1] <= 3 ? " in wall time at this load; its CPU time, which bounds the wall "
+                                                   "time on an idle machine, meets it" : "");
+        putchar('\n');
+    }
     for (int k = 0; k < 2; k++) tb_scene_pipes_free(&keep[k]);
     return bad;
 }
@@ -182,7 +192,7 @@ int main(void)
     /* -j 1 and -j 2 with the batch mode (the default), -j 1 on the kernel
      * alone (--no-batch) */
     for (int k = 0; k < 3; k++) {
-        tb_scene_opts o = { k == 1 ? 2 : 1, 0, NULL, NULL, k == 2, 0, NULL };
+        tb_scene_opts o = { k == 1 ? 2 : 1, 0, NULL, NULL, k == 2, 0, NULL, NULL };
         dt[k] = 1e9;
         for (int rep = 0; rep < 3; rep++) {
             tb_scene_result t;

@@ -372,6 +372,14 @@ static void count_toggles(sim_batch *b)
         }
         for (uint32_t w = 0; w < nw; w++) {
             uint64_t mw = m[w];
+            /* a word of lanes mostly changed: all its lanes by the vector
+             * loop, as for one word above (more than 64 lanes: a unit over
+             * a list of items, tb_items.c, 128 lanes a group) */
+            uint32_t l0 = w * 64, wl = L - l0 < 64 ? (uint32_t)(L - l0) : 64;
+            if (nw > 1 && mw && wide_enough(mw, wl, 4)) {
+                b->vcount(v + l0, pv + l0, t + l0, mask, lo ? lo + l0 : NULL, hi ? hi + l0 : NULL, wl);
+                continue;
+            }
             while (mw) {
                 uint32_t l = w * 64 + (uint32_t)__builtin_ctzll(mw);
                 mw &= mw - 1;

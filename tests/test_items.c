@@ -1,9 +1,11 @@
 /* test_items.c - a unit over a list of items on the batch's lanes
  * (testbench/tb_items.c) against the kernel's testbench (tb_run) on the
  * same items: every output, the steady-state clocks per item and the area
- * equal tb_run's; the figures are the same for any number of threads. */
+ * equal tb_run's; the figures are the same for any number of threads. A
+ * memo of runs (tb_items_memo.c) answers the same run with tb_items_run's
+ * bytes and runs anything else. */
 #include "tests/tst.h"
-#include "testbench/tb_items.h"
+#include "testbench/tb_items_memo.h"
 #include "sim/sim_fixed.h"
 
 /* n items of u's reference vectors (seed 3) through tb_items_run on
@@ -83,10 +85,66 @@ static void groups_any_jobs(void)
 }
 static void powg_items(void) { same_as_tb_run("powg", 700); }
 
+/* One run of div through memo m, against tb_items_run without it: the
+ * same outputs and figures, byte for byte. */
+static void memo_run_same(tb_items_memo *m, int width, const double *in, size_t n)
+{
+    const unit_desc *u = unit_find("div");
+    unit_cfg cfg;
+    unit_fmts f;
+    char err[600];
+    unit_cfg_default(u, &cfg);
+    cfg.width = width;
+    TST_CHECK(!tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err), "%s", err);
+    double *o1 = malloc(n * sizeof *o1), *o2 = malloc(n * sizeof *o2);
+    tb_items_stats s1, s2;
+    TST_EQ_INT(tb_items_run_memo(m, u, &cfg, &f, in, n, 2, 1, o1, &s1, err, sizeof err), TB_OK);
+    TST_EQ_INT(tb_items_run(u, &cfg, &f, in, n, 1, 1, o2, &s2, err, sizeof err), TB_OK);
+    TST_CHECK(!memcmp(o1, o2, n * sizeof *o1), "width %d: outputs differ from a run without the memo", width);
+    TST_CHECK(s1.items == s2.items && s1.lanes == s2.lanes && s1.clocks == s2.clocks &&
+              s1.cycles_per_item == s2.cycles_per_item && s1.overflows == s2.overflows &&
+              s1.in_overflows == s2.in_overflows && s1.energy_pj == s2.energy_pj && s1.area_ge == s2.area_ge,
+              "width %d: figures differ (%g and %g pJ)", width, s1.energy_pj, s2.energy_pj);
+    free(o1);
+    free(o2);
+}
+
+static void memo_same_bytes(void)
+{
+    size_t n = 3000, kept, hits;
+    double *in = malloc(2 * n * sizeof *in);
+    for (size_t i = 0; i < n; i++) {
+        in[2 * i] = (double)(i % 97) / 200;
+        in[2 * i + 1] = 0.5 + (double)(i % 89) / 200;
+    }
+    tb_items_memo *m = tb_items_memo_new();
+    memo_run_same(m, 16, in, n);                /* run, kept */
+    memo_run_same(m, 16, in, n);                /* answered */
+    tb_items_memo_counts(m, &kept, &hits);
+    TST_EQ_INT(kept, 1);
+    TST_EQ_INT(hits, 1);
+    memo_run_same(m, 12, in, n);                /* another configuration: run */
+    in[2 * (n - 1)] = 0.125;                    /* one item changed: run */
+    memo_run_same(m, 16, in, n);
+    memo_run_same(m, 16, in, n - 1);            /* fewer items: run */
+    tb_items_memo_counts(m, &kept, &hits);
+    TST_EQ_INT(kept, 4);
+    TST_EQ_INT(hits, 1);
+    memo_run_same(m, 12, in, n);                /* the changed items at width 12: run */
+    memo_run_same(m, 16, in, n - 1);            /* answered */
+    tb_items_memo_counts(m, &kept, &hits);
+    TST_EQ_INT(kept, 5);
+    TST_EQ_INT(hits, 2);
+    tb_items_memo_free(m);
+    memo_run_same(NULL, 16, in, n);             /* no memo */
+    free(in);
+}
+
 int main(void)
 {
     TST_RUN(div_items);
     TST_RUN(powg_items);
     TST_RUN(groups_any_jobs);
+    TST_RUN(memo_same_bytes);
     TST_EXIT();
 }

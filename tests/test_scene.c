@@ -98,7 +98,7 @@ static void test_wide_equals_float(void)
             d.policy = pols[pi];
             snprintf(d.L, sizeof d.L, "%d", Ls[li]);
             wide(&d);
-            tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0, NULL };
+            tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0, NULL, NULL };
             tb_scene_result r;
             char err[600];
             int rc = tb_scene_render(&d, &face, &o, &r, err, sizeof err);
@@ -165,7 +165,7 @@ static double synth_err(const scn_desc *d, int *ok)
 {
     scn_gbuf g;
     synth_gbuf(&g, 45, 3);       /* spans of 45: intervals 8*5 + 5, dv = 4 in the last */
-    tb_scene_opts o = { 2, 0, NULL, NULL, 0, 0, NULL };
+    tb_scene_opts o = { 2, 0, NULL, NULL, 0, 0, NULL, NULL };
     tb_scene_result r;
     char err[600];
     *ok = tb_scene_render_gbuf(d, &g, poly_shader, NULL, &o, &r, err, sizeof err) == TB_OK;
@@ -228,7 +228,7 @@ static void test_metrics(void)
     scn_desc d;
     scn_desc_default(&d);
     d.width = d.height = 96;
-    tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0, NULL };
+    tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0, NULL, NULL };
     tb_scene_result r;
     char err[600];
     int rc = tb_scene_render(&d, &face, &o, &r, err, sizeof err);
@@ -411,7 +411,7 @@ static void test_op_counts(void)
     d.mat.ks = 0.3;
     d.mat.dg = 0;
     double want[SCN_OP__COUNT] = { a.add, a.mul, a.div, a.sqrt, a.pow };
-    tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0, NULL };
+    tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0, NULL, NULL };
     tb_scene_result r;
     char err[600];
     int rc = tb_scene_render(&d, &face, &o, &r, err, sizeof err);
@@ -460,7 +460,7 @@ static void test_jobs_same_bytes(void)
     char dir[2][64];
     for (int k = 0; k < 2; k++) {
         snprintf(dir[k], sizeof dir[k], "/tmp/shadesim_test_scene.%d.%d", (int)getpid(), k);
-        tb_scene_opts o = { k ? 3 : 1, 0, NULL, NULL, 0, 0, NULL };
+        tb_scene_opts o = { k ? 3 : 1, 0, NULL, NULL, 0, 0, NULL, NULL };
         tb_scene_result r;
         char err[600];
         int rc = tb_scene_render(&d, &face, &o, &r, err, sizeof err);

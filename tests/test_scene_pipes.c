@@ -28,7 +28,7 @@ static void reference_nmse_recomputed(void)
     TST_EQ_INT(scn_desc_builtin("face", &d), 0);
     d.width = d.height = 28;
     TST_EQ_INT(scn_mesh_builtin(d.mesh, d.detail, &m, err, sizeof err), 0);
-    tb_scene_opts o = { 2, 0, NULL, NULL, 0, 1, NULL };
+    tb_scene_opts o = { 2, 0, NULL, NULL, 0, 1, NULL, NULL };
     tb_scene_result r;
     tb_scene_pipes p;
     TST_EQ_INT(tb_scene_render_pipes(&d, &m, NULL, &o, TB_PIPES_BOTH, &r, &p, err, sizeof err), TB_OK);

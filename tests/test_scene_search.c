@@ -57,7 +57,7 @@ static double nmse_of(const tb_scene_result *r)
 static int render(const scn_desc *d, const unit_fmts *f, int heldout, double *nmse, uint64_t *ovf)
 {
     char err[300];
-    tb_scene_opts o = { 1, heldout, NULL, f, 0, 0, NULL };
+    tb_scene_opts o = { 1, heldout, NULL, f, 0, 0, NULL, NULL };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     int rc = tb_scene_render(d, &M, &o, &r, err, sizeof err);
@@ -281,7 +281,7 @@ static void test_prep_exact(void)
             if (k == 4) snprintf(e.L, sizeof e.L, "4");   /* not the prep's intervals */
             /* from here, with formats given, the unit comes from the prep */
             if (k == 2) TST_EQ_INT(tb_scene_prep_unit(p, &e, err, sizeof err), 0);
-            tb_scene_opts o = { 2, held, NULL, fp, k == 3, 0, NULL };
+            tb_scene_opts o = { 2, held, NULL, fp, k == 3, 0, NULL, NULL };
             tb_scene_result a, b;
             memset(&a, 0, sizeof a);
             memset(&b, 0, sizeof b);
@@ -435,7 +435,7 @@ static void test_scene_claims(void)
     snprintf(d.terms, sizeof d.terms, "3");
     snprintf(d.schedule, sizeof d.schedule, "paper");
     TST_EQ_INT(scn_mesh_builtin(d.mesh, d.detail, &m, err, sizeof err), 0);
-    tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0, NULL };
+    tb_scene_opts o = { 1, 0, NULL, NULL, 0, 0, NULL, NULL };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     TST_EQ_INT(tb_scene_render(&d, &m, &o, &r, err, sizeof err), TB_OK);

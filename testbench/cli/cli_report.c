@@ -441,7 +441,7 @@ static int scene_compare(FILE *f)
             rc = cli_usage_error("report: %s", err);
             break;
         }
-        tb_scene_opts o = { 2, 0, NULL, NULL, 0, 0, NULL };
+        tb_scene_opts o = { 2, 0, NULL, NULL, 0, 0, NULL, NULL };
         tb_scene_result r;
         memset(&r, 0, sizeof r);
         int t = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
@@ -475,7 +475,7 @@ static int section_scene(FILE *f, const char *dir)
     if (scn_desc_builtin("face", &d)) return cli_usage_error("report: no built-in face scene");
     d.width = d.height = SCENE_RES;
     if (scn_mesh_builtin(d.mesh, d.detail, &m, err, sizeof err)) return cli_usage_error("report: %s", err);
-    tb_scene_opts o = { 2, 0, NULL, NULL, 0, 0, NULL };
+    tb_scene_opts o = { 2, 0, NULL, NULL, 0, 0, NULL, NULL };
     int rc = tb_scene_render(&d, &m, &o, &r, err, sizeof err);
     scn_mesh_free(&m);
     if (rc != TB_OK) { tb_scene_free(&r); return cli_from_tb(rc, "report: face scene: %s", err); }

@@ -349,7 +349,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
         d.policy = (scn_policy)cfgs[i].policy;
         snprintf(d.terms, sizeof d.terms, "%d", cfgs[i].terms);
         if (i == 0) snprintf(d.series, sizeof d.series, "paper");   /* the paper's x/2 - x/8 - x/32 - x/128 */
-        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 1, NULL };
+        tb_scene_opts o = { jobs, 0, NULL, NULL, no_batch, 1, NULL, NULL };
         tb_scene_result r;
         char err[600], sub[4200];
         progress(cfgs[i].name);
@@ -480,7 +480,7 @@ int cli_scene(int argc, char **argv)
         progress("");
         rc = cli_from_tb(t, "%s", err);
     } else {
-        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 1, NULL };
+        tb_scene_opts o = { jobs, heldout, vcd, NULL, no_batch, 1, NULL, NULL };
         tb_scene_result r;
         tb_scene_pipes pp;
         progress("rendering...");

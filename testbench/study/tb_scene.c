@@ -596,7 +596,7 @@ static int render(const scn_desc *d, const scn_gbuf *g, tb_scene_shader fn, void
 {
     double c0 = cpu_now();
     memset(r, 0, sizeof *r);
-    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0, NULL };
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0, NULL, NULL };
     if (!o) o = &dflt;
     r->heldout = p ? p->heldout : o->heldout;
     if (p && p->have_unit && o->fmts && !memcmp(&p->ud, d, sizeof *d)) {
@@ -683,7 +683,7 @@ int tb_scene_prep_new(const scn_desc *d, const scn_gbuf *g, int heldout, int job
     tb_scene_prep *p = calloc(1, sizeof *p);
     if (!p) base_out_of_memory();
     p->d = *d;
-    tb_scene_opts o = { jobs, heldout, NULL, NULL, 0, 0, NULL };
+    tb_scene_opts o = { jobs, heldout, NULL, NULL, 0, 0, NULL, NULL };
     tb_scene_result r;
     int rc = render(d, g, NULL, NULL, &o, NULL, p, INFINITY, &r, err, errlen);
     if (rc != TB_OK) { tb_scene_prep_free(p); return rc; }
@@ -710,7 +710,7 @@ double tb_scene_prep_cpu(const tb_scene_prep *p)
 int tb_scene_render_prep_budget(const scn_desc *d, const tb_scene_prep *p, const tb_scene_opts *o, double max_nmse,
                                 tb_scene_result *r, char *err, size_t errlen)
 {
-    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0, NULL };
+    tb_scene_opts dflt = { 1, 0, NULL, NULL, 0, 0, NULL, NULL };
     tb_scene_opts q = o ? *o : dflt;
     q.heldout = p->heldout;
     if (!prep_fits(p, d)) return render(d, p->g, NULL, NULL, &q, NULL, NULL, INFINITY, r, err, errlen);

@@ -50,6 +50,8 @@ typedef struct tb_scene_opts {
                               * r->hwst.energy_pj, r->energy_pj_per_pixel); 0: not counted,
                               * and the render pays nothing for it */
     tb_scene_nodes *nodes;   /* NULL, or record into it / replay from it (not with a prep) */
+    struct tb_items_memo *memo;   /* NULL, or the shade unit's runs over the nodes kept and
+                              * reused (a sweep's points that share their nodes) */
 } tb_scene_opts;
 
 /* Speed and energy of a render in hardware terms (docs/timing.md,

@@ -72,7 +72,7 @@ static int measure(const scn_desc *d0, const scn_gbuf *g, const scn_mesh *m, scn
     d.policy = pol;
     snprintf(d.L, sizeof d.L, "%d", L);
     snprintf(d.terms, sizeof d.terms, "%d", terms);
-    tb_scene_opts o = { jobs, 0, NULL, NULL, 0, 0, NULL };
+    tb_scene_opts o = { jobs, 0, NULL, NULL, 0, 0, NULL, NULL };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     memset(out, 0, sizeof *out);

@@ -2,7 +2,7 @@
  * per-pixel reference and the method's nodes on the shade unit
  * (tb_scene_pipes.h). */
 #include "testbench/study/tb_scene_pipes.h"
-#include "testbench/tb_items.h"
+#include "testbench/tb_items_memo.h"
 #include "base/base_json.h"
 #include "base/base_out.h"
 #include <math.h>
@@ -202,7 +202,8 @@ static int method_row(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, c
     double *nin = inputs(rec, 1, fr, &nn), *nout = malloc((nn ? nn : 1) * sizeof *nout);
     if (!nout) base_out_of_memory();
     tb_items_stats ns;
-    int rc = tb_items_run(s->u, &s->cfg, &s->f, nin, nn, o->jobs < 1 ? 1 : o->jobs, 1, nout, &ns, err, errlen);
+    int rc = tb_items_run_memo(o->memo, s->u, &s->cfg, &s->f, nin, nn, o->jobs < 1 ? 1 : o->jobs, 1, nout, &ns,
+                               err, errlen);
     tb_scene_result r2;
     memset(&r2, 0, sizeof r2);
     if (rc == TB_OK) {

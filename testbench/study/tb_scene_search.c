@@ -125,7 +125,7 @@ static int holds(const search *s, const eval *e)
 static void render_b(const search *s, const scn_desc *d, const unit_fmts *f, int heldout, int threads, double budget,
                      eval *e, tb_scene_result *keep)
 {
-    tb_scene_opts o = { threads, heldout, NULL, f, s->no_batch, 0, NULL };
+    tb_scene_opts o = { threads, heldout, NULL, f, s->no_batch, 0, NULL, NULL };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     if (keep) memset(keep, 0, sizeof *keep);

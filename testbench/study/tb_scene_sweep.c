@@ -24,6 +24,7 @@
 #include "base/base_json.h"
 #include "testbench/study/tb_scene_search.h"
 #include "testbench/study/tb_scene_pipes.h"
+#include "testbench/tb_items_memo.h"
 #include "testbench/study/tb_sweep.h"
 #include "chart/chart.h"
 #include "base/base_out.h"
@@ -186,6 +187,8 @@ typedef struct sweep {
     int no_batch;     /* tb_scene_opts.no_batch of every render */
     double t0;        /* monotonic seconds at the start (the progress line) */
     double cpu_sim, cpu_render;   /* tb_scene_work's */
+    tb_items_memo *memo;          /* the shade unit's runs over nodes, kept: grid points with the
+                                   * same nodes (terms, the span schedule) shade them once */
 } sweep;
 
 static double mono_now(void)
@@ -211,7 +214,7 @@ static void run_pt(void *ctx, size_t k)
     pt *p = &s->p[s->todo[k]];
     scn_desc dd;
     desc_of(s->d, p, &dd);
-    tb_scene_opts o = { 1, 0, NULL, NULL, s->no_batch, 1, NULL };
+    tb_scene_opts o = { 1, 0, NULL, NULL, s->no_batch, 1, NULL, s->memo };
     tb_scene_result r;
     memset(&r, 0, sizeof r);
     tb_scene_pipes pipes;
@@ -673,7 +676,7 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
 
     int rc = TB_OK;
     sweep sw = { .d = d, .m = m, .p = p, .n = n, .mu = PTHREAD_MUTEX_INITIALIZER, .tty = isatty(2),
-                 .no_batch = no_batch, .t0 = mono_now() };
+                 .no_batch = no_batch, .t0 = mono_now(), .memo = tb_items_memo_new() };
     scn_gbuf g;
     memset(&g, 0, sizeof g);
     sw.todo = malloc((n ? n : 1) * sizeof *sw.todo);
@@ -692,7 +695,7 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
     /* the per-pixel shader's configurations, over the same pixels */
     tb_pipe_row ref[N_SHADE_ROWS];
     int nref = 0;
-    tb_scene_opts ro = { jobs, 0, NULL, NULL, no_batch, 1, NULL };
+    tb_scene_opts ro = { jobs, 0, NULL, NULL, no_batch, 1, NULL, NULL };
     if ((rc = tb_scene_pipes_refs(d, NULL, &g, &ro, SHADE_W, N_SHADE_W, ref, &nref, err, errlen)) != TB_OK) goto done;
     for (int m = 0; m < M_N; m++) fronts(p, n, m);
     picks k = pick_points(p, n);
@@ -710,6 +713,7 @@ int tb_scene_sweep(const scn_desc *d, const scn_mesh *m, int jobs, int no_batch,
                  k.nfail, sw.ntodo);
     }
 done:
+    tb_items_memo_free(sw.memo);
     free(sw.todo);
     free(p);
     scn_gbuf_free(&g);
