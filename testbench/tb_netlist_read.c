@@ -72,7 +72,7 @@ typedef struct nl {
     char      **port_ref[5];   /* in, out, in_valid, in_ready, out_valid */
     int        *port[5];
     int         nport[5];
-    int         port_line[5];
+    int         port_line[5][UNIT_MAX_IO];
     tb_built    ref;        /* the built-in unit, built for fn=unit (ref.c NULL: not) */
     void      **mem;        /* every allocation, freed with it */
     size_t      nmem, capmem;
@@ -280,7 +280,6 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
         e->scope = scope_index(x, e->name, (size_t)(dot - e->name));
         if (e->scope < 0) return BAD("%s: scope %.*s is not declared (scope PATH)", e->name, (int)(dot - e->name), e->name);
     }
-    if (!strcmp(e->name, x->clk ? x->clk : "")) return BAD("%s: the clock's name", e->name);
     if (parse_fmt(x, tok[2], &e->fmt)) return -1;
     e->r = e->o = NL_NONE;
     for (int i = 0; i < 5; i++) e->op[i] = NL_NONE;
@@ -316,7 +315,7 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
             if (whole(x, "init", v, INT64_MIN, INT64_MAX, &w)) return -1;
             e->rst_raw = w;
         } else if (KEY("by")) {
-            if (whole(x, "by", v, -128, 128, &w)) return -1;
+            if (whole(x, "by", v, -64, 64, &w)) return -1;
             e->shift = (int)w;
         } else if (KEY("depth")) {
             if (whole(x, "depth", v, 0, 10000, &w)) return -1;
@@ -441,8 +440,8 @@ static int parse_port(nl *x, char **tok, int nt)
     if (x->nport[r] == UNIT_MAX_IO) return BAD("port %s: more than %d", tok[1], UNIT_MAX_IO);
     if (!name_ok(tok[2])) return BAD("port %s %s: not a name", tok[1], tok[2]);
     if (!x->port_ref[r]) x->port_ref[r] = nl_alloc(x, UNIT_MAX_IO * sizeof(char *));
+    x->port_line[r][x->nport[r]] = x->line;
     x->port_ref[r][x->nport[r]++] = nl_strdup(x, tok[2], strlen(tok[2]));
-    x->port_line[r] = x->line;
     return 0;
 }
 
@@ -587,6 +586,7 @@ static int resolve_all(nl *x)
     t.slot = nl_alloc(x, t.cap * sizeof *t.slot);
     memset(t.slot, 0xff, t.cap * sizeof *t.slot);
     for (int i = 0; i < x->nel; i++) {
+        if (!strcmp(x->el[i].name, x->clk)) return bad_at(x, x->el[i].line, "%s: the clock's name", x->el[i].name);
         int k = find(x, &t, x->el[i].name);
         if (k >= 0) return bad_at(x, x->el[i].line, "%s: declared twice (first at line %d)", x->el[i].name, x->el[k].line);
         for (int j = 0; j < x->nscope; j++)
@@ -609,7 +609,7 @@ static int resolve_all(nl *x)
             else if (e->kind == SIM_KIND_WIRE || e->kind == SIM_KIND_INPUT) key = "from";
             int fwd = k == OP_A && (e->kind == SIM_KIND_REG || e->kind == SIM_KIND_WIRE || e->kind == SIM_KIND_INPUT);
             if ((e->op[k] = resolve(x, &t, i, key, e->ref[k], fwd, k == OP_CLK)) == NL_ERR) return -1;
-            if (k == OP_A && e->op[k] == i) return bad_at(x, e->line, "%s %s: %s=%s names itself", sim_kind_name(e->kind), e->name, key, e->name);
+            if (k == OP_A && e->op[k] == i && e->kind != SIM_KIND_REG) return bad_at(x, e->line, "%s %s: %s=%s names itself", sim_kind_name(e->kind), e->name, key, e->name);
         }
         if (e->n) {
             e->in = nl_alloc(x, (size_t)e->n * sizeof *e->in);
@@ -619,13 +619,26 @@ static int resolve_all(nl *x)
         if (e->kind == SIM_KIND_MUL && e->csd && x->el[e->op[OP_B]].kind != SIM_KIND_CONST)
             return bad_at(x, e->line, "mul %s: net=csd needs a constant b=", e->name);
         if (e->kind == SIM_KIND_LOGIC && check_logic(x, e)) return -1;
+        if (e->kind == SIM_KIND_SHIFT) {
+            /* a left shift past the binary point is made on the raw: it
+             * must stay within the exact 128-bit value */
+            sim_fmt f = x->el[e->op[OP_A]].fmt;
+            int sa = e->shift > f.fbits ? e->shift - f.fbits : 0;
+            if (f.width + sa > 126)
+                return bad_at(x, e->line, "shift %s: by=%d takes %s's %d bits past 126", e->name, e->shift,
+                              e->ref[OP_A], f.width + sa);
+        }
     }
     for (int r = 0; r < 5; r++) {
         x->port[r] = nl_alloc(x, UNIT_MAX_IO * sizeof(int));
         for (int j = 0; j < x->nport[r]; j++) {
             int k = find(x, &t, x->port_ref[r][j]);
-            if (k < 0) return bad_at(x, x->port_line[r], "port %s %s is not declared", port_names[r], x->port_ref[r][j]);
+            if (k < 0) return bad_at(x, x->port_line[r][j], "port %s %s is not declared", port_names[r], x->port_ref[r][j]);
             x->port[r][j] = k;
+            /* the testbench drives these: inputs nothing else drives */
+            if ((r == P_IN || r == P_IN_VALID) && (x->el[k].kind != SIM_KIND_INPUT || x->el[k].ref[OP_A]))
+                return bad_at(x, x->port_line[r][j], "port %s %s: not an input without from= (the testbench drives it)",
+                              port_names[r], x->port_ref[r][j]);
         }
     }
     int nin = unit_n_in(x->base), nout = unit_n_out(x->base);

@@ -117,6 +117,7 @@ const cli_optspec cli_run_spec = {
     "run", { cli_unit_opt_tab, accept_tab, run_tab }, run_pos, 0,
     "run: unknown option '%s' (see shadesim run --help)",
     "usage: shadesim run UNIT [options]\n"
+    "       shadesim run FILE [options]             a netlist file (shadesim netlist), built from its text\n"
     "       shadesim run all [acceptance options]   every unit on its default vectors, one summary table\n\n"
     "Drives UNIT clock by clock with golden vectors (inputs quantized to the unit's\n"
     "input formats with --round), reports cycles, area, quantization error and\n"
@@ -280,7 +281,7 @@ int cli_run(int argc, char **argv)
 {
     cli_unit_opts o;
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_run_spec);
-    if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, or run all)");
+    if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, a netlist file, or run all)");
     const char *unit = argv[1];
     tb_accept acc;
     memset(&acc, 0, sizeof acc);
@@ -296,7 +297,7 @@ int cli_run(int argc, char **argv)
     unit_fmts fm;
     char err[600];
     const unit_desc *nlu = NULL;
-    if (!unit_find(unit) && (!strcmp(unit, "-") || !stat(unit, &nst))) {
+    if (!unit_find(unit) && !stat(unit, &nst)) {
         if (!(nlu = tb_netlist_load(unit, &ncfg, &fm, err, sizeof err))) return cli_usage_error("%s", err);
         memset(&o, 0, sizeof o);
         o.u = nlu;
