@@ -38,16 +38,6 @@ static int rel_path(const sim_signal *s, const sim_scope *sc, char *buf, size_t 
     return 0;
 }
 
-/* A name the text can hold: letters, digits and '_' (a path: those and
- * single dots between). */
-static int name_ok(const char *s)
-{
-    if (!*s || *s == '.') return 0;
-    for (; *s; s++)
-        if (!(nl_name_char(*s) || (*s == '.' && s[1] && s[1] != '.'))) return 0;
-    return 1;
-}
-
 typedef struct wr {
     FILE *f;
     const sim_scope *sc;
@@ -64,7 +54,7 @@ static int put_ref(wr *w, const char *key, const sim_signal *s)
 {
     char p[256];
     if (s == w->clk) snprintf(p, sizeof p, "%s", s->name);
-    else if (rel_path(s, w->sc, p, sizeof p) || !name_ok(p)) {
+    else if (rel_path(s, w->sc, p, sizeof p) || !nl_name_ok(p)) {
         snprintf(w->err, w->errlen, "signal %s is outside the unit's scope or has a name the text cannot hold",
                  s->name);
         return -1;
@@ -194,7 +184,7 @@ static int put_scopes(wr *w, const sim_scope *sc, const char *prefix)
     for (const sim_scope *k = sc->first_child; k; k = k->next_sibling) {
         char p[256];
         snprintf(p, sizeof p, "%s%s%s", prefix, *prefix ? "." : "", k->name);
-        if (!name_ok(p)) {
+        if (!nl_name_ok(p)) {
             snprintf(w->err, w->errlen, "scope %s: a name the text cannot hold", p);
             return -1;
         }
