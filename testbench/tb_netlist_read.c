@@ -409,7 +409,7 @@ const unit_desc *tb_netlist_load(const char *path, unit_cfg *cfg, unit_fmts *fm,
         x->line++;
         if (n == BASE_LINE_LONG) rc = BAD("line longer than %zu bytes", NL_LINE_MAX);
         else if (n == BASE_LINE_NUL) rc = BAD("not a text file (NUL byte)");
-        else if (n == BASE_LINE_ERR) rc = BAD("%s", strerror(errno));
+        else if (n == BASE_LINE_ERR) rc = nl_bad(x, 0, "%s", strerror(errno));
         else rc = nl_parse_line(x, line);
         if (rc) break;
     }
