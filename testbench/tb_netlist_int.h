@@ -20,6 +20,19 @@ static inline int nl_name_char(char ch)
 const char *nl_real_str(double x, char *buf, size_t len);
 /* s as "..." with \\, \" and \n escaped. */
 void nl_put_quoted(FILE *f, const char *s);
+/* A logic element that is wiring (tb_netlist_bits.c): its output is the
+ * concatenation, most significant first, of items: an input's bits
+ * (%K, %K[B], %K[H:L]), inverted with a leading ~, or constant bits
+ * (W'bBITS, W'hHEX); at most 64 bits in all, zero-extended or cut to the
+ * output's width. */
+#define NL_BITS_MAX 16
+typedef struct nl_bits_item { int8_t in; uint8_t hi, lo, inv; uint64_t k; } nl_bits_item;   /* in -1: k */
+typedef struct nl_bits { int n; nl_bits_item item[NL_BITS_MAX]; } nl_bits;
+/* text ("{%0,2'b01}", no blanks) for inputs of widths in_width[0..nin-1]:
+ * 0, or -1 when it is not of that form. */
+int     nl_bits_parse(const char *text, int nin, const int *in_width, nl_bits *out);
+int64_t nl_bits_fn(const int64_t *in, void *user);   /* a sim_logic_fn; user: the nl_bits */
+void    nl_bits_put(FILE *f, const nl_bits *b);
 /* tb_netlist_load on text in memory (len bytes), named path in messages. */
 const unit_desc *nl_load_text(const char *text, size_t len, const char *path, unit_cfg *cfg, unit_fmts *fm,
                               char *err, size_t errlen);
@@ -51,6 +64,8 @@ typedef struct nl_el {
     int         has_area, depth, csd, fn_unit;
     char       *verilog;
     const char *table_hex;
+    const char *bits_text;  /* bits=, parsed into bits */
+    nl_bits    *bits;
     uint64_t   *table;
     sim_logic_fn fn;        /* fn=unit: the built-in unit's */
     void       *user;

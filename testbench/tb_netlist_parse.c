@@ -151,7 +151,7 @@ static const char *const kind_keys[SIM_KIND__COUNT] = {
     [SIM_KIND_SUB] = "a b round overflow",
     [SIM_KIND_MUL] = "a b round overflow net",
     [SIM_KIND_SHIFT] = "x by round overflow",
-    [SIM_KIND_LOGIC] = "in area depth verilog table fn",
+    [SIM_KIND_LOGIC] = "in area depth verilog table bits fn",
 };
 
 static int key_of(const char *keys, const char *k, size_t n)
@@ -255,6 +255,8 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
             e->fn_unit = 1;
         } else if (KEY("verilog")) {
             e->verilog = nl_strdup(x, v, strlen(v));
+        } else if (KEY("bits")) {
+            e->bits_text = nl_strdup(x, v, strlen(v));
         } else if (KEY("table")) {
             e->table_hex = nl_strdup(x, v, strlen(v));
         } else if (KEY("in")) {
@@ -288,7 +290,8 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
         if (!e->in_ref) return BAD("logic %s: needs in=NAME,...", e->name);
         if (e->n > 8) return BAD("logic %s: %d inputs (at most 8)", e->name, e->n);
         if (!e->has_area) return BAD("logic %s: needs area=GE (its gates, NAND2 equivalents)", e->name);
-        if (!e->table_hex == !e->fn_unit) return BAD("logic %s: needs one of table=HEX and fn=unit", e->name);
+        if ((e->table_hex != NULL) + (e->bits_text != NULL) + e->fn_unit != 1)
+            return BAD("logic %s: needs one of table=HEX, bits=WIRING and fn=unit", e->name);
     }
     x->nel++;
     return 0;

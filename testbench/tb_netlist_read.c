@@ -76,8 +76,15 @@ static int hexval(char ch)
 
 static int check_logic(nl *x, nl_el *e)
 {
-    int bits = 0;
-    for (int j = 0; j < e->n; j++) bits += x->el[e->in[j]].fmt.width;
+    int bits = 0, w[8];
+    for (int j = 0; j < e->n; j++) bits += (w[j] = x->el[e->in[j]].fmt.width);
+    if (e->bits_text) {
+        e->bits = nl_alloc(x, sizeof *e->bits);
+        if (nl_bits_parse(e->bits_text, e->n, w, e->bits))
+            return nl_bad(x, e->line, "logic %s: bits=%s: expected {ITEM,...} of %%K, %%K[B], %%K[H:L] (K an input, "
+                          "bits within its width), ~ before one, W'bBITS or W'hHEX; 64 bits at most", e->name,
+                          e->bits_text);
+    }
     if (e->table_hex) {
         if (bits > TB_NETLIST_TABLE_BITS)
             return nl_bad(x, e->line, "logic %s: inputs of %d bits in all: a table takes at most %d", e->name, bits,
@@ -297,7 +304,12 @@ int tb_netlist_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
         case SIM_KIND_LOGIC: {
             sim_logic_fn fn = e->fn;
             void *user = e->user;
-            if (e->table) {
+            if (e->bits) {
+                nl_bits *b = sim_alloc(c, sizeof *b);
+                *b = *e->bits;
+                fn = nl_bits_fn;
+                user = b;
+            } else if (e->table) {
                 nl_table *t = sim_alloc(c, sizeof *t);
                 t->n = e->n;
                 for (int j = 0; j < e->n; j++) t->w[j] = x->el[e->in[j]].fmt.width;

@@ -84,6 +84,37 @@ static void put_table(wr *w, const sim_prim_info *e, int bits)
     }
 }
 
+/* A wide logic element as wiring (bits=): where its Verilog text is
+ * "assign %y = EXPR;" with EXPR of nl_bits's form, and EXPR computes what
+ * its function computes on every input tried (each input all zeros, all
+ * ones, and 4000 draws of every bit at random): 1 and *b; else 0. */
+static int wiring_of(const sim_prim_info *e, nl_bits *b)
+{
+    if (!e->verilog || e->n > 8) return 0;
+    char t[600];
+    size_t n = 0;
+    for (const char *p = e->verilog; *p && n < sizeof t - 1; p++)
+        if (*p != ' ' && *p != '\n') t[n++] = *p;
+    t[n] = 0;
+    if (strncmp(t, "assign%y=", 9) || n < 11 || t[n - 1] != ';') return 0;
+    t[n - 1] = 0;
+    int w[8];
+    for (int i = 0; i < e->n; i++) w[i] = e->in[i]->fmt.width;
+    if (nl_bits_parse(t + 9, e->n, w, b)) return 0;
+    uint64_t r = 0x9e3779b97f4a7c15u;
+    for (int k = 0; k < 4002; k++) {
+        int64_t v[8];
+        for (int i = 0; i < e->n; i++) {
+            r ^= r << 13; r ^= r >> 7; r ^= r << 17;
+            uint64_t bitsv = k == 0 ? 0 : k == 1 ? UINT64_MAX : r;
+            v[i] = sim_fx_canon((int64_t)(bitsv & (w[i] >= 64 ? UINT64_MAX : (((uint64_t)1 << w[i]) - 1))),
+                                e->in[i]->fmt);
+        }
+        if (sim_fx_canon(e->fn(v, e->user), e->y->fmt) != sim_fx_canon(nl_bits_fn(v, b), e->y->fmt)) return 0;
+    }
+    return 1;
+}
+
 /* The element's modes when they are not what its format and the file's
  * defaults give. */
 static void put_modes(wr *w, const sim_prim_info *e)
@@ -165,7 +196,9 @@ static int put_signal(wr *w, const sim_signal *s, unsigned fix)
             fputs(" verilog=", w->f);
             nl_put_quoted(w->f, e.verilog);
         }
+        nl_bits wiring;
         if (bits <= TB_NETLIST_TABLE_BITS) put_table(w, &e, bits);
+        else if (wiring_of(&e, &wiring)) { fputs(" bits=", w->f); nl_bits_put(w->f, &wiring); }
         else fputs(" fn=unit", w->f);
         break;
     }

@@ -137,6 +137,12 @@ static void test_malformed(void)
         { "input t u1.15", "input t u1.15 from=\"t\\q\"", "'\\q' in a quoted text", 1 },
         { "input t u1.15", "input t u1.15 from=t", "input t: from=t names itself", 1 },
         { "mul mul s7.9 a=mx1 b=t", "mul mul s7.9 a=mx1 b=t net=csd", "mul mul: net=csd needs a constant b=", 1 },
+        { "reg rg s7.9", "logic zz u2.0 in=step area=0 bits={%0[5],1'b1}\nreg rg s7.9",
+          "logic zz: bits={%0[5],1'b1}: expected", 1 },
+        { "reg rg s7.9", "logic zz u2.0 in=step area=0 bits={%0[2],2'b100}\nreg rg s7.9",
+          "logic zz: bits={%0[2],2'b100}: expected", 1 },
+        { "area=12 table=10111100", "area=12 bits=%0[0] table=10111100",
+          "logic mx1_sel: needs one of table=HEX, bits=WIRING and fn=unit", 1 },
     };
     unit_cfg cfg;
     const unit_desc *u = unit_find("horner3");
