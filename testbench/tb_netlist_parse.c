@@ -264,14 +264,14 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
             if (n < 0) return -1;
             e->n = n;
         } else {
-            static const char *const refk[][2] = {
-                { "from", "" }, { "d", "" }, { "a", "" }, { "x", "" }, { "b", "" }, { "en", "" }, { "sel", "" },
-                { "pass", "" }, { "rst", "" }, { "clk", "" } };
-            static const int refop[] = { OP_A, OP_A, OP_A, OP_A, OP_B, OP_C, OP_C, OP_C, OP_RST, OP_CLK };
-            for (size_t k = 0; k < sizeof refop / sizeof refop[0]; k++)
-                if (KEY(refk[k][0])) {
-                    if (!nl_name_ok(v)) return BAD("%s=%s: not a name", refk[k][0], v);
-                    e->ref[refop[k]] = nl_strdup(x, v, strlen(v));
+            /* an operand by name: the key and the record's slot */
+            static const struct { const char *key; int op; } refs[] = {
+                { "from", OP_A }, { "d", OP_A }, { "a", OP_A }, { "x", OP_A }, { "b", OP_B }, { "en", OP_C },
+                { "sel", OP_C }, { "pass", OP_C }, { "rst", OP_RST }, { "clk", OP_CLK } };
+            for (size_t k = 0; k < sizeof refs / sizeof refs[0]; k++)
+                if (KEY(refs[k].key)) {
+                    if (!nl_name_ok(v)) return BAD("%s=%s: not a name", refs[k].key, v);
+                    e->ref[refs[k].op] = nl_strdup(x, v, strlen(v));
                 }
         }
 #undef KEY
