@@ -42,6 +42,7 @@ int cli_stability(int argc, char **argv);
 int cli_verilog(int argc, char **argv);
 int cli_cosim(int argc, char **argv);
 int cli_synth(int argc, char **argv);
+int cli_netlist(int argc, char **argv);
 
 /* Print "shadesim: " + message + newline to stderr; returns CLI_USAGE.
  * Control bytes and bytes that are not UTF-8 go out as \xNN (messages

@@ -114,7 +114,7 @@ int cli_unit_param(void *unit_opts, const char *opt, const char *val);
 /* Each verb's options (in that verb's file). */
 extern const cli_optspec cli_list_spec, cli_vectors_spec, cli_run_spec, cli_claims_spec, cli_sweep_spec,
     cli_merge_spec, cli_scene_spec, cli_verilog_spec, cli_cosim_spec, cli_synth_spec, cli_stability_spec,
-    cli_factor_spec, cli_chart_spec, cli_report_spec;
+    cli_factor_spec, cli_chart_spec, cli_report_spec, cli_netlist_spec;
 
 /* Every verb's option spec with the verb's function ({NULL, NULL} ends
  * it; cli_optverbs.c), for the test that holds each verb's --help to its

@@ -13,6 +13,7 @@ const cli_optverb cli_optverbs[] = {
     { &cli_verilog_spec, cli_verilog },
     { &cli_cosim_spec, cli_cosim },
     { &cli_synth_spec, cli_synth },
+    { &cli_netlist_spec, cli_netlist },
     { &cli_stability_spec, cli_stability },
     { &cli_factor_spec, cli_factor },
     { &cli_merge_spec, cli_merge },

@@ -7,6 +7,7 @@
 #include "testbench/tb_wave.h"
 #include "testbench/tb_widths.h"
 #include "testbench/tb_derive.h"
+#include "testbench/tb_netlist.h"
 #include <limits.h>
 #include <math.h>
 #include <stddef.h>
@@ -116,6 +117,7 @@ const cli_optspec cli_run_spec = {
     "run", { cli_unit_opt_tab, accept_tab, run_tab }, run_pos, 0,
     "run: unknown option '%s' (see shadesim run --help)",
     "usage: shadesim run UNIT [options]\n"
+    "       shadesim run FILE [options]             a netlist file (shadesim netlist), built from its text\n"
     "       shadesim run all [acceptance options]   every unit on its default vectors, one summary table\n\n"
     "Drives UNIT clock by clock with golden vectors (inputs quantized to the unit's\n"
     "input formats with --round), reports cycles, area, quantization error and\n"
@@ -294,7 +296,7 @@ int cli_run(int argc, char **argv)
 {
     cli_unit_opts o;
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_run_spec);
-    if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, or run all)");
+    if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, a netlist file, or run all)");
     const char *unit = argv[1];
     tb_accept acc;
     memset(&acc, 0, sizeof acc);
@@ -303,7 +305,19 @@ int cli_run(int argc, char **argv)
         if (cli_opt_parse(&run_all_spec, base, argc, argv, 2)) return CLI_USAGE;
         return run_all(&acc);
     }
-    if (cli_unit_select(&o, unit)) return CLI_USAGE;
+    /* A name that is no unit but a file's: a netlist (shadesim netlist),
+     * built from its text, run against the unit it names. */
+    struct stat nst;
+    unit_cfg ncfg;
+    unit_fmts fm;
+    char err[600];
+    const unit_desc *nlu = NULL;
+    if (!unit_find(unit) && !stat(unit, &nst)) {
+        if (!(nlu = tb_netlist_load(unit, &ncfg, &fm, err, sizeof err))) return cli_usage_error("%s", err);
+        memset(&o, 0, sizeof o);
+        o.u = nlu;
+        o.cfg = ncfg;
+    } else if (cli_unit_select(&o, unit)) return CLI_USAGE;
     run_args ra = { NULL, NULL, 0, 0, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
     ra.u = o.u;
     run_cur = &ra;
@@ -311,6 +325,10 @@ int cli_run(int argc, char **argv)
     int bad = cli_opt_parse(&cli_run_spec, base, argc, argv, 2);
     run_cur = NULL;
     if (bad) return CLI_USAGE;
+    if (nlu && (o.nfmt || memcmp(&o.cfg, &ncfg, sizeof ncfg)))
+        return cli_usage_error("run %s: the netlist is the design: --width, --fmt, --round, --overflow, --schedule "
+                               "and --param are its own lines (write it again with shadesim netlist %s ...)",
+                               unit, o.u->name);
     if (ra.nrange && !ra.derived) return cli_usage_error("run: --range goes with --ranges derived");
     const char *vcd = ra.vcd, *csv = ra.csv;
     int json = ra.json, fst = ra.fst, ranges = ra.ranges;
@@ -327,10 +345,8 @@ int cli_run(int argc, char **argv)
     if (fst && !tb_wave_have_vcd2fst())
         return cli_usage_error("run: --fst needs vcd2fst, which is not installed (Debian package gtkwave)");
     FILE *report = vcd_out || csv_out ? stderr : stdout;
-    unit_fmts fm;
-    char err[600];
-    if (tb_formats(o.u, &o.cfg, o.fmt, o.nfmt, &fm, err, sizeof err)) return cli_usage_error("%s", err);
-    if (!o.nfmt) {
+    if (!nlu && tb_formats(o.u, &o.cfg, o.fmt, o.nfmt, &fm, err, sizeof err)) return cli_usage_error("%s", err);
+    if (!o.nfmt && !nlu) {
         /* Past the top of the unit's range the build would refuse with a
          * hint about one signal; say the range instead (shadesim list). */
         int wmax = tb_width_max(o.u, &o.cfg, err, sizeof err);

@@ -15,6 +15,7 @@ const cli_verb cli_verbs[] = {
     { "scene",   cli_scene,   "render a scene through the simulated interpolation hardware: images, NMSE, clocks, area" },
     { "verilog", cli_verilog, "a unit as synthesizable Verilog-2001, bit-exact with the simulation, and its testbench" },
     { "cosim",   cli_cosim,   "the exported Verilog in Icarus or Verilator against shadesim, raw for raw, cycle for cycle" },
+    { "netlist", cli_netlist, "a unit as built, as text: one element a line; run FILE builds it back" },
     { "synth",   cli_synth,   "Yosys cell counts of the exported Verilog beside shadesim's area estimate" },
     { "stability", cli_stability, "where each method stops working: failure boundaries measured by simulation" },
     { "factor",  cli_factor,  "factorize a BRDF into positive texture factors (log-space least squares) against an SVD baseline" },

@@ -1,0 +1,116 @@
+/* tb_netlist_int.h - what the netlist writer and reader share (tb_netlist.h). */
+#ifndef TB_NETLIST_INT_H
+#define TB_NETLIST_INT_H
+#include "testbench/tb_netlist.h"
+#include <stdio.h>
+#include <stdint.h>
+
+/* What a line adds to its element's constructor (the writer's self-check
+ * finds them): the depth of a logic element in AND2 levels
+ * (sim_logic_depth), a constant multiplier as a shift-and-add network
+ * (brdf_cmul). */
+enum { NL_FIX_DEPTH = 1u, NL_FIX_CSD = 2u };
+
+/* A character of a signal or scope name. */
+static inline int nl_name_char(char ch)
+{
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_';
+}
+/* x in the fewest digits that read back as x (%.15g to %.17g). */
+const char *nl_real_str(double x, char *buf, size_t len);
+/* s as "..." with \\, \" and \n escaped. */
+void nl_put_quoted(FILE *f, const char *s);
+/* A logic element that is wiring (tb_netlist_bits.c): its output is the
+ * concatenation, most significant first, of items: an input's bits
+ * (%K, %K[B], %K[H:L]), inverted with a leading ~, or constant bits
+ * (W'bBITS, W'hHEX); at most 64 bits in all, zero-extended or cut to the
+ * output's width. */
+#define NL_BITS_MAX 16
+typedef struct nl_bits_item { int8_t in; uint8_t hi, lo, inv; uint64_t k; } nl_bits_item;   /* in -1: k */
+typedef struct nl_bits { int n; nl_bits_item item[NL_BITS_MAX]; } nl_bits;
+/* text ("{%0,2'b01}", no blanks) for inputs of widths in_width[0..nin-1]:
+ * 0, or -1 when it is not of that form. */
+int     nl_bits_parse(const char *text, int nin, const int *in_width, nl_bits *out);
+int64_t nl_bits_fn(const int64_t *in, void *user);   /* a sim_logic_fn; user: the nl_bits */
+void    nl_bits_put(FILE *f, const nl_bits *b);
+/* tb_netlist_load on text in memory (len bytes), named path in messages. */
+const unit_desc *nl_load_text(const char *text, size_t len, const char *path, unit_cfg *cfg, unit_fmts *fm,
+                              char *err, size_t errlen);
+
+/* ---- the reader's records (tb_netlist_parse.c reads the lines into them,
+ * tb_netlist_read.c resolves the names and builds) ---- */
+#define NL_NONE (-1)
+#define NL_CLK  (-2)                     /* the clock, as an operand */
+#define NL_ERR  (-3)                     /* a name that did not resolve (message given) */
+
+typedef struct nl_el {
+    int         line;
+    sim_kind    kind;
+    char       *name;       /* path below the unit's scope */
+    const char *leaf;       /* its last part */
+    int         scope;      /* index into nl.scopes, NL_NONE: the unit's */
+    sim_fmt     fmt;
+    int         r, o;       /* round=, overflow=: the mode, or NL_NONE */
+    /* operands: names as read, then indices into nl.el (NL_CLK, NL_NONE) */
+    char       *ref[5];
+    int         op[5];      /* OP_A, OP_B, OP_C, OP_RST, OP_CLK */
+    int         n;
+    char      **in_ref;
+    int        *in;
+    long long   raw, rst_raw;
+    unsigned long long ovf;
+    int         shift;
+    double      area;
+    int         has_area, depth, csd, fn_unit;
+    char       *verilog;
+    const char *table_hex;
+    const char *bits_text;  /* bits=, parsed into bits */
+    nl_bits    *bits;
+    uint64_t   *table;
+    sim_logic_fn fn;        /* fn=unit: the built-in unit's */
+    void       *user;
+} nl_el;
+enum { OP_A, OP_B, OP_C, OP_RST, OP_CLK };
+
+typedef struct nl {
+    unit_desc   desc;       /* the unit it builds (first: the registry's key) */
+    const unit_desc *base;  /* the built-in unit it names */
+    unit_cfg    cfg;
+    unit_fmts   fm;
+    char      **fmt;        /* fmt lines */
+    int         nfmt;
+    char       *clk;
+    char      **scopes;
+    int        *scope_parent;
+    int         nscope;
+    nl_el      *el;
+    int         nel, cap;
+    char      **port_ref[5];   /* in, out, in_valid, in_ready, out_valid */
+    int        *port[5];
+    int         nport[5];
+    int         port_line[5][UNIT_MAX_IO];
+    tb_built    ref;        /* the built-in unit, built for fn=unit (ref.c NULL: not) */
+    void      **mem;        /* every allocation, freed with it */
+    size_t      nmem, capmem;
+    const char *path;
+    int         version;    /* the netlist line seen */
+    int         line;
+    char       *err;
+    size_t      errlen;
+} nl;
+enum { P_IN, P_OUT, P_IN_VALID, P_IN_READY, P_OUT_VALID };
+extern const char *const nl_port_names[5];   /* the ROLEs of port lines */
+
+/* Memory owned by x (zeroed), freed with it. */
+void *nl_alloc(nl *x, size_t n);
+char *nl_strdup(nl *x, const char *s, size_t n);
+/* "PATH:LINE: message" (line 0: "PATH: message") into x's err; -1. */
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+int nl_bad(nl *x, int line, const char *fmt, ...);
+/* 1 if s is a name or a path of names joined by single dots. */
+int nl_name_ok(const char *s);
+/* One line of the file into x: 0, or -1 after nl_bad. */
+int nl_parse_line(nl *x, char *line);
+#endif
