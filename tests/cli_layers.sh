@@ -164,11 +164,18 @@ EOK
 #    unit calls its helpers); the span unit's descriptor and its halves
 #    (the hardware and the bound, each calling back the descriptor's
 #    table); the scene's description and file reader (scene files are
-#    being reworked on their own).
+#    being reworked on their own); the delay model's live bits (sim_live
+#    walks the element records sim_prim_describe gives, and an adder's
+#    cost in sim_prim asks it which bits vary: to be split when the
+#    record lookup moves to a leaf); the netlist reader and tb_build (a
+#    file's fn=unit logic takes its function from the built-in unit,
+#    built by tb_build, which builds a file's unit through the reader).
 KNOWN_CALLS="unit.o unit_*.o
 unit_span.o unit_span_bound.o
 unit_span.o unit_span_hw.o
-scene_desc.o scene_file.o"
+scene_desc.o scene_file.o
+sim_live.o sim_prim.o
+tb_build.o tb_netlist_read.o"
 circles() {
     { nm -A -g --defined-only "$1" | awk '{ n = split($1, a, ":"); print "D", a[n - 1], $NF }'
       nm -A -u "$1" | awk '{ n = split($1, a, ":"); print "U", a[n - 1], $NF }'; } 2>/dev/null |

@@ -78,7 +78,7 @@ grep -q 'the netlist is the design' "$T/err" && ok run_file_width_says_why || fa
 "$S" netlist div -o "$T/div.net"
 check wide_logic_fn_unit grep -q ' fn=unit$' "$T/div.net"
 "$S" netlist sqrt -o "$T/sqrt.net"
-check wide_logic_bits grep -q '^logic rt_dq u18.0 in=rt_q_in area=0 verilog=".*" bits={%0\[15:0\],2'"'"'h1}$' "$T/sqrt.net"
+check wide_logic_bits grep -q '^logic rt_dq u18.0 in=rt_q_in area=0 depth=0 verilog=".*" bits={%0\[15:0\],2'"'"'h1}$' "$T/sqrt.net"
 check narrow_logic_table grep -q ' table=[0-9a-f]*$' "$T/h3.net"
 # --help, and bad usage of the verb.
 expect help 0 "$S" netlist --help

@@ -298,8 +298,7 @@ int cli_run(int argc, char **argv)
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_run_spec);
     if (argc < 2 || argv[1][0] == '-') return cli_usage_error("run: which unit? (shadesim list, a netlist file, or run all)");
     const char *unit = argv[1];
-    tb_accept acc;
-    memset(&acc, 0, sizeof acc);
+    tb_accept acc = { 0 };
     if (!strcmp(unit, "all")) {
         void *base[] = { &acc };
         if (cli_opt_parse(&run_all_spec, base, argc, argv, 2)) return CLI_USAGE;
