@@ -7,6 +7,7 @@
 # guard against a reader that never stops or grows without end, not a
 # speed figure: it is far above what a working reader takes.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 PREFIX=cli_bounds.
 
 SECS=${BOUND_SECONDS:-5}

@@ -4,6 +4,7 @@
 # charts, bad arguments exit 2 with one line on stderr.
 # One line per check: "ok NAME", "FAIL NAME" or "skip NAME: why".
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 # bad_args NAME ARGS...: exit 2, one line on stderr, nothing on stdout.
 bad_args() {
     name=$1; shift

@@ -7,6 +7,7 @@
 # docs/units.md is the one `list --markdown` writes today.
 # tests/test_conform.c checks the descriptors, builds and bounds in C.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 PREFIX=cli_conform.
 
 units=$("$S" list | sed -n 's/^\([a-z0-9_]*\) — .*/\1/p')

@@ -11,11 +11,7 @@
 # schedule). Then the cases that must fall back to the kernel:
 # --vcd, an overflow.
 . tests/lib_cli.sh
-# Under the sanitizers, no leak check at each process's exit: this test
-# runs `run` hundreds of times over the same code, whose leaks cli_run,
-# cli_files and the test programs check (the check is a third of a
-# sanitized process's start-up and exit).
-[ -n "$ASAN" ] && export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 PREFIX=cli_engine.
 
 # every unit and schedule, as `list` names them

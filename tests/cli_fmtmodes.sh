@@ -5,6 +5,7 @@
 # text is exit 2 with one line naming the option and the problem.
 PREFIX=cli_fmtmodes.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 
 # refused NAME WHAT ARGS...: exit 2, one stderr line containing WHAT.
 refused() {

@@ -6,11 +6,7 @@
 # tests/gold/counters.txt, which `make gold` makes. One line per run; a
 # difference prints the gold line and the kernel's.
 . tests/lib_cli.sh
-# Under the sanitizers, no leak check at each process's exit: this test
-# runs `run` hundreds of times over the same code, whose leaks cli_run,
-# cli_files and the test programs check (the check is a third of a
-# sanitized process's start-up and exit).
-[ -n "$ASAN" ] && export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 PREFIX=cli_gold.
 G=tests/gold/counters.txt
 [ -s "$G" ] || { fail file "$G missing (make gold)"; exit 0; }

@@ -6,6 +6,7 @@
 # design it chooses (and refused when no design can meet them).
 # One line per check: "ok NAME", "FAIL NAME" or "skip NAME: why".
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 PREFIX=cli_ppa.
 
 "$S" sweep horner3 --widths 8:20 --schedule paper,pipe -o "$T/sw" >"$T/sw.out" 2>"$T/sw.err"

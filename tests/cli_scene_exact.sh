@@ -9,6 +9,7 @@
 # stale found/ after a search that finds nothing. Small images.
 PREFIX=cli_scene_exact.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 
 # exact NAME TARGET SCENE [--set ...]: search, then the plain render.
 exact() {

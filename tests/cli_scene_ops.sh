@@ -5,6 +5,7 @@
 # --compare). Small images.
 PREFIX=cli_scene_ops.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 
 R="--set resolution=64x64"
 

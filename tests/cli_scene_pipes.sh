@@ -8,6 +8,7 @@
 # sweep's shader rows and charts, a lighting the unit does not take, and
 # bad values refused with exit 2.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 PREFIX=cli_scene_pipes.
 
 "$S" scene sphere --set resolution=80x80 -j 2 -o "$T/a" >"$T/a.out" 2>"$T/a.err"

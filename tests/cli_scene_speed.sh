@@ -7,6 +7,7 @@
 # scene --sweep's speed and energy columns and fronts recomputed from its
 # CSV.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 PREFIX=cli_scene_speed.
 
 "$S" scene sphere --set resolution=96x96 -o "$T/s" >"$T/s.out" 2>"$T/s.err"

@@ -5,6 +5,7 @@
 # One line per check: "ok NAME", "FAIL NAME" or "skip NAME: why".
 PREFIX=cli_search.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 
 # ---- no silent widening: horner3's datapath is s7.(W-7) ----------------
 "$S" run horner3 --width 4 >"$T/o" 2>"$T/e"

@@ -3,6 +3,7 @@
 # refused (exit 2, one line) with the nearest name suggested; a word near
 # nothing gets no suggestion; an unknown scene name lists the built-ins.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 PREFIX=cli_suggest.
 
 # suggest NAME WANT CMD...: exit 2, one line, containing WANT.

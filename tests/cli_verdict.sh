@@ -4,6 +4,7 @@
 # targets. One "ok/FAIL NAME" line per check.
 PREFIX=cli_verdict.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 
 # st NAME WANT CMD...: exit status only.
 st() {

@@ -4,6 +4,7 @@
 # past it as "not buildable" (exit 0), not as failed simulations.
 PREFIX=cli_widthrange.
 . tests/lib_cli.sh
+no_leak_check   # (lib_cli.sh: the same verbs over and over)
 
 # The top, from the divider's rule (units/unit_div.c): the remainder r has
 # the divisor's fraction bits plus its integer bits and may be at most 62

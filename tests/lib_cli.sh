@@ -32,6 +32,17 @@ expect() {
 # the plain build, it says); its checks are the same.
 case "${TST_BUILD:-}" in *-asan) ASAN=1 ;; *) ASAN= ;; esac
 
+# no_leak_check: under the sanitizers, no leak check at each shadesim
+# process's exit (a third of a sanitized process's start-up and exit
+# time). For the tests that run the same verbs over and over (every unit,
+# every variant); the verbs' leaks, error paths included, are checked by
+# cli_run, cli_files, cli_strict, cli_outset, cli_sweep, cli_scene,
+# cli_netlist, cli_verilog, cli_stability and the test programs.
+no_leak_check() {
+    [ -n "$ASAN" ] && export ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
+    return 0
+}
+
 # plain_only: the rest of the test checks what no build flavour changes
 # (the sources, the docs): it runs in the plain build alone.
 plain_only() {

@@ -29,13 +29,6 @@
 
 static const unit_desc *cur;    /* the unit of the running test */
 
-static int asan_build(void)
-{
-    const char *b = getenv("TST_BUILD");
-    size_t n = b ? strlen(b) : 0;
-    return n >= 5 && !strcmp(b + n - 5, "-asan");
-}
-
 static int have(const char *tool)
 {
     char cmd[128];
@@ -248,7 +241,7 @@ static void check_run(const unit_desc *u, const unit_cfg *cfg, const vec_set *vs
         TST_CHECK(built || !inv, "%s %s: the VCD declares '%s', which is not built", u->name, sn, nm);
         if (u->sigs[i].role != UNIT_SIG_INTERNAL) TST_CHECK(inv, "%s %s: port '%s' missing from the VCD", u->name, sn, nm);
     }
-    if (asan_build()) {
+    if (tst_asan_build()) {
         /* the external tool is slow under ASan: the plain build runs it */
     } else if (have("vcd2fst")) {
         char cmd[400], fst[140];

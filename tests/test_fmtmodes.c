@@ -377,16 +377,9 @@ static void t_unet_bound(void)
 
 /* ---- the Verilog export follows each element's own modes ---- */
 
-static int asan_build(void)
-{
-    const char *b = getenv("TST_BUILD");
-    size_t n = b ? strlen(b) : 0;
-    return n >= 5 && !strcmp(b + n - 5, "-asan");
-}
-
 static void t_cosim(void)
 {
-    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (tst_asan_build()) TST_SKIP("runs in the plain build only");
     if (system("command -v iverilog >/dev/null 2>&1 && command -v vvp >/dev/null 2>&1")) TST_SKIP("iverilog not installed");
     static const struct { const char *u; const char *ov[3]; } D[] = {
         { "horner3", { "mul=s3.12:half-up:sat", "sm=s7.12:even", "t=u1.15:half-up" } },

@@ -9,13 +9,6 @@
 /* Under ASan (TST_BUILD ending in -asan) the per-signal --fmt check runs
  * for the default parameters only (it is the same code for every
  * configuration); the plain build checks every configuration. */
-static int asan_build(void)
-{
-    const char *b = getenv("TST_BUILD");
-    size_t n = b ? strlen(b) : 0;
-    return n >= 5 && !strcmp(b + n - 5, "-asan");
-}
-
 static int check_cfg(const unit_desc *u, const unit_cfg *cfg, int fmt_checks)
 {
     unit_fmts fm;
@@ -63,7 +56,7 @@ static void built_signals_are_listed_ones(void)
                     else snprintf(val, sizeof val, "%d", (int)x);
                     if (unit_param_set(u, &cfg, pp->name, val, e, sizeof e)) { TST_CHECK(0, "%s", e); continue; }
                 }
-                if (check_cfg(u, &cfg, v == 0 || !asan_build())) return;
+                if (check_cfg(u, &cfg, v == 0 || !tst_asan_build())) return;
             }
     }
 }

@@ -155,16 +155,9 @@ static void one_width(int W)
     unlink(in_path); unlink(out_path); unlink(vvp);
 }
 
-static int asan_build(void)
-{
-    const char *b = getenv("TST_BUILD");
-    size_t n = b ? strlen(b) : 0;
-    return n >= 5 && !strcmp(b + n - 5, "-asan");
-}
-
 static void t_horner3_handwritten(void)
 {
-    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (tst_asan_build()) TST_SKIP("runs in the plain build only");
     if (!have("iverilog") || !have("vvp")) TST_SKIP("iverilog not installed");
     one_width(16);
     one_width(12);
@@ -223,7 +216,7 @@ static void rm_rf(const char *dir)
 
 static void t_cosim_icarus(void)
 {
-    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (tst_asan_build()) TST_SKIP("runs in the plain build only");
     if (!have("iverilog") || !have("vvp")) TST_SKIP("iverilog not installed");
     static const struct { sim_round r; sim_ovf o; } modes[] = { { SIM_RND_TRUNC, SIM_OVF_WRAP }, { SIM_RND_EVEN, SIM_OVF_SAT },
                                                                { SIM_RND_HALF_UP, SIM_OVF_WRAP } };
@@ -268,7 +261,7 @@ static void t_cosim_icarus(void)
  * tests/cli_rtl.sh, the hand-written design in Verilator). */
 static void t_cosim_verilator(void)
 {
-    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (tst_asan_build()) TST_SKIP("runs in the plain build only");
     if (!have("verilator")) TST_SKIP("verilator not installed");
     const unit_desc *u = unit_find("horner3");
     unit_cfg cfg;
@@ -322,7 +315,7 @@ static int lint_clean(const unit_desc *u, const char *sched, const char *dir, co
 
 static void t_lint(void)
 {
-    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (tst_asan_build()) TST_SKIP("runs in the plain build only");
     if (!have("verilator")) TST_SKIP("verilator not installed");
     int n = 0;
     for (size_t k = 0; k < unit_count(); k++) {
@@ -352,7 +345,7 @@ static void t_lint(void)
 
 static void t_yosys(void)
 {
-    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (tst_asan_build()) TST_SKIP("runs in the plain build only");
     if (!have("yosys")) TST_SKIP("yosys not installed");
     int n = 0;
     for (size_t k = 0; k < unit_count(); k++) {
@@ -388,7 +381,7 @@ static void t_yosys(void)
  * registers have enables (interp3 fwd). */
 static void t_cosim_resets(void)
 {
-    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (tst_asan_build()) TST_SKIP("runs in the plain build only");
     if (!have("iverilog") || !have("vvp")) TST_SKIP("iverilog not installed");
     static const char *const names[] = { "horner3", "pow_n", "interp3" };
     for (size_t i = 0; i < 3; i++)
@@ -419,7 +412,7 @@ static void t_cosim_resets(void)
 /* Yosys on horner3 alone, each reset: its flip-flop cells by type. */
 static void t_reset_flops(void)
 {
-    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (tst_asan_build()) TST_SKIP("runs in the plain build only");
     if (!have("yosys")) TST_SKIP("yosys not installed");
     const unit_desc *u = unit_find("horner3");
     for (int rs = 0; rs < 3; rs++) {
@@ -453,7 +446,7 @@ static void t_reset_flops(void)
  * powers): a few of them, co-simulated. */
 static void t_cosim_params(void)
 {
-    if (asan_build()) TST_SKIP("runs in the plain build only");
+    if (tst_asan_build()) TST_SKIP("runs in the plain build only");
     if (!have("iverilog") || !have("vvp")) TST_SKIP("iverilog not installed");
     static const struct { const char *u, *p, *v; } P[] = {
         { "div3", "terms", "6" }, { "div3", "series", "quarter" }, { "interp3", "L", "4" },

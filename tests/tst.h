@@ -85,4 +85,13 @@ static inline const char *tst_shadesim(void)
     const char *p = getenv("SHADESIM");
     return p ? p : "bin/shadesim";
 }
+/* True when this program is the sanitizer build's (tests/run.sh sets
+ * TST_BUILD to the build folder, "...-asan"): tool-driven checks, which
+ * read bytes no build changes, run in the plain build only. */
+static inline int tst_asan_build(void)
+{
+    const char *b = getenv("TST_BUILD");
+    size_t n = b ? strlen(b) : 0;
+    return n >= 5 && !strcmp(b + n - 5, "-asan");
+}
 #endif
