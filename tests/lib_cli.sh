@@ -50,3 +50,17 @@ plain_only() {
     *-asan|*-portable) echo "skip ${PREFIX%.}: checks no build flavour changes, run in the plain build"; exit 0 ;;
     esac
 }
+
+# run_full TEST CHECK VAR: a test program of the plain build run with VAR=1
+# (its whole table or matrix, for make test-long); one line CHECK, ok when
+# it exits 0 with no FAIL line, else its first lines that are not ok.
+run_full() {
+    prog=${TST_BUILD:-build}/tests/$1
+    case ${TST_BUILD:-build} in
+    *-asan) echo "skip ${PREFIX%.}: the plain build runs the whole table"; return 0 ;;
+    esac
+    if [ ! -x "$prog" ]; then fail "$2" "no $prog"; return 0; fi
+    env "$3=1" "$prog" >"$T/out" 2>&1; rc=$?
+    if [ "$rc" -eq 0 ] && ! grep -q '^FAIL' "$T/out"; then ok "$2"
+    else fail "$2" "$(grep -v '^ok' "$T/out" | head -12 | tr '\n' ' ')"; fi
+}
