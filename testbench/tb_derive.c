@@ -2,8 +2,8 @@
  * intervals (sim_ival.h), driven as tb_run drives it (tb_derive.h). */
 #include "testbench/tb_derive.h"
 #include "testbench/tb_range.h"
+#include "base/base_num.h"
 #include "base/base_out.h"
-#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,16 +27,19 @@ int tb_ranges_parse(const unit_desc *u, const char *spec, tb_ranges *rg, char *e
         snprintf(err, errlen, "--range %s: '%.*s' is not an input of %s", spec, (int)(eq - spec), spec, u->name);
         return -1;
     }
-    char lo_s[64], *end;
+    /* Both ends in the program's one number syntax (base_num.h): no
+     * spaces, '+', hexadecimal, inf or nan; an underflow is 0. */
+    char lo_s[64];
     size_t n = (size_t)(colon - eq - 1);
-    snprintf(lo_s, sizeof lo_s, "%.*s", (int)(n < sizeof lo_s ? n : sizeof lo_s - 1), eq + 1);
-    errno = 0;
-    double lo = strtod(lo_s, &end);
-    int bad = !*lo_s || *end || n >= sizeof lo_s || !isfinite(lo) || errno;
-    double hi = bad ? 0 : strtod(colon + 1, &end);
-    bad = bad || !colon[1] || *end || !isfinite(hi) || errno;
+    double lo = 0, hi = 0;
+    int bad = n >= sizeof lo_s;
+    if (!bad) {
+        memcpy(lo_s, eq + 1, n);
+        lo_s[n] = 0;
+        bad = base_num_real(lo_s, 1, &lo) || base_num_real(colon + 1, 1, &hi);
+    }
     if (bad) {
-        snprintf(err, errlen, "--range %s: LO and HI must be finite numbers", spec);
+        snprintf(err, errlen, "--range %s: LO and HI must be finite decimal numbers", spec);
         return -1;
     }
     if (lo > hi) {

@@ -33,6 +33,12 @@ expect bad_name 2 "$S" run horner3 --ranges derived --range q=0:1
 expect bad_order 2 "$S" run horner3 --ranges derived --range a=2:1
 expect bad_number 2 "$S" run horner3 --ranges derived --range a=x:1
 expect bad_form 2 "$S" run horner3 --ranges derived --range a=1
+# the one number syntax of every option (base_num.h): no '+', hexadecimal,
+# spaces or inf; an underflow is 0, not an error
+expect bad_plus_hex 2 "$S" run horner3 --ranges derived --range a=+1:0x1p3
+expect bad_spaces 2 "$S" run horner3 --ranges derived --range "a= 1:  2"
+expect bad_inf 2 "$S" run horner3 --ranges derived --range a=1:inf
+expect underflow_is_zero 0 "$S" run horner3 --ranges derived --range a=1e-400:1 --range b=-1:1 --range c=-1:1 --range d=-1:1 --range t=0:1
 expect range_needs_derived 2 "$S" run horner3 --range a=0:1
 expect sweep_bad_mode 2 "$S" sweep horner3 --widths 12:14 --ranges maybe
 expect sweep_bad_range 2 "$S" sweep horner3 --widths 12:14 --target-error 1e-2 --ranges derived --range t=1:0

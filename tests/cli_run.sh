@@ -126,6 +126,14 @@ done
 expect vectors_bad_n 2 "$S" vectors horner3 -n -5
 expect vectors_no_unit 2 "$S" vectors
 "$S" vectors horner3 -n 10 --seed 3 -o "$T/v10.vec" && [ "$(grep -vc '^#' "$T/v10.vec")" -eq 10 ] && ok vectors_n || fail vectors_n "-n 10 did not give 10 rows"
+# run -n N --seed S: the vectors `vectors -n N --seed S` writes, run as if read
+# from that file (the same JSON, the file's name being in none of it)
+"$S" run horner3 -n 10 --seed 3 --json >"$T/rn.json" 2>"$T/err" \
+    && "$S" run horner3 --vectors "$T/v10.vec" --json >"$T/rf.json" 2>>"$T/err" && cmp -s "$T/rn.json" "$T/rf.json" \
+    && grep -q '"vectors": 10,' "$T/rn.json" && ok run_n_equals_file || fail run_n_equals_file "$(head -c 300 "$T/err")"
+expect run_n_and_vectors 2 "$S" run horner3 -n 10 --vectors "$T/v10.vec"
+expect run_seed_without_n 2 "$S" run horner3 --seed 4
+expect run_n_zero 2 "$S" run horner3 -n 0
 
 # docs/units.md is generated from the same descriptors (make docs).
 "$S" list --markdown >"$T/units.md" 2>&1 && cmp -s "$T/units.md" docs/units.md && ok docs_units_current \

@@ -22,6 +22,8 @@ typedef struct run_args {
     const char *vcd, *csv;
     int json, fst, ranges, kernel, reference;
     long vfrom, vto;
+    long nvec;              /* -n N: N generated vectors (0: the vector file) */
+    uint64_t seed;          /* --seed S of the generated vectors (default 1) */
     /* --ranges derived, --range NAME=LO:HI (static check) */
     int derived, nrange, want_mode;
     const unit_desc *u;
@@ -103,6 +105,11 @@ static const cli_opt run_tab[] = {
       "                       tb.err_NAME), with FILE.gtkw, a GTKWave save file: a group of the\n"
       "                       outputs with their expected values and errors, then one per unit,\n"
       "                       values in fixed point (docs/vcd.md)\n" },
+    { "-n", NULL, CLI_OPT_LONG, offsetof(run_args, nvec), 1, 10000000, "1..10000000 vectors", NULL, NULL, 0,
+      "  -n N                 instead of the vector file, N vectors made by the float\n"
+      "                       reference (as shadesim vectors UNIT -n N makes them)\n" },
+    { "--seed", NULL, CLI_OPT_U64, offsetof(run_args, seed), 0, 0, "a whole number", NULL, NULL, 0,
+      "  --seed S             seed of the -n vectors (default 1)\n" },
     VCD_ITEM("--vcd-from", vfrom,
       "  --vcd-from N, --vcd-to M  dump only items N..M (from 0, as --out's index): from the\n"
       "                       edge where item N is offered to the one that samples M's last beat\n"),
@@ -317,7 +324,7 @@ int cli_run(int argc, char **argv)
         o.u = nlu;
         o.cfg = ncfg;
     } else if (cli_unit_select(&o, unit)) return CLI_USAGE;
-    run_args ra = { NULL, NULL, 0, 0, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
+    run_args ra = { NULL, NULL, 0, 0, 0, 0, 0, -1, -1, 0, 1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
     ra.u = o.u;
     run_cur = &ra;
     void *base[] = { &o, &acc, &ra };
@@ -329,6 +336,8 @@ int cli_run(int argc, char **argv)
                                "and --param are its own lines (write it again with shadesim netlist %s ...)",
                                unit, o.u->name);
     if (ra.nrange && !ra.derived) return cli_usage_error("run: --range goes with --ranges derived");
+    if (ra.nvec && o.vectors) return cli_usage_error("run: -n makes the vectors; --vectors reads them: give one");
+    if (ra.seed != 1 && !ra.nvec) return cli_usage_error("run: --seed goes with -n");
     const char *vcd = ra.vcd, *csv = ra.csv;
     int json = ra.json, fst = ra.fst, ranges = ra.ranges;
     long long vfrom = ra.vfrom, vto = ra.vto;
@@ -361,7 +370,7 @@ int cli_run(int argc, char **argv)
     int lanes = !ra.kernel && !ra.reference && !vcd;
     char vpath[4200];
     const char *vfile = NULL;
-    if (!vcd) {
+    if (!vcd && !ra.nvec) {
         int f = cli_vectors_file(&o, vpath, sizeof vpath, &vfile);
         if (f < 0) return CLI_USAGE;
         /* a file too large to hold (a regular file; "-" and pipes are
@@ -377,7 +386,9 @@ int cli_run(int argc, char **argv)
         }
     }
     vec_set vs;
-    if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
+    if (ra.nvec) {
+        if (tb_make_vectors(o.u, &o.cfg, (size_t)ra.nvec, ra.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
+    } else if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
     tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst, .lanes = lanes, .reference = ra.reference };
     if (vfrom >= 0 || vto >= 0) {
         int bad_from = vfrom >= 0 && (size_t)vfrom >= vs.n_rows;
