@@ -69,3 +69,21 @@ st run_all_default 0 "$S" run all
 grep -q 'interp3 (0\.2' "$T/out" && ok run_all_says_interp3_far || fail run_all_says_interp3_far "$(tail -2 "$T/out")"
 st run_all_target 1 "$S" run all --max-error 0.01
 grep -q 'MISS your target' "$T/out" && ok run_all_target_summary || fail run_all_target_summary "$(tail -1 "$T/out")"
+# run all --json: one object, each unit's member the object run UNIT --json
+# prints (checked for two units: its first, a divider), the verdict as the
+# exit status says
+st run_all_json_target 1 "$S" run all --json --max-error 0.01
+grep -q '"verdict": "fail"}$' "$T/out" && ok run_all_json_fail || fail run_all_json_fail "$(tail -1 "$T/out")"
+st run_all_json 0 "$S" run all --json
+cp "$T/out" "$T/all.json"
+if command -v python3 >/dev/null 2>&1; then
+    "$S" run horner3 --json >"$T/h3.json" && "$S" run div --json >"$T/div.json" && python3 - "$T" <<'PY' && ok run_all_json_members || fail run_all_json_members "not each unit's run --json"
+import json, sys
+t = sys.argv[1]
+a = json.load(open(t + "/all.json"))
+assert a["verdict"] == "ok" and a["failed"] == 0 and len(a["units"]) >= 20
+for u in ("h3", "div"):
+    b = json.load(open(t + "/" + u + ".json"))
+    assert [o for o in a["units"] if o["unit"] == b["unit"]] == [b]
+PY
+else echo "skip ${PREFIX}run_all_json_members: python3 not found"; fi

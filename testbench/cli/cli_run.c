@@ -125,7 +125,8 @@ const cli_optspec cli_run_spec = {
     "run: unknown option '%s' (see shadesim run --help)",
     "usage: shadesim run UNIT [options]\n"
     "       shadesim run FILE [options]             a netlist file (shadesim netlist), built from its text\n"
-    "       shadesim run all [acceptance options]   every unit on its default vectors, one summary table\n\n"
+    "       shadesim run all [acceptance options]   every unit on its default vectors, one summary table\n"
+    "                                               (--json: each unit's run --json in one object)\n\n"
     "Drives UNIT clock by clock with golden vectors (inputs quantized to the unit's\n"
     "input formats with --round), reports cycles, area, quantization error and\n"
     "every signal's overflows, and gives a verdict (docs/bounds.md). Exit 0 when\n"
@@ -141,18 +142,26 @@ const cli_optspec cli_run_spec = {
     "one of --out -, --vcd - and --json can have stdout.\n"
 };
 
-/* run all: the acceptance options only. */
+/* run all: the acceptance options and --json. */
+static const cli_opt run_all_tab[] = {
+    { "--json", NULL, CLI_OPT_FLAG, 0, 0, 0, NULL, NULL, NULL, 0, "" },
+    { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
+};
 static const cli_optspec run_all_spec = {
-    "run all", { accept_tab }, NULL, 0,
-    "run all: unknown option '%s' (it takes --max-error, --max-nmse, --max-lsb, --allow-overflow)", NULL, NULL
+    "run all", { accept_tab, run_all_tab }, NULL, 0,
+    "run all: unknown option '%s' (it takes --max-error, --max-nmse, --max-lsb, --allow-overflow, --json)", NULL, NULL
 };
 
-static int run_all(const tb_accept *acc)
+/* run all --json: {"units": [each unit's run --json object, in the
+ * registry's order], "failed": units failing the bound or golden check,
+ * "missed": units missing the target only, "verdict": "ok" or "fail"}. */
+static int run_all(const tb_accept *acc, int json)
 {
     int target = acc->max_error > 0 || acc->max_nmse > 0 || acc->max_lsb > 0;
-    printf("%-11s %-9s %6s %12s %12s %12s %10s %-9s %-8s %s\n", "unit", "schedule", "width", "clocks/item",
+    if (json) fputs("{\"units\": [\n", stdout);
+    else printf("%-11s %-9s %6s %12s %12s %12s %10s %-9s %-8s %s\n", "unit", "schedule", "width", "clocks/item",
            "max|e|", "nmse", "area GE", "bound", "golden", target ? "target" : "method error");
-    int rc = CLI_OK, bad = 0, missed = 0;
+    int rc = CLI_OK, bad = 0, missed = 0, emitted = 0;
     char far[400] = "";
     for (size_t i = 0, n = unit_count(); i < n; i++) {
         cli_unit_opts o;
@@ -178,7 +187,10 @@ static int run_all(const tb_accept *acc)
             char last[32];
             if (target) snprintf(last, sizeof last, "%s", r.target_met ? "met" : "MISSED");
             else snprintf(last, sizeof last, "%.3g", me);
-            printf("%-11s %-9s %6d %12.4g %12.4g %12.4g %10.1f %-9s %-8s %s\n", o.u->name, o.u->sched[o.cfg.schedule].name,
+            if (json) {
+                if (emitted++) fputs(",\n", stdout);
+                tb_write_json(stdout, &r);
+            } else printf("%-11s %-9s %6d %12.4g %12.4g %12.4g %10.1f %-9s %-8s %s\n", o.u->name, o.u->sched[o.cfg.schedule].name,
                    o.cfg.width, r.cycles_per_item, isnan(r.max_abs_err) ? NAN : r.max_abs_err,
                    isnan(r.nmse) ? NAN : r.nmse, r.area_ge, bc, r.golden_ok ? "ok" : "EXCEEDED", last);
             if (!r.ok) {
@@ -189,6 +201,10 @@ static int run_all(const tb_accept *acc)
         }
         tb_result_free(&r);
         vec_set_free(&vs);
+    }
+    if (json) {
+        printf("],\n\"failed\": %d, \"missed\": %d, \"verdict\": \"%s\"}\n", bad, missed, rc == CLI_OK ? "ok" : "fail");
+        return cli_stdout_done(rc);
     }
     printf("\nbound ok: no overflow and every output within the bound derived from its formats, checked\n"
            "against the unit's ideal function (exactly; units whose ideal is only a double: to 2^-40\n"
@@ -307,9 +323,10 @@ int cli_run(int argc, char **argv)
     const char *unit = argv[1];
     tb_accept acc = { 0 };
     if (!strcmp(unit, "all")) {
-        void *base[] = { &acc };
+        int json = 0;
+        void *base[] = { &acc, &json };
         if (cli_opt_parse(&run_all_spec, base, argc, argv, 2)) return CLI_USAGE;
-        return run_all(&acc);
+        return run_all(&acc, json);
     }
     /* A name that is no unit but a file's: a netlist (shadesim netlist),
      * built from its text, run against the unit it names. */
