@@ -70,3 +70,9 @@ awk -v n=20000 -v seed=31 -f tests/data/horner3_indep.awk "$SHADESIM_HOME/vector
 eval "\"\$S\" run horner3 --vectors \"\$T/indep.vec\" $fmts" >"$T/indep.txt" 2>&1
 check accept_no_overflow grep -q 'overflows 0$' "$T/indep.txt"
 check accept_max_error awk '$1 == "y" && $3 + 0 <= 1e-3 { ok = 1 } END { exit !ok }' "$T/indep.txt"
+# The error for the box is measured on stimuli, not proven: the report says
+# so and names the box (each input over its vectors' span without --range,
+# where the derivation takes its format's range: t [0, 1] against [0, 2)).
+"$S" sweep horner3 --widths 8:24 --target-error 1e-3 --ranges derived -o "$T/acc2" >"$T/acc.txt" 2>&1
+check box_error_is_a_test grep -q '^  error of y: <= [0-9.e-]* on the box stimuli (a test on [0-9]* stimuli, not a guarantee' "$T/acc.txt"
+check box_named grep -q '^  box of the stimuli: a \[-24, 24\] (its vectors. span), .* t \[0, 1\] (its vectors. span)$' "$T/acc.txt"

@@ -33,6 +33,8 @@ typedef struct target_info {
      * derived intervals and its run with observed ranges */
     tb_derived *dres;       /* [ngroups] */
     tb_result  *dobs;       /* [ngroups] */
+    char box[600];          /* the box the stimuli were drawn from (the first parameter set's) */
+    size_t box_items;       /* stimuli added over it, per parameter set */
 } target_info;
 
 typedef struct sweep_args {
