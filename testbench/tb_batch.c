@@ -176,7 +176,7 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
     if (!(b = sim_batch_new(c, clk, (uint32_t)n, err, errlen))) { rc = TB_UNSUPPORTED; goto done; }
     int energy = 0;
     for (size_t k = 0; k < n; k++) energy |= lanes[k].energy;
-    if (energy && sim_batch_toggles_on(b)) { snprintf(err, errlen, "out of memory"); rc = TB_FAIL; goto done; }
+    if (energy && sim_batch_toggles_on(b)) base_out_of_memory();
     uint64_t const_ovf = tb_scope_overflows(sc);
     size_t nv = (size_t)beats * (size_t)n_out;
     int64_t *nin[UNIT_MAX_IO], *nvalid = sim_batch_next(b, io.in_valid);
@@ -249,10 +249,8 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
                 lanes[k].batched = !sim_batch_overflowed(b, (uint32_t)k);
                 lanes[k].overflows = const_ovf;
                 /* counted through the last edge's settling, where tb_run stops */
-                if (energy && lanes[k].batched && lane_energy(b, c, sc, clk, &lanes[k], (uint32_t)k)) {
-                    snprintf(err, errlen, "out of memory");
-                    rc = TB_FAIL;
-                }
+                if (energy && lanes[k].batched && lane_energy(b, c, sc, clk, &lanes[k], (uint32_t)k))
+                    base_out_of_memory();
             }
     }
     for (size_t k = 0; k < n && rc == TB_OK; k++)

@@ -171,9 +171,8 @@ static int run_mem_alloc(run_mem *m, const unit_desc *u, tb_result *r, size_t n,
     r->beat_cycle = calloc(m->nbeats, sizeof *r->beat_cycle);
     if (!m->in_raw || !m->ideal || (has_exact && !m->exact) || (u->ideal_ratio && !m->exact_den) ||
         (u->ideal_interval && !m->exact_hi) || !m->exact_ok || !r->raw || !r->beat_cycle) {
-        run_mem_free(m);
-        snprintf(err, errlen, "out of memory for %zu vectors", n);
-        return TB_FAIL;
+        (void)err, (void)errlen;
+        base_out_of_memory();   /* the contract: one line, exit status 3 */
     }
     m->gold = (tb_golden){ m->ideal + m->nvals, m->ideal + 2 * m->nvals, m->ideal + 3 * m->nvals };
     return TB_OK;
@@ -356,7 +355,7 @@ static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f
     lanes_par x = { m, u, cfg, fmts, vs, r, built && !oom ? &j : NULL, 1, "" };
     if (!built) snprintf(x.why, sizeof x.why, "the unit does not build");   /* the kernel says why */
     base_par_for(2, 2, lanes_item, &x);
-    if (oom || x.rc < 0) goto done;
+    if (oom || x.rc < 0) base_out_of_memory();
     if (x.rc > 0) {
         snprintf(r->engine_why, sizeof r->engine_why, "%.150s", x.why);
         rc = 1;
@@ -372,7 +371,7 @@ static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f
     tb_verdict(r, NULL);
     rc = TB_OK;
 done:
-    if (rc == TB_FAIL) snprintf(err, errlen, "out of memory");
+    (void)err, (void)errlen;
     free(tog);
     tb_range_free(&rg);
     sim_free(b.c);

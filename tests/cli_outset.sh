@@ -20,6 +20,22 @@ snap() { (cd "$1" && for f in $(ls -A | sort); do
 same() { snap "$2" >"$T/now"; if cmp -s "$3" "$T/now"; then ok "$1"; else fail "$1" "$(diff "$3" "$T/now" | head -5 | tr '\n' ' ')"; fi; }
 no_temps() { if ls -A "$2" | grep -q '\.tmp-'; then fail "$1" "temporaries left: $(ls -A "$2" | tr '\n' ' ')"; else ok "$1"; fi; }
 
+# --- out of memory (ulimit -v): the contract's one line and exit status 3,
+# and a sweep's old set left whole (it was replaced by rows "failed: out
+# of memory", exit 1). The sanitizers reserve more address space than any
+# such limit allows: the plain build only.
+if [ -n "$ASAN" ]; then echo "skip ${PREFIX}oom: ulimit -v and the sanitizers' shadow memory exclude each other"
+else
+    "$S" vectors horner3 -n 600000 -o "$T/mid.vec"
+    expect oom_run 3 sh -c 'ulimit -v 150000 && exec "$0" run horner3 --vectors "$1"' "$S" "$T/mid.vec"
+    check oom_run_line grep -qx 'shadesim: out of memory' "$T/err"
+    D=$T/oom
+    "$S" sweep horner3 --widths 10:11 -n 1000 -o "$D" >/dev/null
+    snap "$D" >"$T/before"
+    expect oom_sweep 3 sh -c 'ulimit -v 400000 && exec "$0" sweep horner3 --widths 10:11 -n 3000000 -j 2 -o "$1"' "$S" "$D"
+    same oom_sweep_set_kept "$D" "$T/before"
+fi
+
 if [ ! -c /dev/full ]; then echo "skip ${PREFIX}dev_full: no /dev/full"; exit 0; fi
 
 # --- sweep: summary.txt a link to /dev/full; the old set stays whole

@@ -190,14 +190,7 @@ size_t tb_sweep_run(tb_sweep *s, int threads, int shard_k, int shard_n,
 {
     run_job j = { s, NULL, 0, 0, 0, PTHREAD_MUTEX_INITIALIZER, progress, arg };
     j.idx = malloc(s->n * sizeof *j.idx);
-    if (!j.idx) {
-        for (size_t i = 0; i < s->n; i++)
-            if (tb_sweep_in_shard(i, shard_k, shard_n)) {
-                s->row[i].status = TB_FAIL;
-                snprintf(s->row[i].err, sizeof s->row[i].err, "out of memory");
-            }
-        return s->n;
-    }
+    if (!j.idx) base_out_of_memory();
     for (size_t i = 0; i < s->n; i++)
         if (tb_sweep_in_shard(i, shard_k, shard_n)) j.idx[j.total++] = i;
     base_par_for(j.total, threads, run_one, &j);
