@@ -16,7 +16,8 @@
  * are dropped. Region 0 everywhere.
  *
  * Errors "PATH:LINE: what" (or "PATH: what" for the whole file): an
- * index 0 or out of range, an unparsable or non-finite number, a v or vn
+ * index 0 or out of range, an unparsable or non-finite number, a
+ * position or normal coordinate beyond SCN_OBJ_MAX_COORD, a v or vn
  * with fewer than 3 numbers, a face with fewer than 3 corners, a NUL or
  * control byte (binary data), fewer than 3 vertices or no face at all.
  * Files over 256 MiB are refused before reading (by size for regular
@@ -97,6 +98,12 @@ static char *token(char **s)
     return t;
 }
 
+/* The largest coordinate taken: the camera's transforms, the areas and
+ * the normals multiply two coordinates' differences, which stay finite
+ * below (2 x 1e150)^2; at 1e307 a perspective view overflowed to a frame
+ * with nothing covered, reported as if the mesh were out of view. */
+#define SCN_OBJ_MAX_COORD 1e150
+
 /* "v"/"vn": at least 3 numbers (v: up to 7), all finite. */
 static int numbers(ctx *c, char *s, const char *kw, int maxn, double out[3])
 {
@@ -112,6 +119,9 @@ static int numbers(ctx *c, char *s, const char *kw, int maxn, double out[3])
             return fail(c, "%s: '%.40s' is not a number", kw, t);
         if (!isfinite(x))
             return fail(c, "%s: '%.40s' is not a finite number", kw, t);
+        if (k < 3 && fabs(x) > SCN_OBJ_MAX_COORD)
+            return fail(c, "%s: '%.40s' is too large (coordinates up to 1e150: the camera's arithmetic "
+                           "squares them)", kw, t);
         if (k < 3) out[k] = x;
         k++;
     }

@@ -80,6 +80,17 @@ scene_with wholeexp 'L 8e0'
 bounded scene_hex 2 'hex.scene:4: kd: "0x0.8" is not a finite number' "$S" scene "$T/hex.scene" -o "$T/s6"
 bounded scene_minus_zero 2 'negzero.scene:4: kd: -0 is out of range' "$S" scene "$T/negzero.scene" -o "$T/s7"
 bounded scene_whole_exp 2 'wholeexp.scene:4: L: "8e0" is not an integer' "$S" scene "$T/wholeexp.scene" -o "$T/s8"
+# a mesh's coordinates up to 1e150, where the camera's products stay
+# finite: one triangle covering the perspective view at 1e150 is drawn
+# (every pixel covered); at 1e307 it is refused at its line (it was drawn
+# as "nothing covered", exit 0)
+printf 'v -1e150 -1e150 0\nv 1e150 -1e150 0\nv 0 1e150 0\nf 1 2 3\n' >"$T/b150.obj"
+sed 's/e150/e307/g' "$T/b150.obj" >"$T/b307.obj"
+printf 'shadesim-scene 1\nmesh b150.obj\nresolution 16x16\ncamera perspective\n' >"$T/b150.scene"
+sed 's/b150/b307/' "$T/b150.scene" >"$T/b307.scene"
+bounded scene_coord_1e150 0 '' "$S" scene "$T/b150.scene" -o "$T/s9"
+check scene_coord_1e150_covered grep -Eq '^  covered pixels +256 ' "$T/out"
+bounded scene_coord_1e307 2 "b307.scene:2: .*b307.obj:1: v: '-1e307' is too large" "$S" scene "$T/b307.scene" -o "$T/s10"
 for v in 1e1 10.0 0.1e2 8e0; do
     bounded "param_whole_$v" 2 "parameter n: '$v' is not a whole number" "$S" run schlick --param n=$v
 done

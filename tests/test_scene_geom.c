@@ -827,6 +827,10 @@ static void t_obj_bad(void)
     BAD("nrange.obj", buf, 4, "normal");
     BAD("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", 2, "finite");
     BAD("inf.obj", "v 0 0 1e999\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 1, "finite");
+    /* beyond 1e150 the camera's products overflowed: a triangle at 1e307
+     * covering the view was drawn as nothing covered */
+    BAD("huge.obj", "v 0 0 0\nv 1e307 0 0\nv 0 1 0\nf 1 2 3\n", 2, "too large");
+    BAD("hugen.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 -2e150\nf 1 2 3\n", 4, "too large");
     BAD("word.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n", 2, "not a number");
     snprintf(buf, sizeof buf, "%sf 1 2\n", tri);
     BAD("two.obj", buf, 4, "corners");
