@@ -18,11 +18,13 @@
 
 static volatile sig_atomic_t got_signal;
 static int last_signal;         /* what stopped the last run (base_proc_signal) */
+static int holding;             /* between base_proc_hold and base_proc_release */
 
-static void on_signal(int sig) { got_signal = sig; }
+static void on_signal(int sig) { if (!got_signal) got_signal = sig; }
 
 static const int caught[] = { SIGINT, SIGTERM, SIGHUP };
 #define NCAUGHT (sizeof caught / sizeof caught[0])
+static struct sigaction held_old[NCAUGHT];      /* the handlers base_proc_release restores */
 
 double base_proc_now(void)
 {
@@ -67,7 +69,11 @@ int base_proc_run(const char *cmd, base_proc *p, char *err, size_t errlen)
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    got_signal = 0;
+    if (holding && got_signal) {        /* recorded while held: no tool starts */
+        p->signal = last_signal = got_signal;
+        return BASE_PROC_SIGNAL;
+    }
+    if (!holding) got_signal = 0;
     for (size_t i = 0; i < NCAUGHT; i++) {
         sigaction(caught[i], NULL, &old[i]);
         /* a signal ignored by whoever started us (nohup) stays ignored */
@@ -111,7 +117,30 @@ int base_proc_run(const char *cmd, base_proc *p, char *err, size_t errlen)
     return rc;
 }
 
-int base_proc_signal(void) { return last_signal; }
+int base_proc_signal(void) { return last_signal ? last_signal : holding ? got_signal : 0; }
+
+void base_proc_hold(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    got_signal = 0;
+    last_signal = 0;
+    for (size_t i = 0; i < NCAUGHT; i++) {
+        sigaction(caught[i], NULL, &held_old[i]);
+        if (held_old[i].sa_handler != SIG_IGN) sigaction(caught[i], &sa, NULL);
+    }
+    holding = 1;
+}
+
+void base_proc_release(void)
+{
+    if (!holding) return;
+    for (size_t i = 0; i < NCAUGHT; i++) sigaction(caught[i], &held_old[i], NULL);
+    holding = 0;
+    if (got_signal && !last_signal) last_signal = got_signal;
+}
 
 _Noreturn void base_proc_reraise(int sig)
 {

@@ -52,4 +52,13 @@ int base_proc_signal(void);
 /* Die by sig as shadesim's own handlers (base_out_install_signals) would
  * have made it: the handlers in place before base_proc_run get it. */
 _Noreturn void base_proc_reraise(int sig);
+/* Signals held: from base_proc_hold until base_proc_release, SIGINT,
+ * SIGTERM and SIGHUP are only recorded (base_proc_signal gives the first),
+ * for a caller that owns what a signal must not leave behind, a temporary
+ * folder with a tool's files: it looks at base_proc_signal at its own
+ * points, removes what it made, and calls base_proc_reraise. A
+ * base_proc_run inside starts no tool once a signal is recorded, and one
+ * that arrives while the tool runs ends it as always. Not nested. */
+void base_proc_hold(void);
+void base_proc_release(void);
 #endif

@@ -8,8 +8,11 @@
 #include "base/base_proc.h"
 #include <errno.h>
 #include <limits.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 /* A beat line "CYCLE RAW...": the raws alone (by_items), else all of it. */
 static const char *beat_text(const char *line, int by_items)
@@ -20,12 +23,49 @@ static const char *beat_text(const char *line, int by_items)
 
 /* A tool's command line (it starts with "cd DIR &&"), as base_proc runs
  * it: in a process group of its own that a signal to shadesim ends (the
- * caller then sees base_proc_signal). Its exit status, or -1. */
-static int run_tool(const char *cmd, const char *step)
+ * caller then sees base_proc_signal), within limit_s seconds of wall
+ * time, and with every file it writes capped at cap_bytes (ulimit -f: an
+ * RTL printing without end, `initial forever $display`, filled the
+ * temporary folder at 50 MB/s). Its exit status; RUN_TIMEOUT past the
+ * limit; RUN_CAPPED when a file reached the cap (SIGXFSZ); -1 when no
+ * process could be made or a signal ended it. */
+enum { RUN_TIMEOUT = -2, RUN_CAPPED = -3 };
+static int run_tool(const char *cmd, const char *step, double limit_s, unsigned long long cap_bytes)
 {
     char err[200];
-    base_proc p = { "cosim", step, NULL, NULL, NULL, base_proc_now(), 0, 0, 0, 0 };
-    return base_proc_run(cmd, &p, err, sizeof err) == BASE_PROC_DONE ? p.status : -1;
+    size_t n = strlen(cmd) + 64;
+    char *c = malloc(n);
+    if (!c) base_out_of_memory();
+    /* POSIX ulimit -f counts 512-byte blocks (dash; bash counts 1024,
+     * which only doubles the cap) */
+    snprintf(c, n, "ulimit -f %llu && %s", cap_bytes / 512 + 1, cmd);
+    base_proc p = { "cosim", step, NULL, NULL, NULL, base_proc_now(), limit_s, 0, 0, 0 };
+    int r = base_proc_run(c, &p, err, sizeof err);
+    free(c);
+    if (r == BASE_PROC_TIMEOUT) return RUN_TIMEOUT;
+    if (r != BASE_PROC_DONE) return -1;
+    return p.status == 128 + SIGXFSZ ? RUN_CAPPED : p.status;
+}
+
+/* The message of a tool run that ended by run_tool's limits, into msg: 1,
+ * else 0 (rc is the tool's own exit status or -1). */
+static int limit_msg(int rc, const char *sname, double limit_s, unsigned long long cap, char *msg, size_t msglen)
+{
+    if (rc == RUN_TIMEOUT)
+        snprintf(msg, msglen, "cosim: %s stopped after its time limit of %g s (a zero-delay loop in the RTL "
+                 "keeps simulated time from advancing; --timeout S gives more)", sname, limit_s);
+    else if (rc == RUN_CAPPED)
+        snprintf(msg, msglen, "cosim: %s stopped: a file it wrote reached %llu MiB (an RTL that prints "
+                 "without end?)", sname, cap >> 20);
+    else return 0;
+    return 1;
+}
+
+/* Files the tools may write: compiled designs and logs, and the results,
+ * a line of at most 24 bytes and 17 per output for each beat. */
+static unsigned long long file_cap(size_t beats, int n_out)
+{
+    return (64ULL << 20) + (unsigned long long)beats * (24 + 17 * (unsigned long long)n_out);
 }
 
 /* First differing line of two files: 0 same, -1 a file missing, else its
@@ -251,7 +291,7 @@ static int ports_verilator(const char *txt, const char *want, const char *unit, 
 }
 
 int tb_rtl_ports(const char *const *files, int nfiles, const char *want_top, const char *unit,
-                 int sim, const char *dir, char *topbuf, size_t toplen, tb_port *p, char **names, int maxp,
+                 int sim, double timeout_s, const char *dir, char *topbuf, size_t toplen, tb_port *p, char **names, int maxp,
                  char *err, size_t errlen)
 {
     size_t cl = 2048;
@@ -274,8 +314,10 @@ int tb_rtl_ports(const char *const *files, int nfiles, const char *want_top, con
     snprintf(out, sizeof out, "%s/%s", dir, sim == TB_SIM_ICARUS ? "rtlports.vvp" : "rtlports.xml");
     snprintf(log, sizeof log, "%s/rtlports.log", dir);
     remove(out);
-    int rc = run_tool(cmd, sname);
+    double lim = timeout_s > 0 ? timeout_s : TB_COSIM_TIMEOUT_S;
+    int rc = run_tool(cmd, sname, lim, file_cap(0, 0));
     free(cmd);
+    if (limit_msg(rc, sname, lim, file_cap(0, 0), err, errlen)) return -1;
     if (rc != 0) {
         char line[400];
         log_line(log, line, sizeof line);
@@ -409,12 +451,17 @@ static void items_verdict(const tb_result *r, const char *res, const char *sname
 int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
                  const tb_cosim_opts *o, int sim, const char *dir, char *msg, size_t msglen)
 {
-    static const tb_cosim_opts dflt = { SIM_VRESET_SYNC, NULL, 0, NULL, 0 };
+    static const tb_cosim_opts dflt = { SIM_VRESET_SYNC, NULL, 0, NULL, 0, 0 };
     if (!o) o = &dflt;
     tb_result r;
     char err[600];
     int t = tb_run(u, cfg, fm, vs, NULL, &r, err, sizeof err);
     if (t != TB_OK) { snprintf(msg, msglen, "%s", err); return t == TB_BADINPUT ? TB_COSIM_BADINPUT : TB_COSIM_FAILED; }
+    if (base_proc_signal()) {   /* held by the caller (base_proc_hold): nothing written yet */
+        tb_result_free(&r);
+        snprintf(msg, msglen, "cosim: interrupted");
+        return TB_COSIM_FAILED;
+    }
     int rc = TB_COSIM_FAILED;
     const char *sname = sim == TB_SIM_ICARUS ? "icarus" : "verilator";
     size_t pl = strlen(dir) + 64, cl = 4 * pl + 1024;
@@ -434,11 +481,20 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
         for (int i = 0; i < o->nrtl && ng == -1; i++) {
             absv[i] = realpath(o->rtl[i], NULL);
             if (!absv[i]) { snprintf(msg, msglen, "cosim: --rtl %s: %s", o->rtl[i], strerror(errno)); ng = -2; break; }
+            /* a FIFO would block the simulator's reader for ever, a folder
+             * gives its message without the name: regular files only */
+            struct stat st;
+            if (stat(absv[i], &st) || !S_ISREG(st.st_mode)) {
+                snprintf(msg, msglen, "cosim: --rtl %s: not a regular file (%s)", o->rtl[i],
+                         S_ISDIR(st.st_mode) ? "a folder" : S_ISFIFO(st.st_mode) ? "a FIFO" : "a device or socket");
+                ng = -2;
+                break;
+            }
             strcat(files, " ");
             sq(files, cl, absv[i]);
         }
         if (ng == -1)
-            ng = tb_rtl_ports((const char *const *)absv, o->nrtl, o->top, n, sim, dir, top, sizeof top, got, names, 64, msg, msglen);
+            ng = tb_rtl_ports((const char *const *)absv, o->nrtl, o->top, n, sim, o->timeout_s, dir, top, sizeof top, got, names, 64, msg, msglen);
         for (int i = 0; i < o->nrtl; i++) free(absv[i]);
         free(absv);
         if (ng < 0 || check_ports(u, fm, o->reset, top, got, ng, msg, msglen)) { rc = TB_COSIM_BADINPUT; goto done; }
@@ -473,10 +529,18 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
                  "--top-module %s_tb -o %s_vtb --Mdir obj_verilator %s_tb.v%s >verilator.log 2>&1 && "
                  "obj_verilator/%s_vtb +in=stimulus.hex +items=%zu +limit=%llu +out=verilator.out >vtb.log 2>&1",
                  words, n, n, n, files, n, vs->n_rows, limit);
-    if (run_tool(cmd, sname) != 0) {
+    double lim = o->timeout_s > 0 ? o->timeout_s : TB_COSIM_TIMEOUT_S;
+    unsigned long long cap = file_cap(r.vectors * (size_t)r.beats, r.n_out);
+    int trc = run_tool(cmd, sname, lim, cap);
+    if (limit_msg(trc, sname, lim, cap, msg, msglen)) goto done;
+    if (trc != 0) {
         if (o->nrtl) {
+            /* the compile's log, or the run's once the compile made the
+             * simulation (Verilator's make lines are not its error) */
             char line[400], log[PATH_MAX + 32];
-            snprintf(log, sizeof log, "%s/%s", dir, sim == TB_SIM_ICARUS ? "iverilog.log" : "verilator.log");
+            snprintf(log, sizeof log, "%s/%s", dir, sim == TB_SIM_ICARUS ? "vvp.log" : "vtb.log");
+            if (access(log, F_OK))
+                snprintf(log, sizeof log, "%s/%s", dir, sim == TB_SIM_ICARUS ? "iverilog.log" : "verilator.log");
             log_line(log, line, sizeof line);
             snprintf(msg, msglen, "cosim: %s failed on the RTL: %s", sname, line);
         } else

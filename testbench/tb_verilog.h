@@ -78,7 +78,11 @@ typedef struct tb_cosim_opts {
     int match_items;            /* compare the output raws item by item in order, not their
                                  * cycles (a re-timed design); msg then gives the RTL's
                                  * latency and items per clock beside shadesim's */
+    double timeout_s;           /* wall seconds for the tools, the compile included; <= 0:
+                                 * TB_COSIM_TIMEOUT_S (a zero-delay loop never lets
+                                 * simulated time, and so the clock limit, advance) */
 } tb_cosim_opts;
+#define TB_COSIM_TIMEOUT_S 600.0
 int tb_cosim(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
              int sim, const char *dir, char *msg, size_t msglen);
 int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const vec_set *vs,
@@ -91,6 +95,6 @@ int tb_cosim_opt(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
  * the number of ports (names in names, malloc'd one by one), or -1 with
  * a message. */
 int tb_rtl_ports(const char *const *files, int nfiles, const char *want_top, const char *unit,
-                 int sim, const char *dir, char *topbuf, size_t toplen, tb_port *p, char **names, int maxp,
+                 int sim, double timeout_s, const char *dir, char *topbuf, size_t toplen, tb_port *p, char **names, int maxp,
                  char *err, size_t errlen);
 #endif

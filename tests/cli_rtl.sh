@@ -88,6 +88,45 @@ grep -q "^MISMATCH at item $k (inputs .*): expected y=.* at clock $((6 * k + 6))
     ok late_bug_named || fail late_bug_named "item $k: $(cat "$T/out")"
 expect match_bad_value 2 "$S" cosim horner3 --match beats
 
+# The user's RTL is untrusted input: a zero-delay loop stops at --timeout
+# (it hung for ever: the clock limit counts clocks, which never come), an
+# RTL printing without end at the file cap (its log reached 540 MB in
+# 11 s), a FIFO or a folder named by --rtl is refused at once (a FIFO
+# blocked iverilog's reader for ever).
+sed 's/^endmodule/reg osc = 0; always @(osc) osc <= ~osc;\nendmodule/' $R/horner3_hand.v >"$T/osc.v"
+sed 's/^endmodule/initial forever $display("spam spam spam spam spam spam");\nendmodule/' $R/horner3_hand.v >"$T/spam.v"
+expect osc_stops 1 "$S" cosim horner3 --rtl "$T/osc.v" -n 5 --timeout 3
+grep -q '^shadesim: cosim: icarus stopped after its time limit of 3 s (a zero-delay loop' "$T/err" \
+    && ok osc_named || fail osc_named "$(cat "$T/err")"
+expect spam_stops 1 "$S" cosim horner3 --rtl "$T/spam.v" -n 5 --timeout 120
+grep -q '^shadesim: cosim: icarus stopped: a file it wrote reached 64 MiB' "$T/err" \
+    && ok spam_named || fail spam_named "$(cat "$T/err")"
+mkfifo "$T/fifo.v"
+expect fifo_refused 2 "$S" cosim horner3 --rtl "$T/fifo.v"
+grep -q 'fifo.v: not a regular file (a FIFO)' "$T/err" && ok fifo_named || fail fifo_named "$(cat "$T/err")"
+expect folder_refused 2 "$S" cosim horner3 --rtl "$T"
+grep -q "rtl $T: not a regular file (a folder)" "$T/err" && ok folder_named || fail folder_named "$(cat "$T/err")"
+expect timeout_zero 2 "$S" cosim horner3 --timeout 0
+# SIGTERM at any moment (shadesim simulating, writing the stimulus, Icarus
+# compiling or running): no simulator left running, no temporary folder
+# left in TMPDIR (it was, 3 of 3), death by the signal
+mkdir "$T/tmp"
+for d in 0.2 0.6 1.2 2.5; do
+    TMPDIR="$T/tmp" "$S" cosim horner3 -n 400000 >/dev/null 2>&1 &
+    pid=$!
+    sleep $d
+    made=$(ls -A "$T/tmp")
+    kill -TERM $pid
+    wait $pid 2>/dev/null
+    st=$?
+    sleep 0.3
+    left=$(ls -A "$T/tmp")
+    if [ $st -eq 143 ] && [ -z "$left" ]; then ok "sigterm_clean_$d"
+    else fail "sigterm_clean_$d" "exit $st, left: $left"; fi
+done
+# (the last one killed while its folder was there: in TMPDIR, not /tmp)
+[ -n "$made" ] && ok sigterm_folder_in_tmpdir || fail sigterm_folder_in_tmpdir "no folder in TMPDIR after 2.5 s"
+
 if command -v verilator >/dev/null 2>&1; then
     expect verilator_width 2 "$S" cosim horner3 --rtl $R/horner3_width.v --sim verilator
     grep -q 'port t has 12 bits, expected 16' "$T/err" && ok verilator_width_named || fail verilator_width_named "$(cat "$T/err")"

@@ -274,7 +274,7 @@ static void t_cosim_verilator(void)
     if (tb_make_vectors(u, &cfg, 12, 3, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); return; }
     snprintf(dir, sizeof dir, "%s/va", tmpdir);
     mkdir(dir, 0777);
-    tb_cosim_opts co = { SIM_VRESET_ASYNC, NULL, 0, NULL, 0 };
+    tb_cosim_opts co = { SIM_VRESET_ASYNC, NULL, 0, NULL, 0, 0 };
     int rc = tb_cosim_opt(u, &cfg, &fm, &vs, &co, TB_SIM_VERILATOR, dir, msg, sizeof msg);
     TST_CHECK(rc == TB_COSIM_EXACT && strstr(msg, "(verilator)"), "%s", msg);
     vec_set_free(&vs);
@@ -401,7 +401,7 @@ static void t_cosim_resets(void)
             if (tb_make_vectors(u, &cfg, 12, 9, &vs, err, sizeof err)) { TST_CHECK(0, "%s", err); continue; }
             snprintf(dir, sizeof dir, "%s/r%zu_%d", tmpdir, i, rs);
             mkdir(dir, 0777);
-            tb_cosim_opts co = { (sim_vreset)rs, NULL, 0, NULL, 0 };
+            tb_cosim_opts co = { (sim_vreset)rs, NULL, 0, NULL, 0, 0 };
             int rc = tb_cosim_opt(u, &cfg, &fm, &vs, &co, TB_SIM_ICARUS, dir, msg, sizeof msg);
             TST_CHECK(rc == TB_COSIM_EXACT, "%s reset %d: %s", names[i], rs, msg);
             vec_set_free(&vs);

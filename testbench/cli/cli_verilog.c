@@ -144,6 +144,7 @@ typedef struct cosim_st {
     const char *rtl[CLI_MAX_RTL];
     int nrtl;
     int match_items;
+    double timeout;         /* --timeout S; 0: TB_COSIM_TIMEOUT_S */
 } cosim_st;
 
 static int cosim_match(void *base, const char *opt, const char *v)
@@ -195,6 +196,12 @@ static const cli_opt cosim_tab[] = {
       "  --seed S             seed of the generated items (default 1)\n" },
     { "--keep", NULL, CLI_OPT_STR, offsetof(cosim_st, keep), 0, 0, NULL, NULL, NULL, 0,
       "  --keep DIR           leave the export, stimulus and results in DIR\n" },
+    { "--timeout", NULL, CLI_OPT_REAL, offsetof(cosim_st, timeout), 0, 1e6, "seconds above 0", NULL, NULL,
+      CLI_OPT_GT_LO,
+      "  --timeout S          stop the simulator (compile included) after S seconds of\n"
+      "                       wall time (default 600): an RTL whose zero-delay loop\n"
+      "                       never lets time advance ends there, reported; every file\n"
+      "                       the tools write is capped too (64 MiB and the results')\n" },
     { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
 };
 
@@ -214,7 +221,7 @@ int cli_cosim(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_cosim_spec);
     cli_unit_opts o;
-    cosim_st st = { SIM_VRESET_SYNC, "icarus", NULL, NULL, 0, 1, { NULL }, 0, 0 };
+    cosim_st st = { SIM_VRESET_SYNC, "icarus", NULL, NULL, 0, 1, { NULL }, 0, 0, 0 };
     int rc = parse(&cli_cosim_spec, argc, argv, &o, &st);
     if (rc) return rc;
     if (st.top && !st.nrtl) return cli_usage_error("cosim: --top needs --rtl FILE");
@@ -230,16 +237,28 @@ int cli_cosim(int argc, char **argv)
     /* the export: 50 generated items; the user's RTL: the unit's vectors */
     if (o.vectors || (st.nrtl && !st.n)) { if (cli_load_vectors(&o, &vs)) return CLI_USAGE; }
     else if (tb_make_vectors(o.u, &o.cfg, (size_t)(st.n ? st.n : 50), st.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
-    char tmpl[] = "/tmp/shadesim_cosim_XXXXXX";
+    /* From the temporary folder's making to its removal a signal is held
+     * (only recorded): it ends the tool that runs, and then the folder
+     * goes before shadesim dies by it. A signal's default action in
+     * between had left the folder behind. */
+    base_proc_hold();
+    const char *tdir = getenv("TMPDIR");
+    char tmpl[4200];
+    snprintf(tmpl, sizeof tmpl, "%s/shadesim_cosim_XXXXXX", tdir && *tdir ? tdir : "/tmp");
     const char *dir = st.keep;
-    if (!dir && !mkdtemp(tmpl)) { vec_set_free(&vs); return cli_usage_error("cosim: cannot make a temporary folder"); }
+    if (!dir && !mkdtemp(tmpl)) {
+        base_proc_release();
+        vec_set_free(&vs);
+        return cli_usage_error("cosim: cannot make a temporary folder in %s", tdir && *tdir ? tdir : "/tmp");
+    }
     if (!dir) dir = tmpl;
     char msg[1200];
-    tb_cosim_opts co = { st.reset, st.rtl, st.nrtl, st.top, st.match_items };
+    tb_cosim_opts co = { st.reset, st.rtl, st.nrtl, st.top, st.match_items, st.timeout };
     int t = tb_cosim_opt(o.u, &o.cfg, &fm, &vs, &co, icarus ? TB_SIM_ICARUS : TB_SIM_VERILATOR, dir, msg, sizeof msg);
-    if (base_proc_signal()) {           /* the simulator stopped by SIGINT/TERM/HUP: no verdict */
-        vec_set_free(&vs);
+    if (base_proc_signal()) {           /* SIGINT/TERM/HUP: no verdict */
         if (!st.keep) base_proc_rmtree(dir);
+        base_proc_release();
+        vec_set_free(&vs);
         base_proc_reraise(base_proc_signal());
     }
     if (t == TB_COSIM_EXACT) { printf("%s\n", msg); rc = CLI_OK; }
@@ -247,6 +266,8 @@ int cli_cosim(int argc, char **argv)
     else rc = cli_from_tb(t == TB_COSIM_BADINPUT ? TB_BADINPUT : TB_FAIL, "%s", msg);
     vec_set_free(&vs);
     if (!st.keep) base_proc_rmtree(dir);
+    base_proc_release();
+    if (base_proc_signal()) base_proc_reraise(base_proc_signal());     /* one that came at the very end */
     return cli_stdout_done(rc);
 }
 
