@@ -182,27 +182,59 @@ static char *slurp(const char *path)
     return buf;
 }
 
+/* The top-level modules the simulator found, any number of them, names
+ * of any length (a fixed 16 of 127 characters lost the one named like the
+ * unit among more, and miscounted them); after[i]: where root i's lines
+ * go on in the simulator's file (Icarus). */
+typedef struct rtl_roots {
+    char **name;
+    const char **after;
+    int n, cap;
+} rtl_roots;
+
+static void roots_add(rtl_roots *r, const char *name, size_t len, const char *after)
+{
+    if (r->n == r->cap) {
+        r->cap = r->cap ? 2 * r->cap : 16;
+        char **nn = realloc(r->name, (size_t)r->cap * sizeof *nn);
+        if (!nn) base_out_of_memory();
+        r->name = nn;
+        const char **na = realloc(r->after, (size_t)r->cap * sizeof *na);
+        if (!na) base_out_of_memory();
+        r->after = na;
+    }
+    if (!(r->name[r->n] = strndup(name, len))) base_out_of_memory();
+    r->after[r->n++] = after;
+}
+
+static void roots_free(rtl_roots *r)
+{
+    for (int i = 0; i < r->n; i++) free(r->name[i]);
+    free(r->name);
+    free(r->after);
+}
+
 /* The module to check among the top-level ones the simulator found: the
  * one asked for, else one named like the unit, else the only one. Its
- * index, or -1 with a message. */
-static int choose_top(char roots[][128], int nroots, const char *want, const char *unit, char *err, size_t errlen)
+ * index, or -1 with a message (the names as they fit, their count). */
+static int choose_top(const rtl_roots *r, const char *want, const char *unit, char *err, size_t errlen)
 {
     if (want && *want) {
-        for (int i = 0; i < nroots; i++) if (!strcmp(roots[i], want)) return i;
+        for (int i = 0; i < r->n; i++) if (!strcmp(r->name[i], want)) return i;
         snprintf(err, errlen, "cosim: no top-level module %s in the RTL", want);
         return -1;
     }
-    for (int i = 0; i < nroots; i++) if (!strcmp(roots[i], unit)) return i;
-    if (nroots == 1) return 0;
-    if (nroots == 0) { snprintf(err, errlen, "cosim: the RTL has no module"); return -1; }
-    size_t o = (size_t)snprintf(err, errlen, "cosim: %d top-level modules in the RTL (", nroots);
-    for (int i = 0; i < nroots && o < errlen; i++)
-        o += (size_t)snprintf(err + o, errlen - o, "%s%s", i ? ", " : "", roots[i]);
+    for (int i = 0; i < r->n; i++) if (!strcmp(r->name[i], unit)) return i;
+    if (r->n == 1) return 0;
+    if (r->n == 0) { snprintf(err, errlen, "cosim: the RTL has no module"); return -1; }
+    size_t o = (size_t)snprintf(err, errlen, "cosim: %d top-level modules in the RTL (", r->n);
+    int shown = 0;
+    for (int i = 0; i < r->n && o + strlen(r->name[i]) + 48 < errlen; i++, shown++)
+        o += (size_t)snprintf(err + o, errlen - o, "%s%.200s", i ? ", " : "", r->name[i]);
+    if (shown < r->n && o < errlen) o += (size_t)snprintf(err + o, errlen - o, ", ...");
     if (o < errlen) snprintf(err + o, errlen - o, "): choose one with --top NAME");
     return -1;
 }
-
-#define MAX_ROOTS 16
 
 static int add_port(tb_port *p, char **names, int n, int maxp, const char *name, int width, int is_output,
                     char *err, size_t errlen)
@@ -214,14 +246,39 @@ static int add_port(tb_port *p, char **names, int n, int maxp, const char *name,
     return n + 1;
 }
 
-/* One line of txt from *at (copied, without its newline); 0 at the end. */
-static int next_line(const char **at, char *line, size_t len)
+/* One line of txt from *at: its start and length (no newline); 0 at the
+ * end. */
+static int next_line(const char **at, const char **line, size_t *len)
 {
     if (!**at) return 0;
     size_t n = strcspn(*at, "\n");
-    snprintf(line, len, "%.*s", (int)(n < len ? n : len - 1), *at);
+    *line = *at;
+    *len = n;
     *at += n + ((*at)[n] == '\n');
     return 1;
+}
+
+/* In line[0..len): the text between the quotes after `key` (key ends
+ * with the opening quote), its start and length; NULL when absent. */
+static const char *quoted_after(const char *line, size_t len, const char *key, size_t *qlen)
+{
+    size_t kl = strlen(key);
+    for (size_t i = 0; i + kl <= len; i++)
+        if (!memcmp(line + i, key, kl)) {
+            const char *q = line + i + kl, *e = memchr(q, '"', len - (size_t)(q - line));
+            if (!e) return NULL;
+            *qlen = (size_t)(e - q);
+            return q;
+        }
+    return NULL;
+}
+
+/* 1 if line[0..len) holds text. */
+static int has_text(const char *line, size_t len, const char *text)
+{
+    size_t tl = strlen(text);
+    for (size_t i = 0; i + tl <= len; i++) if (!memcmp(line + i, text, tl)) return 1;
+    return 0;
 }
 
 /* Icarus's compiled file: ".scope module, "inst" "type" FILE LINE;" for a
@@ -230,61 +287,125 @@ static int next_line(const char **at, char *line, size_t len)
 static int ports_icarus(const char *txt, const char *want, const char *unit, char *top, size_t toplen,
                         tb_port *p, char **names, int maxp, char *err, size_t errlen)
 {
-    char roots[MAX_ROOTS][128], line[512];
-    const char *after[MAX_ROOTS];
-    int nroots = 0, n = 0;
-    for (const char *at = txt; next_line(&at, line, sizeof line); ) {
-        const char *sc = strstr(line, " .scope module, \"");
-        char inst[128];
-        if (sc && !strstr(sc, ", S_") && nroots < MAX_ROOTS
-            && sscanf(sc, " .scope module, \"%127[^\"]\" \"%127[^\"]\"", inst, roots[nroots]) == 2)
-            after[nroots++] = at;
+    rtl_roots r = { NULL, NULL, 0, 0 };
+    const char *line;
+    size_t len;
+    int n = 0;
+    for (const char *at = txt; next_line(&at, &line, &len); ) {
+        size_t il, tl;
+        const char *inst = quoted_after(line, len, " .scope module, \"", &il);
+        if (!inst) continue;
+        const char *rest = inst + il + 1;
+        const char *type = quoted_after(rest, len - (size_t)(rest - line), " \"", &tl);
+        if (!type) continue;
+        const char *tail = type + tl + 1;
+        /* a child scope names its parent at its line's end: ", S_0x..." */
+        if (!has_text(tail, len - (size_t)(tail - line), ", S_")) roots_add(&r, type, tl, at);
     }
-    int t = choose_top(roots, nroots, want, unit, err, errlen);
-    if (t < 0) return -1;
-    snprintf(top, toplen, "%s", roots[t]);
-    for (const char *at = after[t]; next_line(&at, line, sizeof line) && !strstr(line, ".scope "); ) {
-        char dir[16], name[128];
+    int t = choose_top(&r, want, unit, err, errlen);
+    if (t < 0) { roots_free(&r); return -1; }
+    if (strlen(r.name[t]) >= toplen) {
+        snprintf(err, errlen, "cosim: the top module's name has more than %zu characters", toplen - 1);
+        roots_free(&r);
+        return -1;
+    }
+    snprintf(top, toplen, "%s", r.name[t]);
+    for (const char *at = r.after[t]; n >= 0 && next_line(&at, &line, &len) && !has_text(line, len, ".scope "); ) {
+        char dir[16], name[1100], buf[1200];
         int k, w;
-        if (sscanf(line, " .port_info %d /%15s %d \"%127[^\"]\"", &k, dir, &w, name) != 4) continue;
+        if (len >= sizeof buf) continue;
+        memcpy(buf, line, len);
+        buf[len] = 0;
+        if (sscanf(buf, " .port_info %d /%15s %d \"%1099[^\"]\"", &k, dir, &w, name) != 4) continue;
         n = add_port(p, names, n, maxp, name, w, !strcmp(dir, "INPUT") ? 0 : !strcmp(dir, "OUTPUT") ? 1 : 2, err, errlen);
-        if (n < 0) return -1;
     }
+    roots_free(&r);
     return n;
 }
 
+/* A Verilator dtype's width in bits: a basic type's from its bounds, a
+ * reference's or a typedef's from what it refers to, a (packed) struct's
+ * or union's from its members (sum, or widest), a packed array's from
+ * its range times its element. -1 when unknown (e.g. unpacked). */
+static int dtype_width(const char *txt, const char *id, int depth)
+{
+    if (depth > 32) return -1;
+    char pat[48];
+    snprintf(pat, sizeof pat, " id=\"%.30s\"", id);
+    for (const char *d = strstr(txt, pat); d; d = strstr(d + 1, pat)) {
+        const char *tag = d;
+        while (tag > txt && *tag != '<') tag--;
+        char kind[32], lb[32], rb[32], sub[32];
+        size_t kl = strcspn(tag + 1, " >");
+        if (kl >= sizeof kind) continue;
+        memcpy(kind, tag + 1, kl);
+        kind[kl] = 0;
+        if (!strcmp(kind, "basicdtype")) {
+            if (xml_attr(tag, "left", lb, sizeof lb) && xml_attr(tag, "right", rb, sizeof rb))
+                return abs(atoi(lb) - atoi(rb)) + 1;
+            return 1;
+        }
+        if (!strcmp(kind, "refdtype") || !strcmp(kind, "typedef") || !strcmp(kind, "enumdtype")) {
+            if (!xml_attr(tag, "sub_dtype_id", sub, sizeof sub)) return -1;
+            return dtype_width(txt, sub, depth + 1);
+        }
+        if (!strcmp(kind, "structdtype") || !strcmp(kind, "uniondtype")) {
+            /* (Verilator 5 writes no packed="..."; a port's struct is packed) */
+            const char *end = strstr(tag, kind[0] == 's' ? "</structdtype>" : "</uniondtype>");
+            int w = 0;
+            for (const char *m = strstr(tag, "<memberdtype "); m && (!end || m < end); m = strstr(m + 1, "<memberdtype ")) {
+                if (!xml_attr(m, "sub_dtype_id", sub, sizeof sub)) return -1;
+                int mw = dtype_width(txt, sub, depth + 1);
+                if (mw < 0) return -1;
+                w = kind[0] == 's' ? w + mw : (mw > w ? mw : w);
+            }
+            return w ? w : -1;
+        }
+        if (!strcmp(kind, "packarraydtype")) {
+            if (!xml_attr(tag, "sub_dtype_id", sub, sizeof sub)) return -1;
+            int ew = dtype_width(txt, sub, depth + 1);
+            const char *end = strstr(tag, "</packarraydtype>"), *rg = strstr(tag, "<range");
+            if (ew < 0 || !rg || (end && rg > end)) return -1;
+            /* the range's bounds: its two <const name="32'sh..."> children */
+            const char *c1 = strstr(rg, "<const "), *c2 = c1 ? strstr(c1 + 1, "<const ") : NULL;
+            char v1[48], v2[48];
+            if (!c1 || !c2 || !xml_attr(c1, "name", v1, sizeof v1) || !xml_attr(c2, "name", v2, sizeof v2)) return -1;
+            const char *h1 = strchr(v1, 'h'), *h2 = strchr(v2, 'h');
+            if (!h1 || !h2) return -1;
+            long a = strtol(h1 + 1, NULL, 16), b2 = strtol(h2 + 1, NULL, 16);
+            return (int)(labs(a - b2) + 1) * ew;
+        }
+        return -1;
+    }
+    return -1;
+}
+
 /* Verilator's --xml-only file: top-level cells (hier without a dot) name
- * the roots; the module's <var dir=...> tags its ports, their dtype's
- * left and right bounds their widths. */
+ * the roots; the module's <var dir=...> tags its ports, their dtypes
+ * their widths (dtype_width). */
 static int ports_verilator(const char *txt, const char *want, const char *unit, char *top, size_t toplen,
                            tb_port *p, char **names, int maxp, char *err, size_t errlen)
 {
-    char roots[MAX_ROOTS][128], buf[128], hier[256];
-    int nroots = 0, n = 0;
+    rtl_roots r = { NULL, NULL, 0, 0 };
+    char buf[1100], hier[1100];
+    int n = 0;
     for (const char *c = strstr(txt, "<cell "); c; c = strstr(c + 1, "<cell "))
-        if (xml_attr(c, "hier", hier, sizeof hier) && !strchr(hier, '.') && nroots < MAX_ROOTS
-            && xml_attr(c, "submodname", buf, sizeof buf))
-            snprintf(roots[nroots++], 128, "%s", buf);
-    int t = choose_top(roots, nroots, want, unit, err, errlen);
+        if (xml_attr(c, "hier", hier, sizeof hier) && !strchr(hier, '.') && xml_attr(c, "submodname", buf, sizeof buf))
+            roots_add(&r, buf, strlen(buf), NULL);
+    int t = choose_top(&r, want, unit, err, errlen);
+    if (t >= 0) snprintf(top, toplen, "%s", r.name[t]);
+    roots_free(&r);
     if (t < 0) return -1;
-    snprintf(top, toplen, "%s", roots[t]);
     const char *m = txt;
     while ((m = strstr(m, "<module ")) && !(xml_attr(m, "name", buf, sizeof buf) && !strcmp(buf, top))) m++;
     if (!m) { snprintf(err, errlen, "cosim: verilator did not describe module %s", top); return -1; }
     const char *end = strstr(m, "</module>");
     for (const char *v = strstr(m, "<var "); v && (!end || v < end); v = strstr(v + 1, "<var ")) {
-        char name[128], dir[16], id[32];
+        char name[1100], dir[16], id[32];
         if (!xml_attr(v, "dir", dir, sizeof dir) || !xml_attr(v, "name", name, sizeof name)
             || !xml_attr(v, "dtype_id", id, sizeof id)) continue;
-        int w = -1;
-        for (const char *d = strstr(txt, "<basicdtype "); d; d = strstr(d + 1, "<basicdtype ")) {
-            char did[32], lb[32], rb[32];
-            if (!xml_attr(d, "id", did, sizeof did) || strcmp(did, id)) continue;
-            if (xml_attr(d, "left", lb, sizeof lb) && xml_attr(d, "right", rb, sizeof rb)) w = abs(atoi(lb) - atoi(rb)) + 1;
-            else w = 1;
-            break;
-        }
-        n = add_port(p, names, n, maxp, name, w, !strcmp(dir, "input") ? 0 : !strcmp(dir, "output") ? 1 : 2, err, errlen);
+        n = add_port(p, names, n, maxp, name, dtype_width(txt, id, 0), !strcmp(dir, "input") ? 0 : !strcmp(dir, "output") ? 1 : 2,
+                     err, errlen);
         if (n < 0) return -1;
     }
     return n;

@@ -3,6 +3,7 @@
 #include "testbench/tb_verilog.h"
 #include "base/base_out.h"
 #include "sim/sim_verilog.h"
+#include <ctype.h>
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -157,7 +158,11 @@ char *tb_verilog_tb_text(const unit_desc *u, const unit_cfg *cfg, const unit_fmt
     fprintf(f, "    reg  in_valid = 1'b0;\n    wire in_ready, out_valid;\n");
     for (int i = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_OUT) fprintf(f, "    wire [%d:0] %s;\n", fm->f[i].width - 1, u->sigs[i].name);
-    fprintf(f, "    %s dut (.clk(clk)%s", dut, has_rst ? ", .rst(rst)" : "");
+    /* a name that is no simple identifier (the user's `module \h3! (...)`)
+     * is written escaped: a backslash, the name, a space */
+    int plain = (isalpha((unsigned char)dut[0]) || dut[0] == '_') && dut[strspn(dut,
+                "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_$")] == 0;
+    fprintf(f, "    %s%s%s dut (.clk(clk)%s", plain ? "" : "\\", dut, plain ? "" : " ", has_rst ? ", .rst(rst)" : "");
     for (int i = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_IN) fprintf(f, ", .%s(%s)", u->sigs[i].name, u->sigs[i].name);
     fprintf(f, ", .in_valid(in_valid), .in_ready(in_ready)");

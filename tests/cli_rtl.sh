@@ -88,6 +88,23 @@ grep -q "^MISMATCH at item $k (inputs .*): expected y=.* at clock $((6 * k + 6))
     ok late_bug_named || fail late_bug_named "item $k: $(cat "$T/out")"
 expect match_bad_value 2 "$S" cosim horner3 --match beats
 
+# The top module among many (more than 16 top-level modules: the one named
+# like the unit was not found, and the count was wrong), a name of 150
+# characters (over 127 it was "the RTL has no module"), an escaped name
+# (`module \horner3! (...)`: the testbench instantiated it unescaped).
+{ i=1; while [ $i -le 20 ]; do echo "module extra$i(input x); endmodule"; i=$((i + 1)); done; } >"$T/extras.v"
+{ cat "$T/extras.v"; sed 's/module horner3_hand/module horner3/' $R/horner3_hand.v; } >"$T/many.v"
+expect many_tops_unit_named 0 "$S" cosim horner3 --rtl "$T/many.v" -n 5
+{ cat "$T/extras.v" $R/horner3_hand.v; } >"$T/many2.v"
+expect many_tops_refused 2 "$S" cosim horner3 --rtl "$T/many2.v" -n 5
+grep -q '^shadesim: cosim: 21 top-level modules in the RTL (extra1, .*horner3_hand): choose one' "$T/err" \
+    && ok many_tops_counted || fail many_tops_counted "$(cat "$T/err")"
+long=hhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhhh
+sed "s/module horner3_hand/module $long/" $R/horner3_hand.v >"$T/long.v"
+expect long_top_name 0 "$S" cosim horner3 --rtl "$T/long.v" -n 5
+sed 's/module horner3_hand/module \\horner3! /' $R/horner3_hand.v >"$T/esc.v"
+expect escaped_top_name 0 "$S" cosim horner3 --rtl "$T/esc.v" -n 5
+
 # The user's RTL is untrusted input: a zero-delay loop stops at --timeout
 # (it hung for ever: the clock limit counts clocks, which never come), an
 # RTL printing without end at the file cap (its log reached 540 MB in
@@ -131,6 +148,12 @@ if command -v verilator >/dev/null 2>&1; then
     expect verilator_width 2 "$S" cosim horner3 --rtl $R/horner3_width.v --sim verilator
     grep -q 'port t has 12 bits, expected 16' "$T/err" && ok verilator_width_named || fail verilator_width_named "$(cat "$T/err")"
     expect verilator_hand 0 "$S" cosim horner3 --rtl $R/horner3_hand.v --sim verilator -n 12
+    # a packed struct port's width from its members (it was read as -1 bits):
+    # 8 + 4 bits, refused by its width, before any compile
+    { echo 'typedef struct packed { logic [7:0] hi; logic [3:0] lo; } pair_t;'
+      sed 's/    input  wire \[15:0\] a,/    input  pair_t a,/' $R/horner3_hand.v; } >"$T/st.sv"
+    expect verilator_struct_port 2 "$S" cosim horner3 --rtl "$T/st.sv" --sim verilator
+    grep -q 'port a has 12 bits, expected 16' "$T/err" && ok verilator_struct_width || fail verilator_struct_width "$(cat "$T/err")"
 else
     echo "skip ${PREFIX}verilator: verilator not installed"
 fi
