@@ -66,9 +66,13 @@ struct base_out {
 
 static char reg_path[REG_N][REG_LEN];
 static volatile sig_atomic_t reg_used[REG_N];
+static volatile sig_atomic_t reg_dir[REG_N];    /* a folder a set made: rmdir'd (if empty), not unlinked */
 static pthread_mutex_t reg_mu = PTHREAD_MUTEX_INITIALIZER;
 
-static int reg_add(const char *path)
+static int reg_add_kind(const char *path, int dir);
+static int reg_add(const char *path) { return reg_add_kind(path, 0); }
+
+static int reg_add_kind(const char *path, int dir)
 {
     size_t n = strlen(path);
     if (n >= REG_LEN) return -1;
@@ -77,6 +81,7 @@ static int reg_add(const char *path)
     for (int i = 0; i < REG_N; i++)
         if (!reg_used[i]) {
             memcpy(reg_path[i], path, n + 1);
+            reg_dir[i] = dir;
             atomic_thread_fence(memory_order_seq_cst);  /* path before flag */
             reg_used[i] = 1;
             slot = i;
@@ -95,14 +100,40 @@ static void reg_remove(int slot)
     pthread_mutex_unlock(&reg_mu);
 }
 
-/* Only async-signal-safe calls: unlink, signal, raise. The signal is
- * blocked while its handler runs, so the raise is delivered on return,
+/* A folder a set made, registered while the set is open: a signal's
+ * handler removes it if it is empty (a report into a new folder left an
+ * empty scene/ when interrupted). Unregistered by path. */
+static void reg_remove_dir(const char *path)
+{
+    pthread_mutex_lock(&reg_mu);
+    for (int i = 0; i < REG_N; i++)
+        if (reg_used[i] && reg_dir[i] && !strcmp(reg_path[i], path)) {
+            reg_used[i] = 0;
+            atomic_thread_fence(memory_order_seq_cst);
+            break;
+        }
+    pthread_mutex_unlock(&reg_mu);
+}
+
+/* The registered temporaries unlinked, then the registered folders
+ * removed where empty: a few passes, so that a folder goes after the ones
+ * made inside it whatever their slots. Async-signal-safe calls only. */
+static void reg_clean(void)
+{
+    for (int i = 0; i < REG_N; i++)
+        if (reg_used[i] && !reg_dir[i]) unlink(reg_path[i]);
+    for (int pass = 0; pass < 8; pass++)
+        for (int i = REG_N - 1; i >= 0; i--)
+            if (reg_used[i] && reg_dir[i]) rmdir(reg_path[i]);
+}
+
+/* Only async-signal-safe calls: unlink, rmdir, signal, raise. The signal
+ * is blocked while its handler runs, so the raise is delivered on return,
  * now with the default action. */
 static void on_signal(int sig)
 {
     int saved = errno;
-    for (int i = 0; i < REG_N; i++)
-        if (reg_used[i]) unlink(reg_path[i]);
+    reg_clean();
     signal(sig, SIG_DFL);
     raise(sig);
     errno = saved;
@@ -113,8 +144,7 @@ _Noreturn void base_out_of_memory(void)
     static const char msg[] = "shadesim: out of memory\n";
     /* write(2), not stdio: stdio may need the memory there is none of */
     if (write(STDERR_FILENO, msg, sizeof msg - 1) < 0) { /* nothing left to report it on */ }
-    for (int i = 0; i < REG_N; i++)
-        if (reg_used[i]) unlink(reg_path[i]);
+    reg_clean();
     _exit(BASE_EXIT_OOM);
 }
 
@@ -560,7 +590,7 @@ void base_outset_abort(base_outset *s)
     set_pop(s);
     for (int i = 0; i < s->n; i++) base_out_abort(s->o[i]);
     /* the folders made for it go too, the last made first, if empty */
-    for (int i = s->nmade - 1; i >= 0; i--) { rmdir(s->made[i]); free(s->made[i]); }
+    for (int i = s->nmade - 1; i >= 0; i--) { rmdir(s->made[i]); reg_remove_dir(s->made[i]); free(s->made[i]); }
     free(s->made);
     free(s->o);
     free(s);
@@ -568,10 +598,31 @@ void base_outset_abort(base_outset *s)
 
 static void set_forget_made(base_outset *s)
 {
-    for (int i = 0; i < s->nmade; i++) free(s->made[i]);
+    for (int i = 0; i < s->nmade; i++) { reg_remove_dir(s->made[i]); free(s->made[i]); }
     free(s->made);
     s->made = NULL;
     s->nmade = 0;
+}
+
+/* A hard link ".NAME.old-PID-K" to target beside it, for putting the old
+ * file back: its path (malloc'd), or NULL when there is no old file or
+ * no link can be made (then the member is published without a way back). */
+static char *keep_old(const char *target)
+{
+    struct stat st;
+    if (lstat(target, &st) || !S_ISREG(st.st_mode)) return NULL;
+    const char *slash = strrchr(target, '/');
+    size_t dl = slash ? (size_t)(slash - target + 1) : 0, n = strlen(target) + 64;
+    char *p = malloc(n);
+    if (!p) base_out_of_memory();
+    static atomic_uint seq;
+    for (int tries = 0; tries < 8; tries++) {
+        snprintf(p, n, "%.*s.%s.old-%ld-%u", (int)dl, target, target + dl, (long)getpid(), atomic_fetch_add(&seq, 1));
+        if (link(target, p) == 0) return p;
+        if (errno != EEXIST) break;
+    }
+    free(p);
+    return NULL;
 }
 
 int base_outset_commit(base_outset *s, char *err, size_t errlen)
@@ -602,19 +653,58 @@ int base_outset_commit(base_outset *s, char *err, size_t errlen)
         free(s);
         return rc;
     }
-    set_forget_made(s);
-    /* Every member complete: the links' copies (which can fail: ENOSPC)
-     * before the renames (which, within one folder, do not). */
-    for (int i = 0; i < s->n; i++)
-        if (s->o[i]->kind == OUT_LINK) {
-            if (out_publish(s->o[i], rc ? NULL : err, errlen)) rc = -1;
+    /* Every member complete. Publishing is as near all-or-nothing as POSIX
+     * allows:
+     *  - SIGINT, SIGTERM and SIGHUP are held until it ends (one arriving
+     *    mid-way left a new sweep.csv beside the old summary), so a signal
+     *    finds the set either not begun or whole;
+     *  - the renames come first, each existing target kept as a hard link
+     *    ".NAME.old-PID-K" beside it, so that one failing part-way (an
+     *    immutable or foreign-owned member) puts back those before it;
+     *  - the links' copies (which can fail: ENOSPC) last, stopping at the
+     *    first failure, which also puts the renamed members back. A link
+     *    copied before the failing one keeps its new bytes: a file written
+     *    through in place cannot be taken back (docs/cli.md).
+     * A SIGKILL mid-way can leave a ".NAME.old-..." behind. */
+    sigset_t hold, was;
+    sigemptyset(&hold);
+    sigaddset(&hold, SIGINT);
+    sigaddset(&hold, SIGTERM);
+    sigaddset(&hold, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &hold, &was);
+    char **tgt = calloc((size_t)s->n + 1, sizeof *tgt), **old = calloc((size_t)s->n + 1, sizeof *old);
+    char *pub = calloc((size_t)s->n + 1, 1);     /* renamed in */
+    if (!tgt || !old || !pub) base_out_of_memory();
+    for (int i = 0; i < s->n && !rc; i++) {
+        if (s->o[i]->kind != OUT_TEMP) continue;
+        if (!(tgt[i] = strdup(s->o[i]->target))) base_out_of_memory();
+        old[i] = keep_old(tgt[i]);
+        if (out_publish(s->o[i], err, errlen)) rc = -1;
+        else pub[i] = 1;
+        s->o[i] = NULL;
+    }
+    for (int i = 0; i < s->n && !rc; i++)          /* links; write-through ones are done */
+        if (s->o[i]) {
+            if (out_publish(s->o[i], err, errlen)) rc = -1;
             s->o[i] = NULL;
         }
     for (int i = 0; i < s->n; i++) {
-        if (!s->o[i]) continue;
-        if (rc) { base_out_abort(s->o[i]); continue; }
-        if (out_publish(s->o[i], err, errlen)) rc = -1;
+        if (rc && pub[i]) {
+            /* put back: the old file (its link kept if that fails), or none */
+            if (!old[i]) unlink(tgt[i]);
+            else if (rename(old[i], tgt[i]) != 0) { free(old[i]); old[i] = NULL; }
+        } else if (old[i]) unlink(old[i]);      /* the old file's extra name */
+        free(tgt[i]);
+        free(old[i]);
     }
+    free(pub);
+    for (int i = 0; i < s->n; i++) if (s->o[i]) base_out_abort(s->o[i]);
+    free(tgt);
+    free(old);
+    pthread_sigmask(SIG_SETMASK, &was, NULL);
+    if (!rc) set_forget_made(s);
+    else for (int i = s->nmade - 1; i >= 0; i--) { rmdir(s->made[i]); reg_remove_dir(s->made[i]); free(s->made[i]); }
+    if (rc) { free(s->made); s->made = NULL; s->nmade = 0; }
     free(s->o);
     free(s);
     return rc;
@@ -664,7 +754,10 @@ int base_out_mkdirs(const char *dir, char *err, size_t errlen)
                     char **nm = realloc(cur_set->made, (size_t)(cur_set->nmade + 1) * sizeof *nm);
                     if (nm) {
                         cur_set->made = nm;
-                        if ((nm[cur_set->nmade] = strdup(p))) cur_set->nmade++;
+                        if ((nm[cur_set->nmade] = strdup(p))) {
+                            reg_add_kind(p, 1);
+                            cur_set->nmade++;
+                        }
                     }
                 }
             } else if (errno != EEXIST) {

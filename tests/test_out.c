@@ -542,6 +542,143 @@ static void t_symlink_through(void)
     TST_CHECK(!has_temp(), "no temporary left");
 }
 
+/* A set whose commit fails part-way is all-or-nothing (issue: output
+ * sets whole even when the last step fails):
+ * (a) a link member whose copy fails (its target's folder is gone) stops
+ *     the commit there: a later link's file keeps its bytes, and the
+ *     renamed members are put back;
+ * (b) a rename failing part-way (the target became a folder) puts back
+ *     the members renamed before it, old bytes and all, and leaves a new
+ *     member where there was none not there. */
+static void t_set_whole(void)
+{
+    tst_rmtree(dir);
+    char a[400], b[400], l1[400], l2[400], t2[400], buf[256], err[300];
+    path_in(a, sizeof a, "a.csv");
+    path_in(b, sizeof b, "b.csv");
+    path_in(l1, sizeof l1, "l1.csv");
+    path_in(l2, sizeof l2, "l2.csv");
+    path_in(t2, sizeof t2, "t2.csv");
+    put(a, "old a\n", 0644);
+    put(t2, "old t2\n", 0644);
+    TST_CHECK(symlink("/nonexistent-shadesim/dir/x.csv", l1) == 0 && symlink("t2.csv", l2) == 0, "links");
+    base_outset *s = base_outset_new();
+    TST_EQ_INT(base_outset_write(s, a, "new a\n", 6, err, sizeof err), 0);
+    TST_EQ_INT(base_outset_write(s, b, "new b\n", 6, err, sizeof err), 0);
+    TST_EQ_INT(base_outset_write(s, l1, "new l1\n", 7, err, sizeof err), 0);
+    TST_EQ_INT(base_outset_write(s, l2, "new l2\n", 7, err, sizeof err), 0);
+    TST_EQ_INT(base_outset_commit(s, err, sizeof err), -1);
+    TST_CHECK(strstr(err, "l1.csv") != NULL, "err = %s", err);
+    TST_EQ_INT(slurp(t2, buf, sizeof buf), 7);
+    TST_EQ_STR(buf, "old t2\n");               /* (a): the link after the failure not written */
+    TST_EQ_INT(slurp(a, buf, sizeof buf), 6);
+    TST_EQ_STR(buf, "old a\n");                /* renamed, then put back */
+    TST_CHECK(access(b, F_OK) != 0, "b.csv (new) taken back");
+    TST_CHECK(!has_temp(), "no temporary left");
+    TST_EQ_INT(entries(), 4);                   /* a, t2, l1, l2: no .old- link left */
+    /* (b) */
+    tst_rmtree(dir);
+    char c[400], d[400], inside[400];
+    path_in(c, sizeof c, "c.csv");
+    path_in(d, sizeof d, "d.csv");
+    path_in(inside, sizeof inside, "d.csv/keep");
+    put(a, "old a\n", 0644);
+    s = base_outset_new();
+    TST_EQ_INT(base_outset_write(s, a, "new a\n", 6, err, sizeof err), 0);
+    TST_EQ_INT(base_outset_write(s, c, "new c\n", 6, err, sizeof err), 0);
+    TST_EQ_INT(base_outset_write(s, d, "new d\n", 6, err, sizeof err), 0);
+    /* d.csv becomes a folder that is not empty before the commit */
+    TST_CHECK(mkdir(d, 0755) == 0, "mkdir");
+    put(inside, "x", 0644);
+    TST_EQ_INT(base_outset_commit(s, err, sizeof err), -1);
+    TST_CHECK(strstr(err, "d.csv") != NULL, "err = %s", err);
+    TST_EQ_INT(slurp(a, buf, sizeof buf), 6);
+    TST_EQ_STR(buf, "old a\n");
+    TST_CHECK(access(c, F_OK) != 0, "c.csv (new) taken back");
+    TST_CHECK(!has_temp(), "no temporary left");
+    TST_EQ_INT(entries(), 2);                   /* a.csv, d.csv/ */
+}
+
+/* (c) A signal during the commit finds the set either not begun or whole:
+ * a child commits 100 members over their old bytes, the parent sends
+ * SIGINT at times spread over the commit; every member then has the same
+ * bytes, old or new. (d) The folders a set made go with an interrupted
+ * set (an interrupted report into a new folder left an empty scene/). */
+static void t_set_signal(void)
+{
+    enum { N = 100, RUNS = 16 };     /* N within the registry's 128 slots */
+    int mixed = 0, runs = 0, made_left = 0;
+    /* on tmpfs, where fsync costs nothing, the commit's time is its
+     * renames, and the signals land among them */
+    char saved[sizeof dir];
+    memcpy(saved, dir, sizeof dir);
+    struct stat shm;
+    if (stat("/dev/shm", &shm) == 0 && S_ISDIR(shm.st_mode)) {
+        snprintf(dir, sizeof dir, "/dev/shm/shadesim-test-out-%ld", (long)getpid());
+        mkdir(dir, 0700);
+    }
+    for (int run = 0; run < RUNS; run++) {
+        tst_rmtree(dir);
+        char p[400], err[300], name[32];
+        for (int k = 0; k < N; k++) {
+            snprintf(name, sizeof name, "m%03d.csv", k);
+            path_in(p, sizeof p, name);
+            put(p, "old\n", 0644);
+        }
+        int fds[2];
+        TST_CHECK(pipe(fds) == 0, "pipe");
+        fflush(stdout);
+        pid_t pid = fork();
+        if (pid == 0) {
+            close(fds[0]);
+            base_out_install_signals();
+            char sub[400];
+            path_in(sub, sizeof sub, "new/scene");
+            base_outset *s = base_outset_begin();
+            if (base_out_mkdirs(sub, err, sizeof err)) _exit(3);
+            for (int k = 0; k < N; k++) {
+                snprintf(name, sizeof name, "m%03d.csv", k);
+                path_in(p, sizeof p, name);
+                if (base_out_write_all(p, "new\n", 4, err, sizeof err)) _exit(4);
+            }
+            if (write(fds[1], "g", 1) != 1) _exit(5);
+            if (run % 4 == 3) for (;;) pause();   /* (d): killed before its commit */
+            base_outset_commit(s, err, sizeof err);
+            for (;;) pause();
+        }
+        TST_CHECK(pid > 0, "fork");
+        if (pid <= 0) return;
+        close(fds[1]);
+        char go;
+        int started = read(fds[0], &go, 1) == 1;
+        close(fds[0]);
+        struct timespec ts = { 0, 25000L * run };    /* 0 to 0.4 ms into the commit */
+        nanosleep(&ts, NULL);
+        kill(pid, SIGINT);
+        int status = 0;
+        waitpid(pid, &status, 0);
+        if (!started) continue;
+        runs++;
+        int nnew = 0;
+        for (int k = 0; k < N; k++) {
+            char buf[16];
+            snprintf(name, sizeof name, "m%03d.csv", k);
+            path_in(p, sizeof p, name);
+            if (slurp(p, buf, sizeof buf) == 4 && !strcmp(buf, "new\n")) nnew++;
+        }
+        if (nnew && nnew != N) mixed++;
+        char sub[400];
+        path_in(sub, sizeof sub, "new");
+        if (run % 4 == 3 && access(sub, F_OK) == 0) made_left++;
+        if (has_temp()) made_left += 100;
+    }
+    if (strcmp(dir, saved)) { tst_rmtree(dir); rmdir(dir); }
+    memcpy(dir, saved, sizeof dir);
+    TST_EQ_INT(runs, RUNS);
+    TST_EQ_INT(mixed, 0);
+    TST_EQ_INT(made_left, 0);
+}
+
 int main(void)
 {
     umask(UMASK);
@@ -551,6 +688,8 @@ int main(void)
     TST_RUN(t_replace_regular);
     TST_RUN(t_symlink);
     TST_RUN(t_symlink_through);
+    TST_RUN(t_set_whole);
+    TST_RUN(t_set_signal);
     TST_RUN(t_set);
     TST_RUN(t_devnull);
     TST_RUN(t_devfull);
