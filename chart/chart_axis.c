@@ -154,15 +154,19 @@ static void chart_minus(char *s, size_t cap)
 }
 
 /* Tick labels: "10^k" on log axes; on linear axes the decimals the step
- * needs, the same on every label, or a mantissa times 10^E when the
- * numbers are large (>= 1e6) or small (all below 1e-3). */
+ * needs, the same on every label; large numbers (>= 1e6, below 1e15)
+ * with an SI prefix, the way the tables write throughput ("30 M", not
+ * "0.3x10^8": the largest tick's thousands, so the mantissas stay whole
+ * where the step allows); small ones (all below 1e-3) as a mantissa times
+ * 10^E. */
 void chart_labels(chart_axis *a)
 {
-    int sci = 0, E = 0, dec = a->k < 0 ? -a->k : 0;
+    int sci = 0, E = 0, dec = a->k < 0 ? -a->k : 0, si = 0;
     if (!a->log) {
         double big = fmax(fabs(a->lo), fabs(a->hi));
         E = big > 0 ? (int)floor(log10(big)) : 0;
-        if (E >= 6 || E <= -4) { sci = 1; dec = E - a->k; if (dec < 0) dec = 0; }
+        if (E >= 6 && E < 15) { si = E / 3 * 3; dec = si - a->k; if (dec < 0) dec = 0; }
+        else if (E >= 15 || E <= -4) { sci = 1; dec = E - a->k; if (dec < 0) dec = 0; }
     }
     for (size_t i = 0; i < a->nmaj; i++) {
         chart_lab *l = &a->lab[i];
@@ -174,7 +178,12 @@ void chart_labels(chart_axis *a)
             continue;
         }
         double v = a->maj[i];
-        if (sci && v != 0) {
+        if (si) {
+            static const char *const prefix[] = { " M", " G", " T" };
+            size_t n = v == 0 ? chart_fixed(l->base, sizeof l->base, 0, 0, 0)
+                              : chart_fixed(l->base, sizeof l->base, v / chart_pow10(si), dec, 0);
+            if (v != 0) snprintf(l->base + n, sizeof l->base - n, "%s", prefix[si / 3 - 2]);
+        } else if (sci && v != 0) {
             size_t n = chart_fixed(l->base, sizeof l->base, v / chart_pow10(E), dec, 0);
             snprintf(l->base + n, sizeof l->base - n, "\xC3\x97" "10");
             snprintf(l->sup, sizeof l->sup, "%d", E);

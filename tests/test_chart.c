@@ -553,6 +553,33 @@ static int is_125(double step)
     return fabs(m - 1) < 1e-9 || fabs(m - 2) < 1e-9 || fabs(m - 5) < 1e-9 || fabs(m - 10) < 1e-9;
 }
 
+/* Large linear values with an SI prefix, as the tables write throughput:
+ * items per second from 8e7 to 1.15e8 are "100 M", not "1x10^8" or
+ * "0.3x10^8"; 1e16 (past T) keeps the mantissa times 10^E; below 1e6
+ * plain numbers. */
+static void test_svg_si_labels(void)
+{
+    static const struct { double lo, hi; const char *want, *not; } cases[] = {
+        { 8e7, 1.15e8, ">100 M</text>", "\xC3\x97" "10<tspan" },
+        { 0, 3e7, ">30 M</text>", "\xC3\x97" "10<tspan" },
+        { 1e9, 4e9, " G</text>", " M</text>" },
+        { 1e5, 4e5, ">200000</text>", " M</text>" },
+        { 1e16, 4e16, "\xC3\x97" "10<tspan", " T</text>" },
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        chart *c = chart_new("si", "x", "items / s");
+        int s = chart_series(c, "s", CHART_POINTS);
+        chart_point(c, s, 1, cases[k].lo);
+        chart_point(c, s, 2, cases[k].hi);
+        if (!write_ok(c, tpath("si.svg"))) { chart_free(c); return; }
+        chart_free(c);
+        char *f = slurp(tpath("si.svg"), NULL);
+        TST_CHECK(f && strstr(f, cases[k].want), "[%g, %g]: no %s", cases[k].lo, cases[k].hi, cases[k].want);
+        TST_CHECK(f && !strstr(f, cases[k].not), "[%g, %g]: has %s", cases[k].lo, cases[k].hi, cases[k].not);
+        free(f);
+    }
+}
+
 static void test_ticks_linear(void)
 {
     static const double ranges[][2] = {
@@ -1146,6 +1173,7 @@ int main(void)
     TST_RUN(test_svg_no_text_overlap);
     TST_RUN(test_svg_legend_drawn_only);
     TST_RUN(test_ticks_linear);
+    TST_RUN(test_svg_si_labels);
     TST_RUN(test_ticks_log);
     TST_RUN(test_svg_well_formed);
     TST_RUN(test_svg_xmllint);
