@@ -21,6 +21,11 @@ suggest sweep_option_typo "did you mean '--target-error'?" "$S" sweep horner3 --
 suggest scene_typo "did you mean 'sphere'? built-in: face, sphere, torus" "$S" scene sphre
 suggest scene_unknown_lists_builtins "no built-in scene or scene file 'cube' (built-in: face, sphere, torus)" "$S" scene cube
 suggest scene_key_typo 'did you mean "fov"' "$S" scene sphere --set fvo=30
+# factor speaks as the other verbs do (it had "--resl: unknown option" and
+# no suggestion for a BRDF)
+suggest factor_option_typo "shadesim: factor: unknown option '--resl' (did you mean '--res'? see shadesim factor --help)" "$S" factor ward --resl 3
+suggest factor_brdf_typo "shadesim: factor: unknown BRDF 'wardd' (did you mean 'ward'? one of blinn, ct, ward, ward-aniso)" "$S" factor wardd
+suggest factor_option_first "shadesim: factor: which BRDF?" "$S" factor --res 8
 # Far from everything: no suggestion.
 expect option_far 2 "$S" run horner3 --zzzzzzzz
 grep -q "did you mean" "$T/err" && fail option_far_no_suggestion "$(cat "$T/err")" || ok option_far_no_suggestion

@@ -12,6 +12,7 @@
 #include "testbench/study/tb_factor_claims.h"
 #include "testbench/study/tb_factor_study.h"
 #include "scene/scene.h"
+#include "base/base_near.h"
 #include "base/base_out.h"
 #include <errno.h>
 #include <math.h>
@@ -187,7 +188,7 @@ static const cli_opt factor_tab[] = {
 };
 
 const cli_optspec cli_factor_spec = {
-    "factor", { factor_tab }, NULL, 0, "%s: unknown option (see shadesim factor --help)",
+    "factor", { factor_tab }, NULL, 0, "factor: unknown option '%s' (see shadesim factor --help)",
     "usage: shadesim factor BRDF [options]\n\n"
     "Factorizes a BRDF as f(d0, di) ~ lambda(d0) pi(h) lambda(di), h = norm(d0 + di)\n"
     "(homomorphic factorization, Romanyuk, Vyatkin, Voitko, Romanyuk 2020): both\n"
@@ -251,10 +252,19 @@ int cli_factor(int argc, char **argv)
 {
     base_outset *set = NULL;
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_factor_spec);
-    if (argc < 2) return cli_usage_error("factor: missing BRDF (blinn, ct, ward, ward-aniso; see shadesim factor --help)");
+    if (argc < 2 || argv[1][0] == '-')
+        return cli_usage_error("factor: which BRDF? (blinn, ct, ward, ward-aniso; see shadesim factor --help)");
     char err[600];
     rf_brdf b;
-    if (rf_brdf_init(&b, argv[1], err, sizeof err)) return cli_usage_error("%s", err);
+    if (rf_brdf_init(&b, argv[1], err, sizeof err)) {
+        /* the message of every other verb: the verb, the name, the nearest */
+        size_t n = 0;
+        while (rf_brdf_names[n]) n++;
+        const char *near = base_near(argv[1], rf_brdf_names, n);
+        if (near) return cli_usage_error("factor: unknown BRDF '%s' (did you mean '%s'? one of blinn, ct, ward, ward-aniso)",
+                                         argv[1], near);
+        return cli_usage_error("factor: unknown BRDF '%s' (one of blinn, ct, ward, ward-aniso)", argv[1]);
+    }
     factor_args fa;
     memset(&fa, 0, sizeof fa);
     rf_opts_default(&fa.o);
