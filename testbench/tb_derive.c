@@ -2,6 +2,7 @@
  * intervals (sim_ival.h), driven as tb_run drives it (tb_derive.h). */
 #include "testbench/tb_derive.h"
 #include "testbench/tb_range.h"
+#include "sim/sim_aff.h"
 #include "base/base_num.h"
 #include "base/base_out.h"
 #include <math.h>
@@ -75,6 +76,12 @@ typedef struct dsim {
     sim_ctx *c;
     uint32_t n;
     sim_ival *val, *hull, *nxt_pre, *nxt_post, *bound;
+    /* the same values as affine forms (sim_aff.h): the relations between
+     * signals a linear network keeps, so that its intervals are its exact
+     * hulls; each narrows the interval it goes with */
+    sim_aff *aval, *anxt;
+    uint32_t nsym;                  /* noise symbols made so far */
+    const unit_io *io;
     uint32_t *order, norder;        /* combinational elements */
     uint32_t *regs, nregs;
     unsigned char *mark;
@@ -119,6 +126,7 @@ static int visit(dsim *d, const sim_signal *y, char *err, size_t errlen)
 static void dsim_free(dsim *d)
 {
     free(d->val); free(d->hull); free(d->nxt_pre); free(d->nxt_post); free(d->bound);
+    free(d->aval); free(d->anxt);
     free(d->order); free(d->regs); free(d->mark);
     free(d->data); free(d->snap); free(d->snap_got);
 }
@@ -137,7 +145,9 @@ static int clock_step(dsim *d, const unit_io *io, int valid, char *err, size_t e
     for (uint32_t k = 0; k < d->norder; k++) {
         uint32_t i = d->order[k];
         sim_ival pre, post;
+        sim_aff apre;
         sim_ival_eval(sim_signal_at(d->c, i), d->val, &pre, &post);
+        sim_aff_eval(sim_signal_at(d->c, i), d->aval, d->val, &pre, &post, &apre, &d->aval[i], &d->nsym);
         d->val[i] = post;
         d->hull[i] = sim_ival_hull(d->hull[i], pre);
     }
@@ -149,10 +159,16 @@ static int clock_step(dsim *d, const unit_io *io, int valid, char *err, size_t e
     }
     for (uint32_t k = 0; k < d->nregs; k++) {
         uint32_t i = d->regs[k];
+        sim_aff apre;
         sim_ival_eval(sim_signal_at(d->c, i), d->val, &d->nxt_pre[i], &d->nxt_post[i]);
+        sim_aff_eval(sim_signal_at(d->c, i), d->aval, d->val, &d->nxt_pre[i], &d->nxt_post[i], &apre, &d->anxt[i],
+                     &d->nsym);
         d->hull[i] = sim_ival_hull(d->hull[i], d->nxt_pre[i]);
     }
-    for (uint32_t k = 0; k < d->nregs; k++) d->val[d->regs[k]] = d->nxt_post[d->regs[k]];
+    for (uint32_t k = 0; k < d->nregs; k++) {
+        d->val[d->regs[k]] = d->nxt_post[d->regs[k]];
+        d->aval[d->regs[k]] = d->anxt[d->regs[k]];
+    }
     return (valid && rdy.lo ? 1 : 0) + (ov.lo ? 2 : 0);
 }
 
@@ -168,6 +184,9 @@ static void dsim_alloc(dsim *d, sim_ctx *c)
     d->bound = calloc(n, sizeof *d->bound);
     d->order = calloc(n, sizeof *d->order); d->regs = calloc(n, sizeof *d->regs); d->mark = calloc(n, 1);
     d->data = calloc(n, 1);
+    d->aval = calloc(n, sizeof *d->aval);
+    d->anxt = calloc(n, sizeof *d->anxt);
+    if (!d->aval || !d->anxt) base_out_of_memory();
     if (!d->val || !d->hull || !d->nxt_pre || !d->nxt_post || !d->bound || !d->order || !d->regs || !d->mark ||
         !d->data)
         base_out_of_memory();
@@ -178,9 +197,11 @@ static void dsim_alloc(dsim *d, sim_ctx *c)
  * it sets one) and are marked data. */
 static void dsim_start(dsim *d, const tb_built *b, const unit_desc *u, const unit_cfg *cfg, const tb_ranges *rg)
 {
+    d->io = &b->io;
     for (uint32_t i = 0; i < d->n; i++) {
         sim_signal *s = sim_signal_at(b->c, i);
         d->val[i] = d->hull[i] = (sim_ival){ s->cur, s->cur };
+        d->aval[i] = sim_aff_of_ival(d->val[i], s->fmt, &d->nsym);
         if (s->kind == SIM_KIND_REG) d->regs[d->nregs++] = i;
     }
     for (int i = 0, k = 0; i < u->nsigs; i++) {
@@ -190,7 +211,30 @@ static void dsim_start(dsim *d, const tb_built *b, const unit_desc *u, const uni
         if (rg && rg->set[i]) pre = (sim_ival){ round_real(rg->lo[i], s->fmt, cfg->rnd), round_real(rg->hi[i], s->fmt, cfg->rnd) };
         d->hull[s->index] = pre;
         d->val[s->index] = sim_ival_fit(pre, s->fmt, sim_fmt_ovf(s->fmt, cfg->ovf));
+        d->aval[s->index] = sim_aff_of_ival(d->val[s->index], s->fmt, &d->nsym);
         d->data[s->index] = 1;
+    }
+}
+
+/* The next item on the inputs: their forms new symbols, unrelated to the
+ * item before. */
+static void new_item(dsim *d)
+{
+    for (int k = 0; k < UNIT_MAX_IO && d->io->in[k]; k++) {
+        const sim_signal *s = d->io->in[k];
+        d->aval[s->index] = sim_aff_of_ival(d->val[s->index], s->fmt, &d->nsym);
+    }
+}
+
+/* State joined (or restored) as intervals: each register's form becomes
+ * its interval as a symbol of its own (the relations between registers
+ * are dropped, which only widens; within one register's uses, kept). */
+static void regs_as_intervals(dsim *d, int data_only)
+{
+    for (uint32_t k = 0; k < d->nregs; k++) {
+        uint32_t i = d->regs[k];
+        if (data_only && !d->data[i]) continue;
+        d->aval[i] = sim_aff_of_ival(d->val[i], sim_signal_at(d->c, i)->fmt, &d->nsym);
     }
 }
 
@@ -273,6 +317,8 @@ static int run_items(dsim *d, const tb_built *b, const unit_desc *u, int beats, 
             if (have_bound && d->data[i]) d->val[i] = sim_ival_hull(d->val[i], d->bound[i]);
             d->bound[i] = d->val[i];
         }
+        if (have_bound) regs_as_intervals(d, 1);
+        new_item(d);
         have_bound = 1;
     }
     *items = (int)accepted;
@@ -289,6 +335,8 @@ static int drain_runs(dsim *d, const tb_built *b, const unit_desc *u, int beats,
     int st;
     for (size_t j = 0; j < d->nsnap; j++) {
         memcpy(d->val, d->snap + j * n, n * sizeof *d->snap);
+        regs_as_intervals(d, 0);
+        new_item(d);
         size_t g = d->snap_got[j];
         for (uint64_t c = 0; g < (j + 1) * (size_t)beats; c++) {
             if (c >= DERIVE_MAX_CLOCKS || (st = clock_step(d, &b->io, 0, err, errlen)) < 0) {

@@ -44,6 +44,39 @@ expect sweep_bad_mode 2 "$S" sweep horner3 --widths 12:14 --ranges maybe
 expect sweep_bad_range 2 "$S" sweep horner3 --widths 12:14 --target-error 1e-2 --ranges derived --range t=1:0
 expect sweep_needs_target 2 "$S" sweep horner3 --widths 12:14 --ranges derived
 
+# Linear networks get their exact hulls (affine forms, sim/sim_aff.h):
+# coef3_n1 with its nodes in [0, 1] computes 7 I1 as 8 I1 - I1, which
+# intervals made [-1, 8] and "cannot hold" in s4.15; exact [0, 7]. The same
+# for pb = 7 I1 - I2 ([-1, 7], was [-9, 8]); coef3_n2 and interp3 (whose
+# coefficient network is coef3_n1's) are clear too.
+box="--range i1=0:1 --range i2=0:1 --range i3=0:1 --range i4=0:1"
+# shellcheck disable=SC2086
+expect coef3_n1_exact 0 "$S" run coef3_n1 --ranges derived $box --json
+check coef3_n1_i1x7 grep -q '"name": "i1x7", "format": "s4.15", "derived": \[0, 7\], "fits": true' "$T/out"
+check coef3_n1_pb grep -q '"name": "pb", "format": "s4.15", "derived": \[-1, 7\], "fits": true' "$T/out"
+# shellcheck disable=SC2086
+expect coef3_n2_clear 0 "$S" run coef3_n2 --ranges derived $box
+# shellcheck disable=SC2086
+expect interp3_clear 0 "$S" run interp3 --ranges derived $box
+# and still sound: every signal's values on 3000 generated items (nodes in
+# [0, 1]) lie within its derived interval
+# shellcheck disable=SC2086
+"$S" run coef3_n1 -n 3000 --ranges derived $box --json >"$T/c1.json" 2>&1
+if command -v python3 >/dev/null 2>&1; then
+    python3 - "$T/c1.json" 2>"$T/py.err" <<'PY' && ok coef3_n1_sound || fail coef3_n1_sound "$(tail -1 "$T/py.err")"
+import json, re, sys
+d = json.load(open(sys.argv[1]))
+der = {s["name"]: s["derived"] for s in d["ranges_derived"]["signals"]}
+n = 0
+for s in d["run"]["signals"]:
+    if s["name"] not in der or "min" not in s: continue
+    f = int(re.match(r"[su]\d+\.(\d+)", s["fmt"]).group(1))
+    assert der[s["name"]][0] <= s["min"] / 2 ** f and s["max"] / 2 ** f <= der[s["name"]][1], s["name"]
+    n += 1
+assert n >= 20, n
+PY
+else echo "skip ${PREFIX}coef3_n1_sound: python3 not found"; fi
+
 # The search with derived ranges, then its formats on stimuli of another
 # seed: corners and uniform draws over the declared box (made here with
 # awk; the expected output is the cubic in double).
