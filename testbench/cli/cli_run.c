@@ -315,6 +315,29 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
     return rc == CLI_USAGE ? rc : cli_stdout_done(rc);
 }
 
+/* Options that go together, or exclude each other: 0, or CLI_USAGE
+ * after the message. */
+static int options_clash(const run_args *ra, const cli_unit_opts *o)
+{
+    if (ra->nrange && !ra->derived) return cli_usage_error("run: --range goes with --ranges derived");
+    if (ra->nvec && o->vectors) return cli_usage_error("run: -n makes the vectors; --vectors reads them: give one");
+    if (ra->seed != 1 && !ra->nvec) return cli_usage_error("run: --seed goes with -n");
+    const char *vcd = ra->vcd;
+    long long vfrom = ra->vfrom, vto = ra->vto;
+    /* "-" is stdout for each output option; stdout holds one stream. */
+    int vcd_out = vcd && !strcmp(vcd, "-"), csv_out = ra->csv && !strcmp(ra->csv, "-");
+    if (vcd_out + csv_out + ra->json > 1)
+        return cli_usage_error("run: only one of --out -, --vcd - and --json can write to stdout");
+    if ((vfrom >= 0 || vto >= 0 || ra->fst) && !vcd)
+        return cli_usage_error("run: %s needs --vcd FILE", ra->fst ? "--fst" : vfrom >= 0 ? "--vcd-from" : "--vcd-to");
+    if (vfrom >= 0 && vto >= 0 && vfrom > vto)
+        return cli_usage_error("run: --vcd-from %lld is after --vcd-to %lld", vfrom, vto);
+    if (ra->fst && vcd_out) return cli_usage_error("run: --fst needs a file, not --vcd -");
+    if (ra->fst && !tb_wave_have_vcd2fst())
+        return cli_usage_error("run: --fst needs vcd2fst, which is not installed (Debian package gtkwave)");
+    return 0;
+}
+
 int cli_run(int argc, char **argv)
 {
     cli_unit_opts o;
@@ -352,23 +375,11 @@ int cli_run(int argc, char **argv)
         return cli_usage_error("run %s: the netlist is the design: --width, --fmt, --round, --overflow, --schedule "
                                "and --param are its own lines (write it again with shadesim netlist %s ...)",
                                unit, o.u->name);
-    if (ra.nrange && !ra.derived) return cli_usage_error("run: --range goes with --ranges derived");
-    if (ra.nvec && o.vectors) return cli_usage_error("run: -n makes the vectors; --vectors reads them: give one");
-    if (ra.seed != 1 && !ra.nvec) return cli_usage_error("run: --seed goes with -n");
+    if (options_clash(&ra, &o)) return CLI_USAGE;
     const char *vcd = ra.vcd, *csv = ra.csv;
     int json = ra.json, fst = ra.fst, ranges = ra.ranges;
     long long vfrom = ra.vfrom, vto = ra.vto;
-    /* "-" is stdout for each output option; stdout holds one stream. */
     int vcd_out = vcd && !strcmp(vcd, "-"), csv_out = csv && !strcmp(csv, "-");
-    if (vcd_out + csv_out + json > 1)
-        return cli_usage_error("run: only one of --out -, --vcd - and --json can write to stdout");
-    if ((vfrom >= 0 || vto >= 0 || fst) && !vcd)
-        return cli_usage_error("run: %s needs --vcd FILE", fst ? "--fst" : vfrom >= 0 ? "--vcd-from" : "--vcd-to");
-    if (vfrom >= 0 && vto >= 0 && vfrom > vto)
-        return cli_usage_error("run: --vcd-from %lld is after --vcd-to %lld", vfrom, vto);
-    if (fst && vcd_out) return cli_usage_error("run: --fst needs a file, not --vcd -");
-    if (fst && !tb_wave_have_vcd2fst())
-        return cli_usage_error("run: --fst needs vcd2fst, which is not installed (Debian package gtkwave)");
     FILE *report = vcd_out || csv_out ? stderr : stdout;
     if (!nlu && tb_formats(o.u, &o.cfg, o.fmt, o.nfmt, &fm, err, sizeof err)) return cli_usage_error("%s", err);
     if (!o.nfmt && !nlu) {
