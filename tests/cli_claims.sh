@@ -105,6 +105,18 @@ check claims_o_writes_svgs [ "$nsvg" -eq 5 ]
 check claims_o_no_temporaries [ "$(ls "$T/charts/sub" | grep -v -c '\.svg$')" -eq 0 ]
 check claims_o_lists_files grep -q "wrote $T/charts/sub/claims_cost.svg" "$T/o.out"
 
+# A width where a unit of the speed table derives no error bound says so,
+# as run says NO BOUND (claims --width 4 ran without a word); at the
+# default width every unit has its bound.
+check claims_default_bounded grep -q '"no_bound": \[\],' "$T/json"
+check claims_default_no_note sh -c '! grep -q "note: at width" "$0"' "$T/text"
+if [ -z "$ASAN" ]; then
+    "$S" claims --width 8 >"$T/w8" 2>&1
+    check claims_w8_note grep -q '^  note: at width 8, div derives no error bound for its formats (run says NO BOUND):$' "$T/w8"
+    "$S" run div --width 8 >"$T/div8" 2>&1
+    check claims_w8_as_run grep -q '^verdict: NO BOUND' "$T/div8"
+fi
+
 "$S" claims --help >"$T/help" 2>&1
 rc=$?
 check claims_help [ $rc -eq 0 -a "$(grep -c '^usage: shadesim claims' "$T/help")" -eq 1 ]

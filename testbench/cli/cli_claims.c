@@ -69,6 +69,22 @@ static void print_row(FILE *f, const claim_result *r)
     fprintf(f, "  note:     %s\n\n", r->note);
 }
 
+/* The units of the speed table that derive no error bound at its width,
+ * each quoted with q, into buf ("" when none); how many. */
+static int no_bound(const tb_speed_hw *h, char *buf, size_t len, const char *q)
+{
+    const tb_hw_point *pts[] = { &h->d16, &h->ward16, &h->pow_d, &h->pow_w, &h->sq, &h->div };
+    int k = 0;
+    buf[0] = 0;
+    for (size_t i = 0; i < sizeof pts / sizeof pts[0]; i++) {
+        char name[40];
+        snprintf(name, sizeof name, "%s%s%s", q, pts[i]->unit, q);
+        if (!pts[i]->unbounded || strstr(buf, name)) continue;
+        snprintf(buf + strlen(buf), len - strlen(buf), "%s%s", k++ ? ", " : "", name);
+    }
+    return k;
+}
+
 static void print_text(FILE *f, const report *rp, char paths[][600], int np)
 {
     fputs("The papers' numerical claims next to what the double-precision references measure.\n"
@@ -96,6 +112,13 @@ static void print_text(FILE *f, const report *rp, char paths[][600], int np)
         fprintf(f, "  %-40s %6.0f %7.0f %9.0f %7.1f %11.1f\n", t[i].name, t[i].cl, t[i].ar, t[i].pd, ns,
                 ns * t[i].ar / 1e3);
     }
+    /* a width where run would say NO BOUND: said here too */
+    char nb[200];
+    int k = no_bound(h, nb, sizeof nb, "");
+    if (k)
+        fprintf(f, "  note: at width %d, %s derive%s no error bound for %s formats (run says NO BOUND):\n"
+                   "  %s figures are measured, %s errors not checked against a bound\n", h->width, nb,
+                k > 1 ? "" : "s", k > 1 ? "their" : "its", k > 1 ? "their" : "its", k > 1 ? "their" : "its");
     fprintf(f, "  exact D = c^2 (squarer) -> (1-c^2)/c^2 (divider) -> exp -> c^4 (squarer on c^2) ->\n"
           "  exp/c^4 (divider). The first two stages are wired into one design (1 - c^2 by a\n"
           "  subtractor, operand registers, a valid flag) and simulated end to end, one item\n"
@@ -183,7 +206,9 @@ static void print_json(FILE *f, const report *rp, char paths[][600], int np)
     json_hw(f, "pow_n_cos_power_ward", h->pow_w.clocks, h->pow_w.area, h->pow_w.period_ps, h->n_w, 0);
     json_hw(f, "exact_d_without_exp", h->exact_d_clocks, h->exact_d_area, h->exact_d_period_ps, 0, 0);
     json_hw(f, "ward_exp_term_without_exp", h->exact_w_clocks, h->exact_w_area, h->exact_w_period_ps, 0, 1);
-    fputs("    },\n    \"model\": ", f);
+    char nb[200];
+    no_bound(h, nb, sizeof nb, "\"");
+    fprintf(f, "    },\n    \"no_bound\": [%s],\n    \"model\": ", nb);
     base_json_str(f, "built units, time per item = clocks x the critical path of each design (a chain: its "
             "slowest stage's): Ward's exp term = squarer and divider wired into one design and simulated; exact D = "
             "that design, then a squarer and a divider each simulated alone; the exponential (no unit) not counted: "

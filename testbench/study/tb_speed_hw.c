@@ -29,6 +29,7 @@ int tb_hw_point_run(const char *name, const unit_cfg *cfg, size_t nvec, tb_hw_ph
         pt->clocks = r.cycles_per_item;
         pt->area = r.area_ge;
         pt->period_ps = r.ppa.crit_ps;
+        pt->unbounded = r.bound_check == TB_CHECK_NO_BOUND;
         if (phys)
             for (size_t i = 0; i < vs.n_rows; i++) {
                 double hw = sim_fx_to_real(r.raw[i * (size_t)r.n_out], r.out[0].fmt);

@@ -32,6 +32,7 @@ typedef struct tb_hw_point {
     double clocks, area, max_err_peak;   /* max |hw - phys| / peak (phys given) */
     double period_ps;                    /* its critical path (docs/timing.md): the clock it allows */
     int    ok;
+    int    unbounded;                    /* the unit derives no error bound at these formats */
 } tb_hw_point;
 
 typedef double (*tb_hw_phys)(double c, const unit_cfg *cfg);
