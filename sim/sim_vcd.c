@@ -429,8 +429,14 @@ int sim_vcd_write_gtkw(FILE *f, sim_ctx *c, const char *dump_path, const char *g
 {
     char *dump = abs_path(dump_path), *save = abs_path(gtkw_path);
     if (!dump || !save) { int e = errno; free(dump); free(save); errno = e; return -1; }
+    /* Beside each other (as run writes them), both by their names alone:
+     * the bytes do not depend on where the run was, and GTKWave finds a
+     * relative dump from the save file's own folder (its find_dumpfile,
+     * from [savefile] to [dumpfile]). Apart, the dump's absolute path. */
+    const char *ds = strrchr(dump, '/'), *ss = strrchr(save, '/');
+    int together = ds && ss && ds - dump == ss - save && !strncmp(dump, save, (size_t)(ds - dump));
     fprintf(f, "[*] shadesim: open with  gtkwave %s\n[dumpfile] \"%s\"\n[savefile] \"%s\"\n[timestart] 0\n",
-            save, dump, save);
+            together ? ss + 1 : save, together ? ds + 1 : dump, together ? ss + 1 : save);
     free(dump);
     free(save);
     fprintf(f, "[treeopen] %s.\n", sim_root(c)->name);
