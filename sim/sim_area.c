@@ -64,3 +64,27 @@ double sim_area_rom(const int64_t *words, int n, int w)
     }
     return ge;
 }
+
+/* Mapped GE / sim_area_mul(n, n) of a full n x n product (scripts/mul_area.sh
+ * prints them), at n = 4, 8, 16, 24; linear between, the end values
+ * beyond. A square's first point is its 8-bit one: ABC makes a 4-bit
+ * square two-level logic, no array at all. */
+static const int mul_fit_n[4] = { 4, 8, 16, 24 };
+static const double mul_fit[SIM_MUL_KINDS][4] = {
+    { 1.068, 1.218, 1.245, 1.284 },   /* unsigned x unsigned */
+    { 1.032, 1.279, 1.263, 1.292 },   /* signed x unsigned (zero-extended by a bit) */
+    { 1.107, 1.481, 1.426, 1.419 },   /* signed x signed */
+    { 0.728, 0.728, 0.979, 1.025 },   /* unsigned square */
+    { 1.040, 1.040, 1.137, 1.171 },   /* signed square */
+};
+
+double sim_area_mul_fit(int kind, int n)
+{
+    if (kind < 0 || kind >= SIM_MUL_KINDS) return 1.0;
+    const double *f = mul_fit[kind];
+    if (n <= mul_fit_n[0]) return f[0];
+    for (int i = 1; i < 4; i++)
+        if (n <= mul_fit_n[i])
+            return f[i - 1] + (f[i] - f[i - 1]) * (n - mul_fit_n[i - 1]) / (double)(mul_fit_n[i] - mul_fit_n[i - 1]);
+    return f[3];
+}

@@ -32,6 +32,16 @@ double sim_area_mul(int wa, int wb);                   /* array: wa*wb AND2 + (m
  * carry into it but need no sum bit (an XOR2 less each). A narrow format
  * (--fmt mul=sI.F) so costs less than the full array. */
 double sim_area_mul_cols(int wa, int wb, int drop_lo, int drop_hi);
+/* A product as synthesis maps it, over the array of sim_area_mul: ABC's
+ * delay-driven mapping (XOR2/XNOR2 and AOI/OAI cells, no FA_X1) makes a
+ * full product larger than the array, a signed x signed one larger still
+ * (Yosys sign-extends both operands), and a square (one operand twice)
+ * smaller (its partial products a_i b_j and a_j b_i are one). The ratio
+ * by kind at n = the narrower operand's live bits, measured on full
+ * products through Yosys and the NanGate45 Liberty
+ * (scripts/mul_area.sh; docs/area.md, "Products as mapped"). */
+enum { SIM_MUL_UU, SIM_MUL_SU, SIM_MUL_SS, SIM_MUL_SQ_U, SIM_MUL_SQ_S, SIM_MUL_KINDS };
+double sim_area_mul_fit(int kind, int n);
 /* Quantization logic at an element's output of w bits: rounding to nearest
  * where it drops fraction bits (an incrementer: w half adders), saturation
  * where its exact result has `extra` integer bits more than the output

@@ -164,9 +164,15 @@ sim_arcs sim_delay_mul(int wa, int wb, int wy)
      * products into their sum): its lowest, bit k0, is the array's column
      * k0, which settles after k0 rows, before the reduction ends (the
      * adder after it ripples from there while the high columns reduce,
-     * as ABC's mapping of dot3's sum of products does). */
-    int k0 = wa + wb - wy;
-    if (k0 < rows) low = d(1 + 2 * (k0 > 0 ? k0 : 0), SIM_PS_AND2 + (k0 > 0 ? k0 : 0) * SIM_PS_XOR2);
+     * as ABC's mapping of dot3's sum of products does at 16 x 16 and 24 x
+     * 24). Narrower, ABC finishes each product with its own final carry
+     * before the sum (OpenSTA's path through dot3 at 8 x 8: five AND3/OR3
+     * pairs, then the sum's XORs), so its low bits wait for the ripple as
+     * a kept high part's do. Measured at 8, 16 and 24 only: the switch at
+     * 16 partial products is where the reduction becomes a tree
+     * (sim_delay_mul_rows). */
+    int k0 = wa + wb - wy, n = wa < wb ? wa : wb;
+    if (k0 < rows && n >= 16) low = d(1 + 2 * (k0 > 0 ? k0 : 0), SIM_PS_AND2 + (k0 > 0 ? k0 : 0) * SIM_PS_XOR2);
     sim_arcs r = { low, full, low, full };
     return r;
 }

@@ -438,7 +438,15 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
         lo = p->e.src_f - fmt.fbits;
         hi = a->fmt.ibits + b->fmt.ibits - fmt.ibits;
     }
-    set_cost(y, p, sim_area_mul_cols(la, lb, lo > 0 ? lo : 0, hi > 0 ? hi : 0), sim_delay_mul(la, lb, fmt.width), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
+    double ge = sim_area_mul_cols(la, lb, lo > 0 ? lo : 0, hi > 0 ? hi : 0);
+    /* the array as ABC maps it (sim_area_mul_fit): by the operands'
+     * signs, a square apart; a constant's shift-and-add is no array */
+    if (a->kind != SIM_KIND_CONST && b->kind != SIM_KIND_CONST) {
+        int sa = a->fmt.is_signed, sb = b->fmt.is_signed;
+        int kind = a == b ? (sa ? SIM_MUL_SQ_S : SIM_MUL_SQ_U) : sa && sb ? SIM_MUL_SS : sa || sb ? SIM_MUL_SU : SIM_MUL_UU;
+        ge *= sim_area_mul_fit(kind, la < lb ? la : lb);
+    }
+    set_cost(y, p, ge, sim_delay_mul(la, lb, fmt.width), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
     return y;
 }
 

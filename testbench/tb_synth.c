@@ -58,7 +58,14 @@ int tb_synth_tool(tb_synth_run *run, const char *step, const char *dir, const ch
 {
     base_proc p = { "synth", step, dir, yosys ? yosys_pass : NULL, (void *)dir, run->start, run->limit_s,
                     run->progress, 0, 0 };
-    int rc = base_proc_run(cmd, &p, err, errlen);
+    /* The tools' own temporaries (Yosys's yosys-abc-XXXXXX folder for each
+     * ABC call) go into the flow's folder, not $TMPDIR: a tool stopped by
+     * the time limit or a signal leaves them behind, and the folder's
+     * removal takes them with it. */
+    char full[2048];
+    int n = snprintf(full, sizeof full, "TMPDIR=\"$PWD\"; export TMPDIR; %s", cmd);
+    if (n < 0 || (size_t)n >= sizeof full) { snprintf(err, errlen, "synth: %s: command too long", step); return TB_SYNTH_FAILED; }
+    int rc = base_proc_run(full, &p, err, errlen);
     if (rc == BASE_PROC_ERROR) return TB_SYNTH_FAILED;
     if (rc == BASE_PROC_SIGNAL) { run->signal = p.signal; snprintf(err, errlen, "synth: interrupted"); return TB_SYNTH_SIGNAL; }
     if (rc == BASE_PROC_TIMEOUT) {

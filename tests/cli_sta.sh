@@ -70,19 +70,19 @@ took=$(( $(date +%s) - start ))
 [ "$rc" = 2 ] && [ "$(wc -l <"$T/err")" = 1 ] && grep -q 'time limit of 1 s' "$T/err" && [ "$took" -le 5 ] &&
     [ -z "$(ls -A "$T/tmp")" ] && [ ! -s "$T/out" ] && ok timeout || fail timeout "exit $rc after $took s: $(cat "$T/err"; ls "$T/tmp")"
 
-# --- SIGTERM while Yosys runs: the tools' group ends, the folder goes,
-# shadesim dies by the signal
+# --- SIGTERM while Yosys runs ABC: the tools' group ends, the folder
+# goes with ABC's own temporary folder (yosys-abc-*, which Yosys puts in
+# $TMPDIR and removes only when ABC ends), shadesim dies by the signal
 alive() { for p in /proc/[0-9]*; do [ "$(readlink "$p/cwd" 2>/dev/null)" = "$1" ] && return 0; done; return 1; }
 TMPDIR="$T/tmp" "$S" synth span3 --width 24 --sta --liberty "$LIB" >"$T/out" 2>"$T/err" &
 pid=$!
 i=0
-while [ $i -lt 50 ] && [ -z "$(ls -A "$T/tmp")" ]; do sleep 0.1; i=$((i + 1)); done
-sleep 1
+while [ $i -lt 300 ] && [ -z "$(find "$T/tmp" -name 'yosys-abc-*')" ]; do sleep 0.1; i=$((i + 1)); done
 d=$(ls -d "$T/tmp"/* 2>/dev/null | head -1)
 kill -TERM "$pid"
 wait "$pid" 2>/dev/null; rc=$?   # (no "Terminated" line from the shell)
 sleep 0.5
-[ -n "$d" ] && [ "$rc" = 143 ] && [ -z "$(ls -A "$T/tmp")" ] && ! alive "$d" && ok signal ||
+[ -n "$d" ] && [ $i -lt 300 ] && [ "$rc" = 143 ] && [ -z "$(ls -A "$T/tmp")" ] && ! alive "$d" && ok signal ||
     fail signal "exit $rc, folder '$d' $(ls -A "$T/tmp"), $(alive "$d" && echo 'a tool still running')"
 
 # --- the bands, over the designs

@@ -191,7 +191,11 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
     sim_signal *qbit = sim_logic(c, sc, "qbit", u1, 1, &trial, f_qbit, NULL, SIM_GE_INV);
     snprintf(vt, sizeof vt, "assign %%y = ~%%0[%d];", trial->fmt.width - 1);
     sim_logic_verilog(qbit, vt);
-    sim_logic_depth(qbit, 1);     /* an inverter of the trial's sign */
+    /* the trial's sign inverted: mapped, no cell of its own (ABC takes
+     * the polarity into the sign's last AOI/OAI cell and the restore
+     * mux's select: OpenSTA's path through div at width 8 has no
+     * inverter there), as a subtractor's inverter is none */
+    sim_logic_depth(qbit, 0);
     /* The restore mux keeps TRIAL's format: its select arrives a delta
      * after its data, and a narrower output would count the transient
      * (unselected) values as overflows. R quantizes the settled value. */
