@@ -42,6 +42,20 @@ int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp)
     return *k_root + *k_rcp;
 }
 
+int nrm_check(const unet *n, sim_fmt fs, int sig_root, int sig_rinv, char *err, size_t errlen)
+{
+    sim_fmt froot = n->fm.f[sig_root], frinv = n->fm.f[sig_rinv];
+    char b1[SIM_FMT_STRLEN], b2[SIM_FMT_STRLEN], b3[SIM_FMT_STRLEN];
+    rec_spec sq, rc;
+    specs(fs, froot, frinv, &sq, &rc);
+    if (fs.is_signed || fs.ibits > 1 || !brdf_holds(froot, 0, 1) || !brdf_holds(frinv, 0, 2)) {
+        snprintf(err, errlen, "%s: the radicand %s must be unsigned below 2, root=%s hold [0, 1] and "
+                 "rinv=%s hold [1, 2]", n->u->name, sim_fmt_str(fs, b1), sim_fmt_str(froot, b2), sim_fmt_str(frinv, b3));
+        return -1;
+    }
+    return rec_check(&sq, err, errlen) || rec_check(&rc, err, errlen) ? -1 : 0;
+}
+
 int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
               sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, sim_signal *rcp_run,
               unet_val *rinv, int *stages,
@@ -49,15 +63,10 @@ int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
 {
     sim_fmt fs = s.f;
     sim_fmt froot = n->fm.f[sig_root], frinv = n->fm.f[sig_rinv];
-    char b1[SIM_FMT_STRLEN], b2[SIM_FMT_STRLEN];
+    char b1[SIM_FMT_STRLEN];
     rec_spec sq, rc;
     specs(fs, froot, frinv, &sq, &rc);
-    if (fs.is_signed || fs.ibits > 1 || !brdf_holds(froot, 0, 1) || !brdf_holds(frinv, 0, 2)) {
-        snprintf(err, errlen, "%s: the radicand %s must be unsigned below 2, root=%s hold [0, 1] and "
-                 "rinv=%s hold [1, 2]", n->u->name, sim_fmt_str(fs, b1), sim_fmt_str(froot, b2), sim_fmt_str(frinv, b1));
-        return -1;
-    }
-    if (rec_check(&sq, err, errlen) || rec_check(&rc, err, errlen)) return -1;
+    if (nrm_check(n, fs, sig_root, sig_rinv, err, errlen)) return -1;
     int ks = rec_steps(&sq), kq = rec_steps(&rc);
     if (stages) *stages = pipe ? ks + kq : 0;
     unet_val root = s, q = s;

@@ -47,6 +47,11 @@ int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
               sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, sim_signal *rcp_run,
               unet_val *rinv, int *stages,
               char *err, size_t errlen);
+/* 0 when the recurrences take the radicand format fs and the formats of
+ * sig_root and sig_rinv, else -1 with the recurrence's message (the
+ * check nrm_rsqrt makes first; a unit states it before anything that
+ * depends on the recurrences' clocks). */
+int nrm_check(const unet *n, sim_fmt fs, int sig_root, int sig_rinv, char *err, size_t errlen);
 /* Clocks (stages) of the two recurrences for these formats. */
 int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp);
 

@@ -296,9 +296,10 @@ typedef struct sh_word { uint8_t a, b, c, k, v, kc, en, rc; } sh_word;
  * the root from the clock after N.N (while N.L and N.H are formed), then
  * the reciprocal; NL and NH; the power's program; ka + kd NL, + ks HL.
  * Returns the steps, or 0 when they do not fit. */
+static int sh_len(int ks, int kq, const char *pw) { return 3 + ks + kq + 2 + (int)strlen(pw) / 2 + 2; }
 static int sh_prog(int ks, int kq, const char *pw, sh_word *w)
 {
-    int np = (int)strlen(pw) / 2, r0 = 3 + ks + kq, n = r0 + 2 + np + 2;
+    int np = (int)strlen(pw) / 2, r0 = 3 + ks + kq, n = sh_len(ks, kq, pw);
     if (n > SH_MAX_STEPS || ks < 7) return 0;
     memset(w, 0, (size_t)n * sizeof *w);
     for (int t = 0; t < 9; t++) {               /* the dot products */
@@ -361,9 +362,18 @@ static int sh_walk_shared(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *o
     int hw = n->c != NULL, ks, kq;
     char prog[PW_N_PROG_LEN];
     sh_word w[SH_MAX_STEPS];
+    if (!pow_n_prog(cfg->n, prog)) {
+        snprintf(err, errlen, "shade: n = %d is outside 1..%d", cfg->n, PW_N_MAX);
+        return -1;
+    }
+    /* the recurrences' own limits first: they set the program's length */
+    if (nrm_check(n, F[S_NN], S_ROOT, S_RINV, err, errlen)) return -1;
     nrm_steps(F[S_NN], F[S_ROOT], F[S_RINV], &ks, &kq);
-    int ns = pow_n_prog(cfg->n, prog) ? sh_prog(ks, kq, prog, w) : 0;
-    if (!ns) { snprintf(err, errlen, "shade: n = %d outside 1..%d, or too many steps", cfg->n, PW_N_MAX); return -1; }
+    int ns = sh_prog(ks, kq, prog, w);
+    if (!ns) {
+        snprintf(err, errlen, "shade: the shared program needs %d clocks, more than %d", sh_len(ks, kq, prog), SH_MAX_STEPS);
+        return -1;
+    }
     sim_signal *next = NULL, *first, *d[16] = { NULL };
     if (hw) {
         brdf_seq(n->c, n->sc, n->clk, ns, io, &next, &first);

@@ -3,6 +3,7 @@
  * (tb_scene_pipes.h). */
 #include "testbench/study/tb_scene_pipes.h"
 #include "testbench/tb_items_memo.h"
+#include "testbench/tb_widths.h"
 #include "base/base_json.h"
 #include "base/base_out.h"
 #include <math.h>
@@ -255,9 +256,23 @@ int tb_scene_pipes_run(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, 
     p->h = r->h;
     p->width = width;
     if (!tb_scene_pipes_fit(d, v, p->why, sizeof p->why)) return TB_OK;
+    const unit_desc *u = unit_find("shade");
+    /* past the top of the shade unit's widths: the scene's render and
+     * --compare say so and stop (exit 2, as run and verilog do); a
+     * sweep's point keeps its render without the pipelines, as a unit
+     * sweep's row there says "not buildable" */
+    unit_cfg wc;
+    char msg[400];
+    unit_cfg_default(u, &wc);
+    wc.width = width;
+    if (tb_width_refuse(u, &wc, msg, sizeof msg)) {
+        snprintf(p->why, sizeof p->why, "not buildable at width %d: %s", width, msg);
+        if (which != TB_PIPES_BOTH) return TB_OK;
+        snprintf(err, errlen, "width %d (both pipelines in hardware): %s", width, msg);
+        return TB_BADINPUT;
+    }
     double fr[9];
     frame(d, v, fr);
-    const unit_desc *u = unit_find("shade");
     p->n = shade_n(u, d->mat.shininess);
     for (int k = 0; k < u->nsched && p->nrows + 2 <= TB_PIPES_MAX; k++) {
         shader s;

@@ -48,7 +48,7 @@ typedef struct tb_pipe_row {
 #define TB_PIPES_KMAX 64
 typedef struct tb_scene_pipes {
     int    ok;                     /* 0: no comparison, why says why */
-    char   why[200];
+    char   why[480];
     int    width, n;               /* the shade unit's width; the shininess */
     int    nrows;                  /* reference then method, schedule by schedule */
     tb_pipe_row row[TB_PIPES_MAX];
