@@ -58,4 +58,10 @@ int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp)
 /* v through k pipeline registers "<pfx>1".."<pfx>k" (building; the walk:
  * v unchanged, a register copies its value exactly). */
 unet_val nrm_delay(unet *n, const char *pfx, unet_val v, int k);
+/* The gate "a > 0" (b NULL) or "a > 0 && b > 0" on exact values: their
+ * sign bits and an OR over their bits (element name). */
+sim_signal *nrm_gate(sim_ctx *c, sim_scope *sc, const char *name, sim_signal *a, sim_signal *b);
+/* "x >= 1" (element "clamp"): the output multiplexer's select of a sum
+ * clamped at 1. */
+sim_signal *nrm_ge_one(sim_ctx *c, sim_scope *sc, sim_signal *x);
 #endif
