@@ -68,7 +68,8 @@
     X(S_NL, "nl", INTERNAL, "multipliers NL = DLQ RINV, NV = DVQ RINV (u.L, u.V)") \
     X(S_NS, "ns", INTERNAL, "adder NS = NL + NV") \
     X(S_NH, "nh", INTERNAL, "multiplier NH = NS HSQ (u.H)") \
-    X(S_AB, "ab", INTERNAL, "comparators and multiplexers: A = max(min(NL, NV), 1/4), B = max(max(NL, NV), 2^-e)") \
+    X(S_A, "a", INTERNAL, "comparators and multiplexers A = max(min(NL, NV), 1/4)") \
+    X(S_B, "b", INTERNAL, "comparators and multiplexers B = max(max(NL, NV), 2^-e)") \
     X(S_RA, "ra", INTERNAL, "1/A, truncated (restoring reciprocal, A >= 1/4)") \
     X(S_RB, "rb", INTERNAL, "1/B, truncated (restoring reciprocal, B >= 2^-e)") \
     X(S_C,  "c", INTERNAL, "multiplier C = 4 HSQ NH (2 nh / V.H)") \
@@ -76,7 +77,7 @@
     X(S_K,  "k", INTERNAL, "constant k = (2/m^2 - 4)/g") \
     X(S_P,  "p", INTERNAL, "constant multiplier P = k OM") \
     X(S_BASE, "base", INTERNAL, "subtractor BASE = 1 - P") \
-    X(S_CL, "clamp", INTERNAL, "block key: BASE, or 0 where BASE < 0") \
+    X(S_CL, "dclamp", INTERNAL, "block key: BASE, or 0 where BASE < 0") \
     X(S_PW, "pw", INTERNAL, "the power CLAMP^g, a stage a squaring") \
     X(S_C0, "c0", INTERNAL, "constant c0 = 1/(4 m^2)") \
     X(S_D,  "d", INTERNAL, "constant multiplier D = c0 PW (D_g)") \
@@ -116,7 +117,7 @@ static void sc_formats(const unit_cfg *cfg, unit_fmts *out)
     out->f[S_DL] = out->f[S_DV] = unit_fmt(1, 2, Pb);
     out->f[S_DLQ] = out->f[S_DVQ] = out->f[S_ROOT] = unit_fmt(0, 1, Fw);
     out->f[S_RINV] = unit_fmt(0, 2, Fw);
-    out->f[S_NL] = out->f[S_NH] = out->f[S_AB] = out->f[S_CL] = out->f[S_PW] = out->f[S_DIF] = unit_fmt(0, 1, Fw);
+    out->f[S_NL] = out->f[S_NH] = out->f[S_A] = out->f[S_B] = out->f[S_CL] = out->f[S_PW] = out->f[S_DIF] = unit_fmt(0, 1, Fw);
     out->f[S_NS] = unit_fmt(0, 2, Fw);
     out->f[S_RA] = unit_fmt(0, 4, Fw);
     out->f[S_RB] = unit_fmt(0, 2 + e, Fw);
@@ -286,13 +287,13 @@ static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     unet_val ns = unet_add(n, S_NS, "ns", nl, nv);
     unet_val nh = unet_mul(n, S_NH, "nh", ns, hsq);
     nh.imag = nhmax;
-    unet_val a = minmax(n, S_AB, "amin", 1, nl, nv), b = minmax(n, S_AB, "bmax", 0, nl, nv);
-    unet_val quarter = brdf_uconst(n, F[S_AB], "quarter", 0.25), floor_b = brdf_uconst(n, F[S_AB], "bfloor", ldexp(1.0, -e));
-    a = minmax(n, S_AB, "a", 0, a, quarter);
-    b = minmax(n, S_AB, "b", 0, b, floor_b);
+    unet_val a = minmax(n, S_A, "amin", 1, nl, nv), b = minmax(n, S_B, "bmax", 0, nl, nv);
+    unet_val quarter = brdf_uconst(n, F[S_A], "quarter", 0.25), floor_b = brdf_uconst(n, F[S_B], "bfloor", ldexp(1.0, -e));
+    a = minmax(n, S_A, "a", 0, a, quarter);
+    b = minmax(n, S_B, "b", 0, b, floor_b);
     unet_val dif = unet_mul(n, S_DIF, "dif", nl, kd);
     if (!hw && (!brdf_holds(F[S_NL], 0, lmax + nl.err) || !brdf_holds(F[S_NS], 0, 2 * lmax + ns.err)
-                || !brdf_holds(F[S_NH], 0, nhmax + nh.err) || !brdf_holds(F[S_AB], 0, lmax + b.err))) {
+                || !brdf_holds(F[S_NH], 0, nhmax + nh.err) || !brdf_holds(F[S_A], 0, lmax + a.err) || !brdf_holds(F[S_B], 0, lmax + b.err))) {
         snprintf(err, errlen, "shade_cook: nl, nv, nh, a and b must hold [0, 1], ns [0, 2]");
         return -1;
     }
@@ -324,11 +325,11 @@ static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
         return -1;
     }
     sim_signal *pos = hw ? base_pos(n->c, n->sc, p.s) : NULL;
-    unet_val cl = unet_bk(n, S_CL, "clamp", pos, base, 1);
+    unet_val cl = unet_bk(n, S_CL, "dclamp", pos, base, 1);
     cl.imag = bmax;
     cl.mag = fmax(cl.mag, bmax + cl.err);
     if (!hw && !brdf_holds(F[S_CL], 0, bmax + cl.err)) {
-        snprintf(err, errlen, "shade_cook: clamp must hold [0, %g]", bmax);
+        snprintf(err, errlen, "shade_cook: dclamp must hold [0, %g]", bmax);
         return -1;
     }
     unet_val rg;
@@ -449,7 +450,7 @@ const unit_desc unit_shade_cook = {
           "Beckmann roughness (below sqrt(2/(g+4)): D_g reaches 0)" },
         { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 4, 16, 16, NULL, "the power of D_g: 4, 8 or 16" } },
     .fmt_rule = "N, L, V s2.(W-2); hs, ka, kd, kc, i u1.(W-1); nn u1.P, dl, dv s2.P, P = 2W-4 (exact) up to "
-                "W = 25; the rest .(W+5): root, dlq, dvq, nl, nh, ab, clamp, pw, dif u1; rinv, ns u2; ra u4, "
+                "W = 25; the rest .(W+5): root, dlq, dvq, nl, nh, a, b, dclamp, pw, dif u1; rinv, ns u2; ra u4, "
                 "rb u(2+e), c, x u3, y u(e+3); om s2, k, p, base, c0, d, s, ksp, sum with the integer bits of "
                 "their ranges (e from m and g: 2^-e <= (1 - 1/k)/2)",
     .formats = sc_formats, .beats = beats1, .build = sc_build, .ideal = sc_ideal, .bound = sc_bound,
