@@ -283,15 +283,17 @@ static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     ka = nrm_delay(n, "ka_e", ka, 1);
     kd = nrm_delay(n, "kd_e", kd, 1);
     kc = nrm_delay(n, "kc_e", kc, 1);
-    /* NH, A, B: a stage */
+    /* NS, A, B: a stage; then NH, a stage */
     unet_val ns = unet_add(n, S_NS, "ns", nl, nv);
-    unet_val nh = unet_mul(n, S_NH, "nh", ns, hsq);
-    nh.imag = nhmax;
     unet_val a = minmax(n, S_A, "amin", 1, nl, nv), b = minmax(n, S_B, "bmax", 0, nl, nv);
     unet_val quarter = brdf_uconst(n, F[S_A], "quarter", 0.25), floor_b = brdf_uconst(n, F[S_B], "bfloor", ldexp(1.0, -e));
     a = minmax(n, S_A, "a", 0, a, quarter);
     b = minmax(n, S_B, "b", 0, b, floor_b);
     unet_val dif = unet_mul(n, S_DIF, "dif", nl, kd);
+    ns = nrm_delay(n, "ns_r", ns, 1);
+    unet_val hsn = nrm_delay(n, "hsq_n", hsq, 1);
+    unet_val nh = unet_mul(n, S_NH, "nh", ns, hsn);
+    nh.imag = nhmax;
     if (!hw && (!brdf_holds(F[S_NL], 0, lmax + nl.err) || !brdf_holds(F[S_NS], 0, 2 * lmax + ns.err)
                 || !brdf_holds(F[S_NH], 0, nhmax + nh.err) || !brdf_holds(F[S_A], 0, lmax + a.err) || !brdf_holds(F[S_B], 0, lmax + b.err))) {
         snprintf(err, errlen, "shade_cook: nl, nv, nh, a and b must hold [0, 1], ns [0, 2]");
@@ -300,7 +302,7 @@ static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     a = nrm_delay(n, "a_r", a, 1);
     b = nrm_delay(n, "b_r", b, 1);
     nh = nrm_delay(n, "nh_r", nh, 1);
-    hsq = nrm_delay(n, "hsq_f", hsq, 1);
+    hsq = nrm_delay(n, "hsq_f", hsn, 1);
     dif = nrm_delay(n, "dif_r", dif, 1);
     ka = nrm_delay(n, "ka_f", ka, 1);
     kc = nrm_delay(n, "kc_f", kc, 1);
@@ -332,6 +334,7 @@ static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
         snprintf(err, errlen, "shade_cook: dclamp must hold [0, %g]", bmax);
         return -1;
     }
+    cl = nrm_delay(n, "dclamp_r", cl, 1);         /* a stage before the squarings */
     unet_val rg;
     if (pw_unrolled(n, prog, cl, S_PW, "pw", "pw", &rg, &P)) {
         snprintf(err, errlen, "shade_cook: internal: bad power program");
@@ -352,8 +355,8 @@ static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     int KM = KA > KB ? KA : KB;
     ra = nrm_delay(n, "ra_d", ra, KM - KA);
     rb = nrm_delay(n, "rb_d", rb, KM - KB);
-    c = nrm_delay(n, "c_d", c, KM);
-    d = nrm_delay(n, "d_d", d, KM - P);
+    c = nrm_delay(n, "c_d", c, KM - 1);
+    d = nrm_delay(n, "d_d", d, KM - P - 2);
     dif = nrm_delay(n, "dif_d", dif, KM);
     ka = nrm_delay(n, "ka_g", ka, KM);
     kc = nrm_delay(n, "kc_g", kc, KM);
