@@ -148,9 +148,7 @@ static void check_unit(const char *name, int W, int e, uint64_t seed)
             TST_EQ_INT(res.overflows, 0);
             for (int o = 0; o < nout; o++) {
                 const tb_metrics *m = &res.out[o];
-                /* shade_cook's bound takes 1/b's gain 2^(2e) at its worst
-                 * where D_g is largest: looser (about 2^-(W-4) at m = 0.3) */
-                TST_CHECK(isfinite(m->bound) && m->bound < ldexp(1.0, (strcmp(name, "shade_cook") ? 9 : 14) - W),
+                TST_CHECK(isfinite(m->bound) && m->bound < ldexp(1.0, 9 - W),
                           "%s %s W=%d %s: bound %g", name, u->sched[s].name, W, m->name, m->bound);
                 TST_CHECK(m->max_abs_err <= m->bound, "%s %s W=%d %s: |hw - double| %g above the bound %g",
                           name, u->sched[s].name, W, m->name, m->max_abs_err, m->bound);

@@ -222,6 +222,30 @@ static int rcp(unet *n, int sig, const char *name, unet_val d, int e, unet_val *
     return 0;
 }
 
+/* S = D Y's error, the walk's product rule refined by where its factors
+ * are large: |D_hw Y_hw - D Y| <= |D_hw - D| Y + D_hw |Y_hw - Y|, with
+ * Y <= 8 (ref_shade.h), and |Y_hw - Y| <= eX RB_hw + X |RB_hw - RB| + qY,
+ * RB_hw <= 1/m, |RB_hw - RB| <= eB / (B m) + qRB, m = max(B - eB, 2^-e),
+ * X <= C = 4 hs NH. Over B, NH <= 2 hs B (NH = (nl + nv) hs) and D_g is
+ * increasing in NH: where 1/B is large D_g is small. The maximum over B in
+ * [2^-e, bmax] is taken interval by interval, each factor at its interval's
+ * worst end (hs <= 1), so it bounds the continuum. The product rule alone
+ * takes D's largest value with 1/B's: 2^(2e) times looser at m = 0.3. */
+static double s_err_scan(double k, double c0, int g, int e, double nhmax, double bmax, double eD, double eX,
+                         double eB, double qRB, double qY)
+{
+    const int N = 2048;
+    double lo = ldexp(1.0, -e), worst = 0;
+    for (int j = 0; j < N; j++) {
+        double b0 = lo + (bmax - lo) * j / N, b1 = lo + (bmax - lo) * (j + 1) / N;
+        double nh = fmin(nhmax, 2 * b1), base = 1 - k * (1 - nh), d = base > 0 ? c0 * pow(base, g) : 0;
+        double m = fmax(b0 - eB, lo);
+        double t = (d + eD) * (eX / m + 4 * nh * (eB / (b0 * m) + qRB) + qY);
+        if (t > worst) worst = t;
+    }
+    return 8 * eD + worst;
+}
+
 static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, char *err, size_t errlen)
 {
     const sim_fmt *F = n->fm.f;
@@ -376,6 +400,7 @@ static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     /* S: a stage */
     unet_val s = unet_mul(n, S_S, "s", d, y);
     s.imag = 8 * dmax;
+    if (!hw) s.err = fmin(s.err, s_err_scan(k, c0, cfg->g, e, nhmax, lmax, d.err, x.err, b.err, rb.q, y.q) + s.q);
     if (!hw && !brdf_holds(F[S_S], 0, s.imag + s.err)) {
         snprintf(err, errlen, "shade_cook: s must hold [0, %g]", s.imag);
         return -1;
