@@ -109,7 +109,12 @@ static void sc_formats(const unit_cfg *cfg, unit_fmts *out)
     double k, c0;
     sc_consts(cfg, &k, &c0, &e);
     if (e < 1) e = 1;
-    int ik = brdf_ibits(k), i0 = brdf_ibits(c0), id = brdf_ibits(1.25 * c0), is = brdf_ibits(10 * c0) + 1;
+    /* u.H as held may pass 1 by a few LSBs (sc_walk's nhmax), the base
+     * 1 by k times that, its power by g times more: at narrow widths the
+     * power needs more integer bits */
+    double nhmax = 1 + 4 * ldexp(1.0, 2 - W) + 2 * ldexp(1.0, 1 - W), bmax = 1 + k * (nhmax - 1);
+    double p1 = pow(bmax, cfg->g), pmax = 1.25 * p1;     /* room for its error */
+    int ik = brdf_ibits(k), i0 = brdf_ibits(c0), id = brdf_ibits(c0 * pmax), is = brdf_ibits(10 * c0 * p1) + 1;
     for (int j = S_NX; j <= S_VZ; j++) out->f[j] = unit_fmt(1, 2, F);
     for (int j = S_HS; j <= S_KC; j++) out->f[j] = unit_fmt(0, 1, W - 1);
     out->f[S_I] = unit_fmt(0, 1, W - 1);
@@ -117,7 +122,9 @@ static void sc_formats(const unit_cfg *cfg, unit_fmts *out)
     out->f[S_DL] = out->f[S_DV] = unit_fmt(1, 2, Pb);
     out->f[S_DLQ] = out->f[S_DVQ] = out->f[S_ROOT] = unit_fmt(0, 1, Fw);
     out->f[S_RINV] = unit_fmt(0, 2, Fw);
-    out->f[S_NL] = out->f[S_NH] = out->f[S_A] = out->f[S_B] = out->f[S_CL] = out->f[S_PW] = out->f[S_DIF] = unit_fmt(0, 1, Fw);
+    out->f[S_NL] = out->f[S_NH] = out->f[S_A] = out->f[S_B] = out->f[S_DIF] = unit_fmt(0, 1, Fw);
+    out->f[S_CL] = unit_fmt(0, brdf_ibits(bmax), Fw);
+    out->f[S_PW] = unit_fmt(0, brdf_ibits(pmax), Fw);
     out->f[S_NS] = unit_fmt(0, 2, Fw);
     out->f[S_RA] = unit_fmt(0, 4, Fw);
     out->f[S_RB] = unit_fmt(0, 2 + e, Fw);
@@ -478,8 +485,8 @@ const unit_desc unit_shade_cook = {
           "Beckmann roughness (below sqrt(2/(g+4)): D_g reaches 0)" },
         { "g", UNIT_P_POW2, offsetof(unit_cfg, g), 4, 16, 16, NULL, "the power of D_g: 4, 8 or 16" } },
     .fmt_rule = "N, L, V s2.(W-2); hs, ka, kd, kc, i u1.(W-1); nn u1.P, dl, dv s2.P, P = 2W-4 (exact) up to "
-                "W = 25; the rest .(W+5): root, dlq, dvq, nl, nh, a, b, dclamp, pw, dif u1; rinv, ns u2; ra u4, "
-                "rb u(2+e), c, x u3, y u(e+3); om s2, k, p, base, c0, d, s, ksp, sum with the integer bits of "
-                "their ranges (e from m and g: 2^-e <= (1 - 1/k)/2)",
+                "W = 25; the rest .(W+5): root, dlq, dvq, nl, nh, a, b, dif u1; rinv, ns u2; ra u4, "
+                "rb u(2+e), c, x u3, y u(e+3); om s2, k, p, base, dclamp, pw, c0, d, s, ksp, sum with the integer "
+                "bits of their ranges (dclamp, pw u1 from W = 10; e from m and g: 2^-e <= (1 - 1/k)/2)",
     .formats = sc_formats, .beats = beats1, .build = sc_build, .ideal = sc_ideal, .bound = sc_bound,
 };
