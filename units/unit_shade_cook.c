@@ -32,7 +32,9 @@
  *   i = min(ka + DIF + KSP, 1)
  *
  * The bound is the walk's (unit_net.h) with the reciprocals' errors
- * derived: |1/a_hw - 1/a| <= |a_hw - a| / a_min^2, then truncation.
+ * derived, |1/a_hw - 1/a| <= |a_hw - a| / a_min^2 then truncation, and
+ * S's refined where 1/B and D_g are large apart (s_err_scan;
+ * docs/bounds.md, "shade_cook").
  */
 #include "units/unit_nrm.h"
 #include "units/units_brdf.h"
@@ -253,32 +255,22 @@ static double s_err_scan(double k, double c0, int g, int e, double nhmax, double
     return 8 * eD + worst;
 }
 
-static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, char *err, size_t errlen)
+/* What the front of the datapath hands on, registered at one stage:
+ * u.L and u.V, hs behind the highlight's key, the coefficients; K the
+ * root's and reciprocal's stages. */
+typedef struct sc_front { unet_val nl, nv, hsq, ka, kd, kc; int K; } sc_front;
+
+/* The front: the exact dot products, the gates and keys, 1/|N| and the
+ * products by it (shade's walk with V for H). */
+static int sc_front_walk(unet *n, unit_io *io, double lmax, sc_front *o, char *err, size_t errlen)
 {
-    const sim_fmt *F = n->fm.f;
-    int hw = n->c != NULL, e;
-    double k, c0;
-    sc_consts(cfg, &k, &c0, &e);
-    char prog[PW_N_PROG_LEN];
-    if (e < 1 || !pow_n_prog(cfg->g, prog)) {
-        snprintf(err, errlen, "shade_cook: (2/m^2 - 4)/g = %.4g must exceed 1 (D_g reaches 0 away from the "
-                 "highlight): m = %g, g = %d", k, cfg->m, cfg->g);
-        return -1;
-    }
-    if (!hw && (!F[S_DL].is_signed || !F[S_DV].is_signed)) {
-        snprintf(err, errlen, "shade_cook: dl and dv must be signed (their signs gate the terms)");
-        return -1;
-    }
+    int hw = n->c != NULL;
     unet_val in[SC_IN];
     for (int j = 0; j < SC_IN; j++) {
         in[j] = unet_input(n, n->u->sigs[j].name, -1);
         if (hw) io->in[j] = in[j].s;
         if (j >= S_HS) in[j].imag = in[j].mag = 1;
     }
-    double lsbF = sim_fmt_lsb(F[S_LX]), lmax = 1 + 2 * lsbF;
-    /* u.H = u.(L + V) hs as held: at most 1 + 2 sqrt(3) 2^-F + 2 lsb(hs)
-     * for unit L, V and hs = 1/|L + V| before their quantization */
-    double nhmax = 1 + 4 * lsbF + 2 * sim_fmt_lsb(F[S_HS]);
     unet_val nn = nrm_dot(n, S_NN, "nn", in + S_NX, in + S_NX, NRM_NMAX * NRM_NMAX, 1);
     unet_val dl = nrm_dot(n, S_DL, "dl", in + S_NX, in + S_LX, NRM_NMAX * lmax, 1);
     unet_val dv = nrm_dot(n, S_DV, "dv", in + S_NX, in + S_VX, NRM_NMAX * lmax, 1);
@@ -314,6 +306,85 @@ static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     ka = nrm_delay(n, "ka_e", ka, 1);
     kd = nrm_delay(n, "kd_e", kd, 1);
     kc = nrm_delay(n, "kc_e", kc, 1);
+    *o = (sc_front){ nl, nv, hsq, ka, kd, kc, K };
+    return 0;
+}
+
+/* D_g of NH as d_approx forms it (OM = 1 - NH, P = k OM, BASE = 1 - P
+ * keyed at 0, a register, the power unrolled, D = c0 PW): *d, its
+ * stages *P, the ideal's largest value *dmax. */
+static int sc_dg(unet *n, const unit_cfg *cfg, double k, double c0, const char *prog, unet_val nh, double nhmax,
+                 unet_val *dout, int *P, double *dmax, char *err, size_t errlen)
+{
+    const sim_fmt *F = n->fm.f;
+    int hw = n->c != NULL;
+    sim_fmt f1 = unit_fmt(0, 1, 0);
+    unet_val one = unet_wrap(hw ? sim_const_raw(n->c, n->sc, "one", f1, 1) : NULL, f1, -1);
+    one.imag = one.mag = 1;
+    unet_val om = unet_sub(n, S_OM, "om", one, nh);
+    unet_val kk = brdf_uconst(n, F[S_K], "k", k);
+    unet_val p = unet_cmul(n, S_P, "p", om, kk, brdf_cmul);
+    unet_val base = unet_sub(n, S_BASE, "base", one, p);
+    double bmax = 1 + k * (nhmax - 1);
+    if (!hw && (!brdf_holds(F[S_OM], -(nhmax - 1) - nh.err, 1 + nh.err) || !brdf_holds(F[S_K], 0, k)
+                || !brdf_holds(F[S_P], -2 * k * (nhmax - 1 + nh.err) - p.q, (k + kk.err) * (1 + om.err) + p.q)
+                || !brdf_holds(F[S_BASE], 1 - (k + kk.err) * (1 + om.err) - p.q - base.q, bmax + base.err))) {
+        snprintf(err, errlen, "shade_cook: om, k, p and base must hold their ranges");
+        return -1;
+    }
+    sim_signal *pos = hw ? base_pos(n->c, n->sc, p.s) : NULL;
+    unet_val cl = unet_bk(n, S_CL, "dclamp", pos, base, 1);
+    cl.imag = bmax;
+    cl.mag = fmax(cl.mag, bmax + cl.err);
+    if (!hw && !brdf_holds(F[S_CL], 0, bmax + cl.err)) {
+        snprintf(err, errlen, "shade_cook: dclamp must hold [0, %g]", bmax);
+        return -1;
+    }
+    cl = nrm_delay(n, "dclamp_r", cl, 1);         /* a stage before the squarings */
+    unet_val rg;
+    if (pw_unrolled(n, prog, cl, S_PW, "pw", "pw", &rg, P)) {
+        snprintf(err, errlen, "shade_cook: internal: bad power program");
+        return -1;
+    }
+    if (!hw && !brdf_holds(F[S_C0], 0, c0)) {
+        snprintf(err, errlen, "shade_cook: c0 = %g does not fit c0=%d integer bits", c0, F[S_C0].ibits);
+        return -1;
+    }
+    unet_val d = unet_cmul(n, S_D, "d", rg, brdf_uconst(n, F[S_C0], "c0", c0), brdf_cmul);
+    *dmax = c0 * pow(bmax, cfg->g);
+    d.imag = *dmax;
+    *dout = d;
+    if (!hw && (!brdf_holds(F[S_PW], 0, pow(bmax, cfg->g) + rg.err) || !brdf_holds(F[S_D], 0, *dmax + d.err))) {
+        snprintf(err, errlen, "shade_cook: pw and d must hold their ranges");
+        return -1;
+    }
+    return 0;
+}
+
+static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, char *err, size_t errlen)
+{
+    const sim_fmt *F = n->fm.f;
+    int hw = n->c != NULL, e;
+    double k, c0;
+    sc_consts(cfg, &k, &c0, &e);
+    char prog[PW_N_PROG_LEN];
+    if (e < 1 || !pow_n_prog(cfg->g, prog)) {
+        snprintf(err, errlen, "shade_cook: (2/m^2 - 4)/g = %.4g must exceed 1 (D_g reaches 0 away from the "
+                 "highlight): m = %g, g = %d", k, cfg->m, cfg->g);
+        return -1;
+    }
+    if (!hw && (!F[S_DL].is_signed || !F[S_DV].is_signed)) {
+        snprintf(err, errlen, "shade_cook: dl and dv must be signed (their signs gate the terms)");
+        return -1;
+    }
+    double lsbF = sim_fmt_lsb(F[S_LX]), lmax = 1 + 2 * lsbF;
+    /* u.H = u.(L + V) hs as held: at most 1 + 2 sqrt(3) 2^-F + 2 lsb(hs)
+     * for unit L, V and hs = 1/|L + V| before their quantization */
+    double nhmax = 1 + 4 * lsbF + 2 * sim_fmt_lsb(F[S_HS]);
+    sc_front fr;
+    if (sc_front_walk(n, io, lmax, &fr, err, errlen)) return -1;
+    unet_val nl = fr.nl, nv = fr.nv, hsq = fr.hsq, ka = fr.ka, kd = fr.kd, kc = fr.kc;
+    int K = fr.K;
     /* NS, A, B: a stage; then NH, a stage */
     unet_val ns = unet_add(n, S_NS, "ns", nl, nv);
     unet_val a = minmax(n, S_A, "amin", 1, nl, nv), b = minmax(n, S_B, "bmax", 0, nl, nv);
@@ -343,45 +414,9 @@ static int sc_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     if (rcp(n, S_RA, "ra", a, 2, &ra, &KA, err, errlen) || rcp(n, S_RB, "rb", b, e, &rb, &KB, err, errlen)) return -1;
     unet_val c = unet_shift(n, S_C, "c", unet_mul(n, S_C, "c_m", nh, hsq), 2);
     c.imag = 4 * nhmax;
-    sim_fmt f1 = unit_fmt(0, 1, 0);
-    unet_val one = unet_wrap(hw ? sim_const_raw(n->c, n->sc, "one", f1, 1) : NULL, f1, -1);
-    one.imag = one.mag = 1;
-    unet_val om = unet_sub(n, S_OM, "om", one, nh);
-    unet_val kk = brdf_uconst(n, F[S_K], "k", k);
-    unet_val p = unet_cmul(n, S_P, "p", om, kk, brdf_cmul);
-    unet_val base = unet_sub(n, S_BASE, "base", one, p);
-    double bmax = 1 + k * (nhmax - 1);
-    if (!hw && (!brdf_holds(F[S_OM], -(nhmax - 1) - nh.err, 1 + nh.err) || !brdf_holds(F[S_K], 0, k)
-                || !brdf_holds(F[S_P], -2 * k * (nhmax - 1 + nh.err) - p.q, (k + kk.err) * (1 + om.err) + p.q)
-                || !brdf_holds(F[S_BASE], 1 - (k + kk.err) * (1 + om.err) - p.q - base.q, bmax + base.err))) {
-        snprintf(err, errlen, "shade_cook: om, k, p and base must hold their ranges");
-        return -1;
-    }
-    sim_signal *pos = hw ? base_pos(n->c, n->sc, p.s) : NULL;
-    unet_val cl = unet_bk(n, S_CL, "dclamp", pos, base, 1);
-    cl.imag = bmax;
-    cl.mag = fmax(cl.mag, bmax + cl.err);
-    if (!hw && !brdf_holds(F[S_CL], 0, bmax + cl.err)) {
-        snprintf(err, errlen, "shade_cook: dclamp must hold [0, %g]", bmax);
-        return -1;
-    }
-    cl = nrm_delay(n, "dclamp_r", cl, 1);         /* a stage before the squarings */
-    unet_val rg;
-    if (pw_unrolled(n, prog, cl, S_PW, "pw", "pw", &rg, &P)) {
-        snprintf(err, errlen, "shade_cook: internal: bad power program");
-        return -1;
-    }
-    if (!hw && !brdf_holds(F[S_C0], 0, c0)) {
-        snprintf(err, errlen, "shade_cook: c0 = %g does not fit c0=%d integer bits", c0, F[S_C0].ibits);
-        return -1;
-    }
-    unet_val d = unet_cmul(n, S_D, "d", rg, brdf_uconst(n, F[S_C0], "c0", c0), brdf_cmul);
-    double dmax = c0 * pow(bmax, cfg->g);
-    d.imag = dmax;
-    if (!hw && (!brdf_holds(F[S_PW], 0, pow(bmax, cfg->g) + rg.err) || !brdf_holds(F[S_D], 0, dmax + d.err))) {
-        snprintf(err, errlen, "shade_cook: pw and d must hold their ranges");
-        return -1;
-    }
+    unet_val d;
+    double dmax;
+    if (sc_dg(n, cfg, k, c0, prog, nh, nhmax, &d, &P, &dmax, err, errlen)) return -1;
     /* align on the longer reciprocal */
     int KM = KA > KB ? KA : KB;
     ra = nrm_delay(n, "ra_d", ra, KM - KA);
@@ -476,8 +511,8 @@ const unit_desc unit_shade_cook = {
     .source = "Nechyporuk & Romanyuk (2020), sec. III-IV; S. O. Romanyuk et al. (SPIE), sec. 3 (D_g)",
     UNIT_SIGS(SC_SIGS(UNIT_SIG_ROW)),
     .nsched = 1,
-    .sched = { { "pipe", "fully pipelined, a pixel a clock: products, sums, a stage a root bit, a reciprocal "
-                         "bit (1/|N|, then 1/a and 1/b side by side, D_g's squarings beside them), then G, D G "
+    .sched = { { "pipe", "fully pipelined, a pixel a clock: products, sums, a stage a bit of the root and of "
+                         "1/|N|, then of 1/a and 1/b side by side with D_g's squarings beside them, then G, D G "
                          "and the sum" } },
     .nparams = 2,
     .params = {
