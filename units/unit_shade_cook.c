@@ -153,7 +153,13 @@ static sim_signal *ge(sim_ctx *c, sim_scope *sc, const char *name, sim_signal *a
     sim_signal *in[2] = { a, b };
     int w = a->fmt.width > b->fmt.width ? a->fmt.width : b->fmt.width;
     sim_signal *g = sim_logic(c, sc, name, unit_fmt(0, 1, 0), 2, in, f_ge, NULL, w * SIM_GE_NAND2);
-    sim_logic_verilog(g, "assign %y = %0 >= %1;");
+    /* the narrower operand zero-extended (lint: equal widths) */
+    char t[120];
+    int wa = a->fmt.width, wb = b->fmt.width;
+    if (wa < wb) snprintf(t, sizeof t, "assign %%y = {%d'd0, %%0} >= %%1;", wb - wa);
+    else if (wb < wa) snprintf(t, sizeof t, "assign %%y = %%0 >= {%d'd0, %%1};", wa - wb);
+    else snprintf(t, sizeof t, "assign %%y = %%0 >= %%1;");
+    sim_logic_verilog(g, t);
     return g;
 }
 
