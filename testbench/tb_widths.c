@@ -3,6 +3,7 @@
  * at 64, so this is one build; a unit whose rule outgrows a primitive
  * (schlick's divider) takes a few more. */
 #include "testbench/tb_widths.h"
+#include <stdio.h>
 #include <string.h>
 
 static int builds(const unit_desc *u, const unit_cfg *cfg, char *err, size_t errlen)
@@ -27,4 +28,13 @@ int tb_width_max(const unit_desc *u, const unit_cfg *cfg, char *err, size_t errl
         if (errlen) snprintf(err, errlen, "%s", e);     /* the message at max + 1 */
     }
     return 0;
+}
+
+int tb_width_refuse(const unit_desc *u, const unit_cfg *cfg, char *msg, size_t len)
+{
+    char why[400];
+    int wmax = tb_width_max(u, cfg, why, sizeof why);
+    if (cfg->width <= wmax) return 0;
+    snprintf(msg, len, "unit %s builds with its default formats at widths %d..%d only (%s)", u->name, unit_min_width(u, cfg, NULL), wmax, why);
+    return 1;
 }

@@ -13,4 +13,8 @@
  * width above it in err (empty when 64 builds). 0 when no width from
  * unit_min_width up builds. */
 int tb_width_max(const unit_desc *u, const unit_cfg *cfg, char *err, size_t errlen);
+/* 1 when cfg->width is past the top of u's range, with what every verb
+ * says then in msg ("unit U builds with its default formats at widths
+ * A..B only (why)", after the verb's name for the width); else 0. */
+int tb_width_refuse(const unit_desc *u, const unit_cfg *cfg, char *msg, size_t len);
 #endif

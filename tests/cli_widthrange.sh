@@ -38,3 +38,21 @@ check sweep_row_63_not_buildable grep -q '^   63  -  *not buildable: ' "$T/sw.tx
 check sweep_row_62_ran sh -c 'grep "^   62 " "$1" | grep -qv "not buildable\|failed"' sh "$T/sw.txt"
 check sweep_csv_status sh -c 'grep -q ",div,[a-z]*,63,.*,not_buildable," "$1" && grep -q ",div,[a-z]*,62,.*,ok," "$1"' sh "$T/sw/sweep.csv"
 check sweep_no_failed sh -c '! grep -q failed "$1"' sh "$T/sw.txt"
+
+# shade: the square root's recurrence takes at most 57 result bits, and
+# shade's root has W + 2 fraction bits after a radicand of 2W - 4 (up to
+# W = 25) or W + 21: W + 2 <= 57 and half the radicand's at most the
+# root's, so W <= 39. Every verb past the top says the range in one line
+# (the shared schedule's program once named the exponent n instead).
+"$S" list shade >"$T/shade.txt" 2>&1
+check list_shade_range grep -q '^  --width range: 3\.\.39 (default parameters); wider, ' "$T/shade.txt"
+shade_range='unit shade builds with its default formats at widths 3\.\.39 only (square root: '
+oneline run_shade_40 "^shadesim: --width 40: $shade_range" run shade --width 40
+oneline run_shade_pipe_60 "^shadesim: --width 60: $shade_range" run shade --schedule pipe --width 60
+oneline verilog_shade_60 "^shadesim: --width 60: $shade_range" verilog shade --width 60 -o "$T/v60"
+check verilog_shade_60_no_file [ ! -e "$T/v60" ]
+oneline scene_shade_60 "^shadesim: width 60 (both pipelines in hardware): $shade_range" \
+    scene face --set width=60 --set resolution=16x16 -j 1 -o "$T/sc60"
+"$S" sweep shade --widths 39:40 -o "$T/swsh" >"$T/swsh.txt" 2>&1; rc=$?
+check sweep_shade_exit_0 [ $rc -eq 0 ]
+check sweep_shade_40_not_buildable grep -q '^   40  -  *not buildable: square root: ' "$T/swsh.txt"

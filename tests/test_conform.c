@@ -230,7 +230,7 @@ static void check_run(const unit_desc *u, const unit_cfg *cfg, const vec_set *vs
     }
     tb_result_free(&r);
     if (!vcd) return;
-    char vars[8192];
+    static char vars[1 << 16];     /* shade_cook declares about 1400 */
     vcd_top_vars(path, u->name, vars, sizeof vars);
     TST_CHECK(strlen(vars) > 2, "%s: the VCD has no scope %s", u->name, u->name);
     for (int i = 0; i < u->nsigs; i++) {

@@ -6,10 +6,16 @@
  * event-driven kernel (tb_run, not the batch's lanes), and the NMSE of its
  * outputs against per-pixel shading in double; the method's NMSE from its
  * written image; and the nodes from hardware changing the method's NMSE
- * only by the shade unit's own error. */
+ * only by the shade unit's own error. The same for Cook-Torrance with D16
+ * on shade_cook (its inputs L, V, hs = 1/|L + V|, ka, kd, ks / pi: no
+ * Fresnel factor in the face's material). */
 #include "tst.h"
 #include "testbench/study/tb_scene_pipes.h"
 #include "sim/sim_fixed.h"
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
 
 static void unit_vec(const double *v, double *u)
 {
@@ -17,16 +23,21 @@ static void unit_vec(const double *v, double *u)
     for (int k = 0; k < 3; k++) u[k] = v[k] / l;
 }
 
-static void reference_nmse_recomputed(void)
+static void check_scene(int cook)
 {
-    const unit_desc *u = unit_find("shade");
-    if (!u) TST_SKIP("no shade unit");
+    const unit_desc *u = unit_find(cook ? "shade_cook" : "shade");
+    TST_CHECK(u != NULL, "no unit");
+    if (!u) return;
     scn_desc d;
     scn_mesh m;
     scn_gbuf g;
     char err[600];
     TST_EQ_INT(scn_desc_builtin("face", &d), 0);
     d.width = d.height = 28;
+    if (cook) {
+        d.mat.spec = SCN_SPEC_COOK;
+        d.mat.dg = 16;
+    }
     TST_EQ_INT(scn_mesh_builtin(d.mesh, d.detail, &m, err, sizeof err), 0);
     tb_scene_opts o = { 2, 0, NULL, NULL, 0, 1, NULL, NULL };
     tb_scene_result r;
@@ -46,7 +57,9 @@ static void reference_nmse_recomputed(void)
     unit_fmts f;
     unit_cfg_default(u, &cfg);
     cfg.width = 16;
-    cfg.n = (int)d.mat.shininess;
+    if (cook) { cfg.m = d.mat.m; cfg.g = 16; }
+    else cfg.n = (int)d.mat.shininess;
+    double hs = 1 / sqrt((L[0] + V[0]) * (L[0] + V[0]) + (L[1] + V[1]) * (L[1] + V[1]) + (L[2] + V[2]) * (L[2] + V[2]));
     TST_EQ_INT(tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err), 0);
     vec_set vs1;
     vec_set_init(&vs1);
@@ -54,14 +67,22 @@ static void reference_nmse_recomputed(void)
     size_t np = (size_t)g.w * g.h;
     for (size_t i = 0; i < np; i++) {
         if (g.tri[i] < 0) continue;
-        double row[13] = { 0 }, len = sqrt(g.nrm[i][0] * g.nrm[i][0] + g.nrm[i][1] * g.nrm[i][1] + g.nrm[i][2] * g.nrm[i][2]);
+        double row[14] = { 0 }, len = sqrt(g.nrm[i][0] * g.nrm[i][0] + g.nrm[i][1] * g.nrm[i][1] + g.nrm[i][2] * g.nrm[i][2]);
         double s = 1;
         while (len * s >= 1) s /= 2;
         while (len * s < 0.5) s *= 2;
-        for (int k = 0; k < 3; k++) { row[k] = g.nrm[i][k] * s; row[3 + k] = L[k]; row[6 + k] = H[k]; }
-        row[9] = d.mat.ambient;
-        row[10] = d.mat.kd * d.view.light[0].intensity;
-        row[11] = d.mat.ks * d.view.light[0].intensity;
+        double I0 = d.view.light[0].intensity;
+        for (int k = 0; k < 3; k++) { row[k] = g.nrm[i][k] * s; row[3 + k] = L[k]; row[6 + k] = cook ? V[k] : H[k]; }
+        if (cook) {
+            row[9] = hs;
+            row[10] = d.mat.ambient;
+            row[11] = d.mat.kd * I0;
+            row[12] = d.mat.ks * I0 / M_PI;
+        } else {
+            row[9] = d.mat.ambient;
+            row[10] = d.mat.kd * I0;
+            row[11] = d.mat.ks * I0;
+        }
         TST_EQ_INT(vec_set_push(&vs1, row), 0);
     }
     tb_result tr;
@@ -97,8 +118,12 @@ static void reference_nmse_recomputed(void)
     scn_mesh_free(&m);
 }
 
+static void reference_nmse_recomputed(void) { check_scene(0); }
+static void cook_reference_nmse_recomputed(void) { check_scene(1); }
+
 int main(void)
 {
     TST_RUN(reference_nmse_recomputed);
+    TST_RUN(cook_reference_nmse_recomputed);
     TST_EXIT();
 }

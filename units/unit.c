@@ -36,7 +36,8 @@
     X(sqrt)         /* unit_sqrt.c: the restoring square root */ \
     X(dot3)         /* unit_dot3.c: the dot product (unit_nrm.c) */ \
     X(norm3)        /* unit_norm3.c: N/|N| (unit_nrm.c) */ \
-    X(shade)        /* unit_shade.c: one pixel of Blinn shading */
+    X(shade)        /* unit_shade.c: one pixel of Blinn shading */ \
+    X(shade_cook)   /* unit_shade_cook.c: one pixel of Cook-Torrance with D_g */
 
 #define UNIT_DECLARE(name) extern const unit_desc unit_##name;
 #define UNIT_ENTRY(name) &unit_##name,

@@ -30,7 +30,7 @@
 #include "vectors/vectors.h"
 
 #define UNIT_MAX_SIGS   80    /* interp3: paper's 38 + the pipe's and fwd's own */
-#define UNIT_MAX_IO     12   /* shade: N, L, H and three coefficients */
+#define UNIT_MAX_IO     13   /* shade_cook: N, L, V, hs and three coefficients */
 #define UNIT_MAX_SCHED  6
 #define UNIT_MAX_PARAMS 6
 

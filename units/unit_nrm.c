@@ -3,6 +3,7 @@
 #include "units/unit_nrm.h"
 #include "units/units_brdf.h"
 #include <math.h>
+#include "sim/sim_area.h"
 #include <stdio.h>
 
 int nrm_prod_fbits(int W)
@@ -29,8 +30,8 @@ unet_val nrm_dot(unet *n, int sig, const char *pfx, const unet_val *a, const une
 
 static void specs(sim_fmt fs, sim_fmt froot, sim_fmt frinv, rec_spec *sq, rec_spec *rc)
 {
-    *sq = (rec_spec){ REC_SQRT, fs.fbits, froot.fbits };
-    *rc = (rec_spec){ REC_RECIP, froot.fbits, frinv.fbits };
+    *sq = (rec_spec){ REC_SQRT, fs.fbits, froot.fbits, 0 };
+    *rc = (rec_spec){ REC_RECIP, froot.fbits, frinv.fbits, 0 };
 }
 
 int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp)
@@ -42,6 +43,20 @@ int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp)
     return *k_root + *k_rcp;
 }
 
+int nrm_check(const unet *n, sim_fmt fs, int sig_root, int sig_rinv, char *err, size_t errlen)
+{
+    sim_fmt froot = n->fm.f[sig_root], frinv = n->fm.f[sig_rinv];
+    char b1[SIM_FMT_STRLEN], b2[SIM_FMT_STRLEN], b3[SIM_FMT_STRLEN];
+    rec_spec sq, rc;
+    specs(fs, froot, frinv, &sq, &rc);
+    if (fs.is_signed || fs.ibits > 1 || !brdf_holds(froot, 0, 1) || !brdf_holds(frinv, 0, 2)) {
+        snprintf(err, errlen, "%s: the radicand %s must be unsigned below 2, root=%s hold [0, 1] and "
+                 "rinv=%s hold [1, 2]", n->u->name, sim_fmt_str(fs, b1), sim_fmt_str(froot, b2), sim_fmt_str(frinv, b3));
+        return -1;
+    }
+    return rec_check(&sq, err, errlen) || rec_check(&rc, err, errlen) ? -1 : 0;
+}
+
 int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
               sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, sim_signal *rcp_run,
               unet_val *rinv, int *stages,
@@ -49,15 +64,10 @@ int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
 {
     sim_fmt fs = s.f;
     sim_fmt froot = n->fm.f[sig_root], frinv = n->fm.f[sig_rinv];
-    char b1[SIM_FMT_STRLEN], b2[SIM_FMT_STRLEN];
+    char b1[SIM_FMT_STRLEN];
     rec_spec sq, rc;
     specs(fs, froot, frinv, &sq, &rc);
-    if (fs.is_signed || fs.ibits > 1 || !brdf_holds(froot, 0, 1) || !brdf_holds(frinv, 0, 2)) {
-        snprintf(err, errlen, "%s: the radicand %s must be unsigned below 2, root=%s hold [0, 1] and "
-                 "rinv=%s hold [1, 2]", n->u->name, sim_fmt_str(fs, b1), sim_fmt_str(froot, b2), sim_fmt_str(frinv, b1));
-        return -1;
-    }
-    if (rec_check(&sq, err, errlen) || rec_check(&rc, err, errlen)) return -1;
+    if (nrm_check(n, fs, sig_root, sig_rinv, err, errlen)) return -1;
     int ks = rec_steps(&sq), kq = rec_steps(&rc);
     if (stages) *stages = pipe ? ks + kq : 0;
     unet_val root = s, q = s;
@@ -117,3 +127,45 @@ unet_val nrm_delay(unet *n, const char *pfx, unet_val v, int k)
     if (n->c && v.s) v.s = rec_delay(n->c, n->sc, n->clk, pfx, v.s, k);
     return v;
 }
+
+/* ------------------------------------------------------------ gates */
+
+/* DL > 0 (and DH > 0): the sign bits and an OR over the bits. */
+static int64_t f_pos(const int64_t *in, void *u) { (void)u; return in[0] > 0; }
+static int64_t f_pos2(const int64_t *in, void *u) { (void)u; return in[0] > 0 && in[1] > 0; }
+/* SUM >= 1: its raw against 1's */
+static int64_t f_ge1(const int64_t *in, void *u) { return in[0] >= *(const int64_t *)u; }
+
+static const char *pos_vl(char *buf, size_t len, sim_fmt f, int k)
+{
+    if (f.is_signed) snprintf(buf, len, "(~%%%d[%d] & (|%%%d))", k, f.width - 1, k);
+    else snprintf(buf, len, "(|%%%d)", k);
+    return buf;
+}
+
+sim_signal *nrm_gate(sim_ctx *c, sim_scope *sc, const char *name, sim_signal *a, sim_signal *b)
+{
+    sim_signal *in[2] = { a, b };
+    int two = b != NULL;
+    double ge = (a->fmt.width + (two ? b->fmt.width : 0)) * SIM_GE_NAND2 / 2;
+    sim_signal *g = sim_logic(c, sc, name, unit_fmt(0, 1, 0), two ? 2 : 1, in, two ? f_pos2 : f_pos, NULL, ge);
+    char t[200], p0[60], p1[60];
+    if (two) snprintf(t, sizeof t, "assign %%y = %s & %s;", pos_vl(p0, sizeof p0, a->fmt, 0), pos_vl(p1, sizeof p1, b->fmt, 1));
+    else snprintf(t, sizeof t, "assign %%y = %s;", pos_vl(p0, sizeof p0, a->fmt, 0));
+    sim_logic_verilog(g, t);
+    return g;
+}
+
+sim_signal *nrm_ge_one(sim_ctx *c, sim_scope *sc, sim_signal *x)
+{
+    int64_t *one = sim_alloc(c, sizeof *one);
+    sim_fmt f = x->fmt;
+    *one = (int64_t)1 << f.fbits;
+    sim_signal *g = sim_logic(c, sc, "clamp", unit_fmt(0, 1, 0), 1, &x, f_ge1, one, f.width * SIM_GE_NAND2 / 2);
+    char t[160];
+    if (f.is_signed) snprintf(t, sizeof t, "assign %%y = $signed(%%0) >= $signed(%d'h%llx);", f.width, (unsigned long long)*one);
+    else snprintf(t, sizeof t, "assign %%y = %%0 >= %d'h%llx;", f.width, (unsigned long long)*one);
+    sim_logic_verilog(g, t);
+    return g;
+}
+

@@ -47,10 +47,21 @@ int nrm_rsqrt(unet *n, unet_val s, int sig_root, int sig_rinv, int pipe,
               sim_signal *first_root, sim_signal *root_run, sim_signal *first_rcp, sim_signal *rcp_run,
               unet_val *rinv, int *stages,
               char *err, size_t errlen);
+/* 0 when the recurrences take the radicand format fs and the formats of
+ * sig_root and sig_rinv, else -1 with the recurrence's message (the
+ * check nrm_rsqrt makes first; a unit states it before anything that
+ * depends on the recurrences' clocks). */
+int nrm_check(const unet *n, sim_fmt fs, int sig_root, int sig_rinv, char *err, size_t errlen);
 /* Clocks (stages) of the two recurrences for these formats. */
 int nrm_steps(sim_fmt fs, sim_fmt froot, sim_fmt frinv, int *k_root, int *k_rcp);
 
 /* v through k pipeline registers "<pfx>1".."<pfx>k" (building; the walk:
  * v unchanged, a register copies its value exactly). */
 unet_val nrm_delay(unet *n, const char *pfx, unet_val v, int k);
+/* The gate "a > 0" (b NULL) or "a > 0 && b > 0" on exact values: their
+ * sign bits and an OR over their bits (element name). */
+sim_signal *nrm_gate(sim_ctx *c, sim_scope *sc, const char *name, sim_signal *a, sim_signal *b);
+/* "x >= 1" (element "clamp"): the output multiplexer's select of a sum
+ * clamped at 1. */
+sim_signal *nrm_ge_one(sim_ctx *c, sim_scope *sc, sim_signal *x);
 #endif

@@ -21,9 +21,9 @@ static uint64_t mask_of(int w) { return w >= 64 ? ~(uint64_t)0 : ((uint64_t)1 <<
  * X is taken two bits a step. */
 static int x_width0(const rec_spec *s) { return s->f_in + 2 + (s->f_in & 1); }
 
-int rec_steps(const rec_spec *s) { return s->kind == REC_SQRT ? s->f_q + 1 : s->f_q + 2; }
+int rec_steps(const rec_spec *s) { return s->kind == REC_SQRT ? s->f_q + 1 : s->f_q + 2 + s->e; }
 
-sim_fmt rec_out_fmt(const rec_spec *s) { return unit_fmt(0, s->kind == REC_SQRT ? 1 : 2, s->f_q); }
+sim_fmt rec_out_fmt(const rec_spec *s) { return unit_fmt(0, s->kind == REC_SQRT ? 1 : 2 + s->e, s->f_q); }
 
 int rec_check(const rec_spec *s, char *err, size_t errlen)
 {
@@ -33,8 +33,9 @@ int rec_check(const rec_spec *s, char *err, size_t errlen)
                  "and at most 57)", s->f_q, s->f_in);
         return -1;
     }
-    if (s->kind == REC_RECIP && (s->f_in < 2 || s->f_in + 4 > 62 || K > 62)) {
-        snprintf(err, errlen, "reciprocal: divisor of %d fraction bits (need 2 to 58)", s->f_in);
+    if (s->kind == REC_RECIP && (s->e < 0 || s->f_in < 2 + s->e || s->f_in + 4 > 62 || K > 62)) {
+        snprintf(err, errlen, "reciprocal: divisor of %d fraction bits above 2^-%d (need %d to 58, "
+                 "and at most 62 steps)", s->f_in, s->e, 2 + s->e);
         return -1;
     }
     return 0;
@@ -180,8 +181,8 @@ static sim_signal *operand_raw(sim_ctx *c, sim_scope *sc, const char *name, cons
     return d;
 }
 
-/* R's first value: 0 (root) or 2^(F_d - 2) (reciprocal: N / 2^K). */
-static int64_t r0_raw(const rec_spec *s) { return s->kind == REC_SQRT ? 0 : (int64_t)1 << (s->f_in - 2); }
+/* R's first value: 0 (root) or 2^(F_d - 2 - e) (reciprocal: N / 2^K). */
+static int64_t r0_raw(const rec_spec *s) { return s->kind == REC_SQRT ? 0 : (int64_t)1 << (s->f_in - 2 - s->e); }
 
 /* Width of R: the root's remainder is at most 2 Q, K + 1 bits at the end;
  * the reciprocal's stays below d < 2^(F_d + 1). */

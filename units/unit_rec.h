@@ -22,7 +22,8 @@
  * R starts at N / 2^K = 2^(F_d - 2) and zeros come in:
  *     R2 = 2 R,  T = R2 - d_raw,  R <= T >= 0 ? T : R2,  Q <= 2 Q + (T >= 0)
  * after K steps Q = floor(2^F_q / d): 1/d truncated to q's format (u2.F_q,
- * 1/d in [1, 2]). */
+ * 1/d in [1, 2]). For d in [2^-e, 1] the same with K = F_q + 2 + e and R
+ * starting at 2^(F_d - 2 - e) (still below d): u(2+e).F_q. */
 #ifndef UNIT_REC_H
 #define UNIT_REC_H
 #include "units/unit.h"
@@ -34,11 +35,16 @@ typedef enum { REC_SQRT, REC_RECIP } rec_kind;
 typedef struct rec_spec {
     rec_kind kind;
     int      f_in, f_q;
+    /* reciprocal: the divisor d in [2^-e, 1] (e = 0: the [1/2, 1] above),
+     * e more steps and result bits (R starts at 2^(F_d - 2 - e), 1/d in
+     * [1, 2^(e+1)]); a caller that keeps its divisor above 2^-e (a clamp)
+     * sets it. 0 for the root. */
+    int      e;
 } rec_spec;
 
 /* Steps (clocks or stages) of a recurrence: K. */
 int     rec_steps(const rec_spec *s);
-/* The result's format: sqrt u1.F_q (x in [0, 2)), reciprocal u2.F_q. */
+/* The result's format: sqrt u1.F_q (x in [0, 2)), reciprocal u(2+e).F_q. */
 sim_fmt rec_out_fmt(const rec_spec *s);
 /* 0, or -1 with a message when the recurrence cannot be built (F_q too
  * small for the radicand's bits, registers over 62 bits). */

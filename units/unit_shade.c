@@ -118,46 +118,8 @@ static int beats1(const unit_cfg *cfg) { (void)cfg; return 1; }
 
 /* ------------------------------------------------------------ the logic */
 
-/* DL > 0 (and DH > 0): the sign bits and an OR over the bits. */
-static int64_t f_pos(const int64_t *in, void *u) { (void)u; return in[0] > 0; }
-static int64_t f_pos2(const int64_t *in, void *u) { (void)u; return in[0] > 0 && in[1] > 0; }
 /* the shared schedule's CV select, 3 v + k */
 static int64_t f_vk(const int64_t *in, void *u) { (void)u; return 3 * in[0] + in[1]; }
-/* SUM >= 1: its raw against 1's */
-static int64_t f_ge1(const int64_t *in, void *u) { return in[0] >= *(const int64_t *)u; }
-
-static const char *pos_vl(char *buf, size_t len, sim_fmt f, int k)
-{
-    if (f.is_signed) snprintf(buf, len, "(~%%%d[%d] & (|%%%d))", k, f.width - 1, k);
-    else snprintf(buf, len, "(|%%%d)", k);
-    return buf;
-}
-
-static sim_signal *gate(sim_ctx *c, sim_scope *sc, const char *name, sim_signal *a, sim_signal *b)
-{
-    sim_signal *in[2] = { a, b };
-    int two = b != NULL;
-    double ge = (a->fmt.width + (two ? b->fmt.width : 0)) * SIM_GE_NAND2 / 2;
-    sim_signal *g = sim_logic(c, sc, name, unit_fmt(0, 1, 0), two ? 2 : 1, in, two ? f_pos2 : f_pos, NULL, ge);
-    char t[200], p0[60], p1[60];
-    if (two) snprintf(t, sizeof t, "assign %%y = %s & %s;", pos_vl(p0, sizeof p0, a->fmt, 0), pos_vl(p1, sizeof p1, b->fmt, 1));
-    else snprintf(t, sizeof t, "assign %%y = %s;", pos_vl(p0, sizeof p0, a->fmt, 0));
-    sim_logic_verilog(g, t);
-    return g;
-}
-
-static sim_signal *ge_one(sim_ctx *c, sim_scope *sc, sim_signal *x)
-{
-    int64_t *one = sim_alloc(c, sizeof *one);
-    sim_fmt f = x->fmt;
-    *one = (int64_t)1 << f.fbits;
-    sim_signal *g = sim_logic(c, sc, "clamp", unit_fmt(0, 1, 0), 1, &x, f_ge1, one, f.width * SIM_GE_NAND2 / 2);
-    char t[160];
-    if (f.is_signed) snprintf(t, sizeof t, "assign %%y = $signed(%%0) >= $signed(%d'h%llx);", f.width, (unsigned long long)*one);
-    else snprintf(t, sizeof t, "assign %%y = %%0 >= %d'h%llx;", f.width, (unsigned long long)*one);
-    sim_logic_verilog(g, t);
-    return g;
-}
 
 /* ACC's low bits as N.N (a view: wiring; the other clocks' values are
  * not N.N and are not read) */
@@ -224,8 +186,8 @@ static int sh_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
         snprintf(err, errlen, "shade: dl and dh are exact only up to width 25 (their gates need exact signs)");
         return -1;
     }
-    sim_signal *gl = hw ? gate(n->c, n->sc, "gate_l", dl.s, NULL) : NULL;
-    sim_signal *gh = hw ? gate(n->c, n->sc, "gate_h", dl.s, dh.s) : NULL;
+    sim_signal *gl = hw ? nrm_gate(n->c, n->sc, "gate_l", dl.s, NULL) : NULL;
+    sim_signal *gh = hw ? nrm_gate(n->c, n->sc, "gate_h", dl.s, dh.s) : NULL;
     unet_val dlq = unet_bk(n, S_DLQ, "dlq", gl, dl, 1), dhq = unet_bk(n, S_DHQ, "dhq", gh, dh, 1);
     sim_signal *v = hw ? io->in_valid : NULL;
     nn = nrm_delay(n, "nn_r", nn, 1);
@@ -264,7 +226,7 @@ static int sh_walk(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *out, cha
     unet_val ksh = unet_mul(n, S_KSH, "ksh", hl, ks);
     unet_val sum = unet_add(n, S_SUM, "sum", unet_add(n, S_SUM, "sum_a", ka, dif), ksh);
     unet_val one = brdf_uconst(n, F[S_I], "one_i", 1.0);
-    sim_signal *sel = hw ? ge_one(n->c, n->sc, sum.s) : NULL;
+    sim_signal *sel = hw ? nrm_ge_one(n->c, n->sc, sum.s) : NULL;
     unet_val two[2] = { sum, one };
     /* min(SUM, 1) is 1-Lipschitz: its error is SUM's, then i's quantization */
     *out = unet_mux(n, S_I, "i", sel, 2, two, 0);
@@ -296,9 +258,10 @@ typedef struct sh_word { uint8_t a, b, c, k, v, kc, en, rc; } sh_word;
  * the root from the clock after N.N (while N.L and N.H are formed), then
  * the reciprocal; NL and NH; the power's program; ka + kd NL, + ks HL.
  * Returns the steps, or 0 when they do not fit. */
+static int sh_len(int ks, int kq, const char *pw) { return 3 + ks + kq + 2 + (int)strlen(pw) / 2 + 2; }
 static int sh_prog(int ks, int kq, const char *pw, sh_word *w)
 {
-    int np = (int)strlen(pw) / 2, r0 = 3 + ks + kq, n = r0 + 2 + np + 2;
+    int np = (int)strlen(pw) / 2, r0 = 3 + ks + kq, n = sh_len(ks, kq, pw);
     if (n > SH_MAX_STEPS || ks < 7) return 0;
     memset(w, 0, (size_t)n * sizeof *w);
     for (int t = 0; t < 9; t++) {               /* the dot products */
@@ -361,9 +324,18 @@ static int sh_walk_shared(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *o
     int hw = n->c != NULL, ks, kq;
     char prog[PW_N_PROG_LEN];
     sh_word w[SH_MAX_STEPS];
+    if (!pow_n_prog(cfg->n, prog)) {
+        snprintf(err, errlen, "shade: n = %d is outside 1..%d", cfg->n, PW_N_MAX);
+        return -1;
+    }
+    /* the recurrences' own limits first: they set the program's length */
+    if (nrm_check(n, F[S_NN], S_ROOT, S_RINV, err, errlen)) return -1;
     nrm_steps(F[S_NN], F[S_ROOT], F[S_RINV], &ks, &kq);
-    int ns = pow_n_prog(cfg->n, prog) ? sh_prog(ks, kq, prog, w) : 0;
-    if (!ns) { snprintf(err, errlen, "shade: n = %d outside 1..%d, or too many steps", cfg->n, PW_N_MAX); return -1; }
+    int ns = sh_prog(ks, kq, prog, w);
+    if (!ns) {
+        snprintf(err, errlen, "shade: the shared program needs %d clocks, more than %d", sh_len(ks, kq, prog), SH_MAX_STEPS);
+        return -1;
+    }
     sim_signal *next = NULL, *first, *d[16] = { NULL };
     if (hw) {
         brdf_seq(n->c, n->sc, n->clk, ns, io, &next, &first);
@@ -394,8 +366,8 @@ static int sh_walk_shared(unet *n, const unit_cfg *cfg, unit_io *io, unet_val *o
     memset(&rinv, 0, sizeof rinv);
     sim_signal *gl = NULL, *gh = NULL;
     if (hw) {
-        gl = gate(n->c, n->sc, "gate_l", dl.s, NULL);
-        gh = gate(n->c, n->sc, "gate_h", dl.s, dh.s);
+        gl = nrm_gate(n->c, n->sc, "gate_l", dl.s, NULL);
+        gh = nrm_gate(n->c, n->sc, "gate_h", dl.s, dh.s);
     }
     for (int t = 0; t < ns; t++) {
         const sh_word *c = &w[t];

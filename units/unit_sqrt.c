@@ -35,7 +35,7 @@ static int sq_build(sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *
         snprintf(err, errlen, "sqrt: x=%s must be unsigned with at most one integer bit (x < 2)", sim_fmt_str(fx, b1));
         return -1;
     }
-    rec_spec s = { REC_SQRT, fx.fbits, fy.fbits };
+    rec_spec s = { REC_SQRT, fx.fbits, fy.fbits, 0 };
     if (rec_check(&s, err, errlen)) return -1;
     io->in[0] = sim_signal_new(c, sc, "x", fx, SIM_KIND_INPUT);
     sim_signal *q;

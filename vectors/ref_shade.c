@@ -9,6 +9,7 @@
  * between L and any view direction is.
  */
 #include "vectors/ref_shade.h"
+#include "vectors/ref_brdf.h"
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -34,6 +35,35 @@ double ref_shade_blinn(const double n[3], const double l[3], const double h[3],
     return sum < 1 ? sum : 1;
 }
 
+int ref_shade_cook_e(double m, int g)
+{
+    double k = (2.0 / (m * m) - 4.0) / g;
+    if (!(k > 1)) return 0;
+    int e = 0;
+    while (ldexp(1.0, -e) > (1.0 - 1.0 / k) / 2.0) e++;
+    return e;
+}
+
+double ref_shade_cook(const double n[3], const double l[3], const double v[3], double hs,
+                      double ka, double kd, double kc, double m, int g)
+{
+    double len = sqrt(dot(n, n)), sum = ka;
+    if (len > 0) {
+        double u[3] = { n[0] / len, n[1] / len, n[2] / len };
+        double nl = dot(u, l), nv = dot(u, v);
+        if (nl > 0) {
+            sum += kd * nl;
+            if (nv > 0) {
+                double nh = (nl + nv) * hs, d = ref_brdf_dg_clamped(nh, m, g);
+                double a = fmax(fmin(nl, nv), 0.25), b = fmax(fmax(nl, nv), ldexp(1.0, -ref_shade_cook_e(m, g)));
+                sum += kc * d * fmin(1.0 / a, 4.0 * hs * nh) / b;
+            }
+        }
+    }
+    if (!(sum > 0)) return 0;
+    return sum < 1 ? sum : 1;
+}
+
 /* ---- ports ---- */
 
 static void names(char dst[][16], int *n, const char *list)
@@ -50,6 +80,7 @@ PORTS(ports_sqrt, "x", "y")
 PORTS(ports_dot3, "ax ay az bx by bz", "y")
 PORTS(ports_norm3, "nx ny nz", "ux uy uz")
 PORTS(ports_shade, "nx ny nz lx ly lz hx hy hz ka kd ks", "i")
+PORTS(ports_shade_cook, "nx ny nz lx ly lz vx vy vz hs ka kd kc", "i")
 
 /* ---- eval ---- */
 
@@ -65,6 +96,9 @@ static void eval_norm3(const vec_params *p, const double *in, double *out)
 }
 static void eval_shade(const vec_params *p, const double *in, double *out)
 { out[0] = ref_shade_blinn(in, in + 3, in + 6, in[9], in[10], in[11], p->n); }
+
+static void eval_shade_cook(const vec_params *p, const double *in, double *out)
+{ out[0] = ref_shade_cook(in, in + 3, in + 6, in[9], in[10], in[11], in[12], p->m, p->g); }
 
 /* ---- generation ---- */
 
@@ -129,6 +163,33 @@ static void row_shade(vec_rng *r, size_t i, double *in)
     for (int k = 9; k < 12; k++) in[k] = vec_rng_unit(r);
 }
 
+static void row_shade_cook(vec_rng *r, size_t i, double *in)
+{
+    /* head-on (N = L = V), the terminator, a grazing view with the light
+     * head-on, L.V = -1/2 (hs = 1, the domain's end) */
+    static const double fixed[4][13] = {
+        { 0, 0, 1, 0, 0, 1, 0, 0, 1, 0.5, 0.05, 0.6, 0.1 },
+        { 1, 0, 0, 0, 0, 1, 0, 0, 1, 0.5, 0.1, 0.7, 0.3 },
+        { 0, 0, 0.75, 0, 0, 1, 0.8, 0, 0.6, 0.632455532033676, 0.1, 0.5, 0.3 },
+        { 0, 0, 1, 0.866025403784439, 0, 0.5, -0.866025403784439, 0, 0.5, 1, 0, 0.5, 0.3 } };
+    if (i < 4) { memcpy(in, fixed[i], sizeof fixed[i]); return; }
+    direction(r, nlen(r), in);
+    direction(r, 1, in + 6);
+    do direction(r, 1, in + 3); while (dot(in + 3, in + 6) < -0.5);
+    double h[3] = { in[3] + in[6], in[4] + in[7], in[5] + in[8] }, hl = sqrt(dot(h, h));
+    in[9] = 1 / hl;
+    /* half the normals near H, where the highlight is */
+    if (i & 1) {
+        double t = vec_rng_range(r, 0, 0.3), len = sqrt(dot(in, in));
+        for (int k = 0; k < 3; k++) in[k] = (1 - t) * h[k] / hl + t * in[k] / len;
+        double l2 = sqrt(dot(in, in)), want = nlen(r);
+        for (int k = 0; k < 3; k++) in[k] *= want / l2;
+    }
+    in[10] = vec_rng_unit(r);
+    in[11] = vec_rng_unit(r);
+    in[12] = vec_rng_unit(r) / 3;       /* ks F / pi <= 1.024 / pi */
+}
+
 static int gen_with(const vec_model *self, row_fn row, const vec_params *p, size_t n, uint64_t seed, vec_set *out)
 {
     vec_set_header(out, self, p);
@@ -151,6 +212,12 @@ static int gen_shade(const vec_params *p, size_t n, uint64_t s, vec_set *o)
     return gen_with(&ref_model_shade, row_shade, p, n, s, o);
 }
 
+static int gen_shade_cook(const vec_params *p, size_t n, uint64_t s, vec_set *o)
+{
+    if (ref_shade_cook_e(p->m, p->g) < 1) return -1;
+    return gen_with(&ref_model_shade_cook, row_shade_cook, p, n, s, o);
+}
+
 /* y = sqrt(x), x in [0, 2) */
 const vec_model ref_model_sqrt = { "sqrt", ports_sqrt, eval_sqrt, gen_sqrt };
 /* y = a.b, |a|, |b| <= 1 */
@@ -159,3 +226,5 @@ const vec_model ref_model_dot3 = { "dot3", ports_dot3, eval_dot3, gen_dot3 };
 const vec_model ref_model_norm3 = { "norm3", ports_norm3, eval_norm3, gen_norm3 };
 /* one pixel's Blinn shading, one directional light of intensity 1 */
 const vec_model ref_model_shade = { "shade", ports_shade, eval_shade, gen_shade };
+/* one pixel's Cook-Torrance shading with D_g, one directional light of intensity 1 */
+const vec_model ref_model_shade_cook = { "shade_cook", ports_shade_cook, eval_shade_cook, gen_shade_cook };

@@ -385,10 +385,7 @@ int cli_run(int argc, char **argv)
     if (!o.nfmt && !nlu) {
         /* Past the top of the unit's range the build would refuse with a
          * hint about one signal; say the range instead (shadesim list). */
-        int wmax = tb_width_max(o.u, &o.cfg, err, sizeof err);
-        if (o.cfg.width > wmax)
-            return cli_usage_error("--width %d: unit %s builds with its default formats at widths %d..%d only (%s)",
-                                   o.cfg.width, o.u->name, unit_min_width(o.u, &o.cfg, NULL), wmax, err);
+        if (tb_width_refuse(o.u, &o.cfg, err, sizeof err)) return cli_usage_error("--width %d: %s", o.cfg.width, err);
     }
     int static_bad = 0;
     if (ra.derived && (static_bad = check_derived(&o, &fm, &ra.rg, json, report)) < 0) return CLI_USAGE;

@@ -303,9 +303,9 @@ static void print_pipes_compare(const char *const *names, const tb_scene_pipes *
         printf("both pipelines: %s\n", n ? pp[0].why : "none");
         return;
     }
-    printf("\nboth pipelines in hardware (unit shade, width %d, n %d; per-pixel: the reference on it; node+span: the "
+    printf("\nboth pipelines in hardware (unit %s, width %d, %s %d; per-pixel: the reference on it; node+span: the "
            "method, its nodes on it):\n",
-           pp[0].width, pp[0].n);
+           pp[0].unit, pp[0].width, strcmp(pp[0].unit, "shade") ? "g" : "n", pp[0].n);
     printf("%-10s %-9s %-9s %5s %11s %10s %9s %9s %8s %10s %7s %9s\n", "config", "side", "schedule", "spans", "NMSE",
            "clocks/px", "area GE", "f_max", "Mpx/s", "Mpx/s/kGE", "pJ/px", "vs ref.");
     for (int c = -1; c < n; c++)

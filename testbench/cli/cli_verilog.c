@@ -7,6 +7,7 @@
 #include "testbench/cli/cli_synth.h"
 #include "testbench/tb_verilog.h"
 #include "testbench/tb_synth.h"
+#include "testbench/tb_widths.h"
 #include "base/base_out.h"
 #include "base/base_proc.h"
 #include "sim/sim_area.h"
@@ -49,6 +50,9 @@ static int formats(cli_unit_opts *o, unit_fmts *fm)
 {
     char err[600];
     if (tb_formats(o->u, &o->cfg, o->fmt, o->nfmt, fm, err, sizeof err)) return cli_usage_error("%s", err);
+    /* past the top of the range: the range, as run says it */
+    if (!o->nfmt && tb_width_refuse(o->u, &o->cfg, err, sizeof err))
+        return cli_usage_error("--width %d: %s", o->cfg.width, err);
     return CLI_OK;
 }
 

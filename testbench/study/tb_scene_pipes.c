@@ -3,13 +3,20 @@
  * (tb_scene_pipes.h). */
 #include "testbench/study/tb_scene_pipes.h"
 #include "testbench/tb_items_memo.h"
+#include "testbench/tb_widths.h"
 #include "base/base_json.h"
 #include "base/base_out.h"
+#include "vectors/ref_brdf.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define SHADE_IN 12                /* nx ny nz lx ly lz hx hy hz ka kd ks */
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+#define SHADE_IN_MAX 13            /* nx ny nz, then the frame's constants */
+#define FRAME_MAX (SHADE_IN_MAX - 3)
 
 static int unit3(const double v[3], double u[3])
 {
@@ -17,6 +24,34 @@ static int unit3(const double v[3], double u[3])
     if (!(l > 0) || !isfinite(l)) return 0;
     for (int e = 0; e < 3; e++) u[e] = v[e] / l;
     return 1;
+}
+
+/* The unit that shades d's material: shade (Blinn, or no specular term)
+ * or shade_cook (Cook-Torrance with D_g); NULL for the others. */
+static const unit_desc *shade_unit(const scn_desc *d)
+{
+    const scn_material *mt = &d->mat;
+    if (mt->ks == 0 || mt->spec == SCN_SPEC_BLINN) return unit_find("shade");
+    if (mt->spec == SCN_SPEC_COOK && mt->dg) return unit_find("shade_cook");
+    return NULL;
+}
+static int is_cook(const unit_desc *u) { return u && !strcmp(u->name, "shade_cook"); }
+
+/* A real parameter's range check. */
+static int real_in(const unit_desc *u, const char *name, double v)
+{
+    for (int k = 0; u && k < u->nparams; k++)
+        if (!strcmp(u->params[k].name, name)) return v >= u->params[k].min && v <= u->params[k].max;
+    return 0;
+}
+
+/* The frame's V (towards the viewer) and L, unit. */
+static void frame_lv(const scn_view *v, double V[3], double L[3])
+{
+    const scn_camera *c = &v->cam;
+    double vs[3] = { c->eye[0] - c->target[0], c->eye[1] - c->target[1], c->eye[2] - c->target[2] };
+    unit3(vs, V);
+    unit3(v->light[0].v, L);
 }
 
 /* The shininess as the unit's whole exponent n, or -1 when it is none or
@@ -35,44 +70,65 @@ int tb_scene_pipes_fit(const scn_desc *d, const scn_view *v, char *why, size_t l
 {
     const scn_material *mt = &d->mat;
     const char *no = NULL;
-    if (!unit_find("shade")) no = "no shade unit";
+    const unit_desc *u = shade_unit(d);
+    double V[3], L[3];
+    if (!u) no = mt->spec == SCN_SPEC_COOK ? "the shade units compute Cook-Torrance with D_g only (distribution d4, d8 or d16)"
+                                           : "the shade units compute Blinn's and Cook-Torrance's (D_g) highlights only";
     else if (v->nlights != 1 || v->light[0].point) no = "the shade unit takes one directional light";
     else if (v->cam.perspective) no = "the shade unit takes an orthographic camera (V constant)";
-    else if (mt->ks != 0 && mt->spec != SCN_SPEC_BLINN) no = "the shade unit computes Blinn's highlight only";
-    else if (mt->ks != 0 && shade_n(unit_find("shade"), mt->shininess) < 0)
+    else if (!is_cook(u) && mt->ks != 0 && shade_n(u, mt->shininess) < 0)
         no = "the shade unit's exponent n is a whole number in its range (shadesim list shade)";
+    else if (is_cook(u) && !real_in(u, "m", mt->m))
+        no = "shade_cook's roughness m is in its range (shadesim list shade_cook)";
     else if (mt->kd * v->light[0].intensity > 1 || mt->ks * v->light[0].intensity > 1)
         no = "kd and ks times the light's intensity must stay within [0, 1]";
+    else if (is_cook(u) && (frame_lv(v, V, L), V[0] * L[0] + V[1] * L[1] + V[2] * L[2] < -0.5))
+        no = "shade_cook takes a light within 120 degrees of the view (V.H >= 1/2)";
     if (no) snprintf(why, len, "%s", no);
     return !no;
 }
 
 /* One item's inputs: N scaled by a power of two into |N| in [1/2, 1)
- * (a shift: the direction is exact), then the frame's L, H and the
- * coefficients fr[9]. */
-static void item_in(const double n[3], const double fr[9], double *row)
+ * (a shift: the direction is exact), then the frame's nfr constants. */
+static void item_in(const double n[3], const double *fr, int nfr, double *row)
 {
     double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     int e = 0;
     if (l > 0 && isfinite(l)) (void)frexp(l, &e);
     for (int k = 0; k < 3; k++) row[k] = ldexp(n[k], -e);
-    memcpy(row + 3, fr, 9 * sizeof *row);
+    memcpy(row + 3, fr, (size_t)nfr * sizeof *row);
 }
 
-/* The frame's constants: L, H = normalize(L + V), ka, kd I0, ks I0. */
-static void frame(const scn_desc *d, const scn_view *v, double fr[9])
+/* The frame's constants, their count returned: shade's L, H =
+ * normalize(L + V), ka, kd I0, ks I0; shade_cook's L, V, hs = 1/|L + V|,
+ * ka, kd I0 and kc = ks I0 F(L.H) / pi (the Fresnel factor on L.H = V.H,
+ * constant over the frame, and Cook and Torrance's 1/pi;
+ * scene/scene_shade.c). */
+static int frame(const scn_desc *d, const scn_view *v, double *fr)
 {
-    const scn_camera *c = &v->cam;
-    double vs[3] = { c->eye[0] - c->target[0], c->eye[1] - c->target[1], c->eye[2] - c->target[2] }, V[3], L[3], h[3];
-    unit3(vs, V);
-    unit3(v->light[0].v, L);
+    double V[3], L[3], h[3], H[3];
+    frame_lv(v, V, L);
     for (int k = 0; k < 3; k++) h[k] = L[k] + V[k];
-    if (!unit3(h, fr + 3)) memcpy(fr + 3, L, sizeof L);
-    memcpy(fr, L, sizeof L);
+    if (!unit3(h, H)) memcpy(H, L, sizeof L);
     double I0 = v->light[0].intensity;
+    memcpy(fr, L, sizeof L);
+    if (is_cook(shade_unit(d))) {
+        const scn_material *mt = &d->mat;
+        double lh = L[0] * H[0] + L[1] * H[1] + L[2] * H[2], f = 1, hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        if (mt->fresnel == SCN_FRESNEL_SCHLICK) f = ref_brdf_schlick(lh, mt->fresnel_n);
+        else if (mt->fresnel == SCN_FRESNEL_MSCHLICK) f = ref_brdf_mschlick(lh, mt->fresnel_n);
+        memcpy(fr + 3, V, sizeof V);
+        fr[6] = hl > 0 ? 1 / hl : 1;
+        fr[7] = mt->ambient;
+        fr[8] = mt->kd * I0;
+        fr[9] = mt->ks * I0 * f / M_PI;
+        return 10;
+    }
+    memcpy(fr + 3, H, sizeof H);
     fr[6] = d->mat.ambient;
     fr[7] = d->mat.kd * I0;
     fr[8] = d->mat.ks * I0;
+    return 9;
 }
 
 static double nmse_of(const tb_scene_result *r, const double *img)
@@ -97,12 +153,17 @@ typedef struct shader {
 
 static int shader_at(const scn_desc *d, int width, int k, shader *s, char *err, size_t errlen)
 {
-    s->u = unit_find("shade");
+    s->u = shade_unit(d);
     unit_cfg_default(s->u, &s->cfg);
     s->cfg.width = width;
     s->cfg.schedule = k;
-    int n = shade_n(s->u, d->mat.shininess);
-    if (n > 0) s->cfg.n = n;
+    if (is_cook(s->u)) {
+        s->cfg.m = d->mat.m;
+        s->cfg.g = d->mat.dg;
+    } else {
+        int n = shade_n(s->u, d->mat.shininess);
+        if (n > 0) s->cfg.n = n;
+    }
     if (tb_formats(s->u, &s->cfg, NULL, 0, &s->f, err, errlen)) return -1;
     return tb_unit_timing(s->u, &s->cfg, &s->f, &s->ppa, err, errlen);
 }
@@ -134,17 +195,18 @@ static void balance(tb_pipe_row *b)
 }
 
 /* The normals of every band, in band order, as the unit's inputs. */
-static double *inputs(const tb_scene_nodes *rec, int nodes, const double fr[9], size_t *n)
+static double *inputs(const tb_scene_nodes *rec, int nodes, const double *fr, int nfr, size_t *n)
 {
+    int ni = 3 + nfr;
     size_t t = 0;
     for (int k = 0; k < TB_SCENE_BANDS; k++) t += nodes ? rec->band[k].nnodes : rec->band[k].npix;
-    double *in = malloc((t ? t : 1) * SHADE_IN * sizeof *in);
+    double *in = malloc((t ? t : 1) * (size_t)ni * sizeof *in);
     if (!in) base_out_of_memory();
     size_t i = 0;
     for (int k = 0; k < TB_SCENE_BANDS; k++) {
         const tb_scene_nodes_band *b = &rec->band[k];
         size_t m = nodes ? b->nnodes : b->npix;
-        for (size_t j = 0; j < m; j++, i++) item_in(nodes ? b->nn[j] : b->pn[j], fr, in + i * SHADE_IN);
+        for (size_t j = 0; j < m; j++, i++) item_in(nodes ? b->nn[j] : b->pn[j], fr, nfr, in + i * (size_t)ni);
     }
     *n = t;
     return in;
@@ -160,11 +222,11 @@ static int render_of(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, co
 
 /* The reference's row at schedule s: every recorded pixel through the
  * unit; the image into *img (NULL: not kept). */
-static int ref_row(const tb_scene_result *r, const tb_scene_nodes *rec, const shader *s, const double fr[9], int jobs,
-                   tb_pipe_row *a, double **img, char *err, size_t errlen)
+static int ref_row(const tb_scene_result *r, const tb_scene_nodes *rec, const shader *s, const double *fr, int nfr,
+                   int jobs, tb_pipe_row *a, double **img, char *err, size_t errlen)
 {
     size_t np, npx = (size_t)r->w * r->h;
-    double *pin = inputs(rec, 0, fr, &np);
+    double *pin = inputs(rec, 0, fr, nfr, &np);
     double *pout = malloc((np ? np : 1) * sizeof *pout), *im = calloc(npx ? npx : 1, sizeof *im);
     if (!pout || !im) base_out_of_memory();
     tb_items_stats ps;
@@ -195,11 +257,11 @@ static int ref_row(const tb_scene_result *r, const tb_scene_nodes *rec, const sh
  * replayed into a render of d; its hardware image into *img (NULL: not
  * kept). */
 static int method_row(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
-                      const tb_scene_result *r, tb_scene_nodes *rec, const shader *s, const double fr[9],
+                      const tb_scene_result *r, tb_scene_nodes *rec, const shader *s, const double *fr, int nfr,
                       tb_pipe_row *b, double **img, char *err, size_t errlen)
 {
     size_t nn;
-    double *nin = inputs(rec, 1, fr, &nn), *nout = malloc((nn ? nn : 1) * sizeof *nout);
+    double *nin = inputs(rec, 1, fr, nfr, &nn), *nout = malloc((nn ? nn : 1) * sizeof *nout);
     if (!nout) base_out_of_memory();
     tb_items_stats ns;
     int rc = tb_items_run_memo(o->memo, s->u, &s->cfg, &s->f, nin, nn, o->jobs < 1 ? 1 : o->jobs, 1, nout, &ns,
@@ -255,19 +317,34 @@ int tb_scene_pipes_run(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, 
     p->h = r->h;
     p->width = width;
     if (!tb_scene_pipes_fit(d, v, p->why, sizeof p->why)) return TB_OK;
-    double fr[9];
-    frame(d, v, fr);
-    const unit_desc *u = unit_find("shade");
-    p->n = shade_n(u, d->mat.shininess);
+    const unit_desc *u = shade_unit(d);
+    snprintf(p->unit, sizeof p->unit, "%s", u->name);
+    /* past the top of the shade unit's widths: the scene's render and
+     * --compare say so and stop (exit 2, as run and verilog do); a
+     * sweep's point keeps its render without the pipelines, as a unit
+     * sweep's row there says "not buildable" */
+    unit_cfg wc;
+    char msg[400];
+    unit_cfg_default(u, &wc);
+    wc.width = width;
+    if (tb_width_refuse(u, &wc, msg, sizeof msg)) {
+        snprintf(p->why, sizeof p->why, "not buildable at width %d: %s", width, msg);
+        if (which != TB_PIPES_BOTH) return TB_OK;
+        snprintf(err, errlen, "width %d (both pipelines in hardware): %s", width, msg);
+        return TB_BADINPUT;
+    }
+    double fr[FRAME_MAX];
+    int nfr = frame(d, v, fr);
+    p->n = is_cook(u) ? d->mat.dg : shade_n(u, d->mat.shininess);
     for (int k = 0; k < u->nsched && p->nrows + 2 <= TB_PIPES_MAX; k++) {
         shader s;
         if (shader_at(d, width, k, &s, err, errlen)) return TB_BADINPUT;
         int rc = TB_OK;
         if (which & TB_PIPES_REF)
-            rc = ref_row(r, rec, &s, fr, o->jobs < 1 ? 1 : o->jobs, &p->row[p->nrows++], k ? NULL : &p->ref_hw,
+            rc = ref_row(r, rec, &s, fr, nfr, o->jobs < 1 ? 1 : o->jobs, &p->row[p->nrows++], k ? NULL : &p->ref_hw,
                          err, errlen);
         if (rc == TB_OK && (which & TB_PIPES_METHOD))
-            rc = method_row(d, m, g, o, r, rec, &s, fr, &p->row[p->nrows++], k ? NULL : &p->hw_nodes, err, errlen);
+            rc = method_row(d, m, g, o, r, rec, &s, fr, nfr, &p->row[p->nrows++], k ? NULL : &p->hw_nodes, err, errlen);
         if (rc != TB_OK) { tb_scene_pipes_free(p); return rc; }
     }
     p->ok = 1;
@@ -324,14 +401,14 @@ int tb_scene_pipes_refs(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g,
     char why[200];
     if (!tb_scene_pipes_fit(d, v, why, sizeof why)) return TB_OK;
     int rc = render_of(d, m, g, &o1, &r, err, errlen), rendered = rc == TB_OK;
-    double fr[9];
-    frame(d, v, fr);
-    const unit_desc *u = unit_find("shade");
+    double fr[FRAME_MAX];
+    int nfr = frame(d, v, fr);
+    const unit_desc *u = shade_unit(d);
     for (int w = 0; rc == TB_OK && w < nw; w++)
         for (int k = 0; rc == TB_OK && k < u->nsched; k++) {
             shader s;
             if (shader_at(d, widths[w], k, &s, err, errlen)) rc = TB_BADINPUT;
-            else rc = ref_row(&r, &rec, &s, fr, o->jobs < 1 ? 1 : o->jobs, &rows[(*nrows)++], NULL, err, errlen);
+            else rc = ref_row(&r, &rec, &s, fr, nfr, o->jobs < 1 ? 1 : o->jobs, &rows[(*nrows)++], NULL, err, errlen);
         }
     if (rendered) tb_scene_free(&r);
     tb_scene_nodes_free(&rec);
@@ -347,8 +424,8 @@ void tb_scene_pipes_print(FILE *f, const tb_scene_pipes *p)
         fprintf(f, "  %-22s %s\n", "both pipelines", p->why);
         return;
     }
-    fprintf(f, "  both pipelines in hardware: unit shade (width %d, n %d) per pixel (per-pixel), and shading the "
-            "method's nodes (node+span)\n", p->width, p->n);
+    fprintf(f, "  both pipelines in hardware: unit %s (width %d, %s %d) per pixel (per-pixel), and shading the "
+            "method's nodes (node+span)\n", p->unit, p->width, strcmp(p->unit, "shade") ? "g" : "n", p->n);
     fprintf(f, "    %-10s %-9s %5s %11s %10s %9s %9s %8s %10s %9s %7s\n", "side", "schedule", "spans", "NMSE",
             "clocks/px", "area GE", "f_max", "Mpx/s", "Mpx/s/kGE", "GE/Mpx/s", "pJ/px");
     for (int i = 0; i < p->nrows; i++) {
@@ -395,7 +472,9 @@ static void row_json(FILE *f, const tb_pipe_row *w)
 void tb_scene_pipes_json(FILE *f, const tb_scene_pipes *p)
 {
     if (!p) return;
-    fputs(",\n  \"pipelines\": {\"unit\": \"shade\", ", f);
+    fputs(",\n  \"pipelines\": {\"unit\": ", f);
+    base_json_str(f, p->ok ? p->unit : "shade");
+    fputs(", ", f);
     if (!p->ok) {
         fputs("\"available\": false, \"why\": ", f);
         base_json_str(f, p->why);

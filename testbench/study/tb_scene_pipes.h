@@ -48,8 +48,9 @@ typedef struct tb_pipe_row {
 #define TB_PIPES_KMAX 64
 typedef struct tb_scene_pipes {
     int    ok;                     /* 0: no comparison, why says why */
-    char   why[200];
-    int    width, n;               /* the shade unit's width; the shininess */
+    char   why[480];
+    char   unit[16];               /* shade or shade_cook */
+    int    width, n;               /* the shade unit's width; the shininess (shade) or g (shade_cook) */
     int    nrows;                  /* reference then method, schedule by schedule */
     tb_pipe_row row[TB_PIPES_MAX];
     int    w, h;
@@ -57,9 +58,11 @@ typedef struct tb_scene_pipes {
     double *hw_nodes;              /* [w*h] the method with nodes from it (first schedule) */
 } tb_scene_pipes;
 
-/* 1 if the shade unit computes d's lighting in view v (one directional
- * light, an orthographic camera, Blinn or no specular term, a whole
- * shininess in the unit's range), else 0 and why. */
+/* 1 if a shade unit computes d's lighting in view v (one directional
+ * light, an orthographic camera; shade: Blinn or no specular term, a
+ * whole shininess in the unit's range; shade_cook: Cook-Torrance with
+ * D_g, its roughness in the unit's range, the light within 120 degrees of
+ * the view), else 0 and why. */
 int  tb_scene_pipes_fit(const scn_desc *d, const scn_view *v, char *why, size_t len);
 /* Both pipelines for render r of d (mesh m, or surface buffer g when not
  * NULL), which recorded into rec with options o; the shade unit at
