@@ -51,8 +51,15 @@ oneline run_shade_40 "^shadesim: --width 40: $shade_range" run shade --width 40
 oneline run_shade_pipe_60 "^shadesim: --width 60: $shade_range" run shade --schedule pipe --width 60
 oneline verilog_shade_60 "^shadesim: --width 60: $shade_range" verilog shade --width 60 -o "$T/v60"
 check verilog_shade_60_no_file [ ! -e "$T/v60" ]
-oneline scene_shade_60 "^shadesim: width 60 (both pipelines in hardware): $shade_range" \
+oneline scene_shade_60 "^shadesim: --set width: width 60: $shade_range.*(the per-pixel shader)\$" \
     scene face --set width=60 --set resolution=16x16 -j 1 -o "$T/sc60"
+# a scene file's width past a unit the render builds: at the key's line,
+# before any work (63 failed in the divider, naming --fmt)
+printf 'shadesim-scene 1\nresolution 16x16\nwidth 63\n' >"$T/w63.scene"
+oneline scene_file_width_63 "^shadesim: .*w63.scene:3: width 63: $shade_range" scene "$T/w63.scene" -o "$T/sc63"
+printf 'shadesim-scene 1\nresolution 16x16\nspecular phong\nwidth 63\n' >"$T/p63.scene"
+oneline scene_phong_width_63 "^shadesim: .*p63.scene:4: width 63: unit div builds with its default formats at widths [0-9]*\.\.62 only.*(the reference's divider bound)\$" \
+    scene "$T/p63.scene" -o "$T/sp63"
 "$S" sweep shade --widths 39:40 -o "$T/swsh" >"$T/swsh.txt" 2>&1; rc=$?
 check sweep_shade_exit_0 [ $rc -eq 0 ]
 check sweep_shade_40_not_buildable grep -q '^   40  -  *not buildable: square root: ' "$T/swsh.txt"

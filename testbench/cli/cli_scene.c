@@ -9,6 +9,7 @@
 #include "testbench/study/tb_scene.h"
 #include "testbench/study/tb_scene_search.h"
 #include "testbench/study/tb_scene_pipes.h"
+#include "testbench/tb_widths.h"
 #include "base/base_out.h"
 #include "units/unit_net.h"
 #include <sys/stat.h>
@@ -289,6 +290,30 @@ static int unit_error(const scn_desc *d, const char *err)
     return cli_usage_error("%s%s", scn_desc_where(d, keys, where, sizeof where), err);
 }
 
+/* The scene's width against every unit a render builds at it besides its
+ * span unit: the per-pixel shader and the divider that bounds the
+ * reference. Past one's range: one line at the width key's line, exit 2
+ * (a width of 63 failed deep in the divider, naming an option the scene
+ * does not have). 0, or -1 after the message. */
+static int width_error(const scn_desc *d, const unit_cfg *span)
+{
+    const unit_desc *us[] = { tb_scene_pipes_unit(d), unit_find("div") };
+    static const char *const what[] = { "the per-pixel shader", "the reference's divider bound" };
+    for (size_t k = 0; k < sizeof us / sizeof us[0]; k++) {
+        if (!us[k]) continue;
+        unit_cfg c;
+        char msg[400];
+        unit_cfg_default(us[k], &c);
+        c.width = span->width;
+        if (!tb_width_refuse(us[k], &c, msg, sizeof msg)) continue;
+        static const char *const keys[] = { "width", NULL };
+        char where[300];
+        cli_usage_error("%swidth %d: %s (%s)", scn_desc_where(d, keys, where, sizeof where), span->width, msg, what[k]);
+        return -1;
+    }
+    return 0;
+}
+
 static void progress(const char *what)
 {
     if (cli_stderr_tty()) fprintf(stderr, "\r%-70s\r", what);
@@ -463,6 +488,7 @@ int cli_scene(int argc, char **argv)
         sim_free(b.c);
     }
     if (bad) return unit_error(&d, err);
+    if (width_error(&d, &cfg)) return CLI_USAGE;
 
     scn_mesh m;
     if (load_mesh(&d, &m)) return CLI_USAGE;

@@ -2,6 +2,7 @@
  * per-pixel reference and the method's nodes on the shade unit
  * (tb_scene_pipes.h). */
 #include "testbench/study/tb_scene_pipes.h"
+static const unit_desc *shade_unit(const scn_desc *d);
 #include "testbench/tb_items_memo.h"
 #include "testbench/tb_widths.h"
 #include "base/base_json.h"
@@ -28,6 +29,8 @@ static int unit3(const double v[3], double u[3])
 
 /* The unit that shades d's material: shade (Blinn, or no specular term)
  * or shade_cook (Cook-Torrance with D_g); NULL for the others. */
+const unit_desc *tb_scene_pipes_unit(const scn_desc *d) { return shade_unit(d); }
+
 static const unit_desc *shade_unit(const scn_desc *d)
 {
     const scn_material *mt = &d->mat;

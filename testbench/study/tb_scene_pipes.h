@@ -80,6 +80,9 @@ int  tb_scene_pipes_run(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g,
 int  tb_scene_pipes_refs(const scn_desc *d, const scn_mesh *m, const scn_gbuf *g, const tb_scene_opts *o,
                          const int *widths, int nw, tb_pipe_row *rows, int *nrows, char *err, size_t errlen);
 void tb_scene_pipes_free(tb_scene_pipes *p);
+/* The unit that shades d per pixel (shade or shade_cook), or NULL when
+ * none computes d's lighting. */
+const unit_desc *tb_scene_pipes_unit(const scn_desc *d);
 /* The method's row over the reference's at one schedule (NULL: none). */
 const tb_pipe_row *tb_scene_pipes_ref(const tb_scene_pipes *p, const char *sched);
 /* The table's lines (after the render's), and scene.json's member
