@@ -62,16 +62,31 @@ assert reg == set(L['region'].values()) | {L['background']}, (reg, L['region'])
 assert L['error']['file'] == 'err-x%d.png' % d['err_scale'] and abs(L['error']['white'] * d['err_scale'] - 1) < 1e-15
 assert [s[0] for s in L['error']['stops']] == [L['error']['white'] * k / 4 for k in range(5)]
 assert L['error']['stops'][-1][1] == '#ffffff' and L['error']['stops'][0][1] == '#000000'
+# the key images beside the maps: the same colours, each with its label
+import re, xml.dom.minidom as X
+def swatches(name):
+    doc = X.parse(sys.argv[1] + '/' + name)
+    fills = [r.getAttribute('fill') for r in doc.getElementsByTagName('rect')][1:]
+    texts = [t.firstChild.data for t in doc.getElementsByTagName('text')]
+    return texts[0], list(zip(fills, texts[1:]))
+t, s = swatches('degree-key.svg')
+assert t == 'degree.png: degree' and s[:3] == [(L['degree'][str(g)], '%d (%s)' % (g, n)) for g, n in ((1, 'linear'), (2, 'quadratic'), (3, 'cubic'))] and s[3] == ('#000000', 'not covered'), s
+t, s = swatches('region-key.svg')
+assert s[:-1] == [(c, 'region ' + k) for k, c in L['region'].items()] and s[-1] == ('#000000', 'not covered'), s
+t, s = swatches('err-key.svg')
+assert t == L['error']['file'] + ': |hw - ref|' and [c for c, _ in s] == [c for _, c in L['error']['stops']], s
+assert [float(x.replace('>= ', '')) for _, x in s] == [v for v, _ in L['error']['stops']], s
 PY
     python3 "$T/key.py" "$T/face" 2>"$T/err" && ok json_legend_matches_images || fail json_legend_matches_images "$(tail -1 "$T/err")"
 else
     echo "skip cli_scene.json_legend_matches_images: python3 not installed"
 fi
 k=$(sed -n 's/^  "err_scale": \([0-9]*\),$/\1/p' "$T/out")
-for f in ref.png hw.png "err-x$k.png" degree.png region.png ref-hw.png hw-nodes.png scene.json; do
+for f in ref.png hw.png "err-x$k.png" degree.png region.png ref-hw.png hw-nodes.png scene.json \
+         degree-key.svg region-key.svg err-key.svg; do
     [ -s "$T/face/$f" ] && ok "file_$f" || fail "file_$f" "missing in the output folder"
 done
-[ "$(ls "$T/face" | wc -l)" -eq 8 ] && ok files_only || fail files_only "$(ls "$T/face")"
+[ "$(ls "$T/face" | wc -l)" -eq 11 ] && ok files_only || fail files_only "$(ls "$T/face")"
 # NMSE 8-bit from the PNG files' pixels, decoded here (chunks, zlib,
 # filter bytes), against scene.json's nmse8; uncovered pixels are 0 in both
 # images, so the sums over every pixel are those over the covered ones.

@@ -249,7 +249,8 @@ static void print_table(FILE *f, const scn_desc *d, const tb_scene_result *r, co
     tb_scene_speed_print(f, r);
     tb_scene_pipes_print(f, r->pipes);
     print_ops(f, d, r);
-    if (dir) fprintf(f, "  %-22s %s/ (ref.png hw.png err-x%d.png degree.png region.png%s scene.json)\n", "images", dir,
+    if (dir) fprintf(f, "  %-22s %s/ (ref.png hw.png err-x%d.png degree.png region.png%s, the maps' keys "
+                        "*-key.svg, scene.json)\n", "images", dir,
                      tb_scene_err_scale(r), r->pipes && r->pipes->ok ? " ref-hw.png hw-nodes.png" : "");
 }
 

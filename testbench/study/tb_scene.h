@@ -203,10 +203,14 @@ double tb_scene_long_ops(const double ops[SCN_OP__COUNT]);
 /* Scale K of the error heat map: full white is an error of 1/K, K from
  * the ladder 1, 4, 16, ..., 4096 (the largest that shows the maximum). */
 int  tb_scene_err_scale(const tb_scene_result *r);
-/* Write ref.png, hw.png, err-xK.png, degree.png, region.png and
- * scene.json into dir (created if needed), each atomically. 0 or -1. */
+/* Write ref.png, hw.png, err-xK.png, degree.png, region.png, their keys
+ * and scene.json into dir (created if needed), as one set. 0 or -1. */
 int  tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir,
                     char *err, size_t errlen);
+/* The maps' colour keys, degree-key.svg, region-key.svg and err-key.svg,
+ * into set in dir (tb_scene_keys.c). 0 or -1. */
+typedef struct base_outset base_outset;
+int  tb_scene_write_keys(base_outset *set, const char *dir, const tb_scene_result *r, char *err, size_t errlen);
 /* One JSON object: the description's settings and every figure above. */
 int  tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r);
 #endif
