@@ -414,7 +414,7 @@ static int compare(const scn_desc *d0, const scn_mesh *m, int jobs, int no_batch
                    ref_max / 1e6, ref_e);
         print_pipes_compare(names, pp, n);
         printf("images: %s/{paper,corrected,auto}/ (ref.png hw.png err-x*.png degree.png region.png ref-hw.png "
-               "hw-nodes.png scene.json)\n", dir);
+               "hw-nodes.png *-key.svg scene.json)\n", dir);
     }
     for (int i = 0; i < n; i++) tb_scene_pipes_free(&pp[i]);
     return rc;
