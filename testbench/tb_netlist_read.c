@@ -13,6 +13,7 @@
  */
 #include "testbench/tb_netlist_int.h"
 #include "units/units_brdf.h"
+#include "sim/sim_area.h"
 #include "sim/sim_prim.h"
 #include "base/base_line.h"
 #include "base/base_out.h"
@@ -140,9 +141,9 @@ static int take_unit_fn(nl *x, nl_el *e)
     return 0;
 }
 
-static int resolve_all(nl *x)
+int nl_resolve_all(nl *x)
 {
-    if (!x->base) return nl_bad(x, 0, "no unit NAME line (the built-in unit whose reference the design is run against)");
+    if (!x->base && !x->dp) return nl_bad(x, 0, "no unit NAME line (the built-in unit whose reference the design is run against)");
     if (!x->clk) return nl_bad(x, 0, "no clock NAME line");
     nl_names t;
     t.cap = 16;
@@ -172,17 +173,25 @@ static int resolve_all(nl *x)
             else if (e->kind == SIM_KIND_SHIFT) key = "x";
             else if (e->kind == SIM_KIND_WIRE || e->kind == SIM_KIND_INPUT) key = "from";
             int fwd = k == OP_A && (e->kind == SIM_KIND_REG || e->kind == SIM_KIND_WIRE || e->kind == SIM_KIND_INPUT);
-            if ((e->op[k] = resolve(x, &t, i, key, e->ref[k], fwd, k == OP_CLK)) == NL_ERR) return -1;
+            if ((e->op[k] = resolve(x, &t, i, key, e->ref[k], fwd || x->dp, k == OP_CLK)) == NL_ERR) return -1;
             if (k == OP_A && e->op[k] == i && e->kind != SIM_KIND_REG) return nl_bad(x, e->line, "%s %s: %s=%s names itself", sim_kind_name(e->kind), e->name, key, e->name);
         }
         if (e->n) {
             e->in = nl_alloc(x, (size_t)e->n * sizeof *e->in);
             for (int j = 0; j < e->n; j++)
-                if ((e->in[j] = resolve(x, &t, i, "in", e->in_ref[j], 0, 0)) == NL_ERR) return -1;
+                if ((e->in[j] = resolve(x, &t, i, "in", e->in_ref[j], x->dp, 0)) == NL_ERR) return -1;
         }
         if (e->kind == SIM_KIND_MUL && e->csd && x->el[e->op[OP_B]].kind != SIM_KIND_CONST)
             return nl_bad(x, e->line, "mul %s: net=csd needs a constant b=", e->name);
-        if (e->kind == SIM_KIND_LOGIC && check_logic(x, e)) return -1;
+        if (e->kind == SIM_KIND_LOGIC && !e->gen && check_logic(x, e)) return -1;
+        if (x->dp && (e->kind == SIM_KIND_MUX || e->kind == SIM_KIND_BK) && !e->gen) {
+            /* a select is a whole number: a control word, not a value with fraction bits */
+            const nl_el *sel = &x->el[e->op[OP_C]];
+            if (sel->fmt.fbits || sel->rule)
+                return nl_bad(x, e->line, "%s %s: %s=%s is a number of format %s; a select takes a control signal (ctl) "
+                              "or another whole number", sim_kind_name(e->kind), e->name, e->kind == SIM_KIND_MUX ? "sel" : "pass",
+                              sel->name, sel->rule ? sel->rule->text : "with fraction bits");
+        }
         if (e->kind == SIM_KIND_SHIFT) {
             /* a left shift past the binary point is made on the raw: it
              * must stay within the exact 128-bit value */
@@ -205,6 +214,7 @@ static int resolve_all(nl *x)
                               nl_port_names[r], x->port_ref[r][j]);
         }
     }
+    if (x->dp) return 0;
     int nin = unit_n_in(x->base), nout = unit_n_out(x->base);
     if (x->nport[P_IN] != nin || x->nport[P_OUT] != nout)
         return nl_bad(x, 0, "%d input and %d output ports; unit %s has %d and %d", x->nport[P_IN], x->nport[P_OUT],
@@ -227,10 +237,15 @@ static nl *nl_of(const unit_desc *u)
     return NULL;
 }
 
-int tb_netlist_is(const unit_desc *u) { return nl_of(u) != NULL; }
-
-static void nl_free(nl *x)
+int tb_netlist_is(const unit_desc *u)
 {
+    const nl *x = nl_of(u);
+    return x && !x->dp;
+}
+
+void nl_free(nl *x)
+{
+    if (x->dp) nl_dp_release(x);
     if (x->ref.c) sim_free(x->ref.c);
     for (size_t i = 0; i < x->nmem; i++) free(x->mem[i]);
     free(x->mem);
@@ -262,6 +277,37 @@ int tb_netlist_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
 {
     nl *x = nl_of(u);
     if (!x) { snprintf(err, errlen, "not a netlist's unit"); return -1; }
+    return nl_build(x, NULL, 0, c, sc, clk, io, err, errlen);
+}
+
+/* A datapath file's control element (NL_GEN_*) as a table of the step
+ * (and in_valid) for schedule s, with its area: the built-in Horner
+ * unit's estimates (units/unit_horner.c): an incrementer and the
+ * wrap/wait logic, a half adder and two gates a bit; a decoder, two gates
+ * per step it decodes and bit it gives. */
+static void gen_table(const nl *x, const nl_el *e, int s, sim_ctx *c, nl_table *t, double *area)
+{
+    int sb = x->step_bits, C = x->sched_clocks[s];
+    size_t rows = (size_t)1 << (sb + (e->gen == NL_GEN_NEXT));
+    uint64_t *v = sim_alloc(c, rows * sizeof *v);
+    for (size_t r = 0; r < rows; r++) {
+        int step = (int)(e->gen == NL_GEN_NEXT ? r >> 1 : r);
+        if (e->gen == NL_GEN_NEXT) v[r] = (step == 0 && !(r & 1)) || step >= C - 1 ? 0 : (uint64_t)step + 1;
+        else if (e->gen == NL_GEN_LAST) v[r] = step == C - 1;
+        else v[r] = step < C ? (uint64_t)x->ctl[e->ctl].val[s][step] : 0;
+    }
+    t->n = e->n;
+    t->w[0] = sb;
+    t->w[1] = 1;
+    t->v = v;
+    *area = e->gen == NL_GEN_NEXT ? sb * SIM_GE_HA + 2 * sb : 2.0 * C * e->fmt.width;
+}
+
+int nl_build(nl *x, const sim_fmt *fmt, int sched, sim_ctx *c, sim_scope *sc, sim_signal *clk, unit_io *io,
+             char *err, size_t errlen)
+{
+    (void)err;
+    (void)errlen;
     sim_scope **scs = sim_alloc(c, (size_t)(x->nscope + 1) * sizeof *scs);
     for (int i = 0; i < x->nscope; i++) {
         const char *dot = strrchr(x->scopes[i], '.');
@@ -273,34 +319,35 @@ int tb_netlist_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
     sim_ovf o0 = sim_get_ovf(c);
     for (int i = 0; i < x->nel; i++) {
         nl_el *e = &x->el[i];
+        sim_fmt ef = fmt ? fmt[i] : e->fmt;
         sim_scope *in_sc = e->scope < 0 ? sc : scs[e->scope];
         sim_set_quant(c, e->r >= 0 ? (sim_round)e->r : r0, e->o >= 0 ? (sim_ovf)e->o : o0);
         sim_signal *in[8], **mi = NULL;
         for (int j = 0; j < e->n && j < 8; j++) in[j] = s[e->in[j]];
         switch (e->kind) {
         case SIM_KIND_INPUT: case SIM_KIND_WIRE:
-            s[i] = sim_signal_new(c, in_sc, e->leaf, e->fmt, e->kind);
+            s[i] = sim_signal_new(c, in_sc, e->leaf, ef, e->kind);
             break;
         case SIM_KIND_CONST:
-            s[i] = sim_const_raw(c, in_sc, e->leaf, e->fmt, e->raw);
+            s[i] = e->has_value ? sim_const(c, in_sc, e->leaf, ef, e->value) : sim_const_raw(c, in_sc, e->leaf, ef, e->raw);
             s[i]->overflows = e->ovf;
             break;
         case SIM_KIND_REG:
-            s[i] = sim_reg(c, in_sc, e->leaf, e->fmt, clk, e->op[OP_A] < i ? S(e->op[OP_A]) : NULL, S(e->op[OP_C]),
+            s[i] = sim_reg(c, in_sc, e->leaf, ef, clk, e->op[OP_A] < i ? S(e->op[OP_A]) : NULL, S(e->op[OP_C]),
                            S(e->op[OP_RST]), e->rst_raw);
             break;
         case SIM_KIND_MUX:
             mi = sim_alloc(c, (size_t)e->n * sizeof *mi);
             for (int j = 0; j < e->n; j++) mi[j] = s[e->in[j]];
-            s[i] = sim_mux(c, in_sc, e->leaf, e->fmt, S(e->op[OP_C]), e->n, mi);
+            s[i] = sim_mux(c, in_sc, e->leaf, ef, S(e->op[OP_C]), e->n, mi);
             break;
-        case SIM_KIND_BK: s[i] = sim_bk(c, in_sc, e->leaf, e->fmt, S(e->op[OP_C]), S(e->op[OP_A])); break;
-        case SIM_KIND_ADD: s[i] = sim_add(c, in_sc, e->leaf, e->fmt, S(e->op[OP_A]), S(e->op[OP_B])); break;
-        case SIM_KIND_SUB: s[i] = sim_sub(c, in_sc, e->leaf, e->fmt, S(e->op[OP_A]), S(e->op[OP_B])); break;
+        case SIM_KIND_BK: s[i] = sim_bk(c, in_sc, e->leaf, ef, S(e->op[OP_C]), S(e->op[OP_A])); break;
+        case SIM_KIND_ADD: s[i] = sim_add(c, in_sc, e->leaf, ef, S(e->op[OP_A]), S(e->op[OP_B])); break;
+        case SIM_KIND_SUB: s[i] = sim_sub(c, in_sc, e->leaf, ef, S(e->op[OP_A]), S(e->op[OP_B])); break;
         case SIM_KIND_MUL:
-            s[i] = (e->csd ? brdf_cmul : sim_mul)(c, in_sc, e->leaf, e->fmt, S(e->op[OP_A]), S(e->op[OP_B]));
+            s[i] = (e->csd ? brdf_cmul : sim_mul)(c, in_sc, e->leaf, ef, S(e->op[OP_A]), S(e->op[OP_B]));
             break;
-        case SIM_KIND_SHIFT: s[i] = sim_shift(c, in_sc, e->leaf, e->fmt, S(e->op[OP_A]), e->shift); break;
+        case SIM_KIND_SHIFT: s[i] = sim_shift(c, in_sc, e->leaf, ef, S(e->op[OP_A]), e->shift); break;
         case SIM_KIND_LOGIC: {
             sim_logic_fn fn = e->fn;
             void *user = e->user;
@@ -312,12 +359,19 @@ int tb_netlist_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
             } else if (e->table) {
                 nl_table *t = sim_alloc(c, sizeof *t);
                 t->n = e->n;
-                for (int j = 0; j < e->n; j++) t->w[j] = x->el[e->in[j]].fmt.width;
+                for (int j = 0; j < e->n; j++) t->w[j] = fmt ? fmt[e->in[j]].width : x->el[e->in[j]].fmt.width;
                 t->v = e->table;
                 fn = table_fn;
                 user = t;
             }
-            s[i] = sim_logic(c, in_sc, e->leaf, e->fmt, e->n, in, fn, user, e->area);
+            double area = e->area;
+            if (e->gen) {
+                nl_table *t = sim_alloc(c, sizeof *t);
+                gen_table(x, e, sched, c, t, &area);
+                fn = table_fn;
+                user = t;
+            }
+            s[i] = sim_logic(c, in_sc, e->leaf, ef, e->n, in, fn, user, area);
             if (e->depth >= 0) sim_logic_depth(s[i], e->depth);
             if (e->verilog) sim_logic_verilog(s[i], e->verilog);
             break;
@@ -363,14 +417,21 @@ static int formats_of(nl *x)
 
 static const unit_desc *finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
 {
-    if (resolve_all(x) || formats_of(x)) { nl_free(x); return NULL; }
-    x->desc = *x->base;
+    if (x->dp) {
+        const unit_desc *d = NULL;
+        if (nl_dp_close(x) || nl_resolve_all(x) || !(d = nl_dp_finish(x, cfg, fm))) { nl_free(x); return NULL; }
+    } else {
+        if (nl_resolve_all(x) || formats_of(x)) { nl_free(x); return NULL; }
+        x->desc = *x->base;
+    }
     nl **r = realloc(reg, (nreg + 1) * sizeof *r);
     if (!r) base_out_of_memory();
     reg = r;
     reg[nreg++] = x;
-    *cfg = x->cfg;
-    *fm = x->fm;
+    if (!x->dp) {
+        *cfg = x->cfg;
+        *fm = x->fm;
+    }
     return &x->desc;
 }
 

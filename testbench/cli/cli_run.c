@@ -316,6 +316,7 @@ int cli_run(int argc, char **argv)
         memset(&o, 0, sizeof o);
         o.u = nlu;
         o.cfg = ncfg;
+        if (tb_datapath_is(nlu)) nlu = NULL;   /* a unit of its own: --width, --fmt, --schedule apply */
     } else if (cli_unit_select(&o, unit)) return CLI_USAGE;
     run_args ra = { NULL, NULL, 0, 0, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
     ra.u = o.u;
