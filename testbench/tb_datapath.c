@@ -299,15 +299,15 @@ static int visit(dp_topo *t, int i)
     nl *x = t->x;
     if (t->col[i] == 2) return 0;
     if (t->col[i] == 1) {
-        char msg[300] = "";
-        int from = t->sp - 1;
-        while (from > 0 && t->stack[from] != i) from--;
-        for (int k = from; k < t->sp; k++) {
+        /* the stack holds the readers down to i: the data flows back up */
+        char msg[300];
+        snprintf(msg, sizeof msg, "%s", x->el[i].name);
+        for (int k = t->sp - 1; k >= 0 && t->stack[k] != i; k--) {
             size_t m = strlen(msg);
-            snprintf(msg + m, sizeof msg - m, "%s -> ", x->el[t->stack[k]].name);
+            snprintf(msg + m, sizeof msg - m, " -> %s", x->el[t->stack[k]].name);
         }
         size_t m = strlen(msg);
-        snprintf(msg + m, sizeof msg - m, "%s", x->el[i].name);
+        snprintf(msg + m, sizeof msg - m, " -> %s", x->el[i].name);
         return nl_bad(x, x->el[i].line, "a combinational loop: %s (a register must break it)", msg);
     }
     t->col[i] = 1;
@@ -567,13 +567,17 @@ static int add_sig(nl *x, nl_el *e, unit_role role)
     e->sig = d->nsigs;
     d->sigs[d->nsigs].name = e->name;
     d->sigs[d->nsigs].role = role;
-    d->sigs[d->nsigs++].what = e->what ? e->what : sim_kind_name(e->kind);
+    static const char *const kind_what[SIM_KIND__COUNT] = {
+        [SIM_KIND_INPUT] = "input", [SIM_KIND_WIRE] = "wire", [SIM_KIND_CONST] = "constant", [SIM_KIND_REG] = "register",
+        [SIM_KIND_MUX] = "multiplexer", [SIM_KIND_BK] = "block key", [SIM_KIND_ADD] = "adder", [SIM_KIND_SUB] = "subtractor",
+        [SIM_KIND_MUL] = "multiplier", [SIM_KIND_SHIFT] = "shift", [SIM_KIND_LOGIC] = "logic" };
+    const char *kw = kind_what[e->kind];
+    d->sigs[d->nsigs++].what = e->what ? e->what : kw ? kw : sim_kind_name(e->kind);
     return 0;
 }
 
 const unit_desc *nl_dp_finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
 {
-    if (dp_order(x)) return NULL;
     int slot = -1;
     for (int k = 0; k < DP_SLOTS && slot < 0; k++) if (!dp_slot[k]) slot = k;
     if (slot < 0) { nl_bad(x, 0, "more than %d datapath files at once", DP_SLOTS); return NULL; }
@@ -602,6 +606,9 @@ const unit_desc *nl_dp_finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
         char err[1400];
         if (e->rule && rule_fmt(x, e, x->cfg.width, &e->fmt, err, sizeof err)) { snprintf(x->err, x->errlen, "%s", err); return NULL; }
     }
+    /* the signals are listed in the file's order, built in an order where
+     * each operand comes first */
+    if (dp_order(x)) return NULL;
     const char *names[UNIT_MAX_IO];
     for (int j = 0; j < nin; j++) names[j] = d->sigs[j].name;
     int exact = 1;
