@@ -33,6 +33,16 @@ same horner_vcd_is_builtins "$T/A/h.vcd" "$T/B/h.vcd"
 "$S" run "$H" --vectors vectors/horner3.vec --width 12 --json >"$T/b12.json"
 same horner_width12_is_builtins "$T/a12.json" "$T/b12.json"
 
+# A second schedule in the file (B loaded twice, seven clocks): the same
+# results and bound as the paper's, one clock more an item.
+sed 's/^ctl bk_pass .*/&\nschedule slow clocks=7 "B loaded twice"\nctl mx1_sel 1 1 0 1 1 1 1\nctl mx2_sel 1 1 0 0 2 0 3\nctl bk_pass 0 0 1 0 1 0 1/' \
+    "$H" >"$T/h2.dp"
+"$S" run "$T/h2.dp" --vectors vectors/horner3.vec --schedule slow --json >"$T/s.json"
+check second_schedule_clocks grep -q '"cycles_per_item": 7,' "$T/s.json"
+grep -E '"(max_abs_err|bound|verdict)"' "$T/s.json" >"$T/s.lines"
+grep -E '"(max_abs_err|bound|verdict)"' "$T/a.json" >"$T/a.lines"
+same second_schedule_same_results "$T/a.lines" "$T/s.lines"
+
 # --- the FIR: vectors, bound, width rules, against awk ---------------------
 expect fir_vectors 0 "$S" vectors "$F"
 # every expected output is 0.125 x0 + 0.375 x1 + 0.375 x2 + 0.125 x3 (to
