@@ -159,6 +159,8 @@ nl_el *nl_el_new(nl *x, sim_kind kind, const char *name, sim_fmt f);
 int nl_dp_line(nl *x, char **tok, int nt);
 /* A format token of a datapath file: a rule of W or a plain format. */
 int nl_dp_format(nl *x, nl_el *e, const char *tok);
+/* A rule at width W: 0, or -1 with why in err. */
+int nl_rule_at(const nl_rule *r, int W, sim_fmt *f, char *err, size_t errlen);
 /* The end of the file: the handshake's elements and ports. */
 int nl_dp_close(nl *x);
 /* After the names are resolved: the elements in an order where each

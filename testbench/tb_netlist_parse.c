@@ -5,49 +5,12 @@
 #include "testbench/tb_netlist_int.h"
 #include "base/base_num.h"
 #include "base/base_out.h"
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 const char *const nl_port_names[5] = { "in", "out", "in_valid", "in_ready", "out_valid" };
 
-/* ------------------------------------------------------------ memory */
-
-void *nl_alloc(nl *x, size_t n)
-{
-    if (x->nmem == x->capmem) {
-        x->capmem = x->capmem ? 2 * x->capmem : 64;
-        void **m = realloc(x->mem, x->capmem * sizeof *m);
-        if (!m) base_out_of_memory();
-        x->mem = m;
-    }
-    void *p = calloc(1, n ? n : 1);
-    if (!p) base_out_of_memory();
-    x->mem[x->nmem++] = p;
-    return p;
-}
-
-char *nl_strdup(nl *x, const char *s, size_t n)
-{
-    char *p = nl_alloc(x, n + 1);
-    memcpy(p, s, n);
-    return p;
-}
-
-/* ------------------------------------------------------------ messages */
-
-int nl_bad(nl *x, int line, const char *fmt, ...)
-{
-    char msg[400];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    if (line > 0) snprintf(x->err, x->errlen, "%s:%d: %s", x->path, line, msg);
-    else snprintf(x->err, x->errlen, "%s: %s", x->path, msg);
-    return -1;
-}
 #define BAD(...) nl_bad(x, x->line, __VA_ARGS__)
 
 /* ------------------------------------------------------------ shared text helpers */
@@ -108,13 +71,6 @@ static int tokenize(nl *x, char *line, char **tok)
     }
 }
 
-int nl_name_ok(const char *s)
-{
-    if (!*s || *s == '.') return 0;
-    for (; *s; s++)
-        if (!(nl_name_char(*s) || (*s == '.' && s[1] && s[1] != '.'))) return 0;
-    return 1;
-}
 
 /* ------------------------------------------------------------ the lines */
 
@@ -182,29 +138,6 @@ static int name_list(nl *x, const char *key, char *v, char ***out)
     return n;
 }
 
-nl_el *nl_el_new(nl *x, sim_kind kind, const char *name, sim_fmt f)
-{
-    if (x->nel == x->cap) {
-        x->cap = x->cap ? 2 * x->cap : 256;
-        nl_el *e = realloc(x->el, (size_t)x->cap * sizeof *e);
-        if (!e) base_out_of_memory();
-        x->el = e;
-    }
-    nl_el *e = &x->el[x->nel++];
-    memset(e, 0, sizeof *e);
-    e->line = x->line;
-    e->kind = kind;
-    e->name = nl_strdup(x, name, strlen(name));
-    const char *dot = strrchr(e->name, '.');
-    e->leaf = dot ? dot + 1 : e->name;
-    e->scope = NL_NONE;
-    e->fmt = f;
-    e->r = e->o = NL_NONE;
-    for (int i = 0; i < 5; i++) e->op[i] = NL_NONE;
-    e->depth = -1;
-    e->sig = -1;
-    return e;
-}
 
 /* "LO,HI" with LO < HI. */
 static int real_pair(nl *x, const char *key, const char *v, double *out)
