@@ -351,12 +351,14 @@ const unit_desc *nl_dp_finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
     for (int j = 0; j < nin; j++) {
         nl_el *e = &x->el[x->port[P_IN][j]];
         if (e->gen) { nl_bad(x, x->port_line[P_IN][j], "port in %s: the handshake's own", e->name); return NULL; }
+        if (e->sig >= 0) { nl_bad(x, x->port_line[P_IN][j], "port in %s given twice", e->name); return NULL; }
         if (!e->has_range && !e->has_draw) { nl_bad(x, e->line, "input %s: needs range=LO,HI (the values it takes)", e->name); return NULL; }
         if (add_sig(x, e, UNIT_SIG_IN)) return NULL;
     }
     for (int j = 0; j < nout; j++) {
         nl_el *e = &x->el[x->port[P_OUT][j]];
-        if (e->sig >= 0 || e->gen) { nl_bad(x, x->port_line[P_OUT][j], "port out %s: an input or the handshake's", e->name); return NULL; }
+        if (e->sig >= 0 || e->gen)
+            { nl_bad(x, x->port_line[P_OUT][j], "port out %s: %s", e->name, e->gen ? "the handshake's own" : "given twice, or an input"); return NULL; }
         if (add_sig(x, e, UNIT_SIG_OUT)) return NULL;
     }
     for (int j = 0; j < nin + nout; j++)

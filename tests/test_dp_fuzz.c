@@ -128,6 +128,10 @@ static void exercise(const char *t, size_t n, const char *name)
         c.width = widths[k];
         unit_fmts f;
         if (tb_formats(u, &c, NULL, 0, &f, err, sizeof err)) continue;
+        for (int i = 0; i < u->nsigs; i++)
+            TST_CHECK(f.f[i].width >= 1 && f.f[i].width <= 64, "width %d: %s has a format of %d bits", c.width,
+                      u->sigs[i].name, f.f[i].width);
+        if (tst_failed_checks) return;
         double b[UNIT_MAX_IO];
         unit_bound(u, &c, &f, b);
         vec_set vs;
