@@ -173,7 +173,8 @@ static int dp_ideal_exact(nl *x, const unit_cfg *cfg, const sim_dy *in, sim_dy *
 
 /* 1 if the unit_net.h walk knows every element: the kinds it bounds, each
  * multiplexer's select and block key's pass a control decoder (the walk
- * follows the schedule's rows), registers without enable or reset. */
+ * follows the schedule's rows), registers with an input and without
+ * enable or reset. */
 static int dp_walkable(const nl *x)
 {
     for (int i = 0; i < x->nel; i++) {
@@ -181,7 +182,7 @@ static int dp_walkable(const nl *x)
         if (e->gen) continue;
         if (e->kind == SIM_KIND_LOGIC) return 0;
         if ((e->kind == SIM_KIND_MUX || e->kind == SIM_KIND_BK) && x->el[e->op[OP_C]].gen != NL_GEN_CTL) return 0;
-        if (e->kind == SIM_KIND_REG && (e->op[OP_C] >= 0 || e->op[OP_RST] >= 0 || e->rst_raw)) return 0;
+        if (e->kind == SIM_KIND_REG && (e->op[OP_A] < 0 || e->op[OP_C] >= 0 || e->op[OP_RST] >= 0 || e->rst_raw)) return 0;
         if (e->kind == SIM_KIND_INPUT && e->op[OP_A] < 0 && e->sig < 0) return 0;
     }
     return 1;

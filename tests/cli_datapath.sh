@@ -73,6 +73,18 @@ expect fir_width_too_narrow 2 "$S" run "$F" --width 1
 no_leak_check
 expect fir_sweep_target 0 "$S" sweep "$F" --widths 10:14 --target-error 0.001 -o "$T/sw"
 check fir_sweep_met grep -q 'held-out check .*: passed' "$T/out"
+# Without a bound (a logic element the walk does not know): run's verdict
+# needs a target, which then decides alone; sweep's search takes it too.
+sed 's/^\(add y .*\)/\1\nconst one u1.0 raw=1\nlogic z u1.0 in=one area=1 table=01/' "$F" >"$T/nb.dp"
+expect no_bound_fails 1 "$S" run "$T/nb.dp"
+check no_bound_says grep -q '^verdict: NO BOUND: .*(a target, --max-error, --max-nmse or --max-lsb, decides instead)' "$T/out"
+expect no_bound_target_met 0 "$S" run "$T/nb.dp" --max-error 0.003
+check no_bound_target_met_says grep -q '^verdict: ok: meets your target (no bound derived)$' "$T/out"
+expect no_bound_target_missed 1 "$S" run "$T/nb.dp" --max-error 0.002
+check no_bound_target_missed_says grep -q '^verdict: MISSES YOUR TARGET (no bound derived)$' "$T/out"
+expect no_bound_sweep_target 0 "$S" sweep "$T/nb.dp" --widths 10:14 --target-error 0.001 -o "$T/sw2"
+check no_bound_sweep_column grep -q '^   14  .* none   \*$' "$T/out"
+check no_bound_sweep_met grep -q 'held-out check .*: passed' "$T/out"
 expect list_file 0 "$S" list "$F"
 check list_names_file grep -q '^fir4 — 4-tap FIR' "$T/out"
 # a netlist of a built-in unit is run's alone

@@ -127,7 +127,8 @@ const cli_optspec cli_run_spec = {
     "function of the quantized inputs), the golden check against the vector\n"
     "file's expected outputs holds, and your targets, if set, are met. Exit 1\n"
     "otherwise, also when the bound cannot be decided (\"unchecked\") or the unit\n"
-    "derives none for the formats (\"no bound\").\n\noptions:\n",
+    "derives none for the formats (\"no bound\") and no target is set: with no bound,\n"
+    "your targets alone decide.\n\noptions:\n",
     "\nOutput files: a regular file is replaced only once complete (a symbolic link is\n"
     "followed and kept); a device or FIFO is written to in place. --out - or --vcd -\n"
     "writes that file to stdout (no .gtkw then) and the report goes to stderr; only\n"
