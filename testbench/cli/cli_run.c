@@ -306,7 +306,8 @@ int cli_run(int argc, char **argv)
         return run_all(&acc);
     }
     /* A name that is no unit but a file's: a netlist (shadesim netlist),
-     * built from its text, run against the unit it names. */
+     * built from its text, run against the unit it names; or a datapath
+     * file (docs/datapaths.md). */
     struct stat nst;
     unit_cfg ncfg;
     unit_fmts fm;
@@ -314,10 +315,8 @@ int cli_run(int argc, char **argv)
     const unit_desc *nlu = NULL;
     if (!unit_find(unit) && !stat(unit, &nst)) {
         if (!(nlu = tb_netlist_load(unit, &ncfg, &fm, err, sizeof err))) return cli_usage_error("%s", err);
-        memset(&o, 0, sizeof o);
-        o.u = nlu;
-        o.cfg = ncfg;
-        if (tb_datapath_is(nlu)) nlu = NULL;   /* a unit of its own: --width, --fmt, --schedule apply */
+        o = (cli_unit_opts){ .u = nlu, .cfg = ncfg };
+        if (tb_datapath_is(nlu)) nlu = NULL;   /* a datapath file: a unit of its own, --width... apply */
     } else if (cli_unit_select(&o, unit)) return CLI_USAGE;
     run_args ra = { NULL, NULL, 0, 0, 0, 0, 0, -1, -1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
     ra.u = o.u;
