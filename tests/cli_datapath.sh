@@ -90,6 +90,9 @@ check list_names_file grep -q '^fir4 — 4-tap FIR' "$T/out"
 # a netlist of a built-in unit is run's alone
 "$S" netlist horner3 -o "$T/h3.net"
 expect netlist_file_not_datapath 2 "$S" vectors "$T/h3.net"
+check netlist_file_says grep -q 'a netlist of a built-in unit, which only run takes' "$T/err"
+expect datapath_not_netlisted 2 "$S" netlist "$F" --width 12
+check datapath_not_netlisted_says grep -q "netlist: $F is a datapath file, already the design's text" "$T/err"
 
 # --- malformed files: each one line, FILE:LINE: what, exit 2 ------------
 # bad NAME BASE 'SED SCRIPT' 'EXPECTED TEXT': BASE edited by the script.
