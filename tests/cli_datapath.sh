@@ -64,6 +64,18 @@ for w in 12 16; do
          END { e = 5 * 2 ^ -(w - 1) - 4 * 2 ^ -(2 * (w - 1)); d = b - e; if (d < 0) d = -d; exit !(b != "" && d <= 1e-18) }' \
         "$T/f$w.json" && ok fir_bound_w$w || fail fir_bound_w$w "$(grep -o '"bound": [^,]*' "$T/f$w.json" | head -2)"
 done
+# the dot product on one multiply-add: three clocks an item; its bound,
+# three products truncated to W-1 fraction bits (an LSB less 2^-2(W-1)),
+# each sum to W-3 (2^-(W-3) - 2^-(W-1)): 3 (2^-(W-3) - 2^-2(W-1))
+D=examples/dot3.dp
+for w in 12 16; do
+    "$S" run "$D" --width $w --json >"$T/d$w.json"
+    awk -v w=$w -F'"bound": ' 'NF > 1 { split($2, a, /[,}]/); b = a[1] }
+         END { e = 3 * (2 ^ -(w - 3) - 2 ^ -(2 * (w - 1))); d = b - e; if (d < 0) d = -d; exit !(b != "" && d <= 1e-18) }' \
+        "$T/d$w.json" && ok dot3_bound_w$w || fail dot3_bound_w$w "$(grep -o '"bound": [^,]*' "$T/d$w.json" | head -2)"
+done
+check dot3_three_clocks grep -q '"cycles_per_item": 3,' "$T/d16.json"
+check dot3_verdict_ok grep -q '"verdict": "ok"' "$T/d12.json"
 check fir_verdict_ok grep -q '"verdict": "ok"' "$T/f12.json"
 check fir_formats_follow_w grep -q '"formats": {"x0": "s1.15", "x1": "s1.15", "x2": "s1.15", "x3": "s1.15", "y": "s2.14",' "$T/f16.json"
 check fir_combinational grep -q '"cycles_per_item": 1,' "$T/f16.json"

@@ -18,8 +18,8 @@
 #include <string.h>
 #include <time.h>
 
-static const char *const examples[] = { "examples/horner3.dp", "examples/fir4.dp" };
-#define NEX 2
+static const char *const examples[] = { "examples/horner3.dp", "examples/fir4.dp", "examples/dot3.dp" };
+#define NEX 3
 static char *text[NEX];
 static size_t len[NEX];
 
