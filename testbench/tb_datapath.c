@@ -106,6 +106,41 @@ static int dp_order(nl *x)
     return 0;
 }
 
+/* A pipeline (latency N): every operand of an element has passed the same
+ * number of registers since the inputs (a constant any number), and each
+ * output N, so that an item's values meet in one clock and leave N clocks
+ * after it entered. The elements are in operand order. */
+static int dp_stages(nl *x)
+{
+    int *st = nl_alloc(x, ((size_t)x->nel + 1) * sizeof(int));
+    for (int i = 0; i < x->nel; i++) {
+        nl_el *e = &x->el[i];
+        if (e->gen) { st[i] = -1; continue; }
+        if (e->kind == SIM_KIND_INPUT && e->op[OP_A] < 0) { st[i] = 0; continue; }
+        if (e->kind == SIM_KIND_CONST) { st[i] = -1; continue; }
+        int ops[1040], n = 0, at = -1, from = -1;
+        if (e->kind == SIM_KIND_REG) ops[n++] = e->op[OP_A];
+        else n = edge_list(e, ops);
+        for (int k = 0; k < n; k++) {
+            int d = ops[k] >= 0 ? st[ops[k]] : -1;
+            if (d < 0) continue;
+            if (at >= 0 && d != at)
+                return nl_bad(x, e->line, "%s %s: in a pipeline its operands %s and %s come %d and %d registers after the inputs",
+                              sim_kind_name(e->kind), e->name, x->el[from].name, x->el[ops[k]].name, at, d);
+            at = d;
+            from = ops[k];
+        }
+        st[i] = at < 0 ? -1 : at + (e->kind == SIM_KIND_REG);
+    }
+    for (int j = 0; j < x->nport[P_OUT]; j++) {
+        int d = st[x->port[P_OUT][j]];
+        if (d != x->latency)
+            return nl_bad(x, x->port_line[P_OUT][j], "port out %s: %d register%s after the inputs, where latency says %d",
+                          x->el[x->port[P_OUT][j]].name, d, d == 1 ? "" : "s", x->latency);
+    }
+    return 0;
+}
+
 /* ------------------------------------------------------------ the slots */
 
 #define DP_SLOTS 4
@@ -204,7 +239,7 @@ static void dp_bound(nl *x, const unit_cfg *cfg, const unit_fmts *f, double *per
     unet_init(&n, &x->desc, &fm, cfg->rnd);
     unet_val *v = calloc((size_t)x->nel + 1, sizeof *v), *nx = calloc((size_t)x->nel + 1, sizeof *v);
     if (!v || !nx) base_out_of_memory();
-    int s = x->nsched ? cfg->schedule : 0, C = x->nsched ? x->sched_clocks[s] : 0;
+    int s = x->nsched ? cfg->schedule : 0, C = x->nsched ? x->sched_clocks[s] : x->latency;
     for (int i = 0; i < x->nel; i++)
         if (x->el[i].kind == SIM_KIND_REG && !x->el[i].gen) v[i] = unet_reg(&n, x->el[i].sig, NULL);
     for (int k = 0; k <= C; k++) {
@@ -214,6 +249,8 @@ static void dp_bound(nl *x, const unit_cfg *cfg, const unit_fmts *f, double *per
             int sg = e->sig, a = e->op[OP_A], b = e->op[OP_B];
             sim_fmt ef = fm.f[sg];
             int on = e->op[OP_C] >= 0 && x->el[e->op[OP_C]].gen == NL_GEN_CTL ? x->ctl[x->el[e->op[OP_C]].ctl].val[s][C ? k % C : 0] : 0;
+            /* a pipeline's multiplexer or block key is driven by data: the
+             * walk does not reach here (dp_walkable) */
             switch (e->kind) {
             case SIM_KIND_INPUT: case SIM_KIND_WIRE:
                 if (a >= 0) { v[i] = unet_shift(&n, sg, NULL, v[a], 0); break; }
@@ -374,7 +411,7 @@ const unit_desc *nl_dp_finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
     }
     /* the signals are listed in the file's order, built in an order where
      * each operand comes first */
-    if (dp_order(x)) return NULL;
+    if (dp_order(x) || (x->latency && dp_stages(x))) return NULL;
     const char *names[UNIT_MAX_IO];
     for (int j = 0; j < nin; j++) names[j] = d->sigs[j].name;
     int exact = 1;
@@ -397,7 +434,13 @@ const unit_desc *nl_dp_finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
     d->source = x->path;
     d->nsched = x->nsched ? x->nsched : 1;
     for (int s = 0; s < x->nsched; s++) { d->sched[s].name = x->sched_name[s]; d->sched[s].what = x->sched_what[s]; }
-    if (!x->nsched) { d->sched[0].name = "comb"; d->sched[0].what = "combinational: an item a clock"; }
+    if (!x->nsched && !x->latency) { d->sched[0].name = "comb"; d->sched[0].what = "combinational: an item a clock"; }
+    if (x->latency) {
+        snprintf(x->pipe_what, sizeof x->pipe_what, "a pipeline: an item a clock, its result %d clock%s later", x->latency,
+                 x->latency > 1 ? "s" : "");
+        d->sched[0].name = "pipe";
+        d->sched[0].what = x->pipe_what;
+    }
     d->fmt_rule = "each element's format as the file gives it, a rule of the width W (docs/datapaths.md)";
     const struct dp_fns *fn = &dp_fns[slot];
     x->model.name = x->dp_name;

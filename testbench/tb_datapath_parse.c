@@ -5,6 +5,7 @@
  * (tb_netlist_int.h; tb_datapath.c makes the unit). */
 #include "testbench/tb_netlist_int.h"
 #include "base/base_num.h"
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -183,7 +184,20 @@ int nl_dp_line(nl *x, char **tok, int nt)
     const char *k = tok[0];
     if (!strcmp(k, "ctl")) return parse_ctl(x, tok, nt);
     close_ctl(x);
-    if (!strcmp(k, "schedule")) return parse_schedule(x, tok, nt);
+    if (!strcmp(k, "schedule")) {
+        if (x->latency_line) return BAD("schedule: the file is a pipeline (latency at line %d): one or the other", x->latency_line);
+        return parse_schedule(x, tok, nt);
+    }
+    if (!strcmp(k, "latency")) {
+        long long n;
+        if (nt != 2 || base_num_whole(tok[1], 0, &n) || n < 1 || n > NL_MAX_CLOCKS)
+            return BAD("latency: expected latency N, the clocks from an item in to its result out, 1..%d", NL_MAX_CLOCKS);
+        if (x->latency_line) return BAD("latency given twice (first at line %d)", x->latency_line);
+        if (x->nsched) return BAD("latency: the file has schedules (line %d): one or the other", x->sched_line[0]);
+        x->latency = (int)n;
+        x->latency_line = x->line;
+        return 0;
+    }
     if (!strcmp(k, "ideal")) {
         if (nt < 3) return BAD("ideal: expected ideal OUTPUT EXPRESSION");
         if (x->nideal == UNIT_MAX_IO) return BAD("ideal: more than %d", UNIT_MAX_IO);
@@ -227,15 +241,27 @@ int nl_dp_close(nl *x)
         ov->ref[OP_A] = "in_ready";
         ov->ref[OP_CLK] = x->clk;
     } else {
-        for (int i = 0; i < x->nel; i++)
+        for (int i = 0; i < x->nel && !x->latency; i++)
             if (x->el[i].kind == SIM_KIND_REG)
                 return nl_bad(x, x->el[i].line, "reg %s: a datapath without a schedule is combinational (add schedule "
-                              "NAME clocks=N and its control rows)", x->el[i].name);
+                              "NAME clocks=N and its control rows, or latency N for a pipeline)", x->el[i].name);
+        /* an item a clock; a pipeline's valid bit travels beside it */
         gen_el(x, SIM_KIND_INPUT, "in_valid", NL_GEN_VALID, 0);
         nl_el *r = gen_el(x, SIM_KIND_CONST, "in_ready", NL_GEN_LAST, 0);
         r->raw = 1;
-        nl_el *ov = gen_el(x, SIM_KIND_WIRE, "out_valid", NL_GEN_OUTV, 0);
-        ov->ref[OP_A] = "in_valid";
+        const char *prev = "in_valid";
+        for (int k = 1; k <= x->latency; k++) {
+            char nm[24];
+            snprintf(nm, sizeof nm, k == x->latency ? "out_valid" : "valid%d", k);
+            nl_el *v = gen_el(x, SIM_KIND_REG, nm, NL_GEN_OUTV, x->latency_line);
+            v->ref[OP_A] = (char *)prev;
+            v->ref[OP_CLK] = x->clk;
+            prev = v->name;
+        }
+        if (!x->latency) {
+            nl_el *ov = gen_el(x, SIM_KIND_WIRE, "out_valid", NL_GEN_OUTV, 0);
+            ov->ref[OP_A] = "in_valid";
+        }
     }
     static const char *const hs[3] = { "in_valid", "in_ready", "out_valid" };
     for (int r = P_IN_VALID; r <= P_OUT_VALID; r++) {

@@ -125,6 +125,8 @@ typedef struct nl {
     int         dp, dp_line;
     char       *dp_name, *dp_summary;
     int         nsched, cur_sched, ctl_open, step_bits;
+    int         latency, latency_line;   /* latency N: a pipeline (no schedule) */
+    char        pipe_what[64];
     char       *sched_name[UNIT_MAX_SCHED], *sched_what[UNIT_MAX_SCHED];
     int         sched_clocks[UNIT_MAX_SCHED], sched_line[UNIT_MAX_SCHED];
     nl_ctl      ctl[NL_MAX_CTL];

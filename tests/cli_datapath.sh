@@ -79,6 +79,14 @@ check dot3_verdict_ok grep -q '"verdict": "ok"' "$T/d12.json"
 check fir_verdict_ok grep -q '"verdict": "ok"' "$T/f12.json"
 check fir_formats_follow_w grep -q '"formats": {"x0": "s1.15", "x1": "s1.15", "x2": "s1.15", "x3": "s1.15", "y": "s2.14",' "$T/f16.json"
 check fir_combinational grep -q '"cycles_per_item": 1,' "$T/f16.json"
+# the same filter as a two-stage pipeline: an item a clock, the result two
+# clocks later, the same values and bound
+"$S" run examples/fir4_pipe.dp --width 16 --json >"$T/p16.json"
+check pipe_latency grep -q '"cycles_per_item": 1,.*' "$T/p16.json"
+check pipe_latency_2 grep -q '"latency": 2,' "$T/p16.json"
+grep -E '"(max_abs_err|mean_err|rms_err|bound|verdict)"' "$T/f16.json" >"$T/f.lines"
+grep -E '"(max_abs_err|mean_err|rms_err|bound|verdict)"' "$T/p16.json" >"$T/p.lines"
+same pipe_same_results "$T/f.lines" "$T/p.lines"
 # a width where a rule gives no bits: one line naming the file's rule
 expect fir_width_too_narrow 2 "$S" run "$F" --width 1
 # sweep with a target: a design meeting it, checked on held-out vectors
@@ -149,9 +157,13 @@ bad no_ideal     $F '/^ideal y/d' " output y has no ideal line (ideal y EXPRESSI
 bad no_range     $F 's/ range=-1,1 what="sample n"/ what="sample n"/' "$(l 'sample n"' $F): input x0: needs range=LO,HI"
 bad range_order  $F 's/range=-1,1 what="sample n"/range=1,-1 what="sample n"/' "$(l 'sample n"' $F): range=1,-1: expected LO,HI, two numbers with LO < HI"
 bad const_both   $F 's/value=0.125/value=0.125 raw=3/' "$(l '^const h0' $F): const h0: needs one of raw=RAW and value=NUMBER"
-bad reg_no_sched $F 's/^\(add y .*\)/\1\nreg r s2.(W-2) d=y clk=clk/' "$(($(l '^add y' $F) + 1)): reg r: a datapath without a schedule is combinational"
+bad reg_no_sched $F 's/^\(add y .*\)/\1\nreg r s2.(W-2) d=y clk=clk/' "$(($(l '^add y' $F) + 1)): reg r: a datapath without a schedule is combinational (add schedule NAME clocks=N and its control rows, or latency N for a pipeline)"
 bad handshake    $F 's/^port out y/port out y\nport in_valid x0/' "$(($(l '^port out' $F) + 1)): port in_valid: a datapath file's handshake is made from its schedules"
 bad fmt_line     $F 's/^width 12/width 12\nfmt y=s2.10/' "$(($(l '^width' $F) + 1)): fmt: a datapath file has no parameters"
 bad fn_unit      $F 's/^\(add y .*\)/\1\nlogic q u1.0 in=x0 area=1 fn=unit/' "$(($(l '^add y' $F) + 1)): logic q: fn=unit names a built-in unit's function"
 bad unit_and_dp  $F 's/^datapath fir4/unit horner3\ndatapath fir4/' "$(($(l '^datapath' $F) + 1)): datapath: a file has one unit NAME or datapath NAME line"
 bad kind         $F 's/^add y /adder y /' "$(l '^add y' $F): adder: not a line of a netlist"
+P=examples/fir4_pipe.dp
+bad pipe_stages  $P 's/^add s01 s2.(W-1) a=p0 b=p1/add s01 s2.(W-1) a=p0 b=m1/' "$(l '^add s01' $P): add s01: in a pipeline its operands p0 and m1 come 1 and 0 registers after the inputs"
+bad pipe_latency $P 's/^latency 2/latency 3/' "$(l '^port out' $P): port out y: 2 registers after the inputs, where latency says 3"
+bad pipe_and_sched $P 's/^latency 2/latency 2\nschedule s clocks=2/' "$(($(l '^latency' $P) + 1)): schedule: the file is a pipeline (latency at line $(l '^latency' $P)): one or the other"

@@ -7,7 +7,7 @@ PREFIX=cli_datapath_tools.
 case "${TST_BUILD:-}" in *-asan) echo "skip ${PREFIX}tools: runs in the plain build only"; exit 0 ;; esac
 if ! command -v iverilog >/dev/null 2>&1; then echo "skip ${PREFIX}icarus: iverilog not installed"
 else
-    for f in examples/fir4.dp examples/horner3.dp examples/dot3.dp; do
+    for f in examples/fir4.dp examples/horner3.dp examples/dot3.dp examples/fir4_pipe.dp; do
         n=$(basename "$f" .dp)
         for w in 12 16; do
             expect "cosim_${n}_w$w" 0 "$S" cosim "$f" --width $w -n 1000

@@ -18,8 +18,9 @@
 #include <string.h>
 #include <time.h>
 
-static const char *const examples[] = { "examples/horner3.dp", "examples/fir4.dp", "examples/dot3.dp" };
-#define NEX 3
+static const char *const examples[] = { "examples/horner3.dp", "examples/fir4.dp", "examples/dot3.dp",
+                                        "examples/fir4_pipe.dp" };
+#define NEX 4
 static char *text[NEX];
 static size_t len[NEX];
 
