@@ -11,8 +11,9 @@
  *  - the control: a step counter (the built-in Horner unit's: it waits at
  *    step 0 for in_valid and runs an item to its end), a decoder per
  *    control signal from the chosen schedule's rows, in_ready on the last
- *    step and out_valid a register of it; a file without a schedule is
- *    combinational (in_ready 1, out_valid = in_valid);
+ *    step and out_valid a register of it; a pipeline (latency N) takes an
+ *    item a clock, its valid bit through N registers; a file with neither
+ *    is combinational (in_ready 1, out_valid = in_valid);
  *  - the float reference: the expressions in double, the golden vectors
  *    drawn uniformly from the inputs' ranges (draw=, else range=);
  *  - the ideal: the same expressions on the quantized inputs, exactly
@@ -20,7 +21,7 @@
  *  - the bound: the walk of unit_net.h over the elements, one clock at a
  *    time through the schedule, where the file has only the kinds it
  *    knows and every multiplexer and block key is driven by the control;
- *    otherwise none (the verdict then needs --target-error).
+ *    otherwise none (the verdict then needs a target, which decides alone).
  * The descriptor's functions take no pointer to the file they came from,
  * so each live file has a slot with functions of its own (DP_SLOTS).
  */
@@ -42,7 +43,9 @@ static sim_fmt ufmt(int bits) { return unit_fmt(0, bits, 0); }
 
 /* Depth-first over the operands: post-order is an order where every
  * operand comes first (the file's own order when it already is one); a
- * grey element met again closes a combinational loop. */
+ * grey element met again closes a combinational loop. The recursion is
+ * as deep as the longest chain, at most the UNIT_MAX_SIGS signals and the
+ * control's elements (nl_dp_finish counts the signals first). */
 typedef struct dp_topo { nl *x; unsigned char *col; int *ord, n, *stack, sp; } dp_topo;
 
 static int edge_list(const nl_el *e, int *out)
