@@ -195,6 +195,13 @@ test-clang:
 	@echo "testing..."
 	@sh tests/run.sh build-clang build-clang-asan
 
+# The datapath reader (docs/datapaths.md) on mutants of examples/*.dp
+# under ASan+UBSan for DP_FUZZ_SECONDS (default 300); make test runs 400.
+.PHONY: fuzz-datapath
+fuzz-datapath:
+	@$(SUBMAKE) $(TESTJ) $(TB)-asan/tests/test_dp_fuzz B=$(TB)-asan $(ASAN_FLAGS)
+	@DP_FUZZ_SECONDS=$${DP_FUZZ_SECONDS:-300} $(TB)-asan/tests/test_dp_fuzz
+
 # libFuzzer targets (vector, format, scene and OBJ readers) built by clang
 # into build-fuzz/ and run FUZZ_RUNS inputs each; skipped without libFuzzer.
 fuzz:
@@ -256,6 +263,8 @@ install:
 	$(Q)$(IBIN) --man > "$(DEST)/share/man/man1/shadesim.1.tmp" \
 	    && mv -f "$(DEST)/share/man/man1/shadesim.1.tmp" "$(DEST)/share/man/man1/shadesim.1"
 	$(Q)install -m 644 README.md LICENSE docs/*.md "$(DEST)/share/doc/shadesim/"
+	$(Q)install -d "$(DEST)/share/doc/shadesim/examples"
+	$(Q)install -m 644 examples/*.dp "$(DEST)/share/doc/shadesim/examples/"
 
 # Uninstall removes what install put there, then the folders install may
 # have made, each only if nothing else is left in it (rmdir refuses).

@@ -115,8 +115,9 @@ void tb_verdict(tb_result *r, const tb_accept *a)
         snprintf(r->why, sizeof r->why, "OVERFLOW on %.120s (--allow-overflow accepts it)", ov);
     else if (r->bound_check == TB_CHECK_EXCEEDED)
         snprintf(r->why, sizeof r->why, "EXCEEDED its derived bound, first at vector %zu", r->first_violation);
-    else if (r->bound_check == TB_CHECK_NO_BOUND)
-        snprintf(r->why, sizeof r->why, "NO BOUND: the unit derives none for these formats, so the error is not checked");
+    else if (r->bound_check == TB_CHECK_NO_BOUND && !r->target_set)
+        snprintf(r->why, sizeof r->why, "NO BOUND: the unit derives none for these formats, so the error is not checked "
+                 "(a target, --max-error, --max-nmse or --max-lsb, decides instead)");
     else if (r->bound_check == TB_CHECK_UNCHECKED)
         snprintf(r->why, sizeof r->why, "UNCHECKED: the unit's ideal is a double that cannot decide the bound at vector %zu",
                  r->first_violation);
@@ -126,10 +127,14 @@ void tb_verdict(tb_result *r, const tb_accept *a)
         snprintf(r->why, sizeof r->why, "GOLDEN MISMATCH: %.15s at vector %zu is %.4g from the expected value, %.4g allowed",
                  m->name, m->golden_first, m->golden_err, m->golden_allowed);
     } else if (r->target_set && !r->target_met)
-        snprintf(r->why, sizeof r->why, "MISSES YOUR TARGET (within the derived bound)");
+        snprintf(r->why, sizeof r->why, "MISSES YOUR TARGET (%s)",
+                 r->bound_check == TB_CHECK_NO_BOUND ? "no bound derived" : "within the derived bound");
     else {
+        /* without a derived bound (a datapath file with logic of its own,
+         * a mix of rounding modes) the target alone decides */
         r->ok = 1;
-        snprintf(r->why, sizeof r->why, "%s", r->target_set ? "ok: within the derived bound and meets your target"
-                                                             : "ok: within the derived bound (no target set)");
+        snprintf(r->why, sizeof r->why, "%s", r->bound_check == TB_CHECK_NO_BOUND ? "ok: meets your target (no bound derived)"
+                                              : r->target_set ? "ok: within the derived bound and meets your target"
+                                                              : "ok: within the derived bound (no target set)");
     }
 }

@@ -38,6 +38,11 @@ void tb_netlist_free(const unit_desc *u);
  * elements of the text into c, scope sc, clocked by clk; 0 or -1 with a
  * message. */
 int tb_netlist_is(const unit_desc *u);
+/* 1 if u came from a datapath file (datapath NAME, docs/datapaths.md): a
+ * unit of its own, built by its descriptor's functions like a built-in
+ * one, with no vector file of its own (its vectors are drawn from the
+ * file's input ranges). */
+int tb_datapath_is(const unit_desc *u);
 int tb_netlist_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk, unit_io *io,
                      char *err, size_t errlen);
 #endif

@@ -69,7 +69,31 @@ typedef struct nl_el {
     uint64_t   *table;
     sim_logic_fn fn;        /* fn=unit: the built-in unit's */
     void       *user;
+    /* a datapath file's own (tb_datapath.c) */
+    struct nl_rule *rule;   /* the format as a rule of the width (NULL: fmt as written) */
+    double      range[2], draw[2], value;
+    int         has_range, has_draw, has_value;
+    char       *what;
+    int         gen;        /* NL_GEN_*: made by the reader for the control */
+    int         ctl;        /* NL_GEN_CTL: index into nl.ctl */
+    int         sig;        /* index into the unit's signals, -1: none */
 } nl_el;
+
+/* The format of a datapath file's element as a rule of the width W:
+ * sI.F with I = i0 + i1 W and F = f0 + f1 W, and the format's own modes. */
+typedef struct nl_rule { int sg, i0, i1, f0, f1; char modes[24]; char text[48]; } nl_rule;
+/* The control the reader makes from a datapath file's schedules: the step
+ * counter, its next-state logic, a decoder per control signal, the last
+ * step (in_ready) and the input and output handshake. */
+enum { NL_GEN_NONE, NL_GEN_VALID, NL_GEN_STEP, NL_GEN_NEXT, NL_GEN_CTL, NL_GEN_LAST, NL_GEN_OUTV };
+#define NL_MAX_CLOCKS 64
+typedef struct nl_ctl {
+    char *name;
+    int   line, el;
+    int   val[UNIT_MAX_SCHED][NL_MAX_CLOCKS];
+    unsigned have;          /* bit s: schedule s gave its row */
+} nl_ctl;
+#define NL_MAX_CTL 16
 enum { OP_A, OP_B, OP_C, OP_RST, OP_CLK };
 
 typedef struct nl {
@@ -97,6 +121,21 @@ typedef struct nl {
     int         line;
     char       *err;
     size_t      errlen;
+    /* a datapath file (datapath NAME): a unit of its own (tb_datapath.c) */
+    int         dp, dp_line;
+    char       *dp_name, *dp_summary;
+    int         nsched, cur_sched, ctl_open, step_bits;
+    int         latency, latency_line;   /* latency N: a pipeline (no schedule) */
+    char        pipe_what[64];
+    char       *sched_name[UNIT_MAX_SCHED], *sched_what[UNIT_MAX_SCHED];
+    int         sched_clocks[UNIT_MAX_SCHED], sched_line[UNIT_MAX_SCHED];
+    nl_ctl      ctl[NL_MAX_CTL];
+    int         nctl;
+    char       *ideal_out[UNIT_MAX_IO], *ideal_text[UNIT_MAX_IO];
+    int         ideal_line[UNIT_MAX_IO], nideal;
+    struct tb_expr *ideal[UNIT_MAX_IO];   /* by output port */
+    int         slot;       /* its place among the live datapath units */
+    vec_model   model;
 } nl;
 enum { P_IN, P_OUT, P_IN_VALID, P_IN_READY, P_OUT_VALID };
 extern const char *const nl_port_names[5];   /* the ROLEs of port lines */
@@ -113,4 +152,30 @@ int nl_bad(nl *x, int line, const char *fmt, ...);
 int nl_name_ok(const char *s);
 /* One line of the file into x: 0, or -1 after nl_bad. */
 int nl_parse_line(nl *x, char *line);
+/* A new element record at the end of x->el (zeroed but for its defaults). */
+nl_el *nl_el_new(nl *x, sim_kind kind, const char *name, sim_fmt f);
+
+/* ---- datapath files (tb_datapath.c) ---- */
+/* The lines only a datapath file has (schedule, ctl, ideal) and its
+ * element attributes: 0, 1 (not such a line), or -1. */
+int nl_dp_line(nl *x, char **tok, int nt);
+/* A format token of a datapath file: a rule of W or a plain format. */
+int nl_dp_format(nl *x, nl_el *e, const char *tok);
+/* A rule at width W: 0, or -1 with why in err. */
+int nl_rule_at(const nl_rule *r, int W, sim_fmt *f, char *err, size_t errlen);
+/* The end of the file: the handshake's elements and ports. */
+int nl_dp_close(nl *x);
+/* After the names are resolved: the elements in an order where each
+ * operand comes first (a combinational loop is an error naming it), the
+ * ideal expressions, the unit. NULL after nl_bad. */
+const unit_desc *nl_dp_finish(nl *x, unit_cfg *cfg, unit_fmts *fm);
+/* The shared builder (tb_netlist_read.c): the elements with formats
+ * fmt[0..nel-1] (NULL: each element's own), logic tables for the control
+ * from the datapath's schedule sched. */
+int nl_build(nl *x, const sim_fmt *fmt, int sched, sim_ctx *c, sim_scope *sc, sim_signal *clk, unit_io *io,
+             char *err, size_t errlen);
+void nl_free(nl *x);
+void nl_dp_release(const nl *x);   /* its slot and expressions */
+/* Resolve every name (tb_netlist_read.c) */
+int nl_resolve_all(nl *x);
 #endif

@@ -5,49 +5,12 @@
 #include "testbench/tb_netlist_int.h"
 #include "base/base_num.h"
 #include "base/base_out.h"
-#include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 const char *const nl_port_names[5] = { "in", "out", "in_valid", "in_ready", "out_valid" };
 
-/* ------------------------------------------------------------ memory */
-
-void *nl_alloc(nl *x, size_t n)
-{
-    if (x->nmem == x->capmem) {
-        x->capmem = x->capmem ? 2 * x->capmem : 64;
-        void **m = realloc(x->mem, x->capmem * sizeof *m);
-        if (!m) base_out_of_memory();
-        x->mem = m;
-    }
-    void *p = calloc(1, n ? n : 1);
-    if (!p) base_out_of_memory();
-    x->mem[x->nmem++] = p;
-    return p;
-}
-
-char *nl_strdup(nl *x, const char *s, size_t n)
-{
-    char *p = nl_alloc(x, n + 1);
-    memcpy(p, s, n);
-    return p;
-}
-
-/* ------------------------------------------------------------ messages */
-
-int nl_bad(nl *x, int line, const char *fmt, ...)
-{
-    char msg[400];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    if (line > 0) snprintf(x->err, x->errlen, "%s:%d: %s", x->path, line, msg);
-    else snprintf(x->err, x->errlen, "%s: %s", x->path, msg);
-    return -1;
-}
 #define BAD(...) nl_bad(x, x->line, __VA_ARGS__)
 
 /* ------------------------------------------------------------ shared text helpers */
@@ -108,13 +71,6 @@ static int tokenize(nl *x, char *line, char **tok)
     }
 }
 
-int nl_name_ok(const char *s)
-{
-    if (!*s || *s == '.') return 0;
-    for (; *s; s++)
-        if (!(nl_name_char(*s) || (*s == '.' && s[1] && s[1] != '.'))) return 0;
-    return 1;
-}
 
 /* ------------------------------------------------------------ the lines */
 
@@ -141,17 +97,17 @@ static int whole(nl *x, const char *key, const char *v, long long lo, long long 
 
 /* The attributes each kind takes (KEY=VALUE). */
 static const char *const kind_keys[SIM_KIND__COUNT] = {
-    [SIM_KIND_WIRE] = "from round overflow",
-    [SIM_KIND_INPUT] = "from round overflow",
-    [SIM_KIND_CONST] = "raw overflows",
-    [SIM_KIND_REG] = "d en rst init clk round overflow",
-    [SIM_KIND_MUX] = "sel in round overflow",
-    [SIM_KIND_BK] = "pass x round overflow",
-    [SIM_KIND_ADD] = "a b round overflow",
-    [SIM_KIND_SUB] = "a b round overflow",
-    [SIM_KIND_MUL] = "a b round overflow net",
-    [SIM_KIND_SHIFT] = "x by round overflow",
-    [SIM_KIND_LOGIC] = "in area depth verilog table bits fn",
+    [SIM_KIND_WIRE] = "from round overflow what",
+    [SIM_KIND_INPUT] = "from round overflow range draw what",
+    [SIM_KIND_CONST] = "raw value overflows what",
+    [SIM_KIND_REG] = "d en rst init clk round overflow what",
+    [SIM_KIND_MUX] = "sel in round overflow what",
+    [SIM_KIND_BK] = "pass x round overflow what",
+    [SIM_KIND_ADD] = "a b round overflow what",
+    [SIM_KIND_SUB] = "a b round overflow what",
+    [SIM_KIND_MUL] = "a b round overflow net what",
+    [SIM_KIND_SHIFT] = "x by round overflow what",
+    [SIM_KIND_LOGIC] = "in area depth verilog table bits fn what",
 };
 
 static int key_of(const char *keys, const char *k, size_t n)
@@ -182,32 +138,34 @@ static int name_list(nl *x, const char *key, char *v, char ***out)
     return n;
 }
 
+
+/* "LO,HI" with LO < HI. */
+static int real_pair(nl *x, const char *key, const char *v, double *out)
+{
+    char a[64];
+    size_t m = strcspn(v, ",");
+    if (m >= sizeof a || !v[m]) return BAD("%s=%s: expected LO,HI", key, v);
+    memcpy(a, v, m);
+    a[m] = 0;
+    if (base_num_real(a, 1, &out[0]) || base_num_real(v + m + 1, 1, &out[1]) || !(out[0] < out[1]))
+        return BAD("%s=%s: expected LO,HI, two numbers with LO < HI", key, v);
+    return 0;
+}
+
 static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
 {
     if (nt < 3) return BAD("%s: expected %s NAME FORMAT [KEY=VALUE ...]", tok[0], tok[0]);
     if (!nl_name_ok(tok[1])) return BAD("%s: a name is letters, digits and '_' (a path: such names joined by '.')", tok[1]);
-    if (x->nel == x->cap) {
-        x->cap = x->cap ? 2 * x->cap : 256;
-        nl_el *e = realloc(x->el, (size_t)x->cap * sizeof *e);
-        if (!e) base_out_of_memory();
-        x->el = e;
-    }
-    nl_el *e = &x->el[x->nel];
-    memset(e, 0, sizeof *e);
-    e->line = x->line;
-    e->kind = kind;
-    e->name = nl_strdup(x, tok[1], strlen(tok[1]));
+    sim_fmt f0;
+    memset(&f0, 0, sizeof f0);
+    nl_el *e = nl_el_new(x, kind, tok[1], f0);
+    x->nel--;     /* counted once the line is read whole */
     const char *dot = strrchr(e->name, '.');
-    e->leaf = dot ? dot + 1 : e->name;
-    e->scope = NL_NONE;
     if (dot) {
         e->scope = scope_index(x, e->name, (size_t)(dot - e->name));
         if (e->scope < 0) return BAD("%s: scope %.*s is not declared (scope PATH)", e->name, (int)(dot - e->name), e->name);
     }
-    if (parse_fmt(x, tok[2], &e->fmt)) return -1;
-    e->r = e->o = NL_NONE;
-    for (int i = 0; i < 5; i++) e->op[i] = NL_NONE;
-    e->depth = -1;
+    if (x->dp ? nl_dp_format(x, e, tok[2]) : parse_fmt(x, tok[2], &e->fmt)) return -1;
     int seen_raw = 0;
     for (int i = 3; i < nt; i++) {
         char *eq = strchr(tok[i], '=');
@@ -253,6 +211,17 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
         } else if (KEY("fn")) {
             if (strcmp(v, "unit")) return BAD("fn=%s: expected fn=unit (the built-in unit's function)", v);
             e->fn_unit = 1;
+        } else if (KEY("range")) {
+            if (real_pair(x, "range", v, e->range)) return -1;
+            e->has_range = 1;
+        } else if (KEY("draw")) {
+            if (real_pair(x, "draw", v, e->draw)) return -1;
+            e->has_draw = 1;
+        } else if (KEY("value")) {
+            if (base_num_real(v, 1, &e->value)) return BAD("value=%s: expected a number", v);
+            e->has_value = 1;
+        } else if (KEY("what")) {
+            e->what = nl_strdup(x, v, strlen(v));
         } else if (KEY("verilog")) {
             e->verilog = nl_strdup(x, v, strlen(v));
         } else if (KEY("bits")) {
@@ -284,7 +253,9 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
         { SIM_KIND_MUL, OP_A, "a" }, { SIM_KIND_MUL, OP_B, "b" }, { SIM_KIND_SHIFT, OP_A, "x" } };
     for (size_t k = 0; k < sizeof need / sizeof need[0]; k++)
         if (need[k].k == kind && !e->ref[need[k].op]) return BAD("%s %s: needs %s=NAME", tok[0], e->name, need[k].key);
-    if (kind == SIM_KIND_CONST && !seen_raw) return BAD("const %s: needs raw=VALUE", e->name);
+    if (kind == SIM_KIND_CONST && seen_raw + e->has_value != 1) return BAD("const %s: needs one of raw=RAW and value=NUMBER", e->name);
+    if (e->has_value && !x->dp) return BAD("const %s: value= is a datapath file's (a netlist gives raw=)", e->name);
+    if (e->fn_unit && x->dp) return BAD("logic %s: fn=unit names a built-in unit's function; a datapath file gives table= or bits=", e->name);
     if (kind == SIM_KIND_MUX && !e->in_ref) return BAD("mux %s: needs in=NAME,NAME,...", e->name);
     if (kind == SIM_KIND_LOGIC) {
         if (!e->in_ref) return BAD("logic %s: needs in=NAME,...", e->name);
@@ -302,19 +273,34 @@ static int parse_header(nl *x, char **tok, int nt)
 {
     const char *k = tok[0];
     int unit_line = !strcmp(k, "unit");
+    if (!strcmp(k, "datapath")) {
+        if (x->base || x->dp) return BAD("%s: a file has one unit NAME or datapath NAME line", k);
+        if (nt < 2 || nt > 3) return BAD("datapath: expected datapath NAME [\"what it computes\"]");
+        if (!nl_name_ok(tok[1]) || strchr(tok[1], '.') || strlen(tok[1]) > 31) return BAD("datapath %s: not a name (letters, digits and '_', at most 31)", tok[1]);
+        x->dp = 1;
+        x->dp_line = x->line;
+        x->dp_name = nl_strdup(x, tok[1], strlen(tok[1]));
+        x->dp_summary = nl_strdup(x, nt == 3 ? tok[2] : "a datapath file", strlen(nt == 3 ? tok[2] : "a datapath file"));
+        unit_cfg_default(NULL, &x->cfg);
+        x->cfg.schedule = 0;
+        return 0;
+    }
     if (strcmp(k, "schedule") && strcmp(k, "width") && strcmp(k, "round") && strcmp(k, "overflow") && strcmp(k, "param")
         && strcmp(k, "fmt") && strcmp(k, "clock") && strcmp(k, "scope") && !unit_line)
         return 1;
     if (nt != (strcmp(k, "param") ? 2 : 3)) return BAD("%s: expected %s", k, strcmp(k, "param") ? "one value" : "NAME VALUE");
     const char *v = tok[1];
     if (unit_line) {
+        if (x->dp) return BAD("unit: a file has one unit NAME or datapath NAME line");
         if (x->base) return BAD("unit given twice");
         x->base = unit_find(v);
         if (!x->base) return BAD("unit %s: no such built-in unit (shadesim list)", v);
         unit_cfg_default(x->base, &x->cfg);
         return 0;
     }
-    if (!x->base && strcmp(k, "clock") && strcmp(k, "scope")) return BAD("%s before unit NAME", k);
+    if (x->dp && (!strcmp(k, "param") || !strcmp(k, "fmt")))
+        return BAD("%s: a datapath file has no parameters and gives each element its format (or rule of W)", k);
+    if (!x->base && !x->dp && strcmp(k, "clock") && strcmp(k, "scope")) return BAD("%s before unit NAME", k);
     char e[300];
     long long w;
     if (!strcmp(k, "schedule")) {
@@ -384,14 +370,18 @@ int nl_parse_line(nl *x, char *line)
         return 0;
     }
     if (!x->version) return BAD("expected 'netlist 1' first: not a netlist file (shadesim netlist UNIT writes one)");
+    if (x->dp) {
+        int d = nl_dp_line(x, tok, nt);
+        if (d <= 0) return d;
+    }
     if (!strcmp(tok[0], "port")) return parse_port(x, tok, nt);
     int h = parse_header(x, tok, nt);
     if (h <= 0) return h;
     for (int k = 0; k < SIM_KIND__COUNT; k++)
         if (!strcmp(tok[0], sim_kind_name((sim_kind)k)) && k != SIM_KIND_CLOCK) {
-            if (!x->base) return BAD("%s before unit NAME", tok[0]);
+            if (!x->base && !x->dp) return BAD("%s before unit NAME (or datapath NAME)", tok[0]);
             return parse_element(x, (sim_kind)k, tok, nt);
         }
-    return BAD("%s: not a line of a netlist (netlist, unit, schedule, width, round, overflow, param, fmt, clock, "
+    return BAD("%s: not a line of a netlist (netlist, unit, datapath, schedule, ctl, ideal, width, round, overflow, param, fmt, clock, "
                "scope, port, or an element: input wire const reg mux bk add sub mul shift logic)", tok[0]);
 }

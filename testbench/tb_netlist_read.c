@@ -9,10 +9,11 @@
  * ports). Every mistake is one message "PATH:LINE: what", and nothing is
  * built until the whole file is read. Building (tb_netlist_build, called
  * by tb_build) then only calls the constructors of sim_prim.h in the
- * file's order, so it cannot fail.
+ * file's order (nl_build, tb_netlist_build.c), so it cannot fail. A
+ * datapath file (tb_datapath_parse.c, tb_datapath.c) is read by the same
+ * passes and becomes a unit of its own.
  */
 #include "testbench/tb_netlist_int.h"
-#include "units/units_brdf.h"
 #include "sim/sim_prim.h"
 #include "base/base_line.h"
 #include "base/base_out.h"
@@ -24,7 +25,6 @@
 #define NL_LINE_MAX ((size_t)1 << 20)   /* a table of 2^12 entries of 16 digits fits */
 #define BAD(...) nl_bad(x, x->line, __VA_ARGS__)
 
-typedef struct nl_table { int n, w[8]; const uint64_t *v; } nl_table;
 
 /* ------------------------------------------------------------ names */
 
@@ -140,9 +140,9 @@ static int take_unit_fn(nl *x, nl_el *e)
     return 0;
 }
 
-static int resolve_all(nl *x)
+int nl_resolve_all(nl *x)
 {
-    if (!x->base) return nl_bad(x, 0, "no unit NAME line (the built-in unit whose reference the design is run against)");
+    if (!x->base && !x->dp) return nl_bad(x, 0, "no unit NAME line (the built-in unit whose reference the design is run against)");
     if (!x->clk) return nl_bad(x, 0, "no clock NAME line");
     nl_names t;
     t.cap = 16;
@@ -172,17 +172,25 @@ static int resolve_all(nl *x)
             else if (e->kind == SIM_KIND_SHIFT) key = "x";
             else if (e->kind == SIM_KIND_WIRE || e->kind == SIM_KIND_INPUT) key = "from";
             int fwd = k == OP_A && (e->kind == SIM_KIND_REG || e->kind == SIM_KIND_WIRE || e->kind == SIM_KIND_INPUT);
-            if ((e->op[k] = resolve(x, &t, i, key, e->ref[k], fwd, k == OP_CLK)) == NL_ERR) return -1;
+            if ((e->op[k] = resolve(x, &t, i, key, e->ref[k], fwd || x->dp, k == OP_CLK)) == NL_ERR) return -1;
             if (k == OP_A && e->op[k] == i && e->kind != SIM_KIND_REG) return nl_bad(x, e->line, "%s %s: %s=%s names itself", sim_kind_name(e->kind), e->name, key, e->name);
         }
         if (e->n) {
             e->in = nl_alloc(x, (size_t)e->n * sizeof *e->in);
             for (int j = 0; j < e->n; j++)
-                if ((e->in[j] = resolve(x, &t, i, "in", e->in_ref[j], 0, 0)) == NL_ERR) return -1;
+                if ((e->in[j] = resolve(x, &t, i, "in", e->in_ref[j], x->dp, 0)) == NL_ERR) return -1;
         }
         if (e->kind == SIM_KIND_MUL && e->csd && x->el[e->op[OP_B]].kind != SIM_KIND_CONST)
             return nl_bad(x, e->line, "mul %s: net=csd needs a constant b=", e->name);
-        if (e->kind == SIM_KIND_LOGIC && check_logic(x, e)) return -1;
+        if (e->kind == SIM_KIND_LOGIC && !e->gen && check_logic(x, e)) return -1;
+        if (x->dp && (e->kind == SIM_KIND_MUX || e->kind == SIM_KIND_BK) && !e->gen) {
+            /* a select is a whole number: a control word, not a value with fraction bits */
+            const nl_el *sel = &x->el[e->op[OP_C]];
+            if (sel->fmt.fbits || sel->rule)
+                return nl_bad(x, e->line, "%s %s: %s=%s is a number of format %s; a select takes a control signal (ctl) "
+                              "or another whole number", sim_kind_name(e->kind), e->name, e->kind == SIM_KIND_MUX ? "sel" : "pass",
+                              sel->name, sel->rule ? sel->rule->text : "with fraction bits");
+        }
         if (e->kind == SIM_KIND_SHIFT) {
             /* a left shift past the binary point is made on the raw: it
              * must stay within the exact 128-bit value */
@@ -205,6 +213,7 @@ static int resolve_all(nl *x)
                               nl_port_names[r], x->port_ref[r][j]);
         }
     }
+    if (x->dp) return 0;
     int nin = unit_n_in(x->base), nout = unit_n_out(x->base);
     if (x->nport[P_IN] != nin || x->nport[P_OUT] != nout)
         return nl_bad(x, 0, "%d input and %d output ports; unit %s has %d and %d", x->nport[P_IN], x->nport[P_OUT],
@@ -227,10 +236,15 @@ static nl *nl_of(const unit_desc *u)
     return NULL;
 }
 
-int tb_netlist_is(const unit_desc *u) { return nl_of(u) != NULL; }
-
-static void nl_free(nl *x)
+int tb_netlist_is(const unit_desc *u)
 {
+    const nl *x = nl_of(u);
+    return x && !x->dp;
+}
+
+void nl_free(nl *x)
+{
+    if (x->dp) nl_dp_release(x);
     if (x->ref.c) sim_free(x->ref.c);
     for (size_t i = 0; i < x->nmem; i++) free(x->mem[i]);
     free(x->mem);
@@ -249,102 +263,13 @@ void tb_netlist_free(const unit_desc *u)
         }
 }
 
-static int64_t table_fn(const int64_t *in, void *user)
-{
-    const nl_table *t = user;
-    uint64_t k = 0;
-    for (int i = 0; i < t->n; i++) k = k << t->w[i] | ((uint64_t)in[i] & (((uint64_t)1 << t->w[i]) - 1));
-    return (int64_t)t->v[k];
-}
 
 int tb_netlist_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk, unit_io *io,
                      char *err, size_t errlen)
 {
     nl *x = nl_of(u);
     if (!x) { snprintf(err, errlen, "not a netlist's unit"); return -1; }
-    sim_scope **scs = sim_alloc(c, (size_t)(x->nscope + 1) * sizeof *scs);
-    for (int i = 0; i < x->nscope; i++) {
-        const char *dot = strrchr(x->scopes[i], '.');
-        scs[i] = sim_scope_new(c, x->scope_parent[i] < 0 ? sc : scs[x->scope_parent[i]], dot ? dot + 1 : x->scopes[i]);
-    }
-    sim_signal **s = sim_alloc(c, (size_t)(x->nel + 1) * sizeof *s);
-#define S(k) ((k) == NL_CLK ? clk : (k) == NL_NONE ? NULL : s[k])
-    sim_round r0 = sim_get_round(c);
-    sim_ovf o0 = sim_get_ovf(c);
-    for (int i = 0; i < x->nel; i++) {
-        nl_el *e = &x->el[i];
-        sim_scope *in_sc = e->scope < 0 ? sc : scs[e->scope];
-        sim_set_quant(c, e->r >= 0 ? (sim_round)e->r : r0, e->o >= 0 ? (sim_ovf)e->o : o0);
-        sim_signal *in[8], **mi = NULL;
-        for (int j = 0; j < e->n && j < 8; j++) in[j] = s[e->in[j]];
-        switch (e->kind) {
-        case SIM_KIND_INPUT: case SIM_KIND_WIRE:
-            s[i] = sim_signal_new(c, in_sc, e->leaf, e->fmt, e->kind);
-            break;
-        case SIM_KIND_CONST:
-            s[i] = sim_const_raw(c, in_sc, e->leaf, e->fmt, e->raw);
-            s[i]->overflows = e->ovf;
-            break;
-        case SIM_KIND_REG:
-            s[i] = sim_reg(c, in_sc, e->leaf, e->fmt, clk, e->op[OP_A] < i ? S(e->op[OP_A]) : NULL, S(e->op[OP_C]),
-                           S(e->op[OP_RST]), e->rst_raw);
-            break;
-        case SIM_KIND_MUX:
-            mi = sim_alloc(c, (size_t)e->n * sizeof *mi);
-            for (int j = 0; j < e->n; j++) mi[j] = s[e->in[j]];
-            s[i] = sim_mux(c, in_sc, e->leaf, e->fmt, S(e->op[OP_C]), e->n, mi);
-            break;
-        case SIM_KIND_BK: s[i] = sim_bk(c, in_sc, e->leaf, e->fmt, S(e->op[OP_C]), S(e->op[OP_A])); break;
-        case SIM_KIND_ADD: s[i] = sim_add(c, in_sc, e->leaf, e->fmt, S(e->op[OP_A]), S(e->op[OP_B])); break;
-        case SIM_KIND_SUB: s[i] = sim_sub(c, in_sc, e->leaf, e->fmt, S(e->op[OP_A]), S(e->op[OP_B])); break;
-        case SIM_KIND_MUL:
-            s[i] = (e->csd ? brdf_cmul : sim_mul)(c, in_sc, e->leaf, e->fmt, S(e->op[OP_A]), S(e->op[OP_B]));
-            break;
-        case SIM_KIND_SHIFT: s[i] = sim_shift(c, in_sc, e->leaf, e->fmt, S(e->op[OP_A]), e->shift); break;
-        case SIM_KIND_LOGIC: {
-            sim_logic_fn fn = e->fn;
-            void *user = e->user;
-            if (e->bits) {
-                nl_bits *b = sim_alloc(c, sizeof *b);
-                *b = *e->bits;
-                fn = nl_bits_fn;
-                user = b;
-            } else if (e->table) {
-                nl_table *t = sim_alloc(c, sizeof *t);
-                t->n = e->n;
-                for (int j = 0; j < e->n; j++) t->w[j] = x->el[e->in[j]].fmt.width;
-                t->v = e->table;
-                fn = table_fn;
-                user = t;
-            }
-            s[i] = sim_logic(c, in_sc, e->leaf, e->fmt, e->n, in, fn, user, e->area);
-            if (e->depth >= 0) sim_logic_depth(s[i], e->depth);
-            if (e->verilog) sim_logic_verilog(s[i], e->verilog);
-            break;
-        }
-        default: break;
-        }
-    }
-    sim_set_quant(c, r0, o0);
-    /* the forward connections, in the file's order */
-    for (int i = 0; i < x->nel; i++) {
-        nl_el *e = &x->el[i];
-        if (e->kind == SIM_KIND_REG && e->op[OP_A] >= i) sim_reg_connect(s[i], s[e->op[OP_A]]);
-        if ((e->kind == SIM_KIND_WIRE || e->kind == SIM_KIND_INPUT) && e->op[OP_A] >= 0) {
-            sim_set_quant(c, e->r >= 0 ? (sim_round)e->r : r0, e->o >= 0 ? (sim_ovf)e->o : o0);
-            sim_assign(c, s[i], s[e->op[OP_A]]);
-            sim_set_quant(c, r0, o0);
-        }
-    }
-    memset(io, 0, sizeof *io);
-    for (int j = 0; j < x->nport[P_IN]; j++) io->in[j] = s[x->port[P_IN][j]];
-    for (int j = 0; j < x->nport[P_OUT]; j++) io->out[j] = s[x->port[P_OUT][j]];
-    io->in_valid = s[x->port[P_IN_VALID][0]];
-    io->in_ready = s[x->port[P_IN_READY][0]];
-    io->out_valid = s[x->port[P_OUT_VALID][0]];
-    io->scope = sc;
-#undef S
-    return 0;
+    return nl_build(x, NULL, 0, c, sc, clk, io, err, errlen);
 }
 
 /* The formats of the unit's signals: its rule at the file's width with its
@@ -363,14 +288,21 @@ static int formats_of(nl *x)
 
 static const unit_desc *finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
 {
-    if (resolve_all(x) || formats_of(x)) { nl_free(x); return NULL; }
-    x->desc = *x->base;
+    if (x->dp) {
+        const unit_desc *d = NULL;
+        if (nl_dp_close(x) || nl_resolve_all(x) || !(d = nl_dp_finish(x, cfg, fm))) { nl_free(x); return NULL; }
+    } else {
+        if (nl_resolve_all(x) || formats_of(x)) { nl_free(x); return NULL; }
+        x->desc = *x->base;
+    }
     nl **r = realloc(reg, (nreg + 1) * sizeof *r);
     if (!r) base_out_of_memory();
     reg = r;
     reg[nreg++] = x;
-    *cfg = x->cfg;
-    *fm = x->fm;
+    if (!x->dp) {
+        *cfg = x->cfg;
+        *fm = x->fm;
+    }
     return &x->desc;
 }
 

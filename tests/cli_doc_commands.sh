@@ -158,6 +158,7 @@ while read -r kind file line dollar cmd; do
         # files (tests/rtl/horner3_hand.v, vectors/horner3.vec) are there
         ln -s "$SHADESIM_HOME/tests" "$W/tests"
         ln -s "$SHADESIM_HOME/vectors" "$W/vectors"
+        ln -s "$SHADESIM_HOME/examples" "$W/examples"
         # synth --sta's library, as a reader who downloaded it has it:
         # the NanGate45 Liberty kept beside the checkout (never in it)
         [ -r "$LIBERTY" ] && ln -s "$LIBERTY" "$W/nangate45_typ.lib.gz"

@@ -6,6 +6,8 @@
 #include "testbench/cli/cli_opt.h"
 #include "base/base_out.h"
 #include "vectors/vec_file.h"
+#include "testbench/tb_netlist.h"
+#include <sys/stat.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -168,6 +170,21 @@ int cli_unit_select(cli_unit_opts *o, const char *name)
 {
     memset(o, 0, sizeof *o);
     o->u = unit_find(name);
+    struct stat st;
+    if (!o->u && !stat(name, &st)) {
+        /* a datapath file (docs/datapaths.md): a unit read from its text */
+        char err[1400];
+        unit_fmts fm;
+        const unit_desc *u = tb_netlist_load(name, &o->cfg, &fm, err, sizeof err);
+        if (!u) return cli_usage_error("%s", err);
+        if (!tb_datapath_is(u)) {
+            tb_netlist_free(u);
+            return cli_usage_error("%s: a netlist of a built-in unit, which only run takes (a datapath file says "
+                                   "datapath NAME: docs/datapaths.md)", name);
+        }
+        o->u = u;
+        return CLI_OK;
+    }
     unit_cfg_default(o->u, &o->cfg);
     if (!o->u) return cli_unknown_unit(name);
     return CLI_OK;
@@ -377,7 +394,7 @@ static int params_default(const unit_desc *u, const unit_cfg *cfg)
 int cli_vectors_file(const cli_unit_opts *o, char *buf, size_t len, const char **path)
 {
     *path = NULL;
-    if (!o->vectors && !params_default(o->u, &o->cfg)) return 0;
+    if (!o->vectors && (!params_default(o->u, &o->cfg) || tb_datapath_is(o->u))) return 0;
     const char *p = o->vectors ? o->vectors : cli_default_vectors_path(o->u->name, buf, len);
     if (!o->vectors && access(p, R_OK)) {
         vectors_missing(p, o->u->name);
@@ -394,7 +411,8 @@ int cli_load_vectors(const cli_unit_opts *o, vec_set *vs)
     vec_set_init(&hdr);
     tb_expected_header(o->u, &o->cfg, &hdr);
     vec_set_init(vs);
-    if (!o->vectors && !params_default(o->u, &o->cfg)) {
+    if (!o->vectors && (!params_default(o->u, &o->cfg) || tb_datapath_is(o->u))) {
+        /* made from the reference: a datapath file has no checked-in vectors */
         if (tb_make_vectors(o->u, &o->cfg, 0, 1, vs, err, sizeof err)) return cli_usage_error("%s", err);
         return CLI_OK;
     }

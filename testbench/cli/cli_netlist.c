@@ -63,6 +63,8 @@ int cli_netlist(int argc, char **argv)
     if (cli_opt_parse(&cli_netlist_spec, base, argc, argv, 1)) return CLI_USAGE;
     if (!o.u) return cli_usage_error("netlist: no unit given (shadesim list shows the units)");
     if (o.vectors) return cli_usage_error("netlist: --vectors is run's: a netlist holds the design, not its vectors");
+    if (tb_datapath_is(o.u))
+        return cli_usage_error("netlist: %s is a datapath file, already the design's text (docs/datapaths.md)", o.u->source);
     char err[600];
     base_out *out = base_out_open(st.out ? st.out : "-", err, sizeof err);
     if (!out) return cli_usage_error("%s", err);

@@ -135,7 +135,8 @@ const cli_optspec cli_run_spec = {
     "function of the quantized inputs), the golden check against the vector\n"
     "file's expected outputs holds, and your targets, if set, are met. Exit 1\n"
     "otherwise, also when the bound cannot be decided (\"unchecked\") or the unit\n"
-    "derives none for the formats (\"no bound\").\n\noptions:\n",
+    "derives none for the formats (\"no bound\") and no target is set: with no bound,\n"
+    "your targets alone decide.\n\noptions:\n",
     "\nOutput files: a regular file is replaced only once complete (a symbolic link is\n"
     "followed and kept); a device or FIFO is written to in place. --out - or --vcd -\n"
     "writes that file to stdout (no .gtkw then) and the report goes to stderr; only\n"
@@ -352,7 +353,8 @@ int cli_run(int argc, char **argv)
         return run_all(&acc, json);
     }
     /* A name that is no unit but a file's: a netlist (shadesim netlist),
-     * built from its text, run against the unit it names. */
+     * built from its text, run against the unit it names; or a datapath
+     * file (docs/datapaths.md). */
     struct stat nst;
     unit_cfg ncfg;
     unit_fmts fm;
@@ -360,9 +362,8 @@ int cli_run(int argc, char **argv)
     const unit_desc *nlu = NULL;
     if (!unit_find(unit) && !stat(unit, &nst)) {
         if (!(nlu = tb_netlist_load(unit, &ncfg, &fm, err, sizeof err))) return cli_usage_error("%s", err);
-        memset(&o, 0, sizeof o);
-        o.u = nlu;
-        o.cfg = ncfg;
+        o = (cli_unit_opts){ .u = nlu, .cfg = ncfg };
+        if (tb_datapath_is(nlu)) nlu = NULL;   /* a datapath file: a unit of its own, --width... apply */
     } else if (cli_unit_select(&o, unit)) return CLI_USAGE;
     run_args ra = { NULL, NULL, 0, 0, 0, 0, 0, -1, -1, 0, 1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
     ra.u = o.u;

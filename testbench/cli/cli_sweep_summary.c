@@ -124,7 +124,7 @@ static void print_table(FILE *f, const tb_sweep *s, const unsigned char *on)
                 s->cfg[i].cfg.width, gl, pnan(r->max_abs_err), pnan(r->rms_err), pnan(r->nmse), pnan(r->max_err_lsb),
                 r->area_ge, r->cycles_per_item, pnan(r->ppa.fmax_mhz), pnan(tb_pixels_per_s(r) / 1e6),
                 pnan(tb_energy_pj_per_pixel(r)),
-                (unsigned long long)r->overflows, r->within_bound ? "ok" : "EXCEED", on && on[i] ? "*" : "");
+                (unsigned long long)r->overflows, r->within_bound ? "ok" : r->bound_check == TB_CHECK_NO_BOUND ? "none" : "EXCEED", on && on[i] ? "*" : "");
     }
 }
 

@@ -678,7 +678,7 @@ int tb_sweep_target_heldout(const tb_sweep *s, const vec_set *ho, tb_target_kind
     out->heldout_why[0] = 0;
     if (out->heldout_status != TB_OK)
         snprintf(out->heldout_why, sizeof out->heldout_why, "the simulation failed: %.200s", e2);
-    else if (!r->within_bound)
+    else if (!r->within_bound && r->bound_check != TB_CHECK_NO_BOUND)
         snprintf(out->heldout_why, sizeof out->heldout_why, "an output exceeds its error bound");
     else if (!(v <= target))
         snprintf(out->heldout_why, sizeof out->heldout_why, "%s %.4g > target %g",
