@@ -207,10 +207,11 @@ int  tb_scene_err_scale(const tb_scene_result *r);
  * and scene.json into dir (created if needed), as one set. 0 or -1. */
 int  tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir,
                     char *err, size_t errlen);
-/* The maps' colour keys, degree-key.svg, region-key.svg and err-key.svg,
- * into set in dir (tb_scene_keys.c). 0 or -1. */
+/* The maps' colour keys, degree-key.svg, region-key.svg and err-key.svg
+ * (the heat map's at scale K), into set in dir (tb_scene_keys.c). 0 or -1. */
 typedef struct base_outset base_outset;
-int  tb_scene_write_keys(base_outset *set, const char *dir, const tb_scene_result *r, char *err, size_t errlen);
+int  tb_scene_write_keys(base_outset *set, const char *dir, const tb_scene_result *r, int K, char *err,
+                         size_t errlen);
 /* One JSON object: the description's settings and every figure above. */
 int  tb_scene_json(FILE *f, const scn_desc *d, const tb_scene_result *r);
 #endif

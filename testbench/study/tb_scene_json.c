@@ -173,7 +173,7 @@ int tb_scene_write(const scn_desc *d, const tb_scene_result *r, const char *dir,
         else memset(rgb + 3 * i, 0, 3);
     }
     rc = rc ? rc : write_png(set, dir, "region.png", r->w, r->h, 3, rgb, err, errlen);
-    rc = rc ? rc : tb_scene_write_keys(set, dir, r, err, errlen);
+    rc = rc ? rc : tb_scene_write_keys(set, dir, r, K, err, errlen);
     free(g8);
     free(rgb);
     char path[4200];

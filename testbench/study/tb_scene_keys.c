@@ -33,7 +33,7 @@ static int put(base_outset *set, const char *dir, const char *name, char *buf, s
     return rc;
 }
 
-int tb_scene_write_keys(base_outset *set, const char *dir, const tb_scene_result *r, char *err, size_t errlen)
+int tb_scene_write_keys(base_outset *set, const char *dir, const tb_scene_result *r, int K, char *err, size_t errlen)
 {
     char *buf;
     size_t len;
@@ -74,7 +74,6 @@ int tb_scene_write_keys(base_outset *set, const char *dir, const tb_scene_result
     fclose(f);
     rc = rc ? rc : put(set, dir, "region-key.svg", buf, len, err, errlen);
     /* the heat map: its five stops at the render's scale K */
-    int K = tb_scene_err_scale(r);
     if (!(f = open_memstream(&buf, &len))) base_out_of_memory();
     snprintf(label, sizeof label, "err-x%d.png: |hw - ref|", K);
     head(f, 240, 5, label);
