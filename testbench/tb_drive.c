@@ -57,9 +57,10 @@ void tb_drive_proc(sim_proc *p)
     if (d->started && d->next == d->offered && !d->failed) return;
     d->started = 1;
     d->offered = d->next;
-    const int64_t *v = tb_drive_item(d, d->next);
-    if (v) {
-        for (int i = 0; i < d->n_in; i++) sim_write(io->in[i], v[i]);
+    int64_t *at[UNIT_MAX_IO];
+    for (int i = 0; i < d->n_in; i++) at[i] = &d->scratch[i];
+    if (tb_drive_put(d, d->next, at, 0)) {
+        for (int i = 0; i < d->n_in; i++) sim_write(io->in[i], d->scratch[i]);
         sim_write(io->in_valid, 1);
     } else {
         sim_write(io->in_valid, 0);

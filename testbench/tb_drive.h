@@ -58,7 +58,7 @@ struct tb_drive {
     uint64_t    in_ovf;                  /* ROWS, SPAN: the quantization's overflows */
     int         started, failed;
     /* read at an offer only: last */
-    int64_t     scratch[UNIT_MAX_IO];    /* ROWS, SPAN: the item quantized */
+    int64_t     scratch[UNIT_MAX_IO];    /* the kernel engine: the item offered */
     int         what[UNIT_MAX_IO];       /* SPAN: TB_SPAN_NODE + k, _N, _DV, _DEG per port */
     sim_fx_conv conv[UNIT_MAX_IO];       /* ROWS, SPAN: each port's quantization */
 };
@@ -72,13 +72,14 @@ void tb_drive_span(tb_drive *d, int n_in, const tb_span_item *items, size_t n_it
                    const sim_fx_conv *cv);
 void tb_drive_fn_source(tb_drive *d, int n_in, tb_drive_fn fn, void *data);
 
-/* Item i's raws as the hardware takes them, or NULL past the end. */
-static inline const int64_t *tb_drive_item(tb_drive *d, size_t i)
+/* Item i's inputs as the hardware takes them into dst[p][l], port by
+ * port: 1, or 0 past the end (a batch lane's columns, or the kernel's
+ * scratch; quantized straight into them, no copy between). */
+static inline int tb_drive_put(tb_drive *d, size_t i, int64_t *const *dst, uint32_t l)
 {
-    if (d->kind == TB_SRC_FN) return d->fn(d, i);
-    if (i >= d->n_items) return NULL;
-    if (d->kind == TB_SRC_RAWS) return d->raws + i * (size_t)d->n_in;
+    const int n_in = d->n_in;
     if (d->kind == TB_SRC_ROWS) {
+        if (i >= d->n_items) return 0;
         const double *row = vec_row(d->rows, i);
         /* the next row is read a few clocks from now: ask for it already
          * (a batch reads as many streams of items as it has lanes, more
@@ -86,29 +87,38 @@ static inline const int64_t *tb_drive_item(tb_drive *d, size_t i)
         if (i + 1 < d->n_items) {
             const double *nx = vec_row(d->rows, i + 1);
             __builtin_prefetch(nx);
-            __builtin_prefetch(nx + d->n_in - 1);
+            __builtin_prefetch(nx + n_in - 1);
         }
         uint64_t o = 0;
-        for (int p = 0; p < d->n_in; p++) {
+        for (int p = 0; p < n_in; p++) {
             int ov = 0;
-            d->scratch[p] = sim_fx_conv_real(&d->conv[p], row[p], &ov);
+            dst[p][l] = sim_fx_conv_real(&d->conv[p], row[p], &ov);
             o += (uint64_t)ov;
         }
         d->in_ovf += o;
-        return d->scratch;
+        return 1;
     }
-    const tb_span_item *it = &d->items[i];
-    if (i + 1 < d->n_items) {
-        __builtin_prefetch(it + 1);
-        __builtin_prefetch((const char *)(it + 2) - 1);
+    if (d->kind == TB_SRC_SPAN) {
+        if (i >= d->n_items) return 0;
+        const tb_span_item *it = &d->items[i];
+        if (i + 1 < d->n_items) {
+            __builtin_prefetch(it + 1);
+            __builtin_prefetch((const char *)(it + 2) - 1);
+        }
+        for (int p = 0; p < n_in; p++) {
+            int w = d->what[p], ov = 0;
+            double v = w < TB_SPAN_N ? it->node[w] : w == TB_SPAN_N ? it->n : w == TB_SPAN_DV ? it->dv : it->deg;
+            dst[p][l] = sim_fx_conv_real(&d->conv[p], v, &ov);
+            d->in_ovf += (uint64_t)ov;
+        }
+        return 1;
     }
-    for (int p = 0; p < d->n_in; p++) {
-        int w = d->what[p], ov = 0;
-        double v = w < TB_SPAN_N ? it->node[w] : w == TB_SPAN_N ? it->n : w == TB_SPAN_DV ? it->dv : it->deg;
-        d->scratch[p] = sim_fx_conv_real(&d->conv[p], v, &ov);
-        d->in_ovf += (uint64_t)ov;
-    }
-    return d->scratch;
+    const int64_t *v;
+    if (d->kind == TB_SRC_RAWS) v = i < d->n_items ? d->raws + i * (size_t)n_in : NULL;
+    else v = d->fn(d, i);
+    if (!v) return 0;
+    for (int p = 0; p < n_in; p++) dst[p][l] = v[p];
+    return 1;
 }
 
 /* ---------------------------------------------------------- the kernel */
@@ -129,13 +139,7 @@ typedef struct tb_drive_lanes {
  * edge to edge, as a signal keeps its value. */
 static inline void tb_drive_lane_offer(tb_drive *d, const tb_drive_lanes *x, uint32_t l)
 {
-    const int64_t *v = tb_drive_item(d, d->next);
-    if (v) {
-        for (int p = 0; p < d->n_in; p++) x->in[p][l] = v[p];
-        x->valid[l] = 1;
-    } else {
-        x->valid[l] = 0;
-    }
+    x->valid[l] = tb_drive_put(d, d->next, x->in, l);
 }
 
 /* Lane l accepted the item offered (in_valid and in_ready high before
