@@ -9,7 +9,7 @@
  *    its exact checks).
  * Outputs are compared (pixels, clocks, overflows): a difference fails the
  * bench. Prints items per second (process CPU time) and the speed-up. */
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include "bench/bench_items.h"
 #include "testbench/tb_batch.h"
 #include "testbench/tb_drive.h"

@@ -15,8 +15,9 @@
  *    tb_lanes);
  *  - TB_SRC_ROWS: a vector set's rows, quantized when offered with each
  *    input's conversion, overflows counted (tb_batch);
- *  - TB_SRC_SPAN: span intervals (tb_span.h), each port mapped to a node,
- *    n, dv or deg field, quantized when offered (tb_span, both engines);
+ *  - TB_SRC_RECS: an array of records (structs), each port reading a
+ *    double or an int field of its own, quantized when offered (tb_span's
+ *    intervals, both engines: node intensities, n, dv, deg);
  *  - TB_SRC_FN: a function giving item i's raws or NULL, which may read
  *    ahead or fail (tb_stream: rows read a block at a time).
  * An item is quantized once, when first offered: its overflows are
@@ -25,14 +26,11 @@
 #ifndef TB_DRIVE_H
 #define TB_DRIVE_H
 #include "testbench/tb.h"
-#include "testbench/tb_span.h"
 #include "vectors/vec_file.h"
 #include <stdint.h>
+#include <string.h>
 
-typedef enum { TB_SRC_RAWS, TB_SRC_ROWS, TB_SRC_SPAN, TB_SRC_FN } tb_src_kind;
-
-/* A span item's fields, as the ports of a span unit take them. */
-enum { TB_SPAN_NODE = 0, TB_SPAN_N = 4, TB_SPAN_DV = 5, TB_SPAN_DEG = 6 };
+typedef enum { TB_SRC_RAWS, TB_SRC_ROWS, TB_SRC_RECS, TB_SRC_FN } tb_src_kind;
 
 typedef struct tb_drive tb_drive;
 /* TB_SRC_FN: item i's n_in raws, or NULL (past the end; d->failed set on
@@ -43,10 +41,11 @@ struct tb_drive {
     /* the source */
     tb_src_kind kind;
     int         n_in;
-    size_t      n_items;                 /* RAWS, ROWS, SPAN: items [0, n_items) */
+    size_t      n_items;                 /* RAWS, ROWS, RECS: items [0, n_items) */
     const int64_t *raws;                 /* RAWS */
     const vec_set *rows;                 /* ROWS */
-    const tb_span_item *items;           /* SPAN */
+    const char *recs;                    /* RECS: record i at recs + i * stride */
+    size_t      stride;
     tb_drive_fn fn;                      /* FN */
     void       *data;                    /* FN: the source's own state */
     /* the handshake */
@@ -55,22 +54,31 @@ struct tb_drive {
     size_t      next;                    /* the item offered, or to be */
     size_t      offered;                 /* the kernel engine: next at the last writes */
     uint64_t    first_accept;            /* the clock count at the first accept */
-    uint64_t    in_ovf;                  /* ROWS, SPAN: the quantization's overflows */
+    uint64_t    in_ovf;                  /* ROWS, RECS: the quantization's overflows */
     int         started, failed;
     /* read at an offer only: last */
     int64_t     scratch[UNIT_MAX_IO];    /* the kernel engine: the item offered */
-    int         what[UNIT_MAX_IO];       /* SPAN: TB_SPAN_NODE + k, _N, _DV, _DEG per port */
-    sim_fx_conv conv[UNIT_MAX_IO];       /* ROWS, SPAN: each port's quantization */
+    size_t      off[UNIT_MAX_IO];        /* RECS: each port's field, its offset in the record */
+    unsigned char is_int[UNIT_MAX_IO];   /* RECS: 1 an int field, 0 a double */
+    sim_fx_conv conv[UNIT_MAX_IO];       /* ROWS, RECS: each port's quantization */
 };
 
 /* The sources (the engine's fields, io and ctx, are set by the caller). */
 void tb_drive_raws(tb_drive *d, int n_in, const int64_t *raws, size_t n_items);
 /* cv: each input port's conversion (copied) */
 void tb_drive_rows(tb_drive *d, int n_in, const vec_set *rows, const sim_fx_conv *cv);
-/* what, cv: each port's field and conversion (copied) */
-void tb_drive_span(tb_drive *d, int n_in, const tb_span_item *items, size_t n_items, const int *what,
-                   const sim_fx_conv *cv);
+/* off, is_int, cv: each port's field (offsetof, and whether an int) and
+ * conversion (copied) */
+void tb_drive_recs(tb_drive *d, int n_in, const void *recs, size_t stride, size_t n_items, const size_t *off,
+                   const unsigned char *is_int, const sim_fx_conv *cv);
 void tb_drive_fn_source(tb_drive *d, int n_in, tb_drive_fn fn, void *data);
+
+/* RAWS and FN: item i's raws where they are, NULL past the end. */
+static inline const int64_t *tb_drive_raws_at(tb_drive *d, size_t i)
+{
+    if (d->kind == TB_SRC_RAWS) return i < d->n_items ? d->raws + i * (size_t)d->n_in : NULL;
+    return d->fn(d, i);
+}
 
 /* Item i's inputs as the hardware takes them into dst[p][l], port by
  * port: 1, or 0 past the end (a batch lane's columns, or the kernel's
@@ -98,24 +106,25 @@ static inline int tb_drive_put(tb_drive *d, size_t i, int64_t *const *dst, uint3
         d->in_ovf += o;
         return 1;
     }
-    if (d->kind == TB_SRC_SPAN) {
+    if (d->kind == TB_SRC_RECS) {
         if (i >= d->n_items) return 0;
-        const tb_span_item *it = &d->items[i];
+        const char *rec = d->recs + i * d->stride;
         if (i + 1 < d->n_items) {
-            __builtin_prefetch(it + 1);
-            __builtin_prefetch((const char *)(it + 2) - 1);
+            __builtin_prefetch(rec + d->stride);
+            __builtin_prefetch(rec + 2 * d->stride - 1);
         }
         for (int p = 0; p < n_in; p++) {
-            int w = d->what[p], ov = 0;
-            double v = w < TB_SPAN_N ? it->node[w] : w == TB_SPAN_N ? it->n : w == TB_SPAN_DV ? it->dv : it->deg;
+            const char *at = rec + d->off[p];
+            double v;
+            if (d->is_int[p]) { int k; memcpy(&k, at, sizeof k); v = k; }
+            else memcpy(&v, at, sizeof v);
+            int ov = 0;
             dst[p][l] = sim_fx_conv_real(&d->conv[p], v, &ov);
             d->in_ovf += (uint64_t)ov;
         }
         return 1;
     }
-    const int64_t *v;
-    if (d->kind == TB_SRC_RAWS) v = i < d->n_items ? d->raws + i * (size_t)n_in : NULL;
-    else v = d->fn(d, i);
+    const int64_t *v = tb_drive_raws_at(d, i);
     if (!v) return 0;
     for (int p = 0; p < n_in; p++) dst[p][l] = v[p];
     return 1;

@@ -7,7 +7,7 @@
  * default vectors have n = L: full intervals (dv = L) and span-final ones
  * that happen to be L long (dv = L - 1, t reaching 1 at the last pixel),
  * alternately; span23's rows alternate degree 3 and 2 over those.
- * Intervals of other lengths go through tb_span_run (testbench/tb_span.h).
+ * Intervals of other lengths go through tb_span_run (testbench/study/tb_span.h).
  *
  * The interpolant is evaluated in Lagrange form (as ref_interp.c does for
  * interp3/interp2): no coefficient formula and no Horner cancellation, and

@@ -7,7 +7,7 @@
  * Nothing is allocated per item or per clock: the driver quantizes an
  * item's inputs when it first offers it, the monitor writes pixels straight
  * into the caller's array. */
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include "testbench/tb.h"
 #include "testbench/tb_range.h"
 #include "sim/sim_vcd.h"
@@ -17,6 +17,7 @@
 #include "sim/sim_toggle.h"
 #include "testbench/tb_energy.h"
 #include "testbench/tb_drive.h"
+#include <stddef.h>
 #include <stdlib.h>
 #include <math.h>
 #include <string.h>
@@ -52,19 +53,24 @@ static void monitor(sim_proc *p)
     }
 }
 
-/* Map the unit's input ports to item fields; 0, or -1 if it is not a span
- * unit. */
-static int map_inputs(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, int *what, sim_fx_conv *conv,
-                      int *nin)
+/* Map the unit's input ports to item fields (the driver's records: each
+ * port's offset in tb_span_item, and whether an int); 0, or -1 if it is
+ * not a span unit. */
+static int map_inputs(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, size_t *off,
+                      unsigned char *is_int, sim_fx_conv *conv, int *nin, int *has_deg)
 {
+    static const size_t node[4] = { offsetof(tb_span_item, node[0]), offsetof(tb_span_item, node[1]),
+                                    offsetof(tb_span_item, node[2]), offsetof(tb_span_item, node[3]) };
     int k = 0, has_n = 0, has_dv = 0;
+    *has_deg = 0;
     for (int i = 0; i < u->nsigs && k < UNIT_MAX_IO; i++) {
         const char *nm = u->sigs[i].name;
         if (u->sigs[i].role != UNIT_SIG_IN) continue;
-        if (nm[0] == 'i' && nm[1] >= '1' && nm[1] <= '4' && !nm[2]) what[k] = TB_SPAN_NODE + (nm[1] - '1');
-        else if (!strcmp(nm, "n")) { what[k] = TB_SPAN_N; has_n = 1; }
-        else if (!strcmp(nm, "dv")) { what[k] = TB_SPAN_DV; has_dv = 1; }
-        else if (!strcmp(nm, "deg")) what[k] = TB_SPAN_DEG;
+        is_int[k] = 1;
+        if (nm[0] == 'i' && nm[1] >= '1' && nm[1] <= '4' && !nm[2]) { off[k] = node[nm[1] - '1']; is_int[k] = 0; }
+        else if (!strcmp(nm, "n")) { off[k] = offsetof(tb_span_item, n); has_n = 1; }
+        else if (!strcmp(nm, "dv")) { off[k] = offsetof(tb_span_item, dv); has_dv = 1; }
+        else if (!strcmp(nm, "deg")) { off[k] = offsetof(tb_span_item, deg); *has_deg = 1; }
         else return -1;
         sim_fx_conv_init(&conv[k++], f->f[i], cfg->rnd, cfg->ovf);
     }
@@ -109,15 +115,15 @@ static int prepare(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, 
 {
     memset(st, 0, sizeof *st);
     memset(s, 0, sizeof *s);
-    int what[UNIT_MAX_IO], nin = 0;
+    size_t off[UNIT_MAX_IO];
+    unsigned char is_int[UNIT_MAX_IO];
+    int nin = 0, has_deg = 0;
     sim_fx_conv conv[UNIT_MAX_IO];
-    if (!u || map_inputs(u, cfg, f, what, conv, &nin)) {
+    if (!u || map_inputs(u, cfg, f, off, is_int, conv, &nin, &has_deg)) {
         snprintf(err, errlen, "unit %s is not a span unit (inputs i1.., n, dv)", u ? u->name : "(none)");
         return -1;
     }
     if (cfg->L < 2 || cfg->L > 64) { snprintf(err, errlen, "%s: L = %d is outside 2..64", u->name, cfg->L); return -1; }
-    int has_deg = 0;
-    for (int p = 0; p < nin; p++) has_deg |= what[p] == TB_SPAN_DEG;
     size_t total = 0;
     for (size_t i = 0; i < nitems; i++) {
         if (check_item(&items[i], i, cfg->L, has_deg, err, errlen)) return -1;
@@ -125,7 +131,7 @@ static int prepare(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, 
         st->items_deg2 += has_deg && items[i].deg == 2;
     }
     st->items = nitems;
-    tb_drive_span(&s->drv, nin, items, nitems, what, conv);
+    tb_drive_recs(&s->drv, nin, items, sizeof *items, nitems, off, is_int, conv);
     s->nitems = nitems; s->total = total;
     return 0;
 }
