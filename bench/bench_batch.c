@@ -9,9 +9,10 @@
  *    its exact checks).
  * Outputs are compared (pixels, clocks, overflows): a difference fails the
  * bench. Prints items per second (process CPU time) and the speed-up. */
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include "bench/bench_items.h"
 #include "testbench/tb_batch.h"
+#include "testbench/tb_drive.h"
 #include "sim/sim_batch.h"
 #include "testbench/tb.h"
 #include <stdio.h>
@@ -91,27 +92,14 @@ static int spans(void)
 
 /* ------------------------------------------------ horner3 on the kernel */
 
+/* tb_run's driver (tb_drive.h) and monitor */
 typedef struct ktb {
+    tb_drive drv;
     const unit_io *io;
-    const int64_t *in;
-    int n_in, n_out;
-    size_t n, next, got;
-    int started;
+    int n_out;
+    size_t n, got;
     int64_t *raw;
 } ktb;
-
-static void kdriver(sim_proc *p)
-{
-    ktb *s = p->data;
-    if (s->started && s->io->in_valid->cur && s->io->in_ready->cur) s->next++;
-    s->started = 1;
-    if (s->next < s->n) {
-        for (int i = 0; i < s->n_in; i++) sim_write(s->io->in[i], s->in[s->next * (size_t)s->n_in + (size_t)i]);
-        sim_write(s->io->in_valid, 1);
-    } else {
-        sim_write(s->io->in_valid, 0);
-    }
-}
 
 static void kmonitor(sim_proc *p)
 {
@@ -132,8 +120,10 @@ static int kernel_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmt
     sim_signal *clk = b.clk;
     unit_io io = b.io;
     sim_clock(c, clk, 5, 5);
-    ktb s = { &io, in, unit_n_in(u), unit_n_out(u), n, 0, 0, 0, raw };
-    sim_proc *d = sim_proc_new(c, "tb.driver", kdriver, &s);
+    ktb s = { .io = &io, .n_out = unit_n_out(u), .n = n, .raw = raw };
+    tb_drive_raws(&s.drv, unit_n_in(u), in, n);
+    s.drv.io = &io; s.drv.ctx = c;
+    sim_proc *d = sim_proc_new(c, "tb.driver", tb_drive_proc, &s.drv);
     sim_sensitive(d, clk, SIM_EDGE_POS);
     sim_proc *m = sim_proc_new(c, "tb.monitor", kmonitor, &s);
     sim_sensitive(m, clk, SIM_EDGE_POS);

@@ -5,7 +5,7 @@
  * these benches configure it and the cut of the stream into lanes. */
 #ifndef BENCH_ITEMS_H
 #define BENCH_ITEMS_H
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include <stdint.h>
 
 /* Fills it[] (room for `pixels` items) and returns the number of items. */

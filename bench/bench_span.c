@@ -2,7 +2,7 @@
  * length (1..L, L = 8, dv = L or n - 1, as a scene cuts spans), VCD off:
  * clocks per second of each span unit and schedule, the build included
  * (a scene builds once per band). Best of 3. */
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include "bench/bench_items.h"
 #include "testbench/tb.h"
 #include <stdio.h>

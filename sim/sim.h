@@ -168,8 +168,13 @@ void       sim_set_reference(sim_ctx *c, int on);
 
 sim_scope *sim_root(sim_ctx *c);
 sim_scope *sim_scope_new(sim_ctx *c, sim_scope *parent, const char *name);
-/* Full dotted name "top.horner3.rg" into buf. */
+/* Full dotted name "top.horner3.rg" into buf (cut short to fit). */
 const char *sim_signal_path(const sim_signal *s, char *buf, size_t len);
+/* The dotted name below scope top ("coef.div3_a.t1" below the unit's
+ * scope; top NULL: the full name): 0, or -1 when s is not below top or
+ * the name does not fit in len (buf then holds what fits). The one
+ * writer of a signal's path (the VCD's, the messages', the netlist's). */
+int sim_signal_path_below(const sim_signal *s, const sim_scope *top, char *buf, size_t len);
 
 /* A signal of format fmt, initial raw value 0. Names are copied. */
 sim_signal *sim_signal_new(sim_ctx *c, sim_scope *sc, const char *name,

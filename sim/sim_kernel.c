@@ -208,20 +208,28 @@ static void free_fanouts(sim_ctx *c)
     }
 }
 
-const char *sim_signal_path(const sim_signal *s, char *buf, size_t len)
+int sim_signal_path_below(const sim_signal *s, const sim_scope *top, char *buf, size_t len)
 {
     /* Collect scope names leaf to root, then print root first. */
     const char *parts[64];
     int n = 0;
     parts[n++] = s->name;
-    for (const sim_scope *sc = s->scope; sc && n < 64; sc = sc->parent) parts[n++] = sc->name;
+    const sim_scope *sc = s->scope;
+    for (; sc && sc != top && n < 64; sc = sc->parent) parts[n++] = sc->name;
+    if (sc != top) return -1;
     size_t off = 0;
     buf[0] = 0;
-    for (int i = n - 1; i >= 0 && off < len; i--) {
+    for (int i = n - 1; i >= 0; i--) {
         int k = snprintf(buf + off, len - off, "%s%s", parts[i], i ? "." : "");
-        if (k < 0) break;
+        if (k < 0 || (size_t)k >= len - off) return -1;    /* cut short (buf ends there) */
         off += (size_t)k;
     }
+    return 0;
+}
+
+const char *sim_signal_path(const sim_signal *s, char *buf, size_t len)
+{
+    sim_signal_path_below(s, NULL, buf, len);
     return buf;
 }
 

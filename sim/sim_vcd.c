@@ -358,29 +358,13 @@ void sim_vcd_abort(sim_vcd *v)
     free_vcd(v);
 }
 
-/* s's full dotted path: "top.horner3.div3_a" + "." + name. */
-static void sig_path(const sim_signal *s, char *buf, size_t len)
-{
-    const sim_scope *chain[32];
-    int n = 0;
-    for (const sim_scope *p = s->scope; p && n < 32; p = p->parent) chain[n++] = p;
-    size_t at = 0;
-    buf[0] = 0;
-    while (n-- > 0 && at + 1 < len) {
-        int w = snprintf(buf + at, len - at, "%s.", chain[n]->name);
-        if (w < 0) break;
-        at += (size_t)w < len - at ? (size_t)w : len - at - 1;
-    }
-    snprintf(buf + at, len - at, "%s", s->name);
-}
-
 /* One trace: its flags line, the fixed-point shift, its name. Flags are
  * GTKWave's TraceEntFlagBits: 0x4 decimal, 0x20 right-justified, 0x8
  * binary, 0x400 signed, 0x40000000 fixed-point shift ([fpshift_count]). */
 static void gtkw_signal(FILE *f, const sim_signal *s)
 {
     char path[600];
-    sig_path(s, path, sizeof path);
+    sim_signal_path(s, path, sizeof path);
     if (s->fmt.width == 1) { fprintf(f, "@28\n%s\n", path); return; }
     unsigned long flags = 0x24 | (s->fmt.is_signed ? 0x400 : 0);
     int fp = s->fmt.fbits >= 1 && s->fmt.fbits <= SIM_GTKW_MAX_FPSHIFT;

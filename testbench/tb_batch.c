@@ -1,57 +1,29 @@
 /* tb_batch.c - tb_run's testbench over lanes of sim_batch (tb_batch.h).
  *
- * The driver and monitor do per lane, from the values before each edge,
- * what tb_run's processes do: offer the next item once the unit accepted
- * the last (valid and ready before the edge), record each beat the unit
- * marks valid, with the clock it came in. */
+ * The driver (tb_drive.h, a lane's vector rows as its source) and the
+ * monitor do per lane, from the values before each edge, what tb_run's
+ * processes do: offer the next item once the unit accepted the last
+ * (valid and ready before the edge), record each beat the unit marks
+ * valid, with the clock it came in. */
 #include "testbench/tb_batch.h"
 #include "base/base_out.h"
 #include "sim/sim_batch.h"
 #include "testbench/tb_range.h"
 #include "testbench/tb_energy.h"
+#include "testbench/tb_drive.h"
 #include <stdlib.h>
 #include <string.h>
 
+/* A lane's driver (tb_drive.h) quantizes each row as it offers it, as
+ * tb_run does (tb_prep's first step), and counts its overflows once (a
+ * lane that stops short goes to the kernel, which counts them again); no
+ * quantized copy of the vectors is kept. */
 typedef struct lane_st {
-    const vec_set *vs;
-    size_t   n_items, next, got, total;
+    size_t   got, total;
     uint64_t budget;        /* tb_run's clock budget */
-    uint64_t *in_ovf;       /* the lane's tb_batch_lane in_overflows */
     int      done;
+    tb_drive drv;
 } lane_st;
-
-/* The driver's writes for lane l: the item at s->next, quantized as tb_run
- * does (tb_prep's first step: cv, each input port's conversion), or valid
- * low past the last. Each item is driven once, when next moves to it, so
- * quantizing here counts every item's input overflows once (a lane that
- * stops short goes to the kernel, which counts them again) and keeps no
- * quantized copy of the vectors. Written when next moves only: a pending
- * value stays from edge to edge, as a signal keeps the value the kernel's
- * driver rewrites. */
-static void drive(int64_t *const *nin, int64_t *nvalid, int n_in, const sim_fx_conv *cv, lane_st *s, uint32_t l)
-{
-    if (s->next < s->n_items) {
-        const double *row = vec_row(s->vs, s->next);
-        uint64_t o = 0;
-        /* the next row is read a few clocks from now: ask for it already
-         * (as many streams of rows as lanes, more than the CPU's own
-         * prefetcher follows; as tb_span.c does) */
-        if (s->next + 1 < s->n_items) {
-            const double *nx = vec_row(s->vs, s->next + 1);
-            __builtin_prefetch(nx);
-            __builtin_prefetch(nx + n_in - 1);
-        }
-        for (int i = 0; i < n_in; i++) {
-            int ov = 0;
-            nin[i][l] = sim_fx_conv_real(&cv[i], row[i], &ov);
-            o += (uint64_t)ov;
-        }
-        *s->in_ovf += o;
-        nvalid[l] = 1;
-    } else {
-        nvalid[l] = 0;
-    }
-}
 
 /* The handshake signals' lanes that are high (bit k%64 of word k/64),
  * and the lanes still running: the driver and monitor act where these
@@ -179,25 +151,23 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
     if (energy && sim_batch_toggles_on(b)) base_out_of_memory();
     uint64_t const_ovf = tb_scope_overflows(sc);
     size_t nv = (size_t)beats * (size_t)n_out;
-    int64_t *nin[UNIT_MAX_IO], *nvalid = sim_batch_next(b, io.in_valid);
+    tb_drive_lanes dw;      /* the drivers' writes */
+    dw.valid = sim_batch_next(b, io.in_valid);
     const int64_t *out[UNIT_MAX_IO];
-    for (int i = 0; i < n_in; i++) nin[i] = sim_batch_next(b, io.in[i]);
+    for (int i = 0; i < n_in; i++) dw.in[i] = sim_batch_next(b, io.in[i]);
     for (int o = 0; o < n_out; o++) out[o] = sim_batch_val(b, io.out[o]);
     sim_fx_conv cv[UNIT_MAX_IO];   /* each input port's quantization */
     for (int i = 0, k = 0; i < u->nsigs; i++)
         if (u->sigs[i].role == UNIT_SIG_IN) sim_fx_conv_init(&cv[k++], fm->f[i], cfg->rnd, cfg->ovf);
     for (size_t k = 0; k < n; k++) {
         tb_batch_lane *L = &lanes[k];
-        L->in_overflows = 0;
-        S[k].vs = L->vs;
-        S[k].n_items = L->vs->n_rows;
-        S[k].in_ovf = &L->in_overflows;
-        S[k].total = S[k].n_items * (size_t)beats;
+        tb_drive_rows(&S[k].drv, n_in, L->vs, cv);
+        S[k].total = L->vs->n_rows * (size_t)beats;
         S[k].budget = 1000 + S[k].total * 4096;
-        L->raw = calloc(S[k].n_items * nv, sizeof *L->raw);
+        L->raw = calloc(L->vs->n_rows * nv, sizeof *L->raw);
         L->beat_cycle = calloc(S[k].total, sizeof *L->beat_cycle);
         if (!L->raw || !L->beat_cycle) base_out_of_memory();
-        drive(nin, nvalid, n_in, cv, &S[k], (uint32_t)k);   /* the driver's run at initialization */
+        tb_drive_lane_offer(&S[k].drv, &dw, (uint32_t)k);   /* the driver's run at initialization */
     }
     sim_batch_start(b);
     size_t active = n;
@@ -228,8 +198,7 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
             while (fire) {
                 size_t k = w * 64 + (size_t)__builtin_ctzll(fire);
                 fire &= fire - 1;
-                S[k].next++;
-                drive(nin, nvalid, n_in, cv, &S[k], (uint32_t)k);
+                tb_drive_lane_accept(&S[k].drv, &dw, (uint32_t)k, e);
             }
         }
         if (fired) {   /* what the driver wrote: the edge compares those inputs alone */
@@ -253,6 +222,7 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
                     base_out_of_memory();
             }
     }
+    for (size_t k = 0; k < n; k++) lanes[k].in_overflows = S[k].drv.in_ovf;
     for (size_t k = 0; k < n && rc == TB_OK; k++)
         if (!lanes[k].batched) rc = from_kernel(u, cfg, fm, &lanes[k], err, errlen);
 done:

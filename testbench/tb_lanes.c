@@ -1,8 +1,9 @@
 /* tb_lanes.c - one stream of items on the batch's lanes (tb_lanes.h).
  *
  * Lane k drives items [from - warm, end) from reset, with tb_run's driver
- * and monitor (tb_batch.c's, per lane): offer the next item once the unit
- * accepted the last, record each beat the unit marks valid. Its junction
+ * (tb_drive.h) and monitor (tb_batch.c's, per lane): offer the next item
+ * once the unit accepted the last, record each beat the unit marks valid.
+ * Its junction
  * in is the edge at which it offers item `from`, its junction out the one
  * at which it offers `end` (the next lane's `from`). What the kernel does
  * at an edge (sample the values before it, collect a beat, offer an item)
@@ -12,6 +13,7 @@
  */
 #include "testbench/tb_lanes.h"
 #include "sim/sim_batch.h"
+#include "testbench/tb_drive.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -28,7 +30,6 @@
 
 typedef struct lane {
     size_t   begin, from, end;  /* items driven: [begin, end); its own from `from` */
-    size_t   next;              /* item offered */
     size_t   got;               /* beats collected, counted from begin's first */
     int      phase;             /* 0 warm-up, 1 its piece, 2 done */
     uint64_t e_in, e_out;       /* the junction edges (lane 0: 0, and its last edge) */
@@ -36,18 +37,8 @@ typedef struct lane {
     int64_t  *state_in, *state_out;   /* every signal's value at the junctions */
     uint64_t *tog_in, *tog_out;       /* each logged signal's toggles at the junctions */
     int64_t  *mn, *mx;                /* each live signal's range over its piece */
+    tb_drive drv;               /* the driver (tb_drive.h): items [begin, end) of the inputs */
 } lane;
-
-static void drive(int64_t *const *nin, int64_t *nvalid, const tb_lanes_job *j, const lane *s, uint32_t l)
-{
-    if (s->next < s->end) {
-        const int64_t *v = j->in_raw + s->next * (size_t)j->n_in;
-        for (int i = 0; i < j->n_in; i++) nin[i][l] = v[i];
-        nvalid[l] = 1;
-    } else {
-        nvalid[l] = 0;
-    }
-}
 
 static void snap_state(const sim_batch *b, const sim_ctx *c, uint32_t l, int64_t *to)
 {
@@ -68,14 +59,17 @@ static void snap_range(const sim_batch *b, const tb_range *g, uint32_t l, int64_
  * [from, end) after `warm` items of warm-up (lane 0 none; a lane whose
  * piece starts earlier starts from the stream's first item, as the
  * stream does). -1: out of memory. */
-static int lanes_init(lane *S, size_t L, size_t n, uint32_t nsig, const tb_range *g, size_t warm)
+static int lanes_init(const tb_lanes_job *j, lane *S, size_t L, uint32_t nsig, const tb_range *g, size_t warm)
 {
+    size_t n = j->n_items;
     for (size_t k = 0; k < L; k++) {
         lane *s = &S[k];
         s->from = k * n / L;
         s->end = (k + 1) * n / L;
         s->begin = k && s->from > warm ? s->from - warm : 0;
-        s->next = s->begin;
+        /* the source ends at the lane's end: valid drops past it */
+        tb_drive_raws(&s->drv, j->n_in, j->in_raw, s->end);
+        s->drv.next = s->begin;
         s->phase = k ? 0 : 1;
         s->state_in = malloc(((size_t)nsig + 1) * sizeof *s->state_in);
         s->state_out = malloc(((size_t)nsig + 1) * sizeof *s->state_out);
@@ -96,11 +90,12 @@ static int lanes_simulate(tb_lanes_job *j, sim_batch *b, lane *S, size_t L)
 {
     size_t n = j->n_items, beats = (size_t)j->beats, nout = (size_t)j->n_out;
     tb_range *g = j->rg;
-    int64_t *nin[UNIT_MAX_IO], *nvalid = sim_batch_next(b, j->io->in_valid);
+    tb_drive_lanes w;
+    w.valid = sim_batch_next(b, j->io->in_valid);
     const int64_t *out[UNIT_MAX_IO];
-    for (int i = 0; i < j->n_in; i++) nin[i] = sim_batch_next(b, j->io->in[i]);
+    for (int i = 0; i < j->n_in; i++) w.in[i] = sim_batch_next(b, j->io->in[i]);
     for (size_t o = 0; o < nout; o++) out[o] = sim_batch_val(b, j->io->out[o]);
-    for (size_t k = 0; k < L; k++) drive(nin, nvalid, j, &S[k], (uint32_t)k);
+    for (size_t k = 0; k < L; k++) tb_drive_lane_offer(&S[k].drv, &w, (uint32_t)k);
     sim_batch_start(b);
     for (size_t k = 0; k < L; k++) sim_batch_range_reset(b, (uint32_t)k);   /* lane 0's piece starts here */
     const int64_t *iv = sim_batch_val(b, j->io->in_valid), *ir = sim_batch_val(b, j->io->in_ready);
@@ -129,21 +124,22 @@ static int lanes_simulate(tb_lanes_job *j, sim_batch *b, lane *S, size_t L)
                     s->beat_out = total;
                     snap_range(b, g, (uint32_t)k, s->mn, s->mx);
                     active--;
-                    if (iv[k] && ir[k]) { s->next++; drive(nin, nvalid, j, s, (uint32_t)k); }
+                    if (iv[k] && ir[k]) tb_drive_lane_accept(&s->drv, &w, (uint32_t)k, e);
                     continue;
                 }
             }
             /* driver */
             if (iv[k] && ir[k]) {
-                s->next++;
-                if (s->phase == 0 && s->next == s->from) {
+                /* the accept; the offer after the junctions' snapshots */
+                s->drv.next++;
+                if (s->phase == 0 && s->drv.next == s->from) {
                     s->phase = 1;
                     s->e_in = e;
                     s->beat_in = s->begin * beats + s->got;
                     snap_state(b, j->c, (uint32_t)k, s->state_in);
                     snap_tog(b, g, (uint32_t)k, s->tog_in);
                     sim_batch_range_reset(b, (uint32_t)k);
-                } else if (s->phase == 1 && k < L - 1 && s->next == s->end) {
+                } else if (s->phase == 1 && k < L - 1 && s->drv.next == s->end) {
                     s->phase = 2;
                     s->e_out = e;
                     s->beat_out = s->begin * beats + s->got;
@@ -153,7 +149,7 @@ static int lanes_simulate(tb_lanes_job *j, sim_batch *b, lane *S, size_t L)
                     active--;
                     continue;
                 }
-                drive(nin, nvalid, j, s, (uint32_t)k);
+                tb_drive_lane_offer(&s->drv, &w, (uint32_t)k);
             }
             if (e >= budget) { late = 1; s->phase = 2; active--; }
         }
@@ -226,7 +222,7 @@ static int lanes_try(tb_lanes_job *j, size_t warm, char *why, size_t len)
     uint32_t nsig = sim_signal_count(j->c);
     lane *S = calloc(L, sizeof *S);
     int rc = -1;
-    if (!S || sim_batch_ranges_on(b) || lanes_init(S, L, n, nsig, j->rg, warm)) goto done;
+    if (!S || sim_batch_ranges_on(b) || lanes_init(j, S, L, nsig, j->rg, warm)) goto done;
     rc = 1;
     if (lanes_simulate(j, b, S, L)) { snprintf(why, len, "a lane gave no answer in time"); goto done; }
     if ((rc = lanes_check(b, S, L, nsig, warm, why, len)) != 0) goto done;

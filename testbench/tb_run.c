@@ -6,6 +6,7 @@
 #include "testbench/tb_wave.h"
 #include "testbench/tb_energy.h"
 #include "testbench/tb_lanes.h"
+#include "testbench/tb_drive.h"
 #include "base/base_par.h"
 #include "base/base_out.h"
 #include <errno.h>
@@ -15,41 +16,16 @@
 #include <sys/stat.h>
 
 typedef struct tb_state {
+    tb_drive drv;                /* the driver (tb_drive.h), on the quantized inputs */
     const unit_io *io;
-    int n_in, n_out, beats;
+    int n_out, beats;
     size_t n_items;
-    const int64_t *in_raw;       /* [item][input] quantized inputs */
-    size_t next;                 /* item being offered */
-    size_t offered;              /* next at the driver's last writes */
     size_t got;                  /* beats collected */
-    int started;
     const sim_ctx *ctx;
     uint64_t *beat_cycle;
     int64_t  *raw;
     tb_range rg;                /* range logging (tb_range.h) */
 } tb_state;
-
-/* Driver, at each rising edge: if the unit accepted the offered item (valid
- * and ready before the edge), offer the next one. While the unit holds an
- * item, the inputs and valid already hold what would be written again
- * (the last writes have been applied, and nothing else drives them):
- * those writes would change nothing and are skipped. */
-static void driver(sim_proc *p)
-{
-    tb_state *s = p->data;
-    const unit_io *io = s->io;
-    if (s->started && io->in_valid->cur && io->in_ready->cur) s->next++;
-    if (s->started && s->next == s->offered) return;
-    s->started = 1;
-    s->offered = s->next;
-    if (s->next < s->n_items) {
-        const int64_t *v = s->in_raw + s->next * (size_t)s->n_in;
-        for (int i = 0; i < s->n_in; i++) sim_write(io->in[i], v[i]);
-        sim_write(io->in_valid, 1);
-    } else {
-        sim_write(io->in_valid, 0);
-    }
-}
 
 /* Monitor, at each rising edge: the values before the edge are those of the
  * cycle that just ended (range logging, then the output beat when there is
@@ -229,10 +205,12 @@ static int run_build(run_sim *s, const unit_desc *u, const unit_cfg *cfg, const 
     /* 100 MHz in a 1 ns timescale: rising edges at 5, 15, 25, ... */
     sim_clock(s->c, s->clk, 5, 5);
     tb_state *st = &s->st;
-    st->io = &s->io; st->n_in = r->n_in; st->n_out = r->n_out; st->beats = r->beats; st->n_items = m->n;
-    st->in_raw = m->in_raw; st->ctx = s->c; st->beat_cycle = r->beat_cycle; st->raw = r->raw;
+    tb_drive_raws(&st->drv, r->n_in, m->in_raw, m->n);
+    st->drv.io = &s->io; st->drv.ctx = s->c;
+    st->io = &s->io; st->n_out = r->n_out; st->beats = r->beats; st->n_items = m->n;
+    st->ctx = s->c; st->beat_cycle = r->beat_cycle; st->raw = r->raw;
     if (tb_range_init(&st->rg, s->c, s->sc, s->clk)) base_out_of_memory();
-    sim_proc *drv = sim_proc_new(s->c, "tb.driver", driver, st);
+    sim_proc *drv = sim_proc_new(s->c, "tb.driver", tb_drive_proc, &st->drv);
     sim_sensitive(drv, s->clk, SIM_EDGE_POS);
     sim_proc *mon = sim_proc_new(s->c, "tb.monitor", monitor, st);
     sim_sensitive(mon, s->clk, SIM_EDGE_POS);

@@ -17,6 +17,7 @@
 #include "testbench/tb_stream.h"
 #include "testbench/tb_range.h"
 #include "testbench/tb_energy.h"
+#include "testbench/tb_drive.h"
 #include "base/base_out.h"
 #include <math.h>
 #include <stdint.h>
@@ -207,6 +208,7 @@ typedef struct ring {
 } ring;
 
 typedef struct st_state {
+    tb_drive drv;               /* the driver (tb_drive.h), on the ring's items */
     tb_prep_ctx pc;
     const unit_io *io;
     int n_in, n_out, beats, nv;
@@ -214,11 +216,10 @@ typedef struct st_state {
     vec_stream *src;
     const vec_set *rows;
     size_t row_at;              /* next row of rows to prepare */
-    size_t prepared, next, done, got;   /* items prepared, offered, finished; beats got */
-    size_t offered;             /* the item on the inputs with valid set (SIZE_MAX: none) */
+    size_t prepared, done, got; /* items prepared, finished; beats got */
     size_t got_item;            /* got as item and beat: got / beats, got % beats */
     int    got_beat;
-    int started, eof, failed, finished;
+    int eof, failed, finished;
     uint64_t in_ovf[UNIT_MAX_IO];
     const sim_ctx *ctx;
     tb_acc acc;
@@ -280,35 +281,16 @@ static int have_item(st_state *s, size_t idx)
     return 1;
 }
 
-/* Offer item next (preparing it if need be), or drop valid at the end. */
-static __attribute__((noinline)) void st_offer(st_state *s, sim_proc *p)
+/* The driver's source: item i's raws, prepared if need be (NULL at the
+ * end, or on an error, which stops the run). */
+static const int64_t *st_item(tb_drive *d, size_t i)
 {
-    const unit_io *io = s->io;
-    if (have_item(s, s->next)) {
-        const int64_t *v = s->R.in_raw + (s->next & (s->R.cap - 1)) * (size_t)s->n_in;
-        for (int i = 0; i < s->n_in; i++) sim_write(io->in[i], v[i]);
-        sim_write(io->in_valid, 1);
-        s->offered = s->next;
-    } else {
-        sim_write(io->in_valid, 0);
-        s->offered = SIZE_MAX;
+    st_state *s = d->data;
+    if (!have_item(s, i)) {
+        d->failed = s->failed;
+        return NULL;
     }
-    if (s->failed) sim_stop(p->ctx);
-}
-
-/* Driver, at each rising edge: tb_run's, with items prepared on demand.
- * While the unit holds an item (not ready), the inputs and valid already
- * hold what the driver would write again (its last writes have been
- * applied, and nothing else drives them): such writes would change
- * nothing and are skipped, and the clock costs a few compares. */
-static void st_driver(sim_proc *p)
-{
-    st_state *s = p->data;
-    const unit_io *io = s->io;
-    if (s->started && io->in_valid->cur && io->in_ready->cur) s->next++;
-    if (s->started && s->next == s->offered && !s->failed) return;
-    s->started = 1;
-    st_offer(s, p);
+    return s->R.in_raw + (i & (s->R.cap - 1)) * (size_t)s->n_in;
 }
 
 /* An output beat is in: keep it; a finished item goes to the metrics and
@@ -388,7 +370,6 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     tb_prep_init(&st.pc, u, cfg, fmts);
     st.n_in = r->n_in; st.n_out = r->n_out; st.beats = r->beats; st.nv = st.pc.nv;
     st.src = vs; st.r = r; st.row = row; st.row_data = row_data;
-    st.offered = SIZE_MAX;
     static const vec_set none;
     st.rows = &none;
     ring_alloc(&st.R, st.n_in, st.nv, u);
@@ -423,8 +404,10 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
     if (o && o->reference) { sim_set_reference(c, 1); r->reference = 1; }
     sim_clock(c, clk, 5, 5);
     st.io = &io; st.ctx = c;
+    tb_drive_fn_source(&st.drv, st.n_in, st_item, &st);
+    st.drv.io = &io; st.drv.ctx = c;
     if (tb_range_init(&st.rg, c, sc, clk)) base_out_of_memory();     /* its one failure */
-    sim_proc *drv = sim_proc_new(c, "tb.driver", st_driver, &st);
+    sim_proc *drv = sim_proc_new(c, "tb.driver", tb_drive_proc, &st.drv);
     sim_sensitive(drv, clk, SIM_EDGE_POS);
     sim_proc *mon = sim_proc_new(c, "tb.monitor", st_monitor, &st);
     sim_sensitive(mon, clk, SIM_EDGE_POS);

@@ -16,66 +16,75 @@ PREFIX=cli_engine.
 
 # every unit and schedule, as `list` names them
 $S list >"$T/list" 2>&1
-units=$(sed -n 's/^\([a-z0-9_]*\) — .*/\1/p' "$T/list")
-[ -n "$units" ] || fail units "list names no unit"
-for u in $units; do
-    scheds=$($S list "$u" | sed -n 's/^  schedules: //p' | grep -oE '(^|, )[a-z0-9_-]+ \(' | tr -d ',( ')
-    first=1
-    for sc in $scheds; do
-        n="$u.$sc"
-        $S run "$u" --schedule "$sc" --json >"$T/b.json" 2>"$T/b.err"; rb=$?
-        $S run "$u" --schedule "$sc" --json --kernel >"$T/k.json" 2>"$T/k.err"; rk=$?
-        if [ "$rb" -ne "$rk" ]; then fail "$n" "exit $rb on lanes, $rk on the kernel"; continue; fi
-        if ! grep -q '"sim": {"engine": "batch", "lanes": [0-9]*, "clocks": [0-9]*}$' "$T/b.json"; then
-            fail "$n" "did not run on lanes: $(grep '"sim"' "$T/b.json")"; continue
-        fi
-        if ! grep -q '"sim": {"engine": "kernel", "clocks": [0-9]*, "events": [0-9]*, "delta_cycles"' "$T/k.json"; then
-            fail "$n" "--kernel: $(grep '"sim"' "$T/k.json")"; continue
-        fi
-        grep -v '"sim": ' "$T/b.json" >"$T/b.rest"
-        grep -v '"sim": ' "$T/k.json" >"$T/k.rest"
-        # the clocks of the sim line too
-        cb=$(sed -n 's/.*"clocks": \([0-9]*\).*/\1/p' "$T/b.json")
-        ck=$(sed -n 's/.*"sim".*"clocks": \([0-9]*\),.*/\1/p' "$T/k.json")
-        if ! cmp -s "$T/b.rest" "$T/k.rest"; then
-            fail "$n" "JSON differs: $(diff "$T/b.rest" "$T/k.rest" | head -4 | tr '\n' ' ')"
-        elif [ "$cb" != "$ck" ]; then
-            fail "$n" "clocks $cb on lanes, $ck on the kernel"
-        else
-            ok "$n"
-        fi
-        # under the sanitizers (ASAN=1), the reference and the dumps for
-        # each unit's first schedule only: the plain build checks them all
-        if [ -n "$ASAN" ] && [ $first = 0 ]; then continue; fi
-        first=0
-        # the reference: the whole JSON, the sim line's counters included
-        $S run "$u" --schedule "$sc" --json --reference >"$T/r.json" 2>"$T/r.err"; rr=$?
-        sed 's/^\(  "sim": {"engine": \)"reference"/\1"kernel"/' "$T/r.json" >"$T/r.as-k"
-        if [ "$rr" -ne "$rk" ]; then
-            fail "$n.reference" "exit $rr on the reference, $rk on the kernel"
-        elif ! grep -q '"sim": {"engine": "reference", "clocks": [0-9]*, "events": [0-9]*, "delta_cycles"' "$T/r.json"; then
-            fail "$n.reference" "$(grep '"sim"' "$T/r.json")"
-        elif ! cmp -s "$T/k.json" "$T/r.as-k"; then
-            fail "$n.reference" "JSON differs: $(diff "$T/k.json" "$T/r.as-k" | head -4 | tr '\n' ' ')"
-        else
-            ok "$n.reference"
-        fi
-        # and the dump (through tb_run, where the JSON above was streamed)
-        $S run "$u" --schedule "$sc" --kernel --vcd "$T/k.vcd" >"$T/k.txt" 2>&1; rk=$?
-        $S run "$u" --schedule "$sc" --reference --vcd "$T/r.vcd" >"$T/r.txt" 2>&1; rr=$?
-        if [ "$rk" -ne "$rr" ] || [ ! -s "$T/k.vcd" ]; then
-            fail "$n.vcd" "exit $rk on the kernel, $rr on the reference: $(head -c 200 "$T/r.txt")"
-        elif ! cmp -s "$T/k.vcd" "$T/r.vcd" || ! sed "s|$T/r\.vcd|$T/k.vcd|g" "$T/r.vcd.gtkw" | cmp -s "$T/k.vcd.gtkw" -; then
-            # (the .gtkw names its own path and the dump's)
-            fail "$n.vcd" "dumps differ: $(cmp "$T/k.vcd" "$T/r.vcd"; diff "$T/k.vcd.gtkw" "$T/r.vcd.gtkw" | head -4 | tr '\n' ' ')"
-        elif [ "$(grep -v '^engine ' "$T/k.txt")" != "$(grep -v '^engine ' "$T/r.txt")" ] ||
-             [ "$(sed -n 's/^engine kernel: //p' "$T/k.txt")" != "$(sed -n 's/^engine reference: //p' "$T/r.txt")" ]; then
-            fail "$n.vcd" "tables differ: $(diff "$T/k.txt" "$T/r.txt" | head -4 | tr '\n' ' ')"
-        else
-            ok "$n.vcd"
-        fi
-    done
-done
+# "UNIT SCHEDULE" per line, from list's "  schedules: NAME (what), ..." lines
+awk '/^[a-z0-9_]+ — / { u = $1 }
+     /^  schedules: / { s = substr($0, 14)
+                        while (match(s, /(^|, )[a-z0-9_-]+ \(/)) {
+                            w = substr(s, RSTART, RLENGTH); gsub(/[,( ]/, "", w); print u, w
+                            s = substr(s, RSTART + RLENGTH) } }' "$T/list" >"$T/pairs"
+[ -s "$T/pairs" ] || fail units "list names no unit"
+# lanes against the kernel: the sim lines say which engine ran, the rest of
+# the JSON byte for byte, the clocks of the sim line too (one awk: a
+# process per check was most of this test's time)
+same_json() {
+    awk -v P="$PREFIX" -v n="$1" '
+        FNR == NR { if (/"sim": /) bs = $0; else b[++nb] = $0; next }
+        { if (/"sim": /) ks = $0; else k[++nk] = $0 }
+        END {
+            if (bs !~ /"sim": \{"engine": "batch", "lanes": [0-9]+, "clocks": [0-9]+\}$/) { print "FAIL " P n ": did not run on lanes: " bs; exit }
+            if (ks !~ /"sim": \{"engine": "kernel", "clocks": [0-9]+, "events": [0-9]+, "delta_cycles"/) { print "FAIL " P n ": --kernel: " ks; exit }
+            d = 0
+            for (i = 1; i <= nb || i <= nk; i++) if (b[i] != k[i]) { d = i; break }
+            if (d) { print "FAIL " P n ": JSON differs at line " d ": " b[d] " | " k[d]; exit }
+            match(bs, /"clocks": [0-9]+/); cb = substr(bs, RSTART + 10, RLENGTH - 10)
+            match(ks, /"clocks": [0-9]+/); ck = substr(ks, RSTART + 10, RLENGTH - 10)
+            if (cb != ck) print "FAIL " P n ": clocks " cb " on lanes, " ck " on the kernel"
+            else print "ok " P n
+        }' "$T/b.json" "$T/k.json"
+}
+prev= nu=0
+while read -r u sc <&3; do
+    if [ "$u" != "$prev" ]; then first=1; prev=$u; nu=$((nu + 1)); fi
+    n="$u.$sc"
+    $S run "$u" --schedule "$sc" --json >"$T/b.json" 2>"$T/b.err"; rb=$?
+    $S run "$u" --schedule "$sc" --json --kernel >"$T/k.json" 2>"$T/k.err"; rk=$?
+    if [ "$rb" -ne "$rk" ]; then fail "$n" "exit $rb on lanes, $rk on the kernel"; continue; fi
+    same_json "$n"
+    # under the sanitizers (ASAN=1), the reference and the dumps for each
+    # unit's first schedule only, in make test-quick for every fourth
+    # unit's: make test's plain build checks them all (test_reference, in
+    # every suite, holds the reference to the kernel's counters and
+    # outputs on every schedule)
+    if { [ -n "$ASAN" ] || ! full_only; } && [ $first = 0 ]; then continue; fi
+    if ! full_only && [ $((nu % 4)) != 1 ]; then continue; fi
+    first=0
+    # the reference: the whole JSON, the sim line's counters included
+    $S run "$u" --schedule "$sc" --json --reference >"$T/r.json" 2>"$T/r.err"; rr=$?
+    sed 's/^\(  "sim": {"engine": \)"reference"/\1"kernel"/' "$T/r.json" >"$T/r.as-k"
+    if [ "$rr" -ne "$rk" ]; then
+        fail "$n.reference" "exit $rr on the reference, $rk on the kernel"
+    elif ! grep -q '"sim": {"engine": "reference", "clocks": [0-9]*, "events": [0-9]*, "delta_cycles"' "$T/r.json"; then
+        fail "$n.reference" "$(grep '"sim"' "$T/r.json")"
+    elif ! cmp -s "$T/k.json" "$T/r.as-k"; then
+        fail "$n.reference" "JSON differs: $(diff "$T/k.json" "$T/r.as-k" | head -4 | tr '\n' ' ')"
+    else
+        ok "$n.reference"
+    fi
+    # and the dump (through tb_run, where the JSON above was streamed)
+    $S run "$u" --schedule "$sc" --kernel --vcd "$T/k.vcd" >"$T/k.txt" 2>&1; rk=$?
+    $S run "$u" --schedule "$sc" --reference --vcd "$T/r.vcd" >"$T/r.txt" 2>&1; rr=$?
+    if [ "$rk" -ne "$rr" ] || [ ! -s "$T/k.vcd" ]; then
+        fail "$n.vcd" "exit $rk on the kernel, $rr on the reference: $(head -c 200 "$T/r.txt")"
+    elif ! cmp -s "$T/k.vcd" "$T/r.vcd" || ! sed "s|$T/r\.vcd|$T/k.vcd|g" "$T/r.vcd.gtkw" | cmp -s "$T/k.vcd.gtkw" -; then
+        # (the .gtkw names its own path and the dump's)
+        fail "$n.vcd" "dumps differ: $(cmp "$T/k.vcd" "$T/r.vcd"; diff "$T/k.vcd.gtkw" "$T/r.vcd.gtkw" | head -4 | tr '\n' ' ')"
+    elif [ "$(grep -v '^engine ' "$T/k.txt")" != "$(grep -v '^engine ' "$T/r.txt")" ] ||
+         [ "$(sed -n 's/^engine kernel: //p' "$T/k.txt")" != "$(sed -n 's/^engine reference: //p' "$T/r.txt")" ]; then
+        fail "$n.vcd" "tables differ: $(diff "$T/k.txt" "$T/r.txt" | head -4 | tr '\n' ' ')"
+    else
+        ok "$n.vcd"
+    fi
+done 3<"$T/pairs"
 
 # the text table: one engine line each, the rest the same
 $S run horner3 >"$T/b.txt"; $S run horner3 --no-batch >"$T/k.txt"

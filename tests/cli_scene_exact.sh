@@ -58,9 +58,10 @@ EOT
 exact sphere 3e-3 sphere --set resolution=48x48 --set terms=8
 exact face_region 3e-3 face --set resolution=64x64 --set L=4 --set policy=adaptive-region --set terms=5
 # (under the sanitizers, ASAN=1, the third search and the --no-batch one
-# below are the plain build's alone: the same code as the two before)
+# below are the plain build's alone: the same code as the two before; and
+# make test's alone, not make test-quick's)
 if [ -n "$ASAN" ]; then echo "skip ${PREFIX}face_auto: the plain build runs it"
-else exact face_auto 3e-3 face --set resolution=64x64 --set L=4 --set policy=adaptive-auto --set terms=5; fi
+elif full_only; then exact face_auto 3e-3 face --set resolution=64x64 --set L=4 --set policy=adaptive-auto --set terms=5; fi
 
 # found/ does not depend on -j.
 "$S" scene sphere --set resolution=48x48 --set terms=8 --target-nmse 3e-3 -j 1 -o "$T/j1" >/dev/null 2>&1
@@ -71,7 +72,7 @@ cmp -s "$T/sphere/search.json" "$T/j1/search.json" || same=0
 
 # ... nor on the batch mode (--no-batch: every band on the kernel alone,
 # no render stopped early).
-if [ -n "$ASAN" ]; then echo "skip ${PREFIX}no_batch_same_found: the plain build runs it"; else
+if [ -n "$ASAN" ]; then echo "skip ${PREFIX}no_batch_same_found: the plain build runs it"; elif full_only; then
 "$S" scene sphere --set resolution=48x48 --set terms=8 --target-nmse 3e-3 --no-batch -o "$T/nb" >/dev/null 2>&1
 same=1
 for f in "$T"/sphere/found/*; do cmp -s "$f" "$T/nb/found/${f##*/}" || same=0; done

@@ -43,6 +43,11 @@ no_leak_check() {
     return 0
 }
 
+# full_only: true in make test, false in make test-quick (TST_QUICK=1,
+# the edit loop's subset): a test's slow parts that repeat a verb another
+# quick check runs are left to make test (each says what it leaves).
+full_only() { [ "${TST_QUICK:-0}" != 1 ]; }
+
 # plain_only: the rest of the test checks what no build flavour changes
 # (the sources, the docs): it runs in the plain build alone.
 plain_only() {

@@ -11,8 +11,8 @@
 # under its name, as soon as it finishes, so a long suite shows progress
 # from its first minute; the blocks come in the order the tests finish.
 # The closing count does not depend on that order. TST_JOBS=1 runs them
-# one by one (then in the fixed order: flavour by flavour, binaries then
-# scripts, the slow sanitizer flavour first).
+# one by one (then in the fixed order: the slow sanitizer flavour first,
+# then the others' scripts, then their binaries).
 cd "$(dirname "$0")/.." || exit 2
 jobs=${TST_JOBS:-2}
 case $jobs in ''|*[!0-9]*|0) echo "tests/run.sh: TST_JOBS must be a whole number >= 1" >&2; exit 2;; esac
@@ -102,9 +102,11 @@ print_all() {
 print_all &
 printer=$!
 
-# Longest first: the ASan flavour's jobs (slower) lead, so that the
-# workers finish close together.
-{ grep -- '-asan ' "$dir/jobs"; grep -v -- '-asan ' "$dir/jobs"; } \
+# Longest first: the ASan flavour's jobs (slower) lead, then the other
+# flavours' scripts (seconds each: a process per check) before their test
+# programs (most well under a second), so that the workers finish close
+# together.
+{ grep -- '-asan ' "$dir/jobs"; grep -v -- '-asan ' "$dir/jobs" | grep ' cli '; grep -v -- '-asan ' "$dir/jobs" | grep -v ' cli '; } \
     | awk -v d="$dir" '{ print d, $1, $2, $3, $4 }' \
     | xargs -n 5 -P "$jobs" sh "$dir/one.sh"
 : >"$dir/done"

@@ -11,7 +11,7 @@
 #include "sim/sim_batch.h"
 #include "sim/sim_prim.h"
 #include "testbench/tb.h"
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include "testbench/tb_batch.h"
 
 static uint64_t rng = 0x9e3779b97f4a7c15ull;

@@ -9,7 +9,7 @@
 #include "tests/tst.h"
 #include "tests/tst_ref.h"
 #include "testbench/tb.h"
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include "sim/sim_area.h"
 #include <stdint.h>
 #include <unistd.h>

@@ -17,7 +17,7 @@
 #include "sim/sim_energy.h"
 #include "testbench/tb.h"
 #include "testbench/tb_batch.h"
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include "testbench/study/tb_scene.h"
 #include <unistd.h>
 

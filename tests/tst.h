@@ -85,6 +85,14 @@ static inline const char *tst_shadesim(void)
     const char *p = getenv("SHADESIM");
     return p ? p : "bin/shadesim";
 }
+/* True under make test-quick (tests/run.sh with TST_QUICK=1, the edit
+ * loop's subset): a program's long random sweeps may take a tenth of
+ * their draws there (the same checks; make test draws them all). */
+static inline int tst_quick(void)
+{
+    const char *q = getenv("TST_QUICK");
+    return q && !strcmp(q, "1");
+}
 /* True when this program is the sanitizer build's (tests/run.sh sets
  * TST_BUILD to the build folder, "...-asan"): tool-driven checks, which
  * read bytes no build changes, run in the plain build only. */

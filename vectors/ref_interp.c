@@ -62,7 +62,7 @@ double ref_horner2(double a, double b, double c, double t)
  * difference and t = k/L is dyadic, the weights are exact but for one
  * rounding where a 3 divides, and at a node the weights are exactly 0 and
  * 1, so y equals the node intensity exactly. */
-static double lagrange_at(const double *tn, const double *I, int k, double t)
+double ref_lagrange(const double *tn, const double *I, int k, double t)
 {
     double y = 0;
     for (int i = 0; i < k; i++) {
@@ -79,12 +79,12 @@ static double lagrange_at(const double *tn, const double *I, int k, double t)
 
 void ref_interp3(const double I[4], int L, double *y)
 {
-    for (int i = 0; i < L; i++) y[i] = lagrange_at(ref_nodes_n1, I, 4, (double)i / L);
+    for (int i = 0; i < L; i++) y[i] = ref_lagrange(ref_nodes_n1, I, 4, (double)i / L);
 }
 
 void ref_interp2(const double I[3], int L, double *y)
 {
-    for (int i = 0; i < L; i++) y[i] = lagrange_at(ref_nodes_q, I, 3, (double)i / L);
+    for (int i = 0; i < L; i++) y[i] = ref_lagrange(ref_nodes_q, I, 3, (double)i / L);
 }
 
 double ref_div3_factor(int terms, int series)
@@ -219,7 +219,7 @@ static void eval_interp3(const vec_params *p, const double *in, double *out)
 {
     int L = safe_L(p);
     if (!p->nodes) ref_interp3(in, L, out);
-    else for (int i = 0; i < L; i++) out[i] = lagrange_at(ref_nodes_n2, in, 4, (double)i / L);
+    else for (int i = 0; i < L; i++) out[i] = ref_lagrange(ref_nodes_n2, in, 4, (double)i / L);
 }
 static void eval_interp2(const vec_params *p, const double *in, double *out)
 {

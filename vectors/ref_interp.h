@@ -20,6 +20,10 @@ extern const vec_model ref_model_horner3, ref_model_horner2, ref_model_div3, ref
 
 /* Node positions t of I1..I4 (N1, N2) and I1..I3 (quadratic). */
 extern const double ref_nodes_n1[4], ref_nodes_n2[4], ref_nodes_q[3];
+/* The interpolant through the k nodes (tn[i], I[i]) at t, in Lagrange form
+ * (ref_interp.c says why not as coefficients): the interpolation units'
+ * and the span units' references both. */
+double ref_lagrange(const double *tn, const double *I, int k, double t);
 
 /* Cubic coefficients abcd = {A, B, C, D} of I(t) = A t^3 + B t^2 + C t + D
  * through the nodes, by the coefficient formulas (docs/units.md) (exact /3). */

@@ -7,7 +7,7 @@
  * default vectors have n = L: full intervals (dv = L) and span-final ones
  * that happen to be L long (dv = L - 1, t reaching 1 at the last pixel),
  * alternately; span23's rows alternate degree 3 and 2 over those.
- * Intervals of other lengths go through tb_span_run (testbench/tb_span.h).
+ * Intervals of other lengths go through tb_span_run (testbench/study/tb_span.h).
  *
  * The interpolant is evaluated in Lagrange form (as ref_interp.c does for
  * interp3/interp2): no coefficient formula and no Horner cancellation, and
@@ -50,21 +50,6 @@ static void ports(int kind, const vec_params *p, int *n_in, char in[][16], int *
     *n_out = L < VEC_MAX_PORTS ? L : VEC_MAX_PORTS;
 }
 
-static double lagrange(const double *tn, const double *I, int k, double t)
-{
-    double y = 0;
-    for (int i = 0; i < k; i++) {
-        double num = 1, den = 1;
-        for (int j = 0; j < k; j++) {
-            if (j == i) continue;
-            num *= t - tn[j];
-            den *= tn[i] - tn[j];
-        }
-        y += num / den * I[i];
-    }
-    return y;
-}
-
 /* Node positions and count of the interpolant a row asks for. */
 static const double *row_nodes(int kind, const vec_params *p, const double *in, int *k)
 {
@@ -79,7 +64,7 @@ static void eval(int kind, const vec_params *p, const double *in, double *out)
     int L = safe_L(p), k, ni = nin_of(kind);
     const double *tn = row_nodes(kind, p, in, &k);
     double dv = floor(in[ni + 1]);
-    for (int i = 0; i < L && i < VEC_MAX_PORTS; i++) out[i] = lagrange(tn, in, k, dv > 0 ? i / dv : 0);
+    for (int i = 0; i < L && i < VEC_MAX_PORTS; i++) out[i] = ref_lagrange(tn, in, k, dv > 0 ? i / dv : 0);
 }
 
 /* ---- gen ----------------------------------------------------------------- */

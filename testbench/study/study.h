@@ -7,6 +7,8 @@
  *                      one CSV), the cheapest formats meeting a target
  *   tb_sweep_check.h   the target search's held-out and derived-range checks
  *   tb_sweep_chart.h   a sweep's charts, drawn from its CSV
+ *   tb_span.h          the span units driven with a scene's intervals of any
+ *                      length, on the kernel or a batch's lanes
  *   tb_scene.h         a scene shaded through the simulated span hardware
  *                      (images, NMSE, clocks, speed and energy)
  *   tb_scene_search.h  the formats and the grid a scene needs, found by

@@ -13,7 +13,7 @@
 #ifndef TB_SCENE_H
 #define TB_SCENE_H
 #include "scene/scene.h"
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include "testbench/tb.h"
 
 #define TB_SCENE_BANDS 16

@@ -1,11 +1,13 @@
 /* tb_span.c - a stream of intervals of any length through a span unit
- * (tb_span.h): one build, a driver that offers item after item through
- * the valid/ready handshake, a monitor that collects the n beats of each.
+ * (tb_span.h): one build, the testbench's driver (tb_drive.h, the span
+ * items as its source) offering item after item through the valid/ready
+ * handshake, a monitor that collects the n beats of each; on the kernel
+ * or on a batch's lanes.
  *
  * Nothing is allocated per item or per clock: the driver quantizes an
  * item's inputs when it first offers it, the monitor writes pixels straight
  * into the caller's array. */
-#include "testbench/tb_span.h"
+#include "testbench/study/tb_span.h"
 #include "testbench/tb.h"
 #include "testbench/tb_range.h"
 #include "sim/sim_vcd.h"
@@ -14,22 +16,17 @@
 #include "sim/sim_batch.h"
 #include "sim/sim_toggle.h"
 #include "testbench/tb_energy.h"
+#include "testbench/tb_drive.h"
+#include <stddef.h>
 #include <stdlib.h>
 #include <math.h>
 #include <string.h>
 
-enum { IN_NODE = 0, IN_N = 4, IN_DV = 5, IN_DEG = 6 };
-
 typedef struct span_tb {
+    tb_drive drv;                   /* the driver (tb_drive.h), on the items */
     const unit_io *io;
-    const unit_cfg *cfg;
-    const tb_span_item *items;
-    size_t nitems, next, offered;   /* offered: the item on the inputs (nitems: none yet) */
-    int started;
-    int nin;
-    int what[UNIT_MAX_IO];          /* IN_NODE + i, IN_N, IN_DV, IN_DEG per input port */
-    sim_fx_conv conv[UNIT_MAX_IO];  /* each port's quantization, with the configuration's modes */
-    uint64_t in_ovf, first_accept, last_pixel;
+    size_t nitems;
+    uint64_t last_pixel;
     const sim_ctx *ctx;
     /* monitor */
     const sim_signal *y;
@@ -38,59 +35,11 @@ typedef struct span_tb {
     size_t got, total;
 } span_tb;
 
-/* Item i's input raws as the testbench drives them (quantized with the
- * configuration's modes; each overflow counted in *ovf). */
-static void item_raws(const span_tb *s, size_t i, int64_t *raw, uint64_t *ovf)
-{
-    const tb_span_item *it = &s->items[i];
-    /* the next item is read a few clocks from now: ask for it already (a
-     * batch reads as many streams of items as it has lanes, more than the
-     * CPU's own prefetcher follows; a GNU builtin, a hint only) */
-    if (i + 1 < s->nitems) {
-        __builtin_prefetch(it + 1);
-        __builtin_prefetch((const char *)(it + 2) - 1);
-    }
-    for (int p = 0; p < s->nin; p++) {
-        int w = s->what[p];
-        double v = w < IN_N ? it->node[w] : w == IN_N ? it->n : w == IN_DV ? it->dv : it->deg;
-        int ov = 0;
-        raw[p] = sim_fx_conv_real(&s->conv[p], v, &ov);
-        *ovf += (uint64_t)ov;
-    }
-}
-
 /* The clocks a stream may take: 6 a pixel at most (paper, cubic), a few
  * per item; a unit that stops answering is a failure, not a hang. */
 static uint64_t clock_budget(size_t pixels, size_t items)
 {
     return 1000 + 8 * (uint64_t)pixels + 8 * (uint64_t)items;
-}
-
-static void offer(span_tb *s, size_t i)
-{
-    int64_t raw[UNIT_MAX_IO];
-    item_raws(s, i, raw, &s->in_ovf);
-    for (int p = 0; p < s->nin; p++) sim_write(s->io->in[p], raw[p]);
-    s->offered = i;
-}
-
-/* At each rising edge: the offered item was accepted if valid and ready
- * held before the edge; then offer the next. */
-static void driver(sim_proc *p)
-{
-    span_tb *s = p->data;
-    const unit_io *io = s->io;
-    if (s->started && io->in_valid->cur && io->in_ready->cur) {
-        if (s->next == 0) s->first_accept = sim_get_stats(s->ctx)->clocks;
-        s->next++;
-    }
-    s->started = 1;
-    if (s->next < s->nitems) {
-        if (s->offered != s->next) offer(s, s->next);
-        sim_write(io->in_valid, 1);
-    } else {
-        sim_write(io->in_valid, 0);
-    }
 }
 
 static void monitor(sim_proc *p)
@@ -104,22 +53,28 @@ static void monitor(sim_proc *p)
     }
 }
 
-/* Map the unit's input ports to item fields; 0, or -1 if it is not a span
- * unit. */
-static int map_inputs(const unit_desc *u, const unit_cfg *cfg, span_tb *s, const unit_fmts *f)
+/* Map the unit's input ports to item fields (the driver's records: each
+ * port's offset in tb_span_item, and whether an int); 0, or -1 if it is
+ * not a span unit. */
+static int map_inputs(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, size_t *off,
+                      unsigned char *is_int, sim_fx_conv *conv, int *nin, int *has_deg)
 {
+    static const size_t node[4] = { offsetof(tb_span_item, node[0]), offsetof(tb_span_item, node[1]),
+                                    offsetof(tb_span_item, node[2]), offsetof(tb_span_item, node[3]) };
     int k = 0, has_n = 0, has_dv = 0;
+    *has_deg = 0;
     for (int i = 0; i < u->nsigs && k < UNIT_MAX_IO; i++) {
         const char *nm = u->sigs[i].name;
         if (u->sigs[i].role != UNIT_SIG_IN) continue;
-        if (nm[0] == 'i' && nm[1] >= '1' && nm[1] <= '4' && !nm[2]) s->what[k] = IN_NODE + (nm[1] - '1');
-        else if (!strcmp(nm, "n")) { s->what[k] = IN_N; has_n = 1; }
-        else if (!strcmp(nm, "dv")) { s->what[k] = IN_DV; has_dv = 1; }
-        else if (!strcmp(nm, "deg")) s->what[k] = IN_DEG;
+        is_int[k] = 1;
+        if (nm[0] == 'i' && nm[1] >= '1' && nm[1] <= '4' && !nm[2]) { off[k] = node[nm[1] - '1']; is_int[k] = 0; }
+        else if (!strcmp(nm, "n")) { off[k] = offsetof(tb_span_item, n); has_n = 1; }
+        else if (!strcmp(nm, "dv")) { off[k] = offsetof(tb_span_item, dv); has_dv = 1; }
+        else if (!strcmp(nm, "deg")) { off[k] = offsetof(tb_span_item, deg); *has_deg = 1; }
         else return -1;
-        sim_fx_conv_init(&s->conv[k++], f->f[i], cfg->rnd, cfg->ovf);
+        sim_fx_conv_init(&conv[k++], f->f[i], cfg->rnd, cfg->ovf);
     }
-    s->nin = k;
+    *nin = k;
     return has_n && has_dv ? 0 : -1;
 }
 
@@ -160,13 +115,15 @@ static int prepare(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, 
 {
     memset(st, 0, sizeof *st);
     memset(s, 0, sizeof *s);
-    if (!u || map_inputs(u, cfg, s, f)) {
+    size_t off[UNIT_MAX_IO];
+    unsigned char is_int[UNIT_MAX_IO];
+    int nin = 0, has_deg = 0;
+    sim_fx_conv conv[UNIT_MAX_IO];
+    if (!u || map_inputs(u, cfg, f, off, is_int, conv, &nin, &has_deg)) {
         snprintf(err, errlen, "unit %s is not a span unit (inputs i1.., n, dv)", u ? u->name : "(none)");
         return -1;
     }
     if (cfg->L < 2 || cfg->L > 64) { snprintf(err, errlen, "%s: L = %d is outside 2..64", u->name, cfg->L); return -1; }
-    int has_deg = 0;
-    for (int p = 0; p < s->nin; p++) has_deg |= s->what[p] == IN_DEG;
     size_t total = 0;
     for (size_t i = 0; i < nitems; i++) {
         if (check_item(&items[i], i, cfg->L, has_deg, err, errlen)) return -1;
@@ -174,7 +131,8 @@ static int prepare(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, 
         st->items_deg2 += has_deg && items[i].deg == 2;
     }
     st->items = nitems;
-    s->cfg = cfg; s->items = items; s->nitems = nitems; s->offered = nitems; s->total = total;
+    tb_drive_recs(&s->drv, nin, items, sizeof *items, nitems, off, is_int, conv);
+    s->nitems = nitems; s->total = total;
     return 0;
 }
 
@@ -203,10 +161,11 @@ static int span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
     if (unbuilt) { rc = TB_BADINPUT; goto done; }
     sim_clock(c, clk, 5, 5);
     s.io = &io; s.ctx = c;
+    s.drv.io = &io; s.drv.ctx = c;
     s.y = io.out[0];
     s.lsb = ldexp(1.0, -io.out[0]->fmt.fbits);
     s.pix = pix; s.total = total;
-    sim_proc *drv = sim_proc_new(c, "tb.driver", driver, &s);
+    sim_proc *drv = sim_proc_new(c, "tb.driver", tb_drive_proc, &s.drv);
     sim_sensitive(drv, clk, SIM_EDGE_POS);
     sim_proc *mon = sim_proc_new(c, "tb.monitor", monitor, &s);
     sim_sensitive(mon, clk, SIM_EDGE_POS);
@@ -244,9 +203,9 @@ static int span_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
         snprintf(title, sizeof title, "%s: pixels out", u->name);
         if (rc == TB_OK && tb_wave_gtkw(c, vcd_path, title, lead, 2, err, errlen)) rc = TB_BADINPUT;
     }
-    if (rc == TB_OK) st->clocks = s.last_pixel - s.first_accept;
+    if (rc == TB_OK) st->clocks = s.last_pixel - s.drv.first_accept;
     st->pixels = s.got;
-    st->overflows = s.in_ovf + tb_scope_overflows(sc);
+    st->overflows = s.drv.in_ovf + tb_scope_overflows(sc);
     st->area_ge = sim_scope_area(sc);
     if (tog) st->energy_pj = tb_energy_pj(c, sc, kernel_toggles, tog, s.last_pixel, &st->toggles);
 done:
@@ -292,27 +251,9 @@ typedef struct lane_tb {
 
 /* The batch's arrays the lane testbench reads and writes. */
 typedef struct lane_io {
-    int64_t *in[UNIT_MAX_IO], *valid;          /* next values */
+    tb_drive_lanes w;                          /* the drivers' writes (next values) */
     const int64_t *in_valid, *in_ready, *out_valid, *y;
 } lane_io;
-
-/* Offer item i of lane t on the batch's inputs (offer's batch twin). */
-static void lane_offer(const lane_io *x, lane_tb *t, size_t i)
-{
-    int64_t raw[UNIT_MAX_IO];
-    item_raws(&t->s, i, raw, &t->s.in_ovf);
-    for (int p = 0; p < t->s.nin; p++) x->in[p][t->lane] = raw[p];
-    t->s.offered = i;
-}
-
-/* driver() in the kernel's initialization, which runs it once before any
- * edge: the first item offered (a lane in the batch has one at least). */
-static void lane_start(const lane_io *x, lane_tb *t)
-{
-    t->s.started = 1;
-    lane_offer(x, t, 0);
-    x->valid[t->lane] = 1;
-}
 
 /* What lane_edge reads of a lane at every edge, packed (two lanes a
  * cache line): the rest of lane_tb is read at an accept only. */
@@ -342,11 +283,7 @@ static inline int lane_edge(const lane_io *x, lane_hot *h, lane_tb *T, uint64_t 
         if (h->got == h->total) { T[h->i].s.last_pixel = e; last = 1; }
     }
     if (x->in_valid[l] && x->in_ready[l]) {
-        lane_tb *t = &T[h->i];
-        span_tb *s = &t->s;
-        if (s->next == 0) s->first_accept = e;
-        if (++s->next < s->nitems) lane_offer(x, t, s->next);
-        else x->valid[l] = 0;
+        tb_drive_lane_accept(&T[h->i].s.drv, &x->w, l, e);
     }
     return last;
 }
@@ -380,8 +317,8 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
     double area = sim_scope_area(sc), lsb = ldexp(1.0, -io.out[0]->fmt.fbits);
     lane_io x;
     memset(&x, 0, sizeof x);
-    for (int p = 0; p < UNIT_MAX_IO && io.in[p]; p++) x.in[p] = sim_batch_next(b, io.in[p]);
-    x.valid = sim_batch_next(b, io.in_valid);
+    for (int p = 0; p < UNIT_MAX_IO && io.in[p]; p++) x.w.in[p] = sim_batch_next(b, io.in[p]);
+    x.w.valid = sim_batch_next(b, io.in_valid);
     x.in_valid = sim_batch_val(b, io.in_valid);
     x.in_ready = sim_batch_val(b, io.in_ready);
     x.out_valid = sim_batch_val(b, io.out_valid);
@@ -394,7 +331,10 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
         lane_tb *t = &T[i];
         if (!t->in_batch) continue;
         t->s.io = &io; t->s.y = io.out[0]; t->s.lsb = lsb; t->s.pix = L[i].pix;
-        lane_start(&x, t);
+        /* the driver's run in the kernel's initialization, before any
+         * edge: the first item offered (a lane here has one at least) */
+        t->s.drv.started = 1;
+        tb_drive_lane_offer(&t->s.drv, &x.w, t->lane);
         act[active++] = (lane_hot){ L[i].pix, L[i].ref, t->lane, (uint32_t)i, t->s.got, t->s.total,
                                     clock_budget(t->s.total, t->s.nitems) };
     }
@@ -434,9 +374,9 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
             if (!t->in_batch) continue;
             if (sim_batch_overflowed(b, t->lane)) { t->in_batch = 0; continue; }
             tb_span_stats *st = &L[fin[k]].st;
-            st->clocks = t->s.last_pixel - t->s.first_accept;
+            st->clocks = t->s.last_pixel - t->s.drv.first_accept;
             st->pixels = t->s.got;
-            st->overflows = t->s.in_ovf + const_ovf;
+            st->overflows = t->s.drv.in_ovf + const_ovf;
             st->area_ge = area;
             if (L[fin[k]].energy) {
                 lane_count lc = { b, t->lane };
