@@ -127,12 +127,17 @@ static void reg_clean(void)
             if (reg_used[i] && reg_dir[i]) rmdir(reg_path[i]);
 }
 
+/* A set's move in progress (base_outset_commit): a signal that reaches
+ * another thread then waits for it, as the committing thread holds it. */
+static volatile sig_atomic_t moving, moved_sig;
+
 /* Only async-signal-safe calls: unlink, rmdir, signal, raise. The signal
  * is blocked while its handler runs, so the raise is delivered on return,
  * now with the default action. */
 static void on_signal(int sig)
 {
     int saved = errno;
+    if (moving) { moved_sig = sig; errno = saved; return; }
     reg_clean();
     signal(sig, SIG_DFL);
     raise(sig);
@@ -672,6 +677,7 @@ int base_outset_commit(base_outset *s, char *err, size_t errlen)
     sigaddset(&hold, SIGTERM);
     sigaddset(&hold, SIGHUP);
     pthread_sigmask(SIG_BLOCK, &hold, &was);
+    moving = 1;
     char **tgt = calloc((size_t)s->n + 1, sizeof *tgt), **old = calloc((size_t)s->n + 1, sizeof *old);
     char *pub = calloc((size_t)s->n + 1, 1);     /* renamed in */
     if (!tgt || !old || !pub) base_out_of_memory();
@@ -701,12 +707,14 @@ int base_outset_commit(base_outset *s, char *err, size_t errlen)
     for (int i = 0; i < s->n; i++) if (s->o[i]) base_out_abort(s->o[i]);
     free(tgt);
     free(old);
+    moving = 0;
     pthread_sigmask(SIG_SETMASK, &was, NULL);
     if (!rc) set_forget_made(s);
     else for (int i = s->nmade - 1; i >= 0; i--) { rmdir(s->made[i]); reg_remove_dir(s->made[i]); free(s->made[i]); }
     if (rc) { free(s->made); s->made = NULL; s->nmade = 0; }
     free(s->o);
     free(s);
+    if (moved_sig) raise(moved_sig);            /* one another thread took during the move */
     return rc;
 }
 

@@ -75,8 +75,8 @@ while read -r u sc <&3; do
     $S run "$u" --schedule "$sc" --reference --vcd "$T/r.vcd" >"$T/r.txt" 2>&1; rr=$?
     if [ "$rk" -ne "$rr" ] || [ ! -s "$T/k.vcd" ]; then
         fail "$n.vcd" "exit $rk on the kernel, $rr on the reference: $(head -c 200 "$T/r.txt")"
-    elif ! cmp -s "$T/k.vcd" "$T/r.vcd" || ! sed "s|$T/r\.vcd|$T/k.vcd|g" "$T/r.vcd.gtkw" | cmp -s "$T/k.vcd.gtkw" -; then
-        # (the .gtkw names its own path and the dump's)
+    elif ! cmp -s "$T/k.vcd" "$T/r.vcd" || ! sed 's|"r\.vcd|"k.vcd|g; s| r\.vcd\.gtkw$| k.vcd.gtkw|' "$T/r.vcd.gtkw" | cmp -s "$T/k.vcd.gtkw" -; then
+        # (the .gtkw names itself and the dump)
         fail "$n.vcd" "dumps differ: $(cmp "$T/k.vcd" "$T/r.vcd"; diff "$T/k.vcd.gtkw" "$T/r.vcd.gtkw" | head -4 | tr '\n' ' ')"
     elif [ "$(grep -v '^engine ' "$T/k.txt")" != "$(grep -v '^engine ' "$T/r.txt")" ] ||
          [ "$(sed -n 's/^engine kernel: //p' "$T/k.txt")" != "$(sed -n 's/^engine reference: //p' "$T/r.txt")" ]; then

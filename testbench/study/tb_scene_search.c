@@ -456,7 +456,8 @@ static int write_found(search *s, const report *rp, const char *outdir, char *er
 /* No formats found: an earlier search's DIR/found/ would mislead. */
 static void remove_found(const char *outdir)
 {
-    static const char *const files[] = { "ref.png", "hw.png", "degree.png", "region.png", "scene.json" };
+    static const char *const files[] = { "ref.png", "hw.png", "degree.png", "region.png", "ref-hw.png", "hw-nodes.png",
+                                         "degree-key.svg", "region-key.svg", "err-key.svg", "scene.json" };
     char path[1200];
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
         snprintf(path, sizeof path, "%s/found/%s", outdir, files[i]);
