@@ -118,6 +118,10 @@ static void cd_dir(char *buf, size_t len, const char *dir)
     snprintf(buf, len, "cd ");
     sq(buf, len, d);
     free(d);
+    /* the tools' own temporaries (iverilog's ivrl*) in the folder too: a
+     * signal that stops them midway leaves nothing in $TMPDIR */
+    size_t at = strlen(buf);
+    snprintf(buf + at, len - at, " && TMPDIR=\"$PWD\" && export TMPDIR");
 }
 
 /* The first line of a log that says "error" (else its first line), for a
