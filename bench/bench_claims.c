@@ -3,7 +3,7 @@
  * code. Machine-, compiler- and libm-dependent: that is why these figures
  * live here, in `make bench`, and not in `shadesim claims`, whose verdicts
  * use our hardware's clocks and are the same on every machine. */
-#include "vectors/claims.h"
+#include "testbench/study/tb_ref_claims.h"
 #include <stdio.h>
 
 int main(void)

@@ -18,26 +18,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The path of s below the unit's scope sc ("coef.div3_a.t1"), or -1 when
- * s is not below it. */
-static int rel_path(const sim_signal *s, const sim_scope *sc, char *buf, size_t len)
-{
-    const char *parts[64];
-    int n = 0;
-    parts[n++] = s->name;
-    const sim_scope *p = s->scope;
-    for (; p && p != sc && n < 64; p = p->parent) parts[n++] = p->name;
-    if (p != sc) return -1;
-    size_t off = 0;
-    buf[0] = 0;
-    for (int i = n - 1; i >= 0; i--) {
-        int k = snprintf(buf + off, len - off, "%s%s", parts[i], i ? "." : "");
-        if (k < 0 || (size_t)k >= len - off) return -1;
-        off += (size_t)k;
-    }
-    return 0;
-}
-
 typedef struct wr {
     FILE *f;
     const sim_scope *sc;
@@ -54,7 +34,7 @@ static int put_ref(wr *w, const char *key, const sim_signal *s)
 {
     char p[256];
     if (s == w->clk) snprintf(p, sizeof p, "%s", s->name);
-    else if (rel_path(s, w->sc, p, sizeof p) || !nl_name_ok(p)) {
+    else if (sim_signal_path_below(s, w->sc, p, sizeof p) || !nl_name_ok(p)) {
         snprintf(w->err, w->errlen, "signal %s is outside the unit's scope or has a name the text cannot hold",
                  s->name);
         return -1;

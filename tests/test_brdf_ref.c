@@ -1,12 +1,12 @@
 /* test_brdf_ref.c - the BRDF references (vectors/ref_brdf.c), their vector
- * models (vectors/ref_brdf_models.c) and the claims table (vectors/claims.c).
+ * models (vectors/ref_brdf_models.c) and the claims table (testbench/study/tb_ref_claims.c).
  *
  * The figures of docs/brdf.md (sec. 3 of the papers) are recomputed here from the formulas, written
  * out again in this file rather than taken from the code under test, and
  * then compared with both those figures and the claims table.
  */
 #include "tests/tst.h"
-#include "vectors/claims.h"
+#include "testbench/study/tb_ref_claims.h"
 #include "vectors/ref_brdf.h"
 #include "vectors/vectors.h"
 #include "vectors/ref_shading.h"

@@ -6,7 +6,7 @@
  * n's bits, the peak 1/(4m^2) of D. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
-#include "vectors/claims.h"
+#include "testbench/study/tb_ref_claims.h"
 #include <stdint.h>
 
 static const char *const UNITS[] = { "powg", "pow_n", "d_approx", "ward_approx", "div", "schlick", "mschlick" };

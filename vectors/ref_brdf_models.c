@@ -4,7 +4,7 @@
  * Expected outputs are the exact function each unit implements (e.g. D_g
  * with its base clamped at 0), not the physical model it approximates: a
  * testbench measures quantization error against these, while the
- * approximation error of each method is measured in claims.c.
+ * approximation error of each method is measured in testbench/study/tb_ref_claims.c.
  *
  * Generators: the first rows are fixed hard cases (endpoints, the clamp
  * point, ...), the rest are random draws from a stream seeded by (seed,

@@ -20,7 +20,7 @@
 #include "testbench/study/tb_sweep_chart.h"
 #include "testbench/study/tb_stability.h"
 #include "testbench/study/tb_claims.h"
-#include "vectors/claims.h"
+#include "testbench/study/tb_ref_claims.h"
 #include "base/base_out.h"
 #include <errno.h>
 #include <math.h>

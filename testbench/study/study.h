@@ -14,6 +14,8 @@
  *   tb_scene_search.h  the formats and the grid a scene needs, found by
  *                      rendering it
  *   tb_stability.h     where each method stops working (the stability atlas)
+ *   tb_ref_claims.h    the papers' claims on the double references (the
+ *                      accuracy rows, and the CPU speed claims for bench/)
  *   tb_speed_hw.h      the papers' speed claims as clocks x area of units
  *   tb_scene_claims.h  the face scene's claims through the hardware
  *   tb_factor_scene.h  the factorization paper's Fig. 1 on a scene,
@@ -34,6 +36,7 @@
 #include "testbench/study/tb_scene.h"
 #include "testbench/study/tb_scene_search.h"
 #include "testbench/study/tb_stability.h"
+#include "testbench/study/tb_ref_claims.h"
 #include "testbench/study/tb_speed_hw.h"
 #include "testbench/study/tb_scene_claims.h"
 #include "testbench/study/tb_factor_scene.h"

@@ -5,7 +5,7 @@
  * too, both through tb_claims_table, so they cannot disagree.
  *
  * The rows, in order and by kind:
- *   "accuracy"  vectors/claims.c on the double-precision references;
+ *   "accuracy"  testbench/study/tb_ref_claims.c on the double-precision references;
  *   "speed_hw"  the speed claims as clocks x area of our units
  *               (tb_speed_hw.h) at a width;
  *   "factor"    the factorization paper's (tb_factor_claims.h);
@@ -16,7 +16,7 @@
 #ifndef TB_CLAIMS_H
 #define TB_CLAIMS_H
 #include <stddef.h>
-#include "vectors/claims.h"
+#include "testbench/study/tb_ref_claims.h"
 #include "chart/chart.h"
 #include "testbench/study/tb_speed_hw.h"
 

@@ -6,7 +6,7 @@
  * --scene-res 256`, the defaults otherwise). docs/factorization.md. */
 #ifndef TB_FACTOR_CLAIMS_H
 #define TB_FACTOR_CLAIMS_H
-#include "vectors/claims.h"
+#include "testbench/study/tb_ref_claims.h"
 #include "vectors/ref_factor.h"
 #include "testbench/study/tb_factor_scene.h"
 

@@ -6,7 +6,7 @@
 #ifndef TB_FACTOR_STUDY_H
 #define TB_FACTOR_STUDY_H
 #include <stdio.h>
-#include "vectors/claims.h"
+#include "testbench/study/tb_ref_claims.h"
 #include "vectors/ref_factor.h"
 
 /* The header line of report.csv and study.csv, and one row: method

@@ -23,7 +23,7 @@
 #ifndef TB_SPEED_HW_H
 #define TB_SPEED_HW_H
 #include "testbench/tb.h"
-#include "vectors/claims.h"
+#include "testbench/study/tb_ref_claims.h"
 
 /* One unit run on its reference model's vectors at a width. */
 typedef struct tb_hw_point {

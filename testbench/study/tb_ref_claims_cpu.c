@@ -1,9 +1,9 @@
-/* claims_speed.c - the CPU speed claims (claims.h): D16 against
+/* tb_ref_claims_cpu.c - the CPU speed claims (tb_ref_claims.h): D16 against
  * Beckmann's D and Ward's 16th-power approximation against its
  * exponential, timed as float loops on this CPU. Timing-dependent: never
  * among claims_compute's rows.
  */
-#include "vectors/claims_int.h"
+#include "testbench/study/tb_ref_claims_int.h"
 #include <math.h>
 #include <stdio.h>
 #include <time.h>

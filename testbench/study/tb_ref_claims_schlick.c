@@ -1,8 +1,8 @@
-/* claims_schlick.c - the claims of Zavalniuk et al. (2022) against the
- * double references (claims_int.h): the Schlick and modified Schlick
+/* tb_ref_claims_schlick.c - the claims of Zavalniuk et al. (2022) against the
+ * double references (tb_ref_claims_int.h): the Schlick and modified Schlick
  * approximations of the Blinn specular term cos^n x.
  */
-#include "vectors/claims_int.h"
+#include "testbench/study/tb_ref_claims_int.h"
 #include "vectors/ref_brdf.h"
 #include <math.h>
 #include <stdio.h>

@@ -1,8 +1,8 @@
-/* claims_table.c - what the claim families (claims.c, claims_schlick.c,
- * claims_speed.c) share: the table's rows and the numerical helpers that
+/* tb_ref_claims_rows.c - what the claim families (tb_ref_claims.c, tb_ref_claims_schlick.c,
+ * tb_ref_claims_cpu.c) share: the table's rows and the numerical helpers that
  * measure a claim against the double references. A leaf, so that the
  * families call it and not each other's files. */
-#include "vectors/claims_int.h"
+#include "testbench/study/tb_ref_claims_int.h"
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>

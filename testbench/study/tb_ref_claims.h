@@ -1,4 +1,4 @@
-/* claims.h - each numerical claim of the papers next to what the double
+/* tb_ref_claims.h - each numerical claim of the papers next to what the double
  * references measure, as one table shared by `shadesim claims`, the report,
  * the docs and the tests.
  *
@@ -11,8 +11,8 @@
  * Where the paper's wording is qualitative ("high accuracy"), the note
  * states the criterion we apply. Percentages are in percent.
  */
-#ifndef CLAIMS_H
-#define CLAIMS_H
+#ifndef TB_REF_CLAIMS_H
+#define TB_REF_CLAIMS_H
 #include <stddef.h>
 
 #define CLAIMS_MAX 64          /* enough rows for claims_compute + claims_speed */

@@ -1,9 +1,9 @@
-/* claims.c - the papers' numerical claims against the double references
- * (see claims.h). One function per claim family; each fills rows of the
+/* tb_ref_claims.c - the papers' numerical claims against the double references
+ * (see tb_ref_claims.h). One function per claim family; each fills rows of the
  * table with the paper's statement, our measurement and a verdict that
  * follows from the numbers (nothing is hard-wired to the expected answer).
  */
-#include "vectors/claims_int.h"
+#include "testbench/study/tb_ref_claims_int.h"
 #include "vectors/ref_brdf.h"
 #include "vectors/ref_interp.h"
 #include "vectors/ref_shading.h"

@@ -1,19 +1,19 @@
-/* claims_int.h - what the files of the claims table share; not for use
- * outside them (the public interface is claims.h).
+/* tb_ref_claims_int.h - what the files of the claims table share; not for use
+ * outside them (the public interface is tb_ref_claims.h).
  *
- *   claims_table.c    the table's rows and the numerical helpers (a
+ *   tb_ref_claims_rows.c    the table's rows and the numerical helpers (a
  *                     leaf: the other files call it)
- *   claims.c          the whole table (claims_compute), the claims of
+ *   tb_ref_claims.c         the whole table (claims_compute), the claims of
  *                     Nechyporuk & Romanyuk (2020) and Romanyuk et al.
  *                     (SPIE): divide by 3, interpolation, D and Ward
  *                     approximations, node sets
- *   claims_schlick.c  the claims of Zavalniuk et al. (2022): Schlick and
+ *   tb_ref_claims_schlick.c the claims of Zavalniuk et al. (2022): Schlick and
  *                     modified Schlick against Blinn
- *   claims_speed.c    the CPU speed claims (timing; not in claims_compute)
+ *   tb_ref_claims_cpu.c     the CPU speed claims (timing; not in claims_compute)
  */
-#ifndef CLAIMS_INT_H
-#define CLAIMS_INT_H
-#include "vectors/claims.h"
+#ifndef TB_REF_CLAIMS_INT_H
+#define TB_REF_CLAIMS_INT_H
+#include "testbench/study/tb_ref_claims.h"
 
 #ifndef M_PI
 #define M_PI 3.14159265358979323846
