@@ -101,6 +101,88 @@ static sim_ival logic_eval(const sim_signal *y, const sim_prim_info *pi, const s
     return out;
 }
 
+/* An arithmetic element (add, subtract, multiply, shift, wire) of y over
+ * operand intervals x (pi->a's) and z (pi->b's): 0, or -1 for another
+ * kind. */
+static int arith(const sim_signal *y, const sim_prim_info *pi, sim_ival x, sim_ival z, sim_round r, sim_ovf o,
+                 sim_ival *pre, sim_ival *post)
+{
+    switch (sim_kind_eval(pi->kind)) {
+    case SIM_KIND_WIRE:
+        into(y, x, pi->a->fmt.fbits, r, o, pre, post);
+        return 0;
+    case SIM_KIND_ADD: case SIM_KIND_SUB: {
+        sim_ival s;
+        x = (sim_ival){ SIM_OP_ALIGN(sim_wide, x.lo, pi->sa), SIM_OP_ALIGN(sim_wide, x.hi, pi->sa) };
+        z = (sim_ival){ SIM_OP_ALIGN(sim_wide, z.lo, pi->sb), SIM_OP_ALIGN(sim_wide, z.hi, pi->sb) };
+        if (pi->kind == SIM_KIND_ADD) s = (sim_ival){ SIM_OP_ADD(sim_wide, x.lo, z.lo), SIM_OP_ADD(sim_wide, x.hi, z.hi) };
+        else s = (sim_ival){ SIM_OP_SUB(sim_wide, x.lo, z.hi), SIM_OP_SUB(sim_wide, x.hi, z.lo) };
+        into(y, s, pi->src_f, r, o, pre, post);
+        return 0;
+    }
+    case SIM_KIND_MUL: {
+        sim_wide c[4] = { SIM_OP_MUL(sim_wide, x.lo, z.lo), SIM_OP_MUL(sim_wide, x.lo, z.hi),
+                          SIM_OP_MUL(sim_wide, x.hi, z.lo), SIM_OP_MUL(sim_wide, x.hi, z.hi) };
+        sim_ival s = { c[0], c[0] };
+        for (int i = 1; i < 4; i++) s = sim_ival_hull(s, (sim_ival){ c[i], c[i] });
+        into(y, s, pi->src_f, r, o, pre, post);
+        return 0;
+    }
+    case SIM_KIND_SHIFT:
+        /* x * 2^sh is x's raw with fewer fraction bits, scaled up (sa)
+         * past the binary point */
+        into(y, (sim_ival){ SIM_OP_ALIGN(sim_wide, x.lo, pi->sa), SIM_OP_ALIGN(sim_wide, x.hi, pi->sa) }, pi->src_f, r,
+             o, pre, post);
+        return 0;
+    default:
+        return -1;
+    }
+}
+
+/* A guarded block key: the pass signal is a one-input logic element of
+ * some z (pass = g(z)), and the value x it passes is z itself or an
+ * arithmetic element with z as an operand. x and the pass signal are
+ * then computed from the same value of z in the same delta cycle (one
+ * element each from z), so whenever the key passes, z is among the
+ * values where g is nonzero, and x is x's element over those alone. The
+ * clamp max(0, 1 - P) is such a key (pass = P <= 1, x = 1 - P): without
+ * the guard its interval is 1 - P over all of P's, below 0. The values
+ * where g passes are found by trying z's values from each end of its
+ * interval, at most GUARD_SCAN each (the interval stays as it was past
+ * that). */
+#define GUARD_SCAN (1 << 20)
+
+static int passes(const sim_prim_info *g, const sim_signal *gy, int64_t v)
+{
+    return sim__canon(g->fn(&v, g->user), gy->fmt) != 0;
+}
+
+static void guarded(const sim_prim_info *pi, const sim_ival *vals, sim_ival *x)
+{
+    sim_prim_info g, e;
+    if (!pi->c || !pi->a || sim_prim_describe(pi->c, &g) || sim_kind_eval(g.kind) != SIM_KIND_LOGIC || g.n != 1) return;
+    const sim_signal *z = g.in[0];
+    sim_ival zv = vals[z->index];
+    if (zv.lo < INT64_MIN || zv.hi > INT64_MAX) return;
+    sim_wide lo = zv.lo, hi = zv.hi;
+    for (sim_wide k = 0; lo <= zv.hi && !passes(&g, pi->c, (int64_t)lo); lo++)
+        if (++k > GUARD_SCAN) return;
+    if (lo > zv.hi) return;                     /* never passes: the key's 0 alone (left to the caller) */
+    for (sim_wide k = 0; hi > lo && !passes(&g, pi->c, (int64_t)hi); hi--)
+        if (++k > GUARD_SCAN) return;
+    sim_ival zp = { lo, hi }, pre, post;
+    if (pi->a == z) { *x = zp; return; }
+    if (sim_prim_describe(pi->a, &e) || (e.a != z && e.b != z)) return;
+    sim_ival ea = e.a ? vals[e.a->index] : (sim_ival){ 0, 0 }, eb = e.b ? vals[e.b->index] : (sim_ival){ 0, 0 };
+    if (e.a == z) ea = zp;
+    if (e.b == z) eb = zp;
+    if (arith(pi->a, &e, ea, eb, sim_fmt_round(pi->a->fmt, e.r), sim_fmt_ovf(pi->a->fmt, e.o), &pre, &post)) return;
+    /* both sound: their intersection */
+    if (post.lo > x->lo) x->lo = post.lo;
+    if (post.hi < x->hi) x->hi = post.hi;
+    if (x->lo > x->hi) x->hi = x->lo;           /* cannot happen; stay an interval */
+}
+
 int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_ival *post)
 {
     sim_prim_info pi;
@@ -116,8 +198,7 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
         return 0;
     case SIM_KIND_WIRE:
         if (!pi.a) return -1;
-        into(y, vals[pi.a->index], pi.a->fmt.fbits, r, o, pre, post);
-        return 0;
+        return arith(y, &pi, vals[pi.a->index], (sim_ival){ 0, 0 }, r, o, pre, post);
     case SIM_KIND_REG: {
         sim_ival cur = vals[y->index];
         sim_ival rst = pi.rst ? vals[pi.rst->index] : (sim_ival){ 0, 0 };
@@ -149,36 +230,16 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
         sim_ival pass = vals[pi.c->index];
         if (has_zero(pass)) take(&any, pre, post, (sim_ival){ 0, 0 }, (sim_ival){ 0, 0 });
         if (has_nonzero(pass)) {
-            into(y, vals[pi.a->index], pi.a->fmt.fbits, r, o, &p, &q);
+            sim_ival x = vals[pi.a->index];
+            if (has_zero(pass)) guarded(&pi, vals, &x);
+            into(y, x, pi.a->fmt.fbits, r, o, &p, &q);
             take(&any, pre, post, p, q);
         }
         return 0;
     }
-    case SIM_KIND_ADD: case SIM_KIND_SUB: {
-        sim_ival x = vals[pi.a->index], z = vals[pi.b->index], s;
-        x = (sim_ival){ SIM_OP_ALIGN(sim_wide, x.lo, pi.sa), SIM_OP_ALIGN(sim_wide, x.hi, pi.sa) };
-        z = (sim_ival){ SIM_OP_ALIGN(sim_wide, z.lo, pi.sb), SIM_OP_ALIGN(sim_wide, z.hi, pi.sb) };
-        if (pi.kind == SIM_KIND_ADD) s = (sim_ival){ SIM_OP_ADD(sim_wide, x.lo, z.lo), SIM_OP_ADD(sim_wide, x.hi, z.hi) };
-        else s = (sim_ival){ SIM_OP_SUB(sim_wide, x.lo, z.hi), SIM_OP_SUB(sim_wide, x.hi, z.lo) };
-        into(y, s, pi.src_f, r, o, pre, post);
-        return 0;
-    }
-    case SIM_KIND_MUL: {
-        sim_ival x = vals[pi.a->index], z = vals[pi.b->index];
-        sim_wide c[4] = { SIM_OP_MUL(sim_wide, x.lo, z.lo), SIM_OP_MUL(sim_wide, x.lo, z.hi),
-                          SIM_OP_MUL(sim_wide, x.hi, z.lo), SIM_OP_MUL(sim_wide, x.hi, z.hi) };
-        sim_ival s = { c[0], c[0] };
-        for (int i = 1; i < 4; i++) s = sim_ival_hull(s, (sim_ival){ c[i], c[i] });
-        into(y, s, pi.src_f, r, o, pre, post);
-        return 0;
-    }
-    case SIM_KIND_SHIFT: {
-        /* x * 2^sh is x's raw with fewer fraction bits, scaled up (sa)
-         * past the binary point */
-        sim_ival x = vals[pi.a->index];
-        into(y, (sim_ival){ SIM_OP_ALIGN(sim_wide, x.lo, pi.sa), SIM_OP_ALIGN(sim_wide, x.hi, pi.sa) }, pi.src_f, r, o,
-             pre, post);
-        return 0;
+    case SIM_KIND_ADD: case SIM_KIND_SUB: case SIM_KIND_MUL: case SIM_KIND_SHIFT: {
+        sim_ival none = { 0, 0 };
+        return arith(y, &pi, vals[pi.a->index], pi.b ? vals[pi.b->index] : none, r, o, pre, post);
     }
     case SIM_KIND_LOGIC:
         *pre = *post = logic_eval(y, &pi, vals);

@@ -16,6 +16,11 @@
  * saturated, or wrapped: the wrapped ends when the set does not straddle
  * a wrap, the whole format otherwise).
  *
+ * A block key whose pass is a one-input logic function g(z) of the signal z
+ * it passes, or of an operand of the element that computes what it passes,
+ * passes only values computed from a z where g is nonzero: its interval
+ * is taken over those (sim_ival.c, guarded).
+ *
  * Knows nothing of units: the caller holds one interval per signal,
  * indexed by sim_signal.index, and drives inputs and the clock itself.
  */

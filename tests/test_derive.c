@@ -57,6 +57,81 @@ static void ival_matches_brute_force(void)
         }
 }
 
+/* A block key guarded by a logic function of z, passing an element of z
+ * (1 - z, z * w) or z one clock late (a register): for every interval of
+ * z, the key's interval is exactly the hull of its values over every z
+ * (and w) by sim_elem_eval, the one executable definition: narrowed to
+ * the z where the guard passes when the passed value is computed from z
+ * in the same delta, left whole through a register (whose z is another
+ * clock's). The guard is not monotone (z % 5 != 0 and z < 20), so only
+ * the ends of where it passes count. */
+static int64_t guard_fn(const int64_t *in, void *u) { (void)u; return in[0] % 5 != 0 && in[0] < 20; }
+
+static sim_wide elem_at(const sim_signal *y, const int64_t *in)
+{
+    sim_prim_info e;
+    int64_t out = 0;
+    int ovf;
+    sim_prim_describe(y, &e);
+    sim_elem_eval(&e, in, &out, &ovf);
+    return out;
+}
+
+static void ival_guarded_key(void)
+{
+    for (int form = 0; form < 3; form++) {
+        sim_ctx *c = sim_new();
+        sim_fmt fz, fw, fy, u1;
+        sim_fmt_make(0, 3, 2, &fz, NULL, 0);     /* z: u3.2, raws 0..31 */
+        sim_fmt_make(1, 3, 1, &fw, NULL, 0);
+        sim_fmt_make(1, 7, 2, &fy, NULL, 0);
+        sim_fmt_make(0, 1, 0, &u1, NULL, 0);
+        sim_signal *clk = sim_bit_new(c, NULL, "clk", SIM_KIND_CLOCK);
+        sim_signal *z = sim_signal_new(c, NULL, "z", fz, SIM_KIND_INPUT);
+        sim_signal *w = sim_signal_new(c, NULL, "w", fw, SIM_KIND_INPUT);
+        sim_signal *one = sim_const(c, NULL, "one", fy, 1.0);
+        sim_signal *pass = sim_logic(c, NULL, "pass", u1, 1, &z, guard_fn, NULL, 1);
+        sim_signal *x = form == 0 ? sim_sub(c, NULL, "x", fy, one, z) : form == 1 ? sim_mul(c, NULL, "x", fy, z, w)
+                      : sim_reg(c, NULL, "x", fy, clk, z, NULL, NULL, 0);
+        sim_signal *k = sim_bk(c, NULL, "k", fy, pass, x);
+        sim_ival v[16], pre, post;
+        memset(v, 0, sizeof v);
+        v[one->index] = (sim_ival){ one->cur, one->cur };
+        v[w->index] = (sim_ival){ -5, 3 };
+        int bad = 0;
+        for (int64_t lo = 0; lo < 32; lo++)
+            for (int64_t hi = lo; hi < 32; hi++) {
+                v[z->index] = (sim_ival){ lo, hi };
+                if (form == 2) v[x->index] = (sim_ival){ lo, hi };    /* the register's own: z's */
+                else sim_ival_eval(x, v, &v[x->index], &post);
+                sim_ival_eval(pass, v, &v[pass->index], &post);
+                sim_ival_eval(k, v, &pre, &post);
+                /* brute force: z now (the guard's), z a clock before (the register's), w */
+                sim_wide blo = 0, bhi = 0;
+                int first = 1;
+                for (int64_t zn = lo; zn <= hi; zn++)
+                    for (int64_t zp = lo; zp <= (form == 2 ? hi : lo); zp++)
+                        for (int64_t wv = v[w->index].lo; wv <= (form == 1 ? v[w->index].hi : v[w->index].lo); wv++) {
+                            int64_t in[2] = { form == 0 ? one->cur : zn, form == 0 ? zn : wv };
+                            int64_t xv = form == 2 ? zp : (int64_t)elem_at(x, in);
+                            int64_t kin[2] = { guard_fn(&zn, NULL), xv };
+                            sim_wide kv = elem_at(k, kin);
+                            if (first || kv < blo) blo = kv;
+                            if (first || kv > bhi) bhi = kv;
+                            first = 0;
+                        }
+                if (pre.lo != blo || pre.hi != bhi) {
+                    if (!bad++)
+                        TST_CHECK(0, "form %d, z raws [%lld, %lld]: key [%lld, %lld], brute force [%lld, %lld]", form,
+                                  (long long)lo, (long long)hi, (long long)pre.lo, (long long)pre.hi, (long long)blo,
+                                  (long long)bhi);
+                }
+            }
+        TST_EQ_INT(bad, 0);
+        sim_free(c);
+    }
+}
+
 /* Mux with a data select, block key with a data pass, register with an
  * unknown enable: the hull of the outcomes; with known ones, exactly the
  * chosen one. */
@@ -210,6 +285,9 @@ static void horner3_every_schedule(void)
 static void horner2_contains(void) { check_unit("horner2", 0, 16); }
 static void coef3_n1_contains(void) { check_unit("coef3_n1", 0, 16); }
 static void div3_contains(void) { check_unit("div3", 0, 16); }
+/* the clamp max(0, 1 - P): a guarded block key (ival_guarded_key) */
+static void d_approx_contains(void) { check_unit("d_approx", 0, 16); check_unit("d_approx", 0, 10); }
+static void ward_approx_contains(void) { check_unit("ward_approx", 0, 16); }
 /* A span unit's handshake depends on its data (the span's pixel count):
  * not derived, refused with a message rather than a wrong interval. */
 static void span3_refused(void)
@@ -251,11 +329,14 @@ int main(void)
 {
     TST_RUN(ival_matches_brute_force);
     TST_RUN(ival_selects);
+    TST_RUN(ival_guarded_key);
     TST_RUN(horner3_format_ranges_by_hand);
     TST_RUN(horner3_every_schedule);
     TST_RUN(horner2_contains);
     TST_RUN(coef3_n1_contains);
     TST_RUN(div3_contains);
+    TST_RUN(d_approx_contains);
+    TST_RUN(ward_approx_contains);
     TST_RUN(span3_refused);
     TST_EXIT();
 }
