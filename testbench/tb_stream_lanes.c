@@ -1,0 +1,250 @@
+/* tb_stream_lanes.c - tb_run_stream on the batch's lanes (tb_stream.h): a
+ * vector file or a pipe of any length, read a block at a time, its items
+ * simulated a wave at a time (tb_lanes.h), memory independent of its
+ * length.
+ *
+ * A wave: the rows read (the first block alone, then blocks up to
+ * WAVE_ITEMS items), each item prepared (tb_prep: the quantized inputs,
+ * what the unit should give) on the threads, the wave's pieces simulated
+ * side by side and joined to the stream, then every item whose beats are
+ * all in folded into the metrics in item order (tb_acc: the sums added in
+ * the same order as the kernel's run, so the same bytes) and handed to the
+ * caller (--out). The wave's last items stay at the front of the buffer
+ * for the next wave: its first lane's warm-up, and the items still in
+ * flight at the junction.
+ *
+ * The first wave is the first block alone, so that when the lanes do not
+ * take the stream there (a unit they cannot evaluate, an overflow in the
+ * first rows), the stream can be handed back unread to the kernel, pipes
+ * too.
+ */
+#include "testbench/tb_stream.h"
+#include "testbench/tb_lanes.h"
+#include "testbench/tb_energy.h"
+#include "base/base_out.h"
+#include "base/base_par.h"
+#include <stdlib.h>
+#include <string.h>
+
+/* Items a wave takes before it is simulated (about 256 lanes of 512). */
+#define WAVE_ITEMS ((size_t)1 << 17)
+
+/* A wave's items by position in the buffer. */
+typedef struct wbuf {
+    size_t cap;
+    int n_in, nv, beats, ncol;  /* ncol: a row's inputs and expected values */
+    double   *rows;             /* [pos][ncol] */
+    int64_t  *in_raw;           /* [pos][n_in] */
+    int64_t  *raw;              /* [pos][nv] */
+    double   *ideal;            /* [pos][4][nv]: ideal, ideal_r, ideal_u, ref_u */
+    sim_dy   *exact, *den, *hi; /* [pos][nv], where the unit has them */
+    unsigned char *exact_ok;    /* [pos] */
+    uint64_t *cycle;            /* [pos][beat] */
+} wbuf;
+
+static void *grow(void *p, size_t n, size_t size)
+{
+    if (!size) return p;
+    void *q = realloc(p, (n ? n : 1) * size);
+    if (!q) base_out_of_memory();
+    return q;
+}
+
+/* Room for cap items (kept as they are). */
+static void wbuf_reserve(wbuf *B, size_t cap, int has_exact, int has_den, int has_hi)
+{
+    if (cap <= B->cap) return;
+    size_t nv = (size_t)B->nv;
+    B->rows = grow(B->rows, cap, (size_t)B->ncol * sizeof *B->rows);
+    B->in_raw = grow(B->in_raw, cap, (size_t)B->n_in * sizeof *B->in_raw);
+    B->raw = grow(B->raw, cap, nv * sizeof *B->raw);
+    B->ideal = grow(B->ideal, cap, 4 * nv * sizeof *B->ideal);
+    if (has_exact) B->exact = grow(B->exact, cap, nv * sizeof *B->exact);
+    if (has_den) B->den = grow(B->den, cap, nv * sizeof *B->den);
+    if (has_hi) B->hi = grow(B->hi, cap, nv * sizeof *B->hi);
+    B->exact_ok = grow(B->exact_ok, cap, 1);
+    B->cycle = grow(B->cycle, cap, (size_t)B->beats * sizeof *B->cycle);
+    B->cap = cap;
+}
+
+/* Items [k, n) moved to the front. */
+static void wbuf_shift(wbuf *B, size_t k, size_t n)
+{
+    size_t m = n - k, nv = (size_t)B->nv;
+#define SHIFT(a, per) do { if (a) memmove((a), (a) + k * (per), m * (per) * sizeof *(a)); } while (0)
+    SHIFT(B->rows, (size_t)B->ncol);
+    SHIFT(B->in_raw, (size_t)B->n_in);
+    SHIFT(B->raw, nv);
+    SHIFT(B->ideal, 4 * nv);
+    SHIFT(B->exact, nv);
+    SHIFT(B->den, nv);
+    SHIFT(B->hi, nv);
+    SHIFT(B->exact_ok, (size_t)1);
+    SHIFT(B->cycle, (size_t)B->beats);
+#undef SHIFT
+}
+
+static void wbuf_free(wbuf *B)
+{
+    free(B->rows); free(B->in_raw); free(B->raw); free(B->ideal);
+    free(B->exact); free(B->den); free(B->hi); free(B->exact_ok); free(B->cycle);
+}
+
+static tb_item wbuf_item(const wbuf *B, size_t pos)
+{
+    size_t nv = (size_t)B->nv;
+    double *id = B->ideal + pos * 4 * nv;
+    tb_item it = { B->in_raw + pos * (size_t)B->n_in, id, id + nv, id + 2 * nv, id + 3 * nv,
+                   B->exact ? B->exact + pos * nv : NULL, B->den ? B->den + pos * nv : NULL,
+                   B->hi ? B->hi + pos * nv : NULL, B->exact_ok + pos };
+    return it;
+}
+
+/* The preparation of items [from, to) in chunks on the threads, each
+ * chunk's input overflows its own (summed after: whole numbers). */
+#define PREP_CHUNKS 16
+typedef struct prep_job {
+    const tb_prep_ctx *pc;
+    wbuf *B;
+    size_t from, to;
+    uint64_t ovf[PREP_CHUNKS][UNIT_MAX_IO];
+} prep_job;
+
+static void prep_chunk(void *ctx, size_t c)
+{
+    prep_job *j = ctx;
+    size_t n = j->to - j->from, a = j->from + n * c / PREP_CHUNKS, b = j->from + n * (c + 1) / PREP_CHUNKS;
+    for (size_t p = a; p < b; p++) {
+        tb_item it = wbuf_item(j->B, p);
+        tb_prep(j->pc, j->B->rows + p * (size_t)j->B->ncol, &it, j->ovf[c]);
+    }
+}
+
+/* What the waves carry from one to the next. */
+typedef struct sl_state {
+    size_t   base;              /* the stream's number of the item at pos 0 */
+    size_t   n;                 /* items in the buffer */
+    size_t   acc_next;          /* the stream's next item for the metrics */
+    uint64_t first_cycle, last_item_cycle, last_cycle;
+} sl_state;
+
+/* Items whose beats are all in (beats_done of the stream's) into the
+ * metrics and to the caller, in item order. */
+static void fold(sl_state *s, const wbuf *B, size_t beats_done, tb_acc *acc, tb_result *r, tb_row_fn row,
+                 void *row_data)
+{
+    size_t nb = (size_t)B->beats;
+    while ((s->acc_next + 1) * nb <= beats_done) {
+        size_t it = s->acc_next, pos = it - s->base;
+        const uint64_t *cyc = B->cycle + pos * nb;
+        const int64_t *raw = B->raw + pos * (size_t)B->nv;
+        const double *expected = B->rows + pos * (size_t)B->ncol + B->n_in;
+        tb_item ti = wbuf_item(B, pos);
+        if (it == 0) s->first_cycle = cyc[0];
+        s->last_item_cycle = cyc[0];
+        s->last_cycle = cyc[nb - 1];
+        tb_acc_item(acc, r, it, raw, expected, &ti);
+        if (row) row(row_data, r, it, cyc[0], raw, expected);
+        s->acc_next++;
+    }
+}
+
+/* The next wave's rows into the buffer from pos s->n on: the first block
+ * alone for the first wave, else blocks up to WAVE_ITEMS. 0, or -1 with
+ * err (a bad row). *last: the file's end was read. */
+static int read_wave(vec_stream *vs, wbuf *B, sl_state *s, const unit_desc *u, int *last, char *err, size_t errlen)
+{
+    size_t start = s->n;
+    int first = s->base == 0 && s->n == 0;
+    *last = 0;
+    do {
+        const vec_set *rows;
+        int rc = vec_stream_next(vs, &rows);
+        if (rc < 0) { snprintf(err, errlen, "%s", vec_stream_error(vs)); return -1; }
+        if (rc == 0) break;
+        wbuf_reserve(B, s->n + rows->n_rows, u->ideal_exact || u->ideal_ratio || u->ideal_interval,
+                     !!u->ideal_ratio, !!u->ideal_interval);
+        memcpy(B->rows + s->n * (size_t)B->ncol, rows->data, rows->n_rows * (size_t)B->ncol * sizeof *B->rows);
+        s->n += rows->n_rows;
+    } while (!first && !vec_stream_done(vs) && s->n - start < WAVE_ITEMS);
+    *last = vec_stream_done(vs);
+    return 0;
+}
+
+int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, vec_stream *vs,
+                        tb_row_fn row, void *row_data, int threads, tb_result *r, int *rewound,
+                        char *err, size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    r->unit = u; r->cfg = *cfg; r->fmts = *fmts;
+    r->n_in = unit_n_in(u); r->n_out = unit_n_out(u); r->beats = u->beats(cfg);
+    *rewound = 0;
+    if (threads < 1) threads = 1;
+    char why[300];
+    tb_lanes *x = tb_lanes_new(u, cfg, fmts, threads, why, sizeof why);
+    if (!x) {
+        snprintf(r->engine_why, sizeof r->engine_why, "%.150s", why);
+        *rewound = 1;
+        return TB_STREAM_KERNEL;
+    }
+    tb_prep_ctx pc;
+    tb_prep_init(&pc, u, cfg, fmts);
+    tb_stream_outputs(r, u, cfg, fmts);
+    tb_acc acc;
+    tb_acc_begin(&acc, r);
+    wbuf B = { 0 };
+    B.n_in = r->n_in; B.nv = pc.nv; B.beats = r->beats; B.ncol = r->n_in + pc.nv;
+    sl_state s = { 0 };
+    uint64_t in_ovf[UNIT_MAX_IO] = { 0 };
+    prep_job *pj = calloc(1, sizeof *pj);
+    if (!pj) base_out_of_memory();
+    vec_stream_threads(vs, threads);
+    int rc = TB_OK, last = 0;
+    while (!last) {
+        size_t own = s.n;
+        if (read_wave(vs, &B, &s, u, &last, err, errlen)) { rc = TB_BADINPUT; goto done; }
+        if (s.n == own) {       /* the file ended with the wave before */
+            if (s.base == 0 && s.n == 0) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }
+            last = 1;
+        }
+        /* the wave's own items prepared */
+        memset(pj, 0, sizeof *pj);
+        pj->pc = &pc; pj->B = &B; pj->from = own; pj->to = s.n;
+        base_par_for(PREP_CHUNKS, threads, prep_chunk, pj);
+        for (int c = 0; c < PREP_CHUNKS; c++)
+            for (int i = 0; i < r->n_in; i++) in_ovf[i] += pj->ovf[c][i];
+        tb_lanes_wave w = { B.in_raw, s.n, own, s.base, last, B.cycle, B.raw, 0 };
+        if (s.n == own) w.own = 0;     /* (not reached: the file's end is known with its last rows) */
+        if (tb_lanes_wave_run(x, &w, why, sizeof why)) {
+            snprintf(r->engine_why, sizeof r->engine_why, "%.150s", why);
+            if (s.base == 0 && own == 0) { vec_stream_unread(vs); *rewound = 1; }
+            r->vectors = s.base + s.n;
+            rc = TB_STREAM_KERNEL;
+            goto done;
+        }
+        fold(&s, &B, w.beats_done, &acc, r, row, row_data);
+        if (last) break;
+        /* keep the items the next wave's warm-ups reach back to, and those not yet folded */
+        size_t keep = s.n > TB_LANES_WARM_MAX ? s.n - TB_LANES_WARM_MAX : 0;
+        if (s.acc_next - s.base < keep) keep = s.acc_next - s.base;
+        wbuf_shift(&B, keep, s.n);
+        s.base += keep;
+        s.n -= keep;
+    }
+    r->vectors = s.base + s.n;
+    tb_lanes_out lo;
+    tb_lanes_result(x, &lo);
+    r->lanes = lo.lanes;
+    r->stats.clocks = lo.clocks;
+    /* no lane overflowed: the unit's counts are its constants' (at build) */
+    tb_stream_figures(r, r->vectors, s.first_cycle, s.last_item_cycle, s.last_cycle, lo.c, lo.sc, in_ovf);
+    tb_range_finish(lo.rg, lo.sc, lo.io, in_ovf, r);
+    tb_energy_fill_counts(r, lo.rg, lo.toggles, NULL, lo.c, r->stats.clocks);
+    tb_acc_end(&acc, r);
+    tb_verdict(r, NULL);
+done:
+    free(pj);
+    wbuf_free(&B);
+    tb_lanes_free(x);
+    return rc;
+}
