@@ -21,9 +21,10 @@
 
 /* Lanes of at least this many items of their own: the warm-up is paid
  * once per lane. A stream in one wave takes at most LANES_ONE lanes (one
- * batch); the waves of a longer one LANES_WAVE, in batches of at most
- * LANES_GROUP. */
+ * batch); the waves of a longer one LANES_WAVE, of at least
+ * LANES_MIN_WAVE items each, in batches of at most LANES_GROUP. */
 #define LANES_MIN_ITEMS 32
+#define LANES_MIN_WAVE  128
 #define LANES_ONE       64
 #define LANES_WAVE      256
 #define LANES_GROUP     64
@@ -162,7 +163,7 @@ static void snap_range(const sim_batch *b, const tb_range *g, uint32_t l, int64_
  * at most LANES_ONE, and fewer than 2 stays on the kernel (0). */
 static size_t lanes_count(size_t n, int single)
 {
-    size_t L = n / LANES_MIN_ITEMS, most = single ? LANES_ONE : LANES_WAVE;
+    size_t L = n / (single ? LANES_MIN_ITEMS : LANES_MIN_WAVE), most = single ? LANES_ONE : LANES_WAVE;
     if (L > most) L = most;
     if (L >= 8) L &= ~(size_t)7;        /* the vector loops take multiples of their width */
     if (single) return L < 2 ? 0 : L;

@@ -3,8 +3,8 @@
  * simulated a wave at a time (tb_lanes.h), memory independent of its
  * length.
  *
- * A wave: the rows read (the first block alone, then blocks up to
- * WAVE_ITEMS items), each item prepared (tb_prep: the quantized inputs,
+ * A wave: the rows read (the first block alone, then blocks up to a
+ * wave's items), each item prepared (tb_prep: the quantized inputs,
  * what the unit should give) on the threads, the wave's pieces simulated
  * side by side and joined to the stream, then every item whose beats are
  * all in folded into the metrics in item order (tb_acc: the sums added in
@@ -26,8 +26,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Items a wave takes before it is simulated (about 256 lanes of 512). */
-#define WAVE_ITEMS ((size_t)1 << 17)
+/* A wave takes items up to about WAVE_BYTES of their rows and prepared
+ * figures (a unit with many output beats an item takes fewer), between
+ * WAVE_MIN and WAVE_MAX items (256 lanes of 512). */
+#define WAVE_BYTES ((size_t)24 << 20)
+#define WAVE_MIN   ((size_t)1 << 12)
+#define WAVE_MAX   ((size_t)1 << 17)
 
 /* A wave's items by position in the buffer. */
 typedef struct wbuf {
@@ -152,7 +156,8 @@ static void fold(sl_state *s, const wbuf *B, size_t beats_done, tb_acc *acc, tb_
 /* The next wave's rows into the buffer from pos s->n on: the first block
  * alone for the first wave, else blocks up to WAVE_ITEMS. 0, or -1 with
  * err (a bad row). *last: the file's end was read. */
-static int read_wave(vec_stream *vs, wbuf *B, sl_state *s, const unit_desc *u, int *last, char *err, size_t errlen)
+static int read_wave(vec_stream *vs, wbuf *B, sl_state *s, const unit_desc *u, size_t most, int *last, char *err,
+                     size_t errlen)
 {
     size_t start = s->n;
     int first = s->base == 0 && s->n == 0;
@@ -166,7 +171,7 @@ static int read_wave(vec_stream *vs, wbuf *B, sl_state *s, const unit_desc *u, i
                      !!u->ideal_ratio, !!u->ideal_interval);
         memcpy(B->rows + s->n * (size_t)B->ncol, rows->data, rows->n_rows * (size_t)B->ncol * sizeof *B->rows);
         s->n += rows->n_rows;
-    } while (!first && !vec_stream_done(vs) && s->n - start < WAVE_ITEMS);
+    } while (!first && !vec_stream_done(vs) && s->n - start < most);
     *last = vec_stream_done(vs);
     return 0;
 }
@@ -194,6 +199,11 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     tb_acc_begin(&acc, r);
     wbuf B = { 0 };
     B.n_in = r->n_in; B.nv = pc.nv; B.beats = r->beats; B.ncol = r->n_in + pc.nv;
+    size_t nv = (size_t)pc.nv, ndy = (size_t)!!(u->ideal_exact || u->ideal_ratio || u->ideal_interval)
+                                   + !!u->ideal_ratio + !!u->ideal_interval;
+    size_t per = (size_t)B.ncol * 8 + (size_t)B.n_in * 8 + nv * (8 + 32 + ndy * sizeof(sim_dy)) + 1 + (size_t)B.beats * 8;
+    size_t most = WAVE_BYTES / per;
+    most = most < WAVE_MIN ? WAVE_MIN : most > WAVE_MAX ? WAVE_MAX : most;
     sl_state s = { 0 };
     uint64_t in_ovf[UNIT_MAX_IO] = { 0 };
     prep_job *pj = calloc(1, sizeof *pj);
@@ -202,11 +212,8 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     int rc = TB_OK, last = 0;
     while (!last) {
         size_t own = s.n;
-        if (read_wave(vs, &B, &s, u, &last, err, errlen)) { rc = TB_BADINPUT; goto done; }
-        if (s.n == own) {       /* the file ended with the wave before */
-            if (s.base == 0 && s.n == 0) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }
-            last = 1;
-        }
+        if (read_wave(vs, &B, &s, u, most, &last, err, errlen)) { rc = TB_BADINPUT; goto done; }
+        if (s.n == own) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }   /* (the reader says it first) */
         /* the wave's own items prepared */
         memset(pj, 0, sizeof *pj);
         pj->pc = &pc; pj->B = &B; pj->from = own; pj->to = s.n;
@@ -214,7 +221,6 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         for (int c = 0; c < PREP_CHUNKS; c++)
             for (int i = 0; i < r->n_in; i++) in_ovf[i] += pj->ovf[c][i];
         tb_lanes_wave w = { B.in_raw, s.n, own, s.base, last, B.cycle, B.raw, 0 };
-        if (s.n == own) w.own = 0;     /* (not reached: the file's end is known with its last rows) */
         if (tb_lanes_wave_run(x, &w, why, sizeof why)) {
             snprintf(r->engine_why, sizeof r->engine_why, "%.150s", why);
             if (s.base == 0 && own == 0) { vec_stream_unread(vs); *rewound = 1; }
