@@ -23,6 +23,7 @@
 #include "testbench/tb_energy.h"
 #include "base/base_out.h"
 #include "base/base_par.h"
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -153,27 +154,48 @@ static void fold(sl_state *s, const wbuf *B, size_t beats_done, tb_acc *acc, tb_
     }
 }
 
-/* The next wave's rows into the buffer from pos s->n on: the first block
- * alone for the first wave, else blocks up to WAVE_ITEMS. 0, or -1 with
- * err (a bad row). *last: the file's end was read. */
-static int read_wave(vec_stream *vs, wbuf *B, sl_state *s, const unit_desc *u, size_t most, int *last, char *err,
-                     size_t errlen)
+/* The rows of the next wave, read while the wave before is simulated
+ * (on a thread of its own, with more than one thread): the first block
+ * alone for the first wave, else blocks up to `most` items. */
+typedef struct reader {
+    vec_stream *vs;
+    size_t most, ncol;
+    int first;
+    double *rows;               /* [n][ncol] */
+    size_t n, cap;
+    int last, failed;           /* the file's end was read; a bad row (err) */
+    char err[600];
+} reader;
+
+static void *reader_run(void *arg)
 {
-    size_t start = s->n;
-    int first = s->base == 0 && s->n == 0;
-    *last = 0;
+    reader *R = arg;
+    R->n = 0;
+    R->last = R->failed = 0;
     do {
         const vec_set *rows;
-        int rc = vec_stream_next(vs, &rows);
-        if (rc < 0) { snprintf(err, errlen, "%s", vec_stream_error(vs)); return -1; }
+        int rc = vec_stream_next(R->vs, &rows);
+        if (rc < 0) { R->failed = 1; snprintf(R->err, sizeof R->err, "%s", vec_stream_error(R->vs)); return NULL; }
         if (rc == 0) break;
-        wbuf_reserve(B, s->n + rows->n_rows, u->ideal_exact || u->ideal_ratio || u->ideal_interval,
-                     !!u->ideal_ratio, !!u->ideal_interval);
-        memcpy(B->rows + s->n * (size_t)B->ncol, rows->data, rows->n_rows * (size_t)B->ncol * sizeof *B->rows);
-        s->n += rows->n_rows;
-    } while (!first && !vec_stream_done(vs) && s->n - start < most);
-    *last = vec_stream_done(vs);
-    return 0;
+        if (R->n + rows->n_rows > R->cap) {
+            R->cap = (R->n + rows->n_rows) * 2;
+            R->rows = grow(R->rows, R->cap, R->ncol * sizeof *R->rows);
+        }
+        memcpy(R->rows + R->n * R->ncol, rows->data, rows->n_rows * R->ncol * sizeof *R->rows);
+        R->n += rows->n_rows;
+    } while (!R->first && !vec_stream_done(R->vs) && R->n < R->most);
+    R->last = vec_stream_done(R->vs);
+    R->first = 0;
+    return NULL;
+}
+
+/* The reader's rows after the buffer's items. */
+static void take_rows(wbuf *B, sl_state *s, const reader *R, const unit_desc *u)
+{
+    wbuf_reserve(B, s->n + R->n, u->ideal_exact || u->ideal_ratio || u->ideal_interval, !!u->ideal_ratio,
+                 !!u->ideal_interval);
+    memcpy(B->rows + s->n * (size_t)B->ncol, R->rows, R->n * R->ncol * sizeof *R->rows);
+    s->n += R->n;
 }
 
 int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, vec_stream *vs,
@@ -209,11 +231,23 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     prep_job *pj = calloc(1, sizeof *pj);
     if (!pj) base_out_of_memory();
     vec_stream_threads(vs, threads);
+    reader R = { vs, most, (size_t)B.ncol, 1, NULL, 0, 0, 0, 0, "" };
+    pthread_t rt;
+    int reading = 0;            /* rt reads the next wave */
     int rc = TB_OK, last = 0;
+    reader_run(&R);
     while (!last) {
         size_t own = s.n;
-        if (read_wave(vs, &B, &s, u, most, &last, err, errlen)) { rc = TB_BADINPUT; goto done; }
+        if (reading) { pthread_join(rt, NULL); reading = 0; }
+        if (R.failed) { snprintf(err, errlen, "%s", R.err); rc = TB_BADINPUT; goto done; }
+        take_rows(&B, &s, &R, u);
+        last = R.last;
         if (s.n == own) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }   /* (the reader says it first) */
+        /* the next wave read beside this one (not beside the first: its
+         * block is handed back to the kernel if the lanes do not take it) */
+        if (!last && own + s.base > 0) {
+            if (threads > 1 && !pthread_create(&rt, NULL, reader_run, &R)) reading = 1;
+        }
         /* the wave's own items prepared */
         memset(pj, 0, sizeof *pj);
         pj->pc = &pc; pj->B = &B; pj->from = own; pj->to = s.n;
@@ -230,6 +264,7 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         }
         fold(&s, &B, w.beats_done, &acc, r, row, row_data);
         if (last) break;
+        if (!reading) reader_run(&R);
         /* keep the items the next wave's warm-ups reach back to, and those not yet folded */
         size_t keep = s.n > TB_LANES_WARM_MAX ? s.n - TB_LANES_WARM_MAX : 0;
         if (s.acc_next - s.base < keep) keep = s.acc_next - s.base;
@@ -249,6 +284,8 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     tb_acc_end(&acc, r);
     tb_verdict(r, NULL);
 done:
+    if (reading) pthread_join(rt, NULL);
+    free(R.rows);
     free(pj);
     wbuf_free(&B);
     tb_lanes_free(x);
