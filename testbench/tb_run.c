@@ -170,15 +170,7 @@ static void run_prepare(run_mem *m, const unit_desc *u, const unit_cfg *cfg, con
         tb_prep(&pc, vec_row(vs, it), &ti, m->in_ovf);
     }
 
-    double bound[UNIT_MAX_IO];
-    unit_bound(u, cfg, fmts, bound);
-    for (int i = 0, oi = 0; i < u->nsigs; i++)
-        if (u->sigs[i].role == UNIT_SIG_OUT) {
-            snprintf(r->out[oi].name, sizeof r->out[oi].name, "%s", u->sigs[i].name);
-            r->out[oi].fmt = fmts->f[i];
-            r->out[oi].bound = bound[oi];
-            oi++;
-        }
+    tb_stream_outputs(r, u, cfg, fmts);
 }
 
 /* The simulation: the unit under a clock, the driver and monitor around
@@ -254,19 +246,9 @@ static int run_simulate(run_sim *s, const unit_desc *u, const run_mem *m, tb_res
  * unit's, and the inputs' quantization). */
 static void run_figures(const run_mem *m, sim_ctx *c, const sim_scope *sc, tb_result *r)
 {
-    size_t n = m->n, nbeats = m->nbeats, nb = (size_t)r->beats;
-    r->latency = r->beat_cycle[0];
-    r->cycles = r->beat_cycle[nbeats - 1] + 1;
-    r->cycles_per_item = n > 1 ? (double)(r->beat_cycle[(n - 1) * nb] - r->beat_cycle[0]) / (double)(n - 1)
-                               : (double)r->cycles;
-    r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
-                                    : (double)r->cycles;
-    r->area_ge = sim_scope_area(sc);
-    char terr[300];
-    if (tb_ppa_timing(c, sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
-    r->overflows = tb_scope_overflows(sc);
-    r->ovf_discarded = tb_scope_ovf_discarded(sc);
-    for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
+    size_t nb = (size_t)r->beats;
+    tb_stream_figures(r, m->n, r->beat_cycle[0], r->beat_cycle[(m->n - 1) * nb], r->beat_cycle[m->nbeats - 1], c, sc,
+                      m->in_ovf);
 }
 
 /* Timing, area, overflows, ranges, error metrics and the verdict. */
