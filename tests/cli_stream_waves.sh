@@ -2,11 +2,12 @@
 # cli_stream_waves.sh - `run --vectors FILE|-` on the lanes (docs/batch.md,
 # "Streams of any length"): units with long items over several waves (a
 # deep pipeline that needs the long warm-up, several beats an item) give
-# the kernel's JSON and --out rows; when the lanes stop (an overflow), the
-# kernel runs the stream from its first row: handed back from the first
-# block of a pipe, read again from a file, refused with one line from a
-# pipe read past its first block; a bad row in a later block is the
-# reader's FILE:LINE.
+# the kernel's JSON and --out rows; when the lanes stop (an item that
+# depends on more than the warm-up), the kernel runs the stream from its
+# first row: handed back from the first block of a pipe, read again from a
+# file, refused with one line from a pipe read past its first block (or
+# with --out on a device); a bad row in a later block is the reader's
+# FILE:LINE.
 . tests/lib_cli.sh
 PREFIX=cli_stream_waves.
 
@@ -26,26 +27,50 @@ for u in norm3 span2; do
     rm -f "$T/$u.vec" "$T/b.csv" "$T/k.csv"
 done
 
-# an overflow in a pipe's first block: the kernel runs the stream, from
-# the rows the lanes handed back
-cat vectors/horner3.vec | $S run horner3 --fmt mul=s3.12 --vectors - --json >"$T/b.json"; rb=$?
-cat vectors/horner3.vec | $S run horner3 --fmt mul=s3.12 --vectors - >"$T/b.txt"
-$S run horner3 --fmt mul=s3.12 --vectors vectors/horner3.vec --json --kernel >"$T/k.json"; rk=$?
-if [ $rb = 1 ] && [ $rk = 1 ] && cmp -s "$T/b.json" "$T/k.json" && grep -q '^engine kernel: .*(not on lanes: an overflow' "$T/b.txt"
-then ok overflow-first-block; else fail overflow-first-block "exit $rb, $rk: $(grep '^engine' "$T/b.txt")"; fi
+# When the lanes stop, here because each item depends on every one before
+# it (a running sum: no warm-up reaches its state), the kernel runs the
+# stream: in a pipe's first block, from the rows the lanes hand back
+cat >"$T/acc.dp" <<'EOF'
+# y: the running sum of every x so far (twice each: two clocks an item)
+netlist 1
+datapath acc "running sum"
+width 16
+round trunc
+overflow wrap
+clock clk
+input x s1.(W-1) range=-1,1
+schedule run clocks=2 "x added into acc on each clock"
+ctl keep 1 1
+bk held s8.(W-8) pass=keep x=acc
+add sum s8.(W-8) a=x b=held
+reg acc s8.(W-8) d=sum clk=clk
+shift y s8.(W-8) x=acc by=0
+port in x
+port out y
+ideal y x
+EOF
+hdr() { printf '# shadesim vectors 1\n# unit: acc\n# inputs: x\n# outputs: y\n'; }
+{ hdr; yes '0.01 | 0.01' | head -n 3000; } >"$T/first.vec"
+cat "$T/first.vec" | $S run "$T/acc.dp" --vectors - --json >"$T/b.json"; rb=$?
+cat "$T/first.vec" | $S run "$T/acc.dp" --vectors - >"$T/b.txt"
+$S run "$T/acc.dp" --vectors "$T/first.vec" --json --kernel >"$T/k.json"; rk=$?
+if [ $rb = $rk ] && cmp -s "$T/b.json" "$T/k.json" && grep -q '^engine kernel: .*(not on lanes: item [0-9]* depends on more than the 128 items' "$T/b.txt"
+then ok history-first-block; else fail history-first-block "exit $rb, $rk: $(grep '^engine' "$T/b.txt")"; fi
 
-# an overflow past the first block (the zero rows before it fill more than
-# a block, 4 MiB): a file is read again by the kernel, --out too; a pipe
-# cannot be, and says so
-{ sed -n '/^#/p' vectors/horner3.vec; yes '0 0 0 0 0 | 0' | head -n 320000; sed '/^#/d' vectors/horner3.vec; } >"$T/late.vec"
-$S run horner3 --fmt mul=s3.12 --vectors "$T/late.vec" --out "$T/b.csv" >"$T/b.txt"; rb=$?
-$S run horner3 --fmt mul=s3.12 --vectors "$T/late.vec" --kernel --out "$T/k.csv" >"$T/k.txt"; rk=$?
-if [ $rb = 1 ] && [ $rk = 1 ] && cmp -s "$T/b.csv" "$T/k.csv" && grep -q '^engine kernel: .*(not on lanes: an overflow' "$T/b.txt" &&
+# past the first block (zero rows before the sum moves fill more than a
+# block, 4 MiB): a file is read again by the kernel, --out written again;
+# a pipe cannot be, and says so
+{ hdr; yes '0.0000000000000000 | 0' | head -n 200000; yes '0.01 | 0.01' | head -n 3000; } >"$T/late.vec"
+$S run "$T/acc.dp" --vectors "$T/late.vec" --out "$T/b.csv" >"$T/b.txt"; rb=$?
+$S run "$T/acc.dp" --vectors "$T/late.vec" --kernel --out "$T/k.csv" >"$T/k.txt"; rk=$?
+if [ $rb = $rk ] && cmp -s "$T/b.csv" "$T/k.csv" && grep -q '^engine kernel: .*(not on lanes: item 2002[0-9]* depends' "$T/b.txt" &&
    [ "$(grep -v '^engine' "$T/b.txt")" = "$(grep -v '^engine' "$T/k.txt")" ]
-then ok overflow-late-file; else fail overflow-late-file "exit $rb, $rk: $(grep '^engine' "$T/b.txt")"; fi
-cat "$T/late.vec" | expect overflow-late-pipe 2 $S run horner3 --fmt mul=s3.12 --vectors - --json
-grep -q 'run it with --kernel' "$T/err" || fail overflow-late-pipe.says "$(cat "$T/err")"
-[ -s "$T/out" ] && fail overflow-late-pipe.nothing-written "$(head -c 200 "$T/out")"
+then ok history-late-file; else fail history-late-file "exit $rb, $rk: $(grep '^engine' "$T/b.txt")"; fi
+cat "$T/late.vec" | expect history-late-pipe 2 $S run "$T/acc.dp" --vectors - --json
+grep -q 'first block of stdin, which cannot be read again for the kernel: run it with --kernel' "$T/err" ||
+    fail history-late-pipe.says "$(cat "$T/err")"
+[ -s "$T/out" ] && fail history-late-pipe.nothing-written "$(head -c 200 "$T/out")"
+expect history-late-out-device 2 $S run "$T/acc.dp" --vectors "$T/late.vec" --out /dev/null
 rm -f "$T/late.vec"
 
 # a bad row in a later block: the reader's FILE:LINE, exit 2, no --out left

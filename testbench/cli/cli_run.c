@@ -327,16 +327,18 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
     if (threads) {
         t = tb_run_stream_lanes(o->u, &o->cfg, fm, vs, csv ? csv_row : NULL, out, threads, &r, &rewound, err, sizeof err);
         if (t == TB_STREAM_KERNEL) {
-            size_t at = r.vectors;
             snprintf(lwhy, sizeof lwhy, "%s", r.engine_why);
             tb_result_free(&r);
             why = lwhy;
             if (!rewound && ((csv && written_in_place(csv)) || written_in_place(path))) {
                 if (out) base_out_abort(out);
                 vec_stream_close(vs);
-                return cli_usage_error("run: the lanes stopped before item %zu (%s), and %s cannot be read or "
-                                       "written again for the kernel: run it with --kernel", at, lwhy,
-                                       written_in_place(path) ? "the vectors' pipe" : "--out's file");
+                if (written_in_place(path))
+                    return cli_usage_error("run: the lanes stopped (%s) past the first block of %s, which cannot be "
+                                           "read again for the kernel: run it with --kernel", lwhy,
+                                           strcmp(path, "-") ? path : "stdin");
+                return cli_usage_error("run: the lanes stopped (%s) after rows went to --out %s, which cannot take "
+                                       "them again: run it with --kernel", lwhy, csv);
             }
             if (out) { base_out_abort(out); out = NULL; }
             if (csv && !(out = csv_open(csv, &hdr))) { vec_stream_close(vs); return CLI_USAGE; }
