@@ -4,14 +4,16 @@
  * length.
  *
  * A wave: the rows read (the first block alone, then blocks up to a
- * wave's items), each item prepared (tb_prep: the quantized inputs,
+ * wave's items; with more than one thread, the next wave's read on a
+ * thread of its own meanwhile), each item prepared (tb_prep: the quantized inputs,
  * what the unit should give) on the threads, the wave's pieces simulated
  * side by side and joined to the stream, then every item whose beats are
  * all in folded into the metrics in item order (tb_acc: the sums added in
  * the same order as the kernel's run, so the same bytes) and handed to the
- * caller (--out). The wave's last items stay at the front of the buffer
- * for the next wave: its first lane's warm-up, and the items still in
- * flight at the junction.
+ * caller (--out), on a thread of its own while the next wave simulates.
+ * So there are two buffers, used in turn; the wave's last items are
+ * copied to the front of the other one for the next wave: its first
+ * lane's warm-up, and the items still in flight at the junction.
  *
  * The first wave is the first block alone, so that when the lanes do not
  * take the stream there (a unit they cannot evaluate, an overflow in the
@@ -72,21 +74,21 @@ static void wbuf_reserve(wbuf *B, size_t cap, int has_exact, int has_den, int ha
     B->cap = cap;
 }
 
-/* Items [k, n) moved to the front. */
-static void wbuf_shift(wbuf *B, size_t k, size_t n)
+/* Items [k, n) of F to the front of T (room for them reserved). */
+static void wbuf_tail(wbuf *T, const wbuf *F, size_t k, size_t n)
 {
-    size_t m = n - k, nv = (size_t)B->nv;
-#define SHIFT(a, per) do { if (a) memmove((a), (a) + k * (per), m * (per) * sizeof *(a)); } while (0)
-    SHIFT(B->rows, (size_t)B->ncol);
-    SHIFT(B->in_raw, (size_t)B->n_in);
-    SHIFT(B->raw, nv);
-    SHIFT(B->ideal, 4 * nv);
-    SHIFT(B->exact, nv);
-    SHIFT(B->den, nv);
-    SHIFT(B->hi, nv);
-    SHIFT(B->exact_ok, (size_t)1);
-    SHIFT(B->cycle, (size_t)B->beats);
-#undef SHIFT
+    size_t m = n - k, nv = (size_t)F->nv;
+#define TAIL(a, per) do { if (F->a) memcpy(T->a, F->a + k * (per), m * (per) * sizeof *F->a); } while (0)
+    TAIL(rows, (size_t)F->ncol);
+    TAIL(in_raw, (size_t)F->n_in);
+    TAIL(raw, nv);
+    TAIL(ideal, 4 * nv);
+    TAIL(exact, nv);
+    TAIL(den, nv);
+    TAIL(hi, nv);
+    TAIL(exact_ok, (size_t)1);
+    TAIL(cycle, (size_t)F->beats);
+#undef TAIL
 }
 
 static void wbuf_free(wbuf *B)
@@ -125,33 +127,46 @@ static void prep_chunk(void *ctx, size_t c)
     }
 }
 
-/* What the waves carry from one to the next. */
+/* Where the stream is: its number of the item at the buffer's pos 0, and
+ * the items in the buffer. */
 typedef struct sl_state {
-    size_t   base;              /* the stream's number of the item at pos 0 */
-    size_t   n;                 /* items in the buffer */
-    size_t   acc_next;          /* the stream's next item for the metrics */
-    uint64_t first_cycle, last_item_cycle, last_cycle;
+    size_t base, n;
 } sl_state;
 
-/* Items whose beats are all in (beats_done of the stream's) into the
- * metrics and to the caller, in item order. */
-static void fold(sl_state *s, const wbuf *B, size_t beats_done, tb_acc *acc, tb_result *r, tb_row_fn row,
-                 void *row_data)
+/* The metrics' side: the items whose beats are all in (beats_done of
+ * the stream's), folded into the metrics and handed to the caller in
+ * item order, from a wave's buffer (on a thread of its own while the next
+ * wave simulates, with more than one thread). */
+typedef struct folder {
+    const wbuf *B;
+    size_t base, beats_done;
+    size_t acc_next;            /* the stream's next item for the metrics */
+    uint64_t first_cycle, last_item_cycle, last_cycle;
+    tb_acc *acc;
+    tb_result *r;
+    tb_row_fn row;
+    void *row_data;
+} folder;
+
+static void *fold(void *arg)
 {
+    folder *f = arg;
+    const wbuf *B = f->B;
     size_t nb = (size_t)B->beats;
-    while ((s->acc_next + 1) * nb <= beats_done) {
-        size_t it = s->acc_next, pos = it - s->base;
+    while ((f->acc_next + 1) * nb <= f->beats_done) {
+        size_t it = f->acc_next, pos = it - f->base;
         const uint64_t *cyc = B->cycle + pos * nb;
         const int64_t *raw = B->raw + pos * (size_t)B->nv;
         const double *expected = B->rows + pos * (size_t)B->ncol + B->n_in;
         tb_item ti = wbuf_item(B, pos);
-        if (it == 0) s->first_cycle = cyc[0];
-        s->last_item_cycle = cyc[0];
-        s->last_cycle = cyc[nb - 1];
-        tb_acc_item(acc, r, it, raw, expected, &ti);
-        if (row) row(row_data, r, it, cyc[0], raw, expected);
-        s->acc_next++;
+        if (it == 0) f->first_cycle = cyc[0];
+        f->last_item_cycle = cyc[0];
+        f->last_cycle = cyc[nb - 1];
+        tb_acc_item(f->acc, f->r, it, raw, expected, &ti);
+        if (f->row) f->row(f->row_data, f->r, it, cyc[0], raw, expected);
+        f->acc_next++;
     }
+    return NULL;
 }
 
 /* The rows of the next wave, read while the wave before is simulated
@@ -189,15 +204,6 @@ static void *reader_run(void *arg)
     return NULL;
 }
 
-/* The reader's rows after the buffer's items. */
-static void take_rows(wbuf *B, sl_state *s, const reader *R, const unit_desc *u)
-{
-    wbuf_reserve(B, s->n + R->n, u->ideal_exact || u->ideal_ratio || u->ideal_interval, !!u->ideal_ratio,
-                 !!u->ideal_interval);
-    memcpy(B->rows + s->n * (size_t)B->ncol, R->rows, R->n * R->ncol * sizeof *R->rows);
-    s->n += R->n;
-}
-
 int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, vec_stream *vs,
                         tb_row_fn row, void *row_data, int threads, tb_result *r, int *rewound,
                         char *err, size_t errlen)
@@ -219,56 +225,70 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     tb_stream_outputs(r, u, cfg, fmts);
     tb_acc acc;
     tb_acc_begin(&acc, r);
-    wbuf B = { 0 };
-    B.n_in = r->n_in; B.nv = pc.nv; B.beats = r->beats; B.ncol = r->n_in + pc.nv;
-    size_t nv = (size_t)pc.nv, ndy = (size_t)!!(u->ideal_exact || u->ideal_ratio || u->ideal_interval)
-                                   + !!u->ideal_ratio + !!u->ideal_interval;
-    size_t per = (size_t)B.ncol * 8 + (size_t)B.n_in * 8 + nv * (8 + 32 + ndy * sizeof(sim_dy)) + 1 + (size_t)B.beats * 8;
+    /* two buffers: a wave simulates in one while the wave before is
+     * folded from the other */
+    wbuf X[2] = { { 0 }, { 0 } };
+    for (int i = 0; i < 2; i++) {
+        X[i].n_in = r->n_in; X[i].nv = pc.nv; X[i].beats = r->beats; X[i].ncol = r->n_in + pc.nv;
+    }
+    int has_exact = u->ideal_exact || u->ideal_ratio || u->ideal_interval;
+    size_t nv = (size_t)pc.nv, ndy = (size_t)has_exact + !!u->ideal_ratio + !!u->ideal_interval;
+    size_t per = (size_t)X[0].ncol * 8 + (size_t)X[0].n_in * 8 + nv * (8 + 32 + ndy * sizeof(sim_dy)) + 1
+               + (size_t)X[0].beats * 8;
     size_t most = WAVE_BYTES / per;
     most = most < WAVE_MIN ? WAVE_MIN : most > WAVE_MAX ? WAVE_MAX : most;
     sl_state s = { 0 };
+    folder F = { NULL, 0, 0, 0, 0, 0, 0, &acc, r, row, row_data };
     uint64_t in_ovf[UNIT_MAX_IO] = { 0 };
     prep_job *pj = calloc(1, sizeof *pj);
     if (!pj) base_out_of_memory();
     vec_stream_threads(vs, threads);
-    reader R = { vs, most, (size_t)B.ncol, 1, NULL, 0, 0, 0, 0, "" };
-    pthread_t rt;
-    int reading = 0;            /* rt reads the next wave */
+    reader R = { vs, most, (size_t)X[0].ncol, 1, NULL, 0, 0, 0, 0, "" };
+    pthread_t rt, ft;
+    int reading = 0, folding = 0;   /* rt reads the next wave; ft folds the wave before */
     int rc = TB_OK, last = 0;
     reader_run(&R);
-    while (!last) {
+    for (size_t wi = 0; !last; wi++) {
+        wbuf *B = &X[wi & 1];
         size_t own = s.n;
         if (reading) { pthread_join(rt, NULL); reading = 0; }
         if (R.failed) { snprintf(err, errlen, "%s", R.err); rc = TB_BADINPUT; goto done; }
-        take_rows(&B, &s, &R, u);
+        wbuf_reserve(B, s.n + R.n, has_exact, !!u->ideal_ratio, !!u->ideal_interval);
+        memcpy(B->rows + s.n * (size_t)B->ncol, R.rows, R.n * R.ncol * sizeof *R.rows);
+        s.n += R.n;
         last = R.last;
         if (s.n == own) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }   /* (the reader says it first) */
         /* the next wave read beside this one (not beside the first: its
          * block is handed back to the kernel if the lanes do not take it) */
-        if (!last && own + s.base > 0) {
-            if (threads > 1 && !pthread_create(&rt, NULL, reader_run, &R)) reading = 1;
-        }
+        if (!last && wi > 0 && threads > 1 && !pthread_create(&rt, NULL, reader_run, &R)) reading = 1;
         /* the wave's own items prepared */
         memset(pj, 0, sizeof *pj);
-        pj->pc = &pc; pj->B = &B; pj->from = own; pj->to = s.n;
+        pj->pc = &pc; pj->B = B; pj->from = own; pj->to = s.n;
         base_par_for(PREP_CHUNKS, threads, prep_chunk, pj);
         for (int c = 0; c < PREP_CHUNKS; c++)
             for (int i = 0; i < r->n_in; i++) in_ovf[i] += pj->ovf[c][i];
-        tb_lanes_wave w = { B.in_raw, s.n, own, s.base, last, B.cycle, B.raw, 0 };
-        if (tb_lanes_wave_run(x, &w, why, sizeof why)) {
+        tb_lanes_wave w = { B->in_raw, s.n, own, s.base, last, B->cycle, B->raw, 0 };
+        int taken = !tb_lanes_wave_run(x, &w, why, sizeof why);
+        if (folding) { pthread_join(ft, NULL); folding = 0; }
+        if (!taken) {
             snprintf(r->engine_why, sizeof r->engine_why, "%.150s", why);
-            if (s.base == 0 && own == 0) { vec_stream_unread(vs); *rewound = 1; }
+            if (wi == 0) { vec_stream_unread(vs); *rewound = 1; }
             r->vectors = s.base + s.n;
             rc = TB_STREAM_KERNEL;
             goto done;
         }
-        fold(&s, &B, w.beats_done, &acc, r, row, row_data);
-        if (last) break;
+        F.B = B; F.base = s.base; F.beats_done = w.beats_done;
+        if (last) { fold(&F); break; }
+        if (threads > 1 && !pthread_create(&ft, NULL, fold, &F)) folding = 1;
+        else fold(&F);
         if (!reading) reader_run(&R);
-        /* keep the items the next wave's warm-ups reach back to, and those not yet folded */
-        size_t keep = s.n > TB_LANES_WARM_MAX ? s.n - TB_LANES_WARM_MAX : 0;
-        if (s.acc_next - s.base < keep) keep = s.acc_next - s.base;
-        wbuf_shift(&B, keep, s.n);
+        /* the next buffer starts with the items the next wave's warm-ups
+         * reach back to, and those not yet all in */
+        size_t keep = s.n > TB_LANES_WARM_MAX ? s.n - TB_LANES_WARM_MAX : 0, done_items = w.beats_done / (size_t)r->beats;
+        if (done_items - s.base < keep) keep = done_items - s.base;
+        wbuf *N = &X[(wi + 1) & 1];
+        wbuf_reserve(N, s.n - keep, has_exact, !!u->ideal_ratio, !!u->ideal_interval);
+        wbuf_tail(N, B, keep, s.n);
         s.base += keep;
         s.n -= keep;
     }
@@ -278,16 +298,18 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     r->lanes = lo.lanes;
     r->stats.clocks = lo.clocks;
     /* no lane overflowed: the unit's counts are its constants' (at build) */
-    tb_stream_figures(r, r->vectors, s.first_cycle, s.last_item_cycle, s.last_cycle, lo.c, lo.sc, in_ovf);
+    tb_stream_figures(r, r->vectors, F.first_cycle, F.last_item_cycle, F.last_cycle, lo.c, lo.sc, in_ovf);
     tb_range_finish(lo.rg, lo.sc, lo.io, in_ovf, r);
     tb_energy_fill_counts(r, lo.rg, lo.toggles, NULL, lo.c, r->stats.clocks);
     tb_acc_end(&acc, r);
     tb_verdict(r, NULL);
 done:
     if (reading) pthread_join(rt, NULL);
+    if (folding) pthread_join(ft, NULL);
     free(R.rows);
     free(pj);
-    wbuf_free(&B);
+    wbuf_free(&X[0]);
+    wbuf_free(&X[1]);
     tb_lanes_free(x);
     return rc;
 }
