@@ -1,9 +1,10 @@
 /* bench_stream.c - `shadesim run horner3 --vectors - --json` fed from a
  * pipe (cat FILE | ...): its peak memory (maximum resident set, from
  * wait4's rusage) on 1 million and 10 million rows, and its time on 10
- * million rows with -j 1 and -j 2 (wall, and the CPU time it used: user
- * and system), with the machine's load average before and after, since
- * the machine may be shared. run reads the pipe a block at a time and
+ * million rows with -j 1 and -j 2 (the best wall time of three runs each,
+ * in turns, and the CPU time that run used: user and system), with the
+ * machine's load average before and after, since the machine may be
+ * shared. run reads the pipe a block at a time and
  * simulates it on the batch's lanes a wave at a time, so the peak does
  * not grow with the rows (docs/batch.md, "Streams of any length"). The
  * 10M file is the 1M file's rows ten times over (1 GB in /tmp while the
@@ -107,21 +108,28 @@ int main(void)
     if (repeat_rows(p1, p10, 10)) { fprintf(stderr, "bench: cannot write %s\n", p10); unlink(p1); return 1; }
     int rc = 0;
     load("before");
-    /* the peak at 1M and 10M rows (-j 2), then 10M rows on one thread */
-    runst r1, r10, r10j1;
-    if (piped(bin, p1, 2, &r1) || piped(bin, p10, 2, &r10) || piped(bin, p10, 1, &r10j1)) {
+    /* the peak at 1M and 10M rows (-j 2); then 10M rows on one thread and
+     * on two, in turns, three times each, the best of each (a shared
+     * machine's load comes and goes) */
+    runst r1, r10, t1 = { 0, 1e300, 0, 0 }, t2 = { 0, 1e300, 0, 0 };
+    int bad = piped(bin, p1, 2, &r1) || piped(bin, p10, 2, &r10);
+    for (int k = 0; k < 3 && !bad; k++) {
+        runst a, b;
+        bad = piped(bin, p10, 1, &a) || piped(bin, p10, 2, &b);
+        if (!bad && a.wall < t1.wall) t1 = a;
+        if (!bad && b.wall < t2.wall) t2 = b;
+    }
+    if (bad) {
         fprintf(stderr, "bench: run horner3 --vectors - failed\n");
         rc = 1;
     } else {
         printf("stream  cat FILE | run horner3 --vectors -: peak RSS %.1f MB on 1M rows (%ld MB of text), "
                "%.1f MB on 10M rows (%ld MB; %.3f times the 1M peak)\n", r1.kb / 1024.0, size_mb(p1),
                r10.kb / 1024.0, size_mb(p10), (double)r10.kb / (double)r1.kb);
-        printf("stream  10M rows -j 1: %.2f s wall, %.2f s user, %.2f s system, peak %.1f MB\n", r10j1.wall,
-               r10j1.user, r10j1.sys, r10j1.kb / 1024.0);
-        printf("stream  10M rows -j 2: %.2f s wall, %.2f s user, %.2f s system, peak %.1f MB\n", r10.wall, r10.user,
-               r10.sys, r10.kb / 1024.0);
+        printf("stream  10M rows -j 1 (best of 3): %.2f s wall, %.2f s user, %.2f s system\n", t1.wall, t1.user, t1.sys);
+        printf("stream  10M rows -j 2 (best of 3): %.2f s wall, %.2f s user, %.2f s system\n", t2.wall, t2.user, t2.sys);
         printf("stream  -j 2 against -j 1: %.2fx the speed (wall; the load above shares the cores)\n",
-               r10j1.wall / r10.wall);
+               t1.wall / t2.wall);
     }
     load("after");
     unlink(p1);
