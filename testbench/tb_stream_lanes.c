@@ -32,7 +32,7 @@
 /* A wave takes items up to about WAVE_BYTES of their rows and prepared
  * figures (a unit with many output beats an item takes fewer), between
  * WAVE_MIN and WAVE_MAX items (256 lanes of 512). */
-#define WAVE_BYTES ((size_t)24 << 20)
+#define WAVE_BYTES ((size_t)16 << 20)
 #define WAVE_MIN   ((size_t)1 << 12)
 #define WAVE_MAX   ((size_t)1 << 17)
 
