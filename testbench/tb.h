@@ -169,6 +169,7 @@ typedef struct tb_opts {
                                   * results (tb_lanes.h; not with a dump), else the kernel */
     int         reference;       /* the kernel as its reference, without its fast paths
                                   * (sim_set_reference; implies the kernel, not lanes) */
+    int         threads;         /* the lanes' threads (0: 2); any number gives the same results */
 } tb_opts;
 
 enum { TB_OK = 0, TB_FAIL = 1, TB_BADINPUT = 2 };

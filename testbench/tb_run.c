@@ -170,15 +170,7 @@ static void run_prepare(run_mem *m, const unit_desc *u, const unit_cfg *cfg, con
         tb_prep(&pc, vec_row(vs, it), &ti, m->in_ovf);
     }
 
-    double bound[UNIT_MAX_IO];
-    unit_bound(u, cfg, fmts, bound);
-    for (int i = 0, oi = 0; i < u->nsigs; i++)
-        if (u->sigs[i].role == UNIT_SIG_OUT) {
-            snprintf(r->out[oi].name, sizeof r->out[oi].name, "%s", u->sigs[i].name);
-            r->out[oi].fmt = fmts->f[i];
-            r->out[oi].bound = bound[oi];
-            oi++;
-        }
+    tb_stream_outputs(r, u, cfg, fmts);
 }
 
 /* The simulation: the unit under a clock, the driver and monitor around
@@ -254,19 +246,9 @@ static int run_simulate(run_sim *s, const unit_desc *u, const run_mem *m, tb_res
  * unit's, and the inputs' quantization). */
 static void run_figures(const run_mem *m, sim_ctx *c, const sim_scope *sc, tb_result *r)
 {
-    size_t n = m->n, nbeats = m->nbeats, nb = (size_t)r->beats;
-    r->latency = r->beat_cycle[0];
-    r->cycles = r->beat_cycle[nbeats - 1] + 1;
-    r->cycles_per_item = n > 1 ? (double)(r->beat_cycle[(n - 1) * nb] - r->beat_cycle[0]) / (double)(n - 1)
-                               : (double)r->cycles;
-    r->cycles_per_beat = nbeats > 1 ? (double)(r->beat_cycle[nbeats - 1] - r->beat_cycle[0]) / (double)(nbeats - 1)
-                                    : (double)r->cycles;
-    r->area_ge = sim_scope_area(sc);
-    char terr[300];
-    if (tb_ppa_timing(c, sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
-    r->overflows = tb_scope_overflows(sc);
-    r->ovf_discarded = tb_scope_ovf_discarded(sc);
-    for (int i = 0; i < r->n_in; i++) { r->in_overflows += m->in_ovf[i]; r->overflows += m->in_ovf[i]; }
+    size_t nb = (size_t)r->beats;
+    tb_stream_figures(r, m->n, r->beat_cycle[0], r->beat_cycle[(m->n - 1) * nb], r->beat_cycle[m->nbeats - 1], c, sc,
+                      m->in_ovf);
 }
 
 /* Timing, area, overflows, ranges, error metrics and the verdict. */
@@ -279,12 +261,12 @@ static void run_collect(run_sim *s, run_mem *m, const vec_set *vs, tb_result *r)
     tb_verdict(r, NULL);
 }
 
-/* The items on the batch's lanes (tb_lanes.h), while the expected values
- * are prepared on a second thread (run_prepare needs nothing of the
- * simulation, the simulation only the quantized inputs): TB_OK with the
- * figures run_collect gives, or 1 with r->engine_why when the lanes do
- * not give the kernel's results (the kernel runs then, on the prepared
- * values), or TB_FAIL (memory). */
+/* The items on the batch's lanes (tb_lanes.h), one wave, while the
+ * expected values are prepared on another thread (run_prepare needs
+ * nothing of the simulation, the simulation only the quantized inputs):
+ * TB_OK with the figures run_collect gives, or 1 with r->engine_why when
+ * the lanes do not give the kernel's results (the kernel runs then, on
+ * the prepared values). */
 typedef struct lanes_par {
     run_mem *m;
     const unit_desc *u;
@@ -292,24 +274,25 @@ typedef struct lanes_par {
     const unit_fmts *fmts;
     const vec_set *vs;
     tb_result *r;
-    tb_lanes_job *j;
+    tb_lanes *x;
+    tb_lanes_wave w;
     int rc;
     char why[300];
 } lanes_par;
 
 static void lanes_item(void *ctx, size_t i)
 {
-    lanes_par *x = ctx;
+    lanes_par *p = ctx;
     if (i == 0) {
         int64_t scratch[UNIT_MAX_IO];   /* the inputs again: the simulation has them already */
-        run_prepare(x->m, x->u, x->cfg, x->fmts, x->vs, x->r, scratch);
-    } else if (x->j) {
-        x->rc = tb_lanes_run(x->j, x->why, sizeof x->why);
+        run_prepare(p->m, p->u, p->cfg, p->fmts, p->vs, p->r, scratch);
+    } else if (p->x) {
+        p->rc = tb_lanes_wave_run(p->x, &p->w, p->why, sizeof p->why);
     }
 }
 
 static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, const vec_set *vs,
-                     run_mem *m, tb_result *r, char *err, size_t errlen)
+                     run_mem *m, tb_result *r, int threads)
 {
     /* the inputs as tb_prep quantizes them (its in_ovf counts come from it) */
     sim_fx_conv cv[UNIT_MAX_IO];
@@ -319,40 +302,28 @@ static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f
         const double *row = vec_row(vs, it);
         for (int i = 0; i < r->n_in; i++) m->in_raw[it * (size_t)r->n_in + (size_t)i] = sim_fx_conv_real(&cv[i], row[i], NULL);
     }
-    tb_built b;
-    char why[300];
-    int built = !tb_build(u, cfg, fmts, &b, why, sizeof why);
-    tb_range rg;
-    memset(&rg, 0, sizeof rg);
-    uint64_t *tog = NULL;
-    int rc = TB_FAIL, oom = 0;
-    tb_lanes_job j = { b.c, b.clk, &b.io, r->n_in, r->n_out, r->beats, m->n, m->in_raw,
-                       r->beat_cycle, r->raw, &rg, NULL, 0, 0 };
-    if (built && (tb_range_init(&rg, b.c, b.sc, b.clk) || !(tog = calloc((size_t)rg.nsmp + 1, sizeof *tog)))) oom = 1;
-    j.toggles = tog;
-    lanes_par x = { m, u, cfg, fmts, vs, r, built && !oom ? &j : NULL, 1, "" };
-    if (!built) snprintf(x.why, sizeof x.why, "the unit does not build");   /* the kernel says why */
-    base_par_for(2, 2, lanes_item, &x);
-    if (oom || x.rc < 0) base_out_of_memory();
-    if (x.rc > 0) {
-        snprintf(r->engine_why, sizeof r->engine_why, "%.150s", x.why);
-        rc = 1;
+    lanes_par p = { m, u, cfg, fmts, vs, r, NULL, { m->in_raw, m->n, 0, 0, 1, r->beat_cycle, r->raw, 0 }, 1, "" };
+    p.x = tb_lanes_new(u, cfg, fmts, threads, p.why, sizeof p.why);
+    /* the preparation beside the lanes' groups: one thread more */
+    base_par_for(2, threads < 2 ? 1 : 2, lanes_item, &p);
+    int rc = 1;
+    if (p.rc) {
+        snprintf(r->engine_why, sizeof r->engine_why, "%.150s", p.why);
         goto done;
     }
-    r->lanes = j.lanes;
-    r->stats.clocks = j.clocks;
+    tb_lanes_out lo;
+    tb_lanes_result(p.x, &lo);
+    r->lanes = lo.lanes;
+    r->stats.clocks = lo.clocks;
     /* no lane overflowed: the unit's counts are its constants' (at build) */
-    run_figures(m, b.c, b.sc, r);
-    tb_range_finish(&rg, b.sc, &b.io, m->in_ovf, r);
-    tb_energy_fill_counts(r, &rg, tog, NULL, b.c, r->stats.clocks);
+    run_figures(m, lo.c, lo.sc, r);
+    tb_range_finish(lo.rg, lo.sc, lo.io, m->in_ovf, r);
+    tb_energy_fill_counts(r, lo.rg, lo.toggles, NULL, lo.c, r->stats.clocks);
     metrics(r, vs, m->ideal, m->exact, m->exact_den, m->exact_hi, m->exact_ok, &m->gold);
     tb_verdict(r, NULL);
     rc = TB_OK;
 done:
-    (void)err, (void)errlen;
-    free(tog);
-    tb_range_free(&rg);
-    sim_free(b.c);
+    tb_lanes_free(p.x);
     return rc;
 }
 
@@ -372,7 +343,7 @@ int tb_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
     run_mem m;
     if (run_mem_alloc(&m, u, r, vs->n_rows, err, errlen)) return TB_FAIL;
     if (o && o->lanes && !o->vcd_path && !o->reference) {
-        int t = run_lanes(u, cfg, fmts, vs, &m, r, err, errlen);   /* prepares too */
+        int t = run_lanes(u, cfg, fmts, vs, &m, r, o->threads ? o->threads : 2);   /* prepares too */
         if (t != 1) { run_mem_free(&m); return t; }
         /* the kernel from a clean slate: the lanes may have written some */
         memset(r->raw, 0, m.nvals * sizeof *r->raw);

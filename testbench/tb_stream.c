@@ -195,6 +195,37 @@ void tb_acc_end(tb_acc *a, tb_result *r)
     r->nmse = sum_ref2 > 0 ? sum_e2 / sum_ref2 : (sum_e2 > 0 ? INFINITY : 0);
 }
 
+/* ------------------------------------------------------- the report */
+
+void tb_stream_outputs(tb_result *r, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts)
+{
+    double bound[UNIT_MAX_IO];
+    unit_bound(u, cfg, fmts, bound);
+    for (int i = 0, oi = 0; i < u->nsigs; i++)
+        if (u->sigs[i].role == UNIT_SIG_OUT) {
+            snprintf(r->out[oi].name, sizeof r->out[oi].name, "%s", u->sigs[i].name);
+            r->out[oi].fmt = fmts->f[i];
+            r->out[oi].bound = bound[oi];
+            oi++;
+        }
+}
+
+void tb_stream_figures(tb_result *r, size_t n, uint64_t first_cycle, uint64_t last_item_cycle, uint64_t last_cycle,
+                       sim_ctx *c, const sim_scope *sc, const uint64_t *in_ovf)
+{
+    size_t nbeats = n * (size_t)r->beats;
+    r->latency = first_cycle;
+    r->cycles = last_cycle + 1;
+    r->cycles_per_item = n > 1 ? (double)(last_item_cycle - first_cycle) / (double)(n - 1) : (double)r->cycles;
+    r->cycles_per_beat = nbeats > 1 ? (double)(last_cycle - first_cycle) / (double)(nbeats - 1) : (double)r->cycles;
+    r->area_ge = sim_scope_area(sc);
+    char terr[300];
+    if (tb_ppa_timing(c, sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
+    r->overflows = tb_scope_overflows(sc);
+    r->ovf_discarded = tb_scope_ovf_discarded(sc);
+    for (int i = 0; i < r->n_in; i++) { r->in_overflows += in_ovf[i]; r->overflows += in_ovf[i]; }
+}
+
 /* ------------------------------------------------------------ streaming */
 
 /* Prepared items, slot = item & (cap - 1). */
@@ -381,15 +412,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
         return TB_BADINPUT;
     }
 
-    double bound[UNIT_MAX_IO];
-    unit_bound(u, cfg, fmts, bound);
-    for (int i = 0, oi = 0; i < u->nsigs; i++)
-        if (u->sigs[i].role == UNIT_SIG_OUT) {
-            snprintf(r->out[oi].name, sizeof r->out[oi].name, "%s", u->sigs[i].name);
-            r->out[oi].fmt = fmts->f[i];
-            r->out[oi].bound = bound[oi];
-            oi++;
-        }
+    tb_stream_outputs(r, u, cfg, fmts);
     tb_acc_begin(&st.acc, r);
 
     tb_built bu;
@@ -437,19 +460,7 @@ int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts
         rc = TB_FAIL;
     }
     if (rc == TB_OK) {
-        size_t n = st.prepared, nbeats = n * (size_t)st.beats;
-        r->latency = st.first_cycle;
-        r->cycles = st.last_cycle + 1;
-        r->cycles_per_item = n > 1 ? (double)(st.last_item_cycle - st.first_cycle) / (double)(n - 1)
-                                   : (double)r->cycles;
-        r->cycles_per_beat = nbeats > 1 ? (double)(st.last_cycle - st.first_cycle) / (double)(nbeats - 1)
-                                        : (double)r->cycles;
-        r->area_ge = sim_scope_area(sc);
-        char terr[300];
-        if (tb_ppa_timing(c, sc, r->cycles_per_item, &r->ppa, terr, sizeof terr)) { /* the run found no loop */ }
-        r->overflows = tb_scope_overflows(sc);
-        r->ovf_discarded = tb_scope_ovf_discarded(sc);
-        for (int i = 0; i < r->n_in; i++) { r->in_overflows += st.in_ovf[i]; r->overflows += st.in_ovf[i]; }
+        tb_stream_figures(r, st.prepared, st.first_cycle, st.last_item_cycle, st.last_cycle, c, sc, st.in_ovf);
         tb_range_finish(&st.rg, sc, &io, st.in_ovf, r);
         tb_energy_fill(r, &st.rg, tog, c, r->stats.clocks);
         tb_acc_end(&st.acc, r);

@@ -97,4 +97,25 @@ typedef void (*tb_row_fn)(void *data, const tb_result *r, size_t idx, uint64_t c
 int tb_run_stream(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts,
                   vec_stream *vs, tb_row_fn row, void *row_data, const tb_opts *o, tb_result *res,
                   char *err, size_t errlen);
+/* Each output's name, format and bound in r (before tb_acc_begin). */
+void tb_stream_outputs(tb_result *r, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts);
+/* The figures of a stream of n items whose first beat came at clock
+ * first_cycle, the last item's first at last_item_cycle, the last beat at
+ * last_cycle: latency, cycles, cycles per item and beat; area and the
+ * critical path of the build (c, sc), its overflows and the inputs'
+ * (in_ovf, per input). */
+void tb_stream_figures(tb_result *r, size_t n, uint64_t first_cycle, uint64_t last_item_cycle, uint64_t last_cycle,
+                       sim_ctx *c, const sim_scope *sc, const uint64_t *in_ovf);
+
+/* tb_run_stream on the batch's lanes (tb_lanes.h), a wave of items at a
+ * time on up to `threads` threads: the same report, to the byte, but for
+ * the engine (res->lanes set; no events, delta cycles or process runs).
+ * TB_OK, TB_BADINPUT (a bad row: err) or TB_STREAM_KERNEL: the lanes do
+ * not give the kernel's results (res->engine_why says why); *rewound is
+ * then 1 if vs is back at its first rows (hand it to tb_run_stream), 0 if
+ * rows were taken (a file must be opened again; a pipe cannot). */
+enum { TB_STREAM_KERNEL = 4 };
+int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, vec_stream *vs,
+                        tb_row_fn row, void *row_data, int threads, tb_result *res, int *rewound,
+                        char *err, size_t errlen);
 #endif

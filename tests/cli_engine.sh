@@ -115,12 +115,12 @@ if [ "$rb" = 1 ] && [ "$rk" = 1 ] && cmp -s "$T/b.json" "$T/k.json" && grep -q '
    grep -q '^engine kernel: .*(not on lanes: an overflow' "$T/o.txt"; then ok overflow; else fail overflow; fi
 
 # a vector file over 64 MiB (here mostly comment lines) is streamed on the
-# kernel, with the same report
-{ sed -n '/^#/p' vectors/horner3.vec; yes '# a comment line, to make the file larger than the lanes hold..............' | head -n 900000
+# lanes a block at a time, with the same report (tests/cli_stream.sh: a
+# pipe of 10^6 items)
+{ sed -n '/^#/p' vectors/horner3.vec; yes '# a comment line, to make the file larger than the lanes held once.........' | head -n 900000
   sed '/^#/d' vectors/horner3.vec; } >"$T/big.vec"
 $S run horner3 --vectors "$T/big.vec" --json >"$T/b.json"; rb=$?
-$S run horner3 --vectors "$T/big.vec" >"$T/b.txt"
 $S run horner3 --json --kernel >"$T/k.json"
-if [ "$rb" = 0 ] && grep -q '"engine": "kernel"' "$T/b.json" && grep -q '(not on lanes: a vector file over 64 MiB' "$T/b.txt" &&
-   cmp -s "$T/b.json" "$T/k.json"; then ok big-file-streamed; else fail big-file-streamed; fi
+if [ "$rb" = 0 ] && grep -q '"engine": "batch"' "$T/b.json" &&
+   [ "$(grep -v '"sim"' "$T/b.json")" = "$(grep -v '"sim"' "$T/k.json")" ]; then ok big-file-streamed; else fail big-file-streamed; fi
 rm -f "$T/big.vec"

@@ -2,8 +2,11 @@
  * gives the same report as tb_run (every vector in memory): the JSON
  * report and the --out rows, byte for byte, for every unit on its
  * checked-in vectors and for horner3 on a file of several blocks (more
- * items than the ring holds); a bad row past the first block is the
- * reader's message, as a whole read gives it. */
+ * items than the ring holds); so does tb_run_stream_lanes (the lanes, a
+ * wave at a time, on 2 threads) but for the JSON's "sim" line, where the
+ * lanes take the stream (a unit they do not take must hand the stream
+ * back unread); a bad row past the first block is the reader's message,
+ * as a whole read gives it. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
 #include "testbench/tb_stream.h"
@@ -29,6 +32,56 @@ static char *slurp(const char *path, size_t *n)
     *n = b ? fread(b, 1, (size_t)len, f) : 0;
     fclose(f);
     return b;
+}
+
+/* The JSON without its "sim" line (the engine's own). */
+static void drop_sim(membuf *j)
+{
+    char *at = j->p ? strstr(j->p, "  \"sim\": ") : NULL;
+    if (!at) return;
+    char *end = strchr(at, '\n');
+    end = end ? end + 1 : j->p + j->n;
+    memmove(at, end, (size_t)(j->p + j->n - end) + 1);
+    j->n -= (size_t)(end - at);
+}
+
+/* tb_run_stream_lanes on path against tb_run's JSON and rows (j1, c1). */
+static void same_on_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const char *path,
+                          const vec_set *hdr, membuf *j1, const char *c1, size_t n1, const char *tag)
+{
+    char err[600];
+    vec_stream *st = vec_stream_open(path, hdr, err, sizeof err);
+    TST_CHECK(st != NULL, "%s", err);
+    if (!st) return;
+    membuf j3 = { 0 }, c3 = { 0 };
+    c3.f = open_memstream(&c3.p, &c3.n);
+    tb_csv_header(c3.f, hdr->n_out, (const char (*)[16])hdr->out_names);
+    tb_result r3;
+    int rewound = 0;
+    int t3 = tb_run_stream_lanes(u, cfg, fm, st, row_cb, &c3, 2, &r3, &rewound, err, sizeof err);
+    fclose(c3.f);
+    if (t3 == TB_STREAM_KERNEL) {
+        const vec_set *rows;
+        TST_CHECK(rewound && vec_stream_next(st, &rows) == 1 && rows->n_rows > 0, "%s: not on lanes (%s), and not handed back",
+                  tag, r3.engine_why);
+    } else {
+        TST_CHECK(t3 == TB_OK, "%s: lanes: %s", tag, err);
+        j3.f = open_memstream(&j3.p, &j3.n);
+        if (t3 == TB_OK) tb_write_json(j3.f, &r3);
+        fclose(j3.f);
+        membuf k = *j1;
+        k.p = malloc(j1->n + 1);
+        if (k.p) memcpy(k.p, j1->p, j1->n + 1);
+        drop_sim(&k);
+        drop_sim(&j3);
+        int same = t3 == TB_OK && r3.lanes > 0 && k.p && j3.p && k.n == j3.n && !memcmp(k.p, j3.p, k.n) && c1 && n1 == c3.n
+                   && !memcmp(c1, c3.p, n1);
+        TST_CHECK(same, "%s: on lanes, JSON %zu/%zu bytes, CSV %zu/%zu bytes differ", tag, k.n, j3.n, n1, c3.n);
+        free(k.p);
+    }
+    tb_result_free(&r3);
+    free(j3.p); free(c3.p);
+    vec_stream_close(st);
 }
 
 /* Both ways on one file; 1 if the same bytes. */
@@ -72,6 +125,7 @@ static int same_both_ways(const unit_desc *u, const char *path, const char *tag)
                && c1 && n1 == c2.n && !memcmp(c1, c2.p, n1);
     TST_CHECK(same, "%s: JSON %zu/%zu bytes, CSV %zu/%zu bytes differ", tag, j1.n, j2.n, n1, c2.n);
     TST_CHECK(t2 != TB_OK || (r2.raw == NULL && r2.beat_cycle == NULL), "%s: nothing per item kept", tag);
+    if (t1 == TB_OK) same_on_lanes(u, &cfg, &fm, path, &hdr, &j1, c1, n1, tag);
     if (t1 == TB_OK) tb_result_free(&r1);
     if (t2 == TB_OK) tb_result_free(&r2);
     free(j1.p); free(j2.p); free(c2.p); free(c1);

@@ -644,6 +644,14 @@ void vec_stream_unread(vec_stream *v) { if (!v->failed) v->held = 1; }
 
 const char *vec_stream_error(const vec_stream *v) { return v->err; }
 
+int vec_stream_done(const vec_stream *v) { return v->done && !v->held; }
+
+void vec_stream_threads(vec_stream *v, int n)
+{
+    long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
+    v->pp.ncpu = n > 1 && ncpu > 1 ? 2 : 1;
+}
+
 void vec_stream_close(vec_stream *v)
 {
     if (!v) return;

@@ -39,5 +39,10 @@ int         vec_stream_next(vec_stream *v, const vec_set **rows);
  * looked at the header and first rows hands the stream on untouched). */
 void        vec_stream_unread(vec_stream *v);
 const char *vec_stream_error(const vec_stream *v);
+/* 1 when the file's end has been read: the rows vec_stream_next gave last
+ * are the file's last (the next call returns 0). */
+int         vec_stream_done(const vec_stream *v);
+/* Parse a block on up to n threads (default: 2 where there are 2 cores). */
+void        vec_stream_threads(vec_stream *v, int n);
 void        vec_stream_close(vec_stream *v);
 #endif

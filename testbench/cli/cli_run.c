@@ -13,16 +13,14 @@
 #include <stddef.h>
 #include <string.h>
 #include <sys/stat.h>
-
-/* The batch's lanes hold the vectors in memory (a few times the file's
- * size); past this the kernel streams the file (docs/batch.md). */
-#define RUN_LANES_MAX_BYTES ((off_t)64 << 20)
+#include <unistd.h>
 
 typedef struct run_args {
     const char *vcd, *csv;
     int json, fst, ranges, kernel, reference;
     long vfrom, vto;
     long nvec;              /* -n N: N generated vectors (0: the vector file) */
+    int jobs;               /* -j N: the lanes' threads (default: one a core) */
     uint64_t seed;          /* --seed S of the generated vectors (default 1) */
     /* --ranges derived, --range NAME=LO:HI (static check) */
     int derived, nrange, want_mode;
@@ -41,6 +39,14 @@ static int run_o_ranges(void *base, const char *opt, const char *val)
     if (!val || !strcmp(val, "observed")) { ra->ranges = 1; ra->want_mode = !val; return 0; }
     if (!strcmp(val, "derived")) { ra->derived = 1; return 0; }
     return cli_usage_error("--ranges %s: expected observed or derived", val);
+}
+
+/* -j when not given: one thread a core online (the output is the same
+ * for any -j), at most the option's own limit. */
+static int run_default_jobs(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > 256 ? 256 : (int)n;
 }
 
 static int run_pos(void *base, const char *arg)
@@ -108,6 +114,9 @@ static const cli_opt run_tab[] = {
     { "-n", NULL, CLI_OPT_LONG, offsetof(run_args, nvec), 1, 10000000, "1..10000000 vectors", NULL, NULL, 0,
       "  -n N                 instead of the vector file, N vectors made by the float\n"
       "                       reference (as shadesim vectors UNIT -n N makes them)\n" },
+    { "-j", NULL, CLI_OPT_INT, offsetof(run_args, jobs), 1, 256, "1..256 threads", "%s needs a number of threads", NULL, 0,
+      "  -j N                 threads of the lanes (default: the machine's cores); the\n"
+      "                       output is the same for any N\n" },
     { "--seed", NULL, CLI_OPT_U64, offsetof(run_args, seed), 0, 0, "a whole number", NULL, NULL, 0,
       "  --seed S             seed of the -n vectors (default 1)\n" },
     VCD_ITEM("--vcd-from", vfrom,
@@ -266,12 +275,35 @@ static void csv_row(void *data, const tb_result *r, size_t idx, uint64_t cycle, 
     tb_csv_row(base_out_file(data), r, idx, cycle, raw, expected);
 }
 
-/* run UNIT on a vector file, streamed (tb_run_stream): the same report,
- * --out rows written as items complete. The header and first rows are
- * read first, so a bad file is reported before anything is written. */
+/* An output written in place (stdout, a device, a FIFO): rows written to
+ * it cannot be taken back. */
+static int written_in_place(const char *path)
+{
+    struct stat st;
+    return !strcmp(path, "-") || (!stat(path, &st) && !S_ISREG(st.st_mode));
+}
+
+/* The --out file with its header: NULL after the message. */
+static base_out *csv_open(const char *csv, const vec_set *hdr)
+{
+    char err[600];
+    base_out *out = base_out_open(csv, err, sizeof err);
+    if (!out) { cli_usage_error("%s", err); return NULL; }
+    tb_csv_header(base_out_file(out), hdr->n_out, (const char (*)[16])hdr->out_names);
+    return out;
+}
+
+/* run UNIT on a vector file or pipe, streamed: on the batch's lanes
+ * (tb_run_stream_lanes, threads > 0) or the kernel (tb_run_stream), the
+ * same report, --out rows written as items complete. The header and first
+ * rows are read first, so a bad file is reported before anything is
+ * written. When the lanes do not take the stream, the kernel runs it from
+ * its first row: handed back unread (the lanes stopped in its first
+ * block), or the file opened again; a pipe read past its first block
+ * cannot be, and says so. */
 static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char *path, const char *csv,
-                        int json, int ranges, int reference, FILE *report, const tb_accept *acc, const char *why,
-                        int static_bad)
+                        int json, int ranges, int reference, int threads, FILE *report, const tb_accept *acc,
+                        const char *why, int static_bad)
 {
     char err[600];
     vec_set hdr;
@@ -287,14 +319,40 @@ static int run_streamed(const cli_unit_opts *o, const unit_fmts *fm, const char 
     }
     vec_stream_unread(vs);
     base_out *out = NULL;
-    if (csv) {
-        out = base_out_open(csv, err, sizeof err);
-        if (!out) { vec_stream_close(vs); return cli_usage_error("%s", err); }
-        tb_csv_header(base_out_file(out), rows->n_out, (const char (*)[16])rows->out_names);
-    }
+    if (csv && !(out = csv_open(csv, &hdr))) { vec_stream_close(vs); return CLI_USAGE; }
     tb_result r;
     tb_opts topt = { .reference = reference };
-    int t = tb_run_stream(o->u, &o->cfg, fm, vs, csv ? csv_row : NULL, out, &topt, &r, err, sizeof err);
+    char lwhy[160] = "";
+    int t = TB_STREAM_KERNEL, rewound = 1;
+    if (threads) {
+        t = tb_run_stream_lanes(o->u, &o->cfg, fm, vs, csv ? csv_row : NULL, out, threads, &r, &rewound, err, sizeof err);
+        if (t == TB_STREAM_KERNEL) {
+            snprintf(lwhy, sizeof lwhy, "%s", r.engine_why);
+            tb_result_free(&r);
+            why = lwhy;
+            if (!rewound && ((csv && written_in_place(csv)) || written_in_place(path))) {
+                if (out) base_out_abort(out);
+                vec_stream_close(vs);
+                if (written_in_place(path))
+                    return cli_usage_error("run: the lanes stopped (%s) past the first block of %s, which cannot be "
+                                           "read again for the kernel: run it with --kernel", lwhy,
+                                           strcmp(path, "-") ? path : "stdin");
+                return cli_usage_error("run: the lanes stopped (%s) after rows went to --out %s, which cannot take "
+                                       "them again: run it with --kernel", lwhy, csv);
+            }
+            if (out) { base_out_abort(out); out = NULL; }
+            if (csv && !(out = csv_open(csv, &hdr))) { vec_stream_close(vs); return CLI_USAGE; }
+            if (!rewound) {
+                vec_stream_close(vs);
+                if (!(vs = vec_stream_open(path, &hdr, err, sizeof err))) {
+                    if (out) base_out_abort(out);
+                    return cli_usage_error("%s", err);
+                }
+            }
+        }
+    }
+    if (t == TB_STREAM_KERNEL)
+        t = tb_run_stream(o->u, &o->cfg, fm, vs, csv ? csv_row : NULL, out, &topt, &r, err, sizeof err);
     vec_stream_close(vs);
     int rc = CLI_OK;
     if (t != TB_OK) {
@@ -365,7 +423,7 @@ int cli_run(int argc, char **argv)
         o = (cli_unit_opts){ .u = nlu, .cfg = ncfg };
         if (tb_datapath_is(nlu)) nlu = NULL;   /* a datapath file: a unit of its own, --width... apply */
     } else if (cli_unit_select(&o, unit)) return CLI_USAGE;
-    run_args ra = { NULL, NULL, 0, 0, 0, 0, 0, -1, -1, 0, 1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
+    run_args ra = { NULL, NULL, 0, 0, 0, 0, 0, -1, -1, 0, run_default_jobs(), 1, 0, 0, 0, NULL, { { 0 }, { 0 }, { 0 } } };
     ra.u = o.u;
     run_cur = &ra;
     void *base[] = { &o, &acc, &ra };
@@ -390,23 +448,18 @@ int cli_run(int argc, char **argv)
     }
     int static_bad = 0;
     if (ra.derived && (static_bad = check_derived(&o, &fm, &ra.rg, json, report)) < 0) return CLI_USAGE;
-    /* On the kernel without a dump, a vector file is read a block at a
-     * time: memory does not grow with the number of vectors. The batch's
-     * lanes take the whole file in memory (docs/batch.md). */
+    /* Without a dump, a vector file (or pipe) is read a block at a time,
+     * on the lanes or the kernel: memory does not grow with the number of
+     * vectors (docs/batch.md). */
     int lanes = !ra.kernel && !ra.reference && !vcd;
     char vpath[4200];
     const char *vfile = NULL;
     if (!vcd && !ra.nvec) {
         int f = cli_vectors_file(&o, vpath, sizeof vpath, &vfile);
         if (f < 0) return CLI_USAGE;
-        /* a file too large to hold (a regular file; "-" and pipes are
-         * read whole) is streamed on the kernel all the same */
-        struct stat st;
-        const char *why = NULL;
-        if (f && lanes && strcmp(vfile, "-") && !stat(vfile, &st) && S_ISREG(st.st_mode) && st.st_size > RUN_LANES_MAX_BYTES)
-            why = "a vector file over 64 MiB, read a block at a time";
-        if (f && (!lanes || why)) {
-            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, ra.reference, report, &acc, why, static_bad);
+        if (f) {
+            int rs = run_streamed(&o, &fm, vfile, csv, json, ranges, ra.reference, lanes ? ra.jobs : 0, report, &acc,
+                                  NULL, static_bad);
             if (json && ra.derived) fputs("}\n", stdout);
             return rs == CLI_OK && static_bad ? cli_stdout_done(CLI_FAIL) : rs;
         }
@@ -415,7 +468,8 @@ int cli_run(int argc, char **argv)
     if (ra.nvec) {
         if (tb_make_vectors(o.u, &o.cfg, (size_t)ra.nvec, ra.seed, &vs, err, sizeof err)) return cli_usage_error("%s", err);
     } else if (cli_load_vectors(&o, &vs)) return CLI_USAGE;
-    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst, .lanes = lanes, .reference = ra.reference };
+    tb_opts opts = { .vcd_path = vcd, .gtkw = !vcd_out, .fst = fst, .lanes = lanes, .reference = ra.reference,
+                     .threads = ra.jobs };
     if (vfrom >= 0 || vto >= 0) {
         int bad_from = vfrom >= 0 && (size_t)vfrom >= vs.n_rows;
         if (bad_from || (vto >= 0 && (size_t)vto >= vs.n_rows)) {

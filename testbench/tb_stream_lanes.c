@@ -1,0 +1,315 @@
+/* tb_stream_lanes.c - tb_run_stream on the batch's lanes (tb_stream.h): a
+ * vector file or a pipe of any length, read a block at a time, its items
+ * simulated a wave at a time (tb_lanes.h), memory independent of its
+ * length.
+ *
+ * A wave: the rows read (the first block alone, then blocks up to a
+ * wave's items; with more than one thread, the next wave's read on a
+ * thread of its own meanwhile), each item prepared (tb_prep: the quantized inputs,
+ * what the unit should give) on the threads, the wave's pieces simulated
+ * side by side and joined to the stream, then every item whose beats are
+ * all in folded into the metrics in item order (tb_acc: the sums added in
+ * the same order as the kernel's run, so the same bytes) and handed to the
+ * caller (--out), on a thread of its own while the next wave simulates.
+ * So there are two buffers, used in turn; the wave's last items are
+ * copied to the front of the other one for the next wave: its first
+ * lane's warm-up, and the items still in flight at the junction.
+ *
+ * The first wave is the first block alone, so that when the lanes do not
+ * take the stream there (a unit they cannot evaluate, an overflow in the
+ * first rows), the stream can be handed back unread to the kernel, pipes
+ * too.
+ */
+#include "testbench/tb_stream.h"
+#include "testbench/tb_lanes.h"
+#include "testbench/tb_energy.h"
+#include "base/base_out.h"
+#include "base/base_par.h"
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A wave takes items up to about WAVE_BYTES of their rows and prepared
+ * figures (a unit with many output beats an item takes fewer), between
+ * WAVE_MIN and WAVE_MAX items (256 lanes of 512). */
+#define WAVE_BYTES ((size_t)16 << 20)
+#define WAVE_MIN   ((size_t)1 << 12)
+#define WAVE_MAX   ((size_t)1 << 17)
+
+/* A wave's items by position in the buffer. */
+typedef struct wbuf {
+    size_t cap;
+    int n_in, nv, beats, ncol;  /* ncol: a row's inputs and expected values */
+    double   *rows;             /* [pos][ncol] */
+    int64_t  *in_raw;           /* [pos][n_in] */
+    int64_t  *raw;              /* [pos][nv] */
+    double   *ideal;            /* [pos][4][nv]: ideal, ideal_r, ideal_u, ref_u */
+    sim_dy   *exact, *den, *hi; /* [pos][nv], where the unit has them */
+    unsigned char *exact_ok;    /* [pos] */
+    uint64_t *cycle;            /* [pos][beat] */
+} wbuf;
+
+static void *grow(void *p, size_t n, size_t size)
+{
+    if (!size) return p;
+    void *q = realloc(p, (n ? n : 1) * size);
+    if (!q) base_out_of_memory();
+    return q;
+}
+
+/* Room for cap items (kept as they are). */
+static void wbuf_reserve(wbuf *B, size_t cap, int has_exact, int has_den, int has_hi)
+{
+    if (cap <= B->cap) return;
+    size_t nv = (size_t)B->nv;
+    B->rows = grow(B->rows, cap, (size_t)B->ncol * sizeof *B->rows);
+    B->in_raw = grow(B->in_raw, cap, (size_t)B->n_in * sizeof *B->in_raw);
+    B->raw = grow(B->raw, cap, nv * sizeof *B->raw);
+    B->ideal = grow(B->ideal, cap, 4 * nv * sizeof *B->ideal);
+    if (has_exact) B->exact = grow(B->exact, cap, nv * sizeof *B->exact);
+    if (has_den) B->den = grow(B->den, cap, nv * sizeof *B->den);
+    if (has_hi) B->hi = grow(B->hi, cap, nv * sizeof *B->hi);
+    B->exact_ok = grow(B->exact_ok, cap, 1);
+    B->cycle = grow(B->cycle, cap, (size_t)B->beats * sizeof *B->cycle);
+    B->cap = cap;
+}
+
+/* Items [k, n) of F to the front of T (room for them reserved). */
+static void wbuf_tail(wbuf *T, const wbuf *F, size_t k, size_t n)
+{
+    size_t m = n - k, nv = (size_t)F->nv;
+#define TAIL(a, per) do { if (F->a) memcpy(T->a, F->a + k * (per), m * (per) * sizeof *F->a); } while (0)
+    TAIL(rows, (size_t)F->ncol);
+    TAIL(in_raw, (size_t)F->n_in);
+    TAIL(raw, nv);
+    TAIL(ideal, 4 * nv);
+    TAIL(exact, nv);
+    TAIL(den, nv);
+    TAIL(hi, nv);
+    TAIL(exact_ok, (size_t)1);
+    TAIL(cycle, (size_t)F->beats);
+#undef TAIL
+}
+
+static void wbuf_free(wbuf *B)
+{
+    free(B->rows); free(B->in_raw); free(B->raw); free(B->ideal);
+    free(B->exact); free(B->den); free(B->hi); free(B->exact_ok); free(B->cycle);
+}
+
+static tb_item wbuf_item(const wbuf *B, size_t pos)
+{
+    size_t nv = (size_t)B->nv;
+    double *id = B->ideal + pos * 4 * nv;
+    tb_item it = { B->in_raw + pos * (size_t)B->n_in, id, id + nv, id + 2 * nv, id + 3 * nv,
+                   B->exact ? B->exact + pos * nv : NULL, B->den ? B->den + pos * nv : NULL,
+                   B->hi ? B->hi + pos * nv : NULL, B->exact_ok + pos };
+    return it;
+}
+
+/* The preparation of items [from, to) in chunks on the threads, each
+ * chunk's input overflows its own (summed after: whole numbers). */
+#define PREP_CHUNKS 16
+typedef struct prep_job {
+    const tb_prep_ctx *pc;
+    wbuf *B;
+    size_t from, to;
+    uint64_t ovf[PREP_CHUNKS][UNIT_MAX_IO];
+} prep_job;
+
+static void prep_chunk(void *ctx, size_t c)
+{
+    prep_job *j = ctx;
+    size_t n = j->to - j->from, a = j->from + n * c / PREP_CHUNKS, b = j->from + n * (c + 1) / PREP_CHUNKS;
+    for (size_t p = a; p < b; p++) {
+        tb_item it = wbuf_item(j->B, p);
+        tb_prep(j->pc, j->B->rows + p * (size_t)j->B->ncol, &it, j->ovf[c]);
+    }
+}
+
+/* Where the stream is: its number of the item at the buffer's pos 0, and
+ * the items in the buffer. */
+typedef struct sl_state {
+    size_t base, n;
+} sl_state;
+
+/* The metrics' side: the items whose beats are all in (beats_done of
+ * the stream's), folded into the metrics and handed to the caller in
+ * item order, from a wave's buffer (on a thread of its own while the next
+ * wave simulates, with more than one thread). */
+typedef struct folder {
+    const wbuf *B;
+    size_t base, beats_done;
+    size_t acc_next;            /* the stream's next item for the metrics */
+    uint64_t first_cycle, last_item_cycle, last_cycle;
+    tb_acc *acc;
+    tb_result *r;
+    tb_row_fn row;
+    void *row_data;
+} folder;
+
+static void *fold(void *arg)
+{
+    folder *f = arg;
+    const wbuf *B = f->B;
+    size_t nb = (size_t)B->beats;
+    while ((f->acc_next + 1) * nb <= f->beats_done) {
+        size_t it = f->acc_next, pos = it - f->base;
+        const uint64_t *cyc = B->cycle + pos * nb;
+        const int64_t *raw = B->raw + pos * (size_t)B->nv;
+        const double *expected = B->rows + pos * (size_t)B->ncol + B->n_in;
+        tb_item ti = wbuf_item(B, pos);
+        if (it == 0) f->first_cycle = cyc[0];
+        f->last_item_cycle = cyc[0];
+        f->last_cycle = cyc[nb - 1];
+        tb_acc_item(f->acc, f->r, it, raw, expected, &ti);
+        if (f->row) f->row(f->row_data, f->r, it, cyc[0], raw, expected);
+        f->acc_next++;
+    }
+    return NULL;
+}
+
+/* The rows of the next wave, read while the wave before is simulated
+ * (on a thread of its own, with more than one thread): the first block
+ * alone for the first wave, else blocks up to `most` items. */
+typedef struct reader {
+    vec_stream *vs;
+    size_t most, ncol;
+    int first;
+    double *rows;               /* [n][ncol] */
+    size_t n, cap;
+    int last, failed;           /* the file's end was read; a bad row (err) */
+    char err[600];
+} reader;
+
+static void *reader_run(void *arg)
+{
+    reader *R = arg;
+    R->n = 0;
+    R->last = R->failed = 0;
+    do {
+        const vec_set *rows;
+        int rc = vec_stream_next(R->vs, &rows);
+        if (rc < 0) { R->failed = 1; snprintf(R->err, sizeof R->err, "%s", vec_stream_error(R->vs)); return NULL; }
+        if (rc == 0) break;
+        if (R->n + rows->n_rows > R->cap) {
+            R->cap = (R->n + rows->n_rows) * 2;
+            R->rows = grow(R->rows, R->cap, R->ncol * sizeof *R->rows);
+        }
+        memcpy(R->rows + R->n * R->ncol, rows->data, rows->n_rows * R->ncol * sizeof *R->rows);
+        R->n += rows->n_rows;
+    } while (!R->first && !vec_stream_done(R->vs) && R->n < R->most);
+    R->last = vec_stream_done(R->vs);
+    R->first = 0;
+    return NULL;
+}
+
+int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, vec_stream *vs,
+                        tb_row_fn row, void *row_data, int threads, tb_result *r, int *rewound,
+                        char *err, size_t errlen)
+{
+    memset(r, 0, sizeof *r);
+    r->unit = u; r->cfg = *cfg; r->fmts = *fmts;
+    r->n_in = unit_n_in(u); r->n_out = unit_n_out(u); r->beats = u->beats(cfg);
+    *rewound = 0;
+    if (threads < 1) threads = 1;
+    char why[300];
+    tb_lanes *x = tb_lanes_new(u, cfg, fmts, threads, why, sizeof why);
+    if (!x) {
+        snprintf(r->engine_why, sizeof r->engine_why, "%.150s", why);
+        *rewound = 1;
+        return TB_STREAM_KERNEL;
+    }
+    tb_prep_ctx pc;
+    tb_prep_init(&pc, u, cfg, fmts);
+    tb_stream_outputs(r, u, cfg, fmts);
+    tb_acc acc;
+    tb_acc_begin(&acc, r);
+    /* two buffers: a wave simulates in one while the wave before is
+     * folded from the other */
+    wbuf X[2] = { { 0 }, { 0 } };
+    for (int i = 0; i < 2; i++) {
+        X[i].n_in = r->n_in; X[i].nv = pc.nv; X[i].beats = r->beats; X[i].ncol = r->n_in + pc.nv;
+    }
+    int has_exact = u->ideal_exact || u->ideal_ratio || u->ideal_interval;
+    size_t nv = (size_t)pc.nv, ndy = (size_t)has_exact + !!u->ideal_ratio + !!u->ideal_interval;
+    size_t per = (size_t)X[0].ncol * 8 + (size_t)X[0].n_in * 8 + nv * (8 + 32 + ndy * sizeof(sim_dy)) + 1
+               + (size_t)X[0].beats * 8;
+    size_t most = WAVE_BYTES / per;
+    most = most < WAVE_MIN ? WAVE_MIN : most > WAVE_MAX ? WAVE_MAX : most;
+    sl_state s = { 0 };
+    folder F = { NULL, 0, 0, 0, 0, 0, 0, &acc, r, row, row_data };
+    uint64_t in_ovf[UNIT_MAX_IO] = { 0 };
+    prep_job *pj = calloc(1, sizeof *pj);
+    if (!pj) base_out_of_memory();
+    vec_stream_threads(vs, threads);
+    reader R = { vs, most, (size_t)X[0].ncol, 1, NULL, 0, 0, 0, 0, "" };
+    pthread_t rt, ft;
+    int reading = 0, folding = 0;   /* rt reads the next wave; ft folds the wave before */
+    int rc = TB_OK, last = 0;
+    reader_run(&R);
+    for (size_t wi = 0; !last; wi++) {
+        wbuf *B = &X[wi & 1];
+        size_t own = s.n;
+        if (reading) { pthread_join(rt, NULL); reading = 0; }
+        if (R.failed) { snprintf(err, errlen, "%s", R.err); rc = TB_BADINPUT; goto done; }
+        wbuf_reserve(B, s.n + R.n, has_exact, !!u->ideal_ratio, !!u->ideal_interval);
+        memcpy(B->rows + s.n * (size_t)B->ncol, R.rows, R.n * R.ncol * sizeof *R.rows);
+        s.n += R.n;
+        last = R.last;
+        if (s.n == own) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }   /* (the reader says it first) */
+        /* the next wave read beside this one (not beside the first: its
+         * block is handed back to the kernel if the lanes do not take it) */
+        if (!last && wi > 0 && threads > 1 && !pthread_create(&rt, NULL, reader_run, &R)) reading = 1;
+        /* the wave's own items prepared */
+        memset(pj, 0, sizeof *pj);
+        pj->pc = &pc; pj->B = B; pj->from = own; pj->to = s.n;
+        base_par_for(PREP_CHUNKS, threads, prep_chunk, pj);
+        for (int c = 0; c < PREP_CHUNKS; c++)
+            for (int i = 0; i < r->n_in; i++) in_ovf[i] += pj->ovf[c][i];
+        tb_lanes_wave w = { B->in_raw, s.n, own, s.base, last, B->cycle, B->raw, 0 };
+        int taken = !tb_lanes_wave_run(x, &w, why, sizeof why);
+        if (folding) { pthread_join(ft, NULL); folding = 0; }
+        if (!taken) {
+            snprintf(r->engine_why, sizeof r->engine_why, "%.150s", why);
+            if (wi == 0) { vec_stream_unread(vs); *rewound = 1; }
+            r->vectors = s.base + s.n;
+            rc = TB_STREAM_KERNEL;
+            goto done;
+        }
+        F.B = B; F.base = s.base; F.beats_done = w.beats_done;
+        if (last) { fold(&F); break; }
+        if (threads > 1 && !pthread_create(&ft, NULL, fold, &F)) folding = 1;
+        else fold(&F);
+        if (!reading) reader_run(&R);
+        /* the next buffer starts with the items the next wave's warm-ups
+         * reach back to, and those not yet all in */
+        size_t keep = s.n > TB_LANES_WARM_MAX ? s.n - TB_LANES_WARM_MAX : 0, done_items = w.beats_done / (size_t)r->beats;
+        if (done_items - s.base < keep) keep = done_items - s.base;
+        wbuf *N = &X[(wi + 1) & 1];
+        wbuf_reserve(N, s.n - keep, has_exact, !!u->ideal_ratio, !!u->ideal_interval);
+        wbuf_tail(N, B, keep, s.n);
+        s.base += keep;
+        s.n -= keep;
+    }
+    r->vectors = s.base + s.n;
+    tb_lanes_out lo;
+    tb_lanes_result(x, &lo);
+    r->lanes = lo.lanes;
+    r->stats.clocks = lo.clocks;
+    /* no lane overflowed: the unit's counts are its constants' (at build) */
+    tb_stream_figures(r, r->vectors, F.first_cycle, F.last_item_cycle, F.last_cycle, lo.c, lo.sc, in_ovf);
+    tb_range_finish(lo.rg, lo.sc, lo.io, in_ovf, r);
+    tb_energy_fill_counts(r, lo.rg, lo.toggles, NULL, lo.c, r->stats.clocks);
+    tb_acc_end(&acc, r);
+    tb_verdict(r, NULL);
+done:
+    if (reading) pthread_join(rt, NULL);
+    if (folding) pthread_join(ft, NULL);
+    free(R.rows);
+    free(pj);
+    wbuf_free(&X[0]);
+    wbuf_free(&X[1]);
+    tb_lanes_free(x);
+    return rc;
+}
