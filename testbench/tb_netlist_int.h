@@ -37,6 +37,26 @@ void    nl_bits_put(FILE *f, const nl_bits *b);
 const unit_desc *nl_load_text(const char *text, size_t len, const char *path, unit_cfg *cfg, unit_fmts *fm,
                               char *err, size_t errlen);
 
+/* What the datapath form of a built unit adds to its netlist text
+ * (tb_netlist_dpw.c writes it with tb_netlist_write.c's lines): per
+ * signal (creation order) its format as a rule of W ("": the format as
+ * built) and whether the reader makes it from the schedule block, which
+ * goes where signal `anchor` was (-1: no block, the handshake written
+ * out as the unit's schedule `sched`). */
+typedef struct nl_dpw {
+    char (*rule)[48];
+    unsigned char *skip;
+    int anchor;
+    const char *block;
+} nl_dpw;
+/* The text of built unit b (u with cfg and the --fmt overrides), checked
+ * by building it back: a netlist (dp NULL) or a datapath file. *buf
+ * malloc'd; 0, or -1 with err. */
+int nl_write_text(const nl_dpw *dp, const unit_desc *u, const unit_cfg *cfg, const char *const *fmt, int nfmt,
+                  const tb_built *b, char **buf, size_t *len, char *err, size_t errlen);
+/* text built at width W (0: its own) is b, signal by signal: 0, or -1 with err. */
+int nl_check_at(const char *text, size_t len, const tb_built *b, int W, char *err, size_t errlen);
+
 /* ---- the reader's records (tb_netlist_parse.c reads the lines into them,
  * tb_netlist_read.c resolves the names and builds) ---- */
 #define NL_NONE (-1)
@@ -135,6 +155,12 @@ typedef struct nl {
     int         ideal_line[UNIT_MAX_IO], nideal;
     struct tb_expr *ideal[UNIT_MAX_IO];   /* by output port */
     int         slot;       /* its place among the live datapath units */
+    /* ideal unit=NAME: the built-in unit (base) whose float reference,
+     * vectors, ideal, bound, parameters and schedules the file runs with
+     * (what netlist --datapath writes); schedule NAME names the one its
+     * own control is for, when it has no schedule blocks */
+    int         ref_line, ref_sched_line;
+    int         hs_line;    /* the first port in_valid/in_ready/out_valid: the handshake is the file's */
     vec_model   model;
 } nl;
 enum { P_IN, P_OUT, P_IN_VALID, P_IN_READY, P_OUT_VALID };
@@ -163,6 +189,9 @@ int nl_dp_line(nl *x, char **tok, int nt);
 int nl_dp_format(nl *x, nl_el *e, const char *tok);
 /* A rule at width W: 0, or -1 with why in err. */
 int nl_rule_at(const nl_rule *r, int W, sim_fmt *f, char *err, size_t errlen);
+/* Every rule at the file's width, into its element's format (the
+ * checks of tables and fn=unit read them): 0, or -1 after nl_bad. */
+int nl_dp_rules(nl *x);
 /* The end of the file: the handshake's elements and ports. */
 int nl_dp_close(nl *x);
 /* After the names are resolved: the elements in an order where each

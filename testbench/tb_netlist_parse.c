@@ -255,7 +255,9 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
         if (need[k].k == kind && !e->ref[need[k].op]) return BAD("%s %s: needs %s=NAME", tok[0], e->name, need[k].key);
     if (kind == SIM_KIND_CONST && seen_raw + e->has_value != 1) return BAD("const %s: needs one of raw=RAW and value=NUMBER", e->name);
     if (e->has_value && !x->dp) return BAD("const %s: value= is a datapath file's (a netlist gives raw=)", e->name);
-    if (e->fn_unit && x->dp) return BAD("logic %s: fn=unit names a built-in unit's function; a datapath file gives table= or bits=", e->name);
+    if (e->fn_unit && x->dp && !x->base)
+        return BAD("logic %s: fn=unit names a built-in unit's function: a datapath file gives table= or bits=, or names the "
+                   "unit first (ideal unit=NAME)", e->name);
     if (kind == SIM_KIND_MUX && !e->in_ref) return BAD("mux %s: needs in=NAME,NAME,...", e->name);
     if (kind == SIM_KIND_LOGIC) {
         if (!e->in_ref) return BAD("logic %s: needs in=NAME,...", e->name);
@@ -298,8 +300,9 @@ static int parse_header(nl *x, char **tok, int nt)
         unit_cfg_default(x->base, &x->cfg);
         return 0;
     }
-    if (x->dp && (!strcmp(k, "param") || !strcmp(k, "fmt")))
-        return BAD("%s: a datapath file has no parameters and gives each element its format (or rule of W)", k);
+    if (x->dp && !strcmp(k, "fmt")) return BAD("fmt: a datapath file gives each element its format (or rule of W)");
+    if (x->dp && !x->base && !strcmp(k, "param"))
+        return BAD("param: a datapath file has parameters only from the unit its ideal line names (ideal unit=NAME, before)");
     if (!x->base && !x->dp && strcmp(k, "clock") && strcmp(k, "scope")) return BAD("%s before unit NAME", k);
     char e[300];
     long long w;

@@ -213,7 +213,11 @@ int nl_resolve_all(nl *x)
                               nl_port_names[r], x->port_ref[r][j]);
         }
     }
-    if (x->dp) return 0;
+    if (x->dp) {
+        for (int i = 0; i < x->nel; i++)
+            if (x->el[i].fn_unit && take_unit_fn(x, &x->el[i])) return -1;
+        return 0;
+    }
     int nin = unit_n_in(x->base), nout = unit_n_out(x->base);
     if (x->nport[P_IN] != nin || x->nport[P_OUT] != nout)
         return nl_bad(x, 0, "%d input and %d output ports; unit %s has %d and %d", x->nport[P_IN], x->nport[P_OUT],
@@ -290,7 +294,7 @@ static const unit_desc *finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
 {
     if (x->dp) {
         const unit_desc *d = NULL;
-        if (nl_dp_close(x) || nl_resolve_all(x) || !(d = nl_dp_finish(x, cfg, fm))) { nl_free(x); return NULL; }
+        if (nl_dp_close(x) || nl_dp_rules(x) || nl_resolve_all(x) || !(d = nl_dp_finish(x, cfg, fm))) { nl_free(x); return NULL; }
     } else {
         if (nl_resolve_all(x) || formats_of(x)) { nl_free(x); return NULL; }
         x->desc = *x->base;
