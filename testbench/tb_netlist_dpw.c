@@ -163,7 +163,6 @@ int tb_netlist_write_dp(FILE *f, const unit_desc *u, const unit_cfg *cfg, const 
     char (*no_rule)[48] = calloc(n + 1, 48);
     if (!dp.rule || !dp.skip || !no_skip || !no_rule) base_out_of_memory();
     int rules = nb == 3 && !fit_rules(b, W, dp.rule);
-    if (getenv("DPW_DEBUG")) fprintf(stderr, "nb %d rules %d\n", nb, rules);
     char *block = NULL;
     int has_block = !find_block(&b[0], u->sched[cfg->schedule].name, dp.skip, &dp.anchor, &block);
     /* the forms from the most the file says in its own words to the least */
@@ -178,7 +177,6 @@ int tb_netlist_write_dp(FILE *f, const unit_desc *u, const unit_cfg *cfg, const 
         free(t);
         rc = nl_write_text(&d, u, cfg, fmt, nfmt, &b[0], &t, &l, err, errlen);
         for (int k = 1; k < 3 && !rc && with_rules; k++) rc = nl_check_at(t, l, &b[k], W[k], err, errlen);
-        if (getenv("DPW_DEBUG")) fprintf(stderr, "form %d: %s\n", form, rc ? err : "ok");
     }
     if (!rc && fwrite(t, 1, l, f) != l) { snprintf(err, errlen, "write error"); rc = -1; }
     free(t);
