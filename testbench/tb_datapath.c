@@ -231,10 +231,10 @@ static int dp_build(nl *x, sim_ctx *c, sim_scope *sc, sim_signal *clk, const uni
     }
     for (int i = 0; i < x->nel && !rc; i++) {   /* a table is for its inputs' widths at the file's */
         const nl_el *e = &x->el[i];
-        for (int j = 0; e->table && !e->gen && j < e->n && !rc; j++)
+        for (int j = 0; (e->table || e->fn_verilog) && !e->gen && j < e->n && !rc; j++)
             if (fm[e->in[j]].width != x->el[e->in[j]].fmt.width) {
-                snprintf(err, errlen, "%s:%d: logic %s: its table is for %s of %d bits; at width %d it has %d", x->path,
-                         e->line, e->name, x->el[e->in[j]].name, x->el[e->in[j]].fmt.width, cfg->width, fm[e->in[j]].width);
+                snprintf(err, errlen, "%s:%d: logic %s: its %s is for %s of %d bits; at width %d it has %d", x->path,
+                         e->line, e->name, e->table ? "table" : "verilog text", x->el[e->in[j]].name, x->el[e->in[j]].fmt.width, cfg->width, fm[e->in[j]].width);
                 rc = -1;
             }
     }

@@ -81,7 +81,7 @@ typedef struct nl_el {
     unsigned long long ovf;
     int         shift;
     double      area;
-    int         has_area, depth, csd, fn_unit;
+    int         has_area, depth, csd, fn_unit, fn_verilog;
     char       *verilog;
     const char *table_hex;
     const char *bits_text;  /* bits=, parsed into bits */
@@ -135,6 +135,8 @@ typedef struct nl {
     int         port_line[5][UNIT_MAX_IO];
     tb_built    ref;        /* the built-in unit, built for fn=unit (ref.c NULL: not) */
     void      **mem;        /* every allocation, freed with it */
+    struct tb_vexpr **vx;   /* fn=verilog's programs, freed with it */
+    int         nvx;
     size_t      nmem, capmem;
     const char *path;
     int         version;    /* the netlist line seen */

@@ -209,8 +209,10 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
             if (strcmp(v, "csd")) return BAD("net=%s: the one network is csd (a constant's shift-and-add)", v);
             e->csd = 1;
         } else if (KEY("fn")) {
-            if (strcmp(v, "unit")) return BAD("fn=%s: expected fn=unit (the built-in unit's function)", v);
-            e->fn_unit = 1;
+            if (strcmp(v, "unit") && strcmp(v, "verilog"))
+                return BAD("fn=%s: expected fn=verilog (its verilog= text's function) or fn=unit (the built-in unit's)", v);
+            e->fn_unit = !strcmp(v, "unit");
+            e->fn_verilog = !e->fn_unit;
         } else if (KEY("range")) {
             if (real_pair(x, "range", v, e->range)) return -1;
             e->has_range = 1;
@@ -263,8 +265,9 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
         if (!e->in_ref) return BAD("logic %s: needs in=NAME,...", e->name);
         if (e->n > 8) return BAD("logic %s: %d inputs (at most 8)", e->name, e->n);
         if (!e->has_area) return BAD("logic %s: needs area=GE (its gates, NAND2 equivalents)", e->name);
-        if ((e->table_hex != NULL) + (e->bits_text != NULL) + e->fn_unit != 1)
-            return BAD("logic %s: needs one of table=HEX, bits=WIRING and fn=unit", e->name);
+        if ((e->table_hex != NULL) + (e->bits_text != NULL) + e->fn_unit + e->fn_verilog != 1)
+            return BAD("logic %s: needs one of table=HEX, bits=WIRING, fn=verilog and fn=unit", e->name);
+        if (e->fn_verilog && !e->verilog) return BAD("logic %s: fn=verilog needs its verilog=\"TEXT\"", e->name);
     }
     x->nel++;
     return 0;

@@ -16,6 +16,7 @@
 #include "testbench/tb_netlist_int.h"
 #include "sim/sim_prim.h"
 #include "base/base_line.h"
+#include "testbench/tb_vexpr.h"
 #include "base/base_out.h"
 #include <errno.h>
 #include <stdint.h>
@@ -84,6 +85,17 @@ static int check_logic(nl *x, nl_el *e)
             return nl_bad(x, e->line, "logic %s: bits=%s: expected {ITEM,...} of %%K, %%K[B], %%K[H:L] (K an input, "
                           "bits within its width), ~ before one, W'bBITS or W'hHEX; 64 bits at most", e->name,
                           e->bits_text);
+    }
+    if (e->fn_verilog) {
+        char err[300];
+        tb_vexpr *p = tb_vexpr_compile(e->verilog, e->n, w, e->fmt.width, err, sizeof err);
+        if (!p) return nl_bad(x, e->line, "logic %s: fn=verilog: %s", e->name, err);
+        tb_vexpr **v = realloc(x->vx, (size_t)(x->nvx + 1) * sizeof *v);
+        if (!v) base_out_of_memory();
+        x->vx = v;
+        x->vx[x->nvx++] = p;
+        e->fn = tb_vexpr_fn;
+        e->user = p;
     }
     if (e->table_hex) {
         if (bits > TB_NETLIST_TABLE_BITS)
@@ -250,6 +262,8 @@ void nl_free(nl *x)
 {
     if (x->dp) nl_dp_release(x);
     if (x->ref.c) sim_free(x->ref.c);
+    for (int i = 0; i < x->nvx; i++) tb_vexpr_free(x->vx[i]);
+    free(x->vx);
     for (size_t i = 0; i < x->nmem; i++) free(x->mem[i]);
     free(x->mem);
     free(x->el);

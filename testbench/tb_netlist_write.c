@@ -11,6 +11,7 @@
  */
 #include "testbench/tb_netlist.h"
 #include "testbench/tb_netlist_int.h"
+#include "testbench/tb_vexpr.h"
 #include "sim/sim_prim.h"
 #include "sim/sim_delay.h"
 #include "base/base_out.h"
@@ -86,6 +87,24 @@ static void put_table(wr *w, const sim_prim_info *e, int bits)
     }
 }
 
+/* 1 if fn(user) gives what e's function gives on every input tried: each
+ * input all zeros, all ones, and 4000 draws of every bit at random. */
+static int same_fn(const sim_prim_info *e, sim_logic_fn fn, void *user)
+{
+    uint64_t r = 0x9e3779b97f4a7c15u;
+    for (int k = 0; k < 4002; k++) {
+        int64_t v[8];
+        for (int i = 0; i < e->n; i++) {
+            int w = e->in[i]->fmt.width;
+            r ^= r << 13; r ^= r >> 7; r ^= r << 17;
+            uint64_t bitsv = k == 0 ? 0 : k == 1 ? UINT64_MAX : r;
+            v[i] = sim_fx_canon((int64_t)(bitsv & (w >= 64 ? UINT64_MAX : (((uint64_t)1 << w) - 1))), e->in[i]->fmt);
+        }
+        if (sim_fx_canon(e->fn(v, e->user), e->y->fmt) != sim_fx_canon(fn(v, user), e->y->fmt)) return 0;
+    }
+    return 1;
+}
+
 /* A wide logic element as wiring (bits=): where its Verilog text is
  * "assign %y = EXPR;" with EXPR of nl_bits's form, and EXPR computes what
  * its function computes on every input tried (each input all zeros, all
@@ -103,18 +122,21 @@ static int wiring_of(const sim_prim_info *e, nl_bits *b)
     int w[8];
     for (int i = 0; i < e->n; i++) w[i] = e->in[i]->fmt.width;
     if (nl_bits_parse(t + 9, e->n, w, b)) return 0;
-    uint64_t r = 0x9e3779b97f4a7c15u;
-    for (int k = 0; k < 4002; k++) {
-        int64_t v[8];
-        for (int i = 0; i < e->n; i++) {
-            r ^= r << 13; r ^= r >> 7; r ^= r << 17;
-            uint64_t bitsv = k == 0 ? 0 : k == 1 ? UINT64_MAX : r;
-            v[i] = sim_fx_canon((int64_t)(bitsv & (w[i] >= 64 ? UINT64_MAX : (((uint64_t)1 << w[i]) - 1))),
-                                e->in[i]->fmt);
-        }
-        if (sim_fx_canon(e->fn(v, e->user), e->y->fmt) != sim_fx_canon(nl_bits_fn(v, b), e->y->fmt)) return 0;
-    }
-    return 1;
+    return same_fn(e, nl_bits_fn, b);
+}
+
+/* A wide logic element whose Verilog text tb_vexpr evaluates to what its
+ * function gives on every input tried: 1 (fn=verilog). */
+static int verilog_of(const sim_prim_info *e)
+{
+    if (!e->verilog || e->n > 8) return 0;
+    int w[8];
+    for (int i = 0; i < e->n; i++) w[i] = e->in[i]->fmt.width;
+    char err[300];
+    tb_vexpr *p = tb_vexpr_compile(e->verilog, e->n, w, e->y->fmt.width, err, sizeof err);
+    int ok = p && same_fn(e, tb_vexpr_fn, p);
+    tb_vexpr_free(p);
+    return ok;
 }
 
 /* The element's modes when they are not what its format and the file's
@@ -207,6 +229,7 @@ static int put_signal(wr *w, const sim_signal *s, unsigned fix)
         nl_bits wiring;
         if (bits <= TB_NETLIST_TABLE_BITS) put_table(w, &e, bits);
         else if (wiring_of(&e, &wiring)) { fputs(" bits=", w->f); nl_bits_put(w->f, &wiring); }
+        else if (verilog_of(&e)) fputs(" fn=verilog", w->f);
         else fputs(" fn=unit", w->f);
         break;
     }

@@ -122,7 +122,8 @@ check datapath_not_netlisted_says grep -q "netlist: $F is a datapath file, alrea
 # run FILE reports what run UNIT reports (JSON with the kernel's counters)
 # for a unit of each form: the control as schedule rows (horner3 paper and
 # mac), the unit's own counter and handshake written out (span1, whose
-# rows a counter of its own decodes), fn=unit (div), a pipeline (dot3);
+# rows a counter of its own decodes), wide logic as its Verilog text's
+# function (div, fn=verilog), a pipeline (dot3);
 # every unit and schedule at two widths: tests/cli_datapath_units.sh.
 for us in horner3:paper horner3:mac span1:paper div:restoring dot3:pipe; do
     u=${us%:*} s=${us#*:}
@@ -149,8 +150,12 @@ same written_sweep_is_builtins "$T/swu/sweep.csv" "$T/swf/sweep.csv"
 # fn=unit (the unit's function at the file's width), another schedule
 expect written_fixed_width 2 "$S" run "$T/span1.paper.dp" --width 12
 check written_fixed_width_says grep -q 'span1.paper.dp: its formats are written for width 16 alone (no rule of W): not 12' "$T/err"
-expect written_fn_unit_width 2 "$S" run "$T/div.restoring.dp" --width 12
-check written_fn_unit_width_says grep -q "div.restoring.dp:[0-9]*: logic [a-z_0-9]*: fn=unit is unit div's function at the file's width 16, not 12" "$T/err"
+sed 's/ fn=verilog$/ fn=unit/' "$T/div.restoring.dp" >"$T/div_unit.dp"
+"$S" run div --json >"$T/u.json"
+"$S" run "$T/div_unit.dp" --json >"$T/f.json"
+same written_fn_unit_is_builtins "$T/u.json" "$T/f.json"
+expect written_fn_unit_width 2 "$S" run "$T/div_unit.dp" --width 12
+check written_fn_unit_width_says grep -q "div_unit.dp:[0-9]*: logic [a-z_0-9]*: fn=unit is unit div's function at the file's width 16, not 12" "$T/err"
 expect written_other_schedule 2 "$S" run "$T/span1.paper.dp" --schedule mac
 check written_other_schedule_says grep -q "span1.paper.dp: schedule mac: the file's control is that of unit span1's schedule paper" "$T/err"
 expect written_no_rows 2 "$S" run "$W" --schedule mac
@@ -202,6 +207,8 @@ bad fmt_line     $F 's/^width 12/width 12\nfmt y=s2.10/' "$(($(l '^width' $F) + 
 bad fn_unit      $F 's/^\(add y .*\)/\1\nlogic q u1.0 in=x0 area=1 fn=unit/' "$(($(l '^add y' $F) + 1)): logic q: fn=unit names a built-in unit's function"
 bad unit_and_dp  $F 's/^datapath fir4/unit horner3\ndatapath fir4/' "$(($(l '^datapath' $F) + 1)): datapath: a file has one unit NAME or datapath NAME line"
 bad kind         $F 's/^add y /adder y /' "$(l '^add y' $F): adder: not a line of a netlist"
+bad vlog_text    $F 's/^\(add y .*\)/\1\nlogic q u1.0 in=x0 area=1 verilog="assign %y = %0 <;" fn=verilog/' "$(($(l '^add y' $F) + 1)): logic q: fn=verilog: verilog text, at character 17: an operand expected"
+bad vlog_none    $F 's/^\(add y .*\)/\1\nlogic q u1.0 in=x0 area=1 fn=verilog/' "$(($(l '^add y' $F) + 1)): logic q: fn=verilog needs its verilog=\"TEXT\""
 bad ref_unknown  $W 's/^ideal unit=horner3/ideal unit=horner9/' "$(l '^ideal unit' $W): ideal unit=horner9: no such built-in unit"
 bad ref_twice    $W 's/^\(ideal unit=.*\)/\1\n\1/' "$(($(l '^ideal unit' $W) + 1)): ideal unit= given twice (first at line $(l '^ideal unit' $W))"
 bad ref_expr     $W 's/^port out y/port out y\nideal y a/' "$(($(l '^port out' $W) + 1)): ideal: the file's ideal is unit horner3's (line $(l '^ideal unit' $W)): no expressions beside it"
