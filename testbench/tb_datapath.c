@@ -155,7 +155,7 @@ static int dp_stages(nl *x)
 
 /* ------------------------------------------------------------ the slots */
 
-#define DP_SLOTS 4
+#define DP_SLOTS 8
 static nl *dp_slot[DP_SLOTS];
 
 static int rule_fmt(const nl *x, const nl_el *e, int W, sim_fmt *f, char *err, size_t errlen)
@@ -393,6 +393,10 @@ DP_SLOT_FNS(0)
 DP_SLOT_FNS(1)
 DP_SLOT_FNS(2)
 DP_SLOT_FNS(3)
+DP_SLOT_FNS(4)
+DP_SLOT_FNS(5)
+DP_SLOT_FNS(6)
+DP_SLOT_FNS(7)
 #define DP_SLOT_ROW(k) { f_fmts##k, f_build##k, f_ideal##k, f_exact##k, f_bound##k, f_ports##k, f_eval##k, f_gen##k }
 static const struct dp_fns {
     void (*formats)(const unit_cfg *, unit_fmts *);
@@ -403,7 +407,8 @@ static const struct dp_fns {
     void (*ports)(const vec_params *, int *, char[][16], int *, char[][16]);
     void (*eval)(const vec_params *, const double *, double *);
     int (*gen)(const vec_params *, size_t, uint64_t, vec_set *);
-} dp_fns[DP_SLOTS] = { DP_SLOT_ROW(0), DP_SLOT_ROW(1), DP_SLOT_ROW(2), DP_SLOT_ROW(3) };
+} dp_fns[DP_SLOTS] = { DP_SLOT_ROW(0), DP_SLOT_ROW(1), DP_SLOT_ROW(2), DP_SLOT_ROW(3),
+                       DP_SLOT_ROW(4), DP_SLOT_ROW(5), DP_SLOT_ROW(6), DP_SLOT_ROW(7) };
 
 void nl_dp_release(const nl *x)
 {

@@ -97,7 +97,7 @@ static int find_block(const tb_built *b, const char *sched, unsigned char *skip,
         || sim_prim_describe(ov, &e) || e.a != rdy || st->fmt.fbits || st->fmt.is_signed)
         return -1;
     int sb = st->fmt.width, C = 0;
-    if (sb > 6) return -1;
+    if (sb > 8) return -1;
     for (int k = 1; k < 1 << sb && !C; k++) if (logic_at(nx, k, 1) == 0) C = k + 1;
     if (C < 2 || C > NL_MAX_CLOCKS || bits_for(C - 1) != sb) return -1;
     for (int k = 0; k < 1 << sb; k++)

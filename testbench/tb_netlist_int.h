@@ -106,14 +106,14 @@ typedef struct nl_rule { int sg, i0, i1, f0, f1; char modes[24]; char text[48]; 
  * counter, its next-state logic, a decoder per control signal, the last
  * step (in_ready) and the input and output handshake. */
 enum { NL_GEN_NONE, NL_GEN_VALID, NL_GEN_STEP, NL_GEN_NEXT, NL_GEN_CTL, NL_GEN_LAST, NL_GEN_OUTV };
-#define NL_MAX_CLOCKS 64
+#define NL_MAX_CLOCKS 256   /* the step counter's 8 bits; a ctl row is one line (NL_MAX_TOK) */
 typedef struct nl_ctl {
     char *name;
     int   line, el;
     int   val[UNIT_MAX_SCHED][NL_MAX_CLOCKS];
     unsigned have;          /* bit s: schedule s gave its row */
 } nl_ctl;
-#define NL_MAX_CTL 16
+#define NL_MAX_CTL 32
 enum { OP_A, OP_B, OP_C, OP_RST, OP_CLK };
 
 typedef struct nl {

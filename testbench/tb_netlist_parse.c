@@ -40,7 +40,7 @@ void nl_put_quoted(FILE *f, const char *s)
 /* Split line into tokens at spaces and tabs; a '"' opens a quoted part
  * (up to the next unescaped '"', spaces kept) inside a token. Quoted parts
  * are unescaped in place. Returns the count, or -1 after a message. */
-#define NL_MAX_TOK 64
+#define NL_MAX_TOK (NL_MAX_CLOCKS + 8)   /* a ctl row of the longest schedule */
 static int tokenize(nl *x, char *line, char **tok)
 {
     int n = 0;

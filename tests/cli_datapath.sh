@@ -43,6 +43,20 @@ grep -E '"(max_abs_err|bound|verdict)"' "$T/s.json" >"$T/s.lines"
 grep -E '"(max_abs_err|bound|verdict)"' "$T/a.json" >"$T/a.lines"
 same second_schedule_same_results "$T/a.lines" "$T/s.lines"
 
+# A long schedule: the paper's first clock (RG <= B) repeated, 250 clocks
+# an item in all (a row on one line; the counter's 8 bits): the same
+# results and bound, 250 clocks an item; 257 clocks are refused.
+awk '/^schedule paper/ { sub(/clocks=6/, "clocks=250") }
+     /^ctl / { r = ""; for (i = 0; i < 245; i++) r = r " " $3; $0 = $1 " " $2 r substr($0, length($1 " " $2 " " $3) + 1) }
+     { print }' "$H" >"$T/long.dp"
+"$S" run "$T/long.dp" --vectors vectors/horner3.vec --json >"$T/l.json"
+check long_schedule_clocks grep -q '"cycles_per_item": 250,' "$T/l.json"
+grep -E '"(max_abs_err|bound|verdict)"' "$T/l.json" >"$T/l.lines"
+same long_schedule_same_results "$T/a.lines" "$T/l.lines"
+sed 's/clocks=250/clocks=257/' "$T/long.dp" >"$T/long2.dp"
+expect long_schedule_257 2 "$S" run "$T/long2.dp"
+check long_schedule_257_says grep -q 'long2.dp:[0-9]*: clocks=257: expected a whole number of clocks per item 2..256' "$T/err"
+
 # --- the FIR: vectors, bound, width rules, against awk ---------------------
 expect fir_vectors 0 "$S" vectors "$F"
 # every expected output is 0.125 x0 + 0.375 x1 + 0.375 x2 + 0.125 x3 (to
@@ -188,7 +202,7 @@ bad row_outside  $H 's/^ctl mx1_sel/reg zz u1.0 d=t clk=clk\nctl mx1_sel/' "$(($
 bad sched_twice  $H 's/^\(ctl bk_pass .*\)/\1\nschedule paper clocks=6/' "$(($(l '^ctl bk_pass' $H) + 1)): schedule paper given twice (first at line $(l '^schedule' $H))"
 bad ctl_missing  $H 's/^\(ctl bk_pass .*\)/\1\nschedule fast clocks=6\nctl mx1_sel 1 0 1 1 1 1\nctl mx2_sel 1 0 0 2 0 3/' "$(($(l '^ctl bk_pass' $H) + 1)): schedule fast: no row for ctl bk_pass"
 bad ctl_unknown  $H 's/^\(ctl bk_pass .*\)/\1\nschedule fast clocks=6\nctl mx3_sel 1 0 1 1 1 1/' "$(($(l '^ctl bk_pass' $H) + 2)): ctl mx3_sel: not a control signal of schedule paper"
-bad clocks       $H 's/clocks=6/clocks=1/' "$(l '^schedule' $H): clocks=1: expected a whole number of clocks per item 2..64"
+bad clocks       $H 's/clocks=6/clocks=1/' "$(l '^schedule' $H): clocks=1: expected a whole number of clocks per item 2..256"
 bad expr_op      $F 's/^ideal y .*/ideal y 0.125 * x0 + * x1/' "$(l '^ideal' $F): ideal y: column 14: '*' where a number, an input or '(' belongs"
 bad expr_paren   $F 's/^ideal y .*/ideal y (0.125 * x0 + x1/' "$(l '^ideal' $F): ideal y: column 17: ')' expected"
 bad expr_name    $F 's/^ideal y .*/ideal y 0.125 * x9/' "$(l '^ideal' $F): ideal y: column 9: x9 is not an input"
