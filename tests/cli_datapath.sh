@@ -175,6 +175,36 @@ check written_other_schedule_says grep -q "span1.paper.dp: schedule mac: the fil
 expect written_no_rows 2 "$S" run "$W" --schedule mac
 check written_no_rows_says grep -q "horner3.paper.dp: schedule mac: the file has no rows for it (its first: paper, line [0-9]*)" "$T/err"
 
+# A sweep of a file in shards, merged: the whole sweep's CSV
+"$S" sweep "$F" --widths 10:13 -o "$T/mw" >/dev/null
+"$S" sweep "$F" --widths 10:13 --shard 1/2 -o "$T/m1" >/dev/null
+"$S" sweep "$F" --widths 10:13 --shard 2/2 -o "$T/m2" >/dev/null
+"$S" merge "$T/m1/sweep-1-of-2.csv" "$T/m2/sweep-2-of-2.csv" -o "$T/m.csv"
+same merge_shards_of_file "$T/mw/sweep.csv" "$T/m.csv"
+
+# A scene through a file for its span unit (scene --set unit=FILE): span3's
+# own file renders the very bytes of the built-in unit (images and
+# scene.json); an edited one (the multiplier rounding half-up) renders
+# through the edit; a file for another unit than the policy's is refused.
+"$S" netlist span3 --datapath -o "$T/s3.dp"
+R="face --set resolution=64x64"
+"$S" scene $R -o "$T/sc1" >/dev/null
+"$S" scene $R --set unit="$T/s3.dp" -o "$T/sc2" >/dev/null
+diff -r "$T/sc1" "$T/sc2" >"$T/scd" 2>&1 && ok scene_unit_file_is_builtins || fail scene_unit_file_is_builtins "$(head -c 300 "$T/scd")"
+sed 's/^\(mul horner\.mul s7\.9\) /\1:half-up /' "$T/s3.dp" >"$T/s3h.dp"
+"$S" scene $R --set unit="$T/s3h.dp" -o "$T/sc3" >/dev/null
+grep '"nmse"' "$T/sc1/scene.json" >"$T/n1"; grep '"nmse"' "$T/sc3/scene.json" >"$T/n3"
+cmp -s "$T/n1" "$T/n3" && fail scene_unit_file_edit_renders "the same NMSE" || ok scene_unit_file_edit_renders
+printf 'shadesim-scene 1\nmesh face\nresolution 64x64\nunit s3.dp\n' >"$T/f.scene"
+"$S" scene "$T/f.scene" -o "$T/sc4" >/dev/null
+grep '"nmse"' "$T/sc4/scene.json" >"$T/n4"
+same scene_unit_key_relative "$T/n1" "$T/n4"
+expect scene_unit_other_policy 2 "$S" scene $R --set policy=linear --set unit="$T/s3.dp"
+check scene_unit_other_policy_says grep -q "^shadesim: --set unit: unit: .*s3.dp: the policy's unit is span1, and the file's ideal line does not name it (ideal unit=span1)$" "$T/err"
+printf 'shadesim-scene 1\nmesh face\nunit nosuch.dp\n' >"$T/g.scene"
+expect scene_unit_missing 2 "$S" scene "$T/g.scene"
+check scene_unit_missing_says grep -q "^shadesim: .*g.scene:3: unit: .*nosuch.dp: No such file or directory$" "$T/err"
+
 # --- malformed files: each one line, FILE:LINE: what, exit 2 ------------
 # bad NAME BASE 'SED SCRIPT' 'EXPECTED TEXT': BASE edited by the script.
 # Under the sanitizers the first eight (tests/test_dp_fuzz.c reads
