@@ -280,10 +280,11 @@ int nl_dp_close(nl *x)
         ov->ref[OP_CLK] = x->clk;
     } else if (x->hs_line) {
         /* the file's own handshake: its port lines name its elements */
+        static const char *const hs[3] = { "in_valid", "in_ready", "out_valid" };
         for (int r = P_IN_VALID; r <= P_OUT_VALID; r++)
             if (!x->nport[r])
                 return nl_bad(x, x->hs_line, "the file gives its own handshake: it needs port in_valid, port in_ready "
-                              "and port out_valid (no port %s)", nl_port_names[r]);
+                              "and port out_valid (no port %s)", hs[r - P_IN_VALID]);
         x->line = 0;
         return 0;
     } else {

@@ -8,9 +8,7 @@
 PREFIX=cli_datapath_units.
 . tests/lib_cli.sh
 
-"$S" list | awk '/^[a-z0-9_]+ —/ { u = $1 }
-    /^  schedules:/ { sub(/^  schedules: /, ""); n = split($0, a, /\), /); s = "";
-                      for (i = 1; i <= n; i++) { split(a[i], b, " "); s = s " " b[1] } print u ":" s }' >"$T/units"
+units_and_schedules >"$T/units"
 check units_listed [ "$(wc -l <"$T/units")" -ge 20 ]
 case "${TST_BUILD:-}" in *-asan) echo 'horner3: paper mac' >"$T/units" ;; esac
 

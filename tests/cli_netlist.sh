@@ -9,9 +9,7 @@ PREFIX=cli_netlist.
 . tests/lib_cli.sh
 
 # The units and their schedules, from list.
-"$S" list | awk '/^[a-z0-9_]+ —/ { u = $1 }
-    /^  schedules:/ { sub(/^  schedules: /, ""); n = split($0, a, /\), /); s = "";
-                      for (i = 1; i <= n; i++) { split(a[i], b, " "); s = s " " b[1] } print u ":" s }' >"$T/units"
+units_and_schedules >"$T/units"
 check units_listed [ "$(wc -l <"$T/units")" -ge 20 ]
 # Under the sanitizers (a process costs ten times as much) the command
 # line's round trip takes one design, the malformed files four:
