@@ -22,6 +22,13 @@
  *    time through the schedule, where the file has only the kinds it
  *    knows and every multiplexer and block key is driven by the control;
  *    otherwise none (the verdict then needs a target, which decides alone).
+ * A file that names a built-in unit (ideal unit=NAME, as netlist --datapath
+ * writes it) takes the unit's descriptor instead (its reference, vectors,
+ * ideal, bound, parameters and schedules) with the file's build and
+ * formats: its ports are the unit's, and an element named as one of the
+ * unit's signals gives that signal its format. A file may also give its
+ * own handshake (port in_valid/in_ready/out_valid lines) in place of
+ * schedules: its control is then its own elements.
  * The descriptor's functions take no pointer to the file they came from,
  * so each live file has a slot with functions of its own (DP_SLOTS).
  */
