@@ -138,6 +138,7 @@ typedef struct scn_desc {
     char         L[16], terms[16];   /* a whole number (the file checks that much) */
     char         series[16];     /* a choice name: "paper", "quarter" */
     char         schedule[16];   /* a schedule name: "paper", "mac", "pipe" */
+    char         unit[256];      /* a datapath file in place of the policy's unit ("": none) */
     char         fmt_width[16];  /* W of the default-format rule: a whole number 4..64 */
     int          nfmt;
     char         fmt[SCN_MAX_FMT][48];   /* NAME=sI.F overrides, in order */

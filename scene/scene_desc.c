@@ -265,6 +265,7 @@ int scn_desc_write(FILE *f, const scn_desc *d)
     if (*d->rnd) fprintf(f, "round %s\n", d->rnd);
     if (*d->ovf) fprintf(f, "overflow %s\n", d->ovf);
     if (*d->schedule) fprintf(f, "schedule %s\n", d->schedule);
+    if (*d->unit) fprintf(f, "unit %s\n", d->unit);
     fprintf(f, "cost");
     for (int i = 0; i < SCN_OP__COUNT; i++) fprintf(f, " %s=%s", scn_op_name[i], txt(d->cost[i]).s);
     fprintf(f, "\n");

@@ -334,7 +334,7 @@ static const char *const nodes_names[] = { "n1", "n2", NULL };
  * unit's own setters (tb_scene_unit), with the ranges, choices and
  * defaults of the unit's descriptor. */
 #define SCN_KEYS(X) \
-    X(MESH,      "mesh",           CALL(k_mesh)) \
+    X(MESH,      "mesh",           CALL(k_mesh), .off = F(mesh), .what = "a built-in name or an OBJ path") \
     X(DETAIL,    "detail",         INT(detail, 1, 8, "N")) \
     X(RES,       "resolution",     CALL(k_res)) \
     X(CAMERA,    "camera",         NAME(view.cam.perspective, scn_camera_names, "ortho|perspective")) \
@@ -370,6 +370,7 @@ static const char *const nodes_names[] = { "n1", "n2", NULL };
     X(ROUND,     "round",          CALL(k_word), .off = F(rnd), .what = "trunc|half-up|even") \
     X(OVERFLOW,  "overflow",       CALL(k_word), .off = F(ovf), .what = "wrap|sat") \
     X(SCHEDULE,  "schedule",       CALL(k_word), .off = F(schedule), .what = "paper|mac|pipe") \
+    X(UNIT,      "unit",           CALL(k_mesh), .off = F(unit), .what = "a datapath file's path") \
     X(COST,      "cost",           CALL(k_cost))
 
 #define KEY_ID(id, nm, ...) K_##id,
@@ -397,25 +398,20 @@ static void set_dg(scn_desc *d)
               : d->mat.spec == SCN_SPEC_WARD ? d->ward_dg : 0;
 }
 
-/* mesh: the rest of the line; a relative path is relative to the file's folder. */
+/* mesh, unit: the rest of the line, a path (mesh: or a built-in name)
+ * relative to the file's folder; into a char[256] at k->off. */
 static int k_mesh(scn_desc *d, ctx *cx, const key_row *k, char **t, int n, char *err, size_t errlen)
 {
-    (void)k; (void)t; (void)n;
-    const char *rest = cx->rest;
-    if (!rest || !*rest) return fail(err, errlen, "mesh: takes a built-in name or an OBJ path");
-    int builtin = 0;
-    for (int i = 0; scn_desc_builtin_names[i]; i++)
-        if (!strcmp(rest, scn_desc_builtin_names[i])) builtin = 1;
-    size_t rl = strlen(rest);
-    if (builtin || rest[0] == '/' || !cx->dir) {
-        if (rl >= sizeof d->mesh) return fail(err, errlen, "mesh: path too long");
-        memcpy(d->mesh, rest, rl + 1);
-    } else {
-        if (cx->dirlen + 1 + rl >= sizeof d->mesh) return fail(err, errlen, "mesh: path too long");
-        memcpy(d->mesh, cx->dir, cx->dirlen);
-        d->mesh[cx->dirlen] = '/';
-        memcpy(d->mesh + cx->dirlen + 1, rest, rl + 1);
-    }
+    (void)t; (void)n;
+    const char *rest = cx->rest, *dir = cx->dir;
+    char *dst = (char *)d + k->off;
+    if (!rest || !*rest) return fail(err, errlen, "%s: takes %s", k->name, k->what);
+    for (int i = 0; k->off == offsetof(scn_desc, mesh) && scn_desc_builtin_names[i]; i++)
+        if (!strcmp(rest, scn_desc_builtin_names[i])) dir = NULL;   /* a built-in name */
+    size_t rl = strlen(rest), dl = rest[0] == '/' || !dir ? 0 : cx->dirlen + 1;
+    if (dl + rl >= sizeof d->mesh) return fail(err, errlen, "%s: path too long", k->name);
+    if (dl) { memcpy(dst, dir, dl - 1); dst[dl - 1] = '/'; }
+    memcpy(dst + dl, rest, rl + 1);
     return 0;
 }
 

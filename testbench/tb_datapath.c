@@ -22,6 +22,13 @@
  *    time through the schedule, where the file has only the kinds it
  *    knows and every multiplexer and block key is driven by the control;
  *    otherwise none (the verdict then needs a target, which decides alone).
+ * A file that names a built-in unit (ideal unit=NAME, as netlist --datapath
+ * writes it) takes the unit's descriptor instead (its reference, vectors,
+ * ideal, bound, parameters and schedules) with the file's build and
+ * formats: its ports are the unit's, and an element named as one of the
+ * unit's signals gives that signal its format. A file may also give its
+ * own handshake (port in_valid/in_ready/out_valid lines) in place of
+ * schedules: its control is then its own elements.
  * The descriptor's functions take no pointer to the file they came from,
  * so each live file has a slot with functions of its own (DP_SLOTS).
  */
@@ -92,6 +99,15 @@ static int dp_order(nl *x)
     dp_topo t = { x, nl_alloc(x, (size_t)x->nel + 1), nl_alloc(x, ((size_t)x->nel + 1) * sizeof(int)), 0,
                   nl_alloc(x, ((size_t)x->nel + 1) * sizeof(int)), 0 };
     for (int i = 0; i < x->nel; i++) if (visit(&t, i)) return -1;
+    /* the file's order where it already is one (a wire may name a later
+     * signal, as a built unit's do: the builder connects it after) */
+    int in_order = 1;
+    for (int i = 0; i < x->nel && in_order; i++) {
+        const nl_el *e = &x->el[i];
+        int ops[1040], n = e->kind == SIM_KIND_WIRE || e->kind == SIM_KIND_INPUT ? 0 : edge_list(e, ops);
+        for (int k = 0; k < n; k++) in_order &= ops[k] < i;
+    }
+    if (in_order) return 0;
     int *where = nl_alloc(x, ((size_t)x->nel + 1) * sizeof(int));
     for (int i = 0; i < x->nel; i++) where[t.ord[i]] = i;
     nl_el *el = malloc(((size_t)x->nel + 1) * sizeof *el);
@@ -146,7 +162,7 @@ static int dp_stages(nl *x)
 
 /* ------------------------------------------------------------ the slots */
 
-#define DP_SLOTS 4
+#define DP_SLOTS 8
 static nl *dp_slot[DP_SLOTS];
 
 static int rule_fmt(const nl *x, const nl_el *e, int W, sim_fmt *f, char *err, size_t errlen)
@@ -161,6 +177,7 @@ static int rule_fmt(const nl *x, const nl_el *e, int W, sim_fmt *f, char *err, s
 static void dp_formats(nl *x, const unit_cfg *cfg, unit_fmts *out)
 {
     memset(out, 0, sizeof *out);
+    if (x->base) x->base->formats(cfg, out);   /* the unit's signals the file does not make */
     char err[1400];
     for (int i = 0; i < x->nel; i++) {
         const nl_el *e = &x->el[i];
@@ -169,9 +186,48 @@ static void dp_formats(nl *x, const unit_cfg *cfg, unit_fmts *out)
     }
 }
 
+/* A file that names its unit: its schedule block for the unit's schedule
+ * cfg chose (the file's one design, when it has no blocks), and a width
+ * its elements follow. */
+static int base_sched(const nl *x, const unit_cfg *cfg, int *sched, char *err, size_t errlen)
+{
+    const char *want = x->base->sched[cfg->schedule].name;
+    if (x->nsched) {
+        *sched = -1;
+        for (int s = 0; s < x->nsched; s++) if (!strcmp(x->sched_name[s], want)) *sched = s;
+        if (*sched < 0) {
+            snprintf(err, errlen, "%s: schedule %s: the file has no rows for it (its first: %s, line %d)", x->path, want,
+                     x->sched_name[0], x->sched_line[0]);
+            return -1;
+        }
+    } else if (cfg->schedule != x->cfg.schedule) {
+        snprintf(err, errlen, "%s: schedule %s: the file's control is that of unit %s's schedule %s", x->path, want,
+                 x->base->name, x->base->sched[x->cfg.schedule].name);
+        return -1;
+    }
+    if (cfg->width == x->cfg.width) return 0;
+    int rules = 0;
+    for (int i = 0; i < x->nel; i++) {
+        rules |= x->el[i].rule != NULL;
+        if (x->el[i].fn_unit) {
+            snprintf(err, errlen, "%s:%d: logic %s: fn=unit is unit %s's function at the file's width %d, not %d", x->path,
+                     x->el[i].line, x->el[i].name, x->base->name, x->cfg.width, cfg->width);
+            return -1;
+        }
+    }
+    if (!rules) {
+        snprintf(err, errlen, "%s: its formats are written for width %d alone (no rule of W): not %d", x->path, x->cfg.width,
+                 cfg->width);
+        return -1;
+    }
+    return 0;
+}
+
 static int dp_build(nl *x, sim_ctx *c, sim_scope *sc, sim_signal *clk, const unit_cfg *cfg, const unit_fmts *f,
                     unit_io *io, char *err, size_t errlen)
 {
+    int sched = cfg->schedule;
+    if (x->base && base_sched(x, cfg, &sched, err, errlen)) return -1;
     sim_fmt *fm = malloc(((size_t)x->nel + 1) * sizeof *fm);
     if (!fm) base_out_of_memory();
     int rc = 0;
@@ -182,14 +238,14 @@ static int dp_build(nl *x, sim_ctx *c, sim_scope *sc, sim_signal *clk, const uni
     }
     for (int i = 0; i < x->nel && !rc; i++) {   /* a table is for its inputs' widths at the file's */
         const nl_el *e = &x->el[i];
-        for (int j = 0; e->table && !e->gen && j < e->n && !rc; j++)
+        for (int j = 0; (e->table || e->fn_verilog) && !e->gen && j < e->n && !rc; j++)
             if (fm[e->in[j]].width != x->el[e->in[j]].fmt.width) {
-                snprintf(err, errlen, "%s:%d: logic %s: its table is for %s of %d bits; at width %d it has %d", x->path,
-                         e->line, e->name, x->el[e->in[j]].name, x->el[e->in[j]].fmt.width, cfg->width, fm[e->in[j]].width);
+                snprintf(err, errlen, "%s:%d: logic %s: its %s is for %s of %d bits; at width %d it has %d", x->path,
+                         e->line, e->name, e->table ? "table" : "verilog text", x->el[e->in[j]].name, x->el[e->in[j]].fmt.width, cfg->width, fm[e->in[j]].width);
                 rc = -1;
             }
     }
-    if (!rc) rc = nl_build(x, fm, cfg->schedule, c, sc, clk, io, err, errlen);
+    if (!rc) rc = nl_build(x, fm, sched, c, sc, clk, io, err, errlen);
     free(fm);
     return rc;
 }
@@ -344,6 +400,10 @@ DP_SLOT_FNS(0)
 DP_SLOT_FNS(1)
 DP_SLOT_FNS(2)
 DP_SLOT_FNS(3)
+DP_SLOT_FNS(4)
+DP_SLOT_FNS(5)
+DP_SLOT_FNS(6)
+DP_SLOT_FNS(7)
 #define DP_SLOT_ROW(k) { f_fmts##k, f_build##k, f_ideal##k, f_exact##k, f_bound##k, f_ports##k, f_eval##k, f_gen##k }
 static const struct dp_fns {
     void (*formats)(const unit_cfg *, unit_fmts *);
@@ -354,7 +414,8 @@ static const struct dp_fns {
     void (*ports)(const vec_params *, int *, char[][16], int *, char[][16]);
     void (*eval)(const vec_params *, const double *, double *);
     int (*gen)(const vec_params *, size_t, uint64_t, vec_set *);
-} dp_fns[DP_SLOTS] = { DP_SLOT_ROW(0), DP_SLOT_ROW(1), DP_SLOT_ROW(2), DP_SLOT_ROW(3) };
+} dp_fns[DP_SLOTS] = { DP_SLOT_ROW(0), DP_SLOT_ROW(1), DP_SLOT_ROW(2), DP_SLOT_ROW(3),
+                       DP_SLOT_ROW(4), DP_SLOT_ROW(5), DP_SLOT_ROW(6), DP_SLOT_ROW(7) };
 
 void nl_dp_release(const nl *x)
 {
@@ -380,6 +441,108 @@ static int add_sig(nl *x, nl_el *e, unit_role role)
     return 0;
 }
 
+/* The ports of a file that names its unit (ideal unit=NAME): the unit's
+ * inputs and outputs, by name and in its order; each element at the top
+ * of the file's scope that has a signal's name of the unit gives that
+ * signal its format. 0, or -1 after nl_bad. */
+static int base_ports(nl *x)
+{
+    const unit_desc *b = x->base;
+    for (int r = P_IN; r <= P_OUT; r++) {
+        int j = 0;
+        for (int i = 0; i < b->nsigs; i++) {
+            if (b->sigs[i].role != (r == P_IN ? UNIT_SIG_IN : UNIT_SIG_OUT)) continue;
+            if (j == x->nport[r])
+                return nl_bad(x, x->ref_line, "unit %s has %s %s, which the file's port %s lines do not give", b->name,
+                              r == P_IN ? "input" : "output", b->sigs[i].name, nl_port_names[r]);
+            const nl_el *e = &x->el[x->port[r][j]];
+            if (strcmp(e->name, b->sigs[i].name))
+                return nl_bad(x, x->port_line[r][j], "port %s %s: unit %s's %s %d is %s", nl_port_names[r], e->name,
+                              b->name, r == P_IN ? "input" : "output", j + 1, b->sigs[i].name);
+            j++;
+        }
+        if (j < x->nport[r])
+            return nl_bad(x, x->port_line[r][j], "port %s %s: unit %s has %d %s", nl_port_names[r],
+                          x->el[x->port[r][j]].name, b->name, j, r == P_IN ? "inputs" : "outputs");
+    }
+    for (int i = 0; i < x->nel; i++)
+        if (x->el[i].scope == NL_NONE && !x->el[i].gen) x->el[i].sig = unit_sig_index(b, x->el[i].name);
+    return 0;
+}
+
+/* The unit of a file that names its unit: the unit's descriptor with the
+ * file's build and formats. */
+static void base_desc(nl *x, const struct dp_fns *fn)
+{
+    unit_desc *d = &x->desc;
+    *d = *x->base;
+    d->name = x->dp_name;
+    d->summary = x->dp_summary;
+    d->source = x->path;
+    d->formats = fn->formats;
+    d->build = fn->build;
+    if (!x->ref_sched_line && x->nsched) x->cfg.schedule = unit_sched_find(x->base, x->sched_name[0]);
+}
+
+/* The file's own ports: inputs with their ranges, outputs, then every
+ * other element a signal of the unit in the file's order. */
+static int own_sigs(nl *x)
+{
+    unit_desc *d = &x->desc;
+    int nin = x->nport[P_IN], nout = x->nport[P_OUT];
+    for (int j = 0; j < nin; j++) {
+        nl_el *e = &x->el[x->port[P_IN][j]];
+        if (e->sig >= 0) return nl_bad(x, x->port_line[P_IN][j], "port in %s given twice", e->name);
+        if (!e->has_range && !e->has_draw) return nl_bad(x, e->line, "input %s: needs range=LO,HI (the values it takes)", e->name);
+        if (add_sig(x, e, UNIT_SIG_IN)) return -1;
+    }
+    for (int j = 0; j < nout; j++) {
+        nl_el *e = &x->el[x->port[P_OUT][j]];
+        if (e->sig >= 0 || e->gen)
+            return nl_bad(x, x->port_line[P_OUT][j], "port out %s: %s", e->name, e->gen ? "the handshake's own" : "given twice, or an input");
+        if (add_sig(x, e, UNIT_SIG_OUT)) return -1;
+    }
+    for (int j = 0; j < nin + nout; j++)
+        if (strlen(d->sigs[j].name) > 15) return nl_bad(x, 0, "port %s: a port's name has at most 15 characters", d->sigs[j].name);
+    return 0;
+}
+
+/* The ideal expressions, by output port; *exact: all of them exact. */
+static int own_ideal(nl *x, int *exact)
+{
+    unit_desc *d = &x->desc;
+    int nin = x->nport[P_IN], nout = x->nport[P_OUT];
+    const char *names[UNIT_MAX_IO];
+    for (int j = 0; j < nin; j++) names[j] = d->sigs[j].name;
+    *exact = 1;
+    for (int k = 0; k < x->nideal; k++) {
+        int o = -1;
+        for (int j = 0; j < nout; j++) if (!strcmp(x->ideal_out[k], d->sigs[nin + j].name)) o = j;
+        if (o < 0) return nl_bad(x, x->ideal_line[k], "ideal %s: not an output (port out NAME)", x->ideal_out[k]);
+        if (x->ideal[o]) return nl_bad(x, x->ideal_line[k], "ideal %s given twice", x->ideal_out[k]);
+        char e[300];
+        if (tb_expr_parse(x->ideal_text[k], nin, names, &x->ideal[o], e, sizeof e))
+            return nl_bad(x, x->ideal_line[k], "ideal %s: %s in '%s'", x->ideal_out[k], e, x->ideal_text[k]);
+        *exact &= tb_expr_is_exact(x->ideal[o]);
+    }
+    for (int j = 0; j < nout; j++)
+        if (!x->ideal[j])
+            return nl_bad(x, 0, "output %s has no ideal line (ideal %s EXPRESSION, or ideal unit=NAME)", d->sigs[nin + j].name,
+                          d->sigs[nin + j].name);
+    return 0;
+}
+
+int nl_dp_rules(nl *x)
+{
+    char err[1400];
+    for (int i = 0; i < x->nel; i++)
+        if (x->el[i].rule && rule_fmt(x, &x->el[i], x->cfg.width, &x->el[i].fmt, err, sizeof err)) {
+            snprintf(x->err, x->errlen, "%s", err);
+            return -1;
+        }
+    return 0;
+}
+
 const unit_desc *nl_dp_finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
 {
     int slot = -1;
@@ -392,77 +555,69 @@ const unit_desc *nl_dp_finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
     for (int j = 0; j < nin; j++) {
         nl_el *e = &x->el[x->port[P_IN][j]];
         if (e->gen) { nl_bad(x, x->port_line[P_IN][j], "port in %s: the handshake's own", e->name); return NULL; }
-        if (e->sig >= 0) { nl_bad(x, x->port_line[P_IN][j], "port in %s given twice", e->name); return NULL; }
-        if (!e->has_range && !e->has_draw) { nl_bad(x, e->line, "input %s: needs range=LO,HI (the values it takes)", e->name); return NULL; }
-        if (add_sig(x, e, UNIT_SIG_IN)) return NULL;
     }
-    for (int j = 0; j < nout; j++) {
-        nl_el *e = &x->el[x->port[P_OUT][j]];
-        if (e->sig >= 0 || e->gen)
-            { nl_bad(x, x->port_line[P_OUT][j], "port out %s: %s", e->name, e->gen ? "the handshake's own" : "given twice, or an input"); return NULL; }
-        if (add_sig(x, e, UNIT_SIG_OUT)) return NULL;
-    }
-    for (int j = 0; j < nin + nout; j++)
-        if (strlen(d->sigs[j].name) > 15) { nl_bad(x, 0, "port %s: a port's name has at most 15 characters", d->sigs[j].name); return NULL; }
+    if (x->base ? base_ports(x) : own_sigs(x)) return NULL;
+    int in_valid = x->nport[P_IN_VALID] ? x->port[P_IN_VALID][0] : -1;
     for (int i = 0; i < x->nel; i++) {
         nl_el *e = &x->el[i];
-        if (e->kind == SIM_KIND_INPUT && !e->gen && e->sig < 0 && !e->ref[OP_A])
+        int port = i == in_valid;
+        for (int j = 0; j < nin; j++) port |= x->port[P_IN][j] == i;
+        if (e->kind == SIM_KIND_INPUT && !e->gen && !port && !e->ref[OP_A])
             { nl_bad(x, e->line, "input %s: not a port (port in %s), and no from=", e->name, e->name); return NULL; }
-        if (!e->gen && e->sig < 0 && add_sig(x, e, UNIT_SIG_INTERNAL)) return NULL;
-        char err[1400];
-        if (e->rule && rule_fmt(x, e, x->cfg.width, &e->fmt, err, sizeof err)) { snprintf(x->err, x->errlen, "%s", err); return NULL; }
+        if (!x->base && !e->gen && e->sig < 0 && add_sig(x, e, UNIT_SIG_INTERNAL)) return NULL;
     }
     /* the signals are listed in the file's order, built in an order where
      * each operand comes first */
     if (dp_order(x) || (x->latency && dp_stages(x))) return NULL;
-    const char *names[UNIT_MAX_IO];
-    for (int j = 0; j < nin; j++) names[j] = d->sigs[j].name;
-    int exact = 1;
-    for (int k = 0; k < x->nideal; k++) {
-        int o = -1;
-        for (int j = 0; j < nout; j++) if (!strcmp(x->ideal_out[k], d->sigs[nin + j].name)) o = j;
-        if (o < 0) { nl_bad(x, x->ideal_line[k], "ideal %s: not an output (port out NAME)", x->ideal_out[k]); return NULL; }
-        if (x->ideal[o]) { nl_bad(x, x->ideal_line[k], "ideal %s given twice", x->ideal_out[k]); return NULL; }
-        char e[300];
-        if (tb_expr_parse(x->ideal_text[k], nin, names, &x->ideal[o], e, sizeof e)) {
-            nl_bad(x, x->ideal_line[k], "ideal %s: %s in '%s'", x->ideal_out[k], e, x->ideal_text[k]);
-            return NULL;
-        }
-        exact &= tb_expr_is_exact(x->ideal[o]);
-    }
-    for (int j = 0; j < nout; j++)
-        if (!x->ideal[j]) { nl_bad(x, 0, "output %s has no ideal line (ideal %s EXPRESSION)", d->sigs[nin + j].name, d->sigs[nin + j].name); return NULL; }
-    d->name = x->dp_name;
-    d->summary = x->dp_summary;
-    d->source = x->path;
-    d->nsched = x->nsched ? x->nsched : 1;
-    for (int s = 0; s < x->nsched; s++) { d->sched[s].name = x->sched_name[s]; d->sched[s].what = x->sched_what[s]; }
-    if (!x->nsched && !x->latency) { d->sched[0].name = "comb"; d->sched[0].what = "combinational: an item a clock"; }
-    if (x->latency) {
-        snprintf(x->pipe_what, sizeof x->pipe_what, "a pipeline: an item a clock, its result %d clock%s later", x->latency,
-                 x->latency > 1 ? "s" : "");
-        d->sched[0].name = "pipe";
-        d->sched[0].what = x->pipe_what;
-    }
-    d->fmt_rule = "each element's format as the file gives it, a rule of the width W (docs/datapaths.md)";
+    int exact = 0;
+    if (!x->base && own_ideal(x, &exact)) return NULL;
     const struct dp_fns *fn = &dp_fns[slot];
-    x->model.name = x->dp_name;
-    x->model.ports = fn->ports;
-    x->model.eval = fn->eval;
-    x->model.gen = fn->gen;
-    d->ref = &x->model;
-    d->formats = fn->formats;
-    d->beats = dp_beats;
-    d->build = fn->build;
-    d->ideal = fn->ideal;
-    d->bound = fn->bound;
-    d->ideal_exact = exact ? fn->exact : NULL;
-    d->bound_own_modes = 1;
+    if (x->base) base_desc(x, fn);
+    else {
+        d->name = x->dp_name;
+        d->summary = x->dp_summary;
+        d->source = x->path;
+        d->nsched = x->nsched ? x->nsched : 1;
+        for (int s = 0; s < x->nsched; s++) { d->sched[s].name = x->sched_name[s]; d->sched[s].what = x->sched_what[s]; }
+        if (!x->nsched && !x->latency) { d->sched[0].name = "comb"; d->sched[0].what = "combinational: an item a clock"; }
+        if (x->latency) {
+            snprintf(x->pipe_what, sizeof x->pipe_what, "a pipeline: an item a clock, its result %d clock%s later", x->latency,
+                     x->latency > 1 ? "s" : "");
+            d->sched[0].name = "pipe";
+            d->sched[0].what = x->pipe_what;
+        }
+        d->fmt_rule = "each element's format as the file gives it, a rule of the width W (docs/datapaths.md)";
+        x->model.name = x->dp_name;
+        x->model.ports = fn->ports;
+        x->model.eval = fn->eval;
+        x->model.gen = fn->gen;
+        d->ref = &x->model;
+        d->formats = fn->formats;
+        d->beats = dp_beats;
+        d->build = fn->build;
+        d->ideal = fn->ideal;
+        d->bound = fn->bound;
+        d->ideal_exact = exact ? fn->exact : NULL;
+        d->bound_own_modes = 1;
+    }
+    if (x->base && x->nsched)
+        for (int s = 0; s < x->nsched; s++)
+            if (unit_sched_find(x->base, x->sched_name[s]) < 0) {
+                nl_bad(x, x->sched_line[s], "schedule %s: unit %s has no such schedule (ideal unit=%s runs the unit's)",
+                       x->sched_name[s], x->base->name, x->base->name);
+                return NULL;
+            }
     dp_slot[slot] = x;
     x->slot = slot;
     *cfg = x->cfg;
     dp_formats(x, cfg, fm);
     return d;
+}
+
+const unit_desc *tb_datapath_base(const unit_desc *u)
+{
+    for (int k = 0; k < DP_SLOTS; k++) if (dp_slot[k] && &dp_slot[k]->desc == u) return dp_slot[k]->base;
+    return NULL;
 }
 
 int tb_datapath_is(const unit_desc *u)

@@ -179,12 +179,41 @@ static int parse_ctl(nl *x, char **tok, int nt)
     return 0;
 }
 
+/* ideal unit=NAME: the built-in unit whose reference the file runs with;
+ * the file's width and modes so far are kept, the rest is the unit's
+ * default configuration (its parameters, its first schedule). */
+static int ideal_unit(nl *x, const char *name)
+{
+    if (x->base) return BAD("ideal unit= given twice (first at line %d)", x->ref_line);
+    if (x->nideal) return BAD("ideal unit=%s: the file gives ideal expressions (line %d): one or the other", name, x->ideal_line[0]);
+    const unit_desc *u = unit_find(name);
+    if (!u) return BAD("ideal unit=%s: no such built-in unit (shadesim list)", name);
+    unit_cfg keep = x->cfg;
+    unit_cfg_default(u, &x->cfg);
+    x->cfg.width = keep.width;
+    x->cfg.rnd = keep.rnd;
+    x->cfg.ovf = keep.ovf;
+    x->base = u;
+    x->ref_line = x->line;
+    return 0;
+}
+
 int nl_dp_line(nl *x, char **tok, int nt)
 {
     const char *k = tok[0];
     if (!strcmp(k, "ctl")) return parse_ctl(x, tok, nt);
     close_ctl(x);
+    if (!strcmp(k, "schedule") && nt == 2 && x->base) {
+        /* the unit's schedule the file's own control is for */
+        int s = unit_sched_find(x->base, tok[1]);
+        if (s < 0) return BAD("schedule %s: unit %s has no such schedule", tok[1], x->base->name);
+        if (x->ref_sched_line) return BAD("schedule %s: the unit's schedule named twice (first at line %d)", tok[1], x->ref_sched_line);
+        x->cfg.schedule = s;
+        x->ref_sched_line = x->line;
+        return 0;
+    }
     if (!strcmp(k, "schedule")) {
+        if (x->hs_line) return BAD("schedule: the file gives its own handshake (port at line %d): one or the other", x->hs_line);
         if (x->latency_line) return BAD("schedule: the file is a pipeline (latency at line %d): one or the other", x->latency_line);
         return parse_schedule(x, tok, nt);
     }
@@ -193,12 +222,15 @@ int nl_dp_line(nl *x, char **tok, int nt)
         if (nt != 2 || base_num_whole(tok[1], 0, &n) || n < 1 || n > NL_MAX_CLOCKS)
             return BAD("latency: expected latency N, the clocks from an item in to its result out, 1..%d", NL_MAX_CLOCKS);
         if (x->latency_line) return BAD("latency given twice (first at line %d)", x->latency_line);
+        if (x->hs_line) return BAD("latency: the file gives its own handshake (port at line %d): one or the other", x->hs_line);
         if (x->nsched) return BAD("latency: the file has schedules (line %d): one or the other", x->sched_line[0]);
         x->latency = (int)n;
         x->latency_line = x->line;
         return 0;
     }
+    if (!strcmp(k, "ideal") && nt == 2 && !strncmp(tok[1], "unit=", 5)) return ideal_unit(x, tok[1] + 5);
     if (!strcmp(k, "ideal")) {
+        if (x->base) return BAD("ideal: the file's ideal is unit %s's (line %d): no expressions beside it", x->base->name, x->ref_line);
         if (nt < 3) return BAD("ideal: expected ideal OUTPUT EXPRESSION");
         if (x->nideal == UNIT_MAX_IO) return BAD("ideal: more than %d", UNIT_MAX_IO);
         size_t len = 0;
@@ -210,8 +242,14 @@ int nl_dp_line(nl *x, char **tok, int nt)
         x->ideal_line[x->nideal++] = x->line;
         return 0;
     }
-    if (!strcmp(k, "port") && nt == 3 && strcmp(tok[1], "in") && strcmp(tok[1], "out"))
-        return BAD("port %s: a datapath file's handshake is made from its schedules (port in and port out only)", tok[1]);
+    if (!strcmp(k, "port") && nt == 3 && strcmp(tok[1], "in") && strcmp(tok[1], "out")) {
+        /* the handshake written out: the file's own control (a counter of
+         * its own, a pipeline's valid registers) in place of schedules */
+        if (x->nsched || x->latency_line)
+            return BAD("port %s: the handshake is made from the file's %s (line %d): port in and port out only", tok[1],
+                       x->nsched ? "schedules" : "latency", x->nsched ? x->sched_line[0] : x->latency_line);
+        if (!x->hs_line) x->hs_line = x->line;
+    }
     return 1;
 }
 
@@ -240,6 +278,15 @@ int nl_dp_close(nl *x)
         nl_el *ov = gen_el(x, SIM_KIND_REG, "out_valid", NL_GEN_OUTV, 0);
         ov->ref[OP_A] = "in_ready";
         ov->ref[OP_CLK] = x->clk;
+    } else if (x->hs_line) {
+        /* the file's own handshake: its port lines name its elements */
+        static const char *const hs[3] = { "in_valid", "in_ready", "out_valid" };
+        for (int r = P_IN_VALID; r <= P_OUT_VALID; r++)
+            if (!x->nport[r])
+                return nl_bad(x, x->hs_line, "the file gives its own handshake: it needs port in_valid, port in_ready "
+                              "and port out_valid (no port %s)", hs[r - P_IN_VALID]);
+        x->line = 0;
+        return 0;
     } else {
         for (int i = 0; i < x->nel && !x->latency; i++)
             if (x->el[i].kind == SIM_KIND_REG)

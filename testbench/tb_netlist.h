@@ -25,6 +25,12 @@
  * configuration; an element the text cannot say). */
 int tb_netlist_write(FILE *f, const unit_desc *u, const unit_cfg *cfg, const char *const *fmt, int nfmt,
                      char *err, size_t errlen);
+/* The same unit as a datapath file (docs/datapaths.md) that names it for
+ * its reference (ideal unit=NAME): the formats as rules of W where builds
+ * at the neighbouring widths agree, the control as schedule rows where it
+ * is the step counter the reader makes, else written out. */
+int tb_netlist_write_dp(FILE *f, const unit_desc *u, const unit_cfg *cfg, const char *const *fmt, int nfmt,
+                        char *err, size_t errlen);
 
 /* Read the netlist file at path ("-": standard input): the unit it builds
  * (a copy of the built-in unit it names, built from the text), its
@@ -43,6 +49,9 @@ int tb_netlist_is(const unit_desc *u);
  * one, with no vector file of its own (its vectors are drawn from the
  * file's input ranges). */
 int tb_datapath_is(const unit_desc *u);
+/* The built-in unit a datapath file runs with (ideal unit=NAME: its
+ * reference, vectors, ideal and bound), or NULL. */
+const unit_desc *tb_datapath_base(const unit_desc *u);
 int tb_netlist_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *clk, unit_io *io,
                      char *err, size_t errlen);
 #endif

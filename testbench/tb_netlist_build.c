@@ -70,7 +70,7 @@ int nl_build(nl *x, const sim_fmt *fmt, int sched, sim_ctx *c, sim_scope *sc, si
             break;
         case SIM_KIND_CONST:
             s[i] = e->has_value ? sim_const(c, in_sc, e->leaf, ef, e->value) : sim_const_raw(c, in_sc, e->leaf, ef, e->raw);
-            s[i]->overflows = e->ovf;
+            if (!e->has_value) s[i]->overflows = e->ovf;   /* value=: sim_const counts its own */
             break;
         case SIM_KIND_REG:
             s[i] = sim_reg(c, in_sc, e->leaf, ef, clk, e->op[OP_A] < i ? S(e->op[OP_A]) : NULL, S(e->op[OP_C]),

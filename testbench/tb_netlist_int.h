@@ -37,6 +37,26 @@ void    nl_bits_put(FILE *f, const nl_bits *b);
 const unit_desc *nl_load_text(const char *text, size_t len, const char *path, unit_cfg *cfg, unit_fmts *fm,
                               char *err, size_t errlen);
 
+/* What the datapath form of a built unit adds to its netlist text
+ * (tb_netlist_dpw.c writes it with tb_netlist_write.c's lines): per
+ * signal (creation order) its format as a rule of W ("": the format as
+ * built) and whether the reader makes it from the schedule block, which
+ * goes where signal `anchor` was (-1: no block, the handshake written
+ * out as the unit's schedule `sched`). */
+typedef struct nl_dpw {
+    char (*rule)[48];
+    unsigned char *skip;
+    int anchor;
+    const char *block;
+} nl_dpw;
+/* The text of built unit b (u with cfg and the --fmt overrides), checked
+ * by building it back: a netlist (dp NULL) or a datapath file. *buf
+ * malloc'd; 0, or -1 with err. */
+int nl_write_text(const nl_dpw *dp, const unit_desc *u, const unit_cfg *cfg, const char *const *fmt, int nfmt,
+                  const tb_built *b, char **buf, size_t *len, char *err, size_t errlen);
+/* text built at width W (0: its own) is b, signal by signal: 0, or -1 with err. */
+int nl_check_at(const char *text, size_t len, const tb_built *b, int W, char *err, size_t errlen);
+
 /* ---- the reader's records (tb_netlist_parse.c reads the lines into them,
  * tb_netlist_read.c resolves the names and builds) ---- */
 #define NL_NONE (-1)
@@ -61,7 +81,7 @@ typedef struct nl_el {
     unsigned long long ovf;
     int         shift;
     double      area;
-    int         has_area, depth, csd, fn_unit;
+    int         has_area, depth, csd, fn_unit, fn_verilog;
     char       *verilog;
     const char *table_hex;
     const char *bits_text;  /* bits=, parsed into bits */
@@ -86,14 +106,14 @@ typedef struct nl_rule { int sg, i0, i1, f0, f1; char modes[24]; char text[48]; 
  * counter, its next-state logic, a decoder per control signal, the last
  * step (in_ready) and the input and output handshake. */
 enum { NL_GEN_NONE, NL_GEN_VALID, NL_GEN_STEP, NL_GEN_NEXT, NL_GEN_CTL, NL_GEN_LAST, NL_GEN_OUTV };
-#define NL_MAX_CLOCKS 64
+#define NL_MAX_CLOCKS 256   /* the step counter's 8 bits; a ctl row is one line (NL_MAX_TOK) */
 typedef struct nl_ctl {
     char *name;
     int   line, el;
     int   val[UNIT_MAX_SCHED][NL_MAX_CLOCKS];
     unsigned have;          /* bit s: schedule s gave its row */
 } nl_ctl;
-#define NL_MAX_CTL 16
+#define NL_MAX_CTL 32
 enum { OP_A, OP_B, OP_C, OP_RST, OP_CLK };
 
 typedef struct nl {
@@ -115,6 +135,8 @@ typedef struct nl {
     int         port_line[5][UNIT_MAX_IO];
     tb_built    ref;        /* the built-in unit, built for fn=unit (ref.c NULL: not) */
     void      **mem;        /* every allocation, freed with it */
+    struct tb_vexpr **vx;   /* fn=verilog's programs, freed with it */
+    int         nvx;
     size_t      nmem, capmem;
     const char *path;
     int         version;    /* the netlist line seen */
@@ -135,6 +157,12 @@ typedef struct nl {
     int         ideal_line[UNIT_MAX_IO], nideal;
     struct tb_expr *ideal[UNIT_MAX_IO];   /* by output port */
     int         slot;       /* its place among the live datapath units */
+    /* ideal unit=NAME: the built-in unit (base) whose float reference,
+     * vectors, ideal, bound, parameters and schedules the file runs with
+     * (what netlist --datapath writes); schedule NAME names the one its
+     * own control is for, when it has no schedule blocks */
+    int         ref_line, ref_sched_line;
+    int         hs_line;    /* the first port in_valid/in_ready/out_valid: the handshake is the file's */
     vec_model   model;
 } nl;
 enum { P_IN, P_OUT, P_IN_VALID, P_IN_READY, P_OUT_VALID };
@@ -163,6 +191,9 @@ int nl_dp_line(nl *x, char **tok, int nt);
 int nl_dp_format(nl *x, nl_el *e, const char *tok);
 /* A rule at width W: 0, or -1 with why in err. */
 int nl_rule_at(const nl_rule *r, int W, sim_fmt *f, char *err, size_t errlen);
+/* Every rule at the file's width, into its element's format (the
+ * checks of tables and fn=unit read them): 0, or -1 after nl_bad. */
+int nl_dp_rules(nl *x);
 /* The end of the file: the handshake's elements and ports. */
 int nl_dp_close(nl *x);
 /* After the names are resolved: the elements in an order where each

@@ -39,6 +39,7 @@ int nl_bad(nl *x, int line, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    for (char *p = msg; *p; p++) if (*p == '\n' || *p == '\r') *p = ' ';   /* a quoted value's lines: one line */
     if (line > 0) snprintf(x->err, x->errlen, "%s:%d: %s", x->path, line, msg);
     else snprintf(x->err, x->errlen, "%s: %s", x->path, msg);
     return -1;

@@ -40,7 +40,7 @@ void nl_put_quoted(FILE *f, const char *s)
 /* Split line into tokens at spaces and tabs; a '"' opens a quoted part
  * (up to the next unescaped '"', spaces kept) inside a token. Quoted parts
  * are unescaped in place. Returns the count, or -1 after a message. */
-#define NL_MAX_TOK 64
+#define NL_MAX_TOK (NL_MAX_CLOCKS + 8)   /* a ctl row of the longest schedule */
 static int tokenize(nl *x, char *line, char **tok)
 {
     int n = 0;
@@ -209,8 +209,10 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
             if (strcmp(v, "csd")) return BAD("net=%s: the one network is csd (a constant's shift-and-add)", v);
             e->csd = 1;
         } else if (KEY("fn")) {
-            if (strcmp(v, "unit")) return BAD("fn=%s: expected fn=unit (the built-in unit's function)", v);
-            e->fn_unit = 1;
+            if (strcmp(v, "unit") && strcmp(v, "verilog"))
+                return BAD("fn=%s: expected fn=verilog (its verilog= text's function) or fn=unit (the built-in unit's)", v);
+            e->fn_unit = !strcmp(v, "unit");
+            e->fn_verilog = !e->fn_unit;
         } else if (KEY("range")) {
             if (real_pair(x, "range", v, e->range)) return -1;
             e->has_range = 1;
@@ -255,14 +257,17 @@ static int parse_element(nl *x, sim_kind kind, char **tok, int nt)
         if (need[k].k == kind && !e->ref[need[k].op]) return BAD("%s %s: needs %s=NAME", tok[0], e->name, need[k].key);
     if (kind == SIM_KIND_CONST && seen_raw + e->has_value != 1) return BAD("const %s: needs one of raw=RAW and value=NUMBER", e->name);
     if (e->has_value && !x->dp) return BAD("const %s: value= is a datapath file's (a netlist gives raw=)", e->name);
-    if (e->fn_unit && x->dp) return BAD("logic %s: fn=unit names a built-in unit's function; a datapath file gives table= or bits=", e->name);
+    if (e->fn_unit && x->dp && !x->base)
+        return BAD("logic %s: fn=unit names a built-in unit's function: a datapath file gives table= or bits=, or names the "
+                   "unit first (ideal unit=NAME)", e->name);
     if (kind == SIM_KIND_MUX && !e->in_ref) return BAD("mux %s: needs in=NAME,NAME,...", e->name);
     if (kind == SIM_KIND_LOGIC) {
         if (!e->in_ref) return BAD("logic %s: needs in=NAME,...", e->name);
         if (e->n > 8) return BAD("logic %s: %d inputs (at most 8)", e->name, e->n);
         if (!e->has_area) return BAD("logic %s: needs area=GE (its gates, NAND2 equivalents)", e->name);
-        if ((e->table_hex != NULL) + (e->bits_text != NULL) + e->fn_unit != 1)
-            return BAD("logic %s: needs one of table=HEX, bits=WIRING and fn=unit", e->name);
+        if ((e->table_hex != NULL) + (e->bits_text != NULL) + e->fn_unit + e->fn_verilog != 1)
+            return BAD("logic %s: needs one of table=HEX, bits=WIRING, fn=verilog and fn=unit", e->name);
+        if (e->fn_verilog && !e->verilog) return BAD("logic %s: fn=verilog needs its verilog=\"TEXT\"", e->name);
     }
     x->nel++;
     return 0;
@@ -298,8 +303,9 @@ static int parse_header(nl *x, char **tok, int nt)
         unit_cfg_default(x->base, &x->cfg);
         return 0;
     }
-    if (x->dp && (!strcmp(k, "param") || !strcmp(k, "fmt")))
-        return BAD("%s: a datapath file has no parameters and gives each element its format (or rule of W)", k);
+    if (x->dp && !strcmp(k, "fmt")) return BAD("fmt: a datapath file gives each element its format (or rule of W)");
+    if (x->dp && !x->base && !strcmp(k, "param"))
+        return BAD("param: a datapath file has parameters only from the unit its ideal line names (ideal unit=NAME, before)");
     if (!x->base && !x->dp && strcmp(k, "clock") && strcmp(k, "scope")) return BAD("%s before unit NAME", k);
     char e[300];
     long long w;

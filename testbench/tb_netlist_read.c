@@ -16,6 +16,7 @@
 #include "testbench/tb_netlist_int.h"
 #include "sim/sim_prim.h"
 #include "base/base_line.h"
+#include "testbench/tb_vexpr.h"
 #include "base/base_out.h"
 #include <errno.h>
 #include <stdint.h>
@@ -84,6 +85,17 @@ static int check_logic(nl *x, nl_el *e)
             return nl_bad(x, e->line, "logic %s: bits=%s: expected {ITEM,...} of %%K, %%K[B], %%K[H:L] (K an input, "
                           "bits within its width), ~ before one, W'bBITS or W'hHEX; 64 bits at most", e->name,
                           e->bits_text);
+    }
+    if (e->fn_verilog) {
+        char err[300];
+        tb_vexpr *p = tb_vexpr_compile(e->verilog, e->n, w, e->fmt.width, err, sizeof err);
+        if (!p) return nl_bad(x, e->line, "logic %s: fn=verilog: %s", e->name, err);
+        tb_vexpr **v = realloc(x->vx, (size_t)(x->nvx + 1) * sizeof *v);
+        if (!v) base_out_of_memory();
+        x->vx = v;
+        x->vx[x->nvx++] = p;
+        e->fn = tb_vexpr_fn;
+        e->user = p;
     }
     if (e->table_hex) {
         if (bits > TB_NETLIST_TABLE_BITS)
@@ -213,7 +225,11 @@ int nl_resolve_all(nl *x)
                               nl_port_names[r], x->port_ref[r][j]);
         }
     }
-    if (x->dp) return 0;
+    if (x->dp) {
+        for (int i = 0; i < x->nel; i++)
+            if (x->el[i].fn_unit && take_unit_fn(x, &x->el[i])) return -1;
+        return 0;
+    }
     int nin = unit_n_in(x->base), nout = unit_n_out(x->base);
     if (x->nport[P_IN] != nin || x->nport[P_OUT] != nout)
         return nl_bad(x, 0, "%d input and %d output ports; unit %s has %d and %d", x->nport[P_IN], x->nport[P_OUT],
@@ -246,6 +262,8 @@ void nl_free(nl *x)
 {
     if (x->dp) nl_dp_release(x);
     if (x->ref.c) sim_free(x->ref.c);
+    for (int i = 0; i < x->nvx; i++) tb_vexpr_free(x->vx[i]);
+    free(x->vx);
     for (size_t i = 0; i < x->nmem; i++) free(x->mem[i]);
     free(x->mem);
     free(x->el);
@@ -290,7 +308,7 @@ static const unit_desc *finish(nl *x, unit_cfg *cfg, unit_fmts *fm)
 {
     if (x->dp) {
         const unit_desc *d = NULL;
-        if (nl_dp_close(x) || nl_resolve_all(x) || !(d = nl_dp_finish(x, cfg, fm))) { nl_free(x); return NULL; }
+        if (nl_dp_close(x) || nl_dp_rules(x) || nl_resolve_all(x) || !(d = nl_dp_finish(x, cfg, fm))) { nl_free(x); return NULL; }
     } else {
         if (nl_resolve_all(x) || formats_of(x)) { nl_free(x); return NULL; }
         x->desc = *x->base;

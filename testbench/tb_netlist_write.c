@@ -11,6 +11,7 @@
  */
 #include "testbench/tb_netlist.h"
 #include "testbench/tb_netlist_int.h"
+#include "testbench/tb_vexpr.h"
 #include "sim/sim_prim.h"
 #include "sim/sim_delay.h"
 #include "base/base_out.h"
@@ -26,6 +27,8 @@ typedef struct wr {
     sim_ovf o;
     char *err;
     size_t errlen;
+    const nl_dpw *dp;    /* the datapath form, or NULL */
+    uint32_t at;         /* the signal being written */
 } wr;
 
 /* " KEY=PATH" for signal s (which must be below the unit's scope or be
@@ -64,6 +67,24 @@ static void put_table(wr *w, const sim_prim_info *e, int bits)
     }
 }
 
+/* 1 if fn(user) gives what e's function gives on every input tried: each
+ * input all zeros, all ones, and 4000 draws of every bit at random. */
+static int same_fn(const sim_prim_info *e, sim_logic_fn fn, void *user)
+{
+    uint64_t r = 0x9e3779b97f4a7c15u;
+    for (int k = 0; k < 4002; k++) {
+        int64_t v[8];
+        for (int i = 0; i < e->n; i++) {
+            int w = e->in[i]->fmt.width;
+            r ^= r << 13; r ^= r >> 7; r ^= r << 17;
+            uint64_t bitsv = k == 0 ? 0 : k == 1 ? UINT64_MAX : r;
+            v[i] = sim_fx_canon((int64_t)(bitsv & (w >= 64 ? UINT64_MAX : (((uint64_t)1 << w) - 1))), e->in[i]->fmt);
+        }
+        if (sim_fx_canon(e->fn(v, e->user), e->y->fmt) != sim_fx_canon(fn(v, user), e->y->fmt)) return 0;
+    }
+    return 1;
+}
+
 /* A wide logic element as wiring (bits=): where its Verilog text is
  * "assign %y = EXPR;" with EXPR of nl_bits's form, and EXPR computes what
  * its function computes on every input tried (each input all zeros, all
@@ -81,18 +102,21 @@ static int wiring_of(const sim_prim_info *e, nl_bits *b)
     int w[8];
     for (int i = 0; i < e->n; i++) w[i] = e->in[i]->fmt.width;
     if (nl_bits_parse(t + 9, e->n, w, b)) return 0;
-    uint64_t r = 0x9e3779b97f4a7c15u;
-    for (int k = 0; k < 4002; k++) {
-        int64_t v[8];
-        for (int i = 0; i < e->n; i++) {
-            r ^= r << 13; r ^= r >> 7; r ^= r << 17;
-            uint64_t bitsv = k == 0 ? 0 : k == 1 ? UINT64_MAX : r;
-            v[i] = sim_fx_canon((int64_t)(bitsv & (w[i] >= 64 ? UINT64_MAX : (((uint64_t)1 << w[i]) - 1))),
-                                e->in[i]->fmt);
-        }
-        if (sim_fx_canon(e->fn(v, e->user), e->y->fmt) != sim_fx_canon(nl_bits_fn(v, b), e->y->fmt)) return 0;
-    }
-    return 1;
+    return same_fn(e, nl_bits_fn, b);
+}
+
+/* A wide logic element whose Verilog text tb_vexpr evaluates to what its
+ * function gives on every input tried: 1 (fn=verilog). */
+static int verilog_of(const sim_prim_info *e)
+{
+    if (!e->verilog || e->n > 8) return 0;
+    int w[8];
+    for (int i = 0; i < e->n; i++) w[i] = e->in[i]->fmt.width;
+    char err[300];
+    tb_vexpr *p = tb_vexpr_compile(e->verilog, e->n, w, e->y->fmt.width, err, sizeof err);
+    int ok = p && same_fn(e, tb_vexpr_fn, p);
+    tb_vexpr_free(p);
+    return ok;
 }
 
 /* The element's modes when they are not what its format and the file's
@@ -117,7 +141,8 @@ static int put_signal(wr *w, const sim_signal *s, unsigned fix)
     }
     fprintf(w->f, "%s ", sim_kind_name((sim_kind)s->kind));
     if (put_ref(w, NULL, s)) return -1;
-    fprintf(w->f, " %s", sim_fmt_str(s->fmt, fs));
+    const char *rule = w->dp && w->dp->rule[w->at][0] ? w->dp->rule[w->at] : NULL;
+    fprintf(w->f, " %s", rule ? rule : sim_fmt_str(s->fmt, fs));
     int rc = 0;
     switch (s->kind) {
     case SIM_KIND_INPUT:
@@ -125,6 +150,11 @@ static int put_signal(wr *w, const sim_signal *s, unsigned fix)
         if (has && e.a) { rc = put_ref(w, "from", e.a); put_modes(w, &e); }
         break;
     case SIM_KIND_CONST:
+        if (rule) {   /* a value that each width quantizes */
+            char num[40];
+            fprintf(w->f, " value=%s", nl_real_str(sim_fx_to_real(s->cur, s->fmt), num, sizeof num));
+            break;
+        }
         fprintf(w->f, " raw=%lld", (long long)s->cur);
         if (s->overflows) fprintf(w->f, " overflows=%llu", (unsigned long long)s->overflows);
         break;
@@ -179,6 +209,7 @@ static int put_signal(wr *w, const sim_signal *s, unsigned fix)
         nl_bits wiring;
         if (bits <= TB_NETLIST_TABLE_BITS) put_table(w, &e, bits);
         else if (wiring_of(&e, &wiring)) { fputs(" bits=", w->f); nl_bits_put(w->f, &wiring); }
+        else if (verilog_of(&e)) fputs(" fn=verilog", w->f);
         else fputs(" fn=unit", w->f);
         break;
     }
@@ -207,13 +238,27 @@ static int put_scopes(wr *w, const sim_scope *sc, const char *prefix)
     return 0;
 }
 
+static void put_head(wr *w, const unit_desc *u, const unit_cfg *cfg)
+{
+    FILE *f = w->f;
+    if (!w->dp) {
+        fprintf(f, "# the unit %s as built by shadesim (docs/netlist.md)\nnetlist 1\nunit %s\n", u->name, u->name);
+        fprintf(f, "schedule %s\n", u->sched[cfg->schedule].name);
+    } else {
+        fprintf(f, "# the unit %s as a datapath file (docs/datapaths.md): shadesim netlist %s --datapath\n", u->name, u->name);
+        fprintf(f, "netlist 1\ndatapath %s ", u->name);
+        nl_put_quoted(f, u->summary);
+        fprintf(f, "\nideal unit=%s\n", u->name);
+        if (w->dp->anchor < 0) fprintf(f, "schedule %s\n", u->sched[cfg->schedule].name);
+    }
+    fprintf(f, "width %d\nround %s\noverflow %s\n", cfg->width, sim_round_name(cfg->rnd), sim_ovf_name(cfg->ovf));
+}
+
 static int put_text(wr *w, const unit_desc *u, const unit_cfg *cfg, const char *const *fmt, int nfmt,
                     const tb_built *b, const unsigned *fix)
 {
     FILE *f = w->f;
-    fprintf(f, "# the unit %s as built by shadesim (docs/netlist.md)\nnetlist 1\nunit %s\n", u->name, u->name);
-    fprintf(f, "schedule %s\nwidth %d\nround %s\noverflow %s\n", u->sched[cfg->schedule].name, cfg->width,
-            sim_round_name(cfg->rnd), sim_ovf_name(cfg->ovf));
+    put_head(w, u, cfg);
     for (int i = 0; i < u->nparams; i++) {
         char v[64];
         unit_param_get(&u->params[i], cfg, v, sizeof v);
@@ -225,6 +270,9 @@ static int put_text(wr *w, const unit_desc *u, const unit_cfg *cfg, const char *
     for (uint32_t i = 0, n = sim_signal_count(b->c); i < n; i++) {
         const sim_signal *s = sim_signal_at(b->c, i);
         if (s == b->clk) continue;
+        if (w->dp && w->dp->anchor == (int)i) fputs(w->dp->block, f);
+        if (w->dp && w->dp->skip[i]) continue;
+        w->at = i;
         if (put_signal(w, s, fix ? fix[i] : 0)) return -1;
     }
     const unit_io *io = &b->io;
@@ -233,7 +281,7 @@ static int put_text(wr *w, const unit_desc *u, const unit_cfg *cfg, const char *
     for (int k = 0; k < unit_n_out(u); k++) { fputs("port out ", f); rc |= put_ref(w, NULL, io->out[k]); fputc('\n', f); }
     const sim_signal *hs[3] = { io->in_valid, io->in_ready, io->out_valid };
     static const char *const hn[3] = { "in_valid", "in_ready", "out_valid" };
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < 3 && !(w->dp && w->dp->anchor >= 0); k++)
         if (hs[k]) { fprintf(f, "port %s ", hn[k]); rc |= put_ref(w, NULL, hs[k]); fputc('\n', f); }
     return rc;
 }
@@ -280,14 +328,20 @@ static int text_of(wr *w, const unit_desc *u, const unit_cfg *cfg, const char *c
 /* Build text back (the reader's own path) and compare it with b signal by
  * signal: names, kinds, formats, values, area and arcs. Fills fix (when
  * not NULL) with what each signal's line must add; 0 when equal. */
-static int check_back(const char *text, size_t len, const tb_built *b, unsigned *fix, char *err, size_t errlen)
+static int check_back(const char *text, size_t len, const tb_built *b, int W, unsigned *fix, char *err, size_t errlen)
 {
     unit_cfg cfg;
     unit_fmts fm;
     const unit_desc *nu = nl_load_text(text, len, "(netlist text)", &cfg, &fm, err, errlen);
     if (!nu) return -1;
     tb_built t;
-    int rc = tb_build(nu, &cfg, &fm, &t, err, errlen);
+    int rc = 0;
+    if (W && W != cfg.width) {
+        cfg.width = W;
+        rc = tb_formats(nu, &cfg, NULL, 0, &fm, err, errlen);
+    }
+    t.c = NULL;
+    if (!rc) rc = tb_build(nu, &cfg, &fm, &t, err, errlen);
     uint32_t n = sim_signal_count(b->c);
     if (!rc && sim_signal_count(t.c) != n) {
         snprintf(err, errlen, "the text builds %u signals, the unit %u", sim_signal_count(t.c), n);
@@ -311,8 +365,33 @@ static int check_back(const char *text, size_t len, const tb_built *b, unsigned 
             rc = -1;
         } else if (fix) fix[i] = x;
     }
-    sim_free(t.c);
+    if (t.c) sim_free(t.c);
     tb_netlist_free(nu);
+    return rc;
+}
+
+int nl_check_at(const char *text, size_t len, const tb_built *b, int W, char *err, size_t errlen)
+{
+    return check_back(text, len, b, W, NULL, err, errlen);
+}
+
+int nl_write_text(const nl_dpw *dp, const unit_desc *u, const unit_cfg *cfg, const char *const *fmt, int nfmt,
+                  const tb_built *b, char **buf, size_t *len, char *err, size_t errlen)
+{
+    wr w = { NULL, b->sc, b->clk, cfg->rnd, cfg->ovf, err, errlen, dp, 0 };
+    uint32_t n = sim_signal_count(b->c);
+    unsigned *fix = calloc(n ? n : 1, sizeof *fix);
+    if (!fix) base_out_of_memory();
+    char *t1 = NULL;
+    size_t l1;
+    *buf = NULL;
+    int rc = text_of(&w, u, cfg, fmt, nfmt, b, NULL, &t1, &l1);
+    if (!rc) rc = check_back(t1, l1, b, 0, fix, err, errlen);
+    if (!rc) rc = text_of(&w, u, cfg, fmt, nfmt, b, fix, buf, len);
+    if (!rc) rc = check_back(*buf, *len, b, 0, NULL, err, errlen);
+    if (rc) { free(*buf); *buf = NULL; }
+    free(t1);
+    free(fix);
     return rc;
 }
 
@@ -323,20 +402,11 @@ int tb_netlist_write(FILE *f, const unit_desc *u, const unit_cfg *cfg, const cha
     if (tb_formats(u, cfg, fmt, nfmt, &fm, err, errlen)) return -1;
     tb_built b;
     if (tb_build(u, cfg, &fm, &b, err, errlen)) { sim_free(b.c); return -1; }
-    wr w = { NULL, b.sc, b.clk, cfg->rnd, cfg->ovf, err, errlen };
-    uint32_t n = sim_signal_count(b.c);
-    unsigned *fix = calloc(n ? n : 1, sizeof *fix);
-    if (!fix) base_out_of_memory();
-    char *t1 = NULL, *t2 = NULL;
-    size_t l1, l2;
-    int rc = text_of(&w, u, cfg, fmt, nfmt, &b, NULL, &t1, &l1);
-    if (!rc) rc = check_back(t1, l1, &b, fix, err, errlen);
-    if (!rc) rc = text_of(&w, u, cfg, fmt, nfmt, &b, fix, &t2, &l2);
-    if (!rc) rc = check_back(t2, l2, &b, NULL, err, errlen);
-    if (!rc && fwrite(t2, 1, l2, f) != l2) { snprintf(err, errlen, "write error"); rc = -1; }
-    free(t1);
-    free(t2);
-    free(fix);
+    char *t = NULL;
+    size_t l;
+    int rc = nl_write_text(NULL, u, cfg, fmt, nfmt, &b, &t, &l, err, errlen);
+    if (!rc && fwrite(t, 1, l, f) != l) { snprintf(err, errlen, "write error"); rc = -1; }
+    free(t);
     sim_free(b.c);
     return rc;
 }

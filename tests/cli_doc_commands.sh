@@ -48,6 +48,7 @@ help VERB                                             => help run
 --help | --version | --man                            == skip: synopsis of three alternatives
 scene my.scene --set resolution=256x256 -j 2          == skip: my.scene is the reader's own scene file
 stability -o DIR                                      => stability -o out/stability
+scene face --set unit=out/s3.dp -o out/scene-s3       => scene face --set unit=out/s3.dp --set resolution=64x64 -o out/scene-s3
 merge DIR/sweep-*-of-N.csv -o DIR/sweep.csv           == skip: DIR and N are placeholders (README's merge runs)
 cosim horner3 --rtl my/horner3.v [--rtl my/more.v ...] [--top NAME] == skip: synopsis (my/horner3.v is the reader's own design)
 run horner3 --vectors indep.vec --fmt a=s7.13 --fmt b=s7.13 --fmt c=s7.14 --fmt d=s7.14 --fmt t=u1.19 --fmt y=s11.14 --fmt mx1=s11.13 --fmt mul=s12.14 --fmt mx2=s11.14 --fmt bk=s11.14 --fmt sm=s11.14 --fmt rg=s11.14 == skip: indep.vec is made by the awk line before it (tests/cli_ranges.sh runs the same check)

@@ -9,9 +9,7 @@ PREFIX=cli_netlist.
 . tests/lib_cli.sh
 
 # The units and their schedules, from list.
-"$S" list | awk '/^[a-z0-9_]+ —/ { u = $1 }
-    /^  schedules:/ { sub(/^  schedules: /, ""); n = split($0, a, /\), /); s = "";
-                      for (i = 1; i <= n; i++) { split(a[i], b, " "); s = s " " b[1] } print u ":" s }' >"$T/units"
+units_and_schedules >"$T/units"
 check units_listed [ "$(wc -l <"$T/units")" -ge 20 ]
 # Under the sanitizers (a process costs ten times as much) the command
 # line's round trip takes one design, the malformed files four:
@@ -76,10 +74,11 @@ same fmt_override_round_trip "$T/a.json" "$T/b.json"
 expect run_file_refuses_width 2 "$S" run "$T/h3.net" --width 12
 grep -q 'the netlist is the design' "$T/err" && ok run_file_width_says_why || fail run_file_width_says_why "$(cat "$T/err")"
 # A logic element too wide for a table is wiring where its Verilog text
-# says so (the square root's shifted remainder), else names the unit's
-# function (the divider's operand shifter); the round trip above runs both.
+# says so (the square root's shifted remainder), else its Verilog text's
+# function (fn=verilog: the divider's operand shifter and zero test); the
+# round trip above runs both.
 "$S" netlist div -o "$T/div.net"
-check wide_logic_fn_unit grep -q ' fn=unit$' "$T/div.net"
+check wide_logic_fn_verilog grep -q '^logic dz_next u1.0 in=d area=[0-9.]* verilog=".*" fn=verilog$' "$T/div.net"
 "$S" netlist sqrt -o "$T/sqrt.net"
 check wide_logic_bits grep -q '^logic rt_dq u18.0 in=rt_q_in area=0 depth=0 verilog=".*" bits={%0\[15:0\],2'"'"'h1}$' "$T/sqrt.net"
 check narrow_logic_table grep -q ' table=[0-9a-f]*$' "$T/h3.net"

@@ -69,3 +69,10 @@ run_full() {
     if [ "$rc" -eq 0 ] && ! grep -q '^FAIL' "$T/out"; then ok "$2"
     else fail "$2" "$(grep -v '^ok' "$T/out" | head -12 | tr '\n' ' ')"; fi
 }
+
+# units_and_schedules: a line "UNIT: SCHED SCHED ..." a unit, from list.
+units_and_schedules() {
+    "$S" list | awk '/^[a-z0-9_]+ —/ { u = $1 }
+        /^  schedules:/ { sub(/^  schedules: /, ""); n = split($0, a, /\), /); s = "";
+                          for (i = 1; i <= n; i++) { split(a[i], b, " "); s = s " " b[1] } print u ":" s }'
+}

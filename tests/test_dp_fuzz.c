@@ -18,9 +18,11 @@
 #include <string.h>
 #include <time.h>
 
+/* the examples, and a built-in unit's file (netlist mschlick --datapath):
+ * ideal unit=, its own handshake, fn=verilog texts with a case */
 static const char *const examples[] = { "examples/horner3.dp", "examples/fir4.dp", "examples/dot3.dp",
-                                        "examples/fir4_pipe.dp" };
-#define NEX 4
+                                        "examples/fir4_pipe.dp", "tests/data/mschlick.dp" };
+#define NEX 5
 static char *text[NEX];
 static size_t len[NEX];
 
@@ -40,7 +42,8 @@ static size_t mutate(vec_rng *r, const char *t, size_t n, char *out, size_t cap)
 {
     static const char pieces[][12] = { "W", "(W-", ")", "=", ",", ".", "-", "+", "*", "/", "0", "1", "64", "65",
                                        "-1", "1e308", "clk", "step", "in_valid", "y", "rg", "sm", "x0", "\n", " ",
-                                       "#", "\"", "s", "u", ":sat", "sqrt(", "min(", "clocks=", "99999999999" };
+                                       "#", "\"", "s", "u", ":sat", "sqrt(", "min(", "clocks=", "99999999999",
+                                       "%t_", "%0", "[", "]", "{", "}", "?", "case", "$signed(", "<<", "16'h" };
     memcpy(out, t, n);
     int k = 1 + (int)(vec_rng_next(r) % 4);
     for (int m = 0; m < k && n > 2; m++) {

@@ -142,7 +142,7 @@ static void test_malformed(void)
         { "reg rg s7.9", "logic zz u2.0 in=step area=0 bits={%0[2],2'b100}\nreg rg s7.9",
           "logic zz: bits={%0[2],2'b100}: expected", 1 },
         { "area=12 table=10111100", "area=12 bits=%0[0] table=10111100",
-          "logic mx1_sel: needs one of table=HEX, bits=WIRING and fn=unit", 1 },
+          "logic mx1_sel: needs one of table=HEX, bits=WIRING, fn=verilog and fn=unit", 1 },
     };
     unit_cfg cfg;
     const unit_desc *u = unit_find("horner3");

@@ -425,6 +425,7 @@ static const char *EVERY =
     "round even\n"
     "overflow sat\n"
     "schedule mac\n"
+    "unit sub/my span.dp\n"
     "cost div=8 pow=16\n"
     "cost sqrt=5.5";                    /* no final newline */
 
@@ -501,6 +502,8 @@ static void desc_every_key(void)
     if (rc) { printf("  %s\n", err); return; }
     snprintf(want, sizeof want, "%s/sub/head model.obj", tdir);
     check_every(&d, want);
+    snprintf(want, sizeof want, "%s/sub/my span.dp", tdir);   /* unit: a path, relative to the file's folder */
+    TST_EQ_STR(d.unit, want);
     /* Every key of the table appears in the test file. */
     for (int k = 0; scn_desc_keys[k]; k++) {
         char pat[64];

@@ -391,11 +391,19 @@ static int params_default(const unit_desc *u, const unit_cfg *cfg)
     return 1;
 }
 
+/* The unit whose checked-in vectors u runs on: a datapath file's that
+ * names a built-in unit (ideal unit=NAME) takes the unit's. */
+static const char *vec_name(const unit_desc *u)
+{
+    const unit_desc *b = tb_datapath_base(u);
+    return b ? b->name : u->name;
+}
+
 int cli_vectors_file(const cli_unit_opts *o, char *buf, size_t len, const char **path)
 {
     *path = NULL;
-    if (!o->vectors && (!params_default(o->u, &o->cfg) || tb_datapath_is(o->u))) return 0;
-    const char *p = o->vectors ? o->vectors : cli_default_vectors_path(o->u->name, buf, len);
+    if (!o->vectors && (!params_default(o->u, &o->cfg) || (tb_datapath_is(o->u) && !tb_datapath_base(o->u)))) return 0;
+    const char *p = o->vectors ? o->vectors : cli_default_vectors_path(vec_name(o->u), buf, len);
     if (!o->vectors && access(p, R_OK)) {
         vectors_missing(p, o->u->name);
         return -1;
@@ -411,13 +419,13 @@ int cli_load_vectors(const cli_unit_opts *o, vec_set *vs)
     vec_set_init(&hdr);
     tb_expected_header(o->u, &o->cfg, &hdr);
     vec_set_init(vs);
-    if (!o->vectors && (!params_default(o->u, &o->cfg) || tb_datapath_is(o->u))) {
+    if (!o->vectors && (!params_default(o->u, &o->cfg) || (tb_datapath_is(o->u) && !tb_datapath_base(o->u)))) {
         /* made from the reference: a datapath file has no checked-in vectors */
         if (tb_make_vectors(o->u, &o->cfg, 0, 1, vs, err, sizeof err)) return cli_usage_error("%s", err);
         return CLI_OK;
     }
-    const char *p = o->vectors ? o->vectors : cli_default_vectors_path(o->u->name, path, sizeof path);
-    if (!o->vectors && access(p, R_OK)) return vectors_missing(p, o->u->name);
+    const char *p = o->vectors ? o->vectors : cli_default_vectors_path(vec_name(o->u), path, sizeof path);
+    if (!o->vectors && access(p, R_OK)) return vectors_missing(p, vec_name(o->u));
     if (vec_file_read(p, vs, &hdr, err, sizeof err)) { vec_set_free(vs); return cli_usage_error("%s", err); }
     return CLI_OK;
 }

@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <string.h>
 
-typedef struct netlist_st { const char *out; } netlist_st;
+typedef struct netlist_st { const char *out; int dp; } netlist_st;
 
 /* UNIT, the first argument that is not an option. */
 static int unit_arg(void *base, const char *arg)
@@ -25,6 +25,11 @@ static int set_param(void *base, const char *opt, const char *v)
 static const cli_opt netlist_tab[] = {
     { "-o", NULL, CLI_OPT_STR, offsetof(netlist_st, out), 0, 0, NULL, "%s needs a file", NULL, CLI_OPT_NONEMPTY,
       "  -o FILE              write the text to FILE (default: standard output)\n" },
+    { "--datapath", NULL, CLI_OPT_FLAG, offsetof(netlist_st, dp), 0, 0, NULL, NULL, NULL, 0,
+      "  --datapath           write it as a datapath file (docs/datapaths.md) that names the unit\n"
+      "                       for its reference (ideal unit=UNIT): formats as rules of W where\n"
+      "                       they follow the width, the control as schedule rows where it is\n"
+      "                       the step counter the reader makes; every verb takes the file\n" },
     { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0, NULL }
 };
 
@@ -40,7 +45,7 @@ static const cli_opt no_opts[] = { { NULL, NULL, 0, 0, 0, 0, NULL, NULL, NULL, 0
 const cli_optspec cli_netlist_spec = {
     "netlist", { no_opts, netlist_tab, cli_unit_opt_tab, set_tab }, unit_arg, 0,
     "netlist: unexpected argument '%s' (see shadesim netlist --help)",
-    "usage: shadesim netlist UNIT [options] [-o FILE]\n"
+    "usage: shadesim netlist UNIT [options] [--datapath] [-o FILE]\n"
     "Write the unit as shadesim builds it (same formats, modes, schedule and\n"
     "handshake) as text: its configuration, clock and scopes, one line per\n"
     "signal in the order built (inputs, constants, registers with enable and\n"
@@ -57,7 +62,7 @@ int cli_netlist(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_netlist_spec);
     cli_unit_opts o;
-    netlist_st st = { NULL };
+    netlist_st st = { NULL, 0 };
     memset(&o, 0, sizeof o);
     void *base[] = { &o, &st, &o, &o };
     if (cli_opt_parse(&cli_netlist_spec, base, argc, argv, 1)) return CLI_USAGE;
@@ -68,7 +73,7 @@ int cli_netlist(int argc, char **argv)
     char err[600];
     base_out *out = base_out_open(st.out ? st.out : "-", err, sizeof err);
     if (!out) return cli_usage_error("%s", err);
-    if (tb_netlist_write(base_out_file(out), o.u, &o.cfg, o.fmt, o.nfmt, err, sizeof err)) {
+    if ((st.dp ? tb_netlist_write_dp : tb_netlist_write)(base_out_file(out), o.u, &o.cfg, o.fmt, o.nfmt, err, sizeof err)) {
         base_out_abort(out);
         return cli_usage_error("netlist %s: %s", o.u->name, err);
     }

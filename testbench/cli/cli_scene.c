@@ -282,7 +282,7 @@ static int unit_error(const scn_desc *d, const char *err)
         keys = param;
     }
     /* and a setting every unit has, "round: ..." (tb_scene_cfg) */
-    static const char *const own[] = { "width", "round", "overflow" };
+    static const char *const own[] = { "width", "round", "overflow", "unit" };
     for (size_t k = 0; k < sizeof own / sizeof own[0]; k++)
         if (!strncmp(err, own[k], strlen(own[k])) && err[strlen(own[k])] == ':') {
             snprintf(pk, sizeof pk, "%s", own[k]);

@@ -15,8 +15,44 @@
 #include "testbench/study/tb_scene.h"
 #include "base/base_join.h"
 #include "base/base_num.h"
+#include "testbench/tb_netlist.h"
+#include <pthread.h>
 #include <stdio.h>
 #include <string.h>
+
+/* unit=FILE: a datapath file that names the policy's unit for its
+ * reference (netlist span3 --datapath, edited), loaded once a process
+ * (the render's threads and the searches build it many times) and kept. */
+static int file_unit(const char *path, const unit_desc *span, const unit_desc **up, unit_cfg *cfg, char *err, size_t errlen)
+{
+    static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
+    static struct { char path[256]; const unit_desc *u; unit_cfg cfg; } cache[4];
+    pthread_mutex_lock(&lock);
+    int k = 0;
+    while (k < 4 && cache[k].u && strcmp(cache[k].path, path)) k++;
+    const unit_desc *u = k < 4 ? cache[k].u : NULL;
+    char e[1400] = "";
+    if (!u && k < 4) {
+        unit_fmts fm;
+        if ((u = tb_netlist_load(path, &cache[k].cfg, &fm, e, sizeof e)) && !tb_datapath_is(u)) {
+            tb_netlist_free(u);
+            u = NULL;
+            snprintf(e, sizeof e, "%s: a netlist, not a datapath file (netlist %s --datapath writes one)", path, span->name);
+        }
+        if (u) { snprintf(cache[k].path, sizeof cache[k].path, "%s", path); cache[k].u = u; }
+    } else if (!u) snprintf(e, sizeof e, "%s: more than 4 unit files in one process", path);
+    unit_cfg c = k < 4 ? cache[k].cfg : (unit_cfg){ 0 };
+    pthread_mutex_unlock(&lock);
+    if (!u) { snprintf(err, errlen, "unit: %s", e); return -1; }
+    if (tb_datapath_base(u) != span) {
+        snprintf(err, errlen, "unit: %s: the policy's unit is %s, and the file's ideal line does not name it (ideal unit=%s)",
+                 path, span->name, span->name);
+        return -1;
+    }
+    *up = u;
+    *cfg = c;
+    return 0;
+}
 
 static int has_param(const unit_desc *u, const char *name)
 {
@@ -34,6 +70,7 @@ int tb_scene_cfg(const scn_desc *d, const unit_desc **up, unit_cfg *cfg, char *e
     const unit_desc *u = unit_find(uname[d->policy]), *all = unit_find("span23");
     if (!u || !all) { snprintf(err, errlen, "unit %s is not built into this shadesim", u ? "span23" : uname[d->policy]); return -1; }
     unit_cfg_default(u, cfg);
+    if (*d->unit && file_unit(d->unit, u, &u, cfg, err, errlen)) return -1;
     long long w;
     if (*d->fmt_width && (base_num_whole(d->fmt_width, 0, &w) || w < 1 || w > 64)) {
         snprintf(err, errlen, "width: '%s' is not a whole number 1..64", d->fmt_width);
