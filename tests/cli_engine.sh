@@ -48,8 +48,8 @@ while read -r u sc <&3; do
     n="$u.$sc"
     # under the sanitizers (ASAN=1), each unit's first schedule (the other 82 of
     # the 107 pairs, 164 processes, were half this test's time there): the
-    # others run there in cli_gold (the kernel, every schedule),
-    # test_schedules and test_batch (the lanes on the Horner, interpolator
+    # others run there in test_reference (the kernel and its reference,
+    # every schedule, in process), test_schedules and test_batch (the lanes on the Horner, interpolator
     # and span units' schedules, in process) and test_cells (every
     # element kind on the lanes); the plain build compares them all here
     if [ -n "$ASAN" ] && [ $first = 0 ]; then nleft=$((nleft + 1)); continue; fi
