@@ -46,8 +46,8 @@ prev= nu=0 nleft=0
 while read -r u sc <&3; do
     if [ "$u" != "$prev" ]; then first=1; prev=$u; nu=$((nu + 1)); fi
     n="$u.$sc"
-    # under the sanitizers (ASAN=1), each unit's first schedule (the other 82 of
-    # the 107 pairs, 164 processes, were half this test's time there): the
+    # under the sanitizers (ASAN=1), each unit's first schedule (the other
+    # 22 of the 47 pairs, 44 processes, were a third of its time there): the
     # others run there in test_reference (the kernel and its reference,
     # every schedule, in process), test_schedules and test_batch (the lanes on the Horner, interpolator
     # and span units' schedules, in process) and test_cells (every
