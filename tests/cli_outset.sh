@@ -139,11 +139,17 @@ else fail closed_pipe "exit $rc: $(cat "$T/perr")"; fi
 
 # --- the other multi-file outputs: claims' charts, chart's charts, a
 # scene --compare's three folders
-D=$T/cl
-mkdir -p "$D" && ln -s /dev/full "$D/claims_cost.svg"
-snap "$D" >"$T/before"
-expect claims_full_member 2 "$S" claims -o "$D"
-same claims_folder_unchanged "$D" "$T/before"
+# (claims computes every claim before its write fails: fifteen seconds of
+# CPU under the sanitizers, where cli_claims runs the verb whole, text and
+# JSON, and the other sets here the failing write; the plain build here)
+if [ -n "$ASAN" ]; then echo "skip ${PREFIX}claims_full_member: the plain build runs it (cli_claims runs claims under the sanitizers)"
+else
+    D=$T/cl
+    mkdir -p "$D" && ln -s /dev/full "$D/claims_cost.svg"
+    snap "$D" >"$T/before"
+    expect claims_full_member 2 "$S" claims -o "$D"
+    same claims_folder_unchanged "$D" "$T/before"
+fi
 D=$T/ch
 "$S" sweep horner3 --widths 10:11 -o "$T/chsrc" >/dev/null
 mkdir -p "$D" && ln -s /dev/full "$D/area_vs_error.svg"

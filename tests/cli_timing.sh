@@ -12,8 +12,9 @@
 #
 # The designs: TIMING_DESIGNS=all is every unit at widths 8, 16 and 24
 # (about four minutes of CPU: `make test-long` runs it, through
-# tests/cli_timing_full.sh); otherwise width 8 alone, every unit, the
-# same checks over 19 designs (about half a minute).
+# tests/cli_timing_full.sh); otherwise (make test) the run --json fields
+# and `synth`'s lines on one design, the rank and band checks left to
+# make test-long.
 PREFIX=cli_timing.
 [ "${TIMING_DESIGNS:-}" = all ] && PREFIX=cli_timing_full.
 . tests/lib_cli.sh
@@ -43,6 +44,15 @@ case "${TST_BUILD:-}" in *-asan) echo "skip ${PREFIX}yosys_rank: runs in the pla
 "$S" synth div3 --width 8 >"$T/out" 2>"$T/err"
 grep -q '^  Yosys  *[1-9][0-9]* gates$' "$T/out" && grep -q '^  shadesim  *[1-9][0-9]* levels, [0-9]* ps' "$T/out" &&
     grep -q '^  ratio  .*shadesim levels / Yosys gates' "$T/out" && ok synth_paths || fail synth_paths "$(cat "$T/out" "$T/err")"
+
+# The rank and band checks over the designs: 19 syntheses, half a minute
+# of Yosys's CPU (a tenth of make test's whole budget), so make test-long
+# alone, which runs them over every unit at widths 8, 16 and 24
+# (tests/cli_timing_full.sh: width 8's designs among them).
+if [ "${TIMING_DESIGNS:-}" != all ]; then
+    for t in yosys_rank yosys_ratio_band; do echo "skip ${PREFIX}$t: make test-long runs it (cli_timing_full: every unit at widths 8, 16, 24)"; done
+    exit 0
+fi
 
 units=$("$S" list 2>/dev/null | sed -n 's/^\([a-z0-9_]*\) — .*/\1/p')
 : >"$T/designs"

@@ -108,7 +108,8 @@ static int is_tie(uint64_t w, int k)
     return w >> 53 == 1;
 }
 
-/* Two million random decimals (a tenth in make test-quick): 1 to 19
+/* Two million random decimals (a tenth in make test-quick and under the
+ * sanitizers: tst_fewer): 1 to 19
  * significant digits, q from -345 to +22 (all the range the fast steps
  * take, beyond it, and Clinger's positive side), random signs. The
  * Eisel-Lemire step leaves only values within 2^-72 of a tie to the exact
@@ -119,7 +120,7 @@ static void t_fast_random(void)
     uint64_t x = 27;
     long bad = 0, n = 0, fast = 0, neg_q = 0, neg_fast = 0, ties = 0, odd = 0, sub = 0;
     char why[300];
-    const int draws = tst_quick() ? 200000 : 2000000;
+    const int draws = tst_fewer() ? 200000 : 2000000;
     for (int i = 0; i < draws; i++) {
         uint64_t r = tst_num_rand(&x);
         int d = 1 + (int)(r % 19);
@@ -149,14 +150,14 @@ static void t_fast_random(void)
 }
 
 /* What vector files hold: %.17g of a million random doubles (a tenth in
- * make test-quick) from 2^-1020
+ * make test-quick and under the sanitizers) from 2^-1020
  * (8.9e-308, where q = -324) to 2^53, both signs, through the string
  * parse; the fast steps must decide every one. (Above 2^53, q >= 0 and
  * w > 2^53 take the exact path's one-word product w 5^q, a multiply.) */
 static void t_fast_g17(void)
 {
     uint64_t x = 17;
-    long bad = 0, fast = 0, n = tst_quick() ? 100000 : 1000000;
+    long bad = 0, fast = 0, n = tst_fewer() ? 100000 : 1000000;
     char buf[64], why[300];
     for (long i = 0; i < n; i++) {
         uint64_t r = tst_num_rand(&x);

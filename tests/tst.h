@@ -102,4 +102,10 @@ static inline int tst_asan_build(void)
     size_t n = b ? strlen(b) : 0;
     return n >= 5 && !strcmp(b + n - 5, "-asan");
 }
+/* True where a program's long random sweeps take a tenth of their draws:
+ * make test-quick, and the sanitizer build, where a memory error shows on
+ * the first draws that reach its path and a draw costs three to five
+ * times the plain build's (the same checks; the plain build of make test
+ * draws them all). */
+static inline int tst_fewer(void) { return tst_quick() || tst_asan_build(); }
 #endif
