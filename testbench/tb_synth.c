@@ -292,7 +292,7 @@ int tb_synth_sta(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
     char cmd[1200];
     snprintf(cmd, sizeof cmd, "yosys -q -l yosys.log -p 'read_verilog %s.v; synth -top %s; "
              "dfflibmap -liberty liberty.lib; abc -liberty liberty.lib -constr abc.constr "
-             "-script +strash;&get,-n;&fraig,-x;&put;scorr;dc2;dretime;strash;&get,-n;&dch,-f;&nf;&put;buffer,-p; opt_clean; "
+             "-script +strash;&get,-n;&fraig,-x;&put;scorr;dc2;dretime;strash;&get,-n;&dch,-f;&nf;&put;buffer,-p; opt_clean -purge; "
              "tee -q -o stat.txt stat -liberty liberty.lib; write_verilog -noattr mapped.v' >/dev/null 2>&1",
              u->name, u->name);
     rc = tb_synth_tool(run, "yosys", dir, cmd, 1, err, errlen);
