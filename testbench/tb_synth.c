@@ -225,7 +225,13 @@ static void q_net(const char *dir, char *name, size_t len)
     while (f && fgets(line, sizeof line, f)) {
         if (!in) { in = strstr(line, pat) != NULL; continue; }
         const char *q = strstr(line, ".Q(");
-        if (q) { q += 3; snprintf(name, len, "%.*s", (int)strcspn(q, ")"), q); break; }
+        if (q) {
+            q += 3;
+            /* splitnets' one-bit wires are escaped names (\rg[15] and a blank) */
+            if (*q == '\\') q++;
+            snprintf(name, len, "%.*s", (int)strcspn(q, ") "), q);
+            break;
+        }
         if (strstr(line, ");")) break;
     }
     if (f) fclose(f);
@@ -288,11 +294,13 @@ int tb_synth_sta(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
         || (rc = abc_constr(dir, err, errlen))) return rc;
     /* ABC's default script for a Liberty (Yosys's `abc -liberty`), then its
      * `buffer -p`: the design-rule repair every synthesis flow makes before
-     * timing (docs/timing.md, "Design rules"); no timing-driven sizing. */
+     * timing (docs/timing.md, "Design rules"); no timing-driven sizing.
+     * splitnets: one-bit wires, so that no assignment to a concatenation
+     * is left, which OpenSTA's Verilog reader refuses. */
     char cmd[1200];
     snprintf(cmd, sizeof cmd, "yosys -q -l yosys.log -p 'read_verilog %s.v; synth -top %s; "
              "dfflibmap -liberty liberty.lib; abc -liberty liberty.lib -constr abc.constr "
-             "-script +strash;&get,-n;&fraig,-x;&put;scorr;dc2;dretime;strash;&get,-n;&dch,-f;&nf;&put;buffer,-p; opt_clean -purge; "
+             "-script +strash;&get,-n;&fraig,-x;&put;scorr;dc2;dretime;strash;&get,-n;&dch,-f;&nf;&put;buffer,-p; opt_clean; splitnets; opt_clean; "
              "tee -q -o stat.txt stat -liberty liberty.lib; write_verilog -noattr mapped.v' >/dev/null 2>&1",
              u->name, u->name);
     rc = tb_synth_tool(run, "yosys", dir, cmd, 1, err, errlen);
