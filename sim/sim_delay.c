@@ -9,6 +9,7 @@
  * "Against OpenSTA"). */
 #include "sim/sim_delay.h"
 #include "sim/sim.h"
+#include <math.h>
 
 const sim_delay SIM_DELAY_NONE = { -1, -1.0 };
 
@@ -206,6 +207,12 @@ sim_arcs sim_delay_logic(int bits)
 
 double sim_delay_load_ps(double pins_sel, double pins, int from_reg)
 {
-    double ff = pins_sel * SIM_FF_PIN_SEL + pins * SIM_FF_PIN - SIM_FF_REF;
-    return ff > 0 ? ff * (from_reg ? SIM_PS_PER_FF_Q : SIM_PS_PER_FF) : 0.0;
+    double c = pins_sel * SIM_FF_PIN_SEL + pins * SIM_FF_PIN;
+    if (c <= SIM_FF_REF) return 0.0;
+    /* the X1 driver's slope over the extra load, or, where that is more,
+     * the buffered net: a stage of SIM_PS_BUF for each factor of
+     * SIM_BUF_GAIN beyond the reference load (sim_delay.h) */
+    double lin = (c - SIM_FF_REF) * (from_reg ? SIM_PS_PER_FF_Q : SIM_PS_PER_FF);
+    double tree = SIM_PS_BUF * log(c / SIM_FF_REF) / log(SIM_BUF_GAIN);
+    return tree < lin ? tree : lin;
 }

@@ -53,6 +53,14 @@
 #define SIM_PS_PER_FF_Q   2.44
 #define SIM_FF_PIN_SEL    1.92
 #define SIM_FF_PIN        1.65
+/* A net beyond the reference load is, in the flow `synth --sta` runs, no
+ * longer driven by one X1 cell: ABC's `buffer` splits it into a tree of
+ * buffers and upsizes its driver, so its delay grows with the log of its
+ * load, not linearly: a stage of BUF_X1 at a fanout of four (A -> Z, fall,
+ * 17.2 ps slew, 7.58 fF: 40.6 ps) for each factor of four of load
+ * (sim_delay_load_ps charges the smaller of the two). */
+#define SIM_PS_BUF       40.6
+#define SIM_BUF_GAIN      4.0
 
 /* Levels and picoseconds along an arc; lv < 0: no arc. */
 typedef struct sim_delay { int lv; double ps; } sim_delay;

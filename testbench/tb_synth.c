@@ -134,15 +134,16 @@ static int liberty_in(const char *lib, const char *dir, tb_synth_run *run, char 
     return rc;
 }
 
-/* The area of one gate equivalent: NAND2_X1's, else the smallest cell
- * whose name starts NAND2 (cell (NAME) { ... area : A; ...). */
-static int ge_cell(const char *dir, tb_sta *r, char *err, size_t errlen)
+/* The smallest cell of the library whose name holds `part` (any case),
+ * `want` itself when the library has it (cell (NAME) { ... area : A;
+ * ...): its area into *area and its name into name, 0 if none. */
+static void lib_cell(const char *dir, const char *part, const char *want, char *name, size_t len, double *area)
 {
-    char path[PATH_MAX], line[512], cell[64] = "";
+    char path[PATH_MAX], line[512], cell[64] = "", low[64];
     snprintf(path, sizeof path, "%s/liberty.lib", dir);
     FILE *f = fopen(path, "r");
-    r->ge_area = 0;
-    r->ge_cell[0] = 0;
+    *area = 0;
+    name[0] = 0;
     while (f && fgets(line, sizeof line, f)) {
         const char *c = strstr(line, "cell (");
         if (c && (c == line || c[-1] == ' ' || c[-1] == '\t')) {
@@ -151,18 +152,47 @@ static int ge_cell(const char *dir, tb_sta *r, char *err, size_t errlen)
         }
         const char *a = strstr(line, "area");
         double v;
-        if (!cell[0] || !a || strncmp(cell, "NAND2", 5) || sscanf(a, "area : %lf", &v) != 1) continue;
-        int x1 = !strcmp(cell, "NAND2_X1"), have_x1 = !strcmp(r->ge_cell, "NAND2_X1");
-        if (v > 0 && !have_x1 && (x1 || !r->ge_area || v < r->ge_area)) {
-            r->ge_area = v;
-            snprintf(r->ge_cell, sizeof r->ge_cell, "%s", cell);
+        if (!cell[0] || !a || sscanf(a, "area : %lf", &v) != 1) continue;
+        size_t i;
+        for (i = 0; cell[i] && i + 1 < sizeof low; i++) low[i] = (char)(cell[i] >= 'A' && cell[i] <= 'Z' ? cell[i] - 'A' + 'a' : cell[i]);
+        low[i] = 0;
+        int is_want = !strcmp(cell, want), have_want = !strcmp(name, want);
+        if (strstr(low, part) && v > 0 && !have_want && (is_want || !*area || v < *area)) {
+            *area = v;
+            snprintf(name, len, "%s", cell);
         }
         cell[0] = 0;            /* the cell's own area only, not a pin's */
     }
     if (f) fclose(f);
+}
+
+/* The area of one gate equivalent: NAND2_X1's, else the smallest cell
+ * whose name holds NAND2. */
+static int ge_cell(const char *dir, tb_sta *r, char *err, size_t errlen)
+{
+    lib_cell(dir, "nand2", "NAND2_X1", r->ge_cell, sizeof r->ge_cell, &r->ge_area);
     if (r->ge_area > 0) return TB_SYNTH_OK;
     snprintf(err, errlen, "synth: the Liberty file has no NAND2 cell with an area (the gate equivalent's measure)");
     return TB_SYNTH_BADINPUT;
+}
+
+/* ABC's constraints (dir/abc.constr): the library's smallest buffer
+ * (BUF_X1, else the smallest cell named BUF) drives the inputs, the
+ * outputs carry no load (as OpenSTA times them). ABC's `buffer` needs
+ * them to repair the nets that drive more than their cell's max_capacitance
+ * (docs/timing.md, "Design rules"). */
+static int abc_constr(const char *dir, char *err, size_t errlen)
+{
+    char buf[64], path[PATH_MAX], text[200];
+    double area;
+    lib_cell(dir, "buf", "BUF_X1", buf, sizeof buf, &area);
+    if (!(area > 0)) {
+        snprintf(err, errlen, "synth: the Liberty file has no buffer cell (a name with BUF): the flow buffers high fan-out nets with it");
+        return TB_SYNTH_BADINPUT;
+    }
+    snprintf(text, sizeof text, "set_driving_cell %s\nset_load 0\n", buf);
+    snprintf(path, sizeof path, "%s/abc.constr", dir);
+    return base_out_write_all(path, text, strlen(text), err, errlen) ? TB_SYNTH_BADINPUT : TB_SYNTH_OK;
 }
 
 /* Yosys's stat: "Number of cells: N" and "Chip area for module ...: A". */
@@ -195,7 +225,13 @@ static void q_net(const char *dir, char *name, size_t len)
     while (f && fgets(line, sizeof line, f)) {
         if (!in) { in = strstr(line, pat) != NULL; continue; }
         const char *q = strstr(line, ".Q(");
-        if (q) { q += 3; snprintf(name, len, "%.*s", (int)strcspn(q, ")"), q); break; }
+        if (q) {
+            q += 3;
+            /* splitnets' one-bit wires are escaped names (\rg[15] and a blank) */
+            if (*q == '\\') q++;
+            snprintf(name, len, "%.*s", (int)strcspn(q, ") "), q);
+            break;
+        }
         if (strstr(line, ");")) break;
     }
     if (f) fclose(f);
@@ -254,10 +290,17 @@ int tb_synth_sta(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
     int rc = export_unit(u, cfg, fm, dir, err, errlen);
     if (rc) return rc;
     if (need_tool("sta", "opensta", err, errlen)) return TB_SYNTH_BADINPUT;
-    if ((rc = liberty_in(liberty, dir, run, err, errlen)) || (rc = ge_cell(dir, r, err, errlen))) return rc;
+    if ((rc = liberty_in(liberty, dir, run, err, errlen)) || (rc = ge_cell(dir, r, err, errlen))
+        || (rc = abc_constr(dir, err, errlen))) return rc;
+    /* ABC's default script for a Liberty (Yosys's `abc -liberty`), then its
+     * `buffer -p`: the design-rule repair every synthesis flow makes before
+     * timing (docs/timing.md, "Design rules"); no timing-driven sizing.
+     * splitnets: one-bit wires, so that no assignment to a concatenation
+     * is left, which OpenSTA's Verilog reader refuses. */
     char cmd[1200];
     snprintf(cmd, sizeof cmd, "yosys -q -l yosys.log -p 'read_verilog %s.v; synth -top %s; "
-             "dfflibmap -liberty liberty.lib; abc -liberty liberty.lib; opt_clean; "
+             "dfflibmap -liberty liberty.lib; abc -liberty liberty.lib -constr abc.constr "
+             "-script +strash;&get,-n;&fraig,-x;&put;scorr;dc2;dretime;strash;&get,-n;&dch,-f;&nf;&put;buffer,-p; opt_clean; splitnets; opt_clean; "
              "tee -q -o stat.txt stat -liberty liberty.lib; write_verilog -noattr mapped.v' >/dev/null 2>&1",
              u->name, u->name);
     rc = tb_synth_tool(run, "yosys", dir, cmd, 1, err, errlen);

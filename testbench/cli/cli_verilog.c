@@ -296,10 +296,11 @@ static int synth_device(void *base, const char *opt, const char *v)
 static const cli_opt synth_tab[] = {
     { "--sta", NULL, CLI_OPT_FLAG, offsetof(cli_synth_st, sta), 0, 0, NULL, NULL, NULL, 0,
       "  --sta                map to a standard-cell library with Yosys (dfflibmap, abc\n"
-      "                       -liberty) and time the netlist with OpenSTA (Debian\n"
-      "                       package opensta): its critical path (cells, start and\n"
-      "                       end), f_max and mapped area beside the model's, with\n"
-      "                       the ratios model / tool; needs --liberty\n" },
+      "                       -liberty, its buffering of heavy nets) and time the\n"
+      "                       netlist with OpenSTA (Debian package opensta): its\n"
+      "                       critical path (cells, start and end), f_max and\n"
+      "                       mapped area beside the model's, with the ratios\n"
+      "                       model / tool; needs --liberty\n" },
     { "--liberty", NULL, CLI_OPT_STR, offsetof(cli_synth_st, liberty), 0, 0, NULL, "%s needs a Liberty file", NULL, CLI_OPT_NONEMPTY,
       "  --liberty FILE       the cell library (.lib, or gzipped); 1 GE is its NAND2_X1\n" },
     { "--clock-ps", NULL, CLI_OPT_REAL, offsetof(cli_synth_st, clock_ps), 1, 1e9, NULL, NULL, NULL, 0,
