@@ -12,11 +12,12 @@
  * signal after the run; where it holds, the lanes' pieces joined end to
  * end are the stream: the beats and their clocks (each lane's shifted by
  * the clocks before it), the clock count, the toggles of every signal
- * (each lane's counted between its two junctions) and the ranges sampled
- * at each edge. Where it does not (an item that depends on more history
- * than the warm-up), or some quantization overflowed (the kernel counts
- * overflows), or the design is not one the batch takes, nothing is
- * filled and the caller runs the kernel.
+ * (each lane's counted between its two junctions), every signal's
+ * overflow counts (the same way, added to the design's signals) and the
+ * ranges sampled at each edge. Where it does not (an item that depends on
+ * more history than the warm-up), or an overflow's count depends on the
+ * kernel's delta cycles (sim_batch_ovf_unsure), or the design is not one
+ * the batch takes, nothing is filled and the caller runs the kernel.
  */
 #ifndef TB_LANES_H
 #define TB_LANES_H

@@ -341,7 +341,7 @@ static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f
     }
     r->lanes = j.lanes;
     r->stats.clocks = j.clocks;
-    /* no lane overflowed: the unit's counts are its constants' (at build) */
+    /* the signals' overflow counts: their constants' (at build) and the lanes' (tb_lanes_run) */
     run_figures(m, b.c, b.sc, r);
     tb_range_finish(&rg, b.sc, &b.io, m->in_ovf, r);
     tb_energy_fill_counts(r, &rg, tog, NULL, b.c, r->stats.clocks);
