@@ -177,20 +177,35 @@ void tb_sweep_stream(tb_sweep *s, size_t n, uint64_t seed)
     s->gen_seed = seed;
 }
 
+void tb_sweep_stream_file(tb_sweep *s, const char *path)
+{
+    s->stream = 1;
+    s->path = path;
+}
+
+/* Parameter set p's rows as a stream: the file's (its header checked
+ * against the unit's for the set's configuration) or the generator's. */
+static vec_stream *open_rows(const tb_sweep *s, const unit_cfg *cfg, char *err, size_t errlen)
+{
+    const unit_desc *u = s->spec.u;
+    vec_set hdr;
+    vec_set_init(&hdr);
+    tb_expected_header(u, cfg, &hdr);
+    if (s->path) return vec_stream_open(s->path, &hdr, err, errlen);
+    return vec_stream_gen(u->ref, &cfg->model, s->gen_n, s->gen_seed, &hdr, err, errlen);
+}
+
 size_t tb_sweep_rows(const tb_sweep *s, size_t p)
 {
     return s->stream ? s->gen_n : s->vs[p]->n_rows;
 }
 
-/* Configuration c on its parameter set's rows as generated (tb_run_stream:
+/* Configuration c on its parameter set's rows as streamed (tb_run_stream:
  * the kernel, a block of rows at a time). */
 static int run_streamed(const tb_sweep *s, const tb_sweep_cfg *c, tb_sweep_row *row)
 {
     const unit_desc *u = s->spec.u;
-    vec_set hdr;
-    vec_set_init(&hdr);
-    tb_expected_header(u, &c->cfg, &hdr);
-    vec_stream *vs = vec_stream_gen(u->ref, &c->cfg.model, s->gen_n, s->gen_seed, &hdr, row->err, sizeof row->err);
+    vec_stream *vs = open_rows(s, &c->cfg, row->err, sizeof row->err);
     if (!vs) return TB_BADINPUT;
     int rc = tb_run_stream(u, &c->cfg, &c->fmts, vs, NULL, NULL, NULL, &row->r, row->err, sizeof row->err);
     vec_stream_close(vs);
@@ -255,21 +270,33 @@ static void ident(FILE *f, const tb_sweep *s, size_t i)
 
 /* Streamed: the rows as fnv hashes a held set's, generated once more.
  * 0, or -1 with a message. */
-static int hash_stream(const tb_sweep *s, size_t p, uint64_t *h, char *err, size_t errlen)
+static int hash_stream(tb_sweep *s, size_t p, uint64_t *h, char *err, size_t errlen)
 {
     const unit_cfg *cfg = tb_sweep_pset_cfg(s, p);
-    vec_stream *vs = vec_stream_gen(s->spec.u->ref, &cfg->model, s->gen_n, s->gen_seed, NULL, err, errlen);
-    if (!vs) return -1;
     size_t n = 0;
     const vec_set *rows;
     int rc;
+    vec_stream *vs;
+    if (s->path) {
+        /* the count comes first in the hash: a pass to count the rows (and
+         * find what is wrong with the file, as a whole read would) */
+        if (!(vs = open_rows(s, cfg, err, errlen))) return -1;
+        while ((rc = vec_stream_next(vs, &rows)) > 0) n += rows->n_rows;
+        if (rc < 0) snprintf(err, errlen, "%s", vec_stream_error(vs));
+        vec_stream_close(vs);
+        if (rc < 0) return -1;
+        s->gen_n = n;
+        n = 0;
+    }
+    if (!(vs = open_rows(s, cfg, err, errlen))) return -1;
     *h = fnv(*h, &s->gen_n, sizeof s->gen_n);
     while ((rc = vec_stream_next(vs, &rows)) > 0) {
         *h = fnv(*h, rows->data, rows->n_rows * (size_t)(rows->n_in + rows->n_out) * sizeof *rows->data);
         n += rows->n_rows;
     }
     if (rc < 0 || n != s->gen_n) {
-        snprintf(err, errlen, "%s: %s", s->spec.u->name, rc < 0 ? vec_stream_error(vs) : "the generator gave another count of rows");
+        if (rc < 0 && s->path) snprintf(err, errlen, "%s", vec_stream_error(vs));
+        else snprintf(err, errlen, "%s: %s", s->spec.u->name, rc < 0 ? vec_stream_error(vs) : "the vectors changed while read");
         rc = -1;
     }
     vec_stream_close(vs);

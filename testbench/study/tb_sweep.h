@@ -77,8 +77,9 @@ typedef struct tb_sweep {
      * parameter set's gen_n rows from gen_seed as it runs, a block at a
      * time, instead of reading vs's rows (vs then holds the headers alone). */
     int             stream;
-    size_t          gen_n;
+    size_t          gen_n;                /* rows (a file's: counted by tb_sweep_fingerprint) */
     uint64_t        gen_seed;
+    const char     *path;                 /* tb_sweep_stream_file: read from it instead */
 } tb_sweep;
 
 /* Enumerate the configurations; 0, or -1 with a message (bad --fmt, too
@@ -104,6 +105,10 @@ int  tb_sweep_fingerprint(tb_sweep *s, char *err, size_t errlen);
  * the same results, as vs holding tb_make_vectors(n, seed)'s. vs must
  * hold each set's header (vec_set_header). */
 void tb_sweep_stream(tb_sweep *s, size_t n, uint64_t seed);
+/* The same with the rows of a vector file (one parameter set), read a
+ * block at a time by each configuration; tb_sweep_fingerprint reads it
+ * first (its count, then its rows), and says what is wrong with it. */
+void tb_sweep_stream_file(tb_sweep *s, const char *path);
 /* The vectors of parameter set p: rows (streamed or held). */
 size_t tb_sweep_rows(const tb_sweep *s, size_t p);
 
