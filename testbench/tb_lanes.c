@@ -335,19 +335,16 @@ static void group_run(void *ctx, size_t gi)
     sim_batch_free(b);
 }
 
-/* Whether the pieces join into the stream: every piece's overflow counts
- * sure, and each piece's state at its junction in is its predecessor's at its junction out (else
- * the warm-up was too short). 0, 1 not taken, or 2 with why. */
+/* Whether the pieces join into the stream: each piece's state at its
+ * junction in is its predecessor's at its junction out (else the warm-up
+ * was too short: checked first, so that a longer one is tried), and every
+ * piece's overflow counts are sure. 0, 1 not taken, or 2 with why. */
 static int lanes_check(const tb_lanes *x, const tb_lanes_wave *w, const lane *S, size_t L, const group *G,
                        size_t ng, char *why, size_t len)
 {
     for (size_t g = 0; g < ng; g++) {
         if (G[g].rc == 1) { snprintf(why, len, "%s", G[g].why); return 1; }
         if (G[g].rc == 3) { snprintf(why, len, "a lane gave no answer in time"); return 1; }
-        if (G[g].unsure) {
-            snprintf(why, len, "an overflow whose count depends on the kernel's delta cycles (a glitch may rerun its element)");
-            return 1;
-        }
     }
     size_t nb = (size_t)x->beats;
     for (size_t k = 0; k < L; k++) {
@@ -363,12 +360,18 @@ static int lanes_check(const tb_lanes *x, const tb_lanes_wave *w, const lane *S,
             return 2;
         }
     }
+    for (size_t g = 0; g < ng; g++)
+        if (G[g].unsure) {
+            snprintf(why, len, "an overflow whose count depends on the kernel's delta cycles (a glitch may rerun its element)");
+            return 1;
+        }
     return 0;
 }
 
 /* The pieces joined to the stream: each piece's clocks shifted by the
- * stream's before it, the toggles and overflows summed, the live signals' ranges
- * joined, the last piece's state kept for the next wave's first. */
+ * stream's before it, the toggles and overflows summed, the live
+ * signals' ranges joined, the last piece's state kept for the next
+ * wave's first. */
 static void lanes_join(tb_lanes *x, tb_lanes_wave *w, const lane *S, size_t L)
 {
     const tb_range *g = &x->w[0].rg;
