@@ -640,6 +640,7 @@ int vec_stream_next(vec_stream *v, const vec_set **rows)
     if (v->gen) {
         int rc = vec_gen_next(v->gen, &v->rows);
         if (rc < 0) { v->failed = 1; msg(v->err, sizeof v->err, "%s: cannot generate vectors", v->rows.unit); }
+        if (rc == 0) v->done = 1;   /* (a generator's end is known only here) */
         return rc;
     }
     while (!v->done && !v->rows.n_rows)
