@@ -39,6 +39,7 @@ void sim_batch_free(sim_batch *b)
     sim__batch_free_ops(b->reg, b->nreg);
     free(b->val); free(b->pend); free(b->inslot); free(b->in_sig); free(b->in_mark); free(b->regnx); free(b->regm); free(b->ovf); free(b->chg); free(b->uni);
     free(b->tog); free(b->tprev); free(b->fmask); free(b->rmin); free(b->rmax);
+    sim__batch_ovf_free(b);
     free(b);
 }
 
@@ -196,6 +197,7 @@ sim_batch *sim_batch_new(sim_ctx *c, const sim_signal *clk, uint32_t lanes, char
     if (!b) goto oom;
     b->lanes = lanes;
     b->nsig = nsig;
+    b->ctx = c;
     b->val = malloc((size_t)(nsig ? nsig : 1) * lanes * sizeof *b->val);
     b->inslot = malloc((nsig ? nsig : 1) * sizeof *b->inslot);
     b->ovf = calloc(lanes, 1);

@@ -21,12 +21,13 @@
  * Overflow counts are the one thing a levelized evaluation does not give
  * directly (the kernel counts the time steps in which an element was
  * evaluated and settled on an overflowed quantization, and whether it was
- * evaluated depends on events). sim_batch does not count them: it flags a
- * lane in which any quantization overflowed, and the caller simulates that
- * lane again on the kernel. A lane with no flag had no overflow in any
- * settled value, so the kernel would count none either (sim__overflow
- * counts only an element's last evaluation in a time step, which sees the
- * settled inputs).
+ * evaluated depends on events). sim_batch flags a lane in which any
+ * quantization overflowed; asked to (sim_batch_overflows_on), it counts
+ * them per signal and lane as the kernel does (sim_batch_ovf.c says how,
+ * and the one case where it cannot tell). A lane with no flag had no
+ * overflow in any settled value, so the kernel would count none either
+ * (sim__overflow counts only an element's last evaluation in a time step,
+ * which sees the settled inputs).
  *
  * What the batch mode accepts (sim_batch_new says why it refuses):
  * every process of the context is a primitive's; registers are clocked by
@@ -119,9 +120,24 @@ int  sim_batch_ranges_on(sim_batch *b);
 void sim_batch_range_reset(sim_batch *b, uint32_t lane);
 void sim_batch_range(const sim_batch *b, const sim_signal *s, uint32_t lane, int64_t *mn, int64_t *mx);
 
-/* 1 if some quantization in lane `lane` overflowed since the start (its
- * overflow counts must come from the kernel). */
+/* 1 if some quantization in lane `lane` overflowed since the start. */
 int  sim_batch_overflowed(const sim_batch *b, uint32_t lane);
+
+/* Overflow counts (sim_batch_ovf.c), off unless asked for before
+ * sim_batch_start: per signal and lane, the kernel's `overflows` (on
+ * values used that clock) and `ovf_discarded` (sim.h) for that lane's
+ * stimulus run alone, counted after each settle. A lane where the count
+ * depends on the kernel's delta cycles (an element that may be run by a
+ * glitch of an input while it holds an overflowed value) has that time
+ * step counted as unsure: its counts over it are not to be used. 0, or -1 when out of memory
+ * or already started. */
+int  sim_batch_overflows_on(sim_batch *b);
+const uint64_t *sim_batch_ovf_used(const sim_batch *b, const sim_signal *s);
+const uint64_t *sim_batch_ovf_discarded(const sim_batch *b, const sim_signal *s);
+/* The time steps so far in which lane's counts may differ from the
+ * kernel's (0: none; UINT64_MAX: not counted). A caller compares it at
+ * the two ends of the stretch it keeps. */
+uint64_t sim_batch_ovf_unsure(const sim_batch *b, uint32_t lane);
 /* Combinational elements and registers in the schedule, for reports. */
 uint32_t sim_batch_elements(const sim_batch *b);
 #endif

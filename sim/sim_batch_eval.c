@@ -24,7 +24,10 @@ static int64_t quant(const bop *p, sim_wide raw, int src_f, unsigned char *ovf)
     if (sim__quant_fits(raw, src_f, p->fy.fbits, p->lo, p->hi, p->r, &v)) return v;
     int o = 0;
     v = sim_fx_requant(raw, src_f, p->fy, p->r, p->o, &o);
-    if (o) *ovf = 1;
+    if (o) {
+        *ovf = 1;
+        if (p->owner->oc) sim__batch_ovf_note(p, ovf);
+    }
     return v;
 }
 
@@ -311,7 +314,9 @@ static int eval_uniform(sim_batch *b, const bop *p)
     unsigned char f = 0;
     int64_t *y = p->y, old0 = y[0];
     int was = b->uni[p->sig];
+    b->in_uniform = 1;   /* an overflow noted in lane 0 is every lane's */
     if (!b->vsparse || !b->vsparse(p, one, &f, &om0)) sim__batch_lanes(p, one, &f, &om0);
+    b->in_uniform = 0;
     if (f) memset(b->ovf, 1, b->lanes);   /* every lane computed the same overflow */
     int64_t v = y[0];
     uint64_t *om = b->chg + (size_t)p->sig * b->nw;
@@ -477,6 +482,7 @@ void sim_batch_start(sim_batch *b)
     for (uint32_t i = 0; i < b->nsig; i++) b->uni[i] = (unsigned char)same_lanes(b->val + (size_t)i * b->lanes, b->lanes);
     apply_inputs(b);
     settle(b);
+    if (b->oc) sim__batch_ovf_step(b);
     b->started = 1;
     if (b->tog) memcpy(b->tprev, b->val, (size_t)b->nsig * b->lanes * sizeof *b->tprev);
 }
@@ -603,6 +609,7 @@ void sim_batch_cycle(sim_batch *b)
      * here, not after its settle: sim_batch_changed reads them. */
     uint32_t nw = b->nw;
     memset(b->chg, 0, (size_t)b->nsig * nw * sizeof *b->chg);
+    if (b->oc) sim__batch_ovf_before_edge(b);
     if (b->reg_inplace) {
         for (uint32_t i = 0; i < b->nreg; i++) {
             bop *p = &b->reg[i];
@@ -624,6 +631,7 @@ void sim_batch_cycle(sim_batch *b)
         }
         apply_inputs(b);
         settle(b);
+        if (b->oc) sim__batch_ovf_step(b);
         return;
     }
     for (uint32_t i = 0; i < b->nreg; i++) eval_reg(&b->reg[i], b->regm + (size_t)i * nw, nw, b->ovf);
@@ -655,4 +663,5 @@ void sim_batch_cycle(sim_batch *b)
     }
     apply_inputs(b);
     settle(b);
+    if (b->oc) sim__batch_ovf_step(b);
 }

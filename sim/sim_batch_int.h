@@ -57,6 +57,7 @@ typedef struct bop {
     uint32_t sig;         /* y's signal index */
     uint32_t *dep;        /* combinational: the signals it reads */
     int      ndep;
+    struct sim_batch *owner;   /* the batch: where an overflow is noted (sim_batch_ovf.c) */
 } bop;
 
 /* Vector loops (sim_batch_vec.h, built for AVX2 in sim_batch_avx2.c and
@@ -132,6 +133,7 @@ void sim__batch_lanes(const bop *p, uint64_t m, unsigned char *ovf, uint64_t *om
 
 struct sim_batch {
     uint32_t lanes, nsig;
+    sim_ctx *ctx;               /* the design (sim_batch_new's; read by the overflow counts) */
     int64_t *val;               /* nsig x lanes: every signal's values */
     int64_t *pend;              /* inputs' values for the next edge */
     int32_t *inslot;            /* per signal: its row in pend, or -1 */
@@ -166,7 +168,19 @@ struct sim_batch {
     sim__batch_count_fn *vcount;   /* the count in every lane at once (sim_batch_int.h) */
     /* range tracking (sim_batch_ranges_on), NULL when off */
     int64_t  *rmin, *rmax;      /* nsig x lanes: smallest and largest settled value */
+    /* overflow counting (sim_batch_overflows_on, sim_batch_ovf.c), NULL when off */
+    struct sim__batch_ovf *oc;
+    int      in_uniform;        /* eval_uniform's lane 0 stands for every lane */
 };
+
+/* Overflow counting (sim_batch_ovf.c). The evaluation loops call note
+ * when a quantization of p overflowed in the lane of ovf (an element of
+ * b->ovf, or lane 0 for all in eval_uniform); the edge calls before_edge
+ * ahead of the registers and step after each settle. */
+void sim__batch_ovf_note(const bop *p, const unsigned char *ovf);
+void sim__batch_ovf_before_edge(sim_batch *b);
+void sim__batch_ovf_step(sim_batch *b);
+void sim__batch_ovf_free(sim_batch *b);
 
 /* Fill p from the element driving y (sim_batch_op.c); -1 (err) for what
  * the batch mode cannot evaluate. */

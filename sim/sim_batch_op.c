@@ -101,6 +101,7 @@ int sim__batch_op_setup(sim_batch *b, bop *p, const sim_signal *y, const sim_pri
     p->r = in->r;
     p->o = in->o;
     p->sig = y->index;
+    p->owner = b;
     p->y = ROW(y);
     const sim_signal *reads[10];
     int nreads = 0;

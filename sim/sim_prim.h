@@ -18,8 +18,8 @@
  * register holds it or an enabled one takes it, it is an output
  * (sim_signal_output), a process that is not a primitive reads it, or a
  * selecting mux, a passing block key or any other element passes it on to
- * a used value); otherwise in ovf_discarded. The batch mode flags a lane
- * with any overflow, used or not, and the caller reruns it on the kernel.
+ * a used value); otherwise in ovf_discarded. The batch mode counts them
+ * the same way per lane (sim_batch_ovf.c).
  */
 #ifndef SIM_PRIM_H
 #define SIM_PRIM_H

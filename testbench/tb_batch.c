@@ -16,8 +16,9 @@
 
 /* A lane's driver (tb_drive.h) quantizes each row as it offers it, as
  * tb_run does (tb_prep's first step), and counts its overflows once (a
- * lane that stops short goes to the kernel, which counts them again); no
- * quantized copy of the vectors is kept. */
+ * lane that stops short, or whose overflow counts the batch cannot tell,
+ * goes to the kernel, which counts them again); no quantized copy of the
+ * vectors is kept. */
 typedef struct lane_st {
     size_t   got, total;
     uint64_t budget;        /* tb_run's clock budget */
@@ -119,6 +120,14 @@ static int lane_energy(const sim_batch *b, sim_ctx *c, const sim_scope *sc, cons
     return 0;
 }
 
+/* Lane k's overflows on used values, every signal's summed. */
+static uint64_t lane_overflows(const sim_batch *b, const sim_ctx *c, uint32_t k)
+{
+    uint64_t n = 0;
+    for (uint32_t i = 0, ns = sim_signal_count(c); i < ns; i++) n += sim_batch_ovf_used(b, sim_signal_at(c, i))[k];
+    return n;
+}
+
 int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
                  tb_batch_lane *lanes, size_t n, char *err, size_t errlen)
 {
@@ -148,7 +157,7 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
     if (!(b = sim_batch_new(c, clk, (uint32_t)n, err, errlen))) { rc = TB_UNSUPPORTED; goto done; }
     int energy = 0;
     for (size_t k = 0; k < n; k++) energy |= lanes[k].energy;
-    if (energy && sim_batch_toggles_on(b)) base_out_of_memory();
+    if ((energy && sim_batch_toggles_on(b)) || sim_batch_overflows_on(b)) base_out_of_memory();
     uint64_t const_ovf = tb_scope_overflows(sc);
     size_t nv = (size_t)beats * (size_t)n_out;
     tb_drive_lanes dw;      /* the drivers' writes */
@@ -215,8 +224,9 @@ int tb_batch_run(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm,
         active -= nfin;
         for (size_t k = 0; k < n; k++)
             if (S[k].done == 1 && lanes[k].clocks == e) {
-                lanes[k].batched = !sim_batch_overflowed(b, (uint32_t)k);
-                lanes[k].overflows = const_ovf;
+                /* the kernel's counts (sim_batch_ovf.c), unless they depend on its delta cycles */
+                lanes[k].batched = !sim_batch_ovf_unsure(b, (uint32_t)k);
+                lanes[k].overflows = const_ovf + lane_overflows(b, c, (uint32_t)k);
                 /* counted through the last edge's settling, where tb_run stops */
                 if (energy && lanes[k].batched && lane_energy(b, c, sc, clk, &lanes[k], (uint32_t)k))
                     base_out_of_memory();

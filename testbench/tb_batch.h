@@ -4,8 +4,9 @@
  *
  * Each lane's output raws, beat clocks, clock count and overflow count are
  * what tb_run gives for that vector set alone (tests/test_batch.c checks
- * it for every unit): a lane in which a quantization overflowed is
- * simulated again by the kernel. What the batch leaves out is what only
+ * it for every unit), overflows counted as the kernel counts them
+ * (sim_batch_overflows_on); a lane whose counts the batch cannot tell
+ * is simulated again by the kernel. What the batch leaves out is what only
  * the kernel has: events, delta cycles, VCD, range logging.
  */
 #ifndef TB_BATCH_H

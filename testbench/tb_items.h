@@ -4,8 +4,8 @@
  *
  * The list is cut into lanes of consecutive items, their number a function
  * of the list's length alone (not of the threads), each lane tb_batch_run's
- * (a lane in which a quantization overflowed is simulated again by the
- * kernel: tb_batch.h), in groups of lanes also fixed by the count (a lane's
+ * (overflows counted as the kernel counts them; a lane whose counts the
+ * batch cannot tell is simulated again by the kernel: tb_batch.h), in groups of lanes also fixed by the count (a lane's
  * switching is counted until the last lane of its group ends), the groups
  * on threads. So every figure is the same for any number of threads. The unit must give each
  * item's output from that item's inputs alone (no state carried between

@@ -55,6 +55,7 @@ struct tb_lanes {
     size_t    beat_out;         /* its beats */
     int64_t  *state;            /* every signal at the last junction out */
     uint64_t *tog;              /* each logged signal's toggles */
+    uint64_t *ovf;              /* every signal's overflows: used [0, nsig), discarded [nsig, 2 nsig) */
     int64_t  *mn, *mx;          /* each live signal's range */
     int       waves;
     uint32_t  lanes;
@@ -69,6 +70,8 @@ typedef struct lane {
     size_t   beat_in, beat_out; /* the buffer's beats before its piece, and at its end */
     int64_t  *state_in, *state_out;   /* every signal's value at the junctions */
     uint64_t *tog_in, *tog_out;       /* each logged signal's toggles at the junctions */
+    uint64_t *ovf_in, *ovf_out;       /* every signal's overflows (used, then discarded) at the junctions */
+    uint64_t unsure_in, unsure_out;   /* the batch's unsure steps at the junctions (sim_batch_ovf_unsure) */
     int64_t  *mn, *mx;                /* each live signal's range over its piece */
     tb_drive drv;               /* the driver (tb_drive.h): items [begin, end) of the inputs */
 } lane;
@@ -77,7 +80,7 @@ typedef struct lane {
 typedef struct group {
     size_t k0, k1;
     int    rc;                  /* 0, 1 not taken (why), 3 a lane late */
-    int    ovf;                 /* a lane's quantization overflowed */
+    int    unsure;              /* a piece's overflow counts depend on the kernel's delta cycles */
     char   why[200];
 } group;
 
@@ -112,9 +115,10 @@ tb_lanes *tb_lanes_new(const unit_desc *u, const unit_cfg *cfg, const unit_fmts 
     x->nsig = sim_signal_count(w0->b.c);
     x->state = malloc(((size_t)x->nsig + 1) * sizeof *x->state);
     x->tog = calloc((size_t)w0->rg.nsmp + 1, sizeof *x->tog);
+    x->ovf = calloc(2 * (size_t)x->nsig + 1, sizeof *x->ovf);
     x->mn = malloc(((size_t)w0->rg.nlive + 1) * sizeof *x->mn);
     x->mx = malloc(((size_t)w0->rg.nlive + 1) * sizeof *x->mx);
-    if (!x->state || !x->tog || !x->mn || !x->mx) base_out_of_memory();
+    if (!x->state || !x->tog || !x->ovf || !x->mn || !x->mx) base_out_of_memory();
     return x;
 }
 
@@ -127,7 +131,7 @@ void tb_lanes_free(tb_lanes *x)
             sim_free(x->w[g].b.c);
         }
     free(x->w);
-    free(x->state); free(x->tog); free(x->mn); free(x->mx);
+    free(x->state); free(x->tog); free(x->ovf); free(x->mn); free(x->mx);
     free(x);
 }
 
@@ -151,6 +155,19 @@ static void snap_state(const sim_batch *b, const sim_ctx *c, uint32_t l, int64_t
 static void snap_tog(const sim_batch *b, const tb_range *g, uint32_t l, uint64_t *to)
 {
     for (int i = 0; i < g->nsmp; i++) to[i] = sim_batch_toggles(b, g->smp[i])[l];
+}
+
+/* every signal's overflow counts, used then discarded (2 nsig), and the
+ * steps whose counts the batch cannot tell */
+static void snap_ovf(const sim_batch *b, const sim_ctx *c, uint32_t l, uint64_t *to, uint64_t *unsure)
+{
+    uint32_t n = sim_signal_count(c);
+    for (uint32_t i = 0; i < n; i++) {
+        const sim_signal *s = sim_signal_at(c, i);
+        to[i] = sim_batch_ovf_used(b, s)[l];
+        to[n + i] = sim_batch_ovf_discarded(b, s)[l];
+    }
+    *unsure = sim_batch_ovf_unsure(b, l);
 }
 
 static void snap_range(const sim_batch *b, const tb_range *g, uint32_t l, int64_t *mn, int64_t *mx)
@@ -197,13 +214,16 @@ static int lane_alloc(lane *s, uint32_t nsig, const tb_range *g)
     s->tog_out = calloc((size_t)g->nsmp + 1, sizeof *s->tog_out);
     s->mn = malloc(((size_t)g->nlive + 1) * sizeof *s->mn);
     s->mx = malloc(((size_t)g->nlive + 1) * sizeof *s->mx);
-    return s->state_in && s->state_out && s->tog_in && s->tog_out && s->mn && s->mx ? 0 : -1;
+    /* the stream's first piece counts from the start: its junction in is 0 */
+    s->ovf_in = calloc(2 * (size_t)nsig + 1, sizeof *s->ovf_in);
+    s->ovf_out = calloc(2 * (size_t)nsig + 1, sizeof *s->ovf_out);
+    return s->state_in && s->state_out && s->tog_in && s->tog_out && s->mn && s->mx && s->ovf_in && s->ovf_out ? 0 : -1;
 }
 
 static void lane_free(lane *s)
 {
     free(s->state_in); free(s->state_out); free(s->tog_in); free(s->tog_out);
-    free(s->mn); free(s->mx);
+    free(s->mn); free(s->mx); free(s->ovf_in); free(s->ovf_out);
 }
 
 /* The group's lanes side by side until each has driven its piece (the
@@ -249,6 +269,7 @@ static int lanes_simulate(const tb_lanes *x, tb_lanes_wave *w, const worker *wk,
                     s->e_out = e;
                     s->beat_out = total;
                     snap_range(b, g, (uint32_t)k, s->mn, s->mx);
+                    snap_ovf(b, wk->b.c, (uint32_t)k, s->ovf_out, &s->unsure_out);
                     active--;
                     if (iv[k] && ir[k]) tb_drive_lane_accept(&s->drv, &dw, (uint32_t)k, e);
                     continue;
@@ -264,6 +285,7 @@ static int lanes_simulate(const tb_lanes *x, tb_lanes_wave *w, const worker *wk,
                     s->beat_in = s->begin * beats + s->got;
                     snap_state(b, wk->b.c, (uint32_t)k, s->state_in);
                     snap_tog(b, g, (uint32_t)k, s->tog_in);
+                    snap_ovf(b, wk->b.c, (uint32_t)k, s->ovf_in, &s->unsure_in);
                     sim_batch_range_reset(b, (uint32_t)k);
                 } else if (s->phase == 1 && !s->last && s->drv.next == s->end) {
                     s->phase = 2;
@@ -271,6 +293,7 @@ static int lanes_simulate(const tb_lanes *x, tb_lanes_wave *w, const worker *wk,
                     s->beat_out = s->begin * beats + s->got;
                     snap_state(b, wk->b.c, (uint32_t)k, s->state_out);
                     snap_tog(b, g, (uint32_t)k, s->tog_out);
+                    snap_ovf(b, wk->b.c, (uint32_t)k, s->ovf_out, &s->unsure_out);
                     snap_range(b, g, (uint32_t)k, s->mn, s->mx);
                     active--;
                     continue;
@@ -281,8 +304,12 @@ static int lanes_simulate(const tb_lanes *x, tb_lanes_wave *w, const worker *wk,
         }
         sim_batch_cycle(b);
     }
-    /* the stream's last piece's toggles through the last edge's settling, where tb_run stops */
-    if (S[L - 1].last) snap_tog(b, g, (uint32_t)(L - 1), S[L - 1].tog_out);
+    /* the stream's last piece's toggles and overflows through the last
+     * edge's settling, where tb_run stops */
+    if (S[L - 1].last) {
+        snap_tog(b, g, (uint32_t)(L - 1), S[L - 1].tog_out);
+        snap_ovf(b, wk->b.c, (uint32_t)(L - 1), S[L - 1].ovf_out, &S[L - 1].unsure_out);
+    }
     return late;
 }
 
@@ -298,24 +325,26 @@ static void group_run(void *ctx, size_t gi)
     char err[200];
     sim_batch *b = sim_batch_new(wk->b.c, wk->b.clk, (uint32_t)L, err, sizeof err);
     if (!b) { snprintf(G->why, sizeof G->why, "%s", err); G->rc = 1; return; }
-    if (sim_batch_ranges_on(b)) base_out_of_memory();
+    if (sim_batch_ranges_on(b) || sim_batch_overflows_on(b)) base_out_of_memory();
     lane *S = j->S + G->k0;
     if (lanes_simulate(x, j->w, wk, b, S, L)) G->rc = 3;
+    /* a piece's counts are the kernel's unless a step between its
+     * junctions was unsure (one in a warm-up is not the piece's) */
     for (size_t k = 0; k < L; k++)
-        if (sim_batch_overflowed(b, (uint32_t)k)) G->ovf = 1;
+        if (S[k].unsure_out != S[k].unsure_in) G->unsure = 1;
     sim_batch_free(b);
 }
 
-/* Whether the pieces join into the stream: no overflow, and each piece's
- * state at its junction in is its predecessor's at its junction out (else
- * the warm-up was too short). 0, 1 not taken, or 2 with why. */
+/* Whether the pieces join into the stream: each piece's state at its
+ * junction in is its predecessor's at its junction out (else the warm-up
+ * was too short: checked first, so that a longer one is tried), and every
+ * piece's overflow counts are sure. 0, 1 not taken, or 2 with why. */
 static int lanes_check(const tb_lanes *x, const tb_lanes_wave *w, const lane *S, size_t L, const group *G,
                        size_t ng, char *why, size_t len)
 {
     for (size_t g = 0; g < ng; g++) {
         if (G[g].rc == 1) { snprintf(why, len, "%s", G[g].why); return 1; }
         if (G[g].rc == 3) { snprintf(why, len, "a lane gave no answer in time"); return 1; }
-        if (G[g].ovf) { snprintf(why, len, "an overflow (the kernel counts it)"); return 1; }
     }
     size_t nb = (size_t)x->beats;
     for (size_t k = 0; k < L; k++) {
@@ -331,12 +360,18 @@ static int lanes_check(const tb_lanes *x, const tb_lanes_wave *w, const lane *S,
             return 2;
         }
     }
+    for (size_t g = 0; g < ng; g++)
+        if (G[g].unsure) {
+            snprintf(why, len, "an overflow whose count depends on the kernel's delta cycles (a glitch may rerun its element)");
+            return 1;
+        }
     return 0;
 }
 
 /* The pieces joined to the stream: each piece's clocks shifted by the
- * stream's before it, the toggles summed, the live signals' ranges
- * joined, the last piece's state kept for the next wave's first. */
+ * stream's before it, the toggles and overflows summed, the live
+ * signals' ranges joined, the last piece's state kept for the next
+ * wave's first. */
 static void lanes_join(tb_lanes *x, tb_lanes_wave *w, const lane *S, size_t L)
 {
     const tb_range *g = &x->w[0].rg;
@@ -345,6 +380,7 @@ static void lanes_join(tb_lanes *x, tb_lanes_wave *w, const lane *S, size_t L)
         for (size_t b = s->beat_in; b < s->beat_out; b++) w->beat_cycle[b] += x->at_edge - s->e_in;
         x->at_edge += s->e_out - s->e_in;
         for (int i = 0; i < g->nsmp; i++) x->tog[i] += s->tog_out[i] - s->tog_in[i];
+        for (size_t i = 0; i < 2 * (size_t)x->nsig; i++) x->ovf[i] += s->ovf_out[i] - s->ovf_in[i];
         for (int i = 0; i < g->nlive; i++) {
             int fresh = !x->waves && k == 0;
             if (fresh || s->mn[i] < x->mn[i]) x->mn[i] = s->mn[i];
@@ -427,6 +463,14 @@ void tb_lanes_result(tb_lanes *x, tb_lanes_out *o)
         g->lv[i].span = (uint64_t)x->mx[i] - (uint64_t)x->mn[i];
     }
     g->sampled = 1;
+    /* every signal's overflows, onto what worker 0's build holds from its
+     * constants' (once: x->ovf is emptied) */
+    for (uint32_t i = 0; i < x->nsig; i++) {
+        sim_signal *s = sim_signal_at(w0->b.c, i);
+        s->overflows += x->ovf[i];
+        s->ovf_discarded += x->ovf[x->nsig + i];
+    }
+    memset(x->ovf, 0, 2 * (size_t)x->nsig * sizeof *x->ovf);
     o->c = w0->b.c;
     o->sc = w0->b.sc;
     o->io = &w0->b.io;

@@ -12,11 +12,13 @@
  * every signal after the run; where it holds, the lanes' pieces joined end
  * to end are the stream: the beats and their clocks (each lane's shifted
  * by the clocks before it), the clock count, the toggles of every signal
- * (each lane's counted between its two junctions) and the ranges sampled
- * at each edge. Where it does not (an item that depends on more history
- * than the warm-up), or some quantization overflowed (the kernel counts
- * overflows), or the design is not one the batch takes, the wave is not
- * taken and the caller runs the kernel.
+ * (each lane's counted between its two junctions), every signal's
+ * overflow counts (the same way, used and discarded, added to the
+ * design's signals) and the ranges sampled at each edge. Where it does
+ * not (an item that depends on more history than the warm-up), or an
+ * overflow's count depends on the kernel's delta cycles
+ * (sim_batch_ovf_unsure), or the design is not one the batch takes, the
+ * wave is not taken and the caller runs the kernel.
  *
  * A stream of any length goes through in waves: a wave is a buffer of
  * consecutive items, its pieces simulated side by side, the first piece
@@ -63,10 +65,11 @@ typedef struct tb_lanes_wave {
  * (the stream is the kernel's from the start). */
 int tb_lanes_wave_run(tb_lanes *x, tb_lanes_wave *w, char *why, size_t len);
 
-/* After the last wave: the build whose figures the report takes (area,
- * critical path, the constants' overflows), its range log with every live
- * signal's range as the stream's edges sampled it, each logged signal's
- * toggles, the stream's clocks, and the most lanes of a wave. */
+/* After the last wave (once): the build whose figures the report takes
+ * (area, critical path, its signals' overflow counts: the constants' and
+ * the stream's), its range log with every live signal's range as the
+ * stream's edges sampled it, each logged signal's toggles, the stream's
+ * clocks, and the most lanes of a wave. */
 typedef struct tb_lanes_out {
     sim_ctx          *c;
     const sim_scope  *sc;

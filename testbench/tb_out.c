@@ -127,10 +127,14 @@ int tb_write_json(FILE *f, const tb_result *r)
     if (r->lanes)
         fprintf(f, "\n  },\n  \"sim\": {\"engine\": \"batch\", \"lanes\": %u, \"clocks\": %llu}\n}\n", (unsigned)r->lanes,
                 (unsigned long long)r->stats.clocks);
-    else
-        fprintf(f, "\n  },\n  \"sim\": {\"engine\": \"%s\", \"clocks\": %llu, \"events\": %llu, \"delta_cycles\": %llu, \"process_runs\": %llu}\n}\n",
+    else {
+        fprintf(f, "\n  },\n  \"sim\": {\"engine\": \"%s\", \"clocks\": %llu, \"events\": %llu, \"delta_cycles\": %llu, \"process_runs\": %llu",
                 r->reference ? "reference" : "kernel", (unsigned long long)r->stats.clocks, (unsigned long long)r->stats.events,
                 (unsigned long long)r->stats.deltas, (unsigned long long)r->stats.proc_runs);
+        /* why the lanes did not take the run (the table's engine line says it too) */
+        if (r->engine_why[0]) { fputs(", \"not_on_lanes\": ", f); base_json_str(f, r->engine_why); }
+        fputs("}\n}\n", f);
+    }
     return ferror(f) ? -1 : 0;
 }
 

@@ -315,7 +315,7 @@ static int run_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f
     tb_lanes_result(p.x, &lo);
     r->lanes = lo.lanes;
     r->stats.clocks = lo.clocks;
-    /* no lane overflowed: the unit's counts are its constants' (at build) */
+    /* the signals' overflow counts: their constants' (at build) and the lanes' (tb_lanes_result) */
     run_figures(m, lo.c, lo.sc, r);
     tb_range_finish(lo.rg, lo.sc, lo.io, m->in_ovf, r);
     tb_energy_fill_counts(r, lo.rg, lo.toggles, NULL, lo.c, r->stats.clocks);

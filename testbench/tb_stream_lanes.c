@@ -16,8 +16,8 @@
  * lane's warm-up, and the items still in flight at the junction.
  *
  * The first wave is the first block alone, so that when the lanes do not
- * take the stream there (a unit they cannot evaluate, an overflow in the
- * first rows), the stream can be handed back unread to the kernel, pipes
+ * take the stream there (a unit they cannot evaluate, an overflow whose
+ * count they cannot tell in the first rows), the stream can be handed back unread to the kernel, pipes
  * too.
  */
 #include "testbench/tb_stream.h"
@@ -297,7 +297,7 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     tb_lanes_result(x, &lo);
     r->lanes = lo.lanes;
     r->stats.clocks = lo.clocks;
-    /* no lane overflowed: the unit's counts are its constants' (at build) */
+    /* the signals' overflow counts: their constants' (at build) and the lanes' (tb_lanes_result) */
     tb_stream_figures(r, r->vectors, F.first_cycle, F.last_item_cycle, F.last_cycle, lo.c, lo.sc, in_ovf);
     tb_range_finish(lo.rg, lo.sc, lo.io, in_ovf, r);
     tb_energy_fill_counts(r, lo.rg, lo.toggles, NULL, lo.c, r->stats.clocks);

@@ -2,7 +2,8 @@
 # cli_stream_waves.sh - `run --vectors FILE|-` on the lanes (docs/batch.md,
 # "Streams of any length"): units with long items over several waves (a
 # deep pipeline that needs the long warm-up, several beats an item) give
-# the kernel's JSON and --out rows; when the lanes stop (an item that
+# the kernel's JSON and --out rows, overflowing ones too (the kernel's
+# counts, -j 1 and -j 2 the same bytes); when the lanes stop (an item that
 # depends on more than the warm-up), the kernel runs the stream from its
 # first row: handed back from the first block of a pipe, read again from a
 # file, refused with one line from a pipe read past its first block (or
@@ -26,6 +27,41 @@ for u in norm3 span2; do
     else ok "waves.$u"; fi
     rm -f "$T/$u.vec" "$T/b.csv" "$T/k.csv"
 done
+
+# overflows stay on the lanes over several waves (more than 64 lanes: a
+# stream in one wave takes at most 64), counted as the kernel counts them:
+# horner3 with a product too narrow (used and discarded counts), norm3's
+# deep pipeline on inputs scaled past the unit circle (its squares' sum
+# wraps), span2's several beats an item with a narrow accumulator. A file
+# on 2 threads, the same rows piped on 1: the same bytes, and the JSON the
+# kernel's but for the sim line
+# (under the sanitizers, fewer rows: on the lanes, maybe in one wave)
+m=40000 h=100000 waves='\([7-9][0-9]\|[1-9][0-9][0-9]\)'
+[ -n "$ASAN" ] && m=15000 h=60000 waves='[0-9]*'
+$S vectors horner3 -n $h --seed 9 -o "$T/horner3.vec" 2>/dev/null
+$S vectors norm3 -n $m --seed 5 2>/dev/null |
+    awk '!/^#/ { for (i = 1; i <= 3; i++) $i = sprintf("%.17g", $i * 1.6) } { print }' >"$T/norm3.vec"
+$S vectors span2 -n $m --seed 5 -o "$T/span2.vec" 2>/dev/null
+while read -r u sc f disc <&3; do
+    n="ovf-waves.$u"
+    $S run $u --schedule $sc --fmt $f --vectors "$T/$u.vec" --json -j 2 >"$T/j2.json"; r2=$?
+    cat "$T/$u.vec" | $S run $u --schedule $sc --fmt $f --vectors - --json -j 1 >"$T/j1.json"; r1=$?
+    $S run $u --schedule $sc --fmt $f --vectors "$T/$u.vec" --json --kernel >"$T/k.json"; rk=$?
+    if [ $r1 != $rk ] || [ $r2 != $rk ]; then fail "$n" "exit $r1, $r2 on lanes, $rk on the kernel"
+    elif ! grep -q '"sim": {"engine": "batch", "lanes": '"$waves"',' "$T/j1.json"; then
+        fail "$n" "not on lanes in waves: $(grep '"sim"' "$T/j1.json")"
+    elif ! grep -q '^  "overflows": [1-9]' "$T/k.json"; then fail "$n" "no overflow"
+    elif [ "$disc" = 1 ] && ! grep -q '^  "overflows_discarded": [1-9]' "$T/k.json"; then fail "$n" "no discarded overflow"
+    elif [ "$(grep -v '"sim"' "$T/j1.json")" != "$(grep -v '"sim"' "$T/k.json")" ]; then
+        fail "$n" "$(diff "$T/j1.json" "$T/k.json" | head -6 | tr '\n' ' ')"
+    elif ! cmp -s "$T/j1.json" "$T/j2.json"; then fail "$n" "-j 1 and -j 2 differ: $(diff "$T/j1.json" "$T/j2.json" | head -4 | tr '\n' ' ')"
+    else ok "$n"; fi
+    rm -f "$T/$u.vec"
+done 3<<EOF
+    horner3 paper mul=s0.16 1
+    norm3 pipe nx=s2.14 0
+    span2 pipe ra=s1.9 0
+EOF
 
 # When the lanes stop, here because each item depends on every one before
 # it (a running sum: no warm-up reaches its state), the kernel runs the
@@ -54,7 +90,10 @@ hdr() { printf '# shadesim vectors 1\n# unit: acc\n# inputs: x\n# outputs: y\n';
 cat "$T/first.vec" | $S run "$T/acc.dp" --vectors - --json >"$T/b.json"; rb=$?
 cat "$T/first.vec" | $S run "$T/acc.dp" --vectors - >"$T/b.txt"
 $S run "$T/acc.dp" --vectors "$T/first.vec" --json --kernel >"$T/k.json"; rk=$?
-if [ $rb = $rk ] && cmp -s "$T/b.json" "$T/k.json" && grep -q '^engine kernel: .*(not on lanes: item [0-9]* depends on more than the 128 items' "$T/b.txt"
+# (the JSON the kernel's but for the sim line's reason, which names it too)
+if [ $rb = $rk ] && [ "$(sed 's/, "not_on_lanes": "[^"]*"}$/}/' "$T/b.json")" = "$(cat "$T/k.json")" ] &&
+   grep -q '"not_on_lanes": "item [0-9]* depends on more than the 128 items' "$T/b.json" &&
+   grep -q '^engine kernel: .*(not on lanes: item [0-9]* depends on more than the 128 items' "$T/b.txt"
 then ok history-first-block; else fail history-first-block "exit $rb, $rk: $(grep '^engine' "$T/b.txt")"; fi
 
 # past the first block (zero rows before the sum moves fill more than a

@@ -1,7 +1,8 @@
 #!/bin/sh
 # cli_sweep.sh - the sweep and merge verbs from the outside: the CSV is the
-# same bytes for -j 1, -j 2 and merged shards; bad arguments exit 2 with
-# one line; the files are there and no temporaries are left.
+# same bytes for -j 1, -j 2 and merged shards, and for -n's vectors
+# streamed and the same rows held; bad arguments exit 2 with one line; the
+# files are there and no temporaries are left.
 # One line per check: "ok NAME", "FAIL NAME" or "skip NAME: why".
 . tests/lib_cli.sh
 
@@ -43,6 +44,26 @@ check merge_duplicate_rows_exit_2 [ $? -eq 2 -a "$(wc -l <"$T/e")" -eq 1 -a ! -e
 check merge_other_sweep_exit_2 [ $? -eq 2 -a "$(wc -l <"$T/e")" -eq 1 ]
 "$S" merge "$T/j1/summary.txt" -o "$T/bad.csv" 2>"$T/e"
 check merge_not_a_sweep_csv_exit_2 [ $? -eq 2 -a "$(wc -l <"$T/e")" -eq 1 ]
+
+# -n streams its vectors (each configuration generates them a block at a
+# time: 40000 rows are three blocks), and so does a --vectors file (read a
+# block at a time); the same rows held (from stdin, read once) give the
+# same CSV and summary, fingerprint included.
+"$S" sweep horner3 --widths 12:13 -n 40000 --seed 7 -j 2 -o "$T/st" >/dev/null 2>&1
+check sweep_streamed_runs [ $? -eq 0 ]
+"$S" vectors horner3 -n 40000 --seed 7 -o "$T/st.vec" 2>/dev/null
+"$S" sweep horner3 --widths 12:13 --vectors "$T/st.vec" -j 2 -o "$T/sf" >/dev/null 2>&1
+"$S" sweep horner3 --widths 12:13 --vectors - -j 2 -o "$T/held" <"$T/st.vec" >/dev/null 2>&1
+check sweep_streamed_same_csv_as_held cmp -s "$T/st/sweep.csv" "$T/held/sweep.csv"
+check sweep_streamed_same_summary_as_held cmp -s "$T/st/summary.txt" "$T/held/summary.txt"
+check sweep_file_streamed_same_csv_as_held cmp -s "$T/sf/sweep.csv" "$T/held/sweep.csv"
+# a bad row far into a streamed file: one line naming it, exit 2, before
+# any folder is made
+{ cat "$T/st.vec"; echo "1 2 x 4 5 | 6"; } >"$T/bad.vec"
+"$S" sweep horner3 --widths 12:13 --vectors "$T/bad.vec" -o "$T/badout" >/dev/null 2>"$T/e"
+check sweep_file_streamed_bad_row_exit_2 [ $? -eq 2 -a "$(wc -l <"$T/e")" -eq 1 ]
+check sweep_file_streamed_bad_row_named grep -q "bad.vec:40005: " "$T/e"
+check sweep_file_streamed_bad_nothing_written [ ! -e "$T/badout" ]
 
 # The target search writes target.json and a summary line (with a margin
 # of one bit its result passes the held-out check: exit 0).

@@ -18,7 +18,7 @@ static int sweep_h3(tb_sweep *s, vec_set *vs, int lo, int hi, const tb_accept *a
     if (tb_sweep_init(s, &sp, err, sizeof err)) { printf("  %s\n", err); return -1; }
     if (tb_make_vectors(sp.u, &sp.base, 0, 1, vs, err, sizeof err)) { printf("  %s\n", err); return -1; }
     s->vs[0] = vs;
-    tb_sweep_fingerprint(s);
+    TST_CHECK(tb_sweep_fingerprint(s, err, sizeof err) == 0, "%s", err);
     return tb_sweep_run(s, 1, 0, 0, NULL, NULL) ? -1 : 0;
 }
 

@@ -51,7 +51,7 @@ static int run_sweep(tb_sweep *s, vec_set *vs, const char *unit, int lo, int hi,
     if (tb_sweep_init(s, &sp, err, sizeof err)) { printf("  %s\n", err); return -1; }
     if (default_vectors(sp.u, &sp.base, vs)) return -1;
     s->vs[0] = vs;
-    tb_sweep_fingerprint(s);
+    TST_CHECK(tb_sweep_fingerprint(s, err, sizeof err) == 0, "%s", err);
     return tb_sweep_run(s, threads, 0, 0, NULL, NULL) ? -1 : 0;
 }
 

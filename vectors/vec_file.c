@@ -10,6 +10,7 @@
  * set that holds no rows (or free it first). On failure it is left empty.
  */
 #include "vectors/vec_file.h"
+#include "vectors/vec_gen.h"
 #include "base/base_strtod.h"
 #include "base/base_out.h"
 #include "base/base_par.h"
@@ -542,6 +543,7 @@ struct vec_stream {
     vec_set rows;               /* header and the rows of the last block */
     size_t total;               /* rows read so far */
     char err[600];
+    vec_gen *gen;               /* vec_stream_gen: the rows come from it, not from f */
 };
 
 /* One block: read, cut at its last LF, parse its lines into s. 0, or -1
@@ -635,6 +637,12 @@ int vec_stream_next(vec_stream *v, const vec_set **rows)
     if (v->held) { v->held = 0; return v->rows.n_rows ? 1 : 0; }
     v->rows.n_rows = 0;
     if (v->failed) return -1;
+    if (v->gen) {
+        int rc = vec_gen_next(v->gen, &v->rows);
+        if (rc < 0) { v->failed = 1; msg(v->err, sizeof v->err, "%s: cannot generate vectors", v->rows.unit); }
+        if (rc == 0) v->done = 1;   /* (a generator's end is known only here) */
+        return rc;
+    }
     while (!v->done && !v->rows.n_rows)
         if (read_step(v, &v->rows)) { v->failed = 1; v->rows.n_rows = 0; return -1; }
     return v->rows.n_rows ? 1 : 0;
@@ -655,11 +663,29 @@ void vec_stream_threads(vec_stream *v, int n)
 void vec_stream_close(vec_stream *v)
 {
     if (!v) return;
-    if (!v->is_stdin) fclose(v->f);
+    vec_gen_close(v->gen);
+    if (!v->is_stdin && v->f) fclose(v->f);
     free(v->buf);
     vec_set_free(&v->pp.rows);
     vec_set_free(&v->rows);
     free(v);
+}
+
+vec_stream *vec_stream_gen(const vec_model *m, const vec_params *p, size_t n, uint64_t seed, const vec_set *expect,
+                           char *err, size_t errlen)
+{
+    vec_stream *v = calloc(1, sizeof *v);
+    if (!v) base_out_of_memory();
+    vec_set_init(&v->pp.rows);
+    vec_set_init(&v->rows);
+    vec_set_header(&v->rows, m, p);
+    if (expect && (strcmp(expect->unit, v->rows.unit) || expect->n_in != v->rows.n_in || expect->n_out != v->rows.n_out)) {
+        msg(err, errlen, "%s's generator does not give %s's vectors", m->name, expect->unit);
+        free(v);
+        return NULL;
+    }
+    if (!(v->gen = vec_gen_open(m, p, n, seed, &v->rows))) base_out_of_memory();
+    return v;
 }
 
 int vec_file_read(const char *path, vec_set *s, const vec_set *expect,

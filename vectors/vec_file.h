@@ -40,9 +40,16 @@ int         vec_stream_next(vec_stream *v, const vec_set **rows);
 void        vec_stream_unread(vec_stream *v);
 const char *vec_stream_error(const vec_stream *v);
 /* 1 when the file's end has been read: the rows vec_stream_next gave last
- * are the file's last (the next call returns 0). */
+ * are the file's last (the next call returns 0). A generated stream
+ * (vec_stream_gen) knows its end only once vec_stream_next returned 0. */
 int         vec_stream_done(const vec_stream *v);
 /* Parse a block on up to n threads (default: 2 where there are 2 cores). */
 void        vec_stream_threads(vec_stream *v, int n);
 void        vec_stream_close(vec_stream *v);
+/* The rows a reference model generates (m->gen(p, n, seed), the same rows
+ * in the same order as into a vec_set), as a stream: generated on a
+ * thread of their own a block at a time, memory a few blocks whatever n
+ * is. NULL with the message when the model's ports are not expect's. */
+vec_stream *vec_stream_gen(const vec_model *m, const vec_params *p, size_t n, uint64_t seed, const vec_set *expect,
+                           char *err, size_t errlen);
 #endif

@@ -15,6 +15,7 @@ void vec_set_free(vec_set *s) { free(s->data); vec_set_init(s); }
 
 int vec_set_push(vec_set *s, const double *v)
 {
+    if (s->flush && s->n_rows >= s->flush_rows && s->flush(s, s->flush_arg)) return -1;
     if (s->n_rows == s->cap_rows) {
         size_t cap = s->cap_rows ? 2 * s->cap_rows : 256;
         size_t stride = (size_t)(s->n_in + s->n_out);

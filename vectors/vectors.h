@@ -47,6 +47,12 @@ typedef struct vec_set {
     char out_names[VEC_MAX_PORTS][16];
     size_t n_rows, cap_rows;
     double *data;           /* rows of n_in + n_out values, packed */
+    /* A set that hands its rows on (vec_gen.c: a generator streamed):
+     * vec_set_push calls flush before adding a row to flush_rows rows;
+     * flush takes them (n_rows back to 0), or returns -1 to stop. */
+    int   (*flush)(struct vec_set *s, void *arg);
+    void   *flush_arg;
+    size_t  flush_rows;
 } vec_set;
 
 /* Row i: its n_in inputs, then its n_out expected outputs. */

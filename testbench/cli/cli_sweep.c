@@ -30,9 +30,32 @@ static void progress_clear(progress *p)
 }
 
 /* Vectors per parameter set: each set's own (a parameter like L changes
- * the outputs), loaded once and shared read-only by the threads. */
+ * the outputs), loaded once and shared read-only by the threads. Made
+ * ones (-n) and a file (--vectors) are streamed instead, each
+ * configuration generating or reading its own a block at a time (memory
+ * flat in n), unless a target search or --ranges derived runs them again
+ * and again (or adds to them). */
 static int load_vectors(sweep_args *a, tb_sweep *s, vec_set *sets)
 {
+    if (a->nvec > 0 && !a->t.on && !a->derived) {
+        if (!a->o.u->ref) return cli_usage_error("unit %s has no float reference model", a->o.u->name);
+        for (size_t p = 0; p < s->npsets; p++) {
+            vec_set_header(&sets[p], a->o.u->ref, &tb_sweep_pset_cfg(s, p)->model);
+            s->vs[p] = &sets[p];
+        }
+        tb_sweep_stream(s, (size_t)a->nvec, a->seed);
+        return 0;
+    }
+    /* a file named with --vectors (not stdin, one parameter set): each
+     * configuration reads it a block at a time (the fingerprint reads it
+     * first and refuses a bad one, before anything is written) */
+    if (a->nvec <= 0 && a->o.vectors && strcmp(a->o.vectors, "-") && s->npsets == 1 && !a->t.on && !a->derived) {
+        vec_set_init(&sets[0]);
+        tb_expected_header(a->o.u, tb_sweep_pset_cfg(s, 0), &sets[0]);
+        s->vs[0] = &sets[0];
+        tb_sweep_stream_file(s, a->o.vectors);
+        return 0;
+    }
     for (size_t p = 0; p < s->npsets; p++) {
         cli_unit_opts o = a->o;
         o.cfg = *tb_sweep_pset_cfg(s, p);
@@ -122,8 +145,9 @@ int cli_sweep(int argc, char **argv)
     int rc = CLI_OK;
     if (!sets) base_out_of_memory();
     /* Everything that can be refused is refused before the long part. */
-    if (load_vectors(&a, &s, sets) || cli_make_dir(a.dir)) { rc = CLI_USAGE; goto done; }
-    tb_sweep_fingerprint(&s);
+    if (load_vectors(&a, &s, sets)) { rc = CLI_USAGE; goto done; }
+    if (tb_sweep_fingerprint(&s, err, sizeof err)) { rc = cli_usage_error("%s", err); goto done; }
+    if (cli_make_dir(a.dir)) { rc = CLI_USAGE; goto done; }
 
     progress pr = { a.o.u->name, base_proc_now(), 0, 0 };
     int tty = cli_stderr_tty();

@@ -234,7 +234,7 @@ static char *summary_text(sweep_args *a, const tb_sweep *s, const unsigned char 
     if (!m) return NULL;
     fprintf(m, "sweep %s: %zu configurations (widths %d..%d", s->spec.u->name, s->n, s->spec.wlo, s->spec.whi);
     if (s->ngroups > 1) fprintf(m, " x %zu settings", s->ngroups);
-    fprintf(m, "), %zu vectors", s->vs[0]->n_rows);
+    fprintf(m, "), %zu vectors", tb_sweep_rows(s, 0));
     if (s->npsets > 1) fputs(" per parameter set", m);
     fprintf(m, ", sweep_id %016llx\n", (unsigned long long)s->id);
     print_table(m, s, on);

@@ -289,8 +289,9 @@ static inline int lane_edge(const lane_io *x, lane_hot *h, lane_tb *T, uint64_t 
 }
 
 /* The lanes marked in_batch, side by side; a lane the batch cannot give
- * exactly (an overflow, or no answer within its clock budget) is left
- * in_batch = 0 for tb_span_run. */
+ * exactly (an overflow count that depends on the kernel's delta cycles,
+ * or no answer within its clock budget) is left in_batch = 0 for
+ * tb_span_run. */
 static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f,
                       tb_span_lane *L, lane_tb *T, size_t n, uint32_t nb, int energy, double max_se)
 {
@@ -307,7 +308,7 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
         sim_free(c);
         return;
     }
-    if (energy && sim_batch_toggles_on(b)) {
+    if ((energy && sim_batch_toggles_on(b)) || sim_batch_overflows_on(b)) {
         for (size_t i = 0; i < n; i++) T[i].in_batch = 0;
         sim_batch_free(b);
         sim_free(c);
@@ -372,11 +373,14 @@ static void run_batch(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *
         for (uint32_t k = 0; k < nfin; k++) {
             lane_tb *t = &T[fin[k]];
             if (!t->in_batch) continue;
-            if (sim_batch_overflowed(b, t->lane)) { t->in_batch = 0; continue; }
+            /* the kernel's overflow counts, unless they depend on its delta cycles */
+            if (sim_batch_ovf_unsure(b, t->lane)) { t->in_batch = 0; continue; }
             tb_span_stats *st = &L[fin[k]].st;
             st->clocks = t->s.last_pixel - t->s.drv.first_accept;
             st->pixels = t->s.got;
             st->overflows = t->s.drv.in_ovf + const_ovf;
+            for (uint32_t i = 0, ns = sim_signal_count(c); i < ns; i++)
+                st->overflows += sim_batch_ovf_used(b, sim_signal_at(c, i))[t->lane];
             st->area_ge = area;
             if (L[fin[k]].energy) {
                 lane_count lc = { b, t->lane };

@@ -1,6 +1,8 @@
 /* tb_sweep.c - the sweep engine: configurations, threads, shards, the CSV,
  * merging shards, and the per-signal format search. */
 #include "testbench/study/tb_sweep.h"
+#include "testbench/tb_stream.h"
+#include "vectors/vec_file.h"
 #include "base/base_line.h"
 #include "base/base_out.h"
 #include "base/base_par.h"
@@ -168,14 +170,57 @@ typedef struct run_job {
     void *arg;
 } run_job;
 
+void tb_sweep_stream(tb_sweep *s, size_t n, uint64_t seed)
+{
+    s->stream = 1;
+    s->gen_n = n;
+    s->gen_seed = seed;
+}
+
+void tb_sweep_stream_file(tb_sweep *s, const char *path)
+{
+    s->stream = 1;
+    s->path = path;
+}
+
+/* Parameter set p's rows as a stream: the file's (its header checked
+ * against the unit's for the set's configuration) or the generator's. */
+static vec_stream *open_rows(const tb_sweep *s, const unit_cfg *cfg, char *err, size_t errlen)
+{
+    const unit_desc *u = s->spec.u;
+    vec_set hdr;
+    vec_set_init(&hdr);
+    tb_expected_header(u, cfg, &hdr);
+    if (s->path) return vec_stream_open(s->path, &hdr, err, errlen);
+    return vec_stream_gen(u->ref, &cfg->model, s->gen_n, s->gen_seed, &hdr, err, errlen);
+}
+
+size_t tb_sweep_rows(const tb_sweep *s, size_t p)
+{
+    return s->stream ? s->gen_n : s->vs[p]->n_rows;
+}
+
+/* Configuration c on its parameter set's rows as streamed (tb_run_stream:
+ * the kernel, a block of rows at a time). */
+static int run_streamed(const tb_sweep *s, const tb_sweep_cfg *c, tb_sweep_row *row)
+{
+    const unit_desc *u = s->spec.u;
+    vec_stream *vs = open_rows(s, &c->cfg, row->err, sizeof row->err);
+    if (!vs) return TB_BADINPUT;
+    int rc = tb_run_stream(u, &c->cfg, &c->fmts, vs, NULL, NULL, NULL, &row->r, row->err, sizeof row->err);
+    vec_stream_close(vs);
+    return rc;
+}
+
 static void run_one(void *ctx, size_t k)
 {
     run_job *j = ctx;
     size_t i = j->idx[k];
     const tb_sweep_cfg *c = &j->s->cfg[i];
     tb_sweep_row *row = &j->s->row[i];
-    row->status = tb_run(j->s->spec.u, &c->cfg, &c->fmts, j->s->vs[c->pset], NULL, &row->r,
-                         row->err, sizeof row->err);
+    if (j->s->stream) row->status = run_streamed(j->s, c, row);
+    else row->status = tb_run(j->s->spec.u, &c->cfg, &c->fmts, j->s->vs[c->pset], NULL, &row->r,
+                              row->err, sizeof row->err);
     if (row->status == TB_OK) tb_verdict(&row->r, &j->s->spec.accept);   /* the user's targets */
     tb_result_free(&row->r);
     pthread_mutex_lock(&j->mu);
@@ -223,7 +268,42 @@ static void ident(FILE *f, const tb_sweep *s, size_t i)
     fprintf(f, ",%s,%s", sim_round_name(c->rnd), sim_ovf_name(c->ovf));
 }
 
-void tb_sweep_fingerprint(tb_sweep *s)
+/* Streamed: the rows as fnv hashes a held set's, generated once more.
+ * 0, or -1 with a message. */
+static int hash_stream(tb_sweep *s, size_t p, uint64_t *h, char *err, size_t errlen)
+{
+    const unit_cfg *cfg = tb_sweep_pset_cfg(s, p);
+    size_t n = 0;
+    const vec_set *rows;
+    int rc;
+    vec_stream *vs;
+    if (s->path) {
+        /* the count comes first in the hash: a pass to count the rows (and
+         * find what is wrong with the file, as a whole read would) */
+        if (!(vs = open_rows(s, cfg, err, errlen))) return -1;
+        while ((rc = vec_stream_next(vs, &rows)) > 0) n += rows->n_rows;
+        if (rc < 0) snprintf(err, errlen, "%s", vec_stream_error(vs));
+        vec_stream_close(vs);
+        if (rc < 0) return -1;
+        s->gen_n = n;
+        n = 0;
+    }
+    if (!(vs = open_rows(s, cfg, err, errlen))) return -1;
+    *h = fnv(*h, &s->gen_n, sizeof s->gen_n);
+    while ((rc = vec_stream_next(vs, &rows)) > 0) {
+        *h = fnv(*h, rows->data, rows->n_rows * (size_t)(rows->n_in + rows->n_out) * sizeof *rows->data);
+        n += rows->n_rows;
+    }
+    if (rc < 0 || n != s->gen_n) {
+        if (rc < 0 && s->path) snprintf(err, errlen, "%s", vec_stream_error(vs));
+        else snprintf(err, errlen, "%s: %s", s->spec.u->name, rc < 0 ? vec_stream_error(vs) : "the vectors changed while read");
+        rc = -1;
+    }
+    vec_stream_close(vs);
+    return rc;
+}
+
+int tb_sweep_fingerprint(tb_sweep *s, char *err, size_t errlen)
 {
     uint64_t h = 14695981039346656037ull;
     char buf[2048], fb[SIM_FMT_STRLEN];
@@ -240,6 +320,10 @@ void tb_sweep_fingerprint(tb_sweep *s)
         h = fnv_s(h, v->unit);
         for (int k = 0; k < v->n_in; k++) h = fnv_s(h, v->in_names[k]);
         for (int k = 0; k < v->n_out; k++) h = fnv_s(h, v->out_names[k]);
+        if (s->stream) {
+            if (hash_stream(s, p, &h, err, errlen)) return -1;
+            continue;
+        }
         h = fnv(h, &v->n_rows, sizeof v->n_rows);
         h = fnv(h, v->data, v->n_rows * (size_t)(v->n_in + v->n_out) * sizeof *v->data);
     }
@@ -252,6 +336,7 @@ void tb_sweep_fingerprint(tb_sweep *s)
         h = fnv(h, &ac->max_lsb, sizeof ac->max_lsb);
     }
     s->id = h;
+    return 0;
 }
 
 /* -------------------------------------------------------------------- CSV */

@@ -73,6 +73,13 @@ typedef struct tb_sweep {
     tb_sweep_row   *row;                  /* [n] */
     const vec_set **vs;                   /* [npsets]: the caller loads them (tb_sweep_pset_cfg) */
     uint64_t        id;                   /* fingerprint of configurations and vectors */
+    /* Streamed vectors (tb_sweep_stream): each configuration generates its
+     * parameter set's gen_n rows from gen_seed as it runs, a block at a
+     * time, instead of reading vs's rows (vs then holds the headers alone). */
+    int             stream;
+    size_t          gen_n;                /* rows (a file's: counted by tb_sweep_fingerprint) */
+    uint64_t        gen_seed;
+    const char     *path;                 /* tb_sweep_stream_file: read from it instead */
 } tb_sweep;
 
 /* Enumerate the configurations; 0, or -1 with a message (bad --fmt, too
@@ -88,8 +95,22 @@ int  tb_sweep_min_width(const tb_sweep_spec *spec, int *limit_sig, unit_cfg *lim
 /* A configuration with parameter set p, to load or make its vectors. */
 const unit_cfg *tb_sweep_pset_cfg(const tb_sweep *s, size_t p);
 /* After the vectors are in place: the sweep's fingerprint (s->id), which
- * the CSV carries so that merge refuses shards of different sweeps. */
-void tb_sweep_fingerprint(tb_sweep *s);
+ * the CSV carries so that merge refuses shards of different sweeps.
+ * Streamed vectors are generated once for it. 0, or -1 with a message
+ * (a generator that fails or does not give n rows). */
+int  tb_sweep_fingerprint(tb_sweep *s, char *err, size_t errlen);
+/* Stream the vectors: n rows of the unit's reference generator from seed
+ * per parameter set, made by each configuration as it runs (memory a few
+ * blocks per thread, whatever n is) instead of held; the same rows, so
+ * the same results, as vs holding tb_make_vectors(n, seed)'s. vs must
+ * hold each set's header (vec_set_header). */
+void tb_sweep_stream(tb_sweep *s, size_t n, uint64_t seed);
+/* The same with the rows of a vector file (one parameter set), read a
+ * block at a time by each configuration; tb_sweep_fingerprint reads it
+ * first (its count, then its rows), and says what is wrong with it. */
+void tb_sweep_stream_file(tb_sweep *s, const char *path);
+/* The vectors of parameter set p: rows (streamed or held). */
+size_t tb_sweep_rows(const tb_sweep *s, size_t p);
 
 /* Shard K of N (1-based) holds configuration i? N = 0: no sharding. */
 int  tb_sweep_in_shard(size_t i, int k, int n);
