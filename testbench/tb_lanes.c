@@ -28,6 +28,11 @@
 #define LANES_ONE       64
 #define LANES_WAVE      256
 #define LANES_GROUP     64
+/* A group of lanes of its own (a build, a batch, a thread) for at least
+ * this many of a wave's items: below it the build and the batch's costs
+ * per cycle outweigh what a second thread saves (a small run, such as a
+ * unit's default vectors, runs on one build and no thread). */
+#define LANES_GROUP_ITEMS 2048
 /* Items before a lane's own, from reset: enough for most units' items in
  * flight; a unit that needs more fails the junction check, and the wave
  * is run again with the long warm-up (a deep pipeline: shade's, norm3's),
@@ -395,14 +400,15 @@ static void lanes_join(tb_lanes *x, tb_lanes_wave *w, const lane *S, size_t L)
     if (L > x->lanes) x->lanes = (uint32_t)L;
 }
 
-/* The groups: at most LANES_GROUP lanes each, multiples of 8 lanes (the
- * vector loops' width), at least one per thread where there are lanes
- * enough. */
-static size_t lanes_groups(size_t L, int threads, group *G)
+/* The groups of a wave of `own` items: at most LANES_GROUP lanes each,
+ * multiples of 8 lanes (the vector loops' width), at least one per thread
+ * where there are lanes and items enough (LANES_GROUP_ITEMS a group). */
+static size_t lanes_groups(size_t L, size_t own, int threads, group *G)
 {
     size_t units = L >= 8 ? L / 8 : 1, per = L >= 8 ? 8 : L;
-    size_t ng = (L + LANES_GROUP - 1) / LANES_GROUP;
-    if (ng < (size_t)threads) ng = (size_t)threads;
+    size_t ng = (L + LANES_GROUP - 1) / LANES_GROUP, want = (size_t)threads;
+    if (want > own / LANES_GROUP_ITEMS) want = own / LANES_GROUP_ITEMS;
+    if (ng < want) ng = want;
     if (ng > units) ng = units;
     for (size_t g = 0; g < ng; g++) {
         memset(&G[g], 0, sizeof G[g]);
@@ -423,7 +429,7 @@ static int wave_try(tb_lanes *x, tb_lanes_wave *w, size_t L, char *why, size_t l
     for (size_t k = 0; k < L; k++)
         if (lane_alloc(&S[k], x->nsig, g0)) base_out_of_memory();
     lanes_init(x, w, S, L);
-    size_t ng = lanes_groups(L, x->threads, G);
+    size_t ng = lanes_groups(L, w->n - w->own, x->threads, G);
     wave_job j = { x, w, S, G };
     base_par_for(ng, x->threads, group_run, &j);
     int rc = lanes_check(x, w, S, L, G, ng, why, len);

@@ -110,6 +110,9 @@ static tb_item wbuf_item(const wbuf *B, size_t pos)
 /* The preparation of items [from, to) in chunks on the threads, each
  * chunk's input overflows its own (summed after: whole numbers). */
 #define PREP_CHUNKS 16
+/* Items below which the preparation stays on the calling thread (a
+ * thread's start costs more than it saves on a small run). */
+#define PREP_PAR_MIN 2048
 typedef struct prep_job {
     const tb_prep_ctx *pc;
     wbuf *B;
@@ -264,7 +267,7 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         /* the wave's own items prepared */
         memset(pj, 0, sizeof *pj);
         pj->pc = &pc; pj->B = B; pj->from = own; pj->to = s.n;
-        base_par_for(PREP_CHUNKS, threads, prep_chunk, pj);
+        base_par_for(PREP_CHUNKS, s.n - own < PREP_PAR_MIN ? 1 : threads, prep_chunk, pj);
         for (int c = 0; c < PREP_CHUNKS; c++)
             for (int i = 0; i < r->n_in; i++) in_ovf[i] += pj->ovf[c][i];
         tb_lanes_wave w = { B->in_raw, s.n, own, s.base, last, B->cycle, B->raw, 0 };
