@@ -16,6 +16,7 @@
 #include "testbench/tb_drive.h"
 #include "base/base_out.h"
 #include "base/base_par.h"
+#include "base/base_pool.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -52,6 +53,7 @@ struct tb_lanes {
     const unit_cfg  *cfg;
     const unit_fmts *fmts;
     int       threads, n_in, n_out, beats;
+    base_pool *pool;            /* NULL: threads made for each wave */
     uint32_t  nsig;
     worker   *w;                /* [LANES_WAVE / 8]: built when a group first needs it */
     size_t    warm;
@@ -139,6 +141,8 @@ void tb_lanes_free(tb_lanes *x)
     free(x->state); free(x->tog); free(x->ovf); free(x->mn); free(x->mx);
     free(x);
 }
+
+void tb_lanes_pool(tb_lanes *x, base_pool *p) { x->pool = p; }
 
 /* Worker g, built the first time (by the one task that uses it): 0, or 1
  * with why. */
@@ -431,7 +435,8 @@ static int wave_try(tb_lanes *x, tb_lanes_wave *w, size_t L, char *why, size_t l
     lanes_init(x, w, S, L);
     size_t ng = lanes_groups(L, w->n - w->own, x->threads, G);
     wave_job j = { x, w, S, G };
-    base_par_for(ng, x->threads, group_run, &j);
+    if (x->pool) base_pool_for(x->pool, ng, group_run, &j);
+    else base_par_for(ng, x->threads, group_run, &j);
     int rc = lanes_check(x, w, S, L, G, ng, why, len);
     if (!rc) lanes_join(x, w, S, L);
     for (size_t k = 0; k < L; k++) lane_free(&S[k]);

@@ -47,6 +47,10 @@ typedef struct tb_lanes tb_lanes;
 tb_lanes *tb_lanes_new(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, int threads,
                        char *why, size_t len);
 void      tb_lanes_free(tb_lanes *x);
+/* The groups of a wave on p's threads (base_pool.h) instead of threads
+ * made for each wave (NULL: those). */
+struct base_pool;
+void      tb_lanes_pool(tb_lanes *x, struct base_pool *p);
 
 typedef struct tb_lanes_wave {
     /* in */

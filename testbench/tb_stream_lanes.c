@@ -24,15 +24,14 @@
 #include "testbench/tb_lanes.h"
 #include "testbench/tb_energy.h"
 #include "base/base_out.h"
-#include "base/base_par.h"
-#include <pthread.h>
+#include "base/base_pool.h"
 #include <stdlib.h>
 #include <string.h>
 
 /* A wave takes items up to about WAVE_BYTES of their rows and prepared
  * figures (a unit with many output beats an item takes fewer), between
  * WAVE_MIN and WAVE_MAX items (256 lanes of 512). */
-#define WAVE_BYTES ((size_t)16 << 20)
+#define WAVE_BYTES ((size_t)2 << 20)
 #define WAVE_MIN   ((size_t)1 << 12)
 #define WAVE_MAX   ((size_t)1 << 17)
 
@@ -151,7 +150,7 @@ typedef struct folder {
     void *row_data;
 } folder;
 
-static void *fold(void *arg)
+static void fold(void *arg)
 {
     folder *f = arg;
     const wbuf *B = f->B;
@@ -169,7 +168,6 @@ static void *fold(void *arg)
         if (f->row) f->row(f->row_data, f->r, it, cyc[0], raw, expected);
         f->acc_next++;
     }
-    return NULL;
 }
 
 /* The rows of the next wave, read while the wave before is simulated
@@ -185,7 +183,7 @@ typedef struct reader {
     char err[600];
 } reader;
 
-static void *reader_run(void *arg)
+static void reader_run(void *arg)
 {
     reader *R = arg;
     R->n = 0;
@@ -193,7 +191,7 @@ static void *reader_run(void *arg)
     do {
         const vec_set *rows;
         int rc = vec_stream_next(R->vs, &rows);
-        if (rc < 0) { R->failed = 1; snprintf(R->err, sizeof R->err, "%s", vec_stream_error(R->vs)); return NULL; }
+        if (rc < 0) { R->failed = 1; snprintf(R->err, sizeof R->err, "%s", vec_stream_error(R->vs)); return; }
         if (rc == 0) break;
         if (R->n + rows->n_rows > R->cap) {
             R->cap = (R->n + rows->n_rows) * 2;
@@ -204,7 +202,6 @@ static void *reader_run(void *arg)
     } while (!R->first && !vec_stream_done(R->vs) && R->n < R->most);
     R->last = vec_stream_done(R->vs);
     R->first = 0;
-    return NULL;
 }
 
 int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, vec_stream *vs,
@@ -246,15 +243,20 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     prep_job *pj = calloc(1, sizeof *pj);
     if (!pj) base_out_of_memory();
     vec_stream_threads(vs, threads);
+    /* the threads, made once: the loops' (the preparation, the lanes'
+     * groups, the halves of a block of text), the reader's and the folder's */
+    base_pool *pool = base_pool_new(threads, threads > 1 ? 2 : 0);
+    vec_stream_pool(vs, pool);
+    tb_lanes_pool(x, pool);
     reader R = { vs, most, (size_t)X[0].ncol, 1, NULL, 0, 0, 0, 0, "" };
-    pthread_t rt, ft;
+    base_task rt, ft;
     int reading = 0, folding = 0;   /* rt reads the next wave; ft folds the wave before */
     int rc = TB_OK, last = 0;
     reader_run(&R);
     for (size_t wi = 0; !last; wi++) {
         wbuf *B = &X[wi & 1];
         size_t own = s.n;
-        if (reading) { pthread_join(rt, NULL); reading = 0; }
+        if (reading) { base_pool_wait(pool, &rt); reading = 0; }
         if (R.failed) { snprintf(err, errlen, "%s", R.err); rc = TB_BADINPUT; goto done; }
         wbuf_reserve(B, s.n + R.n, has_exact, !!u->ideal_ratio, !!u->ideal_interval);
         memcpy(B->rows + s.n * (size_t)B->ncol, R.rows, R.n * R.ncol * sizeof *R.rows);
@@ -263,16 +265,16 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         if (s.n == own) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }   /* (the reader says it first) */
         /* the next wave read beside this one (not beside the first: its
          * block is handed back to the kernel if the lanes do not take it) */
-        if (!last && wi > 0 && threads > 1 && !pthread_create(&rt, NULL, reader_run, &R)) reading = 1;
+        if (!last && wi > 0 && pool) { base_pool_start(pool, &rt, reader_run, &R); reading = 1; }
         /* the wave's own items prepared */
         memset(pj, 0, sizeof *pj);
         pj->pc = &pc; pj->B = B; pj->from = own; pj->to = s.n;
-        base_par_for(PREP_CHUNKS, s.n - own < PREP_PAR_MIN ? 1 : threads, prep_chunk, pj);
+        base_pool_for(s.n - own < PREP_PAR_MIN ? NULL : pool, PREP_CHUNKS, prep_chunk, pj);
         for (int c = 0; c < PREP_CHUNKS; c++)
             for (int i = 0; i < r->n_in; i++) in_ovf[i] += pj->ovf[c][i];
         tb_lanes_wave w = { B->in_raw, s.n, own, s.base, last, B->cycle, B->raw, 0 };
         int taken = !tb_lanes_wave_run(x, &w, why, sizeof why);
-        if (folding) { pthread_join(ft, NULL); folding = 0; }
+        if (folding) { base_pool_wait(pool, &ft); folding = 0; }
         if (!taken) {
             snprintf(r->engine_why, sizeof r->engine_why, "%.150s", why);
             if (wi == 0) { vec_stream_unread(vs); *rewound = 1; }
@@ -282,8 +284,8 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         }
         F.B = B; F.base = s.base; F.beats_done = w.beats_done;
         if (last) { fold(&F); break; }
-        if (threads > 1 && !pthread_create(&ft, NULL, fold, &F)) folding = 1;
-        else fold(&F);
+        base_pool_start(pool, &ft, fold, &F);
+        folding = 1;
         if (!reading) reader_run(&R);
         /* the next buffer starts with the items the next wave's warm-ups
          * reach back to, and those not yet all in */
@@ -307,8 +309,10 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     tb_acc_end(&acc, r);
     tb_verdict(r, NULL);
 done:
-    if (reading) pthread_join(rt, NULL);
-    if (folding) pthread_join(ft, NULL);
+    if (reading) base_pool_wait(pool, &rt);
+    if (folding) base_pool_wait(pool, &ft);
+    vec_stream_pool(vs, NULL);
+    base_pool_free(pool);
     free(R.rows);
     free(pj);
     wbuf_free(&X[0]);

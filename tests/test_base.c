@@ -12,6 +12,7 @@
 #include "base/base_join.h"
 #include "base/base_near.h"
 #include "base/base_par.h"
+#include "base/base_pool.h"
 #include "base/base_num.h"
 #include "base/base_line.h"
 #include <float.h>
@@ -245,6 +246,46 @@ static void par_same_result_any_threads(void)
     }
 }
 
+/* The pool (base_pool.h): every loop's items exactly once, many loops on
+ * the same threads, a task that runs a loop of its own beside the
+ * caller's, a task nobody took run by its waiter; none of it depends on
+ * the thread count. */
+typedef struct { base_pool *p; pctx c; size_t n; double out[64]; } ptask;
+static void task_loop(void *arg)
+{
+    ptask *t = arg;
+    base_pool_for(t->p, t->n, bump, &t->c);
+    for (int i = 0; i < 64; i++) t->out[i] = sqrt((double)i) * 3.5;
+}
+static void pool_loops_and_tasks(void)
+{
+    enum { N = 300 };
+    static double ref[N], got[N];
+    for (size_t i = 0; i < N; i++) ref[i] = sqrt((double)i) * 3.5;
+    for (int th = 1; th <= 4; th++)
+        for (int tasks = 0; tasks <= 2; tasks++) {
+            base_pool *p = base_pool_new(th, tasks);
+            TST_CHECK((p == NULL) == (th == 1 && tasks == 0), "threads %d, tasks %d: pool %p", th, tasks, (void *)p);
+            for (int rep = 0; rep < 50; rep++) {
+                memset(got, 0, sizeof got);
+                int *count = calloc(N + 1, sizeof *count), *seq = calloc(N + 1, sizeof *seq);
+                ptask t = { p, { count, 0, seq }, N, { 0 } };
+                base_task bt;
+                base_pool_start(p, &bt, task_loop, &t);
+                base_pool_for(p, N, sq, got);
+                base_pool_wait(p, &bt);
+                TST_CHECK(bt.state == 3, "threads %d, tasks %d: the task did not end", th, tasks);
+                TST_CHECK(!memcmp(ref, got, sizeof ref), "threads %d, tasks %d, rep %d: loop results differ", th, tasks, rep);
+                TST_CHECK(!memcmp(ref, t.out, sizeof t.out), "threads %d, tasks %d: the task's results differ", th, tasks);
+                size_t bad = 0;
+                for (size_t i = 0; i < N; i++) bad += count[i] != 1;
+                TST_CHECK(bad == 0, "threads %d, tasks %d: %zu of the task's loop items not run exactly once", th, tasks, bad);
+                free(count);
+                free(seq);
+            }
+            base_pool_free(p);
+        }
+}
 
 /* The one number syntax: each text with what it must give, by hand. */
 static void num_strict_syntax(void)
@@ -322,5 +363,6 @@ int main(void)
     TST_RUN(join_truncation);
     TST_RUN(par_every_item_once);
     TST_RUN(par_same_result_any_threads);
+    TST_RUN(pool_loops_and_tasks);
     TST_EXIT();
 }

@@ -14,6 +14,7 @@
 #include "base/base_strtod.h"
 #include "base/base_out.h"
 #include "base/base_par.h"
+#include "base/base_pool.h"
 #include "base/base_join.h"
 #include <errno.h>
 #include <math.h>
@@ -435,6 +436,7 @@ typedef struct half {
 /* What the reading of one file shares between blocks. */
 typedef struct par {
     int ncpu;
+    base_pool *pool;            /* NULL: a thread made for each block */
     vec_set rows;               /* the second thread's rows of a block */
 } par;
 
@@ -497,7 +499,8 @@ static int do_rows(reader *r, char *b, char *e, vec_set *s, const vec_set *expec
     h->rows = &pp->rows;
     h->st = *st;
     t.r = r; t.b = b; t.mid = mid; t.s = s; t.expect = expect; t.st = st;
-    base_par_for(2, 2, half_item, &t);
+    if (pp->pool) base_pool_for(pp->pool, 2, half_item, &t);
+    else base_par_for(2, 2, half_item, &t);
     if (t.rc) return t.rc;
     /* The second half's lines follow the first's. (Out of memory while
      * appending is reported on the half's last line.) */
@@ -520,7 +523,7 @@ static int do_block(reader *r, char *b, char *e, vec_set *s, const vec_set *expe
     return b < e ? do_rows(r, b, e, s, expect, st, pp) : 0;
 }
 
-#define VEC_BLOCK (4u << 20)     /* bytes read at a time */
+#define VEC_BLOCK (1u << 20)     /* bytes read at a time */
 
 /* A file being read: the state read_all kept in locals, so that the rows
  * can be taken a block at a time (vec_stream_next) as well as all at once
@@ -659,6 +662,8 @@ void vec_stream_threads(vec_stream *v, int n)
     long ncpu = sysconf(_SC_NPROCESSORS_ONLN);
     v->pp.ncpu = n > 1 && ncpu > 1 ? 2 : 1;
 }
+
+void vec_stream_pool(vec_stream *v, base_pool *p) { v->pp.pool = p; }
 
 void vec_stream_close(vec_stream *v)
 {

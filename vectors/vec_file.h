@@ -45,6 +45,10 @@ const char *vec_stream_error(const vec_stream *v);
 int         vec_stream_done(const vec_stream *v);
 /* Parse a block on up to n threads (default: 2 where there are 2 cores). */
 void        vec_stream_threads(vec_stream *v, int n);
+/* ... on p's threads (base_pool.h), kept by the caller, instead of a
+ * thread made for each block (NULL: that). */
+struct base_pool;
+void        vec_stream_pool(vec_stream *v, struct base_pool *p);
 void        vec_stream_close(vec_stream *v);
 /* The rows a reference model generates (m->gen(p, n, seed), the same rows
  * in the same order as into a vec_set), as a stream: generated on a

@@ -1,0 +1,176 @@
+/* base_pool.c - threads kept for many short loops and tasks (base_pool.h).
+ *
+ * One mutex guards the pool: its loops (each on the stack of the thread
+ * that runs it, several at once when a task runs a loop of its own) and
+ * its queue of tasks. A worker takes a queued task first (tasks are the
+ * long steps: the sooner started, the sooner done), else helps the first
+ * loop with items left and room for a helper, else sleeps. The lock is
+ * taken once per item: items are a wave's chunks, thousands of items'
+ * work each.
+ */
+#include "base/base_pool.h"
+#include "base/base_out.h"
+#include <pthread.h>
+#include <stdlib.h>
+
+typedef struct pool_loop {
+    size_t n, next, done;
+    int helpers, max_helpers;
+    void (*fn)(void *ctx, size_t i);
+    void *ctx;
+    struct pool_loop *next_loop;
+} pool_loop;
+
+struct base_pool {
+    pthread_mutex_t mu;
+    pthread_cond_t  work, done;
+    pthread_t      *th;
+    int             nth, stop, max_helpers;
+    pool_loop      *loops;
+    base_task      *head, *tail;    /* queued tasks, in order */
+};
+
+/* Items of L until none is left (the lock held on entry and exit). */
+static void loop_items(base_pool *p, pool_loop *L)
+{
+    while (L->next < L->n) {
+        size_t i = L->next++;
+        pthread_mutex_unlock(&p->mu);
+        L->fn(L->ctx, i);
+        pthread_mutex_lock(&p->mu);
+        L->done++;
+    }
+}
+
+static base_task *task_pop(base_pool *p)
+{
+    base_task *t = p->head;
+    if (t) {
+        p->head = t->next;
+        if (!p->head) p->tail = NULL;
+        t->next = NULL;
+    }
+    return t;
+}
+
+static void *worker(void *arg)
+{
+    base_pool *p = arg;
+    pthread_mutex_lock(&p->mu);
+    while (!p->stop) {
+        base_task *t = task_pop(p);
+        if (t) {
+            t->state = 2;
+            pthread_mutex_unlock(&p->mu);
+            t->fn(t->arg);
+            pthread_mutex_lock(&p->mu);
+            t->state = 3;
+            pthread_cond_broadcast(&p->done);
+            continue;
+        }
+        pool_loop *L = p->loops;
+        while (L && (L->next >= L->n || L->helpers >= L->max_helpers)) L = L->next_loop;
+        if (L) {
+            L->helpers++;
+            loop_items(p, L);
+            L->helpers--;
+            pthread_cond_broadcast(&p->done);
+            continue;
+        }
+        pthread_cond_wait(&p->work, &p->mu);
+    }
+    pthread_mutex_unlock(&p->mu);
+    return NULL;
+}
+
+base_pool *base_pool_new(int threads, int tasks)
+{
+    if (threads < 1) threads = 1;
+    if (tasks < 0) tasks = 0;
+    int want = threads - 1 + tasks;
+    if (want < 1) return NULL;
+    base_pool *p = calloc(1, sizeof *p);
+    if (!p || !(p->th = malloc((size_t)want * sizeof *p->th))) base_out_of_memory();
+    pthread_mutex_init(&p->mu, NULL);
+    pthread_cond_init(&p->work, NULL);
+    pthread_cond_init(&p->done, NULL);
+    p->max_helpers = threads - 1;
+    while (p->nth < want && !pthread_create(&p->th[p->nth], NULL, worker, p)) p->nth++;
+    if (!p->nth) { base_pool_free(p); return NULL; }
+    return p;
+}
+
+void base_pool_free(base_pool *p)
+{
+    if (!p) return;
+    pthread_mutex_lock(&p->mu);
+    p->stop = 1;
+    pthread_cond_broadcast(&p->work);
+    pthread_mutex_unlock(&p->mu);
+    for (int i = 0; i < p->nth; i++) pthread_join(p->th[i], NULL);
+    pthread_cond_destroy(&p->work);
+    pthread_cond_destroy(&p->done);
+    pthread_mutex_destroy(&p->mu);
+    free(p->th);
+    free(p);
+}
+
+void base_pool_for(base_pool *p, size_t n, void (*fn)(void *ctx, size_t i), void *ctx)
+{
+    if (!p || n < 2 || p->max_helpers < 1) {
+        for (size_t i = 0; i < n; i++) fn(ctx, i);
+        return;
+    }
+    pool_loop L = { n, 0, 0, 0, p->max_helpers, fn, ctx, NULL };
+    pthread_mutex_lock(&p->mu);
+    L.next_loop = p->loops;
+    p->loops = &L;
+    pthread_cond_broadcast(&p->work);
+    loop_items(p, &L);
+    /* the helpers' last items, and the helpers gone from L */
+    while (L.done < L.n || L.helpers) pthread_cond_wait(&p->done, &p->mu);
+    pool_loop **at = &p->loops;
+    while (*at != &L) at = &(*at)->next_loop;
+    *at = L.next_loop;
+    pthread_mutex_unlock(&p->mu);
+}
+
+void base_pool_start(base_pool *p, base_task *t, void (*fn)(void *arg), void *arg)
+{
+    t->fn = fn;
+    t->arg = arg;
+    t->next = NULL;
+    if (!p) {               /* no workers: now, on the caller */
+        t->state = 2;
+        fn(arg);
+        t->state = 3;
+        return;
+    }
+    pthread_mutex_lock(&p->mu);
+    t->state = 1;
+    if (p->tail) p->tail->next = t;
+    else p->head = t;
+    p->tail = t;
+    pthread_cond_signal(&p->work);
+    pthread_mutex_unlock(&p->mu);
+}
+
+void base_pool_wait(base_pool *p, base_task *t)
+{
+    if (!p) return;
+    pthread_mutex_lock(&p->mu);
+    if (t->state == 1) {
+        /* no worker took it: out of the queue, and run here */
+        base_task **at = &p->head, *prev = NULL;
+        while (*at != t) { prev = *at; at = &(*at)->next; }
+        *at = t->next;
+        if (p->tail == t) p->tail = prev;
+        t->state = 2;
+        pthread_mutex_unlock(&p->mu);
+        t->fn(t->arg);
+        pthread_mutex_lock(&p->mu);
+        t->state = 3;
+    }
+    while (t->state != 3) pthread_cond_wait(&p->done, &p->mu);
+    pthread_mutex_unlock(&p->mu);
+}
