@@ -35,10 +35,12 @@
  * unit's default vectors, runs on one build and no thread). */
 #define LANES_GROUP_ITEMS 2048
 /* Items before a lane's own, from reset: enough for most units' items in
- * flight; a unit that needs more fails the junction check, and the wave
- * is run again with the long warm-up (a deep pipeline: shade's, norm3's),
- * which the later waves keep; then on the kernel. */
-#define LANES_WARM      16
+ * flight (each costs the lane as much as an item of its own: with lanes of
+ * 32 to 128 items, 8 of them are a few percent); a unit that needs more
+ * fails the junction check, and the wave is run again with the long
+ * warm-up (a deep pipeline: shade's, norm3's), which the later waves
+ * keep; then on the kernel. */
+#define LANES_WARM      8
 #define LANES_WARM_LONG TB_LANES_WARM_MAX
 
 /* One build of the unit: a group of lanes at a time simulates on it. */
