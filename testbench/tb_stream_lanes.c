@@ -175,12 +175,15 @@ static void fold(void *arg)
 }
 
 /* The rows of the next wave, read while the wave before is simulated
- * (on a thread of its own, with more than one thread): the first block
- * alone for the first wave, else blocks up to `most` items. */
+ * (on a thread of its own, with more than one thread): up to `blocks`
+ * blocks and `most` items. The first wave is the first block alone, and
+ * the second (read before anything runs beside it) the next one; then
+ * twice the blocks each wave, so that the reading soon runs beside the
+ * simulation, as much of it as can. */
 typedef struct reader {
     vec_stream *vs;
     size_t most, ncol;
-    int first;
+    int blocks, calls;
     double *rows;               /* [n][ncol] */
     size_t n, cap;
     int last, failed;           /* the file's end was read; a bad row (err) */
@@ -192,6 +195,7 @@ static void reader_run(void *arg)
     reader *R = arg;
     R->n = 0;
     R->last = R->failed = 0;
+    int got = 0;
     do {
         const vec_set *rows;
         int rc = vec_stream_next(R->vs, &rows);
@@ -203,9 +207,9 @@ static void reader_run(void *arg)
         }
         memcpy(R->rows + R->n * R->ncol, rows->data, rows->n_rows * R->ncol * sizeof *R->rows);
         R->n += rows->n_rows;
-    } while (!R->first && !vec_stream_done(R->vs) && R->n < R->most);
+    } while (++got < R->blocks && !vec_stream_done(R->vs) && R->n < R->most);
     R->last = vec_stream_done(R->vs);
-    R->first = 0;
+    if (++R->calls >= 2 && R->blocks < (1 << 20)) R->blocks *= 2;
 }
 
 int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, vec_stream *vs,
@@ -252,7 +256,7 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     base_pool *pool = base_pool_new(threads, threads > 1 ? 2 : 0);
     vec_stream_pool(vs, pool);
     tb_lanes_pool(x, pool);
-    reader R = { vs, most, (size_t)X[0].ncol, 1, NULL, 0, 0, 0, 0, "" };
+    reader R = { vs, most, (size_t)X[0].ncol, 1, 0, NULL, 0, 0, 0, 0, "" };
     base_task rt, ft;
     int reading = 0, folding = 0;   /* rt reads the next wave; ft folds the wave before */
     int rc = TB_OK, last = 0;
