@@ -9,6 +9,7 @@
  * vec_file_read treats s as output only: it is (re)initialized, so pass a
  * set that holds no rows (or free it first). On failure it is left empty.
  */
+#define _GNU_SOURCE     /* F_SETPIPE_SZ (Linux), where fcntl.h has it */
 #include "vectors/vec_file.h"
 #include "vectors/vec_gen.h"
 #include "base/base_strtod.h"
@@ -17,6 +18,7 @@
 #include "base/base_pool.h"
 #include "base/base_join.h"
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -618,6 +620,13 @@ vec_stream *vec_stream_open(const char *path, const vec_set *expect, char *err, 
     v->buf = calloc(v->cap + 1 + BASE_STRTOD_PAD, 1);
     if (!v->buf) base_out_of_memory();
     v->f = v->is_stdin ? stdin : fopen(path, "rb");
+#ifdef F_SETPIPE_SZ
+    /* A pipe of a block's size instead of 64 KiB: the writer runs a block
+     * ahead and the reader wakes once a block, not sixteen times (a pipe
+     * of 10^7 rows read on two threads spent a fifth of its time waiting
+     * on it). Not a pipe, or not allowed: nothing changes. */
+    if (v->is_stdin) (void)fcntl(fileno(stdin), F_SETPIPE_SZ, (int)VEC_BLOCK);
+#endif
     if (!v->f) {
         msg(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         if (v->f && !v->is_stdin) fclose(v->f);
