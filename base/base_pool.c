@@ -42,6 +42,20 @@ static void loop_items(base_pool *p, pool_loop *L)
     }
 }
 
+/* Help the first loop with items left and room for a helper, until it has
+ * none left: 1, or 0 when there is no such loop (the lock held). */
+static int help_loop(base_pool *p)
+{
+    pool_loop *L = p->loops;
+    while (L && (L->next >= L->n || L->helpers >= L->max_helpers)) L = L->next_loop;
+    if (!L) return 0;
+    L->helpers++;
+    loop_items(p, L);
+    L->helpers--;
+    pthread_cond_broadcast(&p->done);
+    return 1;
+}
+
 static base_task *task_pop(base_pool *p)
 {
     base_task *t = p->head;
@@ -68,16 +82,7 @@ static void *worker(void *arg)
             pthread_cond_broadcast(&p->done);
             continue;
         }
-        pool_loop *L = p->loops;
-        while (L && (L->next >= L->n || L->helpers >= L->max_helpers)) L = L->next_loop;
-        if (L) {
-            L->helpers++;
-            loop_items(p, L);
-            L->helpers--;
-            pthread_cond_broadcast(&p->done);
-            continue;
-        }
-        pthread_cond_wait(&p->work, &p->mu);
+        if (!help_loop(p)) pthread_cond_wait(&p->work, &p->mu);
     }
     pthread_mutex_unlock(&p->mu);
     return NULL;
@@ -126,6 +131,7 @@ void base_pool_for(base_pool *p, size_t n, void (*fn)(void *ctx, size_t i), void
     L.next_loop = p->loops;
     p->loops = &L;
     pthread_cond_broadcast(&p->work);
+    pthread_cond_broadcast(&p->done);   /* a waiter helps too (base_pool_wait) */
     loop_items(p, &L);
     /* the helpers' last items, and the helpers gone from L */
     while (L.done < L.n || L.helpers) pthread_cond_wait(&p->done, &p->mu);
@@ -171,6 +177,9 @@ void base_pool_wait(base_pool *p, base_task *t)
         pthread_mutex_lock(&p->mu);
         t->state = 3;
     }
-    while (t->state != 3) pthread_cond_wait(&p->done, &p->mu);
+    /* meanwhile, the items of a loop that has room for a helper (the
+     * task's own, often), where the waiter would only sleep */
+    while (t->state != 3)
+        if (!help_loop(p)) pthread_cond_wait(&p->done, &p->mu);
     pthread_mutex_unlock(&p->mu);
 }
