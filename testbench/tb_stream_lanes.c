@@ -3,9 +3,10 @@
  * simulated a wave at a time (tb_lanes.h), memory independent of its
  * length.
  *
- * A wave: the rows read (the first block alone, then blocks up to a
- * wave's items; with more than one thread, the next wave's read on a
- * thread of its own meanwhile), each item prepared (tb_prep: the quantized inputs,
+ * A wave: the rows read (the first block alone, the second too, then
+ * twice the blocks each wave up to a wave's items; with more than one
+ * thread, the next wave's read on a thread of its own meanwhile: the
+ * threads are base_pool's, made once), each item prepared (tb_prep: the quantized inputs,
  * what the unit should give) on the threads, the wave's pieces simulated
  * side by side and joined to the stream, then every item whose beats are
  * all in folded into the metrics in item order (tb_acc: the sums added in
@@ -33,8 +34,8 @@
  * WAVE_MIN and WAVE_MAX items (256 lanes of 512). Smaller waves keep the
  * buffers in the caches and page them in less (16 MB: 11,600 page faults
  * on 200,000 horner3 items; 8 MB: 6,400; 2 MB: 2,100), but pay the
- * lanes' warm-ups and the batch's costs a clock more often (callgrind:
- * +0.7% instructions at 8 MB, +8% at 2 MB). */
+ * lanes' warm-ups and the batch's costs a clock more often (callgrind on
+ * that run: +0.7% instructions at 8 MB, +8% at 2 MB). */
 #define WAVE_BYTES ((size_t)8 << 20)
 #define WAVE_MIN   ((size_t)1 << 12)
 #define WAVE_MAX   ((size_t)1 << 17)
@@ -113,8 +114,9 @@ static tb_item wbuf_item(const wbuf *B, size_t pos)
 /* The preparation of items [from, to) in chunks on the threads, each
  * chunk's input overflows its own (summed after: whole numbers). */
 #define PREP_CHUNKS 16
-/* Items below which the preparation stays on the calling thread (a
- * thread's start costs more than it saves on a small run). */
+/* Items below which the preparation stays on the calling thread (handing
+ * chunks to other threads costs more than it saves; a stream of one such
+ * wave makes no thread at all). */
 #define PREP_PAR_MIN 2048
 typedef struct prep_job {
     const tb_prep_ctx *pc;
@@ -251,11 +253,7 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     prep_job *pj = calloc(1, sizeof *pj);
     if (!pj) base_out_of_memory();
     vec_stream_threads(vs, threads);
-    /* the threads, made once: the loops' (the preparation, the lanes'
-     * groups, the halves of a block of text), the reader's and the folder's */
-    base_pool *pool = base_pool_new(threads, threads > 1 ? 2 : 0);
-    vec_stream_pool(vs, pool);
-    tb_lanes_pool(x, pool);
+    base_pool *pool = NULL;     /* the threads, made once (below) */
     reader R = { vs, most, (size_t)X[0].ncol, 1, 0, NULL, 0, 0, 0, 0, "" };
     base_task rt, ft;
     int reading = 0, folding = 0;   /* rt reads the next wave; ft folds the wave before */
@@ -271,6 +269,14 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         s.n += R.n;
         last = R.last;
         if (s.n == own) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }   /* (the reader says it first) */
+        /* the threads, made once, when there is more than a small wave:
+         * the loops' (the preparation, the lanes' groups, the halves of a
+         * block of text), the reader's and the folder's */
+        if (!pool && threads > 1 && (!last || s.n - own >= PREP_PAR_MIN)) {
+            pool = base_pool_new(threads, 2);
+            vec_stream_pool(vs, pool);
+            tb_lanes_pool(x, pool);
+        }
         /* the next wave read beside this one (not beside the first: its
          * block is handed back to the kernel if the lanes do not take it) */
         if (!last && wi > 0 && pool) { base_pool_start(pool, &rt, reader_run, &R); reading = 1; }
