@@ -132,6 +132,105 @@ static void ival_guarded_key(void)
     }
 }
 
+/* The interpolation y = a + t (b - a) (sub, mul, add; the mul and the
+ * add rounding to fewer bits), every rounding mode: for intervals of a,
+ * b and t (t within [0, 1], and one past 1 where the rule must not
+ * apply), every combination of raws through sim_elem_eval lies within
+ * the derived interval; with t in [0, 1] that interval is within
+ * hull(a, b) widened by the roundings (two LSBs of y), where the plain
+ * intervals reach far past it. */
+static void ival_interpolation(void)
+{
+    static const int64_t box[][6] = {     /* a lo, hi; b lo, hi; t lo, hi (t u1.3: 8 is 1) */
+        { 0, 8, 0, 8, 0, 8 }, { -5, 3, 2, 7, 1, 6 }, { 4, 4, -8, -2, 0, 8 }, { -8, 7, -8, 7, 3, 3 }, { 0, 8, 0, 8, 0, 12 },
+    };
+    for (int rm = 0; rm < 3; rm++)
+        for (size_t bx = 0; bx < sizeof box / sizeof box[0]; bx++) {
+            sim_ctx *c = sim_new();
+            sim_set_quant(c, (sim_round)rm, SIM_OVF_WRAP);
+            sim_fmt fab, ft, fd, fm, fy;
+            sim_fmt_make(1, 2, 3, &fab, NULL, 0);    /* a, b: s2.3 */
+            sim_fmt_make(0, 1, 3, &ft, NULL, 0);     /* t: u1.3 */
+            sim_fmt_make(1, 3, 3, &fd, NULL, 0);     /* b - a exact */
+            sim_fmt_make(1, 4, 2, &fm, NULL, 0);     /* t (b - a) rounded */
+            sim_fmt_make(1, 4, 2, &fy, NULL, 0);     /* y rounded */
+            sim_signal *a = sim_signal_new(c, NULL, "a", fab, SIM_KIND_INPUT);
+            sim_signal *b = sim_signal_new(c, NULL, "b", fab, SIM_KIND_INPUT);
+            sim_signal *t = sim_signal_new(c, NULL, "t", ft, SIM_KIND_INPUT);
+            sim_signal *d = sim_sub(c, NULL, "d", fd, b, a);
+            sim_signal *m = bx & 1 ? sim_mul(c, NULL, "m", fm, d, t) : sim_mul(c, NULL, "m", fm, t, d);
+            sim_signal *y = bx & 1 ? sim_add(c, NULL, "y", fy, m, a) : sim_add(c, NULL, "y", fy, a, m);
+            sim_ival v[16], pre, post;
+            memset(v, 0, sizeof v);
+            v[a->index] = (sim_ival){ box[bx][0], box[bx][1] };
+            v[b->index] = (sim_ival){ box[bx][2], box[bx][3] };
+            v[t->index] = (sim_ival){ box[bx][4], box[bx][5] };
+            sim_ival_eval(d, v, &v[d->index], &post);
+            sim_ival_eval(m, v, &v[m->index], &post);
+            TST_EQ_INT(sim_ival_eval(y, v, &pre, &post), 0);
+            sim_wide lo = 0, hi = 0;
+            int first = 1;
+            for (int64_t x = box[bx][0]; x <= box[bx][1]; x++)
+                for (int64_t z = box[bx][2]; z <= box[bx][3]; z++)
+                    for (int64_t tt = box[bx][4]; tt <= box[bx][5]; tt++) {
+                        int64_t in_d[2] = { z, x }, dv = (int64_t)elem_at(d, in_d);
+                        int64_t in_m[2] = { bx & 1 ? dv : tt, bx & 1 ? tt : dv }, mv = (int64_t)elem_at(m, in_m);
+                        int64_t in_y[2] = { bx & 1 ? mv : x, bx & 1 ? x : mv };
+                        sim_wide yv = elem_at(y, in_y);
+                        if (first || yv < lo) lo = yv;
+                        if (first || yv > hi) hi = yv;
+                        first = 0;
+                    }
+            TST_CHECK(pre.lo <= lo && pre.hi >= hi, "box %zu round %d: [%lld, %lld] misses brute force [%lld, %lld]", bx, rm,
+                      (long long)pre.lo, (long long)pre.hi, (long long)lo, (long long)hi);
+            /* hull(a, b) in y's raws (2 fraction bits: a raw / 2), two LSBs out */
+            int64_t hlo = (box[bx][0] < box[bx][2] ? box[bx][0] : box[bx][2]), hhi = (box[bx][1] > box[bx][3] ? box[bx][1] : box[bx][3]);
+            if (box[bx][5] <= 8)
+                TST_CHECK(pre.lo >= (sim_wide)floor(hlo / 2.0) - 2 && pre.hi <= (sim_wide)ceil(hhi / 2.0) + 2,
+                          "box %zu round %d: [%lld, %lld] not within hull [%lld, %lld] / 2 + 2 LSBs", bx, rm,
+                          (long long)pre.lo, (long long)pre.hi, (long long)hlo, (long long)hhi);
+            sim_free(c);
+        }
+}
+
+/* A logic element of z and of zq = g(z) (a ROM's address beside the
+ * value it comes from, as the reciprocal's): z's values alone are
+ * enumerated, zq's computed from each, so the interval is exactly the
+ * hull of f(z, g(z)) over z; z and zq taken as free would reach values
+ * f never gives (here 8 + 7 = 15 where f(z, g(z)) is at most 8). */
+static int64_t top_bits(const int64_t *in, void *u) { (void)u; return in[0] >> 3; }
+static int64_t rest_plus(const int64_t *in, void *u) { (void)u; return (in[0] - (in[1] << 3)) + in[1]; }
+static void ival_logic_dependent_input(void)
+{
+    sim_ctx *c = sim_new();
+    sim_fmt fz, fq, fy;
+    sim_fmt_make(0, 6, 0, &fz, NULL, 0);
+    sim_fmt_make(0, 3, 0, &fq, NULL, 0);
+    sim_fmt_make(0, 5, 0, &fy, NULL, 0);
+    sim_signal *z = sim_signal_new(c, NULL, "z", fz, SIM_KIND_INPUT);
+    sim_signal *zq = sim_logic(c, NULL, "zq", fq, 1, &z, top_bits, NULL, 0);
+    sim_signal *ins[2] = { z, zq };
+    sim_signal *y = sim_logic(c, NULL, "y", fy, 2, ins, rest_plus, NULL, 0);
+    sim_ival v[8], pre, post;
+    memset(v, 0, sizeof v);
+    for (int64_t lo = 0; lo < 64; lo += 5)
+        for (int64_t hi = lo; hi < 64; hi += 7) {
+            v[z->index] = (sim_ival){ lo, hi };
+            sim_ival_eval(zq, v, &v[zq->index], &post);
+            sim_ival_eval(y, v, &pre, &post);
+            sim_wide blo = 0, bhi = 0;
+            for (int64_t x = lo; x <= hi; x++) {
+                int64_t in[2] = { x, top_bits(&x, NULL) };
+                sim_wide yv = elem_at(y, in);
+                if (x == lo || yv < blo) blo = yv;
+                if (x == lo || yv > bhi) bhi = yv;
+            }
+            TST_CHECK(pre.lo == blo && pre.hi == bhi, "z [%lld, %lld]: [%lld, %lld], brute force [%lld, %lld]", (long long)lo,
+                      (long long)hi, (long long)pre.lo, (long long)pre.hi, (long long)blo, (long long)bhi);
+        }
+    sim_free(c);
+}
+
 /* Mux with a data select, block key with a data pass, register with an
  * unknown enable: the hull of the outcomes; with known ones, exactly the
  * chosen one. */
@@ -288,6 +387,25 @@ static void div3_contains(void) { check_unit("div3", 0, 16); }
 /* the clamp max(0, 1 - P): a guarded block key (ival_guarded_key) */
 static void d_approx_contains(void) { check_unit("d_approx", 0, 16); check_unit("d_approx", 0, 10); }
 static void ward_approx_contains(void) { check_unit("ward_approx", 0, 16); }
+/* hf_lookup's bilinear lookups a + t (b - a), t in [0, 1]
+ * (ival_interpolation), and its reciprocal, a logic element of z and of
+ * z's top bits (ival_logic_dependent_input): on its stimuli's box and
+ * on its formats' whole ranges (x, y in [-2, 2), z in [0, 2)) every
+ * format holds its interval; before, 11 and 17 signals "could not". */
+static void hf_lookup_contains(void)
+{
+    check_unit("hf_lookup", 0, 16);
+    const unit_desc *u = unit_find("hf_lookup");
+    unit_cfg cfg;
+    unit_cfg_default(u, &cfg);
+    unit_fmts f;
+    char err[600] = "";
+    tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err);
+    tb_derived d;
+    TST_CHECK(!tb_derive(u, &cfg, &f, NULL, &d, err, sizeof err), "%s", err);
+    TST_EQ_INT(d.nfail, 0);
+    tb_derived_free(&d);
+}
 /* A span unit's handshake depends on its data (the span's pixel count):
  * not derived, refused with a message rather than a wrong interval. */
 static void span3_refused(void)
@@ -330,6 +448,8 @@ int main(void)
     TST_RUN(ival_matches_brute_force);
     TST_RUN(ival_selects);
     TST_RUN(ival_guarded_key);
+    TST_RUN(ival_interpolation);
+    TST_RUN(ival_logic_dependent_input);
     TST_RUN(horner3_format_ranges_by_hand);
     TST_RUN(horner3_every_schedule);
     TST_RUN(horner2_contains);
@@ -337,6 +457,7 @@ int main(void)
     TST_RUN(div3_contains);
     TST_RUN(d_approx_contains);
     TST_RUN(ward_approx_contains);
+    TST_RUN(hf_lookup_contains);
     TST_RUN(span3_refused);
     TST_EXIT();
 }
