@@ -40,6 +40,8 @@ sim_aff sim_aff_symbol(double lo, double hi, uint32_t *next);
 /* The form of a raw interval of format f: a point is exact, a wider one
  * a new symbol. */
 sim_aff sim_aff_of_ival(sim_ival v, sim_fmt f, uint32_t *next);
+/* ka a + kb b, the symbols shared. */
+sim_aff sim_aff_lin(double ka, const sim_aff *a, double kb, const sim_aff *b);
 /* Its hull as reals. */
 void sim_aff_hull(const sim_aff *a, double *lo, double *hi);
 

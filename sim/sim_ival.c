@@ -5,6 +5,7 @@
  * file's own). */
 #include "sim/sim_ival.h"
 #include "sim/sim_op.h"
+#include <math.h>
 
 sim_wide sim_ival_round(sim_wide x, int src_f, int dst_f, sim_round r)
 {
@@ -287,6 +288,75 @@ static void interpolated(const sim_signal *y, const sim_prim_info *pi, const sim
     }
 }
 
+/* A logic element stated linear (sim_logic_linear): y = k x + e, e in
+ * [lo, hi], x's interval v (fx fraction bits); y's values are raws of
+ * its format, so the ends go inward to one (after a relative 2^-50
+ * outward, far above the doubles' rounding). */
+static void linear_narrow(const sim_signal *y, const sim_logic_lin *l, sim_ival v, int fx, sim_ival *pre)
+{
+    double a = l->k * ldexp((double)v.lo, -fx), b = l->k * ldexp((double)v.hi, -fx);
+    double lo = fmin(a, b) + l->lo, hi = fmax(a, b) + l->hi, m = fmax(fabs(lo), fabs(hi)) * 0x1p-50;
+    lo = ceil(ldexp(lo - m, y->fmt.fbits));
+    hi = floor(ldexp(hi + m, y->fmt.fbits));
+    if (!(fabs(lo) < 0x1p62) || !(fabs(hi) < 0x1p62) || lo > hi) return;
+    if ((sim_wide)lo > pre->lo) pre->lo = (sim_wide)lo;
+    if ((sim_wide)hi < pre->hi) pre->hi = (sim_wide)hi;
+    if (pre->lo > pre->hi) pre->hi = pre->lo;       /* cannot happen; stay an interval */
+}
+
+/* g's value (a one-input logic element's, as its signal holds it) at z. */
+static int64_t g_at(const sim_prim_info *g, const sim_signal *gy, int64_t z)
+{
+    return sim__canon(g->fn(&z, g->user), gy->fmt);
+}
+
+int sim_ival_where(const sim_signal *g, const sim_ival *vals, int64_t s, sim_ival *zs)
+{
+    sim_prim_info pg;
+    if (sim_prim_describe(g, &pg) || sim_kind_eval(pg.kind) != SIM_KIND_LOGIC || pg.n != 1 || !pg.monotone) return -1;
+    sim_ival zv = vals[pg.in[0]->index];
+    if (zv.lo < INT64_MIN || zv.hi > INT64_MAX) return -1;
+    /* the first z where g reaches s, then the last where it has not passed s */
+    int64_t a = (int64_t)zv.lo, b = (int64_t)zv.hi;
+    if (g_at(&pg, g, b) < s || g_at(&pg, g, a) > s) return 0;
+    int64_t lo = a, hi = b;
+    while (lo < hi) { int64_t m = (int64_t)(((sim_wide)lo + hi) >> 1); if (g_at(&pg, g, m) >= s) hi = m; else lo = m + 1; }
+    if (g_at(&pg, g, lo) != s) return 0;
+    int64_t first = lo;
+    hi = b;
+    while (lo < hi) { int64_t m = (int64_t)(((sim_wide)lo + hi + 1) >> 1); if (g_at(&pg, g, m) <= s) lo = m; else hi = m - 1; }
+    *zs = (sim_ival){ first, lo };
+    return 1;
+}
+
+/* A multiplexer whose select is a one-input logic element g(z) (a sign
+ * test of a trial difference): input s is passed only when z is among
+ * the values where g is s (zs), so s's interval is narrowed by it when
+ * s's input is z itself, or an operand p of z = p - q or z = p + q that
+ * z keeps exactly (no rounding, no overflow): p = z + q, or z - q. x:
+ * the input's interval, narrowed in place. */
+static void branch_narrow(const sim_signal *x, const sim_signal *z, sim_ival zs, const sim_ival *vals, sim_ival *x_iv)
+{
+    sim_ival n = { 0, 0 };
+    sim_prim_info e;
+    if (x == z) n = zs;
+    else {
+        if (sim_prim_describe(z, &e) || (sim_kind_eval(e.kind) != SIM_KIND_SUB && sim_kind_eval(e.kind) != SIM_KIND_ADD)
+            || e.a != x || x->fmt.fbits != z->fmt.fbits || e.src_f != z->fmt.fbits || !aligned(&e) || !no_overflow(z, vals))
+            return;
+        sim_ival q = vals[e.b->index];
+        int sh = z->fmt.fbits - e.b->fmt.fbits;     /* q's raws on z's grid: aligned, sh >= 0 */
+        if (sh < 0 || sh > 60) return;
+        q.lo *= (sim_wide)1 << sh;
+        q.hi *= (sim_wide)1 << sh;
+        n = sim_kind_eval(e.kind) == SIM_KIND_SUB ? (sim_ival){ zs.lo + q.lo, zs.hi + q.hi }
+                                                   : (sim_ival){ zs.lo - q.hi, zs.hi - q.lo };
+    }
+    if (n.lo > x_iv->lo) x_iv->lo = n.lo;
+    if (n.hi < x_iv->hi) x_iv->hi = n.hi;
+    if (x_iv->lo > x_iv->hi) x_iv->hi = x_iv->lo;   /* cannot happen; stay an interval */
+}
+
 int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_ival *post)
 {
     sim_prim_info pi;
@@ -325,9 +395,17 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
         sim_wide a = sel.lo < 0 ? 0 : sel.lo, b = sel.hi >= pi.n ? pi.n - 1 : sel.hi;
         for (sim_wide s = a; s <= b; s++) {
             const sim_signal *x = pi.in[(int)s];
-            into(y, vals[x->index], x->fmt.fbits, r, o, &p, &q);
+            sim_ival xv = vals[x->index], zs;
+            if (a < b) {                /* a data select: where its guard gives s */
+                int w = sim_ival_where(pi.c, vals, (int64_t)s, &zs);
+                if (w == 0) continue;   /* never selected */
+                sim_prim_info g;
+                if (w > 0 && !sim_prim_describe(pi.c, &g)) branch_narrow(x, g.in[0], zs, vals, &xv);
+            }
+            into(y, xv, x->fmt.fbits, r, o, &p, &q);
             take(&any, pre, post, p, q);
         }
+        if (!any) *pre = *post = (sim_ival){ 0, 0 };    /* no input can be selected: cannot happen */
         return 0;
     }
     case SIM_KIND_BK: {
@@ -350,6 +428,8 @@ int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_
     }
     case SIM_KIND_LOGIC:
         *pre = *post = logic_eval(y, &pi, vals);
+        if (pi.lin) linear_narrow(y, pi.lin, vals[pi.in[pi.lin->i]->index], pi.in[pi.lin->i]->fmt.fbits, pre);
+        *post = *pre;
         return 0;
     default:
         return -1;

@@ -38,6 +38,11 @@ typedef struct sim_ival { sim_wide lo, hi; } sim_ival;   /* raws of the signal's
  * element sim_prim_describe knows (an input, a clock, a user process). */
 int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_ival *post);
 
+/* Where g, a one-input logic element of some z stated monotone
+ * (sim_logic_monotone: a sign test), gives the raw s, z within its
+ * interval in vals: 1 and the first and last such z in *zs (by
+ * bisection), 0 when no z does, -1 when g is no such element. */
+int sim_ival_where(const sim_signal *g, const sim_ival *vals, int64_t s, sim_ival *zs);
 /* Round x (raw with src_f fraction bits) to dst_f fraction bits, no
  * overflow handling: monotone in x. */
 sim_wide sim_ival_round(sim_wide x, int src_f, int dst_f, sim_round r);
