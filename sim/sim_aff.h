@@ -14,7 +14,14 @@
  * rounding to the element's format adds its error range to the
  * remainder; what the forms cannot follow (a multiplexer with an unknown
  * select, logic, an overflow) becomes the element's interval as a fresh
- * symbol. Values are reals (doubles); every operation widens the
+ * symbol. A logic element its unit states linear (sim_logic_linear) is
+ * k x plus its error as a symbol of its own (so that the forms computed
+ * from it share it). A multiplexer selected by a monotone test of
+ * z = p - q (sim_ival.h) bounds each input, and its difference from q,
+ * given z where the test selects it; when all lie on one side of q the
+ * output is q's form plus that difference as a new symbol: the relation
+ * "below q" (a restoring divider's remainder under its divisor) carries
+ * into the next clock. Values are reals (doubles); every operation widens the
  * remainder by a relative 2^-48 of the magnitudes involved, far above
  * the doubles' rounding, so the hull stays sound.
  *

@@ -21,6 +21,20 @@
  * passes only values computed from a z where g is nonzero: its interval
  * is taken over those (sim_ival.c, guarded).
  *
+ * A multiplexer whose select is a one-input logic element g(z) stated
+ * monotone (sim_logic_monotone: a sign test) passes each input only
+ * where g gives its index (sim_ival_where): when the input is z, or an
+ * operand p of z = p -+ q that z keeps exactly, its interval is taken
+ * over those z.
+ *
+ * An adder y = a + m with m = t (b - a) and t in [0, 1] (interpolation)
+ * is within hull(a, b), its roundings added exactly (sim_ival.c).
+ *
+ * A logic element is its function over its inputs' values when they are
+ * few (an input computed from another of its inputs by a one-input logic
+ * element is not enumerated as free), narrowed by what its unit states
+ * of it (sim_logic_linear).
+ *
  * Knows nothing of units: the caller holds one interval per signal,
  * indexed by sim_signal.index, and drives inputs and the clock itself.
  */
