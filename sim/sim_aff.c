@@ -97,6 +97,8 @@ static sim_aff lin(double ka, const sim_aff *a, double kb, const sim_aff *b)
     return r;
 }
 
+sim_aff sim_aff_lin(double ka, const sim_aff *a, double kb, const sim_aff *b) { return lin(ka, a, kb, b); }
+
 static sim_aff scaled(double k, const sim_aff *a)
 {
     sim_aff z = aff_const(0);
@@ -151,6 +153,93 @@ static int raw_hull(const sim_aff *a, int fbits, sim_ival *out)
 
 static double pow2(int e) { return ldexp(1, e); }
 
+/* The reals x can be, where x's form is X, when z (form Z) is within
+ * [zlo, zhi]: X's hull, and z plus the hull of X - Z (X = Z + (X - Z)). */
+static void bound_given(const sim_aff *X, const sim_aff *Z, double zlo, double zhi, double *lo, double *hi)
+{
+    sim_aff d = lin(1, X, -1, Z);
+    double dl, dh;
+    sim_aff_hull(X, lo, hi);
+    sim_aff_hull(&d, &dl, &dh);
+    if (zlo + dl > *lo) *lo = zlo + dl;
+    if (zhi + dh < *hi) *hi = zhi + dh;
+}
+
+/* A multiplexer whose select depends on the data and is a one-input
+ * logic element g(z) (a sign test of z = p - q): each input s is taken
+ * only where g(z) is s (sim_ival_where), so the value it passes, and its
+ * difference from q, are bounded given z there (bound_given). ipre is
+ * narrowed to the hull over the inputs that can be selected. When every
+ * such input lies on one side of q (the restoring divider's remainder
+ * below its divisor: r - d in [-d, -lsb]), the output's form is q's plus
+ * that difference as a symbol of its own, which keeps the relation into
+ * the next clock, where the interval alone would lose it. 0, or -1 when
+ * the select is no such element (the caller then takes the interval). */
+static int guarded_mux(const sim_signal *y, const sim_prim_info *pi, const sim_aff *forms, const sim_ival *vals,
+                       sim_round r, sim_ovf o, sim_ival *ipre, sim_ival *ipost, sim_aff *pre, sim_aff *post,
+                       uint32_t *next)
+{
+    sim_prim_info g, ze;
+    sim_ival sel = vals[pi->c->index];
+    if (sel.lo < 0 || sel.hi >= pi->n || sim_prim_describe(pi->c, &g) || sim_kind_eval(g.kind) != SIM_KIND_LOGIC
+        || g.n != 1)
+        return -1;
+    const sim_signal *z = g.in[0], *q = NULL;
+    if (!sim_prim_describe(z, &ze) && sim_kind_eval(ze.kind) == SIM_KIND_SUB && ze.b
+        && ze.a->fmt.fbits + ze.sa == ze.src_f && ze.b->fmt.fbits + ze.sb == ze.src_f)
+        q = ze.b;
+    const sim_aff *Z = &forms[z->index];
+    double lo = INFINITY, hi = -INFINITY, dlo = INFINITY, dhi = -INFINITY;
+    for (sim_wide s = sel.lo; s <= sel.hi; s++) {
+        sim_ival zs = vals[z->index];
+        if (sim_ival_where(pi->c, vals, (int64_t)s, &zs) == 0) continue;
+        double zlo = raw_real(zs.lo, z->fmt.fbits), zhi = raw_real(zs.hi, z->fmt.fbits), l, h;
+        const sim_signal *x = pi->in[(int)s];
+        sim_aff X = rounded(forms[x->index], x->fmt.fbits, y, r);
+        bound_given(&X, Z, zlo, zhi, &l, &h);
+        lo = fmin(lo, l);
+        hi = fmax(hi, h);
+        if (q) {
+            sim_aff T = lin(1, &X, -1, &forms[q->index]);
+            bound_given(&T, Z, zlo, zhi, &l, &h);
+            dlo = fmin(dlo, l);
+            dhi = fmax(dhi, h);
+        }
+    }
+    if (lo > hi) return -1;                         /* no input can be selected: cannot happen */
+    /* y's values are raws of its format: the ends inward to one */
+    sim_aff hullf = aff_const((lo + hi) / 2);
+    hullf.rlo = -(hi - lo) / 2;
+    hullf.rhi = (hi - lo) / 2;
+    sim_ival ap;
+    if (!raw_hull(&hullf, y->fmt.fbits, &ap)) {
+        if (ap.lo > ipre->lo) ipre->lo = ap.lo;
+        if (ap.hi < ipre->hi) ipre->hi = ap.hi;
+        if (ipre->lo > ipre->hi) ipre->hi = ipre->lo;   /* cannot happen; stay an interval */
+    }
+    *ipost = sim_ival_fit(*ipre, y->fmt, o);
+    int fits = sim_ival_within(*ipre, (sim_ival){ sim_fmt_raw_min(y->fmt), sim_fmt_raw_max(y->fmt) });
+    if (q && fits) {
+        /* y - q is a multiple of the finer of their LSBs: inward to one;
+         * and within y's interval less q's */
+        double ql, qh, yl = raw_real(ipre->lo, y->fmt.fbits), yh = raw_real(ipre->hi, y->fmt.fbits);
+        sim_aff_hull(&forms[q->index], &ql, &qh);
+        dlo = fmax(dlo, yl - qh);
+        dhi = fmin(dhi, yh - ql);
+        int gb = y->fmt.fbits > q->fmt.fbits ? y->fmt.fbits : q->fmt.fbits;
+        dlo = ldexp(ceil(ldexp(dlo, gb) - 0x1p-20), -gb);
+        dhi = ldexp(floor(ldexp(dhi, gb) + 0x1p-20), -gb);
+        if (dlo <= dhi && (dhi < 0 || dlo > 0)) {
+            sim_aff e = sim_aff_symbol(dlo, dhi, next);
+            *pre = *post = lin(1, &forms[q->index], 1, &e);
+            return 0;
+        }
+    }
+    *pre = sim_aff_of_ival(*ipre, y->fmt, next);
+    *post = ipost->lo == ipre->lo && ipost->hi == ipre->hi ? *pre : sim_aff_of_ival(*ipost, y->fmt, next);
+    return 0;
+}
+
 int sim_aff_eval(const sim_signal *y, const sim_aff *forms, const sim_ival *vals, sim_ival *ipre, sim_ival *ipost,
                  sim_aff *pre, sim_aff *post, uint32_t *next)
 {
@@ -180,6 +269,7 @@ int sim_aff_eval(const sim_signal *y, const sim_aff *forms, const sim_ival *vals
     }
     case SIM_KIND_MUX: {
         sim_ival sel = vals[pi.c->index];
+        if (sel.lo != sel.hi && !guarded_mux(y, &pi, forms, vals, r, o, ipre, ipost, pre, post, next)) return 0;
         if (sel.lo != sel.hi) known = 0;
         else if (sel.lo < 0 || sel.lo >= pi.n) v = aff_const(0);    /* a select out of range gives 0 */
         else { const sim_signal *x = pi.in[(int)sel.lo]; v = forms[x->index]; src_f = x->fmt.fbits; }
@@ -211,7 +301,13 @@ int sim_aff_eval(const sim_signal *y, const sim_aff *forms, const sim_ival *vals
         src_f = pi.src_f;
         break;
     case SIM_KIND_LOGIC:
-        known = 0;
+        if (pi.lin) {
+            /* stated linear: k x + e, e in [lo, hi] (its rounding
+             * included) a symbol of its own, so that the forms computed
+             * from y share it (y - d and a trial difference y - d alike) */
+            sim_aff e = sim_aff_symbol(pi.lin->lo, pi.lin->hi, next);
+            v = lin(pi.lin->k, &forms[pi.in[pi.lin->i]->index], 1, &e);
+        } else known = 0;
         break;
     default:
         return -1;

@@ -14,7 +14,14 @@
  * rounding to the element's format adds its error range to the
  * remainder; what the forms cannot follow (a multiplexer with an unknown
  * select, logic, an overflow) becomes the element's interval as a fresh
- * symbol. Values are reals (doubles); every operation widens the
+ * symbol. A logic element its unit states linear (sim_logic_linear) is
+ * k x plus its error as a symbol of its own (so that the forms computed
+ * from it share it). A multiplexer selected by a monotone test of
+ * z = p - q (sim_ival.h) bounds each input, and its difference from q,
+ * given z where the test selects it; when all lie on one side of q the
+ * output is q's form plus that difference as a new symbol: the relation
+ * "below q" (a restoring divider's remainder under its divisor) carries
+ * into the next clock. Values are reals (doubles); every operation widens the
  * remainder by a relative 2^-48 of the magnitudes involved, far above
  * the doubles' rounding, so the hull stays sound.
  *
@@ -40,6 +47,8 @@ sim_aff sim_aff_symbol(double lo, double hi, uint32_t *next);
 /* The form of a raw interval of format f: a point is exact, a wider one
  * a new symbol. */
 sim_aff sim_aff_of_ival(sim_ival v, sim_fmt f, uint32_t *next);
+/* ka a + kb b, the symbols shared. */
+sim_aff sim_aff_lin(double ka, const sim_aff *a, double kb, const sim_aff *b);
 /* Its hull as reals. */
 void sim_aff_hull(const sim_aff *a, double *lo, double *hi);
 

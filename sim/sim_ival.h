@@ -21,6 +21,20 @@
  * passes only values computed from a z where g is nonzero: its interval
  * is taken over those (sim_ival.c, guarded).
  *
+ * A multiplexer whose select is a one-input logic element g(z) stated
+ * monotone (sim_logic_monotone: a sign test) passes each input only
+ * where g gives its index (sim_ival_where): when the input is z, or an
+ * operand p of z = p -+ q that z keeps exactly, its interval is taken
+ * over those z.
+ *
+ * An adder y = a + m with m = t (b - a) and t in [0, 1] (interpolation)
+ * is within hull(a, b), its roundings added exactly (sim_ival.c).
+ *
+ * A logic element is its function over its inputs' values when they are
+ * few (an input computed from another of its inputs by a one-input logic
+ * element is not enumerated as free), narrowed by what its unit states
+ * of it (sim_logic_linear).
+ *
  * Knows nothing of units: the caller holds one interval per signal,
  * indexed by sim_signal.index, and drives inputs and the clock itself.
  */
@@ -38,6 +52,11 @@ typedef struct sim_ival { sim_wide lo, hi; } sim_ival;   /* raws of the signal's
  * element sim_prim_describe knows (an input, a clock, a user process). */
 int sim_ival_eval(const sim_signal *y, const sim_ival *vals, sim_ival *pre, sim_ival *post);
 
+/* Where g, a one-input logic element of some z stated monotone
+ * (sim_logic_monotone: a sign test), gives the raw s, z within its
+ * interval in vals: 1 and the first and last such z in *zs (by
+ * bisection), 0 when no z does, -1 when g is no such element. */
+int sim_ival_where(const sim_signal *g, const sim_ival *vals, int64_t s, sim_ival *zs);
 /* Round x (raw with src_f fraction bits) to dst_f fraction bits, no
  * overflow handling: monotone in x. */
 sim_wide sim_ival_round(sim_wide x, int src_f, int dst_f, sim_round r);

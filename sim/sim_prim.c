@@ -607,6 +607,23 @@ void sim_logic_verilog(sim_signal *y, const char *text)
     ((prim *)y->driver->data)->e.verilog = sim_strdup(y->ctx, text);
 }
 
+void sim_logic_linear(sim_signal *y, int i, double k, double lo, double hi)
+{
+    if (y->kind != SIM_KIND_LOGIC || !elem_of(y)) return;
+    prim *p = y->driver->data;
+    if (i < 0 || i >= p->e.n || !(lo <= hi)) return;
+    sim_logic_lin *l = sim_alloc(y->ctx, sizeof *l);
+    *l = (sim_logic_lin){ i, k, lo, hi };
+    p->e.lin = l;
+}
+
+void sim_logic_monotone(sim_signal *y)
+{
+    if (y->kind != SIM_KIND_LOGIC || !elem_of(y)) return;
+    prim *p = y->driver->data;
+    if (p->e.n == 1) p->e.monotone = 1;
+}
+
 /* ------------------------------------------------------------ used values */
 
 static void add_use(sim_signal *s, const void *pr, int fill)

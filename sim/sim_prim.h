@@ -104,6 +104,17 @@ void sim_logic_verilog(sim_signal *y, const char *text);
  * knows it better than the estimate from its input bits: 0 for wiring
  * (bits concatenated or selected), 1 for an inverter. */
 void sim_logic_depth(sim_signal *y, int levels);
+/* Optional, for range analysis (sim_ival.h, sim_aff.h), where a logic
+ * function is otherwise opaque: the unit states what it knows of it, and
+ * test_derive checks each statement against the function over every
+ * input raw of small formats. sim_logic_linear: in reals, y is k times
+ * its input i plus an error within [lo, hi] (a shift with bits shifted
+ * in, a floor): y = k in_i + e. sim_logic_monotone: a one-input element
+ * whose raw does not decrease as its input's grows (a sign test, a
+ * comparator), so that where it takes a value is found by bisection. */
+void sim_logic_linear(sim_signal *y, int i, double k, double lo, double hi);
+void sim_logic_monotone(sim_signal *y);
+typedef struct sim_logic_lin { int i; double k, lo, hi; } sim_logic_lin;
 
 /* Quantize an exact wide value with src_fbits into s's format using the
  * element's modes r, o (s's format's own modes win), count an overflow on s; used by the primitives and by
@@ -146,6 +157,8 @@ typedef struct sim_prim_info {
     sim_ovf     o;
     const char *verilog;     /* logic: sim_logic_verilog's text, or NULL */
     int         qlogic;      /* 1: rounding or saturation logic after the element (sim_area_round, sim_area_sat) */
+    const sim_logic_lin *lin;  /* logic: sim_logic_linear's statement, or NULL */
+    int         monotone;    /* logic: sim_logic_monotone said so */
 } sim_prim_info;
 /* 0 and *out filled with y's element record for a signal driven by a
  * primitive (or a constant: kind, y, trunc and wrap); -1 for an input, a

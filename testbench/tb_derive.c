@@ -86,6 +86,9 @@ typedef struct dsim {
     uint32_t *regs, nregs;
     unsigned char *mark;
     unsigned char *data;            /* depends on the data inputs (mark_data) */
+    sim_ival *memo;                 /* [n][MEMO_IN + 1]: a logic element's inputs and interval (logic_memo_eval) */
+    unsigned char *memo_set;
+    const sim_signal *below_lo, *below_hi;  /* the unit's precondition lo < hi (unit_desc.below), or NULL */
     sim_ival *snap;                 /* [nsnap][n]: the state after each acceptance but the last */
     size_t *snap_got, nsnap, capsnap;   /* output beats by then */
 } dsim;
@@ -129,9 +132,34 @@ static void dsim_free(dsim *d)
     free(d->aval); free(d->anxt);
     free(d->order); free(d->regs); free(d->mark);
     free(d->data); free(d->snap); free(d->snap_got);
+    free(d->memo); free(d->memo_set);
 }
 
 static int pt(sim_ival v) { return v.lo == v.hi; }
+
+/* A logic element's interval is its function over its inputs' values
+ * (up to 2^16 of them, sim_ival.c): the same inputs' intervals as at its
+ * last evaluation (most clocks: the data's intervals stay) give the same
+ * interval, kept here. Other elements are evaluated. */
+#define MEMO_IN 8
+static void logic_memo_eval(dsim *d, const sim_signal *y, sim_ival *pre, sim_ival *post)
+{
+    sim_prim_info pi;
+    if (sim_prim_describe(y, &pi) || sim_kind_eval(pi.kind) != SIM_KIND_LOGIC || pi.n > MEMO_IN) {
+        sim_ival_eval(y, d->val, pre, post);
+        return;
+    }
+    sim_ival *m = d->memo + (size_t)y->index * (MEMO_IN + 1);
+    int same = d->memo_set[y->index];
+    for (int k = 0; k < pi.n && same; k++)
+        same = m[k].lo == d->val[pi.in[k]->index].lo && m[k].hi == d->val[pi.in[k]->index].hi;
+    if (!same) {
+        sim_ival_eval(y, d->val, &m[MEMO_IN], post);
+        for (int k = 0; k < pi.n; k++) m[k] = d->val[pi.in[k]->index];
+        d->memo_set[y->index] = 1;
+    }
+    *pre = *post = m[MEMO_IN];      /* a logic element's pre is its post */
+}
 
 /* One clock: the inputs (valid as given; the data inputs keep their
  * intervals), the combinational elements in order, each one's value
@@ -146,7 +174,7 @@ static int clock_step(dsim *d, const unit_io *io, int valid, char *err, size_t e
         uint32_t i = d->order[k];
         sim_ival pre, post;
         sim_aff apre;
-        sim_ival_eval(sim_signal_at(d->c, i), d->val, &pre, &post);
+        logic_memo_eval(d, sim_signal_at(d->c, i), &pre, &post);
         sim_aff_eval(sim_signal_at(d->c, i), d->aval, d->val, &pre, &post, &apre, &d->aval[i], &d->nsym);
         d->val[i] = post;
         d->hull[i] = sim_ival_hull(d->hull[i], pre);
@@ -186,10 +214,52 @@ static void dsim_alloc(dsim *d, sim_ctx *c)
     d->data = calloc(n, 1);
     d->aval = calloc(n, sizeof *d->aval);
     d->anxt = calloc(n, sizeof *d->anxt);
-    if (!d->aval || !d->anxt) base_out_of_memory();
+    d->memo = calloc(n * (MEMO_IN + 1), sizeof *d->memo);
+    d->memo_set = calloc(n, 1);
+    if (!d->aval || !d->anxt || !d->memo || !d->memo_set) base_out_of_memory();
     if (!d->val || !d->hull || !d->nxt_pre || !d->nxt_post || !d->bound || !d->order || !d->regs || !d->mark ||
         !d->data)
         base_out_of_memory();
+}
+
+/* The precondition lo < hi between two inputs (unit_desc.below), as the
+ * unit holds them: hi - lo is at least the finer of their LSBs (gap).
+ * Their intervals: lo's below hi's top, hi's above lo's bottom. */
+static double below_gap(const dsim *d, int *g)
+{
+    *g = d->below_lo->fmt.fbits > d->below_hi->fmt.fbits ? d->below_lo->fmt.fbits : d->below_hi->fmt.fbits;
+    return ldexp(1, -*g);
+}
+
+static void below_narrow(dsim *d)
+{
+    int g;
+    below_gap(d, &g);
+    sim_ival *lo = &d->val[d->below_lo->index], *hi = &d->val[d->below_hi->index];
+    int fl = d->below_lo->fmt.fbits, fh = d->below_hi->fmt.fbits;
+    /* on the common grid 2^-g: lo <= hi's top - 1, hi >= lo's bottom + 1 */
+    sim_wide top = hi->hi * ((sim_wide)1 << (g - fh)) - 1, bot = lo->lo * ((sim_wide)1 << (g - fl)) + 1;
+    sim_wide lo_max = top >> (g - fl), hi_min = -((-bot) >> (g - fh));    /* floor, ceil */
+    if (lo_max < lo->hi) lo->hi = lo_max;
+    if (hi_min > hi->lo) hi->lo = hi_min;
+    if (lo->lo > lo->hi) lo->hi = lo->lo;           /* no item meets it: left to the runs */
+    if (hi->lo > hi->hi) hi->lo = hi->hi;
+    d->hull[d->below_lo->index] = *lo;
+    d->hull[d->below_hi->index] = *hi;
+}
+
+/* lo's form as hi's less a symbol of its own over the gaps an item can
+ * have, [LSB, hi's top - lo's bottom]: the relation the unit's datapath
+ * relies on (div's remainder stays below the divisor from its load on). */
+static void below_forms(dsim *d)
+{
+    int g;
+    double gap = below_gap(d, &g);
+    const sim_signal *ls = d->below_lo, *hs = d->below_hi;
+    double top = ldexp((double)d->val[hs->index].hi, -hs->fmt.fbits), bot = ldexp((double)d->val[ls->index].lo, -ls->fmt.fbits);
+    if (top - bot < gap) return;
+    sim_aff u = sim_aff_symbol(gap, top - bot, &d->nsym);
+    d->aval[ls->index] = sim_aff_lin(1, &d->aval[hs->index], -1, &u);
 }
 
 /* Everything starts at its value after elaboration (registers their
@@ -213,7 +283,13 @@ static void dsim_start(dsim *d, const tb_built *b, const unit_desc *u, const uni
         d->val[s->index] = sim_ival_fit(pre, s->fmt, sim_fmt_ovf(s->fmt, cfg->ovf));
         d->aval[s->index] = sim_aff_of_ival(d->val[s->index], s->fmt, &d->nsym);
         d->data[s->index] = 1;
+        if (u->below.lo && !strcmp(u->sigs[i].name, u->below.lo)) d->below_lo = s;
+        if (u->below.hi && !strcmp(u->sigs[i].name, u->below.hi)) d->below_hi = s;
     }
+    if (d->below_lo && d->below_hi) {
+        below_narrow(d);
+        below_forms(d);
+    } else d->below_lo = d->below_hi = NULL;
 }
 
 /* The next item on the inputs: their forms new symbols, unrelated to the
@@ -224,6 +300,7 @@ static void new_item(dsim *d)
         const sim_signal *s = d->io->in[k];
         d->aval[s->index] = sim_aff_of_ival(d->val[s->index], s->fmt, &d->nsym);
     }
+    if (d->below_lo) below_forms(d);
 }
 
 /* State joined (or restored) as intervals: each register's form becomes

@@ -11,6 +11,10 @@
  * derived interval is the hull over every clock of its value before
  * overflow handling (what its format must hold).
  *
+ * A precondition the unit states between two inputs (unit_desc.below:
+ * div's n < d) narrows their intervals and makes the lower one's form the
+ * upper one's less a positive symbol, on every item.
+ *
  * Items come one after another until the register state at an item's
  * acceptance lies within the state at the previous acceptance (the state
  * there is the hull of every earlier one, so the sequence grows and

@@ -29,6 +29,19 @@ check run_json_field grep -q '"ranges_derived": {"ok": false' "$T/out"
 expect run_observed 0 "$S" run horner3 --ranges
 check run_observed_table grep -q 'mul' "$T/out"
 
+# div's remainder under its divisor (its precondition n < d): ok, where r
+# was derived [-2, 4) and flagged; a stimulus breaking n < d (1.5, 1)
+# overflows r, and the sweep's box stimuli leave such inputs out (its
+# table counted 1383 overflows at width 8 before).
+expect run_div_ok 0 "$S" run div --ranges derived
+check run_div_says_ok grep -q '^ranges derived: ok' "$T/out"
+{ grep '^#' "$SHADESIM_HOME/vectors/div.vec"; echo "1.5 1 | 1.5"; } >"$T/nd.vec"
+"$S" run div --vectors "$T/nd.vec" >"$T/nd.txt" 2>&1
+grep -q '^r  *u1\.15  *2 ' "$T/nd.txt" && ok run_div_n_above_d_overflows || fail run_div_n_above_d_overflows "$(grep '^r ' "$T/nd.txt")"
+"$S" sweep div --widths 8:9 --target-error 1e-2 --ranges derived -o "$T/swd" >"$T/swd.txt" 2>&1
+awk '$1 == 8 || $1 == 9 { n++; if ($12 != 0) bad++ } END { exit !(n == 2 && !bad) }' "$T/swd.txt" \
+    && ok sweep_div_box_in_domain || fail sweep_div_box_in_domain "$(grep '^ *[89] ' "$T/swd.txt")"
+
 expect bad_name 2 "$S" run horner3 --ranges derived --range q=0:1
 expect bad_order 2 "$S" run horner3 --ranges derived --range a=2:1
 expect bad_number 2 "$S" run horner3 --ranges derived --range a=x:1

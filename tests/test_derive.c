@@ -132,6 +132,105 @@ static void ival_guarded_key(void)
     }
 }
 
+/* The interpolation y = a + t (b - a) (sub, mul, add; the mul and the
+ * add rounding to fewer bits), every rounding mode: for intervals of a,
+ * b and t (t within [0, 1], and one past 1 where the rule must not
+ * apply), every combination of raws through sim_elem_eval lies within
+ * the derived interval; with t in [0, 1] that interval is within
+ * hull(a, b) widened by the roundings (two LSBs of y), where the plain
+ * intervals reach far past it. */
+static void ival_interpolation(void)
+{
+    static const int64_t box[][6] = {     /* a lo, hi; b lo, hi; t lo, hi (t u1.3: 8 is 1) */
+        { 0, 8, 0, 8, 0, 8 }, { -5, 3, 2, 7, 1, 6 }, { 4, 4, -8, -2, 0, 8 }, { -8, 7, -8, 7, 3, 3 }, { 0, 8, 0, 8, 0, 12 },
+    };
+    for (int rm = 0; rm < 3; rm++)
+        for (size_t bx = 0; bx < sizeof box / sizeof box[0]; bx++) {
+            sim_ctx *c = sim_new();
+            sim_set_quant(c, (sim_round)rm, SIM_OVF_WRAP);
+            sim_fmt fab, ft, fd, fm, fy;
+            sim_fmt_make(1, 2, 3, &fab, NULL, 0);    /* a, b: s2.3 */
+            sim_fmt_make(0, 1, 3, &ft, NULL, 0);     /* t: u1.3 */
+            sim_fmt_make(1, 3, 3, &fd, NULL, 0);     /* b - a exact */
+            sim_fmt_make(1, 4, 2, &fm, NULL, 0);     /* t (b - a) rounded */
+            sim_fmt_make(1, 4, 2, &fy, NULL, 0);     /* y rounded */
+            sim_signal *a = sim_signal_new(c, NULL, "a", fab, SIM_KIND_INPUT);
+            sim_signal *b = sim_signal_new(c, NULL, "b", fab, SIM_KIND_INPUT);
+            sim_signal *t = sim_signal_new(c, NULL, "t", ft, SIM_KIND_INPUT);
+            sim_signal *d = sim_sub(c, NULL, "d", fd, b, a);
+            sim_signal *m = bx & 1 ? sim_mul(c, NULL, "m", fm, d, t) : sim_mul(c, NULL, "m", fm, t, d);
+            sim_signal *y = bx & 1 ? sim_add(c, NULL, "y", fy, m, a) : sim_add(c, NULL, "y", fy, a, m);
+            sim_ival v[16], pre, post;
+            memset(v, 0, sizeof v);
+            v[a->index] = (sim_ival){ box[bx][0], box[bx][1] };
+            v[b->index] = (sim_ival){ box[bx][2], box[bx][3] };
+            v[t->index] = (sim_ival){ box[bx][4], box[bx][5] };
+            sim_ival_eval(d, v, &v[d->index], &post);
+            sim_ival_eval(m, v, &v[m->index], &post);
+            TST_EQ_INT(sim_ival_eval(y, v, &pre, &post), 0);
+            sim_wide lo = 0, hi = 0;
+            int first = 1;
+            for (int64_t x = box[bx][0]; x <= box[bx][1]; x++)
+                for (int64_t z = box[bx][2]; z <= box[bx][3]; z++)
+                    for (int64_t tt = box[bx][4]; tt <= box[bx][5]; tt++) {
+                        int64_t in_d[2] = { z, x }, dv = (int64_t)elem_at(d, in_d);
+                        int64_t in_m[2] = { bx & 1 ? dv : tt, bx & 1 ? tt : dv }, mv = (int64_t)elem_at(m, in_m);
+                        int64_t in_y[2] = { bx & 1 ? mv : x, bx & 1 ? x : mv };
+                        sim_wide yv = elem_at(y, in_y);
+                        if (first || yv < lo) lo = yv;
+                        if (first || yv > hi) hi = yv;
+                        first = 0;
+                    }
+            TST_CHECK(pre.lo <= lo && pre.hi >= hi, "box %zu round %d: [%lld, %lld] misses brute force [%lld, %lld]", bx, rm,
+                      (long long)pre.lo, (long long)pre.hi, (long long)lo, (long long)hi);
+            /* hull(a, b) in y's raws (2 fraction bits: a raw / 2), two LSBs out */
+            int64_t hlo = (box[bx][0] < box[bx][2] ? box[bx][0] : box[bx][2]), hhi = (box[bx][1] > box[bx][3] ? box[bx][1] : box[bx][3]);
+            if (box[bx][5] <= 8)
+                TST_CHECK(pre.lo >= (sim_wide)floor(hlo / 2.0) - 2 && pre.hi <= (sim_wide)ceil(hhi / 2.0) + 2,
+                          "box %zu round %d: [%lld, %lld] not within hull [%lld, %lld] / 2 + 2 LSBs", bx, rm,
+                          (long long)pre.lo, (long long)pre.hi, (long long)hlo, (long long)hhi);
+            sim_free(c);
+        }
+}
+
+/* A logic element of z and of zq = g(z) (a ROM's address beside the
+ * value it comes from, as the reciprocal's): z's values alone are
+ * enumerated, zq's computed from each, so the interval is exactly the
+ * hull of f(z, g(z)) over z; z and zq taken as free would reach values
+ * f never gives (here 8 + 7 = 15 where f(z, g(z)) is at most 8). */
+static int64_t top_bits(const int64_t *in, void *u) { (void)u; return in[0] >> 3; }
+static int64_t rest_plus(const int64_t *in, void *u) { (void)u; return (in[0] - (in[1] << 3)) + in[1]; }
+static void ival_logic_dependent_input(void)
+{
+    sim_ctx *c = sim_new();
+    sim_fmt fz, fq, fy;
+    sim_fmt_make(0, 6, 0, &fz, NULL, 0);
+    sim_fmt_make(0, 3, 0, &fq, NULL, 0);
+    sim_fmt_make(0, 5, 0, &fy, NULL, 0);
+    sim_signal *z = sim_signal_new(c, NULL, "z", fz, SIM_KIND_INPUT);
+    sim_signal *zq = sim_logic(c, NULL, "zq", fq, 1, &z, top_bits, NULL, 0);
+    sim_signal *ins[2] = { z, zq };
+    sim_signal *y = sim_logic(c, NULL, "y", fy, 2, ins, rest_plus, NULL, 0);
+    sim_ival v[8], pre, post;
+    memset(v, 0, sizeof v);
+    for (int64_t lo = 0; lo < 64; lo += 5)
+        for (int64_t hi = lo; hi < 64; hi += 7) {
+            v[z->index] = (sim_ival){ lo, hi };
+            sim_ival_eval(zq, v, &v[zq->index], &post);
+            sim_ival_eval(y, v, &pre, &post);
+            sim_wide blo = 0, bhi = 0;
+            for (int64_t x = lo; x <= hi; x++) {
+                int64_t in[2] = { x, top_bits(&x, NULL) };
+                sim_wide yv = elem_at(y, in);
+                if (x == lo || yv < blo) blo = yv;
+                if (x == lo || yv > bhi) bhi = yv;
+            }
+            TST_CHECK(pre.lo == blo && pre.hi == bhi, "z [%lld, %lld]: [%lld, %lld], brute force [%lld, %lld]", (long long)lo,
+                      (long long)hi, (long long)pre.lo, (long long)pre.hi, (long long)blo, (long long)bhi);
+        }
+    sim_free(c);
+}
+
 /* Mux with a data select, block key with a data pass, register with an
  * unknown enable: the hull of the outcomes; with known ones, exactly the
  * chosen one. */
@@ -213,11 +312,19 @@ static void box_stimuli(const unit_desc *u, const unit_cfg *cfg, const tb_ranges
     int nin = vs->n_in, idx[VEC_MAX_PORTS];
     for (int i = 0, k = 0; i < u->nsigs; i++) if (u->sigs[i].role == UNIT_SIG_IN) idx[k++] = i;
     size_t corners = nin <= 8 ? (size_t)1 << nin : 0;
+    int blo = -1, bhi = -1;         /* the unit's precondition lo < hi (div's n < d) */
+    for (int j = 0; j < nin && u->below.lo; j++) {
+        if (!strcmp(u->sigs[idx[j]].name, u->below.lo)) blo = j;
+        if (!strcmp(u->sigs[idx[j]].name, u->below.hi)) bhi = j;
+    }
     for (size_t r = 0; r < corners + n; r++) {
         for (int j = 0; j < nin; j++) {
             double lo = rg->lo[idx[j]], hi = rg->hi[idx[j]];
             v[j] = r < corners ? ((r >> j) & 1 ? hi : lo) : vec_rng_range(&rng, lo, hi);
         }
+        /* outside the unit's domain: not a stimulus (two LSBs of room at
+         * width 16, so that the quantized inputs keep it) */
+        if (blo >= 0 && bhi >= 0 && !(v[blo] <= v[bhi] - 0x1p-14)) continue;
         u->ref->eval(&cfg->model, v, v + nin);
         vec_set_push(vs, v);
     }
@@ -226,7 +333,11 @@ static void box_stimuli(const unit_desc *u, const unit_cfg *cfg, const tb_ranges
 /* One unit and schedule: formats with derived integer bits, a run on
  * stimuli over the ranges, every observed value within its derived
  * interval and no overflow. */
-static void check_unit(const char *name, int sched, int width)
+static void check_unit_keep(const char *name, int sched, int width, const char *keep_sig);
+static void check_unit(const char *name, int sched, int width) { check_unit_keep(name, sched, width, NULL); }
+/* keep_sig: a signal whose format stays (one a unit's build rule ties to
+ * another's: div's r holds d's range) */
+static void check_unit_keep(const char *name, int sched, int width, const char *keep_sig)
 {
     const unit_desc *u = unit_find(name);
     TST_CHECK(u != NULL, "no unit %s", name);
@@ -241,7 +352,9 @@ static void check_unit(const char *name, int sched, int width)
     unit_fmts f0, f;
     char err[600];
     TST_CHECK(!tb_formats(u, &cfg, NULL, 0, &f0, err, sizeof err), "%s", err);
-    int bad = tb_derive_fmts(u, &cfg, &f0, &rg, NULL, &f, err, sizeof err);
+    unsigned char keep[UNIT_MAX_SIGS] = { 0 };
+    if (keep_sig) keep[unit_sig_index(u, keep_sig)] = 1;
+    int bad = tb_derive_fmts(u, &cfg, &f0, &rg, keep, &f, err, sizeof err);
     TST_CHECK(!bad, "%s: %s", name, err);
     box_stimuli(u, &cfg, &rg, 3000, 77, &box);
     tb_derived d;
@@ -288,6 +401,172 @@ static void div3_contains(void) { check_unit("div3", 0, 16); }
 /* the clamp max(0, 1 - P): a guarded block key (ival_guarded_key) */
 static void d_approx_contains(void) { check_unit("d_approx", 0, 16); check_unit("d_approx", 0, 10); }
 static void ward_approx_contains(void) { check_unit("ward_approx", 0, 16); }
+/* hf_lookup's bilinear lookups a + t (b - a), t in [0, 1]
+ * (ival_interpolation), and its reciprocal, a logic element of z and of
+ * z's top bits (ival_logic_dependent_input): on its stimuli's box and
+ * on its formats' whole ranges (x, y in [-2, 2), z in [0, 2)) every
+ * format holds its interval; before, 11 and 17 signals "could not". */
+static void hf_lookup_contains(void)
+{
+    check_unit("hf_lookup", 0, 16);
+    const unit_desc *u = unit_find("hf_lookup");
+    unit_cfg cfg;
+    unit_cfg_default(u, &cfg);
+    unit_fmts f;
+    char err[600] = "";
+    tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err);
+    tb_derived d;
+    TST_CHECK(!tb_derive(u, &cfg, &f, NULL, &d, err, sizeof err), "%s", err);
+    TST_EQ_INT(d.nfail, 0);
+    tb_derived_free(&d);
+}
+/* div's remainder register under its divisor: with the precondition
+ * n < d it declares, r is derived within [0, d) and every format holds
+ * (before: r in [-1.99997, 3.99997], "cannot hold" in u1.15); runs on
+ * stimuli with n < d stay within the derived intervals. Without the
+ * precondition r is flagged again, and rightly: n = 1.5, d = 1 makes
+ * 2 r - d = 2 on the first step, which u1.15 cannot hold, and a run with
+ * it counts the overflow. */
+static void div_contains(void)
+{
+    check_unit_keep("div", 0, 16, "r");
+    const unit_desc *u = unit_find("div");
+    unit_desc plain = *u;
+    plain.below.lo = plain.below.hi = NULL;
+    unit_cfg cfg;
+    unit_cfg_default(u, &cfg);
+    unit_fmts f;
+    char err[600] = "";
+    tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err);
+    tb_derived d;
+    for (int k = 0; k < 2; k++) {
+        TST_CHECK(!tb_derive(k ? &plain : u, &cfg, &f, NULL, &d, err, sizeof err), "%s", err);
+        TST_EQ_INT(d.nfail, k);
+        int r = d.at[unit_sig_index(u, "r")];
+        /* with n < d: r within [0, 2 - 2^-14] (d below 2, r below d, both on 2^-15) */
+        if (!k) TST_CHECK(d.sigs[r].pre.lo == 0 && d.sigs[r].pre.hi == 65534, "r derived [%lld, %lld]",
+                          (long long)d.sigs[r].pre.lo, (long long)d.sigs[r].pre.hi);
+        tb_derived_free(&d);
+    }
+    vec_set vs;
+    vec_set_init(&vs);
+    vec_set_header(&vs, u->ref, &cfg.model);
+    double row[3] = { 1.5, 1.0, 1.5 };
+    vec_set_push(&vs, row);
+    tb_result res;
+    TST_EQ_INT(tb_run(u, &cfg, &f, &vs, NULL, &res, err, sizeof err), TB_OK);
+    TST_CHECK(res.overflows > 0, "n = 1.5, d = 1: no overflow");
+    tb_result_free(&res);
+    vec_set_free(&vs);
+}
+
+/* Every statement a unit makes about a logic element (sim_logic_linear:
+ * y = k x + e with e in [lo, hi]; sim_logic_monotone: y does not
+ * decrease) against the function over every raw of its inputs, at small
+ * widths where that is at most 2^20 combinations: for every unit that
+ * makes one (div, and schlick and mschlick through the same divider). */
+static void logic_statements_hold(void)
+{
+    int checked = 0;
+    for (int w = 6; w <= 8; w += 2)
+        for (size_t ui = 0; ui < unit_count(); ui++) {
+            const unit_desc *u = unit_at(ui);
+            unit_cfg cfg;
+            unit_cfg_default(u, &cfg);
+            cfg.width = w;
+            unit_fmts f;
+            char err[600];
+            tb_built b;
+            if (tb_formats(u, &cfg, NULL, 0, &f, err, sizeof err) || tb_build(u, &cfg, &f, &b, err, sizeof err)) continue;
+            for (uint32_t i = 0; i < sim_signal_count(b.c); i++) {
+                const sim_signal *y = sim_signal_at(b.c, i);
+                sim_prim_info pi;
+                if (sim_prim_describe(y, &pi) || pi.kind != SIM_KIND_LOGIC || (!pi.lin && !pi.monotone)) continue;
+                double combos = 1;
+                for (int k = 0; k < pi.n; k++) combos *= (double)(pi.in[k]->raw_max - pi.in[k]->raw_min + 1);
+                if (combos > 0x1p20) continue;
+                int64_t v[8], prev = 0;
+                for (int k = 0; k < pi.n; k++) v[k] = pi.in[k]->raw_min;
+                int bad = 0;
+                for (int first = 1;; first = 0) {
+                    int64_t out = elem_at(y, v);
+                    if (pi.lin) {
+                        double x = sim_fx_to_real(v[pi.lin->i], pi.in[pi.lin->i]->fmt), yr = sim_fx_to_real(out, y->fmt);
+                        double e = yr - pi.lin->k * x;
+                        if (!(e >= pi.lin->lo && e <= pi.lin->hi) && !bad++)
+                            TST_CHECK(0, "%s w%d %s: at x = %g, y = %g: e = %g outside [%g, %g]", u->name, w, y->name, x, yr,
+                                      e, pi.lin->lo, pi.lin->hi);
+                    }
+                    if (pi.monotone && !first && out < prev && !bad++)
+                        TST_CHECK(0, "%s w%d %s: decreases at raw %lld", u->name, w, y->name, (long long)v[0]);
+                    prev = out;
+                    int k = 0;
+                    for (; k < pi.n; k++) {
+                        if (v[k] < pi.in[k]->raw_max) { v[k]++; break; }
+                        v[k] = pi.in[k]->raw_min;
+                    }
+                    if (k == pi.n) break;
+                }
+                checked++;
+            }
+            sim_free(b.c);
+        }
+    TST_CHECK(checked >= 6, "only %d statements checked", checked);
+}
+
+/* A multiplexer selected by a monotone test of z = p - q (the restoring
+ * step: z >= 0 ? z : p): for intervals of p and q, every value through
+ * sim_elem_eval lies in the derived interval, which is exactly the hull
+ * of those values (each input only where the test selects it), where the
+ * plain hull of both inputs is wider. */
+static int64_t sign_test(const int64_t *in, void *u) { (void)u; return in[0] >= 0; }
+static void ival_guarded_mux(void)
+{
+    sim_ctx *c = sim_new();
+    sim_fmt fp, fz, u1;
+    sim_fmt_make(0, 3, 2, &fp, NULL, 0);        /* p, q: u3.2, raws 0..31 */
+    sim_fmt_make(1, 4, 2, &fz, NULL, 0);
+    sim_fmt_make(0, 1, 0, &u1, NULL, 0);
+    sim_signal *p = sim_signal_new(c, NULL, "p", fp, SIM_KIND_INPUT);
+    sim_signal *q = sim_signal_new(c, NULL, "q", fp, SIM_KIND_INPUT);
+    sim_signal *z = sim_sub(c, NULL, "z", fz, p, q);
+    sim_signal *g = sim_logic(c, NULL, "g", u1, 1, &z, sign_test, NULL, 1);
+    sim_logic_monotone(g);
+    sim_signal *in[2] = { p, z };
+    sim_signal *m = sim_mux(c, NULL, "m", fz, g, 2, in);
+    sim_ival v[8], pre, post;
+    memset(v, 0, sizeof v);
+    int bad = 0, tighter = 0;
+    for (int64_t plo = 0; plo < 32; plo += 3)
+        for (int64_t phi = plo; phi < 32; phi += 4)
+            for (int64_t qlo = 0; qlo < 32; qlo += 5)
+                for (int64_t qhi = qlo; qhi < 32; qhi += 6) {
+                    v[p->index] = (sim_ival){ plo, phi };
+                    v[q->index] = (sim_ival){ qlo, qhi };
+                    sim_ival_eval(z, v, &v[z->index], &post);
+                    sim_ival_eval(g, v, &v[g->index], &post);
+                    sim_ival_eval(m, v, &pre, &post);
+                    sim_wide blo = 0, bhi = 0;
+                    for (int64_t a = plo; a <= phi; a++)
+                        for (int64_t b = qlo; b <= qhi; b++) {
+                            int64_t zin[2] = { a, b }, zv = (int64_t)elem_at(z, zin), gv = (int64_t)elem_at(g, &zv);
+                            int64_t min[3] = { gv, a, zv };
+                            sim_wide mv = elem_at(m, min);
+                            if ((a == plo && b == qlo) || mv < blo) blo = mv;
+                            if ((a == plo && b == qlo) || mv > bhi) bhi = mv;
+                        }
+                    if ((pre.lo != blo || pre.hi != bhi) && !bad++)
+                        TST_CHECK(0, "p [%lld, %lld] q [%lld, %lld]: [%lld, %lld], brute force [%lld, %lld]", (long long)plo,
+                                  (long long)phi, (long long)qlo, (long long)qhi, (long long)pre.lo, (long long)pre.hi,
+                                  (long long)blo, (long long)bhi);
+                    sim_ival zv = v[z->index];
+                    tighter += pre.hi < (phi > zv.hi ? phi : zv.hi) || pre.lo > (zv.lo < plo ? zv.lo : plo);
+                }
+    TST_EQ_INT(bad, 0);
+    TST_CHECK(tighter > 0, "never tighter than the plain hull");
+    sim_free(c);
+}
+
 /* A span unit's handshake depends on its data (the span's pixel count):
  * not derived, refused with a message rather than a wrong interval. */
 static void span3_refused(void)
@@ -330,6 +609,8 @@ int main(void)
     TST_RUN(ival_matches_brute_force);
     TST_RUN(ival_selects);
     TST_RUN(ival_guarded_key);
+    TST_RUN(ival_interpolation);
+    TST_RUN(ival_logic_dependent_input);
     TST_RUN(horner3_format_ranges_by_hand);
     TST_RUN(horner3_every_schedule);
     TST_RUN(horner2_contains);
@@ -337,6 +618,10 @@ int main(void)
     TST_RUN(div3_contains);
     TST_RUN(d_approx_contains);
     TST_RUN(ward_approx_contains);
+    TST_RUN(hf_lookup_contains);
+    TST_RUN(ival_guarded_mux);
+    TST_RUN(logic_statements_hold);
+    TST_RUN(div_contains);
     TST_RUN(span3_refused);
     TST_EXIT();
 }

@@ -156,6 +156,11 @@ struct unit_desc {
      * by beat (interp's forward differencing accumulates its errors over
      * the pixels); bound is their maximum per port. */
     void (*bound_beats)(const unit_cfg *cfg, const unit_fmts *f, double *per_beat);
+    /* Optional: a precondition between two inputs, lo < hi on every item
+     * as the unit holds them (div: the dividend below the divisor, n < d;
+     * NULL names: none). Derived ranges assume it (tb_derive.h); stimuli
+     * that break it are outside the unit's domain. */
+    struct { const char *lo, *hi; } below;
     /* Optional (NULL: every signal of the schedule is built): whether
      * configuration cfg builds signal i, for units whose signal set depends
      * on a parameter (div3's terms and series). Only asked about signals

@@ -161,6 +161,16 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
     double shifter = shr ? brdf_bitlen((uint64_t)shr_max) * (fr.width + qb) * SIM_GE_MUX2 : 0.0;
     sim_signal *r_load = sim_logic(c, sc, "r_load", fr, nld, ld_in, shr ? f_r_load_shr : f_r_load, ld, shifter);
     vl_scaled(r_load, fn.width, fn.is_signed, ld->s - qb, shr != NULL, fr.width, fr.width);
+    if (!shr) {
+        /* For range analysis: R's load is n 2^(F_q - qb), floored to R's
+         * LSB (exact when s >= qb), as long as R holds every value of it
+         * (the function is monotone in n: its ends suffice). */
+        int64_t ends[2] = { num->raw_min, num->raw_max }, v0 = f_r_load(&ends[0], ld), v1 = f_r_load(&ends[1], ld);
+        if (v0 >= sim_fmt_raw_min(fr) && v1 <= sim_fmt_raw_max(fr)) {
+            double lsb = ldexp(1, -fr.fbits), e = ld->s >= qb ? 0 : (1 - ldexp(1, ld->s - qb)) * lsb;
+            sim_logic_linear(r_load, 0, ldexp(1, fq.fbits - qb), -e, 0);
+        }
+    }
     sim_logic_depth(r_load, shr ? brdf_bitlen((uint64_t)shr_max) : 0);   /* wiring, or the shifter's levels */
     char vt[200];
 
@@ -187,6 +197,7 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
     snprintf(vt, sizeof vt, "assign %%y = {%%0, %%1[%d]};", qb - 1);
     sim_logic_verilog(r2, vt);
     sim_logic_depth(r2, 0);       /* R shifted left, Q's top bit in: wiring */
+    sim_logic_linear(r2, 0, 2, 0, ldexp(1, -fr.fbits));    /* 2 R + one LSB or none */
     sim_signal *trial = sim_sub(c, sc, "trial", unit_fmt(1, fr.ibits + 2, fr.fbits), r2, den);
     sim_signal *qbit = sim_logic(c, sc, "qbit", u1, 1, &trial, f_qbit, NULL, SIM_GE_INV);
     snprintf(vt, sizeof vt, "assign %%y = ~%%0[%d];", trial->fmt.width - 1);
@@ -196,6 +207,7 @@ sim_signal *dv_build(const unit_desc *u, sim_ctx *c, sim_scope *sc, sim_signal *
      * mux's select: OpenSTA's path through div at width 8 has no
      * inverter there), as a subtractor's inverter is none */
     sim_logic_depth(qbit, 0);
+    sim_logic_monotone(qbit);     /* 0 below zero, 1 from there */
     /* The restore mux keeps TRIAL's format: its select arrives a delta
      * after its data, and a narrower output would count the transient
      * (unselected) values as overflows. R quantizes the settled value. */
@@ -317,4 +329,5 @@ const unit_desc unit_div = {
     .nparams = 0,
     .fmt_rule = "n, d, r u1.(W-1); q u0.W (W clocks); dz u1.0",
     .formats = div_formats, .beats = beats1, .build = div_build, .ideal = div_ideal, .bound = div_bound, .ideal_ratio = div_ratio,
+    .below = { "n", "d" },
 };

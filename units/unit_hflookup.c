@@ -423,6 +423,10 @@ static sim_signal *lookup(sim_ctx *c, sim_scope *top, const char *scope, const u
     sim_signal *zin[2] = { z, zq };
     sim_signal *rec = sim_logic(c, sc, "rec", F[HF_REC], 2, zin, f_rec, rp, rec_ge);
     vl_rec(c, rec, rp);
+    /* For range analysis, which cannot enumerate z past 2^16 values: the
+     * reciprocal is within [0, 1] (every entry is, and so is a chord
+     * between two of them, rounded onto the same grid), when REC holds 1 */
+    if (brdf_holds(F[HF_REC], 0, 1)) sim_logic_linear(rec, 0, 0, 0, 1);
     sim_signal *u = sim_mul(c, sc, "u", F[HF_U], x, rec);
     sim_signal *v = sim_mul(c, sc, "v", F[HF_V], y, rec);
     sim_signal *ax = NULL, *ix = NULL, *ay = NULL, *iy = NULL;
@@ -443,6 +447,7 @@ static sim_signal *lookup(sim_ctx *c, sim_scope *top, const char *scope, const u
                                    (pa->fa + 1) * SIM_GE_AND2);
         vl_split(c, ii, ap->fs, pi);
         vl_split(c, aa, ap->fs, pa);
+        if (brdf_holds(F[k ? HF_AY : HF_AX], 0, 1)) sim_logic_linear(aa, 0, 0, 0, 1);   /* a fraction, or 1 */
         if (k) { iy = ii; ay = aa; } else { ix = ii; ax = aa; }
     }
     int64_t *raw = sim_alloc(c, sizeof(int64_t) * (size_t)R * R);

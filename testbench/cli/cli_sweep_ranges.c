@@ -6,6 +6,7 @@
 #include "testbench/study/tb_sweep_check.h"
 #include "base/base_json.h"
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
 
 int sweep_o_ranges(void *base, const char *opt, const char *val)
@@ -148,6 +149,23 @@ int sweep_ranges_stimuli(sweep_args *a, tb_sweep *s, vec_set *sets)
             if (at >= len) b[len - 1] = 0;
             if (s->npsets > 1 && at + 40 < len) snprintf(b + at, len - at, "; of the first parameter set");
         }
+        /* The unit's precondition lo < hi (div's n < d): a stimulus that
+         * breaks it is outside the unit's domain and left out; one that
+         * keeps it keeps at least the least gap the sweep's own vectors
+         * keep (div's 2^-8), so that it still holds once the inputs are
+         * quantized. */
+        int jlo = -1, jhi = -1;
+        for (int i = 0, j = 0; i < u->nsigs && j < nin && u->below.lo; i++) {
+            if (u->sigs[i].role != UNIT_SIG_IN) continue;
+            if (!strcmp(u->sigs[i].name, u->below.lo)) jlo = j;
+            if (!strcmp(u->sigs[i].name, u->below.hi)) jhi = j;
+            j++;
+        }
+        double gap = INFINITY;
+        if (jlo < 0 || jhi < 0) jlo = jhi = -1;
+        for (size_t r = 0; jlo >= 0 && r < vs->n_rows; r++) gap = fmin(gap, vec_row(vs, r)[jhi] - vec_row(vs, r)[jlo]);
+        if (!(gap > 0)) gap = 0;
+        size_t pushed = 0;
         vec_rng rng = { a->seed ^ 0x5eedULL };
         /* levels per input: 4 (ends and just inside), 2 (ends), or 0 (random corners) */
         int lv = 2 * nin <= 10 ? 4 : nin <= 10 ? 2 : 0;
@@ -158,10 +176,12 @@ int sweep_ranges_stimuli(sweep_args *a, tb_sweep *s, vec_set *sets)
                 unsigned l = lv == 4 ? (unsigned)(bits >> (2 * j)) & 3 : (unsigned)(bits >> j) & 1;
                 v[j] = k < corners ? level(lo[j], hi[j], l) : vec_rng_range(&rng, lo[j], hi[j]);
             }
+            if (jlo >= 0 && !(v[jhi] - v[jlo] >= gap && v[jhi] > v[jlo])) continue;
             u->ref->eval(&cfg.model, v, v + vs->n_in);
             if (vec_set_push(vs, v)) base_out_of_memory();
+            pushed++;
         }
-        a->t.box_items = corners + RANGE_STIMULI;
+        a->t.box_items = pushed;
     }
     return 0;
 }
