@@ -105,7 +105,12 @@ $(B)/bench/%: bench/%.c $(B)/libshadesim.a $(HDRS) $(FLAGSTAMP)
 testbins: $(TESTBIN) $(B)/shadesim
 
 # The suite, plain (-O2) and under ASan+UBSan, in one run so that the
-# closing "N passed, N failed" line is the total. make test CC=clang builds
+# closing "N passed, N failed" line is the total. The sanitizer build runs
+# every C test and every script; a script leaves to the plain build what
+# the sanitizers add nothing to there (tool runs over bytes no build
+# changes, a verb repeated over every unit where one run or a C test in
+# process covers its code) and says so in a skip line (tests/lib_cli.sh's
+# ASAN): a sanitized process costs 30 ms of CPU to start, a plain one 6. make test CC=clang builds
 # with clang (its own build folders: objects of one compiler are never
 # reused by the other); make test-clang does that with clang's name.
 # CLANG=clang-18 picks a version.
