@@ -122,10 +122,16 @@ if grep -q '^engine kernel: ' "$T/v.txt"; then ok vcd-kernel; else fail vcd-kern
 # lanes do not take), the lanes' JSON against the reference's (the kernel
 # without its fast paths) but for the sim line, and the sim line says
 # batch; some saturating ones, and div's quotient past 1 (n > d) besides
+# (under the sanitizers, each unit's first pair: the other 22 of the 49,
+# 44 processes, are the plain build's; test_batch counts the lanes'
+# overflows against the kernel's in process there)
 $S vectors div -n 200 --seed 5 -o "$T/d.vec" 2>/dev/null
 awk '!/^#/ && NR % 3 == 0 { $1 = $2 * 1.5; if ($1 >= 2) $1 = 1.9 } { print }' "$T/d.vec" >"$T/dn.vec"
+prev= nleft=0
 while read -r u sc f <&3; do
     n="overflow.$u.$sc.$f"
+    if [ -n "$ASAN" ] && [ "$u" = "$prev" ]; then nleft=$((nleft + 1)); continue; fi
+    prev=$u
     case $u in div) extra="--vectors $T/dn.vec";; *) extra=;; esac
     $S run "$u" --schedule "$sc" --fmt "$f" $extra --json >"$T/b.json" 2>"$T/b.err"; rb=$?
     $S run "$u" --schedule "$sc" --fmt "$f" $extra --json --reference >"$T/r.json" 2>"$T/r.err"; rr=$?
@@ -185,6 +191,7 @@ done 3<<EOF
     span23 mac mx1=s3.9:sat
     div restoring q=u0.16
 EOF
+[ $nleft -gt 0 ] && echo "skip ${PREFIX}overflow.other_pairs: $nleft pairs, compared in the plain build"
 # the table says so too, with the summary's discarded line
 $S run horner3 --fmt mul=s0.16 >"$T/o.txt"; rb=$?
 $S run horner3 --fmt mul=s0.16 --kernel >"$T/k.txt"; rk=$?

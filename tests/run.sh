@@ -65,7 +65,10 @@ done >"$dir/jobs"
 cat >"$dir/one.sh" <<'EOF'
 d=$1 i=$2 b=$3 kind=$4 t=$5
 export SHADESIM="$b/shadesim" TST_BUILD="$b"
-if [ "$kind" = bin ]; then "$t" >"$d/$i.out" 2>&1; else sh "$t" >"$d/$i.out" 2>&1; fi
+# TST_TIMES=FILE: each test's wall, user and system seconds appended there
+# (GNU time's -a -o), to find what the suite's time goes to.
+if [ -n "${TST_TIMES:-}" ]; then set -- /usr/bin/time -a -o "$TST_TIMES" -f "%e %U %S $b $t"; else set --; fi
+if [ "$kind" = bin ]; then "$@" "$t" >"$d/$i.out" 2>&1; else "$@" sh "$t" >"$d/$i.out" 2>&1; fi
 echo $? >"$d/$i.tmp" && mv "$d/$i.tmp" "$d/$i.rc"
 EOF
 # The printer, in the background: each job's block as soon as it is done

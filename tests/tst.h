@@ -102,6 +102,15 @@ static inline int tst_asan_build(void)
     size_t n = b ? strlen(b) : 0;
     return n >= 5 && !strcmp(b + n - 5, "-asan");
 }
+/* True unless this program is the sanitizer build's or the portable
+ * build's (TST_BUILD "...-portable": sim/ without its vector loops, the
+ * kernel's switch dispatch): for checks of what neither changes. */
+static inline int tst_plain_build(void)
+{
+    const char *b = getenv("TST_BUILD");
+    size_t n = b ? strlen(b) : 0;
+    return !tst_asan_build() && !(n >= 9 && !strcmp(b + n - 9, "-portable"));
+}
 /* True where a program's long random sweeps take a tenth of their draws:
  * make test-quick, and the sanitizer build, where a memory error shows on
  * the first draws that reach its path and a draw costs three to five
