@@ -103,10 +103,11 @@ if [ "${STA_DESIGNS:-}" = all ]; then
         for u in $units; do
             # a design tests/sta_known.txt skips is not synthesized (ABC does
             # not finish); one it lists as light goes through ABC's light
-            # script (synth --abc light: docs/timing.md, "Big designs")
+            # script (synth --abc light: docs/timing.md, "Big designs"); no
+            # blank at a line's end, which xargs -L takes for a continuation
             k=$(awk -v u="$u" -v w="$w" '$1 == u && $2 == w && ($3 == "skip" || $3 == "light") { print $3 }' tests/sta_known.txt)
             [ "$k" = skip ] && continue
-            "$S" verilog "$u" --width "$w" -o "$T/v" >/dev/null 2>&1 && echo "$u $w ${k:+--abc=$k}" >>"$T/designs"
+            "$S" verilog "$u" --width "$w" -o "$T/v" >/dev/null 2>&1 && echo "$u $w${k:+ --abc=$k}" >>"$T/designs"
         done
     done
 else
