@@ -115,8 +115,10 @@ else
     # constant shift network, the restoring divider, a span unit
     for u in horner3 coef3_n2 div3 div span2; do echo "$u 16"; done >"$T/designs"
 fi
-# two at a time (one per core), each the verb a user runs
-xargs -P 2 -L 1 sh -c '"$0" synth "$3" --width "$4" ${5:-} --sta --liberty "$2" --json --keep "$1/k_$3_$4" >"$1/s_$3_$4.json" 2>&1' \
+# two at a time (one per core), each the verb a user runs, with an hour
+# for each (synth's default 600 s is wall time: shade_cook at 8 takes 50 s
+# of CPU, hf_lookup at 24 over 4 minutes, and other work shares the cores)
+xargs -P 2 -L 1 sh -c '"$0" synth "$3" --width "$4" ${5:-} --timeout 3600 --sta --liberty "$2" --json --keep "$1/k_$3_$4" >"$1/s_$3_$4.json" 2>&1' \
     "$S" "$T" "$LIB" <"$T/designs"
 # --- design rules: OpenSTA read every mapped netlist without an error and
 # finds no pin past its max_transition (the library's 198.5 ps for
