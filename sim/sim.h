@@ -231,7 +231,8 @@ uint32_t    sim_signal_count(const sim_ctx *c);
 sim_signal *sim_signal_at(const sim_ctx *c, uint32_t i);
 /* Find by dotted path relative to scope (NULL scope: root). */
 sim_signal *sim_find(const sim_ctx *c, const sim_scope *sc, const char *path);
-/* Sum of area_ge of every signal in scope and its children. */
+/* Sum of area_ge of every signal in scope and its children, with the
+ * terms that depend on what reads them (sim_area_net.h). */
 double      sim_scope_area(const sim_scope *sc);
 
 /* ---- observers ----

@@ -4,6 +4,35 @@
  * rounding incrementer and saturation clamp its modes need); docs/area.md
  * says what they leave out (carry-lookahead, Booth recoding, wiring). */
 #include "sim/sim_area.h"
+#include "sim/sim_delay.h"
+#include <math.h>
+
+/* Mapped GE a bit (scripts/add_area.sh prints them) at n = 4, 8, 16,
+ * 24; linear between, the end values beyond. */
+static const double add_fit[SIM_ADD_KINDS][4] = {
+    { 5.583, 6.125, 6.812, 7.111 },   /* a + b */
+    { 5.750, 6.917, 7.646, 7.583 },   /* a - b */
+    { 2.167, 2.208, 3.292, 3.569 },   /* the carry out of a + b alone */
+};
+
+static double fit4(const double *f, int n)
+{
+    static const int at[4] = { 4, 8, 16, 24 };
+    if (n <= at[0]) return f[0];
+    for (int i = 1; i < 4; i++)
+        if (n <= at[i]) return f[i - 1] + (f[i] - f[i - 1]) * (n - at[i - 1]) / (double)(at[i] - at[i - 1]);
+    return f[3];
+}
+
+double sim_area_add_fit(int kind, int n) { return kind >= 0 && kind < SIM_ADD_KINDS ? fit4(add_fit[kind], n) : SIM_GE_FA; }
+
+double sim_area_addsub(int sub, int chain, int ext, int low, int neg)
+{
+    double ge = chain > 0 ? chain * sim_area_add_fit(sub ? SIM_ADD_SUB : SIM_ADD_ADD, chain) : 0.0;
+    if (ext + neg > 0) ge += (ext + neg) * SIM_GE_HA;
+    if (low > 0) ge += low * sim_area_add_fit(SIM_ADD_CARRY, low);
+    return ge;
+}
 
 double sim_area_reg(int w, int has_en, int has_rst)
 {
@@ -69,7 +98,6 @@ double sim_area_rom(const int64_t *words, int n, int w)
  * prints them), at n = 4, 8, 16, 24; linear between, the end values
  * beyond. A square's first point is its 8-bit one: ABC makes a 4-bit
  * square two-level logic, no array at all. */
-static const int mul_fit_n[4] = { 4, 8, 16, 24 };
 static const double mul_fit[SIM_MUL_KINDS][4] = {
     { 1.068, 1.218, 1.245, 1.284 },   /* unsigned x unsigned */
     { 1.032, 1.279, 1.263, 1.292 },   /* signed x unsigned (zero-extended by a bit) */
@@ -78,13 +106,11 @@ static const double mul_fit[SIM_MUL_KINDS][4] = {
     { 1.040, 1.040, 1.137, 1.171 },   /* signed square */
 };
 
-double sim_area_mul_fit(int kind, int n)
+double sim_area_mul_fit(int kind, int n) { return kind >= 0 && kind < SIM_MUL_KINDS ? fit4(mul_fit[kind], n) : 1.0; }
+
+double sim_area_buffers(double pins_sel, double pins)
 {
-    if (kind < 0 || kind >= SIM_MUL_KINDS) return 1.0;
-    const double *f = mul_fit[kind];
-    if (n <= mul_fit_n[0]) return f[0];
-    for (int i = 1; i < 4; i++)
-        if (n <= mul_fit_n[i])
-            return f[i - 1] + (f[i] - f[i - 1]) * (n - mul_fit_n[i - 1]) / (double)(mul_fit_n[i] - mul_fit_n[i - 1]);
-    return f[3];
+    double u = (pins_sel * SIM_FF_PIN_SEL + pins * SIM_FF_PIN) / SIM_FF_REF;
+    if (u <= 1.0) return 0.0;
+    return ceil((u - 1.0) / (SIM_BUF_GAIN - 1.0)) * SIM_GE_BUF;
 }

@@ -18,6 +18,7 @@
 #define SIM_GE_FA    5.33   /* FA_X1     4.256 um^2 */
 #define SIM_GE_DFF   5.67   /* DFF_X1    4.522 um^2 */
 #define SIM_GE_DFFR  6.67   /* DFFR_X1   5.320 um^2 (with reset) */
+#define SIM_GE_BUF   1.33   /* BUF_X2    1.064 um^2 */
 
 /* Element models, by bit widths. */
 double sim_area_reg(int w, int has_en, int has_rst);   /* w flip-flops (+ a 2:1 mux per bit for enable) */
@@ -26,6 +27,19 @@ double sim_area_bk(int w);                             /* an AND gate per bit */
 double sim_area_add(int w);                            /* ripple-carry: w full adders */
 double sim_area_sub(int w);                            /* w full adders + w inverters */
 double sim_area_mul(int wa, int wb);                   /* array: wa*wb AND2 + (min-1)*max FA */
+/* An adder or subtractor as synthesis maps it, by the bits where its
+ * operands vary (sim_live_chain): a carry chain of `chain` bits where both
+ * do, at the mapped GE a bit of an adder (subtractor) that wide; an
+ * incrementer (a half adder a bit) over the `ext` bits above, where one
+ * does; the carry alone out of the `low` bits below the output's lowest
+ * bit; an incrementer over the `neg` bits below the chain where only a
+ * subtrahend varies (0 - b: its inverse plus one). The other bits where
+ * one operand is a constant zero below the chain are wires. The figures a bit by kind and width, measured on whole adders
+ * through Yosys and the NanGate45 Liberty (scripts/add_area.sh;
+ * docs/area.md, "Adders as mapped"). */
+enum { SIM_ADD_ADD, SIM_ADD_SUB, SIM_ADD_CARRY, SIM_ADD_KINDS };
+double sim_area_add_fit(int kind, int n);
+double sim_area_addsub(int sub, int chain, int ext, int low, int neg);
 /* The array for an output that keeps only some of the product's wa + wb
  * bits: drop_hi columns above its top need no logic (their partial
  * products and adders go, in proportion), drop_lo below its bottom still
@@ -54,4 +68,7 @@ double sim_area_sat(int w, int extra);
  * an OR tree over the word lines whose word has a 1 there. Synthesis would
  * minimize further: an upper estimate (docs/area.md). */
 double sim_area_rom(const int64_t *words, int n, int w);
+/* The buffer tree of one bit's net driving pins_sel select pins and pins
+ * other pins (sim_timing_pins), GE. */
+double sim_area_buffers(double pins_sel, double pins);
 #endif

@@ -253,13 +253,7 @@ sim_signal *sim_find(const sim_ctx *c, const sim_scope *sc, const char *path)
     }
 }
 
-double sim_scope_area(const sim_scope *sc)
-{
-    double a = 0;
-    for (const sim_signal *s = sc->first_sig; s; s = s->next_in_scope) a += s->area_ge;
-    for (const sim_scope *ch = sc->first_child; ch; ch = ch->next_sibling) a += sim_scope_area(ch);
-    return a;
-}
+/* sim_scope_area: sim_area_net.c (it needs the timing's pin counts) */
 
 /* ---------------------------------------------------------------- writes */
 

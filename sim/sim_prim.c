@@ -370,7 +370,12 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
     sim_live_span(b, &lo[1], &hi[1]);
     sim_live_chain(lo, hi, 2, fmt, &chain, &ext, &low);
     if (chain > w) chain = w;
-    set_cost(y, p, sub ? sim_area_sub(w) : sim_area_add(w), sub ? sim_delay_sub_span(chain, ext, low) : sim_delay_add_span(chain, ext, low),
+    /* area over the same spans: the chain as mapped, an incrementer above,
+     * the carry alone below, and the negation of a subtrahend's bits below
+     * the chain where the minuend is zero (sim_area_addsub) */
+    int ylo = -fmt.fbits, clo = imax(imax(lo[0], lo[1]), ylo);
+    int neg = sub && lo[1] < lo[0] ? imax(clo - imax(lo[1], ylo), 0) : 0;
+    set_cost(y, p, sim_area_addsub(sub, chain, ext, low, neg), sub ? sim_delay_sub_span(chain, ext, low) : sim_delay_add_span(chain, ext, low),
              p->e.src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
     return y;
 }

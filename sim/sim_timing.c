@@ -98,29 +98,22 @@ static int visit(walk *w, const sim_signal *s)
  * one per bit of the element it steers (per bit of a multiplexer's first
  * level), a multiplier operand's bit one per live bit of the other, an
  * adder operand's two (its XOR and its carry gate), any other one; a
- * constant shift is wiring, so its pins are its source's. Into load[] as
- * picoseconds (sim_delay_load_ps). */
-
-static void loads(const sim_ctx *c, double *load, unsigned char *csa)
+ * constant shift is wiring, so its pins are its source's. */
+void sim_timing_pins(const sim_ctx *c, double *sel, double *oth, int *reads, int *adds)
 {
     uint32_t n = sim_signal_count(c);
-    double *sel = calloc(n ? n : 1, sizeof *sel), *oth = calloc(n ? n : 1, sizeof *oth);
-    int *reads = calloc(n ? n : 1, sizeof *reads), *adds = calloc(n ? n : 1, sizeof *adds);
-    memset(csa, 0, n ? n : 1);
-    if (!sel || !oth || !reads || !adds) {
-        free(sel); free(oth); free(reads); free(adds);
-        memset(load, 0, (n ? n : 1) * sizeof *load);
-        return;
-    }
+    for (uint32_t i = 0; i < n; i++) { sel[i] = oth[i] = 0; if (reads) reads[i] = adds[i] = 0; }
     for (uint32_t i = 0; i < n; i++) {
         const sim_signal *y = sim_signal_at(c, i);
         sim_prim_info in;
         if (!y->driver || sim_prim_describe(y, &in)) continue;
         const sim_signal *ops[3] = { in.a, in.b, in.c };
-        for (int k = 0; k < 3; k++)
-            if (ops[k]) { reads[ops[k]->index]++; adds[ops[k]->index] += is_addsub(in.kind) && k < 2; }
-        if (in.rst) reads[in.rst->index]++;
-        for (int k = 0; k < in.n; k++) reads[in.in[k]->index]++;
+        if (reads) {
+            for (int k = 0; k < 3; k++)
+                if (ops[k]) { reads[ops[k]->index]++; adds[ops[k]->index] += is_addsub(in.kind) && k < 2; }
+            if (in.rst) reads[in.rst->index]++;
+            for (int k = 0; k < in.n; k++) reads[in.in[k]->index]++;
+        }
         int w = y->fmt.width;
         if (in.c) sel[in.c->index] += in.kind == SIM_KIND_MUX ? w * ((in.n + 1) / 2) : w;
         if (in.rst) sel[in.rst->index] += w;
@@ -143,6 +136,22 @@ static void loads(const sim_ctx *c, double *load, unsigned char *csa)
         sel[in.a->index] += sel[i]; oth[in.a->index] += oth[i];
         sel[i] = oth[i] = 0;
     }
+}
+
+/* Each signal's pins as picoseconds (sim_delay_load_ps) into load[]; csa[]
+ * the adders merged into their one reader's multi-operand adder. */
+static void loads(const sim_ctx *c, double *load, unsigned char *csa)
+{
+    uint32_t n = sim_signal_count(c);
+    double *sel = calloc(n ? n : 1, sizeof *sel), *oth = calloc(n ? n : 1, sizeof *oth);
+    int *reads = calloc(n ? n : 1, sizeof *reads), *adds = calloc(n ? n : 1, sizeof *adds);
+    memset(csa, 0, n ? n : 1);
+    if (!sel || !oth || !reads || !adds) {
+        free(sel); free(oth); free(reads); free(adds);
+        memset(load, 0, (n ? n : 1) * sizeof *load);
+        return;
+    }
+    sim_timing_pins(c, sel, oth, reads, adds);
     for (uint32_t i = 0; i < n; i++) {
         const sim_signal *y = sim_signal_at(c, i);
         int driven = y->driver && y->kind != SIM_KIND_INPUT && y->kind != SIM_KIND_CONST;

@@ -29,4 +29,11 @@ typedef struct sim_timing {
 /* 0 and *out filled; -1 with a message naming a signal of a
  * combinational loop (or "out of memory"). */
 int sim_timing_analyze(const sim_ctx *c, sim_timing *out, char *err, size_t errlen);
+
+/* The input pins one bit of each signal drives, by signal index (arrays
+ * of sim_signal_count(c)): sel[] select, enable, reset and key pins,
+ * oth[] any other; a constant shift's are its source's (its own 0).
+ * reads[] and adds[] (both NULL or both given): the elements reading each
+ * signal, and the adders among them reading it as an operand. */
+void sim_timing_pins(const sim_ctx *c, double *sel, double *oth, int *reads, int *adds);
 #endif

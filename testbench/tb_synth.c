@@ -283,7 +283,7 @@ static int read_sta(const char *dir, tb_sta *r, char *err, size_t errlen)
 }
 
 int tb_synth_sta(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const char *liberty,
-                 double period_ps, const char *dir, tb_synth_run *run, tb_sta *r, char *err, size_t errlen)
+                 double period_ps, int abc, const char *dir, tb_synth_run *run, tb_sta *r, char *err, size_t errlen)
 {
     memset(r, 0, sizeof *r);
     r->period_ps = period_ps;
@@ -292,17 +292,22 @@ int tb_synth_sta(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, c
     if (need_tool("sta", "opensta", err, errlen)) return TB_SYNTH_BADINPUT;
     if ((rc = liberty_in(liberty, dir, run, err, errlen)) || (rc = ge_cell(dir, r, err, errlen))
         || (rc = abc_constr(dir, err, errlen))) return rc;
-    /* ABC's default script for a Liberty (Yosys's `abc -liberty`), then its
-     * `buffer -p`: the design-rule repair every synthesis flow makes before
-     * timing (docs/timing.md, "Design rules"); no timing-driven sizing.
-     * splitnets: one-bit wires, so that no assignment to a concatenation
-     * is left, which OpenSTA's Verilog reader refuses. */
+    /* ABC's default script for a Liberty (Yosys's `abc -liberty`), or its
+     * mapping alone (TB_ABC_LIGHT), then its `buffer -p`: the design-rule
+     * repair every synthesis flow makes before timing (docs/timing.md,
+     * "Design rules"); no timing-driven sizing. splitnets: one-bit wires,
+     * so that no assignment to a concatenation is left, which OpenSTA's
+     * Verilog reader refuses. */
+    static const char *const script[2] = {
+        "+strash;&get,-n;&fraig,-x;&put;scorr;dc2;dretime;strash;&get,-n;&dch,-f;&nf;&put;buffer,-p",
+        "+strash;dretime;&get,-n;&nf;&put;buffer,-p",
+    };
     char cmd[1200];
     snprintf(cmd, sizeof cmd, "yosys -q -l yosys.log -p 'read_verilog %s.v; synth -top %s; "
              "dfflibmap -liberty liberty.lib; abc -liberty liberty.lib -constr abc.constr "
-             "-script +strash;&get,-n;&fraig,-x;&put;scorr;dc2;dretime;strash;&get,-n;&dch,-f;&nf;&put;buffer,-p; opt_clean; splitnets; opt_clean; "
+             "-script %s; opt_clean; splitnets; opt_clean; "
              "tee -q -o stat.txt stat -liberty liberty.lib; write_verilog -noattr mapped.v' >/dev/null 2>&1",
-             u->name, u->name);
+             u->name, u->name, script[abc == TB_ABC_LIGHT]);
     rc = tb_synth_tool(run, "yosys", dir, cmd, 1, err, errlen);
     if (rc == TB_SYNTH_FAILED) return tool_failed(dir, "yosys.log", "yosys", err, errlen);
     if (rc) return rc;

@@ -54,13 +54,20 @@ typedef struct tb_sta {
     double area_ge;             /* area / ge_area */
 } tb_sta;
 
+/* ABC's script for the mapping: the default one Yosys runs for a Liberty
+ * (its restructuring, &fraig -x, scorr, dc2, &dch -f, before &nf), or
+ * the light one (&nf alone, after dretime), for networks on which the
+ * restructuring does not finish (docs/timing.md, "Big designs"); each
+ * followed by buffer -p. */
+enum { TB_ABC_FULL = 0, TB_ABC_LIGHT };
+
 /* The flow of `synth --sta`: the export, Yosys (synth -top UNIT;
- * dfflibmap and abc on the library; opt_clean; stat -liberty;
- * write_verilog), OpenSTA (create_clock on clk at period_ps, zero input
- * and output delays on the other ports, report_checks -path_delay max).
- * liberty: a Liberty file, gzipped or not. */
+ * dfflibmap and abc on the library with script abc, TB_ABC_*; opt_clean;
+ * stat -liberty; write_verilog), OpenSTA (create_clock on clk at
+ * period_ps, zero input and output delays on the other ports,
+ * report_checks -path_delay max). liberty: a Liberty file, gzipped or not. */
 int tb_synth_sta(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fm, const char *liberty,
-                 double period_ps, const char *dir, tb_synth_run *run, tb_sta *r, char *err, size_t errlen);
+                 double period_ps, int abc, const char *dir, tb_synth_run *run, tb_sta *r, char *err, size_t errlen);
 
 typedef struct tb_fpga {
     char device[16], package[16];

@@ -277,7 +277,13 @@ static void t_area_model(void)
     /* the array as ABC maps a signed x signed 8 x 8 product: 1.481 times
      * (docs/area.md, "Products as mapped": 568.0 GE over the array's 383.6) */
     const double ss8 = 1.481;
-    TST_NEAR(sim_scope_area(u), sim_area_add(9) + ss8 * sim_area_mul(8, 8), 1e-9);
+    /* the sum: a chain of 8 bits where both operands vary, as an 8-bit adder
+     * maps (49.0 GE, scripts/add_area.sh), and a half adder for its carry
+     * into the top bit; a and b each drive 10 pins a bit (the adder's 2,
+     * the product's 8: 16.5 fF, 2.2 times an X1 cell's 7.5 fF), a BUF_X2
+     * a bit (docs/area.md, "Buffer trees") */
+    const double add9 = 49.0 + SIM_GE_HA, bufs = 16 * 1.33;   /* 1.064 um^2, to 2 places as the table */
+    TST_NEAR(sim_scope_area(u), add9 + ss8 * sim_area_mul(8, 8) + bufs, 1e-3);
     TST_NEAR(sim_scope_area(sim_root(c)), sim_scope_area(u), 1e-9);
     /* a narrower product costs less: 4 fraction bits fewer, 4 sum XOR2 */
     sim_signal *m4 = sim_mul(c, u, "m4", F("s8.4"), a, b);
@@ -306,9 +312,53 @@ static void t_area_model(void)
          * the 5 columns below the output, which still carry into it */
         double arr = 1.481 * (sim_area_mul(8, 8) * (64 - 3) / 64.0 - 5 * SIM_GE_XOR2);
         TST_NEAR(m->area_ge, arr + (rnd ? 8 * SIM_GE_HA : 0) + (sat ? 8 * SIM_GE_MUX2 + 3 * SIM_GE_XOR2 : 0), 1e-9);
-        TST_NEAR(s2->area_ge, sim_area_add(9), 1e-9);
+        TST_NEAR(s2->area_ge, 49.0 + SIM_GE_HA, 1e-3);
         sim_free(c);
     }
+}
+
+/* Adders as mapped (scripts/add_area.sh's figures), the buffer trees of
+ * heavy nets and the incrementers a multi-operand adder shares. */
+static void t_area_adders_nets(void)
+{
+    /* an 8-bit chain maps to 49.0 GE (add) and 55.3 (sub); 12 bits: halfway
+     * between 8 (6.125 a bit) and 16 (6.812) */
+    TST_NEAR(sim_area_addsub(0, 8, 0, 0, 0), 49.0, 1e-3);
+    TST_NEAR(sim_area_addsub(1, 8, 0, 0, 0), 55.336, 1e-3);
+    TST_NEAR(sim_area_addsub(0, 12, 0, 0, 0), 12 * (6.125 + 6.812) / 2, 1e-9);
+    /* 3 incrementer bits above, 4 negated below, the carry of 4 bits (8.7 GE) */
+    TST_NEAR(sim_area_addsub(1, 8, 3, 4, 4), 55.336 + 7 * SIM_GE_HA + 8.668, 1e-3);
+    /* buffer trees: the load in units of 7.5 fF (an X1 cell's at its
+     * figures), a BUF_X2 (1.064 um^2) for every 3 units beyond the first */
+    TST_NEAR(sim_area_buffers(0, 4), 0.0, 1e-12);                 /* 6.6 fF */
+    TST_NEAR(sim_area_buffers(4, 0), 1.33, 1e-9);                  /* 7.68 fF */
+    TST_NEAR(sim_area_buffers(0, 40), 3 * 1.33, 1e-9);              /* 66 fF: 8.8 units */
+
+    sim_ctx *c = ctx_new();
+    sim_scope *u = sim_scope_new(c, NULL, "u");
+    sim_signal *a = sim_signal_new(c, u, "a", F("s4.4"), SIM_KIND_INPUT);
+    sim_signal *b = sim_signal_new(c, u, "b", F("s4.4"), SIM_KIND_INPUT);
+    sim_signal *d = sim_signal_new(c, u, "d", F("s4.4"), SIM_KIND_INPUT);
+    /* s1 = a - b: 8 chain bits, its carry into the top (s5.4) an incrementer
+     * bit; s2 = s1 - d: 8 chain bits, 2 above (s6.4) */
+    sim_signal *s1 = sim_sub(c, u, "s1", F("s5.4"), a, b);
+    sim_signal *s2 = sim_sub(c, u, "s2", F("s6.4"), s1, d);
+    TST_NEAR(s1->area_ge, 55.336 + SIM_GE_HA, 1e-3);
+    TST_NEAR(s2->area_ge, 55.336 + 2 * SIM_GE_HA, 1e-3);
+    /* s1's one reader is s2: one multi-operand adder, whose top bits s2's
+     * incrementer makes; no net drives more than 7.5 fF (2 pins a bit) */
+    TST_NEAR(sim_scope_area(u), 2 * 55.336 + 2 * SIM_GE_HA, 1e-3);
+    /* a second reader: s1 is an adder of its own again */
+    sim_signal *s3 = sim_add(c, u, "s3", F("s6.4"), s1, a);
+    TST_NEAR(sim_scope_area(u), s1->area_ge + s2->area_ge + s3->area_ge, 1e-9);
+    /* the minuend zero in the two low bits (a shifted up by 2: 2^-2 and
+     * up): d's two bits there are negated (0 - d, an incrementer bit each),
+     * the chain the 6 bits where both vary (2^-2 .. 2^3), 3 above (a4's
+     * 2^4 and 2^5 and the carry into 2^6) */
+    sim_signal *a4 = sim_shift(c, u, "a4", F("s6.4"), a, 2);
+    sim_signal *n = sim_sub(c, u, "n", F("s7.4"), a4, d);
+    TST_NEAR(n->area_ge, 6 * (5.750 + (6.917 - 5.750) / 2) + 2 * SIM_GE_HA + 3 * SIM_GE_HA, 1e-3);
+    sim_free(c);
 }
 
 static void t_find_and_paths(void)
@@ -630,6 +680,7 @@ static void all(void)
     RUN(t_primitives_arith);
     RUN(t_wide_mul);
     RUN(t_area_model);
+    RUN(t_area_adders_nets);
     RUN(t_find_and_paths);
     RUN(t_overflow_settled_only);
     RUN(t_overflow_glitch_same_raw);

@@ -65,10 +65,11 @@ static const char *point_kind(const char *k)
     return strstr(k, "flip-flop") ? "register" : strstr(k, "input") ? "input port" : strstr(k, "output") ? "output port" : k;
 }
 
-static void sta_text(const cli_unit_opts *o, const cli_synth_st *st, const tb_sta *r, const model_fig *m)
+static void sta_text(const cli_unit_opts *o, const cli_synth_st *st, int abc, const tb_sta *r, const model_fig *m)
 {
     char what[400];
-    snprintf(what, sizeof what, "Yosys and OpenSTA on %s (%s = 1 GE = %.3f um^2)", st->liberty, r->ge_cell, r->ge_area);
+    snprintf(what, sizeof what, "Yosys and OpenSTA on %s (%s = 1 GE = %.3f um^2)%s", st->liberty, r->ge_cell, r->ge_area,
+             abc == TB_ABC_LIGHT ? ", ABC's light script" : "");
     head(o, what);
     printf("                 shadesim model   OpenSTA          model / tool\n");
     if (m->ok) {
@@ -121,11 +122,12 @@ static void json_model(const model_fig *m)
     printf("}");
 }
 
-static void sta_json(const cli_unit_opts *o, const cli_synth_st *st, const tb_sta *r, const model_fig *m)
+static void sta_json(const cli_unit_opts *o, const cli_synth_st *st, int abc, const tb_sta *r, const model_fig *m)
 {
     json_head(o, "sta");
     printf(", \"liberty\": ");
     base_json_str(stdout, st->liberty);
+    printf(", \"abc\": \"%s\"", abc == TB_ABC_LIGHT ? "light" : "full");
     printf(", \"sta\": {\"period_ps\": %.1f, \"arrival_ps\": %.1f, \"setup_ps\": %.1f, \"slack_ps\": %.1f, "
            "\"crit_ps\": %.1f, \"fmax_mhz\": ", r->period_ps, r->arrival_ps, r->setup_ps, r->slack_ps, r->crit_ps);
     base_json_num(stdout, r->fmax_mhz, 6);
@@ -210,7 +212,12 @@ int cli_synth_flow(const cli_unit_opts *o, const unit_fmts *fm, const cli_synth_
     tb_sta sr;
     tb_fpga fr;
     int t;
-    if (st->sta) t = tb_synth_sta(o->u, &o->cfg, fm, st->liberty, st->clock_ps > 0 ? st->clock_ps : 10000, dir, &run, &sr, err, sizeof err);
+    /* the light script past CLI_SYNTH_LIGHT_GE (auto): ABC's restructuring
+     * of a network that large runs for hours (docs/timing.md, "Big designs") */
+    int abc = st->abc == CLI_SYNTH_ABC_LIGHT || (st->abc <= CLI_SYNTH_ABC_AUTO && m.ge > CLI_SYNTH_LIGHT_GE)
+        ? TB_ABC_LIGHT : TB_ABC_FULL;
+    if (st->sta)
+        t = tb_synth_sta(o->u, &o->cfg, fm, st->liberty, st->clock_ps > 0 ? st->clock_ps : 10000, abc, dir, &run, &sr, err, sizeof err);
     else {
         memset(&fr, 0, sizeof fr);
         snprintf(fr.device, sizeof fr.device, "%s", st->device ? st->device : "hx8k");
@@ -221,7 +228,7 @@ int cli_synth_flow(const cli_unit_opts *o, const unit_fmts *fm, const cli_synth_
     cli_synth_cleanup(st, dir, t == TB_SYNTH_SIGNAL ? run.signal : 0);
     if (t == TB_SYNTH_FAILED) return cli_from_tb(TB_FAIL, "%s", err);
     if (t != TB_SYNTH_OK) return cli_usage_error("%s", err);   /* missing tool or file, too small a device, time limit */
-    if (st->sta) { if (st->json) sta_json(o, st, &sr, &m); else sta_text(o, st, &sr, &m); }
+    if (st->sta) { if (st->json) sta_json(o, st, abc, &sr, &m); else sta_text(o, st, abc, &sr, &m); }
     else if (st->json) fpga_json(o, &fr, &m);
     else fpga_text(o, &fr, &m);
     return cli_stdout_done(CLI_OK);

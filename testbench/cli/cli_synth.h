@@ -13,9 +13,14 @@ typedef struct cli_synth_st {
     const char *fpga, *device, *package;   /* --fpga ice40 --device hx8k --package ct256 */
     double freq_mhz;            /* --freq (0: nextpnr's default) */
     double timeout_s;           /* --timeout (-1: 600; 0: none) */
+    int abc;                    /* --abc: CLI_SYNTH_ABC_* (-1: not given, auto) */
 } cli_synth_st;
 
 #define CLI_SYNTH_TIMEOUT 600
+/* --abc auto (0), full, light; auto takes the light script past
+ * CLI_SYNTH_LIGHT_GE of the model's area (docs/timing.md, "Big designs") */
+enum { CLI_SYNTH_ABC_AUTO = 0, CLI_SYNTH_ABC_FULL, CLI_SYNTH_ABC_LIGHT };
+#define CLI_SYNTH_LIGHT_GE 100000.0
 
 /* The folder the flow works in: --keep DIR (made), else a temporary one
  * in $TMPDIR (else /tmp), its name in tmpl. NULL after the message

@@ -293,6 +293,14 @@ static int synth_device(void *base, const char *opt, const char *v)
                            "up3k, up5k, u1k, u2k or u4k", opt, v);
 }
 
+static int synth_abc(void *base, const char *opt, const char *v)
+{
+    static const char *const name[] = { "auto", "full", "light" };
+    for (int i = 0; i < 3; i++)
+        if (!strcmp(v, name[i])) { ((cli_synth_st *)base)->abc = i; return 0; }
+    return cli_usage_error("%s %s: expected auto, full or light", opt, v);
+}
+
 static const cli_opt synth_tab[] = {
     { "--sta", NULL, CLI_OPT_FLAG, offsetof(cli_synth_st, sta), 0, 0, NULL, NULL, NULL, 0,
       "  --sta                map to a standard-cell library with Yosys (dfflibmap, abc\n"
@@ -306,6 +314,12 @@ static const cli_opt synth_tab[] = {
     { "--clock-ps", NULL, CLI_OPT_REAL, offsetof(cli_synth_st, clock_ps), 1, 1e9, NULL, NULL, NULL, 0,
       "  --clock-ps P         the clock OpenSTA times against (default 10000 ps); the\n"
       "                       critical path is P less the worst slack\n" },
+    { "--abc", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs auto, full or light", synth_abc, 0,
+      "  --abc S              with --sta, ABC's script: full (Yosys's default for a\n"
+      "                       Liberty, with its restructuring), light (the mapping\n"
+      "                       alone: for networks the restructuring does not finish\n"
+      "                       on), auto (default: light past 100000 GE of the\n"
+      "                       model's area, else full)\n" },
     { "--fpga", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs ice40", synth_fpga, 0,
       "  --fpga ice40         synthesize for an iCE40 (Yosys synth_ice40), place and\n"
       "                       route with nextpnr-ice40 (Debian package nextpnr-ice40):\n"
@@ -443,13 +457,14 @@ int cli_synth(int argc, char **argv)
 {
     if (cli_opt_help_wanted(argc, argv)) return cli_opt_help(&cli_synth_spec);
     cli_unit_opts o;
-    cli_synth_st st = { NULL, 0, 0, NULL, 0, NULL, NULL, NULL, 0, -1 };
+    cli_synth_st st = { NULL, 0, 0, NULL, 0, NULL, NULL, NULL, 0, -1, -1 };
     int rc = parse(&cli_synth_spec, argc, argv, &o, &st);
     if (rc) return rc;
     if (st.sta && st.fpga) return cli_usage_error("synth: --sta and --fpga are two flows: choose one");
     if (st.sta && !st.liberty) return cli_usage_error("synth: --sta needs --liberty FILE (a Liberty cell library, e.g. NanGate45's; docs/timing.md)");
     if (st.liberty && !st.sta) return cli_usage_error("synth: --liberty goes with --sta");
     if (st.clock_ps > 0 && !st.sta) return cli_usage_error("synth: --clock-ps goes with --sta");
+    if (st.abc >= 0 && !st.sta) return cli_usage_error("synth: --abc goes with --sta");
     if ((st.device || st.package || st.freq_mhz > 0) && !st.fpga) return cli_usage_error("synth: --device, --package and --freq go with --fpga ice40");
     if (st.json && !st.sta && !st.fpga) return cli_usage_error("synth: --json goes with --sta or --fpga");
     unit_fmts fm;
