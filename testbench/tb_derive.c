@@ -493,7 +493,7 @@ int tb_derive_fmts(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *in,
     /* Integer parts wide enough that nothing overflows (40 bits: values
      * up to 2^39; a signal needing more is reported as not fitting). */
     for (int i = 0; i < u->nsigs; i++) {
-        if (u->sigs[i].role == UNIT_SIG_IN || (keep && keep[i])) continue;
+        if (u->sigs[i].role == UNIT_SIG_IN || (keep && keep[i]) || unit_sig_fmt_fixed(u, i)) continue;
         sim_fmt *g = &wide.f[i];
         int max = (g->is_signed ? 64 : 63) - g->fbits, ib = max < 40 ? max : 40;
         if (ib > g->ibits) { g->ibits = (int8_t)ib; g->width = (uint8_t)(ib + g->fbits); }
@@ -503,7 +503,7 @@ int tb_derive_fmts(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *in,
     *out = *in;
     int rc = 0;
     for (int i = 0; i < u->nsigs && !rc; i++) {
-        if ((keep && keep[i]) || d.at[i] < 0) continue;
+        if ((keep && keep[i]) || unit_sig_fmt_fixed(u, i) || d.at[i] < 0) continue;
         if (u->sigs[i].role == UNIT_SIG_IN && !(rg && rg->set[i])) continue;
         const tb_dsig *t = &d.sigs[d.at[i]];
         int ib = sim_ival_ibits(t->pre, in->f[i]);

@@ -41,6 +41,15 @@ grep -q '^r  *u1\.15  *2 ' "$T/nd.txt" && ok run_div_n_above_d_overflows || fail
 "$S" sweep div --widths 8:9 --target-error 1e-2 --ranges derived -o "$T/swd" >"$T/swd.txt" 2>&1
 awk '$1 == 8 || $1 == 9 { n++; if ($12 != 0) bad++ } END { exit !(n == 2 && !bad) }' "$T/swd.txt" \
     && ok sweep_div_box_in_domain || fail sweep_div_box_in_domain "$(grep '^ *[89] ' "$T/swd.txt")"
+# The quotient register's format is div's structure (its width is the
+# number of clocks, its value spans it whatever it is): the search keeps
+# the width's own (as `list div --width 9` gives it), where it once widened
+# q to u40.9 (49 clocks an item) and r_next to s43.8.
+qf=$("$S" list div --width 9 | awk '$1 == "out" && $2 == "q" { print $3 }')
+grep -q "^  q  *$qf  *derived" "$T/swd.txt" && ok sweep_div_keeps_q_format \
+    || fail sweep_div_keeps_q_format "want q $qf: $(grep '^  q ' "$T/swd.txt")"
+grep -q '^  r_next  *s3\.8 ' "$T/swd.txt" && ok sweep_div_r_next_from_r_below_d \
+    || fail sweep_div_r_next_from_r_below_d "$(grep '^  r_next ' "$T/swd.txt")"
 
 expect bad_name 2 "$S" run horner3 --ranges derived --range q=0:1
 expect bad_order 2 "$S" run horner3 --ranges derived --range a=2:1

@@ -94,6 +94,13 @@ int unit_sig_index(const unit_desc *u, const char *name)
     return -1;
 }
 
+int unit_sig_fmt_fixed(const unit_desc *u, int i)
+{
+    for (int k = 0; k < 4 && u->fmt_fixed[k]; k++)
+        if (!strcmp(u->sigs[i].name, u->fmt_fixed[k])) return 1;
+    return 0;
+}
+
 int unit_sig_used(const unit_desc *u, int i, int sched)
 {
     unsigned m = u->sigs[i].scheds;

@@ -161,6 +161,12 @@ struct unit_desc {
      * NULL names: none). Derived ranges assume it (tb_derive.h); stimuli
      * that break it are outside the unit's domain. */
     struct { const char *lo, *hi; } below;
+    /* Optional: signals whose format is the structure, not a range (div's
+     * quotient register: its width is the number of clocks, and its value
+     * spans the whole format whatever the format, older bits shifting out
+     * at the top). Derived ranges never size them (tb_derive_fmts): a
+     * wider one would only add clocks. NULL-terminated. */
+    const char *fmt_fixed[4];
     /* Optional (NULL: every signal of the schedule is built): whether
      * configuration cfg builds signal i, for units whose signal set depends
      * on a parameter (div3's terms and series). Only asked about signals
@@ -216,6 +222,8 @@ void unit_cfg_default(const unit_desc *u, unit_cfg *cfg);
 int  unit_n_in(const unit_desc *u);
 int  unit_n_out(const unit_desc *u);
 int  unit_sig_index(const unit_desc *u, const char *name);   /* -1 if none */
+/* 1 if signal i's format is the unit's structure (unit_desc.fmt_fixed). */
+int  unit_sig_fmt_fixed(const unit_desc *u, int i);
 /* 1 if schedule sched builds signal i (its scheds mask). */
 int  unit_sig_used(const unit_desc *u, int i, int sched);
 /* 1 if configuration cfg builds signal i: its schedule has it and the

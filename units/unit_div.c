@@ -330,4 +330,5 @@ const unit_desc unit_div = {
     .fmt_rule = "n, d, r u1.(W-1); q u0.W (W clocks); dz u1.0",
     .formats = div_formats, .beats = beats1, .build = div_build, .ideal = div_ideal, .bound = div_bound, .ideal_ratio = div_ratio,
     .below = { "n", "d" },
+    .fmt_fixed = { "q" },
 };

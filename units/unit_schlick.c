@@ -156,6 +156,7 @@ static void sh_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 const unit_desc unit_schlick = {
     .name = "schlick",
     .ref = &ref_model_schlick,
+    .fmt_fixed = { "q" },
     .summary = "F_SH = c/(n - n c + c) (Schlick's stand-in for cos^n) on the restoring divider",
     .source = "Zavalniuk et al. (2022), eq. 2",
     UNIT_SIGS(SH_SIGS(UNIT_SIG_ROW)),
@@ -395,6 +396,7 @@ static void ms_bound(const unit_cfg *cfg, const unit_fmts *f, double *per_out)
 const unit_desc unit_mschlick = {
     .name = "mschlick",
     .ref = &ref_model_mschlick,
+    .fmt_fixed = { "q" },
     .summary = "F_MSH = 2c/(1.25 (n - n c + 1.25 c)^2): normalize, square, divide",
     .source = "Zavalniuk et al. (2022), eq. 5",
     UNIT_SIGS(MS_SIGS(UNIT_SIG_ROW)),
