@@ -186,8 +186,7 @@ typedef struct reader {
     vec_stream *vs;
     size_t most, ncol;
     int blocks, calls;
-    double *rows;               /* [n][ncol] */
-    size_t n, cap;
+    vec_set rows;               /* [n][ncol]: parsed into straight from the text (after the first block) */
     int last, failed;           /* the file's end was read; a bad row (err) */
     char err[600];
 } reader;
@@ -195,21 +194,29 @@ typedef struct reader {
 static void reader_run(void *arg)
 {
     reader *R = arg;
-    R->n = 0;
+    R->rows.n_rows = 0;
     R->last = R->failed = 0;
     int got = 0;
     do {
-        const vec_set *rows;
-        int rc = vec_stream_next(R->vs, &rows);
+        int rc;
+        if (R->calls == 0) {
+            /* the first block into the stream's own set, so that it can
+             * be handed back unread (and it has the header's shape) */
+            const vec_set *rows;
+            rc = vec_stream_next(R->vs, &rows);
+            if (rc > 0) {
+                R->rows.n_in = rows->n_in; R->rows.n_out = rows->n_out;
+                R->rows.data = grow(R->rows.data, rows->n_rows, R->ncol * sizeof *R->rows.data);
+                R->rows.cap_rows = rows->n_rows;
+                memcpy(R->rows.data, rows->data, rows->n_rows * R->ncol * sizeof *R->rows.data);
+                R->rows.n_rows = rows->n_rows;
+            }
+        } else {
+            rc = vec_stream_append(R->vs, &R->rows);
+        }
         if (rc < 0) { R->failed = 1; snprintf(R->err, sizeof R->err, "%s", vec_stream_error(R->vs)); return; }
         if (rc == 0) break;
-        if (R->n + rows->n_rows > R->cap) {
-            R->cap = (R->n + rows->n_rows) * 2;
-            R->rows = grow(R->rows, R->cap, R->ncol * sizeof *R->rows);
-        }
-        memcpy(R->rows + R->n * R->ncol, rows->data, rows->n_rows * R->ncol * sizeof *R->rows);
-        R->n += rows->n_rows;
-    } while (++got < R->blocks && !vec_stream_done(R->vs) && R->n < R->most);
+    } while (++got < R->blocks && !vec_stream_done(R->vs) && R->rows.n_rows < R->most);
     R->last = vec_stream_done(R->vs);
     if (++R->calls >= 2 && R->blocks < (1 << 20)) R->blocks *= 2;
 }
@@ -254,7 +261,10 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     if (!pj) base_out_of_memory();
     vec_stream_threads(vs, threads);
     base_pool *pool = NULL;     /* the threads, made once (below) */
-    reader R = { vs, most, (size_t)X[0].ncol, 1, 0, NULL, 0, 0, 0, 0, "" };
+    reader R;
+    memset(&R, 0, sizeof R);
+    R.vs = vs; R.most = most; R.ncol = (size_t)X[0].ncol; R.blocks = 1;
+    vec_set_init(&R.rows);
     base_task rt, ft;
     int reading = 0, folding = 0;   /* rt reads the next wave; ft folds the wave before */
     int rc = TB_OK, last = 0;
@@ -264,9 +274,9 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         size_t own = s.n;
         if (reading) { base_pool_wait(pool, &rt); reading = 0; }
         if (R.failed) { snprintf(err, errlen, "%s", R.err); rc = TB_BADINPUT; goto done; }
-        wbuf_reserve(B, s.n + R.n, has_exact, !!u->ideal_ratio, !!u->ideal_interval);
-        memcpy(B->rows + s.n * (size_t)B->ncol, R.rows, R.n * R.ncol * sizeof *R.rows);
-        s.n += R.n;
+        wbuf_reserve(B, s.n + R.rows.n_rows, has_exact, !!u->ideal_ratio, !!u->ideal_interval);
+        memcpy(B->rows + s.n * (size_t)B->ncol, R.rows.data, R.rows.n_rows * R.ncol * sizeof *R.rows.data);
+        s.n += R.rows.n_rows;
         last = R.last;
         if (s.n == own) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }   /* (the reader says it first) */
         /* the threads, made once, when there is more than a small wave:
@@ -327,7 +337,7 @@ done:
     if (folding) base_pool_wait(pool, &ft);
     vec_stream_pool(vs, NULL);
     base_pool_free(pool);
-    free(R.rows);
+    vec_set_free(&R.rows);
     free(pj);
     wbuf_free(&X[0]);
     wbuf_free(&X[1]);
