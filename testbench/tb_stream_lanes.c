@@ -226,6 +226,24 @@ static void reader_run(void *arg)
     if (++R->calls >= 2 && R->blocks < (1 << 20)) R->blocks *= 2;
 }
 
+/* X's shapes, which of the exact ideal's arrays they keep, and the items
+ * a wave takes. */
+static size_t wave_setup(wbuf X[2], const unit_desc *u, const tb_result *r, int nv, int *has_exact, int *has_exact_d)
+{
+    for (int i = 0; i < 2; i++) {
+        X[i].n_in = r->n_in; X[i].nv = nv; X[i].beats = r->beats; X[i].ncol = r->n_in + nv;
+    }
+    /* a unit with an exact ideal alone keeps its double (tb_item's
+     * exact_d): 8 bytes a value instead of a sim_dy's 80 */
+    *has_exact_d = u->ideal_exact && !u->ideal_ratio && !u->ideal_interval;
+    *has_exact = !*has_exact_d && (u->ideal_exact || u->ideal_ratio || u->ideal_interval);
+    size_t ndy = (size_t)*has_exact + !!u->ideal_ratio + !!u->ideal_interval;
+    size_t per = (size_t)X[0].ncol * 8 + (size_t)X[0].n_in * 8
+               + (size_t)nv * (8 + 32 + 8 * (size_t)*has_exact_d + ndy * sizeof(sim_dy)) + 1 + (size_t)X[0].beats * 8;
+    size_t most = WAVE_BYTES / per;
+    return most < WAVE_MIN ? WAVE_MIN : most > WAVE_MAX ? WAVE_MAX : most;
+}
+
 int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, vec_stream *vs,
                         tb_row_fn row, void *row_data, int threads, tb_result *r, int *rewound,
                         char *err, size_t errlen)
@@ -250,18 +268,8 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     /* two buffers: a wave simulates in one while the wave before is
      * folded from the other */
     wbuf X[2] = { { 0 }, { 0 } };
-    for (int i = 0; i < 2; i++) {
-        X[i].n_in = r->n_in; X[i].nv = pc.nv; X[i].beats = r->beats; X[i].ncol = r->n_in + pc.nv;
-    }
-    /* a unit with an exact ideal alone keeps its double (tb_item's
-     * exact_d): 8 bytes a value instead of a sim_dy's 80 */
-    int has_exact_d = u->ideal_exact && !u->ideal_ratio && !u->ideal_interval;
-    int has_exact = !has_exact_d && (u->ideal_exact || u->ideal_ratio || u->ideal_interval);
-    size_t nv = (size_t)pc.nv, ndy = (size_t)has_exact + !!u->ideal_ratio + !!u->ideal_interval;
-    size_t per = (size_t)X[0].ncol * 8 + (size_t)X[0].n_in * 8 + nv * (8 + 32 + 8 * (size_t)has_exact_d + ndy * sizeof(sim_dy)) + 1
-               + (size_t)X[0].beats * 8;
-    size_t most = WAVE_BYTES / per;
-    most = most < WAVE_MIN ? WAVE_MIN : most > WAVE_MAX ? WAVE_MAX : most;
+    int has_exact, has_exact_d;
+    size_t nv = (size_t)pc.nv, most = wave_setup(X, u, r, pc.nv, &has_exact, &has_exact_d);
     sl_state s = { 0 };
     folder F = { NULL, 0, 0, 0, 0, 0, 0, &acc, r, row, row_data };
     uint64_t in_ovf[UNIT_MAX_IO] = { 0 };
