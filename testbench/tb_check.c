@@ -23,6 +23,23 @@ int tb_check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *de
     return tb_check_value_at(raw, f, sim_fmt_lsb(f), exact, den, hi, ideal_d, bound, sim_dy_to_double(bound), err);
 }
 
+int tb_check_quick(int64_t raw, sim_fmt f, double lsb, double id_d, double bound_d, double *err)
+{
+    /* Fast and still exact in its verdict: the raw is exact in a double;
+     * to_double errs by at most 2^-49 |I| (8 words summed), the
+     * subtraction by 2^-53 of the result. Decide only outside that margin
+     * (and away from subnormals; NaN never). (raw lsb is sim_fx_to_real's
+     * value: exact, a product by 2^-F.) */
+    if (f.width > 53) return -1;
+    double hd = (double)raw * lsb, bd = bound_d;
+    double dd = fabs(hd - id_d), eps = 0x1p-47 * (fabs(hd) + fabs(id_d) + bd);
+    if ((id_d == 0 || fabs(id_d) > 0x1p-900) && (bd == 0 || bd > 0x1p-900)) {
+        if (dd + eps < bd) { *err = dd; return TB_CHECK_OK; }
+        if (dd - eps > bd) { *err = dd; return TB_CHECK_EXCEEDED; }
+    }
+    return -1;
+}
+
 int tb_check_value_at(int64_t raw, sim_fmt f, double lsb, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
                       double ideal_d, const sim_dy *bound, double bound_d, double *err)
 {
@@ -57,17 +74,8 @@ int tb_check_value_at(int64_t raw, sim_fmt f, double lsb, const sim_dy *exact, c
         return sim_dy_cmp(&d, &bd) <= 0 ? TB_CHECK_OK : TB_CHECK_EXCEEDED;
     }
     if (exact && f.width <= 53) {
-        /* Fast and still exact in its verdict: the raw is exact in a
-         * double; to_double errs by at most 2^-49 |I| (8 words summed),
-         * the subtraction by 2^-53 of the result. Decide only outside
-         * that margin (and away from subnormals); else below. (raw lsb
-         * is sim_fx_to_real's value: exact, a product by 2^-F.) */
-        double hd = (double)raw * lsb, id_d = sim_dy_to_double(exact), bd = bound_d;
-        double dd = fabs(hd - id_d), eps = 0x1p-47 * (fabs(hd) + fabs(id_d) + bd);
-        if (!exact->ovf && (id_d == 0 || fabs(id_d) > 0x1p-900) && (bd == 0 || bd > 0x1p-900)) {
-            if (dd + eps < bd) { *err = dd; return TB_CHECK_OK; }
-            if (dd - eps > bd) { *err = dd; return TB_CHECK_EXCEEDED; }
-        }
+        int c = tb_check_quick(raw, f, lsb, exact->ovf ? NAN : sim_dy_to_double(exact), bound_d, err);
+        if (c >= 0) return c;
     }
     sim_dy_raw(&hw, raw, f);
     const sim_dy *idp = exact;

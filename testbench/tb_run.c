@@ -98,7 +98,7 @@ static void metrics(tb_result *r, const vec_set *vs, const double *ideal, const 
         tb_item ti = { NULL, (double *)ideal + at, (double *)g->ideal_r + at, (double *)g->ideal_u + at,
                        (double *)g->ref_u + at, exact ? (sim_dy *)exact + at : NULL,
                        exact_den ? (sim_dy *)exact_den + at : NULL, exact_hi ? (sim_dy *)exact_hi + at : NULL,
-                       (unsigned char *)exact_ok + it };
+                       (unsigned char *)exact_ok + it, NULL };
         tb_acc_item(&a, r, it, r->raw + at, vec_row(vs, it) + r->n_in, &ti);
     }
     tb_acc_end(&a, r);
@@ -166,7 +166,7 @@ static void run_prepare(run_mem *m, const unit_desc *u, const unit_cfg *cfg, con
         size_t at = it * (size_t)r->beats * (size_t)r->n_out;
         tb_item ti = { in_scratch ? in_scratch : m->in_raw + it * (size_t)r->n_in, m->ideal + at, (double *)m->gold.ideal_r + at,
                        (double *)m->gold.ideal_u + at, (double *)m->gold.ref_u + at, m->exact ? m->exact + at : NULL,
-                       m->exact_den ? m->exact_den + at : NULL, m->exact_hi ? m->exact_hi + at : NULL, m->exact_ok + it };
+                       m->exact_den ? m->exact_den + at : NULL, m->exact_hi ? m->exact_hi + at : NULL, m->exact_ok + it, NULL };
         tb_prep(&pc, vec_row(vs, it), &ti, m->in_ovf);
     }
 

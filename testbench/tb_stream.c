@@ -94,6 +94,15 @@ void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_
     else if (it->exact) *it->exact_ok = u->ideal_exact(cfg, qd, it->exact) == 0;
     if (it->exact && !*it->exact_ok && u->ideal_interval)
         *it->exact_ok = u->ideal_interval(cfg, qd, it->exact, it->hi) == 0 ? 2 : 0;
+    if (it->exact_d)
+        for (int j = 0; j < p->nv; j++) it->exact_d[j] = it->exact[j].ovf ? NAN : sim_dy_to_double(&it->exact[j]);
+}
+
+int tb_prep_exact(const tb_prep_ctx *p, const int64_t *in_raw, sim_dy *exact)
+{
+    sim_dy qd[UNIT_MAX_IO];
+    for (int i = 0; i < p->n_in; i++) sim_dy_raw(&qd[i], in_raw[i], p->in_fmt[i]);
+    return p->u->ideal_exact(p->cfg, qd, exact);
 }
 
 /* -------------------------------------------------------------- metrics */
@@ -124,7 +133,8 @@ void tb_acc_item(tb_acc *a, tb_result *r, size_t idx, const int64_t *raw, const 
                  const tb_item *it)
 {
     int no = r->n_out, nb = r->beats;
-    int ex = it->exact && *it->exact_ok, iv = ex && *it->exact_ok == 2;
+    int ex = (it->exact || it->exact_d) && *it->exact_ok, iv = ex && *it->exact_ok == 2;
+    const sim_dy *exact = it->exact;    /* exact_d's: worked out again once, if a value needs it */
     for (int o = 0; o < no; o++) {
         tb_metrics *m = &r->out[o];
         for (int bt = 0; bt < nb; bt++) {
@@ -132,7 +142,13 @@ void tb_acc_item(tb_acc *a, tb_result *r, size_t idx, const int64_t *raw, const 
             double hw = (double)raw[k] * a->lsb[o];     /* sim_fx_to_real: exact, a product by 2^-F */
             double ref = expected[k];
             double e = hw - ref, ei;
-            int c = tb_check_value_at(raw[k], m->fmt, a->lsb[o], ex ? &it->exact[k] : NULL,
+            int c = -1;
+            if (ex && !exact) {
+                c = tb_check_quick(raw[k], m->fmt, a->lsb[o], it->exact_d[k], a->bd[o], &ei);
+                if (c < 0) { (void)tb_prep_exact(a->pc, it->in_raw, a->exact_tmp); exact = a->exact_tmp; }
+            }
+            if (c < 0)
+                c = tb_check_value_at(raw[k], m->fmt, a->lsb[o], ex ? &exact[k] : NULL,
                                       ex && !iv && it->den ? &it->den[k] : NULL, iv ? &it->hi[k] : NULL, it->ideal[k],
                                       &a->b[o], a->bd[o], &ei);
             a->se[o] += e;
@@ -270,7 +286,7 @@ static tb_item ring_item(const st_state *s, size_t idx)
         s->R.ideal + 4 * k * nv, s->R.ideal + (4 * k + 1) * nv, s->R.ideal + (4 * k + 2) * nv,
         s->R.ideal + (4 * k + 3) * nv,
         s->R.exact ? s->R.exact + k * nv : NULL, s->R.den ? s->R.den + k * nv : NULL,
-        s->R.hi ? s->R.hi + k * nv : NULL, s->R.exact_ok + k
+        s->R.hi ? s->R.hi + k * nv : NULL, s->R.exact_ok + k, NULL
     };
     return it;
 }

@@ -45,12 +45,24 @@ typedef struct tb_item {
     double  *ideal, *ideal_r, *ideal_u, *ref_u;
     sim_dy  *exact, *den, *hi;  /* NULL when the unit has no such ideal */
     unsigned char *exact_ok;    /* one: 0 none, 1 exact (or ratio), 2 interval */
+    /* Where set (a unit with an exact ideal and neither ratio nor
+     * interval), the exact ideal kept as its double only (sim_dy_to_double;
+     * NaN when it did not fit), 8 bytes instead of a sim_dy: tb_prep
+     * still works it out in exact (scratch) and fills this; tb_acc_item,
+     * given exact NULL, decides from the double where that is exact
+     * (tb_check_quick) and works the exact value out again from in_raw
+     * where it is not (tb_acc's pc). The verdicts and figures are the
+     * same. */
+    double  *exact_d;
 } tb_item;
 
 void tb_prep_init(tb_prep_ctx *p, const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts);
 /* row: n_in inputs then nv expected values. in_ovf[i] counts input i's
  * quantization overflows. */
 void tb_prep(const tb_prep_ctx *p, const double *row, const tb_item *it, uint64_t *in_ovf);
+/* The exact ideal (nv values) of quantized inputs in_raw, as tb_prep
+ * works it out: 0, or nonzero when it does not fit (u->ideal_exact). */
+int  tb_prep_exact(const tb_prep_ctx *p, const int64_t *in_raw, sim_dy *exact);
 
 /* Error metrics of a run, item by item. r->out[o].fmt, name and bound must
  * be set before tb_acc_begin. */
@@ -61,6 +73,10 @@ typedef struct tb_acc {
     int    has_bound[UNIT_MAX_IO];
     int    any_unchecked[UNIT_MAX_IO], any_exceeded[UNIT_MAX_IO];
     size_t first_unchecked[UNIT_MAX_IO], first_exceeded[UNIT_MAX_IO];
+    /* For items with exact_d (tb_item): the unit, and room for nv
+     * values, to work an exact ideal out again (set after tb_acc_begin). */
+    const tb_prep_ctx *pc;
+    sim_dy *exact_tmp;
 } tb_acc;
 void tb_acc_begin(tb_acc *a, tb_result *r);
 /* Item number idx: its raws and expected values (nv each) and figures. */
@@ -74,6 +90,11 @@ int tb_check_value(int64_t raw, sim_fmt f, const sim_dy *exact, const sim_dy *de
                    double ideal_d, const sim_dy *bound, double *err);
 /* The same with what is fixed per output worked out once: lsb is
  * sim_fmt_lsb(f), bound_d sim_dy_to_double(bound). */
+/* The verdict of tb_check_value_at from the exact ideal's double id_d
+ * alone (sim_dy_to_double of it; NaN: it did not fit): TB_CHECK_OK or
+ * TB_CHECK_EXCEEDED with *err when that is exact, -1 when only the exact
+ * value can decide. */
+int tb_check_quick(int64_t raw, sim_fmt f, double lsb, double id_d, double bound_d, double *err);
 int tb_check_value_at(int64_t raw, sim_fmt f, double lsb, const sim_dy *exact, const sim_dy *den, const sim_dy *hi,
                       double ideal_d, const sim_dy *bound, double bound_d, double *err);
 

@@ -49,6 +49,7 @@ typedef struct wbuf {
     int64_t  *raw;              /* [pos][nv] */
     double   *ideal;            /* [pos][4][nv]: ideal, ideal_r, ideal_u, ref_u */
     sim_dy   *exact, *den, *hi; /* [pos][nv], where the unit has them */
+    double   *exact_d;          /* [pos][nv], instead of exact for a unit with exact alone (tb_item) */
     unsigned char *exact_ok;    /* [pos] */
     uint64_t *cycle;            /* [pos][beat] */
 } wbuf;
@@ -62,7 +63,7 @@ static void *grow(void *p, size_t n, size_t size)
 }
 
 /* Room for cap items (kept as they are). */
-static void wbuf_reserve(wbuf *B, size_t cap, int has_exact, int has_den, int has_hi)
+static void wbuf_reserve(wbuf *B, size_t cap, int has_exact, int has_exact_d, int has_den, int has_hi)
 {
     if (cap <= B->cap) return;
     size_t nv = (size_t)B->nv;
@@ -71,6 +72,7 @@ static void wbuf_reserve(wbuf *B, size_t cap, int has_exact, int has_den, int ha
     B->raw = grow(B->raw, cap, nv * sizeof *B->raw);
     B->ideal = grow(B->ideal, cap, 4 * nv * sizeof *B->ideal);
     if (has_exact) B->exact = grow(B->exact, cap, nv * sizeof *B->exact);
+    if (has_exact_d) B->exact_d = grow(B->exact_d, cap, nv * sizeof *B->exact_d);
     if (has_den) B->den = grow(B->den, cap, nv * sizeof *B->den);
     if (has_hi) B->hi = grow(B->hi, cap, nv * sizeof *B->hi);
     B->exact_ok = grow(B->exact_ok, cap, 1);
@@ -88,6 +90,7 @@ static void wbuf_tail(wbuf *T, const wbuf *F, size_t k, size_t n)
     TAIL(raw, nv);
     TAIL(ideal, 4 * nv);
     TAIL(exact, nv);
+    TAIL(exact_d, nv);
     TAIL(den, nv);
     TAIL(hi, nv);
     TAIL(exact_ok, (size_t)1);
@@ -98,7 +101,7 @@ static void wbuf_tail(wbuf *T, const wbuf *F, size_t k, size_t n)
 static void wbuf_free(wbuf *B)
 {
     free(B->rows); free(B->in_raw); free(B->raw); free(B->ideal);
-    free(B->exact); free(B->den); free(B->hi); free(B->exact_ok); free(B->cycle);
+    free(B->exact); free(B->exact_d); free(B->den); free(B->hi); free(B->exact_ok); free(B->cycle);
 }
 
 static tb_item wbuf_item(const wbuf *B, size_t pos)
@@ -107,7 +110,7 @@ static tb_item wbuf_item(const wbuf *B, size_t pos)
     double *id = B->ideal + pos * 4 * nv;
     tb_item it = { B->in_raw + pos * (size_t)B->n_in, id, id + nv, id + 2 * nv, id + 3 * nv,
                    B->exact ? B->exact + pos * nv : NULL, B->den ? B->den + pos * nv : NULL,
-                   B->hi ? B->hi + pos * nv : NULL, B->exact_ok + pos };
+                   B->hi ? B->hi + pos * nv : NULL, B->exact_ok + pos, B->exact_d ? B->exact_d + pos * nv : NULL };
     return it;
 }
 
@@ -122,6 +125,7 @@ typedef struct prep_job {
     const tb_prep_ctx *pc;
     wbuf *B;
     size_t from, to;
+    sim_dy *tmp;                /* [chunk][nv]: the exact ideal's room, with exact_d */
     uint64_t ovf[PREP_CHUNKS][UNIT_MAX_IO];
 } prep_job;
 
@@ -131,6 +135,7 @@ static void prep_chunk(void *ctx, size_t c)
     size_t n = j->to - j->from, a = j->from + n * c / PREP_CHUNKS, b = j->from + n * (c + 1) / PREP_CHUNKS;
     for (size_t p = a; p < b; p++) {
         tb_item it = wbuf_item(j->B, p);
+        if (j->tmp) it.exact = j->tmp + c * (size_t)j->B->nv;
         tb_prep(j->pc, j->B->rows + p * (size_t)j->B->ncol, &it, j->ovf[c]);
     }
 }
@@ -186,8 +191,7 @@ typedef struct reader {
     vec_stream *vs;
     size_t most, ncol;
     int blocks, calls;
-    double *rows;               /* [n][ncol] */
-    size_t n, cap;
+    vec_set rows;               /* [n][ncol]: parsed into straight from the text (after the first block) */
     int last, failed;           /* the file's end was read; a bad row (err) */
     char err[600];
 } reader;
@@ -195,23 +199,49 @@ typedef struct reader {
 static void reader_run(void *arg)
 {
     reader *R = arg;
-    R->n = 0;
+    R->rows.n_rows = 0;
     R->last = R->failed = 0;
     int got = 0;
     do {
-        const vec_set *rows;
-        int rc = vec_stream_next(R->vs, &rows);
+        int rc;
+        if (R->calls == 0) {
+            /* the first block into the stream's own set, so that it can
+             * be handed back unread (and it has the header's shape) */
+            const vec_set *rows;
+            rc = vec_stream_next(R->vs, &rows);
+            if (rc > 0) {
+                R->rows.n_in = rows->n_in; R->rows.n_out = rows->n_out;
+                R->rows.data = grow(R->rows.data, rows->n_rows, R->ncol * sizeof *R->rows.data);
+                R->rows.cap_rows = rows->n_rows;
+                memcpy(R->rows.data, rows->data, rows->n_rows * R->ncol * sizeof *R->rows.data);
+                R->rows.n_rows = rows->n_rows;
+            }
+        } else {
+            rc = vec_stream_append(R->vs, &R->rows);
+        }
         if (rc < 0) { R->failed = 1; snprintf(R->err, sizeof R->err, "%s", vec_stream_error(R->vs)); return; }
         if (rc == 0) break;
-        if (R->n + rows->n_rows > R->cap) {
-            R->cap = (R->n + rows->n_rows) * 2;
-            R->rows = grow(R->rows, R->cap, R->ncol * sizeof *R->rows);
-        }
-        memcpy(R->rows + R->n * R->ncol, rows->data, rows->n_rows * R->ncol * sizeof *R->rows);
-        R->n += rows->n_rows;
-    } while (++got < R->blocks && !vec_stream_done(R->vs) && R->n < R->most);
+    } while (++got < R->blocks && !vec_stream_done(R->vs) && R->rows.n_rows < R->most);
     R->last = vec_stream_done(R->vs);
     if (++R->calls >= 2 && R->blocks < (1 << 20)) R->blocks *= 2;
+}
+
+/* X's shapes, which of the exact ideal's arrays they keep, and the items
+ * a wave takes. */
+static size_t wave_setup(wbuf X[2], const unit_desc *u, const tb_result *r, int nv, int *has_exact, int *has_exact_d)
+{
+    for (int i = 0; i < 2; i++) {
+        X[i].n_in = r->n_in; X[i].nv = nv; X[i].beats = r->beats; X[i].ncol = r->n_in + nv;
+    }
+    /* a unit with an exact ideal alone keeps its double (tb_item's
+     * exact_d): 8 bytes a value instead of a sim_dy's 80 */
+    *has_exact_d = u->ideal_exact && !u->ideal_ratio && !u->ideal_interval;
+    *has_exact = !*has_exact_d && (u->ideal_exact || u->ideal_ratio || u->ideal_interval);
+    size_t ndy = (size_t)*has_exact + !!u->ideal_ratio + !!u->ideal_interval;
+    size_t per = (size_t)X[0].ncol * 8 + (size_t)X[0].n_in * 8
+               + (size_t)nv * (8 + 32 + 8 * (size_t)*has_exact_d + ndy * sizeof(sim_dy)) + 1 + (size_t)X[0].beats * 8;
+    size_t most = WAVE_BYTES / per;
+    return most < WAVE_MIN ? WAVE_MIN : most > WAVE_MAX ? WAVE_MAX : most;
 }
 
 int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *fmts, vec_stream *vs,
@@ -238,23 +268,22 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     /* two buffers: a wave simulates in one while the wave before is
      * folded from the other */
     wbuf X[2] = { { 0 }, { 0 } };
-    for (int i = 0; i < 2; i++) {
-        X[i].n_in = r->n_in; X[i].nv = pc.nv; X[i].beats = r->beats; X[i].ncol = r->n_in + pc.nv;
-    }
-    int has_exact = u->ideal_exact || u->ideal_ratio || u->ideal_interval;
-    size_t nv = (size_t)pc.nv, ndy = (size_t)has_exact + !!u->ideal_ratio + !!u->ideal_interval;
-    size_t per = (size_t)X[0].ncol * 8 + (size_t)X[0].n_in * 8 + nv * (8 + 32 + ndy * sizeof(sim_dy)) + 1
-               + (size_t)X[0].beats * 8;
-    size_t most = WAVE_BYTES / per;
-    most = most < WAVE_MIN ? WAVE_MIN : most > WAVE_MAX ? WAVE_MAX : most;
+    int has_exact, has_exact_d;
+    size_t nv = (size_t)pc.nv, most = wave_setup(X, u, r, pc.nv, &has_exact, &has_exact_d);
     sl_state s = { 0 };
     folder F = { NULL, 0, 0, 0, 0, 0, 0, &acc, r, row, row_data };
     uint64_t in_ovf[UNIT_MAX_IO] = { 0 };
     prep_job *pj = calloc(1, sizeof *pj);
-    if (!pj) base_out_of_memory();
+    sim_dy *exact_tmp = has_exact_d ? calloc((PREP_CHUNKS + 1) * nv, sizeof *exact_tmp) : NULL;
+    if (!pj || (has_exact_d && !exact_tmp)) base_out_of_memory();
+    acc.pc = &pc;
+    acc.exact_tmp = exact_tmp ? exact_tmp + PREP_CHUNKS * nv : NULL;
     vec_stream_threads(vs, threads);
     base_pool *pool = NULL;     /* the threads, made once (below) */
-    reader R = { vs, most, (size_t)X[0].ncol, 1, 0, NULL, 0, 0, 0, 0, "" };
+    reader R;
+    memset(&R, 0, sizeof R);
+    R.vs = vs; R.most = most; R.ncol = (size_t)X[0].ncol; R.blocks = 1;
+    vec_set_init(&R.rows);
     base_task rt, ft;
     int reading = 0, folding = 0;   /* rt reads the next wave; ft folds the wave before */
     int rc = TB_OK, last = 0;
@@ -264,9 +293,9 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         size_t own = s.n;
         if (reading) { base_pool_wait(pool, &rt); reading = 0; }
         if (R.failed) { snprintf(err, errlen, "%s", R.err); rc = TB_BADINPUT; goto done; }
-        wbuf_reserve(B, s.n + R.n, has_exact, !!u->ideal_ratio, !!u->ideal_interval);
-        memcpy(B->rows + s.n * (size_t)B->ncol, R.rows, R.n * R.ncol * sizeof *R.rows);
-        s.n += R.n;
+        wbuf_reserve(B, s.n + R.rows.n_rows, has_exact, has_exact_d, !!u->ideal_ratio, !!u->ideal_interval);
+        memcpy(B->rows + s.n * (size_t)B->ncol, R.rows.data, R.rows.n_rows * R.ncol * sizeof *R.rows.data);
+        s.n += R.rows.n_rows;
         last = R.last;
         if (s.n == own) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }   /* (the reader says it first) */
         /* the threads, made once, when there is more than a small wave:
@@ -282,7 +311,7 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         if (!last && wi > 0 && pool) { base_pool_start(pool, &rt, reader_run, &R); reading = 1; }
         /* the wave's own items prepared */
         memset(pj, 0, sizeof *pj);
-        pj->pc = &pc; pj->B = B; pj->from = own; pj->to = s.n;
+        pj->pc = &pc; pj->B = B; pj->from = own; pj->to = s.n; pj->tmp = exact_tmp;
         base_pool_for(s.n - own < PREP_PAR_MIN ? NULL : pool, PREP_CHUNKS, prep_chunk, pj);
         for (int c = 0; c < PREP_CHUNKS; c++)
             for (int i = 0; i < r->n_in; i++) in_ovf[i] += pj->ovf[c][i];
@@ -306,7 +335,7 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         size_t keep = s.n > TB_LANES_WARM_MAX ? s.n - TB_LANES_WARM_MAX : 0, done_items = w.beats_done / (size_t)r->beats;
         if (done_items - s.base < keep) keep = done_items - s.base;
         wbuf *N = &X[(wi + 1) & 1];
-        wbuf_reserve(N, s.n - keep, has_exact, !!u->ideal_ratio, !!u->ideal_interval);
+        wbuf_reserve(N, s.n - keep, has_exact, has_exact_d, !!u->ideal_ratio, !!u->ideal_interval);
         wbuf_tail(N, B, keep, s.n);
         s.base += keep;
         s.n -= keep;
@@ -327,8 +356,9 @@ done:
     if (folding) base_pool_wait(pool, &ft);
     vec_stream_pool(vs, NULL);
     base_pool_free(pool);
-    free(R.rows);
+    vec_set_free(&R.rows);
     free(pj);
+    free(exact_tmp);
     wbuf_free(&X[0]);
     wbuf_free(&X[1]);
     tb_lanes_free(x);

@@ -132,7 +132,9 @@ while read -r u w _; do
     (cd "$k" && sta -no_init -exit drv.tcl >drv.log 2>&1)
     n=$(grep -c 'VIOLATED' "$k/drv.log")
     grep -q '^Error' "$k/sta.log" "$k/drv.log" && drv="$drv $u@$w (OpenSTA: $(grep -h -m1 '^Error' "$k/sta.log" "$k/drv.log"))"
-    [ "$n" = 0 ] || drv="$drv $u@$w ($n pins past max_transition)"
+    # a design tests/sta_known.txt lists as drv N may have up to N such pins
+    k=$(awk -v u="$u" -v w="$w" '$1 == u && $2 == w && $3 == "drv" { print $4 }' tests/sta_known.txt)
+    [ "$n" -le "${k:-0}" ] || drv="$drv $u@$w ($n pins past max_transition)"
 done <"$T/designs"
 [ -z "$drv" ] && ok design_rules || fail design_rules "$drv"
 : >"$T/rows"

@@ -118,4 +118,14 @@ check merge_help [ $? -eq 0 -a "$(head -1 "$T/h" | cut -c1-21)" = "usage: shades
 rc=$?
 [ $rc -eq 1 ] && grep -q '"met": false' "$T/miss/target.json" && [ -s "$T/miss/sweep.csv" ] && ok target_missed_exit_1 \
     || fail target_missed_exit_1 "exit $rc: $(grep -c '"met": false' "$T/miss/target.json" 2>&1) $(tail -2 "$T/miss.out")"
+# The price of a halving of the error along the front, against the CSV: two
+# widths of div (both on the front) give area difference / log2(error ratio);
+# a front whose error hardly falls (an output format of 6 fraction bits
+# holds horner3 at about 4) quotes no price: its quotient was billions of GE.
+"$S" sweep div --widths 8:9 -o "$T/half" >"$T/half.out" 2>&1
+want=$(awk -F, 'NR == 2 { e0 = $16; a0 = $22 } NR == 3 { e1 = $16; a1 = $22 }
+    END { printf "halving max |e| costs %.0f GE on average", (a1 - a0) / (log(e0 / e1) / log(2)) }' "$T/half/sweep.csv")
+check sweep_price_of_a_halving_from_the_csv grep -qF "$want" "$T/half.out"
+"$S" sweep horner3 --widths 14:15 --fmt y=s2.6 -o "$T/flat" >"$T/flat.out" 2>&1
+check sweep_no_price_when_error_hardly_falls sh -c "grep -q 'falls only from 4.022 to 4.007 (less than a tenth of a halving)' '$T/flat.out' && ! grep -q 'costs' '$T/flat.out'"
 exit 0

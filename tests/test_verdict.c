@@ -4,6 +4,7 @@
  * computed here: 128-bit integer arithmetic, rounding by hand. */
 #include "tests/tst.h"
 #include "testbench/tb.h"
+#include "testbench/tb_stream.h"
 #include <stdint.h>
 
 /* Run unit name with cfg and overrides ov[0..nov-1] on vs (NULL: the
@@ -497,6 +498,48 @@ static void t_random_units(void)
     TST_CHECK(checked > 1000, "only %d widenings checked", checked);
 }
 
+/* tb_check_quick (the check from the exact ideal's double alone, as the
+ * lanes keep it) against the exact difference of sim_dy: its verdict,
+ * where it gives one, is the exact one (its error within the margin it
+ * allows for); a value a hair from the bound is
+ * left to the exact path; a NaN (an ideal that did not fit) always. */
+static void t_check_quick(void)
+{
+    static const char *const fmts[] = { "s7.9", "u1.15", "s3.28", "s20.33" };
+    static const double hair[] = { 0, 0x1p-70, -0x1p-70, 0x1p-45, -0x1p-45, 0.3, -0.3, 2.5, -2.5 };
+    int decided = 0, left = 0;
+    for (int fi = 0; fi < 4; fi++) {
+        sim_fmt f;
+        char err[128];
+        TST_CHECK(sim_fmt_parse(fmts[fi], &f, err, sizeof err) == 0, "%s", err);
+        double lsb = sim_fmt_lsb(f);
+        for (int k = 0; k < 400; k++) {
+            int64_t raw = (int64_t)(rnd64() >> (64 - f.width + 1));
+            double bd = (double)(rnd64() % 4) * lsb + (k % 3 ? 0 : lsb / 8);
+            double off = (k & 1 ? bd : -bd) + hair[k % 9] * lsb;
+            sim_dy hw, ex, o, d, b;
+            sim_dy_raw(&hw, raw, f);
+            sim_dy_double(&o, off);
+            sim_dy_add(&ex, &hw, &o);
+            sim_dy_double(&b, bd);
+            sim_dy_sub(&d, &hw, &ex);
+            sim_dy_abs(&d, &d);
+            int want = sim_dy_cmp(&d, &b) <= 0 ? TB_CHECK_OK : TB_CHECK_EXCEEDED;
+            double e = -1;
+            int c = tb_check_quick(raw, f, lsb, sim_dy_to_double(&ex), bd, &e);
+            if (c < 0) { left++; continue; }
+            decided++;
+            TST_CHECK(c == want, "%s raw %lld offset %a bound %a: %s, exactly %s", fmts[fi], (long long)raw, off, bd,
+                      tb_check_name(c), tb_check_name(want));
+            TST_CHECK(fabs(e - sim_dy_to_double(&d)) <= 0x1p-47 * (2 * fabs((double)raw * lsb) + fabs(off) + bd), "%s: err %a, exactly %a", fmts[fi], e,
+                      sim_dy_to_double(&d));
+        }
+        double e;
+        TST_EQ_INT(tb_check_quick(0, f, lsb, NAN, lsb, &e), -1);
+    }
+    TST_CHECK(decided > 400 && left > 400, "decided %d, left %d", decided, left);
+}
+
 int main(void)
 {
     /* fixed draws by default (deterministic); VERDICT_SEED=N draws others */
@@ -515,5 +558,6 @@ int main(void)
     TST_RUN(t_overflow_named);
     TST_RUN(t_accept);
     TST_RUN(t_random_units);
+    TST_RUN(t_check_quick);
     TST_EXIT();
 }

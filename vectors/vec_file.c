@@ -660,6 +660,21 @@ int vec_stream_next(vec_stream *v, const vec_set **rows)
     return v->rows.n_rows ? 1 : 0;
 }
 
+int vec_stream_append(vec_stream *v, vec_set *dst)
+{
+    size_t before = dst->n_rows;
+    if (v->held || v->gen || v->failed) {
+        const vec_set *rows;
+        int rc = vec_stream_next(v, &rows);
+        if (rc > 0 && append_rows(dst, rows)) base_out_of_memory();
+        return rc;
+    }
+    v->rows.n_rows = 0;
+    while (!v->done && dst->n_rows == before)
+        if (read_step(v, dst)) { v->failed = 1; dst->n_rows = before; return -1; }
+    return dst->n_rows > before;
+}
+
 void vec_stream_unread(vec_stream *v) { if (!v->failed) v->held = 1; }
 
 const char *vec_stream_error(const vec_stream *v) { return v->err; }

@@ -39,6 +39,12 @@ int         vec_stream_next(vec_stream *v, const vec_set **rows);
  * looked at the header and first rows hands the stream on untouched). */
 void        vec_stream_unread(vec_stream *v);
 const char *vec_stream_error(const vec_stream *v);
+/* vec_stream_next's rows appended to *dst (its n_in and n_out the
+ * stream's) instead: the block parsed straight into dst, not into the
+ * stream's set and copied (rows held by vec_stream_unread, or generated,
+ * are copied). 1, 0 at the end, -1 with the message; on -1 dst keeps the
+ * rows it had. */
+int         vec_stream_append(vec_stream *v, vec_set *dst);
 /* 1 when the file's end has been read: the rows vec_stream_next gave last
  * are the file's last (the next call returns 0). A generated stream
  * (vec_stream_gen) knows its end only once vec_stream_next returned 0. */

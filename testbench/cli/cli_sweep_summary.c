@@ -192,7 +192,14 @@ static void print_front(FILE *f, const tb_sweep *s, const unsigned char *on, siz
         sa[half] += p[k].x - p[k - 1].x;
         sh[half] += log2(e0 / e1);
     }
-    if (sh[0] + sh[1] > 0) {
+    /* A front whose error spans less than a tenth of a halving has no price per
+     * halving to quote: the quotient would extrapolate a hair of error
+     * (two widths whose max |e| differ in the fifth digit) into any
+     * number of gate equivalents. */
+    if (n > 1 && sh[0] + sh[1] > 0 && sh[0] + sh[1] < 0.1)
+        fprintf(f, "  along it, max |e| falls only from %.4g to %.4g (less than a tenth of a halving): no area per halving to quote\n",
+                p[0].y, p[n - 1].y);
+    else if (sh[0] + sh[1] > 0) {
         fprintf(f, "  along it, halving max |e| costs %.0f GE on average", (sa[0] + sa[1]) / (sh[0] + sh[1]));
         if (sh[0] > 0 && sh[1] > 0)
             fprintf(f, " (%.0f GE in its cheaper half, %.0f GE in its more accurate half)", sa[0] / sh[0], sa[1] / sh[1]);
