@@ -323,6 +323,7 @@ static void defaults_per_unit(void)
     unit_cfg_default(dv, &d);
     TST_CHECK(!memcmp(&d, &none, sizeof d), "div (no parameters) has the shared values");
     vec_params vp;
+    memset(&vp, 0, sizeof vp);          /* its padding, as unit_cfg_default's memset leaves it: memcmp reads it */
     vec_params_default(&vp);
     TST_CHECK(!memcmp(&none.model, &vp, sizeof vp), "the model's fields are the reference's defaults");
     TST_EQ_INT(none.width, 16);
