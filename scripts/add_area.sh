@@ -16,17 +16,8 @@
 lib=${1:?usage: sh scripts/add_area.sh LIBERTY [N...]}
 shift
 [ $# -gt 0 ] || set -- 4 8 16 24
-command -v yosys >/dev/null 2>&1 || { echo "add_area.sh: yosys not found (install the Debian package yosys)" >&2; exit 2; }
-[ -r "$lib" ] || { echo "add_area.sh: $lib: cannot read" >&2; exit 2; }
-d=$(mktemp -d) || exit 2
-trap 'rm -rf "$d"' EXIT
-trap 'exit 130' INT TERM HUP
-case $lib in
-*.gz) gzip -dc "$lib" >"$d/l.lib" || { echo "add_area.sh: cannot unpack $lib" >&2; exit 2; } ;;
-*) cp "$lib" "$d/l.lib" || exit 2 ;;
-esac
-nand=$(awk '/cell *\( *"?NAND2_X1"? *\)/ { c = 1 } c && /area/ { gsub(/[^0-9.]/, "", $3); print $3; exit }' "$d/l.lib")
-[ -n "$nand" ] || { echo "add_area.sh: $lib has no NAND2_X1" >&2; exit 2; }
+me=add_area.sh
+. "$(dirname "$0")/lib_map.sh"
 for n in "$@"; do
     for k in ${KINDS:-add sub inc carry}; do
         case $k in
@@ -37,9 +28,7 @@ for n in "$@"; do
         esac
         printf 'module m(input [%d:0] a, input [%d:0] b, input c, output [%d:0] y);\n  %s\nendmodule\n' \
             $((n - 1)) $((n - 1)) $((n - 1)) "$e" >"$d/m.v"
-        area=$(cd "$d" && yosys -q -p "read_verilog m.v; synth -top m; abc -liberty l.lib; opt_clean; tee -q -o s.txt stat -liberty l.lib" >/dev/null 2>&1 &&
-            sed -n 's/.*Chip area for module.*: *\([0-9.]*\).*/\1/p' "$d/s.txt")
-        [ -n "$area" ] || { echo "add_area.sh: yosys failed on $k $n" >&2; exit 2; }
+        area=$(map_area $k $n) || exit 2
         awk -v k=$k -v n=$n -v a="$area" -v g="$nand" 'BEGIN { printf "%-5s %3d %8.1f %6.3f\n", k, n, a / g, a / g / n }'
     done
 done

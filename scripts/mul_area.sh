@@ -18,17 +18,8 @@
 lib=${1:?usage: sh scripts/mul_area.sh LIBERTY [N...]}
 shift
 [ $# -gt 0 ] || set -- 4 8 16 24
-command -v yosys >/dev/null 2>&1 || { echo "mul_area.sh: yosys not found (install the Debian package yosys)" >&2; exit 2; }
-[ -r "$lib" ] || { echo "mul_area.sh: $lib: cannot read" >&2; exit 2; }
-d=$(mktemp -d) || exit 2
-trap 'rm -rf "$d"' EXIT
-trap 'exit 130' INT TERM HUP
-case $lib in
-*.gz) gzip -dc "$lib" >"$d/l.lib" || { echo "mul_area.sh: cannot unpack $lib" >&2; exit 2; } ;;
-*) cp "$lib" "$d/l.lib" || exit 2 ;;
-esac
-nand=$(awk '/cell *\( *"?NAND2_X1"? *\)/ { c = 1 } c && /area/ { gsub(/[^0-9.]/, "", $3); print $3; exit }' "$d/l.lib")
-[ -n "$nand" ] || { echo "mul_area.sh: $lib has no NAND2_X1" >&2; exit 2; }
+me=mul_area.sh
+. "$(dirname "$0")/lib_map.sh"
 for n in "$@"; do
     for k in ${KINDS:-uu su ss usq ssq}; do
         case $k in
@@ -40,9 +31,7 @@ for n in "$@"; do
         esac
         printf 'module m(input [%d:0] a, input [%d:0] b, output [%d:0] y);\n  assign y = %s;\nendmodule\n' \
             $((n - 1)) $((n - 1)) $((2 * n)) "$e" >"$d/m.v"
-        area=$(cd "$d" && yosys -q -p "read_verilog m.v; synth -top m; abc -liberty l.lib; opt_clean; tee -q -o s.txt stat -liberty l.lib" >/dev/null 2>&1 &&
-            sed -n 's/.*Chip area for module.*: *\([0-9.]*\).*/\1/p' "$d/s.txt")
-        [ -n "$area" ] || { echo "mul_area.sh: yosys failed on $k $n" >&2; exit 2; }
+        area=$(map_area $k $n) || exit 2
         # the model's array: n^2 AND2 (1.33 GE) and (n-1) n full adders (5.33 GE)
         awk -v k=$k -v n=$n -v a="$area" -v g="$nand" 'BEGIN {
             m = n * n * 1.33 + (n - 1) * n * 5.33
