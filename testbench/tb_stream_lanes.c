@@ -40,11 +40,15 @@
 #define WAVE_MIN   ((size_t)1 << 12)
 #define WAVE_MAX   ((size_t)1 << 17)
 
-/* A wave's items by position in the buffer. */
+/* A wave's items by position in the buffer: first the items kept from
+ * the wave before (own of them), then the wave's own. Their rows are not
+ * copied in: the own items' are the reader's set (fresh), those kept a
+ * copy of theirs (a warm-up's and the items in flight: a few hundred). */
 typedef struct wbuf {
-    size_t cap;
+    size_t cap, own, rows_cap;
     int n_in, nv, beats, ncol;  /* ncol: a row's inputs and expected values */
-    double   *rows;             /* [pos][ncol] */
+    double   *rows;             /* [pos][ncol], pos < own */
+    const double *fresh;        /* [pos - own][ncol], pos >= own: the reader's */
     int64_t  *in_raw;           /* [pos][n_in] */
     int64_t  *raw;              /* [pos][nv] */
     double   *ideal;            /* [pos][4][nv]: ideal, ideal_r, ideal_u, ref_u */
@@ -67,7 +71,6 @@ static void wbuf_reserve(wbuf *B, size_t cap, int has_exact, int has_exact_d, in
 {
     if (cap <= B->cap) return;
     size_t nv = (size_t)B->nv;
-    B->rows = grow(B->rows, cap, (size_t)B->ncol * sizeof *B->rows);
     B->in_raw = grow(B->in_raw, cap, (size_t)B->n_in * sizeof *B->in_raw);
     B->raw = grow(B->raw, cap, nv * sizeof *B->raw);
     B->ideal = grow(B->ideal, cap, 4 * nv * sizeof *B->ideal);
@@ -80,12 +83,25 @@ static void wbuf_reserve(wbuf *B, size_t cap, int has_exact, int has_exact_d, in
     B->cap = cap;
 }
 
-/* Items [k, n) of F to the front of T (room for them reserved). */
+static const double *wbuf_row(const wbuf *B, size_t pos)
+{
+    return pos < B->own ? B->rows + pos * (size_t)B->ncol : B->fresh + (pos - B->own) * (size_t)B->ncol;
+}
+
+/* Items [k, n) of F to the front of T (room for them reserved, but for
+ * their rows). */
 static void wbuf_tail(wbuf *T, const wbuf *F, size_t k, size_t n)
 {
-    size_t m = n - k, nv = (size_t)F->nv;
+    size_t m = n - k, nv = (size_t)F->nv, ncol = (size_t)F->ncol;
+    if (m > T->rows_cap) {
+        T->rows = grow(T->rows, m, ncol * sizeof *T->rows);
+        T->rows_cap = m;
+    }
+    for (size_t p = k, q; p < n; p = q) {   /* the rows kept, then the own ones */
+        q = p < F->own && n > F->own ? F->own : n;
+        memcpy(T->rows + (p - k) * ncol, wbuf_row(F, p), (q - p) * ncol * sizeof *T->rows);
+    }
 #define TAIL(a, per) do { if (F->a) memcpy(T->a, F->a + k * (per), m * (per) * sizeof *F->a); } while (0)
-    TAIL(rows, (size_t)F->ncol);
     TAIL(in_raw, (size_t)F->n_in);
     TAIL(raw, nv);
     TAIL(ideal, 4 * nv);
@@ -136,7 +152,7 @@ static void prep_chunk(void *ctx, size_t c)
     for (size_t p = a; p < b; p++) {
         tb_item it = wbuf_item(j->B, p);
         if (j->tmp) it.exact = j->tmp + c * (size_t)j->B->nv;
-        tb_prep(j->pc, j->B->rows + p * (size_t)j->B->ncol, &it, j->ovf[c]);
+        tb_prep(j->pc, wbuf_row(j->B, p), &it, j->ovf[c]);
     }
 }
 
@@ -170,7 +186,7 @@ static void fold(void *arg)
         size_t it = f->acc_next, pos = it - f->base;
         const uint64_t *cyc = B->cycle + pos * nb;
         const int64_t *raw = B->raw + pos * (size_t)B->nv;
-        const double *expected = B->rows + pos * (size_t)B->ncol + B->n_in;
+        const double *expected = wbuf_row(B, pos) + B->n_in;
         tb_item ti = wbuf_item(B, pos);
         if (it == 0) f->first_cycle = cyc[0];
         f->last_item_cycle = cyc[0];
@@ -186,12 +202,15 @@ static void fold(void *arg)
  * blocks and `most` items. The first wave is the first block alone, and
  * the second (read before anything runs beside it) the next one; then
  * twice the blocks each wave, so that the reading soon runs beside the
- * simulation, as much of it as can. */
+ * simulation, as much of it as can. A wave's rows stay in their set
+ * until the wave is folded, as the next wave's are read: three sets, in
+ * turn. */
 typedef struct reader {
     vec_stream *vs;
     size_t most, ncol;
     int blocks, calls;
-    vec_set rows;               /* [n][ncol]: parsed into straight from the text (after the first block) */
+    vec_set sets[3];            /* [n][ncol]: parsed into straight from the text (after the first block) */
+    vec_set *rows;              /* the set the last call read */
     int last, failed;           /* the file's end was read; a bad row (err) */
     char err[600];
 } reader;
@@ -199,7 +218,8 @@ typedef struct reader {
 static void reader_run(void *arg)
 {
     reader *R = arg;
-    R->rows.n_rows = 0;
+    vec_set *to = R->rows = &R->sets[R->calls % 3];
+    to->n_rows = 0;
     R->last = R->failed = 0;
     int got = 0;
     do {
@@ -210,18 +230,18 @@ static void reader_run(void *arg)
             const vec_set *rows;
             rc = vec_stream_next(R->vs, &rows);
             if (rc > 0) {
-                R->rows.n_in = rows->n_in; R->rows.n_out = rows->n_out;
-                R->rows.data = grow(R->rows.data, rows->n_rows, R->ncol * sizeof *R->rows.data);
-                R->rows.cap_rows = rows->n_rows;
-                memcpy(R->rows.data, rows->data, rows->n_rows * R->ncol * sizeof *R->rows.data);
-                R->rows.n_rows = rows->n_rows;
+                for (int i = 0; i < 3; i++) { R->sets[i].n_in = rows->n_in; R->sets[i].n_out = rows->n_out; }
+                to->data = grow(to->data, rows->n_rows, R->ncol * sizeof *to->data);
+                to->cap_rows = rows->n_rows;
+                memcpy(to->data, rows->data, rows->n_rows * R->ncol * sizeof *to->data);
+                to->n_rows = rows->n_rows;
             }
         } else {
-            rc = vec_stream_append(R->vs, &R->rows);
+            rc = vec_stream_append(R->vs, to);
         }
         if (rc < 0) { R->failed = 1; snprintf(R->err, sizeof R->err, "%s", vec_stream_error(R->vs)); return; }
         if (rc == 0) break;
-    } while (++got < R->blocks && !vec_stream_done(R->vs) && R->rows.n_rows < R->most);
+    } while (++got < R->blocks && !vec_stream_done(R->vs) && to->n_rows < R->most);
     R->last = vec_stream_done(R->vs);
     if (++R->calls >= 2 && R->blocks < (1 << 20)) R->blocks *= 2;
 }
@@ -283,7 +303,7 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
     reader R;
     memset(&R, 0, sizeof R);
     R.vs = vs; R.most = most; R.ncol = (size_t)X[0].ncol; R.blocks = 1;
-    vec_set_init(&R.rows);
+    for (int i = 0; i < 3; i++) vec_set_init(&R.sets[i]);
     base_task rt, ft;
     int reading = 0, folding = 0;   /* rt reads the next wave; ft folds the wave before */
     int rc = TB_OK, last = 0;
@@ -293,9 +313,10 @@ int tb_run_stream_lanes(const unit_desc *u, const unit_cfg *cfg, const unit_fmts
         size_t own = s.n;
         if (reading) { base_pool_wait(pool, &rt); reading = 0; }
         if (R.failed) { snprintf(err, errlen, "%s", R.err); rc = TB_BADINPUT; goto done; }
-        wbuf_reserve(B, s.n + R.rows.n_rows, has_exact, has_exact_d, !!u->ideal_ratio, !!u->ideal_interval);
-        memcpy(B->rows + s.n * (size_t)B->ncol, R.rows.data, R.rows.n_rows * R.ncol * sizeof *R.rows.data);
-        s.n += R.rows.n_rows;
+        wbuf_reserve(B, s.n + R.rows->n_rows, has_exact, has_exact_d, !!u->ideal_ratio, !!u->ideal_interval);
+        B->own = own;
+        B->fresh = R.rows->data;
+        s.n += R.rows->n_rows;
         last = R.last;
         if (s.n == own) { snprintf(err, errlen, "no vectors"); rc = TB_BADINPUT; goto done; }   /* (the reader says it first) */
         /* the threads, made once, when there is more than a small wave:
@@ -356,7 +377,7 @@ done:
     if (folding) base_pool_wait(pool, &ft);
     vec_stream_pool(vs, NULL);
     base_pool_free(pool);
-    vec_set_free(&R.rows);
+    for (int i = 0; i < 3; i++) vec_set_free(&R.sets[i]);
     free(pj);
     free(exact_tmp);
     wbuf_free(&X[0]);
