@@ -31,12 +31,16 @@
 
 /* A wave takes items up to about WAVE_BYTES of their rows and prepared
  * figures (a unit with many output beats an item takes fewer), between
- * WAVE_MIN and WAVE_MAX items (256 lanes of 512). Smaller waves keep the
- * buffers in the caches and page them in less (16 MB: 11,600 page faults
- * on 200,000 horner3 items; 8 MB: 6,400; 2 MB: 2,100), but pay the
- * lanes' warm-ups and the batch's costs a clock more often (callgrind on
- * that run: +0.7% instructions at 8 MB, +8% at 2 MB). */
-#define WAVE_BYTES ((size_t)8 << 20)
+ * WAVE_MIN and WAVE_MAX items (256 lanes of 512), and at least the block
+ * it reads. Smaller waves keep the buffers in the caches and page them in
+ * less, but pay the lanes' warm-ups and the batch's costs a clock more
+ * often (callgrind on 200,000 horner3 items: +0.7% instructions at 8 MB,
+ * +8% at 2 MB). Here the caches win: that run took 2,900 page faults at
+ * 2 MB (5,900 at 8 MB) and 0.39-0.42 of the C++ Verilator harness's time
+ * (bench/verilog/run.sh's job, best of 9 interleaved at the highest
+ * priority: 1 MB 0.37-0.38, 4 MB 0.45-0.47, 8 MB 0.52-0.54); 10^6 rows
+ * piped, -j 1, took 0.72 s of CPU at 2 MB, 0.80 s at 8 MB. */
+#define WAVE_BYTES ((size_t)2 << 20)
 #define WAVE_MIN   ((size_t)1 << 12)
 #define WAVE_MAX   ((size_t)1 << 17)
 
@@ -204,13 +208,14 @@ static void fold(void *arg)
  * twice the blocks each wave, so that the reading soon runs beside the
  * simulation, as much of it as can. A wave's rows stay in their set
  * until the wave is folded, as the next wave's are read: three sets, in
- * turn. */
+ * turn; the first block's stay in the stream's own (which later blocks,
+ * appended to the sets, leave as they are). */
 typedef struct reader {
     vec_stream *vs;
     size_t most, ncol;
     int blocks, calls;
     vec_set sets[3];            /* [n][ncol]: parsed into straight from the text (after the first block) */
-    vec_set *rows;              /* the set the last call read */
+    const vec_set *rows;        /* the set the last call read */
     int last, failed;           /* the file's end was read; a bad row (err) */
     char err[600];
 } reader;
@@ -218,30 +223,28 @@ typedef struct reader {
 static void reader_run(void *arg)
 {
     reader *R = arg;
-    vec_set *to = R->rows = &R->sets[R->calls % 3];
+    vec_set *to = &R->sets[R->calls % 3];
+    R->rows = to;
     to->n_rows = 0;
     R->last = R->failed = 0;
     int got = 0;
     do {
         int rc;
         if (R->calls == 0) {
-            /* the first block into the stream's own set, so that it can
+            /* the first block in the stream's own set, so that it can
              * be handed back unread (and it has the header's shape) */
             const vec_set *rows;
             rc = vec_stream_next(R->vs, &rows);
             if (rc > 0) {
                 for (int i = 0; i < 3; i++) { R->sets[i].n_in = rows->n_in; R->sets[i].n_out = rows->n_out; }
-                to->data = grow(to->data, rows->n_rows, R->ncol * sizeof *to->data);
-                to->cap_rows = rows->n_rows;
-                memcpy(to->data, rows->data, rows->n_rows * R->ncol * sizeof *to->data);
-                to->n_rows = rows->n_rows;
+                R->rows = rows;
             }
         } else {
             rc = vec_stream_append(R->vs, to);
         }
         if (rc < 0) { R->failed = 1; snprintf(R->err, sizeof R->err, "%s", vec_stream_error(R->vs)); return; }
         if (rc == 0) break;
-    } while (++got < R->blocks && !vec_stream_done(R->vs) && to->n_rows < R->most);
+    } while (++got < R->blocks && !vec_stream_done(R->vs) && R->rows->n_rows < R->most);
     R->last = vec_stream_done(R->vs);
     if (++R->calls >= 2 && R->blocks < (1 << 20)) R->blocks *= 2;
 }

@@ -643,18 +643,23 @@ vec_stream *vec_stream_open(const char *path, const vec_set *expect, char *err, 
     return v;
 }
 
+/* A generated stream's next rows into `into` (which trades its buffer
+ * with the generator's). */
+static int gen_step(vec_stream *v, vec_set *into)
+{
+    int rc = vec_gen_next(v->gen, into);
+    if (rc < 0) { v->failed = 1; msg(v->err, sizeof v->err, "%s: cannot generate vectors", v->rows.unit); }
+    if (rc == 0) v->done = 1;   /* (a generator's end is known only here) */
+    return rc;
+}
+
 int vec_stream_next(vec_stream *v, const vec_set **rows)
 {
     *rows = &v->rows;
     if (v->held) { v->held = 0; return v->rows.n_rows ? 1 : 0; }
     v->rows.n_rows = 0;
     if (v->failed) return -1;
-    if (v->gen) {
-        int rc = vec_gen_next(v->gen, &v->rows);
-        if (rc < 0) { v->failed = 1; msg(v->err, sizeof v->err, "%s: cannot generate vectors", v->rows.unit); }
-        if (rc == 0) v->done = 1;   /* (a generator's end is known only here) */
-        return rc;
-    }
+    if (v->gen) return gen_step(v, &v->rows);
     while (!v->done && !v->rows.n_rows)
         if (read_step(v, &v->rows)) { v->failed = 1; v->rows.n_rows = 0; return -1; }
     return v->rows.n_rows ? 1 : 0;
@@ -663,7 +668,13 @@ int vec_stream_next(vec_stream *v, const vec_set **rows)
 int vec_stream_append(vec_stream *v, vec_set *dst)
 {
     size_t before = dst->n_rows;
-    if (v->held || v->gen || v->failed) {
+    if (v->gen && !v->held && !v->failed) {
+        /* through a scratch set, the stream's own left as it is */
+        int rc = gen_step(v, &v->pp.rows);
+        if (rc > 0 && append_rows(dst, &v->pp.rows)) base_out_of_memory();
+        return rc;
+    }
+    if (v->held || v->failed) {
         const vec_set *rows;
         int rc = vec_stream_next(v, &rows);
         if (rc > 0 && append_rows(dst, rows)) base_out_of_memory();

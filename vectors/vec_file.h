@@ -43,7 +43,8 @@ const char *vec_stream_error(const vec_stream *v);
  * stream's) instead: the block parsed straight into dst, not into the
  * stream's set and copied (rows held by vec_stream_unread, or generated,
  * are copied). 1, 0 at the end, -1 with the message; on -1 dst keeps the
- * rows it had. */
+ * rows it had. The rows vec_stream_next gave last stay as they are, so
+ * that a caller can go on using them while it appends the next. */
 int         vec_stream_append(vec_stream *v, vec_set *dst);
 /* 1 when the file's end has been read: the rows vec_stream_next gave last
  * are the file's last (the next call returns 0). A generated stream
