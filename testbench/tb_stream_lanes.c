@@ -70,10 +70,13 @@ static void *grow(void *p, size_t n, size_t size)
     return q;
 }
 
-/* Room for cap items (kept as they are). */
+/* Room for cap items (kept as they are), and a quarter more: the waves
+ * after the first few differ by a few hundred items (the block's rows,
+ * the items carried over), which would each grow (copy) every array. */
 static void wbuf_reserve(wbuf *B, size_t cap, int has_exact, int has_exact_d, int has_den, int has_hi)
 {
     if (cap <= B->cap) return;
+    cap += cap / 4;
     size_t nv = (size_t)B->nv;
     B->in_raw = grow(B->in_raw, cap, (size_t)B->n_in * sizeof *B->in_raw);
     B->raw = grow(B->raw, cap, nv * sizeof *B->raw);
