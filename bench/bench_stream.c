@@ -8,7 +8,8 @@
  * simulates it on the batch's lanes a wave at a time, so the peak does
  * not grow with the rows (docs/batch.md, "Streams of any length"). The
  * 10M file is the 1M file's rows ten times over (1 GB in /tmp while the
- * bench runs). */
+ * bench runs). With the CPU time of -j 2 and of cat, which feeds the pipe on
+ * the same cores, it prints what two cores allow at most. */
 #define _DEFAULT_SOURCE   /* wait4, getloadavg */
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,7 +28,13 @@ static double now_s(void)
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-typedef struct runst { long kb; double wall, user, sys; } runst;
+typedef struct runst { long kb; double wall, user, sys, feed; } runst;   /* feed: cat's CPU seconds */
+
+static double cpu_s(const struct rusage *ru)
+{
+    return (double)ru->ru_utime.tv_sec + 1e-6 * (double)ru->ru_utime.tv_usec
+         + (double)ru->ru_stime.tv_sec + 1e-6 * (double)ru->ru_stime.tv_usec;
+}
 
 /* cat path | bin run horner3 --vectors - --json -j jobs, stdout to
  * /dev/null: 0 with its figures, -1 on failure. */
@@ -57,10 +64,11 @@ static int piped(const char *bin, const char *path, int jobs, runst *r)
     }
     close(fd[0]); close(fd[1]);
     int st, fst;
-    struct rusage ru;
+    struct rusage ru, fru;
     if (wait4(pid, &st, 0, &ru) != pid) return -1;
     r->wall = now_s() - t0;
-    if (waitpid(feed, &fst, 0) != feed || !WIFEXITED(st) || WEXITSTATUS(st) > 1) return -1;
+    if (wait4(feed, &fst, 0, &fru) != feed || !WIFEXITED(st) || WEXITSTATUS(st) > 1) return -1;
+    r->feed = cpu_s(&fru);
     r->kb = ru.ru_maxrss;
     r->user = (double)ru.ru_utime.tv_sec + 1e-6 * (double)ru.ru_utime.tv_usec;
     r->sys = (double)ru.ru_stime.tv_sec + 1e-6 * (double)ru.ru_stime.tv_usec;
@@ -111,7 +119,7 @@ int main(void)
     /* the peak at 1M and 10M rows (-j 2); then 10M rows on one thread and
      * on two, in turns, three times each, the best of each (a shared
      * machine's load comes and goes) */
-    runst r1, r10, t1 = { 0, 1e300, 0, 0 }, t2 = { 0, 1e300, 0, 0 };
+    runst r1, r10, t1 = { 0, 1e300, 0, 0, 0 }, t2 = { 0, 1e300, 0, 0, 0 };
     int bad = piped(bin, p1, 2, &r1) || piped(bin, p10, 2, &r10);
     for (int k = 0; k < 3 && !bad; k++) {
         runst a, b;
@@ -130,6 +138,15 @@ int main(void)
         printf("stream  10M rows -j 2 (best of 3): %.2f s wall, %.2f s user, %.2f s system\n", t2.wall, t2.user, t2.sys);
         printf("stream  -j 2 against -j 1: %.2fx the speed (wall; the load above shares the cores)\n",
                t1.wall / t2.wall);
+        /* What two cores allow: -j 2's CPU time and cat's, which feeds
+         * the pipe on the same cores, spread over both without a wait;
+         * against it, the -j 1 run's wall (cat then runs on the other
+         * core). */
+        double c1 = t1.user + t1.sys, c2 = t2.user + t2.sys;
+        printf("stream  -j 2 used %.2f s of CPU (%+.0f%% on -j 1's %.2f s), cat %.2f s beside it: both on two cores "
+               "take at least %.2f s, at most %.2fx; the run took %.0f%% of the two cores' time\n",
+               c2, 100 * (c2 / c1 - 1), c1, t2.feed, (c2 + t2.feed) / 2, t1.wall / ((c2 + t2.feed) / 2),
+               100 * (c2 + t2.feed) / (2 * t2.wall));
     }
     load("after");
     unlink(p1);
