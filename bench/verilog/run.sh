@@ -79,8 +79,10 @@ for spec in "horner3 200000" "interp3 5000"; do
     done
     B=${BENCH_BATCH:-build/bench/bench_batch}
     bb=; [ -x "$B" ] && bb=$("$B" clocks 2>/dev/null)
-    echo "$bs $bh $be $ec $ts $tv $bb" | awk '{
-        printf "verilog    harness   %.3f s   (C++ main, std::from_chars on the same .vec, -O3, bit-exact; shadesim %.3f s: shadesim / verilator = %.2f, target <= 0.5)\n", $2, $1, $1 / $2;
+    # the load average the interleaved runs shared the cores with
+    load=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || uptime | sed 's/.*average[s]*: *//; s/,//g')
+    echo "$bs $bh $be $ec $ts $tv $bb" | awk -v load="$load" '{
+        printf "verilog    harness   %.3f s   (C++ main, std::from_chars on the same .vec, -O3, bit-exact; shadesim %.3f s: shadesim / verilator = %.2f, target <= 0.5; load average %s)\n", $2, $1, $1 / $2, load;
         printf "verilog    ratios    shadesim / verilator: %.2f against the C++ harness, %.2f against the --binary testbench\n", $1 / $2, $5 / $6;
         printf "verilog    eval loop %.1f M clocks/s (%d clocks in %.4f s, file parsed before)", $4 / $3 / 1e6, $4, $3;
         if (NF >= 8) printf "; batch lanes (bench_batch clocks, 64 lanes) %.1f M clocks/s: batch / eval loop = %.2f", $8 / $7 / 1e6, ($8 / $7) / ($4 / $3);
