@@ -11,7 +11,16 @@
 #include "base/base_pool.h"
 #include "base/base_out.h"
 #include <pthread.h>
+#include <sched.h>
+#include <stdatomic.h>
 #include <stdlib.h>
+#include <time.h>
+
+/* How long a thread with nothing to do keeps its core before it sleeps:
+ * on a virtual machine a core whose threads all sleep halts, and waking
+ * it again (the next loop's items, the reader's rows) takes a while;
+ * meanwhile it yields to whatever else may run there. */
+#define SPIN_NS 200000
 
 typedef struct pool_loop {
     size_t n, next, done;
@@ -28,7 +37,30 @@ struct base_pool {
     int             nth, stop, max_helpers;
     pool_loop      *loops;
     base_task      *head, *tail;    /* queued tasks, in order */
+    atomic_uint     gen;            /* bumped (under mu) at every change a waiter may wait for */
 };
+
+static void bump(base_pool *p) { atomic_fetch_add_explicit(&p->gen, 1, memory_order_release); }
+
+/* pthread_cond_wait(c) (mu held), after up to SPIN_NS of yielding while
+ * nothing changes; returns at once, mu held, when something did (the
+ * caller checks again, as after any wait). */
+static void nap(base_pool *p, pthread_cond_t *c)
+{
+    unsigned g = atomic_load_explicit(&p->gen, memory_order_relaxed);
+    pthread_mutex_unlock(&p->mu);
+    struct timespec t0, t;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
+    for (int i = 1; atomic_load_explicit(&p->gen, memory_order_acquire) == g; i++) {
+        sched_yield();
+        if (i % 16 == 0) {
+            clock_gettime(CLOCK_MONOTONIC, &t);
+            if ((t.tv_sec - t0.tv_sec) * 1000000000L + (t.tv_nsec - t0.tv_nsec) > SPIN_NS) break;
+        }
+    }
+    pthread_mutex_lock(&p->mu);
+    if (atomic_load_explicit(&p->gen, memory_order_relaxed) == g) pthread_cond_wait(c, &p->mu);
+}
 
 /* Items of L until none is left (the lock held on entry and exit). */
 static void loop_items(base_pool *p, pool_loop *L)
@@ -52,6 +84,7 @@ static int help_loop(base_pool *p)
     L->helpers++;
     loop_items(p, L);
     L->helpers--;
+    bump(p);
     pthread_cond_broadcast(&p->done);
     return 1;
 }
@@ -79,10 +112,11 @@ static void *worker(void *arg)
             t->fn(t->arg);
             pthread_mutex_lock(&p->mu);
             t->state = 3;
+            bump(p);
             pthread_cond_broadcast(&p->done);
             continue;
         }
-        if (!help_loop(p)) pthread_cond_wait(&p->work, &p->mu);
+        if (!help_loop(p)) nap(p, &p->work);
     }
     pthread_mutex_unlock(&p->mu);
     return NULL;
@@ -110,6 +144,7 @@ void base_pool_free(base_pool *p)
     if (!p) return;
     pthread_mutex_lock(&p->mu);
     p->stop = 1;
+    bump(p);
     pthread_cond_broadcast(&p->work);
     pthread_mutex_unlock(&p->mu);
     for (int i = 0; i < p->nth; i++) pthread_join(p->th[i], NULL);
@@ -130,11 +165,12 @@ void base_pool_for(base_pool *p, size_t n, void (*fn)(void *ctx, size_t i), void
     pthread_mutex_lock(&p->mu);
     L.next_loop = p->loops;
     p->loops = &L;
+    bump(p);
     pthread_cond_broadcast(&p->work);
     pthread_cond_broadcast(&p->done);   /* a waiter helps too (base_pool_wait) */
     loop_items(p, &L);
     /* the helpers' last items, and the helpers gone from L */
-    while (L.done < L.n || L.helpers) pthread_cond_wait(&p->done, &p->mu);
+    while (L.done < L.n || L.helpers) nap(p, &p->done);
     pool_loop **at = &p->loops;
     while (*at != &L) at = &(*at)->next_loop;
     *at = L.next_loop;
@@ -157,6 +193,7 @@ void base_pool_start(base_pool *p, base_task *t, void (*fn)(void *arg), void *ar
     if (p->tail) p->tail->next = t;
     else p->head = t;
     p->tail = t;
+    bump(p);
     pthread_cond_signal(&p->work);
     pthread_mutex_unlock(&p->mu);
 }
@@ -180,6 +217,6 @@ void base_pool_wait(base_pool *p, base_task *t)
     /* meanwhile, the items of a loop that has room for a helper (the
      * task's own, often), where the waiter would only sleep */
     while (t->state != 3)
-        if (!help_loop(p)) pthread_cond_wait(&p->done, &p->mu);
+        if (!help_loop(p)) nap(p, &p->done);
     pthread_mutex_unlock(&p->mu);
 }
