@@ -4,7 +4,8 @@
  * that runs it, several at once when a task runs a loop of its own) and
  * its queue of tasks. A worker takes a queued task first (tasks are the
  * long steps: the sooner started, the sooner done), else helps the first
- * loop with items left and room for a helper, else sleeps. The lock is
+ * loop with items left and room for a helper, else yields its core a
+ * while (nap), then sleeps. The lock is
  * taken once per item: items are a wave's chunks, thousands of items'
  * work each.
  */
