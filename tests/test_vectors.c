@@ -326,7 +326,8 @@ static void t_every_model(void)
  * blocks of 16384 rows) are its rows into a set, bit for bit, in order:
  * 17000 rows (two blocks, the last short) and one block exactly; a
  * stream closed after its first block stops its generator (no hang, no
- * leak under the sanitizers). */
+ * leak under the sanitizers); the rows appended after the first block
+ * leave the first block's as they are. */
 static void t_gen_stream(void)
 {
     static const size_t counts[] = { 17000, 16384, 7 };
@@ -364,6 +365,24 @@ static void t_gen_stream(void)
             v = vec_stream_gen(m, &p, n, 3, NULL, err, sizeof err);
             TST_EQ_INT(vec_stream_next(v, &rows), 1);
             vec_stream_close(v);
+            /* the first block by vec_stream_next, the rest appended to a
+             * set: the first block's rows stay as they were (the lanes
+             * simulate them while the next are appended) */
+            if (n > 16384) {
+                v = vec_stream_gen(m, &p, n, 3, NULL, err, sizeof err);
+                TST_EQ_INT(vec_stream_next(v, &rows), 1);
+                size_t k = rows->n_rows;
+                vec_set d;
+                vec_set_init(&d);
+                d.n_in = a.n_in; d.n_out = a.n_out;
+                while ((rc = vec_stream_append(v, &d)) > 0) {}
+                TST_EQ_INT(rc, 0);
+                int kept = k + d.n_rows == a.n_rows && !memcmp(rows->data, a.data, k * stride * sizeof(double)) &&
+                           !memcmp(d.data, vec_row(&a, k), d.n_rows * stride * sizeof(double));
+                TST_CHECK(kept, "%s: the first block's rows or the appended ones differ from the set's", m->name);
+                vec_stream_close(v);
+                vec_set_free(&d);
+            }
             vec_set_free(&a);
         }
     }
