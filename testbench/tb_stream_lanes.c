@@ -140,8 +140,9 @@ static tb_item wbuf_item(const wbuf *B, size_t pos)
 /* The preparation of items [from, to) in chunks on the threads, each
  * chunk's input overflows its own (summed after: whole numbers). What a
  * chunk writes item after item (its overflow counts, its room for the
- * exact ideal) is on cache lines of its own: two threads writing one line
- * in turn took the preparation 15% longer at -j 2 than at -j 1. */
+ * exact ideal) is on cache lines of its own: with two threads writing one
+ * line in turn, perf counted a third more time in the preparation's
+ * functions at -j 2 than at -j 1 (now a tenth to a sixth more). */
 #define PREP_CHUNKS 16
 /* Items below which the preparation stays on the calling thread (handing
  * chunks to other threads costs more than it saves; a stream of one such
