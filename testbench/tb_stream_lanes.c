@@ -24,6 +24,7 @@
 #include "testbench/tb_stream.h"
 #include "testbench/tb_lanes.h"
 #include "testbench/tb_energy.h"
+#include "base/base_mem.h"
 #include "base/base_out.h"
 #include "base/base_pool.h"
 #include <stdlib.h>
@@ -62,11 +63,14 @@ typedef struct wbuf {
     uint64_t *cycle;            /* [pos][beat] */
 } wbuf;
 
+/* p with room for n things of size bytes, paged in (base_mem.h: the
+ * waves fill it at once, and use it again) */
 static void *grow(void *p, size_t n, size_t size)
 {
     if (!size) return p;
     void *q = realloc(p, (n ? n : 1) * size);
     if (!q) base_out_of_memory();
+    base_mem_populate(q, (n ? n : 1) * size);
     return q;
 }
 
@@ -237,6 +241,7 @@ typedef struct reader {
     vec_stream *vs;
     size_t most, ncol;
     int blocks, calls;
+    size_t block_rows;          /* the most rows a block has given */
     vec_set sets[3];            /* [n][ncol]: parsed into straight from the text (after the first block) */
     const vec_set *rows;        /* the set the last call read */
     int last, failed;           /* the file's end was read; a bad row (err) */
@@ -249,6 +254,14 @@ static void reader_run(void *arg)
     vec_set *to = &R->sets[R->calls % 3];
     R->rows = to;
     to->n_rows = 0;
+    /* room for what the call reads (it stops at `most` rows, but for the
+     * last block's), paged in: the parser's growth would fault it in a
+     * page at a time */
+    size_t want = R->most + R->block_rows;
+    if (R->calls && want > to->cap_rows) {
+        to->data = grow(to->data, want, R->ncol * sizeof *to->data);
+        to->cap_rows = want;
+    }
     R->last = R->failed = 0;
     int got = 0;
     do {
@@ -261,6 +274,7 @@ static void reader_run(void *arg)
             if (rc > 0) {
                 for (int i = 0; i < 3; i++) { R->sets[i].n_in = rows->n_in; R->sets[i].n_out = rows->n_out; }
                 R->rows = rows;
+                R->block_rows = rows->n_rows;
             }
         } else {
             rc = vec_stream_append(R->vs, to);

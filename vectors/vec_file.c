@@ -15,6 +15,7 @@
 #include "base/base_strtod.h"
 #include "base/base_out.h"
 #include "base/base_par.h"
+#include "base/base_mem.h"
 #include "base/base_pool.h"
 #include "base/base_join.h"
 #include <errno.h>
@@ -619,6 +620,7 @@ vec_stream *vec_stream_open(const char *path, const vec_set *expect, char *err, 
      * digits eight bytes at a time, up to seven past a line's end */
     v->buf = calloc(v->cap + 1 + BASE_STRTOD_PAD, 1);
     if (!v->buf) base_out_of_memory();
+    base_mem_populate(v->buf, v->cap + 1 + BASE_STRTOD_PAD);   /* the first block fills it */
     v->f = v->is_stdin ? stdin : fopen(path, "rb");
 #ifdef F_SETPIPE_SZ
     /* A pipe of a block's size instead of 64 KiB: the writer runs a block
