@@ -34,6 +34,18 @@ double sim_area_addsub(int sub, int chain, int ext, int low, int neg)
     return ge;
 }
 
+double sim_area_cmul(int wx, uint64_t k, int neg)
+{
+    int rows = 0;
+    for (; k; k &= k - 1) rows++;
+    if (wx < 1 || rows < 1) return 0.0;
+    /* one row of x a 1 of k; the first needs no adder, a negative k
+     * makes one of the others a subtractor (or, alone, a negator) */
+    double add = wx * sim_area_add_fit(SIM_ADD_ADD, wx), sub = wx * sim_area_add_fit(SIM_ADD_SUB, wx);
+    if (!neg) return (rows - 1) * add;
+    return sub + (rows > 1 ? (rows - 2) * add : 0.0);
+}
+
 double sim_area_reg(int w, int has_en, int has_rst)
 {
     double ff = has_rst ? SIM_GE_DFFR : SIM_GE_DFF;

@@ -40,6 +40,14 @@ double sim_area_mul(int wa, int wb);                   /* array: wa*wb AND2 + (m
 enum { SIM_ADD_ADD, SIM_ADD_SUB, SIM_ADD_CARRY, SIM_ADD_KINDS };
 double sim_area_add_fit(int kind, int n);
 double sim_area_addsub(int sub, int chain, int ext, int low, int neg);
+/* A product by a constant k (its magnitude; neg: k < 0) as Yosys builds
+ * it: no array and no canonical signed digits, a row of x (wx live bits)
+ * for each 1 of k's binary form, summed as a multi-operand adder: one
+ * adder of wx bits at the mapped GE a bit of a wx-bit adder
+ * (sim_area_add_fit) for each row after the first, a subtractor's for one
+ * of them when k < 0. Measured on y = x * k (scripts/cmul_area.sh;
+ * docs/area.md, "Constant products as mapped"). */
+double sim_area_cmul(int wx, uint64_t k, int neg);
 /* The array for an output that keeps only some of the product's wa + wb
  * bits: drop_hi columns above its top need no logic (their partial
  * products and adders go, in proportion), drop_lo below its bottom still

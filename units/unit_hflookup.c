@@ -23,9 +23,11 @@
  * R x R texels with R = the parameter L), each map scaled to largest
  * entry 1.
  *
- * Area: the texture ROMs at HF_GE_PER_ROM_BIT gate equivalents a bit (a
- * mask ROM estimate), one copy per lookup (a single-port ROM cannot serve
- * d0 and di in the same clock), the reciprocal ROMs likewise; the
+ * Area: each of a lookup's four texel reads is its own table (the export
+ * writes a case statement a read, and synthesis shares none of them: a
+ * single-port ROM cannot serve four addresses, nor d0 and di, in one
+ * clock) at HF_GE_TABLE_BIT gate equivalents a bit, as such a table maps;
+ * the reciprocal ROMs at HF_GE_PER_ROM_BIT (a mask ROM estimate); the
  * arithmetic from the primitives.
  */
 #include "units/unit.h"
@@ -39,6 +41,13 @@
 #include <string.h>
 
 #define HF_GE_PER_ROM_BIT 0.25
+/* One texel read of R x R words of W bits, a case statement over its
+ * address, as Yosys and ABC map it to the NanGate45 cells: 0.296, 0.283
+ * and 0.283 GE a bit at W = 8, 16, 24 (sh scripts/rom_area.sh L, ABC's
+ * light script; its default one 0.262 at 8: docs/area.md, "Tables as
+ * mapped"). Before, the model charged the four reads one table at 0.25
+ * GE a bit, a quarter each: a quarter to a fifth of what they map to. */
+#define HF_GE_TABLE_BIT 0.29
 
 extern const unit_desc unit_hf_lookup;
 
@@ -452,7 +461,7 @@ static sim_signal *lookup(sim_ctx *c, sim_scope *top, const char *scope, const u
     }
     int64_t *raw = sim_alloc(c, sizeof(int64_t) * (size_t)R * R);
     for (int j = 0; j < R * R; j++) raw[j] = rom_raw(map[j], F[HF_ROM], cfg->rnd);
-    double rom_ge = HF_GE_PER_ROM_BIT * R * R * (F[HF_ROM].ibits + F[HF_ROM].fbits) / 4;
+    double rom_ge = HF_GE_TABLE_BIT * R * R * (F[HF_ROM].ibits + F[HF_ROM].fbits);
     sim_signal *t[4], *idx[2] = { ix, iy };
     static const char *const tn[4] = { "t00", "t01", "t10", "t11" };
     sim_scope *rs = sim_scope_new(c, sc, "rom");    /* the four reads share the entry format "rom" */

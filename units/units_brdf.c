@@ -127,9 +127,11 @@ static int csd_digits(uint64_t v, int *span)
 }
 
 /* y = x * k for a constant k: the product is exact before y's quantization,
- * as sim_mul's, but the element is a shift-and-add network, one adder per
- * CSD digit of k after the first (a power of two is wiring), each as wide
- * as x plus the digits' span. */
+ * as sim_mul's, but the element is a shift-and-add network. Its area is
+ * the network synthesis builds, a row of x for each 1 of k
+ * (sim_area_cmul); its delay, the model's own, that of a network of one
+ * adder per CSD digit of k after the first (a power of two is wiring),
+ * each as wide as x plus the digits' span. */
 sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
                       sim_signal *x, sim_signal *k)
 {
@@ -144,9 +146,11 @@ sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
      * k makes one of the adders a subtractor (or, for a power of two,
      * adds a negator). */
     double quant = y->area_ge - sim_area_mul(sim_prim_live_bits(x), sim_prim_live_bits(k));
-    double net = kr < 0 ? sim_area_sub(w) + (adders > 1 ? (adders - 1) * sim_area_add(w) : 0.0)
-                        : adders > 0 ? adders * sim_area_add(w) : 0.0;
-    y->area_ge = net + quant;
+    /* Synthesis does not recode k: Yosys sums a row of x for every 1 of
+     * k's binary form (sim_area_cmul), so 31 = 11111b costs four adders,
+     * not the one of 32 - 1 (schlick at 24 mapped to 1465 GE where the
+     * CSD network made the model 1100) */
+    y->area_ge = sim_area_cmul(sim_prim_live_bits(x), mag, kr < 0) + quant;
     /* The delay likewise: the network's adders as a balanced tree (a
      * negative k: an inverter on one branch, or the negator). */
     sim_arcs dn = sim_arcs_bitwise((sim_delay){ 0, 0.0 });

@@ -18,8 +18,10 @@ void   brdf_seq(sim_ctx *c, sim_scope *sc, sim_signal *clk, int nsteps, unit_io 
 /* A registered decoder of a step-indexed control table of n entries. */
 sim_signal *brdf_decode(sim_ctx *c, sim_scope *sc, sim_signal *clk, const char *name,
                         sim_signal *next, const uint8_t *table, int n);
-/* y = x * k, k a constant: a shift-and-add network (CSD digits of k); its
- * area is the adders' plus y's quantization logic (rounding, clamp). */
+/* y = x * k, k a constant: a shift-and-add network; its area is the
+ * adders synthesis builds (a row of x for each 1 of k: sim_area_cmul) plus
+ * y's quantization logic (rounding, clamp), its delay a tree of one adder
+ * per CSD digit of k after the first. */
 sim_signal *brdf_cmul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fy,
                       sim_signal *x, sim_signal *k);
 int    brdf_ibits(double x);
