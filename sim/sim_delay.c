@@ -89,9 +89,40 @@ sim_arcs sim_delay_add(int w)
     return r;
 }
 
-sim_arcs sim_delay_add_span(int chain, int ext, int low)
+sim_delay sim_delay_prefix(int w)
+{
+    int n = w < 2 ? 0 : 2 * clog2(w) - 1;
+    return d(2 * n, n * SIM_PS_CARRY2 / 2);
+}
+
+/* Ext bits above a carry arriving at `carry`: an incrementer by it, each
+ * bit the XOR of its own with the carry ANDed with the bits below it,
+ * their AND a tree (ceil(log2 ext) levels) from the operands in parallel
+ * with the chain: the carry out of the chain, one AND2 (none for one
+ * bit), the XOR. Into r's L -> M and M -> M. */
+static void incrementer(sim_arcs *r, sim_delay carry, int ext)
+{
+    sim_delay top = sim_delay_then(carry, ext == 1 ? d(1, SIM_PS_XOR2) : d(2, SIM_PS_AND2 + SIM_PS_XOR2));
+    int k = clog2(ext);
+    r->lm = later(top, d(k + 2, k * SIM_PS_AND2 + SIM_PS_AND2 + SIM_PS_XOR2));
+    r->mm = later(r->mm, d(k + 2, k * SIM_PS_AND2 + SIM_PS_AND2 + SIM_PS_XOR2));
+}
+
+sim_arcs sim_delay_add_span(int chain, int ext, int low, sim_carry kind)
 {
     if (chain < 1) chain = 1;
+    if (kind == SIM_CARRY_PREFIX) {
+        /* one prefix adder over the low bits' carry, the chain and the
+         * bits above it: bit 0's generate (an AND2), the prefix, the top
+         * sum (an XOR2) */
+        sim_arcs r = sim_delay_add(1);
+        int w = low + chain + ext;
+        if (w >= 2) {
+            r.lm = sim_delay_then(sim_delay_then(d(1, SIM_PS_AND2), sim_delay_prefix(w)), d(1, SIM_PS_XOR2));
+            r.mm = d(2, 2 * SIM_PS_XOR2);
+        }
+        return r;
+    }
     sim_arcs r = sim_delay_add(chain);
     /* The carry out of `low` bits below the chain and of its own lowest
      * bit: a prefix tree of generate and propagate over those low + 1
@@ -106,26 +137,18 @@ sim_arcs sim_delay_add_span(int chain, int ext, int low)
         if (chain >= 2)
             r.lm = sim_delay_then(sim_delay_then(start, d(2 * (chain - 2), (chain - 2) * SIM_PS_CARRY2 / 2)), d(1, SIM_PS_XOR2));
     }
-    if (ext <= 0) return r;
-    /* Above the chain only one operand varies: an incrementer by the
-     * chain's carry (and the other operand's sign), each bit the XOR of
-     * its own with the carry ANDed with the bits below it, their AND a
-     * tree (ceil(log2 ext) levels) from the operands in parallel with the
-     * chain: the carry out of the chain, one AND2 (none for one bit), the
-     * XOR. */
-    sim_delay top = sim_delay_then(carry, ext == 1 ? d(1, SIM_PS_XOR2) : d(2, SIM_PS_AND2 + SIM_PS_XOR2));
-    int k = clog2(ext);
-    r.lm = later(top, d(k + 2, k * SIM_PS_AND2 + SIM_PS_AND2 + SIM_PS_XOR2));
-    r.mm = later(r.mm, d(k + 2, k * SIM_PS_AND2 + SIM_PS_AND2 + SIM_PS_XOR2));
+    /* above the chain only one operand varies: an incrementer by the
+     * chain's carry (and the other operand's sign) */
+    if (ext > 0) incrementer(&r, carry, ext);
     return r;
 }
 
-sim_arcs sim_delay_sub_span(int chain, int ext, int low)
+sim_arcs sim_delay_sub_span(int chain, int ext, int low, sim_carry kind)
 {
     /* the subtrahend's inversion is free: mapped, it becomes the XNOR and
      * the inverting AOI/OAI cells of the adder (no cell of its own on
      * OpenSTA's paths through coef2's and div3's subtractors) */
-    return sim_delay_add_span(chain, ext, low);
+    return sim_delay_add_span(chain, ext, low, kind);
 }
 
 sim_arcs sim_delay_csa(void)
@@ -147,7 +170,7 @@ int sim_delay_mul_rows(int rows)
     return rows < tree ? rows : tree;
 }
 
-sim_arcs sim_delay_mul(int wa, int wb, int wy)
+sim_arcs sim_delay_mul(int wa, int wb, int wy, sim_carry kind)
 {
     if (wa < 1) wa = 1;
     if (wb < 1) wb = 1;
@@ -161,6 +184,14 @@ sim_arcs sim_delay_mul(int wa, int wb, int wy)
     sim_delay full = d(1 + 2 * rows + 2 * rip, SIM_PS_AND2 + rows * SIM_PS_XOR2 + rip * SIM_PS_CARRY2 / 2);
     int early = wy - 1 < rip ? wy - 1 : rip;
     sim_delay low = d(full.lv - 2 * early, full.ps - early * SIM_PS_CARRY2 / 2);
+    if (kind == SIM_CARRY_PREFIX) {
+        /* the final adder a prefix one across the product's bits (the
+         * partial product's AND2, the rows, the prefix, the sum's XOR2),
+         * its output bits settling together */
+        full = sim_delay_then(d(1 + 2 * rows, SIM_PS_AND2 + rows * SIM_PS_XOR2), sim_delay_prefix(wa + wb));
+        full = sim_delay_then(full, d(1, SIM_PS_XOR2));
+        low = full;
+    }
     /* An output that keeps the product's low bits (exact, as dot3's three
      * products into their sum): its lowest, bit k0, is the array's column
      * k0, which settles after k0 rows, before the reduction ends (the
@@ -178,12 +209,13 @@ sim_arcs sim_delay_mul(int wa, int wb, int wy)
     return r;
 }
 
-sim_arcs sim_delay_round(int w)
+sim_arcs sim_delay_round(int w, sim_carry kind)
 {
     if (w < 1) w = 1;
     sim_arcs r;
     r.ll = d(1, SIM_PS_HA_S);                                  /* the rounding bit into bit 0 */
     r.lm = d(w, (w - 1) * SIM_PS_AND2 + SIM_PS_HA_S);          /* its carry up the chain */
+    if (kind == SIM_CARRY_PREFIX) r.lm = d(1 + clog2(w), clog2(w) * SIM_PS_AND2 + SIM_PS_HA_S);  /* or an AND2 tree */
     r.ml = SIM_DELAY_NONE;
     r.mm = d(1, SIM_PS_HA_S);
     return r;

@@ -62,6 +62,16 @@
 #define SIM_PS_BUF       40.6
 #define SIM_BUF_GAIN      4.0
 
+/* The carries a flow leaves in the adders (and a product's final adder,
+ * a rounding incrementer): Yosys's `synth` builds every one as a
+ * Brent-Kung prefix adder ($lcu in its techmap.v), which ABC's default
+ * script restructures into the AOI21/OAI21 ripple the constants above
+ * were read for (RIPPLE), and its light script maps as it is (PREFIX: a
+ * carry across w bits through 2 ceil(log2 w) - 1 AOI21/OAI21 cells,
+ * SIM_PS_CARRY2 / 2 each). docs/timing.md, "Carries as the flow leaves
+ * them". */
+typedef enum sim_carry { SIM_CARRY_RIPPLE = 0, SIM_CARRY_PREFIX } sim_carry;
+
 /* Levels and picoseconds along an arc; lv < 0: no arc. */
 typedef struct sim_delay { int lv; double ps; } sim_delay;
 extern const sim_delay SIM_DELAY_NONE;
@@ -104,9 +114,10 @@ sim_arcs sim_delay_sub(int w);             /* a conditional inverter (XOR2), the
  * (an incrementer by the carry, as synthesis builds it once constants
  * are propagated: sim_live.h); `low` bits below the output's lowest that
  * only carry into the chain, by a prefix tree. sim_delay_add(w) is chain
- * w, ext 0, low 0. */
-sim_arcs sim_delay_add_span(int chain, int ext, int low);
-sim_arcs sim_delay_sub_span(int chain, int ext, int low);
+ * w, ext 0, low 0, RIPPLE. With PREFIX the carry runs across the
+ * low + chain + ext bits as one prefix adder. */
+sim_arcs sim_delay_add_span(int chain, int ext, int low, sim_carry k);
+sim_arcs sim_delay_sub_span(int chain, int ext, int low, sim_carry k);
 /* An adder or subtractor whose one reader is another: synthesis (Yosys's
  * alumacc) makes the chain one multi-operand adder, a carry-save stage
  * each (a full adder's sum, two XOR2, bit to bit: no carry ripples) and
@@ -115,8 +126,9 @@ sim_arcs sim_delay_csa(void);
 /* Array multiplier wa x wb quantized to wy bits (wa, wb the operands'
  * live bits: sim_prim.c): a partial product (AND2), min(wa, wb) - 1
  * carry-save rows (an XOR2 each), a max(wa, wb) - 1 bit ripple-carry
- * adder whose sum bits, the output's, settle from L up. */
-sim_arcs sim_delay_mul(int wa, int wb, int wy);
+ * adder whose sum bits, the output's, settle from L up; PREFIX: a prefix
+ * adder across the wa + wb bits of the product, every bit at once. */
+sim_arcs sim_delay_mul(int wa, int wb, int wy, sim_carry k);
 /* The XOR levels of the carry-save reduction of rows + 1 partial
  * products: one a row, as the array's, up to 15 rows (16 x 16); beyond,
  * ABC's delay-driven mapping reduces them as a tree: two XOR levels per
@@ -124,7 +136,10 @@ sim_arcs sim_delay_mul(int wa, int wb, int wy);
  * to a registered W x W product through the same flow (W = 4 to 32,
  * docs/timing.md, "Wide multipliers"). */
 int sim_delay_mul_rows(int rows);
-sim_arcs sim_delay_round(int w);           /* incrementer: a w-bit half-adder chain */
+sim_arcs sim_delay_round(int w, sim_carry k);  /* incrementer: a w-bit half-adder chain (PREFIX: its carry an AND2 tree) */
+/* A carry across w bits (w >= 2) as a prefix adder: 2 ceil(log2 w) - 1
+ * cells, two levels each. */
+sim_delay sim_delay_prefix(int w);
 sim_arcs sim_delay_sat(int extra);         /* detect (XOR2, OR tree) from the top bits, clamp (MUX2 select) */
 /* A logic element of `bits` input bits in all: a balanced tree of 2-input
  * gates over them, ceil(log2 bits) + 1 levels of AND2 (an estimate: the

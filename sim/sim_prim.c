@@ -127,12 +127,12 @@ static int imax(int a, int b) { return a > b ? a : b; }
  * for an exact result with src_f fraction and src_i integer bits:
  * rounding to nearest where it drops fraction bits, saturation where it
  * drops integer bits. Its area into *area, its arcs after dl's. */
-static sim_arcs quant_cost(const prim *p, sim_fmt f, int src_f, int src_i, double *area, sim_arcs dl)
+static sim_arcs quant_cost(const prim *p, sim_fmt f, int src_f, int src_i, double *area, sim_arcs dl, sim_carry k)
 {
     double q = 0;
     if (src_f > f.fbits && p->e.r != SIM_RND_TRUNC) {
         q += sim_area_round(f.width);
-        dl = sim_arcs_then(dl, sim_delay_round(f.width));
+        dl = sim_arcs_then(dl, sim_delay_round(f.width, k));
     }
     if (src_i > f.ibits && p->e.o == SIM_OVF_SAT) {
         q += sim_area_sat(f.width, src_i - f.ibits);
@@ -147,7 +147,7 @@ static sim_arcs quant_cost(const prim *p, sim_fmt f, int src_f, int src_i, doubl
 static void set_cost(sim_signal *y, prim *p, double area, sim_arcs dl, int src_f, int src_i)
 {
     double q;
-    dl = quant_cost(p, y->fmt, src_f, src_i, &q, dl);
+    dl = quant_cost(p, y->fmt, src_f, src_i, &q, dl, SIM_CARRY_RIPPLE);
     p->e.qlogic = q > 0;
     y->area_ge = area + q;
     sim_arcs_set(y, dl);
@@ -343,6 +343,19 @@ static int adder_width(sim_fmt a, sim_fmt b, sim_fmt y)
     return w < 1 ? 1 : w;
 }
 
+/* The carry chain of adder y over the bits where both operands vary, the
+ * bits above and below it (sim_live.h); the operands' spans into lo, hi. */
+static void addsub_spans(const sim_signal *y, int *chain, int *ext, int *low, int *lo, int *hi)
+{
+    const prim *p = y->driver->data;
+    const sim_signal *a = p->e.a, *b = p->e.b;
+    int w = adder_width(a->fmt, b->fmt, y->fmt);
+    sim_live_span(a, &lo[0], &hi[0]);
+    sim_live_span(b, &lo[1], &hi[1]);
+    sim_live_chain(lo, hi, 2, y->fmt, chain, ext, low);
+    if (*chain > w) *chain = w;
+}
+
 static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                           sim_signal *a, sim_signal *b, int sub)
 {
@@ -363,19 +376,14 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
     if (fast && !p->e.sa && !p->e.sb) set_native(pr, sub ? SIM__OP_SUB : SIM__OP_ADD, p);
     sim_sensitive(pr, a, SIM_EDGE_ANY);
     sim_sensitive(pr, b, SIM_EDGE_ANY);
-    int w = adder_width(a->fmt, b->fmt, fmt);
-    /* the carry chain over the bits where both operands vary (sim_live.h) */
     int chain, ext, low, lo[2], hi[2];
-    sim_live_span(a, &lo[0], &hi[0]);
-    sim_live_span(b, &lo[1], &hi[1]);
-    sim_live_chain(lo, hi, 2, fmt, &chain, &ext, &low);
-    if (chain > w) chain = w;
+    addsub_spans(y, &chain, &ext, &low, lo, hi);
     /* area over the same spans: the chain as mapped, an incrementer above,
      * the carry alone below, and the negation of a subtrahend's bits below
      * the chain where the minuend is zero (sim_area_addsub) */
     int ylo = -fmt.fbits, clo = imax(imax(lo[0], lo[1]), ylo);
     int neg = sub && lo[1] < lo[0] ? imax(clo - imax(lo[1], ylo), 0) : 0;
-    set_cost(y, p, sim_area_addsub(sub, chain, ext, low, neg), sub ? sim_delay_sub_span(chain, ext, low) : sim_delay_add_span(chain, ext, low),
+    set_cost(y, p, sim_area_addsub(sub, chain, ext, low, neg), sub ? sim_delay_sub_span(chain, ext, low, SIM_CARRY_RIPPLE) : sim_delay_add_span(chain, ext, low, SIM_CARRY_RIPPLE),
              p->e.src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
     return y;
 }
@@ -451,7 +459,7 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
         int kind = a == b ? (sa ? SIM_MUL_SQ_S : SIM_MUL_SQ_U) : sa && sb ? SIM_MUL_SS : sa || sb ? SIM_MUL_SU : SIM_MUL_UU;
         ge *= sim_area_mul_fit(kind, la < lb ? la : lb);
     }
-    set_cost(y, p, ge, sim_delay_mul(la, lb, fmt.width), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
+    set_cost(y, p, ge, sim_delay_mul(la, lb, fmt.width, SIM_CARRY_RIPPLE), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
     return y;
 }
 
@@ -573,8 +581,33 @@ int sim_mul_network_delay(sim_signal *y, sim_arcs net)
     if (y->kind != SIM_KIND_MUL || !elem_of(y)) return -1;
     const prim *p = y->driver->data;
     double q;
-    sim_arcs_set(y, quant_cost(p, y->fmt, p->e.src_f, p->e.a->fmt.ibits + p->e.b->fmt.ibits, &q, net));
+    sim_arcs_set(y, quant_cost(p, y->fmt, p->e.src_f, p->e.a->fmt.ibits + p->e.b->fmt.ibits, &q, net, SIM_CARRY_RIPPLE));
     return 0;
+}
+
+sim_arcs sim_prim_arcs(const sim_signal *y, sim_carry k)
+{
+    const sim_prim_info *e = elem_of(y);
+    if (k == SIM_CARRY_RIPPLE || !e || (e->kind != SIM_KIND_ADD && e->kind != SIM_KIND_SUB && e->kind != SIM_KIND_MUL))
+        return sim_arcs_of(y);
+    const prim *p = y->driver->data;
+    sim_arcs dl;
+    int src_i;
+    if (e->kind == SIM_KIND_MUL) {
+        /* a product by a constant too: the export writes it as a product,
+         * which Yosys builds as its own multiplier (a row per nonzero bit),
+         * the shift-and-add network (sim_mul_network_delay) being what ABC's
+         * restructuring makes of it */
+        dl = sim_delay_mul(sim_prim_live_bits(e->a), sim_prim_live_bits(e->b), y->fmt.width, k);
+        src_i = e->a->fmt.ibits + e->b->fmt.ibits;
+    } else {
+        int chain, ext, low, lo[2], hi[2];
+        addsub_spans(y, &chain, &ext, &low, lo, hi);
+        dl = e->kind == SIM_KIND_SUB ? sim_delay_sub_span(chain, ext, low, k) : sim_delay_add_span(chain, ext, low, k);
+        src_i = imax(e->a->fmt.ibits, e->b->fmt.ibits) + 1;
+    }
+    double q;
+    return quant_cost(p, y->fmt, e->src_f, src_i, &q, dl, k);
 }
 
 int sim_prim_reads(const sim_prim_info *in, const sim_signal **r)

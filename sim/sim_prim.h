@@ -164,6 +164,12 @@ typedef struct sim_prim_info {
  * primitive (or a constant: kind, y, trunc and wrap); -1 for an input, a
  * clock, or a signal a user process drives. */
 int sim_prim_describe(const sim_signal *y, sim_prim_info *out);
+/* An element's arcs with the carries k leaves (sim_delay.h): with
+ * SIM_CARRY_RIPPLE those it was built with (sim_arcs_of), with PREFIX an
+ * adder's, subtractor's or multiplier's worked out again for prefix
+ * carries (a multiplier by a constant as Yosys's own product, not the
+ * shift-and-add network a unit may have given it), with its rounding. */
+sim_arcs sim_prim_arcs(const sim_signal *y, sim_carry k);
 /* The signals a combinational element reads (mux: select, then inputs;
  * logic: its inputs; block key: pass, then x; others: a, b), into r,
  * which must hold 10 + in->n entries; returns how many. Not for registers

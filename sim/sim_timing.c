@@ -11,6 +11,7 @@
 
 typedef struct walk {
     const sim_ctx *c;
+    sim_carry carry;      /* the carries the flow leaves (sim_delay.h) */
     double  *load;        /* each signal's extra delay for the pins its bits drive (sim_delay_load_ps) */
     unsigned char *csa;   /* 1: an adder merged into the multi-operand adder of its one reader (sim_delay_csa) */
     sim_delay *al, *am;   /* arrival of each signal's least and most significant bit (NONE: no path) */
@@ -66,7 +67,7 @@ static int visit(walk *w, const sim_signal *s)
         const sim_signal **r = malloc((size_t)(10 + (in.n > 0 ? in.n : 0)) * sizeof *r);
         if (!r) { snprintf(w->err, w->errlen, "out of memory"); return -1; }
         int nr = sim_prim_reads(&in, r);
-        sim_arcs a = w->csa[i] ? sim_delay_csa() : sim_arcs_of(s);
+        sim_arcs a = w->csa[i] ? sim_delay_csa() : sim_prim_arcs(s, w->carry);
         if (!w->csa[i] && is_addsub(in.kind) && !in.qlogic && ((in.a && w->csa[in.a->index]) || (in.b && w->csa[in.b->index]))) {
             /* the last adder of a multi-operand chain: its carry runs over
              * all the chain's bits (sim_live_adder) */
@@ -74,7 +75,7 @@ static int visit(walk *w, const sim_signal *s)
             terms(w, in.a, lo, hi, &n, 0);
             terms(w, in.b, lo, hi, &n, 0);
             sim_live_chain(lo, hi, n, s->fmt, &chain, &ext, &low);
-            a = in.kind == SIM_KIND_SUB ? sim_delay_sub_span(chain, ext, low) : sim_delay_add_span(chain, ext, low);
+            a = in.kind == SIM_KIND_SUB ? sim_delay_sub_span(chain, ext, low, w->carry) : sim_delay_add_span(chain, ext, low, w->carry);
         }
         for (int k = 0; k < nr; k++) {
             if (visit(w, r[k])) { free(r); return -1; }
@@ -165,9 +166,14 @@ static void loads(const sim_ctx *c, double *load, unsigned char *csa)
 
 int sim_timing_analyze(const sim_ctx *c, sim_timing *out, char *err, size_t errlen)
 {
+    return sim_timing_analyze_carry(c, SIM_CARRY_RIPPLE, out, err, errlen);
+}
+
+int sim_timing_analyze_carry(const sim_ctx *c, sim_carry carry, sim_timing *out, char *err, size_t errlen)
+{
     memset(out, 0, sizeof *out);
     uint32_t n = sim_signal_count(c);
-    walk w = { c, malloc((n ? n : 1) * sizeof(double)), malloc(n ? n : 1), malloc((n ? n : 1) * sizeof(sim_delay)), malloc((n ? n : 1) * sizeof(sim_delay)),
+    walk w = { c, carry, malloc((n ? n : 1) * sizeof(double)), malloc(n ? n : 1), malloc((n ? n : 1) * sizeof(sim_delay)), malloc((n ? n : 1) * sizeof(sim_delay)),
                malloc((n ? n : 1) * sizeof(int32_t)), calloc(n ? n : 1, 1), err, errlen };
     int32_t *chain = malloc((size_t)(n + 1) * sizeof *chain);
     int rc = -1;

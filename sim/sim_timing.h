@@ -15,6 +15,7 @@
 #define SIM_TIMING_H
 #include <stddef.h>
 #include "sim/sim.h"
+#include "sim/sim_delay.h"
 
 #define SIM_TIMING_PATH_MAX 64
 typedef struct sim_timing {
@@ -29,6 +30,10 @@ typedef struct sim_timing {
 /* 0 and *out filled; -1 with a message naming a signal of a
  * combinational loop (or "out of memory"). */
 int sim_timing_analyze(const sim_ctx *c, sim_timing *out, char *err, size_t errlen);
+/* The same with the carries a flow leaves (sim_delay.h: ripple, as
+ * sim_timing_analyze, or prefix), every adder, subtractor and multiplier
+ * costed with them. */
+int sim_timing_analyze_carry(const sim_ctx *c, sim_carry carry, sim_timing *out, char *err, size_t errlen);
 
 /* The input pins one bit of each signal drives, by signal index (arrays
  * of sim_signal_count(c)): sel[] select, enable, reset and key pins,

@@ -95,6 +95,12 @@ int  tb_ppa_timing(const sim_ctx *c, const sim_scope *sc, double cycles_per_item
  * (tb_ppa_rate sets it from them). 0, or -1 with a message. */
 int  tb_unit_timing(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, tb_ppa *p,
                     char *err, size_t errlen);
+/* Both model the netlist `synth --sta` makes with ABC's script as --abc
+ * auto chooses it (tb_abc_auto on the unit's area): the default script's
+ * ripple carries, the light script's prefix ones (sim_delay.h); with abc
+ * (TB_ABC_FULL or TB_ABC_LIGHT, tb_synth.h) the one given. */
+int  tb_unit_timing_abc(const unit_desc *u, const unit_cfg *cfg, const unit_fmts *f, int abc, tb_ppa *p,
+                        char *err, size_t errlen);
 void tb_ppa_rate(tb_ppa *p, double cycles_per_item);
 
 /* What the user accepts (0 / negative: not set). */

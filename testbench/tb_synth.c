@@ -75,6 +75,8 @@ int tb_synth_tool(tb_synth_run *run, const char *step, const char *dir, const ch
     return p.status == 0 ? TB_SYNTH_OK : TB_SYNTH_FAILED;
 }
 
+int tb_abc_auto(double model_ge) { return model_ge > TB_ABC_LIGHT_GE ? TB_ABC_LIGHT : TB_ABC_FULL; }
+
 /* The first line of dir/log saying ERROR (else "see LOG"), as the failure's message. */
 static int tool_failed(const char *dir, const char *log, const char *step, char *err, size_t errlen)
 {

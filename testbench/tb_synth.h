@@ -60,6 +60,11 @@ typedef struct tb_sta {
  * restructuring does not finish (docs/timing.md, "Big designs"); each
  * followed by buffer -p. */
 enum { TB_ABC_FULL = 0, TB_ABC_LIGHT };
+/* --abc auto's choice: the light script past TB_ABC_LIGHT_GE of the
+ * model's area (ABC's restructuring of a network that large runs for
+ * hours), else the default one. */
+#define TB_ABC_LIGHT_GE 100000.0
+int tb_abc_auto(double model_ge);
 
 /* The flow of `synth --sta`: the export, Yosys (synth -top UNIT;
  * dfflibmap and abc on the library with script abc, TB_ABC_*; opt_clean;

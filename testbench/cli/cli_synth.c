@@ -29,11 +29,14 @@ void cli_synth_cleanup(const cli_synth_st *st, const char *dir, int signal)
 /* The model's figures: critical path and f_max (tb_unit_timing), area. */
 typedef struct model_fig { tb_ppa p; double ge; int ok; char why[600]; } model_fig;
 
-static void model_figures(const cli_unit_opts *o, const unit_fmts *fm, model_fig *m)
+/* The model's figures, its carries those of ABC's script: --abc's, or
+ * by the model's area (tb_abc_auto) into *abc (TB_ABC_*). */
+static void model_figures(const cli_unit_opts *o, const unit_fmts *fm, int abc_opt, model_fig *m, int *abc)
 {
     memset(m, 0, sizeof *m);
     m->ge = tb_verilog_area(o->u, &o->cfg, fm, m->why, sizeof m->why);
-    m->ok = m->ge >= 0 && !tb_unit_timing(o->u, &o->cfg, fm, &m->p, m->why, sizeof m->why);
+    *abc = abc_opt == CLI_SYNTH_ABC_LIGHT ? TB_ABC_LIGHT : abc_opt == CLI_SYNTH_ABC_FULL ? TB_ABC_FULL : tb_abc_auto(m->ge);
+    m->ok = m->ge >= 0 && !tb_unit_timing_abc(o->u, &o->cfg, fm, *abc, &m->p, m->why, sizeof m->why);
 }
 
 static void head(const cli_unit_opts *o, const char *what)
@@ -204,7 +207,8 @@ static void fpga_json(const cli_unit_opts *o, const tb_fpga *r, const model_fig 
 int cli_synth_flow(const cli_unit_opts *o, const unit_fmts *fm, const cli_synth_st *st)
 {
     model_fig m;
-    model_figures(o, fm, &m);
+    int abc;
+    model_figures(o, fm, st->abc, &m, &abc);
     char tmpl[4096], err[800];
     const char *dir = cli_synth_dir(st, tmpl, sizeof tmpl);
     if (!dir) return CLI_USAGE;
@@ -212,10 +216,6 @@ int cli_synth_flow(const cli_unit_opts *o, const unit_fmts *fm, const cli_synth_
     tb_sta sr;
     tb_fpga fr;
     int t;
-    /* the light script past CLI_SYNTH_LIGHT_GE (auto): ABC's restructuring
-     * of a network that large runs for hours (docs/timing.md, "Big designs") */
-    int abc = st->abc == CLI_SYNTH_ABC_LIGHT || (st->abc <= CLI_SYNTH_ABC_AUTO && m.ge > CLI_SYNTH_LIGHT_GE)
-        ? TB_ABC_LIGHT : TB_ABC_FULL;
     if (st->sta)
         t = tb_synth_sta(o->u, &o->cfg, fm, st->liberty, st->clock_ps > 0 ? st->clock_ps : 10000, abc, dir, &run, &sr, err, sizeof err);
     else {

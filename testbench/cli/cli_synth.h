@@ -18,9 +18,9 @@ typedef struct cli_synth_st {
 
 #define CLI_SYNTH_TIMEOUT 600
 /* --abc auto (0), full, light; auto takes the light script past
- * CLI_SYNTH_LIGHT_GE of the model's area (docs/timing.md, "Big designs") */
+ * TB_ABC_LIGHT_GE of the model's area (tb_abc_auto; docs/timing.md, "Big
+ * designs") */
 enum { CLI_SYNTH_ABC_AUTO = 0, CLI_SYNTH_ABC_FULL, CLI_SYNTH_ABC_LIGHT };
-#define CLI_SYNTH_LIGHT_GE 100000.0
 
 /* The folder the flow works in: --keep DIR (made), else a temporary one
  * in $TMPDIR (else /tmp), its name in tmpl. NULL after the message

@@ -319,7 +319,8 @@ static const cli_opt synth_tab[] = {
       "                       Liberty, with its restructuring), light (the mapping\n"
       "                       alone: for networks the restructuring does not finish\n"
       "                       on), auto (default: light past 100000 GE of the\n"
-      "                       model's area, else full)\n" },
+      "                       model's area, else full); the model's carries follow\n"
+      "                       it (ripple, or the light script's prefix carries)\n" },
     { "--fpga", NULL, CLI_OPT_CALL, 0, 0, 0, NULL, "%s needs ice40", synth_fpga, 0,
       "  --fpga ice40         synthesize for an iCE40 (Yosys synth_ice40), place and\n"
       "                       route with nextpnr-ice40 (Debian package nextpnr-ice40):\n"
@@ -396,7 +397,9 @@ static void synth_paths(const char *dir, const cli_unit_opts *o, const unit_fmts
     if (f) fclose(f);
     tb_ppa p;
     memset(&p, 0, sizeof p);
-    int bad = tb_unit_timing(o->u, &o->cfg, fm, &p, err, sizeof err);
+    /* abc -g runs ABC's default script, whose restructuring leaves ripple
+     * carries whatever the design's size */
+    int bad = tb_unit_timing_abc(o->u, &o->cfg, fm, TB_ABC_FULL, &p, err, sizeof err);
     printf("Yosys longest topological path (ltp -noff) against shadesim's critical path:\n");
     if (len >= 0) printf("  Yosys        %6ld gates\n", len);
     else printf("  Yosys        (no ltp result: see yosys.log with --keep DIR)\n");
