@@ -562,9 +562,14 @@ static int read_step(vec_stream *v, vec_set *s)
     size_t cap = v->cap, len = v->len;
     size_t before = s->n_rows;
     int rerr = 0;
-    size_t k = fread(buf + len, 1, cap - len, v->f);
+    /* A block's bytes at most, not the room left: a pipe holds a block
+     * (F_SETPIPE_SZ below), and asking for more than it holds waits on
+     * the writer at every block. The room left (the carried line's) is
+     * still taken when it is less. */
+    size_t want = cap - len < VEC_BLOCK ? cap - len : VEC_BLOCK;
+    size_t k = fread(buf + len, 1, want, v->f);
     len += k;
-    if (len < cap) {               /* short read: end of file or error */
+    if (k < want) {                /* short read: end of file or error */
         v->eof = 1;
         if (ferror(v->f)) rerr = errno ? errno : EIO;
     }
@@ -575,8 +580,8 @@ static int read_step(vec_stream *v, vec_set *s)
         while (q > buf && q[-1] != '\n') q--;
         cut = q;
         if (cut == buf) {
-            /* No LF in a full buffer: a line too long (or bad bytes
-             * before its end). */
+            /* No LF in a block's bytes or more: a line too long (or
+             * bad bytes before its end). */
             r->line++;
             if (check_line(r, buf, len) == 0) fail(r, "line longer than %d bytes", VEC_LINE_MAX);
             return -1;
