@@ -50,6 +50,11 @@ check charts_exit_0 [ $? -eq 0 ]
 n=$(ls "$T/charts"/stability_*.svg 2>/dev/null | wc -l)
 check charts_written [ "$n" -ge 8 ]
 check charts_listed [ "$(grep -c '^wrote ' "$T/o.out")" -eq "$n" ]
+# the charts --help names are the charts written (cli_outset takes a
+# chart's name from --help)
+grep -o 'stability_[a-z_0-9]*\.svg' "$T/help" | sort -u >"$T/help.names"
+(cd "$T/charts" && ls stability_*.svg) | sort >"$T/written.names"
+check charts_named_in_help cmp -s "$T/help.names" "$T/written.names"
 check charts_no_temporaries [ "$(ls -A "$T/charts" | grep -vc '\.svg$')" -eq 0 ]
 if command -v xmllint >/dev/null 2>&1; then
     bad=0
