@@ -18,7 +18,10 @@ WARN    := -Wall -Wextra -Wmissing-prototypes
 OPT     ?= -O2
 CFLAGS  ?=
 LDFLAGS ?=
-ALLCFLAGS = $(CSTD) $(WARN) $(OPT) -I. $(CFLAGS)
+# COPTS: flags for compiling only (a link of objects alone would call them
+# unused: clang warns)
+LINKCFLAGS = $(CSTD) $(WARN) $(OPT) -I. $(CFLAGS)
+ALLCFLAGS = $(LINKCFLAGS) $(COPTS)
 LDLIBS  := -lm -lpthread
 
 LAYERS  := base sim chart units vectors scene testbench testbench/study testbench/cli
@@ -54,7 +57,7 @@ bin/shadesim: $(B)/shadesim
 
 $(B)/shadesim: $(B)/testbench/cli/main.o $(B)/libshadesim.a
 	$(say) LD $@
-	$(Q)$(CC) $(ALLCFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
+	$(Q)$(CC) $(LINKCFLAGS) $(LDFLAGS) -o $@ $^ $(LDLIBS)
 
 $(B)/libshadesim.a: $(LIBOBJ)
 	@rm -f $@
@@ -131,8 +134,8 @@ CLANG ?= clang
 ASAN_FLAGS = $(call asan_flags,$(CC))
 asan_flags = OPT="-O1 -g1 -fno-omit-frame-pointer" \
 	    LDFLAGS="-no-pie$(if $(call is_clang,$(1)),, -static-libasan -static-libubsan)" \
-	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -DSIM_DEBUG \
-	    $(if $(call is_clang,$(1)),-mllvm -asan-globals=0,--param asan-globals=0)"
+	    CFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -DSIM_DEBUG" \
+	    COPTS="$(if $(call is_clang,$(1)),-mllvm -asan-globals=0,--param asan-globals=0)"
 is_clang = $(findstring clang,$(shell $(1) --version 2>/dev/null))
 TB := $(if $(filter clang%,$(notdir $(CC))),build-clang,build)
 # The portable flavour (as on a CPU other than x86-64, and a compiler without
