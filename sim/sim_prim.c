@@ -356,6 +356,29 @@ static void addsub_spans(const sim_signal *y, int *chain, int *ext, int *low, in
     if (*chain > w) *chain = w;
 }
 
+/* The delay of adder, subtractor or multiplier y before its output's
+ * quantization, with the carries k; the integer bits of its exact result
+ * into *src_i. One definition for the element's own arcs (ripple, at
+ * construction) and for sim_prim_arcs (the carries a flow leaves). */
+static sim_arcs op_arcs(const sim_signal *y, sim_carry k, int *src_i)
+{
+    const prim *p = y->driver->data;
+    const sim_signal *a = p->e.a, *b = p->e.b;
+    if (y->kind == SIM_KIND_MUL) {
+        /* the array synthesis builds: the operands' live bits only; a
+         * product by a constant too: the export writes it as a product,
+         * which Yosys builds as its own multiplier (a row per nonzero bit),
+         * the shift-and-add network (sim_mul_network_delay) being what
+         * ABC's restructuring makes of it */
+        *src_i = a->fmt.ibits + b->fmt.ibits;
+        return sim_delay_mul(sim_prim_live_bits(a), sim_prim_live_bits(b), y->fmt.width, k);
+    }
+    int chain, ext, low, lo[2], hi[2];
+    addsub_spans(y, &chain, &ext, &low, lo, hi);
+    *src_i = imax(a->fmt.ibits, b->fmt.ibits) + 1;
+    return y->kind == SIM_KIND_SUB ? sim_delay_sub_span(chain, ext, low, k) : sim_delay_add_span(chain, ext, low, k);
+}
+
 static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
                           sim_signal *a, sim_signal *b, int sub)
 {
@@ -383,8 +406,9 @@ static sim_signal *addsub(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt f
      * the chain where the minuend is zero (sim_area_addsub) */
     int ylo = -fmt.fbits, clo = imax(imax(lo[0], lo[1]), ylo);
     int neg = sub && lo[1] < lo[0] ? imax(clo - imax(lo[1], ylo), 0) : 0;
-    set_cost(y, p, sim_area_addsub(sub, chain, ext, low, neg), sub ? sim_delay_sub_span(chain, ext, low, SIM_CARRY_RIPPLE) : sim_delay_add_span(chain, ext, low, SIM_CARRY_RIPPLE),
-             p->e.src_f, imax(a->fmt.ibits, b->fmt.ibits) + 1);
+    int src_i;
+    sim_arcs dl = op_arcs(y, SIM_CARRY_RIPPLE, &src_i);
+    set_cost(y, p, sim_area_addsub(sub, chain, ext, low, neg), dl, p->e.src_f, src_i);
     return y;
 }
 
@@ -459,7 +483,9 @@ sim_signal *sim_mul(sim_ctx *c, sim_scope *sc, const char *name, sim_fmt fmt,
         int kind = a == b ? (sa ? SIM_MUL_SQ_S : SIM_MUL_SQ_U) : sa && sb ? SIM_MUL_SS : sa || sb ? SIM_MUL_SU : SIM_MUL_UU;
         ge *= sim_area_mul_fit(kind, la < lb ? la : lb);
     }
-    set_cost(y, p, ge, sim_delay_mul(la, lb, fmt.width, SIM_CARRY_RIPPLE), p->e.src_f, a->fmt.ibits + b->fmt.ibits);
+    int src_i;
+    sim_arcs dl = op_arcs(y, SIM_CARRY_RIPPLE, &src_i);
+    set_cost(y, p, ge, dl, p->e.src_f, src_i);
     return y;
 }
 
@@ -591,21 +617,8 @@ sim_arcs sim_prim_arcs(const sim_signal *y, sim_carry k)
     if (k == SIM_CARRY_RIPPLE || !e || (e->kind != SIM_KIND_ADD && e->kind != SIM_KIND_SUB && e->kind != SIM_KIND_MUL))
         return sim_arcs_of(y);
     const prim *p = y->driver->data;
-    sim_arcs dl;
     int src_i;
-    if (e->kind == SIM_KIND_MUL) {
-        /* a product by a constant too: the export writes it as a product,
-         * which Yosys builds as its own multiplier (a row per nonzero bit),
-         * the shift-and-add network (sim_mul_network_delay) being what ABC's
-         * restructuring makes of it */
-        dl = sim_delay_mul(sim_prim_live_bits(e->a), sim_prim_live_bits(e->b), y->fmt.width, k);
-        src_i = e->a->fmt.ibits + e->b->fmt.ibits;
-    } else {
-        int chain, ext, low, lo[2], hi[2];
-        addsub_spans(y, &chain, &ext, &low, lo, hi);
-        dl = e->kind == SIM_KIND_SUB ? sim_delay_sub_span(chain, ext, low, k) : sim_delay_add_span(chain, ext, low, k);
-        src_i = imax(e->a->fmt.ibits, e->b->fmt.ibits) + 1;
-    }
+    sim_arcs dl = op_arcs(y, k, &src_i);
     double q;
     return quant_cost(p, y->fmt, e->src_f, src_i, &q, dl, k);
 }
